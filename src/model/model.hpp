@@ -1,0 +1,113 @@
+// The immutable description of a planar linkage: points, bodies, joints, drivers.
+// Everything is stored in SI units (m, rad, s); `units` only records how the user
+// wants to read and write numbers. Built by the model-file parser or by code
+// (ModelBuilder); checked and compiled into a Mechanism by the kinematics stage.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "model/law.hpp"
+#include "model/units.hpp"
+
+namespace nbar {
+
+struct Point {
+  std::string name;
+  Eigen::Vector2d position;  // in the starting pose, m
+  bool ground = false;       // fixed to the frame
+};
+
+struct Body {
+  std::string name;
+  std::vector<int> points;             // indices into Model::points; the first two define its angle
+  std::optional<double> length;        // exact length of a two-point body (m), overriding the drawing
+};
+
+// Prismatic joint: `point` of `body` moves on the line through along[0], along[1], and `body`
+// keeps its orientation relative to the guide (the body or ground that owns the along points).
+struct Slider {
+  int body = -1;
+  int point = -1;
+  std::array<int, 2> along{-1, -1};
+};
+
+// Pin in slot: `point` moves on the line through along[0], along[1] and may rotate freely.
+struct Slot {
+  int point = -1;
+  std::array<int, 2> along{-1, -1};
+};
+
+enum class DriverKind {
+  Angle,     // angle of `body` (from its 1st to its 2nd point), from +x or relative to `relative_to`
+  Distance,  // distance between points[0] and points[1]
+  Slide,     // position of slider `slider`'s point along its guide, from the guide's first point
+};
+
+// How a driver moves. Either a from/to sweep sampled at evenly spaced values (with the
+// derivatives of the driver moving at `speed` with `accel` at every sample), or a law in time.
+struct Driver {
+  std::string name;  // column name in outputs
+  DriverKind kind = DriverKind::Angle;
+  int body = -1;         // Angle
+  int relative_to = -1;  // Angle: -1 means the +x axis of the frame
+  std::array<int, 2> points{-1, -1};  // Distance
+  int slider = -1;                    // Slide: index into Model::sliders
+
+  std::optional<double> from;  // SI (rad or m); unset means "the value in the drawn pose"
+  std::optional<double> to;
+  double speed = 1.0;  // SI per second
+  double accel = 0.0;  // SI per second squared
+  std::optional<Law> law;  // value as a function of t, in SI
+
+  bool is_angular() const { return kind == DriverKind::Angle; }
+};
+
+struct SweepSpec {
+  int steps = 361;            // from/to sweeps: number of samples, ends included
+  double duration = 1.0;      // time-law sweeps, s
+  std::optional<double> time_step;  // time-law sweeps, s; default duration/100
+};
+
+struct Model {
+  std::string name;
+  Units units;
+  std::vector<Point> points;
+  std::vector<Body> bodies;
+  std::vector<Slider> sliders;
+  std::vector<Slot> slots;
+  std::vector<Driver> drivers;
+  SweepSpec sweep;
+
+  int find_point(const std::string& name) const;  // -1 when absent
+  int find_body(const std::string& name) const;
+  bool has_time_law() const;
+};
+
+// What a model error is about, so that front-ends can point at the right place
+// (the parser maps it to file:line:column).
+struct EntityRef {
+  enum class Kind { Model, Point, Body, Slider, Slot, Driver, Sweep } kind = Kind::Model;
+  int index = -1;
+};
+
+class ModelError : public std::runtime_error {
+ public:
+  ModelError(EntityRef where, const std::string& message)
+      : std::runtime_error(message), where_(where) {}
+  const EntityRef& where() const { return where_; }
+
+ private:
+  EntityRef where_;
+};
+
+// Checks names, references and geometry that need no solving; throws ModelError.
+void validate(const Model& model);
+
+}  // namespace nbar
