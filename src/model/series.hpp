@@ -30,6 +30,12 @@ class Series {
   double& operator[](int k) { return c_[k]; }
   double operator[](int k) const { return c_[k]; }
   double value() const { return c_[0]; }
+  // The first `terms` coefficients (a truncation is exact for every lower coefficient).
+  Series head(int terms) const {
+    Series r(terms);
+    for (int k = 0; k < terms; ++k) r.c_[k] = c_[k];
+    return r;
+  }
   // k-th derivative with respect to s at s = 0.
   double derivative(int k) const;
 

@@ -1,0 +1,272 @@
+// nbar: the command-line front-end. It only translates between the terminal and the core.
+//
+// Exit codes: 0 success; 1 invalid model; 2 bad usage; 3 cannot assemble at the start;
+// 4 sweep stopped early (the rows solved so far are written).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "io/model_file.hpp"
+#include "io/results_writer.hpp"
+#include "kinematics/sweep.hpp"
+#include "kinematics/table.hpp"
+
+namespace {
+
+enum ExitCode { kOk = 0, kInvalidModel = 1, kBadUsage = 2, kCannotAssemble = 3, kStoppedEarly = 4 };
+
+using nbar::io::LoadedModel;
+
+// Loads and compiles a model, reporting every problem at its place in the file.
+struct Loaded {
+  LoadedModel file;
+  std::optional<nbar::Mechanism> mechanism;
+};
+
+int load(const std::string& path, Loaded& out) {
+  try {
+    out.file = nbar::io::load_model_file(path);
+  } catch (const nbar::io::ModelFileError& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kInvalidModel;
+  }
+  try {
+    out.mechanism.emplace(out.file.model);
+  } catch (const nbar::ModelError& e) {
+    std::cerr << "error: " << nbar::io::locate(out.file.source, e) << '\n';
+    return kInvalidModel;
+  }
+  return kOk;
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& sep = ", ") {
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i) s += (i ? sep : "") + items[i];
+  return s;
+}
+
+std::string length_text(const nbar::Model& m, double si) { return fmt::format("{:.6g} {}", si / m.units.length_scale, m.units.length); }
+
+std::string describe_driver(const nbar::Model& m, int d) {
+  const nbar::Driver& drv = m.drivers[d];
+  std::string what;
+  switch (drv.kind) {
+    case nbar::DriverKind::Angle:
+      what = "angle of " + m.bodies[drv.body].name +
+             (drv.relative_to < 0 ? std::string(" from +x") : " relative to " + m.bodies[drv.relative_to].name);
+      break;
+    case nbar::DriverKind::Distance:
+      what = "distance " + m.points[drv.points[0]].name + "-" + m.points[drv.points[1]].name;
+      break;
+    case nbar::DriverKind::Slide:
+      what = "slide of " + m.bodies[m.sliders[drv.slider].body].name + " along its guide";
+      break;
+  }
+  const double rate_scale = drv.is_angular() ? m.units.angle_scale : m.units.length_scale;
+  const std::string unit = drv.is_angular() ? m.units.angle : m.units.length;
+  if (drv.law) return fmt::format("{}: {}, law {}(t) = {} {}", drv.name, what, drv.name, drv.law->text(), unit);
+  std::string motion;
+  if (drv.from) motion += " from " + nbar::format_driver_value(m, d, *drv.from);
+  if (drv.to) motion += " to " + nbar::format_driver_value(m, d, *drv.to);
+  motion += fmt::format(", speed {:.6g} {}/s", drv.speed / rate_scale, unit);
+  if (drv.accel != 0.0) motion += fmt::format(", accel {:.6g} {}/s^2", drv.accel / rate_scale, unit);
+  return drv.name + ": " + what + motion;
+}
+
+void print_summary(std::ostream& out, const nbar::Mechanism& mech, const std::string& path) {
+  const nbar::Model& m = mech.model();
+  out << "Model: " << (m.name.empty() ? std::string("(unnamed)") : m.name) << "  [" << path << "]\n";
+  out << "Units: length " << m.units.length << ", angle " << m.units.angle << ", time s\n";
+  std::vector<std::string> ground, moving;
+  for (const nbar::Point& p : m.points) (p.ground ? ground : moving).push_back(p.name);
+  out << fmt::format("Points: {} ({} fixed: {}; {} moving: {})\n", m.points.size(), ground.size(), join(ground),
+                     moving.size(), join(moving));
+  out << "Bodies: " << m.bodies.size() << '\n';
+  for (const nbar::Body& b : m.bodies) {
+    std::vector<std::string> names;
+    for (int p : b.points) names.push_back(m.points[p].name);
+    std::string extra;
+    if (b.points.size() >= 2) {
+      const double len = b.length.value_or((m.points[b.points[1]].position - m.points[b.points[0]].position).norm());
+      extra = "  length " + length_text(m, len) + (b.length ? " (given)" : "");
+    }
+    out << fmt::format("  {:<12} [{}]{}\n", b.name, join(names), extra);
+  }
+  // Joints: revolute pairs at shared points, then sliders and slots.
+  std::vector<std::string> joints;
+  for (std::size_t p = 0; p < m.points.size(); ++p) {
+    std::vector<std::string> at;
+    if (m.points[p].ground) at.push_back("ground");
+    for (const nbar::Body& b : m.bodies)
+      for (int q : b.points)
+        if (q == static_cast<int>(p)) at.push_back(b.name);
+    if (at.size() >= 2) joints.push_back("revolute " + m.points[p].name + " (" + join(at, "/") + ")");
+  }
+  for (const nbar::Slider& s : m.sliders)
+    joints.push_back("slider " + m.bodies[s.body].name + " at " + m.points[s.point].name + " along " +
+                     m.points[s.along[0]].name + "-" + m.points[s.along[1]].name);
+  for (const nbar::Slot& s : m.slots)
+    joints.push_back("slot " + m.points[s.point].name + " in " + m.points[s.along[0]].name + "-" + m.points[s.along[1]].name);
+  out << "Joints: " << joints.size() << '\n';
+  for (const std::string& j : joints) out << "  " << j << '\n';
+
+  const nbar::MobilityReport& mob = mech.mobility();
+  out << fmt::format("Degrees of freedom: {} (Gruebler-Kutzbach count {}; {} coordinates, {} constraint equations of rank {})\n",
+                     mob.dof, mob.grubler, mob.coordinates, mob.constraint_rows, mob.rank);
+  if (mob.grubler != mob.dof)
+    out << "  note: the count and the true mobility differ: the linkage has special geometry (redundant constraints)\n";
+  if (mob.redundant.empty()) {
+    out << "Redundant constraints: none\n";
+  } else {
+    out << "Redundant constraints: " << mob.redundant.size()
+        << " (these depend on the others; the choice among a dependent set is arbitrary)\n";
+    for (int r : mob.redundant) out << "  " << mech.rows()[r].label << '\n';
+  }
+  out << "Drivers: " << m.drivers.size() << '\n';
+  for (std::size_t d = 0; d < m.drivers.size(); ++d) out << "  " << describe_driver(m, static_cast<int>(d)) << '\n';
+}
+
+void print_loops(std::ostream& out, const nbar::Mechanism& mech, const nbar::State& state) {
+  const auto& loops = mech.four_bar_loops();
+  if (loops.empty()) {
+    out << "Four-bar loops: none\n";
+    return;
+  }
+  const auto points = nbar::point_positions(mech, state.q);
+  const nbar::Model& m = mech.model();
+  out << "Four-bar loops: " << loops.size() << '\n';
+  for (const nbar::FourBarLoop& loop : loops) {
+    const nbar::GrashofReport g = nbar::classify_grashof(loop, points, mech.tolerance());
+    out << "  " << loop.name << ": " << nbar::describe(g, loop, m) << '\n';
+    out << fmt::format("    at the start: {} branch, transmission angle {:.4g} {}\n",
+                       nbar::branch_name(nbar::branch_sign(loop, points), nbar::chirality(loop, points)),
+                       nbar::transmission_angle(loop, points) / m.units.angle_scale, m.units.angle);
+  }
+}
+
+int run_check(const std::string& path) {
+  Loaded loaded;
+  if (int code = load(path, loaded)) return code;
+  const nbar::Mechanism& mech = *loaded.mechanism;
+  print_summary(std::cout, mech, path);
+  nbar::State state(mech);
+  try {
+    const std::vector<double> start = nbar::sweep_start_values(mech);
+    const nbar::AssemblyReport a = nbar::assemble(mech, state, start);
+    std::vector<std::string> at;
+    for (std::size_t d = 0; d < start.size(); ++d)
+      at.push_back(mech.model().drivers[d].name + " = " + nbar::format_driver_value(mech.model(), static_cast<int>(d), start[d]));
+    std::cout << fmt::format("Assembly at the start ({}): converged, residual {:.3g} {}\n", join(at),
+                             a.residual / mech.model().units.length_scale, mech.model().units.length);
+    if (a.passed_singularity)
+      std::cout << "  warning: reaching the start from the drawn pose passed a singular position\n";
+  } catch (const nbar::AssemblyError& e) {
+    std::cout << "Assembly at the start: FAILED\n";
+    std::cerr << "error: " << path << ": " << e.what() << '\n';
+    return kCannotAssemble;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << path << ": " << e.what() << '\n';
+    return kCannotAssemble;
+  }
+  print_loops(std::cout, mech, state);
+  return kOk;
+}
+
+struct SolveArgs {
+  std::string model;
+  std::optional<int> steps;
+  int order = 2;
+  std::string format = "csv";
+  std::string output;
+};
+
+int run_solve(const SolveArgs& args) {
+  Loaded loaded;
+  if (int code = load(args.model, loaded)) return code;
+  const nbar::Mechanism& mech = *loaded.mechanism;
+  nbar::SweepOptions options;
+  options.steps = args.steps;
+  options.order = args.order;
+  nbar::SweepResult sweep;
+  try {
+    sweep = nbar::run_sweep(mech, options);
+  } catch (const nbar::AssemblyError& e) {
+    std::cerr << "error: " << args.model << ": " << e.what() << '\n';
+    return kCannotAssemble;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kBadUsage;
+  } catch (const std::domain_error& e) {
+    std::cerr << "error: " << args.model << ": " << e.what() << '\n';
+    return kCannotAssemble;
+  }
+  const nbar::ResultTable table = nbar::make_table(mech, sweep);
+
+  std::ofstream file;
+  if (!args.output.empty()) {
+    file.open(args.output);
+    if (!file) {
+      std::cerr << "error: cannot write " << args.output << '\n';
+      return kBadUsage;
+    }
+  }
+  std::ostream& out = args.output.empty() ? std::cout : file;
+  if (args.format == "json")
+    nbar::io::write_json(out, mech, sweep, table);
+  else
+    nbar::io::write_csv(out, table);
+  out.flush();
+
+  for (const std::string& w : sweep.warnings) std::cerr << "warning: " << w << '\n';
+  if (!sweep.complete) {
+    std::cerr << "error: " << args.model << ": " << sweep.stop_reason << " (" << sweep.samples.size()
+              << " rows written)\n";
+    return kStoppedEarly;
+  }
+  return kOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"nbar: analysis of planar linkages (n-bar mechanisms)"};
+  app.set_version_flag("--version", "nbar 0.1.0");
+  app.require_subcommand(1);
+  app.footer(
+      "Exit codes: 0 success, 1 invalid model, 2 bad usage, 3 cannot assemble at the start,\n"
+      "            4 sweep stopped early (the rows solved so far are written).\n"
+      "Model files: see docs/model-format.md.");
+
+  std::string check_model;
+  CLI::App* check = app.add_subcommand("check", "Summarise a model: bodies, joints, degrees of freedom, redundant "
+                                                "constraints, drivers, assembly at the start, Grashof class of "
+                                                "every four-bar loop");
+  check->add_option("MODEL", check_model, "model file (YAML or JSON)")->required();
+
+  SolveArgs solve_args;
+  CLI::App* solve = app.add_subcommand("solve", "Sweep the drivers and write positions, velocities, accelerations "
+                                                "and higher derivatives of every point and body");
+  solve->add_option("MODEL", solve_args.model, "model file (YAML or JSON)")->required();
+  solve->add_option("--steps", solve_args.steps, "number of samples, ends included (overrides the model's sweep)")
+      ->check(CLI::PositiveNumber);
+  solve->add_option("--order", solve_args.order, "highest time derivative: 0 positions, 1 velocities, 2 "
+                                                 "accelerations (default), 3 jerk, up to 5")
+      ->check(CLI::Range(0, 5));
+  solve->add_option("--format", solve_args.format, "csv (default) or json")->check(CLI::IsMember({"csv", "json"}));
+  solve->add_option("-o,--output", solve_args.output, "write to FILE instead of standard output");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kOk : kBadUsage;
+  }
+  if (check->parsed()) return run_check(check_model);
+  if (solve->parsed()) return run_solve(solve_args);
+  return kBadUsage;
+}

@@ -1,0 +1,48 @@
+#include "io/results_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+namespace nbar::io {
+
+void write_csv(std::ostream& out, const ResultTable& table) {
+  for (std::size_t c = 0; c < table.columns.size(); ++c) out << (c ? "," : "") << table.columns[c];
+  out << '\n';
+  std::string line;
+  for (const auto& row : table.rows) {
+    line.clear();
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      if (c) line += ',';
+      // Adding 0.0 turns -0 into 0, which nobody wants to read.
+      line += fmt::format("{:.12g}", row[c] + 0.0);
+    }
+    out << line << '\n';
+  }
+}
+
+void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& sweep, const ResultTable& table) {
+  const Model& m = mech.model();
+  const MobilityReport& mob = mech.mobility();
+  nlohmann::ordered_json j;
+  j["model"] = m.name;
+  j["units"] = {{"length", m.units.length}, {"angle", m.units.angle}, {"time", "s"}};
+  nlohmann::ordered_json redundant = nlohmann::json::array();
+  for (int r : mob.redundant) redundant.push_back(mech.rows()[r].label);
+  j["dof"] = {{"gruebler", mob.grubler}, {"mobility", mob.dof}, {"redundant_constraints", redundant}};
+  nlohmann::ordered_json loops = nlohmann::json::array();
+  for (std::size_t l = 0; l < mech.four_bar_loops().size(); ++l)
+    loops.push_back({{"loop", mech.four_bar_loops()[l].name}, {"branch", sweep.branches[l]}});
+  j["branches"] = loops;
+  j["order"] = sweep.order;
+  j["complete"] = sweep.complete;
+  if (!sweep.complete) j["stop_reason"] = sweep.stop_reason;
+  j["warnings"] = sweep.warnings;
+  j["max_residual"] = sweep.max_residual / m.units.length_scale;
+  j["columns"] = table.columns;
+  j["column_units"] = table.units;
+  j["rows"] = table.rows;
+  out << j.dump(1) << '\n';
+}
+
+}  // namespace nbar::io

@@ -1,0 +1,102 @@
+#include "kinematics/linear_solver.hpp"
+
+#include <cmath>
+
+namespace nbar {
+
+namespace {
+// Below this reciprocal condition the Jacobian is singular for our purposes: a position
+// where the mechanism locks or changes branch.
+constexpr double kSingularRcond = 1e-13;
+}  // namespace
+
+LinearSolver::LinearSolver(const Mechanism& mech)
+    : rows_(mech.row_count()), cols_(mech.coordinate_count()), pattern_(mech.jacobian_pattern()) {
+  if (mech.overdetermined())
+    method_ = Method::LeastSquares;
+  else if (cols_ <= kDenseLimit)
+    method_ = Method::DenseLU;
+  else
+    method_ = Method::SparseLU;
+
+  if (method_ == Method::SparseLU) {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(pattern_.size());
+    for (const auto& e : pattern_) t.emplace_back(e.row, e.col, 1.0);
+    sparse_.resize(rows_, cols_);
+    sparse_.setFromTriplets(t.begin(), t.end());
+    sparse_.makeCompressed();
+    value_slot_.resize(pattern_.size());
+    for (std::size_t e = 0; e < pattern_.size(); ++e) {
+      const int col = pattern_[e].col;
+      const int* inner = sparse_.innerIndexPtr();
+      for (int k = sparse_.outerIndexPtr()[col]; k < sparse_.outerIndexPtr()[col + 1]; ++k) {
+        if (inner[k] == pattern_[e].row) {
+          value_slot_[e] = k;
+          break;
+        }
+      }
+    }
+  } else {
+    dense_.resize(rows_, cols_);
+  }
+}
+
+bool LinearSolver::factorize(const std::vector<double>& values) {
+  switch (method_) {
+    case Method::DenseLU: {
+      dense_.setZero();
+      for (std::size_t e = 0; e < pattern_.size(); ++e) dense_(pattern_[e].row, pattern_[e].col) += values[e];
+      lu_.compute(dense_);
+      rcond_ = lu_.rcond();
+      const auto& lu = lu_.matrixLU();
+      int sign = lu_.permutationP().determinant();
+      for (int i = 0; i < cols_; ++i) sign *= lu(i, i) < 0 ? -1 : 1;
+      det_sign_ = sign;
+      return std::isfinite(rcond_) && rcond_ > kSingularRcond;
+    }
+    case Method::SparseLU: {
+      double* v = sparse_.valuePtr();
+      std::fill(v, v + sparse_.nonZeros(), 0.0);
+      for (std::size_t e = 0; e < pattern_.size(); ++e) v[value_slot_[e]] += values[e];
+      if (!pattern_analysed_) {
+        sparse_lu_.analyzePattern(sparse_);
+        pattern_analysed_ = true;
+      }
+      sparse_lu_.factorize(sparse_);
+      if (sparse_lu_.info() != Eigen::Success) return false;
+      det_sign_ = static_cast<int>(sparse_lu_.signDeterminant());
+      rcond_ = 1.0;
+      return std::isfinite(sparse_lu_.logAbsDeterminant());
+    }
+    case Method::LeastSquares: {
+      dense_.setZero();
+      for (std::size_t e = 0; e < pattern_.size(); ++e) dense_(pattern_[e].row, pattern_[e].col) += values[e];
+      cod_.setThreshold(1e-10);
+      cod_.compute(dense_);
+      det_sign_ = 0;
+      const auto& r = cod_.matrixQTZ();
+      const double big = std::abs(r(0, 0));
+      const double small = std::abs(r(cols_ - 1, cols_ - 1));
+      rcond_ = big > 0 ? small / big : 0.0;
+      return cod_.rank() == cols_ && rcond_ > kSingularRcond;
+    }
+  }
+  return false;
+}
+
+void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  switch (method_) {
+    case Method::DenseLU:
+      x = lu_.solve(b);
+      return;
+    case Method::SparseLU:
+      x = sparse_lu_.solve(b);
+      return;
+    case Method::LeastSquares:
+      x = cod_.solve(b);
+      return;
+  }
+}
+
+}  // namespace nbar

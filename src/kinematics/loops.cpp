@@ -1,0 +1,198 @@
+#include "kinematics/loops.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "model/units.hpp"
+
+namespace nbar {
+
+namespace {
+
+// Links are numbered 0 for the ground and body + 1 for bodies.
+struct Edge {
+  int link;
+  int point;
+};
+
+int body_of(int link) { return link - 1; }
+
+std::string link_name(const Model& m, int body) { return body < 0 ? std::string("ground") : m.bodies[body].name; }
+
+bool has_angle_driver(const Model& m, int body, int frame_body) {
+  for (const Driver& d : m.drivers)
+    if (d.kind == DriverKind::Angle && d.body == body && d.relative_to == frame_body) return true;
+  return false;
+}
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+}  // namespace
+
+std::vector<FourBarLoop> find_four_bar_loops(const Model& model) {
+  const int links = static_cast<int>(model.bodies.size()) + 1;
+  std::vector<std::vector<Edge>> adjacent(links);
+  std::vector<std::vector<int>> links_at(model.points.size());
+  for (std::size_t p = 0; p < model.points.size(); ++p)
+    if (model.points[p].ground) links_at[p].push_back(0);
+  for (std::size_t b = 0; b < model.bodies.size(); ++b)
+    for (int p : model.bodies[b].points) links_at[p].push_back(static_cast<int>(b) + 1);
+  for (std::size_t p = 0; p < links_at.size(); ++p)
+    for (int l1 : links_at[p])
+      for (int l2 : links_at[p])
+        if (l1 != l2) adjacent[l1].push_back({l2, static_cast<int>(p)});
+
+  std::set<std::array<int, 8>> seen;
+  std::vector<FourBarLoop> loops;
+  // The frame of a loop is its lowest-numbered link: the ground whenever the loop has it.
+  for (int l0 = 0; l0 < links; ++l0) {
+    for (const Edge& e1 : adjacent[l0]) {
+      if (e1.link <= l0) continue;
+      for (const Edge& e2 : adjacent[e1.link]) {
+        if (e2.link <= l0 || e2.link == e1.link || e2.point == e1.point) continue;
+        for (const Edge& e3 : adjacent[e2.link]) {
+          if (e3.link <= l0 || e3.link == e1.link || e3.link == e2.link) continue;
+          if (e3.point == e1.point || e3.point == e2.point) continue;
+          for (const Edge& e4 : adjacent[e3.link]) {
+            if (e4.link != l0) continue;
+            if (e4.point == e1.point || e4.point == e2.point || e4.point == e3.point) continue;
+            std::array<int, 4> ls{l0, e1.link, e2.link, e3.link};
+            std::array<int, 4> ps{e1.point, e2.point, e3.point, e4.point};
+            std::sort(ls.begin(), ls.end());
+            std::sort(ps.begin(), ps.end());
+            std::array<int, 8> key{ls[0], ls[1], ls[2], ls[3], ps[0], ps[1], ps[2], ps[3]};
+            if (!seen.insert(key).second) continue;
+
+            // Walk l0 -> e1.link -> e2.link -> e3.link -> l0; the input is the frame's
+            // neighbour that carries a driver, else the lower-numbered one.
+            FourBarLoop loop;
+            loop.frame = body_of(l0);
+            int first = e1.link, last = e3.link;
+            int o2 = e1.point, a = e2.point, b = e3.point, o4 = e4.point;
+            const bool first_driven = has_angle_driver(model, body_of(first), loop.frame);
+            const bool last_driven = has_angle_driver(model, body_of(last), loop.frame);
+            if ((last_driven && !first_driven) || (first_driven == last_driven && last < first)) {
+              std::swap(first, last);
+              std::swap(o2, o4);
+              std::swap(a, b);
+            }
+            loop.input = body_of(first);
+            loop.coupler = body_of(e2.link);
+            loop.output = body_of(last);
+            loop.o2 = o2;
+            loop.a = a;
+            loop.b = b;
+            loop.o4 = o4;
+            loop.name = link_name(model, loop.input) + "-" + link_name(model, loop.coupler) + "-" +
+                        link_name(model, loop.output);
+            loops.push_back(loop);
+          }
+        }
+      }
+    }
+  }
+  return loops;
+}
+
+GrashofReport classify_grashof(double frame, double input, double coupler, double output, double tolerance) {
+  GrashofReport r;
+  r.frame = frame;
+  r.input = input;
+  r.coupler = coupler;
+  r.output = output;
+  const std::array<double, 4> len{frame, input, coupler, output};
+  const int shortest = static_cast<int>(std::min_element(len.begin(), len.end()) - len.begin());
+  const double s = len[shortest];
+  const double l = *std::max_element(len.begin(), len.end());
+  const double sum = frame + input + coupler + output;
+  r.margin = (sum - s - l) - (s + l);
+  if (r.margin < -tolerance) {
+    r.kind = GrashofClass::TripleRocker;
+    return r;
+  }
+  if (r.margin <= tolerance) {
+    r.kind = GrashofClass::ChangePoint;
+    r.margin = 0.0;  // equal within the tolerance: don't print rounding noise
+  }
+  switch (shortest) {
+    case 0:
+      if (r.kind != GrashofClass::ChangePoint) r.kind = GrashofClass::DoubleCrank;
+      r.input_turns_fully = r.output_turns_fully = true;
+      break;
+    case 1:
+      if (r.kind != GrashofClass::ChangePoint) r.kind = GrashofClass::CrankRocker;
+      r.input_turns_fully = true;
+      break;
+    case 3:
+      if (r.kind != GrashofClass::ChangePoint) r.kind = GrashofClass::CrankRocker;
+      r.output_turns_fully = true;
+      break;
+    default:
+      if (r.kind != GrashofClass::ChangePoint) r.kind = GrashofClass::DoubleRocker;
+      break;
+  }
+  return r;
+}
+
+GrashofReport classify_grashof(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p, double tolerance) {
+  return classify_grashof((p[loop.o4] - p[loop.o2]).norm(), (p[loop.a] - p[loop.o2]).norm(),
+                          (p[loop.b] - p[loop.a]).norm(), (p[loop.o4] - p[loop.b]).norm(), tolerance);
+}
+
+std::string to_string(GrashofClass kind) {
+  switch (kind) {
+    case GrashofClass::CrankRocker: return "crank-rocker";
+    case GrashofClass::DoubleCrank: return "double-crank";
+    case GrashofClass::DoubleRocker: return "double-rocker (Grashof)";
+    case GrashofClass::TripleRocker: return "double-rocker (non-Grashof, triple-rocker)";
+    case GrashofClass::ChangePoint: return "change point";
+  }
+  return "";
+}
+
+std::string describe(const GrashofReport& r, const FourBarLoop& loop, const Model& m) {
+  std::ostringstream s;
+  const double unit = m.units.length_scale;
+  s << to_string(r.kind) << ": frame " << link_name(m, loop.frame) << " " << r.frame / unit << ", input "
+    << link_name(m, loop.input) << " " << r.input / unit << ", coupler " << link_name(m, loop.coupler) << " "
+    << r.coupler / unit << ", output " << link_name(m, loop.output) << " " << r.output / unit << " " << m.units.length
+    << "; (p + q) - (s + l) = " << r.margin / unit;
+  std::vector<std::string> cranks;
+  if (r.input_turns_fully) cranks.push_back(link_name(m, loop.input));
+  if (r.output_turns_fully) cranks.push_back(link_name(m, loop.output));
+  if (r.kind == GrashofClass::DoubleRocker) {
+    s << "; the coupler turns fully, neither " << link_name(m, loop.input) << " nor " << link_name(m, loop.output)
+      << " does";
+  } else if (!cranks.empty()) {
+    s << "; turns fully relative to " << link_name(m, loop.frame) << ": ";
+    for (std::size_t i = 0; i < cranks.size(); ++i) s << (i ? " and " : "") << cranks[i];
+    if (r.kind == GrashofClass::ChangePoint) s << " (through change points)";
+  } else {
+    s << "; no link turns fully";
+  }
+  return s.str();
+}
+
+double transmission_angle(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p) {
+  const Eigen::Vector2d coupler = p[loop.a] - p[loop.b];
+  const Eigen::Vector2d output = p[loop.o4] - p[loop.b];
+  const double c = coupler.dot(output) / (coupler.norm() * output.norm());
+  return std::acos(std::clamp(c, -1.0, 1.0));
+}
+
+int branch_sign(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p) {
+  return cross(p[loop.o4] - p[loop.a], p[loop.b] - p[loop.a]) >= 0 ? 1 : -1;
+}
+
+int chirality(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p) {
+  return cross(p[loop.o4] - p[loop.o2], p[loop.a] - p[loop.o2]) >= 0 ? 1 : -1;
+}
+
+std::string branch_name(int branch_sign, int chirality) {
+  return branch_sign * chirality > 0 ? "open" : "crossed";
+}
+
+}  // namespace nbar

@@ -1,0 +1,106 @@
+#include "kinematics/position.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace nbar {
+
+State::State(const Mechanism& mech) : solvers_{LinearSolver(mech), LinearSolver(mech)} {
+  q = mech.drawn_coordinates();
+  drivers.resize(mech.model().drivers.size());
+  for (std::size_t d = 0; d < drivers.size(); ++d)
+    drivers[d] = make_driver_state(Series(1, mech.drawn_driver_values()[d]), mech.model().drivers[d].is_angular());
+  series = q;
+  phi.resize(mech.row_count());
+  rhs.resize(mech.row_count());
+  dq.resize(mech.coordinate_count());
+}
+
+void set_drivers(const Mechanism& mech, State& state, const std::vector<Series>& values) {
+  const auto& drivers = mech.model().drivers;
+  for (std::size_t d = 0; d < drivers.size(); ++d) state.drivers[d] = make_driver_state(values[d], drivers[d].is_angular());
+}
+
+bool factorize_jacobian(const Mechanism& mech, State& state, LinearSolver& solver) {
+  evaluate_jacobian(mech, state.q, state.drivers, state.jacobian);
+  return solver.factorize(state.jacobian);
+}
+
+bool factorize_jacobian(const Mechanism& mech, State& state) {
+  return factorize_jacobian(mech, state, state.solver());
+}
+
+double max_residual(const Mechanism& mech, State& state, int* worst_row) {
+  evaluate_residuals(mech, state.q, state.drivers, state.phi);
+  if (state.phi.size() == 0) return 0.0;
+  Eigen::Index row = 0;
+  const double r = state.phi.cwiseAbs().maxCoeff(&row);
+  if (worst_row) *worst_row = static_cast<int>(row);
+  return std::isfinite(r) ? r : std::numeric_limits<double>::infinity();
+}
+
+NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterations) {
+  NewtonReport report;
+  const double tol = mech.tolerance();
+  double r = max_residual(mech, state, &report.worst_row);
+  double merit = state.phi.squaredNorm();
+  for (int it = 0; it < max_iterations; ++it) {
+    report.iterations = it;
+    if (r <= tol) break;
+    if (!factorize_jacobian(mech, state)) {
+      // A singular Jacobian away from the solution: nudge the pose off the singular set.
+      const double eps = 1e-6 * mech.characteristic_length();
+      for (Eigen::Index i = 0; i < state.q.size(); ++i) state.q[i] += eps * std::sin(1.0 + 7.0 * i);
+      r = max_residual(mech, state, &report.worst_row);
+      merit = state.phi.squaredNorm();
+      continue;
+    }
+    state.rhs = -state.phi;
+    state.solver().solve(state.rhs, state.dq);
+    // Backtracking on |Phi|^2 keeps a far starting guess from overshooting into another branch.
+    const Eigen::VectorXd q0 = state.q;
+    double step = 1.0;
+    bool improved = false;
+    for (int halving = 0; halving < 30; ++halving) {
+      state.q = q0 + step * state.dq;
+      r = max_residual(mech, state, &report.worst_row);
+      const double trial = state.phi.squaredNorm();
+      if (std::isfinite(trial) && trial < (1.0 - 1e-4 * step) * merit) {
+        merit = trial;
+        improved = true;
+        break;
+      }
+      step *= 0.5;
+    }
+    if (!improved) {
+      state.q = q0;
+      r = max_residual(mech, state, &report.worst_row);
+      break;
+    }
+  }
+  report.residual = r;
+  report.converged = r <= tol;
+  if (report.converged) report.converged = factorize_jacobian(mech, state);
+  state.residual = r;
+  state.iterations = report.iterations;
+  return report;
+}
+
+void compute_series(const Mechanism& mech, State& state, const std::vector<DriverState>& drivers, int terms,
+                    Eigen::MatrixXd& out) {
+  const int n = mech.coordinate_count();
+  out.resize(n, terms);
+  out.col(0) = state.q;
+  for (int k = 1; k < terms; ++k) {
+    evaluate_series_remainder(mech, out, k, drivers, state.rhs);
+    state.rhs = -state.rhs;
+    state.solver().solve(state.rhs, state.column);
+    out.col(k) = state.column;
+  }
+}
+
+void compute_series(const Mechanism& mech, State& state, int terms) {
+  compute_series(mech, state, state.drivers, terms, state.series);
+}
+
+}  // namespace nbar
