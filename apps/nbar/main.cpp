@@ -144,7 +144,7 @@ void print_loops(std::ostream& out, const nbar::Mechanism& mech, const nbar::Sta
     const nbar::GrashofReport g = nbar::classify_grashof(loop, points, mech.tolerance());
     out << "  " << loop.name << ": " << nbar::describe(g, loop, m) << '\n';
     out << fmt::format("    at the start: {} branch, transmission angle {:.4g} {}\n",
-                       nbar::branch_name(nbar::branch_sign(loop, points), nbar::chirality(loop, points)),
+                       nbar::branch_name(nbar::branch_sign(loop, points)),
                        nbar::transmission_angle(loop, points) / m.units.angle_scale, m.units.angle);
   }
 }
@@ -183,6 +183,7 @@ struct SolveArgs {
   int order = 2;
   std::string format = "csv";
   std::string output;
+  std::vector<std::string> columns;
 };
 
 int run_solve(const SolveArgs& args) {
@@ -205,7 +206,16 @@ int run_solve(const SolveArgs& args) {
     std::cerr << "error: " << args.model << ": " << e.what() << '\n';
     return kCannotAssemble;
   }
-  const nbar::ResultTable table = nbar::make_table(mech, sweep);
+  nbar::ResultTable table = nbar::make_table(mech, sweep);
+  if (!args.columns.empty()) {
+    try {
+      table = nbar::select_columns(table, args.columns);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "error: --columns: " << e.what() << "; the columns are: " << join(nbar::make_table(mech, {}).columns)
+                << '\n';
+      return kBadUsage;
+    }
+  }
 
   std::ofstream file;
   if (!args.output.empty()) {
@@ -218,6 +228,8 @@ int run_solve(const SolveArgs& args) {
   std::ostream& out = args.output.empty() ? std::cout : file;
   if (args.format == "json")
     nbar::io::write_json(out, mech, sweep, table);
+  else if (args.format == "table")
+    nbar::io::write_text_table(out, table);
   else
     nbar::io::write_csv(out, table);
   out.flush();
@@ -257,7 +269,11 @@ int main(int argc, char** argv) {
   solve->add_option("--order", solve_args.order, "highest time derivative: 0 positions, 1 velocities, 2 "
                                                  "accelerations (default), 3 jerk, up to 5")
       ->check(CLI::Range(0, 5));
-  solve->add_option("--format", solve_args.format, "csv (default) or json")->check(CLI::IsMember({"csv", "json"}));
+  solve->add_option("--format", solve_args.format, "csv (default), json, or table (aligned, for reading)")
+      ->check(CLI::IsMember({"csv", "json", "table"}));
+  solve->add_option("--columns", solve_args.columns,
+                    "only these columns, comma-separated names or globs, e.g. 'crank,rocker.*,B.v*'")
+      ->delimiter(',');
   solve->add_option("-o,--output", solve_args.output, "write to FILE instead of standard output");
 
   try {

@@ -4,6 +4,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 namespace nbar::io {
 
 void write_csv(std::ostream& out, const ResultTable& table) {
@@ -19,6 +23,30 @@ void write_csv(std::ostream& out, const ResultTable& table) {
     }
     out << line << '\n';
   }
+}
+
+void write_text_table(std::ostream& out, const ResultTable& table) {
+  const std::size_t n = table.columns.size();
+  std::vector<std::vector<std::string>> cells(table.rows.size());
+  std::vector<std::size_t> width(n, 0);
+  for (std::size_t c = 0; c < n; ++c) {
+    const std::string unit = table.units[c].empty() ? "" : "[" + table.units[c] + "]";
+    width[c] = std::max(table.columns[c].size(), unit.size());
+  }
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    for (std::size_t c = 0; c < n; ++c) {
+      cells[r].push_back(fmt::format("{:.6g}", table.rows[r][c] + 0.0));
+      width[c] = std::max(width[c], cells[r].back().size());
+    }
+  }
+  auto line = [&](auto cell) {
+    std::string s;
+    for (std::size_t c = 0; c < n; ++c) s += fmt::format("{}{:>{}}", c ? "  " : "", cell(c), width[c]);
+    out << s << '\n';
+  };
+  line([&](std::size_t c) { return table.columns[c]; });
+  line([&](std::size_t c) { return table.units[c].empty() ? std::string() : "[" + table.units[c] + "]"; });
+  for (std::size_t r = 0; r < cells.size(); ++r) line([&](std::size_t c) { return cells[r][c]; });
 }
 
 void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& sweep, const ResultTable& table) {

@@ -187,12 +187,6 @@ int branch_sign(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p) 
   return cross(p[loop.o4] - p[loop.a], p[loop.b] - p[loop.a]) >= 0 ? 1 : -1;
 }
 
-int chirality(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p) {
-  return cross(p[loop.o4] - p[loop.o2], p[loop.a] - p[loop.o2]) >= 0 ? 1 : -1;
-}
-
-std::string branch_name(int branch_sign, int chirality) {
-  return branch_sign * chirality > 0 ? "open" : "crossed";
-}
+std::string branch_name(int branch_sign) { return branch_sign > 0 ? "open" : "crossed"; }
 
 }  // namespace nbar

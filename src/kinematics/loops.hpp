@@ -58,12 +58,9 @@ double transmission_angle(const FourBarLoop& loop, const std::vector<Eigen::Vect
 // joint the coupler-output joint lies. Constant along a branch of the crank-driven loop; it
 // changes only through a toggle of the output or a change point.
 int branch_sign(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& points);
-// +1 or -1: on which side of the frame line (o2 to o4) the input-coupler joint lies. Taken at
-// the start of a sweep, it orients the frame so that the branch names read as drawn.
-int chirality(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& points);
-// "open" or "crossed" in Norton's sense (the two roots of the closed form), with the frame's
-// y axis on the input's side at the start: open when the frame pivot o2 and the
-// coupler-output joint lie on opposite sides of the diagonal there.
-std::string branch_name(int branch_sign, int chirality);
+// "open" or "crossed" as the two roots of Norton's closed form (x axis from o2 to o4, angles
+// counter-clockwise): open when the coupler-output joint lies to the left of the line from
+// the input-coupler joint to o4. A mechanism drawn mirrored reads the other way round.
+std::string branch_name(int branch_sign);
 
 }  // namespace nbar

@@ -148,14 +148,13 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options) {
 
   // A loop's branch can only change through a singular position; change-point loops pass
   // those by design (flat parallelograms), so only the others are watched.
-  std::vector<int> branch_signs, chiralities;
+  std::vector<int> branch_signs;
   std::vector<bool> watched;
   {
     const auto points = point_positions(mech, state.q);
     for (const FourBarLoop& loop : mech.four_bar_loops()) {
       branch_signs.push_back(branch_sign(loop, points));
-      chiralities.push_back(chirality(loop, points));
-      result.branches.push_back(branch_name(branch_signs.back(), chiralities.back()));
+      result.branches.push_back(branch_name(branch_signs.back()));
       watched.push_back(classify_grashof(loop, points, mech.tolerance()).kind != GrashofClass::ChangePoint);
     }
   }
@@ -222,7 +221,7 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options) {
       const int sign = branch_sign(loops[l], points);
       if (watched[l] && sign != branch_signs[l]) {
         result.warnings.push_back("four-bar loop " + loops[l].name + " changed branch " + where.str() + " (now " +
-                                  branch_name(sign, chiralities[l]) + ")");
+                                  branch_name(sign) + ")");
       }
       branch_signs[l] = sign;
     }

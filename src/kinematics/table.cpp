@@ -1,7 +1,9 @@
 #include "kinematics/table.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 namespace nbar {
 
@@ -14,6 +16,26 @@ std::string per_time(const std::string& unit, int order) {
   if (order == 0) return unit;
   if (order == 1) return unit + "/s";
   return unit + "/s^" + std::to_string(order);
+}
+
+bool glob_match(const std::string& pattern, const std::string& text) {
+  std::size_t p = 0, t = 0, star = std::string::npos, mark = 0;
+  while (t < text.size()) {
+    if (p < pattern.size() && pattern[p] == '*') {
+      star = p++;
+      mark = t;
+    } else if (p < pattern.size() && pattern[p] == text[t]) {
+      ++p;
+      ++t;
+    } else if (star != std::string::npos) {
+      p = star + 1;
+      t = ++mark;
+    } else {
+      return false;
+    }
+  }
+  while (p < pattern.size() && pattern[p] == '*') ++p;
+  return p == pattern.size();
 }
 
 // The multiple of 2 pi that brings `angle` closest to `reference`.
@@ -88,6 +110,31 @@ ResultTable make_table(const Mechanism& mech, const SweepResult& sweep) {
     t.rows.push_back(std::move(row));
   }
   return t;
+}
+
+ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns) {
+  std::vector<std::size_t> picked;
+  for (const std::string& pattern : patterns) {
+    bool any = false;
+    for (std::size_t c = 0; c < table.columns.size(); ++c) {
+      if (!glob_match(pattern, table.columns[c])) continue;
+      any = true;
+      if (std::find(picked.begin(), picked.end(), c) == picked.end()) picked.push_back(c);
+    }
+    if (!any) throw std::invalid_argument("no column matches '" + pattern + "'");
+  }
+  ResultTable out;
+  for (std::size_t c : picked) {
+    out.columns.push_back(table.columns[c]);
+    out.units.push_back(table.units[c]);
+  }
+  for (const auto& row : table.rows) {
+    std::vector<double> r;
+    r.reserve(picked.size());
+    for (std::size_t c : picked) r.push_back(row[c]);
+    out.rows.push_back(std::move(r));
+  }
+  return out;
 }
 
 }  // namespace nbar

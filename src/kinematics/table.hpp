@@ -21,4 +21,9 @@ struct ResultTable {
 // the transmission angle of every four-bar loop as <input>-<coupler>-<output>.mu.
 ResultTable make_table(const Mechanism& mech, const SweepResult& sweep);
 
+// The columns matching any of `patterns` (exact names, or globs with '*' such as
+// "rocker.*"), in the order of the patterns. Throws std::invalid_argument naming a pattern
+// that matches nothing.
+ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns);
+
 }  // namespace nbar

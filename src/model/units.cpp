@@ -71,7 +71,7 @@ Quantity parse_rate(const std::string& text, int order) {
   };
   Quantity q;
   if (order == 1 && unit == "rpm") {
-    q.si_value = number * 2.0 * std::numbers::pi / 60.0;
+    q.value_si = number * 2.0 * std::numbers::pi / 60.0;
     q.angular = true;
     return q;
   }
@@ -82,13 +82,13 @@ Quantity parse_rate(const std::string& text, int order) {
                                             : std::string("rad/s^2, deg/s^2 or m/s^2")));
   }
   if (auto a = angle_unit_scale(base)) {
-    q.si_value = number * *a;
+    q.value_si = number * *a;
     q.angular = true;
   } else if (base == "rev") {
-    q.si_value = number * 2.0 * std::numbers::pi;
+    q.value_si = number * 2.0 * std::numbers::pi;
     q.angular = true;
   } else if (auto l = length_unit_scale(base)) {
-    q.si_value = number * *l;
+    q.value_si = number * *l;
     q.angular = false;
   } else {
     throw std::invalid_argument("unknown unit '" + unit + "' in '" + text + "' (use rpm, rad" + per +

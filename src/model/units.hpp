@@ -24,7 +24,7 @@ std::optional<double> angle_unit_scale(const std::string& unit);   // radians pe
 // "-90 deg/s", "0.5 m/s", "2 rad/s^2". `order` is 1 for speeds and 2 for accelerations.
 // Returns the value in SI (rad/s^order or m/s^order) and whether it is angular.
 struct Quantity {
-  double si_value = 0.0;
+  double value_si = 0.0;
   bool angular = false;
 };
 // Throws std::invalid_argument with a readable reason when the text is not such a quantity.

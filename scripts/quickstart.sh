@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# From nothing to a first result: installs what is missing, builds nbar, and analyses a
+# bundled four-bar.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+"$root/scripts/install-deps.sh"
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$root/build" -j"$(nproc)" --target nbar
+nbar="$root/build/apps/nbar/nbar"
+model="$root/examples/fourbar-crank-rocker.yaml"
+echo
+echo "\$ nbar check examples/fourbar-crank-rocker.yaml"
+"$nbar" check "$model"
+echo
+echo "\$ nbar solve examples/fourbar-crank-rocker.yaml --steps 13 --format table --columns 'crank,coupler.*,rocker.*'"
+"$nbar" solve "$model" --steps 13 --format table --columns 'crank,coupler.*,rocker.*'

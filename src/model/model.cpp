@@ -1,0 +1,359 @@
+#include "model/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace nbar {
+
+int Model::find_point(const std::string& point_name) const {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (points[i].name == point_name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+int Model::find_body(const std::string& body_name) const {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].name == body_name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+bool Model::has_time_law() const {
+  return std::any_of(drivers.begin(), drivers.end(), [](const Driver& d) { return d.law.has_value(); });
+}
+
+namespace {
+
+// Built by appending: GCC 12 at -O3 gives a false -Wrestrict warning for "'" + name + "'".
+std::string quoted(const std::string& name) {
+  std::string out;
+  out.reserve(name.size() + 2);
+  out.append(1, '\'').append(name).append(1, '\'');
+  return out;
+}
+
+// Checks run in the order a reader would fix them: names first, then the references
+// between entities, then geometry, so that the first error reported is the root cause.
+class Validator {
+ public:
+  explicit Validator(const Model& model) : m_(model) {}
+
+  void run() {
+    if (m_.points.empty()) fail({EntityRef::Kind::Model, -1}, "the model has no points");
+    compute_tolerance();
+    check_points();
+    check_bodies();
+    check_sliders();
+    check_single_point_bodies();
+    check_attachment();
+    check_slots();
+    check_drivers();
+    check_sweep();
+  }
+
+ private:
+  const Model& m_;
+  double tolerance_ = 0.0;
+  std::vector<int> slider_of_body_;  // slider index per body, -1 when none
+
+  [[noreturn]] static void fail(EntityRef where, const std::string& message) { throw ModelError(where, message); }
+  static EntityRef ref(EntityRef::Kind kind, std::size_t index) { return EntityRef{kind, static_cast<int>(index)}; }
+
+  bool valid_point(int i) const { return i >= 0 && i < static_cast<int>(m_.points.size()); }
+  bool valid_body(int i) const { return i >= 0 && i < static_cast<int>(m_.bodies.size()); }
+
+  std::string point_name(int i) const {
+    if (!valid_point(i)) return "#" + std::to_string(i);
+    return quoted(m_.points[i].name);
+  }
+  std::string body_name(int i) const {
+    if (!valid_body(i)) return "#" + std::to_string(i);
+    return quoted(m_.bodies[i].name);
+  }
+  std::string slider_name(std::size_t i) const {
+    const int body = m_.sliders[i].body;
+    if (valid_body(body)) return "the slider of body " + body_name(body);
+    return "slider #" + std::to_string(i + 1);
+  }
+  std::string slot_name(std::size_t i) const {
+    const int point = m_.slots[i].point;
+    if (valid_point(point)) return "the slot of point " + point_name(point);
+    return "slot #" + std::to_string(i + 1);
+  }
+
+  bool body_has_point(int body, int point) const {
+    const auto& pts = m_.bodies[body].points;
+    return std::find(pts.begin(), pts.end(), point) != pts.end();
+  }
+
+  // Coordinates are in metres but models range from watch parts to cranes, so
+  // "coincident" is judged relative to the size of the drawing, not in absolute terms.
+  void compute_tolerance() {
+    Eigen::Vector2d lo = m_.points.front().position, hi = lo;
+    for (const Point& p : m_.points) {
+      if (!p.position.allFinite()) continue;
+      lo = lo.cwiseMin(p.position);
+      hi = hi.cwiseMax(p.position);
+    }
+    const double size = (hi - lo).norm();
+    tolerance_ = std::isfinite(size) ? 1e-9 * size : 0.0;
+  }
+  bool coincide(int a, int b) const { return (m_.points[a].position - m_.points[b].position).norm() <= tolerance_; }
+
+  void check_points() {
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < m_.points.size(); ++i) {
+      const Point& p = m_.points[i];
+      const auto where = ref(EntityRef::Kind::Point, i);
+      if (p.name.empty()) fail(where, "point #" + std::to_string(i + 1) + " has no name");
+      if (!seen.insert(p.name).second) fail(where, "two points are named '" + p.name + "'");
+      if (!p.position.allFinite()) fail(where, "point '" + p.name + "' has a coordinate that is not a finite number");
+    }
+  }
+
+  void check_bodies() {
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < m_.bodies.size(); ++i) {
+      const Body& b = m_.bodies[i];
+      const auto where = ref(EntityRef::Kind::Body, i);
+      if (b.name.empty()) fail(where, "body #" + std::to_string(i + 1) + " has no name");
+      const std::string name = "body '" + b.name + "'";
+      if (!seen.insert(b.name).second) fail(where, "two bodies are named '" + b.name + "'");
+      if (b.points.empty()) fail(where, name + " has no points");
+      std::set<int> listed;
+      for (int p : b.points) {
+        if (!valid_point(p)) fail(where, name + " refers to point #" + std::to_string(p) + ", which does not exist");
+        if (!listed.insert(p).second) fail(where, name + " lists point " + point_name(p) + " twice");
+      }
+      if (b.points.size() >= 2 && coincide(b.points[0], b.points[1])) {
+        fail(where, name + " has zero length: points " + m_.points[b.points[0]].name + " and " +
+                        m_.points[b.points[1]].name + " coincide");
+      }
+      const bool all_ground = std::all_of(b.points.begin(), b.points.end(), [&](int p) { return m_.points[p].ground; });
+      if (all_ground) {
+        fail(where, name + " has only ground points, so it cannot move: list its points under ground instead");
+      }
+      if (b.length) {
+        if (b.points.size() != 2) {
+          fail(where, name + " has " + std::to_string(b.points.size()) +
+                          " points: an exact length applies only to a body with two points");
+        }
+        if (!std::isfinite(*b.length) || *b.length <= 0.0) {
+          fail(where, "the length of " + name + " must be a positive number");
+        }
+      }
+    }
+  }
+
+  // The body or ground that carries both guide points of a slider or a slot. Two bodies
+  // sharing both points move together, so any one of them is a valid owner.
+  struct GuideOwners {
+    bool ground = false;
+    std::vector<int> bodies;
+    bool empty() const { return !ground && bodies.empty(); }
+  };
+  GuideOwners guide_owners(const std::array<int, 2>& along, int excluded_body) const {
+    GuideOwners owners;
+    owners.ground = m_.points[along[0]].ground && m_.points[along[1]].ground;
+    for (std::size_t b = 0; b < m_.bodies.size(); ++b) {
+      const int body = static_cast<int>(b);
+      if (body == excluded_body) continue;
+      if (body_has_point(body, along[0]) && body_has_point(body, along[1])) owners.bodies.push_back(body);
+    }
+    return owners;
+  }
+
+  void check_guide(EntityRef where, const std::string& name, const std::array<int, 2>& along) const {
+    for (int p : along) {
+      if (!valid_point(p)) {
+        fail(where, "the guide of " + name + " refers to point #" + std::to_string(p) + ", which does not exist");
+      }
+    }
+    if (along[0] == along[1]) fail(where, "the guide of " + name + " uses point " + point_name(along[0]) + " twice");
+    if (coincide(along[0], along[1])) {
+      fail(where, "the guide points " + m_.points[along[0]].name + " and " + m_.points[along[1]].name + " of " + name +
+                      " coincide, so they define no direction");
+    }
+  }
+
+  void check_sliders() {
+    slider_of_body_.assign(m_.bodies.size(), -1);
+    for (std::size_t i = 0; i < m_.sliders.size(); ++i) {
+      const Slider& s = m_.sliders[i];
+      const auto where = ref(EntityRef::Kind::Slider, i);
+      const std::string name = slider_name(i);
+      if (!valid_body(s.body)) {
+        fail(where, "slider #" + std::to_string(i + 1) + " refers to body #" + std::to_string(s.body) +
+                        ", which does not exist");
+      }
+      if (slider_of_body_[s.body] >= 0) fail(where, "body " + body_name(s.body) + " has two sliders");
+      slider_of_body_[s.body] = static_cast<int>(i);
+      if (!valid_point(s.point)) {
+        fail(where, name + " refers to point #" + std::to_string(s.point) + ", which does not exist");
+      }
+      if (!body_has_point(s.body, s.point)) {
+        fail(where, name + " moves point " + point_name(s.point) + ", which is not one of the points of body " +
+                        body_name(s.body));
+      }
+      check_guide(where, name, s.along);
+      if (s.point == s.along[0] || s.point == s.along[1]) {
+        fail(where, name + ": the sliding point " + point_name(s.point) + " cannot also be a guide point");
+      }
+      if (guide_owners(s.along, s.body).empty()) {
+        fail(where, "the guide points of a slider must belong to one other body or to ground: " +
+                        point_name(s.along[0]) + " and " + point_name(s.along[1]) + " of " + name + " do not");
+      }
+    }
+  }
+
+  // A lone point gives a body no direction; only a slider, which keeps the body parallel
+  // to its guide, supplies one.
+  void check_single_point_bodies() const {
+    for (std::size_t i = 0; i < m_.bodies.size(); ++i) {
+      if (m_.bodies[i].points.size() == 1 && slider_of_body_[i] < 0) {
+        fail(ref(EntityRef::Kind::Body, i),
+             "body '" + m_.bodies[i].name +
+                 "' has a single point, so its orientation is undefined: give it a second point or make it "
+                 "the body of a slider");
+      }
+    }
+  }
+
+  void check_attachment() const {
+    std::vector<bool> attached(m_.points.size(), false);
+    for (const Body& b : m_.bodies) {
+      for (int p : b.points) attached[p] = true;
+    }
+    for (std::size_t i = 0; i < m_.points.size(); ++i) {
+      if (!attached[i] && !m_.points[i].ground) {
+        fail(ref(EntityRef::Kind::Point, i),
+             "point '" + m_.points[i].name + "' is not attached to any body or to ground");
+      }
+    }
+  }
+
+  void check_slots() const {
+    for (std::size_t i = 0; i < m_.slots.size(); ++i) {
+      const Slot& s = m_.slots[i];
+      const auto where = ref(EntityRef::Kind::Slot, i);
+      const std::string name = slot_name(i);
+      if (!valid_point(s.point)) {
+        fail(where, "slot #" + std::to_string(i + 1) + " refers to point #" + std::to_string(s.point) +
+                        ", which does not exist");
+      }
+      check_guide(where, name, s.along);
+      if (s.point == s.along[0] || s.point == s.along[1]) {
+        fail(where, name + ": point " + point_name(s.point) + " cannot be one of its own guide points");
+      }
+      const GuideOwners owners = guide_owners(s.along, -1);
+      if (owners.empty()) {
+        fail(where, "the guide points of a slot must belong to one body or to ground: " + point_name(s.along[0]) +
+                        " and " + point_name(s.along[1]) + " of " + name + " do not");
+      }
+      if (owners.ground && m_.points[s.point].ground) {
+        fail(where, name + ": point " + point_name(s.point) + " is on ground, like its guide, so it cannot slide");
+      }
+      for (int b : owners.bodies) {
+        if (body_has_point(b, s.point)) {
+          fail(where, name + ": point " + point_name(s.point) + " belongs to body " + body_name(b) +
+                          ", which also carries the guide, so it cannot slide");
+        }
+      }
+    }
+  }
+
+  void check_drivers() const {
+    std::set<std::string> seen;
+    const bool time_sweep = m_.has_time_law();
+    for (std::size_t i = 0; i < m_.drivers.size(); ++i) {
+      const Driver& d = m_.drivers[i];
+      const auto where = ref(EntityRef::Kind::Driver, i);
+      if (d.name.empty()) fail(where, "driver #" + std::to_string(i + 1) + " has no name");
+      if (!seen.insert(d.name).second) fail(where, "two drivers are named '" + d.name + "': give one a `name:`");
+      const std::string name = "driver '" + d.name + "'";
+      switch (d.kind) {
+        case DriverKind::Angle:
+          if (!valid_body(d.body)) {
+            fail(where, name + " refers to body #" + std::to_string(d.body) + ", which does not exist");
+          }
+          if (m_.bodies[d.body].points.size() < 2) {
+            fail(where, name + ": body " + body_name(d.body) + " needs two points to have an angle");
+          }
+          if (d.relative_to >= 0) {
+            if (!valid_body(d.relative_to)) {
+              fail(where, name + " is relative to body #" + std::to_string(d.relative_to) + ", which does not exist");
+            }
+            if (d.relative_to == d.body) fail(where, name + " cannot be relative to its own body");
+            if (m_.bodies[d.relative_to].points.size() < 2) {
+              fail(where, name + ": body " + body_name(d.relative_to) + " needs two points to have an angle");
+            }
+          }
+          break;
+        case DriverKind::Distance:
+          for (int p : d.points) {
+            if (!valid_point(p)) {
+              fail(where, name + " refers to point #" + std::to_string(p) + ", which does not exist");
+            }
+          }
+          if (d.points[0] == d.points[1]) {
+            fail(where, name + " measures the distance from point " + point_name(d.points[0]) + " to itself");
+          }
+          if (m_.points[d.points[0]].ground && m_.points[d.points[1]].ground) {
+            fail(where, name + " drives the distance between two ground points, which cannot change");
+          }
+          for (std::size_t b = 0; b < m_.bodies.size(); ++b) {
+            const int body = static_cast<int>(b);
+            if (body_has_point(body, d.points[0]) && body_has_point(body, d.points[1])) {
+              fail(where, name + " drives the distance between two points of body " + body_name(body) +
+                              ", which cannot change");
+            }
+          }
+          break;
+        case DriverKind::Slide:
+          if (d.slider < 0 || d.slider >= static_cast<int>(m_.sliders.size())) {
+            fail(where, name + " refers to slider #" + std::to_string(d.slider) + ", which does not exist");
+          }
+          break;
+      }
+      const auto finite = [](const std::optional<double>& v) { return !v || std::isfinite(*v); };
+      if (!finite(d.from)) fail(where, name + ": `from` is not a finite number");
+      if (!finite(d.to)) fail(where, name + ": `to` is not a finite number");
+      if (!std::isfinite(d.speed)) fail(where, name + ": the speed is not a finite number");
+      if (!std::isfinite(d.accel)) fail(where, name + ": the acceleration is not a finite number");
+      if (d.speed == 0.0) fail(where, name + ": the speed must not be zero");
+      if (d.law && (d.from || d.to)) {
+        fail(where, name + " follows a law, so it takes no `from` or `to`");
+      }
+      // In a time sweep a driver without a law just runs at its speed from `from`;
+      // silently ignoring a `to` would hide a misunderstanding.
+      if (time_sweep && !d.law && d.to) {
+        fail(where, name +
+                        ": `to` has no meaning when another driver follows a time law (drivers without a "
+                        "law then move at their speed from `from`)");
+      }
+    }
+  }
+
+  void check_sweep() const {
+    const SweepSpec& s = m_.sweep;
+    const EntityRef where{EntityRef::Kind::Sweep, -1};
+    if (s.steps < 2) fail(where, "the sweep needs at least 2 steps (got " + std::to_string(s.steps) + ")");
+    if (!std::isfinite(s.duration) || s.duration <= 0.0) fail(where, "the sweep duration must be positive");
+    if (s.time_step) {
+      if (!std::isfinite(*s.time_step) || *s.time_step <= 0.0) fail(where, "the sweep time step must be positive");
+      if (*s.time_step > s.duration) fail(where, "the sweep time step is longer than its duration");
+    }
+  }
+};
+
+}  // namespace
+
+void validate(const Model& model) {
+  Validator(model).run();
+}
+
+}  // namespace nbar

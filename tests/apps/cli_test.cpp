@@ -1,0 +1,210 @@
+// The nbar command line as users meet it: every bundled example, every documented exit code.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+struct CliRun {
+  int code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+CliRun nbar(const std::string& args) {
+  static int counter = 0;
+  const fs::path err_file = fs::temp_directory_path() / ("nbar_cli_test_" + std::to_string(::getpid()) + "_" +
+                                                         std::to_string(counter++) + ".err");
+  const std::string command = std::string(NBAR_CLI_PATH) + " " + args + " 2>" + err_file.string();
+  CliRun run;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.out.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream err(err_file);
+  std::stringstream ss;
+  ss << err.rdbuf();
+  run.err = ss.str();
+  fs::remove(err_file);
+  return run;
+}
+
+// A model file in a temporary directory, removed at the end of the test.
+class TempModel {
+ public:
+  explicit TempModel(const std::string& text, const std::string& name = "model.yaml") {
+    dir_ = fs::temp_directory_path() / ("nbar_cli_" + std::to_string(::getpid()) + "_" + std::to_string(count_++));
+    fs::create_directories(dir_);
+    path_ = dir_ / name;
+    std::ofstream(path_) << text;
+  }
+  ~TempModel() { fs::remove_all(dir_); }
+  std::string path() const { return path_.string(); }
+  std::string dir() const { return dir_.string(); }
+
+ private:
+  static inline int count_ = 0;
+  fs::path dir_, path_;
+};
+
+std::vector<std::string> examples() {
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(NBAR_EXAMPLES_DIR))
+    if (e.path().extension() == ".yaml" || e.path().extension() == ".json") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+int count_lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+
+const char* const kFourBar = R"(name: four-bar
+units: {length: mm, angle: deg}
+points:
+  O2: [0, 0]
+  O4: [200, 0]
+  A: [0, 80]
+  B: [160, 150]
+ground: [O2, O4]
+bodies:
+  crank: [O2, A]
+  coupler: [A, B]
+  rocker: [O4, B]
+)";
+
+TEST(Cli, EveryExampleChecksAndSolves) {
+  const auto files = examples();
+  ASSERT_GE(files.size(), 15u);
+  for (const std::string& f : files) {
+    SCOPED_TRACE(f);
+    const CliRun check = nbar("check " + f);
+    EXPECT_EQ(check.code, 0) << check.err;
+    EXPECT_THAT(check.out, HasSubstr("Degrees of freedom"));
+    EXPECT_THAT(check.out, HasSubstr("converged"));
+    const CliRun solve = nbar("solve " + f + " --order 3");
+    EXPECT_EQ(solve.code, 0) << solve.err;
+    EXPECT_GT(count_lines(solve.out), 2);
+    EXPECT_THAT(solve.out, Not(HasSubstr("nan")));
+    EXPECT_THAT(solve.out, Not(HasSubstr("inf")));
+    const CliRun json = nbar("solve " + f + " --format json --steps 5");
+    ASSERT_EQ(json.code, 0) << json.err;
+    const auto j = nlohmann::json::parse(json.out);
+    EXPECT_EQ(j["rows"].size(), 5u);
+    EXPECT_EQ(j["columns"].size(), j["rows"][0].size());
+    EXPECT_EQ(j["column_units"].size(), j["columns"].size());
+    EXPECT_TRUE(j["complete"].get<bool>());
+  }
+}
+
+TEST(Cli, CsvHeaderAndValuesOfTheCrankRocker) {
+  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --steps 5 --order 3");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string header;
+  std::getline(lines, header);
+  EXPECT_THAT(header, testing::StartsWith("step,t,crank,"));
+  EXPECT_THAT(header, HasSubstr("A.x,A.y,A.vx,A.vy,A.ax,A.ay,A.jx,A.jy"));
+  EXPECT_THAT(header, HasSubstr("crank.angle,crank.omega,crank.alpha,crank.jerk"));
+  EXPECT_THAT(header, HasSubstr("crank-coupler-rocker.mu"));
+  EXPECT_EQ(count_lines(r.out), 6);
+}
+
+TEST(Cli, OutputFileAndColumnSelection) {
+  TempModel dir("");
+  const std::string out = dir.dir() + "/out.csv";
+  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --steps 3 --columns 'crank,rocker.*' -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream f(out);
+  std::string header;
+  std::getline(f, header);
+  EXPECT_EQ(header, "crank,rocker.angle,rocker.omega,rocker.alpha");
+  const CliRun bad = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --columns nosuch");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("no column matches 'nosuch'"));
+}
+
+TEST(Cli, TableFormatHasUnits) {
+  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --steps 3 --format table --columns crank,rocker.omega");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("[deg/s]"));
+  EXPECT_EQ(count_lines(r.out), 5);
+}
+
+TEST(Cli, HelpAndBadUsage) {
+  EXPECT_EQ(nbar("--help").code, 0);
+  EXPECT_THAT(nbar("--help").out, HasSubstr("Exit codes"));
+  EXPECT_EQ(nbar("solve --help").code, 0);
+  EXPECT_EQ(nbar("").code, 2);
+  EXPECT_EQ(nbar("frobnicate").code, 2);
+  const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml";
+  EXPECT_EQ(nbar("solve " + model + " --order 6").code, 2);
+  EXPECT_EQ(nbar("solve " + model + " --order -1").code, 2);
+  EXPECT_EQ(nbar("solve " + model + " --steps 0").code, 2);
+  EXPECT_EQ(nbar("solve " + model + " --format xml").code, 2);
+  EXPECT_EQ(nbar("solve " + model + " --bogus").code, 2);
+  EXPECT_EQ(nbar("solve").code, 2);
+  EXPECT_EQ(nbar("solve " + model + " -o /nonexistent-dir/x.csv").code, 2);
+}
+
+TEST(Cli, MissingFileIsAnInvalidModel) {
+  const CliRun r = nbar("check /nonexistent/model.yaml");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("/nonexistent/model.yaml"));
+}
+
+TEST(Cli, SyntaxErrorGivesFileLineColumn) {
+  TempModel m("name: x\npoints:\n  A: [0, 0\n  B: [1, 1]\n");
+  const CliRun r = nbar("check " + m.path());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr(m.path() + ":"));
+  EXPECT_THAT(r.err, testing::ContainsRegex(":[0-9]+:[0-9]+: "));
+}
+
+TEST(Cli, DriversNotMatchingTheDegreesOfFreedomAreAnInvalidModel) {
+  TempModel m(std::string(kFourBar) + "drivers:\n  - {angle: crank, from: 90, to: 100}\n  - {angle: rocker, from: 60, to: 70}\n");
+  const CliRun r = nbar("check " + m.path());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("1 degree of freedom"));
+  EXPECT_THAT(r.err, HasSubstr("2 drivers"));
+  EXPECT_THAT(r.err, HasSubstr(m.path() + ":"));
+}
+
+TEST(Cli, BarsTooShortToCloseCannotAssemble) {
+  TempModel m(std::string(kFourBar) + "lengths: {coupler: 20}\ndrivers:\n  - {angle: crank, from: 90, to: 100}\n");
+  const CliRun check = nbar("check " + m.path());
+  EXPECT_EQ(check.code, 3);
+  EXPECT_THAT(check.err, HasSubstr("cannot be met"));
+  const CliRun solve = nbar("solve " + m.path());
+  EXPECT_EQ(solve.code, 3);
+  EXPECT_EQ(solve.out, "");
+}
+
+TEST(Cli, DriverOutsideItsRangeStopsTheSweepEarlyAndKeepsTheRows) {
+  // Crank 80, coupler ~174, rocker 150, frame 200: s + l = 280 < 324: a crank-rocker, but
+  // driving the rocker through a full turn is impossible.
+  TempModel m(std::string(kFourBar) + "drivers:\n  - {angle: rocker, to: 400}\nsweep: {steps: 361}\n");
+  const CliRun r = nbar("solve " + m.path());
+  EXPECT_EQ(r.code, 4);
+  EXPECT_THAT(r.err, HasSubstr("sweep stopped"));
+  EXPECT_THAT(r.err, HasSubstr("toggle"));
+  EXPECT_GT(count_lines(r.out), 3);
+  EXPECT_LT(count_lines(r.out), 362);
+}
+
+}  // namespace
