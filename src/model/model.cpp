@@ -66,12 +66,16 @@ class Validator {
   bool valid_point(int i) const { return i >= 0 && i < static_cast<int>(m_.points.size()); }
   bool valid_body(int i) const { return i >= 0 && i < static_cast<int>(m_.bodies.size()); }
 
+  // "#3" for an index with no name. (Built by append: g++ 12 warns falsely, -Wrestrict,
+  // on "#" + std::to_string(i).)
+  static std::string index_name(int i) { return std::string(1, '#').append(std::to_string(i)); }
+
   std::string point_name(int i) const {
-    if (!valid_point(i)) return "#" + std::to_string(i);
+    if (!valid_point(i)) return index_name(i);
     return quoted(m_.points[i].name);
   }
   std::string body_name(int i) const {
-    if (!valid_body(i)) return "#" + std::to_string(i);
+    if (!valid_body(i)) return index_name(i);
     return quoted(m_.bodies[i].name);
   }
   std::string slider_name(std::size_t i) const {
