@@ -169,10 +169,9 @@ void evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const s
     const Eigen::Vector2d r = mech.point_position(i, q);
     return Vec<double>{r.x(), r.y()};
   };
-  std::vector<DriverDoubles> d(drivers.size());
-  for (std::size_t i = 0; i < drivers.size(); ++i)
-    d[i] = {drivers[i].value.value(), drivers[i].cos.value(), drivers[i].sin.value()};
-  auto drv = [&](int i) -> const DriverDoubles& { return d[i]; };
+  auto drv = [&](int i) {
+    return DriverDoubles{drivers[i].value.value(), drivers[i].cos.value(), drivers[i].sin.value()};
+  };
   const auto& rows = mech.rows();
   for (int i = 0; i < mech.row_count(); ++i) phi[i] = residual<double>(rows[i], point, drv);
 }
@@ -200,29 +199,80 @@ void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const st
 
 void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int k,
                                const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs) {
-  const int terms = k + 1;
+  // Only coefficient k of each row is needed, and every row is at most bilinear in q, so it is
+  // a short convolution of lower coefficients (q's coefficient k counts as zero). Written out
+  // per row rather than through Series arithmetic: this runs every step, for every order.
   rhs.resize(mech.row_count());
-  auto point = [&](int i) {
-    Vec<Series> r{Series(terms), Series(terms)};
-    const int col = mech.column_of(i);
-    if (col < 0) {
-      const Eigen::Vector2d& p = mech.model().points[i].position;
-      r.x[0] = p.x();
-      r.y[0] = p.y();
-      return r;
-    }
-    for (int j = 0; j < k; ++j) {  // coefficient k stays zero
-      r.x[j] = coefficients(col, j);
-      r.y[j] = coefficients(col + 1, j);
-    }
-    return r;
+  const auto& points = mech.model().points;
+  auto coefficient = [&](int point, int j) -> Eigen::Vector2d {
+    const int col = mech.column_of(point);
+    if (col < 0) return j == 0 ? points[point].position : Eigen::Vector2d::Zero();
+    if (j >= k) return Eigen::Vector2d::Zero();
+    return {coefficients(col, j), coefficients(col + 1, j)};
   };
-  std::vector<DriverState> truncated(drivers.size());
-  for (std::size_t i = 0; i < drivers.size(); ++i)
-    truncated[i] = {drivers[i].value.head(terms), drivers[i].cos.head(terms), drivers[i].sin.head(terms)};
-  auto drv = [&](int i) -> const DriverState& { return truncated[i]; };
+  auto diff = [&](int from, int to, int j) -> Eigen::Vector2d { return coefficient(to, j) - coefficient(from, j); };
+  auto term = [](const Series& s, int j) { return j < s.terms() ? s[j] : 0.0; };
+  auto cross2 = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
   const auto& rows = mech.rows();
-  for (int i = 0; i < mech.row_count(); ++i) rhs[i] = residual<Series>(rows[i], point, drv)[k];
+  for (int r = 0; r < mech.row_count(); ++r) {
+    const Constraint& c = rows[r];
+    const auto& p = c.p;
+    double v = 0.0;
+    switch (c.type) {
+      case ConstraintType::Distance:
+      case ConstraintType::DriveDistance:
+        for (int j = 1; j < k; ++j) v += diff(p[0], p[1], j).dot(diff(p[0], p[1], k - j));
+        if (c.type == ConstraintType::DriveDistance) {
+          const Series& s = drivers[c.driver].value;
+          for (int j = 0; j <= k; ++j) v -= term(s, j) * term(s, k - j);
+        }
+        v *= c.scale;
+        break;
+      case ConstraintType::RigidX:
+      case ConstraintType::RigidY:
+        break;  // linear in q: coefficient k depends on q_k alone
+      case ConstraintType::PointOnLine:
+        for (int j = 1; j < k; ++j) v += cross2(diff(p[0], p[2], j), diff(p[0], p[1], k - j));
+        v *= c.scale;
+        break;
+      case ConstraintType::Orientation:
+        for (int j = 1; j < k; ++j) {
+          const Eigen::Vector2d w = diff(p[2], p[3], k - j);
+          v += cross2(diff(p[0], p[1], j), Eigen::Vector2d(c.a * w.x() - c.b * w.y(), c.b * w.x() + c.a * w.y()));
+        }
+        v *= c.scale;
+        break;
+      case ConstraintType::DriveAngle: {
+        const DriverState& d = drivers[c.driver];
+        for (int j = 0; j < k; ++j) {
+          const Eigen::Vector2d u = diff(p[0], p[1], j);
+          v += u.x() * term(d.sin, k - j) - u.y() * term(d.cos, k - j);
+        }
+        v *= c.scale;
+        break;
+      }
+      case ConstraintType::DriveRelativeAngle: {
+        // u x z with z = R(theta) w: both factors carry coefficients of q and of the driver.
+        const DriverState& d = drivers[c.driver];
+        for (int j = 0; j < k; ++j) {
+          Eigen::Vector2d z = Eigen::Vector2d::Zero();
+          for (int l = 0; l <= k - j; ++l) {
+            const Eigen::Vector2d w = diff(p[2], p[3], k - j - l);
+            const double cs = term(d.cos, l), sn = term(d.sin, l);
+            z += Eigen::Vector2d(cs * w.x() - sn * w.y(), sn * w.x() + cs * w.y());
+          }
+          v += cross2(diff(p[0], p[1], j), z);
+        }
+        v *= c.scale;
+        break;
+      }
+      case ConstraintType::DriveSlide:
+        for (int j = 1; j < k; ++j) v += diff(p[0], p[2], j).dot(diff(p[0], p[1], k - j));
+        v = v / c.a - term(drivers[c.driver].value, k);
+        break;
+    }
+    rhs[r] = v;
+  }
 }
 
 }  // namespace nbar

@@ -50,8 +50,10 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
   const double span = p_end - state.parameter;
   const double h_min = std::abs(span) * options.min_step;
   double h = span;
-  std::vector<Series> values;
-  Eigen::VectorXd q_old = state.q, q_pred;
+  std::vector<Series>& values = state.driver_values;
+  Eigen::VectorXd& q_old = state.q_accepted;
+  Eigen::VectorXd& q_pred = state.q_predicted;
+  q_old = state.q;
   int sign_old = state.solver().determinant_sign();
 
   while (true) {
@@ -143,53 +145,80 @@ AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<d
   TrackOptions options;
   AssemblyReport report;
 
-  std::vector<double> delta(nd);
+  // Angles are reached the short way round first; when that meets a limit, the long way.
+  std::vector<double> delta(nd), other_way(nd);
+  bool has_other_way = false;
   for (int d = 0; d < nd; ++d) {
-    delta[d] = start[d] - drawn[d];
-    if (m.drivers[d].is_angular()) delta[d] = wrap_angle(delta[d]);
+    delta[d] = other_way[d] = start[d] - drawn[d];
+    if (m.drivers[d].is_angular()) {
+      delta[d] = wrap_angle(delta[d]);
+      if (delta[d] != 0.0) {
+        other_way[d] = delta[d] - std::copysign(2.0 * std::numbers::pi, delta[d]);
+        has_other_way = true;
+      }
+    }
   }
+  const std::vector<double>* active = &delta;
   const DriverPath path = [&](double p, int terms, std::vector<Series>& out) {
     out.resize(nd);
     for (int d = 0; d < nd; ++d) {
-      out[d] = Series(terms, drawn[d] + p * delta[d]);
-      if (terms > 1) out[d][1] = delta[d];
+      out[d] = Series(terms, drawn[d] + p * (*active)[d]);
+      if (terms > 1) out[d][1] = (*active)[d];
     }
   };
 
-  state.q = mech.drawn_coordinates();
-  state.parameter = 0.0;
-  std::vector<Series> values;
-  path(0.0, options.terms, values);
-  set_drivers(mech, state, values);
-  const NewtonReport newton = solve_position(mech, state);
-  report.newton_iterations = newton.iterations;
-  if (!newton.converged) {
-    int worst = -1;
-    max_residual(mech, state, &worst);
-    throw AssemblyError("cannot assemble the drawn pose with the given lengths: " +
-                            worst_constraint_message(mech, state),
-                        worst);
-  }
-  compute_series(mech, state, options.terms);
+  auto start_from_drawing = [&] {
+    state.q = mech.drawn_coordinates();
+    state.parameter = 0.0;
+    std::vector<Series> values;
+    path(0.0, options.terms, values);
+    set_drivers(mech, state, values);
+    const NewtonReport newton = solve_position(mech, state);
+    report.newton_iterations = newton.iterations;
+    if (!newton.converged) {
+      int worst = -1;
+      max_residual(mech, state, &worst);
+      throw AssemblyError("cannot assemble the drawn pose with the given lengths: " +
+                              worst_constraint_message(mech, state),
+                          worst);
+    }
+    compute_series(mech, state, options.terms);
+  };
 
-  const TrackReport tracked = track(mech, state, path, 1.0, options);
+  start_from_drawing();
+  TrackReport tracked = track(mech, state, path, 1.0, options);
+  if (!tracked.reached && has_other_way) {
+    const TrackReport first = tracked;
+    const Eigen::VectorXd q_first = state.q;
+    active = &other_way;
+    start_from_drawing();
+    tracked = track(mech, state, path, 1.0, options);
+    if (!tracked.reached) {  // report the short way's limit, the one users expect
+      active = &delta;
+      tracked = first;
+      state.q = q_first;
+    }
+  }
   if (!tracked.reached) {
-    // Name the constraint that fails: least-squares Newton at the target from the limit.
     std::ostringstream s;
     s << "cannot reach the drivers' starting values from the drawn pose on its branch";
     for (int d = 0; d < nd; ++d) {
-      if (delta[d] == 0.0) continue;
-      s << "; driver '" << m.drivers[d].name << "' stops at " << format_driver_value(m, d, drawn[d] + tracked.limit_parameter * delta[d])
-        << " (drawn " << format_driver_value(m, d, drawn[d]) << ", wanted " << format_driver_value(m, d, start[d]) << ")";
+      if ((*active)[d] == 0.0) continue;
+      s << "; driver '" << m.drivers[d].name << "' stops at "
+        << format_driver_value(m, d, drawn[d] + tracked.limit_parameter * (*active)[d]) << " (drawn "
+        << format_driver_value(m, d, drawn[d]) << ", wanted " << format_driver_value(m, d, start[d]) << ")";
+      if (m.drivers[d].is_angular() && has_other_way) s << " either way round";
     }
+    std::vector<Series> values;
     path(1.0, options.terms, values);
     set_drivers(mech, state, values);
     int worst = -1;
     if (solve_position(mech, state, 20).converged) {
       s << "; the wanted values can only be assembled on another branch: draw the mechanism on that branch";
     } else {
-      max_residual(mech, state, &worst);
-      s << "; at the wanted values " << worst_constraint_message(mech, state);
+      const double r = max_residual(mech, state, &worst);
+      s << "; no pose was found at the wanted values: the closest leaves '" << mech.rows()[worst].label
+        << "' off by " << r / m.units.length_scale << " " << m.units.length;
     }
     throw AssemblyError(s.str(), worst);
   }

@@ -33,8 +33,9 @@ struct State {
   void swap_solvers() { current_ = 1 - current_; }
 
   // Scratch space reused across steps: no allocation in the hot loop.
-  Eigen::VectorXd phi, dq, rhs, column;
+  Eigen::VectorXd phi, dq, rhs, column, q_accepted, q_predicted;
   std::vector<double> jacobian;
+  std::vector<Series> driver_values;
 
  private:
   std::array<LinearSolver, 2> solvers_;
