@@ -11,10 +11,12 @@
 #include <sstream>
 #include <string>
 
+#include "dynamics/dynamics_table.hpp"
 #include "io/model_file.hpp"
 #include "io/results_writer.hpp"
 #include "kinematics/sweep.hpp"
 #include "kinematics/table.hpp"
+#include "stress/link_stress.hpp"
 
 namespace {
 
@@ -78,6 +80,25 @@ std::string describe_driver(const nbar::Model& m, int d) {
   return drv.name + ": " + what + motion;
 }
 
+void print_kinetics(std::ostream& out, const nbar::Model& m) {
+  bool any_mass = false;
+  for (const nbar::Body& b : m.bodies) any_mass = any_mass || b.inertia || b.shape;
+  if (!any_mass && m.point_loads.empty() && m.torques.empty() && m.springs.empty() && m.gravity.isZero()) return;
+  const double unit = m.units.length_scale;
+  out << fmt::format("Mass properties (mass kg, centre of mass in {}, inertia about it kg m^2, plate area {}^2):\n",
+                     m.units.length, m.units.length);
+  for (const nbar::Body& b : m.bodies) {
+    const nbar::MassProperties mp = nbar::mass_properties(b);
+    std::string source = b.inertia ? "given" : b.shape ? (b.material ? b.material->name : "shape, no material") : "none";
+    std::string area = mp.from_shape || b.shape ? fmt::format("  area {:.6g}", mp.area / (unit * unit)) : "";
+    out << fmt::format("  {:<12} mass {:.6g}  cg ({:.6g}, {:.6g})  inertia {:.6g}{}  [{}]\n", b.name, mp.mass,
+                       mp.cg.x() / unit, mp.cg.y() / unit, mp.inertia, area, source);
+  }
+  out << fmt::format("Loads: gravity ({:.6g}, {:.6g}) m/s^2, {} point force{}, {} torque{}, {} spring{}\n", m.gravity.x(),
+                     m.gravity.y(), m.point_loads.size(), m.point_loads.size() == 1 ? "" : "s", m.torques.size(),
+                     m.torques.size() == 1 ? "" : "s", m.springs.size(), m.springs.size() == 1 ? "" : "s");
+}
+
 void print_summary(std::ostream& out, const nbar::Mechanism& mech, const std::string& path) {
   const nbar::Model& m = mech.model();
   out << "Model: " << (m.name.empty() ? std::string("(unnamed)") : m.name) << "  [" << path << "]\n";
@@ -129,6 +150,7 @@ void print_summary(std::ostream& out, const nbar::Mechanism& mech, const std::st
   }
   out << "Drivers: " << m.drivers.size() << '\n';
   for (std::size_t d = 0; d < m.drivers.size(); ++d) out << "  " << describe_driver(m, static_cast<int>(d)) << '\n';
+  print_kinetics(out, m);
 }
 
 void print_loops(std::ostream& out, const nbar::Mechanism& mech, const nbar::State& state) {
@@ -177,6 +199,16 @@ int run_check(const std::string& path) {
   return kOk;
 }
 
+// Warnings, and the exit code of a sweep that stopped early.
+int finish(const std::string& model, const nbar::SweepResult& sweep) {
+  if (!sweep.complete) {
+    std::cerr << "error: " << model << ": " << sweep.stop_reason << " (" << sweep.samples.size()
+              << " rows written)\n";
+    return kStoppedEarly;
+  }
+  return kOk;
+}
+
 struct SolveArgs {
   std::string model;
   std::optional<int> steps;
@@ -184,6 +216,7 @@ struct SolveArgs {
   std::string format = "csv";
   std::string output;
   std::vector<std::string> columns;
+  bool dynamics = false;
 };
 
 int run_solve(const SolveArgs& args) {
@@ -192,7 +225,7 @@ int run_solve(const SolveArgs& args) {
   const nbar::Mechanism& mech = *loaded.mechanism;
   nbar::SweepOptions options;
   options.steps = args.steps;
-  options.order = args.order;
+  options.order = args.dynamics ? std::max(args.order, 2) : args.order;
   nbar::SweepResult sweep;
   try {
     sweep = nbar::run_sweep(mech, options);
@@ -207,6 +240,15 @@ int run_solve(const SolveArgs& args) {
     return kCannotAssemble;
   }
   nbar::ResultTable table = nbar::make_table(mech, sweep);
+  std::optional<nbar::DynamicsSummary> dynamics;
+  if (args.dynamics) {
+    try {
+      dynamics = nbar::append_dynamics(mech, sweep, table);
+    } catch (const std::domain_error& e) {  // a load's law undefined at some time
+      std::cerr << "error: " << args.model << ": " << e.what() << '\n';
+      return kInvalidModel;
+    }
+  }
   if (!args.columns.empty()) {
     try {
       table = nbar::select_columns(table, args.columns);
@@ -227,7 +269,7 @@ int run_solve(const SolveArgs& args) {
   }
   std::ostream& out = args.output.empty() ? std::cout : file;
   if (args.format == "json")
-    nbar::io::write_json(out, mech, sweep, table);
+    nbar::io::write_json(out, mech, sweep, table, dynamics ? &*dynamics : nullptr);
   else if (args.format == "table")
     nbar::io::write_text_table(out, table);
   else
@@ -235,12 +277,96 @@ int run_solve(const SolveArgs& args) {
   out.flush();
 
   for (const std::string& w : sweep.warnings) std::cerr << "warning: " << w << '\n';
-  if (!sweep.complete) {
-    std::cerr << "error: " << args.model << ": " << sweep.stop_reason << " (" << sweep.samples.size()
-              << " rows written)\n";
-    return kStoppedEarly;
+  if (dynamics)
+    for (const std::string& w : dynamics->warnings) std::cerr << "warning: " << w << '\n';
+  return finish(args.model, sweep);
+}
+
+struct StressArgs {
+  std::string model;
+  std::optional<int> steps;
+  int sections = 200;
+  std::string format = "table";
+  std::string output;
+  std::string profile_body;
+  std::optional<int> profile_step;
+};
+
+int run_stress(const StressArgs& args) {
+  Loaded loaded;
+  if (int code = load(args.model, loaded)) return code;
+  const nbar::Mechanism& mech = *loaded.mechanism;
+  const nbar::Model& m = mech.model();
+  nbar::SweepOptions options;
+  options.steps = args.steps;
+  options.order = 2;
+  nbar::SweepResult sweep;
+  try {
+    sweep = nbar::run_sweep(mech, options);
+  } catch (const nbar::AssemblyError& e) {
+    std::cerr << "error: " << args.model << ": " << e.what() << '\n';
+    return kCannotAssemble;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kBadUsage;
   }
-  return kOk;
+  const nbar::InverseDynamics dynamics(mech);
+  const nbar::LinkStress stress(dynamics, args.sections);
+  bool any = false;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) any = any || stress.analysed(static_cast<int>(b));
+  if (!any) {
+    std::cerr << "error: " << args.model << ": no link has a shape (`shape:` or `bar:` with a thickness), so "
+              << "there is nothing to compute stresses in\n";
+    return kInvalidModel;
+  }
+
+  std::ofstream file;
+  if (!args.output.empty()) {
+    file.open(args.output);
+    if (!file) {
+      std::cerr << "error: cannot write " << args.output << '\n';
+      return kBadUsage;
+    }
+  }
+  std::ostream& out = args.output.empty() ? std::cout : file;
+  try {
+    if (!args.profile_body.empty()) {
+      const int body = m.find_body(args.profile_body);
+      if (body < 0 || !stress.analysed(body)) {
+        std::cerr << "error: --section-profile: '" << args.profile_body
+                  << (body < 0 ? "' is not a body of the model\n" : "' has no shape to cut\n");
+        return kBadUsage;
+      }
+      const int step = args.profile_step.value_or(0);
+      if (step < 0 || step >= static_cast<int>(sweep.samples.size())) {
+        std::cerr << "error: --step " << step << " is not a solved step (0 to " << sweep.samples.size() - 1 << ")\n";
+        return kBadUsage;
+      }
+      const nbar::Sample& sample = sweep.samples[step];
+      const auto profile = stress.profile(sample, dynamics.solve(sample), body);
+      nbar::ResultTable t;
+      t.columns = {"x", "area", "N", "V", "M", "sigma_right", "sigma_left", "tau", "von_mises"};
+      const std::string len = m.units.length;
+      t.units = {len, len + "^2", "N", "N", "N m", "MPa", "MPa", "MPa", "MPa"};
+      const double unit = m.units.length_scale;
+      for (const nbar::SectionStress& sec : profile)
+        t.rows.push_back({sec.position / unit, sec.area / (unit * unit), sec.axial, sec.shear, sec.moment,
+                          sec.sigma_low / 1e6, sec.sigma_high / 1e6, sec.tau_max / 1e6, sec.von_mises / 1e6});
+      if (args.format == "json")
+        nbar::io::write_json(out, mech, sweep, t);
+      else if (args.format == "csv")
+        nbar::io::write_csv(out, t);
+      else
+        nbar::io::write_text_table(out, t);
+    } else {
+      nbar::io::write_stress_report(out, args.format, mech, sweep, nbar::stress_peaks(dynamics, stress, sweep));
+    }
+  } catch (const std::domain_error& e) {
+    std::cerr << "error: " << args.model << ": " << e.what() << '\n';
+    return kInvalidModel;
+  }
+  out.flush();
+  return finish(args.model, sweep);
 }
 
 }  // namespace
@@ -276,6 +402,25 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   solve->add_option("-o,--output", solve_args.output, "write to FILE instead of standard output");
 
+  solve->add_flag("--dynamics", solve_args.dynamics,
+                  "add inverse dynamics: the force at every joint, every driver's torque or force, energies "
+                  "(N, N m, J whatever the length unit; order at least 2)");
+
+  StressArgs stress_args;
+  CLI::App* stress = app.add_subcommand("stress", "Stresses in every link that has a shape: the largest von Mises "
+                                                  "stress over the sweep, where and when, and the safety factor");
+  stress->add_option("MODEL", stress_args.model, "model file (YAML or JSON)")->required();
+  stress->add_option("--steps", stress_args.steps, "number of samples, ends included (overrides the model's sweep)")
+      ->check(CLI::PositiveNumber);
+  stress->add_option("--sections", stress_args.sections, "cross-sections per link, at least (default 200)")
+      ->check(CLI::Range(10, 100000));
+  stress->add_option("--format", stress_args.format, "table (default), csv or json")
+      ->check(CLI::IsMember({"table", "csv", "json"}));
+  stress->add_option("-o,--output", stress_args.output, "write to FILE instead of standard output");
+  CLI::Option* profile = stress->add_option("--section-profile", stress_args.profile_body,
+                                            "instead, every section of BODY at one step: N, V, M, sigma, tau, von Mises");
+  stress->add_option("--step", stress_args.profile_step, "the step for --section-profile (default 0)")->needs(profile);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -284,5 +429,6 @@ int main(int argc, char** argv) {
   }
   if (check->parsed()) return run_check(check_model);
   if (solve->parsed()) return run_solve(solve_args);
+  if (stress->parsed()) return run_stress(stress_args);
   return kBadUsage;
 }

@@ -15,6 +15,9 @@
 #include <system_error>
 #include <utility>
 
+#include "model/geometry.hpp"
+#include "model/materials.hpp"
+
 namespace nbar::io {
 
 namespace {
@@ -41,6 +44,9 @@ SourceMark SourceMap::find(const EntityRef& ref) const {
     case EntityRef::Kind::Slot: return pick(slots);
     case EntityRef::Kind::Driver: return pick(drivers);
     case EntityRef::Kind::Sweep: return sweep.line > 0 ? sweep : model;
+    case EntityRef::Kind::PointLoad: return pick(point_loads);
+    case EntityRef::Kind::Torque: return pick(torques);
+    case EntityRef::Kind::Spring: return pick(springs);
   }
   return model;
 }
@@ -62,13 +68,37 @@ struct AllowedKeys {
 };
 const AllowedKeys kTopLevelKeys{
     "at the top level",
-    {"name", "description", "units", "points", "ground", "bodies", "lengths", "sliders", "slots", "drivers", "sweep"}};
+    {"name", "description", "units", "points", "ground", "bodies", "lengths", "sliders", "slots", "drivers", "sweep",
+     "gravity", "materials", "forces", "torques", "springs"}};
 const AllowedKeys kUnitsKeys{"in `units`", {"length", "angle"}};
 const AllowedKeys kSliderKeys{"in a slider", {"body", "point", "along"}};
 const AllowedKeys kSlotKeys{"in a slot", {"point", "along"}};
 const AllowedKeys kDriverKeys{
     "in a driver", {"name", "angle", "relative_to", "distance", "slide", "from", "to", "speed", "accel", "law"}};
 const AllowedKeys kSweepKeys{"in `sweep`", {"steps", "duration", "step"}};
+const AllowedKeys kBodyKeys{"in a body", {"points", "shape", "bar", "thickness", "material", "mass", "cg", "inertia"}};
+const AllowedKeys kShapeKeys{"in a `shape`", {"outline", "holes"}};
+const AllowedKeys kHoleKeys{"in a hole", {"at", "circle", "radius", "polygon"}};
+const AllowedKeys kBarKeys{"in a `bar`", {"width", "margin", "hole", "holes", "between"}};
+const AllowedKeys kMaterialKeys{"in a material", {"density", "yield"}};
+const AllowedKeys kForceKeys{"in a force", {"point", "body", "force", "fx", "fy"}};
+const AllowedKeys kTorqueKeys{"in a torque", {"body", "torque"}};
+const AllowedKeys kSpringKeys{"in a spring", {"between", "stiffness", "free_length", "damping", "name"}};
+
+// A unit a quantity may be written in, and its value in SI.
+struct UnitScale {
+  std::string_view unit;
+  double scale;
+};
+constexpr double kPoundForce = 4.4482216152605;  // N
+constexpr double kInch = 0.0254;                  // m
+const std::vector<UnitScale> kStiffnessUnits{
+    {"N/m", 1.0}, {"N/mm", 1e3}, {"kN/m", 1e3}, {"lbf/in", kPoundForce / kInch}};
+const std::vector<UnitScale> kDampingUnits{{"N s/m", 1.0}, {"N s/mm", 1e3}};
+constexpr double kPsi = kPoundForce / (kInch * kInch);  // Pa
+const std::vector<UnitScale> kStressUnits{{"Pa", 1.0},  {"kPa", 1e3},       {"MPa", 1e6},
+                                          {"GPa", 1e9}, {"psi", kPsi}, {"ksi", 1e3 * kPsi}};
+constexpr double kStandardGravity = 9.80665;  // m/s^2
 
 // Optimal string alignment distance (Levenshtein plus adjacent transpositions, the most
 // common typo), ignoring case so that "o2" finds "O2".
@@ -178,12 +208,17 @@ class Parser {
     if (const Entry* e = top.find("units")) parse_units(*e);
     parse_points(top.find("points"));
     if (const Entry* e = top.find("ground")) parse_ground(*e);
+    if (const Entry* e = top.find("materials")) parse_materials(*e);
     if (const Entry* e = top.find("bodies")) parse_bodies(*e);
     if (const Entry* e = top.find("lengths")) parse_lengths(*e);
     if (const Entry* e = top.find("sliders")) parse_sliders(*e);
     if (const Entry* e = top.find("slots")) parse_slots(*e);
     if (const Entry* e = top.find("drivers")) parse_drivers(*e);
     if (const Entry* e = top.find("sweep")) parse_sweep(*e);
+    if (const Entry* e = top.find("gravity")) parse_gravity(*e);
+    if (const Entry* e = top.find("forces")) parse_forces(*e);
+    if (const Entry* e = top.find("torques")) parse_torques(*e);
+    if (const Entry* e = top.find("springs")) parse_springs(*e);
 
     try {
       validate(model_);
@@ -197,6 +232,7 @@ class Parser {
   std::string text_;
   Model model_;
   SourceMap source_;
+  std::vector<Material> user_materials_;  // from `materials:`
 
   // ---- locations and errors ----
 
@@ -422,12 +458,17 @@ class Parser {
       fail(mark(e), "`bodies` must be a mapping of body names to lists of points, not " + describe(e.value));
     }
     for (const Entry& b : entries(e.value, "body")) {
-      if (!b.value.IsSequence()) {
-        fail(mark(b), "body '" + b.key + "' needs a list of its points, like [A, B], not " + describe(b.value));
-      }
       Body body;
       body.name = b.key;
-      for (const YAML::Node& item : b.value) body.points.push_back(point_ref(item));
+      if (b.value.IsSequence()) {
+        for (const YAML::Node& item : b.value) body.points.push_back(point_ref(item));
+      } else if (b.value.IsMap()) {
+        parse_body_details(b, body);
+      } else {
+        fail(mark(b), "body '" + b.key +
+                          "' needs a list of its points, like [A, B], or a mapping with `points:`, not " +
+                          describe(b.value));
+      }
       model_.bodies.push_back(std::move(body));
       source_.bodies.push_back(mark(b.key_node));
     }
@@ -586,14 +627,21 @@ class Parser {
     if (!e.value.IsScalar()) {
       fail(mark(e), "a law must be an expression in t like \"30*sin(2*pi*t)\", not " + describe(e.value));
     }
-    const std::string text = e.value.Scalar();
+    return law_of(e.value, mark(e), e.value.Scalar(), scale);
+  }
+
+  // `text` parsed as a law; syntax errors are reported at their character in `node`,
+  // followed by `hint` when there is one.
+  Law law_of(const YAML::Node& node, SourceMark at, const std::string& text, double scale,
+             const std::string& hint = {}) const {
     try {
       return Law::parse(text, scale);
     } catch (const LawSyntaxError& error) {
-      const std::optional<SourceMark> at = column_in_scalar(e.value, error.column());
+      const std::optional<SourceMark> where = column_in_scalar(node, error.column());
       std::string message = "in the law '" + text + "': " + error.what();
-      if (!at) message += " (at character " + std::to_string(error.column() + 1) + " of the law)";
-      fail(at.value_or(mark(e)), message);
+      if (!where) message += " (at character " + std::to_string(error.column() + 1) + " of the law)";
+      if (!hint.empty()) message += " (" + hint + ")";
+      fail(where.value_or(at), message);
     }
   }
 
@@ -653,6 +701,523 @@ class Parser {
       if (*sweep.time_step > sweep.duration) fail(mark(*step), "the sweep `step` is longer than its duration");
     } else if (steps && time_sweep) {
       sweep.time_step = sweep.duration / (sweep.steps - 1);
+    }
+  }
+
+  // ---- kinetics: materials, bodies' mass and shape, gravity, loads ----
+
+  // A number (in the first of `units`) or "<number> <unit>" with one of `units` (`example`
+  // shows one); in SI. Spaces and `*` inside the unit are ignored, so "N s/m", "N*s/m" and
+  // "Ns/m" are the same; case is not ("mPa" is not "MPa").
+  double quantity(const Entry& e, const std::string& what, const std::vector<UnitScale>& units,
+                  std::string_view example) const {
+    if (!e.value.IsScalar()) {
+      fail(mark(e),
+           what + " must be a number or a quantity like '" + std::string(example) + "', not " + describe(e.value));
+    }
+    const std::string text = e.value.Scalar();
+    double value = 0.0;
+    switch (parse_number(text, value)) {
+      case NumberStatus::Ok: return value * units[0].scale;
+      case NumberStatus::NotFinite: fail(mark(e), what + " must be a finite number, not '" + text + "'");
+      case NumberStatus::NotNumber: break;
+    }
+    std::string_view rest = text;
+    while (!rest.empty() && std::isspace(static_cast<unsigned char>(rest.front()))) rest.remove_prefix(1);
+    if (!rest.empty() && rest.front() == '+') rest.remove_prefix(1);
+    const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), value);
+    if (ec == std::errc::invalid_argument || end == rest.data()) {
+      fail(mark(e), what + " must be a number or a quantity like '" + std::string(example) + "', not '" + text +
+                        "'");
+    }
+    if (ec == std::errc::result_out_of_range || !std::isfinite(value)) {
+      fail(mark(e), what + " must be a finite number, not '" + text + "'");
+    }
+    const auto squeeze = [](std::string_view u) {
+      std::string out;
+      for (std::size_t i = 0; i < u.size(); ++i) {
+        if (u[i] == ' ' || u[i] == '\t' || u[i] == '*') continue;
+        if (u.substr(i, 2) == "\u00b7") {  // middle dot, "N·s/m"
+          ++i;
+          continue;
+        }
+        out += u[i];
+      }
+      return out;
+    };
+    const std::string unit = squeeze(rest.substr(static_cast<std::size_t>(end - rest.data())));
+    for (const UnitScale& u : units) {
+      if (squeeze(u.unit) == unit) return value * u.scale;
+    }
+    std::vector<std::string_view> names;
+    for (const UnitScale& u : units) names.push_back(u.unit);
+    const std::string known = join(names, names.size());
+    if (unit.empty()) fail(mark(e), what + " '" + text + "' needs a unit: " + known);
+    fail(mark(e), "unknown unit in " + what + " '" + text + "' (use " + known + ")");
+  }
+
+  // A number that must not be negative (or, with `positive`, must be above zero).
+  double non_negative(const Entry& e, const std::string& what, bool positive = false) const {
+    const double v = number(e, what);
+    if (positive && v <= 0.0) fail(mark(e), what + " must be positive");
+    if (v < 0.0) fail(mark(e), what + " must not be negative");
+    return v;
+  }
+
+  // [x, y] in model units, as written (not converted).
+  Eigen::Vector2d coordinates(const YAML::Node& node, std::string_view what) const {
+    if (!node.IsSequence() || node.size() != 2) {
+      fail(node, std::string(what) + " needs [x, y], not " + describe(node));
+    }
+    return {number(node[0], mark(node[0]), "x"), number(node[1], mark(node[1]), "y")};
+  }
+
+  std::vector<Eigen::Vector2d> polygon(const Entry& e, std::string_view what) const {
+    if (!e.value.IsSequence()) {
+      fail(mark(e), "`" + e.key + "` must be a list of vertices like [[0, 0], [100, 0], [100, 20]], not " +
+                        describe(e.value));
+    }
+    std::vector<Eigen::Vector2d> vertices;
+    for (const YAML::Node& v : e.value) vertices.push_back(coordinates(v, "a vertex"));
+    if (vertices.size() < 3) {
+      fail(mark(e), std::string(what) + " needs at least 3 vertices, not " + std::to_string(vertices.size()));
+    }
+    return vertices;
+  }
+
+  // The position of a point in model units, for geometry written in model units.
+  Eigen::Vector2d drawn(int point) const { return model_.points[point].position / model_.units.length_scale; }
+
+  Region to_si(Region r) const {
+    const double s = model_.units.length_scale;
+    for (Eigen::Vector2d& v : r.outline) v *= s;
+    for (auto& hole : r.polygon_holes) {
+      for (Eigen::Vector2d& v : hole) v *= s;
+    }
+    for (Circle& c : r.circle_holes) {
+      c.centre *= s;
+      c.radius *= s;
+    }
+    return r;
+  }
+
+  void parse_materials(const Entry& e) {
+    if (e.value.IsNull()) return;
+    if (!e.value.IsMap()) {
+      fail(mark(e), "`materials` must be a mapping like {my-alloy: {density: 2800, yield: 250 MPa}}, not " +
+                        describe(e.value));
+    }
+    for (const Entry& m : entries(e.value, "material")) {
+      if (builtin_material(m.key)) {
+        fail(m.key_node, "'" + m.key + "' is a built-in material; give yours another name");
+      }
+      if (!m.value.IsMap()) {
+        fail(mark(m), "material '" + m.key + "' needs a mapping like {density: 2800, yield: 250 MPa}, not " +
+                          describe(m.value));
+      }
+      user_materials_.push_back(material_fields(m.value, m.key));
+    }
+  }
+
+  Material material_fields(const YAML::Node& map, const std::string& name) const {
+    const Fields f = fields(map, kMaterialKeys);
+    Material m;
+    m.name = name;
+    m.density = non_negative(required(f, map, "density", "a material"), "the density (kg/m^3)", true);
+    if (const Entry* y = f.find("yield")) {
+      m.yield_strength = quantity(*y, "the yield strength", kStressUnits, "250 MPa");
+      if (*m.yield_strength <= 0.0) {
+        fail(mark(*y), "the yield strength must be positive (leave `yield` out for a brittle material)");
+      }
+    }
+    return m;
+  }
+
+  Material material_of(const Entry& e) const {
+    if (e.value.IsMap()) return material_fields(e.value, "");
+    if (!e.value.IsScalar() || e.value.Scalar().empty()) {
+      fail(mark(e), "`material` must be a material name like steel, or a mapping like {density: 7850, yield: 250 MPa}, "
+                    "not " + describe(e.value));
+    }
+    const std::string name = e.value.Scalar();
+    for (const Material& m : user_materials_) {
+      if (m.name == name) return m;
+    }
+    if (auto m = builtin_material(name)) return *m;
+    std::vector<std::string> names;
+    for (const Material& m : user_materials_) names.push_back(m.name);
+    for (const std::string& n : builtin_material_names()) names.push_back(n);
+    std::string message = "unknown material '" + name + "'";
+    if (auto close = suggestion(name, names)) message += "; did you mean '" + *close + "'?";
+    message += " (known materials: " + join(names, names.size()) + "; or define it under `materials:`)";
+    fail(mark(e), message);
+  }
+
+  // The long form of a body: {points: [...], shape or bar, thickness, material, mass, cg, inertia}.
+  void parse_body_details(const Entry& b, Body& body) {
+    const Fields f = fields(b.value, kBodyKeys);
+    const std::string name = "body '" + b.key + "'";
+    const Entry& points = required(f, b.key_node, "points", name);
+    if (!points.value.IsSequence()) {
+      fail(mark(points), "`points` must be a list of point names like [A, B], not " + describe(points.value));
+    }
+    for (const YAML::Node& item : points.value) body.points.push_back(point_ref(item));
+
+    const Entry* plate = nullptr;  // `shape` or `bar`, whichever comes first
+    for (const Entry& field : f.entries) {
+      if (field.key != "shape" && field.key != "bar") continue;
+      if (plate) fail(field.key_node, name + " has either a `shape` or a `bar`, not both");
+      plate = &field;
+    }
+    if (plate) body.shape = plate->key == "shape" ? parse_shape(*plate, name) : parse_bar(*plate, body, name);
+
+    const Entry* thickness = f.find("thickness");
+    if (plate && !thickness) fail(plate->key_node, name + " has a " + plate->key + " but no `thickness`");
+    if (thickness && !plate) {
+      fail(thickness->key_node, "`thickness` applies only to a body with a `shape` or a `bar`");
+    }
+    if (thickness) {
+      body.thickness = non_negative(*thickness, "the thickness", true) * model_.units.length_scale;
+    }
+
+    const Entry* material = f.find("material");
+    if (material) body.material = material_of(*material);
+
+    const Entry* mass = f.find("mass");
+    for (std::string_view key : {"cg", "inertia"}) {
+      const Entry* given = f.find(key);
+      if (given && !mass) {
+        fail(given->key_node, "`" + given->key + "` applies only with `mass`" +
+                                  (plate ? " (otherwise the shape and material give the mass properties)" : ""));
+      }
+    }
+    if (mass) {
+      GivenInertia given;
+      given.mass = non_negative(*mass, "the mass (kg)");
+      if (const Entry* cg = f.find("cg")) {
+        if (cg->value.IsScalar()) {
+          given.cg = model_.points[point_ref(cg->value)].position;
+        } else if (cg->value.IsSequence()) {
+          given.cg = model_.units.length_scale * coordinates(cg->value, "`cg`");
+        } else {
+          fail(mark(*cg), "`cg` must be a point name or [x, y], not " + describe(cg->value));
+        }
+      } else if (body.shape) {
+        given.cg = area_properties(*body.shape).centroid;
+      } else if (!body.points.empty()) {
+        given.cg = model_.points[body.points.front()].position;
+      }
+      if (const Entry* inertia = f.find("inertia")) given.inertia = non_negative(*inertia, "the inertia (kg m^2)");
+      body.inertia = given;
+    }
+
+    if (plate && !material && !mass) {
+      fail(plate->key_node, name + " has a " + plate->key + " but no material: give `material:` or `mass:`");
+    }
+    if (material && !plate && !mass) {
+      fail(material->key_node, name + " has a material but nothing to weigh: give it a `shape` or a `bar` (with " +
+                                   "`thickness`), or its `mass:`");
+    }
+  }
+
+  // One hole of a shape, in model units, before it is checked.
+  struct Hole {
+    YAML::Node node;
+    std::optional<Circle> circle;
+    std::vector<Eigen::Vector2d> polygon;
+  };
+
+  static void add_hole(Region& r, const Hole& h) {
+    if (h.circle) {
+      r.circle_holes.push_back(*h.circle);
+    } else {
+      r.polygon_holes.push_back(h.polygon);
+    }
+  }
+
+  Hole parse_hole(const YAML::Node& item) const {
+    if (!item.IsMap()) {
+      fail(item, "a hole is a mapping like {at: A, radius: 5}, {circle: [50, 10], radius: 4} or "
+                 "{polygon: [[x, y], ...]}, not " + describe(item));
+    }
+    const Fields f = fields(item, kHoleKeys);
+    const Entry* kind = nullptr;
+    for (const Entry& field : f.entries) {
+      if (field.key != "at" && field.key != "circle" && field.key != "polygon") continue;
+      if (kind) {
+        fail(field.key_node, "a hole has exactly one of `at`, `circle` or `polygon`; this one already has `" +
+                                 kind->key + "`");
+      }
+      kind = &field;
+    }
+    if (!kind) fail(item, "a hole needs one of `at: <point>`, `circle: [x, y]` or `polygon: [[x, y], ...]`");
+    Hole hole;
+    hole.node = item;
+    const Entry* radius = f.find("radius");
+    if (kind->key == "polygon") {
+      if (radius) fail(radius->key_node, "`radius` applies only to a round hole (`at` or `circle`)");
+      hole.polygon = polygon(*kind, "a polygon hole");
+      return hole;
+    }
+    if (!radius) fail(item, "a round hole needs `radius`");
+    const Eigen::Vector2d centre =
+        kind->key == "at" ? drawn(point_ref(kind->value)) : coordinates(kind->value, "`circle`");
+    hole.circle = Circle{centre, non_negative(*radius, "the radius", true)};
+    return hole;
+  }
+
+  // Checked piece by piece so that an error points at the outline or at the hole concerned.
+  Region parse_shape(const Entry& e, const std::string& body) const {
+    if (!e.value.IsMap()) {
+      fail(mark(e), "`shape` must be a mapping like {outline: [[0, 0], [100, 0], [100, 20], [0, 20]]}, not " +
+                        describe(e.value));
+    }
+    const Fields f = fields(e.value, kShapeKeys);
+    const std::string invalid = "the shape of " + body + " is not valid: ";
+    const Entry& outline = required(f, e.value, "outline", "a shape");
+    Region region;
+    region.outline = polygon(outline, "an outline");
+    try {
+      check_region(region);
+    } catch (const std::invalid_argument& error) {
+      fail(mark(outline), invalid + error.what());
+    }
+    std::vector<Hole> holes;
+    if (const Entry* h = f.find("holes")) {
+      for (const YAML::Node& item : list(*h, "[{at: A, radius: 5}]")) holes.push_back(parse_hole(item));
+    }
+    for (std::size_t k = 0; k < holes.size(); ++k) {
+      Region alone{region.outline, {}, {}};
+      add_hole(alone, holes[k]);
+      try {
+        check_region(alone);
+      } catch (const std::invalid_argument& error) {
+        // The hole is the only one checked, so it is "hole 0" to check_region.
+        std::string reason = error.what();
+        for (std::string_view name : {"circle hole 0", "polygon hole 0"}) {
+          if (reason.rfind(name, 0) == 0) reason = "the hole" + reason.substr(name.size());
+        }
+        fail(holes[k].node, invalid + reason);
+      }
+      for (std::size_t j = 0; j < k; ++j) {
+        Region pair{region.outline, {}, {}};
+        add_hole(pair, holes[j]);
+        add_hole(pair, holes[k]);
+        try {
+          check_region(pair);
+        } catch (const std::invalid_argument&) {
+          fail(holes[k].node, invalid + "this hole overlaps or touches hole " + std::to_string(j + 1) + " (line " +
+                                  std::to_string(mark(holes[j].node).line) + ")");
+        }
+      }
+    }
+    for (const Hole& h : holes) add_hole(region, h);
+    return to_si(std::move(region));
+  }
+
+  Region parse_bar(const Entry& e, const Body& body, const std::string& name) const {
+    if (!e.value.IsMap()) {
+      fail(mark(e), "`bar` must be a mapping like {width: 20, margin: 10, hole: 5}, not " + describe(e.value));
+    }
+    const Fields f = fields(e.value, kBarKeys);
+    std::array<int, 2> ends{};
+    if (const Entry* between = f.find("between")) {
+      ends = point_pair(*between, "[A, B]");
+      if (ends[0] == ends[1]) fail(mark(*between), "a bar runs between two different points");
+    } else if (body.points.size() < 2) {
+      fail(e.key_node, name + " has a single point: say where its bar runs with `between: [P, Q]`");
+    } else {
+      ends = {body.points[0], body.points[1]};
+    }
+    const double width = non_negative(required(f, e.value, "width", "a bar"), "the width", true);
+    double margin = width / 2;
+    if (const Entry* m = f.find("margin")) margin = non_negative(*m, "the margin");
+    std::array<double, 2> radii{0.0, 0.0};
+    const Entry* hole = f.find("hole");
+    const Entry* holes = f.find("holes");
+    if (hole && holes) {
+      const Entry* second = hole > holes ? hole : holes;  // entries are stored in file order
+      fail(second->key_node, "give a bar either `hole` (both ends) or `holes: [r1, r2]`, not both");
+    }
+    if (hole) radii[0] = radii[1] = non_negative(*hole, "the hole radius");
+    if (holes) {
+      if (!holes->value.IsSequence() || holes->value.size() != 2) {
+        fail(mark(*holes), "`holes` needs two radii [r1, r2], one per end (0 for none), not " +
+                               describe(holes->value));
+      }
+      for (std::size_t i = 0; i < 2; ++i) {
+        radii[i] = number(holes->value[i], mark(holes->value[i]), "a hole radius");
+        if (radii[i] < 0.0) fail(holes->value[i], "a hole radius must not be negative");
+      }
+    }
+    try {
+      return to_si(make_bar(drawn(ends[0]), drawn(ends[1]), width, margin, radii[0], radii[1]));
+    } catch (const std::invalid_argument& error) {
+      std::string_view reason = error.what();
+      if (reason.rfind("make_bar: ", 0) == 0) reason.remove_prefix(10);
+      fail(mark(e), "the bar of " + name + " is not valid: " + std::string(reason));
+    }
+  }
+
+  void parse_gravity(const Entry& e) {
+    if (e.value.IsNull()) return;
+    if (e.value.IsScalar() && e.value.Scalar() == "standard") {
+      model_.gravity = Eigen::Vector2d(0.0, -kStandardGravity);
+      return;
+    }
+    if (e.value.IsSequence() && e.value.size() == 2) {
+      model_.gravity = Eigen::Vector2d(number(e.value[0], mark(e.value[0]), "gx (m/s^2)"),
+                                       number(e.value[1], mark(e.value[1]), "gy (m/s^2)"));
+      return;
+    }
+    std::string message = "`gravity` must be [gx, gy] in m/s^2 or `standard`, not " + describe(e.value);
+    double value = 0.0;
+    if (e.value.IsScalar() && parse_number(e.value.Scalar(), value) == NumberStatus::Ok) {
+      std::string down = e.value.Scalar();
+      if (!down.empty() && (down.front() == '-' || down.front() == '+')) down.erase(0, 1);
+      message += " (write [0, -" + down + "] for " + down + " m/s^2 downwards)";
+    }
+    fail(mark(e), message);
+  }
+
+  // A force or torque component: a number, or a law in t (text), in SI: `unit` is N or N m.
+  Law load_law(const YAML::Node& node, SourceMark at, const std::string& what, std::string_view unit) const {
+    if (!node.IsScalar()) {
+      fail(at, what + " must be a number or an expression in t like \"100*sin(2*pi*t)\", not " + describe(node));
+    }
+    const std::string text = node.Scalar();
+    double value = 0.0;
+    switch (parse_number(text, value)) {
+      case NumberStatus::Ok:
+        try {
+          return Law::parse(text.front() == '+' ? text.substr(1) : text);
+        } catch (const LawSyntaxError&) {
+          std::ostringstream canonical;  // a spelling of the number the law grammar does not read
+          canonical.precision(17);
+          canonical << value;
+          return Law::parse(canonical.str());
+        }
+      case NumberStatus::NotFinite: fail(at, what + " must be a finite number, not '" + text + "'");
+      case NumberStatus::NotNumber: break;
+    }
+    // "5 N" reads as a number with a unit, which laws do not take.
+    std::string hint;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec == std::errc() && end != text.data() && end != text.data() + text.size() && *end == ' ') {
+      hint = what + " is in " + std::string(unit) + ": write a number without its unit, or an expression in t";
+    }
+    return law_of(node, at, text, 1.0, hint);
+  }
+
+  void parse_forces(const Entry& e) {
+    for (const YAML::Node& item : list(e, "[{point: P, force: [0, -100]}]")) {
+      if (!item.IsMap()) fail(item, "a force is a mapping like {point: P, force: [0, -100]}, not " + describe(item));
+      const Fields f = fields(item, kForceKeys);
+      PointLoad load;
+      load.point = point_ref(required(f, item, "point", "a force").value);
+      if (const Entry* body = f.find("body")) {
+        load.body = body_ref(body->value);
+        const Body& b = model_.bodies[load.body];
+        if (std::find(b.points.begin(), b.points.end(), load.point) == b.points.end()) {
+          std::vector<std::string> names;
+          for (int p : b.points) names.push_back(model_.points[p].name);
+          fail(body->value, "point '" + model_.points[load.point].name + "' is not a point of body '" + b.name +
+                                "' (its points are: " + join(names) + ")");
+        }
+      }
+      const Entry* force = f.find("force");
+      const Entry* fx = f.find("fx");
+      const Entry* fy = f.find("fy");
+      if (force && (fx || fy)) {
+        fail((fx ? fx : fy)->key_node, "give a force either as `force: [fx, fy]` or as `fx` and `fy`, not both");
+      }
+      if (force) {
+        if (!force->value.IsSequence() || force->value.size() != 2) {
+          fail(mark(*force), "`force` needs two components [fx, fy] in N, not " + describe(force->value));
+        }
+        load.fx = load_law(force->value[0], mark(force->value[0]), "fx", "N");
+        load.fy = load_law(force->value[1], mark(force->value[1]), "fy", "N");
+      } else if (fx || fy) {
+        load.fx = fx ? load_law(fx->value, mark(*fx), "fx", "N") : Law::parse("0");
+        load.fy = fy ? load_law(fy->value, mark(*fy), "fy", "N") : Law::parse("0");
+      } else {
+        fail(item, "a force needs `force: [fx, fy]`, or `fx` and/or `fy` (N)");
+      }
+      model_.point_loads.push_back(std::move(load));
+      source_.point_loads.push_back(mark(item));
+    }
+  }
+
+  void parse_torques(const Entry& e) {
+    for (const YAML::Node& item : list(e, "[{body: crank, torque: -5}]")) {
+      if (!item.IsMap()) fail(item, "a torque is a mapping like {body: crank, torque: -5}, not " + describe(item));
+      const Fields f = fields(item, kTorqueKeys);
+      BodyTorque torque;
+      torque.body = body_ref(required(f, item, "body", "a torque").value);
+      const Entry& value = required(f, item, "torque", "a torque");
+      torque.torque = load_law(value.value, mark(value), "the torque", "N m");
+      model_.torques.push_back(std::move(torque));
+      source_.torques.push_back(mark(item));
+    }
+  }
+
+  void parse_springs(const Entry& e) {
+    std::vector<std::size_t> unnamed;
+    std::vector<SourceMark> name_marks;
+    for (const YAML::Node& item : list(e, "[{between: [P, Q], stiffness: 2000}]")) {
+      if (!item.IsMap()) {
+        fail(item, "a spring is a mapping like {between: [P, Q], stiffness: 2000}, not " + describe(item));
+      }
+      const Fields f = fields(item, kSpringKeys);
+      Spring s;
+      const Entry& between = required(f, item, "between", "a spring");
+      s.points = point_pair(between, "[P, Q]");
+      if (s.points[0] == s.points[1]) {
+        fail(mark(between), "a spring joins two different points, not point '" + model_.points[s.points[0]].name +
+                                "' to itself");
+      }
+      const Entry* stiffness = f.find("stiffness");
+      const Entry* damping = f.find("damping");
+      if (!stiffness && !damping) fail(item, "a spring needs `stiffness` (N/m), `damping` (N s/m) or both");
+      if (stiffness) {
+        s.stiffness = quantity(*stiffness, "the stiffness", kStiffnessUnits, "2 N/mm");
+        if (s.stiffness < 0.0) fail(mark(*stiffness), "the stiffness must not be negative");
+      }
+      if (damping) {
+        s.damping = quantity(*damping, "the damping", kDampingUnits, "0.5 N s/mm");
+        if (s.damping < 0.0) fail(mark(*damping), "the damping must not be negative");
+      }
+      if (const Entry* free = f.find("free_length")) {
+        s.free_length = non_negative(*free, "the free length") * model_.units.length_scale;
+      } else {
+        s.free_length = (model_.points[s.points[1]].position - model_.points[s.points[0]].position).norm();
+      }
+      if (const Entry* n = f.find("name")) {
+        s.name = text_value(*n, "a spring name");
+        if (s.name.empty()) fail(mark(*n), "a spring name cannot be empty");
+        for (std::size_t i = 0; i < model_.springs.size(); ++i) {
+          if (model_.springs[i].name == s.name) {
+            fail(mark(*n), "two springs are named '" + s.name + "' (first on line " +
+                               std::to_string(name_marks[i].line) + ")");
+          }
+        }
+        name_marks.push_back(mark(*n));
+      } else {
+        unnamed.push_back(model_.springs.size());
+        name_marks.push_back(mark(item));
+      }
+      model_.springs.push_back(std::move(s));
+      source_.springs.push_back(mark(item));
+    }
+    // spring1, spring2... in order, skipping names given explicitly.
+    int counter = 0;
+    for (std::size_t i : unnamed) {
+      std::string candidate;
+      do {
+        candidate = "spring" + std::to_string(++counter);
+      } while (std::any_of(model_.springs.begin(), model_.springs.end(),
+                           [&](const Spring& other) { return other.name == candidate; }));
+      model_.springs[i].name = candidate;
     }
   }
 };

@@ -22,6 +22,7 @@ struct SourceMap {
   SourceMark model;
   std::vector<SourceMark> points, bodies, sliders, slots, drivers;
   SourceMark sweep;
+  std::vector<SourceMark> point_loads, torques, springs;  // the items of `forces`, `torques`, `springs`
 
   SourceMark find(const EntityRef& ref) const;
 };

@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -49,7 +51,8 @@ void write_text_table(std::ostream& out, const ResultTable& table) {
   for (std::size_t r = 0; r < cells.size(); ++r) line([&](std::size_t c) { return cells[r][c]; });
 }
 
-void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& sweep, const ResultTable& table) {
+void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& sweep, const ResultTable& table,
+                const DynamicsSummary* dynamics) {
   const Model& m = mech.model();
   const MobilityReport& mob = mech.mobility();
   nlohmann::ordered_json j;
@@ -67,10 +70,85 @@ void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& swe
   if (!sweep.complete) j["stop_reason"] = sweep.stop_reason;
   j["warnings"] = sweep.warnings;
   j["max_residual"] = sweep.max_residual / m.units.length_scale;
+  if (dynamics) {
+    j["dynamics"] = {{"units", "forces N, torques N m, energies J, whatever the model's length unit"},
+                     {"unique", dynamics->unique},
+                     {"max_residual", dynamics->max_residual},
+                     {"warnings", dynamics->warnings}};
+  }
   j["columns"] = table.columns;
   j["column_units"] = table.units;
   j["rows"] = table.rows;
   out << j.dump(1) << '\n';
+}
+
+void write_stress_report(std::ostream& out, const std::string& format, const Mechanism& mech,
+                         const SweepResult& sweep, const std::vector<StressPeak>& peaks) {
+  const Model& m = mech.model();
+  const double length = m.units.length_scale;
+  ResultTable t;
+  const std::vector<std::pair<std::string, std::string>> columns = {
+      {"von_mises", "MPa"}, {"step", ""},      {"t", "s"},          {"x", m.units.length},
+      {"y", m.units.length}, {"sigma", "MPa"}, {"tau", "MPa"},      {"N", "N"},
+      {"V", "N"},            {"M", "N m"},     {"safety_factor", ""}};
+  for (const auto& [name, unit] : columns) {
+    t.columns.push_back(name);
+    t.units.push_back(unit);
+  }
+  std::vector<std::string> names;
+  for (const StressPeak& p : peaks) {
+    names.push_back(m.bodies[p.body].name);
+    const double time = p.step >= 0 ? sweep.samples[p.step].time : 0.0;
+    t.rows.push_back({p.at.von_mises / 1e6, static_cast<double>(p.step), time, p.at.where.x() / length,
+                      p.at.where.y() / length, p.at.sigma / 1e6, p.at.tau / 1e6, p.at.axial, p.at.shear, p.at.moment,
+                      p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN())});
+  }
+  if (format == "json") {
+    nlohmann::ordered_json j;
+    j["model"] = m.name;
+    j["units"] = {{"stress", "MPa"}, {"force", "N"}, {"moment", "N m"}, {"length", m.units.length}};
+    nlohmann::ordered_json bodies = nlohmann::json::array();
+    for (std::size_t i = 0; i < peaks.size(); ++i) {
+      nlohmann::ordered_json b;
+      b["body"] = names[i];
+      for (std::size_t c = 0; c < t.columns.size(); ++c) {
+        const double v = t.rows[i][c];
+        if (std::isfinite(v)) b[t.columns[c]] = v; else b[t.columns[c]] = nullptr;
+      }
+      bodies.push_back(b);
+    }
+    j["links"] = bodies;
+    out << j.dump(1) << '\n';
+    return;
+  }
+  // Text and CSV: the body's name first; a missing safety factor (no yield strength) is blank.
+  std::vector<std::vector<std::string>> cells;
+  cells.push_back({"body"});
+  for (const auto& c : t.columns) cells.back().push_back(c);
+  if (format != "csv") {
+    cells.push_back({""});
+    for (const auto& u : t.units) cells.back().push_back(u.empty() ? "" : "[" + u + "]");
+  }
+  for (std::size_t i = 0; i < peaks.size(); ++i) {
+    cells.push_back({names[i]});
+    for (double v : t.rows[i]) cells.back().push_back(std::isfinite(v) ? fmt::format("{:.6g}", v + 0.0) : "");
+  }
+  if (format == "csv") {
+    for (const auto& row : cells) {
+      for (std::size_t c = 0; c < row.size(); ++c) out << (c ? "," : "") << row[c];
+      out << '\n';
+    }
+    return;
+  }
+  std::vector<std::size_t> width(cells[0].size(), 0);
+  for (const auto& row : cells)
+    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
+  for (const auto& row : cells) {
+    std::string line;
+    for (std::size_t c = 0; c < row.size(); ++c)
+      line += c == 0 ? fmt::format("{:<{}}", row[c], width[c]) : fmt::format("  {:>{}}", row[c], width[c]);
+    out << line << '\n';
+  }
 }
 
 }  // namespace nbar::io

@@ -3,7 +3,12 @@
 
 #include <ostream>
 
+#include <string>
+#include <vector>
+
+#include "dynamics/dynamics_table.hpp"
 #include "kinematics/table.hpp"
+#include "stress/link_stress.hpp"
 
 namespace nbar::io {
 
@@ -15,6 +20,15 @@ void write_text_table(std::ostream& out, const ResultTable& table);
 
 // The same columns and rows, plus units per column, the degrees of freedom, the assembly
 // branch of every four-bar loop, the residuals and every warning.
-void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& sweep, const ResultTable& table);
+// With `dynamics`, also whether the joint forces are unique and the equations' residual.
+void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& sweep, const ResultTable& table,
+                const DynamicsSummary* dynamics = nullptr);
+
+// The largest von Mises stress of every link over the sweep, where and when, and its safety
+// factor: format "table", "csv" or "json". Stresses in MPa, forces in N, moments in N m,
+// positions in the model's length unit (x along the link from its first point to its second,
+// y to the left of that line).
+void write_stress_report(std::ostream& out, const std::string& format, const Mechanism& mech,
+                         const SweepResult& sweep, const std::vector<StressPeak>& peaks);
 
 }  // namespace nbar::io

@@ -217,8 +217,9 @@ AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<d
       s << "; the wanted values can only be assembled on another branch: draw the mechanism on that branch";
     } else {
       const double r = max_residual(mech, state, &worst);
-      s << "; no pose was found at the wanted values: the closest leaves '" << mech.rows()[worst].label
-        << "' off by " << r / m.units.length_scale << " " << m.units.length;
+      s << "; at the wanted values constraint '" << mech.rows()[worst].label
+        << "' cannot be met (the closest pose found leaves it off by " << r / m.units.length_scale << " "
+        << m.units.length << ")";
     }
     throw AssemblyError(s.str(), worst);
   }

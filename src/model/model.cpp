@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "model/geometry.hpp"
 
 namespace nbar {
 
@@ -53,6 +56,9 @@ class Validator {
     check_slots();
     check_drivers();
     check_sweep();
+    check_mass_properties();
+    check_loads();
+    check_springs();
   }
 
  private:
@@ -350,6 +356,99 @@ class Validator {
     if (s.time_step) {
       if (!std::isfinite(*s.time_step) || *s.time_step <= 0.0) fail(where, "the sweep time step must be positive");
       if (*s.time_step > s.duration) fail(where, "the sweep time step is longer than its duration");
+    }
+  }
+
+  // Shapes, materials and given mass properties: what the dynamics and stress stages need.
+  void check_mass_properties() const {
+    for (std::size_t i = 0; i < m_.bodies.size(); ++i) {
+      const Body& b = m_.bodies[i];
+      const auto where = ref(EntityRef::Kind::Body, i);
+      const std::string name = "body " + quoted(b.name);
+      if (b.shape) {
+        try {
+          check_region(*b.shape);
+        } catch (const std::invalid_argument& error) {
+          fail(where, "the shape of " + name + " is not valid: " + error.what());
+        }
+        if (!std::isfinite(b.thickness) || b.thickness <= 0.0) {
+          fail(where, name + " has a shape, so its thickness must be a positive number");
+        }
+      }
+      if (b.material) {
+        const Material& mat = *b.material;
+        const std::string what = mat.name.empty() ? "the material of " + name : "material " + quoted(mat.name);
+        if (!std::isfinite(mat.density) || mat.density <= 0.0) {
+          fail(where, what + " needs a positive density");
+        }
+        if (mat.yield_strength && (!std::isfinite(*mat.yield_strength) || *mat.yield_strength <= 0.0)) {
+          fail(where, "the yield strength of " + what + " must be a positive number");
+        }
+      }
+      if (b.inertia) {
+        const GivenInertia& g = *b.inertia;
+        if (!std::isfinite(g.mass) || g.mass < 0.0) fail(where, "the mass of " + name + " must not be negative");
+        if (!g.cg.allFinite()) fail(where, "the centre of mass of " + name + " is not a finite point");
+        if (!std::isfinite(g.inertia) || g.inertia < 0.0) {
+          fail(where, "the moment of inertia of " + name + " must not be negative");
+        }
+      } else {
+        if (b.shape && !b.material) fail(where, name + " has a shape but no material and no given mass");
+        if (b.material && !b.shape) fail(where, name + " has a material but no shape to weigh and no given mass");
+      }
+    }
+    if (!m_.gravity.allFinite()) fail({EntityRef::Kind::Model, -1}, "gravity is not a finite vector");
+  }
+
+  // A law that was never parsed has no text.
+  static bool has_law(const Law& law) { return !law.text().empty(); }
+
+  void check_loads() const {
+    for (std::size_t i = 0; i < m_.point_loads.size(); ++i) {
+      const PointLoad& load = m_.point_loads[i];
+      const auto where = ref(EntityRef::Kind::PointLoad, i);
+      const std::string name = "force #" + std::to_string(i + 1);
+      if (!valid_point(load.point)) {
+        fail(where, name + " acts on point #" + std::to_string(load.point) + ", which does not exist");
+      }
+      if (load.body != -1) {
+        if (!valid_body(load.body)) {
+          fail(where, name + " acts on body #" + std::to_string(load.body) + ", which does not exist");
+        }
+        if (!body_has_point(load.body, load.point)) {
+          fail(where, name + " acts on point " + point_name(load.point) + " of body " + body_name(load.body) +
+                          ", which does not have that point");
+        }
+      }
+      if (!has_law(load.fx) || !has_law(load.fy)) fail(where, name + " has no value for fx or fy");
+    }
+    for (std::size_t i = 0; i < m_.torques.size(); ++i) {
+      const BodyTorque& torque = m_.torques[i];
+      const auto where = ref(EntityRef::Kind::Torque, i);
+      const std::string name = "torque #" + std::to_string(i + 1);
+      if (!valid_body(torque.body)) {
+        fail(where, name + " acts on body #" + std::to_string(torque.body) + ", which does not exist");
+      }
+      if (!has_law(torque.torque)) fail(where, name + " on body " + body_name(torque.body) + " has no value");
+    }
+  }
+
+  void check_springs() const {
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < m_.springs.size(); ++i) {
+      const Spring& s = m_.springs[i];
+      const auto where = ref(EntityRef::Kind::Spring, i);
+      if (s.name.empty()) fail(where, "spring #" + std::to_string(i + 1) + " has no name");
+      if (!seen.insert(s.name).second) fail(where, "two springs are named " + quoted(s.name));
+      const std::string name = "spring " + quoted(s.name);
+      for (int p : s.points) {
+        if (!valid_point(p)) fail(where, name + " refers to point #" + std::to_string(p) + ", which does not exist");
+      }
+      if (s.points[0] == s.points[1]) fail(where, name + " joins point " + point_name(s.points[0]) + " to itself");
+      const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
+      if (!non_negative(s.stiffness)) fail(where, "the stiffness of " + name + " must not be negative");
+      if (!non_negative(s.damping)) fail(where, "the damping of " + name + " must not be negative");
+      if (!non_negative(s.free_length)) fail(where, "the free length of " + name + " must not be negative");
     }
   }
 };

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "model/geometry.hpp"
 #include "model/law.hpp"
 #include "model/units.hpp"
 
@@ -24,10 +25,27 @@ struct Point {
   bool ground = false;       // fixed to the frame
 };
 
+struct Material {
+  std::string name;
+  double density = 0.0;                  // kg/m^3
+  std::optional<double> yield_strength;  // Pa
+};
+
+// Mass properties given directly instead of computed from a shape.
+struct GivenInertia {
+  double mass = 0.0;            // kg
+  Eigen::Vector2d cg{0, 0};     // m, in the starting pose
+  double inertia = 0.0;         // kg m^2 about the centre of mass
+};
+
 struct Body {
   std::string name;
   std::vector<int> points;             // indices into Model::points; the first two define its angle
   std::optional<double> length;        // exact length of a two-point body (m), overriding the drawing
+  std::optional<Region> shape;         // the plate's outline minus holes, in the starting pose (m)
+  double thickness = 0.0;              // m, with a shape
+  std::optional<Material> material;    // with a shape: density and strength
+  std::optional<GivenInertia> inertia; // explicit mass properties (then the shape is only for stresses)
 };
 
 // Prismatic joint: `point` of `body` moves on the line through along[0], along[1], and `body`
@@ -75,6 +93,30 @@ struct SweepSpec {
   std::optional<double> time_step;  // time-law sweeps, s; default duration/100
 };
 
+// A force on a point: on `body` there, or on the joint's pin when body is -1 (the pin passes it
+// on to the bodies that meet there). Components are laws in t (a constant is a law too), N.
+struct PointLoad {
+  int point = -1;
+  int body = -1;
+  Law fx, fy;
+};
+
+// A torque on a body, N m, counter-clockwise positive.
+struct BodyTorque {
+  int body = -1;
+  Law torque;
+};
+
+// A linear spring and damper between two points: tension = stiffness (length - free_length)
+// + damping d(length)/dt, pulling the points together when positive.
+struct Spring {
+  std::string name;
+  std::array<int, 2> points{-1, -1};
+  double stiffness = 0.0;    // N/m
+  double free_length = 0.0;  // m
+  double damping = 0.0;      // N s/m
+};
+
 struct Model {
   std::string name;
   Units units;
@@ -85,6 +127,11 @@ struct Model {
   std::vector<Driver> drivers;
   SweepSpec sweep;
 
+  Eigen::Vector2d gravity{0, 0};  // m/s^2
+  std::vector<PointLoad> point_loads;
+  std::vector<BodyTorque> torques;
+  std::vector<Spring> springs;
+
   int find_point(const std::string& name) const;  // -1 when absent
   int find_body(const std::string& name) const;
   bool has_time_law() const;
@@ -93,7 +140,7 @@ struct Model {
 // What a model error is about, so that front-ends can point at the right place
 // (the parser maps it to file:line:column).
 struct EntityRef {
-  enum class Kind { Model, Point, Body, Slider, Slot, Driver, Sweep } kind = Kind::Model;
+  enum class Kind { Model, Point, Body, Slider, Slot, Driver, Sweep, PointLoad, Torque, Spring } kind = Kind::Model;
   int index = -1;
 };
 

@@ -390,7 +390,8 @@ TEST(ModelFileErrors, UnknownKeys) {
                        "unknown key 'lenghts' at the top level; did you mean 'lengths'?"));
   EXPECT_TRUE(fails_at(kFourBar + "colour: red\n", "11:1",
                        "unknown key 'colour' at the top level (allowed: name, description, units, points, ground, "
-                       "bodies, lengths, sliders, slots, drivers, sweep)"));
+                       "bodies, lengths, sliders, slots, drivers, sweep, gravity, materials, forces, torques, "
+                       "springs)"));
   EXPECT_TRUE(fails_at(kFourBar + "Points: {}\n", "11:1", "did you mean 'points'?"));
   EXPECT_TRUE(
       fails_at(kFourBar + "units: {lenght: mm}\n", "11:9", "unknown key 'lenght' in `units`; did you mean 'length'?"));
@@ -474,10 +475,11 @@ TEST(ModelFileErrors, Bodies) {
                        "body 'frame' has only ground points, so it cannot move: list its points under ground instead"));
   EXPECT_TRUE(fails_at(kFourBar + "  wheel: [A, B, A]\n", "11:3", "body 'wheel' lists point 'A' twice"));
   EXPECT_TRUE(fails_at(kSliderCrank, "10:3", "body 'piston' has a single point, so its orientation is undefined"));
-  EXPECT_TRUE(
-      fails_at(kFourBar + "  wheel: A\n", "11:10", "body 'wheel' needs a list of its points, like [A, B], not 'A'"));
-  EXPECT_TRUE(
-      fails_at(kFourBar + "  wheel:\n", "11:3", "body 'wheel' needs a list of its points, like [A, B], not nothing"));
+  EXPECT_TRUE(fails_at(kFourBar + "  wheel: A\n", "11:10",
+                       "body 'wheel' needs a list of its points, like [A, B], or a mapping with `points:`, not 'A'"));
+  EXPECT_TRUE(fails_at(kFourBar + "  wheel:\n", "11:3",
+                       "body 'wheel' needs a list of its points, like [A, B], or a mapping with `points:`, not "
+                       "nothing"));
   EXPECT_TRUE(
       fails_at(kFourBar + "  wheel: [A, {B: 1}]\n", "11:14", "a point reference must be a name, not a mapping"));
   EXPECT_TRUE(fails_at("points:\n  O: [0, 0]\nbodies: [O]\n", "3:9",
@@ -710,7 +712,8 @@ TEST(ModelFileLocate, LocatesLaterErrors) {
   EXPECT_EQ(locate(loaded.source, ModelError({Kind::Slider, 0}, "none")), "example.yaml:1:1: none");
   EXPECT_EQ(locate(loaded.source, ModelError({Kind::Point, 42}, "none")), "example.yaml:1:1: none");
 
-  const SourceMap empty{"code", {}, {}, {}, {}, {}, {}, {}};
+  SourceMap empty;
+  empty.file = "code";
   EXPECT_EQ(locate(empty, ModelError({Kind::Body, 0}, "oops")), "code: oops");
 }
 

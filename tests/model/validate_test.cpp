@@ -19,7 +19,10 @@ int add_point(Model& m, const std::string& name, double x, double y, bool ground
 }
 
 int add_body(Model& m, const std::string& name, std::vector<int> points) {
-  m.bodies.push_back(Body{name, std::move(points), std::nullopt});
+  Body body;
+  body.name = name;
+  body.points = std::move(points);
+  m.bodies.push_back(std::move(body));
   return static_cast<int>(m.bodies.size()) - 1;
 }
 
@@ -456,6 +459,163 @@ TEST(Validate, Sweep) {
   expect_error(m, Kind::Sweep, -1, "the sweep time step is longer than its duration");
 
   m.sweep.time_step = 0.1;
+  EXPECT_NO_THROW(validate(m));
+}
+
+// ---- kinetics: shapes, materials, mass properties, loads, springs ----
+
+// The four-bar with a steel bar on its coupler and given mass properties on its crank.
+Model four_bar_with_mass() {
+  Model m = four_bar();
+  Body& coupler = m.bodies[1];
+  coupler.shape = make_bar(m.points[2].position, m.points[3].position, 0.02, 0.01, 0.004, 0.004);
+  coupler.thickness = 0.005;
+  coupler.material = Material{"steel", 7850, 250e6};
+  m.bodies[0].inertia = GivenInertia{0.3, Eigen::Vector2d(0.02, 0.035), 1e-4};
+  m.gravity = Eigen::Vector2d(0, -9.81);
+  m.point_loads.push_back(PointLoad{4, 1, Law::parse("0"), Law::parse("-100")});
+  m.point_loads.push_back(PointLoad{3, -1, Law::parse("10*t"), Law::parse("0")});
+  m.torques.push_back(BodyTorque{2, Law::parse("-5")});
+  m.springs.push_back(Spring{"return", {4, 1}, 2000, 0.1, 5});
+  return m;
+}
+
+TEST(Validate, AcceptsKinetics) {
+  EXPECT_NO_THROW(validate(four_bar_with_mass()));
+  // Given mass properties make the material optional, and a shape then serves only stresses.
+  Model m = four_bar_with_mass();
+  m.bodies[1].material.reset();
+  m.bodies[1].inertia = GivenInertia{};
+  EXPECT_NO_THROW(validate(m));
+  // A material without a yield strength (brittle) is fine.
+  m = four_bar_with_mass();
+  m.bodies[1].material->yield_strength.reset();
+  EXPECT_NO_THROW(validate(m));
+}
+
+TEST(Validate, Shapes) {
+  Model m = four_bar_with_mass();
+  m.bodies[1].shape->circle_holes.push_back(Circle{m.points[2].position, 0.002});  // over the bar's hole
+  expect_error(m, Kind::Body, 1, "the shape of body 'coupler' is not valid: circle hole 0");
+
+  m = four_bar_with_mass();
+  m.bodies[1].shape->outline.resize(2);
+  expect_error(m, Kind::Body, 1, "the shape of body 'coupler' is not valid: the outline has 2 vertices");
+
+  m = four_bar_with_mass();
+  m.bodies[1].thickness = 0.0;
+  expect_error(m, Kind::Body, 1, "body 'coupler' has a shape, so its thickness must be a positive number");
+  m.bodies[1].thickness = std::numeric_limits<double>::quiet_NaN();
+  expect_error(m, Kind::Body, 1, "its thickness must be a positive number");
+
+  m = four_bar_with_mass();
+  m.bodies[1].material.reset();
+  expect_error(m, Kind::Body, 1, "body 'coupler' has a shape but no material and no given mass");
+
+  m = four_bar_with_mass();
+  m.bodies[2].material = Material{"steel", 7850, 250e6};
+  expect_error(m, Kind::Body, 2, "body 'rocker' has a material but no shape to weigh and no given mass");
+}
+
+TEST(Validate, Materials) {
+  Model m = four_bar_with_mass();
+  m.bodies[1].material->density = 0.0;
+  expect_error(m, Kind::Body, 1, "material 'steel' needs a positive density");
+  m.bodies[1].material->density = std::numeric_limits<double>::infinity();
+  expect_error(m, Kind::Body, 1, "material 'steel' needs a positive density");
+
+  m = four_bar_with_mass();
+  m.bodies[1].material->name = "";
+  m.bodies[1].material->density = -1.0;
+  expect_error(m, Kind::Body, 1, "the material of body 'coupler' needs a positive density");
+
+  m = four_bar_with_mass();
+  m.bodies[1].material->yield_strength = 0.0;
+  expect_error(m, Kind::Body, 1, "the yield strength of material 'steel' must be a positive number");
+}
+
+TEST(Validate, GivenMassProperties) {
+  Model m = four_bar_with_mass();
+  m.bodies[0].inertia->mass = -1.0;
+  expect_error(m, Kind::Body, 0, "the mass of body 'crank' must not be negative");
+  m.bodies[0].inertia->mass = std::numeric_limits<double>::quiet_NaN();
+  expect_error(m, Kind::Body, 0, "the mass of body 'crank' must not be negative");
+
+  m = four_bar_with_mass();
+  m.bodies[0].inertia->inertia = -1e-3;
+  expect_error(m, Kind::Body, 0, "the moment of inertia of body 'crank' must not be negative");
+
+  m = four_bar_with_mass();
+  m.bodies[0].inertia->cg.x() = std::numeric_limits<double>::infinity();
+  expect_error(m, Kind::Body, 0, "the centre of mass of body 'crank' is not a finite point");
+
+  m = four_bar_with_mass();
+  m.bodies[0].inertia->mass = 0.0;  // massless is allowed
+  EXPECT_NO_THROW(validate(m));
+
+  m.gravity.y() = std::numeric_limits<double>::quiet_NaN();
+  expect_error(m, Kind::Model, -1, "gravity is not a finite vector");
+}
+
+TEST(Validate, PointLoadsAndTorques) {
+  Model m = four_bar_with_mass();
+  m.point_loads[1].point = 9;
+  expect_error(m, Kind::PointLoad, 1, "force #2 acts on point #9, which does not exist");
+
+  m = four_bar_with_mass();
+  m.point_loads[0].body = 7;
+  expect_error(m, Kind::PointLoad, 0, "force #1 acts on body #7, which does not exist");
+
+  m = four_bar_with_mass();
+  m.point_loads[0].body = 0;  // P is not a point of the crank
+  expect_error(m, Kind::PointLoad, 0, "force #1 acts on point 'P' of body 'crank', which does not have that point");
+
+  m = four_bar_with_mass();
+  m.point_loads[1].fy = Law();
+  expect_error(m, Kind::PointLoad, 1, "force #2 has no value for fx or fy");
+
+  m = four_bar_with_mass();
+  m.torques[0].body = -1;
+  expect_error(m, Kind::Torque, 0, "torque #1 acts on body #-1, which does not exist");
+
+  m = four_bar_with_mass();
+  m.torques.push_back(BodyTorque{1, Law()});
+  expect_error(m, Kind::Torque, 1, "torque #2 on body 'coupler' has no value");
+}
+
+TEST(Validate, Springs) {
+  Model m = four_bar_with_mass();
+  m.springs.push_back(m.springs[0]);
+  expect_error(m, Kind::Spring, 1, "two springs are named 'return'");
+
+  m = four_bar_with_mass();
+  m.springs[0].name = "";
+  expect_error(m, Kind::Spring, 0, "spring #1 has no name");
+
+  m = four_bar_with_mass();
+  m.springs[0].points = {4, 5};
+  expect_error(m, Kind::Spring, 0, "spring 'return' refers to point #5, which does not exist");
+
+  m = four_bar_with_mass();
+  m.springs[0].points = {2, 2};
+  expect_error(m, Kind::Spring, 0, "spring 'return' joins point 'A' to itself");
+
+  m = four_bar_with_mass();
+  m.springs[0].stiffness = -1;
+  expect_error(m, Kind::Spring, 0, "the stiffness of spring 'return' must not be negative");
+
+  m = four_bar_with_mass();
+  m.springs[0].damping = std::numeric_limits<double>::infinity();
+  expect_error(m, Kind::Spring, 0, "the damping of spring 'return' must not be negative");
+
+  m = four_bar_with_mass();
+  m.springs[0].free_length = -0.1;
+  expect_error(m, Kind::Spring, 0, "the free length of spring 'return' must not be negative");
+
+  m = four_bar_with_mass();
+  m.springs[0].stiffness = 0;
+  m.springs[0].damping = 0;
+  m.springs[0].free_length = 0;
   EXPECT_NO_THROW(validate(m));
 }
 

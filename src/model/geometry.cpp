@@ -1,0 +1,470 @@
+#include "model/geometry.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace nbar {
+
+namespace {
+
+using Eigen::Vector2d;
+using Polygon = std::vector<Vector2d>;
+constexpr double kPi = std::numbers::pi;
+
+// Raw moments ∫1, ∫x, ∫y, ∫x², ∫y², ∫xy dA about a reference origin. Unlike centroidal
+// properties they simply add and subtract, so regions are assembled in this form and
+// converted once at the end. The origin is chosen near the region: moments about a far
+// point would lose the centroidal second moments to cancellation.
+//
+// `scale` sums the magnitudes of every area term that went into `a`: an area within rounding
+// of zero relative to it is nothing (a cut along an edge, a clip that only grazes a vertex),
+// and must not be divided by to find a centroid.
+struct Moments {
+  double a = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+  double scale = 0;
+
+  Moments& operator+=(const Moments& m) {
+    a += m.a, sx += m.sx, sy += m.sy, sxx += m.sxx, syy += m.syy, sxy += m.sxy;
+    scale += m.scale;
+    return *this;
+  }
+  Moments& operator-=(const Moments& m) {
+    a -= m.a, sx -= m.sx, sy -= m.sy, sxx -= m.sxx, syy -= m.syy, sxy -= m.sxy;
+    scale += m.scale;
+    return *this;
+  }
+  // Reverses orientation: the sign of every moment, not the size of the terms.
+  Moments& negate() {
+    a = -a, sx = -sx, sy = -sy, sxx = -sxx, syy = -syy, sxy = -sxy;
+    return *this;
+  }
+};
+
+Moments to_moments(const AreaProperties& p, const Vector2d& origin) {
+  const Vector2d c = p.centroid - origin;
+  Moments m;
+  m.a = p.area;
+  m.sx = p.area * c.x();
+  m.sy = p.area * c.y();
+  m.sxx = p.iyy + p.area * c.x() * c.x();
+  m.syy = p.ixx + p.area * c.y() * c.y();
+  m.sxy = p.ixy + p.area * c.x() * c.y();
+  m.scale = std::abs(p.area);
+  return m;
+}
+
+AreaProperties to_properties(const Moments& m, const Vector2d& origin) {
+  AreaProperties p;
+  if (!(m.a > 64 * std::numeric_limits<double>::epsilon() * m.scale)) return p;
+  const Vector2d c(m.sx / m.a, m.sy / m.a);
+  p.area = m.a;
+  p.centroid = origin + c;
+  p.ixx = m.syy - m.sy * c.y();
+  p.iyy = m.sxx - m.sx * c.x();
+  p.ixy = m.sxy - m.sx * c.y();
+  return p;
+}
+
+// Green's theorem over the closed polygon: each edge contributes a closed-form term. Signed:
+// positive for a counterclockwise polygon. Exact also for the degenerate polygons produced by
+// clipping (edges doubled back along the cut line cancel).
+Moments polygon_moments(const Polygon& poly, const Vector2d& origin) {
+  Moments m;
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vector2d a = poly[i] - origin, b = poly[(i + 1) % n] - origin;
+    const double c = a.x() * b.y() - b.x() * a.y();
+    m.a += c;
+    m.scale += std::abs(c);
+    m.sx += (a.x() + b.x()) * c;
+    m.sy += (a.y() + b.y()) * c;
+    m.sxx += (a.x() * a.x() + a.x() * b.x() + b.x() * b.x()) * c;
+    m.syy += (a.y() * a.y() + a.y() * b.y() + b.y() * b.y()) * c;
+    m.sxy += (a.x() * (2 * a.y() + b.y()) + b.x() * (a.y() + 2 * b.y())) * c;
+  }
+  m.a /= 2;
+  m.scale /= 2;
+  m.sx /= 6;
+  m.sy /= 6;
+  m.sxx /= 12;
+  m.syy /= 12;
+  m.sxy /= 24;
+  return m;
+}
+
+double signed_area(const Polygon& poly) { return poly.empty() ? 0.0 : polygon_moments(poly, poly[0]).a; }
+
+// Orientation-free: a clockwise polygon has the same material as the counterclockwise one.
+Moments unsigned_polygon_moments(const Polygon& poly, const Vector2d& origin) {
+  Moments m = polygon_moments(poly, origin);
+  if (m.a < 0) m.negate();
+  return m;
+}
+
+Moments disc_moments(const Circle& c, const Vector2d& origin) {
+  AreaProperties p;
+  p.area = kPi * c.radius * c.radius;
+  p.centroid = c.centre;
+  p.ixx = p.iyy = kPi * std::pow(c.radius, 4) / 4;
+  return to_moments(p, origin);
+}
+
+// The circular segment {u >= h} of a disc of radius r about its centre, 0 <= h < r, in a local
+// frame with u along the segment's axis and v along the chord: area, ∫u, ∫u², ∫v² (∫v and ∫uv
+// vanish by symmetry). With half-chord s and half-angle θ (cos θ = h/r), the textbook forms
+// A = r²(θ − sinθcosθ), ∫u² = r⁴/4 (θ − sin4θ/4), ∫v² = r⁴ (θ/4 − sin2θ/6 + sin4θ/48) are
+// written in h and s, and θ comes from atan2 rather than acos, which is ill-conditioned for
+// thin segments.
+struct Segment {
+  double a, su, suu, svv;
+};
+
+Segment circular_segment(double r, double h) {
+  const double s = std::sqrt((r - h) * (r + h));
+  const double theta = std::atan2(s, h);
+  const double r2 = r * r, r4 = r2 * r2;
+  const double sh = s * h, sh_cos4 = sh * (h * h - s * s);
+  return {r2 * theta - sh, 2.0 / 3.0 * s * s * s, r4 * theta / 4 - sh_cos4 / 4,
+          r4 * theta / 4 - sh * r2 / 3 + sh_cos4 / 12};
+}
+
+// The part of disc c on the side m·(x − c.centre) >= -offset (m unit), as raw moments about
+// origin. Segments larger than half the disc are the disc minus the small segment on the other
+// side, so that the two sides of a cut add up to the disc to rounding.
+Moments clipped_disc_moments(const Circle& c, const Vector2d& m, double offset, const Vector2d& origin) {
+  const double r = c.radius, h = -offset;
+  if (h >= r) return {};
+  if (h <= -r) return disc_moments(c, origin);
+  const bool small = h >= 0;
+  const Vector2d axis = small ? m : Vector2d(-m);
+  const Vector2d chord(-axis.y(), axis.x());
+  const Segment g = circular_segment(r, std::abs(h));
+  const Vector2d k = c.centre - origin;
+  // x − origin = k + u axis + v chord, integrated term by term.
+  const Vector2d first = g.a * k + g.su * axis;
+  const Eigen::Matrix2d second = g.a * k * k.transpose() + g.su * (k * axis.transpose() + axis * k.transpose()) +
+                                 g.suu * axis * axis.transpose() + g.svv * chord * chord.transpose();
+  const Moments seg{g.a, first.x(), first.y(), second(0, 0), second(1, 1), second(0, 1), g.a};
+  if (small) return seg;
+  Moments rest = disc_moments(c, origin);
+  rest -= seg;
+  return rest;
+}
+
+// Sutherland–Hodgman against one half-plane. For a non-convex polygon the output may run back
+// and forth along the cut line; Green's theorem integrates such a polygon exactly. A vertex on
+// the line belongs to both sides; the crossing point is computed identically from either side,
+// so the two halves of a cut share their cut edge exactly.
+Polygon clip_polygon(const Polygon& poly, const Vector2d& p, const Vector2d& n) {
+  Polygon out;
+  const std::size_t count = poly.size();
+  std::vector<double> dist(count);
+  for (std::size_t i = 0; i < count; ++i) dist[i] = n.dot(poly[i] - p);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t j = (i + 1) % count;
+    const double da = dist[i], db = dist[j];
+    if (da >= 0) out.push_back(poly[i]);
+    if ((da > 0 && db < 0) || (da < 0 && db > 0)) {
+      const double t = da / (da - db);
+      out.push_back(poly[i] + t * (poly[j] - poly[i]));
+    }
+  }
+  return out;
+}
+
+Vector2d mean(const Polygon& poly) {
+  Vector2d sum = Vector2d::Zero();
+  for (const Vector2d& v : poly) sum += v;
+  return sum / static_cast<double>(poly.size());
+}
+
+// ---- validation ----
+
+std::string point_text(const Vector2d& v) {
+  std::ostringstream os;
+  os << '(' << v.x() << ", " << v.y() << ')';
+  return os.str();
+}
+
+[[noreturn]] void fail(const std::string& message) { throw std::invalid_argument(message); }
+
+double orient(const Vector2d& a, const Vector2d& b, const Vector2d& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+int sign(double x) { return (x > 0) - (x < 0); }
+
+// c, known to be collinear with a-b, lies on the closed segment a-b.
+bool on_segment(const Vector2d& a, const Vector2d& b, const Vector2d& c) {
+  return std::min(a.x(), b.x()) <= c.x() && c.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= c.y() &&
+         c.y() <= std::max(a.y(), b.y());
+}
+
+// The closed segments a-b and c-d share a point (crossing or touching).
+bool segments_meet(const Vector2d& a, const Vector2d& b, const Vector2d& c, const Vector2d& d) {
+  const int o1 = sign(orient(a, b, c)), o2 = sign(orient(a, b, d));
+  const int o3 = sign(orient(c, d, a)), o4 = sign(orient(c, d, b));
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) || (o3 == 0 && on_segment(c, d, a)) ||
+         (o4 == 0 && on_segment(c, d, b));
+}
+
+double distance_to_segment(const Vector2d& x, const Vector2d& a, const Vector2d& b) {
+  const Vector2d ab = b - a;
+  const double t = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (x - (a + t * ab)).norm();
+}
+
+// Strictly inside: a point on the boundary is not.
+bool strictly_inside(const Polygon& poly, const Vector2d& x) {
+  const std::size_t n = poly.size();
+  bool inside = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vector2d& a = poly[i];
+    const Vector2d& b = poly[(i + 1) % n];
+    if (orient(a, b, x) == 0 && on_segment(a, b, x)) return false;
+    if ((a.y() > x.y()) != (b.y() > x.y())) {
+      const double cross_x = a.x() + (x.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x());
+      if (x.x() < cross_x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+bool polygons_meet(const Polygon& p, const Polygon& q) {
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = 0; j < q.size(); ++j) {
+      if (segments_meet(p[i], p[(i + 1) % p.size()], q[j], q[(j + 1) % q.size()])) return true;
+    }
+  }
+  return false;
+}
+
+// The circle's closed disc comes no nearer than its radius to any edge.
+bool circle_clear_of_edges(const Circle& c, const Polygon& poly) {
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    if (distance_to_segment(c.centre, poly[i], poly[(i + 1) % poly.size()]) <= c.radius) return false;
+  }
+  return true;
+}
+
+void check_polygon(const Polygon& poly, const std::string& what) {
+  const std::size_t n = poly.size();
+  if (n < 3) {
+    std::ostringstream os;
+    os << what << " has " << n << (n == 1 ? " vertex" : " vertices") << "; a polygon needs at least 3";
+    fail(os.str());
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!poly[i].allFinite()) fail(what + " vertex " + std::to_string(i) + " is not finite");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    if (poly[i] == poly[j]) {
+      std::ostringstream os;
+      os << what << " vertices " << i << " and " << j << " coincide at " << point_text(poly[i]);
+      fail(os.str());
+    }
+  }
+  // Collinear vertices first: they would otherwise be reported as doubling back.
+  std::size_t far = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if ((poly[i] - poly[0]).squaredNorm() > (poly[far] - poly[0]).squaredNorm()) far = i;
+  }
+  const double span2 = (poly[far] - poly[0]).squaredNorm();
+  double spread = 0;
+  for (std::size_t i = 0; i < n; ++i) spread = std::max(spread, std::abs(orient(poly[0], poly[far], poly[i])));
+  if (spread <= 64 * std::numeric_limits<double>::epsilon() * span2) {
+    fail(what + " has zero area: its vertices are all on one line");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vector2d& a = poly[i];
+    const Vector2d& b = poly[(i + 1) % n];
+    // The next edge shares b; it only meets this one elsewhere by doubling back along it.
+    const Vector2d& c = poly[(i + 2) % n];
+    if (orient(a, b, c) == 0 && (b - a).dot(c - b) < 0) {
+      std::ostringstream os;
+      os << what << " doubles back on itself at vertex " << (i + 1) % n << ' ' << point_text(b);
+      fail(os.str());
+    }
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
+      if (segments_meet(a, b, poly[j], poly[(j + 1) % n])) {
+        std::ostringstream os;
+        os << what << " intersects itself: edge " << i << "-" << (i + 1) % n << " meets edge " << j << "-"
+           << (j + 1) % n;
+        fail(os.str());
+      }
+    }
+  }
+  // A simple polygon that is not flat has area; this only catches what rounding let through.
+  if (signed_area(poly) == 0) fail(what + " has zero area");
+}
+
+std::string circle_name(std::size_t i, const Circle& c) {
+  std::ostringstream os;
+  os << "circle hole " << i << " (centre " << point_text(c.centre) << ", radius " << c.radius << ')';
+  return os.str();
+}
+
+std::string polygon_name(std::size_t i) { return "polygon hole " + std::to_string(i); }
+
+}  // namespace
+
+AreaProperties area_properties(const Region& r) {
+  if (r.outline.empty()) return {};
+  const Vector2d origin = mean(r.outline);
+  Moments m = unsigned_polygon_moments(r.outline, origin);
+  for (const Polygon& hole : r.polygon_holes) m -= unsigned_polygon_moments(hole, origin);
+  for (const Circle& hole : r.circle_holes) m -= disc_moments(hole, origin);
+  return to_properties(m, origin);
+}
+
+AreaProperties clipped_area_properties(const Region& r, const Vector2d& p, const Vector2d& n) {
+  if (!p.allFinite() || !n.allFinite()) fail("clipped_area_properties: the cut line is not finite");
+  const double norm = n.norm();
+  if (!(norm > 0)) fail("clipped_area_properties: the normal of the cut line is zero");
+  const Polygon outline = clip_polygon(r.outline, p, n);
+  if (outline.empty()) return {};
+  const Vector2d origin = mean(outline);
+  // The clipped polygon keeps the orientation of its source, even when it has no area left.
+  Moments m = polygon_moments(outline, origin);
+  if (signed_area(r.outline) < 0) m.negate();
+  for (const Polygon& hole : r.polygon_holes) {
+    Moments h = polygon_moments(clip_polygon(hole, p, n), origin);
+    if (signed_area(hole) < 0) h.negate();
+    m -= h;
+  }
+  const Vector2d unit = n / norm;
+  for (const Circle& hole : r.circle_holes) m -= clipped_disc_moments(hole, unit, unit.dot(hole.centre - p), origin);
+  return to_properties(m, origin);
+}
+
+void check_region(const Region& r) {
+  check_polygon(r.outline, "the outline");
+  for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) check_polygon(r.polygon_holes[i], polygon_name(i));
+  for (std::size_t i = 0; i < r.circle_holes.size(); ++i) {
+    const Circle& c = r.circle_holes[i];
+    if (!c.centre.allFinite() || !std::isfinite(c.radius)) fail(circle_name(i, c) + " is not finite");
+    if (!(c.radius > 0)) fail(circle_name(i, c) + " has a non-positive radius");
+  }
+
+  for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
+    const Polygon& hole = r.polygon_holes[i];
+    if (polygons_meet(hole, r.outline)) fail(polygon_name(i) + " meets the outline");
+    if (!strictly_inside(r.outline, hole[0])) fail(polygon_name(i) + " is outside the outline");
+  }
+  for (std::size_t i = 0; i < r.circle_holes.size(); ++i) {
+    const Circle& c = r.circle_holes[i];
+    if (!strictly_inside(r.outline, c.centre)) fail(circle_name(i, c) + " is outside the outline");
+    if (!circle_clear_of_edges(c, r.outline)) fail(circle_name(i, c) + " meets the outline");
+  }
+
+  for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
+    const Polygon& a = r.polygon_holes[i];
+    for (std::size_t j = i + 1; j < r.polygon_holes.size(); ++j) {
+      const Polygon& b = r.polygon_holes[j];
+      if (polygons_meet(a, b) || strictly_inside(a, b[0]) || strictly_inside(b, a[0])) {
+        fail(polygon_name(i) + " and " + polygon_name(j) + " overlap");
+      }
+    }
+    for (std::size_t j = 0; j < r.circle_holes.size(); ++j) {
+      const Circle& c = r.circle_holes[j];
+      if (strictly_inside(a, c.centre) || !circle_clear_of_edges(c, a)) {
+        fail(polygon_name(i) + " and " + circle_name(j, c) + " overlap");
+      }
+    }
+  }
+  for (std::size_t i = 0; i < r.circle_holes.size(); ++i) {
+    const Circle& a = r.circle_holes[i];
+    for (std::size_t j = i + 1; j < r.circle_holes.size(); ++j) {
+      const Circle& b = r.circle_holes[j];
+      if ((a.centre - b.centre).norm() <= a.radius + b.radius) {
+        fail(circle_name(i, a) + " and " + circle_name(j, b) + " overlap");
+      }
+    }
+  }
+}
+
+Region make_bar(const Vector2d& p, const Vector2d& q, double width, double margin, double hole_radius_p,
+                double hole_radius_q) {
+  if (!p.allFinite() || !q.allFinite() || !std::isfinite(width) || !std::isfinite(margin) ||
+      !std::isfinite(hole_radius_p) || !std::isfinite(hole_radius_q)) {
+    fail("make_bar: every dimension must be finite");
+  }
+  const double length = (q - p).norm();
+  if (!(length > 0)) fail("make_bar: the two ends coincide at " + point_text(p));
+  if (!(width > 0)) fail("make_bar: the width must be positive");
+  if (!(margin >= 0)) fail("make_bar: the margin must not be negative");
+  if (!(hole_radius_p >= 0) || !(hole_radius_q >= 0)) fail("make_bar: a hole radius is negative");
+  for (const double radius : {hole_radius_p, hole_radius_q}) {
+    if (radius > 0 && !(radius < width / 2 && radius < margin)) {
+      std::ostringstream os;
+      os << "make_bar: a hole of radius " << radius << " does not fit in a bar of width " << width
+         << " with margin " << margin << " (it needs radius < width/2 and radius < margin)";
+      fail(os.str());
+    }
+  }
+  if (hole_radius_p > 0 && hole_radius_q > 0 && !(hole_radius_p + hole_radius_q < length)) {
+    fail("make_bar: the holes at the two ends overlap");
+  }
+  const Vector2d u = (q - p) / length;
+  const Vector2d v(-u.y(), u.x());
+  const Vector2d along = margin * u, across = width / 2 * v;
+  Region r;
+  r.outline = {p - along - across, q + along - across, q + along + across, p - along + across};
+  if (hole_radius_p > 0) r.circle_holes.push_back({p, hole_radius_p});
+  if (hole_radius_q > 0) r.circle_holes.push_back({q, hole_radius_q});
+  return r;
+}
+
+SecondMoments second_moments_about(const AreaProperties& a, const Vector2d& point) {
+  const Vector2d d = a.centroid - point;
+  return {a.ixx + a.area * d.y() * d.y(), a.iyy + a.area * d.x() * d.x(), a.ixy + a.area * d.x() * d.y()};
+}
+
+AreaProperties combine(const AreaProperties& a, const AreaProperties& b) {
+  const Vector2d origin = a.centroid;
+  Moments m = to_moments(a, origin);
+  m += to_moments(b, origin);
+  return to_properties(m, origin);
+}
+
+AreaProperties subtract(const AreaProperties& whole, const AreaProperties& part) {
+  const Vector2d origin = whole.centroid;
+  Moments m = to_moments(whole, origin);
+  m -= to_moments(part, origin);
+  return to_properties(m, origin);
+}
+
+AreaProperties transformed(const AreaProperties& a, double angle, const Vector2d& shift) {
+  const Eigen::Matrix2d rot = Eigen::Rotation2Dd(angle).toRotationMatrix();
+  // The covariance-like tensor [[∫x², ∫xy], [∫xy, ∫y²]] turns as R J Rᵀ.
+  Eigen::Matrix2d j;
+  j << a.iyy, a.ixy, a.ixy, a.ixx;
+  const Eigen::Matrix2d jr = rot * j * rot.transpose();
+  AreaProperties out;
+  out.area = a.area;
+  out.centroid = rot * a.centroid + shift;
+  out.iyy = jr(0, 0);
+  out.ixx = jr(1, 1);
+  out.ixy = jr(0, 1);
+  return out;
+}
+
+PlateMass plate_mass(const AreaProperties& a, double density, double thickness) {
+  if (!std::isfinite(density) || !(density >= 0)) fail("plate_mass: the density must be finite and not negative");
+  if (!std::isfinite(thickness) || !(thickness > 0)) fail("plate_mass: the thickness must be finite and positive");
+  const double areal = density * thickness;
+  return {areal * a.area, a.centroid, areal * a.polar()};
+}
+
+}  // namespace nbar
