@@ -24,11 +24,6 @@ int owner_of_pair(const Model& m, int p, int q, int except) {
   return -1;
 }
 
-Eigen::Vector2d motion_of(const Mechanism& mech, const Sample& s, int point, int k) {
-  const Motion2 m = point_motion(mech, s, point);
-  return {m.x[k], m.y[k]};
-}
-
 }  // namespace
 
 MassProperties mass_properties(const Body& body) {
@@ -70,25 +65,50 @@ Eigen::Vector2d BodyMotion::point(const Eigen::Vector2d& drawn, int k) const {
   return origin[k] + a * direction[k] + b * perp(direction[k]);
 }
 
-BodyMotion body_motion(const Mechanism& mech, const Sample& sample, int body) {
+SampleMotion sample_motion(const Mechanism& mech, const Sample& sample) {
   const Model& m = mech.model();
+  const int terms = static_cast<int>(sample.series.cols());
+  SampleMotion out;
+  out.r.resize(m.points.size());
+  out.v.assign(m.points.size(), Eigen::Vector2d::Zero());
+  out.a.assign(m.points.size(), Eigen::Vector2d::Zero());
+  for (std::size_t p = 0; p < m.points.size(); ++p) {
+    const int col = mech.column_of(static_cast<int>(p));
+    if (col < 0) {
+      out.r[p] = m.points[p].position;
+      continue;
+    }
+    out.r[p] = sample.series.block<2, 1>(col, 0);
+    if (terms > 1) out.v[p] = sample.series.block<2, 1>(col, 1);
+    if (terms > 2) out.a[p] = 2.0 * sample.series.block<2, 1>(col, 2);  // 2! * coefficient
+  }
+  return out;
+}
+
+BodyMotion body_motion(const Model& m, const SampleMotion& motion, int body) {
   const BodyFrame f = body_frame(m, body);
   BodyMotion bm;
   bm.drawn_origin = m.points[f.origin].position;
   bm.drawn_direction = Eigen::Vector2d::Zero();
+  const Eigen::Vector2d* of[3] = {&motion.r[f.origin], &motion.v[f.origin], &motion.a[f.origin]};
   for (int k = 0; k < 3; ++k) {
-    bm.origin[k] = motion_of(mech, sample, f.origin, k);
+    bm.origin[k] = *of[k];
     bm.direction[k] = Eigen::Vector2d::Zero();
   }
   if (f.from >= 0) {
     bm.drawn_direction = m.points[f.to].position - m.points[f.from].position;
-    for (int k = 0; k < 3; ++k)
-      bm.direction[k] = motion_of(mech, sample, f.to, k) - motion_of(mech, sample, f.from, k);
+    bm.direction[0] = motion.r[f.to] - motion.r[f.from];
+    bm.direction[1] = motion.v[f.to] - motion.v[f.from];
+    bm.direction[2] = motion.a[f.to] - motion.a[f.from];
     const double ll = bm.direction[0].squaredNorm();
     bm.omega = cross(bm.direction[0], bm.direction[1]) / ll;
     bm.alpha = cross(bm.direction[0], bm.direction[2]) / ll;
   }
   return bm;
+}
+
+BodyMotion body_motion(const Mechanism& mech, const Sample& sample, int body) {
+  return body_motion(mech.model(), sample_motion(mech, sample), body);
 }
 
 InverseDynamics::InverseDynamics(const Mechanism& mech) : mech_(mech) {
@@ -105,21 +125,31 @@ InverseDynamics::InverseDynamics(const Mechanism& mech) : mech_(mech) {
     for (int p : m.bodies[b].points) links_at[p].push_back(b);
   node_of_point_.assign(m.points.size(), -1);
   single_body_of_point_.assign(m.points.size(), -1);
+  int column = 0;
   for (std::size_t p = 0; p < m.points.size(); ++p) {
     if (links_at[p].size() >= 2) {
       node_of_point_[p] = static_cast<int>(joints_.size());
       joints_.push_back(static_cast<int>(p));
-      for (int link : links_at[p]) joint_links_.push_back({static_cast<int>(p), link});
+      // Ground first in links_at: when present it is the link that balances the pin.
+      const int first = static_cast<int>(joint_links_.size());
+      dependent_.push_back(links_at[p].front() < 0 ? first : first + static_cast<int>(links_at[p].size()) - 1);
+      for (int link : links_at[p]) {
+        const bool dependent = static_cast<int>(joint_links_.size()) == dependent_.back();
+        joint_links_.push_back({static_cast<int>(p), link});
+        pin_column_.push_back(dependent ? -1 : column);
+        if (!dependent) column += 2;
+      }
     } else if (links_at[p].size() == 1 && links_at[p][0] >= 0) {
       single_body_of_point_[p] = links_at[p][0];
     }
   }
-  slider_base_ = 2 * static_cast<int>(joint_links_.size());
+  for (const Slider& sl : m.sliders) slider_guide_.push_back(owner_of_pair(m, sl.along[0], sl.along[1], sl.body));
+  for (const Slot& sl : m.slots) slot_guide_.push_back(owner_of_pair(m, sl.along[0], sl.along[1], -2));
+  slider_base_ = column;
   slot_base_ = slider_base_ + 2 * static_cast<int>(m.sliders.size());
   driver_base_ = slot_base_ + static_cast<int>(m.slots.size());
   unknowns_ = driver_base_ + static_cast<int>(m.drivers.size());
-  node_row_base_ = 3 * bodies;
-  equations_ = node_row_base_ + 2 * static_cast<int>(joints_.size());
+  equations_ = 3 * bodies;
 }
 
 DynamicsResult InverseDynamics::solve(const Sample& sample) const {
@@ -130,15 +160,13 @@ DynamicsResult InverseDynamics::solve(const Sample& sample) const {
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(equations_, unknowns_);
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(equations_);
   DynamicsResult out;
+  out.motion = sample_motion(mech_, sample);
+  const std::vector<Eigen::Vector2d>& r = out.motion.r;
+  const std::vector<Eigen::Vector2d>& v = out.motion.v;
 
-  std::vector<Eigen::Vector2d> r(m.points.size()), v(m.points.size());
-  for (std::size_t p = 0; p < m.points.size(); ++p) {
-    r[p] = motion_of(mech_, sample, static_cast<int>(p), 0);
-    v[p] = motion_of(mech_, sample, static_cast<int>(p), 1);
-  }
   std::vector<Eigen::Vector2d> cg(bodies);
   for (int b = 0; b < bodies; ++b) {
-    const BodyMotion bm = body_motion(mech_, sample, b);
+    const BodyMotion bm = body_motion(m, out.motion, b);
     const MassProperties& mp = masses_[b];
     cg[b] = bm.point(mp.cg, 0);
     const Eigen::Vector2d vg = bm.point(mp.cg, 1), ag = bm.point(mp.cg, 2);
@@ -155,18 +183,28 @@ DynamicsResult InverseDynamics::solve(const Sample& sample) const {
     int col = -1;
   };
   std::vector<Pending> pending;
-  auto pin_on_body = [&](int b, int col, const Eigen::Vector2d& c, const Eigen::Vector2d& at) {
+  // Forces on a joint's pin, to balance its dependent link afterwards (col -1: known).
+  struct PinLoad {
+    int point;
+    Eigen::Vector2d force;
+    int col;
+  };
+  std::vector<PinLoad> on_pins;
+  auto force_column = [&](int b, int col, const Eigen::Vector2d& c, const Eigen::Vector2d& at) {
     A(3 * b, col) += c.x();
     A(3 * b + 1, col) += c.y();
     A(3 * b + 2, col) += cross(at - cg[b], c);
   };
+  auto known_force = [&](int b, const Eigen::Vector2d& f, const Eigen::Vector2d& at) {
+    rhs.segment<2>(3 * b) -= f;
+    rhs(3 * b + 2) -= cross(at - cg[b], f);
+  };
   auto unknown_on_body = [&](int b, int col, const Eigen::Vector2d& c, const Eigen::Vector2d& at) {
-    pin_on_body(b, col, c, at);
+    force_column(b, col, c, at);
     pending.push_back({AppliedLoad{b, at, c, 0.0}, col});
   };
   auto known_on_body = [&](int b, const Eigen::Vector2d& f, const Eigen::Vector2d& at) {
-    rhs.segment<2>(3 * b) -= f;
-    rhs(3 * b + 2) -= cross(at - cg[b], f);
+    known_force(b, f, at);
     pending.push_back({AppliedLoad{b, at, f, 0.0}, -1});
   };
   // Couples act on the whole body; `at` only tells a stress section which side has them.
@@ -179,14 +217,15 @@ DynamicsResult InverseDynamics::solve(const Sample& sample) const {
     pending.push_back({AppliedLoad{b, at, {0, 0}, c}, -1});
   };
   auto first_point = [&](int b) { return r[m.bodies[b].points[0]]; };
-  // A force at a point goes to the named body, else to the joint pin there, else to the only
-  // body that has the point; on a ground point it is taken by the frame.
+  auto dependent_body = [&](int p) { return joint_links_[dependent_[node_of_point_[p]]].link; };
+  // A force at a point goes to the named body, else to the joint's pin there (which hands it to
+  // its dependent link), else to the only body that has the point; a ground point's goes to
+  // the frame.
   auto unknown_at_point = [&](int p, int body, int col, const Eigen::Vector2d& c) {
     if (body >= 0) return unknown_on_body(body, col, c, r[p]);
     if (node_of_point_[p] >= 0) {
-      const int row = node_row_base_ + 2 * node_of_point_[p];
-      A(row, col) -= c.x();
-      A(row + 1, col) -= c.y();
+      on_pins.push_back({p, c, col});
+      if (dependent_body(p) >= 0) force_column(dependent_body(p), col, c, r[p]);
     } else if (single_body_of_point_[p] >= 0) {
       unknown_on_body(single_body_of_point_[p], col, c, r[p]);
     }
@@ -194,21 +233,23 @@ DynamicsResult InverseDynamics::solve(const Sample& sample) const {
   auto known_at_point = [&](int p, int body, const Eigen::Vector2d& f) {
     if (body >= 0) return known_on_body(body, f, r[p]);
     if (node_of_point_[p] >= 0) {
-      rhs.segment<2>(node_row_base_ + 2 * node_of_point_[p]) += f;
+      on_pins.push_back({p, f, -1});
+      if (dependent_body(p) >= 0) known_force(dependent_body(p), f, r[p]);
     } else if (single_body_of_point_[p] >= 0) {
       known_on_body(single_body_of_point_[p], f, r[p]);
     }
   };
 
+  // Pin forces: each independent one acts on its link, and its opposite on the dependent link.
   for (std::size_t i = 0; i < joint_links_.size(); ++i) {
+    const int col = pin_column_[i];
+    if (col < 0) continue;
     const JointLink& jl = joint_links_[i];
-    const int row = node_row_base_ + 2 * node_of_point_[jl.point];
-    const int col = 2 * static_cast<int>(i);
-    A(row, col) = 1.0;
-    A(row + 1, col + 1) = 1.0;
-    if (jl.link >= 0) {
-      pin_on_body(jl.link, col, {1.0, 0.0}, r[jl.point]);
-      pin_on_body(jl.link, col + 1, {0.0, 1.0}, r[jl.point]);
+    const int dep = dependent_body(jl.point);
+    for (int axis = 0; axis < 2; ++axis) {
+      const Eigen::Vector2d e = axis == 0 ? Eigen::Vector2d(1, 0) : Eigen::Vector2d(0, 1);
+      if (jl.link >= 0) force_column(jl.link, col + axis, e, r[jl.point]);
+      if (dep >= 0) force_column(dep, col + axis, -e, r[jl.point]);
     }
   }
   auto guide_normal = [&](const std::array<int, 2>& along) {
@@ -217,7 +258,7 @@ DynamicsResult InverseDynamics::solve(const Sample& sample) const {
   };
   for (std::size_t s = 0; s < m.sliders.size(); ++s) {
     const Slider& sl = m.sliders[s];
-    const int guide = owner_of_pair(m, sl.along[0], sl.along[1], sl.body);
+    const int guide = slider_guide_[s];
     const Eigen::Vector2d n = guide_normal(sl.along);
     const int col = slider_base_ + 2 * static_cast<int>(s);
     unknown_on_body(sl.body, col, n, r[sl.point]);
@@ -229,11 +270,10 @@ DynamicsResult InverseDynamics::solve(const Sample& sample) const {
   }
   for (std::size_t s = 0; s < m.slots.size(); ++s) {
     const Slot& sl = m.slots[s];
-    const int guide = owner_of_pair(m, sl.along[0], sl.along[1], -2);
     const Eigen::Vector2d n = guide_normal(sl.along);
     const int col = slot_base_ + static_cast<int>(s);
     unknown_at_point(sl.point, -1, col, n);
-    if (guide >= 0) unknown_on_body(guide, col, -n, r[sl.point]);
+    if (slot_guide_[s] >= 0) unknown_on_body(slot_guide_[s], col, -n, r[sl.point]);
   }
   for (std::size_t d = 0; d < m.drivers.size(); ++d) {
     const Driver& drv = m.drivers[d];
@@ -251,7 +291,7 @@ DynamicsResult InverseDynamics::solve(const Sample& sample) const {
       }
       case DriverKind::Slide: {
         const Slider& sl = m.sliders[drv.slider];
-        const int guide = owner_of_pair(m, sl.along[0], sl.along[1], sl.body);
+        const int guide = slider_guide_[drv.slider];
         const Eigen::Vector2d w = (r[sl.along[1]] - r[sl.along[0]]).normalized();
         unknown_on_body(sl.body, col, w, r[sl.point]);
         if (guide >= 0) unknown_on_body(guide, col, -w, r[sl.point]);
@@ -273,14 +313,36 @@ DynamicsResult InverseDynamics::solve(const Sample& sample) const {
     out.potential_energy += 0.5 * s.stiffness * (length - s.free_length) * (length - s.free_length);
   }
 
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-  cod.setThreshold(1e-10);
-  cod.compute(A);
-  const Eigen::VectorXd x = cod.solve(rhs);
-  out.unique = cod.rank() == unknowns_;
+  // Square and regular (drivers matching Gruebler's count, no redundancy): LU. Otherwise the
+  // minimum-norm least-squares solution, which is exact when the equations are consistent.
+  Eigen::VectorXd x;
+  bool solved = false;
+  if (equations_ == unknowns_ && unknowns_ > 0) {
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
+    if (lu.rcond() > 1e-12) {
+      x = lu.solve(rhs);
+      solved = true;
+    }
+  }
+  if (!solved) {
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+    cod.setThreshold(1e-10);
+    cod.compute(A);
+    x = cod.solve(rhs);
+    out.unique = cod.rank() == unknowns_;
+  }
   out.residual = equations_ > 0 ? (A * x - rhs).lpNorm<Eigen::Infinity>() : 0.0;
 
-  for (std::size_t i = 0; i < joint_links_.size(); ++i) out.pin_forces.push_back(x.segment<2>(2 * i));
+  out.pin_forces.assign(joint_links_.size(), Eigen::Vector2d::Zero());
+  std::vector<Eigen::Vector2d> pin_balance(joints_.size(), Eigen::Vector2d::Zero());
+  for (const PinLoad& p : on_pins)
+    pin_balance[node_of_point_[p.point]] += p.col >= 0 ? Eigen::Vector2d(p.force * x(p.col)) : p.force;
+  for (std::size_t i = 0; i < joint_links_.size(); ++i) {
+    if (pin_column_[i] < 0) continue;
+    out.pin_forces[i] = x.segment<2>(pin_column_[i]);
+    pin_balance[node_of_point_[joint_links_[i].point]] -= out.pin_forces[i];
+  }
+  for (std::size_t n = 0; n < joints_.size(); ++n) out.pin_forces[dependent_[n]] = pin_balance[n];
   for (Pending& p : pending) {
     if (p.col >= 0) {
       p.load.force *= x(p.col);

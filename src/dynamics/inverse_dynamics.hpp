@@ -48,6 +48,12 @@ struct BodyMotion {
   Eigen::Vector2d point(const Eigen::Vector2d& drawn, int derivative) const;
   Eigen::Vector2d drawn_origin, drawn_direction;
 };
+// Position, velocity and acceleration of every point of a sample, computed once.
+struct SampleMotion {
+  std::vector<Eigen::Vector2d> r, v, a;
+};
+SampleMotion sample_motion(const Mechanism& mech, const Sample& sample);
+BodyMotion body_motion(const Model& model, const SampleMotion& motion, int body);
 BodyMotion body_motion(const Mechanism& mech, const Sample& sample, int body);
 
 // A link meeting at a joint: a body index, or -1 for the ground.
@@ -73,6 +79,7 @@ struct DynamicsResult {
   std::vector<double> slot_normal;    // N, on the pin, along the guide's left normal
   std::vector<double> driver_effort;  // N m for angle drivers, N for distance and slide drivers
   std::vector<AppliedLoad> applied;   // every direct load on a body, gravity excepted
+  SampleMotion motion;                // the sample's point motions the forces were computed for
   double kinetic_energy = 0.0;        // J
   double potential_energy = 0.0;      // J: gravity and springs
   double residual = 0.0;              // max |equation residual|, N or N m
@@ -102,8 +109,13 @@ class InverseDynamics {
   std::vector<int> node_of_point_;   // -1 when the point is not a joint
   std::vector<JointLink> joint_links_;
   std::vector<int> single_body_of_point_;  // the only moving body of a non-joint point, or -1
-  int slider_base_ = 0, slot_base_ = 0, driver_base_ = 0, unknowns_ = 0;
-  int node_row_base_ = 0, equations_ = 0;
+  // At every joint one link, the ground when it is there, takes the pin's balance: its force
+  // follows from the others', so only 3 equations per body remain (square when the drivers
+  // match Gruebler's count).
+  std::vector<int> dependent_;     // per joint: index into joint_links_ of the link that balances the pin
+  std::vector<int> pin_column_;    // per joint link: first of its two unknowns, -1 for the dependent one
+  std::vector<int> slider_guide_, slot_guide_;  // the body owning each guide, -1 for the ground
+  int slider_base_ = 0, slot_base_ = 0, driver_base_ = 0, unknowns_ = 0, equations_ = 0;
 };
 
 }  // namespace nbar

@@ -34,26 +34,28 @@ std::vector<double> section_positions(const Model& m, const Body& body, const Ei
   }
   for (const Circle& c : body.shape->circle_holes) features.push_back({axis.dot(c.centre - origin), c.radius});
 
-  const double offsets[] = {0.15, 0.35, 0.6, 1.0, 1.5, 2.2};
-  const int clustered = 2 * static_cast<int>(std::size(offsets)) * static_cast<int>(features.size());
-  const int even = std::max(100, count - clustered);
-  std::vector<double> s;
-  for (int i = 0; i < even; ++i) s.push_back(lo + (i + 0.5) * length / even);
-  for (const Feature& f : features)
-    for (double o : offsets) {
-      s.push_back(f.s - o * f.radius);
-      s.push_back(f.s + o * f.radius);
-    }
   const double margin = 1e-6 * length;
   std::vector<double> kept;
-  for (double x : s) {
-    if (x <= lo + margin || x >= hi - margin) continue;
-    bool at_joint = false;
-    for (int p : body.points) at_joint = at_joint || std::abs(x - axis.dot(m.points[p].position - origin)) < margin;
-    if (!at_joint) kept.push_back(x);
-  }
-  std::sort(kept.begin(), kept.end());
-  kept.erase(std::unique(kept.begin(), kept.end(), [&](double a, double b) { return b - a < margin; }), kept.end());
+  auto keep = [&](double x) {
+    if (x <= lo + margin || x >= hi - margin) return;
+    for (int p : body.points)
+      if (std::abs(x - axis.dot(m.points[p].position - origin)) < margin) return;
+    kept.push_back(x);
+  };
+  auto tidy = [&] {
+    std::sort(kept.begin(), kept.end());
+    kept.erase(std::unique(kept.begin(), kept.end(), [&](double a, double b) { return b - a < margin; }), kept.end());
+  };
+  const double offsets[] = {0.15, 0.35, 0.6, 1.0, 1.5, 2.2};
+  for (const Feature& f : features)
+    for (double o : offsets) {
+      keep(f.s - o * f.radius);
+      keep(f.s + o * f.radius);
+    }
+  tidy();
+  const int even = std::max(100, count - static_cast<int>(kept.size()));
+  for (int i = 0; i < even; ++i) keep(lo + (i + 0.5) * length / even);
+  tidy();
   return kept;
 }
 
@@ -90,51 +92,63 @@ LinkStress::LinkStress(const InverseDynamics& dynamics, int sections) : dynamics
   }
 }
 
-PartLoads LinkStress::part_loads(const Sample& sample, const DynamicsResult& forces, int body, int section,
-                                 int side) const {
-  const Mechanism& mech = dynamics_.mechanism();
-  const Model& m = mech.model();
-  const Section& sec = bodies_[body].sections[section];
-  const BodyMotion bm = body_motion(mech, sample, body);
-  const Eigen::Vector2d cut = bm.point(bodies_[body].origin + sec.position * bodies_[body].axis, 0);
-  const Eigen::Vector2d axis = bm.direction[0].normalized();
-  const Eigen::Vector2d centre = bm.point(sec.centroid, 0);
-  auto inside = [&](const Eigen::Vector2d& x) { return side * axis.dot(x - cut) > 0.0; };
-
-  PartLoads loads;
-  auto add = [&](const Eigen::Vector2d& at, const Eigen::Vector2d& f) {
-    loads.force += f;
-    loads.moment += cross(at - centre, f);
-  };
+LinkStress::StepLoads LinkStress::step_loads(const DynamicsResult& forces, int body) const {
+  const Model& m = dynamics_.mechanism().model();
+  StepLoads step;
+  step.motion = body_motion(m, forces.motion, body);
+  step.axis = step.motion.direction[0].normalized();
   const auto& links = dynamics_.joint_links();
   for (std::size_t i = 0; i < links.size(); ++i) {
     if (links[i].link != body) continue;
-    const Motion2 p = point_motion(mech, sample, links[i].point);
-    const Eigen::Vector2d at(p.x[0], p.y[0]);
-    if (inside(at)) add(at, forces.pin_forces[i]);
+    step.at.push_back(forces.motion.r[links[i].point]);
+    step.force.push_back(forces.pin_forces[i]);
+    step.couple.push_back(0.0);
   }
   for (const AppliedLoad& l : forces.applied) {
-    if (l.body != body || !inside(l.at)) continue;
-    add(l.at, l.force);
-    loads.moment += l.couple;
+    if (l.body != body) continue;
+    step.at.push_back(l.at);
+    step.force.push_back(l.force);
+    step.couple.push_back(l.couple);
+  }
+  return step;
+}
+
+PartLoads LinkStress::part_loads(const StepLoads& step, int body, int section, int side) const {
+  const Model& m = dynamics_.mechanism().model();
+  const BodySections& bs = bodies_[body];
+  const Section& sec = bs.sections[section];
+  const BodyMotion& bm = step.motion;
+  const Eigen::Vector2d cut = bm.point(bs.origin + sec.position * bs.axis, 0);
+  const Eigen::Vector2d centre = bm.point(sec.centroid, 0);
+  PartLoads loads;
+  for (std::size_t i = 0; i < step.at.size(); ++i) {
+    if (!(side * step.axis.dot(step.at[i] - cut) > 0.0)) continue;
+    loads.force += step.force[i];
+    loads.moment += cross(step.at[i] - centre, step.force[i]) + step.couple[i];
   }
   const Part& part = sec.part[side < 0 ? 0 : 1];
   if (part.mass > 0.0) {
-    const Eigen::Vector2d g = bm.point(part.centre, 0), a = bm.point(part.centre, 2);
-    add(g, part.mass * (m.gravity - a));  // weight and d'Alembert force
-    loads.moment -= part.inertia * bm.alpha;
+    const Eigen::Vector2d g = bm.point(part.centre, 0);
+    const Eigen::Vector2d f = part.mass * (m.gravity - bm.point(part.centre, 2));  // weight and d'Alembert force
+    loads.force += f;
+    loads.moment += cross(g - centre, f) - part.inertia * bm.alpha;
   }
   return loads;
 }
 
-std::vector<SectionStress> LinkStress::profile(const Sample& sample, const DynamicsResult& forces, int body) const {
+PartLoads LinkStress::part_loads(const Sample&, const DynamicsResult& forces, int body, int section, int side) const {
+  return part_loads(step_loads(forces, body), body, section, side);
+}
+
+std::vector<SectionStress> LinkStress::profile(const Sample&, const DynamicsResult& forces, int body) const {
   const Body& b = dynamics_.mechanism().model().bodies[body];
-  const BodyMotion bm = body_motion(dynamics_.mechanism(), sample, body);
-  const Eigen::Vector2d axis = bm.direction[0].normalized();
+  const StepLoads step = step_loads(forces, body);
+  const Eigen::Vector2d& axis = step.axis;
   std::vector<SectionStress> out;
+  out.reserve(section_count(body));
   for (int k = 0; k < section_count(body); ++k) {
     const Section& sec = bodies_[body].sections[k];
-    const PartLoads loads = part_loads(sample, forces, body, k, -1);
+    const PartLoads loads = part_loads(step, body, k, -1);
     // The rest of the body holds this part in equilibrium: the internal force is the opposite.
     const Eigen::Vector2d internal = -loads.force;
     SectionStress s;

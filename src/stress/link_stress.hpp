@@ -68,6 +68,16 @@ class LinkStress {
     Eigen::Vector2d origin{0, 0}, axis{1, 0};  // starting pose, unit axis
   };
 
+  // What acts on one body at one step: computed once, then summed over each section's side.
+  struct StepLoads {
+    BodyMotion motion;
+    Eigen::Vector2d axis{1, 0};  // current, unit
+    std::vector<Eigen::Vector2d> at, force;
+    std::vector<double> couple;
+  };
+  StepLoads step_loads(const DynamicsResult& forces, int body) const;
+  PartLoads part_loads(const StepLoads& step, int body, int section, int side) const;
+
   const InverseDynamics& dynamics_;
   std::vector<BodySections> bodies_;
 };

@@ -232,9 +232,6 @@ std::vector<Case> random_cases(Kind kind, unsigned seed, int count) {
     // angular acceleration (positions and derivatives are then computed separately).
     const double alpha = unit(rng) < 0.5 ? 0.0 : (unit(rng) - 0.5) * 400;
     const double drawn = range.full_turn ? 2 * kPi * unit(rng) : range.from + (range.to - range.from) * unit(rng);
-    // Limited ranges: assembly goes from the drawing to `from` along the shorter arc, which must
-    // then stay in the range (see AssemblyReachesTheStartTheLongWayRound for the other case).
-    if (!range.full_turn && std::abs(from - drawn) >= kPi) continue;
     bool ok = true;
     for (bool open : {true, false})
       ok = ok && worst_transmission(g, from, to, open, 200) > 0.2 && g.feasible(drawn);
@@ -314,11 +311,8 @@ TEST(FourBarClosedForm, FrameNotHorizontalAndMirroredDrawings) {
 // A non-Grashof linkage whose crank can only move in [20.59, 339.41] deg, drawn at 278.1 deg and
 // swept from 60 to 300 deg. The start is on the drawn branch, reachable by turning the crank back
 // through 180 deg; the shorter arc, forward through 0 deg, leaves the range at 339.41 deg.
-// KNOWN BUG (src/kinematics/continuation.cpp, assemble): the continuation from the drawing to the
-// drivers' starting values always takes the shorter arc (wrap_angle of the difference) and gives up
-// at the first limit, with "cannot reach the drivers' starting values ... stops at -20.5911 deg
-// ... at the wanted values constraint 'driver crank' cannot be met", although the start can be
-// assembled on the drawn branch (and the message's last part is wrong: it can be met).
+// Assembly once took only the shorter arc and gave up at its limit ("cannot reach the drivers'
+// starting values ... stops at -20.5911 deg"), although the start is on the drawn branch.
 TEST(FourBarClosedForm, AssemblyReachesTheStartTheLongWayRound) {
   Errors worst;
   const NortonFourBar g{0.882163, 1.70145, 2.19325, 1.2074};

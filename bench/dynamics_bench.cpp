@@ -1,0 +1,72 @@
+// Kinetics and stress benchmark: a full 360-step sweep of a machine of 11 bodies (a chain of
+// five four-bar loops, every link a steel bar with pin holes) with inverse dynamics at every step
+// and the stresses at 200 sections of every link, as `nbar stress` computes them.
+//
+// BM_SweepDynamicsStress times it all (kinematics sweep, dynamics, stresses, peaks), with the
+// one-time work (compiling the mechanism, cutting the sections) outside; BM_SectionSetup times
+// that one-time cut of every link.
+//
+// Run: dynamics_bench --benchmark_min_time=0.2
+#include <benchmark/benchmark.h>
+
+#include "bench_models.hpp"
+#include "dynamics/inverse_dynamics.hpp"
+#include "kinematics/sweep.hpp"
+#include "stress/link_stress.hpp"
+
+namespace {
+
+using namespace nbar_bench;
+
+constexpr int kSections = 200;
+
+// The chain of `loops` four-bars with every link cut from 4 x 3 mm steel bar: 2 * loops + 1
+// bodies.
+nbar::Model steel_chain(int loops) {
+  nbar::Model m = chain_model(loops);
+  const nbar::Material steel{"steel", 7850.0, 250e6};
+  for (nbar::Body& b : m.bodies) {
+    const Eigen::Vector2d p = m.points[b.points[0]].position, q = m.points[b.points[1]].position;
+    b.shape = nbar::make_bar(p, q, 0.004, 0.003, 0.001, 0.001);
+    b.thickness = 0.003;
+    b.material = steel;
+  }
+  m.gravity = {0.0, -9.81};
+  return m;
+}
+
+void BM_SweepDynamicsStress(benchmark::State& st) {
+  const nbar::Mechanism mech(steel_chain(5));
+  if (mech.model().bodies.size() < 10) die("the benchmark machine needs at least 10 bodies");
+  const nbar::InverseDynamics dynamics(mech);
+  const nbar::LinkStress stress(dynamics, kSections);
+  nbar::SweepOptions options;
+  options.order = 2;
+  std::size_t sections = 0;
+  for (std::size_t b = 0; b < mech.model().bodies.size(); ++b) sections += stress.section_count(static_cast<int>(b));
+  for (auto _ : st) {
+    const nbar::SweepResult sweep = nbar::run_sweep(mech, options);
+    if (!sweep.complete || sweep.samples.size() != kStepsPerTurn + 1) die("the sweep did not complete");
+    const auto peaks = nbar::stress_peaks(dynamics, stress, sweep);
+    benchmark::DoNotOptimize(peaks.data());
+  }
+  st.counters["bodies"] = static_cast<double>(mech.model().bodies.size());
+  st.counters["sections_per_body"] = static_cast<double>(sections) / mech.model().bodies.size();
+  st.counters["per_step"] = benchmark::Counter(static_cast<double>(st.iterations()) * kStepsPerTurn,
+                                               benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_SweepDynamicsStress)->Unit(benchmark::kMillisecond);
+
+void BM_SectionSetup(benchmark::State& st) {
+  const nbar::Mechanism mech(steel_chain(5));
+  const nbar::InverseDynamics dynamics(mech);
+  for (auto _ : st) {
+    const nbar::LinkStress stress(dynamics, kSections);
+    benchmark::DoNotOptimize(&stress);
+  }
+}
+BENCHMARK(BM_SectionSetup)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
