@@ -102,6 +102,10 @@ TEST(Cli, EveryExampleChecksAndSolves) {
     EXPECT_GT(count_lines(solve.out), 2);
     EXPECT_THAT(solve.out, Not(HasSubstr("nan")));
     EXPECT_THAT(solve.out, Not(HasSubstr("inf")));
+    const CliRun dynamics = nbar("solve " + f + " --dynamics --steps 19");
+    EXPECT_EQ(dynamics.code, 0) << dynamics.err;
+    EXPECT_THAT(dynamics.out, HasSubstr("energy.kinetic"));
+    EXPECT_THAT(dynamics.out, Not(HasSubstr("nan")));
     const CliRun json = nbar("solve " + f + " --format json --steps 5");
     ASSERT_EQ(json.code, 0) << json.err;
     const auto j = nlohmann::json::parse(json.out);
@@ -205,6 +209,59 @@ TEST(Cli, DriverOutsideItsRangeStopsTheSweepEarlyAndKeepsTheRows) {
   EXPECT_THAT(r.err, HasSubstr("toggle"));
   EXPECT_GT(count_lines(r.out), 3);
   EXPECT_LT(count_lines(r.out), 362);
+}
+
+TEST(Cli, DynamicsColumnsAndJson) {
+  const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-steel-bars.yaml";
+  const CliRun r = nbar("solve " + model + " --dynamics --steps 7");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string header;
+  std::getline(lines, header);
+  for (const char* column : {"O2.ground>crank.Fx", "A.crank>coupler.Fy", "A.crank>coupler.along", "B.coupler>rocker.across",
+                             "O4.ground>rocker.Fx", "crank.torque", "energy.kinetic", "energy.potential"})
+    EXPECT_THAT(header, HasSubstr(column));
+  const CliRun json = nbar("solve " + model + " --dynamics --steps 7 --format json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  EXPECT_TRUE(j["dynamics"]["unique"].get<bool>());
+  EXPECT_LT(j["dynamics"]["max_residual"].get<double>(), 1e-9);
+}
+
+TEST(Cli, DynamicsOfARedundantMechanismSaysTheForcesAreNotUnique) {
+  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/parallelogram-redundant.yaml --dynamics --steps 5");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("not unique"));
+}
+
+TEST(Cli, StressReportAndProfile) {
+  const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-steel-bars.yaml";
+  const CliRun table = nbar("stress " + model + " --steps 37");
+  ASSERT_EQ(table.code, 0) << table.err;
+  EXPECT_THAT(table.out, HasSubstr("von_mises"));
+  EXPECT_THAT(table.out, HasSubstr("safety_factor"));
+  const CliRun json = nbar("stress " + model + " --steps 37 --format json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  ASSERT_EQ(j["links"].size(), 3u);
+  for (const auto& link : j["links"]) {
+    EXPECT_GT(link["von_mises"].get<double>(), 0.0);
+    EXPECT_GT(link["safety_factor"].get<double>(), 1.0);
+  }
+  const CliRun profile = nbar("stress " + model + " --steps 37 --section-profile coupler --step 3 --format csv");
+  ASSERT_EQ(profile.code, 0) << profile.err;
+  EXPECT_THAT(profile.out, testing::StartsWith("x,area,N,V,M,sigma_right,sigma_left,tau,von_mises\n"));
+  EXPECT_GE(count_lines(profile.out), 101);
+}
+
+TEST(Cli, StressBadUsage) {
+  const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-steel-bars.yaml";
+  EXPECT_EQ(nbar("stress " + model + " --section-profile nosuch").code, 2);
+  EXPECT_EQ(nbar("stress " + model + " --steps 5 --section-profile crank --step 9").code, 2);
+  EXPECT_EQ(nbar("stress " + model + " --step 2").code, 2);  // --step needs --section-profile
+  const CliRun no_shapes = nbar(std::string("stress ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml");
+  EXPECT_EQ(no_shapes.code, 1);
+  EXPECT_THAT(no_shapes.err, HasSubstr("no link has a shape"));
 }
 
 }  // namespace
