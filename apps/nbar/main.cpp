@@ -60,7 +60,7 @@ std::string describe_driver(const nbar::Model& m, int d) {
   switch (drv.kind) {
     case nbar::DriverKind::Angle:
       what = "angle of " + m.bodies[drv.body].name +
-             (drv.relative_to < 0 ? std::string(" from +x") : " relative to " + m.bodies[drv.relative_to].name);
+             (drv.relative_to < 0 ? std::string(" (from +x)") : " relative to " + m.bodies[drv.relative_to].name);
       break;
     case nbar::DriverKind::Distance:
       what = "distance " + m.points[drv.points[0]].name + "-" + m.points[drv.points[1]].name;
@@ -73,7 +73,7 @@ std::string describe_driver(const nbar::Model& m, int d) {
   const std::string unit = drv.is_angular() ? m.units.angle : m.units.length;
   if (drv.law) return fmt::format("{}: {}, law {}(t) = {} {}", drv.name, what, drv.name, drv.law->text(), unit);
   std::string motion;
-  if (drv.from) motion += " from " + nbar::format_driver_value(m, d, *drv.from);
+  if (drv.from) motion += ", " + nbar::format_driver_value(m, d, *drv.from);
   if (drv.to) motion += " to " + nbar::format_driver_value(m, d, *drv.to);
   motion += fmt::format(", speed {:.6g} {}/s", drv.speed / rate_scale, unit);
   if (drv.accel != 0.0) motion += fmt::format(", accel {:.6g} {}/s^2", drv.accel / rate_scale, unit);

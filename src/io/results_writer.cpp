@@ -87,10 +87,18 @@ void write_stress_report(std::ostream& out, const std::string& format, const Mec
   const Model& m = mech.model();
   const double length = m.units.length_scale;
   ResultTable t;
-  const std::vector<std::pair<std::string, std::string>> columns = {
-      {"von_mises", "MPa"}, {"step", ""},      {"t", "s"},          {"x", m.units.length},
-      {"y", m.units.length}, {"sigma", "MPa"}, {"tau", "MPa"},      {"N", "N"},
-      {"V", "N"},            {"M", "N m"},     {"safety_factor", ""}};
+  // The input at the peak: step, time and every driver's value.
+  std::vector<std::pair<std::string, std::string>> columns = {{"von_mises", "MPa"}, {"step", ""}, {"t", "s"}};
+  for (const Driver& d : m.drivers) columns.push_back({d.name, d.is_angular() ? m.units.angle : m.units.length});
+  for (auto column : std::vector<std::pair<std::string, std::string>>{{"x", m.units.length},
+                                                                      {"y", m.units.length},
+                                                                      {"sigma", "MPa"},
+                                                                      {"tau", "MPa"},
+                                                                      {"N", "N"},
+                                                                      {"V", "N"},
+                                                                      {"M", "N m"},
+                                                                      {"safety_factor", ""}})
+    columns.push_back(column);
   for (const auto& [name, unit] : columns) {
     t.columns.push_back(name);
     t.units.push_back(unit);
@@ -98,10 +106,14 @@ void write_stress_report(std::ostream& out, const std::string& format, const Mec
   std::vector<std::string> names;
   for (const StressPeak& p : peaks) {
     names.push_back(m.bodies[p.body].name);
-    const double time = p.step >= 0 ? sweep.samples[p.step].time : 0.0;
-    t.rows.push_back({p.at.von_mises / 1e6, static_cast<double>(p.step), time, p.at.where.x() / length,
-                      p.at.where.y() / length, p.at.sigma / 1e6, p.at.tau / 1e6, p.at.axial, p.at.shear, p.at.moment,
-                      p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN())});
+    const Sample* at = p.step >= 0 ? &sweep.samples[p.step] : nullptr;
+    std::vector<double> row = {p.at.von_mises / 1e6, static_cast<double>(p.step), at ? at->time : 0.0};
+    for (std::size_t d = 0; d < m.drivers.size(); ++d)
+      row.push_back(at ? at->driver_values[d] / (m.drivers[d].is_angular() ? m.units.angle_scale : length) : 0.0);
+    for (double v : {p.at.where.x() / length, p.at.where.y() / length, p.at.sigma / 1e6, p.at.tau / 1e6, p.at.axial,
+                     p.at.shear, p.at.moment, p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN())})
+      row.push_back(v);
+    t.rows.push_back(std::move(row));
   }
   if (format == "json") {
     nlohmann::ordered_json j;
