@@ -209,6 +209,40 @@ int finish(const std::string& model, const nbar::SweepResult& sweep) {
   return kOk;
 }
 
+// Runs the sweep; the exit code says what went wrong (0 when it ran, even if it stopped early).
+int sweep_model(const std::string& path, const nbar::Mechanism& mech, const nbar::SweepOptions& options,
+                nbar::SweepResult& sweep) {
+  try {
+    sweep = nbar::run_sweep(mech, options);
+  } catch (const nbar::AssemblyError& e) {
+    std::cerr << "error: " << path << ": " << e.what() << '\n';
+    return kCannotAssemble;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kBadUsage;
+  } catch (const std::domain_error& e) {  // a driver's law undefined at the start
+    std::cerr << "error: " << path << ": " << e.what() << '\n';
+    return kCannotAssemble;
+  }
+  return kOk;
+}
+
+// Standard output, or the file named by -o.
+class Output {
+ public:
+  // False, with a message, when the file cannot be written.
+  bool open(const std::string& path) {
+    if (path.empty()) return true;
+    file_.open(path);
+    if (!file_) std::cerr << "error: cannot write " << path << '\n';
+    return static_cast<bool>(file_);
+  }
+  std::ostream& stream() { return file_.is_open() ? file_ : std::cout; }
+
+ private:
+  std::ofstream file_;
+};
+
 struct SolveArgs {
   std::string model;
   std::optional<int> steps;
@@ -227,18 +261,7 @@ int run_solve(const SolveArgs& args) {
   options.steps = args.steps;
   options.order = args.dynamics ? std::max(args.order, 2) : args.order;
   nbar::SweepResult sweep;
-  try {
-    sweep = nbar::run_sweep(mech, options);
-  } catch (const nbar::AssemblyError& e) {
-    std::cerr << "error: " << args.model << ": " << e.what() << '\n';
-    return kCannotAssemble;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return kBadUsage;
-  } catch (const std::domain_error& e) {
-    std::cerr << "error: " << args.model << ": " << e.what() << '\n';
-    return kCannotAssemble;
-  }
+  if (int code = sweep_model(args.model, mech, options, sweep)) return code;
   nbar::ResultTable table = nbar::make_table(mech, sweep);
   std::optional<nbar::DynamicsSummary> dynamics;
   if (args.dynamics) {
@@ -259,15 +282,9 @@ int run_solve(const SolveArgs& args) {
     }
   }
 
-  std::ofstream file;
-  if (!args.output.empty()) {
-    file.open(args.output);
-    if (!file) {
-      std::cerr << "error: cannot write " << args.output << '\n';
-      return kBadUsage;
-    }
-  }
-  std::ostream& out = args.output.empty() ? std::cout : file;
+  Output output;
+  if (!output.open(args.output)) return kBadUsage;
+  std::ostream& out = output.stream();
   if (args.format == "json")
     nbar::io::write_json(out, mech, sweep, table, dynamics ? &*dynamics : nullptr);
   else if (args.format == "table")
@@ -301,15 +318,7 @@ int run_stress(const StressArgs& args) {
   options.steps = args.steps;
   options.order = 2;
   nbar::SweepResult sweep;
-  try {
-    sweep = nbar::run_sweep(mech, options);
-  } catch (const nbar::AssemblyError& e) {
-    std::cerr << "error: " << args.model << ": " << e.what() << '\n';
-    return kCannotAssemble;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return kBadUsage;
-  }
+  if (int code = sweep_model(args.model, mech, options, sweep)) return code;
   const nbar::InverseDynamics dynamics(mech);
   const nbar::LinkStress stress(dynamics, args.sections);
   bool any = false;
@@ -320,15 +329,9 @@ int run_stress(const StressArgs& args) {
     return kInvalidModel;
   }
 
-  std::ofstream file;
-  if (!args.output.empty()) {
-    file.open(args.output);
-    if (!file) {
-      std::cerr << "error: cannot write " << args.output << '\n';
-      return kBadUsage;
-    }
-  }
-  std::ostream& out = args.output.empty() ? std::cout : file;
+  Output output;
+  if (!output.open(args.output)) return kBadUsage;
+  std::ostream& out = output.stream();
   try {
     if (!args.profile_body.empty()) {
       const int body = m.find_body(args.profile_body);
