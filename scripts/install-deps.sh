@@ -5,6 +5,8 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libyaml-cpp-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
+  libcairo2-dev libcgif-dev
+  libtinyxml2-dev chromium  # tests: SVG parsed as XML; the HTML animation run in headless Chromium
 )
 missing=()
 for p in "${packages[@]}"; do

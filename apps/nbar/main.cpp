@@ -12,6 +12,8 @@
 #include <string>
 
 #include "dynamics/dynamics_table.hpp"
+#include "commands.hpp"
+#include "common.hpp"
 #include "io/model_file.hpp"
 #include "io/results_writer.hpp"
 #include "kinematics/sweep.hpp"
@@ -20,37 +22,7 @@
 
 namespace {
 
-enum ExitCode { kOk = 0, kInvalidModel = 1, kBadUsage = 2, kCannotAssemble = 3, kStoppedEarly = 4 };
-
-using nbar::io::LoadedModel;
-
-// Loads and compiles a model, reporting every problem at its place in the file.
-struct Loaded {
-  LoadedModel file;
-  std::optional<nbar::Mechanism> mechanism;
-};
-
-int load(const std::string& path, Loaded& out) {
-  try {
-    out.file = nbar::io::load_model_file(path);
-  } catch (const nbar::io::ModelFileError& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return kInvalidModel;
-  }
-  try {
-    out.mechanism.emplace(out.file.model);
-  } catch (const nbar::ModelError& e) {
-    std::cerr << "error: " << nbar::io::locate(out.file.source, e) << '\n';
-    return kInvalidModel;
-  }
-  return kOk;
-}
-
-std::string join(const std::vector<std::string>& items, const std::string& sep = ", ") {
-  std::string s;
-  for (std::size_t i = 0; i < items.size(); ++i) s += (i ? sep : "") + items[i];
-  return s;
-}
+using namespace nbar::cli;
 
 std::string length_text(const nbar::Model& m, double si) { return fmt::format("{:.6g} {}", si / m.units.length_scale, m.units.length); }
 
@@ -198,50 +170,6 @@ int run_check(const std::string& path) {
   print_loops(std::cout, mech, state);
   return kOk;
 }
-
-// Warnings, and the exit code of a sweep that stopped early.
-int finish(const std::string& model, const nbar::SweepResult& sweep) {
-  if (!sweep.complete) {
-    std::cerr << "error: " << model << ": " << sweep.stop_reason << " (" << sweep.samples.size()
-              << " rows written)\n";
-    return kStoppedEarly;
-  }
-  return kOk;
-}
-
-// Runs the sweep; the exit code says what went wrong (0 when it ran, even if it stopped early).
-int sweep_model(const std::string& path, const nbar::Mechanism& mech, const nbar::SweepOptions& options,
-                nbar::SweepResult& sweep) {
-  try {
-    sweep = nbar::run_sweep(mech, options);
-  } catch (const nbar::AssemblyError& e) {
-    std::cerr << "error: " << path << ": " << e.what() << '\n';
-    return kCannotAssemble;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return kBadUsage;
-  } catch (const std::domain_error& e) {  // a driver's law undefined at the start
-    std::cerr << "error: " << path << ": " << e.what() << '\n';
-    return kCannotAssemble;
-  }
-  return kOk;
-}
-
-// Standard output, or the file named by -o.
-class Output {
- public:
-  // False, with a message, when the file cannot be written.
-  bool open(const std::string& path) {
-    if (path.empty()) return true;
-    file_.open(path);
-    if (!file_) std::cerr << "error: cannot write " << path << '\n';
-    return static_cast<bool>(file_);
-  }
-  std::ostream& stream() { return file_.is_open() ? file_ : std::cout; }
-
- private:
-  std::ofstream file_;
-};
 
 struct SolveArgs {
   std::string model;
@@ -424,6 +352,10 @@ int main(int argc, char** argv) {
                                             "instead, every section of BODY at one step: N, V, M, sigma, tau, von Mises");
   stress->add_option("--step", stress_args.profile_step, "the step for --section-profile (default 0)")->needs(profile);
 
+  // Commands defined in their own files (commands.hpp).
+  std::vector<std::pair<CLI::App*, std::function<int()>>> more;
+  for (const auto& add : nbar::cli::more_commands()) more.push_back(add(app));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -433,5 +365,6 @@ int main(int argc, char** argv) {
   if (check->parsed()) return run_check(check_model);
   if (solve->parsed()) return run_solve(solve_args);
   if (stress->parsed()) return run_stress(stress_args);
+  for (const auto& [command, run] : more) if (command->parsed()) return run();
   return kBadUsage;
 }

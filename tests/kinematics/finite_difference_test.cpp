@@ -1,6 +1,6 @@
-// The time derivatives of every coordinate (orders 1 to 5) against Richardson-extrapolated central
-// differences of positions solved at neighbouring times, for mechanisms covering every joint and
-// driver kind. The differences use only position solutions, so they check the Taylor-series
+// The time derivatives (orders 1 to 5) of every coordinate and every body angle against
+// Richardson-extrapolated central differences of positions solved at neighbouring times, for
+// mechanisms covering every joint and driver kind. The differences use only position solutions, so they check the Taylor-series
 // machinery (and the driver's speed/accel semantics) from the outside.
 #include "helpers/kinematics_support.hpp"
 

@@ -1,0 +1,156 @@
+// nbar draw: the mechanism in one pose, as SVG or PNG.
+#include <cmath>
+#include <fstream>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "render/drawing.hpp"
+#if __has_include("render/image_canvas.hpp")
+#include "render/image_canvas.hpp"
+#define NBAR_HAVE_IMAGE_CANVAS 1
+#endif
+
+namespace nbar::cli {
+
+namespace {
+
+struct DrawArgs {
+  std::string model, output;
+  std::optional<int> step;
+  std::optional<double> at;
+  std::optional<int> steps;
+  bool labels = false;
+  std::vector<std::string> traces;
+  int width = 900, height = 640;
+  std::string title;
+};
+
+std::string extension(const std::string& path) {
+  const auto dot = path.rfind('.');
+  return dot == std::string::npos ? "" : path.substr(dot + 1);
+}
+
+// The model swept from its start to `value` of its first driver (a time for time laws), so
+// that the last sample is exactly there, on the drawn branch.
+Model swept_to(Model m, double value) {
+  const double target = m.has_time_law() ? value : value * (m.drivers[0].is_angular() ? m.units.angle_scale
+                                                                                       : m.units.length_scale);
+  if (m.has_time_law()) {
+    m.sweep.duration = target;
+    m.sweep.time_step = target / 100.0;
+    return m;
+  }
+  const Driver& first = m.drivers[0];
+  const double from = first.from.value_or(target), to = first.to.value_or(from);
+  const double fraction = to != from ? (target - from) / (to - from) : 0.0;
+  for (Driver& d : m.drivers) {
+    if (!d.from) continue;
+    const double span = d.to.value_or(*d.from) - *d.from;
+    d.to = *d.from + fraction * span;
+  }
+  m.drivers[0].to = target;
+  m.sweep.steps = std::max(2, static_cast<int>(std::ceil(std::abs(fraction) * 360.0)) + 1);
+  return m;
+}
+
+int run_draw(const DrawArgs& args) {
+  const std::string format = extension(args.output);
+  if (format != "svg" && format != "png") {
+    std::cerr << "error: -o " << args.output << ": the picture's format comes from its extension: .svg or .png\n";
+    return kBadUsage;
+  }
+  Loaded loaded;
+  if (int code = load(args.model, loaded)) return code;
+  const Mechanism& mech = *loaded.mechanism;
+  const Model& m = mech.model();
+  SweepOptions options;
+  options.steps = args.steps;
+  options.order = 0;
+  SweepResult sweep;
+  if (int code = sweep_model(args.model, mech, options, sweep)) return code;
+
+  render::DrawOptions draw;
+  draw.width = args.width;
+  draw.height = args.height;
+  draw.labels = args.labels;
+  draw.title = args.title;
+  for (const std::string& name : args.traces) {
+    const int p = m.find_point(name);
+    if (p < 0) {
+      std::cerr << "error: --trace: '" << name << "' is not a point of the model\n";
+      return kBadUsage;
+    }
+    draw.traces.push_back(p);
+  }
+
+  std::vector<Eigen::Vector2d> points;
+  if (args.at) {
+    if (m.drivers.empty()) {
+      std::cerr << "error: --at needs a driver\n";
+      return kBadUsage;
+    }
+    const Mechanism to_value(swept_to(m, *args.at));
+    SweepResult partial;
+    if (int code = sweep_model(args.model, to_value, options, partial)) return code;
+    if (!partial.complete) {
+      std::cerr << "error: " << args.model << ": cannot reach " << *args.at << ": " << partial.stop_reason << '\n';
+      return kStoppedEarly;
+    }
+    points = render::sample_points(to_value, partial.samples.back());
+  } else {
+    const int step = args.step.value_or(0);
+    if (step < 0 || step >= static_cast<int>(sweep.samples.size())) {
+      std::cerr << "error: --step " << step << " is not a solved step (0 to " << sweep.samples.size() - 1 << ")\n";
+      return kBadUsage;
+    }
+    points = render::sample_points(mech, sweep.samples[step]);
+  }
+  const render::View view = render::fit_view(mech, sweep, draw);
+  try {
+    if (format == "svg") {
+      render::SvgCanvas canvas(draw.width, draw.height);
+      render::draw_mechanism(canvas, view, mech, sweep, points, draw);
+      std::ofstream out(args.output);
+      if (!(out << canvas.document())) {
+        std::cerr << "error: cannot write " << args.output << '\n';
+        return kBadUsage;
+      }
+    } else {
+#ifdef NBAR_HAVE_IMAGE_CANVAS
+      render::ImageCanvas canvas(draw.width, draw.height);
+      render::draw_mechanism(canvas, view, mech, sweep, points, draw);
+      canvas.write_png(args.output);
+#else
+      std::cerr << "error: PNG output is not built yet\n";
+      return kBadUsage;
+#endif
+    }
+  } catch (const std::runtime_error& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kBadUsage;
+  }
+  for (const std::string& w : sweep.warnings) std::cerr << "warning: " << w << '\n';
+  return kOk;  // the pose was drawn, even if the sweep (for traces) stopped early
+}
+
+}  // namespace
+
+Command add_draw_command(CLI::App& app) {
+  auto args = std::make_shared<DrawArgs>();
+  CLI::App* sub = app.add_subcommand("draw", "Draw the mechanism in one pose (SVG or PNG): bodies, joints, ground "
+                                             "pivots, sliders, slots, labels, paths of chosen points, scale bar");
+  sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
+  sub->add_option("-o,--output", args->output, "FILE.svg or FILE.png")->required();
+  auto* step = sub->add_option("--step", args->step, "draw this sample of the sweep (default 0, the start)");
+  sub->add_option("--at", args->at, "draw where the first driver has this value (model units; a time for time laws)")
+      ->excludes(step);
+  sub->add_option("--steps", args->steps, "samples of the sweep (for --step and the traces)")->check(CLI::PositiveNumber);
+  sub->add_flag("--labels", args->labels, "write point names");
+  sub->add_option("--trace", args->traces, "points whose paths over the sweep are drawn, e.g. P,Q")->delimiter(',');
+  sub->add_option("--width", args->width, "pixels (default 900)")->check(CLI::Range(100, 10000));
+  sub->add_option("--height", args->height, "pixels (default 640)")->check(CLI::Range(100, 10000));
+  sub->add_option("--title", args->title, "a title at the top left");
+  return {sub, [args] { return run_draw(*args); }};
+}
+
+}  // namespace nbar::cli

@@ -1,0 +1,25 @@
+// Commands defined in their own files. Each adds its subcommand and options to the app and
+// returns the subcommand with the function that runs it (returning the exit code).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <utility>
+#include <vector>
+
+namespace nbar::cli {
+
+using Command = std::pair<CLI::App*, std::function<int()>>;
+using AddCommand = Command (*)(CLI::App&);
+
+Command add_draw_command(CLI::App& app);      // cmd_draw.cpp
+Command add_plot_command(CLI::App& app);      // cmd_plot.cpp
+Command add_animate_command(CLI::App& app);   // cmd_animate.cpp
+
+// In the order they appear in --help.
+inline std::vector<AddCommand> more_commands() {
+  return {&add_draw_command, &add_plot_command, &add_animate_command};
+}
+
+}  // namespace nbar::cli

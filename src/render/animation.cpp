@@ -1,0 +1,604 @@
+#include "render/animation.hpp"
+
+#include <cgif.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace nbar::render {
+
+namespace {
+
+std::string fixed(double v, int decimals) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v + 0.0);
+  std::string s(buf);
+  if (s.find('.') != std::string::npos) {
+    while (s.back() == '0') s.pop_back();
+    if (s.back() == '.') s.pop_back();
+  }
+  return s == "-0" ? "0" : s;
+}
+
+std::string general(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.4g", v + 0.0);
+  return buf;
+}
+
+// A JavaScript string literal that is also safe inside <script>.
+std::string js_string(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '<': out += "\\u003c"; break;
+      case '>': out += "\\u003e"; break;
+      case '&': out += "\\u0026"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  out += '"';
+  return out;
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  if (out) out << text;
+  if (!out) {
+    std::string message = "cannot write ";
+    message += path;
+    throw std::runtime_error(message);
+  }
+}
+
+// The angle (deg) equal to `angle` modulo 360 that is nearest to `previous`.
+double unwrap(double angle, double previous) {
+  return previous + std::remainder(angle - previous, 360.0);
+}
+
+// Inserts `markup` right after the start tag of the element with that id; false when absent.
+bool insert_into(std::string& svg, const std::string& id, const std::string& markup) {
+  std::string key = " id=\"";
+  key += xml_escape(id);
+  key += '"';
+  const std::size_t at = svg.find(key);
+  if (at == std::string::npos) return false;
+  const std::size_t close = svg.find('>', at);
+  if (close == std::string::npos) return false;
+  svg.insert(close + 1, markup);
+  return true;
+}
+
+std::uint32_t rgb_at(const std::uint8_t* p) {
+  return (std::uint32_t{p[2]} << 16) | (std::uint32_t{p[1]} << 8) | std::uint32_t{p[0]};
+}
+
+int colour_distance(std::uint32_t a, std::uint32_t b) {
+  const int dr = static_cast<int>((a >> 16) & 0xff) - static_cast<int>((b >> 16) & 0xff);
+  const int dg = static_cast<int>((a >> 8) & 0xff) - static_cast<int>((b >> 8) & 0xff);
+  const int db = static_cast<int>(a & 0xff) - static_cast<int>(b & 0xff);
+  return 3 * dr * dr + 4 * dg * dg + 2 * db * db;  // rough perceptual weights
+}
+
+// A palette of at most 255 colours (one index stays free for cgif's transparency optimisation):
+// the most used colours, and for every colour the index of the nearest one.
+class Palette {
+ public:
+  void count(const ImageCanvas& image) {
+    const std::uint8_t* data = image.data();
+    for (int y = 0; y < image.height(); ++y) {
+      const std::uint8_t* row = data + static_cast<std::ptrdiff_t>(y) * image.stride();
+      std::uint32_t run_colour = rgb_at(row);
+      std::uint64_t run = 0;
+      for (int x = 0; x < image.width(); ++x) {
+        const std::uint32_t c = rgb_at(row + 4 * x);
+        if (c != run_colour) {
+          counts_[run_colour] += run;
+          run_colour = c;
+          run = 0;
+        }
+        ++run;
+      }
+      counts_[run_colour] += run;
+    }
+  }
+
+  void build() {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> by_use;
+    for (const auto& [colour, n] : counts_) by_use.push_back({n, colour});
+    std::sort(by_use.begin(), by_use.end(), [](const auto& a, const auto& b) {
+      return a.first != b.first ? a.first > b.first : a.second < b.second;
+    });
+    if (by_use.size() > kMaxColours) by_use.resize(kMaxColours);
+    for (const auto& [n, colour] : by_use) {
+      index_[colour] = static_cast<std::uint8_t>(colours_.size());
+      colours_.push_back(colour);
+    }
+    if (colours_.empty()) colours_.push_back(0xffffff);
+  }
+
+  std::uint8_t index(std::uint32_t colour) {
+    if (auto it = index_.find(colour); it != index_.end()) return it->second;
+    std::size_t best = 0;
+    int best_distance = std::numeric_limits<int>::max();
+    for (std::size_t i = 0; i < colours_.size(); ++i) {
+      const int d = colour_distance(colour, colours_[i]);
+      if (d < best_distance) best_distance = d, best = i;
+    }
+    return index_[colour] = static_cast<std::uint8_t>(best);
+  }
+
+  std::vector<std::uint8_t> rgb_table() const {
+    std::vector<std::uint8_t> table;
+    for (std::uint32_t c : colours_) {
+      table.push_back(static_cast<std::uint8_t>(c >> 16));
+      table.push_back(static_cast<std::uint8_t>(c >> 8));
+      table.push_back(static_cast<std::uint8_t>(c));
+    }
+    return table;
+  }
+  std::size_t size() const { return colours_.size(); }
+
+ private:
+  static constexpr std::size_t kMaxColours = 255;
+  std::unordered_map<std::uint32_t, std::uint64_t> counts_;
+  std::unordered_map<std::uint32_t, std::uint8_t> index_;
+  std::vector<std::uint32_t> colours_;
+};
+
+// The shell-quoted form of a path.
+std::string shell_quote(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'')
+      out += "'\\''";
+    else
+      out += c;
+  }
+  out += '\'';
+  return out;
+}
+
+}  // namespace
+
+Animation::Animation(const Mechanism& mech, const SweepResult& sweep, const DrawOptions& options, int frames,
+                     double fps)
+    : mech_(mech), sweep_(sweep), options_(options), fps_(fps), view_(fit_view(mech, sweep, options)) {
+  if (sweep.samples.empty()) throw std::invalid_argument("there is no solved pose to animate");
+  if (!(fps > 0) || !std::isfinite(fps)) throw std::invalid_argument("frames per second must be positive");
+  const int n = static_cast<int>(sweep.samples.size());
+  const auto first = sample_points(mech, sweep.samples.front());
+  if (n > 2) {
+    const auto last = sample_points(mech, sweep.samples.back());
+    double gap = 0.0;
+    for (std::size_t p = 0; p < first.size(); ++p) gap = std::max(gap, (last[p] - first[p]).norm());
+    periodic_ = gap <= 1e-6 * mech.characteristic_length();
+  }
+  // Distinct poses: all samples, less the last when it repeats the first.
+  const int distinct = periodic_ ? n - 1 : n;
+  int count = frames > 0 ? frames : kDefaultMaxFrames;
+  count = std::clamp(count, 1, distinct);
+  for (int k = 0; k < count; ++k) {
+    long step = 0;
+    if (periodic_)
+      step = std::lround(static_cast<double>(k) * distinct / count);
+    else if (count > 1)
+      step = std::lround(static_cast<double>(k) * (n - 1) / (count - 1));
+    steps_.push_back(static_cast<int>(std::clamp<long>(step, 0, n - 1)));
+  }
+  for (int s : steps_) points_.push_back(sample_points(mech, sweep.samples[s]));
+}
+
+ImageCanvas Animation::render_frame(int frame, bool antialias) const {
+  ImageCanvas canvas(options_.width, options_.height);
+  canvas.set_antialias(antialias);
+  draw_mechanism(canvas, view_, mech_, sweep_, points_.at(frame), options_);
+  return canvas;
+}
+
+bool Animation::program_available(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    std::size_t end = dirs.find(':', start);
+    if (end == std::string::npos) end = dirs.size();
+    std::string candidate(dirs, start, end - start);
+    if (candidate.empty()) candidate.push_back('.');
+    candidate.push_back('/');
+    candidate.append(name);
+    if (::access(candidate.c_str(), X_OK) == 0) return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------- GIF
+
+void Animation::write_gif(const std::string& path) const {
+  const int w = options_.width, h = options_.height;
+  if (w > 65535 || h > 65535) throw std::invalid_argument("a GIF is at most 65535 pixels wide and high");
+  // Two passes: the colours of every frame, then the frames in that palette. Without
+  // antialiasing the colours are those drawn and the blends of translucent plates.
+  Palette palette;
+  for (int k = 0; k < frame_count(); ++k) palette.count(render_frame(k, false));
+  palette.build();
+  std::vector<std::uint8_t> table = palette.rgb_table();
+
+  CGIF_Config config;
+  std::memset(&config, 0, sizeof config);
+  config.pGlobalPalette = table.data();
+  config.numGlobalPaletteEntries = static_cast<std::uint16_t>(palette.size());
+  config.path = path.c_str();
+  config.attrFlags = CGIF_ATTR_IS_ANIMATED;
+  config.numLoops = CGIF_INFINITE_LOOP;
+  config.width = static_cast<std::uint16_t>(w);
+  config.height = static_cast<std::uint16_t>(h);
+  CGIF* gif = cgif_newgif(&config);
+  std::string failure = "cannot write ";
+  failure += path;
+  if (!gif) throw std::runtime_error(failure);
+
+  std::vector<std::uint8_t> indices(static_cast<std::size_t>(w) * h);
+  int result = CGIF_OK;
+  long shown_cs = 0;  // delays add up to the exact time, in hundredths of a second
+  for (int k = 0; k < frame_count() && result == CGIF_OK; ++k) {
+    const ImageCanvas image = render_frame(k, false);
+    const std::uint8_t* data = image.data();
+    std::uint32_t last = 0xffffffff;
+    std::uint8_t last_index = 0;
+    for (int y = 0; y < h; ++y) {
+      const std::uint8_t* row = data + static_cast<std::ptrdiff_t>(y) * image.stride();
+      for (int x = 0; x < w; ++x) {
+        const std::uint32_t c = rgb_at(row + 4 * x);
+        if (c != last) last = c, last_index = palette.index(c);
+        indices[static_cast<std::size_t>(y) * w + x] = last_index;
+      }
+    }
+    const long until_cs = std::lround((k + 1) * 100.0 / fps_);
+    const long delay = std::clamp(until_cs - shown_cs, 2L, 65535L);  // browsers slow delays below 2
+    shown_cs += delay;
+    CGIF_FrameConfig frame;
+    std::memset(&frame, 0, sizeof frame);
+    frame.pImageData = indices.data();
+    frame.delay = static_cast<std::uint16_t>(delay);
+    frame.genFlags = CGIF_FRAME_GEN_USE_TRANSPARENCY | CGIF_FRAME_GEN_USE_DIFF_WINDOW;
+    result = cgif_addframe(gif, &frame);
+  }
+  const int closed = cgif_close(gif);
+  if (result != CGIF_OK || closed != CGIF_OK) throw std::runtime_error(failure);
+}
+
+// -------------------------------------------------------------------------------- transforms
+
+std::vector<std::vector<PixelTransform>> Animation::transforms() const {
+  std::vector<std::vector<PixelTransform>> out;
+  for (int k = 0; k < frame_count(); ++k) out.push_back(body_transforms(mech_, view_, points_[0], points_[k]));
+  // Where the loop goes on to: back to the first pose, or staying at the last for a frame.
+  out.push_back(periodic_ ? body_transforms(mech_, view_, points_[0], points_[0]) : out.back());
+  for (std::size_t k = 1; k < out.size(); ++k)
+    for (std::size_t b = 0; b < out[k].size(); ++b)
+      out[k][b].angle_deg = unwrap(out[k][b].angle_deg, out[k - 1][b].angle_deg);
+  return out;
+}
+
+std::vector<std::string> Animation::body_group_ids() const {
+  std::vector<std::string> ids;
+  for (const Body& b : mech_.model().bodies) {
+    std::string id = "body-";
+    id += b.name;
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+// ---------------------------------------------------------------------------------------- SVG
+
+namespace {
+
+// Labels drawn as one group of texts, one per point in order, are given a group each
+// ("label-<point>") so that they can follow their points.
+void split_labels(std::string& svg, const Model& m) {
+  if (svg.find(" id=\"label-") != std::string::npos) return;
+  const std::size_t group = svg.find("<g id=\"labels\"");
+  if (group == std::string::npos) return;
+  std::size_t at = svg.find('>', group);
+  for (std::size_t p = 0; p < m.points.size() && at != std::string::npos; ++p) {
+    const std::size_t open = svg.find("<text", at);
+    if (open == std::string::npos || open > svg.find("</g>", at)) return;
+    std::string head = "<g id=\"";
+    std::string id = "label-";
+    id += m.points[p].name;
+    head += xml_escape(id);
+    head += "\">";
+    svg.insert(open, head);
+    const std::size_t close = svg.find("</text>", open + head.size());
+    if (close == std::string::npos) return;
+    svg.insert(close + 7, "</g>");
+    at = close + 7 + 4;
+  }
+}
+
+std::string animate_element(const std::string& type, const std::string& values, const std::string& dur) {
+  std::string s = "<animateTransform attributeName=\"transform\" type=\"";
+  s += type;
+  s += "\" additive=\"sum\" calcMode=\"linear\" dur=\"";
+  s += dur;
+  s += "\" repeatCount=\"indefinite\" values=\"";
+  s += values;
+  s += "\"/>\n";
+  return s;
+}
+
+}  // namespace
+
+std::string Animation::svg_animation() const {
+  SvgCanvas svg(options_.width, options_.height);
+  draw_mechanism(svg, view_, mech_, sweep_, points_[0], options_);
+  std::string doc = svg.document();
+  const auto motion = transforms();
+  const std::string dur = fixed(duration(), 4) + "s";
+  const std::vector<std::string> ids = body_group_ids();
+  for (std::size_t b = 0; b < ids.size(); ++b) {
+    std::string translate, rotate;
+    for (std::size_t k = 0; k < motion.size(); ++k) {
+      const PixelTransform& t = motion[k][b];
+      if (k) translate += ';', rotate += ';';
+      translate += fixed(t.shift.x(), 2);
+      translate += ' ';
+      translate += fixed(t.shift.y(), 2);
+      rotate += fixed(t.angle_deg, 2);
+      rotate += ' ';
+      rotate += fixed(t.pivot.x(), 2);
+      rotate += ' ';
+      rotate += fixed(t.pivot.y(), 2);
+    }
+    // translate(shift) rotate(angle, pivot): the sum of the two, in this order.
+    insert_into(doc, ids[b], animate_element("translate", translate, dur) + animate_element("rotate", rotate, dur));
+  }
+  // Point labels move with their points, without turning.
+  const Model& m = mech_.model();
+  split_labels(doc, m);
+  for (std::size_t p = 0; p < m.points.size(); ++p) {
+    if (m.points[p].ground) continue;
+    std::string values;
+    for (int k = 0; k <= frame_count(); ++k) {
+      const int f = k < frame_count() ? k : periodic_ ? 0 : frame_count() - 1;
+      const Eigen::Vector2d d = view_.to_pixels(points_[f][p]) - view_.to_pixels(points_[0][p]);
+      if (k) values += ';';
+      values += fixed(d.x(), 2);
+      values += ' ';
+      values += fixed(d.y(), 2);
+    }
+    std::string id = "label-";
+    id += m.points[p].name;
+    insert_into(doc, id, animate_element("translate", values, dur));
+  }
+  return doc;
+}
+
+void Animation::write_svg_animation(const std::string& path) const { write_text_file(path, svg_animation()); }
+
+// --------------------------------------------------------------------------------------- HTML
+
+std::string Animation::readout(int frame) const {
+  const Model& m = mech_.model();
+  const Sample& s = sweep_.samples[steps_[frame]];
+  std::string text = "t = ";
+  text += general(s.time);
+  text += " s";
+  for (std::size_t d = 0; d < m.drivers.size() && d < s.driver_values.size(); ++d) {
+    text += ", ";
+    text += m.drivers[d].name;
+    text += " = ";
+    text += format_driver_value(m, static_cast<int>(d), s.driver_values[d]);
+  }
+  return text;
+}
+
+std::string Animation::html_animation() const {
+  SvgCanvas svg(options_.width, options_.height);
+  draw_mechanism(svg, view_, mech_, sweep_, points_[0], options_);
+  std::string element = svg.element();
+  const Model& m = mech_.model();
+  split_labels(element, m);
+  const auto motion = transforms();
+  const int n = frame_count();
+
+  std::string title = m.name.empty() ? std::string("Mechanism") : m.name;
+  std::string html;
+  html.reserve(element.size() + 64 * static_cast<std::size_t>(n) * (m.bodies.size() + m.points.size() + 2));
+  html += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>";
+  html += xml_escape(title);
+  html += " \u2014 nbar animation</title>\n<style>\n"
+          "body{margin:0;font:15px/1.4 system-ui,sans-serif;color:#222;background:#f4f4f2}\n"
+          "main{max-width:";
+  html += std::to_string(options_.width + 32);
+  html += "px;margin:0 auto;padding:12px 16px}\n"
+          "h1{font-size:1.15em;margin:0 0 8px}\n"
+          ".stage{background:#fff;border:1px solid #ddd;border-radius:4px}\n"
+          ".stage svg{display:block;width:100%;height:auto}\n"
+          ".controls{display:flex;align-items:center;gap:10px;margin-top:10px}\n"
+          ".controls input{flex:1;min-width:0}\n"
+          "button{font:inherit;min-width:5em;padding:6px 12px}\n"
+          "#counter{font-variant-numeric:tabular-nums;white-space:nowrap}\n"
+          "#readout{font-variant-numeric:tabular-nums;margin:8px 0 0;color:#444}\n"
+          "</style>\n</head>\n<body data-frame=\"0\" data-errors=\"\">\n"
+          "<script>\n"
+          "window.onerror = function (message, source, line) {\n"
+          "  var b = document.body;\n"
+          "  if (b) b.dataset.errors = (b.dataset.errors ? b.dataset.errors + '\\n' : '') + message + ' (line ' + line + ')';\n"
+          "};\n"
+          "</script>\n<main>\n<h1>";
+  html += xml_escape(title);
+  html += "</h1>\n<div class=\"stage\">\n";
+  html += element;
+  html += "</div>\n<div class=\"controls\">\n"
+          "<button id=\"play\" type=\"button\">Pause</button>\n"
+          "<input id=\"scrub\" type=\"range\" min=\"0\" max=\"";
+  html += std::to_string(n - 1);
+  html += "\" step=\"1\" value=\"0\" aria-label=\"Frame\">\n<span id=\"counter\">1 / ";
+  html += std::to_string(n);
+  html += "</span>\n</div>\n<p id=\"readout\"></p>\n</main>\n<script>\n\"use strict\";\n(function () {\n";
+  html += "const fps = ";
+  html += general(fps_);
+  html += ";\n";
+
+  // Bodies: [angle, pivot x, pivot y, shift x, shift y] per frame.
+  const std::vector<std::string> ids = body_group_ids();
+  html += "const bodies = [";
+  for (std::size_t b = 0; b < ids.size(); ++b) {
+    if (b) html += ',';
+    html += js_string(ids[b]);
+  }
+  html += "];\nconst motion = [\n";
+  for (int k = 0; k < n; ++k) {
+    html += '[';
+    for (std::size_t b = 0; b < ids.size(); ++b) {
+      const PixelTransform& t = motion[k][b];
+      if (b) html += ',';
+      html += fixed(t.angle_deg, 2) + "," + fixed(t.pivot.x(), 2) + "," + fixed(t.pivot.y(), 2) + "," +
+              fixed(t.shift.x(), 2) + "," + fixed(t.shift.y(), 2);
+    }
+    html += "],\n";
+  }
+  html += "];\n";
+  // Labels of moving points: [dx, dy] per frame.
+  std::vector<int> moving;
+  for (std::size_t p = 0; p < m.points.size(); ++p)
+    if (!m.points[p].ground) moving.push_back(static_cast<int>(p));
+  html += "const labels = [";
+  for (std::size_t i = 0; i < moving.size(); ++i) {
+    if (i) html += ',';
+    std::string id = "label-";
+    id += m.points[moving[i]].name;
+    html += js_string(id);
+  }
+  html += "];\nconst shifts = [\n";
+  for (int k = 0; k < n; ++k) {
+    html += '[';
+    for (std::size_t i = 0; i < moving.size(); ++i) {
+      const int p = moving[i];
+      const Eigen::Vector2d d = view_.to_pixels(points_[k][p]) - view_.to_pixels(points_[0][p]);
+      if (i) html += ',';
+      html += fixed(d.x(), 2) + "," + fixed(d.y(), 2);
+    }
+    html += "],\n";
+  }
+  html += "];\nconst readouts = [\n";
+  for (int k = 0; k < n; ++k) html += js_string(readout(k)) + ",\n";
+  html += "];\n";
+  html += R"JS(const n = motion.length;
+const groups = bodies.map(function (id) { return document.getElementById(id); });
+const labelGroups = labels.map(function (id) { return document.getElementById(id); });
+const button = document.getElementById("play");
+const scrub = document.getElementById("scrub");
+const counter = document.getElementById("counter");
+const text = document.getElementById("readout");
+let frame = 0, timer = null, shown = 0;
+
+function show(k) {
+  frame = k;
+  const m = motion[k];
+  groups.forEach(function (g, b) {
+    if (!g) return;
+    const i = 5 * b;
+    g.setAttribute("transform", "translate(" + m[i + 3] + " " + m[i + 4] + ") rotate(" + m[i] + " " + m[i + 1] +
+                   " " + m[i + 2] + ")");
+  });
+  const s = shifts[k];
+  labelGroups.forEach(function (g, i) {
+    if (g) g.setAttribute("transform", "translate(" + s[2 * i] + " " + s[2 * i + 1] + ")");
+  });
+  scrub.value = String(k);
+  counter.textContent = (k + 1) + " / " + n;
+  text.textContent = readouts[k];
+  document.body.dataset.frame = String(k);
+  document.body.dataset.shown = String(++shown);
+}
+
+function play(on) {
+  if (timer !== null) clearInterval(timer);
+  timer = on && n > 1 ? setInterval(function () { show((frame + 1) % n); }, 1000 / fps) : null;
+  button.textContent = timer !== null ? "Pause" : "Play";
+  button.setAttribute("aria-pressed", timer !== null ? "false" : "true");
+}
+
+button.addEventListener("click", function () { play(timer === null); });
+scrub.addEventListener("input", function () { play(false); show(Number(scrub.value)); });
+document.addEventListener("keydown", function (e) {
+  if (e.target === scrub) return;
+  if (e.key === " ") { e.preventDefault(); play(timer === null); }
+  else if (e.key === "ArrowRight") { play(false); show((frame + 1) % n); }
+  else if (e.key === "ArrowLeft") { play(false); show((frame + n - 1) % n); }
+});
+show(0);
+play(true);
+})();
+</script>
+</body>
+</html>
+)JS";
+  return html;
+}
+
+void Animation::write_html_animation(const std::string& path) const { write_text_file(path, html_animation()); }
+
+// ---------------------------------------------------------------------------------------- MP4
+
+void Animation::write_mp4(const std::string& path) const {
+  if (!program_available("ffmpeg")) throw std::runtime_error("MP4 needs the ffmpeg program: apt-get install ffmpeg");
+  const int w = options_.width, h = options_.height;
+  std::string command = "ffmpeg -y -loglevel error -f rawvideo -pix_fmt bgra -s ";
+  command += std::to_string(w);
+  command += 'x';
+  command += std::to_string(h);
+  command += " -r ";
+  command += general(fps_);
+  command += " -i - -an -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' ";
+  command += shell_quote(path);
+  // A program that stops reading must not kill us with SIGPIPE.
+  struct sigaction ignore {}, previous {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  sigaction(SIGPIPE, &ignore, &previous);
+  std::fflush(nullptr);
+  FILE* pipe = ::popen(command.c_str(), "w");
+  bool ok = pipe != nullptr;
+  for (int k = 0; ok && k < frame_count(); ++k) {
+    const ImageCanvas image = render_frame(k, true);
+    const std::uint8_t* data = image.data();
+    for (int y = 0; ok && y < h; ++y)
+      ok = std::fwrite(data + static_cast<std::ptrdiff_t>(y) * image.stride(), 4, w, pipe) == static_cast<std::size_t>(w);
+  }
+  const int status = pipe ? ::pclose(pipe) : -1;
+  sigaction(SIGPIPE, &previous, nullptr);
+  if (!ok || status != 0) {
+    std::string message = "cannot write ";
+    message += path;
+    message += ": ffmpeg failed";
+    throw std::runtime_error(message);
+  }
+}
+
+}  // namespace nbar::render

@@ -1,0 +1,443 @@
+#include "render/plot.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <utility>
+
+namespace nbar::render {
+
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+constexpr double kLargest = 1e300;  // larger magnitudes are treated like infinities
+
+// Okabe & Ito's palette, which readers with any common colour-vision deficiency can tell
+// apart (its yellow, too pale on white, left out). After seven series the colours repeat with
+// dashes.
+constexpr std::array<std::uint32_t, 7> kPalette = {0x0072B2, 0xD55E00, 0x009E73, 0xCC79A7,
+                                                   0xE69F00, 0x56B4E9, 0x000000};
+
+const Color kInk = Color::rgb(0x222222);
+const Color kFrame = Color::rgb(0x444444);
+const Color kGrid = Color::rgb(0xe4e4e4);
+const Color kZeroLine = Color::rgb(0xb0b0b0);
+
+constexpr double kTickFont = 12, kLabelFont = 13, kTitleFont = 16, kLegendFont = 12;
+constexpr double kTickLength = 5;
+
+// An estimate of the width of sans-serif text (digits are 0.56 em, letters average less).
+double text_width(const std::string& text, double size) { return 0.6 * size * static_cast<double>(text.size()); }
+
+double pow10(int exponent) { return std::pow(10.0, exponent); }
+
+bool usable(double v) { return std::isfinite(v) && std::abs(v) <= kLargest; }
+
+Stroke series_stroke(std::size_t i) {
+  Stroke s;
+  s.color = Color::rgb(kPalette[i % kPalette.size()]);
+  s.width = 1.8;
+  switch ((i / kPalette.size()) % 4) {
+    case 1: s.dash = {7, 4}; break;
+    case 2: s.dash = {2, 3}; break;
+    case 3: s.dash = {9, 3, 2, 3}; break;
+    default: break;
+  }
+  return s;
+}
+
+// The exponent of the last significant digit of a tick step: 0.25 -> -2, 200 -> 2.
+int last_digit(double step) {
+  const int first = static_cast<int>(std::floor(std::log10(step) + 1e-9));
+  for (int d = first; d > first - 17; --d) {
+    const double scaled = d < 0 ? step * pow10(-d) : step / pow10(d);
+    if (std::abs(scaled - std::round(scaled)) <= 1e-6 * scaled) return d;
+  }
+  return first - 3;
+}
+
+std::string strip_exponent(const std::string& s) {
+  // "1.50e+06" -> "1.5e6", "2e-04" -> "2e-4"
+  const std::size_t e = s.find('e');
+  if (e == std::string::npos) return s;
+  std::string mantissa = s.substr(0, e);
+  if (mantissa.find('.') != std::string::npos) {
+    while (mantissa.back() == '0') mantissa.pop_back();
+    if (mantissa.back() == '.') mantissa.pop_back();
+  }
+  std::string exponent = s.substr(e + 1);
+  std::string sign;
+  if (!exponent.empty() && (exponent[0] == '+' || exponent[0] == '-')) {
+    if (exponent[0] == '-') sign = "-";
+    exponent.erase(0, 1);
+  }
+  while (exponent.size() > 1 && exponent[0] == '0') exponent.erase(0, 1);
+  std::string out = mantissa;
+  out += 'e';
+  out += sign;
+  out += exponent;
+  return out;
+}
+
+// Liang-Barsky: the part of a-b inside the rectangle, as fractions t0 <= t1 along it.
+bool clip_segment(const Vec2& a, const Vec2& b, const PlotFrame& f, double& t0, double& t1) {
+  t0 = 0.0;
+  t1 = 1.0;
+  const Vec2 d = b - a;
+  const std::array<double, 4> p = {-d.x(), d.x(), -d.y(), d.y()};
+  const std::array<double, 4> q = {a.x() - f.left, f.right - a.x(), a.y() - f.top, f.bottom - a.y()};
+  for (int i = 0; i < 4; ++i) {
+    if (p[i] == 0.0) {
+      if (q[i] < 0.0) return false;
+      continue;
+    }
+    const double r = q[i] / p[i];
+    if (p[i] < 0.0)
+      t0 = std::max(t0, r);
+    else
+      t1 = std::min(t1, r);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+bool inside(const Vec2& p, const PlotFrame& f) {
+  return p.x() >= f.left && p.x() <= f.right && p.y() >= f.top && p.y() <= f.bottom;
+}
+
+// The pieces of a series' line inside the plot area, and the samples with no finite neighbour
+// (drawn as dots, since a line through one point is invisible).
+struct Pieces {
+  std::vector<std::vector<Vec2>> lines;
+  std::vector<Vec2> dots;
+};
+
+Pieces clip_series(const std::vector<double>& x, const std::vector<double>& y, const PlotFrame& f) {
+  Pieces out;
+  const std::size_t n = x.size();
+  auto valid = [&](std::size_t i) { return usable(x[i]) && usable(y[i]); };
+  std::vector<Vec2> line;
+  auto flush = [&] {
+    if (line.size() >= 2) out.lines.push_back(std::move(line));
+    line.clear();
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!valid(i)) {
+      flush();
+      continue;
+    }
+    const Vec2 a = f.to_pixels(x[i], y[i]);
+    const bool next = i + 1 < n && valid(i + 1);
+    if (!next) {
+      const bool previous = i > 0 && valid(i - 1);
+      if (!previous && inside(a, f)) out.dots.push_back(a);
+      flush();
+      continue;
+    }
+    const Vec2 b = f.to_pixels(x[i + 1], y[i + 1]);
+    double t0 = 0, t1 = 1;
+    if (!clip_segment(a, b, f, t0, t1)) {
+      flush();
+      continue;
+    }
+    const Vec2 from = a + t0 * (b - a), to = a + t1 * (b - a);
+    if (line.empty() || t0 > 0.0) {
+      flush();
+      line.push_back(from);
+    }
+    line.push_back(to);
+    if (t1 < 1.0) flush();
+  }
+  flush();
+  return out;
+}
+
+std::string with_unit(const std::string& name, const std::string& unit) {
+  if (unit.empty()) return name;
+  std::string s = name;
+  if (!s.empty()) s += ' ';
+  s += '[';
+  s += unit;
+  s += ']';
+  return s;
+}
+
+// Ticks of `lo`..`hi` lying inside it (the x axis spans its data exactly).
+std::vector<double> inner_ticks(double lo, double hi, int target) {
+  const double tol = 1e-9 * (hi - lo);
+  std::vector<double> ticks;
+  for (double t : nice_ticks(lo, hi, target))
+    if (t >= lo - tol && t <= hi + tol) ticks.push_back(t);
+  return ticks;
+}
+
+double widest(const std::vector<std::string>& texts, double size) {
+  double w = 0;
+  for (const std::string& t : texts) w = std::max(w, text_width(t, size));
+  return w;
+}
+
+}  // namespace
+
+Vec2 PlotFrame::to_pixels(double x, double y) const {
+  const double u = x_hi > x_lo ? (x - x_lo) / (x_hi - x_lo) : 0.5;
+  const double v = y_hi > y_lo ? (y - y_lo) / (y_hi - y_lo) : 0.5;
+  return {left + u * (right - left), bottom - v * (bottom - top)};
+}
+
+std::vector<double> nice_ticks(double lo, double hi, int target) {
+  if (!std::isfinite(lo) || !std::isfinite(hi)) throw std::invalid_argument("nice_ticks: the range is not finite");
+  if (std::abs(lo) > kLargest || std::abs(hi) > kLargest)
+    throw std::invalid_argument("nice_ticks: the range is too large (beyond 1e300)");
+  if (target < 1 || target > 1000) throw std::invalid_argument("nice_ticks: the target must be 1 to 1000 intervals");
+  if (lo > hi) std::swap(lo, hi);
+  const double size = std::max(std::abs(lo), std::abs(hi));
+  if (hi - lo <= 1e-10 * size || hi - lo < 1e-290) {
+    const double centre = 0.5 * (lo + hi);
+    const double half = std::abs(centre) < 1e-290 ? 1.0 : 0.1 * std::abs(centre);
+    lo = centre - half;
+    hi = centre + half;
+  }
+  const int first_exponent = static_cast<int>(std::floor(std::log10((hi - lo) / target))) - 1;
+  // Within a few ulps of a tick counts as on it, so 1 / 0.2e-9 still starts at 1.
+  auto tolerance = [](double q) { return 1e-9 + 1e-14 * std::abs(q); };
+  // A step larger than the range gives at most two intervals, so the search ends; only a
+  // target of one interval can be impossible (a range about zero), and then two are used.
+  for (int allowed = target;; ++allowed) {
+    for (int exponent = first_exponent; exponent <= first_exponent + 8; ++exponent) {
+      for (int mantissa : {1, 2, 5}) {
+        const double step = mantissa * pow10(exponent);
+        const double q_lo = lo / step, q_hi = hi / step;
+        const double k_lo = std::floor(q_lo + tolerance(q_lo));
+        double k_hi = std::ceil(q_hi - tolerance(q_hi));
+        if (k_hi <= k_lo) k_hi = k_lo + 1;
+        if (k_hi - k_lo > allowed) continue;
+        std::vector<double> ticks;
+        for (double k = k_lo; k <= k_hi; k += 1.0) {
+          const double units = k * mantissa;  // an integer, exact
+          ticks.push_back(exponent < 0 ? units / pow10(-exponent) : units * pow10(exponent));
+        }
+        return ticks;
+      }
+    }
+  }
+}
+
+std::vector<std::string> format_ticks(const std::vector<double>& ticks) {
+  std::vector<std::string> labels;
+  if (ticks.empty()) return labels;
+  double largest = 0;
+  for (double t : ticks) largest = std::max(largest, std::abs(t));
+  double step = 0;
+  for (std::size_t i = 1; i < ticks.size(); ++i) {
+    const double d = std::abs(ticks[i] - ticks[i - 1]);
+    if (d > 0) step = step > 0 ? std::min(step, d) : d;
+  }
+  if (step == 0) step = largest > 0 ? largest : 1.0;
+  const int digit = last_digit(step);
+  const bool exponents = (largest >= 1e6 && digit >= 3) || (largest > 0 && largest < 1e-3);
+  char buf[64];
+  for (double t : ticks) {
+    if (!std::isfinite(t)) {
+      labels.push_back(std::isnan(t) ? "nan" : t > 0 ? "inf" : "-inf");
+      continue;
+    }
+    const bool zero = std::abs(t) < 1e-6 * step;
+    if (exponents) {
+      if (zero) {
+        labels.push_back("0");
+        continue;
+      }
+      const int magnitude = static_cast<int>(std::floor(std::log10(std::abs(t) * (1 + 1e-12))));
+      std::snprintf(buf, sizeof buf, "%.*e", std::max(0, magnitude - digit), t);
+      labels.push_back(strip_exponent(buf));
+    } else {
+      std::snprintf(buf, sizeof buf, "%.*f", std::max(0, -digit), zero ? 0.0 : t);
+      labels.push_back(buf);
+    }
+  }
+  return labels;
+}
+
+PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
+  for (const PlotSeries& s : spec.series)
+    if (s.y.size() != spec.x.size())
+      throw std::invalid_argument("plot: series '" + s.name + "' has " + std::to_string(s.y.size()) +
+                                  " values for " + std::to_string(spec.x.size()) + " values of " + spec.x_name);
+  const double width = canvas.width(), height = canvas.height();
+
+  // Data ranges over the samples that can be drawn.
+  double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
+  for (std::size_t i = 0; i < spec.x.size(); ++i) {
+    if (!usable(spec.x[i])) continue;
+    bool any = spec.series.empty();
+    for (const PlotSeries& s : spec.series) {
+      if (!usable(s.y[i])) continue;
+      any = true;
+      y_lo = std::min(y_lo, s.y[i]);
+      y_hi = std::max(y_hi, s.y[i]);
+    }
+    if (!any) continue;
+    x_lo = std::min(x_lo, spec.x[i]);
+    x_hi = std::max(x_hi, spec.x[i]);
+  }
+  if (x_lo > x_hi) x_lo = 0, x_hi = 1;
+  if (y_lo > y_hi) y_lo = 0, y_hi = 1;
+
+  // Labels: one unit for all, or each series' own in the legend.
+  bool same_unit = true;
+  for (const PlotSeries& s : spec.series) same_unit = same_unit && s.unit == spec.series.front().unit;
+  std::string y_label;
+  if (spec.series.size() == 1) {
+    y_label = with_unit(spec.series[0].name, spec.series[0].unit);
+  } else if (same_unit && !spec.series.empty()) {
+    y_label = with_unit("", spec.series[0].unit);
+  } else {
+    std::vector<std::string> units;
+    for (const PlotSeries& s : spec.series)
+      if (!s.unit.empty() && std::find(units.begin(), units.end(), s.unit) == units.end()) units.push_back(s.unit);
+    for (std::size_t i = 0; i < units.size(); ++i) {
+      if (i) y_label += ", ";
+      y_label += with_unit("", units[i]);
+    }
+  }
+  std::vector<std::string> entries;
+  for (const PlotSeries& s : spec.series) entries.push_back(same_unit ? s.name : with_unit(s.name, s.unit));
+  const std::string x_label = with_unit(spec.x_name, spec.x_unit);
+
+  // Layout: title, y label above the plot area, legend to its right (or below it when the
+  // entries are long), x tick labels and x label below.
+  const double pad = 12, swatch = 24, entry_height = 18;
+  const double legend_text = widest(entries, kLegendFont);
+  const double legend_width = 10 + swatch + 6 + legend_text + 10;
+  const bool legend_right = !entries.empty() && legend_width <= 0.32 * width;
+  PlotFrame f;
+  f.top = pad + (spec.title.empty() ? 0 : kTitleFont + 10) + (y_label.empty() ? 4 : kLabelFont + 10);
+  f.right = width - pad - (legend_right ? legend_width + 14 : 0);
+  // Below the plot: a flow of entries in rows.
+  std::vector<std::pair<std::size_t, Vec2>> legend_places;  // entry, offset from the legend's top left
+  double legend_rows_height = 0;
+  if (!entries.empty() && !legend_right) {
+    double x = 10, row = 0;
+    const double room = width - 2 * pad - 20;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const double w = swatch + 6 + text_width(entries[i], kLegendFont) + 16;
+      if (x > 10 && x + w > room) x = 10, row += 1;
+      legend_places.push_back({i, Vec2(x, 6 + row * entry_height)});
+      x += w;
+    }
+    legend_rows_height = (row + 1) * entry_height + 12;
+  }
+  f.bottom = height - pad - (x_label.empty() ? 0 : kLabelFont + 8) - (kTickFont + kTickLength + 8) -
+             (legend_rows_height > 0 ? legend_rows_height + 8 : 0);
+  f.bottom = std::max(f.bottom, f.top + 10);
+
+  // y ticks cover the data; their labels decide the left margin.
+  const int y_target = std::clamp(static_cast<int>((f.bottom - f.top) / 45), 2, 10);
+  f.y_ticks = nice_ticks(y_lo, y_hi, y_target);
+  f.y_lo = f.y_ticks.front();
+  f.y_hi = f.y_ticks.back();
+  const std::vector<std::string> y_tick_labels = format_ticks(f.y_ticks);
+  f.left = pad + widest(y_tick_labels, kTickFont) + kTickLength + 6;
+  f.right = std::max(f.right, f.left + 10);
+
+  // x spans the data exactly (a single value gets a range around it); ticks as many as fit.
+  if (x_hi - x_lo <= 1e-10 * std::max(std::abs(x_lo), std::abs(x_hi)) || x_hi - x_lo < 1e-290) {
+    const std::vector<double> around = nice_ticks(x_lo, x_hi, 4);
+    x_lo = around.front();
+    x_hi = around.back();
+  }
+  f.x_lo = x_lo;
+  f.x_hi = x_hi;
+  std::vector<std::string> x_tick_labels;
+  for (int target = std::clamp(static_cast<int>((f.right - f.left) / 80), 2, 12); target >= 1; --target) {
+    f.x_ticks = inner_ticks(x_lo, x_hi, target);
+    x_tick_labels = format_ticks(f.x_ticks);
+    const double spacing =
+        f.x_ticks.size() >= 2 ? (f.x_ticks[1] - f.x_ticks[0]) / (x_hi - x_lo) * (f.right - f.left) : f.right - f.left;
+    if (widest(x_tick_labels, kTickFont) + 12 <= spacing) break;
+  }
+
+  // Grid, with the zero line a little darker.
+  canvas.begin_group("grid", "plot-grid");
+  for (double t : f.x_ticks) {
+    const double px = f.to_pixels(t, 0).x();
+    if (px <= f.left + 0.5 || px >= f.right - 0.5) continue;
+    canvas.polyline({{px, f.top}, {px, f.bottom}}, Stroke{kGrid, 1.0, {}});
+  }
+  for (double t : f.y_ticks) {
+    const double py = f.to_pixels(0, t).y();
+    if (py <= f.top + 0.5 || py >= f.bottom - 0.5) continue;
+    const bool zero = std::abs(t) < 1e-9 * (f.y_hi - f.y_lo);
+    canvas.polyline({{f.left, py}, {f.right, py}}, Stroke{zero ? kZeroLine : kGrid, 1.0, {}});
+  }
+  canvas.end_group();
+
+  // Series.
+  for (std::size_t i = 0; i < spec.series.size(); ++i) {
+    const Stroke stroke = series_stroke(i);
+    canvas.begin_group("series-" + std::to_string(i), "plot-series");
+    const Pieces pieces = clip_series(spec.x, spec.series[i].y, f);
+    for (const auto& line : pieces.lines) canvas.polyline(line, stroke);
+    for (const Vec2& dot : pieces.dots) canvas.circle(dot, 2.0, Paint{stroke.color, std::nullopt});
+    canvas.end_group();
+  }
+
+  // Frame, ticks, labels and title.
+  canvas.begin_group("axes", "plot-axes");
+  canvas.polygon({{f.left, f.top}, {f.right, f.top}, {f.right, f.bottom}, {f.left, f.bottom}},
+                 Paint{std::nullopt, Stroke{kFrame, 1.0, {}}});
+  for (std::size_t i = 0; i < f.x_ticks.size(); ++i) {
+    const double px = f.to_pixels(f.x_ticks[i], 0).x();
+    canvas.polyline({{px, f.bottom}, {px, f.bottom + kTickLength}}, Stroke{kFrame, 1.0, {}});
+    canvas.text({px, f.bottom + kTickLength + 3 + kTickFont * 0.8}, x_tick_labels[i], kTickFont, Anchor::Middle, kInk);
+  }
+  for (std::size_t i = 0; i < f.y_ticks.size(); ++i) {
+    const double py = f.to_pixels(0, f.y_ticks[i]).y();
+    canvas.polyline({{f.left - kTickLength, py}, {f.left, py}}, Stroke{kFrame, 1.0, {}});
+    canvas.text({f.left - kTickLength - 4, py + 0.35 * kTickFont}, y_tick_labels[i], kTickFont, Anchor::End, kInk);
+  }
+  if (!x_label.empty())
+    canvas.text({0.5 * (f.left + f.right), f.bottom + kTickLength + kTickFont + 10 + kLabelFont}, x_label, kLabelFont,
+                Anchor::Middle, kInk);
+  if (!y_label.empty()) canvas.text({pad, f.top - 9}, y_label, kLabelFont, Anchor::Start, kInk);
+  if (!spec.title.empty()) canvas.text({0.5 * width, pad + kTitleFont}, spec.title, kTitleFont, Anchor::Middle, kInk);
+  canvas.end_group();
+
+  // Legend: a box of entries, each a short stretch of its line and its name.
+  if (!entries.empty()) {
+    canvas.begin_group("legend", "plot-legend");
+    Vec2 corner;
+    double box_w = 0, box_h = 0;
+    if (legend_right) {
+      corner = {f.right + 14, f.top};
+      box_w = legend_width;
+      box_h = static_cast<double>(entries.size()) * entry_height + 12;
+      legend_places.clear();
+      for (std::size_t i = 0; i < entries.size(); ++i)
+        legend_places.push_back({i, Vec2(10, 6 + static_cast<double>(i) * entry_height)});
+    } else {
+      corner = {pad, f.bottom + kTickLength + kTickFont + 10 + (x_label.empty() ? 0 : kLabelFont + 8)};
+      box_w = 0;
+      for (const auto& [i, at] : legend_places)
+        box_w = std::max(box_w, at.x() + swatch + 6 + text_width(entries[i], kLegendFont) + 10);
+      box_h = legend_rows_height;
+    }
+    canvas.polygon({corner, corner + Vec2(box_w, 0), corner + Vec2(box_w, box_h), corner + Vec2(0, box_h)},
+                   Paint{Color::rgb(0xffffff), Stroke{Color::rgb(0xaaaaaa), 1.0, {}}});
+    for (const auto& [i, at] : legend_places) {
+      const Vec2 row = corner + at + Vec2(0, 0.5 * entry_height);
+      Stroke stroke = series_stroke(i);
+      stroke.width = 2.5;
+      canvas.polyline({row, row + Vec2(swatch, 0)}, stroke);
+      canvas.text(row + Vec2(swatch + 6, 0.35 * kLegendFont), entries[i], kLegendFont, Anchor::Start, kInk);
+    }
+    canvas.end_group();
+  }
+  return f;
+}
+
+}  // namespace nbar::render

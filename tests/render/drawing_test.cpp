@@ -1,0 +1,157 @@
+// Drawings of every example as SVG: well-formed, with the expected elements where the model
+// says they are.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include "io/model_file.hpp"
+#include "render/drawing.hpp"
+
+namespace nbar::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Tags balanced and properly nested, attributes quoted: enough to call the SVG well-formed
+// for what the canvas writes (no comments, CDATA or entities other than the five it escapes).
+::testing::AssertionResult well_formed(const std::string& xml) {
+  std::vector<std::string> open;
+  std::size_t i = xml.find("<svg");
+  if (i == std::string::npos) return ::testing::AssertionFailure() << "no <svg>";
+  const std::regex tag(R"(^<(/?)([a-zA-Z][\w:-]*)((\s+[\w:-]+="[^"<]*")*)\s*(/?)>)");
+  while ((i = xml.find('<', i)) != std::string::npos) {
+    std::smatch m;
+    const std::string rest = xml.substr(i, 4096);
+    if (!std::regex_search(rest, m, tag)) return ::testing::AssertionFailure() << "bad tag at " << rest.substr(0, 60);
+    if (m[1] == "/") {
+      if (open.empty() || open.back() != m[2]) return ::testing::AssertionFailure() << "unbalanced </" << m[2] << ">";
+      open.pop_back();
+    } else if (m[5] != "/") {
+      open.push_back(m[2]);
+    }
+    i += m.length(0);
+  }
+  if (!open.empty()) return ::testing::AssertionFailure() << "unclosed <" << open.back() << ">";
+  return ::testing::AssertionSuccess();
+}
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t i = text.find(what); i != std::string::npos; i = text.find(what, i + 1)) ++n;
+  return n;
+}
+
+struct Drawn {
+  io::LoadedModel file;
+  Mechanism mech;
+  SweepResult sweep;
+  explicit Drawn(const std::string& name)
+      : file(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name)), mech(file.model),
+        sweep(run_sweep(mech, [] {
+          SweepOptions o;
+          o.order = 0;
+          o.steps = 37;
+          return o;
+        }())) {}
+};
+
+TEST(Drawing, FourBarHasAGroupPerBodyACirclePerJointAndAPathPerTrace) {
+  const Drawn d("fourbar-crank-rocker.yaml");
+  DrawOptions options;
+  options.labels = true;
+  options.traces = {d.mech.model().find_point("P"), d.mech.model().find_point("B")};
+  SvgCanvas canvas(options.width, options.height);
+  draw_sample(canvas, d.mech, d.sweep, 0, options);
+  const std::string svg = canvas.document();
+  EXPECT_TRUE(well_formed(svg));
+  for (const char* body : {"crank", "coupler", "rocker"}) EXPECT_EQ(count(svg, std::string("id=\"body-") + body + "\""), 1);
+  // Joints O2, O4, A, B as open circles (white fill, r 4.5); the coupler point as a dot.
+  EXPECT_EQ(count(svg, "r=\"4.5\" fill=\"#ffffff\""), 4);
+  EXPECT_EQ(count(svg, "r=\"2.5\""), 1);
+  // Two traces, one polyline each, with one vertex per sample.
+  const auto traces = svg.substr(svg.find("id=\"traces\""), svg.find("</g>", svg.find("id=\"traces\"")) - svg.find("id=\"traces\""));
+  EXPECT_EQ(count(traces, "<polyline"), 2);
+  const std::size_t points = traces.find("points=\"") + 8;
+  EXPECT_EQ(count(traces.substr(points, traces.find('"', points) - points), ","), 37);
+  EXPECT_EQ(count(svg, ">O2</text>"), 1);
+  EXPECT_THAT(svg, ::testing::HasSubstr(" mm</text>"));  // scale bar in the model's unit
+}
+
+TEST(Drawing, GroundPivotsAndJointsLandWhereTheViewMapsThem) {
+  const Drawn d("fourbar-crank-rocker.yaml");
+  DrawOptions options;
+  const View view = fit_view(d.mech, d.sweep, options);
+  SvgCanvas canvas(options.width, options.height);
+  const auto points = sample_points(d.mech, d.sweep.samples[5]);
+  draw_mechanism(canvas, view, d.mech, d.sweep, points, options);
+  const std::string svg = canvas.document();
+  for (const char* name : {"O2", "O4", "A", "B"}) {
+    const Eigen::Vector2d p = view.to_pixels(points[d.mech.model().find_point(name)]);
+    char cx[64];
+    std::snprintf(cx, sizeof cx, "cx=\"%.2f", p.x());
+    std::string want(cx);
+    while (want.back() == '0') want.pop_back();
+    if (want.back() == '.') want.pop_back();
+    EXPECT_THAT(svg, ::testing::HasSubstr(want)) << name;
+    EXPECT_GT(p.x(), options.margin);
+    EXPECT_LT(p.x(), options.width - options.margin);
+    EXPECT_GT(p.y(), options.margin);
+    EXPECT_LT(p.y(), options.height - options.margin);
+  }
+}
+
+TEST(Drawing, EveryPoseOfTheSweepFitsTheView) {
+  const Drawn d("slider-crank-offset.yaml");
+  DrawOptions options;
+  const View view = fit_view(d.mech, d.sweep, options);
+  for (const Sample& s : d.sweep.samples)
+    for (const Eigen::Vector2d& p : sample_points(d.mech, s)) {
+      const Eigen::Vector2d q = view.to_pixels(p);
+      EXPECT_GE(q.x(), options.margin);
+      EXPECT_LE(q.x(), options.width - options.margin);
+      EXPECT_GE(q.y(), options.margin);
+      EXPECT_LE(q.y(), options.height - options.margin);
+    }
+}
+
+TEST(Drawing, BodyTransformsCarryTheStartingPoseOntoAnyOther) {
+  const Drawn d("fourbar-steel-bars.yaml");
+  DrawOptions options;
+  const View view = fit_view(d.mech, d.sweep, options);
+  const auto start = sample_points(d.mech, d.sweep.samples[0]);
+  const auto later = sample_points(d.mech, d.sweep.samples[11]);
+  const auto transforms = body_transforms(d.mech, view, start, later);
+  const Model& m = d.mech.model();
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const PixelTransform& t = transforms[b];
+    const double a = t.angle_deg * std::acos(-1.0) / 180.0;
+    for (int p : m.bodies[b].points) {
+      // SVG: translate(shift) rotate(angle, pivot): screen rotation is clockwise for a > 0.
+      const Eigen::Vector2d q = view.to_pixels(start[p]) - t.pivot;
+      const Eigen::Vector2d moved(std::cos(a) * q.x() - std::sin(a) * q.y(), std::sin(a) * q.x() + std::cos(a) * q.y());
+      EXPECT_LT((moved + t.pivot + t.shift - view.to_pixels(later[p])).norm(), 1e-9) << m.bodies[b].name;
+    }
+  }
+}
+
+TEST(Drawing, EveryExampleDrawsAsWellFormedSvg) {
+  for (const auto& e : fs::directory_iterator(NBAR_EXAMPLES_DIR)) {
+    if (e.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(e.path().filename().string());
+    const Drawn d(e.path().filename().string());
+    DrawOptions options;
+    options.labels = true;
+    SvgCanvas canvas(options.width, options.height);
+    draw_sample(canvas, d.mech, d.sweep, static_cast<int>(d.sweep.samples.size()) / 2, options);
+    const std::string svg = canvas.document();
+    EXPECT_TRUE(well_formed(svg));
+    EXPECT_EQ(count(svg, "id=\"body-"), static_cast<int>(d.mech.model().bodies.size()));
+    EXPECT_EQ(svg.find("nan"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace nbar::render
