@@ -16,10 +16,11 @@ using AddCommand = Command (*)(CLI::App&);
 Command add_draw_command(CLI::App& app);      // cmd_draw.cpp
 Command add_plot_command(CLI::App& app);      // cmd_plot.cpp
 Command add_animate_command(CLI::App& app);   // cmd_animate.cpp
+Command add_report_command(CLI::App& app);    // cmd_report.cpp
 
 // In the order they appear in --help.
 inline std::vector<AddCommand> more_commands() {
-  return {&add_draw_command, &add_plot_command, &add_animate_command};
+  return {&add_draw_command, &add_plot_command, &add_animate_command, &add_report_command};
 }
 
 }  // namespace nbar::cli

@@ -13,6 +13,7 @@
 #include <limits>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 namespace nbar::render {
 
@@ -294,7 +295,8 @@ std::vector<std::vector<PixelTransform>> Animation::transforms() const {
   std::vector<std::vector<PixelTransform>> out;
   for (int k = 0; k < frame_count(); ++k) out.push_back(body_transforms(mech_, view_, points_[0], points_[k]));
   // Where the loop goes on to: back to the first pose, or staying at the last for a frame.
-  out.push_back(periodic_ ? body_transforms(mech_, view_, points_[0], points_[0]) : out.back());
+  std::vector<PixelTransform> after = periodic_ ? body_transforms(mech_, view_, points_[0], points_[0]) : out.back();
+  out.push_back(std::move(after));
   for (std::size_t k = 1; k < out.size(); ++k)
     for (std::size_t b = 0; b < out[k].size(); ++b)
       out[k][b].angle_deg = unwrap(out[k][b].angle_deg, out[k - 1][b].angle_deg);
@@ -541,7 +543,6 @@ function play(on) {
   if (timer !== null) clearInterval(timer);
   timer = on && n > 1 ? setInterval(function () { show((frame + 1) % n); }, 1000 / fps) : null;
   button.textContent = timer !== null ? "Pause" : "Play";
-  button.setAttribute("aria-pressed", timer !== null ? "false" : "true");
 }
 
 button.addEventListener("click", function () { play(timer === null); });

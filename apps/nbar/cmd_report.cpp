@@ -1,0 +1,63 @@
+// nbar report: one self-contained HTML file about a mechanism.
+#include <fstream>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "render/report.hpp"
+
+namespace nbar::cli {
+
+namespace {
+
+struct ReportArgs {
+  std::string model, output;
+  std::optional<int> steps;
+  int frames = 72;
+};
+
+int run_report(const ReportArgs& args) {
+  if (args.output.size() < 5 || args.output.substr(args.output.size() - 5) != ".html") {
+    std::cerr << "error: -o " << args.output << ": the report is an HTML file: name it FILE.html\n";
+    return kBadUsage;
+  }
+  Loaded loaded;
+  if (int code = load(args.model, loaded)) return code;
+  SweepOptions options;
+  options.steps = args.steps;
+  options.order = 3;  // jerk is plotted
+  SweepResult sweep;
+  if (int code = sweep_model(args.model, *loaded.mechanism, options, sweep)) return code;
+  render::ReportOptions report;
+  report.source = args.model;
+  report.frames = args.frames;
+  std::string html;
+  try {
+    html = render::html_report(*loaded.mechanism, sweep, report);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << args.model << ": " << e.what() << '\n';
+    return kInvalidModel;
+  }
+  std::ofstream out(args.output);
+  if (!(out << html)) {
+    std::cerr << "error: cannot write " << args.output << '\n';
+    return kBadUsage;
+  }
+  for (const std::string& w : sweep.warnings) std::cerr << "warning: " << w << '\n';
+  return finish(args.model, sweep);
+}
+
+}  // namespace
+
+Command add_report_command(CLI::App& app) {
+  auto args = std::make_shared<ReportArgs>();
+  CLI::App* sub = app.add_subcommand("report", "One self-contained HTML report: summary, animation, coupler paths, "
+                                               "angle/velocity/acceleration/jerk plots, and forces and stresses when "
+                                               "the model has masses, loads and shapes");
+  sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
+  sub->add_option("-o,--output", args->output, "FILE.html")->required();
+  sub->add_option("--steps", args->steps, "samples of the sweep (overrides the model's sweep)")->check(CLI::PositiveNumber);
+  sub->add_option("--frames", args->frames, "animation frames (default 72)")->check(CLI::Range(2, 1000));
+  return {sub, [args] { return run_report(*args); }};
+}
+
+}  // namespace nbar::cli

@@ -1,0 +1,109 @@
+// The HTML report: self-contained, with the sections the model calls for, and it opens in a
+// browser without errors.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "io/model_file.hpp"
+#include "render/image_canvas.hpp"
+#include "render/report.hpp"
+
+namespace nbar::render {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+std::string report_of(const std::string& example, int steps) {
+  const io::LoadedModel file = io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + example);
+  const Mechanism mech(file.model);
+  SweepOptions o;
+  o.order = 3;
+  o.steps = steps;
+  const SweepResult sweep = run_sweep(mech, o);
+  ReportOptions options;
+  options.source = example;
+  options.frames = 24;
+  options.sections = 100;
+  return html_report(mech, sweep, options);
+}
+
+// Every URL in the page: only the SVG namespace (a name, never fetched) is allowed.
+std::vector<std::string> urls(const std::string& html) {
+  std::vector<std::string> found;
+  const std::regex url(R"(https?://[^\s"'<>)&]+)");
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), url); it != std::sregex_iterator(); ++it)
+    if (it->str() != "http://www.w3.org/2000/svg") found.push_back(it->str());
+  return found;
+}
+
+TEST(Report, KinematicsOnlyModel) {
+  const std::string html = report_of("fourbar-crank-rocker.yaml", 73);
+  EXPECT_THAT(html, ::testing::StartsWith("<!DOCTYPE html>"));
+  EXPECT_THAT(html, HasSubstr("name=\"viewport\""));
+  for (const char* id : {"summary", "motion", "kinematics"}) EXPECT_THAT(html, HasSubstr(std::string("id=\"") + id));
+  EXPECT_THAT(html, Not(HasSubstr("id=\"forces\"")));
+  EXPECT_THAT(html, HasSubstr("crank-rocker"));                 // Grashof class
+  EXPECT_THAT(html, HasSubstr("Paths of the coupler points"));  // P is a coupler point
+  EXPECT_THAT(html, HasSubstr("Angular jerk"));
+  EXPECT_THAT(urls(html), ::testing::IsEmpty());
+  EXPECT_THAT(html, Not(HasSubstr("nan")));
+}
+
+TEST(Report, KineticsAndStressesWhenTheModelHasThem) {
+  const std::string html = report_of("fourbar-steel-bars.yaml", 37);
+  for (const char* id : {"summary", "motion", "kinematics", "forces", "stresses"})
+    EXPECT_THAT(html, HasSubstr(std::string("id=\"") + id));
+  EXPECT_THAT(html, HasSubstr("Driver efforts"));
+  EXPECT_THAT(html, HasSubstr("O2.ground&gt;crank"));  // a joint force, escaped
+  EXPECT_THAT(html, HasSubstr("id=\"markers\""));       // largest stresses marked on the drawing
+  EXPECT_THAT(html, HasSubstr("Safety factor"));
+  EXPECT_THAT(urls(html), ::testing::IsEmpty());
+  EXPECT_THAT(html, Not(HasSubstr("nan")));
+}
+
+// Opens the report in headless Chromium (installed by scripts/install-deps.sh): no script
+// error, a page that is not blank, at phone width too.
+TEST(Report, OpensInChromiumAtDesktopAndPhoneWidth) {
+  if (!fs::exists("/usr/bin/chromium")) FAIL() << "Chromium is not installed: run scripts/install-deps.sh";
+  const fs::path dir = fs::temp_directory_path() / ("nbar_report_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path page = dir / "report.html";
+  std::ofstream(page) << report_of("crank-rocker-gravity-spring.yaml", 37);
+  for (int width : {1000, 390}) {
+    SCOPED_TRACE("width " + std::to_string(width));
+    const fs::path shot = dir / ("shot" + std::to_string(width) + ".png");
+    const std::string flags = "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+                              "--disable-background-networking --disable-component-update --disable-sync "
+                              "--hide-scrollbars --virtual-time-budget=2000 --user-data-dir=" +
+                              (dir / ("profile" + std::to_string(width))).string();
+    const std::string command = "timeout 120 /usr/bin/chromium " + flags + " --window-size=" + std::to_string(width) +
+                                ",1600 --screenshot=" + shot.string() + " file://" + page.string() +
+                                " >/dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0);
+    const ImageCanvas image = ImageCanvas::read_png(shot.string());
+    EXPECT_EQ(image.width(), width);
+    // Not blank: many distinct colours (text, tables, the drawing, the plots).
+    std::set<std::uint32_t> colours;
+    const std::uint8_t* data = image.data();
+    for (int y = 0; y < image.height(); y += 3)
+      for (int x = 0; x < image.width(); x += 3) {
+        const std::uint8_t* p = data + y * image.stride() + 4 * x;
+        colours.insert(p[0] | p[1] << 8 | p[2] << 16);
+      }
+    EXPECT_GT(colours.size(), 50u);
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace nbar::render
