@@ -1,18 +1,8 @@
-// nbar plot: columns of the result table against another column, as an SVG or PNG line plot.
-//
-// Plot any columns of `nbar solve` against the first driver (or any other column with --x):
-// pick them by name or glob, comma-separated, as with `solve --columns`. Columns of several
-// units share the plot, each legend entry then naming its unit. Inverse-dynamics columns
-// (`crank.torque`, `A.crank>coupler.Fx`, `energy.*`...) switch on --dynamics by themselves,
-// and jerk or higher derivatives raise --order as needed. The format follows the file name:
-// .svg or .png.
-//
-//   nbar plot examples/fourbar-crank-rocker.yaml --y rocker.angle,rocker.omega -o rocker.svg
-//   nbar plot examples/fourbar-crank-rocker.yaml --y 'rocker.*' -o rocker.png
-//   nbar plot examples/compressor-myszka-kinetics.yaml --y '*.torque' -o torque.svg
-//   nbar plot examples/fourbar-crank-rocker.yaml --x P.x --y P.y -o coupler-curve.svg
+// nbar plot: columns of the result table against another column, as an SVG or PNG line plot
+// (render/plot.hpp). kPlotHelp below, shown by `nbar plot --help`, says how to use it.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -37,21 +27,26 @@ namespace {
 struct PlotArgs {
   std::string model, output, x, title;
   std::vector<std::string> y;
+  std::vector<double> y_range;
   std::optional<int> steps, order;
   bool dynamics = false;
   int width = 900, height = 520;
 };
 
 const char* const kPlotHelp =
+    "Plots columns of `nbar solve` against the first driver, or against any other column with\n"
+    "--x. Name the columns, or globs of them, comma-separated as with `solve --columns`.\n"
+    "Inverse-dynamics columns (crank.torque, A.crank>coupler.Fx, energy.*...) switch on\n"
+    "--dynamics by themselves, and jerk or higher derivatives raise --order as needed.\n"
+    "Columns in different units share the plot, and each legend entry then names its unit.\n"
+    "The file name's extension picks the format: .svg or .png.\n"
+    "\n"
     "Examples:\n"
     "  nbar plot examples/fourbar-crank-rocker.yaml --y rocker.angle,rocker.omega -o rocker.svg\n"
     "  nbar plot examples/fourbar-crank-rocker.yaml --y 'rocker.*' -o rocker.png\n"
     "  nbar plot examples/compressor-myszka-kinetics.yaml --y '*.torque' -o torque.svg\n"
     "  nbar plot examples/fourbar-crank-rocker.yaml --x P.x --y P.y -o coupler-curve.svg\n"
-    "Columns are those of `nbar solve` (names or globs, comma-separated, as with --columns);\n"
-    "inverse-dynamics columns (crank.torque, A.crank>coupler.Fx, energy.*...) switch on\n"
-    "--dynamics by themselves, and jerk or higher derivatives raise --order as needed.\n"
-    "Columns in different units share the plot; each legend entry then names its unit.";
+    "  nbar plot examples/fourbar-crank-rocker.yaml --y rocker.alpha --y-range -5000,5000 -o alpha.svg\n";
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -102,6 +97,12 @@ int run_plot(const PlotArgs& args) {
   const std::string format = lower_extension(args.output);
   if (format != ".svg" && format != ".png") {
     std::cerr << "error: -o: cannot tell the format of '" << args.output << "': name it .svg or .png\n";
+    return kBadUsage;
+  }
+  if (!args.y_range.empty() && !(std::isfinite(args.y_range[0]) && std::isfinite(args.y_range[1]) &&
+                                 std::abs(args.y_range[0]) <= 1e300 && std::abs(args.y_range[1]) <= 1e300 &&
+                                 args.y_range[0] < args.y_range[1])) {
+    std::cerr << "error: --y-range: LO and HI must be finite numbers with LO < HI\n";
     return kBadUsage;
   }
 #ifndef NBAR_PLOT_HAVE_PNG
@@ -181,6 +182,10 @@ int run_plot(const PlotArgs& args) {
   spec.title = !args.title.empty() ? args.title
                : !m.name.empty()   ? m.name
                                    : std::filesystem::path(args.model).stem().string();
+  if (!args.y_range.empty()) {
+    spec.y_lo = args.y_range[0];
+    spec.y_hi = args.y_range[1];
+  }
   spec.width = args.width;
   spec.height = args.height;
   spec.x_name = x_column.columns[0];
@@ -228,8 +233,8 @@ Command add_plot_command(CLI::App& app) {
   auto shared = std::make_shared<PlotArgs>();
   PlotArgs& args = *shared;
   CLI::App* sub = app.add_subcommand(
-      "plot", "Plot result columns against a driver or any other column, as SVG or PNG (e.g. `nbar plot "
-              "MODEL --y rocker.angle,rocker.omega -o rocker.svg`)");
+      "plot", "Plot result columns (angles, velocities, forces...) against a driver or any other column, "
+              "as SVG or PNG");
   sub->add_option("MODEL", args.model, "model file (YAML or JSON)")->required();
   sub->add_option("--y", args.y, "columns to plot: names or globs, comma-separated, e.g. 'rocker.omega,B.v*'")
       ->required()
@@ -244,6 +249,9 @@ Command add_plot_command(CLI::App& app) {
   sub->add_flag("--dynamics", args.dynamics,
                 "add the inverse-dynamics columns (joint forces, driver torques and forces, energies); "
                 "on by itself when a column asked for needs it");
+  sub->add_option("--y-range", args.y_range, "a fixed y range LO,HI instead of one covering the data")
+      ->expected(2)
+      ->delimiter(',');
   sub->add_option("--title", args.title, "the title at the top (default: the model's name)");
   sub->add_option("--width", args.width, "picture width in pixels (default 900)")->check(CLI::Range(200, 10000));
   sub->add_option("--height", args.height, "picture height in pixels (default 520)")->check(CLI::Range(150, 10000));

@@ -238,7 +238,11 @@ std::vector<std::string> format_ticks(const std::vector<double>& ticks) {
   }
   if (step == 0) step = largest > 0 ? largest : 1.0;
   const int digit = last_digit(step);
-  const bool exponents = (largest >= 1e6 && digit >= 3) || (largest > 0 && largest < 1e-3);
+  // Exponents for millions with few digits that change (2e6, 1.5e6, but 1001000), for
+  // billions and up, and for thousandths and below.
+  const int largest_magnitude = largest > 0 ? static_cast<int>(std::floor(std::log10(largest * (1 + 1e-12)))) : 0;
+  const bool exponents = (largest >= 1e6 && (largest_magnitude - digit <= 2 || largest_magnitude >= 9)) ||
+                         (largest > 0 && largest < 1e-3);
   char buf[64];
   for (double t : ticks) {
     if (!std::isfinite(t)) {
@@ -267,6 +271,10 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
     if (s.y.size() != spec.x.size())
       throw std::invalid_argument("plot: series '" + s.name + "' has " + std::to_string(s.y.size()) +
                                   " values for " + std::to_string(spec.x.size()) + " values of " + spec.x_name);
+  if (spec.y_lo.has_value() != spec.y_hi.has_value())
+    throw std::invalid_argument("plot: a fixed y range needs both ends");
+  if (spec.y_lo && !(usable(*spec.y_lo) && usable(*spec.y_hi) && *spec.y_lo < *spec.y_hi))
+    throw std::invalid_argument("plot: the fixed y range must be finite and increasing");
   const double width = canvas.width(), height = canvas.height();
 
   // Data ranges over the samples that can be drawn.
@@ -313,10 +321,11 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
   const double pad = 12, swatch = 24, entry_height = 18;
   const double legend_text = widest(entries, kLegendFont);
   const double legend_width = 10 + swatch + 6 + legend_text + 10;
-  const bool legend_right = !entries.empty() && legend_width <= 0.32 * width;
   PlotFrame f;
-  f.top = pad + (spec.title.empty() ? 0 : kTitleFont + 10) + (y_label.empty() ? 4 : kLabelFont + 10);
-  f.right = width - pad - (legend_right ? legend_width + 14 : 0);
+  f.top = pad + (spec.title.empty() ? 0 : kTitleFont + 10) + (y_label.empty() ? 4 : kLabelFont + 16);
+  const bool legend_right = !entries.empty() && legend_width <= 0.32 * width &&
+                            static_cast<double>(entries.size()) * entry_height + 12 <= height - f.top - pad;
+  f.right = width - (legend_right ? pad + legend_width + 14 : 2 * pad);  // room for half an x label
   // Below the plot: a flow of entries in rows.
   std::vector<std::pair<std::size_t, Vec2>> legend_places;  // entry, offset from the legend's top left
   double legend_rows_height = 0;
@@ -336,10 +345,16 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
   f.bottom = std::max(f.bottom, f.top + 10);
 
   // y ticks cover the data; their labels decide the left margin.
-  const int y_target = std::clamp(static_cast<int>((f.bottom - f.top) / 45), 2, 10);
-  f.y_ticks = nice_ticks(y_lo, y_hi, y_target);
-  f.y_lo = f.y_ticks.front();
-  f.y_hi = f.y_ticks.back();
+  const int y_target = std::clamp(static_cast<int>((f.bottom - f.top) / 40), 2, 12);
+  if (spec.y_lo) {
+    f.y_lo = *spec.y_lo;
+    f.y_hi = *spec.y_hi;
+    f.y_ticks = inner_ticks(f.y_lo, f.y_hi, y_target);
+  } else {
+    f.y_ticks = nice_ticks(y_lo, y_hi, y_target);
+    f.y_lo = f.y_ticks.front();
+    f.y_hi = f.y_ticks.back();
+  }
   const std::vector<std::string> y_tick_labels = format_ticks(f.y_ticks);
   f.left = pad + widest(y_tick_labels, kTickFont) + kTickLength + 6;
   f.right = std::max(f.right, f.left + 10);
@@ -353,7 +368,7 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
   f.x_lo = x_lo;
   f.x_hi = x_hi;
   std::vector<std::string> x_tick_labels;
-  for (int target = std::clamp(static_cast<int>((f.right - f.left) / 80), 2, 12); target >= 1; --target) {
+  for (int target = std::clamp(static_cast<int>((f.right - f.left) / 60), 2, 14); target >= 1; --target) {
     f.x_ticks = inner_ticks(x_lo, x_hi, target);
     x_tick_labels = format_ticks(f.x_ticks);
     const double spacing =
@@ -403,7 +418,7 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
   if (!x_label.empty())
     canvas.text({0.5 * (f.left + f.right), f.bottom + kTickLength + kTickFont + 10 + kLabelFont}, x_label, kLabelFont,
                 Anchor::Middle, kInk);
-  if (!y_label.empty()) canvas.text({pad, f.top - 9}, y_label, kLabelFont, Anchor::Start, kInk);
+  if (!y_label.empty()) canvas.text({pad, f.top - 14}, y_label, kLabelFont, Anchor::Start, kInk);
   if (!spec.title.empty()) canvas.text({0.5 * width, pad + kTitleFont}, spec.title, kTitleFont, Anchor::Middle, kInk);
   canvas.end_group();
 

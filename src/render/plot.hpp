@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct PlotSpec {
   std::string x_name, x_unit;
   std::vector<double> x;
   std::vector<PlotSeries> series;
+  // A fixed y range instead of one covering the data (both or neither); lines leaving it are
+  // cut at its edges.
+  std::optional<double> y_lo, y_hi;
   int width = 900, height = 520;  // px: the size of the canvas to make (draw_plot uses the canvas's own)
 };
 
@@ -37,7 +41,8 @@ struct PlotFrame {
 // that unit; otherwise each legend entry says "name [unit]". A series that never changes is
 // shown in a range around its value. Groups: "grid", "series-<i>" (one per series, in order),
 // "axes" (frame, ticks, labels, title), "legend".
-// Throws std::invalid_argument when a series has a different number of values than x.
+// Throws std::invalid_argument when a series has a different number of values than x, or for a
+// fixed y range that is not finite, increasing and given at both ends.
 PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec);
 
 // Ticks at multiples of a step of 1, 2 or 5 times a power of ten, the first at or below `lo`
@@ -48,8 +53,9 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec);
 std::vector<double> nice_ticks(double lo, double hi, int target = 6);
 
 // Labels for evenly spaced ticks, all in one style: fixed with as many decimals as the step
-// needs ("0.0", "0.5", "-40", "1.0000000002"), or, for ticks of a million and more with a
-// step of a thousand or more, and for ticks all below 1e-3, short exponents ("2e6", "1.5e-9").
+// needs ("0.0", "0.5", "-40", "1001000", "1.0000000002"), or short exponents ("2e6", "1.5e6",
+// "4e11", "5e-10") for millions with at most three significant digits, billions and up, and
+// ticks all below 1e-3.
 std::vector<std::string> format_ticks(const std::vector<double>& ticks);
 
 }  // namespace nbar::render

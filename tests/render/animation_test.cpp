@@ -29,9 +29,22 @@ using nbar::render::DrawOptions;
 using nbar::render::ImageCanvas;
 
 fs::path temp_dir() {
-  const fs::path dir = fs::temp_directory_path() / ("nbar-animation-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
+  // One directory per test process, removed when it ends.
+  struct Dir {
+    std::filesystem::path path;
+    Dir() {
+      std::string name = "nbar-animation-test-";
+      name += std::to_string(::getpid());
+      path = std::filesystem::temp_directory_path() / name;
+      std::filesystem::create_directories(path);
+    }
+    ~Dir() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Dir dir;
+  return dir.path;
 }
 
 std::string read_file(const fs::path& path) {

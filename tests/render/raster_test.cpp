@@ -32,9 +32,22 @@ bool same(const Color& a, const Color& b) { return a.r == b.r && a.g == b.g && a
 bool background(const ImageCanvas& c, int x, int y) { return same(c.pixel(x, y), kWhite); }
 
 std::filesystem::path temp_dir() {
-  const auto dir = std::filesystem::temp_directory_path() / ("nbar-raster-test-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  // One directory per test process, removed when it ends.
+  struct Dir {
+    std::filesystem::path path;
+    Dir() {
+      std::string name = "nbar-raster-test-";
+      name += std::to_string(::getpid());
+      path = std::filesystem::temp_directory_path() / name;
+      std::filesystem::create_directories(path);
+    }
+    ~Dir() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Dir dir;
+  return dir.path;
 }
 
 std::vector<V> square(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
