@@ -97,8 +97,9 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
       report.limit_parameter = state.parameter;
       report.reciprocal_condition = state.solver().reciprocal_condition();
       std::ostringstream why;
-      why << "the constraints cannot be followed past this point: a limit (toggle) position, where the Jacobian "
-             "becomes singular (reciprocal condition "
+      why << "the constraints cannot be followed past this point: a singular position, either a limit (toggle) "
+             "that the input cannot pass or a change point where two branches cross (reciprocal condition of the "
+             "Jacobian "
           << report.reciprocal_condition << ")";
       report.reason = why.str();
       state.residual = max_residual(mech, state);

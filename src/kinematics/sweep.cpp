@@ -146,8 +146,10 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options) {
   set_drivers(mech, state, values);
   compute_series(mech, state, track_options.terms);
 
-  // A loop's branch can only change through a singular position; change-point loops pass
-  // those by design (flat parallelograms), so only the others are watched.
+  // A loop's branch sign can only change through a singular position of the loop. A
+  // change-point loop has such positions where it lies flat, and a mechanism that passes them
+  // (a parallelogram held by a redundant crank) flips the sign without changing branch: only
+  // the other loops are watched.
   std::vector<int> branch_signs;
   std::vector<bool> watched;
   {

@@ -264,4 +264,35 @@ TEST(Cli, StressBadUsage) {
   EXPECT_THAT(no_shapes.err, HasSubstr("no link has a shape"));
 }
 
+TEST(Cli, DrawWritesSvgAndPngAndChecksItsArguments) {
+  TempModel dir("");
+  const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml";
+  const CliRun svg = nbar("draw " + model + " -o " + dir.dir() + "/a.svg --labels --trace P --at 90");
+  ASSERT_EQ(svg.code, 0) << svg.err;
+  std::ifstream f(dir.dir() + "/a.svg");
+  std::stringstream text;
+  text << f.rdbuf();
+  EXPECT_THAT(text.str(), HasSubstr("<svg"));
+  EXPECT_THAT(text.str(), HasSubstr("id=\"traces\""));
+  const CliRun png = nbar("draw " + model + " -o " + dir.dir() + "/a.png --step 10");
+  ASSERT_EQ(png.code, 0) << png.err;
+  std::ifstream p(dir.dir() + "/a.png", std::ios::binary);
+  char magic[8] = {};
+  p.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+  EXPECT_EQ(nbar("draw " + model + " -o " + dir.dir() + "/a.pdf").code, 2);
+  EXPECT_EQ(nbar("draw " + model + " -o " + dir.dir() + "/b.svg --trace Nope").code, 2);
+  EXPECT_EQ(nbar("draw " + model + " -o " + dir.dir() + "/b.svg --step 999").code, 2);
+  EXPECT_EQ(nbar("draw " + model + " -o " + dir.dir() + "/b.svg --step 1 --at 5").code, 2);
+}
+
+TEST(Cli, ReportWritesOneHtmlFile) {
+  TempModel dir("");
+  const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-steel-bars.yaml";
+  const CliRun r = nbar("report " + model + " -o " + dir.dir() + "/r.html --steps 37 --frames 12");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::file_size(dir.dir() + "/r.html") > 10000);
+  EXPECT_EQ(nbar("report " + model + " -o " + dir.dir() + "/r.txt").code, 2);
+}
+
 }  // namespace

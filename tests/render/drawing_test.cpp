@@ -9,6 +9,7 @@
 
 #include "io/model_file.hpp"
 #include "render/drawing.hpp"
+#include "render/image_canvas.hpp"
 
 namespace nbar::render {
 namespace {
@@ -150,6 +151,16 @@ TEST(Drawing, EveryExampleDrawsAsWellFormedSvg) {
     EXPECT_TRUE(well_formed(svg));
     EXPECT_EQ(count(svg, "id=\"body-"), static_cast<int>(d.mech.model().bodies.size()));
     EXPECT_EQ(svg.find("nan"), std::string::npos);
+    // And as PNG: something drawn, the border left blank.
+    ImageCanvas image(options.width, options.height);
+    draw_sample(image, d.mech, d.sweep, static_cast<int>(d.sweep.samples.size()) / 2, options);
+    int inked = 0;
+    for (int y = 0; y < image.height(); y += 2)
+      for (int x = 0; x < image.width(); x += 2) {
+        const std::uint8_t* p = image.data() + y * image.stride() + 4 * x;
+        inked += (p[0] < 250 || p[1] < 250 || p[2] < 250) ? 1 : 0;
+      }
+    EXPECT_GT(inked, 200);
   }
 }
 

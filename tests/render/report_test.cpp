@@ -75,20 +75,27 @@ TEST(Report, KineticsAndStressesWhenTheModelHasThem) {
 // error, a page that is not blank, at phone width too.
 TEST(Report, OpensInChromiumAtDesktopAndPhoneWidth) {
   if (!fs::exists("/usr/bin/chromium")) FAIL() << "Chromium is not installed: run scripts/install-deps.sh";
-  const fs::path dir = fs::temp_directory_path() / ("nbar_report_" + std::to_string(::getpid()));
+  std::string name = "nbar_report_";  // built by append: g++ 12 warns falsely on "literal" + string
+  name += std::to_string(::getpid());
+  const fs::path dir = fs::temp_directory_path() / name;
   fs::create_directories(dir);
   const fs::path page = dir / "report.html";
   std::ofstream(page) << report_of("crank-rocker-gravity-spring.yaml", 37);
   for (int width : {1000, 390}) {
     SCOPED_TRACE("width " + std::to_string(width));
-    const fs::path shot = dir / ("shot" + std::to_string(width) + ".png");
-    const std::string flags = "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
-                              "--disable-background-networking --disable-component-update --disable-sync "
-                              "--hide-scrollbars --virtual-time-budget=2000 --user-data-dir=" +
-                              (dir / ("profile" + std::to_string(width))).string();
-    const std::string command = "timeout 120 /usr/bin/chromium " + flags + " --window-size=" + std::to_string(width) +
-                                ",1600 --screenshot=" + shot.string() + " file://" + page.string() +
-                                " >/dev/null 2>&1";
+    const std::string w = std::to_string(width);
+    const fs::path shot = dir / ("shot" + w + ".png");
+    std::string command = "timeout 120 /usr/bin/chromium --headless --no-sandbox --disable-gpu --disable-quic ";
+    command += "--no-first-run --disable-background-networking --disable-component-update --disable-sync ";
+    command += "--hide-scrollbars --virtual-time-budget=2000 --user-data-dir=";
+    command += (dir / ("profile" + w)).string();
+    command += " --window-size=";
+    command += w;
+    command += ",1600 --screenshot=";
+    command += shot.string();
+    command += " file://";
+    command += page.string();
+    command += " >/dev/null 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0);
     const ImageCanvas image = ImageCanvas::read_png(shot.string());
     EXPECT_EQ(image.width(), width);
