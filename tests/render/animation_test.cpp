@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "render/render_support.hpp"
 #include "io/model_file.hpp"
 #include "kinematics/mechanism.hpp"
 #include "kinematics/sweep.hpp"
@@ -29,21 +30,7 @@ using nbar::render::DrawOptions;
 using nbar::render::ImageCanvas;
 
 fs::path temp_dir() {
-  // One directory per test process, removed when it ends.
-  struct Dir {
-    std::filesystem::path path;
-    Dir() {
-      std::string name = "nbar-animation-test-";
-      name += std::to_string(::getpid());
-      path = std::filesystem::temp_directory_path() / name;
-      std::filesystem::create_directories(path);
-    }
-    ~Dir() {
-      std::error_code ignored;
-      std::filesystem::remove_all(path, ignored);
-    }
-  };
-  static const Dir dir;
+  static const nbar::render::test_support::TempDir dir("nbar-animation-test-");
   return dir.path;
 }
 

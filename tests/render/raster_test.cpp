@@ -10,6 +10,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "render/render_support.hpp"
 #include "io/model_file.hpp"
 #include "kinematics/mechanism.hpp"
 #include "kinematics/sweep.hpp"
@@ -32,21 +33,7 @@ bool same(const Color& a, const Color& b) { return a.r == b.r && a.g == b.g && a
 bool background(const ImageCanvas& c, int x, int y) { return same(c.pixel(x, y), kWhite); }
 
 std::filesystem::path temp_dir() {
-  // One directory per test process, removed when it ends.
-  struct Dir {
-    std::filesystem::path path;
-    Dir() {
-      std::string name = "nbar-raster-test-";
-      name += std::to_string(::getpid());
-      path = std::filesystem::temp_directory_path() / name;
-      std::filesystem::create_directories(path);
-    }
-    ~Dir() {
-      std::error_code ignored;
-      std::filesystem::remove_all(path, ignored);
-    }
-  };
-  static const Dir dir;
+  static const nbar::render::test_support::TempDir dir("nbar-raster-test-");
   return dir.path;
 }
 
