@@ -1,0 +1,128 @@
+// The five-point four-bar synthesis problem (Morgan–Wampler): nbar's solver, and Debian's
+// PHCpack (`phc -b`, blackbox: its own start system and path tracker) on the same instances.
+//   ./five_point_bench                                    # everything
+//   ./five_point_bench --benchmark_filter=Nbar            # nbar only
+// Instances: pivots (0,0), (1,0); five points uniform in [-1,2]^2 from fixed seeds.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "synthesis/five_point.hpp"
+
+namespace {
+
+using namespace nbar::synthesis;
+
+FivePointTask instance(unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 2.0);
+  FivePointTask t;
+  for (auto& p : t.points) p = {u(rng), u(rng)};
+  return t;
+}
+
+// One instance per iteration, on every core; counters: solutions found and fallbacks used.
+void BM_NbarFivePoint(benchmark::State& state) {
+  unsigned seed = 1;
+  long complete = 0, instances = 0, fallbacks = 0;
+  SolverOptions options;
+  options.threads = static_cast<unsigned>(state.range(0));
+  for (auto _ : state) {
+    const FivePointResult r = solve_five_point(instance(seed++), options);
+    benchmark::DoNotOptimize(r.solutions.data());
+    complete += r.solutions.size() == 36;
+    fallbacks += r.used_fallback;
+    ++instances;
+  }
+  state.counters["instances"] = static_cast<double>(instances);
+  state.counters["all_36_found"] = static_cast<double>(complete);
+  state.counters["fallbacks"] = static_cast<double>(fallbacks);
+}
+BENCHMARK(BM_NbarFivePoint)->Arg(1)->Arg(0)->ArgName("threads")->Unit(benchmark::kMillisecond);
+
+// Exactly 1000 instances, so that "36 found in 1000 of 1000" is a measured statement.
+void BM_NbarFivePointThousand(benchmark::State& state) {
+  for (auto _ : state) {
+    long complete = 0, fallbacks = 0, real = 0;
+    for (unsigned seed = 1; seed <= 1000; ++seed) {
+      const FivePointResult r = solve_five_point(instance(seed));
+      complete += r.solutions.size() == 36;
+      fallbacks += r.used_fallback;
+      for (const auto& s : r.solutions) real += s.real;
+    }
+    state.counters["all_36_found"] = static_cast<double>(complete);
+    state.counters["fallbacks"] = static_cast<double>(fallbacks);
+    state.counters["real_per_instance"] = static_cast<double>(real) / 1000.0;
+  }
+  state.counters["ms_per_instance"] =
+      benchmark::Counter(1000.0 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate |
+                                                                               benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_NbarFivePointThousand)->Iterations(1)->Unit(benchmark::kSecond);
+
+// A real-coefficient polynomial in PHCpack's input syntax.
+std::string phc_polynomial(const Polynomial& p, const std::vector<std::string>& names) {
+  std::ostringstream out;
+  out.precision(17);
+  for (const auto& [e, c] : p.terms()) {
+    out << (c.real() < 0 ? " - " : " + ") << std::abs(c.real());
+    for (size_t v = 0; v < e.size(); ++v)
+      for (int k = 0; k < e[v]; ++k) out << "*" << names[v];
+  }
+  out << ";";
+  return out.str();
+}
+
+bool phc_available() { return std::system("command -v phc > /dev/null 2>&1") == 0; }
+
+// `phc -b` on the same instances; counter: solutions PHCpack reports as finite and regular.
+void BM_PhcpackFivePoint(benchmark::State& state) {
+  if (!phc_available()) {
+    state.SkipWithError("phc not found (apt-get install phcpack)");
+    return;
+  }
+  const std::vector<std::string> names{"c1", "s1", "c2", "s2", "c3", "s3", "c4", "s4", "x1", "x2", "y1", "y2"};
+  const auto dir = std::filesystem::temp_directory_path() / ("nbar-phc-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  unsigned seed = 1;
+  long regular = 0, instances = 0;
+  for (auto _ : state) {
+    const PolynomialSystem f = five_point_system(instance(seed++).points);
+    const auto in = dir / "in.phc", out = dir / "out.phc";
+    {
+      std::ofstream file(in);
+      file << f.equations() << "\n";
+      for (const auto& p : f.polynomials()) file << phc_polynomial(p, names) << "\n";
+    }
+    std::filesystem::remove(out);
+    const std::string command = "phc -b " + in.string() + " " + out.string() + " > /dev/null 2>&1";
+    if (std::system(command.c_str()) != 0) {
+      state.SkipWithError("phc -b failed");
+      break;
+    }
+    // PHCpack's summary line: "... number of regular solutions   : 36."
+    std::ifstream result(out);
+    std::string line;
+    long found = -1;
+    while (std::getline(result, line))
+      if (line.find("number of regular solutions") != std::string::npos)
+        found = std::strtol(line.substr(line.find(':') + 1).c_str(), nullptr, 10);
+    regular += found == 36;
+    ++instances;
+  }
+  std::filesystem::remove_all(dir);
+  state.counters["instances"] = static_cast<double>(instances);
+  state.counters["all_36_found"] = static_cast<double>(regular);
+}
+BENCHMARK(BM_PhcpackFivePoint)->Iterations(5)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
