@@ -84,8 +84,8 @@ Endpoint track_one(const Homotopy& h, const CVector& start, int path, const Trac
   return e;
 }
 
-// Runs every path (on all threads), then re-tracks pairs of regular endpoints that coincide:
-// two regular paths cannot end at one regular solution, so one of them jumped.
+// Runs every path (on all threads), then re-tracks pairs of regular endpoints (finite or at
+// infinity) that coincide: two paths cannot end at one regular solution, so one jumped.
 SolveResult run_paths(const Homotopy& h, const std::vector<CVector>& starts,
                       const Classifier& classify, const SolverOptions& options) {
   SolveResult result;
@@ -112,9 +112,9 @@ SolveResult run_paths(const Homotopy& h, const std::vector<CVector>& starts,
     std::vector<size_t> suspects;
     const auto& ends = result.endpoints;
     for (size_t i = 0; i < ends.size(); ++i) {
-      if (ends[i].kind != EndpointKind::Finite || ends[i].singular) continue;
+      if (ends[i].kind == EndpointKind::Failed || ends[i].singular) continue;
       for (size_t j = i + 1; j < ends.size(); ++j) {
-        if (ends[j].kind != EndpointKind::Finite || ends[j].singular) continue;
+        if (ends[j].kind != ends[i].kind || ends[j].singular) continue;
         if (same_point(ends[i].x, ends[j].x, 1e-7)) {
           suspects.push_back(i);
           suspects.push_back(j);
@@ -356,6 +356,7 @@ SolveResult solve_grouped(const PolynomialSystem& f, const VariableGroups& group
       measure = std::min(measure, std::abs(hg) / part.norm());
       for (int v : hom.groups[g]) x[v] = X[v] / hg;
     }
+    e.singular = e.winding > 1 || !(e.condition < options.singular_condition);
     if (measure < options.infinity_threshold) {
       e.kind = EndpointKind::AtInfinity;
       e.x = X;
@@ -366,7 +367,6 @@ SolveResult solve_grouped(const PolynomialSystem& f, const VariableGroups& group
     CVector value;
     f.evaluate(x, value);
     e.residual = value.cwiseAbs().maxCoeff();
-    e.singular = e.winding > 1 || !(e.condition < options.singular_condition);
     e.real = relative_imaginary(x) < 1e-8;
   };
   return run_paths(homotopy, starts, classify, options);
@@ -403,6 +403,7 @@ class ParameterHomotopy final : public Homotopy {
 Classifier parameter_classifier(const ParameterizedSystem& f, const CVector& to,
                                 const SolverOptions& options) {
   return [&f, to, options](const CVector& x, Endpoint& e) {
+    e.singular = e.winding > 1 || !(e.condition < options.singular_condition);
     if (f.infinity_measure(x) < options.infinity_threshold) {
       e.kind = EndpointKind::AtInfinity;
       e.x = x;
@@ -413,7 +414,6 @@ Classifier parameter_classifier(const ParameterizedSystem& f, const CVector& to,
     CVector value;
     f.evaluate(x, to, value, nullptr, nullptr);
     e.residual = value.cwiseAbs().maxCoeff();
-    e.singular = e.winding > 1 || !(e.condition < options.singular_condition);
     e.real = f.is_real(f.to_affine(x));
   };
 }

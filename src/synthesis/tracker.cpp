@@ -25,12 +25,13 @@ bool velocity(const Homotopy& homotopy, const CVector& x, Complex t, Complex dt,
 // Newton at fixed t. Fails when it does not converge within the iterations or when the steps
 // do not shrink fast enough: a slow contraction means the prediction fell near another path.
 bool correct(const Homotopy& homotopy, CVector& x, Complex t, const TrackSettings& s,
-             Workspace& w) {
+             Workspace& w, double& first_step) {
   double previous = std::numeric_limits<double>::infinity();
   for (int k = 0; k < s.corrector_iterations; ++k) {
     if (!homotopy.linear_solve(x, t, false, w.dx) || !w.dx.allFinite()) return false;
     const double step = w.dx.norm();
     x -= w.dx;
+    if (k == 0) first_step = step / (1.0 + x.norm());
     if (k > 0 && step > s.contraction * previous) return false;
     if (step <= s.corrector_tolerance * (1.0 + x.norm())) return true;
     previous = step;
@@ -88,7 +89,8 @@ TrackResult track_segment(const Homotopy& homotopy, const CVector& start, const 
   Workspace w;
   CVector k1, k2, k3, k4, predicted;
   double tau = 0.0, step = s.initial_step;
-  int successes = 0, attempts = 0;
+  int attempts = 0;
+  double predictor_error = 0.0;
   while (tau < 1.0) {
     if (++attempts > s.max_steps) {
       result.failure = "too many steps";
@@ -105,19 +107,18 @@ TrackResult track_segment(const Homotopy& homotopy, const CVector& start, const 
               velocity(homotopy, result.x + h * k3, t1, d1, w, k4);
     if (ok) {
       predicted = result.x + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-      ok = correct(homotopy, predicted, t1, s, w);
+      ok = correct(homotopy, predicted, t1, s, w, predictor_error);
     }
     if (ok) {
       result.x = predicted;
       tau = last_step ? 1.0 : tau + h;
       ++result.steps;
-      if (++successes >= 2) {
-        step = std::min(2.0 * step, s.max_step);
-        successes = 0;
-      }
+      // The first Newton correction measures the predictor's error, O(h^5) for RK4: aim the
+      // next step at the error that lets Newton converge in about two iterations.
+      const double ratio = s.predictor_target / std::max(predictor_error, 1e-300);
+      step = std::min(h * std::clamp(0.9 * std::pow(ratio, 0.2), 0.5, 2.0), s.max_step);
     } else {
       step *= 0.5;
-      successes = 0;
       if (step < s.min_step) {
         result.failure = "step size fell below its minimum";
         return result;
@@ -217,13 +218,15 @@ TrackResult track_path(const Homotopy& homotopy, const CVector& start, const Tra
   going_on.initial_step = std::clamp(first.last_step * (1.0 - r) / r, s.initial_step, 1.0);
   TrackResult end = track_segment(homotopy, first.x, segment(1.0 - r, 1.0), going_on);
   if (end.status == TrackStatus::Success) {
-    refine(homotopy, end.x, 1.0, 3, s.final_tolerance);
+    // A regular end: Newton converges quadratically there. At a multiple root it only
+    // creeps (linear convergence), which sends the path to the endgame.
+    const double last_step = refine(homotopy, end.x, 1.0, 4, s.final_tolerance);
     CVector h;
     CMatrix hx;
     homotopy.evaluate(end.x, 1.0, h, &hx, nullptr);
     end.condition = condition_number(hx);
     end.steps += first.steps;
-    if (end.condition < s.singular_condition) return end;
+    if (end.condition < s.singular_condition && last_step < 1e-9) return end;
   }
   TrackResult result = cauchy_endgame(homotopy, first.x, r, s, first.steps + end.steps);
   if (result.status == TrackStatus::Success) {

@@ -25,8 +25,9 @@ struct TrackSettings {
   double initial_step = 0.05;   // in the path parameter, which runs over [0, 1]
   double max_step = 0.25;
   double min_step = 1e-13;
-  double corrector_tolerance = 1e-7;  // relative Newton step accepted while tracking
+  double corrector_tolerance = 1e-6;  // relative Newton step accepted while tracking
   int corrector_iterations = 3;
+  double predictor_target = 3e-3;     // relative predictor error the step size aims at
   double contraction = 0.5;     // required ratio of successive Newton steps (guards jumps)
   double final_tolerance = 1e-12;     // relative, when refining at t = 1
   int max_steps = 20000;
