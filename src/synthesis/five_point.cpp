@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -442,18 +443,27 @@ FivePointResult solve_five_point(const FivePointTask& task, const SolverOptions&
 
   // Fallback: the 96-path linear-product homotopy on the primer's form.
   const PolynomialSystem f = five_point_system(primer_points(task));
-  const SolveResult fallback = solve_linear_product(f, five_point_groups(), options);
+  SolverOptions fallback_options = options;
+  fallback_options.retrack_failures = false;  // 60 of the 96 paths go to infinity
+  const SolveResult fallback = solve_linear_product(f, five_point_groups(), fallback_options);
   result.used_fallback = true;
   result.paths += static_cast<int>(fallback.endpoints.size());
-  result.failed_paths += fallback.count(EndpointKind::Failed);
   result.retracked_paths += fallback.retracked;
-  result.method = "linear-product homotopy (" + std::to_string(fallback.endpoints.size()) +
-                  " paths) after the parameter homotopy found " + std::to_string(affine.size()) + " of " +
+  result.method = "linear-product homotopy (" + std::to_string(fallback.endpoints.size()) + " paths: " +
+                  std::to_string(fallback.count(EndpointKind::Finite)) + " finite, " +
+                  std::to_string(fallback.count(EndpointKind::AtInfinity)) + " at infinity, " +
+                  std::to_string(fallback.count(EndpointKind::Failed)) +
+                  " failed) after the parameter homotopy found " + std::to_string(affine.size()) + " of " +
                   std::to_string(start.solutions.size());
-  std::vector<CVector> fallback_affine;
-  for (const auto* e : fallback.finite_regular()) fallback_affine.push_back(isotropic_from_primer(task, e->x));
-  // Keep whichever run found more distinct solutions.
-  result.solutions = distinct_solutions(task, fallback_affine.size() >= affine.size() ? fallback_affine : affine);
+  // Every distinct solution either run found.
+  for (const auto* e : fallback.finite_regular()) {
+    const CVector a = isotropic_from_primer(task, e->x);
+    const bool known = std::any_of(affine.begin(), affine.end(), [&](const CVector& b) {
+      return (a - b).norm() <= 1e-7 * (1.0 + a.norm());
+    });
+    if (!known) affine.push_back(a);
+  }
+  result.solutions = distinct_solutions(task, affine);
   return result;
 }
 

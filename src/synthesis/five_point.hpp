@@ -41,7 +41,7 @@ struct FivePointResult {
   int paths = 0;                // paths tracked in all
   bool used_fallback = false;   // the linear-product homotopy was needed
   std::string method;           // "parameter homotopy (36 paths)" or the fallback's name
-  int failed_paths = 0;
+  int failed_paths = 0;          // of the parameter homotopy, after re-tracking
   int retracked_paths = 0;
 };
 

@@ -84,8 +84,9 @@ Endpoint track_one(const Homotopy& h, const CVector& start, int path, const Trac
   return e;
 }
 
-// Runs every path (on all threads), then re-tracks pairs of regular endpoints (finite or at
-// infinity) that coincide: two paths cannot end at one regular solution, so one jumped.
+// Runs every path (on all threads), then re-tracks, with tighter settings, pairs of regular
+// endpoints (finite or at infinity) that coincide (two paths cannot end at one regular
+// solution, so one jumped) and, when asked, paths that failed.
 SolveResult run_paths(const Homotopy& h, const std::vector<CVector>& starts,
                       const Classifier& classify, const SolverOptions& options) {
   SolveResult result;
@@ -111,6 +112,9 @@ SolveResult run_paths(const Homotopy& h, const std::vector<CVector>& starts,
   for (int round = 1; round <= 2; ++round) {
     std::vector<size_t> suspects;
     const auto& ends = result.endpoints;
+    if (options.retrack_failures)
+      for (size_t i = 0; i < ends.size(); ++i)
+        if (ends[i].kind == EndpointKind::Failed) suspects.push_back(i);
     for (size_t i = 0; i < ends.size(); ++i) {
       if (ends[i].kind == EndpointKind::Failed || ends[i].singular) continue;
       for (size_t j = i + 1; j < ends.size(); ++j) {

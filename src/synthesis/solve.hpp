@@ -24,9 +24,12 @@ struct SolverOptions {
   unsigned threads = 0;        // 0: every hardware thread
   std::uint64_t seed = 1;      // gamma and patches; the answer depends on it, not on threads
   double tolerance = 1e-11;    // relative accuracy asked of the corrector near the end
-  double singular_condition = 1e10;  // endpoints with a larger condition number are singular
+  double singular_condition = 1e13;  // endpoints with a larger condition number are singular
   double infinity_threshold = 1e-8;  // |homogenizing coordinate| below this: at infinity
   int max_steps = 20000;       // per path
+  // Track failed paths again with tighter settings (worth it when every path should
+  // arrive, as in a parameter homotopy; wasted on paths to a singular set at infinity).
+  bool retrack_failures = true;
   // Called after each path with (finished paths, all paths); from worker threads.
   std::function<void(int, int)> progress;
 };

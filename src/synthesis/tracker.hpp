@@ -32,7 +32,7 @@ struct TrackSettings {
   double final_tolerance = 1e-12;     // relative, when refining at t = 1
   int max_steps = 20000;
   double endgame_radius = 0.05;  // |1 - t| where a singular end switches to the Cauchy endgame
-  double singular_condition = 1e10;
+  double singular_condition = 1e13;
   int max_winding = 12;
 };
 
