@@ -107,12 +107,12 @@ void BM_PhcpackFivePoint(benchmark::State& state) {
       state.SkipWithError("phc -b failed");
       break;
     }
-    // PHCpack's summary line: "... number of regular solutions   : 36."
+    // PHCpack's summary line (the last one counts): "Number of regular solutions     : 36."
     std::ifstream result(out);
     std::string line;
     long found = -1;
     while (std::getline(result, line))
-      if (line.find("number of regular solutions") != std::string::npos)
+      if (line.find("Number of regular solutions") != std::string::npos)
         found = std::strtol(line.substr(line.find(':') + 1).c_str(), nullptr, 10);
     regular += found == 36;
     ++instances;

@@ -385,7 +385,8 @@ class ParameterHomotopy final : public Homotopy {
       : f_(f), from_(std::move(from)), to_(std::move(to)), direction_(to_ - from_) {}
   int size() const override { return f_.variables(); }
   bool linear_solve(const CVector& x, Complex t, bool velocity, CVector& y) const override {
-    const CVector p = (1.0 - t) * from_ + t * to_;
+    thread_local CVector p;  // the tracker's innermost call: no allocation per step
+    p.noalias() = (1.0 - t) * from_ + t * to_;
     return f_.linear_solve(x, p, velocity ? &direction_ : nullptr, y);
   }
   void evaluate(const CVector& x, Complex t, CVector& h, CMatrix* hx, CVector* ht) const override {

@@ -87,7 +87,7 @@ TrackResult track_segment(const Homotopy& homotopy, const CVector& start, const 
   TrackResult result;
   result.x = start;
   Workspace w;
-  CVector k1, k2, k3, k4, predicted;
+  CVector k1, k2, k3, k4, stage, predicted;
   double tau = 0.0, step = s.initial_step;
   int attempts = 0;
   double predictor_error = 0.0;
@@ -101,12 +101,21 @@ TrackResult track_segment(const Homotopy& homotopy, const CVector& start, const 
     const auto [t0, d0] = path(tau);
     const auto [tm, dm] = path(tau + 0.5 * h);
     const auto [t1, d1] = path(last_step ? 1.0 : tau + h);
-    bool ok = velocity(homotopy, result.x, t0, d0, w, k1) &&
-              velocity(homotopy, result.x + (0.5 * h) * k1, tm, dm, w, k2) &&
-              velocity(homotopy, result.x + (0.5 * h) * k2, tm, dm, w, k3) &&
-              velocity(homotopy, result.x + h * k3, t1, d1, w, k4);
+    bool ok = velocity(homotopy, result.x, t0, d0, w, k1);
     if (ok) {
-      predicted = result.x + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      stage.noalias() = result.x + (0.5 * h) * k1;
+      ok = velocity(homotopy, stage, tm, dm, w, k2);
+    }
+    if (ok) {
+      stage.noalias() = result.x + (0.5 * h) * k2;
+      ok = velocity(homotopy, stage, tm, dm, w, k3);
+    }
+    if (ok) {
+      stage.noalias() = result.x + h * k3;
+      ok = velocity(homotopy, stage, t1, d1, w, k4);
+    }
+    if (ok) {
+      predicted.noalias() = result.x + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
       ok = correct(homotopy, predicted, t1, s, w, predictor_error);
     }
     if (ok) {
