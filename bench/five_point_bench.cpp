@@ -5,15 +5,13 @@
 // Instances: pivots (0,0), (1,0); five points uniform in [-1,2]^2 from fixed seeds.
 #include <benchmark/benchmark.h>
 
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
 
+#include <unistd.h>
+
+#include "phc_support.hpp"
 #include "synthesis/five_point.hpp"
 
 namespace {
@@ -67,59 +65,28 @@ void BM_NbarFivePointThousand(benchmark::State& state) {
 }
 BENCHMARK(BM_NbarFivePointThousand)->Iterations(1)->Unit(benchmark::kSecond);
 
-// A real-coefficient polynomial in PHCpack's input syntax.
-std::string phc_polynomial(const Polynomial& p, const std::vector<std::string>& names) {
-  std::ostringstream out;
-  out.precision(17);
-  for (const auto& [e, c] : p.terms()) {
-    out << (c.real() < 0 ? " - " : " + ") << std::abs(c.real());
-    for (size_t v = 0; v < e.size(); ++v)
-      for (int k = 0; k < e[v]; ++k) out << "*" << names[v];
-  }
-  out << ";";
-  return out.str();
-}
-
-bool phc_available() { return std::system("command -v phc > /dev/null 2>&1") == 0; }
-
-// `phc -b` on the same instances; counter: solutions PHCpack reports as finite and regular.
+// `phc -b` on the same instances; counter: instances where PHCpack reports 36 regular solutions.
 void BM_PhcpackFivePoint(benchmark::State& state) {
-  if (!phc_available()) {
+  if (!nbar::phc::available()) {
     state.SkipWithError("phc not found (apt-get install phcpack)");
     return;
   }
   const std::vector<std::string> names{"c1", "s1", "c2", "s2", "c3", "s3", "c4", "s4", "x1", "x2", "y1", "y2"};
-  const auto dir = std::filesystem::temp_directory_path() / ("nbar-phc-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const auto dir = std::filesystem::temp_directory_path() / std::string("nbar-phc-").append(std::to_string(::getpid()));
   unsigned seed = 1;
-  long regular = 0, instances = 0;
+  long complete = 0, instances = 0;
   for (auto _ : state) {
-    const PolynomialSystem f = five_point_system(instance(seed++).points);
-    const auto in = dir / "in.phc", out = dir / "out.phc";
-    {
-      std::ofstream file(in);
-      file << f.equations() << "\n";
-      for (const auto& p : f.polynomials()) file << phc_polynomial(p, names) << "\n";
-    }
-    std::filesystem::remove(out);
-    const std::string command = "phc -b " + in.string() + " " + out.string() + " > /dev/null 2>&1";
-    if (std::system(command.c_str()) != 0) {
+    const auto result = nbar::phc::solve(five_point_system(instance(seed++).points), names, dir);
+    if (!result) {
       state.SkipWithError("phc -b failed");
       break;
     }
-    // PHCpack's summary line (the last one counts): "Number of regular solutions     : 36."
-    std::ifstream result(out);
-    std::string line;
-    long found = -1;
-    while (std::getline(result, line))
-      if (line.find("Number of regular solutions") != std::string::npos)
-        found = std::strtol(line.substr(line.find(':') + 1).c_str(), nullptr, 10);
-    regular += found == 36;
+    complete += result->reported_regular == 36;
     ++instances;
   }
   std::filesystem::remove_all(dir);
   state.counters["instances"] = static_cast<double>(instances);
-  state.counters["all_36_found"] = static_cast<double>(regular);
+  state.counters["all_36_found"] = static_cast<double>(complete);
 }
 BENCHMARK(BM_PhcpackFivePoint)->Iterations(5)->Unit(benchmark::kMillisecond);
 

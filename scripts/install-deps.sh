@@ -7,6 +7,7 @@ packages=(
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
   libcairo2-dev libcgif-dev
   libtinyxml2-dev chromium  # tests: SVG parsed as XML; the HTML animation run in headless Chromium
+  phcpack  # tests and bench/: the five-point synthesis cross-checked and timed against PHCpack
 )
 missing=()
 for p in "${packages[@]}"; do
