@@ -1,0 +1,487 @@
+#include "io/synthesis_task.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+
+namespace nbar::io {
+
+std::string to_string(SynthesisKind kind) {
+  switch (kind) {
+    case SynthesisKind::FivePoint:
+      return "five-point";
+    case SynthesisKind::Burmester:
+      return "burmester";
+    case SynthesisKind::Function:
+      return "function";
+  }
+  return {};
+}
+
+void SynthesisTask::fail(const std::string& message) const { throw ModelFileError(file, where, message); }
+
+namespace {
+
+using Eigen::Vector2d;
+
+// Keys every task takes, then each task's own.
+const std::vector<std::string_view> kCommonKeys{"task", "name", "description", "units"};
+const std::vector<std::string_view> kFivePointKeys{"pivots", "points"};
+const std::vector<std::string_view> kBurmesterKeys{"poses", "fixed_pivots", "moving_pivots", "curves", "samples"};
+const std::vector<std::string_view> kFunctionKeys{"function", "x",       "input_range", "output_range",
+                                                  "points",   "spacing", "frame"};
+
+std::string list_text(const std::vector<std::string_view>& items) {
+  std::string out;
+  for (std::string_view s : items) {
+    if (!out.empty()) out += ", ";
+    out += s;
+  }
+  return out;
+}
+
+std::string describe(const YAML::Node& node) {
+  if (node.IsMap()) return "a mapping";
+  if (node.IsSequence()) return "a list";
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  return "nothing";
+}
+
+struct Entry {
+  std::string key;
+  YAML::Node key_node, value;
+};
+
+// The function of x as a law in t: x becomes t, and log10(u) becomes (log(u)/2.30...), which
+// the law grammar reads. `origin` maps each character of the result back to the text, so
+// that syntax errors point into what the user wrote.
+std::string law_text(const std::string& text, std::vector<int>& origin, bool& uses_t) {
+  constexpr std::string_view kLn10 = "/2.302585092994046)";
+  std::string out;
+  std::vector<std::pair<std::size_t, int>> closings;  // where to append kLn10 (original index)
+  const auto emit = [&](std::string_view s, int from) {
+    out += s;
+    origin.insert(origin.end(), s.size(), from);
+  };
+  uses_t = false;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (std::isalpha(c) || c == '_') {
+      std::size_t j = i;
+      while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) ++j;
+      const std::string word = text.substr(i, j - i);
+      std::size_t open = j;
+      while (open < text.size() && text[open] == ' ') ++open;
+      if (word == "x") {
+        emit("t", static_cast<int>(i));
+      } else if (word == "log10" && open < text.size() && text[open] == '(') {
+        int depth = 0;
+        for (std::size_t k = open; k < text.size(); ++k) {
+          depth += text[k] == '(' ? 1 : text[k] == ')' ? -1 : 0;
+          if (depth == 0) {
+            closings.push_back({k, static_cast<int>(k)});
+            break;
+          }
+        }
+        emit("(log", static_cast<int>(i));
+      } else {
+        uses_t = uses_t || word == "t";
+        emit(word, static_cast<int>(i));
+      }
+      i = j;
+      continue;
+    }
+    emit(std::string_view(&text[i], 1), static_cast<int>(i));
+    for (const auto& [at, from] : closings)
+      if (at == i) emit(kLn10, from);
+    ++i;
+  }
+  return out;
+}
+
+class TaskParser {
+ public:
+  TaskParser(std::string text, std::string file) : text_(std::move(text)) { task_.file = std::move(file); }
+
+  SynthesisTask parse() {
+    const YAML::Node root = load();
+    const std::vector<Entry> top = entries(root);
+    const Entry* kind = find(top, "task");
+    if (!kind) fail(root, "a task file needs `task: five-point`, `task: burmester` or `task: function`");
+    const std::string k = kind->value.IsScalar() ? kind->value.Scalar() : "";
+    const std::vector<std::string_view>* own = nullptr;
+    if (k == "five-point") {
+      task_.kind = SynthesisKind::FivePoint;
+      own = &kFivePointKeys;
+    } else if (k == "burmester") {
+      task_.kind = SynthesisKind::Burmester;
+      own = &kBurmesterKeys;
+    } else if (k == "function") {
+      task_.kind = SynthesisKind::Function;
+      own = &kFunctionKeys;
+    } else {
+      fail(mark(*kind),
+           std::string("unknown task ") + describe(kind->value) + " (tasks are: five-point, burmester, function)");
+    }
+    for (const Entry& e : top) {
+      if (std::find(kCommonKeys.begin(), kCommonKeys.end(), e.key) != kCommonKeys.end()) continue;
+      if (std::find(own->begin(), own->end(), e.key) != own->end()) continue;
+      fail(e.key_node, "unknown key '" + e.key + "' in a " + k + " task (allowed: " + list_text(kCommonKeys) + ", " +
+                           list_text(*own) + ")");
+    }
+    task_.where = mark(*kind);
+    if (const Entry* e = find(top, "name")) task_.name = scalar(*e, "the name");
+    if (const Entry* e = find(top, "description")) scalar(*e, "the description");
+    if (const Entry* e = find(top, "units")) parse_units(*e);
+    switch (task_.kind) {
+      case SynthesisKind::FivePoint:
+        parse_five_point(top, root);
+        break;
+      case SynthesisKind::Burmester:
+        parse_burmester(top, root);
+        break;
+      case SynthesisKind::Function:
+        parse_function(top, root);
+        break;
+    }
+    return std::move(task_);
+  }
+
+ private:
+  std::string text_;
+  SynthesisTask task_;
+
+  // ---- locations, errors, generic values (as in model files) ----
+
+  static SourceMark mark(const YAML::Node& node) {
+    const YAML::Mark m = node.Mark();
+    if (m.line < 0) return {};
+    return {m.line + 1, m.column + 1};
+  }
+  // An empty value is marked at the next token, possibly lines below: use its key.
+  static SourceMark mark(const Entry& e) { return e.value.IsNull() ? mark(e.key_node) : mark(e.value); }
+  [[noreturn]] void fail(SourceMark at, const std::string& message) const {
+    throw ModelFileError(task_.file, at, message);
+  }
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const { fail(mark(at), message); }
+
+  YAML::Node load() const {
+    std::vector<YAML::Node> documents;
+    try {
+      documents = YAML::LoadAll(text_);
+    } catch (const YAML::Exception& e) {
+      fail(e.mark.line < 0 ? SourceMark{} : SourceMark{e.mark.line + 1, e.mark.column + 1}, "invalid YAML: " + e.msg);
+    }
+    if (documents.empty() || (documents.size() == 1 && documents[0].IsNull()))
+      fail(SourceMark{1, 1},
+           "the file holds no task (it is empty or only comments): start with `task: five-point`, "
+           "`task: burmester` or `task: function`");
+    if (documents.size() > 1) fail(documents[1], "a task file holds a single YAML document");
+    if (!documents[0].IsMap())
+      fail(documents[0], std::string("a task file is a mapping of keys (task:, ...), not ") + describe(documents[0]));
+    return documents[0];
+  }
+
+  // The pairs of a mapping in file order; keys must be names and appear once.
+  std::vector<Entry> entries(const YAML::Node& map) const {
+    std::vector<Entry> out;
+    for (auto it = map.begin(); it != map.end(); ++it) {
+      if (!it->first.IsScalar() || it->first.Scalar().empty())
+        fail(it->first, std::string("a key must be a name, not ") + describe(it->first));
+      const std::string key = it->first.Scalar();
+      for (const Entry& previous : out)
+        if (previous.key == key)
+          fail(it->first, "duplicate key '" + key + "' (first given on line " +
+                              std::to_string(mark(previous.key_node).line) + ")");
+      out.push_back(Entry{key, it->first, it->second});
+    }
+    return out;
+  }
+  static const Entry* find(const std::vector<Entry>& entries, std::string_view key) {
+    for (const Entry& e : entries)
+      if (e.key == key) return &e;
+    return nullptr;
+  }
+  // A mapping with exactly these keys allowed; `example` shows one.
+  std::vector<Entry> mapping(const Entry& e, const std::vector<std::string_view>& allowed,
+                             std::string_view example) const {
+    if (!e.value.IsMap())
+      fail(mark(e), "`" + e.key + "` must be a mapping like " + std::string(example) + ", not " + describe(e.value));
+    std::vector<Entry> out = entries(e.value);
+    for (const Entry& f : out)
+      if (std::find(allowed.begin(), allowed.end(), f.key) == allowed.end())
+        fail(f.key_node, "unknown key '" + f.key + "' in `" + e.key + "` (allowed: " + list_text(allowed) + ")");
+    return out;
+  }
+  const Entry& required(const std::vector<Entry>& entries, const YAML::Node& owner, std::string_view key,
+                        const std::string& what) const {
+    const Entry* e = find(entries, key);
+    if (!e) fail(owner, what + " needs `" + std::string(key) + "`");
+    return *e;
+  }
+
+  std::string scalar(const Entry& e, const std::string& what) const {
+    if (e.value.IsNull()) return {};
+    if (!e.value.IsScalar()) fail(mark(e), what + " must be text, not " + describe(e.value));
+    return e.value.Scalar();
+  }
+
+  double number(const YAML::Node& node, SourceMark at, const std::string& what) const {
+    if (!node.IsScalar()) fail(at, what + " must be a number, not " + describe(node));
+    std::string_view s = node.Scalar();
+    std::string lower(s);
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower == ".nan" || lower == ".inf" || lower == "+.inf" || lower == "-.inf")  // YAML's spellings
+      fail(at, what + " must be a finite number, not '" + node.Scalar() + "'");
+    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+    if (s.empty() || end != s.data() + s.size() || (ec != std::errc() && ec != std::errc::result_out_of_range))
+      fail(at, what + " must be a number, not '" + node.Scalar() + "'");
+    if (ec == std::errc::result_out_of_range || !std::isfinite(value))
+      fail(at, what + " must be a finite number, not '" + node.Scalar() + "'");
+    return value;
+  }
+  double number(const Entry& e, const std::string& what) const { return number(e.value, mark(e), what); }
+  double positive(const Entry& e, const std::string& what) const {
+    const double v = number(e, what);
+    if (!(v > 0.0)) fail(mark(e), what + " must be positive");
+    return v;
+  }
+  int whole(const Entry& e, const std::string& what, int low, int high) const {
+    const double v = number(e, what);
+    if (v != std::floor(v) || v < low || v > high)
+      fail(mark(e), what + " must be a whole number from " + std::to_string(low) + " to " + std::to_string(high));
+    return static_cast<int>(v);
+  }
+  double angle(const YAML::Node& node, SourceMark at, const std::string& what) const {
+    return number(node, at, what + " (" + task_.units.angle + ")") * task_.units.angle_scale;
+  }
+  // [a, b]
+  std::array<double, 2> pair(const YAML::Node& node, SourceMark at, const std::string& what,
+                             std::string_view example) const {
+    if (!node.IsSequence() || node.size() != 2)
+      fail(at, what + " needs two numbers, like " + std::string(example) + ", not " + describe(node));
+    return {number(node[0], mark(node[0]), what), number(node[1], mark(node[1]), what)};
+  }
+  Vector2d point(const YAML::Node& node, SourceMark at, const std::string& what) const {
+    const auto [x, y] = pair(node, at, what, "[x, y]");
+    return {x, y};
+  }
+  Vector2d point(const Entry& e, const std::string& what) const { return point(e.value, mark(e), what); }
+
+  // {a: [x, y], b: [x, y]}, two distinct points.
+  std::array<Vector2d, 2> pivots(const Entry& e, const std::string& what) const {
+    const std::vector<Entry> f = mapping(e, {"a", "b"}, "{a: [0, 0], b: [1, 0]}");
+    const Vector2d a = point(required(f, e.value, "a", "`" + e.key + "`"), "pivot a");
+    const Entry& b_entry = required(f, e.value, "b", "`" + e.key + "`");
+    const Vector2d b = point(b_entry, "pivot b");
+    if ((a - b).norm() <= 1e-9 * std::max({1.0, a.norm(), b.norm()}))
+      fail(mark(b_entry), "the " + what + " a and b coincide: a four-bar needs two distinct " + what);
+    return {a, b};
+  }
+
+  void parse_units(const Entry& e) {
+    const std::vector<Entry> f = mapping(e, {"length", "angle"}, "{length: mm, angle: deg}");
+    std::string length = "m", angle_unit = "deg";
+    if (const Entry* l = find(f, "length")) {
+      length = scalar(*l, "the length unit");
+      if (!length_unit_scale(length)) fail(mark(*l), "unknown length unit '" + length + "' (use m, mm, cm, in or ft)");
+    }
+    if (const Entry* a = find(f, "angle")) {
+      angle_unit = scalar(*a, "the angle unit");
+      if (!angle_unit_scale(angle_unit)) fail(mark(*a), "unknown angle unit '" + angle_unit + "' (use deg or rad)");
+    }
+    task_.units = *Units::make(length, angle_unit);
+  }
+
+  std::vector<YAML::Node> list(const Entry& e, std::string_view example) const {
+    if (!e.value.IsSequence())
+      fail(mark(e), "`" + e.key + "` must be a list like " + std::string(example) + ", not " + describe(e.value));
+    return {e.value.begin(), e.value.end()};
+  }
+
+  // ---- the tasks ----
+
+  void parse_five_point(const std::vector<Entry>& top, const YAML::Node& root) {
+    const auto [a, b] = pivots(required(top, root, "pivots", "a five-point task"), "fixed pivots");
+    task_.pivot_a = a;
+    task_.pivot_b = b;
+    const Entry& points = required(top, root, "points", "a five-point task");
+    task_.where = mark(points);
+    const std::vector<YAML::Node> items = list(points, "[[x, y], ...]");
+    if (items.size() != 5)
+      fail(mark(points), std::string("a five-point task needs exactly 5 points for the coupler point, not ") +
+                             std::to_string(items.size()));
+    for (const YAML::Node& item : items) task_.points.push_back(point(item, mark(item), "a point"));
+    const double size = std::max({1.0, (a - b).norm()});
+    for (std::size_t i = 0; i < items.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if ((task_.points[i] - task_.points[j]).norm() <= 1e-9 * size)
+          fail(items[i], std::string("points ") + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
+                             " coincide: the five points must be distinct");
+  }
+
+  void parse_burmester(const std::vector<Entry>& top, const YAML::Node& root) {
+    const Entry& poses = required(top, root, "poses", "a burmester task");
+    task_.where = mark(poses);
+    const std::vector<YAML::Node> items = list(poses, "[{point: [0, 0], angle: 0}, ...]");
+    if (items.size() < 3 || items.size() > 5)
+      fail(mark(poses), std::string("a burmester task needs 3, 4 or 5 poses, not ") + std::to_string(items.size()));
+    for (const YAML::Node& item : items) {
+      if (!item.IsMap())
+        fail(item, std::string("a pose is a mapping like {point: [0, 0], angle: 0}, not ") + describe(item));
+      Entry self{"pose", item, item};
+      const std::vector<Entry> f = mapping(self, {"point", "angle"}, "{point: [0, 0], angle: 0}");
+      synthesis::BodyPose pose;
+      pose.point = point(required(f, item, "point", "a pose"), "the pose's point");
+      const Entry& a = required(f, item, "angle", "a pose");
+      pose.angle = angle(a.value, mark(a), "the pose's angle");
+      for (std::size_t j = 0; j < task_.poses.size(); ++j)
+        if ((task_.poses[j].point - pose.point).norm() <= 1e-12 * std::max(1.0, pose.point.norm()) &&
+            std::abs(task_.poses[j].angle - pose.angle) <= 1e-12)
+          fail(item, std::string("poses ") + std::to_string(j + 1) + " and " + std::to_string(task_.poses.size() + 1) +
+                         " are the same");
+      task_.poses.push_back(pose);
+    }
+    const std::size_t n = items.size();
+    const Entry* fixed = find(top, "fixed_pivots");
+    const Entry* moving = find(top, "moving_pivots");
+    if (n == 3) {
+      if (fixed && moving) fail(moving->key_node, "give either `fixed_pivots` or `moving_pivots`, not both");
+      if (!fixed && !moving)
+        fail(mark(poses),
+             "with 3 poses, choose two pivots: `fixed_pivots: {a: [x, y], b: [x, y]}` or "
+             "`moving_pivots: {a: [x, y], b: [x, y]}` (on the coupler, in the first pose)");
+      const Entry& given = fixed ? *fixed : *moving;
+      task_.given = fixed ? synthesis::PivotChoice::Fixed : synthesis::PivotChoice::Moving;
+      const auto [a, b] = pivots(given, fixed ? "fixed pivots" : "moving pivots");
+      task_.given_a = a;
+      task_.given_b = b;
+    } else {
+      for (const Entry* e : {fixed, moving})
+        if (e)
+          fail(e->key_node, "`" + e->key + "` applies to 3 poses only; with " + std::to_string(n) +
+                                " poses the pivots follow from the poses");
+    }
+    const Entry* curves = find(top, "curves");
+    const Entry* samples = find(top, "samples");
+    if (n != 4) {
+      for (const Entry* e : {curves, samples})
+        if (e) fail(e->key_node, "`" + e->key + "` applies to 4 poses only (the Burmester curves)");
+    }
+    if (curves) {
+      const std::vector<Entry> f = mapping(*curves, {"radius", "step"}, "{radius: 5, step: 0.01}");
+      if (const Entry* r = find(f, "radius")) task_.curves.radius = positive(*r, "the radius");
+      if (const Entry* s = find(f, "step")) task_.curves.step = positive(*s, "the step");
+    }
+    if (samples) task_.samples = whole(*samples, "`samples`", 2, 200);
+  }
+
+  void parse_function(const std::vector<Entry>& top, const YAML::Node& root) {
+    const Entry& f = required(top, root, "function", "a function task");
+    task_.where = mark(f);
+    if (!f.value.IsScalar() || f.value.Scalar().empty())
+      fail(mark(f), std::string("`function` must be an expression in x like \"log10(x)\", not ") + describe(f.value));
+    task_.function_text = f.value.Scalar();
+    std::vector<int> origin;
+    bool uses_t = false;
+    const std::string text = law_text(task_.function_text, origin, uses_t);
+    if (uses_t) fail(mark(f), "the function is an expression in x, not t");
+    try {
+      task_.function = Law::parse(text);
+    } catch (const LawSyntaxError& e) {
+      const int at = e.column() >= 0 && e.column() < static_cast<int>(origin.size())
+                         ? origin[e.column()]
+                         : static_cast<int>(task_.function_text.size());
+      fail(column_in(f.value, at), "in the function '" + task_.function_text + "': " + e.what());
+    }
+    const Entry& x = required(top, root, "x", "a function task");
+    const auto [x0, x1] = pair(x.value, mark(x), "x", "[1, 2]");
+    if (x0 == x1) fail(mark(x), "the range of x is empty: give two different values");
+    task_.x_start = x0;
+    task_.x_end = x1;
+    const auto angles = [&](const Entry& e) {
+      const auto [from, to] = pair(e.value, mark(e), "`" + e.key + "` (" + task_.units.angle + ")", "[45, 105]");
+      if (from == to) fail(mark(e), "`" + e.key + "` is empty: give the angles at the start and the end of the range");
+      return std::array<double, 2>{from * task_.units.angle_scale, to * task_.units.angle_scale};
+    };
+    const auto in = angles(required(top, root, "input_range", "a function task"));
+    const auto out = angles(required(top, root, "output_range", "a function task"));
+    task_.input_from = in[0];
+    task_.input_to = in[1];
+    task_.output_from = out[0];
+    task_.output_to = out[1];
+    if (const Entry* p = find(top, "points")) task_.precision_points = whole(*p, "`points`", 3, 50);
+    if (const Entry* s = find(top, "spacing")) {
+      const std::string spacing = scalar(*s, "`spacing`");
+      if (spacing != "chebyshev" && spacing != "even")
+        fail(mark(*s), "unknown spacing '" + spacing + "' (use chebyshev or even)");
+      task_.chebyshev = spacing == "chebyshev";
+    }
+    if (const Entry* fr = find(top, "frame")) task_.frame = positive(*fr, "the frame length");
+    // The function must be defined over the whole range, and not equal at its ends (the
+    // output's range maps f(x_start)..f(x_end)).
+    double y0 = 0.0, y1 = 0.0;
+    for (int k = 0; k <= 100; ++k) {
+      const double xk = x0 + (x1 - x0) * k / 100.0;
+      try {
+        const double y = task_.function->value(xk);
+        if (k == 0) y0 = y;
+        if (k == 100) y1 = y;
+      } catch (const std::domain_error&) {
+        std::ostringstream s;
+        s << "the function '" << task_.function_text << "' is undefined at x = " << xk << ", inside the range of x";
+        fail(mark(f), s.str());
+      }
+    }
+    if (y0 == y1)
+      fail(mark(f),
+           "the function has the same value at both ends of the range of x, so it cannot be "
+           "mapped onto the output's range");
+  }
+
+  // Where the character at `offset` of a plain or quoted one-line scalar sits in the file.
+  SourceMark column_in(const YAML::Node& node, int offset) const {
+    const YAML::Mark m = node.Mark();
+    SourceMark at = mark(node);
+    if (m.pos < 0 || static_cast<std::size_t>(m.pos) >= text_.size()) return at;
+    const char first = text_[static_cast<std::size_t>(m.pos)];
+    if (first == '|' || first == '>') return at;
+    at.column += offset + (first == '"' || first == '\'' ? 1 : 0);
+    return at;
+  }
+};
+
+}  // namespace
+
+SynthesisTask parse_synthesis_task(const std::string& text, const std::string& file_name) {
+  return TaskParser(text, file_name).parse();
+}
+
+SynthesisTask load_synthesis_task(const std::string& path) {
+  std::error_code status;
+  if (std::filesystem::is_directory(path, status))
+    throw ModelFileError(path, SourceMark{},
+                         std::string("cannot read: ") + std::make_error_code(std::errc::is_a_directory).message());
+  errno = 0;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    const std::error_code error(errno != 0 ? errno : EIO, std::generic_category());
+    throw ModelFileError(path, SourceMark{}, std::string("cannot read: ") + error.message());
+  }
+  std::ostringstream contents;
+  contents << in.rdbuf();
+  return parse_synthesis_task(contents.str(), path);
+}
+
+}  // namespace nbar::io

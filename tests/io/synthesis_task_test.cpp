@@ -1,0 +1,262 @@
+// Synthesis task files: the bundled examples, and every mistake reported at its line and column.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "io/synthesis_task.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nbar::io::SynthesisKind;
+using nbar::io::SynthesisTask;
+using ::testing::HasSubstr;
+
+constexpr double kDegree = std::numbers::pi / 180;
+const std::string kDir = std::string(NBAR_EXAMPLES_DIR) + "/synthesis/";
+
+// The message of the error a task text raises ("" when it parses).
+std::string error_of(const std::string& text) {
+  try {
+    nbar::io::parse_synthesis_task(text, "task.yaml");
+  } catch (const nbar::io::ModelFileError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SynthesisTask, EveryExampleParses) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(kDir)) {
+    SCOPED_TRACE(entry.path().string());
+    EXPECT_NO_THROW(nbar::io::load_synthesis_task(entry.path().string()));
+    ++count;
+  }
+  EXPECT_GE(count, 5);
+}
+
+TEST(SynthesisTask, FivePoint) {
+  const SynthesisTask t = nbar::io::load_synthesis_task(kDir + "five-point-crank-rocker.yaml");
+  EXPECT_EQ(t.kind, SynthesisKind::FivePoint);
+  EXPECT_EQ(nbar::io::to_string(t.kind), "five-point");
+  EXPECT_EQ(t.units.length, "mm");
+  EXPECT_EQ(t.pivot_a, Eigen::Vector2d(0, 0));
+  EXPECT_EQ(t.pivot_b, Eigen::Vector2d(200, 0));  // task units: the solvers work in them
+  ASSERT_EQ(t.points.size(), 5u);
+  EXPECT_EQ(t.points[2], Eigen::Vector2d(44.303, 194.508));
+  EXPECT_EQ(t.where.line, 14);  // `points`, where the solver's complaints go
+}
+
+TEST(SynthesisTask, Burmester) {
+  const SynthesisTask three = nbar::io::load_synthesis_task(kDir + "burmester-three-positions.yaml");
+  EXPECT_EQ(three.kind, SynthesisKind::Burmester);
+  ASSERT_EQ(three.poses.size(), 3u);
+  EXPECT_NEAR(three.poses[1].angle, 55.771 * kDegree, 1e-15);
+  EXPECT_EQ(three.poses[1].point, Eigen::Vector2d(22.802, 111.483));
+  EXPECT_EQ(three.given, nbar::synthesis::PivotChoice::Fixed);
+  EXPECT_EQ(three.given_b, Eigen::Vector2d(200, 0));
+
+  const SynthesisTask four = nbar::io::load_synthesis_task(kDir + "burmester-four-positions.yaml");
+  EXPECT_EQ(four.poses.size(), 4u);
+  EXPECT_EQ(four.curves.radius, 400);
+  EXPECT_EQ(four.curves.step, 0);
+  EXPECT_EQ(four.samples, 24);
+
+  const SynthesisTask moving = nbar::io::parse_synthesis_task(R"(task: burmester
+units: {angle: rad}
+poses:
+  - {point: [0, 0], angle: 0}
+  - {point: [1, 0], angle: 0.5}
+  - {point: [2, 1], angle: 1}
+moving_pivots: {a: [0, -1], b: [1, -1]}
+)");
+  EXPECT_EQ(moving.given, nbar::synthesis::PivotChoice::Moving);
+  EXPECT_EQ(moving.poses[2].angle, 1.0);
+  EXPECT_EQ(moving.given_a, Eigen::Vector2d(0, -1));
+}
+
+TEST(SynthesisTask, FunctionWithLog10) {
+  const SynthesisTask t = nbar::io::load_synthesis_task(kDir + "function-log10.yaml");
+  EXPECT_EQ(t.kind, SynthesisKind::Function);
+  EXPECT_EQ(t.function_text, "log10(x)");
+  ASSERT_TRUE(t.function);
+  EXPECT_NEAR(t.function->value(2.0), std::log10(2.0), 1e-15);
+  EXPECT_EQ(t.x_start, 1);
+  EXPECT_EQ(t.x_end, 2);
+  EXPECT_NEAR(t.input_from, 90 * kDegree, 1e-15);
+  EXPECT_NEAR(t.output_to, 120 * kDegree, 1e-15);
+  EXPECT_EQ(t.precision_points, 3);
+  EXPECT_TRUE(t.chebyshev);
+  EXPECT_EQ(t.frame, 100);
+
+  const SynthesisTask nested = nbar::io::parse_synthesis_task(R"(task: function
+function: "2^log10(x*log10 (100*x)) + x"
+x: [1, 3]
+input_range: [0, 90]
+output_range: [0, 60]
+points: 5
+spacing: even
+)");
+  const double x = 2.5;
+  EXPECT_NEAR(nested.function->value(x), std::pow(2.0, std::log10(x * std::log10(100 * x))) + x, 1e-14);
+  EXPECT_EQ(nested.precision_points, 5);
+  EXPECT_FALSE(nested.chebyshev);
+}
+
+// Every task file shown in docs/synthesis.md (the YAML blocks that start with `task:`) reads.
+TEST(SynthesisTask, TheDocumentationsExamplesParse) {
+  std::ifstream in(std::string(NBAR_EXAMPLES_DIR) + "/../docs/synthesis.md");
+  ASSERT_TRUE(in) << "cannot read docs/synthesis.md";
+  std::string line, block;
+  bool inside = false;
+  int tasks = 0;
+  while (std::getline(in, line)) {
+    if (!inside && line == "```yaml") {
+      inside = true;
+      block.clear();
+    } else if (inside && line == "```") {
+      inside = false;
+      if (block.rfind("task:", 0) != 0) continue;
+      ++tasks;
+      EXPECT_EQ(error_of(block), "") << block;
+    } else if (inside) {
+      block += line + "\n";
+    }
+  }
+  EXPECT_EQ(tasks, 3);
+}
+
+TEST(SynthesisTask, DocumentErrors) {
+  EXPECT_THAT(error_of(""), HasSubstr("task.yaml:1:1: the file holds no task"));
+  EXPECT_THAT(error_of("task: [five-point\n"), HasSubstr("task.yaml:2:1: invalid YAML"));
+  EXPECT_EQ(error_of("- task: five-point\n"),
+            "task.yaml:1:1: a task file is a mapping of keys (task:, ...), not a list");
+  EXPECT_EQ(error_of("name: x\n"),
+            "task.yaml:1:1: a task file needs `task: five-point`, `task: burmester` or `task: function`");
+  EXPECT_EQ(error_of("name: x\ntask: six-point\n"),
+            "task.yaml:2:7: unknown task 'six-point' (tasks are: five-point, burmester, function)");
+  EXPECT_EQ(error_of("task: five-point\ntask: burmester\n"),
+            "task.yaml:2:1: duplicate key 'task' (first given on line 1)");
+  EXPECT_EQ(error_of("task: five-point\nposes: []\n"),
+            "task.yaml:2:1: unknown key 'poses' in a five-point task (allowed: task, name, description, units, pivots, "
+            "points)");
+  EXPECT_EQ(error_of("task: five-point\nunits: {length: furlong}\n"),
+            "task.yaml:2:17: unknown length unit 'furlong' (use m, mm, cm, in or ft)");
+}
+
+const std::string kFivePoint = R"(task: five-point
+pivots: {a: [0, 0], b: [1, 0]}
+points:
+  - [0, 1]
+  - [0.5, 1.2]
+  - [1, 1.1]
+  - [1.2, 0.6]
+  - [0.3, 0.4]
+)";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST(SynthesisTask, FivePointErrors) {
+  EXPECT_EQ(error_of(kFivePoint), "");
+  EXPECT_EQ(error_of(replaced(kFivePoint, "  - [0.3, 0.4]\n", "")),
+            "task.yaml:4:3: a five-point task needs exactly 5 points for the coupler point, not 4");
+  EXPECT_EQ(error_of(replaced(kFivePoint, "b: [1, 0]", "b: [0, 0]")),
+            "task.yaml:2:24: the fixed pivots a and b coincide: a four-bar needs two distinct fixed pivots");
+  EXPECT_EQ(error_of(replaced(kFivePoint, "[1.2, 0.6]", "[0.5, 1.2]")),
+            "task.yaml:7:5: points 2 and 4 coincide: the five points must be distinct");
+  EXPECT_EQ(error_of(replaced(kFivePoint, "[1, 1.1]", "[1, abc]")),
+            "task.yaml:6:9: a point must be a number, not 'abc'");
+  EXPECT_EQ(error_of(replaced(kFivePoint, "[1, 1.1]", "[1, .nan]")),
+            "task.yaml:6:9: a point must be a finite number, not '.nan'");
+  EXPECT_EQ(error_of(replaced(kFivePoint, "[1, 1.1]", "[1]")),
+            "task.yaml:6:5: a point needs two numbers, like [x, y], not a list");
+  EXPECT_EQ(error_of(replaced(kFivePoint, "{a: [0, 0], ", "{")), "task.yaml:2:9: `pivots` needs `a`");
+  EXPECT_EQ(error_of(replaced(kFivePoint, "pivots: {a: [0, 0], b: [1, 0]}\n", "")),
+            "task.yaml:1:1: a five-point task needs `pivots`");
+  EXPECT_EQ(error_of(replaced(kFivePoint, "{a: [0, 0], b: [1, 0]}", "{a: [0, 0], c: [1, 0]}")),
+            "task.yaml:2:21: unknown key 'c' in `pivots` (allowed: a, b)");
+}
+
+const std::string kThreePoses = R"(task: burmester
+poses:
+  - {point: [0, 0], angle: 0}
+  - {point: [1, 0], angle: 30}
+  - {point: [2, 1], angle: 60}
+fixed_pivots: {a: [0, -1], b: [2, -1]}
+)";
+
+TEST(SynthesisTask, BurmesterErrors) {
+  EXPECT_EQ(error_of(kThreePoses), "");
+  EXPECT_EQ(error_of(replaced(kThreePoses, "  - {point: [2, 1], angle: 60}\n", "")),
+            "task.yaml:3:3: a burmester task needs 3, 4 or 5 poses, not 2");
+  EXPECT_EQ(error_of(replaced(kThreePoses, "fixed_pivots: {a: [0, -1], b: [2, -1]}\n", "")),
+            "task.yaml:3:3: with 3 poses, choose two pivots: `fixed_pivots: {a: [x, y], b: [x, y]}` or "
+            "`moving_pivots: {a: [x, y], b: [x, y]}` (on the coupler, in the first pose)");
+  EXPECT_EQ(error_of(kThreePoses + "moving_pivots: {a: [0, 0], b: [1, 0]}\n"),
+            "task.yaml:7:1: give either `fixed_pivots` or `moving_pivots`, not both");
+  EXPECT_EQ(error_of(replaced(kThreePoses, ", angle: 30}", "}")), "task.yaml:4:5: a pose needs `angle`");
+  EXPECT_EQ(error_of(replaced(kThreePoses, "{point: [2, 1], angle: 60}", "{point: [1, 0], angle: 30}")),
+            "task.yaml:5:5: poses 2 and 3 are the same");
+  EXPECT_EQ(error_of(kThreePoses + "samples: 10\n"),
+            "task.yaml:7:1: `samples` applies to 4 poses only (the Burmester curves)");
+  const std::string five = replaced(kThreePoses, "fixed_pivots: {a: [0, -1], b: [2, -1]}\n",
+                                    "  - {point: [3, 3], angle: 90}\n  - {point: [2, 4], angle: 120}\n");
+  EXPECT_EQ(error_of(five), "");
+  EXPECT_EQ(error_of(five + "fixed_pivots: {a: [0, 0], b: [1, 0]}\n"),
+            "task.yaml:8:1: `fixed_pivots` applies to 3 poses only; with 5 poses the pivots follow from the poses");
+  const std::string four = replaced(five, "  - {point: [2, 4], angle: 120}\n", "");
+  EXPECT_EQ(error_of(four + "samples: 1\n"), "task.yaml:7:10: `samples` must be a whole number from 2 to 200");
+  EXPECT_EQ(error_of(four + "curves: {radius: -1}\n"), "task.yaml:7:18: the radius must be positive");
+}
+
+const std::string kFunction = R"yaml(task: function
+function: "log10(x)"
+x: [1, 2]
+input_range: [45, 105]
+output_range: [135, 225]
+)yaml";
+
+TEST(SynthesisTask, FunctionErrors) {
+  EXPECT_EQ(error_of(kFunction), "");
+  // Syntax errors point at their character, in what the user wrote.
+  const std::string bad = error_of(replaced(kFunction, "\"log10(x)\"", "\"log10(x) + * 2\""));
+  EXPECT_THAT(bad, testing::StartsWith("task.yaml:2:23: in the function 'log10(x) + * 2': ")) << bad;
+  EXPECT_THAT(error_of(replaced(kFunction, "\"log10(x)\"", "log10(x) + foo(x)")),
+              testing::StartsWith("task.yaml:2:22: in the function 'log10(x) + foo(x)': "));
+  EXPECT_EQ(error_of(replaced(kFunction, "\"log10(x)\"", "sin(t)")),
+            "task.yaml:2:11: the function is an expression in x, not t");
+  EXPECT_EQ(error_of(replaced(kFunction, "[1, 2]", "[-1, 2]")),
+            "task.yaml:2:11: the function 'log10(x)' is undefined at x = -1, inside the range of x");
+  EXPECT_EQ(error_of(replaced(kFunction, "\"log10(x)\"", "\"x*(x - 3)\"")),
+            "task.yaml:2:11: the function has the same value at both ends of the range of x, so it cannot be mapped "
+            "onto the output's range");
+  EXPECT_EQ(error_of(replaced(kFunction, "[1, 2]", "[2, 2]")),
+            "task.yaml:3:4: the range of x is empty: give two different values");
+  EXPECT_EQ(error_of(replaced(kFunction, "[45, 105]", "[45, 45]")),
+            "task.yaml:4:14: `input_range` is empty: give the angles at the start and the end of the range");
+  EXPECT_EQ(error_of(kFunction + "points: 2\n"), "task.yaml:6:9: `points` must be a whole number from 3 to 50");
+  EXPECT_EQ(error_of(kFunction + "spacing: random\n"),
+            "task.yaml:6:10: unknown spacing 'random' (use chebyshev or even)");
+  EXPECT_EQ(error_of(kFunction + "frame: 0\n"), "task.yaml:6:8: the frame length must be positive");
+  EXPECT_EQ(error_of(replaced(kFunction, "input_range: [45, 105]\n", "")),
+            "task.yaml:1:1: a function task needs `input_range`");
+}
+
+TEST(SynthesisTask, UnreadableFile) {
+  try {
+    nbar::io::load_synthesis_task("/nonexistent/task.yaml");
+    FAIL();
+  } catch (const nbar::io::ModelFileError& e) {
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/task.yaml: cannot read: No such file or directory");
+  }
+}
+
+}  // namespace
