@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 
+#include "apps/cli_support.hpp"
 #include "io/model_file.hpp"
 #include "io/synthesis_task.hpp"
 #include "kinematics/mechanism.hpp"
@@ -27,31 +28,8 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-CliRun nbar(const std::string& args) {
-  static int counter = 0;
-  const fs::path err_file = fs::temp_directory_path() / ("nbar_synth_test_" + std::to_string(::getpid()) + "_" +
-                                                         std::to_string(counter++) + ".err");
-  const std::string command = std::string(NBAR_CLI_PATH) + " " + args + " 2>" + err_file.string();
-  CliRun run;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.out.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_file);
-  std::stringstream ss;
-  ss << err.rdbuf();
-  run.err = ss.str();
-  fs::remove(err_file);
-  return run;
-}
+using nbar::cli_test::CliRun;
+using nbar::cli_test::nbar;
 
 // A scratch directory, removed at the end of the test.
 class TempDir {
