@@ -427,7 +427,9 @@ FivePointResult solve_five_point(const FivePointTask& task, const SolverOptions&
 
   std::vector<CVector> starts;
   for (const auto& a : start.solutions) starts.push_back(system.from_affine(a));
-  const SolveResult r = solve_parameter_homotopy(system, start.parameters, starts, target, options);
+  SolverOptions careful = options;
+  careful.retrack_failures = true;  // every one of the 36 paths should arrive
+  const SolveResult r = solve_parameter_homotopy(system, start.parameters, starts, target, careful);
 
   FivePointResult result;
   result.paths = static_cast<int>(starts.size());
@@ -443,9 +445,7 @@ FivePointResult solve_five_point(const FivePointTask& task, const SolverOptions&
 
   // Fallback: the 96-path linear-product homotopy on the primer's form.
   const PolynomialSystem f = five_point_system(primer_points(task));
-  SolverOptions fallback_options = options;
-  fallback_options.retrack_failures = false;  // 60 of the 96 paths go to infinity
-  const SolveResult fallback = solve_linear_product(f, five_point_groups(), fallback_options);
+  const SolveResult fallback = solve_linear_product(f, five_point_groups(), options);
   result.used_fallback = true;
   result.paths += static_cast<int>(fallback.endpoints.size());
   result.retracked_paths += fallback.retracked;

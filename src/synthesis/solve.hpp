@@ -27,9 +27,10 @@ struct SolverOptions {
   double singular_condition = 1e13;  // endpoints with a larger condition number are singular
   double infinity_threshold = 1e-8;  // |homogenizing coordinate| below this: at infinity
   int max_steps = 20000;       // per path
-  // Track failed paths again with tighter settings (worth it when every path should
-  // arrive, as in a parameter homotopy; wasted on paths to a singular set at infinity).
-  bool retrack_failures = true;
+  // Track failed paths again with tighter settings: worth it when every path should arrive
+  // (parameter homotopies, where solve_five_point asks for it), wasted on the many paths of
+  // a total-degree or linear-product homotopy that end on a singular set at infinity.
+  bool retrack_failures = false;
   // Called after each path with (finished paths, all paths); from worker threads.
   std::function<void(int, int)> progress;
 };

@@ -10,6 +10,7 @@
 
 #include "synthesis/five_point.hpp"
 #include "synthesis/five_point_start.hpp"
+#include "synthesis/fourbar_support.hpp"
 
 namespace nbar::synthesis {
 namespace {
@@ -18,24 +19,8 @@ Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle) {
   return Eigen::Rotation2Dd(angle) * v;
 }
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// Closed-form position analysis of a four-bar (circle intersection on the drawn branch):
-// the coupler point after the input link turns by `crank` from the design's pose.
 Eigen::Vector2d coupler_point_at(const FourBarDesign& d, double crank) {
-  const Eigen::Vector2d a1 = d.ground_a + rotate(d.moving_a - d.ground_a, crank);
-  const double coupler = (d.moving_b - d.moving_a).norm(), output = (d.moving_b - d.ground_b).norm();
-  const Eigen::Vector2d to_b0 = d.ground_b - a1;
-  const double dist = to_b0.norm();
-  const double along = (coupler * coupler - output * output + dist * dist) / (2 * dist);
-  const double h2 = coupler * coupler - along * along;
-  if (h2 < 0) return {NAN, NAN};
-  const Eigen::Vector2d u = to_b0 / dist, n(-u.y(), u.x());
-  const double side = cross(d.ground_b - d.moving_a, d.moving_b - d.moving_a) > 0 ? 1.0 : -1.0;
-  // the branch: B1 on the same side of the line A1 -> B0 as in the drawn pose
-  const Eigen::Vector2d b1 = a1 + along * u + side * std::sqrt(h2) * n;
-  const double turn = std::atan2(cross(d.moving_b - d.moving_a, b1 - a1), (d.moving_b - d.moving_a).dot(b1 - a1));
-  return a1 + rotate(d.coupler_point - d.moving_a, turn);
+  return test_support::coupler_pose_at(d, crank).point;
 }
 
 bool design_found(const FivePointResult& r, const FourBarDesign& d, double tolerance) {
