@@ -159,7 +159,9 @@ class IsotropicFivePoint final : public ParameterizedSystem {
       // n^T m = 0 for the (bilinear) cross product of m's columns.
       const Eigen::RowVector3cd n(m(1, 0) * m(2, 1) - m(2, 0) * m(1, 1), m(2, 0) * m(0, 1) - m(0, 0) * m(2, 1),
                                   m(0, 0) * m(1, 1) - m(1, 0) * m(0, 1));
-      schur.row(i - 1) = n * r.border;
+      // the border's X row touches only the X coordinates, its Y row only the Y ones
+      schur.block<1, 3>(i - 1, 0) = n[1] * r.border.block<1, 3>(1, 0);
+      schur.block<1, 3>(i - 1, 3) = n[2] * r.border.block<1, 3>(2, 3);
       reduced[i - 1] = n * r.value;
     }
     schur.row(4).setZero();
@@ -177,7 +179,9 @@ class IsotropicFivePoint final : public ParameterizedSystem {
     y.resize(kVariables);
     y.tail(6) = z;
     for (int i = 0; i < 4; ++i) {
-      const Eigen::Vector3cd r = rows[i].value - rows[i].border * z;
+      const auto& c = rows[i].border;
+      const Eigen::Vector3cd r(rows[i].value[0], rows[i].value[1] - (c.block<1, 3>(1, 0) * z.head<3>()).value(),
+                               rows[i].value[2] - (c.block<1, 3>(2, 3) * z.tail<3>()).value());
       // the best-conditioned pair of the three rows gives (dt_i, dtb_i)
       const auto& m = rows[i].block;
       int a = 0, b = 1;
