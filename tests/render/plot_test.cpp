@@ -285,7 +285,7 @@ TEST(DrawPlot, OneSeriesNamedOnTheYAxis) {
 TEST(DrawPlot, ManySeriesAllDistinct) {
   PlotSpec spec = trig_spec();
   for (int k = 2; k < 10; ++k) {
-    PlotSeries s{"s" + std::to_string(k), "m", {}};
+    PlotSeries s{std::string("s").append(std::to_string(k)), "m", {}};
     for (double x : spec.x) s.y.push_back(std::sin(k * x * std::numbers::pi / 180));
     spec.series.push_back(s);
   }
