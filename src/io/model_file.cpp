@@ -9,12 +9,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <sstream>
 #include <string_view>
 #include <system_error>
 #include <utility>
 
+#include "io/yaml_support.hpp"
 #include "model/geometry.hpp"
 #include "model/materials.hpp"
 
@@ -60,12 +60,18 @@ std::string locate(const SourceMap& source, const ModelError& error) {
 
 namespace {
 
+using yaml::AllowedKeys;
+using yaml::describe;
+using yaml::Entry;
+using yaml::Fields;
+using yaml::join;
+using yaml::mark;
+using yaml::NumberStatus;
+using yaml::parse_number;
+using yaml::suggestion;
+
 // The keys each kind of mapping accepts, all in one place: new sections (shapes, loads,
 // gravity, materials...) are declared here and then read in Parser::parse.
-struct AllowedKeys {
-  std::string_view context;  // completes "unknown key 'x' ..."
-  std::vector<std::string_view> keys;
-};
 const AllowedKeys kTopLevelKeys{
     "at the top level",
     {"name", "description", "units", "points", "ground", "bodies", "lengths", "sliders", "slots", "drivers", "sweep",
@@ -100,106 +106,18 @@ const std::vector<UnitScale> kStressUnits{{"Pa", 1.0},  {"kPa", 1e3},       {"MP
                                           {"GPa", 1e9}, {"psi", kPsi}, {"ksi", 1e3 * kPsi}};
 constexpr double kStandardGravity = 9.80665;  // m/s^2
 
-// Optimal string alignment distance (Levenshtein plus adjacent transpositions, the most
-// common typo), ignoring case so that "o2" finds "O2".
-int edit_distance(std::string_view a, std::string_view b) {
-  const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
-  const std::size_t n = a.size(), m = b.size();
-  std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1, 0));
-  for (std::size_t i = 0; i <= n; ++i) d[i][0] = static_cast<int>(i);
-  for (std::size_t j = 0; j <= m; ++j) d[0][j] = static_cast<int>(j);
-  for (std::size_t i = 1; i <= n; ++i) {
-    for (std::size_t j = 1; j <= m; ++j) {
-      const int cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1])) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    }
-  }
-  return d[n][m];
-}
+// The words of the model file's document-level errors.
+const yaml::DocumentWording kModelDocument{
+    "the file holds no model (it is empty or only comments): a model needs at least `points:`",
+    "a model file holds a single YAML document; remove this one or the `---` before it",
+    "a model file is a mapping of sections (points:, bodies:, drivers:, ...), not "};
 
-// The closest candidate, if it is close enough to be a plausible typo. One-letter names
-// are all one edit apart, so a distance equal to the length suggests nothing.
-template <typename Names>
-std::optional<std::string> suggestion(std::string_view wrong, const Names& candidates) {
-  const int limit = std::max<int>(1, static_cast<int>(wrong.size()) / 3);
-  std::optional<std::string> best;
-  int best_distance = std::numeric_limits<int>::max();
-  for (const auto& candidate : candidates) {
-    const int d = edit_distance(wrong, candidate);
-    if (d < best_distance && d <= limit && d < static_cast<int>(wrong.size())) {
-      best = std::string(candidate);
-      best_distance = d;
-    }
-  }
-  return best;
-}
-
-template <typename Names>
-std::string join(const Names& names, std::size_t at_most = 12) {
-  std::string out;
-  std::size_t count = 0;
-  for (const auto& name : names) {
-    if (count == at_most) {
-      out += ", ...";
-      break;
-    }
-    if (count++ > 0) out += ", ";
-    out += name;
-  }
-  return out;
-}
-
-enum class NumberStatus { Ok, NotFinite, NotNumber };
-
-NumberStatus parse_number(std::string_view text, double& value) {
-  std::string lower(text);
-  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  for (std::string_view special : {".nan", ".inf", "+.inf", "-.inf"}) {
-    if (lower == special) return NumberStatus::NotFinite;
-  }
-  std::string_view s = text;
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  if (s.empty()) return NumberStatus::NotNumber;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-  if (end != s.data() + s.size()) return NumberStatus::NotNumber;
-  if (ec == std::errc::result_out_of_range) return NumberStatus::NotFinite;
-  if (ec != std::errc()) return NumberStatus::NotNumber;
-  return std::isfinite(value) ? NumberStatus::Ok : NumberStatus::NotFinite;
-}
-
-std::string describe(const YAML::Node& node) {
-  if (node.IsMap()) return "a mapping";
-  if (node.IsSequence()) return "a list";
-  if (node.IsScalar()) return "'" + node.Scalar() + "'";
-  return "nothing";
-}
-
-// One key: value pair of a mapping whose keys have been checked.
-struct Entry {
-  std::string key;
-  YAML::Node key_node;
-  YAML::Node value;
-};
-
-struct Fields {
-  std::vector<Entry> entries;
-  const Entry* find(std::string_view key) const {
-    for (const Entry& e : entries) {
-      if (e.key == key) return &e;
-    }
-    return nullptr;
-  }
-};
-
-class Parser {
+class Parser : yaml::Reader {
  public:
-  Parser(std::string text, std::string file) : text_(std::move(text)) { source_.file = std::move(file); }
+  Parser(std::string text, std::string file) : Reader(std::move(text), file) { source_.file = std::move(file); }
 
   LoadedModel parse() {
-    const YAML::Node root = load();
+    const YAML::Node root = load(kModelDocument);
     source_.model = mark(root);
     const Fields top = fields(root, kTopLevelKeys);
 
@@ -229,117 +147,34 @@ class Parser {
   }
 
  private:
-  std::string text_;
   Model model_;
   SourceMap source_;
   std::vector<Material> user_materials_;  // from `materials:`
 
-  // ---- locations and errors ----
+  // ---- keys, mappings and lists (the generic readers are yaml::Reader's) ----
 
-  static SourceMark mark(const YAML::Node& node) {
-    const YAML::Mark m = node.Mark();
-    if (m.line < 0) return {};
-    return {m.line + 1, m.column + 1};
-  }
-  // An empty value ("key:" and nothing) is marked at the next token, possibly lines
-  // below, so errors about it are better shown at its key.
-  static SourceMark mark(const Entry& e) { return e.value.IsNull() ? mark(e.key_node) : mark(e.value); }
-
-  [[noreturn]] void fail(SourceMark at, const std::string& message) const {
-    throw ModelFileError(source_.file, at, message);
-  }
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const { fail(mark(at), message); }
-
-  YAML::Node load() {
-    std::vector<YAML::Node> documents;
-    try {
-      documents = YAML::LoadAll(text_);
-    } catch (const YAML::Exception& e) {
-      const SourceMark at = e.mark.line < 0 ? SourceMark{} : SourceMark{e.mark.line + 1, e.mark.column + 1};
-      fail(at, "invalid YAML: " + e.msg);
+  // Keys are also the names of points, bodies and materials, hence "key or name".
+  void check_key(const YAML::Node& key) const override {
+    if (key.IsNull()) {
+      fail(key, "a key or name cannot be empty or null (quote names such as 'null' or '~')");
     }
-    if (documents.empty() || (documents.size() == 1 && documents[0].IsNull())) {
-      fail(SourceMark{1, 1},
-           "the file holds no model (it is empty or only comments): a model needs at least `points:`");
-    }
-    if (documents.size() > 1) {
-      fail(documents[1], "a model file holds a single YAML document; remove this one or the `---` before it");
-    }
-    const YAML::Node root = documents[0];
-    if (!root.IsMap()) {
-      fail(root, "a model file is a mapping of sections (points:, bodies:, drivers:, ...), not " + describe(root));
-    }
-    return root;
-  }
-
-  // Reads the pairs of a mapping in file order, reporting keys that are not names and
-  // keys given twice (yaml-cpp keeps both pairs but lookups only ever see the first).
-  // `entity` words the duplicate error for mappings of user names ("point", "body").
-  std::vector<Entry> entries(const YAML::Node& map, std::string_view entity) const {
-    std::vector<Entry> out;
-    for (auto it = map.begin(); it != map.end(); ++it) {
-      const YAML::Node key = it->first;
-      if (key.IsNull()) {
-        fail(key, "a key or name cannot be empty or null (quote names such as 'null' or '~')");
-      }
-      if (!key.IsScalar()) fail(key, "a key or name must be a single word, not " + describe(key));
-      const std::string name = key.Scalar();
-      if (name.empty()) fail(key, "a key or name cannot be empty");
-      for (const Entry& previous : out) {
-        if (previous.key != name) continue;
-        const std::string first = " (first given on line " + std::to_string(mark(previous.key_node).line) + ")";
-        if (entity.empty()) fail(key, "duplicate key '" + name + "'" + first);
-        fail(key, std::string(entity) + " '" + name + "' is defined twice" + first);
-      }
-      out.push_back(Entry{name, key, it->second});
-    }
-    return out;
-  }
-
-  Fields fields(const YAML::Node& map, const AllowedKeys& allowed) const {
-    Fields f{entries(map, "")};
-    for (const Entry& e : f.entries) {
-      if (std::find(allowed.keys.begin(), allowed.keys.end(), e.key) != allowed.keys.end()) continue;
-      std::string message = "unknown key '" + e.key + "' " + std::string(allowed.context);
-      if (auto close = suggestion(e.key, allowed.keys)) {
-        message += "; did you mean '" + *close + "'?";
-      } else {
-        message += " (allowed: " + join(allowed.keys, allowed.keys.size()) + ")";
-      }
-      fail(e.key_node, message);
-    }
-    return f;
+    if (!key.IsScalar()) fail(key, std::string("a key or name must be a single word, not ").append(describe(key)));
+    if (key.Scalar().empty()) fail(key, "a key or name cannot be empty");
   }
 
   // The mapping under a section key; an empty value stands for an empty mapping.
   Fields section_fields(const Entry& e, const AllowedKeys& allowed, std::string_view example) const {
     if (e.value.IsNull()) return {};
-    if (!e.value.IsMap()) {
-      fail(mark(e), "`" + e.key + "` must be a mapping like " + std::string(example) + ", not " + describe(e.value));
-    }
-    return fields(e.value, allowed);
+    return mapping(e, allowed, example);
+  }
+
+  // A list section; an empty value stands for an empty list.
+  std::vector<YAML::Node> section_list(const Entry& e, std::string_view example) const {
+    if (e.value.IsNull()) return {};
+    return list(e, example);
   }
 
   // ---- values ----
-
-  std::string text_value(const Entry& e, std::string_view what) const {
-    if (e.value.IsNull()) return {};
-    if (!e.value.IsScalar()) fail(mark(e), std::string(what) + " must be text, not " + describe(e.value));
-    return e.value.Scalar();
-  }
-
-  double number(const YAML::Node& node, SourceMark at, std::string_view what) const {
-    if (!node.IsScalar()) fail(at, std::string(what) + " must be a number, not " + describe(node));
-    double value = 0.0;
-    switch (parse_number(node.Scalar(), value)) {
-      case NumberStatus::Ok: return value;
-      case NumberStatus::NotFinite:
-        fail(at, std::string(what) + " must be a finite number, not '" + node.Scalar() + "'");
-      case NumberStatus::NotNumber: break;
-    }
-    fail(at, std::string(what) + " must be a number, not '" + node.Scalar() + "'");
-  }
-  double number(const Entry& e, std::string_view what) const { return number(e.value, mark(e), what); }
 
   int whole_number(const Entry& e, std::string_view what) const {
     const double v = number(e, what);
@@ -392,37 +227,10 @@ class Parser {
     return {point_ref(e.value[0]), point_ref(e.value[1])};
   }
 
-  const Entry& required(const Fields& f, const YAML::Node& owner, std::string_view key, std::string_view what) const {
-    const Entry* e = f.find(key);
-    if (!e) fail(owner, std::string(what) + " needs `" + std::string(key) + "`");
-    return *e;
-  }
-
-  // A list section; an empty value stands for an empty list.
-  std::vector<YAML::Node> list(const Entry& e, std::string_view example) const {
-    if (e.value.IsNull()) return {};
-    if (!e.value.IsSequence()) {
-      fail(mark(e), "`" + e.key + "` must be a list like " + std::string(example) + ", not " + describe(e.value));
-    }
-    std::vector<YAML::Node> items;
-    for (const YAML::Node& item : e.value) items.push_back(item);
-    return items;
-  }
-
   // ---- sections ----
 
   void parse_units(const Entry& e) {
-    const Fields f = section_fields(e, kUnitsKeys, "{length: mm, angle: deg}");
-    std::string length = model_.units.length, angle = model_.units.angle;
-    if (const Entry* l = f.find("length")) {
-      length = text_value(*l, "the length unit");
-      if (!length_unit_scale(length)) fail(mark(*l), "unknown length unit '" + length + "' (use m, mm, cm, in or ft)");
-    }
-    if (const Entry* a = f.find("angle")) {
-      angle = text_value(*a, "the angle unit");
-      if (!angle_unit_scale(angle)) fail(mark(*a), "unknown angle unit '" + angle + "' (use deg or rad)");
-    }
-    model_.units = *Units::make(length, angle);
+    model_.units = units_of(section_fields(e, kUnitsKeys, "{length: mm, angle: deg}"), model_.units);
   }
 
   void parse_points(const Entry* e) {
@@ -445,7 +253,7 @@ class Parser {
   }
 
   void parse_ground(const Entry& e) {
-    for (const YAML::Node& item : list(e, "[O2, O4]")) {
+    for (const YAML::Node& item : section_list(e, "[O2, O4]")) {
       const int p = point_ref(item);
       if (model_.points[p].ground) fail(item, "point '" + model_.points[p].name + "' is listed twice under `ground`");
       model_.points[p].ground = true;
@@ -493,7 +301,7 @@ class Parser {
   }
 
   void parse_sliders(const Entry& e) {
-    for (const YAML::Node& item : list(e, "[{body: piston, point: C, along: [O2, X]}]")) {
+    for (const YAML::Node& item : section_list(e, "[{body: piston, point: C, along: [O2, X]}]")) {
       if (!item.IsMap()) {
         fail(item, "a slider is a mapping like {body: piston, point: C, along: [O2, X]}, not " + describe(item));
       }
@@ -508,7 +316,7 @@ class Parser {
   }
 
   void parse_slots(const Entry& e) {
-    for (const YAML::Node& item : list(e, "[{point: D, along: [E, F]}]")) {
+    for (const YAML::Node& item : section_list(e, "[{point: D, along: [E, F]}]")) {
       if (!item.IsMap()) fail(item, "a slot is a mapping like {point: D, along: [E, F]}, not " + describe(item));
       const Fields f = fields(item, kSlotKeys);
       Slot s;
@@ -520,7 +328,7 @@ class Parser {
   }
 
   void parse_drivers(const Entry& e) {
-    for (const YAML::Node& item : list(e, "[{angle: crank, from: 0, to: 360}]")) parse_driver(item);
+    for (const YAML::Node& item : section_list(e, "[{angle: crank, from: 0, to: 360}]")) parse_driver(item);
   }
 
   void parse_driver(const YAML::Node& item) {
@@ -756,14 +564,6 @@ class Parser {
     fail(mark(e), "unknown unit in " + what + " '" + text + "' (use " + known + ")");
   }
 
-  // A number that must not be negative (or, with `positive`, must be above zero).
-  double non_negative(const Entry& e, const std::string& what, bool positive = false) const {
-    const double v = number(e, what);
-    if (positive && v <= 0.0) fail(mark(e), what + " must be positive");
-    if (v < 0.0) fail(mark(e), what + " must not be negative");
-    return v;
-  }
-
   // [x, y] in model units, as written (not converted).
   Eigen::Vector2d coordinates(const YAML::Node& node, std::string_view what) const {
     if (!node.IsSequence() || node.size() != 2) {
@@ -984,7 +784,7 @@ class Parser {
     }
     std::vector<Hole> holes;
     if (const Entry* h = f.find("holes")) {
-      for (const YAML::Node& item : list(*h, "[{at: A, radius: 5}]")) holes.push_back(parse_hole(item));
+      for (const YAML::Node& item : section_list(*h, "[{at: A, radius: 5}]")) holes.push_back(parse_hole(item));
     }
     for (std::size_t k = 0; k < holes.size(); ++k) {
       Region alone{region.outline, {}, {}};
@@ -1110,7 +910,7 @@ class Parser {
   }
 
   void parse_forces(const Entry& e) {
-    for (const YAML::Node& item : list(e, "[{point: P, force: [0, -100]}]")) {
+    for (const YAML::Node& item : section_list(e, "[{point: P, force: [0, -100]}]")) {
       if (!item.IsMap()) fail(item, "a force is a mapping like {point: P, force: [0, -100]}, not " + describe(item));
       const Fields f = fields(item, kForceKeys);
       PointLoad load;
@@ -1149,7 +949,7 @@ class Parser {
   }
 
   void parse_torques(const Entry& e) {
-    for (const YAML::Node& item : list(e, "[{body: crank, torque: -5}]")) {
+    for (const YAML::Node& item : section_list(e, "[{body: crank, torque: -5}]")) {
       if (!item.IsMap()) fail(item, "a torque is a mapping like {body: crank, torque: -5}, not " + describe(item));
       const Fields f = fields(item, kTorqueKeys);
       BodyTorque torque;
@@ -1164,7 +964,7 @@ class Parser {
   void parse_springs(const Entry& e) {
     std::vector<std::size_t> unnamed;
     std::vector<SourceMark> name_marks;
-    for (const YAML::Node& item : list(e, "[{between: [P, Q], stiffness: 2000}]")) {
+    for (const YAML::Node& item : section_list(e, "[{between: [P, Q], stiffness: 2000}]")) {
       if (!item.IsMap()) {
         fail(item, "a spring is a mapping like {between: [P, Q], stiffness: 2000}, not " + describe(item));
       }

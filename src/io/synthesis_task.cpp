@@ -5,13 +5,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string_view>
 #include <system_error>
+
+#include "io/yaml_support.hpp"
 
 namespace nbar::io {
 
@@ -32,6 +33,11 @@ void SynthesisTask::fail(const std::string& message) const { throw ModelFileErro
 namespace {
 
 using Eigen::Vector2d;
+using yaml::AllowedKeys;
+using yaml::describe;
+using yaml::Entry;
+using yaml::Fields;
+using yaml::mark;
 
 // Keys every task takes, then each task's own.
 const std::vector<std::string_view> kCommonKeys{"task", "name", "description", "units"};
@@ -40,26 +46,17 @@ const std::vector<std::string_view> kBurmesterKeys{"poses", "fixed_pivots", "mov
 const std::vector<std::string_view> kFunctionKeys{"function", "x",       "input_range", "output_range",
                                                   "points",   "spacing", "frame"};
 
-std::string list_text(const std::vector<std::string_view>& items) {
-  std::string out;
-  for (std::string_view s : items) {
-    if (!out.empty()) out += ", ";
-    out += s;
-  }
-  return out;
-}
+// The words of the task file's document-level errors.
+const yaml::DocumentWording kTaskDocument{
+    "the file holds no task (it is empty or only comments): start with `task: five-point`, "
+    "`task: burmester` or `task: function`",
+    "a task file holds a single YAML document",
+    "a task file is a mapping of keys (task:, ...), not "};
 
-std::string describe(const YAML::Node& node) {
-  if (node.IsMap()) return "a mapping";
-  if (node.IsSequence()) return "a list";
-  if (node.IsScalar()) return "'" + node.Scalar() + "'";
-  return "nothing";
+// The keys a mapping under `e` takes: "unknown key 'c' in `pivots`".
+AllowedKeys keys_under(const Entry& e, std::vector<std::string_view> keys) {
+  return {std::string("in `").append(e.key).append("`"), std::move(keys)};
 }
-
-struct Entry {
-  std::string key;
-  YAML::Node key_node, value;
-};
 
 // The function of x as a law in t: x becomes t, and log10(u) becomes (log(u)/2.30...), which
 // the law grammar reads. `origin` maps each character of the result back to the text, so
@@ -108,14 +105,14 @@ std::string law_text(const std::string& text, std::vector<int>& origin, bool& us
   return out;
 }
 
-class TaskParser {
+class TaskParser : yaml::Reader {
  public:
-  TaskParser(std::string text, std::string file) : text_(std::move(text)) { task_.file = std::move(file); }
+  TaskParser(std::string text, std::string file) : Reader(std::move(text), file) { task_.file = std::move(file); }
 
   SynthesisTask parse() {
-    const YAML::Node root = load();
-    const std::vector<Entry> top = entries(root);
-    const Entry* kind = find(top, "task");
+    const YAML::Node root = load(kTaskDocument);
+    const Fields top{entries(root, "")};
+    const Entry* kind = top.find("task");
     if (!kind) fail(root, "a task file needs `task: five-point`, `task: burmester` or `task: function`");
     const std::string k = kind->value.IsScalar() ? kind->value.Scalar() : "";
     const std::vector<std::string_view>* own = nullptr;
@@ -132,16 +129,15 @@ class TaskParser {
       fail(mark(*kind),
            std::string("unknown task ") + describe(kind->value) + " (tasks are: five-point, burmester, function)");
     }
-    for (const Entry& e : top) {
-      if (std::find(kCommonKeys.begin(), kCommonKeys.end(), e.key) != kCommonKeys.end()) continue;
-      if (std::find(own->begin(), own->end(), e.key) != own->end()) continue;
-      fail(e.key_node, "unknown key '" + e.key + "' in a " + k + " task (allowed: " + list_text(kCommonKeys) + ", " +
-                           list_text(*own) + ")");
-    }
+    std::vector<std::string_view> allowed = kCommonKeys;
+    allowed.insert(allowed.end(), own->begin(), own->end());
+    check_keys(top, AllowedKeys{std::string("in a ").append(k).append(" task"), allowed});
     task_.where = mark(*kind);
-    if (const Entry* e = find(top, "name")) task_.name = scalar(*e, "the name");
-    if (const Entry* e = find(top, "description")) scalar(*e, "the description");
-    if (const Entry* e = find(top, "units")) parse_units(*e);
+    if (const Entry* e = top.find("name")) task_.name = text_value(*e, "the name");
+    if (const Entry* e = top.find("description")) text_value(*e, "the description");
+    if (const Entry* e = top.find("units")) {
+      task_.units = units_of(mapping(*e, keys_under(*e, {"length", "angle"}), "{length: mm, angle: deg}"), task_.units);
+    }
     switch (task_.kind) {
       case SynthesisKind::FivePoint:
         parse_five_point(top, root);
@@ -157,106 +153,17 @@ class TaskParser {
   }
 
  private:
-  std::string text_;
   SynthesisTask task_;
 
-  // ---- locations, errors, generic values (as in model files) ----
+  // ---- keys and values (the generic readers are yaml::Reader's) ----
 
-  static SourceMark mark(const YAML::Node& node) {
-    const YAML::Mark m = node.Mark();
-    if (m.line < 0) return {};
-    return {m.line + 1, m.column + 1};
-  }
-  // An empty value is marked at the next token, possibly lines below: use its key.
-  static SourceMark mark(const Entry& e) { return e.value.IsNull() ? mark(e.key_node) : mark(e.value); }
-  [[noreturn]] void fail(SourceMark at, const std::string& message) const {
-    throw ModelFileError(task_.file, at, message);
-  }
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const { fail(mark(at), message); }
-
-  YAML::Node load() const {
-    std::vector<YAML::Node> documents;
-    try {
-      documents = YAML::LoadAll(text_);
-    } catch (const YAML::Exception& e) {
-      fail(e.mark.line < 0 ? SourceMark{} : SourceMark{e.mark.line + 1, e.mark.column + 1}, "invalid YAML: " + e.msg);
+  // Keys here are only keywords (task:, points:, ...), never names the user chooses.
+  void check_key(const YAML::Node& key) const override {
+    if (!key.IsScalar() || key.Scalar().empty()) {
+      fail(key, std::string("a key must be a name, not ").append(describe(key)));
     }
-    if (documents.empty() || (documents.size() == 1 && documents[0].IsNull()))
-      fail(SourceMark{1, 1},
-           "the file holds no task (it is empty or only comments): start with `task: five-point`, "
-           "`task: burmester` or `task: function`");
-    if (documents.size() > 1) fail(documents[1], "a task file holds a single YAML document");
-    if (!documents[0].IsMap())
-      fail(documents[0], std::string("a task file is a mapping of keys (task:, ...), not ") + describe(documents[0]));
-    return documents[0];
   }
 
-  // The pairs of a mapping in file order; keys must be names and appear once.
-  std::vector<Entry> entries(const YAML::Node& map) const {
-    std::vector<Entry> out;
-    for (auto it = map.begin(); it != map.end(); ++it) {
-      if (!it->first.IsScalar() || it->first.Scalar().empty())
-        fail(it->first, std::string("a key must be a name, not ") + describe(it->first));
-      const std::string key = it->first.Scalar();
-      for (const Entry& previous : out)
-        if (previous.key == key)
-          fail(it->first, "duplicate key '" + key + "' (first given on line " +
-                              std::to_string(mark(previous.key_node).line) + ")");
-      out.push_back(Entry{key, it->first, it->second});
-    }
-    return out;
-  }
-  static const Entry* find(const std::vector<Entry>& entries, std::string_view key) {
-    for (const Entry& e : entries)
-      if (e.key == key) return &e;
-    return nullptr;
-  }
-  // A mapping with exactly these keys allowed; `example` shows one.
-  std::vector<Entry> mapping(const Entry& e, const std::vector<std::string_view>& allowed,
-                             std::string_view example) const {
-    if (!e.value.IsMap())
-      fail(mark(e), "`" + e.key + "` must be a mapping like " + std::string(example) + ", not " + describe(e.value));
-    std::vector<Entry> out = entries(e.value);
-    for (const Entry& f : out)
-      if (std::find(allowed.begin(), allowed.end(), f.key) == allowed.end())
-        fail(f.key_node, "unknown key '" + f.key + "' in `" + e.key + "` (allowed: " + list_text(allowed) + ")");
-    return out;
-  }
-  const Entry& required(const std::vector<Entry>& entries, const YAML::Node& owner, std::string_view key,
-                        const std::string& what) const {
-    const Entry* e = find(entries, key);
-    if (!e) fail(owner, what + " needs `" + std::string(key) + "`");
-    return *e;
-  }
-
-  std::string scalar(const Entry& e, const std::string& what) const {
-    if (e.value.IsNull()) return {};
-    if (!e.value.IsScalar()) fail(mark(e), what + " must be text, not " + describe(e.value));
-    return e.value.Scalar();
-  }
-
-  double number(const YAML::Node& node, SourceMark at, const std::string& what) const {
-    if (!node.IsScalar()) fail(at, what + " must be a number, not " + describe(node));
-    std::string_view s = node.Scalar();
-    std::string lower(s);
-    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (lower == ".nan" || lower == ".inf" || lower == "+.inf" || lower == "-.inf")  // YAML's spellings
-      fail(at, what + " must be a finite number, not '" + node.Scalar() + "'");
-    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-    double value = 0.0;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-    if (s.empty() || end != s.data() + s.size() || (ec != std::errc() && ec != std::errc::result_out_of_range))
-      fail(at, what + " must be a number, not '" + node.Scalar() + "'");
-    if (ec == std::errc::result_out_of_range || !std::isfinite(value))
-      fail(at, what + " must be a finite number, not '" + node.Scalar() + "'");
-    return value;
-  }
-  double number(const Entry& e, const std::string& what) const { return number(e.value, mark(e), what); }
-  double positive(const Entry& e, const std::string& what) const {
-    const double v = number(e, what);
-    if (!(v > 0.0)) fail(mark(e), what + " must be positive");
-    return v;
-  }
   int whole(const Entry& e, const std::string& what, int low, int high) const {
     const double v = number(e, what);
     if (v != std::floor(v) || v < low || v > high)
@@ -281,7 +188,7 @@ class TaskParser {
 
   // {a: [x, y], b: [x, y]}, two distinct points.
   std::array<Vector2d, 2> pivots(const Entry& e, const std::string& what) const {
-    const std::vector<Entry> f = mapping(e, {"a", "b"}, "{a: [0, 0], b: [1, 0]}");
+    const Fields f = mapping(e, keys_under(e, {"a", "b"}), "{a: [0, 0], b: [1, 0]}");
     const Vector2d a = point(required(f, e.value, "a", "`" + e.key + "`"), "pivot a");
     const Entry& b_entry = required(f, e.value, "b", "`" + e.key + "`");
     const Vector2d b = point(b_entry, "pivot b");
@@ -290,29 +197,9 @@ class TaskParser {
     return {a, b};
   }
 
-  void parse_units(const Entry& e) {
-    const std::vector<Entry> f = mapping(e, {"length", "angle"}, "{length: mm, angle: deg}");
-    std::string length = "m", angle_unit = "deg";
-    if (const Entry* l = find(f, "length")) {
-      length = scalar(*l, "the length unit");
-      if (!length_unit_scale(length)) fail(mark(*l), "unknown length unit '" + length + "' (use m, mm, cm, in or ft)");
-    }
-    if (const Entry* a = find(f, "angle")) {
-      angle_unit = scalar(*a, "the angle unit");
-      if (!angle_unit_scale(angle_unit)) fail(mark(*a), "unknown angle unit '" + angle_unit + "' (use deg or rad)");
-    }
-    task_.units = *Units::make(length, angle_unit);
-  }
-
-  std::vector<YAML::Node> list(const Entry& e, std::string_view example) const {
-    if (!e.value.IsSequence())
-      fail(mark(e), "`" + e.key + "` must be a list like " + std::string(example) + ", not " + describe(e.value));
-    return {e.value.begin(), e.value.end()};
-  }
-
   // ---- the tasks ----
 
-  void parse_five_point(const std::vector<Entry>& top, const YAML::Node& root) {
+  void parse_five_point(const Fields& top, const YAML::Node& root) {
     const auto [a, b] = pivots(required(top, root, "pivots", "a five-point task"), "fixed pivots");
     task_.pivot_a = a;
     task_.pivot_b = b;
@@ -331,7 +218,7 @@ class TaskParser {
                              " coincide: the five points must be distinct");
   }
 
-  void parse_burmester(const std::vector<Entry>& top, const YAML::Node& root) {
+  void parse_burmester(const Fields& top, const YAML::Node& root) {
     const Entry& poses = required(top, root, "poses", "a burmester task");
     task_.where = mark(poses);
     const std::vector<YAML::Node> items = list(poses, "[{point: [0, 0], angle: 0}, ...]");
@@ -341,7 +228,7 @@ class TaskParser {
       if (!item.IsMap())
         fail(item, std::string("a pose is a mapping like {point: [0, 0], angle: 0}, not ") + describe(item));
       Entry self{"pose", item, item};
-      const std::vector<Entry> f = mapping(self, {"point", "angle"}, "{point: [0, 0], angle: 0}");
+      const Fields f = mapping(self, keys_under(self, {"point", "angle"}), "{point: [0, 0], angle: 0}");
       synthesis::BodyPose pose;
       pose.point = point(required(f, item, "point", "a pose"), "the pose's point");
       const Entry& a = required(f, item, "angle", "a pose");
@@ -354,8 +241,8 @@ class TaskParser {
       task_.poses.push_back(pose);
     }
     const std::size_t n = items.size();
-    const Entry* fixed = find(top, "fixed_pivots");
-    const Entry* moving = find(top, "moving_pivots");
+    const Entry* fixed = top.find("fixed_pivots");
+    const Entry* moving = top.find("moving_pivots");
     if (n == 3) {
       if (fixed && moving) fail(moving->key_node, "give either `fixed_pivots` or `moving_pivots`, not both");
       if (!fixed && !moving)
@@ -373,21 +260,21 @@ class TaskParser {
           fail(e->key_node, "`" + e->key + "` applies to 3 poses only; with " + std::to_string(n) +
                                 " poses the pivots follow from the poses");
     }
-    const Entry* curves = find(top, "curves");
-    const Entry* samples = find(top, "samples");
+    const Entry* curves = top.find("curves");
+    const Entry* samples = top.find("samples");
     if (n != 4) {
       for (const Entry* e : {curves, samples})
         if (e) fail(e->key_node, "`" + e->key + "` applies to 4 poses only (the Burmester curves)");
     }
     if (curves) {
-      const std::vector<Entry> f = mapping(*curves, {"radius", "step"}, "{radius: 5, step: 0.01}");
-      if (const Entry* r = find(f, "radius")) task_.curves.radius = positive(*r, "the radius");
-      if (const Entry* s = find(f, "step")) task_.curves.step = positive(*s, "the step");
+      const Fields f = mapping(*curves, keys_under(*curves, {"radius", "step"}), "{radius: 5, step: 0.01}");
+      if (const Entry* r = f.find("radius")) task_.curves.radius = non_negative(*r, "the radius", true);
+      if (const Entry* s = f.find("step")) task_.curves.step = non_negative(*s, "the step", true);
     }
     if (samples) task_.samples = whole(*samples, "`samples`", 2, 200);
   }
 
-  void parse_function(const std::vector<Entry>& top, const YAML::Node& root) {
+  void parse_function(const Fields& top, const YAML::Node& root) {
     const Entry& f = required(top, root, "function", "a function task");
     task_.where = mark(f);
     if (!f.value.IsScalar() || f.value.Scalar().empty())
@@ -421,14 +308,14 @@ class TaskParser {
     task_.input_to = in[1];
     task_.output_from = out[0];
     task_.output_to = out[1];
-    if (const Entry* p = find(top, "points")) task_.precision_points = whole(*p, "`points`", 3, 50);
-    if (const Entry* s = find(top, "spacing")) {
-      const std::string spacing = scalar(*s, "`spacing`");
+    if (const Entry* p = top.find("points")) task_.precision_points = whole(*p, "`points`", 3, 50);
+    if (const Entry* s = top.find("spacing")) {
+      const std::string spacing = text_value(*s, "`spacing`");
       if (spacing != "chebyshev" && spacing != "even")
         fail(mark(*s), "unknown spacing '" + spacing + "' (use chebyshev or even)");
       task_.chebyshev = spacing == "chebyshev";
     }
-    if (const Entry* fr = find(top, "frame")) task_.frame = positive(*fr, "the frame length");
+    if (const Entry* fr = top.find("frame")) task_.frame = non_negative(*fr, "the frame length", true);
     // The function must be defined over the whole range, and not equal at its ends (the
     // output's range maps f(x_start)..f(x_end)).
     double y0 = 0.0, y1 = 0.0;

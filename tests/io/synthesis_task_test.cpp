@@ -250,6 +250,26 @@ TEST(SynthesisTask, FunctionErrors) {
             "task.yaml:1:1: a function task needs `input_range`");
 }
 
+// As in model files, a misspelt key names the key it is a typo of, at every level.
+TEST(SynthesisTask, MisspeltKeysSuggestTheRightOne) {
+  EXPECT_EQ(error_of(replaced(kFivePoint, "pivots:", "pivot:")),
+            "task.yaml:2:1: unknown key 'pivot' in a five-point task; did you mean 'pivots'?");
+  EXPECT_EQ(error_of(kFunction + "spaceing: even\n"),
+            "task.yaml:6:1: unknown key 'spaceing' in a function task; did you mean 'spacing'?");
+  EXPECT_EQ(error_of("task: five-point\nunits: {lenght: mm}\n"),
+            "task.yaml:2:9: unknown key 'lenght' in `units`; did you mean 'length'?");
+  EXPECT_EQ(error_of(replaced(kThreePoses, "angle: 30", "angel: 30")),
+            "task.yaml:4:21: unknown key 'angel' in `pose`; did you mean 'angle'?");
+  const std::string four = replaced(kThreePoses, "fixed_pivots: {a: [0, -1], b: [2, -1]}\n",
+                                    "  - {point: [3, 3], angle: 90}\n");
+  EXPECT_EQ(error_of(four + "curves: {raduis: 5}\n"),
+            "task.yaml:7:10: unknown key 'raduis' in `curves`; did you mean 'radius'?");
+  // Nothing close enough: the allowed keys are listed instead.
+  EXPECT_EQ(error_of(replaced(kFivePoint, "pivots:", "anchors:")),
+            "task.yaml:2:1: unknown key 'anchors' in a five-point task (allowed: task, name, description, units, "
+            "pivots, points)");
+}
+
 TEST(SynthesisTask, UnreadableFile) {
   try {
     nbar::io::load_synthesis_task("/nonexistent/task.yaml");

@@ -1,0 +1,184 @@
+#include "io/yaml_support.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <system_error>
+
+namespace nbar::io::yaml {
+
+SourceMark mark(const YAML::Mark& m) {
+  if (m.line < 0) return {};
+  return {m.line + 1, m.column + 1};
+}
+
+SourceMark mark(const YAML::Node& node) { return mark(node.Mark()); }
+
+SourceMark mark(const Entry& e) { return e.value.IsNull() ? mark(e.key_node) : mark(e.value); }
+
+std::string describe(const YAML::Node& node) {
+  if (node.IsMap()) return "a mapping";
+  if (node.IsSequence()) return "a list";
+  if (node.IsScalar()) return std::string("'").append(node.Scalar()).append("'");
+  return "nothing";
+}
+
+int edit_distance(std::string_view a, std::string_view b) {
+  const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
+  const std::size_t n = a.size(), m = b.size();
+  std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1, 0));
+  for (std::size_t i = 0; i <= n; ++i) d[i][0] = static_cast<int>(i);
+  for (std::size_t j = 0; j <= m; ++j) d[0][j] = static_cast<int>(j);
+  for (std::size_t i = 1; i <= n; ++i) {
+    for (std::size_t j = 1; j <= m; ++j) {
+      const int cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1])) {
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    }
+  }
+  return d[n][m];
+}
+
+NumberStatus parse_number(std::string_view text, double& value) {
+  std::string lower(text);
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (std::string_view special : {".nan", ".inf", "+.inf", "-.inf"}) {
+    if (lower == special) return NumberStatus::NotFinite;
+  }
+  std::string_view s = text;
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);  // from_chars does not take it
+  if (s.empty()) return NumberStatus::NotNumber;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  if (end != s.data() + s.size()) return NumberStatus::NotNumber;
+  if (ec == std::errc::result_out_of_range) return NumberStatus::NotFinite;
+  if (ec != std::errc()) return NumberStatus::NotNumber;
+  return std::isfinite(value) ? NumberStatus::Ok : NumberStatus::NotFinite;
+}
+
+void Reader::fail(SourceMark at, const std::string& message) const { throw ModelFileError(file_, at, message); }
+
+void Reader::fail(const YAML::Node& at, const std::string& message) const { fail(mark(at), message); }
+
+YAML::Node Reader::load(const DocumentWording& wording) const {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text_);
+  } catch (const YAML::Exception& e) {
+    fail(mark(e.mark), std::string("invalid YAML: ").append(e.msg));
+  }
+  if (documents.empty() || (documents.size() == 1 && documents[0].IsNull())) {
+    fail(SourceMark{1, 1}, std::string(wording.empty));
+  }
+  if (documents.size() > 1) fail(documents[1], std::string(wording.several));
+  const YAML::Node root = documents[0];
+  if (!root.IsMap()) fail(root, std::string(wording.not_mapping).append(describe(root)));
+  return root;
+}
+
+std::vector<Entry> Reader::entries(const YAML::Node& map, std::string_view entity) const {
+  std::vector<Entry> out;
+  for (auto it = map.begin(); it != map.end(); ++it) {
+    const YAML::Node key = it->first;
+    check_key(key);
+    const std::string name = key.Scalar();
+    for (const Entry& previous : out) {
+      if (previous.key != name) continue;
+      const std::string first =
+          std::string(" (first given on line ").append(std::to_string(mark(previous.key_node).line)).append(")");
+      if (entity.empty()) fail(key, std::string("duplicate key '").append(name).append("'").append(first));
+      fail(key, std::string(entity).append(" '").append(name).append("' is defined twice").append(first));
+    }
+    out.push_back(Entry{name, key, it->second});
+  }
+  return out;
+}
+
+void Reader::check_keys(const Fields& fields, const AllowedKeys& allowed) const {
+  for (const Entry& e : fields.entries) {
+    if (std::find(allowed.keys.begin(), allowed.keys.end(), e.key) != allowed.keys.end()) continue;
+    std::string message = std::string("unknown key '").append(e.key).append("' ").append(allowed.context);
+    if (auto close = suggestion(e.key, allowed.keys)) {
+      message.append("; did you mean '").append(*close).append("'?");
+    } else {
+      message.append(" (allowed: ").append(join(allowed.keys, allowed.keys.size())).append(")");
+    }
+    fail(e.key_node, message);
+  }
+}
+
+Fields Reader::fields(const YAML::Node& map, const AllowedKeys& allowed) const {
+  Fields f{entries(map, "")};
+  check_keys(f, allowed);
+  return f;
+}
+
+Fields Reader::mapping(const Entry& e, const AllowedKeys& allowed, std::string_view example) const {
+  if (!e.value.IsMap()) {
+    fail(mark(e), std::string("`").append(e.key).append("` must be a mapping like ").append(example).append(", not ")
+                      .append(describe(e.value)));
+  }
+  return fields(e.value, allowed);
+}
+
+const Entry& Reader::required(const Fields& f, const YAML::Node& owner, std::string_view key,
+                              std::string_view what) const {
+  const Entry* e = f.find(key);
+  if (!e) fail(owner, std::string(what).append(" needs `").append(key).append("`"));
+  return *e;
+}
+
+std::vector<YAML::Node> Reader::list(const Entry& e, std::string_view example) const {
+  if (!e.value.IsSequence()) {
+    fail(mark(e), std::string("`").append(e.key).append("` must be a list like ").append(example).append(", not ")
+                      .append(describe(e.value)));
+  }
+  return {e.value.begin(), e.value.end()};
+}
+
+std::string Reader::text_value(const Entry& e, std::string_view what) const {
+  if (e.value.IsNull()) return {};
+  if (!e.value.IsScalar()) fail(mark(e), std::string(what).append(" must be text, not ").append(describe(e.value)));
+  return e.value.Scalar();
+}
+
+double Reader::number(const YAML::Node& node, SourceMark at, std::string_view what) const {
+  if (!node.IsScalar()) fail(at, std::string(what).append(" must be a number, not ").append(describe(node)));
+  double value = 0.0;
+  switch (parse_number(node.Scalar(), value)) {
+    case NumberStatus::Ok: return value;
+    case NumberStatus::NotFinite:
+      fail(at, std::string(what).append(" must be a finite number, not '").append(node.Scalar()).append("'"));
+    case NumberStatus::NotNumber: break;
+  }
+  fail(at, std::string(what).append(" must be a number, not '").append(node.Scalar()).append("'"));
+}
+
+double Reader::number(const Entry& e, std::string_view what) const { return number(e.value, mark(e), what); }
+
+double Reader::non_negative(const Entry& e, std::string_view what, bool positive) const {
+  const double v = number(e, what);
+  if (positive && v <= 0.0) fail(mark(e), std::string(what).append(" must be positive"));
+  if (v < 0.0) fail(mark(e), std::string(what).append(" must not be negative"));
+  return v;
+}
+
+Units Reader::units_of(const Fields& f, const Units& units) const {
+  std::string length = units.length, angle = units.angle;
+  if (const Entry* l = f.find("length")) {
+    length = text_value(*l, "the length unit");
+    if (!length_unit_scale(length)) {
+      fail(mark(*l), std::string("unknown length unit '").append(length).append("' (use m, mm, cm, in or ft)"));
+    }
+  }
+  if (const Entry* a = f.find("angle")) {
+    angle = text_value(*a, "the angle unit");
+    if (!angle_unit_scale(angle)) {
+      fail(mark(*a), std::string("unknown angle unit '").append(angle).append("' (use deg or rad)"));
+    }
+  }
+  return *Units::make(length, angle);
+}
+
+}  // namespace nbar::io::yaml
