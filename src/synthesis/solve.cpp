@@ -61,6 +61,15 @@ TrackSettings tighter(TrackSettings s, int round) {
 // Classifies a tracked endpoint; `infinity` is the smallest relative homogenizing coordinate.
 using Classifier = std::function<void(const CVector& x, Endpoint& e)>;
 
+// What every homotopy's classification shares: singular or not, at infinity or finite.
+// Returns whether the endpoint is finite (then the caller adds residual and realness).
+bool finite_endpoint(Endpoint& e, const CVector& x, double infinity_measure, const SolverOptions& options) {
+  e.singular = e.winding > 1 || !(e.condition < options.singular_condition);
+  e.x = x;
+  e.kind = infinity_measure < options.infinity_threshold ? EndpointKind::AtInfinity : EndpointKind::Finite;
+  return e.kind == EndpointKind::Finite;
+}
+
 unsigned thread_count(const SolverOptions& options, size_t jobs) {
   unsigned n = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   return static_cast<unsigned>(std::min<size_t>(n, std::max<size_t>(1, jobs)));
@@ -360,13 +369,7 @@ SolveResult solve_grouped(const PolynomialSystem& f, const VariableGroups& group
       measure = std::min(measure, std::abs(hg) / part.norm());
       for (int v : hom.groups[g]) x[v] = X[v] / hg;
     }
-    e.singular = e.winding > 1 || !(e.condition < options.singular_condition);
-    if (measure < options.infinity_threshold) {
-      e.kind = EndpointKind::AtInfinity;
-      e.x = X;
-      return;
-    }
-    e.kind = EndpointKind::Finite;
+    if (!finite_endpoint(e, X, measure, options)) return;
     e.x = x;
     CVector value;
     f.evaluate(x, value);
@@ -408,14 +411,7 @@ class ParameterHomotopy final : public Homotopy {
 Classifier parameter_classifier(const ParameterizedSystem& f, const CVector& to,
                                 const SolverOptions& options) {
   return [&f, to, options](const CVector& x, Endpoint& e) {
-    e.singular = e.winding > 1 || !(e.condition < options.singular_condition);
-    if (f.infinity_measure(x) < options.infinity_threshold) {
-      e.kind = EndpointKind::AtInfinity;
-      e.x = x;
-      return;
-    }
-    e.kind = EndpointKind::Finite;
-    e.x = x;
+    if (!finite_endpoint(e, x, f.infinity_measure(x), options)) return;
     CVector value;
     f.evaluate(x, to, value, nullptr, nullptr);
     e.residual = value.cwiseAbs().maxCoeff();
