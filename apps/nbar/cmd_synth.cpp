@@ -102,6 +102,7 @@ struct Row {
   DesignCheck check;
   std::optional<synthesis::InputMotion> motion;  // for the exported model, instead of check.motion
   double solver_residual = 0;
+  double solver_condition = 0;  // five-point: the homotopy's condition number at the endpoint
   std::optional<double> structural_error;  // function generation: worst output error over the range (rad)
 };
 
@@ -142,6 +143,7 @@ Outcome five_point(const SynthesisTask& task, const SynthArgs& args, Progress& p
     row.real = s.real;
     row.design = s.design;
     row.solver_residual = s.residual;
+    row.solver_condition = s.condition;
     out.rows.push_back(row);
   }
   std::vector<synthesis::Target> targets;
@@ -436,6 +438,7 @@ nlohmann::ordered_json to_json(const SynthesisTask& task, const Outcome& out, co
     d["rank"] = ++rank;
     d["real"] = r.real;
     d["solver_residual"] = r.solver_residual;
+    if (r.solver_condition > 0) d["solver_condition"] = r.solver_condition;
     if (r.real) {
       const DesignCheck& c = r.check;
       d["pivots"] = {{"ground_a", point(r.design.ground_a)},

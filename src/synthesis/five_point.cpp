@@ -414,10 +414,19 @@ CVector isotropic_from_primer(const FivePointTask& task, const CVector& z) {
   return a;
 }
 
-std::vector<FivePointSolution> distinct_solutions(const FivePointTask& task, const std::vector<CVector>& affine) {
+// A solution found by a path: its affine coordinates and the tracker's condition number there.
+struct Found {
+  CVector affine;
+  double condition = 0;
+};
+
+std::vector<FivePointSolution> solutions_of(const FivePointTask& task, const std::vector<Found>& found) {
   std::vector<FivePointSolution> out;
-  out.reserve(affine.size());
-  for (const auto& a : affine) out.push_back(five_point_solution(task, a));
+  out.reserve(found.size());
+  for (const auto& f : found) {
+    out.push_back(five_point_solution(task, f.affine));
+    out.back().condition = f.condition;
+  }
   return out;
 }
 
@@ -439,11 +448,11 @@ FivePointResult solve_five_point(const FivePointTask& task, const SolverOptions&
   result.paths = static_cast<int>(starts.size());
   result.failed_paths = r.count(EndpointKind::Failed);
   result.retracked_paths = r.retracked;
-  std::vector<CVector> affine;
-  for (const auto* e : r.finite_regular()) affine.push_back(system.to_affine(e->x));
-  if (affine.size() == start.solutions.size() && result.failed_paths == 0) {
+  std::vector<Found> found;
+  for (const auto* e : r.finite_regular()) found.push_back({system.to_affine(e->x), e->condition});
+  if (found.size() == start.solutions.size() && result.failed_paths == 0) {
     result.method = "parameter homotopy (" + std::to_string(starts.size()) + " paths)";
-    result.solutions = distinct_solutions(task, affine);
+    result.solutions = solutions_of(task, found);
     return result;
   }
 
@@ -457,17 +466,17 @@ FivePointResult solve_five_point(const FivePointTask& task, const SolverOptions&
                   std::to_string(fallback.count(EndpointKind::Finite)) + " finite, " +
                   std::to_string(fallback.count(EndpointKind::AtInfinity)) + " at infinity, " +
                   std::to_string(fallback.count(EndpointKind::Failed)) +
-                  " failed) after the parameter homotopy found " + std::to_string(affine.size()) + " of " +
+                  " failed) after the parameter homotopy found " + std::to_string(found.size()) + " of " +
                   std::to_string(start.solutions.size());
   // Every distinct solution either run found.
   for (const auto* e : fallback.finite_regular()) {
     const CVector a = isotropic_from_primer(task, e->x);
-    const bool known = std::any_of(affine.begin(), affine.end(), [&](const CVector& b) {
-      return (a - b).norm() <= 1e-7 * (1.0 + a.norm());
+    const bool known = std::any_of(found.begin(), found.end(), [&](const Found& b) {
+      return (a - b.affine).norm() <= 1e-7 * (1.0 + a.norm());
     });
-    if (!known) affine.push_back(a);
+    if (!known) found.push_back({a, e->condition});
   }
-  result.solutions = distinct_solutions(task, affine);
+  result.solutions = solutions_of(task, found);
   return result;
 }
 

@@ -32,7 +32,7 @@ struct FivePointSolution {
   std::array<Complex, 2> moving_a{}, moving_b{};
   bool real = false;
   double residual = 0.0;   // max |equation| in the primer's (c, s, x, y) form, task units
-  double condition = 0.0;  // of the solver's Jacobian at the endpoint
+  double condition = 0.0;  // 1-norm condition number of the solver's Jacobian at the endpoint
   FourBarDesign design;    // the linkage, when real
 };
 
