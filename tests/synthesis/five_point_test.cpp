@@ -76,7 +76,11 @@ TEST(FivePointTest, HundredRandomInstancesGiveThirtySixSolutionsEach) {
     const FivePointTask t = random_task(rng);
     const FivePointResult r = solve_five_point(t);
     ASSERT_EQ(r.solutions.size(), 36u) << "seed " << seed << ": " << r.method;
-    for (const auto& s : r.solutions) worst = std::max(worst, s.residual);
+    for (const auto& s : r.solutions) {
+      worst = std::max(worst, s.residual);
+      EXPECT_GE(s.condition, 1.0);  // a condition number, measured at every endpoint
+      EXPECT_LT(s.condition, 1e13);
+    }
     fallbacks += r.used_fallback;
   }
   std::printf("[ accuracy ] five-point, 100 instances: worst residual %.2e, %d fallbacks\n", worst, fallbacks);
