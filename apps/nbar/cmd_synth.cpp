@@ -294,16 +294,11 @@ Outcome function(const SynthesisTask& task, Progress& progress) {
   }
   const synthesis::FunctionDesign fd = synthesis::freudenstein_design(problem, xs);
 
-  // The input and output angles the task asks for at x.
-  const double y0 = law.value(task.x_start), y1 = law.value(task.x_end);
+  const std::vector<synthesis::RotationTarget> targets = synthesis::rotation_targets(problem, xs);
+  // The input angle the task asks for at x.
   const auto phi = [&](double x) {
     return task.input_from + (x - task.x_start) / (task.x_end - task.x_start) * (task.input_to - task.input_from);
   };
-  const auto psi = [&](double x) {
-    return task.output_from + (law.value(x) - y0) / (y1 - y0) * (task.output_to - task.output_from);
-  };
-  std::vector<synthesis::RotationTarget> targets;
-  for (double x : xs) targets.push_back({phi(x) - phi(xs[0]), psi(x) - psi(xs[0])});
 
   Outcome out;
   out.angle_errors = true;

@@ -203,4 +203,14 @@ FunctionDesign freudenstein_design(const FunctionTask& task, const std::vector<d
   return out;
 }
 
+std::vector<RotationTarget> rotation_targets(const FunctionTask& task, const std::vector<double>& precision_x) {
+  check_task(task);
+  if (precision_x.empty()) fail("no precision points");
+  const Mapping map{task, evaluate(task, task.x_start), evaluate(task, task.x_end)};
+  const double phi0 = map.phi(precision_x[0]), psi0 = map.psi(evaluate(task, precision_x[0]));
+  std::vector<RotationTarget> targets;
+  for (double x : precision_x) targets.push_back({map.phi(x) - phi0, map.psi(evaluate(task, x)) - psi0});
+  return targets;
+}
+
 }  // namespace nbar::synthesis

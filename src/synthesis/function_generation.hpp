@@ -62,6 +62,10 @@ struct FunctionDesign {
   double fails_at_x = 0;    // when not: the first such x (samples from x_start on, then precision points)
 };
 
+// The precision points as check_design's targets: the input's and the output's rotations from
+// the first precision point, as the task maps x onto phi and f(x) onto psi.
+std::vector<RotationTarget> rotation_targets(const FunctionTask& task, const std::vector<double>& precision_x);
+
 // precision_x: 3 points (solved exactly) or more (least squares on the Freudenstein
 // equation's residuals; the structural error is then nonzero at every point).
 FunctionDesign freudenstein_design(const FunctionTask& task, const std::vector<double>& precision_x);

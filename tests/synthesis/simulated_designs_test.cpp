@@ -120,12 +120,10 @@ TEST(SimulatedDesignsTest, FreudensteinDesignMeetsItsPrecisionPoints) {
   const std::vector<double> xs = chebyshev_spacing(1, 2, 3);
   const FunctionDesign design = freudenstein_design(task, xs);
   // input and output rotations from the first precision point, as the task maps them
-  auto phi = [&](double x) { return task.input_start + (x - task.x_start) / (task.x_end - task.x_start) * task.input_range; };
-  auto psi = [&](double x) {
-    return task.output_start + (task.f(x) - task.f(task.x_start)) / (task.f(task.x_end) - task.f(task.x_start)) * task.output_range;
-  };
-  std::vector<RotationTarget> targets;
-  for (double x : xs) targets.push_back({phi(x) - phi(xs[0]), psi(x) - psi(xs[0])});
+  const std::vector<RotationTarget> targets = rotation_targets(task, xs);
+  const double dphi = 60 * deg * (xs[2] - xs[0]);  // phi is linear in x: 60 deg over [1, 2]
+  EXPECT_NEAR(targets[2].input, dphi, 1e-12);
+  EXPECT_NEAR(targets[2].output, (std::log10(xs[2]) - std::log10(xs[0])) / std::log10(2.0) * 60 * deg, 1e-12);
   const DesignCheck check = check_design(design.design, targets);
   ASSERT_TRUE(check.invalid.empty()) << check.invalid;
   EXPECT_TRUE(check.defect_free()) << describe_defects(check);
