@@ -3,6 +3,7 @@
 #include <rapidcheck/gtest.h>
 
 #include <algorithm>
+#include <numbers>
 #include <random>
 
 #include "synthesis/solve.hpp"
@@ -168,6 +169,75 @@ RC_GTEST_PROP(HomotopySolverProperty, RandomDenseQuadricsHaveEightSolutions, ())
   const SolveResult r = solve_total_degree(f, options);
   RC_ASSERT(r.solutions().size() == 8u);
   for (const auto* e : r.finite_regular()) RC_ASSERT(e->residual < 1e-9 * (1 + e->x.squaredNorm()));
+}
+
+}  // namespace
+}  // namespace nbar::synthesis
+
+namespace nbar::synthesis {
+namespace {
+
+// x^3 = p0, y = p1 x: three solutions, the cube roots of p0.
+class CubeRoots final : public ParameterizedSystem {
+ public:
+  int variables() const override { return 2; }
+  int parameters() const override { return 2; }
+  void evaluate(const CVector& x, const CVector& p, CVector& f, CMatrix* jx, CMatrix* jp) const override {
+    f.resize(2);
+    f << x[0] * x[0] * x[0] - p[0], x[1] - p[1] * x[0];
+    if (jx) {
+      jx->setZero(2, 2);
+      (*jx)(0, 0) = 3.0 * x[0] * x[0];
+      (*jx)(1, 0) = -p[1];
+      (*jx)(1, 1) = 1.0;
+    }
+    if (jp) {
+      jp->setZero(2, 2);
+      (*jp)(0, 0) = -1.0;
+      (*jp)(1, 1) = -x[0];
+    }
+  }
+};
+
+TEST(ParameterHomotopyTest, MovesEachSolutionToItsPartner) {
+  const CubeRoots f;
+  CVector from(2), to(2);
+  from << Complex(0.3, 1.1), Complex(-0.7, 0.2);
+  to << 8.0, 2.0;
+  std::vector<CVector> starts;
+  for (int k = 0; k < 3; ++k) {
+    const Complex r = std::pow(from[0], 1.0 / 3.0) * std::polar(1.0, 2.0 * std::numbers::pi * k / 3.0);
+    CVector s(2);
+    s << r, from[1] * r;
+    starts.push_back(s);
+  }
+  const SolveResult r = solve_parameter_homotopy(f, from, starts, to);
+  const auto s = r.solutions();
+  ASSERT_EQ(s.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    const Complex root = 2.0 * std::polar(1.0, 2.0 * std::numbers::pi * k / 3.0);
+    EXPECT_TRUE(contains(s, point({root, 2.0 * root}), 1e-12)) << k;
+  }
+  EXPECT_EQ(r.solutions(true).size(), 1u);  // only x = 2 is real
+}
+
+TEST(MonodromyTest, GrowsOneSolutionIntoAllThree) {
+  const CubeRoots f;
+  CVector p(2), seed(2);
+  p << Complex(1.0, 0.5), Complex(0.2, -0.4);
+  const Complex r = std::pow(p[0], 1.0 / 3.0);
+  seed << r, p[1] * r;
+  SolverOptions options;
+  options.seed = 3;
+  // No target: stop after 12 loops in a row bring nothing new (a random triangle goes round
+  // the branch point p0 = 0 only now and then).
+  const MonodromyResult m = monodromy_solve(f, p, {seed}, 0, options, 12);
+  EXPECT_EQ(m.solutions.size(), 3u);
+  EXPECT_TRUE(m.stable);
+  for (const auto& s : m.solutions) {
+    EXPECT_LT(std::abs(s[0] * s[0] * s[0] - p[0]), 1e-12);
+    EXPECT_LT(std::abs(s[1] - p[1] * s[0]), 1e-12);
+  }
 }
 
 }  // namespace
