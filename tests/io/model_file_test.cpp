@@ -1,6 +1,7 @@
 // The project headers come first: <signal.h>, which gtest pulls in, defines a macro
 // named value_si that would break units.hpp's Quantity::value_si.
 #include "io/model_file.hpp"
+#include "io/model_file_support.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -89,25 +90,7 @@ const std::string kSlottedLever =
     "  lever: [Q, E]\n"  // 9
     "slots:\n";          // 10
 
-// Checks that parsing fails at exactly `location` ("line:column") with a message
-// containing `phrase`.
-::testing::AssertionResult fails_at(const std::string& text, const std::string& location, const std::string& phrase) {
-  try {
-    parse_model(text, "m.yaml");
-  } catch (const ModelFileError& e) {
-    const std::string what = e.what();
-    const std::string prefix = "m.yaml:" + location + ": ";
-    if (what.rfind(prefix, 0) != 0) return ::testing::AssertionFailure() << "error at the wrong place: " << what;
-    if (what.find(phrase) == std::string::npos) {
-      return ::testing::AssertionFailure() << "message lacks '" << phrase << "': " << what;
-    }
-    if (prefix + e.message() != what) return ::testing::AssertionFailure() << "message() differs from what(): " << what;
-    return ::testing::AssertionSuccess();
-  } catch (const std::exception& e) {
-    return ::testing::AssertionFailure() << "not a ModelFileError: " << e.what();
-  }
-  return ::testing::AssertionFailure() << "parsed without error";
-}
+using test_support::fails_at;
 
 // ---- valid files ----
 
