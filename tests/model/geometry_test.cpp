@@ -2,6 +2,7 @@
 // properties over random plates: the two sides of any cut add up to the whole, and the results
 // move rigidly with the plate.
 #include "model/geometry.hpp"
+#include "model/region_support.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -350,26 +351,8 @@ TEST(ClippedAreaProperties, CutThroughThePolygonHole) {
 
 // Midpoint-rule quadrature over a fine grid, using only point-in-region tests: independent of
 // every formula under test, and accurate to about a cell along the boundary.
-bool inside_polygon(const Polygon& poly, const Vector2d& x) {
-  bool in = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    if ((poly[i].y() > x.y()) != (poly[j].y() > x.y()) &&
-        x.x() < poly[j].x() + (x.y() - poly[j].y()) / (poly[i].y() - poly[j].y()) * (poly[i].x() - poly[j].x())) {
-      in = !in;
-    }
-  }
-  return in;
-}
-bool inside_region(const Region& r, const Vector2d& x) {
-  if (!inside_polygon(r.outline, x)) return false;
-  for (const Polygon& h : r.polygon_holes) {
-    if (inside_polygon(h, x)) return false;
-  }
-  for (const Circle& c : r.circle_holes) {
-    if ((x - c.centre).norm() < c.radius) return false;
-  }
-  return true;
-}
+using test_support::inside_polygon;
+using test_support::inside_region;
 
 TEST(ClippedAreaProperties, AgreesWithQuadrature) {
   Region r = plate({{0, 0}, {0.3, 0}, {0.3, 0.08}, {0.12, 0.1}, {0.05, 0.2}, {0, 0.2}});

@@ -2,6 +2,7 @@
 // non-convex outlines), beam-section properties against the closed forms, and, over random
 // plates and lines, intervals that really are material with boundary at their ends.
 #include "stress/section.hpp"
+#include "model/region_support.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -239,27 +240,8 @@ double distance_to_polygon(const Polygon& p, const Vector2d& x) {
   return d;
 }
 
-bool inside_polygon(const Polygon& poly, const Vector2d& x) {
-  bool in = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    if ((poly[i].y() > x.y()) != (poly[j].y() > x.y()) &&
-        x.x() < poly[j].x() + (x.y() - poly[j].y()) / (poly[i].y() - poly[j].y()) * (poly[i].x() - poly[j].x())) {
-      in = !in;
-    }
-  }
-  return in;
-}
-
-bool inside_region(const Region& r, const Vector2d& x) {
-  if (!inside_polygon(r.outline, x)) return false;
-  for (const Polygon& h : r.polygon_holes) {
-    if (inside_polygon(h, x)) return false;
-  }
-  for (const Circle& c : r.circle_holes) {
-    if ((x - c.centre).norm() < c.radius) return false;
-  }
-  return true;
-}
+using test_support::inside_polygon;
+using test_support::inside_region;
 
 double distance_to_boundary(const Region& r, const Vector2d& x) {
   double d = distance_to_polygon(r.outline, x);
