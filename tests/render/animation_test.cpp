@@ -41,23 +41,8 @@ std::string read_file(const fs::path& path) {
   return s.str();
 }
 
-std::string quote(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) {
-    if (c == '\'')
-      out += "'\\''";
-    else
-      out += c;
-  }
-  out += '\'';
-  return out;
-}
-
-// Runs a shell command; its exit code.
-int run(const std::string& command) {
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+using nbar::render::test_support::quote;
+using nbar::render::test_support::run;
 
 struct Example {
   explicit Example(const std::string& name, int steps = 73)
@@ -410,33 +395,7 @@ TEST(Animation, HtmlIsSelfContained) {
   EXPECT_LT(html.size(), 80000u);
 }
 
-// Headless Chromium, which scripts/install-deps.sh installs. Without it the test fails, unless
-// NBAR_SKIP_BROWSER_TESTS=1 says to skip it.
-std::string chromium() {
-  for (const char* path : {"/usr/bin/chromium", "/usr/bin/chromium-browser"})
-    if (::access(path, X_OK) == 0) return path;
-  return "";
-}
-
-#define REQUIRE_CHROMIUM(browser)                                                                   \
-  const std::string browser = chromium();                                                           \
-  if (browser.empty()) {                                                                            \
-    const char* skip = std::getenv("NBAR_SKIP_BROWSER_TESTS");                                      \
-    if (skip && std::string(skip) == "1")                                                           \
-      GTEST_SKIP() << "\n*** Chromium is not installed (/usr/bin/chromium): the HTML animation is " \
-                      "NOT tested. scripts/install-deps.sh installs it. ***\n";                     \
-    FAIL() << "Chromium is not installed (/usr/bin/chromium): run scripts/install-deps.sh, or set " \
-              "NBAR_SKIP_BROWSER_TESTS=1 to skip this test";                                        \
-  }
-
-std::string browser_command(const std::string& browser, const fs::path& profile) {
-  std::string c = "timeout 120 ";
-  c += quote(browser);
-  c += " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking"
-       " --disable-component-update --disable-sync --disable-dev-shm-usage --user-data-dir=";
-  c += quote(profile.string());
-  return c;
-}
+using nbar::render::test_support::browser_command;
 
 std::string body_attribute(const std::string& dom, const std::string& name) {
   const std::size_t body = dom.find("<body");

@@ -15,6 +15,7 @@
 #include "io/model_file.hpp"
 #include "render/image_canvas.hpp"
 #include "render/report.hpp"
+#include "render/render_support.hpp"
 
 namespace nbar::render {
 namespace {
@@ -74,7 +75,7 @@ TEST(Report, KineticsAndStressesWhenTheModelHasThem) {
 // Opens the report in headless Chromium (installed by scripts/install-deps.sh): no script
 // error, a page that is not blank, at phone width too.
 TEST(Report, OpensInChromiumAtDesktopAndPhoneWidth) {
-  if (!fs::exists("/usr/bin/chromium")) FAIL() << "Chromium is not installed: run scripts/install-deps.sh";
+  REQUIRE_CHROMIUM(browser);
   std::string name = "nbar_report_";  // built by append: g++ 12 warns falsely on "literal" + string
   name += std::to_string(::getpid());
   const fs::path dir = fs::temp_directory_path() / name;
@@ -85,11 +86,8 @@ TEST(Report, OpensInChromiumAtDesktopAndPhoneWidth) {
     SCOPED_TRACE("width " + std::to_string(width));
     const std::string w = std::to_string(width);
     const fs::path shot = dir / ("shot" + w + ".png");
-    std::string command = "timeout 120 /usr/bin/chromium --headless --no-sandbox --disable-gpu --disable-quic ";
-    command += "--no-first-run --disable-background-networking --disable-component-update --disable-sync ";
-    command += "--hide-scrollbars --virtual-time-budget=2000 --user-data-dir=";
-    command += (dir / ("profile" + w)).string();
-    command += " --window-size=";
+    std::string command = nbar::render::test_support::browser_command(browser, dir / ("profile" + w));
+    command += " --hide-scrollbars --virtual-time-budget=2000 --window-size=";
     command += w;
     command += ",1600 --screenshot=";
     command += shot.string();
