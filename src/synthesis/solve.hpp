@@ -26,7 +26,7 @@ struct SolverOptions {
   double tolerance = 1e-11;    // relative accuracy asked of the corrector near the end
   double singular_condition = 1e13;  // endpoints with a larger condition number are singular
   double infinity_threshold = 1e-8;  // |homogenizing coordinate| below this: at infinity
-  int max_steps = 20000;       // per path
+  int max_steps = 3000;        // per path (a regular path takes 20 to 200)
   // Track failed paths again with tighter settings: worth it when every path should arrive
   // (parameter homotopies, where solve_five_point asks for it), wasted on the many paths of
   // a total-degree or linear-product homotopy that end on a singular set at infinity.

@@ -159,6 +159,11 @@ TrackResult cauchy_endgame(const Homotopy& homotopy, CVector x, double r, const 
     while (!closed && loops < s.max_winding) {
       ++loops;
       for (int k = 0; k < samples; ++k) {
+        if (result.steps > s.max_steps) {
+          result.failure = "endgame: the path's step budget is spent";
+          result.x = y;
+          return result;
+        }
         sum += y;
         const double theta0 = k * dtheta;
         TPath arc = [r, theta0, dtheta](double tau) {
@@ -237,6 +242,7 @@ TrackResult track_path(const Homotopy& homotopy, const CVector& start, const Tra
     end.steps += first.steps;
     if (end.condition < s.singular_condition && last_step < 1e-9) return end;
   }
+  // The endgame shares the path's budget of steps with the tracking that came before.
   TrackResult result = cauchy_endgame(homotopy, first.x, r, s, first.steps + end.steps);
   if (result.status == TrackStatus::Success) {
     CVector h;

@@ -30,7 +30,7 @@ struct TrackSettings {
   double predictor_target = 3e-3;     // relative predictor error the step size aims at
   double contraction = 0.5;     // required ratio of successive Newton steps (guards jumps)
   double final_tolerance = 1e-12;     // relative, when refining at t = 1
-  int max_steps = 20000;
+  int max_steps = 3000;  // per path: accepted steps, endgame included; attempts per segment
   double endgame_radius = 0.05;  // |1 - t| where a singular end switches to the Cauchy endgame
   double singular_condition = 1e13;
   int max_winding = 12;

@@ -197,6 +197,22 @@ TEST(FivePointTest, MonodromyFromOneSolutionFindsAllThirtySix) {
   EXPECT_EQ(start.solutions.size(), 36u);
 }
 
+TEST(FivePointTest, CollinearPointsAreDegenerateAndSaySo) {
+  // Five points on a line: some of the 36 solutions degenerate. The answer must say so (the
+  // fallback ran, fewer than 36) and hold no NaN.
+  FivePointTask t;
+  for (int i = 0; i < 5; ++i) t.points[i] = {static_cast<double>(i), 1.0};
+  const FivePointResult r = solve_five_point(t);
+  EXPECT_TRUE(r.used_fallback);
+  EXPECT_LT(r.solutions.size(), 36u);
+  EXPECT_NE(r.method.find("linear-product"), std::string::npos);
+  for (const auto& s : r.solutions) {
+    EXPECT_TRUE(std::isfinite(s.residual));
+    for (int k = 0; k < 2; ++k) EXPECT_TRUE(std::isfinite(std::abs(s.moving_a[k])) && std::isfinite(std::abs(s.moving_b[k])));
+    if (s.real) EXPECT_TRUE(s.design.moving_a.allFinite() && s.design.moving_b.allFinite());
+  }
+}
+
 TEST(FivePointTest, BadTasksAreRefusedWithAReason) {
   std::mt19937_64 rng(2);
   FivePointTask t = random_task(rng);
