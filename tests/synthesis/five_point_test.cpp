@@ -209,7 +209,9 @@ TEST(FivePointTest, CollinearPointsAreDegenerateAndSaySo) {
   for (const auto& s : r.solutions) {
     EXPECT_TRUE(std::isfinite(s.residual));
     for (int k = 0; k < 2; ++k) EXPECT_TRUE(std::isfinite(std::abs(s.moving_a[k])) && std::isfinite(std::abs(s.moving_b[k])));
-    if (s.real) EXPECT_TRUE(s.design.moving_a.allFinite() && s.design.moving_b.allFinite());
+    if (s.real) {
+      EXPECT_TRUE(s.design.moving_a.allFinite() && s.design.moving_b.allFinite());
+    }
   }
 }
 
