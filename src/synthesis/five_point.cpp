@@ -322,7 +322,6 @@ double relative_residual(const CVector& p, const CVector& a) {
 }  // namespace
 
 const ParameterizedSystem& five_point_parameterized_system() { return isotropic_system(); }
-CVector five_point_task_parameters(const FivePointTask& task) { return task_parameters(task); }
 
 FivePointSolution five_point_solution(const FivePointTask& task, const CVector& affine) {
   // `affine`: isotropic coordinates in the solver's frame -> the primer's form, task units.
@@ -352,7 +351,6 @@ FivePointSolution five_point_solution(const FivePointTask& task, const CVector& 
 }
 
 PolynomialSystem five_point_system(const std::array<Eigen::Vector2d, 5>& points) {
-  const int n = 12;  // c1 s1 .. c4 s4, x1 x2, y1 y2
   auto v = [](int k) { return Polynomial::variable(12, k); };
   const Eigen::Vector2d a(1.0, 0.0);
   const Eigen::Vector2d& d0 = points[0];
@@ -370,7 +368,6 @@ PolynomialSystem five_point_system(const std::array<Eigen::Vector2d, 5>& points)
     eqs.push_back(dyad(d, d0, 8, half));
     eqs.push_back(dyad(d - a, d0 - a, 10, half - a.dot(d - d0)));
   }
-  (void)n;
   return PolynomialSystem(std::move(eqs));
 }
 

@@ -1,6 +1,5 @@
 #include "synthesis/polynomial.hpp"
 
-#include <sstream>
 #include <stdexcept>
 
 namespace nbar::synthesis {
@@ -116,25 +115,6 @@ Polynomial operator*(const Polynomial& a, const Polynomial& b) {
 Polynomial operator+(Polynomial a, Complex c) {
   a.add_term(Polynomial::Exponents(a.variables_, 0), c);
   return a;
-}
-
-std::string Polynomial::to_string(const std::vector<std::string>& names) const {
-  if (terms_.empty()) return "0";
-  std::ostringstream out;
-  bool first = true;
-  for (const auto& [e, c] : terms_) {
-    if (!first) out << " + ";
-    first = false;
-    out << "(" << c.real() << (c.imag() < 0 ? "-" : "+") << std::abs(c.imag()) << "i)";
-    for (int v = 0; v < variables_; ++v) {
-      if (e[v] == 0) continue;
-      out << "*";
-      if (v < static_cast<int>(names.size())) out << names[v];
-      else out << "x" << v;
-      if (e[v] > 1) out << "^" << e[v];
-    }
-  }
-  return out.str();
 }
 
 PolynomialSystem::PolynomialSystem(std::vector<Polynomial> equations) : equations_(std::move(equations)) {

@@ -50,7 +50,6 @@ class Polynomial {
   friend Polynomial operator-(Polynomial a, Complex c) { return a + (-c); }
   friend Polynomial operator-(Polynomial a) { return a *= -1.0; }
 
-  std::string to_string(const std::vector<std::string>& names = {}) const;
 
  private:
   int variables_;

@@ -34,7 +34,6 @@ TEST(PolynomialTest, ArithmeticAndGradientMatchHandExpansion) {
   EXPECT_EQ(p.degree_in({1}), 2);
   const CVector at = point({Complex(1.5, -0.5), Complex(-0.25, 2.0)});
   const Complex X = at[0], Y = at[1];
-  Eigen::RowVectorXcd gradient(2);
   CMatrix holder(1, 2);
   const Complex value = p.evaluate(at, holder.row(0));
   EXPECT_LT(std::abs(value - (X * X * Y - X * Y * Y + 2.0 * X * Y - 2.0 * Y * Y)), 1e-13);
