@@ -10,13 +10,8 @@
 namespace nbar::synthesis {
 namespace {
 
-struct Workspace {
-  CVector dx;
-};
-
 // dx/dtau = -Hx^{-1} Ht dt/dtau.
-bool velocity(const Homotopy& homotopy, const CVector& x, Complex t, Complex dt, Workspace&,
-              CVector& v) {
+bool velocity(const Homotopy& homotopy, const CVector& x, Complex t, Complex dt, CVector& v) {
   if (!homotopy.linear_solve(x, t, true, v)) return false;
   v *= -dt;
   return v.allFinite();
@@ -25,12 +20,12 @@ bool velocity(const Homotopy& homotopy, const CVector& x, Complex t, Complex dt,
 // Newton at fixed t. Fails when it does not converge within the iterations or when the steps
 // do not shrink fast enough: a slow contraction means the prediction fell near another path.
 bool correct(const Homotopy& homotopy, CVector& x, Complex t, const TrackSettings& s,
-             Workspace& w, double& first_step) {
+             CVector& dx, double& first_step) {
   double previous = std::numeric_limits<double>::infinity();
   for (int k = 0; k < s.corrector_iterations; ++k) {
-    if (!homotopy.linear_solve(x, t, false, w.dx) || !w.dx.allFinite()) return false;
-    const double step = w.dx.norm();
-    x -= w.dx;
+    if (!homotopy.linear_solve(x, t, false, dx) || !dx.allFinite()) return false;
+    const double step = dx.norm();
+    x -= dx;
     if (k == 0) first_step = step / (1.0 + x.norm());
     if (k > 0 && step > s.contraction * previous) return false;
     if (step <= s.corrector_tolerance * (1.0 + x.norm())) return true;
@@ -69,13 +64,13 @@ double condition_number(const CMatrix& m) {
 }
 
 double refine(const Homotopy& homotopy, CVector& x, Complex t, int iterations, double tolerance) {
-  Workspace w;
+  CVector dx;
   double last = std::numeric_limits<double>::infinity();
   for (int k = 0; k < iterations; ++k) {
-    if (!homotopy.linear_solve(x, t, false, w.dx) || !w.dx.allFinite()) break;
-    const double step = w.dx.norm() / (1.0 + x.norm());
+    if (!homotopy.linear_solve(x, t, false, dx) || !dx.allFinite()) break;
+    const double step = dx.norm() / (1.0 + x.norm());
     if (step > 2 * last && last < 1e-6) break;  // diverging from a converged point: stop there
-    x -= w.dx;
+    x -= dx;
     last = step;
     if (step <= tolerance) break;
   }
@@ -86,8 +81,7 @@ TrackResult track_segment(const Homotopy& homotopy, const CVector& start, const 
                           const TrackSettings& s) {
   TrackResult result;
   result.x = start;
-  Workspace w;
-  CVector k1, k2, k3, k4, stage, predicted;
+  CVector k1, k2, k3, k4, stage, predicted, correction;
   double tau = 0.0, step = s.initial_step;
   int attempts = 0;
   double predictor_error = 0.0;
@@ -101,22 +95,22 @@ TrackResult track_segment(const Homotopy& homotopy, const CVector& start, const 
     const auto [t0, d0] = path(tau);
     const auto [tm, dm] = path(tau + 0.5 * h);
     const auto [t1, d1] = path(last_step ? 1.0 : tau + h);
-    bool ok = velocity(homotopy, result.x, t0, d0, w, k1);
+    bool ok = velocity(homotopy, result.x, t0, d0, k1);
     if (ok) {
       stage.noalias() = result.x + (0.5 * h) * k1;
-      ok = velocity(homotopy, stage, tm, dm, w, k2);
+      ok = velocity(homotopy, stage, tm, dm, k2);
     }
     if (ok) {
       stage.noalias() = result.x + (0.5 * h) * k2;
-      ok = velocity(homotopy, stage, tm, dm, w, k3);
+      ok = velocity(homotopy, stage, tm, dm, k3);
     }
     if (ok) {
       stage.noalias() = result.x + h * k3;
-      ok = velocity(homotopy, stage, t1, d1, w, k4);
+      ok = velocity(homotopy, stage, t1, d1, k4);
     }
     if (ok) {
       predicted.noalias() = result.x + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-      ok = correct(homotopy, predicted, t1, s, w, predictor_error);
+      ok = correct(homotopy, predicted, t1, s, correction, predictor_error);
     }
     if (ok) {
       result.x = predicted;
