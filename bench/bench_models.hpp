@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "model/model.hpp"
+#include "nbar/model/model.hpp"
 
 namespace nbar_bench {
 

@@ -10,9 +10,9 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_models.hpp"
-#include "dynamics/inverse_dynamics.hpp"
-#include "kinematics/sweep.hpp"
-#include "stress/link_stress.hpp"
+#include "nbar/dynamics/inverse_dynamics.hpp"
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/stress/link_stress.hpp"
 
 namespace {
 

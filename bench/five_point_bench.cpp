@@ -13,7 +13,7 @@
 #include <unistd.h>
 
 #include "phc_support.hpp"
-#include "synthesis/five_point.hpp"
+#include "nbar/synthesis/five_point.hpp"
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "synthesis/polynomial.hpp"
+#include "nbar/synthesis/polynomial.hpp"
 
 namespace nbar::phc {
 

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "synthesis/five_point_start.hpp"
+#include "nbar/synthesis/five_point_start.hpp"
 
 int main(int argc, char** argv) {
   using namespace nbar::synthesis;

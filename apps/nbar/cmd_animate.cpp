@@ -9,7 +9,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "render/animation.hpp"
+#include "nbar/render/animation.hpp"
 
 namespace nbar::cli {
 

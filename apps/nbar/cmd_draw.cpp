@@ -4,11 +4,8 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "render/drawing.hpp"
-#if __has_include("render/image_canvas.hpp")
-#include "render/image_canvas.hpp"
-#define NBAR_HAVE_IMAGE_CANVAS 1
-#endif
+#include "nbar/render/drawing.hpp"
+#include "nbar/render/image_canvas.hpp"
 
 namespace nbar::cli {
 
@@ -116,14 +113,9 @@ int run_draw(const DrawArgs& args) {
         return kBadUsage;
       }
     } else {
-#ifdef NBAR_HAVE_IMAGE_CANVAS
       render::ImageCanvas canvas(draw.width, draw.height);
       render::draw_mechanism(canvas, view, mech, sweep, points, draw);
       canvas.write_png(args.output);
-#else
-      std::cerr << "error: PNG output is not built yet\n";
-      return kBadUsage;
-#endif
     }
   } catch (const std::runtime_error& e) {
     std::cerr << "error: " << e.what() << '\n';

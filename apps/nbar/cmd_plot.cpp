@@ -12,13 +12,10 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "dynamics/dynamics_table.hpp"
-#include "kinematics/table.hpp"
-#include "render/plot.hpp"
-#if __has_include("render/image_canvas.hpp")
-#include "render/image_canvas.hpp"
-#define NBAR_PLOT_HAVE_PNG 1
-#endif
+#include "nbar/dynamics/dynamics_table.hpp"
+#include "nbar/kinematics/table.hpp"
+#include "nbar/render/plot.hpp"
+#include "nbar/render/image_canvas.hpp"
 
 namespace nbar::cli {
 
@@ -105,12 +102,6 @@ int run_plot(const PlotArgs& args) {
     std::cerr << "error: --y-range: LO and HI must be finite numbers with LO < HI\n";
     return kBadUsage;
   }
-#ifndef NBAR_PLOT_HAVE_PNG
-  if (format == ".png") {
-    std::cerr << "error: -o: PNG output is not available in this build; use .svg\n";
-    return kBadUsage;
-  }
-#endif
 
   Loaded loaded;
   if (int code = load(args.model, loaded)) return code;
@@ -209,7 +200,6 @@ int run_plot(const PlotArgs& args) {
       return kBadUsage;
     }
   } else {
-#ifdef NBAR_PLOT_HAVE_PNG
     render::ImageCanvas canvas(spec.width, spec.height);
     render::draw_plot(canvas, spec);
     try {
@@ -218,7 +208,6 @@ int run_plot(const PlotArgs& args) {
       std::cerr << "error: " << e.what() << '\n';
       return kBadUsage;
     }
-#endif
   }
 
   for (const std::string& w : sweep.warnings) std::cerr << "warning: " << w << '\n';

@@ -3,7 +3,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "render/report.hpp"
+#include "nbar/render/report.hpp"
 
 namespace nbar::cli {
 

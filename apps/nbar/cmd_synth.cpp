@@ -13,13 +13,13 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "io/model_export.hpp"
-#include "io/synthesis_task.hpp"
-#include "render/canvas.hpp"
-#include "synthesis/burmester.hpp"
-#include "synthesis/five_point.hpp"
-#include "synthesis/fourbar_design.hpp"
-#include "synthesis/function_generation.hpp"
+#include "nbar/io/model_export.hpp"
+#include "nbar/io/synthesis_task.hpp"
+#include "nbar/render/canvas.hpp"
+#include "nbar/synthesis/burmester.hpp"
+#include "nbar/synthesis/five_point.hpp"
+#include "nbar/synthesis/fourbar_design.hpp"
+#include "nbar/synthesis/function_generation.hpp"
 
 namespace nbar::cli {
 

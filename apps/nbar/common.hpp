@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "io/model_file.hpp"
-#include "kinematics/sweep.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/kinematics/sweep.hpp"
 
 namespace nbar::cli {
 

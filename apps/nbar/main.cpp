@@ -11,14 +11,14 @@
 #include <sstream>
 #include <string>
 
-#include "dynamics/dynamics_table.hpp"
+#include "nbar/dynamics/dynamics_table.hpp"
 #include "commands.hpp"
 #include "common.hpp"
-#include "io/model_file.hpp"
-#include "io/results_writer.hpp"
-#include "kinematics/sweep.hpp"
-#include "kinematics/table.hpp"
-#include "stress/link_stress.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/io/results_writer.hpp"
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/kinematics/table.hpp"
+#include "nbar/stress/link_stress.hpp"
 
 namespace {
 

@@ -3,7 +3,7 @@
 //   build/examples/cpp/solve-polynomials
 #include <cstdio>
 
-#include "synthesis/solve.hpp"
+#include "nbar/synthesis/solve.hpp"
 
 int main() {
   using namespace nbar::synthesis;

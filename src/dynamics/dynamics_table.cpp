@@ -1,4 +1,4 @@
-#include "dynamics/dynamics_table.hpp"
+#include "nbar/dynamics/dynamics_table.hpp"
 
 #include <cmath>
 

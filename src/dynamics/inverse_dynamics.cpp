@@ -1,4 +1,4 @@
-#include "dynamics/inverse_dynamics.hpp"
+#include "nbar/dynamics/inverse_dynamics.hpp"
 
 #include <Eigen/Dense>
 

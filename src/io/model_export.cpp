@@ -1,4 +1,4 @@
-#include "io/model_export.hpp"
+#include "nbar/io/model_export.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "io/model_file.hpp"
+#include "nbar/io/model_file.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -14,20 +14,11 @@
 #include <system_error>
 #include <utility>
 
-#include "io/yaml_support.hpp"
-#include "model/geometry.hpp"
-#include "model/materials.hpp"
+#include "nbar/io/yaml_support.hpp"
+#include "nbar/model/geometry.hpp"
+#include "nbar/model/materials.hpp"
 
 namespace nbar::io {
-
-namespace {
-
-std::string compose(const std::string& file, SourceMark mark, const std::string& message) {
-  if (mark.line <= 0) return file + ": " + message;
-  return file + ":" + std::to_string(mark.line) + ":" + std::to_string(mark.column) + ": " + message;
-}
-
-}  // namespace
 
 SourceMark SourceMap::find(const EntityRef& ref) const {
   const auto pick = [&](const std::vector<SourceMark>& marks) {
@@ -51,11 +42,8 @@ SourceMark SourceMap::find(const EntityRef& ref) const {
   return model;
 }
 
-ModelFileError::ModelFileError(const std::string& file, SourceMark mark, const std::string& message)
-    : std::runtime_error(compose(file, mark, message)), file_(file), mark_(mark), message_(message) {}
-
 std::string locate(const SourceMap& source, const ModelError& error) {
-  return compose(source.file, source.find(error.where()), error.what());
+  return compose_location(source.file, source.find(error.where()), error.message());
 }
 
 namespace {

@@ -1,4 +1,4 @@
-#include "io/results_writer.hpp"
+#include "nbar/io/results_writer.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "io/synthesis_task.hpp"
+#include "nbar/io/synthesis_task.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -12,7 +12,7 @@
 #include <string_view>
 #include <system_error>
 
-#include "io/yaml_support.hpp"
+#include "nbar/io/yaml_support.hpp"
 
 namespace nbar::io {
 

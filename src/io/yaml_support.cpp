@@ -1,4 +1,4 @@
-#include "io/yaml_support.hpp"
+#include "nbar/io/yaml_support.hpp"
 
 #include <cctype>
 #include <charconv>

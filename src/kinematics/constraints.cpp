@@ -1,6 +1,6 @@
-#include "kinematics/constraints.hpp"
+#include "nbar/kinematics/constraints.hpp"
 
-#include "kinematics/mechanism.hpp"
+#include "nbar/kinematics/mechanism.hpp"
 
 namespace nbar {
 

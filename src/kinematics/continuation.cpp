@@ -1,4 +1,4 @@
-#include "kinematics/continuation.hpp"
+#include "nbar/kinematics/continuation.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "kinematics/linear_solver.hpp"
+#include "nbar/kinematics/linear_solver.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "kinematics/loops.hpp"
+#include "nbar/kinematics/loops.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "model/units.hpp"
+#include "nbar/model/units.hpp"
 
 namespace nbar {
 

@@ -1,4 +1,4 @@
-#include "kinematics/mechanism.hpp"
+#include "nbar/kinematics/mechanism.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>

@@ -1,4 +1,4 @@
-#include "kinematics/position.hpp"
+#include "nbar/kinematics/position.hpp"
 
 #include <algorithm>
 #include <cmath>

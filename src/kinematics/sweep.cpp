@@ -1,4 +1,4 @@
-#include "kinematics/sweep.hpp"
+#include "nbar/kinematics/sweep.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -1,4 +1,4 @@
-#include "kinematics/table.hpp"
+#include "nbar/kinematics/table.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "model/geometry.hpp"
+#include "nbar/model/geometry.hpp"
 
 #include <Eigen/Geometry>
 

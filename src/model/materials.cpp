@@ -1,4 +1,4 @@
-#include "model/materials.hpp"
+#include "nbar/model/materials.hpp"
 
 #include <string_view>
 #include <utility>

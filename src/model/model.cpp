@@ -1,4 +1,4 @@
-#include "model/model.hpp"
+#include "nbar/model/model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "model/geometry.hpp"
+#include "nbar/model/geometry.hpp"
 
 namespace nbar {
 

@@ -1,7 +1,7 @@
 // Truncated Taylor arithmetic. Every elementary function below satisfies a first-order ODE
 // (e.g. y = exp(x) has y' = x' y), and matching coefficients of s^(k-1) in that ODE gives
 // y[k] from y[0..k-1] in O(k) work: O(n^2) per call, no allocation, no symbolic algebra.
-#include "model/series.hpp"
+#include "nbar/model/series.hpp"
 
 #include <cstdint>
 

@@ -1,4 +1,4 @@
-#include "model/units.hpp"
+#include "nbar/model/units.hpp"
 
 #include <cctype>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "render/animation.hpp"
+#include "nbar/render/animation.hpp"
 
 #include <cgif.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "render/canvas.hpp"
+#include "nbar/render/canvas.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "render/drawing.hpp"
+#include "nbar/render/drawing.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <numbers>
 #include <string>
 
-#include "dynamics/inverse_dynamics.hpp"
+#include "nbar/dynamics/inverse_dynamics.hpp"
 
 namespace nbar::render {
 

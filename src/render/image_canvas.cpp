@@ -1,4 +1,4 @@
-#include "render/image_canvas.hpp"
+#include "nbar/render/image_canvas.hpp"
 
 #include <cairo.h>
 

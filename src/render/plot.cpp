@@ -1,4 +1,4 @@
-#include "render/plot.hpp"
+#include "nbar/render/plot.hpp"
 
 #include <algorithm>
 #include <array>

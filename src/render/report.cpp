@@ -1,16 +1,16 @@
-#include "render/report.hpp"
+#include "nbar/render/report.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "dynamics/dynamics_table.hpp"
-#include "kinematics/table.hpp"
-#include "render/animation.hpp"
-#include "render/drawing.hpp"
-#include "render/plot.hpp"
-#include "stress/link_stress.hpp"
+#include "nbar/dynamics/dynamics_table.hpp"
+#include "nbar/kinematics/table.hpp"
+#include "nbar/render/animation.hpp"
+#include "nbar/render/drawing.hpp"
+#include "nbar/render/plot.hpp"
+#include "nbar/stress/link_stress.hpp"
 
 namespace nbar::render {
 

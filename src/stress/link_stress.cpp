@@ -1,4 +1,4 @@
-#include "stress/link_stress.hpp"
+#include "nbar/stress/link_stress.hpp"
 
 #include <algorithm>
 #include <cmath>

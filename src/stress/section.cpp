@@ -1,4 +1,4 @@
-#include "stress/section.hpp"
+#include "nbar/stress/section.hpp"
 
 #include <algorithm>
 #include <cmath>

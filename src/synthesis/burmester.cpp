@@ -1,4 +1,4 @@
-#include "synthesis/burmester.hpp"
+#include "nbar/synthesis/burmester.hpp"
 
 #include <Eigen/Dense>
 
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "synthesis/solve.hpp"
+#include "nbar/synthesis/solve.hpp"
 
 namespace nbar::synthesis {
 namespace {

@@ -1,4 +1,4 @@
-#include "synthesis/five_point.hpp"
+#include "nbar/synthesis/five_point.hpp"
 
 #include <Eigen/LU>
 
@@ -7,7 +7,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "synthesis/five_point_start.hpp"
+#include "nbar/synthesis/five_point_start.hpp"
 
 namespace nbar::synthesis {
 namespace {

@@ -3,7 +3,7 @@
 // so the branch and circuit each pose lies on, and the transmission angle's extremes. The
 // kinematics engine then drives the model from the first target through the others, as
 // `nbar solve` would, and measures how closely it meets them.
-#include "synthesis/fourbar_design.hpp"
+#include "nbar/synthesis/fourbar_design.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,9 +15,9 @@
 #include <tuple>
 #include <utility>
 
-#include "kinematics/continuation.hpp"
-#include "kinematics/mechanism.hpp"
-#include "kinematics/sweep.hpp"
+#include "nbar/kinematics/continuation.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
 
 namespace nbar::synthesis {
 

@@ -1,4 +1,4 @@
-#include "synthesis/function_generation.hpp"
+#include "nbar/synthesis/function_generation.hpp"
 
 #include <Eigen/Dense>
 

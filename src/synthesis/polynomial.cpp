@@ -1,4 +1,4 @@
-#include "synthesis/polynomial.hpp"
+#include "nbar/synthesis/polynomial.hpp"
 
 #include <stdexcept>
 

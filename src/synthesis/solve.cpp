@@ -1,4 +1,4 @@
-#include "synthesis/solve.hpp"
+#include "nbar/synthesis/solve.hpp"
 
 #include <Eigen/LU>
 
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "synthesis/tracker.hpp"
+#include "nbar/synthesis/tracker.hpp"
 
 namespace nbar::synthesis {
 namespace {

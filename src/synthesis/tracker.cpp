@@ -1,4 +1,4 @@
-#include "synthesis/tracker.hpp"
+#include "nbar/synthesis/tracker.hpp"
 
 #include <Eigen/LU>
 

@@ -17,10 +17,10 @@
 #include <string>
 
 #include "apps/cli_support.hpp"
-#include "io/model_file.hpp"
-#include "io/synthesis_task.hpp"
-#include "kinematics/mechanism.hpp"
-#include "kinematics/sweep.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/io/synthesis_task.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "../kinematics/helpers/kinematics_support.hpp"
-#include "dynamics/dynamics_table.hpp"
-#include "dynamics/inverse_dynamics.hpp"
+#include "nbar/dynamics/dynamics_table.hpp"
+#include "nbar/dynamics/inverse_dynamics.hpp"
 
 namespace nbar::ktest {
 namespace {

@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <numbers>
 
-#include "io/model_export.hpp"
-#include "io/model_file.hpp"
-#include "kinematics/mechanism.hpp"
-#include "kinematics/sweep.hpp"
-#include "synthesis/fourbar_design.hpp"
+#include "nbar/io/model_export.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/synthesis/fourbar_design.hpp"
 
 namespace {
 

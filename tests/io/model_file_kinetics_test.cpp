@@ -2,10 +2,10 @@
 // properties, forces, torques and springs.
 // The project headers come first: <signal.h>, which gtest pulls in, defines a macro
 // named value_si that would break units.hpp's Quantity::value_si.
-#include "io/model_file.hpp"
+#include "nbar/io/model_file.hpp"
 #include "io/model_file_support.hpp"
-#include "model/geometry.hpp"
-#include "model/materials.hpp"
+#include "nbar/model/geometry.hpp"
+#include "nbar/model/materials.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

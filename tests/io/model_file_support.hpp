@@ -6,7 +6,7 @@
 #include <exception>
 #include <string>
 
-#include "io/model_file.hpp"
+#include "nbar/io/model_file.hpp"
 
 namespace nbar::io::test_support {
 

@@ -1,6 +1,6 @@
 // The project headers come first: <signal.h>, which gtest pulls in, defines a macro
 // named value_si that would break units.hpp's Quantity::value_si.
-#include "io/model_file.hpp"
+#include "nbar/io/model_file.hpp"
 #include "io/model_file_support.hpp"
 
 #include <gmock/gmock.h>

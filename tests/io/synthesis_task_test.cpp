@@ -7,7 +7,7 @@
 #include <fstream>
 #include <numbers>
 
-#include "io/synthesis_task.hpp"
+#include "nbar/io/synthesis_task.hpp"
 
 namespace {
 

@@ -3,7 +3,7 @@
 // changes, the coupler angle moves no faster than its closed-form bound, and the motion does
 // not depend on the size of the model or on its units.
 #include "helpers/kinematics_support.hpp"
-#include "kinematics/table.hpp"
+#include "nbar/kinematics/table.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck.h>

@@ -2,7 +2,7 @@
 // sqrt(L^2 - (r sin(theta) - e)^2), differentiated in time through theta(t) with the test's own
 // Taylor arithmetic (Jet), up to the fifth derivative; and the Myszka compressor's numbers.
 #include "helpers/kinematics_support.hpp"
-#include "kinematics/table.hpp"
+#include "nbar/kinematics/table.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Plate geometry against closed forms worked by hand, against brute-force quadrature, and as
 // properties over random plates: the two sides of any cut add up to the whole, and the results
 // move rigidly with the plate.
-#include "model/geometry.hpp"
+#include "nbar/model/geometry.hpp"
 #include "model/region_support.hpp"
 
 #include <gmock/gmock.h>

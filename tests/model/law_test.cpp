@@ -1,4 +1,4 @@
-#include "model/law.hpp"
+#include "nbar/model/law.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>

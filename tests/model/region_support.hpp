@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "model/geometry.hpp"
+#include "nbar/model/geometry.hpp"
 
 namespace nbar::test_support {
 

@@ -1,4 +1,4 @@
-#include "model/series.hpp"
+#include "nbar/model/series.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>

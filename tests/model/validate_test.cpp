@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "model/model.hpp"
+#include "nbar/model/model.hpp"
 
 namespace nbar {
 namespace {

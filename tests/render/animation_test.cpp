@@ -16,11 +16,11 @@
 #include <vector>
 
 #include "render/render_support.hpp"
-#include "io/model_file.hpp"
-#include "kinematics/mechanism.hpp"
-#include "kinematics/sweep.hpp"
-#include "render/animation.hpp"
-#include "render/image_canvas.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/render/animation.hpp"
+#include "nbar/render/image_canvas.hpp"
 
 namespace {
 

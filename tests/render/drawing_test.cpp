@@ -7,9 +7,9 @@
 #include <regex>
 #include <string>
 
-#include "io/model_file.hpp"
-#include "render/drawing.hpp"
-#include "render/image_canvas.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/render/drawing.hpp"
+#include "nbar/render/image_canvas.hpp"
 
 namespace nbar::render {
 namespace {

@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "render/canvas.hpp"
-#include "render/image_canvas.hpp"
-#include "render/plot.hpp"
+#include "nbar/render/canvas.hpp"
+#include "nbar/render/image_canvas.hpp"
+#include "nbar/render/plot.hpp"
 
 namespace {
 

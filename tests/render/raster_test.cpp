@@ -11,11 +11,11 @@
 #include <unistd.h>
 
 #include "render/render_support.hpp"
-#include "io/model_file.hpp"
-#include "kinematics/mechanism.hpp"
-#include "kinematics/sweep.hpp"
-#include "render/drawing.hpp"
-#include "render/image_canvas.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/render/drawing.hpp"
+#include "nbar/render/image_canvas.hpp"
 
 namespace {
 

@@ -12,9 +12,9 @@
 #include <set>
 #include <sstream>
 
-#include "io/model_file.hpp"
-#include "render/image_canvas.hpp"
-#include "render/report.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/render/image_canvas.hpp"
+#include "nbar/render/report.hpp"
 #include "render/render_support.hpp"
 
 namespace nbar::render {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "../kinematics/helpers/kinematics_support.hpp"
-#include "stress/link_stress.hpp"
+#include "nbar/stress/link_stress.hpp"
 
 namespace nbar::ktest {
 namespace {

@@ -1,7 +1,7 @@
 // Sections of plates along a line: the material intervals by hand (through holes, vertices,
 // non-convex outlines), beam-section properties against the closed forms, and, over random
 // plates and lines, intervals that really are material with boundary at their ends.
-#include "stress/section.hpp"
+#include "nbar/stress/section.hpp"
 #include "model/region_support.hpp"
 
 #include <gmock/gmock.h>

@@ -3,7 +3,7 @@
 // returned must carry its coupler through every precision position, checked with the same
 // independent closed form (link lengths and input angle only). The five-position solutions
 // are cross-checked with the homotopy solver.
-#include "synthesis/burmester.hpp"
+#include "nbar/synthesis/burmester.hpp"
 
 #include <Eigen/LU>
 #include <gmock/gmock.h>
@@ -13,7 +13,7 @@
 #include <limits>
 #include <random>
 
-#include "synthesis/solve.hpp"
+#include "nbar/synthesis/solve.hpp"
 
 namespace nbar::synthesis {
 namespace {

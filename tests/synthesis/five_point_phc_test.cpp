@@ -7,7 +7,7 @@
 #include <random>
 
 #include "phc_support.hpp"
-#include "synthesis/five_point.hpp"
+#include "nbar/synthesis/five_point.hpp"
 
 namespace nbar::synthesis {
 namespace {

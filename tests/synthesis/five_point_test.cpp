@@ -8,8 +8,8 @@
 
 #include <Eigen/Geometry>
 
-#include "synthesis/five_point.hpp"
-#include "synthesis/five_point_start.hpp"
+#include "nbar/synthesis/five_point.hpp"
+#include "nbar/synthesis/five_point_start.hpp"
 #include "synthesis/fourbar_support.hpp"
 
 namespace nbar::synthesis {

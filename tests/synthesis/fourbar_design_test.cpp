@@ -6,9 +6,9 @@
 #include <numbers>
 #include <vector>
 
-#include "kinematics/mechanism.hpp"
-#include "kinematics/sweep.hpp"
-#include "synthesis/fourbar_design.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/synthesis/fourbar_design.hpp"
 
 namespace {
 

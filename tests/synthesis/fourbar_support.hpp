@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "synthesis/fourbar_design.hpp"
+#include "nbar/synthesis/fourbar_design.hpp"
 
 namespace nbar::synthesis::test_support {
 

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <numbers>
 
-#include "synthesis/burmester.hpp"
-#include "synthesis/five_point.hpp"
-#include "synthesis/fourbar_design.hpp"
+#include "nbar/synthesis/burmester.hpp"
+#include "nbar/synthesis/five_point.hpp"
+#include "nbar/synthesis/fourbar_design.hpp"
 #include "synthesis/fourbar_support.hpp"
-#include "synthesis/function_generation.hpp"
+#include "nbar/synthesis/function_generation.hpp"
 
 namespace nbar::synthesis {
 namespace {

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <random>
 
-#include "synthesis/solve.hpp"
+#include "nbar/synthesis/solve.hpp"
 
 namespace nbar::synthesis {
 namespace {

@@ -4,11 +4,11 @@
 // differences.
 #pragma once
 
-#include "kinematics/continuation.hpp"
-#include "kinematics/mechanism.hpp"
-#include "kinematics/position.hpp"
-#include "kinematics/sweep.hpp"
-#include "model/model.hpp"
+#include "nbar/kinematics/continuation.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/position.hpp"
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/model/model.hpp"
 
 #include <Eigen/Core>
 

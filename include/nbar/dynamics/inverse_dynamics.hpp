@@ -1,0 +1,121 @@
+// Inverse dynamics: from the motion (positions, velocities, accelerations of a sample), the
+// force every joint transmits and the effort every driver must give.
+//
+// Newton-Euler for every moving body (3 equations) and for every joint pin shared by two or
+// more links (a massless node: 2 equations). The unknowns are the force each pin exerts on each
+// link meeting there, the normal force and couple of every slider, the normal force of every
+// slot, and the effort of every driver. With drivers equal to the degrees of freedom and no
+// redundant constraint the system is square and regular; with redundant constraints it has more
+// unknowns than independent equations and the minimum-norm set of forces is given, flagged as
+// not unique. Equivalent to solving M q'' + Phi_q^T lambda = Q for the multipliers, but the
+// unknowns are directly the forces a designer reads.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "nbar/kinematics/sweep.hpp"
+
+namespace nbar {
+
+// Mass properties of a body: given, or from its shape, thickness and material; zero otherwise.
+struct MassProperties {
+  double mass = 0.0;         // kg
+  Eigen::Vector2d cg{0, 0};  // m, in the starting pose
+  double inertia = 0.0;      // kg m^2 about the centre of mass
+  double area = 0.0;         // m^2 of the shape, when there is one
+  bool from_shape = false;
+};
+MassProperties mass_properties(const Body& body);
+
+// Where a body is: an origin point and a direction vector of constant length, both moving with
+// it. Bodies of two or more points use their first two points; a one-point slider block uses
+// its point and its guide's direction.
+struct BodyFrame {
+  int origin = -1;
+  int from = -1, to = -1;  // the direction vector is r[to] - r[from]
+};
+BodyFrame body_frame(const Model& model, int body);
+
+// Position, velocity and acceleration of a body-fixed point and the body's rotation.
+struct BodyMotion {
+  Eigen::Vector2d origin[3];     // r, v, a of the origin point
+  Eigen::Vector2d direction[3];  // w, dw/dt, d2w/dt2
+  double omega = 0.0, alpha = 0.0;
+  // Body-fixed point given by its starting-pose position.
+  Eigen::Vector2d point(const Eigen::Vector2d& drawn, int derivative) const;
+  Eigen::Vector2d drawn_origin, drawn_direction;
+};
+// Position, velocity and acceleration of every point of a sample, computed once.
+struct SampleMotion {
+  std::vector<Eigen::Vector2d> r, v, a;
+};
+SampleMotion sample_motion(const Mechanism& mech, const Sample& sample);
+BodyMotion body_motion(const Model& model, const SampleMotion& motion, int body);
+BodyMotion body_motion(const Mechanism& mech, const Sample& sample, int body);
+
+// A link meeting at a joint: a body index, or -1 for the ground.
+struct JointLink {
+  int point = -1;
+  int link = -1;
+};
+
+// A force or couple applied directly to a body (not through a joint pin): loads, springs and
+// actuators at points only that body has, slider and slot contact, driver efforts.
+struct AppliedLoad {
+  int body = -1;
+  Eigen::Vector2d at{0, 0};      // where it acts, current pose, m
+  Eigen::Vector2d force{0, 0};   // N
+  double couple = 0.0;           // N m
+};
+
+struct DynamicsResult {
+  // Force the pin at `joint_links[i].point` exerts on `joint_links[i].link`, N.
+  std::vector<Eigen::Vector2d> pin_forces;
+  std::vector<double> slider_normal;  // N, on the slider body, along the guide's left normal
+  std::vector<double> slider_couple;  // N m, on the slider body
+  std::vector<double> slot_normal;    // N, on the pin, along the guide's left normal
+  std::vector<double> driver_effort;  // N m for angle drivers, N for distance and slide drivers
+  std::vector<AppliedLoad> applied;   // every direct load on a body, gravity excepted
+  SampleMotion motion;                // the sample's point motions the forces were computed for
+  double kinetic_energy = 0.0;        // J
+  double potential_energy = 0.0;      // J: gravity and springs
+  double residual = 0.0;              // max |equation residual|, N or N m
+  bool unique = true;                 // false when redundant constraints leave forces undetermined
+};
+
+class InverseDynamics {
+ public:
+  explicit InverseDynamics(const Mechanism& mech);
+
+  // Needs the sample's series to order 2 at least.
+  DynamicsResult solve(const Sample& sample) const;
+
+  const std::vector<JointLink>& joint_links() const { return joint_links_; }
+  // Joints: points shared by two or more links (bodies, or a body and the ground).
+  const std::vector<int>& joints() const { return joints_; }
+  const std::vector<MassProperties>& masses() const { return masses_; }
+  const Mechanism& mechanism() const { return mech_; }
+  int unknown_count() const { return unknowns_; }
+  int equation_count() const { return equations_; }
+
+ private:
+  const Mechanism& mech_;
+  std::vector<MassProperties> masses_;
+  std::vector<BodyFrame> frames_;
+  std::vector<int> joints_;
+  std::vector<int> node_of_point_;   // -1 when the point is not a joint
+  std::vector<JointLink> joint_links_;
+  std::vector<int> single_body_of_point_;  // the only moving body of a non-joint point, or -1
+  // At every joint one link, the ground when it is there, takes the pin's balance: its force
+  // follows from the others', so only 3 equations per body remain (square when the drivers
+  // match Gruebler's count).
+  std::vector<int> dependent_;     // per joint: index into joint_links_ of the link that balances the pin
+  std::vector<int> pin_column_;    // per joint link: first of its two unknowns, -1 for the dependent one
+  std::vector<int> slider_guide_, slot_guide_;  // the body owning each guide, -1 for the ground
+  int slider_base_ = 0, slot_base_ = 0, driver_base_ = 0, unknowns_ = 0, equations_ = 0;
+};
+
+}  // namespace nbar

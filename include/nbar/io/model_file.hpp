@@ -1,0 +1,49 @@
+// Reading model files (YAML, or JSON which is read by the same parser).
+// Errors carry file:line:column so users can find the offending line.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "nbar/model/model.hpp"
+
+namespace nbar::io {
+
+using nbar::SourceMark;
+
+// Where each entity of the model was written, so that errors found later (by validate()
+// or by the kinematics stage) can be reported at the right line.
+struct SourceMap {
+  std::string file;
+  SourceMark model;
+  std::vector<SourceMark> points, bodies, sliders, slots, drivers;
+  SourceMark sweep;
+  std::vector<SourceMark> point_loads, torques, springs;  // the items of `forces`, `torques`, `springs`
+
+  SourceMark find(const EntityRef& ref) const;
+};
+
+// An error located in a source file (kind InvalidModel unless said otherwise).
+class ModelFileError : public Error {
+ public:
+  // what() is "file:line:column: message" (or "file: message" without a position).
+  ModelFileError(const std::string& file, SourceMark mark, const std::string& message,
+                 ErrorKind kind = ErrorKind::InvalidModel)
+      : Error(kind, message, {}, file, mark) {}
+};
+
+struct LoadedModel {
+  Model model;
+  SourceMap source;
+};
+
+// Parses and validates (nbar::validate) a model; throws ModelFileError for any problem,
+// including the ModelErrors of validate(), located with the source map.
+LoadedModel parse_model(const std::string& text, const std::string& file_name = "<model>");
+LoadedModel load_model_file(const std::string& path);
+
+// "file:line:column: message" for an error the core reports about an entity.
+std::string locate(const SourceMap& source, const ModelError& error);
+
+}  // namespace nbar::io

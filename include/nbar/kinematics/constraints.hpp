@@ -1,0 +1,62 @@
+// Constraint equations in natural coordinates. Every equation is at most quadratic in the
+// coordinates q (driver laws enter through known functions of the parameter), and every row is
+// scaled so that its residual is a length: one tolerance, relative to the model's size, fits all.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "nbar/model/model.hpp"
+#include "nbar/model/series.hpp"
+
+namespace nbar {
+
+enum class ConstraintType {
+  Distance,       // |rj - ri|^2 - L^2 = 0                       (p: i, j; a = L)
+  RigidX,         // rk = ri + a u + b u_perp, u = rj - ri: x row (p: i, j, k)
+  RigidY,         //                                      y row
+  PointOnLine,    // (rk - ri) x (rj - ri) = 0                   (p: i, j, k)
+  Orientation,    // (rj - ri) x R(phi0) (rn - rm) = 0            (p: i, j, m, n; a, b = cos, sin phi0)
+  DriveAngle,     // (rj - ri) x (cos th, sin th) = 0             (p: i, j)
+  DriveRelativeAngle,  // (rj - ri) x R(th) (rn - rm) = 0         (p: i, j, m, n)
+  DriveDistance,  // |rj - ri|^2 - s^2 = 0                        (p: i, j)
+  DriveSlide,     // (rk - ri).(rj - ri) / Lg - s = 0             (p: i, j, k; a = Lg)
+};
+
+struct Constraint {
+  ConstraintType type = ConstraintType::Distance;
+  std::array<int, 4> p{-1, -1, -1, -1};  // point indices into Model::points
+  double a = 0.0, b = 0.0;               // constants, see ConstraintType
+  double scale = 1.0;                    // makes the residual a length
+  int driver = -1;                       // index into Model::drivers for Drive* rows
+  std::string label;                     // for people: "length of crank (O2-A)"
+  EntityRef source;                      // the model entity the row comes from
+
+  bool is_driver() const { return driver >= 0; }
+};
+
+// A driver's value along the path as a Taylor series, with its sine and cosine for angles.
+struct DriverState {
+  Series value, cos, sin;
+};
+DriverState make_driver_state(const Series& value, bool angular);
+
+class Mechanism;
+
+// Residuals of every row at q (length units).
+void evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q,
+                        const std::vector<DriverState>& drivers, Eigen::VectorXd& phi);
+// Jacobian values in the order of Mechanism::jacobian_pattern() (entries may repeat a
+// (row, col) pair; they add up).
+void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q,
+                       const std::vector<DriverState>& drivers, std::vector<double>& values);
+// The k-th Taylor coefficient of every row evaluated with q's coefficients 0..k-1 from
+// `coefficients` (n x terms, column j = coefficient j) and coefficient k taken as zero.
+// Then Phi_q * q_k = -rhs gives q_k.
+void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int k,
+                               const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs);
+
+}  // namespace nbar

@@ -1,0 +1,53 @@
+// Factorises the Jacobian once per step and solves with it for the Newton step and for every
+// Taylor coefficient. Square regular systems use LU (dense when small, sparse when large);
+// systems with redundant constraints are overdetermined but consistent and use a
+// rank-revealing least-squares factorisation.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+
+#include <memory>
+#include <vector>
+
+#include "nbar/kinematics/mechanism.hpp"
+
+namespace nbar {
+
+class LinearSolver {
+ public:
+  enum class Method { DenseLU, SparseLU, LeastSquares };
+
+  // Dense LU up to this many coordinates; above, sparse LU (measured crossover: about 40).
+  static constexpr int kDenseLimit = 40;
+
+  explicit LinearSolver(const Mechanism& mech);
+
+  Method method() const { return method_; }
+  // Returns false when the matrix is singular to working precision.
+  bool factorize(const std::vector<double>& jacobian_values);
+  // x = J^-1 b (least squares for overdetermined systems).
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // Sign of det(J) for square systems: constant along a regular branch. 0 when not available.
+  int determinant_sign() const { return det_sign_; }
+  // Estimate of 1/cond(J) (1 for sparse systems, where it is not estimated).
+  double reciprocal_condition() const { return rcond_; }
+
+ private:
+  Method method_;
+  int rows_, cols_;
+  const std::vector<JacobianEntry>& pattern_;
+  Eigen::MatrixXd dense_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_;
+  Eigen::SparseMatrix<double> sparse_;
+  std::vector<int> value_slot_;  // pattern entry -> index into sparse_.valuePtr()
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> sparse_lu_;
+  bool pattern_analysed_ = false;
+  int det_sign_ = 0;
+  double rcond_ = 0.0;
+};
+
+}  // namespace nbar

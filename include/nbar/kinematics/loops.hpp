@@ -1,0 +1,66 @@
+// Four-bar loops found in a linkage's topology, Grashof's classification, transmission angle
+// and assembly branch of each loop.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "nbar/model/model.hpp"
+
+namespace nbar {
+
+// A closed chain of four links joined by four revolute joints. Links are body indices, or
+// -1 for the ground. The frame is the ground when the loop contains it.
+struct FourBarLoop {
+  int frame = -1, input = -1, coupler = -1, output = -1;
+  int o2 = -1;  // joint frame-input
+  int a = -1;   // joint input-coupler
+  int b = -1;   // joint coupler-output
+  int o4 = -1;  // joint output-frame
+  std::string name;  // "input-coupler-output" by body names
+};
+
+enum class GrashofClass {
+  CrankRocker,          // Grashof, shortest link adjacent to the frame: it is the crank
+  DoubleCrank,          // Grashof, shortest link is the frame (drag link)
+  DoubleRocker,         // Grashof, shortest link is the coupler
+  TripleRocker,         // not Grashof: no link turns fully (a non-Grashof double-rocker)
+  ChangePoint,          // s + l = p + q: can switch branches at the flat positions
+};
+
+struct GrashofReport {
+  GrashofClass kind = GrashofClass::TripleRocker;
+  double frame = 0, input = 0, coupler = 0, output = 0;  // link lengths
+  double margin = 0;            // (p + q) - (s + l); > 0 Grashof
+  bool input_turns_fully = false;   // relative to the frame
+  bool output_turns_fully = false;
+};
+
+// Loops are found from the topology alone; their roles (input = the link next to the frame
+// that carries a driver, when one does) use the drivers too.
+std::vector<FourBarLoop> find_four_bar_loops(const Model& model);
+
+// `tolerance` decides equality for the change-point case (absolute, in length units).
+GrashofReport classify_grashof(double frame, double input, double coupler, double output,
+                               double tolerance);
+GrashofReport classify_grashof(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& points,
+                               double tolerance);
+
+std::string to_string(GrashofClass kind);
+std::string describe(const GrashofReport& report, const FourBarLoop& loop, const Model& model);
+
+// Angle between the coupler and the output link at their joint, in [0, pi].
+double transmission_angle(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& points);
+
+// +1 or -1: on which side of the diagonal from the input-coupler joint to the output-frame
+// joint the coupler-output joint lies. Constant along a branch of the crank-driven loop; it
+// changes only through a toggle of the output or a change point.
+int branch_sign(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& points);
+// "open" or "crossed" as the two roots of Norton's closed form (x axis from o2 to o4, angles
+// counter-clockwise): open when the coupler-output joint lies to the left of the line from
+// the input-coupler joint to o4. A mechanism drawn mirrored reads the other way round.
+std::string branch_name(int branch_sign);
+
+}  // namespace nbar

@@ -1,0 +1,84 @@
+// A Model compiled for solving: the coordinate layout, the constraint rows, the Jacobian's
+// sparsity pattern and what the structure analysis found (degrees of freedom, redundant
+// constraints, four-bar loops). Immutable once built, like Pinocchio's Model; the numbers
+// that change live in a State.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "nbar/kinematics/constraints.hpp"
+#include "nbar/kinematics/loops.hpp"
+#include "nbar/model/model.hpp"
+
+namespace nbar {
+
+struct JacobianEntry {
+  int row = 0;
+  int col = 0;
+};
+
+struct MobilityReport {
+  int coordinates = 0;          // moving points x 2
+  int constraint_rows = 0;      // without drivers
+  int grubler = 0;              // Gruebler-Kutzbach count
+  int rank = 0;                 // rank of the constraint Jacobian at the drawn pose
+  int dof = 0;                  // true mobility: coordinates - rank
+  std::vector<int> redundant;   // rows that depend on the others (one choice of them)
+  double reciprocal_condition = 0.0;  // of the driven system at the drawn pose
+};
+
+class Mechanism {
+ public:
+  // Validates, builds the rows and analyses the structure. Throws ModelError when the
+  // model is invalid, including drivers that do not match the degrees of freedom.
+  explicit Mechanism(Model model);
+
+  const Model& model() const { return model_; }
+  int coordinate_count() const { return n_; }
+  int row_count() const { return static_cast<int>(rows_.size()); }
+  int constraint_row_count() const { return constraint_rows_; }  // rows before the drivers
+  const std::vector<Constraint>& rows() const { return rows_; }
+  int column_of(int point) const { return column_[point]; }  // -1 for ground points
+  double characteristic_length() const { return length_scale_; }
+  double tolerance() const { return 1e-12 * length_scale_; }
+
+  // q of the drawn pose.
+  const Eigen::VectorXd& drawn_coordinates() const { return q_drawn_; }
+  // Each driver's value (SI) in the drawn pose.
+  const std::vector<double>& drawn_driver_values() const { return driver_drawn_; }
+  // Position of a point given q.
+  Eigen::Vector2d point_position(int point, const Eigen::VectorXd& q) const;
+
+  const std::vector<JacobianEntry>& jacobian_pattern() const { return pattern_; }
+  // Index of the first pattern entry of `row` for its point slot `slot` (x, then y at +1);
+  // -1 when that point is fixed.
+  int entry_index(int row, int slot) const { return entry_[row][slot]; }
+
+  const MobilityReport& mobility() const { return mobility_; }
+  const std::vector<FourBarLoop>& four_bar_loops() const { return loops_; }
+  bool overdetermined() const { return row_count() > n_; }
+
+ private:
+  void build_rows();
+  void build_pattern();
+  void analyse_mobility();
+
+  Model model_;
+  int n_ = 0;
+  int constraint_rows_ = 0;
+  double length_scale_ = 1.0;
+  std::vector<int> column_;
+  std::vector<Constraint> rows_;
+  std::vector<JacobianEntry> pattern_;
+  std::vector<std::array<int, 4>> entry_;
+  Eigen::VectorXd q_drawn_;
+  std::vector<double> driver_drawn_;
+  MobilityReport mobility_;
+  std::vector<FourBarLoop> loops_;
+};
+
+}  // namespace nbar

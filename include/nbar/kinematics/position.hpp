@@ -1,0 +1,72 @@
+// The numbers that change while a mechanism moves (like Pinocchio's Data or MuJoCo's mjData),
+// and the algorithms that fill them: Newton-Raphson on the constraints, then the Taylor
+// coefficients of q along the path, from one factorisation of the Jacobian.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "nbar/kinematics/linear_solver.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+
+namespace nbar {
+
+struct State {
+  explicit State(const Mechanism& mech);
+
+  double parameter = 0.0;              // the path parameter (time, or sweep position)
+  Eigen::VectorXd q;                   // natural coordinates, m
+  std::vector<DriverState> drivers;    // driver values as series in the parameter
+  Eigen::MatrixXd series;              // n x terms Taylor coefficients of q in the parameter
+  double residual = 0.0;               // max |Phi| over every row, m
+  int iterations = 0;                  // of the last position solve
+
+  // The factorised Jacobian at q. Two slots, so a trial step can be rejected without
+  // losing the factorisation of the last accepted point.
+  LinearSolver& solver() { return solvers_[current_]; }
+  const LinearSolver& solver() const { return solvers_[current_]; }
+  LinearSolver& spare_solver() { return solvers_[1 - current_]; }
+  void swap_solvers() { current_ = 1 - current_; }
+
+  // Scratch space reused across steps: no allocation in the hot loop.
+  Eigen::VectorXd phi, dq, rhs, column, q_accepted, q_predicted;
+  std::vector<double> jacobian;
+  std::vector<Series> driver_values;
+
+ private:
+  std::array<LinearSolver, 2> solvers_;
+  int current_ = 0;
+};
+
+// Sets the drivers from their values (series in the path parameter; terms >= 1).
+void set_drivers(const Mechanism& mech, State& state, const std::vector<Series>& values);
+
+// Factorises the Jacobian at state.q into state.solver(). False when singular.
+bool factorize_jacobian(const Mechanism& mech, State& state);
+bool factorize_jacobian(const Mechanism& mech, State& state, LinearSolver& solver);
+
+// Largest |residual| over all rows at state.q, and which row it is.
+double max_residual(const Mechanism& mech, State& state, int* worst_row = nullptr);
+
+struct NewtonReport {
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;
+  int worst_row = -1;
+};
+
+// Damped Newton-Raphson (Gauss-Newton for redundant systems) from state.q with the drivers
+// as set. On success the Jacobian is factorised at the solution.
+NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterations = 50);
+
+// Taylor coefficients 1..terms-1 of q in the path parameter, with the Jacobian factorised at
+// state.q: Phi_q q_k = -R_k. Writes state.series (or `out`).
+void compute_series(const Mechanism& mech, State& state, int terms);
+void compute_series(const Mechanism& mech, State& state, const std::vector<DriverState>& drivers, int terms,
+                    Eigen::MatrixXd& out);
+
+}  // namespace nbar

@@ -1,0 +1,45 @@
+// A driver's motion law: an arithmetic expression in the time t, e.g. "30*sin(2*pi*t)".
+// Parsed once, then evaluated either as a number or as a truncated Taylor series in t,
+// which gives the driver's value, speed, acceleration, jerk... exactly.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "nbar/model/series.hpp"
+
+namespace nbar {
+
+class Expression;  // the parsed tree, defined in law.cpp
+
+// Thrown for a malformed expression; `column` is the 0-based offset in the text.
+class LawSyntaxError : public std::runtime_error {
+ public:
+  LawSyntaxError(int column, const std::string& message)
+      : std::runtime_error(message), column_(column) {}
+  int column() const { return column_; }
+
+ private:
+  int column_;
+};
+
+class Law {
+ public:
+  // Grammar: numbers, t, pi, e, + - * / ^ (right associative), unary minus, parentheses,
+  // functions sin cos tan exp log sqrt abs asin acos atan sinh cosh tanh.
+  // `scale` multiplies the result (model units -> SI).
+  static Law parse(const std::string& text, double scale = 1.0);
+
+  double value(double t) const;
+  // Taylor series of the law around t0 with `terms` coefficients.
+  Series series(double t0, int terms) const;
+  const std::string& text() const { return text_; }
+
+ private:
+  std::shared_ptr<const Expression> root_;
+  std::string text_;
+  double scale_ = 1.0;
+};
+
+}  // namespace nbar

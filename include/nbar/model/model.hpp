@@ -1,0 +1,144 @@
+// The immutable description of a planar linkage: points, bodies, joints, drivers.
+// Everything is stored in SI units (m, rad, s); `units` only records how the user
+// wants to read and write numbers. Built by the model-file parser or by code
+// (ModelBuilder); checked and compiled into a Mechanism by the kinematics stage.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "nbar/model/diagnostics.hpp"
+#include "nbar/model/geometry.hpp"
+#include "nbar/model/law.hpp"
+#include "nbar/model/units.hpp"
+
+namespace nbar {
+
+struct Point {
+  std::string name;
+  Eigen::Vector2d position;  // in the starting pose, m
+  bool ground = false;       // fixed to the frame
+};
+
+struct Material {
+  std::string name;
+  double density = 0.0;                  // kg/m^3
+  std::optional<double> yield_strength;  // Pa
+};
+
+// Mass properties given directly instead of computed from a shape.
+struct GivenInertia {
+  double mass = 0.0;            // kg
+  Eigen::Vector2d cg{0, 0};     // m, in the starting pose
+  double inertia = 0.0;         // kg m^2 about the centre of mass
+};
+
+struct Body {
+  std::string name;
+  std::vector<int> points;             // indices into Model::points; the first two define its angle
+  std::optional<double> length;        // exact length of a two-point body (m), overriding the drawing
+  std::optional<Region> shape;         // the plate's outline minus holes, in the starting pose (m)
+  double thickness = 0.0;              // m, with a shape
+  std::optional<Material> material;    // with a shape: density and strength
+  std::optional<GivenInertia> inertia; // explicit mass properties (then the shape is only for stresses)
+};
+
+// Prismatic joint: `point` of `body` moves on the line through along[0], along[1], and `body`
+// keeps its orientation relative to the guide (the body or ground that owns the along points).
+struct Slider {
+  int body = -1;
+  int point = -1;
+  std::array<int, 2> along{-1, -1};
+};
+
+// Pin in slot: `point` moves on the line through along[0], along[1] and may rotate freely.
+struct Slot {
+  int point = -1;
+  std::array<int, 2> along{-1, -1};
+};
+
+enum class DriverKind {
+  Angle,     // angle of `body` (from its 1st to its 2nd point), from +x or relative to `relative_to`
+  Distance,  // distance between points[0] and points[1]
+  Slide,     // position of slider `slider`'s point along its guide, from the guide's first point
+};
+
+// How a driver moves. Either a from/to sweep sampled at evenly spaced values (with the
+// derivatives of the driver moving at `speed` with `accel` at every sample), or a law in time.
+struct Driver {
+  std::string name;  // column name in outputs
+  DriverKind kind = DriverKind::Angle;
+  int body = -1;         // Angle
+  int relative_to = -1;  // Angle: -1 means the +x axis of the frame
+  std::array<int, 2> points{-1, -1};  // Distance
+  int slider = -1;                    // Slide: index into Model::sliders
+
+  std::optional<double> from;  // SI (rad or m); unset means "the value in the drawn pose"
+  std::optional<double> to;
+  double speed = 1.0;  // SI per second
+  double accel = 0.0;  // SI per second squared
+  std::optional<Law> law;  // value as a function of t, in SI
+
+  bool is_angular() const { return kind == DriverKind::Angle; }
+};
+
+struct SweepSpec {
+  int steps = 361;            // from/to sweeps: number of samples, ends included
+  double duration = 1.0;      // time-law sweeps, s
+  std::optional<double> time_step;  // time-law sweeps, s; default duration/100
+};
+
+// A force on a point: on `body` there, or on the joint's pin when body is -1 (the pin passes it
+// on to the bodies that meet there). Components are laws in t (a constant is a law too), N.
+struct PointLoad {
+  int point = -1;
+  int body = -1;
+  Law fx, fy;
+};
+
+// A torque on a body, N m, counter-clockwise positive.
+struct BodyTorque {
+  int body = -1;
+  Law torque;
+};
+
+// A linear spring and damper between two points: tension = stiffness (length - free_length)
+// + damping d(length)/dt, pulling the points together when positive.
+struct Spring {
+  std::string name;
+  std::array<int, 2> points{-1, -1};
+  double stiffness = 0.0;    // N/m
+  double free_length = 0.0;  // m
+  double damping = 0.0;      // N s/m
+};
+
+struct Model {
+  std::string name;
+  Units units;
+  std::vector<Point> points;
+  std::vector<Body> bodies;
+  std::vector<Slider> sliders;
+  std::vector<Slot> slots;
+  std::vector<Driver> drivers;
+  SweepSpec sweep;
+
+  Eigen::Vector2d gravity{0, 0};  // m/s^2
+  std::vector<PointLoad> point_loads;
+  std::vector<BodyTorque> torques;
+  std::vector<Spring> springs;
+
+  int find_point(const std::string& name) const;  // -1 when absent
+  int find_body(const std::string& name) const;
+  bool has_time_law() const;
+};
+
+// Checks names, references and geometry that need no solving; throws ModelError.
+void validate(const Model& model);
+
+}  // namespace nbar

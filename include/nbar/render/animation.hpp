@@ -1,0 +1,74 @@
+// Moving pictures of a sweep: an animated GIF, an SVG animated with SMIL, a self-contained HTML
+// page with play, pause and a slider, and an MP4 video made by the ffmpeg program.
+//
+// Every format shows the same frames: `frames` evenly spaced samples of the sweep (by default
+// every sample, at most 120), on one view that fits every pose, `fps` frames a second. When the
+// sweep ends where it began (a crank turned through a whole turn) its last sample is left out,
+// so that the loop does not stop for a frame.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/render/drawing.hpp"
+#include "nbar/render/image_canvas.hpp"
+
+namespace nbar::render {
+
+class Animation {
+ public:
+  // Keeps references to `mech` and `sweep`, which must outlive it. frames <= 0: the default.
+  // Throws std::invalid_argument when the sweep has no sample or fps is not positive.
+  Animation(const Mechanism& mech, const SweepResult& sweep, const DrawOptions& options, int frames = 0,
+            double fps = 24.0);
+
+  static constexpr int kDefaultMaxFrames = 120;
+
+  int frame_count() const { return static_cast<int>(steps_.size()); }
+  const std::vector<int>& steps() const { return steps_; }  // the sample shown by each frame
+  bool periodic() const { return periodic_; }  // the last frame runs on into the first
+  double fps() const { return fps_; }
+  double duration() const { return frame_count() / fps_; }  // s, one loop
+  const View& view() const { return view_; }
+
+  // One frame, drawn whole.
+  ImageCanvas render_frame(int frame, bool antialias = true) const;
+
+  // Each writer throws std::runtime_error naming the file when it cannot be written.
+  // GIF: frames drawn without antialiasing, one palette of the colours used, looping forever.
+  void write_gif(const std::string& path) const;
+  // SVG: drawn once at the first frame; every body group moved by animateTransform.
+  std::string svg_animation() const;
+  void write_svg_animation(const std::string& path) const;
+  // HTML: the SVG drawn once and moved by a script; play/pause, a slider, a frame counter and
+  // the time and driver values of the frame. Needs nothing from the network.
+  std::string html_animation() const;
+  void write_html_animation(const std::string& path) const;
+  // MP4 (H.264 by ffmpeg's defaults, yuv420p). Throws std::runtime_error when the ffmpeg
+  // program is not on the PATH.
+  void write_mp4(const std::string& path) const;
+
+  // Whether a program of that name is on the PATH.
+  static bool program_available(const std::string& name);
+
+ private:
+  // Per frame and body, the motion from the first frame, with angles made continuous; one
+  // more entry than frames: where the last frame goes on to (the first again, or itself).
+  std::vector<std::vector<PixelTransform>> transforms() const;
+  std::vector<std::string> body_group_ids() const;
+  std::string readout(int frame) const;
+
+  const Mechanism& mech_;
+  const SweepResult& sweep_;
+  DrawOptions options_;
+  double fps_;
+  View view_;
+  bool periodic_ = false;
+  std::vector<int> steps_;
+  std::vector<std::vector<Eigen::Vector2d>> points_;  // per frame
+};
+
+}  // namespace nbar::render

@@ -1,0 +1,68 @@
+// Drawing a mechanism the way a textbook does: each body in its own colour (its plate when it
+// has a shape, otherwise a bar or a filled polygon), revolute joints as small circles, ground
+// pivots on hatched bases, slider blocks on their guides, slots, point labels, the paths of
+// chosen points, equal axis scales and a scale bar.
+//
+// Every body is drawn in its own group; for animations the groups are drawn once at the
+// starting pose and moved by rigid transforms (body_transforms), or the whole picture is drawn
+// again for each frame (raster formats).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/render/canvas.hpp"
+
+namespace nbar::render {
+
+// A spot to mark on a body, e.g. where its largest stress is.
+struct Marker {
+  int body = -1;
+  Eigen::Vector2d local{0, 0};  // in the body frame: x along its axis from its first point, y to the left, m
+  std::string label;
+};
+
+struct DrawOptions {
+  int width = 900, height = 640;  // px
+  double margin = 36;             // px around the mechanism
+  bool labels = false;            // point names
+  std::vector<int> traces;        // points whose paths over the sweep are drawn
+  std::vector<Marker> markers;
+  bool scale_bar = true;
+  std::string title;              // drawn at the top left when not empty
+};
+
+// A view in which every pose of the sweep fits, so that animation frames share it.
+View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions& options);
+
+// The positions of every point at a sample (m).
+std::vector<Eigen::Vector2d> sample_points(const Mechanism& mech, const Sample& sample);
+
+// One pose. Groups: "ground", "traces", "body-<name>" (one per body, with its joints),
+// "labels", "markers", "scale-bar".
+void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
+                    const std::vector<Eigen::Vector2d>& points, const DrawOptions& options);
+
+// Convenience: the whole picture of sample `step` on a fitted view.
+void draw_sample(Canvas& canvas, const Mechanism& mech, const SweepResult& sweep, int step,
+                 const DrawOptions& options);
+
+// The rigid motion, in pixels, that takes each body from where it is drawn at `reference` to
+// where it is at `points`: p -> rotation(angle) * (p - pivot) + pivot + shift. Angles in
+// degrees, clockwise positive on screen (SVG's rotate()).
+struct PixelTransform {
+  double angle_deg = 0.0;
+  Eigen::Vector2d pivot{0, 0};
+  Eigen::Vector2d shift{0, 0};
+};
+std::vector<PixelTransform> body_transforms(const Mechanism& mech, const View& view,
+                                            const std::vector<Eigen::Vector2d>& reference,
+                                            const std::vector<Eigen::Vector2d>& points);
+
+// The colour of body `index` (a palette that stays distinct for neighbouring bodies).
+Color body_color(int index);
+
+}  // namespace nbar::render

@@ -1,0 +1,61 @@
+// Line plots of result columns against one another: axes with round-numbered ticks, a light
+// grid, one line per series in colours told apart by colour-blind readers, and a legend.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nbar/render/canvas.hpp"
+
+namespace nbar::render {
+
+struct PlotSeries {
+  std::string name, unit;
+  std::vector<double> y;  // one value per x; NaN or infinity leaves a gap in the line
+};
+
+struct PlotSpec {
+  std::string title;  // drawn at the top when not empty
+  std::string x_name, x_unit;
+  std::vector<double> x;
+  std::vector<PlotSeries> series;
+  // A fixed y range instead of one covering the data (both or neither); lines leaving it are
+  // cut at its edges.
+  std::optional<double> y_lo, y_hi;
+  int width = 900, height = 520;  // px: the size of the canvas to make (draw_plot uses the canvas's own)
+};
+
+// Where the data went: the plot area in pixels and the data ranges its edges stand for.
+struct PlotFrame {
+  double left = 0, top = 0, right = 0, bottom = 0;  // px
+  double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;    // data at the left, right, bottom and top edges
+  std::vector<double> x_ticks, y_ticks;
+  Eigen::Vector2d to_pixels(double x, double y) const;
+};
+
+// Draws the plot over the whole canvas. The x axis spans the data exactly; the y axis runs from
+// a tick below the data to a tick above it. Series whose units all agree share a y label with
+// that unit; otherwise each legend entry says "name [unit]". A series that never changes is
+// shown in a range around its value. Groups: "grid", "series-<i>" (one per series, in order),
+// "axes" (frame, ticks, labels, title), "legend".
+// Throws std::invalid_argument when a series has a different number of values than x, or for a
+// fixed y range that is not finite, increasing and given at both ends.
+PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec);
+
+// Ticks at multiples of a step of 1, 2 or 5 times a power of ten, the first at or below `lo`
+// and the last at or above `hi`: the smallest such step giving at most `target` intervals.
+// An empty or nearly empty range (narrower than 1e-10 of its size) is widened to 10% of its
+// value either side (to -1..1 about zero). Throws std::invalid_argument for non-finite or
+// overly large bounds (beyond 1e300) and for a target outside 1..1000.
+std::vector<double> nice_ticks(double lo, double hi, int target = 6);
+
+// Labels for evenly spaced ticks, all in one style: fixed with as many decimals as the step
+// needs ("0.0", "0.5", "-40", "1001000", "1.0000000002"), or short exponents ("2e6", "1.5e6",
+// "4e11", "5e-10") for millions with at most three significant digits, billions and up, and
+// ticks all below 1e-3.
+std::vector<std::string> format_ticks(const std::vector<double>& ticks);
+
+}  // namespace nbar::render
