@@ -1,0 +1,73 @@
+// One analysis pipeline, in the order the physics flows (like MuJoCo's forward pipeline in
+// fixed stages): the sweep of the drivers, then the inverse dynamics of every sample, solved
+// once and kept, then the stresses along every link, taken from the kept dynamics. Front-ends
+// (the CLI, the web server, Python) ask for the stages they need and render the Analysis; none
+// of them solves anything itself.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nbar/dynamics/inverse_dynamics.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/kinematics/table.hpp"
+#include "nbar/model/diagnostics.hpp"
+#include "nbar/model/run_control.hpp"
+#include "nbar/stress/link_stress.hpp"
+
+namespace nbar {
+
+struct AnalysisOptions {
+  std::optional<int> steps;  // samples of the sweep, ends included; unset: the model's
+  int order = 2;             // highest time derivative, 0 to 5; raised to 2 for dynamics and stress
+  bool dynamics = false;     // joint forces, driver efforts, energies at every sample
+  bool stress = false;       // the largest von Mises stress of every link with a shape (implies dynamics)
+  int sections = 200;        // stress: cross-sections per link, at least
+  RunControl control;        // cancellation, deadline and progress for every stage
+};
+
+// The inverse dynamics of every sample, solved once.
+struct DynamicsStage {
+  std::shared_ptr<const InverseDynamics> solver;  // the structure (unknowns, joints, masses)
+  std::vector<DynamicsResult> samples;            // one per sample of the sweep, in order
+  bool unique = true;                             // false: redundant constraints, minimum-norm forces
+  double max_residual = 0.0;                      // of the Newton-Euler equations, N or N m
+};
+
+// The stresses along every link that has a shape, from the kept dynamics.
+struct StressStage {
+  std::shared_ptr<const LinkStress> links;
+  std::vector<StressPeak> peaks;  // one per analysed body
+};
+
+struct Analysis {
+  std::shared_ptr<const Mechanism> mechanism;
+  SweepResult sweep;
+  std::optional<DynamicsStage> dynamics;
+  std::optional<StressStage> stress;
+  std::vector<Warning> warnings;  // of every stage, in the order they arose
+
+  const Model& model() const { return mechanism->model(); }
+  bool complete() const { return sweep.complete; }
+};
+
+// Runs the stages the options ask for. Throws Error: CannotAssemble when the start cannot be
+// assembled, BadInput for options out of range, UndefinedLaw when a law has no value where it
+// is needed, InvalidModel when stresses are asked of a model with no shaped link, Cancelled.
+// A sweep stopped at a limit position is not an error: complete() is false, the samples solved
+// so far are kept (and analysed by the later stages) and sweep.stop_reason says why.
+Analysis analyse(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options = {});
+
+// The sweep as a table in the model's units: the kinematic columns, then the dynamics columns
+// when that stage ran (kinematics/table.hpp and dynamics/dynamics_table.hpp name them).
+ResultTable result_table(const Analysis& analysis);
+
+// Every cross-section of one link at one sample: x, area, N, V, M, sigma at both fibres, tau
+// and von Mises. Needs the stress stage; throws Error(BadInput) for a body without a shape or a
+// step that was not solved.
+ResultTable section_profile_table(const Analysis& analysis, int body, int step);
+
+}  // namespace nbar
