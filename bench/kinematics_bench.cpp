@@ -98,7 +98,7 @@ void check_sweep(const nbar::Mechanism& mech, const std::string& what) {
   const nbar::SweepResult r = nbar::run_sweep(mech, {.steps = kStepsPerTurn + 1, .order = kOrder});
   if (!r.complete) die(what + ": the sweep does not complete: " + r.stop_reason);
   if (static_cast<int>(r.samples.size()) != kStepsPerTurn + 1) die(what + ": the sweep is short");
-  for (const std::string& w : r.warnings) die(what + ": unexpected sweep warning: " + w);
+  for (const nbar::Warning& w : r.warnings) die(what + ": unexpected sweep warning: " + w.message);
   if (!(r.max_residual <= mech.tolerance())) die(what + ": residual above tolerance");
 }
 

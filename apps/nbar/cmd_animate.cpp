@@ -53,34 +53,28 @@ int run_animate(const AnimateArgs& args) {
 
   Loaded loaded;
   if (int code = load(args.model, loaded)) return code;
-  const nbar::Mechanism& mech = *loaded.mechanism;
-  const nbar::Model& m = mech.model();
 
   nbar::render::DrawOptions draw;
   draw.width = args.width;
   draw.height = args.height;
   draw.labels = args.labels;
-  for (const std::string& name : args.traces) {
-    const int p = m.find_point(name);
-    if (p < 0) {
-      std::vector<std::string> names;
-      for (const nbar::Point& point : m.points) names.push_back(point.name);
-      std::cerr << "error: --trace: '" << name << "' is not a point of the model; the points are: " << join(names)
-                << '\n';
-      return kBadUsage;
-    }
-    draw.traces.push_back(p);
+  try {
+    draw.traces = nbar::render::trace_points(loaded.mechanism->model(), args.traces);
+  } catch (const nbar::Error& e) {
+    std::cerr << "error: --trace: " << e.message() << '\n';
+    return kBadUsage;
   }
 
-  nbar::SweepOptions options;
+  nbar::AnalysisOptions options;
   options.steps = args.steps;
   options.order = 0;  // positions are all a picture needs
-  nbar::SweepResult sweep;
-  if (int code = sweep_model(args.model, mech, options, sweep)) return code;
+  nbar::Analysis analysis;
+  if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
+  const nbar::SweepResult& sweep = analysis.sweep;
   if (sweep.samples.empty()) return finish(args.model, sweep);
 
   try {
-    const nbar::render::Animation animation(mech, sweep, draw, args.frames.value_or(0), args.fps);
+    const nbar::render::Animation animation(analysis.mechanism, sweep, draw, args.frames.value_or(0), args.fps);
     if (format == "gif")
       animation.write_gif(args.output);
     else if (format == "svg")
@@ -96,7 +90,7 @@ int run_animate(const AnimateArgs& args) {
     std::cerr << "error: " << e.what() << '\n';
     return kBadUsage;
   }
-  for (const std::string& w : sweep.warnings) std::cerr << "warning: " << w << '\n';
+  print_warnings(sweep.warnings);
   return finish(args.model, sweep);
 }
 

@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nbar/analysis/pose.hpp"
 #include "nbar/render/drawing.hpp"
 #include "nbar/render/image_canvas.hpp"
 
@@ -27,29 +28,6 @@ std::string extension(const std::string& path) {
   return dot == std::string::npos ? "" : path.substr(dot + 1);
 }
 
-// The model swept from its start to `value` of its first driver (a time for time laws), so
-// that the last sample is exactly there, on the drawn branch.
-Model swept_to(Model m, double value) {
-  const double target = m.has_time_law() ? value : value * (m.drivers[0].is_angular() ? m.units.angle_scale
-                                                                                       : m.units.length_scale);
-  if (m.has_time_law()) {
-    m.sweep.duration = target;
-    m.sweep.time_step = target / 100.0;
-    return m;
-  }
-  const Driver& first = m.drivers[0];
-  const double from = first.from.value_or(target), to = first.to.value_or(from);
-  const double fraction = to != from ? (target - from) / (to - from) : 0.0;
-  for (Driver& d : m.drivers) {
-    if (!d.from) continue;
-    const double span = d.to.value_or(*d.from) - *d.from;
-    d.to = *d.from + fraction * span;
-  }
-  m.drivers[0].to = target;
-  m.sweep.steps = std::max(2, static_cast<int>(std::ceil(std::abs(fraction) * 360.0)) + 1);
-  return m;
-}
-
 int run_draw(const DrawArgs& args) {
   const std::string format = extension(args.output);
   if (format != "svg" && format != "png") {
@@ -60,46 +38,36 @@ int run_draw(const DrawArgs& args) {
   if (int code = load(args.model, loaded)) return code;
   const Mechanism& mech = *loaded.mechanism;
   const Model& m = mech.model();
-  SweepOptions options;
-  options.steps = args.steps;
-  options.order = 0;
-  SweepResult sweep;
-  if (int code = sweep_model(args.model, mech, options, sweep)) return code;
 
   render::DrawOptions draw;
   draw.width = args.width;
   draw.height = args.height;
   draw.labels = args.labels;
   draw.title = args.title;
-  for (const std::string& name : args.traces) {
-    const int p = m.find_point(name);
-    if (p < 0) {
-      std::cerr << "error: --trace: '" << name << "' is not a point of the model\n";
-      return kBadUsage;
-    }
-    draw.traces.push_back(p);
+  try {
+    draw.traces = render::trace_points(m, args.traces);
+  } catch (const Error& e) {
+    std::cerr << "error: --trace: " << e.message() << '\n';
+    return kBadUsage;
   }
+
+  AnalysisOptions options;
+  options.steps = args.steps;
+  options.order = 0;
+  Analysis analysis;
+  if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
+  const SweepResult& sweep = analysis.sweep;
 
   std::vector<Eigen::Vector2d> points;
   if (args.at) {
-    if (m.drivers.empty()) {
-      std::cerr << "error: --at needs a driver\n";
-      return kBadUsage;
+    try {
+      points = render::sample_points(mech, pose_at(mech, *args.at));
+    } catch (const Error& e) {
+      return fail(args.model, e);
     }
-    const Mechanism to_value(swept_to(m, *args.at));
-    SweepResult partial;
-    if (int code = sweep_model(args.model, to_value, options, partial)) return code;
-    if (!partial.complete) {
-      std::cerr << "error: " << args.model << ": cannot reach " << *args.at << ": " << partial.stop_reason << '\n';
-      return kStoppedEarly;
-    }
-    points = render::sample_points(to_value, partial.samples.back());
   } else {
     const int step = args.step.value_or(0);
-    if (step < 0 || step >= static_cast<int>(sweep.samples.size())) {
-      std::cerr << "error: --step " << step << " is not a solved step (0 to " << sweep.samples.size() - 1 << ")\n";
-      return kBadUsage;
-    }
+    if (!check_step(step, sweep)) return kBadUsage;
     points = render::sample_points(mech, sweep.samples[step]);
   }
   const render::View view = render::fit_view(mech, sweep, draw);
@@ -121,7 +89,7 @@ int run_draw(const DrawArgs& args) {
     std::cerr << "error: " << e.what() << '\n';
     return kBadUsage;
   }
-  for (const std::string& w : sweep.warnings) std::cerr << "warning: " << w << '\n';
+  print_warnings(sweep.warnings);
   return kOk;  // the pose was drawn, even if the sweep (for traces) stopped early
 }
 

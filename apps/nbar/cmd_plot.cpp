@@ -12,7 +12,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "nbar/dynamics/dynamics_table.hpp"
+#include "nbar/analysis/columns.hpp"
 #include "nbar/kinematics/table.hpp"
 #include "nbar/render/plot.hpp"
 #include "nbar/render/image_canvas.hpp"
@@ -51,45 +51,6 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-// The column names of the table at a sweep order, without solving anything.
-std::vector<std::string> kinematic_columns(const Mechanism& mech, int order) {
-  SweepResult empty;
-  empty.order = order;
-  return make_table(mech, empty).columns;
-}
-
-// The inverse-dynamics column names, or none when the model cannot have them.
-std::vector<std::string> dynamics_columns(const Mechanism& mech) {
-  SweepResult empty;
-  ResultTable names;
-  try {
-    append_dynamics(mech, empty, names);
-  } catch (const std::exception&) {
-    return {};
-  }
-  return names.columns;
-}
-
-bool matches(const std::vector<std::string>& columns, const std::string& pattern) {
-  ResultTable t;
-  t.columns = columns;
-  t.units.resize(columns.size());
-  try {
-    select_columns(t, {pattern});
-    return true;
-  } catch (const std::invalid_argument&) {
-    return false;
-  }
-}
-
-int unknown_column(const std::string& option, const std::string& pattern, const std::vector<std::string>& kinematic,
-                   const std::vector<std::string>& dynamic) {
-  std::cerr << "error: " << option << ": no column matches '" << pattern << "'; the columns are: " << join(kinematic);
-  if (!dynamic.empty()) std::cerr << "; with inverse dynamics also: " << join(dynamic);
-  std::cerr << '\n';
-  return kBadUsage;
-}
-
 int run_plot(const PlotArgs& args) {
   const std::string format = lower_extension(args.output);
   if (format != ".svg" && format != ".png") {
@@ -105,61 +66,25 @@ int run_plot(const PlotArgs& args) {
 
   Loaded loaded;
   if (int code = load(args.model, loaded)) return code;
-  const Mechanism& mech = *loaded.mechanism;
-  const Model& m = mech.model();
+  const Model& m = loaded.mechanism->model();
   const std::string x_pattern = !args.x.empty() ? args.x : m.drivers.empty() ? std::string("t") : m.drivers[0].name;
 
-  // Which columns exist, and whether the request needs inverse dynamics or a higher order.
+  // Which stages and order the columns need, from the library's column catalogue.
   std::vector<std::string> patterns = args.y;
   patterns.push_back(x_pattern);
-  const std::vector<std::string> all_kinematic = kinematic_columns(mech, 5);
-  const std::vector<std::string> dynamic = dynamics_columns(mech);
-  bool dynamics = args.dynamics;
-  std::vector<std::string> kinematic_patterns;
-  for (const std::string& p : patterns) {
-    if (!matches(all_kinematic, p) && matches(dynamic, p))
-      dynamics = true;
-    else
-      kinematic_patterns.push_back(p);
+  const ColumnNeeds needs = column_needs(*loaded.mechanism, patterns, args.order, args.dynamics);
+  if (needs.unmatched >= 0) {
+    std::cerr << "error: " << (needs.unmatched < static_cast<int>(args.y.size()) ? "--y" : "--x") << ": "
+              << needs.message << '\n';
+    return kBadUsage;
   }
-  int order = args.order.value_or(2);
-  if (!args.order) {
-    for (int k = 2; k <= 5; ++k) {
-      const std::vector<std::string> names = kinematic_columns(mech, k);
-      const bool all = std::all_of(kinematic_patterns.begin(), kinematic_patterns.end(),
-                                   [&](const std::string& p) { return matches(names, p); });
-      if (all) {
-        order = k;
-        break;
-      }
-    }
-  }
-  if (dynamics) order = std::max(order, 2);
-  std::vector<std::string> available = kinematic_columns(mech, order);
-  const std::vector<std::string> empty;
-  if (dynamics) available.insert(available.end(), dynamic.begin(), dynamic.end());
-  for (const std::string& p : args.y)
-    if (!matches(available, p)) return unknown_column("--y", p, available, dynamics ? empty : dynamic);
-  if (!matches(available, x_pattern)) return unknown_column("--x", x_pattern, available, dynamics ? empty : dynamic);
-
-  SweepOptions options;
+  AnalysisOptions options;
   options.steps = args.steps;
-  options.order = order;
-  SweepResult sweep;
-  if (int code = sweep_model(args.model, mech, options, sweep)) return code;
-  ResultTable table = make_table(mech, sweep);
-  std::optional<DynamicsSummary> summary;
-  if (dynamics) {
-    try {
-      summary = append_dynamics(mech, sweep, table);
-    } catch (const std::domain_error& e) {  // a load's law undefined at some time
-      std::cerr << "error: " << args.model << ": " << e.what() << '\n';
-      return kInvalidModel;
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "error: " << args.model << ": " << e.what() << '\n';
-      return kInvalidModel;
-    }
-  }
+  options.order = needs.order;
+  options.dynamics = needs.dynamics;
+  Analysis analysis;
+  if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
+  const ResultTable table = result_table(analysis);
 
   const ResultTable x_column = select_columns(table, {x_pattern});
   if (x_column.columns.size() != 1) {
@@ -210,10 +135,8 @@ int run_plot(const PlotArgs& args) {
     }
   }
 
-  for (const std::string& w : sweep.warnings) std::cerr << "warning: " << w << '\n';
-  if (summary)
-    for (const std::string& w : summary->warnings) std::cerr << "warning: " << w << '\n';
-  return finish(args.model, sweep);
+  print_warnings(analysis.warnings());
+  return finish(args.model, analysis.sweep);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nbar/analysis/summary.hpp"
 #include "nbar/render/report.hpp"
 
 namespace nbar::cli {
@@ -22,28 +23,22 @@ int run_report(const ReportArgs& args) {
   }
   Loaded loaded;
   if (int code = load(args.model, loaded)) return code;
-  SweepOptions options;
+  const ModelSummary summary = summarize(*loaded.mechanism);
+  AnalysisOptions options = render::report_analysis_options(summary);
   options.steps = args.steps;
-  options.order = 3;  // jerk is plotted
-  SweepResult sweep;
-  if (int code = sweep_model(args.model, *loaded.mechanism, options, sweep)) return code;
+  Analysis analysis;
+  if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
   render::ReportOptions report;
   report.source = args.model;
   report.frames = args.frames;
-  std::string html;
-  try {
-    html = render::html_report(*loaded.mechanism, sweep, report);
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << args.model << ": " << e.what() << '\n';
-    return kInvalidModel;
-  }
+  const std::string html = render::html_report(analysis, summary, report);
   std::ofstream out(args.output);
   if (!(out << html)) {
     std::cerr << "error: cannot write " << args.output << '\n';
     return kBadUsage;
   }
-  for (const std::string& w : sweep.warnings) std::cerr << "warning: " << w << '\n';
-  return finish(args.model, sweep);
+  print_warnings(analysis.warnings());
+  return finish(args.model, analysis.sweep);
 }
 
 }  // namespace

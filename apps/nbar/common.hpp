@@ -1,40 +1,60 @@
-// Shared by the nbar commands: loading a model, running its sweep, writing to a file or
-// standard output, and the documented exit codes.
+// Shared by the nbar commands: loading a model, mapping the library's errors to messages and
+// the documented exit codes, printing warnings, writing to a file or standard output.
 #pragma once
 
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "nbar/analysis/analysis.hpp"
 #include "nbar/io/model_file.hpp"
-#include "nbar/kinematics/sweep.hpp"
 
 namespace nbar::cli {
 
-enum ExitCode { kOk = 0, kInvalidModel = 1, kBadUsage = 2, kCannotAssemble = 3, kStoppedEarly = 4 };
+enum ExitCode { kOk = 0, kInvalidModel = 1, kBadUsage = 2, kCannotAssemble = 3, kStoppedEarly = 4, kCancelled = 5 };
 
-using nbar::io::LoadedModel;
+// The one place where kinds of error become exit codes.
+inline int exit_code(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::InvalidModel: return kInvalidModel;
+    case ErrorKind::UndefinedLaw: return kInvalidModel;  // the model's law is wrong where it is used
+    case ErrorKind::BadInput: return kBadUsage;
+    case ErrorKind::CannotAssemble: return kCannotAssemble;
+    case ErrorKind::StoppedAtLimit: return kStoppedEarly;
+    case ErrorKind::Cancelled: return kCancelled;
+  }
+  return kBadUsage;
+}
 
-// Loads and compiles a model, reporting every problem at its place in the file.
+// Prints the error, prefixed by the model file's name when the error does not carry a place
+// of its own, and returns its exit code. Bad input is about the options, not the file.
+inline int fail(const std::string& model_path, const Error& e) {
+  if (!e.file().empty() || e.kind() == ErrorKind::BadInput || model_path.empty())
+    std::cerr << "error: " << e.what() << '\n';
+  else
+    std::cerr << "error: " << model_path << ": " << e.message() << '\n';
+  return exit_code(e.kind());
+}
+
+// A model file, compiled; errors are reported at their place in the file.
 struct Loaded {
-  LoadedModel file;
-  std::optional<nbar::Mechanism> mechanism;
+  nbar::io::LoadedModel file;
+  std::shared_ptr<const Mechanism> mechanism;
 };
 
 inline int load(const std::string& path, Loaded& out) {
   try {
     out.file = nbar::io::load_model_file(path);
-  } catch (const nbar::io::ModelFileError& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return kInvalidModel;
-  }
-  try {
-    out.mechanism.emplace(out.file.model);
-  } catch (const nbar::ModelError& e) {
-    std::cerr << "error: " << nbar::io::locate(out.file.source, e) << '\n';
-    return kInvalidModel;
+    try {
+      out.mechanism = std::make_shared<const Mechanism>(out.file.model);
+    } catch (const ModelError& e) {
+      throw nbar::io::ModelFileError(path, out.file.source.find(e.where()), e.message());
+    }
+  } catch (const Error& e) {
+    return fail(path, e);
   }
   return kOk;
 }
@@ -45,8 +65,12 @@ inline std::string join(const std::vector<std::string>& items, const std::string
   return s;
 }
 
-// Warnings, and the exit code of a sweep that stopped early.
-inline int finish(const std::string& model, const nbar::SweepResult& sweep) {
+inline void print_warnings(const std::vector<Warning>& warnings) {
+  for (const Warning& w : warnings) std::cerr << "warning: " << w.message << '\n';
+}
+
+// The exit code of a sweep that stopped early (its rows are written), or 0.
+inline int finish(const std::string& model, const SweepResult& sweep) {
   if (!sweep.complete) {
     std::cerr << "error: " << model << ": " << sweep.stop_reason << " (" << sweep.samples.size()
               << " rows written)\n";
@@ -55,22 +79,23 @@ inline int finish(const std::string& model, const nbar::SweepResult& sweep) {
   return kOk;
 }
 
-// Runs the sweep; the exit code says what went wrong (0 when it ran, even if it stopped early).
-inline int sweep_model(const std::string& path, const nbar::Mechanism& mech, const nbar::SweepOptions& options,
-                nbar::SweepResult& sweep) {
+// Runs the analysis; the exit code says what went wrong (0 when it ran, even if the sweep
+// stopped early).
+inline int analyse_model(const std::string& path, const Loaded& loaded, const AnalysisOptions& options,
+                         Analysis& out) {
   try {
-    sweep = nbar::run_sweep(mech, options);
-  } catch (const nbar::AssemblyError& e) {
-    std::cerr << "error: " << path << ": " << e.what() << '\n';
-    return kCannotAssemble;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return kBadUsage;
-  } catch (const std::domain_error& e) {  // a driver's law undefined at the start
-    std::cerr << "error: " << path << ": " << e.what() << '\n';
-    return kCannotAssemble;
+    out = analyse(loaded.mechanism, options);
+  } catch (const Error& e) {
+    return fail(path, e);
   }
   return kOk;
+}
+
+// "--step K is not a solved step (0 to N)" unless 0 <= step < samples.
+inline bool check_step(int step, const SweepResult& sweep) {
+  if (step >= 0 && step < static_cast<int>(sweep.samples.size())) return true;
+  std::cerr << "error: --step " << step << " is not a solved step (0 to " << sweep.samples.size() - 1 << ")\n";
+  return false;
 }
 
 // Standard output, or the file named by -o.
@@ -88,6 +113,5 @@ class Output {
  private:
   std::ofstream file_;
 };
-
 
 }  // namespace nbar::cli

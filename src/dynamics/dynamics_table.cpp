@@ -8,39 +8,19 @@ namespace {
 
 std::string link_name(const Model& m, int link) { return link < 0 ? std::string("ground") : m.bodies[link].name; }
 
-struct ForceColumns {
-  std::size_t joint_link;  // index into InverseDynamics::joint_links()
-  int receiver;            // body whose axis gives along/across, or -1
-};
-
 }  // namespace
 
-DynamicsSummary append_dynamics(const Mechanism& mech, const SweepResult& sweep, ResultTable& table) {
-  const Model& m = mech.model();
-  const InverseDynamics dynamics(mech);
-  DynamicsSummary summary;
-  auto add = [&](std::string name, std::string unit) {
-    table.columns.push_back(std::move(name));
-    table.units.push_back(std::move(unit));
-  };
-
-  // Which pin forces to show: with two links at a joint, the force the first exerts on the
-  // second (equal to the pin's force on the second); with more, the pin's force on each.
-  std::vector<ForceColumns> forces;
+std::vector<JointForceColumn> joint_force_columns(const InverseDynamics& dynamics) {
+  const Model& m = dynamics.mechanism().model();
   const auto& links = dynamics.joint_links();
+  std::vector<JointForceColumn> forces;
   for (std::size_t i = 0; i < links.size();) {
     std::size_t end = i;
     while (end < links.size() && links[end].point == links[i].point) ++end;
     const std::string& point = m.points[links[i].point].name;
-    auto add_force = [&](std::size_t k, const std::string& prefix) {
+    const auto add_force = [&](std::size_t k, const std::string& name) {
       const int receiver = links[k].link >= 0 && m.bodies[links[k].link].points.size() >= 2 ? links[k].link : -1;
-      forces.push_back({k, receiver});
-      add(prefix + ".Fx", "N");
-      add(prefix + ".Fy", "N");
-      if (receiver >= 0) {
-        add(prefix + ".along", "N");
-        add(prefix + ".across", "N");
-      }
+      forces.push_back({name, k, receiver});
     };
     if (end - i == 2) {
       add_force(i + 1, point + "." + link_name(m, links[i].link) + ">" + link_name(m, links[i + 1].link));
@@ -49,27 +29,46 @@ DynamicsSummary append_dynamics(const Mechanism& mech, const SweepResult& sweep,
     }
     i = end;
   }
-  for (const Slider& s : m.sliders) {
-    add(m.bodies[s.body].name + ".slider.N", "N");
-    add(m.bodies[s.body].name + ".slider.M", "N m");
-  }
-  for (const Slot& s : m.slots) add(m.points[s.point].name + ".slot.N", "N");
-  for (const Driver& d : m.drivers) {
-    if (d.kind == DriverKind::Angle)
-      add(d.name + ".torque", "N m");
-    else
-      add(d.name + ".force", "N");
-  }
-  add("energy.kinetic", "J");
-  add("energy.potential", "J");
+  return forces;
+}
 
+std::vector<ColumnName> dynamics_columns(const InverseDynamics& dynamics) {
+  const Model& m = dynamics.mechanism().model();
+  std::vector<ColumnName> columns;
+  for (const JointForceColumn& f : joint_force_columns(dynamics)) {
+    columns.push_back({f.name + ".Fx", "N"});
+    columns.push_back({f.name + ".Fy", "N"});
+    if (f.receiver >= 0) {
+      columns.push_back({f.name + ".along", "N"});
+      columns.push_back({f.name + ".across", "N"});
+    }
+  }
+  for (const Slider& s : m.sliders) {
+    columns.push_back({m.bodies[s.body].name + ".slider.N", "N"});
+    columns.push_back({m.bodies[s.body].name + ".slider.M", "N m"});
+  }
+  for (const Slot& s : m.slots) columns.push_back({m.points[s.point].name + ".slot.N", "N"});
+  for (const Driver& d : m.drivers) columns.push_back({d.name + (d.kind == DriverKind::Angle ? ".torque" : ".force"),
+                                                       d.kind == DriverKind::Angle ? "N m" : "N"});
+  columns.push_back({"energy.kinetic", "J"});
+  columns.push_back({"energy.potential", "J"});
+  return columns;
+}
+
+void append_dynamics_columns(const InverseDynamics& dynamics, const SweepResult& sweep,
+                             const std::vector<DynamicsResult>& results, ResultTable& table) {
+  const Mechanism& mech = dynamics.mechanism();
+  const Model& m = mech.model();
+  for (ColumnName& c : dynamics_columns(dynamics)) {
+    table.columns.push_back(std::move(c.name));
+    table.units.push_back(std::move(c.unit));
+  }
+  const std::vector<JointForceColumn> forces = joint_force_columns(dynamics);
   for (std::size_t row = 0; row < sweep.samples.size(); ++row) {
     const Sample& sample = sweep.samples[row];
-    const DynamicsResult r = dynamics.solve(sample);
-    summary.unique = summary.unique && r.unique;
-    summary.max_residual = std::max(summary.max_residual, r.residual);
+    const DynamicsResult& r = results[row];
     std::vector<double>& out = table.rows[row];
-    for (const ForceColumns& f : forces) {
+    for (const JointForceColumn& f : forces) {
       const Eigen::Vector2d& force = r.pin_forces[f.joint_link];
       out.push_back(force.x());
       out.push_back(force.y());
@@ -90,11 +89,6 @@ DynamicsSummary append_dynamics(const Mechanism& mech, const SweepResult& sweep,
     out.push_back(r.kinetic_energy);
     out.push_back(r.potential_energy);
   }
-  if (!summary.unique)
-    summary.warnings.push_back(
-        "the mechanism has redundant constraints: its joint forces are not unique (statically indeterminate); "
-        "the minimum-norm set is given");
-  return summary;
 }
 
 }  // namespace nbar

@@ -1,5 +1,7 @@
 #include "nbar/dynamics/inverse_dynamics.hpp"
 
+#include <atomic>
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -67,7 +69,7 @@ Eigen::Vector2d BodyMotion::point(const Eigen::Vector2d& drawn, int k) const {
 
 SampleMotion sample_motion(const Mechanism& mech, const Sample& sample) {
   const Model& m = mech.model();
-  const int terms = static_cast<int>(sample.series.cols());
+  const int terms = static_cast<int>(sample.taylor.cols());
   SampleMotion out;
   out.r.resize(m.points.size());
   out.v.assign(m.points.size(), Eigen::Vector2d::Zero());
@@ -78,9 +80,9 @@ SampleMotion sample_motion(const Mechanism& mech, const Sample& sample) {
       out.r[p] = m.points[p].position;
       continue;
     }
-    out.r[p] = sample.series.block<2, 1>(col, 0);
-    if (terms > 1) out.v[p] = sample.series.block<2, 1>(col, 1);
-    if (terms > 2) out.a[p] = 2.0 * sample.series.block<2, 1>(col, 2);  // 2! * coefficient
+    out.r[p] = sample.taylor.block<2, 1>(col, 0);
+    if (terms > 1) out.v[p] = sample.taylor.block<2, 1>(col, 1);
+    if (terms > 2) out.a[p] = 2.0 * sample.taylor.block<2, 1>(col, 2);  // 2! * coefficient
   }
   return out;
 }
@@ -111,8 +113,14 @@ BodyMotion body_motion(const Mechanism& mech, const Sample& sample, int body) {
   return body_motion(mech.model(), sample_motion(mech, sample), body);
 }
 
-InverseDynamics::InverseDynamics(const Mechanism& mech) : mech_(mech) {
-  const Model& m = mech.model();
+namespace {
+std::atomic<long> solves{0};
+}  // namespace
+
+long InverseDynamics::solve_count() { return solves.load(); }
+
+InverseDynamics::InverseDynamics(std::shared_ptr<const Mechanism> mechanism) : mechanism_(std::move(mechanism)) {
+  const Model& m = mechanism_->model();
   const int bodies = static_cast<int>(m.bodies.size());
   for (int b = 0; b < bodies; ++b) {
     masses_.push_back(mass_properties(m.bodies[b]));
@@ -153,14 +161,16 @@ InverseDynamics::InverseDynamics(const Mechanism& mech) : mech_(mech) {
 }
 
 DynamicsResult InverseDynamics::solve(const Sample& sample) const {
-  if (sample.series.cols() < 3)
+  if (sample.taylor.cols() < 3)
     throw std::invalid_argument("inverse dynamics needs accelerations: solve the sweep with order 2 or more");
-  const Model& m = mech_.model();
+  ++solves;
+  const Mechanism& mech = *mechanism_;
+  const Model& m = mech.model();
   const int bodies = static_cast<int>(m.bodies.size());
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(equations_, unknowns_);
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(equations_);
   DynamicsResult out;
-  out.motion = sample_motion(mech_, sample);
+  out.motion = sample_motion(mech, sample);
   const std::vector<Eigen::Vector2d>& r = out.motion.r;
   const std::vector<Eigen::Vector2d>& v = out.motion.v;
 

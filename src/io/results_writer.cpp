@@ -1,5 +1,7 @@
 #include "nbar/io/results_writer.hpp"
 
+#include "nbar/model/units.hpp"
+
 #include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
@@ -51,8 +53,19 @@ void write_text_table(std::ostream& out, const ResultTable& table) {
   for (std::size_t r = 0; r < cells.size(); ++r) line([&](std::size_t c) { return cells[r][c]; });
 }
 
-void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& sweep, const ResultTable& table,
-                const DynamicsSummary* dynamics) {
+namespace {
+
+std::vector<std::string> messages(const std::vector<Warning>& warnings) {
+  std::vector<std::string> out;
+  for (const Warning& w : warnings) out.push_back(w.message);
+  return out;
+}
+
+}  // namespace
+
+void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& table, const DynamicsStage* dynamics) {
+  const Mechanism& mech = *analysis.mechanism;
+  const SweepResult& sweep = analysis.sweep;
   const Model& m = mech.model();
   const MobilityReport& mob = mech.mobility();
   nlohmann::ordered_json j;
@@ -68,13 +81,13 @@ void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& swe
   j["order"] = sweep.order;
   j["complete"] = sweep.complete;
   if (!sweep.complete) j["stop_reason"] = sweep.stop_reason;
-  j["warnings"] = sweep.warnings;
+  j["warnings"] = messages(sweep.warnings);
   j["max_residual"] = sweep.max_residual / m.units.length_scale;
   if (dynamics) {
     j["dynamics"] = {{"units", "forces N, torques N m, energies J, whatever the model's length unit"},
                      {"unique", dynamics->unique},
                      {"max_residual", dynamics->max_residual},
-                     {"warnings", dynamics->warnings}};
+                     {"warnings", messages(dynamics->warnings)}};
   }
   j["columns"] = table.columns;
   j["column_units"] = table.units;
@@ -82,9 +95,10 @@ void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& swe
   out << j.dump(1) << '\n';
 }
 
-void write_stress_report(std::ostream& out, const std::string& format, const Mechanism& mech,
-                         const SweepResult& sweep, const std::vector<StressPeak>& peaks) {
-  const Model& m = mech.model();
+void write_stress_report(std::ostream& out, const std::string& format, const Analysis& analysis) {
+  const SweepResult& sweep = analysis.sweep;
+  const std::vector<StressPeak>& peaks = analysis.stress->peaks;
+  const Model& m = analysis.model();
   const double length = m.units.length_scale;
   ResultTable t;
   // The input at the peak: step, time and every driver's value.
@@ -107,10 +121,10 @@ void write_stress_report(std::ostream& out, const std::string& format, const Mec
   for (const StressPeak& p : peaks) {
     names.push_back(m.bodies[p.body].name);
     const Sample* at = p.step >= 0 ? &sweep.samples[p.step] : nullptr;
-    std::vector<double> row = {p.at.von_mises / 1e6, static_cast<double>(p.step), at ? at->time : 0.0};
+    std::vector<double> row = {to_megapascal(p.at.von_mises), static_cast<double>(p.step), at ? at->time : 0.0};
     for (std::size_t d = 0; d < m.drivers.size(); ++d)
       row.push_back(at ? at->driver_values[d] / (m.drivers[d].is_angular() ? m.units.angle_scale : length) : 0.0);
-    for (double v : {p.at.where.x() / length, p.at.where.y() / length, p.at.sigma / 1e6, p.at.tau / 1e6, p.at.axial,
+    for (double v : {p.at.where.x() / length, p.at.where.y() / length, to_megapascal(p.at.sigma), to_megapascal(p.at.tau), p.at.axial,
                      p.at.shear, p.at.moment, p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN())})
       row.push_back(v);
     t.rows.push_back(std::move(row));

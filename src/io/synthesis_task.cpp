@@ -325,7 +325,7 @@ class TaskParser : yaml::Reader {
         const double y = task_.function->value(xk);
         if (k == 0) y0 = y;
         if (k == 100) y1 = y;
-      } catch (const std::domain_error&) {
+      } catch (const Error&) {
         std::ostringstream s;
         s << "the function '" << task_.function_text << "' is undefined at x = " << xk << ", inside the range of x";
         fail(mark(f), s.str());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace nbar {
 
@@ -14,64 +15,12 @@ double factorial(int k) {
   return f;
 }
 
-// How the drivers move along the sweep, and where the samples are.
-struct SweepPlan {
-  DriverPath path;                 // driver series in the tracking parameter
-  std::vector<double> parameters;  // tracking parameter of every sample
-  std::vector<double> times;       // t column of every sample
-  bool path_is_time = true;        // the tracking parameter is the time itself
-  std::vector<double> from, speed, accel;  // for time derivatives when !path_is_time
-};
-
-SweepPlan plan_sweep(const Mechanism& mech, const SweepOptions& options) {
+SweepPath plan_from_to(const Mechanism& mech, int samples, SweepPath plan) {
   const Model& m = mech.model();
   const int nd = static_cast<int>(m.drivers.size());
-  const std::vector<double>& drawn = mech.drawn_driver_values();
-  SweepPlan plan;
-  plan.from.resize(nd);
-  plan.speed.resize(nd);
-  plan.accel.resize(nd);
-  for (int d = 0; d < nd; ++d) {
-    plan.from[d] = m.drivers[d].from.value_or(drawn[d]);
-    plan.speed[d] = m.drivers[d].speed;
-    plan.accel[d] = m.drivers[d].accel;
-  }
-
-  if (m.has_time_law()) {
-    const double duration = m.sweep.duration;
-    int samples = 0;
-    if (options.steps) {
-      samples = *options.steps;
-    } else {
-      const double dt = m.sweep.time_step.value_or(duration / 100.0);
-      samples = static_cast<int>(std::floor(duration / dt + 1e-9)) + 1;
-    }
-    if (samples < 1) throw std::invalid_argument("a sweep needs at least one step");
-    const double dt = m.sweep.time_step && !options.steps ? *m.sweep.time_step
-                                                          : (samples > 1 ? duration / (samples - 1) : 0.0);
-    for (int i = 0; i < samples; ++i) {
-      plan.parameters.push_back(i * dt);
-      plan.times.push_back(i * dt);
-    }
-    plan.path = [&m, from = plan.from](double t, int terms, std::vector<Series>& out) {
-      out.resize(m.drivers.size());
-      for (std::size_t d = 0; d < m.drivers.size(); ++d) {
-        const Driver& drv = m.drivers[d];
-        if (drv.law) {
-          out[d] = drv.law->series(t, terms);
-        } else {
-          Series s = Series::variable(terms, t);
-          out[d] = from[d] + drv.speed * s + 0.5 * drv.accel * (s * s);
-        }
-      }
-    };
-    return plan;
-  }
-
-  const int samples = options.steps.value_or(m.sweep.steps);
-  if (samples < 1) throw std::invalid_argument("a sweep needs at least one step");
-  std::vector<double> delta(nd);
-  for (int d = 0; d < nd; ++d) delta[d] = m.drivers[d].to.value_or(plan.from[d]) - plan.from[d];
+  plan.delta.resize(nd);
+  for (int d = 0; d < nd; ++d) plan.delta[d] = m.drivers[d].to.value_or(plan.from[d]) - plan.from[d];
+  const std::vector<double>& delta = plan.delta;
 
   // When every driver moves at constant speed in proportion to its range, the sweep is a
   // motion in time and one series serves both the predictor and the derivatives.
@@ -87,19 +36,76 @@ SweepPlan plan_sweep(const Mechanism& mech, const SweepOptions& options) {
     plan.times.push_back(fraction * time_per_fraction);
     plan.parameters.push_back(proportional ? fraction * time_per_fraction : fraction);
   }
-  plan.path_is_time = proportional;
+  plan.parameter_is_time = proportional;
   if (proportional) {
-    plan.path = [from = plan.from, speed = plan.speed](double t, int terms, std::vector<Series>& out) {
+    plan.drivers = [from = plan.from, speed = plan.speed](double t, int terms, std::vector<Series>& out) {
       out.resize(from.size());
       for (std::size_t d = 0; d < from.size(); ++d) out[d] = from[d] + speed[d] * Series::variable(terms, t);
     };
   } else {
-    plan.path = [from = plan.from, delta](double f, int terms, std::vector<Series>& out) {
+    plan.drivers = [from = plan.from, delta](double f, int terms, std::vector<Series>& out) {
       out.resize(from.size());
       for (std::size_t d = 0; d < from.size(); ++d) out[d] = from[d] + delta[d] * Series::variable(terms, f);
     };
   }
   return plan;
+}
+
+SweepPath plan_time_law(const Mechanism& mech, std::optional<int> steps, SweepPath plan) {
+  const Model& m = mech.model();
+  const double duration = m.sweep.duration;
+  int samples = 0;
+  if (steps) {
+    samples = *steps;
+  } else {
+    const double dt = m.sweep.time_step.value_or(duration / 100.0);
+    samples = static_cast<int>(std::floor(duration / dt + 1e-9)) + 1;
+  }
+  if (samples < 1) throw Error(ErrorKind::BadInput, "a sweep needs at least one step");
+  const double dt = m.sweep.time_step && !steps ? *m.sweep.time_step : (samples > 1 ? duration / (samples - 1) : 0.0);
+  for (int i = 0; i < samples; ++i) {
+    plan.parameters.push_back(i * dt);
+    plan.times.push_back(i * dt);
+  }
+  plan.drivers = [&m, from = plan.from](double t, int terms, std::vector<Series>& out) {
+    out.resize(m.drivers.size());
+    for (std::size_t d = 0; d < m.drivers.size(); ++d) {
+      const Driver& drv = m.drivers[d];
+      if (drv.law) {
+        out[d] = drv.law->series(t, terms);
+      } else {
+        Series s = Series::variable(terms, t);
+        out[d] = from[d] + drv.speed * s + 0.5 * drv.accel * (s * s);
+      }
+    }
+  };
+  return plan;
+}
+
+// Each driver moving at its speed and acceleration through `values`, as series in time.
+void time_drivers(const Mechanism& mech, const std::vector<double>& values, const std::vector<double>& speed,
+                  const std::vector<double>& accel, int terms, std::vector<DriverState>& out) {
+  const Model& m = mech.model();
+  out.resize(values.size());
+  for (std::size_t d = 0; d < values.size(); ++d) {
+    Series v(terms, values[d]);
+    if (terms > 1) v[1] = speed[d];
+    if (terms > 2) v[2] = 0.5 * accel[d];
+    out[d] = make_driver_state(v, m.drivers[d].is_angular());
+  }
+}
+
+// A Sample of the pose in `state` (solved, its Jacobian factorised), with the Taylor
+// coefficients in time for the drivers moving as `drivers` says.
+Sample make_sample(const Mechanism& mech, State& state, int step, double time, const std::vector<DriverState>& drivers,
+                   int terms) {
+  Sample s;
+  s.step = step;
+  s.time = time;
+  for (const DriverState& d : state.drivers) s.driver_values.push_back(d.value.value());
+  compute_series(mech, state, drivers, terms, s.taylor);
+  s.residual = state.residual;
+  return s;
 }
 
 std::string values_text(const Model& m, const std::vector<Series>& values) {
@@ -113,124 +119,247 @@ std::string values_text(const Model& m, const std::vector<Series>& values) {
 
 }  // namespace
 
+SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps) {
+  const Model& m = mech.model();
+  const int nd = static_cast<int>(m.drivers.size());
+  const std::vector<double>& drawn = mech.drawn_driver_values();
+  SweepPath plan;
+  plan.from.resize(nd);
+  plan.speed.resize(nd);
+  plan.accel.resize(nd);
+  for (int d = 0; d < nd; ++d) {
+    plan.from[d] = m.drivers[d].from.value_or(drawn[d]);
+    plan.speed[d] = m.drivers[d].speed;
+    plan.accel[d] = m.drivers[d].accel;
+  }
+  plan.time_law = m.has_time_law();
+  if (plan.time_law) return plan_time_law(mech, steps, std::move(plan));
+  const int samples = steps.value_or(m.sweep.steps);
+  if (samples < 1) throw Error(ErrorKind::BadInput, "a sweep needs at least one step");
+  return plan_from_to(mech, samples, std::move(plan));
+}
+
+double SweepPath::parameter_of(double value) const {
+  if (time_law) return value;
+  if (from.empty()) throw Error(ErrorKind::BadInput, "the model has no driver to pose it by");
+  if (delta[0] == 0.0) throw Error(ErrorKind::BadInput, "the first driver does not move over the sweep");
+  const double fraction = (value - from[0]) / delta[0];
+  return parameter_is_time ? fraction * (delta[0] / speed[0]) : fraction;
+}
+
+double SweepPath::time_at(double p) const {
+  if (time_law || parameter_is_time) return p;
+  return !from.empty() && delta[0] != 0.0 ? p * (delta[0] / speed[0]) : 0.0;
+}
+
 std::vector<double> sweep_start_values(const Mechanism& mech) {
-  const SweepPlan plan = plan_sweep(mech, {});
+  const SweepPath plan = sweep_path(mech);
   std::vector<Series> values;
-  plan.path(plan.parameters.front(), 1, values);
+  plan.drivers(plan.parameters.front(), 1, values);
   std::vector<double> start;
   for (const Series& s : values) start.push_back(s.value());
   return start;
 }
 
-SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options) {
+namespace {
+
+// Watches every four-bar loop's branch sign along the sweep. A sign can only change through a
+// singular position of the loop. A change-point loop has such positions where it lies flat,
+// and a mechanism that passes them (a parallelogram held by a redundant crank) flips the sign
+// without changing branch: only the other loops are watched.
+class BranchWatch {
+ public:
+  BranchWatch(const Mechanism& mech, const Eigen::VectorXd& q, SweepResult& result) : mech_(mech) {
+    const auto points = point_positions(mech, q);
+    for (const FourBarLoop& loop : mech.four_bar_loops()) {
+      signs_.push_back(branch_sign(loop, points));
+      result.branches.push_back(branch_name(signs_.back()));
+      watched_.push_back(classify_grashof(loop, points, mech.tolerance()).kind != GrashofClass::ChangePoint);
+    }
+  }
+  void check(const Eigen::VectorXd& q, int step, const std::string& where, SweepResult& result) {
+    const auto points = point_positions(mech_, q);
+    const auto& loops = mech_.four_bar_loops();
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      const int sign = branch_sign(loops[l], points);
+      if (watched_[l] && sign != signs_[l])
+        result.warnings.push_back({"branch_changed", step,
+                                   "four-bar loop " + loops[l].name + " changed branch " + where + " (now " +
+                                       branch_name(sign) + ")"});
+      signs_[l] = sign;
+    }
+  }
+
+ private:
+  const Mechanism& mech_;
+  std::vector<int> signs_;
+  std::vector<bool> watched_;
+};
+
+// A driver distance that reaches zero (relative to the model's size) stops the sweep: the
+// row's Jacobian vanishes there. Returns the stop reason, or empty.
+std::string nonpositive_distance(const Mechanism& mech, const std::vector<Series>& values) {
+  const Model& m = mech.model();
+  for (std::size_t d = 0; d < values.size(); ++d)
+    if (m.drivers[d].kind == DriverKind::Distance && !(values[d].value() > 1e-9 * mech.characteristic_length()))
+      return "driver '" + m.drivers[d].name + "' asks for a distance of " +
+             format_driver_value(m, static_cast<int>(d), values[d].value()) + ", which must be positive";
+  return {};
+}
+
+// Checking the control costs a clock read: every few samples is often enough.
+constexpr std::size_t kControlInterval = 16;
+
+}  // namespace
+
+SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control) {
   if (options.order < 0 || options.order > 5)
-    throw std::invalid_argument("the derivative order must be between 0 and 5");
+    throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
   const Model& m = mech.model();
   const int nd = static_cast<int>(m.drivers.size());
-  const SweepPlan plan = plan_sweep(mech, options);
+  const SweepPath plan = sweep_path(mech, options.steps);
+  const std::size_t samples = plan.parameters.size();
+  control.checkpoint("sweep", 0, static_cast<long>(samples));
   SweepResult result;
   result.order = options.order;
   const int terms_out = options.order + 1;
   TrackOptions track_options;
-  track_options.terms = plan.path_is_time ? std::max(4, terms_out) : 4;
+  track_options.terms = plan.parameter_is_time ? std::max(4, terms_out) : 4;
 
   std::vector<Series> values;
-  plan.path(plan.parameters.front(), 1, values);
+  plan.drivers(plan.parameters.front(), 1, values);
   std::vector<double> start(nd);
   for (int d = 0; d < nd; ++d) start[d] = values[d].value();
 
   State state(mech);
   result.assembly = assemble(mech, state, start);
   state.parameter = plan.parameters.front();
-  plan.path(state.parameter, track_options.terms, values);
+  plan.drivers(state.parameter, track_options.terms, values);
   set_drivers(mech, state, values);
   compute_series(mech, state, track_options.terms);
+  BranchWatch branches(mech, state.q, result);
 
-  // A loop's branch sign can only change through a singular position of the loop. A
-  // change-point loop has such positions where it lies flat, and a mechanism that passes them
-  // (a parallelogram held by a redundant crank) flips the sign without changing branch: only
-  // the other loops are watched.
-  std::vector<int> branch_signs;
-  std::vector<bool> watched;
-  {
-    const auto points = point_positions(mech, state.q);
-    for (const FourBarLoop& loop : mech.four_bar_loops()) {
-      branch_signs.push_back(branch_sign(loop, points));
-      result.branches.push_back(branch_name(branch_signs.back()));
-      watched.push_back(classify_grashof(loop, points, mech.tolerance()).kind != GrashofClass::ChangePoint);
-    }
-  }
-
-  std::vector<DriverState> time_drivers(nd);
+  std::vector<DriverState> drivers_in_time(nd);
   auto record = [&](int i) {
-    Sample s;
-    s.step = i;
-    s.time = plan.times[i];
-    for (int d = 0; d < nd; ++d) s.driver_values.push_back(state.drivers[d].value.value());
-    if (plan.path_is_time) {
-      s.series = state.series.leftCols(terms_out);
+    if (plan.parameter_is_time) {
+      // The tracker's series is already in time.
+      Sample s;
+      s.step = i;
+      s.time = plan.times[i];
+      for (int d = 0; d < nd; ++d) s.driver_values.push_back(state.drivers[d].value.value());
+      s.taylor = state.series.leftCols(terms_out);
+      s.residual = state.residual;
+      result.samples.push_back(std::move(s));
     } else {
-      for (int d = 0; d < nd; ++d) {
-        Series v(terms_out, s.driver_values[d]);
-        if (terms_out > 1) v[1] = plan.speed[d];
-        if (terms_out > 2) v[2] = 0.5 * plan.accel[d];
-        time_drivers[d] = make_driver_state(v, m.drivers[d].is_angular());
-      }
-      compute_series(mech, state, time_drivers, terms_out, s.series);
+      std::vector<double> now(nd);
+      for (int d = 0; d < nd; ++d) now[d] = state.drivers[d].value.value();
+      time_drivers(mech, now, plan.speed, plan.accel, terms_out, drivers_in_time);
+      result.samples.push_back(make_sample(mech, state, i, plan.times[i], drivers_in_time, terms_out));
     }
-    s.residual = state.residual;
-    result.max_residual = std::max(result.max_residual, s.residual);
-    result.samples.push_back(std::move(s));
+    result.max_residual = std::max(result.max_residual, result.samples.back().residual);
   };
   record(0);
 
-  for (std::size_t i = 1; i < plan.parameters.size(); ++i) {
+  for (std::size_t i = 1; i < samples; ++i) {
+    if (i % kControlInterval == 0) control.checkpoint("sweep", static_cast<long>(i), static_cast<long>(samples));
     const double p = plan.parameters[i];
     // Built only for a warning or a stop: formatting it every step costs a third of a step.
     auto where = [i] { return "between steps " + std::to_string(i - 1) + " and " + std::to_string(i); };
     try {
-      plan.path(p, 1, values);
-      for (int d = 0; d < nd; ++d) {
-        // Zero relative to the model's size counts as zero: the row's Jacobian vanishes there.
-        if (m.drivers[d].kind == DriverKind::Distance && !(values[d].value() > 1e-9 * mech.characteristic_length())) {
-          result.complete = false;
-          result.stop_reason = "sweep stopped " + where() + ": driver '" + m.drivers[d].name +
-                               "' asks for a distance of " + format_driver_value(m, d, values[d].value()) +
-                               ", which must be positive";
-          return result;
-        }
+      plan.drivers(p, 1, values);
+      if (const std::string reason = nonpositive_distance(mech, values); !reason.empty()) {
+        result.complete = false;
+        result.stop_reason = "sweep stopped " + where() + ": " + reason;
+        return result;
       }
-      const TrackReport tr = track(mech, state, plan.path, p, track_options);
+      const TrackReport tr = track(mech, state, plan.drivers, p, track_options);
       if (tr.passed_singularity) {
-        plan.path(tr.singular_parameter, 1, values);
-        result.warnings.push_back("passed a singular (change-point) position " + where() + " near " +
-                                  values_text(m, values) + ": the assembly branch may have changed there");
+        plan.drivers(tr.singular_parameter, 1, values);
+        result.warnings.push_back({"change_point_passed", static_cast<int>(i),
+                                   "passed a singular (change-point) position " + where() + " near " +
+                                       values_text(m, values) + ": the assembly branch may have changed there"});
       }
       if (!tr.reached) {
-        plan.path(tr.limit_parameter, 1, values);
+        plan.drivers(tr.limit_parameter, 1, values);
         result.complete = false;
         result.stop_reason = "sweep stopped " + where() + " at " + values_text(m, values) + ": " + tr.reason;
         return result;
       }
-    } catch (const std::domain_error& e) {
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::UndefinedLaw) throw;
       result.complete = false;
       result.stop_reason = "sweep stopped " + where() + ": " + e.what();
       return result;
     }
     record(static_cast<int>(i));
-    const auto points = point_positions(mech, state.q);
-    const auto& loops = mech.four_bar_loops();
-    for (std::size_t l = 0; l < loops.size(); ++l) {
-      const int sign = branch_sign(loops[l], points);
-      if (watched[l] && sign != branch_signs[l]) {
-        result.warnings.push_back("four-bar loop " + loops[l].name + " changed branch " + where() + " (now " +
-                                  branch_name(sign) + ")");
-      }
-      branch_signs[l] = sign;
-    }
+    branches.check(state.q, static_cast<int>(i), where(), result);
   }
   return result;
 }
+
+namespace {
+
+// Newton from state.q; throws AssemblyError naming the constraint that cannot be met.
+void converge(const Mechanism& mech, State& state, const std::string& what) {
+  const NewtonReport newton = solve_position(mech, state);
+  if (newton.converged) return;
+  const Model& m = mech.model();
+  std::ostringstream s;
+  s << what << ": " << mech.rows()[std::max(newton.worst_row, 0)].label << " is off by "
+    << newton.residual / m.units.length_scale << " " << m.units.length;
+  throw AssemblyError(s.str(), newton.worst_row);
+}
+
+}  // namespace
+
+Sample solve_at(const Mechanism& mech, State& state, const std::vector<double>& driver_values, int order) {
+  const Model& m = mech.model();
+  if (m.has_time_law())
+    throw Error(ErrorKind::BadInput, "the model has a driver that follows a law in time: pose it by time (solve_at_time)");
+  if (driver_values.size() != m.drivers.size())
+    throw Error(ErrorKind::BadInput, "expected " + std::to_string(m.drivers.size()) + " driver values, got " +
+                                         std::to_string(driver_values.size()));
+  if (order < 0 || order > 5) throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
+  std::vector<double> speed, accel;
+  for (const Driver& d : m.drivers) {
+    speed.push_back(d.speed);
+    accel.push_back(d.accel);
+  }
+  std::vector<DriverState> drivers;
+  time_drivers(mech, driver_values, speed, accel, order + 1, drivers);
+  state.drivers = drivers;
+  std::vector<Series> values;
+  for (double v : driver_values) values.push_back(Series(1, v));
+  converge(mech, state, "no pose with " + values_text(m, values) + " near the given one");
+  return make_sample(mech, state, 0, 0.0, drivers, order + 1);
+}
+
+Sample solve_at_time(const Mechanism& mech, State& state, double t, int order) {
+  if (order < 0 || order > 5) throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
+  // Drivers without a law move from their start at their speed and acceleration.
+  const SweepPath plan = sweep_path(mech, 2);
+  const Model& m = mech.model();
+  const int terms = order + 1;
+  std::vector<Series> values(m.drivers.size());
+  for (std::size_t d = 0; d < m.drivers.size(); ++d) {
+    const Driver& drv = m.drivers[d];
+    if (drv.law) {
+      values[d] = drv.law->series(t, terms);
+    } else {
+      Series s = Series::variable(terms, t);
+      values[d] = plan.from[d] + drv.speed * s + 0.5 * drv.accel * (s * s);
+    }
+  }
+  set_drivers(mech, state, values);
+  std::ostringstream at;
+  at << "no pose at t = " << t << " s near the given one";
+  converge(mech, state, at.str());
+  return make_sample(mech, state, 0, t, state.drivers, terms);
+}
+
+Eigen::VectorXd Sample::derivative(int k) const { return factorial(k) * taylor.col(k); }
+
+double Sample::derivative(int coordinate, int k) const { return factorial(k) * taylor(coordinate, k); }
 
 std::vector<Eigen::Vector2d> point_positions(const Mechanism& mech, const Eigen::VectorXd& q) {
   std::vector<Eigen::Vector2d> out;
@@ -240,7 +369,7 @@ std::vector<Eigen::Vector2d> point_positions(const Mechanism& mech, const Eigen:
 }
 
 Motion2 point_motion(const Mechanism& mech, const Sample& sample, int point) {
-  const int terms = static_cast<int>(sample.series.cols());
+  const int terms = static_cast<int>(sample.taylor.cols());
   Motion2 m;
   m.x.assign(terms, 0.0);
   m.y.assign(terms, 0.0);
@@ -251,14 +380,14 @@ Motion2 point_motion(const Mechanism& mech, const Sample& sample, int point) {
     return m;
   }
   for (int k = 0; k < terms; ++k) {
-    m.x[k] = factorial(k) * sample.series(col, k);
-    m.y[k] = factorial(k) * sample.series(col + 1, k);
+    m.x[k] = factorial(k) * sample.taylor(col, k);
+    m.y[k] = factorial(k) * sample.taylor(col + 1, k);
   }
   return m;
 }
 
 std::vector<double> body_angle_motion(const Mechanism& mech, const Sample& sample, int body) {
-  const int terms = static_cast<int>(sample.series.cols());
+  const int terms = static_cast<int>(sample.taylor.cols());
   const Body& b = mech.model().bodies[body];
   auto coordinate = [&](int point, int axis) {
     Series s(terms);
@@ -266,7 +395,7 @@ std::vector<double> body_angle_motion(const Mechanism& mech, const Sample& sampl
     if (col < 0) {
       s[0] = mech.model().points[point].position[axis];
     } else {
-      for (int k = 0; k < terms; ++k) s[k] = sample.series(col + axis, k);
+      for (int k = 0; k < terms; ++k) s[k] = sample.taylor(col + axis, k);
     }
     return s;
   };

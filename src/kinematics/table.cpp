@@ -18,26 +18,6 @@ std::string per_time(const std::string& unit, int order) {
   return unit + "/s^" + std::to_string(order);
 }
 
-bool glob_match(const std::string& pattern, const std::string& text) {
-  std::size_t p = 0, t = 0, star = std::string::npos, mark = 0;
-  while (t < text.size()) {
-    if (p < pattern.size() && pattern[p] == '*') {
-      star = p++;
-      mark = t;
-    } else if (p < pattern.size() && pattern[p] == text[t]) {
-      ++p;
-      ++t;
-    } else if (star != std::string::npos) {
-      p = star + 1;
-      t = ++mark;
-    } else {
-      return false;
-    }
-  }
-  while (p < pattern.size() && pattern[p] == '*') ++p;
-  return p == pattern.size();
-}
-
 // The multiple of 2 pi that brings `angle` closest to `reference`.
 double unwrap(double angle, double reference) {
   const double two_pi = 2.0 * std::numbers::pi;
@@ -104,12 +84,32 @@ ResultTable make_table(const Mechanism& mech, const SweepResult& sweep) {
       for (int k = 0; k <= order; ++k) row.push_back(a[k] / u.angle_scale);
     }
     if (!mech.four_bar_loops().empty()) {
-      const auto points = point_positions(mech, s.series.col(0));
+      const auto points = point_positions(mech, s.taylor.col(0));
       for (const FourBarLoop& loop : mech.four_bar_loops()) row.push_back(transmission_angle(loop, points) / u.angle_scale);
     }
     t.rows.push_back(std::move(row));
   }
   return t;
+}
+
+bool glob_match(const std::string& pattern, const std::string& text) {
+  std::size_t p = 0, t = 0, star = std::string::npos, mark = 0;
+  while (t < text.size()) {
+    if (p < pattern.size() && pattern[p] == '*') {
+      star = p++;
+      mark = t;
+    } else if (p < pattern.size() && pattern[p] == text[t]) {
+      ++p;
+      ++t;
+    } else if (star != std::string::npos) {
+      p = star + 1;
+      t = ++mark;
+    } else {
+      return false;
+    }
+  }
+  while (p < pattern.size() && pattern[p] == '*') ++p;
+  return p == pattern.size();
 }
 
 ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns) {

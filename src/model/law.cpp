@@ -419,7 +419,7 @@ double Law::value(double t) const {
   if (!root_) throw std::logic_error("law evaluated before being parsed");
   const double v = root_->evaluate(t) * scale_;
   if (!std::isfinite(v)) {
-    throw std::domain_error("law " + quoted(text_) + " is undefined at t = " + format_time(t));
+    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " is undefined at t = " + format_time(t));
   }
   return v;
 }
@@ -433,17 +433,17 @@ Series Law::series(double t0, int terms) const {
   Series s;
   try {
     s = root_->evaluate(Series::variable(terms, t0));
-  } catch (const std::domain_error& e) {
-    throw std::domain_error("law " + quoted(text_) + " at t = " + format_time(t0) + ": " +
+  } catch (const std::domain_error& e) {  // from an operation that has no derivative there
+    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " at t = " + format_time(t0) + ": " +
                             e.what());
   }
   s *= scale_;
   if (!std::isfinite(s[0])) {
-    throw std::domain_error("law " + quoted(text_) + " is undefined at t = " + format_time(t0));
+    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " is undefined at t = " + format_time(t0));
   }
   for (int k = 1; k < s.terms(); ++k) {
     if (!std::isfinite(s[k])) {
-      throw std::domain_error("law " + quoted(text_) + " has no finite " + ordinal(k) +
+      throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " has no finite " + ordinal(k) +
                               " derivative at t = " + format_time(t0));
     }
   }

@@ -1,13 +1,13 @@
 #include "nbar/model/materials.hpp"
 
+#include "nbar/model/units.hpp"
+
 #include <string_view>
 #include <utility>
 
 namespace nbar {
 
 namespace {
-
-constexpr double kMPa = 1e6;
 
 // Name, density (kg/m^3), yield strength (MPa; 0 = none, for brittle materials).
 struct Entry {
@@ -40,7 +40,7 @@ const std::vector<Material>& builtin_materials() {
       Material m;
       m.name = e.name;
       m.density = e.density;
-      if (e.yield_mpa > 0) m.yield_strength = e.yield_mpa * kMPa;
+      if (e.yield_mpa > 0) m.yield_strength = e.yield_mpa * kPascalPerMegapascal;
       out.push_back(std::move(m));
     }
     return out;

@@ -179,11 +179,25 @@ std::string shell_quote(const std::string& text) {
   return out;
 }
 
+// The sweep with positions only: what pictures need, without the derivatives' memory.
+SweepResult positions_only(const SweepResult& sweep) {
+  SweepResult out = sweep;
+  out.order = 0;
+  for (Sample& s : out.samples) s.taylor = s.taylor.leftCols(std::min<Eigen::Index>(1, s.taylor.cols())).eval();
+  return out;
+}
+
 }  // namespace
 
-Animation::Animation(const Mechanism& mech, const SweepResult& sweep, const DrawOptions& options, int frames,
-                     double fps)
-    : mech_(mech), sweep_(sweep), options_(options), fps_(fps), view_(fit_view(mech, sweep, options)) {
+Animation::Animation(std::shared_ptr<const Mechanism> mechanism, const SweepResult& sweep, const DrawOptions& options,
+                     int frames, double fps)
+    : mechanism_(std::move(mechanism)),
+      mech_(*mechanism_),
+      sweep_(positions_only(sweep)),
+      options_(options),
+      fps_(fps),
+      view_(fit_view(mech_, sweep_, options)) {
+  const Mechanism& mech = mech_;
   if (sweep.samples.empty()) throw std::invalid_argument("there is no solved pose to animate");
   if (!(fps > 0) || !std::isfinite(fps)) throw std::invalid_argument("frames per second must be positive");
   const int n = static_cast<int>(sweep.samples.size());

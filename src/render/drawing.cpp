@@ -140,7 +140,7 @@ Color body_color(int index) {
 }
 
 std::vector<Eigen::Vector2d> sample_points(const Mechanism& mech, const Sample& sample) {
-  return point_positions(mech, sample.series.col(0));
+  return point_positions(mech, sample.taylor.col(0));
 }
 
 View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions& options) {
@@ -339,6 +339,20 @@ std::vector<PixelTransform> body_transforms(const Mechanism& mech, const View& v
     out.push_back(t);
   }
   return out;
+}
+
+std::vector<int> trace_points(const Model& model, const std::vector<std::string>& names) {
+  std::vector<int> points;
+  for (const std::string& name : names) {
+    const int p = model.find_point(name);
+    if (p < 0) {
+      std::string known;
+      for (const Point& point : model.points) known += (known.empty() ? "" : ", ") + point.name;
+      throw Error(ErrorKind::BadInput, "'" + name + "' is not a point of the model; the points are: " + known);
+    }
+    points.push_back(p);
+  }
+  return points;
 }
 
 }  // namespace nbar::render

@@ -61,8 +61,9 @@ std::vector<double> section_positions(const Model& m, const Body& body, const Ei
 
 }  // namespace
 
-LinkStress::LinkStress(const InverseDynamics& dynamics, int sections) : dynamics_(dynamics) {
-  const Model& m = dynamics.mechanism().model();
+LinkStress::LinkStress(std::shared_ptr<const InverseDynamics> dynamics, int sections)
+    : dynamics_(std::move(dynamics)) {
+  const Model& m = dynamics_->mechanism().model();
   bodies_.resize(m.bodies.size());
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Body& body = m.bodies[b];
@@ -73,7 +74,7 @@ LinkStress::LinkStress(const InverseDynamics& dynamics, int sections) : dynamics
     const Eigen::Vector2d across = perp(bs.axis);
     // The body's mass spread evenly over its plate (given masses too).
     const double area = area_properties(*body.shape).area;
-    const double mass = dynamics.masses()[b].mass;
+    const double mass = dynamics_->masses()[b].mass;
     const double per_area = area > 0.0 ? mass / area : 0.0;
     for (double s : section_positions(m, body, bs.origin, bs.axis, sections)) {
       const Eigen::Vector2d cut = bs.origin + s * bs.axis;
@@ -93,11 +94,11 @@ LinkStress::LinkStress(const InverseDynamics& dynamics, int sections) : dynamics
 }
 
 LinkStress::StepLoads LinkStress::step_loads(const DynamicsResult& forces, int body) const {
-  const Model& m = dynamics_.mechanism().model();
+  const Model& m = dynamics_->mechanism().model();
   StepLoads step;
   step.motion = body_motion(m, forces.motion, body);
   step.axis = step.motion.direction[0].normalized();
-  const auto& links = dynamics_.joint_links();
+  const auto& links = dynamics_->joint_links();
   for (std::size_t i = 0; i < links.size(); ++i) {
     if (links[i].link != body) continue;
     step.at.push_back(forces.motion.r[links[i].point]);
@@ -114,7 +115,7 @@ LinkStress::StepLoads LinkStress::step_loads(const DynamicsResult& forces, int b
 }
 
 PartLoads LinkStress::part_loads(const StepLoads& step, int body, int section, int side) const {
-  const Model& m = dynamics_.mechanism().model();
+  const Model& m = dynamics_->mechanism().model();
   const BodySections& bs = bodies_[body];
   const Section& sec = bs.sections[section];
   const BodyMotion& bm = step.motion;
@@ -136,12 +137,12 @@ PartLoads LinkStress::part_loads(const StepLoads& step, int body, int section, i
   return loads;
 }
 
-PartLoads LinkStress::part_loads(const Sample&, const DynamicsResult& forces, int body, int section, int side) const {
+PartLoads LinkStress::part_loads(const DynamicsResult& forces, int body, int section, int side) const {
   return part_loads(step_loads(forces, body), body, section, side);
 }
 
-std::vector<SectionStress> LinkStress::profile(const Sample&, const DynamicsResult& forces, int body) const {
-  const Body& b = dynamics_.mechanism().model().bodies[body];
+std::vector<SectionStress> LinkStress::profile(const DynamicsResult& forces, int body) const {
+  const Body& b = dynamics_->mechanism().model().bodies[body];
   const StepLoads step = step_loads(forces, body);
   const Eigen::Vector2d& axis = step.axis;
   std::vector<SectionStress> out;
@@ -178,18 +179,18 @@ std::vector<SectionStress> LinkStress::profile(const Sample&, const DynamicsResu
   return out;
 }
 
-std::vector<StressPeak> stress_peaks(const InverseDynamics& dynamics, const LinkStress& stress,
-                                     const SweepResult& sweep) {
-  const Model& m = dynamics.mechanism().model();
+std::vector<StressPeak> stress_peaks(const LinkStress& stress, const SweepResult& sweep,
+                                     const std::vector<DynamicsResult>& per_sample, const RunControl& control) {
+  const Model& m = stress.dynamics().mechanism().model();
   std::vector<StressPeak> peaks;
   for (std::size_t b = 0; b < m.bodies.size(); ++b)
     if (stress.analysed(static_cast<int>(b))) peaks.push_back({static_cast<int>(b), -1, {}, std::nullopt});
-  for (const Sample& sample : sweep.samples) {
-    const DynamicsResult forces = dynamics.solve(sample);
+  for (std::size_t i = 0; i < sweep.samples.size(); ++i) {
+    control.checkpoint("stress", static_cast<long>(i), static_cast<long>(sweep.samples.size()));
     for (StressPeak& peak : peaks) {
-      for (const SectionStress& s : stress.profile(sample, forces, peak.body)) {
+      for (const SectionStress& s : stress.profile(per_sample[i], peak.body)) {
         if (peak.step < 0 || s.von_mises > peak.at.von_mises) {
-          peak.step = sample.step;
+          peak.step = sweep.samples[i].step;
           peak.at = s;
         }
       }

@@ -64,7 +64,7 @@ std::vector<Eigen::Vector2d> coupler_points_at(const std::string& model_file, co
     const nbar::Mechanism mech(m);
     const nbar::SweepResult sweep = nbar::run_sweep(mech, {.steps = std::nullopt, .order = 0});
     EXPECT_TRUE(sweep.complete) << sweep.stop_reason;
-    out.push_back(nbar::point_positions(mech, sweep.samples.back().series.col(0))[m.find_point("P")] / unit);
+    out.push_back(nbar::point_positions(mech, sweep.samples.back().taylor.col(0))[m.find_point("P")] / unit);
   }
   return out;
 }

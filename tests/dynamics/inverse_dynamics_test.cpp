@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "../kinematics/helpers/kinematics_support.hpp"
+#include "nbar/analysis/analysis.hpp"
 #include "nbar/dynamics/dynamics_table.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
 
@@ -131,7 +132,7 @@ TEST(InverseDynamics, FourBarMatchesNortonsNewtonEulerSystem) {
   const Mechanism mech(case_.model(73));
   const SweepResult sweep = run_sweep(mech, sweep_options(2));
   ASSERT_TRUE(sweep.complete) << sweep.stop_reason;
-  const InverseDynamics dyn(mech);
+  const InverseDynamics dyn(std::make_shared<const Mechanism>(mech));
   const int o2 = 0, o4 = 1, a = 2, b = 3;
   const int crank = 0, coupler = 1, rocker = 2;
   double worst = 0.0;
@@ -158,7 +159,7 @@ TEST(InverseDynamics, FourBarMatchesNortonsNewtonEulerSystem) {
 // Power balance: driver power + power of the applied loads = d(kinetic + potential)/dt.
 void expect_power_balance(const Mechanism& mech, const SweepResult& sweep) {
   const Model& m = mech.model();
-  const InverseDynamics dyn(mech);
+  const InverseDynamics dyn(std::make_shared<const Mechanism>(mech));
   double worst = 0.0;
   for (const Sample& s : sweep.samples) {
     const DynamicsResult r = dyn.solve(s);
@@ -298,7 +299,7 @@ TEST(InverseDynamics, StaticMechanicalAdvantageOfAFourBar) {
   const Mechanism mech(m);
   const SweepResult sweep = run_sweep(mech, sweep_options(2));
   ASSERT_TRUE(sweep.complete);
-  const InverseDynamics dyn(mech);
+  const InverseDynamics dyn(std::make_shared<const Mechanism>(mech));
   for (const Sample& s : sweep.samples) {
     const FourBarState ref = case_.fb.solve(s.driver_values[0], 1.0, 0.0, true);
     const double expected = -case_.torque4 * ref.omega4 / ref.omega2;
@@ -325,7 +326,7 @@ TEST(InverseDynamics, SliderNormalForceOfAStaticCentredSliderCrank) {
   m.sweep.steps = 2;
   const Mechanism mech(m);
   const SweepResult sweep = run_sweep(mech, sweep_options(2));
-  const DynamicsResult res = InverseDynamics(mech).solve(sweep.samples[0]);
+  const DynamicsResult res = InverseDynamics(std::make_shared<const Mechanism>(mech)).solve(sweep.samples[0]);
   const double phi = std::asin(A.y() / l);  // rod angle below the axis, seen from the piston
   EXPECT_NEAR(std::abs(res.slider_normal[0]), F * std::tan(phi), 1e-9 * F);
   const double piston_speed = -r * std::sin(theta) - r * r * std::sin(theta) * std::cos(theta) / std::sqrt(l * l - A.y() * A.y());
@@ -346,14 +347,16 @@ TEST(InverseDynamics, RedundantParallelogramGivesTheMinimumNormForcesAndSaysSo) 
   m.drivers.push_back(angle_driver("crank1", c1, kPi / 2, kPi / 2 + 2 * kPi, 10.0));
   m.sweep.steps = 37;
   const Mechanism mech(m);
-  const SweepResult sweep = run_sweep(mech, sweep_options(2));
+  AnalysisOptions options;
+  options.dynamics = true;
+  const Analysis analysis = analyse(std::make_shared<const Mechanism>(m), options);
+  const SweepResult& sweep = analysis.sweep;
   ASSERT_TRUE(sweep.complete) << sweep.stop_reason;
-  ResultTable table = make_table(mech, sweep);
-  const DynamicsSummary summary = append_dynamics(mech, sweep, table);
-  EXPECT_FALSE(summary.unique);
-  ASSERT_FALSE(summary.warnings.empty());
-  EXPECT_NE(summary.warnings[0].find("not unique"), std::string::npos);
-  EXPECT_LT(summary.max_residual, 1e-9);
+  EXPECT_FALSE(analysis.dynamics->unique);
+  ASSERT_EQ(analysis.dynamics->warnings.size(), 1u);
+  EXPECT_EQ(analysis.dynamics->warnings[0].code, "forces_not_unique");
+  EXPECT_NE(analysis.dynamics->warnings[0].message.find("not unique"), std::string::npos);
+  EXPECT_LT(analysis.dynamics->max_residual, 1e-9);
   // The coupler translates on a circle of radius 0.05 at 10 rad/s: the driver torque is still
   // unique (power balance) even though the bar forces are not.
   expect_power_balance(mech, sweep);

@@ -158,7 +158,7 @@ TEST(ModelExport, AnExportedDesignSolvesThroughItsTargets) {
     const nbar::Mechanism m(to_target);
     const nbar::SweepResult s = nbar::run_sweep(m, {.steps = std::nullopt, .order = 0});
     ASSERT_TRUE(s.complete) << s.stop_reason;
-    const Vector2d at = nbar::point_positions(m, s.samples.back().series.col(0))[p] / 0.001;
+    const Vector2d at = nbar::point_positions(m, s.samples.back().taylor.col(0))[p] / 0.001;
     EXPECT_LT((at - targets[i].point).norm(), 1e-9) << i;
   }
 }

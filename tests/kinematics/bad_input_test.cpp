@@ -258,9 +258,14 @@ TEST(BadInput, DerivativeOrderOutOfRange) {
   FourBar f = four_bar(0.08, 0.18, 0.14, 0.2, 1.0);
   f.m.drivers.push_back(angle_driver("crank", f.crank, 0.0, 1.0));
   const Mechanism mech(f.m);
-  EXPECT_THROW(run_sweep(mech, sweep_options(6)), std::invalid_argument);
-  EXPECT_THROW(run_sweep(mech, sweep_options(-1)), std::invalid_argument);
-  EXPECT_THROW(run_sweep(mech, sweep_options(2, 0)), std::invalid_argument);
+  for (const SweepOptions& bad : {sweep_options(6), sweep_options(-1), sweep_options(2, 0)}) {
+    try {
+      run_sweep(mech, bad);
+      ADD_FAILURE() << "order " << bad.order << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::BadInput) << e.what();
+    }
+  }
   EXPECT_NO_THROW(run_sweep(mech, sweep_options(5, 3)));
 }
 
@@ -286,9 +291,13 @@ TEST(BadInput, ChangePointParallelogramNeverSwitchesSilently) {
   // The step of the earliest warning, from its "between steps i and j".
   int first_warned = std::numeric_limits<int>::max();
   const std::regex between("between steps [0-9]+ and ([0-9]+)");
-  for (const std::string& w : r.warnings) {
+  for (const Warning& warning : r.warnings) {
+    const std::string& w = warning.message;
     std::smatch match;
-    if (std::regex_search(w, match, between)) first_warned = std::min(first_warned, std::stoi(match[1]));
+    ASSERT_TRUE(std::regex_search(w, match, between)) << w;
+    EXPECT_EQ(warning.step, std::stoi(match[1])) << "the structured step is the one the message names";
+    EXPECT_EQ(warning.code, "change_point_passed");
+    first_warned = std::min(first_warned, warning.step);
     EXPECT_THAT(w, HasSubstr("singular")) << w;
   }
   if (!r.complete) {
@@ -310,7 +319,7 @@ TEST(BadInput, ChangePointParallelogramNeverSwitchesSilently) {
               r.complete, r.samples.size(), r.warnings.size(), r.complete ? "" : ", stopped: ",
               r.complete ? "" : r.stop_reason.c_str(),
               first_bad < 0 ? "parallel throughout" : ("not parallel from step " + std::to_string(first_bad)).c_str());
-  for (const std::string& w : r.warnings) std::printf("[ behaviour ]   warning: %s\n", w.c_str());
+  for (const Warning& w : r.warnings) std::printf("[ behaviour ]   warning: %s\n", w.message.c_str());
 }
 
 }  // namespace

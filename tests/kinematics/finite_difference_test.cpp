@@ -71,8 +71,8 @@ void check_case(const FdCase& c) {
     const double g = c.h / 8;
     std::map<int, Eigen::VectorXd> f;
     double residual = 0;
-    f[0] = solve_near(mech, s.series.col(0), driver_values(mech, s, 0.0), &residual);
-    ASSERT_LE((f[0] - s.series.col(0)).lpNorm<Eigen::Infinity>(), 1e-11 * size) << "the sweep's own position";
+    f[0] = solve_near(mech, s.taylor.col(0), driver_values(mech, s, 0.0), &residual);
+    ASSERT_LE((f[0] - s.taylor.col(0)).lpNorm<Eigen::Infinity>(), 1e-11 * size) << "the sweep's own position";
     for (int dir : {1, -1}) {
       for (int j = 1; j <= 24; ++j) {
         f[dir * j] = solve_near(mech, f[dir * (j - 1)], driver_values(mech, s, dir * j * g), &residual);
@@ -121,7 +121,7 @@ void check_case(const FdCase& c) {
     for (int k = 1; k <= 5; ++k) {
       factorial *= k;
       const Eigen::VectorXd fd = richardson(f, k);
-      const Eigen::VectorXd exact = factorial * s.series.col(k);
+      const Eigen::VectorXd exact = factorial * s.taylor.col(k);
       const double scale = std::max(exact.lpNorm<Eigen::Infinity>(), 0.1 * size * std::pow(rate, k));
       const double err = (fd - exact).lpNorm<Eigen::Infinity>() / scale;
       EXPECT_LE(err, c.tolerance[k]) << "derivative " << k << "\nexact " << exact.transpose() << "\nfd    "

@@ -135,7 +135,7 @@ void check_case(const Case& c, Errors& worst, double tolerance = 1e-9) {
   }
   ASSERT_TRUE(r.complete) << r.stop_reason;
   ASSERT_EQ(static_cast<int>(r.samples.size()), c.steps);
-  EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+  EXPECT_TRUE(r.warnings.empty()) << r.warnings.front().message;
   ASSERT_EQ(r.branches.size(), 1u);
   EXPECT_EQ(r.branches[0], expected_branch_name(c));
 

@@ -92,7 +92,7 @@ RC_GTEST_PROP(SweepProperties, CrankRockerStaysClosedAndOnItsBranch, ()) {
   double theta3_prev = 0, theta4_prev = 0;
   for (const Sample& s : r.samples) {
     RC_ASSERT(s.residual <= 1e-9 * size);
-    const auto p = point_positions(mech, s.series.col(0));
+    const auto p = point_positions(mech, s.taylor.col(0));
     // The constraints, from the positions alone.
     RC_ASSERT(std::abs((p[f.a] - p[f.o2]).norm() - g.a) <= 1e-9 * size);
     RC_ASSERT(std::abs((p[f.b] - p[f.a]).norm() - g.b) <= 1e-9 * size);
@@ -164,7 +164,7 @@ RC_GTEST_PROP(SweepProperties, NonGrashofOverARandomFeasibleRange, ()) {
   int sign0 = 0;
   for (const Sample& s : r.samples) {
     RC_ASSERT(s.residual <= 1e-9 * size);
-    const auto p = point_positions(mech, s.series.col(0));
+    const auto p = point_positions(mech, s.taylor.col(0));
     RC_ASSERT(std::abs((p[f.b] - p[f.a]).norm() - g.b) <= 1e-9 * size);
     RC_ASSERT(std::abs((p[f.b] - p[f.o4]).norm() - g.c) <= 1e-9 * size);
     // Where the drawing's branch leads: the closed form on the same root.
@@ -202,7 +202,7 @@ RC_GTEST_PROP(SweepProperties, SliderCrankFollowsItsClosedFormPosition, ()) {
   const double size = mech.characteristic_length();
   for (const Sample& s : res.samples) {
     RC_ASSERT(s.residual <= 1e-9 * size);
-    const auto p = point_positions(mech, s.series.col(0));
+    const auto p = point_positions(mech, s.taylor.col(0));
     const double theta = frame.angle_to_local(s.driver_values[0]);
     const Eigen::Vector2d expected = frame.to_world({piston(theta), e});
     RC_ASSERT((p[c] - expected).norm() <= 1e-9 * size);

@@ -58,7 +58,7 @@ void check_translation(double omega, double alpha) {
   ASSERT_TRUE(r.complete) << r.stop_reason;
   ASSERT_EQ(r.samples.size(), 361u);
   // The third crank carries each pair through its change points: nothing singular is crossed.
-  EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+  EXPECT_TRUE(r.warnings.empty()) << r.warnings.front().message;
 
   double worst = 0;
   for (const Sample& s : r.samples) {

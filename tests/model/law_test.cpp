@@ -188,12 +188,12 @@ TEST(Law, AbsAtAZeroCrossingThrows) {
   const Law law = Law::parse("abs(t)");
   EXPECT_DOUBLE_EQ(law.value(0.0), 0.0);  // the value itself is fine
   EXPECT_DOUBLE_EQ(law.series(0.0, 1)[0], 0.0);
-  EXPECT_THROW(law.series(0.0, 2), std::domain_error);
-  EXPECT_THROW(Law::parse("abs(sin(t))").series(0.0, 3), std::domain_error);
+  EXPECT_THROW(law.series(0.0, 2), Error);
+  EXPECT_THROW(Law::parse("abs(sin(t))").series(0.0, 3), Error);
   try {
     law.series(0.0, 3);
     FAIL() << "expected a domain_error";
-  } catch (const std::domain_error& e) {
+  } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("abs(t)"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("not differentiable"), std::string::npos) << e.what();
   }
@@ -210,7 +210,7 @@ TEST(Law, AbsOfAnEvenZeroIsSmooth) {
   }
   // |t^3| at 0 is twice differentiable, not three times.
   EXPECT_DOUBLE_EQ(Law::parse("abs(t^3)").series(0.0, 3)[2], 0.0);
-  EXPECT_THROW(Law::parse("abs(t^3)").series(0.0, 4), std::domain_error);
+  EXPECT_THROW(Law::parse("abs(t^3)").series(0.0, 4), Error);
 }
 
 TEST(Law, SeriesAndValueAgree) {
@@ -239,7 +239,7 @@ TEST(Law, RejectsAnInvalidNumberOfTerms) {
 std::string domain_message(const std::function<void()>& f) {
   try {
     f();
-  } catch (const std::domain_error& e) {
+  } catch (const Error& e) {
     return e.what();
   }
   return "(no exception)";
@@ -250,16 +250,16 @@ TEST(Law, DomainErrorsThrow) {
   EXPECT_EQ(domain_message([&] { log_law.value(0.0); }), "law 'log(t)' is undefined at t = 0");
   EXPECT_EQ(domain_message([&] { log_law.series(0.0, 3); }), "law 'log(t)' is undefined at t = 0");
   EXPECT_EQ(domain_message([&] { log_law.value(-2.5); }), "law 'log(t)' is undefined at t = -2.5");
-  EXPECT_THROW(Law::parse("1/t").value(0.0), std::domain_error);
-  EXPECT_THROW(Law::parse("1/t").series(0.0, 2), std::domain_error);
-  EXPECT_THROW(Law::parse("asin(t)").value(1.5), std::domain_error);
-  EXPECT_THROW(Law::parse("acos(t)").series(-1.5, 1), std::domain_error);
-  EXPECT_THROW(Law::parse("(t-2)^0.5").value(1.0), std::domain_error);
-  EXPECT_THROW(Law::parse("(t-2)^0.5").series(1.0, 2), std::domain_error);
-  EXPECT_THROW(Law::parse("exp(t)").value(1000.0), std::domain_error);
+  EXPECT_THROW(Law::parse("1/t").value(0.0), Error);
+  EXPECT_THROW(Law::parse("1/t").series(0.0, 2), Error);
+  EXPECT_THROW(Law::parse("asin(t)").value(1.5), Error);
+  EXPECT_THROW(Law::parse("acos(t)").series(-1.5, 1), Error);
+  EXPECT_THROW(Law::parse("(t-2)^0.5").value(1.0), Error);
+  EXPECT_THROW(Law::parse("(t-2)^0.5").series(1.0, 2), Error);
+  EXPECT_THROW(Law::parse("exp(t)").value(1000.0), Error);
   // A constant subexpression outside its domain is caught at evaluation, not parse.
   const Law constant = Law::parse("t + log(-1)");
-  EXPECT_THROW(constant.value(1.0), std::domain_error);
+  EXPECT_THROW(constant.value(1.0), Error);
 }
 
 TEST(Law, InfiniteDerivativeThrowsNamingTheOrder) {
@@ -272,7 +272,7 @@ TEST(Law, InfiniteDerivativeThrowsNamingTheOrder) {
   EXPECT_NE(message.find("t = 0"), std::string::npos) << message;
   // (t-1)^3 is a polynomial, but (t-1)^-1 has a pole at 1.
   EXPECT_NO_THROW(Law::parse("(t-1)^3").series(1.0, 5));
-  EXPECT_THROW(Law::parse("(t-1)^-1").series(1.0, 1), std::domain_error);
+  EXPECT_THROW(Law::parse("(t-1)^-1").series(1.0, 1), Error);
 }
 
 // ---------------------------------------------------------------------------------------------

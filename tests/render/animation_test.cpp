@@ -47,10 +47,12 @@ using nbar::render::test_support::run;
 struct Example {
   explicit Example(const std::string& name, int steps = 73)
       : file(nbar::io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name)),
-        mech(file.model),
+        shared(std::make_shared<const nbar::Mechanism>(file.model)),
+        mech(*shared),
         sweep(nbar::run_sweep(mech, nbar::SweepOptions{steps, 0})) {}
   nbar::io::LoadedModel file;
-  nbar::Mechanism mech;
+  std::shared_ptr<const nbar::Mechanism> shared;
+  const nbar::Mechanism& mech;
   nbar::SweepResult sweep;
 };
 
@@ -205,7 +207,7 @@ std::uint32_t rgb(const ImageCanvas& c, int x, int y) {
 
 TEST(Animation, FramesAreEvenlySpacedAndALoopDoesNotRepeatItsStart) {
   const Example crank("fourbar-crank-rocker.yaml", 361);  // 0 to 360 deg
-  const Animation a(crank.mech, crank.sweep, small());
+  const Animation a(crank.shared, crank.sweep, small());
   EXPECT_TRUE(a.periodic());
   EXPECT_EQ(a.frame_count(), Animation::kDefaultMaxFrames);
   EXPECT_EQ(a.steps().front(), 0);
@@ -213,25 +215,25 @@ TEST(Animation, FramesAreEvenlySpacedAndALoopDoesNotRepeatItsStart) {
   EXPECT_EQ(a.steps().back(), 357);
   EXPECT_DOUBLE_EQ(a.duration(), 120 / 24.0);
 
-  const Animation all(crank.mech, crank.sweep, small(), 1000, 30);
+  const Animation all(crank.shared, crank.sweep, small(), 1000, 30);
   EXPECT_EQ(all.frame_count(), 360);  // every distinct pose, no more
   EXPECT_EQ(all.steps().back(), 359);
 
   const Example few("fourbar-crank-rocker.yaml", 13);
-  const Animation every(few.mech, few.sweep, small());
+  const Animation every(few.shared, few.sweep, small());
   EXPECT_EQ(every.frame_count(), 12);
   for (int k = 0; k < 12; ++k) EXPECT_EQ(every.steps()[k], k);
 
   // A swing that does not come back: its last sample is shown.
   const Example rocker("fourbar-double-rocker.yaml", 50);
-  const Animation swing(rocker.mech, rocker.sweep, small(), 10);
+  const Animation swing(rocker.shared, rocker.sweep, small(), 10);
   if (!swing.periodic()) {
     EXPECT_EQ(swing.frame_count(), 10);
     EXPECT_EQ(swing.steps().front(), 0);
     EXPECT_EQ(swing.steps().back(), static_cast<int>(rocker.sweep.samples.size()) - 1);
   }
-  EXPECT_THROW(Animation(crank.mech, nbar::SweepResult{}, small()), std::invalid_argument);
-  EXPECT_THROW(Animation(crank.mech, crank.sweep, small(), 10, 0.0), std::invalid_argument);
+  EXPECT_THROW(Animation(crank.shared, nbar::SweepResult{}, small()), std::invalid_argument);
+  EXPECT_THROW(Animation(crank.shared, crank.sweep, small(), 10, 0.0), std::invalid_argument);
 }
 
 // ------------------------------------------------------------------------------------- GIF
@@ -241,7 +243,7 @@ TEST(Animation, GifHasEveryFrameLoopsForeverAndShowsTheDrawing) {
   DrawOptions options = small(260, 190);
   options.traces = {ex.mech.model().find_point("P")};
   options.labels = true;
-  const Animation a(ex.mech, ex.sweep, options, 9, 12.5);
+  const Animation a(ex.shared, ex.sweep, options, 9, 12.5);
   const fs::path path = temp_dir() / "fourbar.gif";
   a.write_gif(path.string());
   const std::string bytes = read_file(path);
@@ -281,7 +283,7 @@ TEST(Animation, GifWithMoreColoursThanAPaletteMapsToTheNearest) {
   DrawOptions options = small(300, 220);
   options.labels = true;
   for (std::size_t p = 0; p < ex.mech.model().points.size(); ++p) options.traces.push_back(static_cast<int>(p));
-  const Animation a(ex.mech, ex.sweep, options, 5);
+  const Animation a(ex.shared, ex.sweep, options, 5);
   const fs::path path = temp_dir() / "sixbar.gif";
   a.write_gif(path.string());
   const Gif g = read_gif(read_file(path));
@@ -299,7 +301,7 @@ TEST(Animation, GifWithMoreColoursThanAPaletteMapsToTheNearest) {
 
 TEST(Animation, UnwritableFilesAreReportedWithTheirPath) {
   const Example ex("fourbar-crank-rocker.yaml", 13);
-  const Animation a(ex.mech, ex.sweep, small(), 3);
+  const Animation a(ex.shared, ex.sweep, small(), 3);
   const std::string bad = "/nonexistent-nbar-dir/a";
   for (auto write : {&Animation::write_gif, &Animation::write_svg_animation, &Animation::write_html_animation}) {
     try {
@@ -333,7 +335,7 @@ TEST(Animation, SvgIsWellFormedAndMovesEveryBody) {
   DrawOptions options = small();
   options.labels = true;
   options.traces = {ex.mech.model().find_point("P")};
-  const Animation a(ex.mech, ex.sweep, options, 24, 12);
+  const Animation a(ex.shared, ex.sweep, options, 24, 12);
   const fs::path path = temp_dir() / "fourbar.svg";
   a.write_svg_animation(path.string());
   const std::string text = read_file(path);
@@ -383,7 +385,7 @@ TEST(Animation, HtmlIsSelfContained) {
   const Example ex("fourbar-crank-rocker.yaml");
   DrawOptions options = small();
   options.labels = true;
-  const Animation a(ex.mech, ex.sweep, options, 30);
+  const Animation a(ex.shared, ex.sweep, options, 30);
   const std::string html = a.html_animation();
   expect_offline(html);
   EXPECT_NE(html.find("<meta name=\"viewport\""), std::string::npos);
@@ -415,7 +417,7 @@ TEST(Animation, HtmlPlaysInHeadlessChromium) {
   DrawOptions options;  // full size
   options.labels = true;
   options.traces = {ex.mech.model().find_point("P")};
-  const Animation a(ex.mech, ex.sweep, options);  // 120 frames at 24 a second: 5 s per loop
+  const Animation a(ex.shared, ex.sweep, options);  // 120 frames at 24 a second: 5 s per loop
   const fs::path dir = temp_dir();
   const fs::path page = dir / "fourbar.html", dom = dir / "dom.html", shot = dir / "shot.png";
   a.write_html_animation(page.string());
@@ -449,7 +451,7 @@ TEST(Animation, HeadlessChromiumReportsScriptErrors) {
   // would see a failure of the player).
   REQUIRE_CHROMIUM(browser);
   const Example ex("fourbar-crank-rocker.yaml", 13);
-  const Animation a(ex.mech, ex.sweep, small(), 12);
+  const Animation a(ex.shared, ex.sweep, small(), 12);
   std::string html = a.html_animation();
   html.insert(html.rfind("</body>"), "<script>no_such_function_in_nbar();</script>\n");
   const fs::path dir = temp_dir();
@@ -465,7 +467,7 @@ TEST(Animation, HeadlessChromiumReportsScriptErrors) {
 
 TEST(Animation, Mp4ByFfmpeg) {
   const Example ex("fourbar-crank-rocker.yaml", 25);
-  const Animation a(ex.mech, ex.sweep, small(201, 151), 12);  // odd sizes are padded
+  const Animation a(ex.shared, ex.sweep, small(201, 151), 12);  // odd sizes are padded
   const fs::path path = temp_dir() / "fourbar.mp4";
   if (!Animation::program_available("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
   a.write_mp4(path.string());
@@ -476,7 +478,7 @@ TEST(Animation, Mp4ByFfmpeg) {
 
 TEST(Animation, Mp4WithoutFfmpegSaysSo) {
   const Example ex("fourbar-crank-rocker.yaml", 13);
-  const Animation a(ex.mech, ex.sweep, small(), 3);
+  const Animation a(ex.shared, ex.sweep, small(), 3);
   const fs::path empty = temp_dir() / "empty-path";
   fs::create_directories(empty);
   const char* old = std::getenv("PATH");
@@ -506,7 +508,7 @@ TEST(Animation, EveryExampleAnimatesInEveryFormat) {
     ASSERT_FALSE(ex.sweep.samples.empty());
     DrawOptions options = small(200, 150);
     options.labels = true;
-    const Animation a(ex.mech, ex.sweep, options, 6);
+    const Animation a(ex.shared, ex.sweep, options, 6);
     const std::string stem = (dir / entry.path().stem()).string();
     ASSERT_NO_THROW(a.write_gif(stem + ".gif"));
     ASSERT_NO_THROW(a.write_html_animation(stem + ".html"));

@@ -26,16 +26,15 @@ using ::testing::Not;
 
 std::string report_of(const std::string& example, int steps) {
   const io::LoadedModel file = io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + example);
-  const Mechanism mech(file.model);
-  SweepOptions o;
-  o.order = 3;
+  const auto mech = std::make_shared<const Mechanism>(file.model);
+  const ModelSummary summary = summarize(*mech);
+  AnalysisOptions o = report_analysis_options(summary);
   o.steps = steps;
-  const SweepResult sweep = run_sweep(mech, o);
+  o.sections = 100;
   ReportOptions options;
   options.source = example;
   options.frames = 24;
-  options.sections = 100;
-  return html_report(mech, sweep, options);
+  return html_report(analyse(mech, o), summary, options);
 }
 
 // Every URL in the page: only the SVG namespace (a name, never fetched) is allowed.

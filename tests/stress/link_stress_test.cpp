@@ -27,15 +27,20 @@ Model cantilever() {
 }
 
 struct Solved {
-  Mechanism mech;
+  std::shared_ptr<const InverseDynamics> dynamics;
+  const Mechanism& mech;
+  const InverseDynamics& dyn;
   SweepResult sweep;
-  InverseDynamics dyn;
   LinkStress stress;
   DynamicsResult forces;
   explicit Solved(Model m, int sections = 200)
-      : mech(std::move(m)), sweep(run_sweep(mech, sweep_options(2))), dyn(mech), stress(dyn, sections),
+      : dynamics(std::make_shared<const InverseDynamics>(std::make_shared<const Mechanism>(std::move(m)))),
+        mech(dynamics->mechanism()),
+        dyn(*dynamics),
+        sweep(run_sweep(mech, sweep_options(2))),
+        stress(dynamics, sections),
         forces(dyn.solve(sweep.samples.at(0))) {}
-  std::vector<SectionStress> profile(int body = 0) const { return stress.profile(sweep.samples.at(0), forces, body); }
+  std::vector<SectionStress> profile(int body = 0) const { return stress.profile(forces, body); }
 };
 
 bool between_joints(double s) { return s > 1e-9 && s < kL - 1e-9; }
@@ -109,7 +114,9 @@ TEST(LinkStress, CantileverMatchesBeamTheory) {
     peak = std::max(peak, sec.von_mises);
   }
   // The peak over the sweep is at the root, on a fibre, with its safety factor.
-  const auto peaks = stress_peaks(s.dyn, s.stress, s.sweep);
+  std::vector<DynamicsResult> per_sample;
+  for (const Sample& sample : s.sweep.samples) per_sample.push_back(s.dyn.solve(sample));
+  const auto peaks = stress_peaks(s.stress, s.sweep, per_sample);
   ASSERT_EQ(peaks.size(), 1u);
   EXPECT_DOUBLE_EQ(peaks[0].at.von_mises, peak);
   EXPECT_LT(peaks[0].at.position, 0.02 * kL);
@@ -145,11 +152,11 @@ TEST(LinkStress, EverySectionOfAMovingFourBarIsInEquilibrium) {
   m.torques.push_back(BodyTorque{rocker, Law::parse("1.5")});
   m.drivers.push_back(angle_driver("crank", crank, 0.4, 0.4 + 2 * kPi, 30.0, 20.0));
   m.sweep.steps = 13;
-  const Mechanism mech(m);
-  const SweepResult sweep = run_sweep(mech, sweep_options(2));
+  const auto shared = std::make_shared<const InverseDynamics>(std::make_shared<const Mechanism>(m));
+  const InverseDynamics& dyn = *shared;
+  const SweepResult sweep = run_sweep(dyn.mechanism(), sweep_options(2));
   ASSERT_TRUE(sweep.complete);
-  const InverseDynamics dyn(mech);
-  const LinkStress stress(dyn, 120);
+  const LinkStress stress(shared, 120);
   double worst = 0.0;
   for (const Sample& sample : sweep.samples) {
     const DynamicsResult forces = dyn.solve(sample);
@@ -158,8 +165,8 @@ TEST(LinkStress, EverySectionOfAMovingFourBarIsInEquilibrium) {
     for (int body = 0; body < 3; ++body) {
       ASSERT_GE(stress.section_count(body), 100);
       for (int k = 0; k < stress.section_count(body); ++k) {
-        const PartLoads near = stress.part_loads(sample, forces, body, k, -1);
-        const PartLoads far = stress.part_loads(sample, forces, body, k, +1);
+        const PartLoads near = stress.part_loads(forces, body, k, -1);
+        const PartLoads far = stress.part_loads(forces, body, k, +1);
         const double err = std::max((near.force + far.force).norm() / scale,
                                     std::abs(near.moment + far.moment) / (scale * 0.2));
         worst = std::max(worst, err);

@@ -294,7 +294,7 @@ TEST(FourBarDesign, ModelOfADesignSweepsThroughItsTargets) {
   // The engine's transmission angle over the turn agrees with the closed form.
   double worst = 10;
   for (const nbar::Sample& s : sweep.samples) {
-    const double mu = nbar::transmission_angle(mech.four_bar_loops()[0], nbar::point_positions(mech, s.series.col(0)));
+    const double mu = nbar::transmission_angle(mech.four_bar_loops()[0], nbar::point_positions(mech, s.taylor.col(0)));
     worst = std::min({worst, mu, kPi - mu});
   }
   EXPECT_NEAR(worst, c.min_transmission_full, 1e-5);

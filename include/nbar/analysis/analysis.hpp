@@ -35,6 +35,7 @@ struct DynamicsStage {
   std::vector<DynamicsResult> samples;            // one per sample of the sweep, in order
   bool unique = true;                             // false: redundant constraints, minimum-norm forces
   double max_residual = 0.0;                      // of the Newton-Euler equations, N or N m
+  std::vector<Warning> warnings;                  // forces that are not unique
 };
 
 // The stresses along every link that has a shape, from the kept dynamics.
@@ -48,10 +49,11 @@ struct Analysis {
   SweepResult sweep;
   std::optional<DynamicsStage> dynamics;
   std::optional<StressStage> stress;
-  std::vector<Warning> warnings;  // of every stage, in the order they arose
 
   const Model& model() const { return mechanism->model(); }
   bool complete() const { return sweep.complete; }
+  // The warnings of every stage that ran, in stage order.
+  std::vector<Warning> warnings() const;
 };
 
 // Runs the stages the options ask for. Throws Error: CannotAssemble when the start cannot be

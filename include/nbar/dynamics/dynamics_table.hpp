@@ -1,5 +1,6 @@
-// Inverse-dynamics columns for the result table. Forces in N, torques in N m and energies in J
-// whatever the model's length unit.
+// Inverse-dynamics columns for the result table, filled from solved samples (the analysis
+// pipeline solves each sample once and keeps the results). Forces in N, torques in N m and
+// energies in J whatever the model's length unit.
 #pragma once
 
 #include <string>
@@ -10,18 +11,29 @@
 
 namespace nbar {
 
-struct DynamicsSummary {
-  bool unique = true;          // false: redundant constraints, the minimum-norm forces are given
-  double max_residual = 0.0;   // of the Newton-Euler equations, N or N m
-  std::vector<std::string> warnings;
+// A joint force shown in the table: `name` is the prefix of its columns (`A.crank>coupler`
+// with two links at the joint: the force the first exerts on the second; `A.pin>coupler` with
+// three or more: the pin's force on each), `joint_link` indexes InverseDynamics::joint_links(),
+// and `receiver` is the body whose axis gives the `.along` / `.across` components (-1: none).
+struct JointForceColumn {
+  std::string name;
+  std::size_t joint_link = 0;
+  int receiver = -1;
 };
+std::vector<JointForceColumn> joint_force_columns(const InverseDynamics& dynamics);
 
-// Appends, for every joint, the force one link exerts on the other (`A.crank>coupler.Fx`,
-// `.Fy`, and `.along` / `.across` the receiving link's axis from its first to its second
-// point); where three or more links meet, the force the pin exerts on each
-// (`A.pin>coupler.Fx`...); every slider's normal force and couple (`piston.slider.N`, `.M`),
-// every slot's normal force (`D.slot.N`), every driver's effort (`crank.torque` or
-// `.force`), and the kinetic and potential energy (`energy.kinetic`, `energy.potential`).
-DynamicsSummary append_dynamics(const Mechanism& mech, const SweepResult& sweep, ResultTable& table);
+struct ColumnName {
+  std::string name, unit;
+};
+// In table order: for every joint force `.Fx`, `.Fy` (and `.along`, `.across` on a receiving
+// body), every slider's normal force and couple (`piston.slider.N`, `.M`), every slot's normal
+// force (`D.slot.N`), every driver's effort (`crank.torque` or `.force`), and the kinetic and
+// potential energy (`energy.kinetic`, `energy.potential`).
+std::vector<ColumnName> dynamics_columns(const InverseDynamics& dynamics);
+
+// Appends those columns to `table`, whose rows are the sweep's samples; `results[i]` is the
+// solution at sweep.samples[i].
+void append_dynamics_columns(const InverseDynamics& dynamics, const SweepResult& sweep,
+                             const std::vector<DynamicsResult>& results, ResultTable& table);
 
 }  // namespace nbar

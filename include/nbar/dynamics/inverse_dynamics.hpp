@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -88,21 +89,26 @@ struct DynamicsResult {
 
 class InverseDynamics {
  public:
-  explicit InverseDynamics(const Mechanism& mech);
+  // Shares the mechanism, so the solver may outlive the caller's pointer (Python, the server).
+  explicit InverseDynamics(std::shared_ptr<const Mechanism> mechanism);
 
-  // Needs the sample's series to order 2 at least.
+  // Needs the sample's Taylor coefficients to order 2 at least. Thread-safe: nothing is kept.
   DynamicsResult solve(const Sample& sample) const;
+  // Solves made by every InverseDynamics of the process so far: a pipeline is tested to solve
+  // each sample once.
+  static long solve_count();
 
   const std::vector<JointLink>& joint_links() const { return joint_links_; }
   // Joints: points shared by two or more links (bodies, or a body and the ground).
   const std::vector<int>& joints() const { return joints_; }
   const std::vector<MassProperties>& masses() const { return masses_; }
-  const Mechanism& mechanism() const { return mech_; }
+  const Mechanism& mechanism() const { return *mechanism_; }
+  const std::shared_ptr<const Mechanism>& shared_mechanism() const { return mechanism_; }
   int unknown_count() const { return unknowns_; }
   int equation_count() const { return equations_; }
 
  private:
-  const Mechanism& mech_;
+  std::shared_ptr<const Mechanism> mechanism_;
   std::vector<MassProperties> masses_;
   std::vector<BodyFrame> frames_;
   std::vector<int> joints_;

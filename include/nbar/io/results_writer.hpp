@@ -6,9 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "nbar/dynamics/dynamics_table.hpp"
+#include "nbar/analysis/analysis.hpp"
 #include "nbar/kinematics/table.hpp"
-#include "nbar/stress/link_stress.hpp"
 
 namespace nbar::io {
 
@@ -18,17 +17,17 @@ void write_csv(std::ostream& out, const ResultTable& table);
 // Aligned columns for people reading a terminal, with a units line under the names.
 void write_text_table(std::ostream& out, const ResultTable& table);
 
-// The same columns and rows, plus units per column, the degrees of freedom, the assembly
-// branch of every four-bar loop, the residuals and every warning.
-// With `dynamics`, also whether the joint forces are unique and the equations' residual.
-void write_json(std::ostream& out, const Mechanism& mech, const SweepResult& sweep, const ResultTable& table,
-                const DynamicsSummary* dynamics = nullptr);
+// The table's columns and rows, plus units per column, the degrees of freedom, the assembly
+// branch of every four-bar loop, the sweep's residual and warnings. With `dynamics`, also
+// whether the joint forces are unique, the equations' residual and their warnings.
+void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& table,
+                const DynamicsStage* dynamics = nullptr);
 
 // The largest von Mises stress of every link over the sweep, where and when, and its safety
 // factor: format "table", "csv" or "json". Stresses in MPa, forces in N, moments in N m,
 // positions in the model's length unit (x along the link from its first point to its second,
 // y to the left of that line).
-void write_stress_report(std::ostream& out, const std::string& format, const Mechanism& mech,
-                         const SweepResult& sweep, const std::vector<StressPeak>& peaks);
+// Needs the analysis's stress stage.
+void write_stress_report(std::ostream& out, const std::string& format, const Analysis& analysis);
 
 }  // namespace nbar::io

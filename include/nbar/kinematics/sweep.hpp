@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "nbar/kinematics/continuation.hpp"
+#include "nbar/model/diagnostics.hpp"
+#include "nbar/model/run_control.hpp"
 
 namespace nbar {
 
@@ -21,8 +23,16 @@ struct Sample {
   int step = 0;
   double time = 0.0;                  // s
   std::vector<double> driver_values;  // SI
-  Eigen::MatrixXd series;             // n x (order+1) Taylor coefficients of q in time
+  // n x (order+1) Taylor coefficients of q in time: column k is q^(k) / k!, not the k-th
+  // derivative (read derivatives with derivative()).
+  Eigen::MatrixXd taylor;
   double residual = 0.0;              // max |Phi| over all rows, m
+
+  int order() const { return static_cast<int>(taylor.cols()) - 1; }
+  // The k-th time derivative of q (k! times column k), and of one coordinate.
+  Eigen::VectorXd derivative(int k) const;
+  double derivative(int coordinate, int k) const;
+  Eigen::VectorXd positions() const { return taylor.col(0); }
 };
 
 struct SweepResult {
@@ -30,18 +40,50 @@ struct SweepResult {
   std::vector<Sample> samples;
   bool complete = true;
   std::string stop_reason;             // when !complete
-  std::vector<std::string> warnings;   // branch changes, singular crossings
+  std::vector<Warning> warnings;       // branch changes ("branch_changed"), singular crossings ("change_point_passed")
   AssemblyReport assembly;
   std::vector<std::string> branches;   // each four-bar loop's branch at the start: open | crossed
   double max_residual = 0.0;
 };
 
-// Runs the whole sweep. Throws AssemblyError when the start cannot be assembled and
-// std::invalid_argument for bad options; a sweep that cannot go on stops early and says why.
-SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options = {});
+// Runs the whole sweep. Throws Error: CannotAssemble (an AssemblyError) when the start cannot be
+// assembled, BadInput for bad options, UndefinedLaw for a driver law undefined at the start,
+// Cancelled when `control` says so (checked between samples). A sweep that cannot go on stops
+// early and says why (complete is false).
+SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options = {}, const RunControl& control = {});
 
 // Each driver's value at the start of the sweep (SI).
 std::vector<double> sweep_start_values(const Mechanism& mech);
+
+// The path the sweep follows: the drivers as series in a tracking parameter, the parameter and
+// the time of every sample. Tracking from the start along `drivers` (assemble, then track)
+// stays on the branch the sweep takes.
+struct SweepPath {
+  DriverPath drivers;
+  std::vector<double> parameters;  // of every sample
+  std::vector<double> times;       // s, of every sample
+  bool parameter_is_time = true;
+  bool time_law = false;  // some driver follows a law in t: the parameter is the time
+  std::vector<double> from, delta, speed, accel;  // per driver (SI), for from/to sweeps
+  // The parameter at which the first driver has `value` (SI), or, for time laws, the time
+  // `value` (s). Throws Error(BadInput) for a model without drivers or a first driver that
+  // does not move.
+  double parameter_of(double value) const;
+  // The time at parameter p.
+  double time_at(double p) const;
+};
+// Throws Error(BadInput) for a sweep of fewer than one sample.
+SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps = std::nullopt);
+
+// One pose, like MuJoCo's mj_forward at a state: Newton from state.q with the drivers at
+// `driver_values` (SI; moving at each driver's `speed` and `accel`), then the Taylor
+// coefficients in time to `order`. The pose found is the one nearest state.q, so small moves
+// stay on its branch. Throws AssemblyError when Newton does not converge, and Error(BadInput)
+// for a model with a time-law driver (use solve_at_time).
+Sample solve_at(const Mechanism& mech, State& state, const std::vector<double>& driver_values, int order);
+// The same for models driven by laws in time (and any model: drivers without a law move from
+// their start at their speed), at time t.
+Sample solve_at_time(const Mechanism& mech, State& state, double t, int order);
 
 // Derived motion of a sample: positions and derivatives 0..order of a point, and of a body's
 // angle (the angle of the line from its first to its second point).

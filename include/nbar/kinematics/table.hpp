@@ -26,4 +26,7 @@ ResultTable make_table(const Mechanism& mech, const SweepResult& sweep);
 // that matches nothing.
 ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns);
 
+// Whether `text` matches `pattern`, where '*' stands for any run of characters.
+bool glob_match(const std::string& pattern, const std::string& text);
+
 }  // namespace nbar

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/series.hpp"
 
 namespace nbar {
@@ -31,6 +32,7 @@ class Law {
   // `scale` multiplies the result (model units -> SI).
   static Law parse(const std::string& text, double scale = 1.0);
 
+  // Both throw Error(ErrorKind::UndefinedLaw) where the law (or a derivative asked for) has no finite value.
   double value(double t) const;
   // Taylor series of the law around t0 with `terms` coefficients.
   Series series(double t0, int terms) const;

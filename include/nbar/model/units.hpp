@@ -17,6 +17,11 @@ struct Units {
   double to_si_angle(double v) const { return v * angle_scale; }
 };
 
+// Stresses are computed in Pa and shown in MPa. A division, not a multiplication by 1e-6, so
+// that printed values stay what they always were.
+inline constexpr double kPascalPerMegapascal = 1e6;
+inline double to_megapascal(double pascal) { return pascal / kPascalPerMegapascal; }
+
 std::optional<double> length_unit_scale(const std::string& unit);  // metres per unit
 std::optional<double> angle_unit_scale(const std::string& unit);   // radians per unit
 

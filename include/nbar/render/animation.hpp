@@ -7,6 +7,7 @@
 // so that the loop does not stop for a frame.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,10 +21,11 @@ namespace nbar::render {
 
 class Animation {
  public:
-  // Keeps references to `mech` and `sweep`, which must outlive it. frames <= 0: the default.
+  // Shares the mechanism and keeps the positions of the sweep (not the sweep itself), so it may
+  // outlive both the caller's pointer and the SweepResult. frames <= 0: the default.
   // Throws std::invalid_argument when the sweep has no sample or fps is not positive.
-  Animation(const Mechanism& mech, const SweepResult& sweep, const DrawOptions& options, int frames = 0,
-            double fps = 24.0);
+  Animation(std::shared_ptr<const Mechanism> mech, const SweepResult& sweep, const DrawOptions& options,
+            int frames = 0, double fps = 24.0);
 
   static constexpr int kDefaultMaxFrames = 120;
 
@@ -61,8 +63,9 @@ class Animation {
   std::vector<std::string> body_group_ids() const;
   std::string readout(int frame) const;
 
+  std::shared_ptr<const Mechanism> mechanism_;
   const Mechanism& mech_;
-  const SweepResult& sweep_;
+  SweepResult sweep_;  // the positions of every sample (Taylor coefficients of order 0 only)
   DrawOptions options_;
   double fps_;
   View view_;

@@ -62,6 +62,10 @@ std::vector<PixelTransform> body_transforms(const Mechanism& mech, const View& v
                                             const std::vector<Eigen::Vector2d>& reference,
                                             const std::vector<Eigen::Vector2d>& points);
 
+// The indices of the points named, for DrawOptions::traces. Throws Error(ErrorKind::BadInput)
+// "'X' is not a point of the model; the points are: A, B, ..." for an unknown name.
+std::vector<int> trace_points(const Model& model, const std::vector<std::string>& names);
+
 // The colour of body `index` (a palette that stays distinct for neighbouring bodies).
 Color body_color(int index);
 

@@ -1,25 +1,29 @@
 // One self-contained HTML file that tells a mechanism's story: the model summary (degrees of
 // freedom, Grashof class, mass properties), the animation, the paths of its coupler points,
-// plots of the bodies' angles, angular velocities, accelerations and jerk, and, when the model
-// has masses, loads and shapes, the joint forces, the driver efforts and the stresses with each
-// link's largest von Mises stress marked on the drawing. No network access is needed to read
-// it, and it reads on a phone.
+// plots of the bodies' angles, angular velocities, accelerations and jerk, and, when the
+// analysis has them, the joint forces, the driver efforts and the stresses with each link's
+// largest von Mises stress marked on the drawing. No network access is needed to read it, and
+// it reads on a phone. It renders an Analysis: it solves nothing itself.
 #pragma once
 
 #include <string>
 
-#include "nbar/kinematics/sweep.hpp"
+#include "nbar/analysis/analysis.hpp"
+#include "nbar/analysis/summary.hpp"
 
 namespace nbar::render {
 
 struct ReportOptions {
-  std::string source;      // the model file's name, for the header
-  int frames = 72;         // animation frames
-  int sections = 200;      // stress sections per link
+  std::string source;  // the model file's name, for the header
+  int frames = 72;     // animation frames
 };
 
-// The sweep must have order 3 or more (jerk plots) and its samples; forces and stresses are
-// computed here when the model has what they need.
-std::string html_report(const Mechanism& mech, const SweepResult& sweep, const ReportOptions& options);
+// The analysis's sweep should have order 3 (jerk is plotted; lower orders plot less). Forces
+// are shown when it has the dynamics stage, stresses when it has the stress stage.
+std::string html_report(const Analysis& analysis, const ModelSummary& summary, const ReportOptions& options);
+
+// The stages a report of this model shows: order 3, dynamics when the model has masses or
+// loads, stresses when it also has a shaped link.
+AnalysisOptions report_analysis_options(const ModelSummary& summary);
 
 }  // namespace nbar::render

@@ -13,10 +13,12 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "nbar/dynamics/inverse_dynamics.hpp"
+#include "nbar/model/run_control.hpp"
 #include "nbar/stress/section.hpp"
 
 namespace nbar {
@@ -42,13 +44,15 @@ struct PartLoads {
 
 class LinkStress {
  public:
-  // At least `sections` cuts per body with a shape.
-  LinkStress(const InverseDynamics& dynamics, int sections = 200);
+  // At least `sections` cuts per body with a shape. Shares the dynamics (and so the mechanism).
+  LinkStress(std::shared_ptr<const InverseDynamics> dynamics, int sections = 200);
 
   bool analysed(int body) const { return !bodies_[body].sections.empty(); }
-  std::vector<SectionStress> profile(const Sample& sample, const DynamicsResult& forces, int body) const;
+  // Every section of `body` under the forces of one solved sample.
+  std::vector<SectionStress> profile(const DynamicsResult& forces, int body) const;
   // side -1: the part towards the first point; +1: the other part.
-  PartLoads part_loads(const Sample& sample, const DynamicsResult& forces, int body, int section, int side) const;
+  PartLoads part_loads(const DynamicsResult& forces, int body, int section, int side) const;
+  const InverseDynamics& dynamics() const { return *dynamics_; }
   int section_count(int body) const { return static_cast<int>(bodies_[body].sections.size()); }
 
  private:
@@ -78,7 +82,7 @@ class LinkStress {
   StepLoads step_loads(const DynamicsResult& forces, int body) const;
   PartLoads part_loads(const StepLoads& step, int body, int section, int side) const;
 
-  const InverseDynamics& dynamics_;
+  std::shared_ptr<const InverseDynamics> dynamics_;
   std::vector<BodySections> bodies_;
 };
 
@@ -89,8 +93,10 @@ struct StressPeak {
   std::optional<double> safety_factor;   // yield strength / von Mises, when the material has one
 };
 
-// The largest von Mises stress of every analysed body over the whole sweep (needs order >= 2).
-std::vector<StressPeak> stress_peaks(const InverseDynamics& dynamics, const LinkStress& stress,
-                                     const SweepResult& sweep);
+// The largest von Mises stress of every analysed body over the sweep, from the dynamics
+// already solved at every sample (`per_sample[i]` at sweep.samples[i]). Checks `control`
+// between samples.
+std::vector<StressPeak> stress_peaks(const LinkStress& stress, const SweepResult& sweep,
+                                     const std::vector<DynamicsResult>& per_sample, const RunControl& control = {});
 
 }  // namespace nbar

@@ -1,0 +1,45 @@
+// The column catalogue: every column an analysis of a mechanism can give, with its unit, the
+// stage that computes it and the derivative order it needs, so that a front-end asking for
+// columns by name or glob (`nbar plot --y`, the web UI, Python) learns which stages to run
+// without solving anything.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nbar/kinematics/mechanism.hpp"
+
+namespace nbar {
+
+enum class Stage { Sweep, Dynamics, Stress };
+
+struct ColumnInfo {
+  std::string name, unit;
+  Stage stage = Stage::Sweep;
+  int order = 0;  // the sweep order the column needs (dynamics columns need 2)
+};
+
+// In table order: the kinematic columns up to `max_order`, then, when `with_dynamics`, the
+// inverse-dynamics columns.
+std::vector<ColumnInfo> column_catalogue(const Mechanism& mechanism, int max_order = 5, bool with_dynamics = true);
+
+std::vector<std::string> column_names(const std::vector<ColumnInfo>& columns);
+
+// Whether a column name matches a pattern: an exact name, or a glob with '*'.
+bool column_matches(const std::string& pattern, const std::string& name);
+
+// What a request for columns needs. A pattern that matches only dynamics columns switches
+// dynamics on; without a given order, the lowest order from 2 up that has every kinematic
+// pattern's columns. `unmatched` is the index of the first pattern that matches no column
+// the analysis would then have (-1 when all match), and `message` says so and lists them.
+struct ColumnNeeds {
+  int order = 2;
+  bool dynamics = false;
+  int unmatched = -1;
+  std::string message;
+};
+ColumnNeeds column_needs(const Mechanism& mechanism, const std::vector<std::string>& patterns,
+                         std::optional<int> order = std::nullopt, bool dynamics = false);
+
+}  // namespace nbar

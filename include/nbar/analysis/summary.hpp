@@ -1,0 +1,66 @@
+// What `nbar check` says about a model and what the report's summary shows, computed once:
+// points, bodies, joints, degrees of freedom counted two ways, redundant constraints, drivers,
+// mass properties and loads, the assembly at the start and every four-bar loop there.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nbar/dynamics/inverse_dynamics.hpp"
+#include "nbar/kinematics/loops.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/model/diagnostics.hpp"
+
+namespace nbar {
+
+struct BodySummary {
+  std::string name;
+  std::vector<std::string> points;
+  std::optional<double> length;  // m, for bodies of two or more points (first to second)
+  bool length_given = false;     // from `lengths:` rather than the drawing
+  MassProperties mass;
+  std::string mass_source;  // "given", the material's name, "shape, no material" or "none"
+};
+
+struct LoopSummary {
+  FourBarLoop loop;
+  GrashofReport grashof;
+  std::string description;  // loops.hpp describe(): class, lengths, which links turn fully
+  std::string branch;       // "open" or "crossed" at the start
+  double transmission_angle = 0.0;  // rad, at the start
+};
+
+struct AssemblySummary {
+  std::vector<double> driver_values;  // SI, each driver's value at the start of the sweep
+  double residual = 0.0;              // m
+  bool passed_singularity = false;    // reaching the start from the drawn pose crossed a singular position
+};
+
+struct ModelSummary {
+  std::vector<std::string> ground_points, moving_points;
+  std::vector<BodySummary> bodies;
+  std::vector<std::string> joints;  // "revolute A (crank/coupler)", "slider ... along ...", "slot ..."
+  MobilityReport mobility;
+  std::vector<std::string> redundant;  // labels of the redundant constraint rows
+  std::vector<std::string> drivers;    // one line per driver: what it drives and how it moves
+
+  bool has_masses = false;     // some body has a mass
+  bool has_mass_data = false;  // some body has mass properties given or a shape (even without a material)
+  bool has_shapes = false;  // some body has a plate outline
+  bool has_loads = false;   // gravity, forces, torques or springs
+  // Whether inverse dynamics has anything to compute: masses or loads.
+  bool has_kinetics() const { return has_masses || has_loads; }
+  // Whether the stress stage has a link to cut: a shape with a thickness on a body of two or more points.
+  bool has_stress_links = false;
+
+  // At the start of the sweep: the assembly, or why it failed; the loops when it succeeded.
+  std::optional<AssemblySummary> assembly;
+  std::optional<Error> assembly_error;
+  std::vector<LoopSummary> loops;
+};
+
+// Never throws for a compiled mechanism: an assembly failure is kept in assembly_error.
+ModelSummary summarize(const Mechanism& mechanism);
+
+}  // namespace nbar

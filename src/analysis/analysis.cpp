@@ -1,0 +1,109 @@
+#include "nbar/analysis/analysis.hpp"
+
+#include <string>
+
+#include "nbar/dynamics/dynamics_table.hpp"
+#include "nbar/model/units.hpp"
+
+namespace nbar {
+
+namespace {
+
+void check_options(const AnalysisOptions& options) {
+  if (options.order < 0 || options.order > 5)
+    throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
+  if (options.steps && *options.steps < 1) throw Error(ErrorKind::BadInput, "a sweep needs at least one step");
+  if (options.stress && options.sections < 10)
+    throw Error(ErrorKind::BadInput, "stresses need at least 10 sections per link");
+}
+
+SweepResult run_sweep_stage(const Mechanism& mech, const AnalysisOptions& options) {
+  SweepOptions sweep;
+  sweep.steps = options.steps;
+  sweep.order = options.dynamics || options.stress ? std::max(options.order, 2) : options.order;
+  return run_sweep(mech, sweep, options.control);
+}
+
+DynamicsStage run_dynamics_stage(const Analysis& analysis, const AnalysisOptions& options) {
+  DynamicsStage stage;
+  stage.solver = std::make_shared<const InverseDynamics>(analysis.mechanism);
+  const auto& samples = analysis.sweep.samples;
+  stage.samples.reserve(samples.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    options.control.checkpoint("dynamics", static_cast<long>(i), static_cast<long>(samples.size()));
+    stage.samples.push_back(stage.solver->solve(samples[i]));
+    stage.unique = stage.unique && stage.samples.back().unique;
+    stage.max_residual = std::max(stage.max_residual, stage.samples.back().residual);
+  }
+  if (!stage.unique)
+    stage.warnings.push_back(
+        {"forces_not_unique", -1,
+         "the mechanism has redundant constraints: its joint forces are not unique (statically indeterminate); "
+         "the minimum-norm set is given"});
+  return stage;
+}
+
+StressStage run_stress_stage(const Analysis& analysis, const AnalysisOptions& options) {
+  StressStage stage;
+  stage.links = std::make_shared<const LinkStress>(analysis.dynamics->solver, options.sections);
+  bool any = false;
+  for (std::size_t b = 0; b < analysis.model().bodies.size(); ++b)
+    any = any || stage.links->analysed(static_cast<int>(b));
+  if (!any)
+    throw Error(ErrorKind::InvalidModel,
+                "no link has a shape (`shape:` or `bar:` with a thickness), so there is nothing to compute stresses in");
+  stage.peaks = stress_peaks(*stage.links, analysis.sweep, analysis.dynamics->samples, options.control);
+  return stage;
+}
+
+}  // namespace
+
+std::vector<Warning> Analysis::warnings() const {
+  std::vector<Warning> all = sweep.warnings;
+  if (dynamics) all.insert(all.end(), dynamics->warnings.begin(), dynamics->warnings.end());
+  return all;
+}
+
+Analysis analyse(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options) {
+  check_options(options);
+  Analysis analysis;
+  analysis.mechanism = std::move(mechanism);
+  analysis.sweep = run_sweep_stage(*analysis.mechanism, options);
+  if (options.dynamics || options.stress) analysis.dynamics = run_dynamics_stage(analysis, options);
+  if (options.stress) analysis.stress = run_stress_stage(analysis, options);
+  return analysis;
+}
+
+ResultTable result_table(const Analysis& analysis) {
+  ResultTable table = make_table(*analysis.mechanism, analysis.sweep);
+  if (analysis.dynamics)
+    append_dynamics_columns(*analysis.dynamics->solver, analysis.sweep, analysis.dynamics->samples, table);
+  return table;
+}
+
+ResultTable section_profile_table(const Analysis& analysis, int body, int step) {
+  const Model& m = analysis.model();
+  if (!analysis.stress) throw Error(ErrorKind::BadInput, "section profiles need the stress stage");
+  if (body < 0 || body >= static_cast<int>(m.bodies.size()) || !analysis.stress->links->analysed(body))
+    throw Error(ErrorKind::BadInput, "'" + (body >= 0 && body < static_cast<int>(m.bodies.size())
+                                                ? m.bodies[body].name
+                                                : std::to_string(body)) +
+                                         "' has no shape to cut");
+  const int steps = static_cast<int>(analysis.sweep.samples.size());
+  if (step < 0 || step >= steps)
+    throw Error(ErrorKind::BadInput,
+                "step " + std::to_string(step) + " is not a solved step (0 to " + std::to_string(steps - 1) + ")");
+  const auto profile = analysis.stress->links->profile(analysis.dynamics->samples[step], body);
+  ResultTable t;
+  t.columns = {"x", "area", "N", "V", "M", "sigma_right", "sigma_left", "tau", "von_mises"};
+  const std::string len = m.units.length;
+  t.units = {len, len + "^2", "N", "N", "N m", "MPa", "MPa", "MPa", "MPa"};
+  const double unit = m.units.length_scale;
+  for (const SectionStress& sec : profile)
+    t.rows.push_back({sec.position / unit, sec.area / (unit * unit), sec.axial, sec.shear, sec.moment,
+                      to_megapascal(sec.sigma_low), to_megapascal(sec.sigma_high), to_megapascal(sec.tau_max),
+                      to_megapascal(sec.von_mises)});
+  return t;
+}
+
+}  // namespace nbar

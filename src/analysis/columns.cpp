@@ -1,0 +1,107 @@
+#include "nbar/analysis/columns.hpp"
+
+#include <algorithm>
+
+#include "nbar/dynamics/dynamics_table.hpp"
+#include "nbar/kinematics/table.hpp"
+
+namespace nbar {
+
+namespace {
+
+std::vector<ColumnInfo> kinematic_columns(const Mechanism& mech, int order) {
+  SweepResult empty;
+  std::vector<ColumnInfo> out;
+  // A column's order is the lowest at which the table has it.
+  for (int k = 0; k <= order; ++k) {
+    empty.order = k;
+    const ResultTable t = make_table(mech, empty);
+    for (std::size_t c = 0; c < t.columns.size(); ++c) {
+      const auto known = std::find_if(out.begin(), out.end(), [&](const ColumnInfo& i) { return i.name == t.columns[c]; });
+      if (known == out.end()) out.push_back({t.columns[c], t.units[c], Stage::Sweep, k});
+    }
+  }
+  // In the table's own order, which interleaves orders point by point.
+  empty.order = order;
+  const ResultTable t = make_table(mech, empty);
+  std::vector<ColumnInfo> ordered;
+  for (const std::string& name : t.columns)
+    ordered.push_back(*std::find_if(out.begin(), out.end(), [&](const ColumnInfo& i) { return i.name == name; }));
+  return ordered;
+}
+
+std::vector<ColumnInfo> dynamic_columns(const Mechanism& mech) {
+  // A non-owning pointer: the solver lives only in this function, while `mech` is alive.
+  const InverseDynamics structure(std::shared_ptr<const Mechanism>(std::shared_ptr<const void>(), &mech));
+  std::vector<ColumnInfo> out;
+  for (const ColumnName& c : dynamics_columns(structure)) out.push_back({c.name, c.unit, Stage::Dynamics, 2});
+  return out;
+}
+
+bool any_matches(const std::vector<std::string>& names, const std::string& pattern) {
+  return std::any_of(names.begin(), names.end(), [&](const std::string& n) { return column_matches(pattern, n); });
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i) s += (i ? ", " : "") + items[i];
+  return s;
+}
+
+}  // namespace
+
+std::vector<ColumnInfo> column_catalogue(const Mechanism& mech, int max_order, bool with_dynamics) {
+  std::vector<ColumnInfo> out = kinematic_columns(mech, max_order);
+  if (with_dynamics) {
+    const std::vector<ColumnInfo> dynamic = dynamic_columns(mech);
+    out.insert(out.end(), dynamic.begin(), dynamic.end());
+  }
+  return out;
+}
+
+std::vector<std::string> column_names(const std::vector<ColumnInfo>& columns) {
+  std::vector<std::string> names;
+  for (const ColumnInfo& c : columns) names.push_back(c.name);
+  return names;
+}
+
+bool column_matches(const std::string& pattern, const std::string& name) { return glob_match(pattern, name); }
+
+ColumnNeeds column_needs(const Mechanism& mech, const std::vector<std::string>& patterns, std::optional<int> order,
+                         bool dynamics) {
+  const std::vector<std::string> all_kinematic = column_names(kinematic_columns(mech, 5));
+  const std::vector<std::string> dynamic = column_names(dynamic_columns(mech));
+  ColumnNeeds needs;
+  needs.dynamics = dynamics;
+  std::vector<std::string> kinematic_patterns;
+  for (const std::string& p : patterns) {
+    if (!any_matches(all_kinematic, p) && any_matches(dynamic, p))
+      needs.dynamics = true;
+    else
+      kinematic_patterns.push_back(p);
+  }
+  needs.order = order.value_or(2);
+  if (!order) {
+    for (int k = 2; k <= 5; ++k) {
+      const std::vector<std::string> names = column_names(kinematic_columns(mech, k));
+      if (std::all_of(kinematic_patterns.begin(), kinematic_patterns.end(),
+                      [&](const std::string& p) { return any_matches(names, p); })) {
+        needs.order = k;
+        break;
+      }
+    }
+  }
+  if (needs.dynamics) needs.order = std::max(needs.order, 2);
+  std::vector<std::string> available = column_names(kinematic_columns(mech, needs.order));
+  if (needs.dynamics) available.insert(available.end(), dynamic.begin(), dynamic.end());
+  for (std::size_t i = 0; i < patterns.size(); ++i) {
+    if (any_matches(available, patterns[i])) continue;
+    needs.unmatched = static_cast<int>(i);
+    needs.message = "no column matches '" + patterns[i] + "'; the columns are: " + join(available);
+    if (!needs.dynamics && !dynamic.empty()) needs.message += "; with inverse dynamics also: " + join(dynamic);
+    break;
+  }
+  return needs;
+}
+
+}  // namespace nbar
