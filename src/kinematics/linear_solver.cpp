@@ -44,6 +44,50 @@ LinearSolver::LinearSolver(const Mechanism& mech)
   }
 }
 
+LinearSolver::LinearSolver(const LinearSolver& other)
+    : method_(other.method_),
+      rows_(other.rows_),
+      cols_(other.cols_),
+      pattern_(other.pattern_),
+      dense_(other.dense_),
+      lu_(other.lu_),
+      cod_(other.cod_),
+      sparse_(other.sparse_),
+      value_slot_(other.value_slot_),
+      det_sign_(other.det_sign_),
+      rcond_(other.rcond_) {
+  if (other.sparse_factorized_) {
+    sparse_lu_.analyzePattern(sparse_);
+    sparse_lu_.factorize(sparse_);
+    pattern_analysed_ = sparse_factorized_ = true;
+  }
+}
+
+LinearSolver& LinearSolver::operator=(const LinearSolver& other) {
+  if (this == &other) return *this;
+  method_ = other.method_;
+  rows_ = other.rows_;
+  cols_ = other.cols_;
+  pattern_ = other.pattern_;
+  dense_ = other.dense_;
+  lu_ = other.lu_;
+  cod_ = other.cod_;
+  sparse_ = other.sparse_;
+  value_slot_ = other.value_slot_;
+  det_sign_ = other.det_sign_;
+  rcond_ = other.rcond_;
+  pattern_analysed_ = sparse_factorized_ = false;
+  if (other.pattern_analysed_ && method_ == Method::SparseLU) {
+    sparse_lu_.analyzePattern(sparse_);
+    pattern_analysed_ = true;
+  }
+  if (other.sparse_factorized_) {
+    sparse_lu_.factorize(sparse_);
+    sparse_factorized_ = true;
+  }
+  return *this;
+}
+
 bool LinearSolver::factorize(const std::vector<double>& values) {
   switch (method_) {
     case Method::DenseLU: {
@@ -75,7 +119,8 @@ bool LinearSolver::factorize(const std::vector<double>& values) {
         pattern_analysed_ = true;
       }
       sparse_lu_.factorize(sparse_);
-      if (sparse_lu_.info() != Eigen::Success) return false;
+      sparse_factorized_ = sparse_lu_.info() == Eigen::Success;
+      if (!sparse_factorized_) return false;
       det_sign_ = static_cast<int>(sparse_lu_.signDeterminant());
       rcond_ = 1.0;
       return std::isfinite(sparse_lu_.logAbsDeterminant());

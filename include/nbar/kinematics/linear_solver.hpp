@@ -24,6 +24,10 @@ class LinearSolver {
   static constexpr int kDenseLimit = 40;
 
   explicit LinearSolver(const Mechanism& mech);
+  // A copy solves exactly as its source: it holds its own pattern, and a factorised sparse LU
+  // (which Eigen cannot copy) is factorised again from the copied matrix.
+  LinearSolver(const LinearSolver& other);
+  LinearSolver& operator=(const LinearSolver& other);
 
   Method method() const { return method_; }
   // Returns false when the matrix is singular to working precision.
@@ -38,7 +42,7 @@ class LinearSolver {
  private:
   Method method_;
   int rows_, cols_;
-  const std::vector<JacobianEntry>& pattern_;
+  std::vector<JacobianEntry> pattern_;  // a copy, so a State may outlive its Mechanism's storage
   Eigen::MatrixXd dense_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_;
@@ -46,6 +50,7 @@ class LinearSolver {
   std::vector<int> value_slot_;  // pattern entry -> index into sparse_.valuePtr()
   Eigen::SparseLU<Eigen::SparseMatrix<double>> sparse_lu_;
   bool pattern_analysed_ = false;
+  bool sparse_factorized_ = false;
   int det_sign_ = 0;
   double rcond_ = 0.0;
 };

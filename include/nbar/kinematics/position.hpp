@@ -15,6 +15,7 @@
 
 namespace nbar {
 
+// Copyable: a copy is a snapshot that solves on its own exactly as its source would.
 struct State {
   explicit State(const Mechanism& mech);
 
