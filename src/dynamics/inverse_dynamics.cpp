@@ -160,213 +160,248 @@ InverseDynamics::InverseDynamics(std::shared_ptr<const Mechanism> mechanism) : m
   equations_ = 3 * bodies;
 }
 
-DynamicsResult InverseDynamics::solve(const Sample& sample) const {
-  if (sample.taylor.cols() < 3)
-    throw std::invalid_argument("inverse dynamics needs accelerations: solve the sweep with order 2 or more");
-  ++solves;
-  const Mechanism& mech = *mechanism_;
-  const Model& m = mech.model();
-  const int bodies = static_cast<int>(m.bodies.size());
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(equations_, unknowns_);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(equations_);
-  DynamicsResult out;
-  out.motion = sample_motion(mech, sample);
-  const std::vector<Eigen::Vector2d>& r = out.motion.r;
-  const std::vector<Eigen::Vector2d>& v = out.motion.v;
-
-  std::vector<Eigen::Vector2d> cg(bodies);
-  for (int b = 0; b < bodies; ++b) {
-    const BodyMotion bm = body_motion(m, out.motion, b);
-    const MassProperties& mp = masses_[b];
-    cg[b] = bm.point(mp.cg, 0);
-    const Eigen::Vector2d vg = bm.point(mp.cg, 1), ag = bm.point(mp.cg, 2);
-    rhs.segment<2>(3 * b) = mp.mass * ag;
-    rhs(3 * b + 2) = mp.inertia * bm.alpha;
-    out.kinetic_energy += 0.5 * mp.mass * vg.squaredNorm() + 0.5 * mp.inertia * bm.omega * bm.omega;
-    out.potential_energy -= mp.mass * m.gravity.dot(cg[b]);
-    rhs.segment<2>(3 * b) -= mp.mass * m.gravity;  // weight, a known force at the cg
+// One solve, step by step: the equations are assembled column by column into the workspace,
+// solved, and the forces read back. The order of every sum is part of the result (the golden
+// outputs are compared byte for byte), so steps keep the order they always had.
+class InverseDynamics::Assembly {
+ public:
+  Assembly(const InverseDynamics& id, const Sample& sample, DynamicsWorkspace& w, DynamicsResult& out)
+      : id_(id), m_(id.mechanism().model()), sample_(sample), w_(w), out_(out), r_(out.motion.r), v_(out.motion.v) {
+    w_.matrix.setZero(id.equations_, id.unknowns_);
+    w_.rhs.setZero(id.equations_);
+    w_.cg.resize(m_.bodies.size());
+    w_.pending.clear();
+    w_.on_pins.clear();
   }
 
-  // What each body receives directly, to be valued once the unknowns are known (col -1: known).
-  struct Pending {
-    AppliedLoad load;
-    int col = -1;
-  };
-  std::vector<Pending> pending;
-  // Forces on a joint's pin, to balance its dependent link afterwards (col -1: known).
-  struct PinLoad {
-    int point;
-    Eigen::Vector2d force;
-    int col;
-  };
-  std::vector<PinLoad> on_pins;
-  auto force_column = [&](int b, int col, const Eigen::Vector2d& c, const Eigen::Vector2d& at) {
-    A(3 * b, col) += c.x();
-    A(3 * b + 1, col) += c.y();
-    A(3 * b + 2, col) += cross(at - cg[b], c);
-  };
-  auto known_force = [&](int b, const Eigen::Vector2d& f, const Eigen::Vector2d& at) {
-    rhs.segment<2>(3 * b) -= f;
-    rhs(3 * b + 2) -= cross(at - cg[b], f);
-  };
-  auto unknown_on_body = [&](int b, int col, const Eigen::Vector2d& c, const Eigen::Vector2d& at) {
-    force_column(b, col, c, at);
-    pending.push_back({AppliedLoad{b, at, c, 0.0}, col});
-  };
-  auto known_on_body = [&](int b, const Eigen::Vector2d& f, const Eigen::Vector2d& at) {
-    known_force(b, f, at);
-    pending.push_back({AppliedLoad{b, at, f, 0.0}, -1});
-  };
-  // Couples act on the whole body; `at` only tells a stress section which side has them.
-  auto unknown_couple = [&](int b, int col, double c, const Eigen::Vector2d& at) {
-    A(3 * b + 2, col) += c;
-    pending.push_back({AppliedLoad{b, at, {0, 0}, c}, col});
-  };
-  auto known_couple = [&](int b, double c, const Eigen::Vector2d& at) {
-    rhs(3 * b + 2) -= c;
-    pending.push_back({AppliedLoad{b, at, {0, 0}, c}, -1});
-  };
-  auto first_point = [&](int b) { return r[m.bodies[b].points[0]]; };
-  auto dependent_body = [&](int p) { return joint_links_[dependent_[node_of_point_[p]]].link; };
-  // A force at a point goes to the named body, else to the joint's pin there (which hands it to
-  // its dependent link), else to the only body that has the point; a ground point's goes to
-  // the frame.
-  auto unknown_at_point = [&](int p, int body, int col, const Eigen::Vector2d& c) {
-    if (body >= 0) return unknown_on_body(body, col, c, r[p]);
-    if (node_of_point_[p] >= 0) {
-      on_pins.push_back({p, c, col});
-      if (dependent_body(p) >= 0) force_column(dependent_body(p), col, c, r[p]);
-    } else if (single_body_of_point_[p] >= 0) {
-      unknown_on_body(single_body_of_point_[p], col, c, r[p]);
+  void inertia_and_weight() {
+    for (std::size_t b = 0; b < m_.bodies.size(); ++b) {
+      const BodyMotion bm = body_motion(m_, out_.motion, static_cast<int>(b));
+      const MassProperties& mp = id_.masses_[b];
+      w_.cg[b] = bm.point(mp.cg, 0);
+      const Eigen::Vector2d vg = bm.point(mp.cg, 1), ag = bm.point(mp.cg, 2);
+      w_.rhs.segment<2>(3 * b) = mp.mass * ag;
+      w_.rhs(3 * b + 2) = mp.inertia * bm.alpha;
+      out_.kinetic_energy += 0.5 * mp.mass * vg.squaredNorm() + 0.5 * mp.inertia * bm.omega * bm.omega;
+      out_.potential_energy -= mp.mass * m_.gravity.dot(w_.cg[b]);
+      w_.rhs.segment<2>(3 * b) -= mp.mass * m_.gravity;  // weight, a known force at the cg
     }
-  };
-  auto known_at_point = [&](int p, int body, const Eigen::Vector2d& f) {
-    if (body >= 0) return known_on_body(body, f, r[p]);
-    if (node_of_point_[p] >= 0) {
-      on_pins.push_back({p, f, -1});
-      if (dependent_body(p) >= 0) known_force(dependent_body(p), f, r[p]);
-    } else if (single_body_of_point_[p] >= 0) {
-      known_on_body(single_body_of_point_[p], f, r[p]);
-    }
-  };
+  }
 
-  // Pin forces: each independent one acts on its link, and its opposite on the dependent link.
-  for (std::size_t i = 0; i < joint_links_.size(); ++i) {
-    const int col = pin_column_[i];
-    if (col < 0) continue;
-    const JointLink& jl = joint_links_[i];
-    const int dep = dependent_body(jl.point);
-    for (int axis = 0; axis < 2; ++axis) {
-      const Eigen::Vector2d e = axis == 0 ? Eigen::Vector2d(1, 0) : Eigen::Vector2d(0, 1);
-      if (jl.link >= 0) force_column(jl.link, col + axis, e, r[jl.point]);
-      if (dep >= 0) force_column(dep, col + axis, -e, r[jl.point]);
-    }
-  }
-  auto guide_normal = [&](const std::array<int, 2>& along) {
-    const Eigen::Vector2d w = r[along[1]] - r[along[0]];
-    return Eigen::Vector2d(perp(w) / w.norm());
-  };
-  for (std::size_t s = 0; s < m.sliders.size(); ++s) {
-    const Slider& sl = m.sliders[s];
-    const int guide = slider_guide_[s];
-    const Eigen::Vector2d n = guide_normal(sl.along);
-    const int col = slider_base_ + 2 * static_cast<int>(s);
-    unknown_on_body(sl.body, col, n, r[sl.point]);
-    unknown_couple(sl.body, col + 1, 1.0, r[sl.point]);
-    if (guide >= 0) {
-      unknown_on_body(guide, col, -n, r[sl.point]);
-      unknown_couple(guide, col + 1, -1.0, r[sl.point]);
-    }
-  }
-  for (std::size_t s = 0; s < m.slots.size(); ++s) {
-    const Slot& sl = m.slots[s];
-    const Eigen::Vector2d n = guide_normal(sl.along);
-    const int col = slot_base_ + static_cast<int>(s);
-    unknown_at_point(sl.point, -1, col, n);
-    if (slot_guide_[s] >= 0) unknown_on_body(slot_guide_[s], col, -n, r[sl.point]);
-  }
-  for (std::size_t d = 0; d < m.drivers.size(); ++d) {
-    const Driver& drv = m.drivers[d];
-    const int col = driver_base_ + static_cast<int>(d);
-    switch (drv.kind) {
-      case DriverKind::Angle:  // a motor at the body's first point (a crank's pivot)
-        unknown_couple(drv.body, col, 1.0, first_point(drv.body));
-        if (drv.relative_to >= 0) unknown_couple(drv.relative_to, col, -1.0, first_point(drv.body));
-        break;
-      case DriverKind::Distance: {
-        const Eigen::Vector2d e = (r[drv.points[1]] - r[drv.points[0]]).normalized();
-        unknown_at_point(drv.points[1], -1, col, e);
-        unknown_at_point(drv.points[0], -1, col, -e);
-        break;
-      }
-      case DriverKind::Slide: {
-        const Slider& sl = m.sliders[drv.slider];
-        const int guide = slider_guide_[drv.slider];
-        const Eigen::Vector2d w = (r[sl.along[1]] - r[sl.along[0]]).normalized();
-        unknown_on_body(sl.body, col, w, r[sl.point]);
-        if (guide >= 0) unknown_on_body(guide, col, -w, r[sl.point]);
-        break;
+  // Each independent pin force acts on its link, and its opposite on the joint's balancing link.
+  void pin_columns() {
+    for (std::size_t i = 0; i < id_.joint_links_.size(); ++i) {
+      const int col = id_.pin_column_[i];
+      if (col < 0) continue;
+      const JointLink& jl = id_.joint_links_[i];
+      const int dep = dependent_body(jl.point);
+      for (int axis = 0; axis < 2; ++axis) {
+        const Eigen::Vector2d e = axis == 0 ? Eigen::Vector2d(1, 0) : Eigen::Vector2d(0, 1);
+        if (jl.link >= 0) force_column(jl.link, col + axis, e, r_[jl.point]);
+        if (dep >= 0) force_column(dep, col + axis, -e, r_[jl.point]);
       }
     }
   }
 
-  for (const PointLoad& load : m.point_loads)
-    known_at_point(load.point, load.body, {load.fx.value(sample.time), load.fy.value(sample.time)});
-  for (const BodyTorque& t : m.torques) known_couple(t.body, t.torque.value(sample.time), first_point(t.body));
-  for (const Spring& s : m.springs) {
-    const Eigen::Vector2d d = r[s.points[1]] - r[s.points[0]];
-    const double length = d.norm();
-    const Eigen::Vector2d e = d / length;
-    const double tension = s.stiffness * (length - s.free_length) + s.damping * e.dot(v[s.points[1]] - v[s.points[0]]);
-    known_at_point(s.points[0], -1, tension * e);
-    known_at_point(s.points[1], -1, -tension * e);
-    out.potential_energy += 0.5 * s.stiffness * (length - s.free_length) * (length - s.free_length);
+  void slider_and_slot_columns() {
+    for (std::size_t s = 0; s < m_.sliders.size(); ++s) {
+      const Slider& sl = m_.sliders[s];
+      const int guide = id_.slider_guide_[s];
+      const Eigen::Vector2d n = guide_normal(sl.along);
+      const int col = id_.slider_base_ + 2 * static_cast<int>(s);
+      unknown_on_body(sl.body, col, n, r_[sl.point]);
+      unknown_couple(sl.body, col + 1, 1.0, r_[sl.point]);
+      if (guide >= 0) {
+        unknown_on_body(guide, col, -n, r_[sl.point]);
+        unknown_couple(guide, col + 1, -1.0, r_[sl.point]);
+      }
+    }
+    for (std::size_t s = 0; s < m_.slots.size(); ++s) {
+      const Slot& sl = m_.slots[s];
+      const Eigen::Vector2d n = guide_normal(sl.along);
+      const int col = id_.slot_base_ + static_cast<int>(s);
+      unknown_at_point(sl.point, -1, col, n);
+      if (id_.slot_guide_[s] >= 0) unknown_on_body(id_.slot_guide_[s], col, -n, r_[sl.point]);
+    }
+  }
+
+  void driver_columns() {
+    for (std::size_t d = 0; d < m_.drivers.size(); ++d) {
+      const Driver& drv = m_.drivers[d];
+      const int col = id_.driver_base_ + static_cast<int>(d);
+      switch (drv.kind) {
+        case DriverKind::Angle:  // a motor at the body's first point (a crank's pivot)
+          unknown_couple(drv.body, col, 1.0, first_point(drv.body));
+          if (drv.relative_to >= 0) unknown_couple(drv.relative_to, col, -1.0, first_point(drv.body));
+          break;
+        case DriverKind::Distance: {
+          const Eigen::Vector2d e = (r_[drv.points[1]] - r_[drv.points[0]]).normalized();
+          unknown_at_point(drv.points[1], -1, col, e);
+          unknown_at_point(drv.points[0], -1, col, -e);
+          break;
+        }
+        case DriverKind::Slide: {
+          const Slider& sl = m_.sliders[drv.slider];
+          const int guide = id_.slider_guide_[drv.slider];
+          const Eigen::Vector2d w = (r_[sl.along[1]] - r_[sl.along[0]]).normalized();
+          unknown_on_body(sl.body, col, w, r_[sl.point]);
+          if (guide >= 0) unknown_on_body(guide, col, -w, r_[sl.point]);
+          break;
+        }
+      }
+    }
+  }
+
+  void known_loads() {
+    const double t = sample_.time;
+    for (const PointLoad& load : m_.point_loads)
+      known_at_point(load.point, load.body, {load.fx.value(t), load.fy.value(t)});
+    for (const BodyTorque& torque : m_.torques) known_couple(torque.body, torque.torque.value(t), first_point(torque.body));
+    for (const Spring& s : m_.springs) {
+      const Eigen::Vector2d d = r_[s.points[1]] - r_[s.points[0]];
+      const double length = d.norm();
+      const Eigen::Vector2d e = d / length;
+      const double tension =
+          s.stiffness * (length - s.free_length) + s.damping * e.dot(v_[s.points[1]] - v_[s.points[0]]);
+      known_at_point(s.points[0], -1, tension * e);
+      known_at_point(s.points[1], -1, -tension * e);
+      out_.potential_energy += 0.5 * s.stiffness * (length - s.free_length) * (length - s.free_length);
+    }
   }
 
   // Square and regular (drivers matching Gruebler's count, no redundancy): LU. Otherwise the
   // minimum-norm least-squares solution, which is exact when the equations are consistent.
-  Eigen::VectorXd x;
-  bool solved = false;
-  if (equations_ == unknowns_ && unknowns_ > 0) {
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
-    if (lu.rcond() > 1e-12) {
-      x = lu.solve(rhs);
-      solved = true;
+  void factorise_and_solve() {
+    const Eigen::MatrixXd& A = w_.matrix;
+    bool solved = false;
+    if (id_.equations_ == id_.unknowns_ && id_.unknowns_ > 0) {
+      w_.lu.compute(A);
+      if (w_.lu.rcond() > 1e-12) {
+        w_.unknowns = w_.lu.solve(w_.rhs);
+        solved = true;
+      }
     }
+    if (!solved) {
+      w_.least_squares.setThreshold(1e-10);
+      w_.least_squares.compute(A);
+      w_.unknowns = w_.least_squares.solve(w_.rhs);
+      out_.unique = w_.least_squares.rank() == id_.unknowns_;
+    }
+    out_.residual = id_.equations_ > 0 ? (A * w_.unknowns - w_.rhs).lpNorm<Eigen::Infinity>() : 0.0;
   }
-  if (!solved) {
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-    cod.setThreshold(1e-10);
-    cod.compute(A);
-    x = cod.solve(rhs);
-    out.unique = cod.rank() == unknowns_;
-  }
-  out.residual = equations_ > 0 ? (A * x - rhs).lpNorm<Eigen::Infinity>() : 0.0;
 
-  out.pin_forces.assign(joint_links_.size(), Eigen::Vector2d::Zero());
-  std::vector<Eigen::Vector2d> pin_balance(joints_.size(), Eigen::Vector2d::Zero());
-  for (const PinLoad& p : on_pins)
-    pin_balance[node_of_point_[p.point]] += p.col >= 0 ? Eigen::Vector2d(p.force * x(p.col)) : p.force;
-  for (std::size_t i = 0; i < joint_links_.size(); ++i) {
-    if (pin_column_[i] < 0) continue;
-    out.pin_forces[i] = x.segment<2>(pin_column_[i]);
-    pin_balance[node_of_point_[joint_links_[i].point]] -= out.pin_forces[i];
-  }
-  for (std::size_t n = 0; n < joints_.size(); ++n) out.pin_forces[dependent_[n]] = pin_balance[n];
-  for (Pending& p : pending) {
-    if (p.col >= 0) {
-      p.load.force *= x(p.col);
-      p.load.couple *= x(p.col);
+  void read_back() {
+    const Eigen::VectorXd& x = w_.unknowns;
+    out_.pin_forces.assign(id_.joint_links_.size(), Eigen::Vector2d::Zero());
+    w_.pin_balance.assign(id_.joints_.size(), Eigen::Vector2d::Zero());
+    for (const DynamicsWorkspace::PinLoad& p : w_.on_pins)
+      w_.pin_balance[id_.node_of_point_[p.point]] += p.column >= 0 ? Eigen::Vector2d(p.force * x(p.column)) : p.force;
+    for (std::size_t i = 0; i < id_.joint_links_.size(); ++i) {
+      if (id_.pin_column_[i] < 0) continue;
+      out_.pin_forces[i] = x.segment<2>(id_.pin_column_[i]);
+      w_.pin_balance[id_.node_of_point_[id_.joint_links_[i].point]] -= out_.pin_forces[i];
     }
-    out.applied.push_back(p.load);
+    for (std::size_t n = 0; n < id_.joints_.size(); ++n) out_.pin_forces[id_.dependent_[n]] = w_.pin_balance[n];
+    out_.applied.reserve(w_.pending.size());
+    for (DynamicsWorkspace::Pending& p : w_.pending) {
+      if (p.column >= 0) {
+        p.load.force *= x(p.column);
+        p.load.couple *= x(p.column);
+      }
+      out_.applied.push_back(p.load);
+    }
+    for (std::size_t s = 0; s < m_.sliders.size(); ++s) {
+      out_.slider_normal.push_back(x(id_.slider_base_ + 2 * s));
+      out_.slider_couple.push_back(x(id_.slider_base_ + 2 * s + 1));
+    }
+    for (std::size_t s = 0; s < m_.slots.size(); ++s) out_.slot_normal.push_back(x(id_.slot_base_ + s));
+    for (std::size_t d = 0; d < m_.drivers.size(); ++d) out_.driver_effort.push_back(x(id_.driver_base_ + d));
   }
-  for (std::size_t s = 0; s < m.sliders.size(); ++s) {
-    out.slider_normal.push_back(x(slider_base_ + 2 * s));
-    out.slider_couple.push_back(x(slider_base_ + 2 * s + 1));
+
+ private:
+  void force_column(int b, int col, const Eigen::Vector2d& c, const Eigen::Vector2d& at) {
+    w_.matrix(3 * b, col) += c.x();
+    w_.matrix(3 * b + 1, col) += c.y();
+    w_.matrix(3 * b + 2, col) += cross(at - w_.cg[b], c);
   }
-  for (std::size_t s = 0; s < m.slots.size(); ++s) out.slot_normal.push_back(x(slot_base_ + s));
-  for (std::size_t d = 0; d < m.drivers.size(); ++d) out.driver_effort.push_back(x(driver_base_ + d));
+  void known_force(int b, const Eigen::Vector2d& f, const Eigen::Vector2d& at) {
+    w_.rhs.segment<2>(3 * b) -= f;
+    w_.rhs(3 * b + 2) -= cross(at - w_.cg[b], f);
+  }
+  void unknown_on_body(int b, int col, const Eigen::Vector2d& c, const Eigen::Vector2d& at) {
+    force_column(b, col, c, at);
+    w_.pending.push_back({AppliedLoad{b, at, c, 0.0}, col});
+  }
+  void known_on_body(int b, const Eigen::Vector2d& f, const Eigen::Vector2d& at) {
+    known_force(b, f, at);
+    w_.pending.push_back({AppliedLoad{b, at, f, 0.0}, -1});
+  }
+  // Couples act on the whole body; `at` only tells a stress section which side has them.
+  void unknown_couple(int b, int col, double c, const Eigen::Vector2d& at) {
+    w_.matrix(3 * b + 2, col) += c;
+    w_.pending.push_back({AppliedLoad{b, at, {0, 0}, c}, col});
+  }
+  void known_couple(int b, double c, const Eigen::Vector2d& at) {
+    w_.rhs(3 * b + 2) -= c;
+    w_.pending.push_back({AppliedLoad{b, at, {0, 0}, c}, -1});
+  }
+  Eigen::Vector2d first_point(int b) const { return r_[m_.bodies[b].points[0]]; }
+  int dependent_body(int p) const { return id_.joint_links_[id_.dependent_[id_.node_of_point_[p]]].link; }
+  Eigen::Vector2d guide_normal(const std::array<int, 2>& along) const {
+    const Eigen::Vector2d w = r_[along[1]] - r_[along[0]];
+    return Eigen::Vector2d(perp(w) / w.norm());
+  }
+  // A force at a point goes to the named body, else to the joint's pin there (which hands it to
+  // its balancing link), else to the only body that has the point; a ground point's goes to
+  // the frame.
+  void unknown_at_point(int p, int body, int col, const Eigen::Vector2d& c) {
+    if (body >= 0) return unknown_on_body(body, col, c, r_[p]);
+    if (id_.node_of_point_[p] >= 0) {
+      w_.on_pins.push_back({p, c, col});
+      if (dependent_body(p) >= 0) force_column(dependent_body(p), col, c, r_[p]);
+    } else if (id_.single_body_of_point_[p] >= 0) {
+      unknown_on_body(id_.single_body_of_point_[p], col, c, r_[p]);
+    }
+  }
+  void known_at_point(int p, int body, const Eigen::Vector2d& f) {
+    if (body >= 0) return known_on_body(body, f, r_[p]);
+    if (id_.node_of_point_[p] >= 0) {
+      w_.on_pins.push_back({p, f, -1});
+      if (dependent_body(p) >= 0) known_force(dependent_body(p), f, r_[p]);
+    } else if (id_.single_body_of_point_[p] >= 0) {
+      known_on_body(id_.single_body_of_point_[p], f, r_[p]);
+    }
+  }
+
+  const InverseDynamics& id_;
+  const Model& m_;
+  const Sample& sample_;
+  DynamicsWorkspace& w_;
+  DynamicsResult& out_;
+  const std::vector<Eigen::Vector2d>& r_;
+  const std::vector<Eigen::Vector2d>& v_;
+};
+
+DynamicsResult InverseDynamics::solve(const Sample& sample, DynamicsWorkspace& workspace) const {
+  if (sample.taylor.cols() < 3)
+    throw std::invalid_argument("inverse dynamics needs accelerations: solve the sweep with order 2 or more");
+  ++solves;
+  DynamicsResult out;
+  out.motion = sample_motion(*mechanism_, sample);
+  Assembly assembly(*this, sample, workspace, out);
+  assembly.inertia_and_weight();
+  assembly.pin_columns();
+  assembly.slider_and_slot_columns();
+  assembly.driver_columns();
+  assembly.known_loads();
+  assembly.factorise_and_solve();
+  assembly.read_back();
   return out;
+}
+
+DynamicsResult InverseDynamics::solve(const Sample& sample) const {
+  thread_local DynamicsWorkspace workspace;
+  return solve(sample, workspace);
 }
 
 }  // namespace nbar

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Dense>
 
 #include <memory>
 #include <string>
@@ -87,12 +88,41 @@ struct DynamicsResult {
   bool unique = true;                 // false when redundant constraints leave forces undetermined
 };
 
+// Scratch memory for InverseDynamics::solve: sized once for a mechanism and reused for every
+// sample, so a sweep allocates nothing per sample but the results. Not shared between threads:
+// give each thread its own.
+struct DynamicsWorkspace {
+  // What a body receives directly, valued once the unknowns are known (column -1: known).
+  struct Pending {
+    AppliedLoad load;
+    int column = -1;
+  };
+  // A force on a joint's pin, handed to the pin's balancing link afterwards (column -1: known).
+  struct PinLoad {
+    int point = -1;
+    Eigen::Vector2d force{0, 0};
+    int column = -1;
+  };
+  Eigen::MatrixXd matrix;  // the Newton-Euler equations: 3 rows per body, one column per unknown
+  Eigen::VectorXd rhs, unknowns;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> least_squares;
+  std::vector<Eigen::Vector2d> cg;  // every body's centre of mass, current pose
+  std::vector<Pending> pending;
+  std::vector<PinLoad> on_pins;
+  std::vector<Eigen::Vector2d> pin_balance;
+};
+
 class InverseDynamics {
  public:
   // Shares the mechanism, so the solver may outlive the caller's pointer (Python, the server).
   explicit InverseDynamics(std::shared_ptr<const Mechanism> mechanism);
 
-  // Needs the sample's Taylor coefficients to order 2 at least. Thread-safe: nothing is kept.
+  // Needs the sample's Taylor coefficients to order 2 at least. Uses `workspace` for scratch
+  // (resized on first use); the solver itself is never modified, so threads may share it, each
+  // with its own workspace.
+  DynamicsResult solve(const Sample& sample, DynamicsWorkspace& workspace) const;
+  // The same with a workspace of the calling thread's own.
   DynamicsResult solve(const Sample& sample) const;
   // Solves made by every InverseDynamics of the process so far: a pipeline is tested to solve
   // each sample once.
@@ -122,6 +152,8 @@ class InverseDynamics {
   std::vector<int> pin_column_;    // per joint link: first of its two unknowns, -1 for the dependent one
   std::vector<int> slider_guide_, slot_guide_;  // the body owning each guide, -1 for the ground
   int slider_base_ = 0, slot_base_ = 0, driver_base_ = 0, unknowns_ = 0, equations_ = 0;
+
+  class Assembly;  // the steps of one solve (inverse_dynamics.cpp)
 };
 
 }  // namespace nbar
