@@ -190,9 +190,19 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? kOk : kBadUsage;
   }
-  if (check->parsed()) return run_check(check_model);
-  if (solve->parsed()) return run_solve(solve_args);
-  if (stress->parsed()) return run_stress(stress_args);
-  for (const auto& [command, run] : more) if (command->parsed()) return run();
+  // Each command reports what it expects; anything else still ends in a message and an exit
+  // code, never an abort.
+  try {
+    if (check->parsed()) return run_check(check_model);
+    if (solve->parsed()) return run_solve(solve_args);
+    if (stress->parsed()) return run_stress(stress_args);
+    for (const auto& [command, run] : more)
+      if (command->parsed()) return run();
+  } catch (const nbar::Error& e) {
+    return fail("", e);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kBadUsage;
+  }
   return kBadUsage;
 }
