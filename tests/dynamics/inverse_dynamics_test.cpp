@@ -11,6 +11,7 @@
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/dynamics/dynamics_table.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
+#include "nbar/io/model_file.hpp"
 
 namespace nbar::ktest {
 namespace {
@@ -360,6 +361,28 @@ TEST(InverseDynamics, RedundantParallelogramGivesTheMinimumNormForcesAndSaysSo) 
   // The coupler translates on a circle of radius 0.05 at 10 rad/s: the driver torque is still
   // unique (power balance) even though the bar forces are not.
   expect_power_balance(mech, sweep);
+}
+
+}  // namespace
+}  // namespace nbar::ktest
+
+namespace nbar::ktest {
+namespace {
+
+TEST(InverseDynamics, OutlivesTheCallersMechanism) {
+  auto mech = std::make_shared<const Mechanism>(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) +
+                                                                    "/fourbar-steel-bars.yaml").model);
+  const SweepResult sweep = run_sweep(*mech, sweep_options(2, 7));
+  const std::weak_ptr<const Mechanism> watch = mech;
+  const InverseDynamics dynamics(mech);
+  const DynamicsResult expected = dynamics.solve(sweep.samples[3]);
+  mech.reset();  // the caller lets go: the solver keeps the mechanism alive
+  EXPECT_FALSE(watch.expired());
+  DynamicsWorkspace workspace;
+  const DynamicsResult again = dynamics.solve(sweep.samples[3], workspace);
+  EXPECT_EQ(again.driver_effort, expected.driver_effort);
+  ASSERT_EQ(again.pin_forces.size(), expected.pin_forces.size());
+  for (std::size_t i = 0; i < again.pin_forces.size(); ++i) EXPECT_EQ(again.pin_forces[i], expected.pin_forces[i]);
 }
 
 }  // namespace

@@ -557,3 +557,25 @@ TEST(AnimateCommand, WritesEachFormatAndRejectsOthers) {
 }
 
 }  // namespace
+
+namespace {
+
+// A front-end (Python, the server) may drop its mechanism and sweep before the animation.
+TEST(Animation, OutlivesTheSweepAndTheCallersMechanism) {
+  const Example ex("fourbar-crank-rocker.yaml", 25);
+  const Animation reference(ex.shared, ex.sweep, small(), 6);
+  std::unique_ptr<Animation> kept;
+  {
+    auto mech = std::make_shared<const nbar::Mechanism>(ex.file.model);
+    const nbar::SweepResult sweep = nbar::run_sweep(*mech, nbar::SweepOptions{25, 2});
+    kept = std::make_unique<Animation>(std::move(mech), sweep, small(), 6);
+  }  // the sweep and the caller's pointer are gone
+  for (int k = 0; k < 6; ++k) {
+    const ImageCanvas a = kept->render_frame(k), b = reference.render_frame(k);
+    const std::size_t bytes = static_cast<std::size_t>(a.stride()) * 180;
+    EXPECT_TRUE(std::equal(a.data(), a.data() + bytes, b.data())) << "frame " << k;
+  }
+  EXPECT_EQ(kept->html_animation(), reference.html_animation());
+}
+
+}  // namespace
