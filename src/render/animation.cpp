@@ -1,6 +1,10 @@
 #include "nbar/render/animation.hpp"
 
 #include <cgif.h>
+#include <stdlib.h>
+
+#include <filesystem>
+#include <iterator>
 #include <unistd.h>
 
 #include <algorithm>
@@ -249,7 +253,23 @@ bool Animation::program_available(const std::string& name) {
 
 // ---------------------------------------------------------------------------------------- GIF
 
+namespace {
+
+// cgif's output, gathered in memory.
+int append_bytes(void* context, const std::uint8_t* data, const std::size_t size) {
+  auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+  out->insert(out->end(), data, data + size);
+  return 0;
+}
+
+}  // namespace
+
 void Animation::write_gif(const std::string& path) const {
+  const std::vector<std::uint8_t> bytes = gif_bytes();
+  write_text_file(path, std::string(bytes.begin(), bytes.end()));
+}
+
+std::vector<std::uint8_t> Animation::gif_bytes() const {
   const int w = options_.width, h = options_.height;
   if (w > 65535 || h > 65535) throw std::invalid_argument("a GIF is at most 65535 pixels wide and high");
   // Two passes: the colours of every frame, then the frames in that palette. Without
@@ -263,14 +283,15 @@ void Animation::write_gif(const std::string& path) const {
   std::memset(&config, 0, sizeof config);
   config.pGlobalPalette = table.data();
   config.numGlobalPaletteEntries = static_cast<std::uint16_t>(palette.size());
-  config.path = path.c_str();
+  std::vector<std::uint8_t> bytes;
+  config.pWriteFn = &append_bytes;
+  config.pContext = &bytes;
   config.attrFlags = CGIF_ATTR_IS_ANIMATED;
   config.numLoops = CGIF_INFINITE_LOOP;
   config.width = static_cast<std::uint16_t>(w);
   config.height = static_cast<std::uint16_t>(h);
   CGIF* gif = cgif_newgif(&config);
-  std::string failure = "cannot write ";
-  failure += path;
+  const std::string failure = "cannot make the GIF";
   if (!gif) throw std::runtime_error(failure);
 
   std::vector<std::uint8_t> indices(static_cast<std::size_t>(w) * h);
@@ -301,6 +322,7 @@ void Animation::write_gif(const std::string& path) const {
   }
   const int closed = cgif_close(gif);
   if (result != CGIF_OK || closed != CGIF_OK) throw std::runtime_error(failure);
+  return bytes;
 }
 
 // -------------------------------------------------------------------------------- transforms
@@ -614,6 +636,26 @@ void Animation::write_mp4(const std::string& path) const {
     message += ": ffmpeg failed";
     throw std::runtime_error(message);
   }
+}
+
+std::vector<std::uint8_t> Animation::mp4_bytes() const {
+  // ffmpeg writes a seekable file (the index goes at its start): a private folder, removed after.
+  char folder[] = "/tmp/nbar-mp4-XXXXXX";
+  if (!::mkdtemp(folder)) throw std::runtime_error("cannot make a temporary folder for the MP4");
+  const std::string path = std::string(folder) + "/animation.mp4";
+  std::vector<std::uint8_t> bytes;
+  std::string failure;
+  try {
+    write_mp4(path);
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::runtime_error& e) {
+    failure = e.what();
+  }
+  std::error_code ignored;
+  std::filesystem::remove_all(folder, ignored);
+  if (!failure.empty()) throw std::runtime_error(failure);
+  return bytes;
 }
 
 }  // namespace nbar::render

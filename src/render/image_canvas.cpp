@@ -1,6 +1,10 @@
 #include "nbar/render/image_canvas.hpp"
 
 #include <cairo.h>
+#include <vector>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 
 // Under AddressSanitizer, cairo's and fontconfig's font caches are released at exit, or the
 // leak checker reports them (they live as long as the process).
@@ -187,16 +191,29 @@ void ImageCanvas::text(const Eigen::Vector2d& at, const std::string& text, doubl
   cairo_new_path(cr);
 }
 
-void ImageCanvas::write_png(const std::string& path) const {
+namespace {
+
+cairo_status_t append_png(void* closure, const unsigned char* data, unsigned int length) {
+  auto* out = static_cast<std::vector<std::uint8_t>*>(closure);
+  out->insert(out->end(), data, data + length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> ImageCanvas::png_bytes() const {
   cairo_surface_flush(impl_->surface);
-  const cairo_status_t status = cairo_surface_write_to_png(impl_->surface, path.c_str());
-  if (status != CAIRO_STATUS_SUCCESS) {
-    std::string message = "cannot write ";
-    message += path;
-    message += ": ";
-    message += describe(status);
-    throw std::runtime_error(message);
-  }
+  std::vector<std::uint8_t> bytes;
+  const cairo_status_t status = cairo_surface_write_to_png_stream(impl_->surface, &append_png, &bytes);
+  if (status != CAIRO_STATUS_SUCCESS) throw std::runtime_error(std::string("cannot encode the PNG: ") + describe(status));
+  return bytes;
+}
+
+void ImageCanvas::write_png(const std::string& path) const {
+  const std::vector<std::uint8_t> bytes = png_bytes();
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
 }
 
 ImageCanvas ImageCanvas::read_png(const std::string& path) {

@@ -7,6 +7,7 @@
 // so that the loop does not stop for a frame.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -42,6 +43,7 @@ class Animation {
   // Each writer throws std::runtime_error naming the file when it cannot be written.
   // GIF: frames drawn without antialiasing, one palette of the colours used, looping forever.
   void write_gif(const std::string& path) const;
+  std::vector<std::uint8_t> gif_bytes() const;
   // SVG: drawn once at the first frame; every body group moved by animateTransform.
   std::string svg_animation() const;
   void write_svg_animation(const std::string& path) const;
@@ -52,6 +54,7 @@ class Animation {
   // MP4 (H.264 by ffmpeg's defaults, yuv420p). Throws std::runtime_error when the ffmpeg
   // program is not on the PATH.
   void write_mp4(const std::string& path) const;
+  std::vector<std::uint8_t> mp4_bytes() const;
 
   // Whether a program of that name is on the PATH.
   static bool program_available(const std::string& name);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "nbar/render/canvas.hpp"
 
@@ -38,6 +39,8 @@ class ImageCanvas : public Canvas {
 
   // Throws std::runtime_error naming the path when the file cannot be written.
   void write_png(const std::string& path) const;
+  // The PNG file's bytes, for a front-end that sends them without touching the disk.
+  std::vector<std::uint8_t> png_bytes() const;
   // Reads any PNG into a canvas of its size (transparent pixels come out as premultiplied
   // black). Throws std::runtime_error naming the path when it cannot.
   static ImageCanvas read_png(const std::string& path);
