@@ -2,6 +2,8 @@
 // headless Chromium, MP4 by ffmpeg when it is there, every example in every format, and the
 // nbar animate command.
 #include <gtest/gtest.h>
+
+#include <iterator>
 #include <sys/wait.h>
 #include <tinyxml2.h>
 #include <unistd.h>
@@ -576,6 +578,20 @@ TEST(Animation, OutlivesTheSweepAndTheCallersMechanism) {
     EXPECT_TRUE(std::equal(a.data(), a.data() + bytes, b.data())) << "frame " << k;
   }
   EXPECT_EQ(kept->html_animation(), reference.html_animation());
+  EXPECT_EQ(kept->gif_bytes(), reference.gif_bytes());
+}
+
+TEST(Animation, GifBytesAreTheFilesBytes) {
+  const Example ex("fourbar-crank-rocker.yaml", 13);
+  const Animation a(ex.shared, ex.sweep, small(), 4);
+  const fs::path path = temp_dir() / "bytes.gif";
+  a.write_gif(path.string());
+  std::ifstream file(path, std::ios::binary);
+  const std::vector<std::uint8_t> written((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::vector<std::uint8_t> bytes = a.gif_bytes();
+  EXPECT_EQ(bytes, written);
+  ASSERT_GT(bytes.size(), 6u);
+  EXPECT_EQ(std::string(bytes.begin(), bytes.begin() + 6), "GIF89a");
 }
 
 }  // namespace

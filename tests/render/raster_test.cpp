@@ -2,6 +2,9 @@
 // and PNG files.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -273,6 +276,14 @@ TEST(ImageCanvas, PngRoundTrip) {
   ASSERT_EQ(back.height(), c.height());
   for (int y = 0; y < c.height(); ++y)
     ASSERT_EQ(0, std::memcmp(c.data() + y * c.stride(), back.data() + y * back.stride(), 4 * c.width())) << "row " << y;
+  // The bytes a front-end sends are the file's bytes.
+  std::ifstream file(path, std::ios::binary);
+  const std::vector<std::uint8_t> written((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::vector<std::uint8_t> bytes = c.png_bytes();
+  EXPECT_EQ(bytes, written);
+  ASSERT_GT(bytes.size(), 8u);
+  EXPECT_EQ(std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + 8),
+            (std::vector<std::uint8_t>{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'}));
   std::filesystem::remove(path);
 }
 
