@@ -266,7 +266,11 @@ std::vector<std::string> format_ticks(const std::vector<double>& ticks) {
   return labels;
 }
 
-PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
+namespace {
+
+constexpr double kPad = 12, kSwatch = 24, kEntryHeight = 18;
+
+void check_spec(const PlotSpec& spec) {
   for (const PlotSeries& s : spec.series)
     if (s.y.size() != spec.x.size())
       throw std::invalid_argument("plot: series '" + s.name + "' has " + std::to_string(s.y.size()) +
@@ -275,108 +279,134 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
     throw std::invalid_argument("plot: a fixed y range needs both ends");
   if (spec.y_lo && !(usable(*spec.y_lo) && usable(*spec.y_hi) && *spec.y_lo < *spec.y_hi))
     throw std::invalid_argument("plot: the fixed y range must be finite and increasing");
-  const double width = canvas.width(), height = canvas.height();
+}
 
-  // Data ranges over the samples that can be drawn.
+// Data ranges over the samples that can be drawn.
+struct DataRange {
   double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
+};
+DataRange data_range(const PlotSpec& spec) {
+  DataRange r;
   for (std::size_t i = 0; i < spec.x.size(); ++i) {
     if (!usable(spec.x[i])) continue;
     bool any = spec.series.empty();
     for (const PlotSeries& s : spec.series) {
       if (!usable(s.y[i])) continue;
       any = true;
-      y_lo = std::min(y_lo, s.y[i]);
-      y_hi = std::max(y_hi, s.y[i]);
+      r.y_lo = std::min(r.y_lo, s.y[i]);
+      r.y_hi = std::max(r.y_hi, s.y[i]);
     }
     if (!any) continue;
-    x_lo = std::min(x_lo, spec.x[i]);
-    x_hi = std::max(x_hi, spec.x[i]);
+    r.x_lo = std::min(r.x_lo, spec.x[i]);
+    r.x_hi = std::max(r.x_hi, spec.x[i]);
   }
-  if (x_lo > x_hi) x_lo = 0, x_hi = 1;
-  if (y_lo > y_hi) y_lo = 0, y_hi = 1;
+  if (r.x_lo > r.x_hi) r.x_lo = 0, r.x_hi = 1;
+  if (r.y_lo > r.y_hi) r.y_lo = 0, r.y_hi = 1;
+  return r;
+}
 
-  // Labels: one unit for all, or each series' own in the legend.
+// The axis labels and legend entries: one unit for all, or each series' own in the legend.
+struct Labels {
+  std::string x, y;
+  std::vector<std::string> entries;
+};
+Labels labels_of(const PlotSpec& spec) {
+  Labels l;
   bool same_unit = true;
   for (const PlotSeries& s : spec.series) same_unit = same_unit && s.unit == spec.series.front().unit;
-  std::string y_label;
   if (spec.series.size() == 1) {
-    y_label = with_unit(spec.series[0].name, spec.series[0].unit);
+    l.y = with_unit(spec.series[0].name, spec.series[0].unit);
   } else if (same_unit && !spec.series.empty()) {
-    y_label = with_unit("", spec.series[0].unit);
+    l.y = with_unit("", spec.series[0].unit);
   } else {
     std::vector<std::string> units;
     for (const PlotSeries& s : spec.series)
       if (!s.unit.empty() && std::find(units.begin(), units.end(), s.unit) == units.end()) units.push_back(s.unit);
     for (std::size_t i = 0; i < units.size(); ++i) {
-      if (i) y_label += ", ";
-      y_label += with_unit("", units[i]);
+      if (i) l.y += ", ";
+      l.y += with_unit("", units[i]);
     }
   }
-  std::vector<std::string> entries;
-  for (const PlotSeries& s : spec.series) entries.push_back(same_unit ? s.name : with_unit(s.name, s.unit));
-  const std::string x_label = with_unit(spec.x_name, spec.x_unit);
+  for (const PlotSeries& s : spec.series) l.entries.push_back(same_unit ? s.name : with_unit(s.name, s.unit));
+  l.x = with_unit(spec.x_name, spec.x_unit);
+  return l;
+}
 
-  // Layout: title, y label above the plot area, legend to its right (or below it when the
-  // entries are long), x tick labels and x label below.
-  const double pad = 12, swatch = 24, entry_height = 18;
-  const double legend_text = widest(entries, kLegendFont);
-  const double legend_width = 10 + swatch + 6 + legend_text + 10;
-  PlotFrame f;
-  f.top = pad + (spec.title.empty() ? 0 : kTitleFont + 10) + (y_label.empty() ? 4 : kLabelFont + 16);
-  const bool legend_right = !entries.empty() && legend_width <= 0.32 * width &&
-                            static_cast<double>(entries.size()) * entry_height + 12 <= height - f.top - pad;
-  f.right = width - (legend_right ? pad + legend_width + 14 : 2 * pad);  // room for half an x label
-  // Below the plot: a flow of entries in rows.
+// Where the plot area and the legend go: title, y label above the plot area, legend to its
+// right (or below it when the entries are long), x tick labels and x label below.
+struct Layout {
+  PlotFrame frame;
+  bool legend_right = false;
+  double legend_width = 0, legend_rows_height = 0;
   std::vector<std::pair<std::size_t, Vec2>> legend_places;  // entry, offset from the legend's top left
-  double legend_rows_height = 0;
-  if (!entries.empty() && !legend_right) {
+  std::vector<std::string> x_tick_labels, y_tick_labels;
+};
+
+void place_legend(const Labels& labels, bool titled, double width, double height, Layout& layout) {
+  PlotFrame& f = layout.frame;
+  const auto& entries = labels.entries;
+  layout.legend_width = 10 + kSwatch + 6 + widest(entries, kLegendFont) + 10;
+  f.top = kPad + (titled ? kTitleFont + 10 : 0) + (labels.y.empty() ? 4 : kLabelFont + 16);
+  layout.legend_right = !entries.empty() && layout.legend_width <= 0.32 * width &&
+                        static_cast<double>(entries.size()) * kEntryHeight + 12 <= height - f.top - kPad;
+  f.right = width - (layout.legend_right ? kPad + layout.legend_width + 14 : 2 * kPad);  // room for half an x label
+  // Below the plot: a flow of entries in rows.
+  if (!entries.empty() && !layout.legend_right) {
     double x = 10, row = 0;
-    const double room = width - 2 * pad - 20;
+    const double room = width - 2 * kPad - 20;
     for (std::size_t i = 0; i < entries.size(); ++i) {
-      const double w = swatch + 6 + text_width(entries[i], kLegendFont) + 16;
+      const double w = kSwatch + 6 + text_width(entries[i], kLegendFont) + 16;
       if (x > 10 && x + w > room) x = 10, row += 1;
-      legend_places.push_back({i, Vec2(x, 6 + row * entry_height)});
+      layout.legend_places.push_back({i, Vec2(x, 6 + row * kEntryHeight)});
       x += w;
     }
-    legend_rows_height = (row + 1) * entry_height + 12;
+    layout.legend_rows_height = (row + 1) * kEntryHeight + 12;
   }
-  f.bottom = height - pad - (x_label.empty() ? 0 : kLabelFont + 8) - (kTickFont + kTickLength + 8) -
-             (legend_rows_height > 0 ? legend_rows_height + 8 : 0);
+  f.bottom = height - kPad - (labels.x.empty() ? 0 : kLabelFont + 8) - (kTickFont + kTickLength + 8) -
+             (layout.legend_rows_height > 0 ? layout.legend_rows_height + 8 : 0);
   f.bottom = std::max(f.bottom, f.top + 10);
+}
 
-  // y ticks cover the data; their labels decide the left margin.
+// y ticks cover the data (or the fixed range); their labels decide the left margin.
+void place_y_axis(const PlotSpec& spec, const DataRange& data, Layout& layout) {
+  PlotFrame& f = layout.frame;
   const int y_target = std::clamp(static_cast<int>((f.bottom - f.top) / 40), 2, 12);
   if (spec.y_lo) {
     f.y_lo = *spec.y_lo;
     f.y_hi = *spec.y_hi;
     f.y_ticks = inner_ticks(f.y_lo, f.y_hi, y_target);
   } else {
-    f.y_ticks = nice_ticks(y_lo, y_hi, y_target);
+    f.y_ticks = nice_ticks(data.y_lo, data.y_hi, y_target);
     f.y_lo = f.y_ticks.front();
     f.y_hi = f.y_ticks.back();
   }
-  const std::vector<std::string> y_tick_labels = format_ticks(f.y_ticks);
-  f.left = pad + widest(y_tick_labels, kTickFont) + kTickLength + 6;
+  layout.y_tick_labels = format_ticks(f.y_ticks);
+  f.left = kPad + widest(layout.y_tick_labels, kTickFont) + kTickLength + 6;
   f.right = std::max(f.right, f.left + 10);
+}
 
-  // x spans the data exactly (a single value gets a range around it); ticks as many as fit.
-  if (x_hi - x_lo <= 1e-10 * std::max(std::abs(x_lo), std::abs(x_hi)) || x_hi - x_lo < 1e-290) {
-    const std::vector<double> around = nice_ticks(x_lo, x_hi, 4);
-    x_lo = around.front();
-    x_hi = around.back();
+// x spans the data exactly (a single value gets a range around it); as many ticks as fit.
+void place_x_axis(DataRange data, Layout& layout) {
+  PlotFrame& f = layout.frame;
+  if (data.x_hi - data.x_lo <= 1e-10 * std::max(std::abs(data.x_lo), std::abs(data.x_hi)) ||
+      data.x_hi - data.x_lo < 1e-290) {
+    const std::vector<double> around = nice_ticks(data.x_lo, data.x_hi, 4);
+    data.x_lo = around.front();
+    data.x_hi = around.back();
   }
-  f.x_lo = x_lo;
-  f.x_hi = x_hi;
-  std::vector<std::string> x_tick_labels;
+  f.x_lo = data.x_lo;
+  f.x_hi = data.x_hi;
   for (int target = std::clamp(static_cast<int>((f.right - f.left) / 60), 2, 14); target >= 1; --target) {
-    f.x_ticks = inner_ticks(x_lo, x_hi, target);
-    x_tick_labels = format_ticks(f.x_ticks);
-    const double spacing =
-        f.x_ticks.size() >= 2 ? (f.x_ticks[1] - f.x_ticks[0]) / (x_hi - x_lo) * (f.right - f.left) : f.right - f.left;
-    if (widest(x_tick_labels, kTickFont) + 12 <= spacing) break;
+    f.x_ticks = inner_ticks(f.x_lo, f.x_hi, target);
+    layout.x_tick_labels = format_ticks(f.x_ticks);
+    const double spacing = f.x_ticks.size() >= 2 ? (f.x_ticks[1] - f.x_ticks[0]) / (f.x_hi - f.x_lo) * (f.right - f.left)
+                                                 : f.right - f.left;
+    if (widest(layout.x_tick_labels, kTickFont) + 12 <= spacing) break;
   }
+}
 
-  // Grid, with the zero line a little darker.
+// Grid, with the zero line a little darker.
+void draw_grid(Canvas& canvas, const PlotFrame& f) {
   canvas.begin_group("grid", "plot-grid");
   for (double t : f.x_ticks) {
     const double px = f.to_pixels(t, 0).x();
@@ -390,8 +420,9 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
     canvas.polyline({{f.left, py}, {f.right, py}}, Stroke{zero ? kZeroLine : kGrid, 1.0, {}});
   }
   canvas.end_group();
+}
 
-  // Series.
+void draw_series(Canvas& canvas, const PlotSpec& spec, const PlotFrame& f) {
   for (std::size_t i = 0; i < spec.series.size(); ++i) {
     const Stroke stroke = series_stroke(i);
     canvas.begin_group("series-" + std::to_string(i), "plot-series");
@@ -400,59 +431,83 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
     for (const Vec2& dot : pieces.dots) canvas.circle(dot, 2.0, Paint{stroke.color, std::nullopt});
     canvas.end_group();
   }
+}
 
-  // Frame, ticks, labels and title.
+// Frame, ticks, labels and title.
+void draw_axes(Canvas& canvas, const PlotSpec& spec, const Labels& labels, const Layout& layout) {
+  const PlotFrame& f = layout.frame;
   canvas.begin_group("axes", "plot-axes");
   canvas.polygon({{f.left, f.top}, {f.right, f.top}, {f.right, f.bottom}, {f.left, f.bottom}},
                  Paint{std::nullopt, Stroke{kFrame, 1.0, {}}});
   for (std::size_t i = 0; i < f.x_ticks.size(); ++i) {
     const double px = f.to_pixels(f.x_ticks[i], 0).x();
     canvas.polyline({{px, f.bottom}, {px, f.bottom + kTickLength}}, Stroke{kFrame, 1.0, {}});
-    canvas.text({px, f.bottom + kTickLength + 3 + kTickFont * 0.8}, x_tick_labels[i], kTickFont, Anchor::Middle, kInk);
+    canvas.text({px, f.bottom + kTickLength + 3 + kTickFont * 0.8}, layout.x_tick_labels[i], kTickFont, Anchor::Middle,
+                kInk);
   }
   for (std::size_t i = 0; i < f.y_ticks.size(); ++i) {
     const double py = f.to_pixels(0, f.y_ticks[i]).y();
     canvas.polyline({{f.left - kTickLength, py}, {f.left, py}}, Stroke{kFrame, 1.0, {}});
-    canvas.text({f.left - kTickLength - 4, py + 0.35 * kTickFont}, y_tick_labels[i], kTickFont, Anchor::End, kInk);
+    canvas.text({f.left - kTickLength - 4, py + 0.35 * kTickFont}, layout.y_tick_labels[i], kTickFont, Anchor::End,
+                kInk);
   }
-  if (!x_label.empty())
-    canvas.text({0.5 * (f.left + f.right), f.bottom + kTickLength + kTickFont + 10 + kLabelFont}, x_label, kLabelFont,
-                Anchor::Middle, kInk);
-  if (!y_label.empty()) canvas.text({pad, f.top - 14}, y_label, kLabelFont, Anchor::Start, kInk);
-  if (!spec.title.empty()) canvas.text({0.5 * width, pad + kTitleFont}, spec.title, kTitleFont, Anchor::Middle, kInk);
+  if (!labels.x.empty())
+    canvas.text({0.5 * (f.left + f.right), f.bottom + kTickLength + kTickFont + 10 + kLabelFont}, labels.x,
+                kLabelFont, Anchor::Middle, kInk);
+  if (!labels.y.empty()) canvas.text({kPad, f.top - 14}, labels.y, kLabelFont, Anchor::Start, kInk);
+  if (!spec.title.empty())
+    canvas.text({0.5 * canvas.width(), kPad + kTitleFont}, spec.title, kTitleFont, Anchor::Middle, kInk);
   canvas.end_group();
+}
 
-  // Legend: a box of entries, each a short stretch of its line and its name.
-  if (!entries.empty()) {
-    canvas.begin_group("legend", "plot-legend");
-    Vec2 corner;
-    double box_w = 0, box_h = 0;
-    if (legend_right) {
-      corner = {f.right + 14, f.top};
-      box_w = legend_width;
-      box_h = static_cast<double>(entries.size()) * entry_height + 12;
-      legend_places.clear();
-      for (std::size_t i = 0; i < entries.size(); ++i)
-        legend_places.push_back({i, Vec2(10, 6 + static_cast<double>(i) * entry_height)});
-    } else {
-      corner = {pad, f.bottom + kTickLength + kTickFont + 10 + (x_label.empty() ? 0 : kLabelFont + 8)};
-      box_w = 0;
-      for (const auto& [i, at] : legend_places)
-        box_w = std::max(box_w, at.x() + swatch + 6 + text_width(entries[i], kLegendFont) + 10);
-      box_h = legend_rows_height;
-    }
-    canvas.polygon({corner, corner + Vec2(box_w, 0), corner + Vec2(box_w, box_h), corner + Vec2(0, box_h)},
-                   Paint{Color::rgb(0xffffff), Stroke{Color::rgb(0xaaaaaa), 1.0, {}}});
-    for (const auto& [i, at] : legend_places) {
-      const Vec2 row = corner + at + Vec2(0, 0.5 * entry_height);
-      Stroke stroke = series_stroke(i);
-      stroke.width = 2.5;
-      canvas.polyline({row, row + Vec2(swatch, 0)}, stroke);
-      canvas.text(row + Vec2(swatch + 6, 0.35 * kLegendFont), entries[i], kLegendFont, Anchor::Start, kInk);
-    }
-    canvas.end_group();
+// Legend: a box of entries, each a short stretch of its line and its name.
+void draw_legend(Canvas& canvas, const Labels& labels, Layout layout) {
+  const auto& entries = labels.entries;
+  if (entries.empty()) return;
+  const PlotFrame& f = layout.frame;
+  canvas.begin_group("legend", "plot-legend");
+  Vec2 corner;
+  double box_w = 0, box_h = 0;
+  if (layout.legend_right) {
+    corner = {f.right + 14, f.top};
+    box_w = layout.legend_width;
+    box_h = static_cast<double>(entries.size()) * kEntryHeight + 12;
+    layout.legend_places.clear();
+    for (std::size_t i = 0; i < entries.size(); ++i)
+      layout.legend_places.push_back({i, Vec2(10, 6 + static_cast<double>(i) * kEntryHeight)});
+  } else {
+    corner = {kPad, f.bottom + kTickLength + kTickFont + 10 + (labels.x.empty() ? 0 : kLabelFont + 8)};
+    for (const auto& [i, at] : layout.legend_places)
+      box_w = std::max(box_w, at.x() + kSwatch + 6 + text_width(entries[i], kLegendFont) + 10);
+    box_h = layout.legend_rows_height;
   }
-  return f;
+  canvas.polygon({corner, corner + Vec2(box_w, 0), corner + Vec2(box_w, box_h), corner + Vec2(0, box_h)},
+                 Paint{Color::rgb(0xffffff), Stroke{Color::rgb(0xaaaaaa), 1.0, {}}});
+  for (const auto& [i, at] : layout.legend_places) {
+    const Vec2 row = corner + at + Vec2(0, 0.5 * kEntryHeight);
+    Stroke stroke = series_stroke(i);
+    stroke.width = 2.5;
+    canvas.polyline({row, row + Vec2(kSwatch, 0)}, stroke);
+    canvas.text(row + Vec2(kSwatch + 6, 0.35 * kLegendFont), entries[i], kLegendFont, Anchor::Start, kInk);
+  }
+  canvas.end_group();
+}
+
+}  // namespace
+
+PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
+  check_spec(spec);
+  const Labels labels = labels_of(spec);
+  const DataRange data = data_range(spec);
+  Layout layout;
+  place_legend(labels, !spec.title.empty(), canvas.width(), canvas.height(), layout);
+  place_y_axis(spec, data, layout);
+  place_x_axis(data, layout);
+  draw_grid(canvas, layout.frame);
+  draw_series(canvas, spec, layout.frame);
+  draw_axes(canvas, spec, labels, layout);
+  draw_legend(canvas, labels, layout);
+  return layout.frame;
 }
 
 }  // namespace nbar::render
