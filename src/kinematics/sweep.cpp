@@ -51,6 +51,22 @@ SweepPath plan_from_to(const Mechanism& mech, int samples, SweepPath plan) {
   return plan;
 }
 
+// Every driver in time: its law, or from its start at its speed and acceleration.
+DriverPath motion_in_time(const Model& m, std::vector<double> from) {
+  return [&m, from = std::move(from)](double t, int terms, std::vector<Series>& out) {
+    out.resize(m.drivers.size());
+    for (std::size_t d = 0; d < m.drivers.size(); ++d) {
+      const Driver& drv = m.drivers[d];
+      if (drv.law) {
+        out[d] = drv.law->series(t, terms);
+      } else {
+        Series s = Series::variable(terms, t);
+        out[d] = from[d] + drv.speed * s + 0.5 * drv.accel * (s * s);
+      }
+    }
+  };
+}
+
 SweepPath plan_time_law(const Mechanism& mech, std::optional<int> steps, SweepPath plan) {
   const Model& m = mech.model();
   const double duration = m.sweep.duration;
@@ -67,18 +83,7 @@ SweepPath plan_time_law(const Mechanism& mech, std::optional<int> steps, SweepPa
     plan.parameters.push_back(i * dt);
     plan.times.push_back(i * dt);
   }
-  plan.drivers = [&m, from = plan.from](double t, int terms, std::vector<Series>& out) {
-    out.resize(m.drivers.size());
-    for (std::size_t d = 0; d < m.drivers.size(); ++d) {
-      const Driver& drv = m.drivers[d];
-      if (drv.law) {
-        out[d] = drv.law->series(t, terms);
-      } else {
-        Series s = Series::variable(terms, t);
-        out[d] = from[d] + drv.speed * s + 0.5 * drv.accel * (s * s);
-      }
-    }
-  };
+  plan.drivers = motion_in_time(m, plan.from);
   return plan;
 }
 
@@ -338,18 +343,9 @@ Sample solve_at_time(const Mechanism& mech, State& state, double t, int order) {
   if (order < 0 || order > 5) throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
   // Drivers without a law move from their start at their speed and acceleration.
   const SweepPath plan = sweep_path(mech, 2);
-  const Model& m = mech.model();
   const int terms = order + 1;
-  std::vector<Series> values(m.drivers.size());
-  for (std::size_t d = 0; d < m.drivers.size(); ++d) {
-    const Driver& drv = m.drivers[d];
-    if (drv.law) {
-      values[d] = drv.law->series(t, terms);
-    } else {
-      Series s = Series::variable(terms, t);
-      values[d] = plan.from[d] + drv.speed * s + 0.5 * drv.accel * (s * s);
-    }
-  }
+  std::vector<Series> values;
+  motion_in_time(mech.model(), plan.from)(t, terms, values);
   set_drivers(mech, state, values);
   std::ostringstream at;
   at << "no pose at t = " << t << " s near the given one";
