@@ -274,7 +274,9 @@ class InverseDynamics::Assembly {
   void factorise_and_solve() {
     const Eigen::MatrixXd& A = w_.matrix;
     bool solved = false;
-    if (id_.equations_ == id_.unknowns_ && id_.unknowns_ > 0) {
+    if (id_.equations_ == id_.unknowns_ && id_.unknowns_ > kDenseLimit) {
+      solved = sparse_solve();
+    } else if (id_.equations_ == id_.unknowns_ && id_.unknowns_ > 0) {
       w_.lu.compute(A);
       if (w_.lu.rcond() > 1e-12) {
         w_.unknowns = w_.lu.solve(w_.rhs);
@@ -288,6 +290,17 @@ class InverseDynamics::Assembly {
       out_.unique = w_.least_squares.rank() == id_.unknowns_;
     }
     out_.residual = id_.equations_ > 0 ? (A * w_.unknowns - w_.rhs).lpNorm<Eigen::Infinity>() : 0.0;
+  }
+
+  // Sparse LU of the assembled equations; false when it finds them singular (redundant
+  // constraints), which the least-squares solution then handles.
+  bool sparse_solve() {
+    w_.sparse = w_.matrix.sparseView();
+    w_.sparse_lu.analyzePattern(w_.sparse);
+    w_.sparse_lu.factorize(w_.sparse);
+    if (w_.sparse_lu.info() != Eigen::Success) return false;
+    w_.unknowns = w_.sparse_lu.solve(w_.rhs);
+    return w_.sparse_lu.info() == Eigen::Success && w_.unknowns.allFinite();
   }
 
   void read_back() {

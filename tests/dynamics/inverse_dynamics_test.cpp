@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "../kinematics/helpers/kinematics_support.hpp"
+#include "bench_models.hpp"
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/dynamics/dynamics_table.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
@@ -383,6 +384,32 @@ TEST(InverseDynamics, OutlivesTheCallersMechanism) {
   EXPECT_EQ(again.driver_effort, expected.driver_effort);
   ASSERT_EQ(again.pin_forces.size(), expected.pin_forces.size());
   for (std::size_t i = 0; i < again.pin_forces.size(); ++i) EXPECT_EQ(again.pin_forces[i], expected.pin_forces[i]);
+}
+
+}  // namespace
+}  // namespace nbar::ktest
+
+namespace nbar::ktest {
+namespace {
+
+// A machine of 40 loaded four-bars in a chain: 120 bodies, 240 unknowns, solved by sparse LU.
+// Its forces balance the power: what the driver gives is what the bodies' energy gains.
+TEST(InverseDynamics, LargeMachinesUseSparseLUAndBalancePower) {
+  Model m = nbar_bench::chain_model(40);
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Eigen::Vector2d p = m.points[m.bodies[b].points[0]].position, q = m.points[m.bodies[b].points[1]].position;
+    m.bodies[b].inertia = GivenInertia{0.2 + 0.01 * static_cast<double>(b % 7), 0.5 * (p + q), 1e-4};
+  }
+  m.gravity = {0, -9.81};
+  m.sweep.steps = 7;
+  const Mechanism mech(m);
+  const InverseDynamics dyn(std::make_shared<const Mechanism>(mech));
+  ASSERT_GT(dyn.unknown_count(), InverseDynamics::kDenseLimit);
+  ASSERT_EQ(dyn.unknown_count(), dyn.equation_count());
+  const SweepResult sweep = run_sweep(mech, sweep_options(2));
+  ASSERT_TRUE(sweep.complete) << sweep.stop_reason;
+  for (const Sample& s : sweep.samples) EXPECT_LT(dyn.solve(s).residual, 1e-9) << s.step;
+  expect_power_balance(mech, sweep);
 }
 
 }  // namespace
