@@ -16,20 +16,6 @@
 
 namespace nbar::io {
 
-std::string to_string(SynthesisKind kind) {
-  switch (kind) {
-    case SynthesisKind::FivePoint:
-      return "five-point";
-    case SynthesisKind::Burmester:
-      return "burmester";
-    case SynthesisKind::Function:
-      return "function";
-  }
-  return {};
-}
-
-void SynthesisTask::fail(const std::string& message) const { throw ModelFileError(file, where, message); }
-
 namespace {
 
 using Eigen::Vector2d;

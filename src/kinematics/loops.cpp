@@ -142,21 +142,27 @@ GrashofReport classify_grashof(const FourBarLoop& loop, const std::vector<Eigen:
                           (p[loop.b] - p[loop.a]).norm(), (p[loop.o4] - p[loop.b]).norm(), tolerance);
 }
 
-std::string to_string(GrashofClass kind) {
+std::string grashof_name(GrashofClass kind, bool input_turns_fully) {
   switch (kind) {
-    case GrashofClass::CrankRocker: return "crank-rocker";
+    case GrashofClass::CrankRocker: return input_turns_fully ? "crank-rocker" : "rocker-crank";
     case GrashofClass::DoubleCrank: return "double-crank";
-    case GrashofClass::DoubleRocker: return "double-rocker (Grashof)";
-    case GrashofClass::TripleRocker: return "double-rocker (non-Grashof, triple-rocker)";
+    case GrashofClass::DoubleRocker: return "double-rocker";
+    case GrashofClass::TripleRocker: return "triple-rocker";
     case GrashofClass::ChangePoint: return "change point";
   }
   return "";
 }
 
+std::string to_string(GrashofClass kind) { return grashof_name(kind); }
+
 std::string describe(const GrashofReport& r, const FourBarLoop& loop, const Model& m) {
   std::ostringstream s;
   const double unit = m.units.length_scale;
-  s << to_string(r.kind) << ": frame " << link_name(m, loop.frame) << " " << r.frame / unit << ", input "
+  // Which side of Grashof's condition the name's class lies on, where the name alone may not say.
+  const char* qualifier = r.kind == GrashofClass::DoubleRocker   ? " (Grashof)"
+                          : r.kind == GrashofClass::TripleRocker ? " (non-Grashof)"
+                                                                 : "";
+  s << to_string(r.kind) << qualifier << ": frame " << link_name(m, loop.frame) << " " << r.frame / unit << ", input "
     << link_name(m, loop.input) << " " << r.input / unit << ", coupler " << link_name(m, loop.coupler) << " "
     << r.coupler / unit << ", output " << link_name(m, loop.output) << " " << r.output / unit << " " << m.units.length
     << "; (p + q) - (s + l) = " << r.margin / unit;

@@ -104,6 +104,11 @@ SolveResult run_paths(const Homotopy& h, const std::vector<CVector>& starts,
   std::atomic<size_t> next{0}, done{0};
   auto worker = [&] {
     for (size_t i = next++; i < starts.size(); i = next++) {
+      if (options.stop && options.stop()) {
+        result.endpoints[i].path = static_cast<int>(i);
+        result.endpoints[i].failure = "stopped";
+        continue;
+      }
       result.endpoints[i] = track_one(h, starts[i], static_cast<int>(i), settings, classify);
       const size_t finished = ++done;
       if (options.progress) options.progress(static_cast<int>(finished), static_cast<int>(starts.size()));
@@ -119,6 +124,7 @@ SolveResult run_paths(const Homotopy& h, const std::vector<CVector>& starts,
   }
 
   for (int round = 1; round <= 2; ++round) {
+    if (options.stop && options.stop()) break;
     std::vector<size_t> suspects;
     const auto& ends = result.endpoints;
     if (options.retrack_failures)

@@ -48,7 +48,12 @@ GrashofReport classify_grashof(double frame, double input, double coupler, doubl
 GrashofReport classify_grashof(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& points,
                                double tolerance);
 
-std::string to_string(GrashofClass kind);
+// The one vocabulary of Grashof classes, as textbooks name them (Norton): "crank-rocker",
+// "double-crank", "double-rocker", "triple-rocker", "change point"; a crank-rocker driven by
+// its rocker (the input does not turn fully) is a "rocker-crank". Tables, JSON, exported
+// files and `nbar check` all use these names.
+std::string grashof_name(GrashofClass kind, bool input_turns_fully = true);
+std::string to_string(GrashofClass kind);  // grashof_name(kind)
 std::string describe(const GrashofReport& report, const FourBarLoop& loop, const Model& model);
 
 // Angle between the coupler and the output link at their joint, in [0, pi].

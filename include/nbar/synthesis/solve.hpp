@@ -33,6 +33,9 @@ struct SolverOptions {
   bool retrack_failures = false;
   // Called after each path with (finished paths, all paths); from worker threads.
   std::function<void(int, int)> progress;
+  // Asked before each path (from worker threads, so thread-safe); true stops the run: the
+  // paths not yet tracked end as Failed with failure "stopped", and none is tracked again.
+  std::function<bool()> stop;
 };
 
 enum class EndpointKind { Finite, AtInfinity, Failed };

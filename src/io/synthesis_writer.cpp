@@ -1,0 +1,213 @@
+#include "nbar/io/synthesis_writer.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "nbar/io/model_export.hpp"
+#include "nbar/io/synthesis_task.hpp"
+#include "nbar/render/canvas.hpp"
+
+namespace nbar::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+using synthesis::DesignCheck;
+using synthesis::SynthesisOutcome;
+using synthesis::SynthesisTask;
+using Outcome = synthesis::SynthesisOutcome;
+using Row = synthesis::DesignRow;
+
+std::string grashof_name(const DesignCheck& c) { return nbar::grashof_name(c.grashof.kind, c.input_turns_fully); }
+
+}  // namespace
+
+std::string design_file_name(int rank) { return fmt::format("design-{:02}.yaml", rank); }
+
+void write_synthesis_table(std::ostream& os, const SynthesisTask& task, const Outcome& out,
+                           const SynthesisListing& args) {
+  const std::vector<int>& shown = args.shown;
+  int real = 0, clean = 0;
+  for (const Row& r : out.rows) {
+    real += r.real;
+    clean += r.real && r.check.defect_free();
+  }
+  const double to_angle = 1.0 / task.units.angle_scale;
+  const std::string error_unit = out.angle_errors ? task.units.angle : task.units.length;
+  os << fmt::format("{} task{}: {}\n", synthesis::to_string(task.kind), task.name.empty() ? "" : " '" + task.name + "'",
+                    out.method);
+  os << fmt::format("{} solution{}, {} real, {} without defects\n", out.rows.size(), out.rows.size() == 1 ? "" : "s",
+                    real, clean);
+  for (const std::string& n : out.notes) os << "note: " << n << '\n';
+  if (shown.empty()) {
+    os << (real > 0 ? "no design without defects; --all lists them all\n" : "no real design\n");
+    return;
+  }
+  const int listable = args.all ? static_cast<int>(out.rows.size()) : clean;
+  if (static_cast<int>(shown.size()) < listable)
+    os << fmt::format("the best {} of {} (--top N for more)\n", shown.size(), listable);
+  os << fmt::format("{:>4}  {:<14} {:>11} {:>11} {:>11} {:>11}  {:>8}  {:<22} {:>9}\n", "rank", "Grashof", "frame",
+                    "input", "coupler", "output", "mu min", "defects", "error");
+  os << fmt::format("{:>4}  {:<14} {:>11} {:>11} {:>11} {:>11}  {:>8}  {:<22} {:>9}\n", "", "",
+                    "(" + task.units.length + ")", "", "", "", "(" + task.units.angle + ")", "",
+                    "(" + error_unit + ")");
+  int rank = 0;
+  for (int i : shown) {
+    const Row& r = out.rows[i];
+    ++rank;
+    if (!r.real) {
+      os << fmt::format("{:>4}  {:<14} {:>11} {:>11} {:>11} {:>11}  {:>8}  {:<22} {:>9.2g}\n", rank, "complex", "-",
+                        "-", "-", "-", "-", "-", r.solver_residual);
+      continue;
+    }
+    const DesignCheck& c = r.check;
+    const double error = out.angle_errors ? c.max_error * to_angle : c.max_error;
+    os << fmt::format("{:>4}  {:<14} {:>11.6g} {:>11.6g} {:>11.6g} {:>11.6g}  {:>8.4g}  {:<22} {:>9.2g}\n", rank,
+                      c.invalid.empty() ? grashof_name(c) : "invalid", c.frame, c.input, c.coupler, c.output,
+                      c.min_transmission * to_angle, synthesis::describe_defects(c), error);
+  }
+  if (!args.export_dir.empty()) os << fmt::format("exported to {}/design-01.yaml ...\n", args.export_dir);
+}
+
+std::string synthesis_json(const SynthesisTask& task, const Outcome& out, const SynthesisListing& args) {
+  const std::vector<int>& shown = args.shown;
+  const double to_angle = 1.0 / task.units.angle_scale;
+  const auto point = [](const Eigen::Vector2d& p) { return nlohmann::ordered_json::array({p.x(), p.y()}); };
+  nlohmann::ordered_json j;
+  j["task"] = synthesis::to_string(task.kind);
+  j["name"] = task.name;
+  j["method"] = out.method;
+  j["units"] = {{"length", task.units.length}, {"angle", task.units.angle}};
+  j["error_unit"] = out.angle_errors ? task.units.angle : task.units.length;
+  j["solutions"] = out.rows.size();
+  j["notes"] = out.notes;
+  j["designs"] = nlohmann::ordered_json::array();
+  int rank = 0;
+  for (int i : shown) {
+    const Row& r = out.rows[i];
+    nlohmann::ordered_json d;
+    d["rank"] = ++rank;
+    d["real"] = r.real;
+    d["solver_residual"] = r.solver_residual;
+    if (r.solver_condition > 0) d["solver_condition"] = r.solver_condition;
+    if (r.real) {
+      const DesignCheck& c = r.check;
+      d["pivots"] = {{"ground_a", point(r.design.ground_a)},
+                     {"ground_b", point(r.design.ground_b)},
+                     {"moving_a", point(r.design.moving_a)},
+                     {"moving_b", point(r.design.moving_b)},
+                     {"coupler_point", point(r.design.coupler_point)}};
+      d["valid"] = c.invalid.empty();
+      if (!c.invalid.empty()) d["invalid"] = c.invalid;
+      d["grashof"] = grashof_name(c);
+      d["input_turns_fully"] = c.input_turns_fully;
+      d["lengths"] = {{"frame", c.frame}, {"input", c.input}, {"coupler", c.coupler}, {"output", c.output}};
+      d["min_transmission"] = c.min_transmission * to_angle;
+      d["min_transmission_full"] = c.min_transmission_full * to_angle;
+      d["defect_free"] = c.defect_free();
+      d["defects"] = {{"circuit", c.circuit_defect},
+                      {"branch", c.toggle_between},
+                      {"order", c.order_defect},
+                      {"unreached", c.unreached()}};
+      d["direction"] = c.direction > 0 ? "counter-clockwise" : "clockwise";
+      d["travel"] = c.travel * to_angle;
+      const double error_scale = out.angle_errors ? to_angle : 1.0;
+      d["max_error"] = c.max_error * error_scale;
+      d["max_rotation_error"] = c.max_rotation_error * to_angle;
+      if (r.structural_error) d["structural_error"] = *r.structural_error * to_angle;
+      d["targets"] = nlohmann::ordered_json::array();
+      for (const synthesis::TargetCheck& t : c.targets)
+        d["targets"].push_back({{"input_angle", t.input_angle * to_angle},
+                                {"branch", t.branch},
+                                {"on_branch", t.on_branch},
+                                {"reached", t.reached},
+                                {"error", std::isfinite(t.error) ? nlohmann::ordered_json(t.error * error_scale)
+                                                                 : nlohmann::ordered_json()}});
+      if (!args.export_dir.empty()) d["file"] = (fs::path(args.export_dir) / design_file_name(rank)).string();
+    }
+    j["designs"].push_back(d);
+  }
+  return j.dump(2) + '\n';
+}
+
+// DIR/design-01.yaml... for the real designs shown, in rank order.
+void export_designs(const SynthesisTask& task, const Outcome& out, const SynthesisListing& args) {
+  const std::vector<int>& shown = args.shown;
+  std::error_code error;
+  fs::create_directories(args.export_dir, error);
+  if (error) throw Error(ErrorKind::BadInput, "--export " + args.export_dir + ": " + error.message());
+  const std::string title = task.name.empty() ? fs::path(task.file).stem().string() : task.name;
+  int rank = 0;
+  for (int i : shown) {
+    const Row& r = out.rows[i];
+    ++rank;
+    if (!r.real || !r.check.invalid.empty()) continue;
+    std::vector<std::string> comments{
+        fmt::format("Design {} of nbar synth {} {}", rank, synthesis::to_string(task.kind), task.file)};
+    for (std::string& line : io::design_comments(r.check, task.units)) comments.push_back(std::move(line));
+    const Model model = synthesis::make_fourbar_model(r.design, fmt::format("{}, design {}", title, rank), task.units,
+                                                      r.motion.value_or(r.check.motion));
+    const fs::path path = fs::path(args.export_dir) / design_file_name(rank);
+    std::ofstream file(path);
+    io::write_model_yaml(file, model, comments);
+    if (!file) throw Error(ErrorKind::BadInput, "cannot write " + path.string());
+  }
+}
+
+// The Burmester curves as CSV, JSON or an SVG picture.
+void write_burmester_curves(const std::string& path, const SynthesisTask& task, const synthesis::BurmesterCurves& curves) {
+  const std::string ext = fs::path(path).extension().string();
+  std::ofstream out(path);
+  if (!out) throw Error(ErrorKind::BadInput, "cannot write " + path);
+  const auto each = [&](const auto& visit) {
+    for (const char* which : {"centre", "circle"}) {
+      const auto& lines = std::string(which) == "centre" ? curves.centre_curve : curves.circle_curve;
+      for (std::size_t b = 0; b < lines.size(); ++b) visit(which, static_cast<int>(b), lines[b]);
+    }
+  };
+  if (ext == ".json") {
+    nlohmann::ordered_json j;
+    j["units"] = task.units.length;
+    j["window"] = {{"centre", {curves.window_centre.x(), curves.window_centre.y()}}, {"radius", curves.window_radius}};
+    for (const char* which : {"centre_curve", "circle_curve"}) j[which] = nlohmann::ordered_json::array();
+    each([&](const char* which, int, const std::vector<synthesis::BurmesterPair>& line) {
+      nlohmann::ordered_json samples = nlohmann::ordered_json::array();
+      for (const auto& s : line)
+        samples.push_back({{"centre", {s.centre.x(), s.centre.y()}}, {"circle", {s.circle.x(), s.circle.y()}}});
+      j[std::string(which) + "_curve"].push_back(samples);
+    });
+    out << j.dump(2) << '\n';
+  } else if (ext == ".svg") {
+    // Both curves at one scale: centre points in blue, circle points in orange, the poses'
+    // reference points as dots.
+    constexpr int kSize = 700;
+    const Eigen::Vector2d half = Eigen::Vector2d::Constant(curves.window_radius);
+    const render::View view(curves.window_centre - half, curves.window_centre + half, kSize, kSize, 30);
+    render::SvgCanvas canvas(kSize, kSize);
+    each([&](const char* which, int, const std::vector<synthesis::BurmesterPair>& line) {
+      const bool centre = std::string(which) == "centre";
+      std::vector<Eigen::Vector2d> points;
+      for (const auto& s : line) points.push_back(view.to_pixels(centre ? s.centre : s.circle));
+      canvas.polyline(points, render::Stroke{render::Color::rgb(centre ? 0x0072b2 : 0xe69f00), 1.5, {}});
+    });
+    for (const synthesis::BodyPose& p : task.poses)
+      canvas.circle(view.to_pixels(p.point), 3.0, render::Paint{render::Color::rgb(0x000000), std::nullopt});
+    canvas.text({30, 20}, "centre-point curve (blue), circle-point curve (orange), poses (dots)", 13,
+                render::Anchor::Start, render::Color::rgb(0x000000));
+    out << canvas.document();
+  } else {
+    out << "curve,branch,centre_x,centre_y,circle_x,circle_y\n";
+    each([&](const char* which, int branch, const std::vector<synthesis::BurmesterPair>& line) {
+      for (const auto& s : line)
+        out << fmt::format("{},{},{},{},{},{}\n", which, branch, s.centre.x(), s.centre.y(), s.circle.x(),
+                           s.circle.y());
+    });
+  }
+  if (!out) throw Error(ErrorKind::BadInput, "cannot write " + path);
+}
+
+}  // namespace nbar::io

@@ -1,0 +1,238 @@
+#include "nbar/synthesis/run.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "nbar/synthesis/five_point.hpp"
+#include "nbar/synthesis/function_generation.hpp"
+
+namespace nbar::synthesis {
+
+std::string to_string(SynthesisKind kind) {
+  switch (kind) {
+    case SynthesisKind::FivePoint:
+      return "five-point";
+    case SynthesisKind::Burmester:
+      return "burmester";
+    case SynthesisKind::Function:
+      return "function";
+  }
+  return {};
+}
+
+namespace {
+
+using Row = DesignRow;
+using Outcome = SynthesisOutcome;
+
+void check_rows(Outcome& out, const std::function<DesignCheck(const FourBarDesign&)>& check, const RunControl& control) {
+  int done = 0;
+  const int total = static_cast<int>(out.rows.size());
+  for (Row& row : out.rows) {
+    control.checkpoint("checking", done, total);
+    if (row.real) row.check = check(row.design);
+    ++done;
+  }
+  control.checkpoint("checking", done, total);
+}
+
+Outcome five_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
+  FivePointTask problem;
+  problem.pivot_a = task.pivot_a;
+  problem.pivot_b = task.pivot_b;
+  std::copy(task.points.begin(), task.points.end(), problem.points.begin());
+  SolverOptions options;
+  options.threads = run.threads;
+  options.seed = run.seed;
+  options.progress = [&run](int done, int total) {
+    // A callback that asks to stop cancels the remaining paths.
+    if (run.control.on_progress && !run.control.on_progress(Progress{"paths", done, total})) run.control.token.cancel();
+  };
+  options.stop = [&run] { return run.control.token.cancelled(); };
+  const FivePointResult result = solve_five_point(problem, options);
+  run.control.checkpoint("paths", result.paths, result.paths);
+  Outcome out;
+  out.method = result.method;
+  for (const FivePointSolution& s : result.solutions) {
+    Row row;
+    row.real = s.real;
+    row.design = s.design;
+    row.solver_residual = s.residual;
+    row.solver_condition = s.condition;
+    out.rows.push_back(row);
+  }
+  std::vector<Target> targets;
+  for (const Eigen::Vector2d& p : task.points) targets.push_back({p, std::nullopt});
+  check_rows(
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+  if (result.failed_paths > 0)
+    out.notes.push_back(fmt::format("{} of {} paths failed", result.failed_paths, result.paths));
+  return out;
+}
+
+// Dyads spread evenly (by arc length) along the centre-point curves.
+std::vector<BurmesterPair> spread_dyads(const BurmesterCurves& curves, int count) {
+  std::vector<BurmesterPair> all;
+  std::vector<double> at;  // arc length of each sample, the curves laid end to end
+  double length = 0.0;
+  for (const auto& branch : curves.centre_curve) {
+    for (std::size_t k = 0; k < branch.size(); ++k) {
+      if (k > 0) length += (branch[k].centre - branch[k - 1].centre).norm();
+      all.push_back(branch[k]);
+      at.push_back(length);
+    }
+  }
+  if (static_cast<int>(all.size()) <= count) return all;
+  std::vector<BurmesterPair> out;
+  for (int i = 0; i < count; ++i) {
+    const double wanted = length * (i + 0.5) / count;
+    const auto k = std::lower_bound(at.begin(), at.end(), wanted) - at.begin();
+    out.push_back(all[std::min<std::size_t>(k, all.size() - 1)]);
+  }
+  return out;
+}
+
+Outcome burmester(const SynthesisTask& task, const SynthesisRunOptions& run) {
+  Outcome out;
+  const auto& poses = task.poses;
+  const auto row_of = [](const FourBarDesign& d) {
+    Row row;
+    row.design = d;
+    return row;
+  };
+  // Two dyads make a four-bar unless they share a pivot; such pairs are skipped.
+  const auto add_pair = [&](const BurmesterPair& input, const BurmesterPair& output) {
+    try {
+      out.rows.push_back(row_of(design_from_pairs(input, output, poses[0].point)));
+    } catch (const std::invalid_argument&) {
+    }
+  };
+  if (poses.size() == 3) {
+    out.method = task.given == PivotChoice::Fixed ? "three positions, fixed pivots chosen"
+                                                             : "three positions, moving pivots chosen";
+    out.rows.push_back(row_of(
+        three_position_design({poses[0], poses[1], poses[2]}, task.given, task.given_a, task.given_b)));
+  } else if (poses.size() == 4) {
+    const BurmesterCurves curves =
+        four_position_curves({poses[0], poses[1], poses[2], poses[3]}, task.curves);
+    out.curves = curves;
+    const auto dyads = spread_dyads(curves, task.samples);
+    out.method = fmt::format("four positions: {} dyads along the centre-point curve, every ordered pair", dyads.size());
+    for (std::size_t i = 0; i < dyads.size(); ++i)
+      for (std::size_t j = 0; j < dyads.size(); ++j)
+        if (i != j) add_pair(dyads[i], dyads[j]);
+  } else {
+    const FivePositionResult r =
+        five_position_burmester({poses[0], poses[1], poses[2], poses[3], poses[4]});
+    out.method = fmt::format("five positions: {} real Burmester points, every ordered pair", r.points.size());
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+      for (std::size_t j = 0; j < r.points.size(); ++j)
+        if (i != j) add_pair(r.points[i], r.points[j]);
+    if (r.complex_points > 0) out.notes.push_back(fmt::format("{} complex Burmester points", r.complex_points));
+  }
+  std::vector<Target> targets;
+  for (const BodyPose& p : poses) targets.push_back({p.point, p.angle - poses[0].angle});
+  check_rows(
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+  return out;
+}
+
+Outcome function(const SynthesisTask& task, const SynthesisRunOptions& run) {
+  FunctionTask problem;
+  const Law& law = *task.function;
+  problem.f = [&law](double x) { return law.value(x); };
+  problem.x_start = task.x_start;
+  problem.x_end = task.x_end;
+  problem.input_start = task.input_from;
+  problem.input_range = task.input_to - task.input_from;
+  problem.output_start = task.output_from;
+  problem.output_range = task.output_to - task.output_from;
+  problem.frame_length = task.frame;
+  std::vector<double> xs;
+  if (task.chebyshev) {
+    xs = chebyshev_spacing(task.x_start, task.x_end, task.precision_points);
+  } else {
+    for (int i = 0; i < task.precision_points; ++i)
+      xs.push_back(task.x_start + (task.x_end - task.x_start) * i / (task.precision_points - 1));
+  }
+  const FunctionDesign fd = freudenstein_design(problem, xs);
+
+  const std::vector<RotationTarget> targets = rotation_targets(problem, xs);
+  // The input angle the task asks for at x.
+  const auto phi = [&](double x) {
+    return task.input_from + (x - task.x_start) / (task.x_end - task.x_start) * (task.input_to - task.input_from);
+  };
+
+  Outcome out;
+  out.angle_errors = true;
+  out.method = fmt::format("Freudenstein, {} {} precision points{}", xs.size(),
+                           task.chebyshev ? "Chebyshev" : "evenly spaced", xs.size() > 3 ? " (least squares)" : "");
+  Row row;
+  row.design = fd.design;
+  row.structural_error = std::abs(fd.worst.angle);
+  out.rows.push_back(row);
+  out.notes.push_back(fmt::format("structural error: the output is off by up to {:.3g} {} ({:.3g} in y) at x = {:.6g}",
+                                  std::abs(fd.worst.angle) / task.units.angle_scale, task.units.angle,
+                                  std::abs(fd.worst.value), fd.worst.x));
+  check_rows(
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+  // Over the whole range of x, when the linkage gets there.
+  const double theta0 =
+      std::atan2(fd.design.moving_a.y() - fd.design.ground_a.y(), fd.design.moving_a.x() - fd.design.ground_a.x());
+  if (fd.whole_range) {
+    const double from = theta0 + phi(task.x_start) - phi(xs[0]), to = theta0 + phi(task.x_end) - phi(xs[0]);
+    out.rows[0].motion = InputMotion{
+        from, to, std::max(2, static_cast<int>(std::ceil(std::abs(to - from) * 180 / std::numbers::pi)) + 1)};
+    // The linkage works over the whole range, not only between the precision points.
+    out.rows[0].check.min_transmission = min_transmission_angle(fd.design, from, to);
+  } else {
+    out.notes.push_back(fmt::format(
+        "the linkage does not reach the whole range of x on its branch (it fails at x = {:.6g})", fd.fails_at_x));
+  }
+  return out;
+}
+
+}  // namespace
+
+SynthesisOutcome run_synthesis(const SynthesisTask& task, const SynthesisRunOptions& options) {
+  options.control.checkpoint("paths", 0, 0);
+  try {
+    switch (task.kind) {
+      case SynthesisKind::FivePoint:
+        return five_point(task, options);
+      case SynthesisKind::Burmester:
+        return burmester(task, options);
+      case SynthesisKind::Function:
+        return function(task, options);
+    }
+  } catch (const std::invalid_argument& e) {  // the solvers' complaints about the task's data
+    throw Error(ErrorKind::InvalidModel, e.what(), {}, task.file, task.where);
+  }
+  return {};
+}
+
+// The rows to show, best first: real defect-free ones, or with --all every real one, then
+// the complex ones.
+std::vector<int> shown_rows(const SynthesisOutcome& out, bool all, int top) {
+  std::vector<DesignCheck> checks;
+  std::vector<int> real;
+  for (std::size_t i = 0; i < out.rows.size(); ++i)
+    if (out.rows[i].real) {
+      real.push_back(static_cast<int>(i));
+      checks.push_back(out.rows[i].check);
+    }
+  std::vector<int> shown;
+  for (int k : rank_designs(checks))
+    if (all || checks[k].defect_free()) shown.push_back(real[k]);
+  if (all)
+    for (std::size_t i = 0; i < out.rows.size(); ++i)
+      if (!out.rows[i].real) shown.push_back(static_cast<int>(i));
+  if (top > 0 && static_cast<int>(shown.size()) > top) shown.resize(top);
+  return shown;
+}
+
+}  // namespace nbar::synthesis
