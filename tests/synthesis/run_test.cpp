@@ -1,0 +1,123 @@
+// Synthesis through the library: the same ranked designs the CLI prints, the ranking rule, the
+// JSON the CLI and the server give, and runs that are cancelled or run out of time.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+
+#include "apps/cli_support.hpp"
+#include "nbar/io/synthesis_task.hpp"
+#include "nbar/io/synthesis_writer.hpp"
+#include "nbar/synthesis/run.hpp"
+
+namespace nbar::synthesis {
+namespace {
+
+const std::string kFivePoint = std::string(NBAR_EXAMPLES_DIR) + "/synthesis/five-point-crank-rocker.yaml";
+
+ErrorKind kind_of(const std::function<void()>& run) {
+  try {
+    run();
+  } catch (const Error& e) {
+    return e.kind();
+  }
+  ADD_FAILURE() << "no nbar::Error";
+  return ErrorKind::BadInput;
+}
+
+TEST(RunSynthesis, GivesTheDesignsTheCommandLinePrints) {
+  const SynthesisTask task = io::load_synthesis_task(kFivePoint);
+  const SynthesisOutcome outcome = run_synthesis(task);
+  EXPECT_EQ(outcome.rows.size(), 36u);
+  const std::vector<int> shown = shown_rows(outcome, false, 20);
+  ASSERT_FALSE(shown.empty());
+
+  const auto cli = nbar::cli_test::nbar("synth five-point " + kFivePoint + " --format json");
+  ASSERT_EQ(cli.code, 0) << cli.err;
+  const nlohmann::json printed = nlohmann::json::parse(cli.out);
+  ASSERT_EQ(printed["designs"].size(), shown.size());
+  for (std::size_t k = 0; k < shown.size(); ++k) {
+    const DesignRow& row = outcome.rows[shown[k]];
+    const auto& design = printed["designs"][k];
+    EXPECT_EQ(design["lengths"]["frame"].get<double>(), row.check.frame);
+    EXPECT_EQ(design["lengths"]["coupler"].get<double>(), row.check.coupler);
+    EXPECT_EQ(design["pivots"]["moving_a"][0].get<double>(), row.design.moving_a.x());
+  }
+  // And the writer gives the very text the command prints.
+  io::SynthesisListing listing;
+  listing.shown = shown;
+  EXPECT_EQ(io::synthesis_json(task, outcome, listing), cli.out);
+}
+
+TEST(RunSynthesis, ShownRowsPutDefectFreeRealDesignsFirstAndObeyTop) {
+  const SynthesisOutcome outcome = run_synthesis(io::load_synthesis_task(kFivePoint));
+  const std::vector<int> clean = shown_rows(outcome, false, 0);
+  for (int i : clean) {
+    EXPECT_TRUE(outcome.rows[i].real);
+    EXPECT_TRUE(outcome.rows[i].check.defect_free());
+  }
+  const std::vector<int> all = shown_rows(outcome, true, 0);
+  EXPECT_EQ(all.size(), outcome.rows.size());
+  bool complex_seen = false;
+  for (int i : all) {
+    if (!outcome.rows[i].real) complex_seen = true;
+    EXPECT_FALSE(complex_seen && outcome.rows[i].real) << "a real design after a complex one";
+  }
+  EXPECT_EQ(shown_rows(outcome, true, 5).size(), 5u);
+}
+
+TEST(RunSynthesis, JsonHasTheDocumentedKeys) {
+  const SynthesisTask task = io::load_synthesis_task(std::string(NBAR_EXAMPLES_DIR) + "/synthesis/function-log10.yaml");
+  const SynthesisOutcome outcome = run_synthesis(task);
+  io::SynthesisListing listing;
+  listing.shown = shown_rows(outcome, true, 0);
+  const nlohmann::json j = nlohmann::json::parse(io::synthesis_json(task, outcome, listing));
+  for (const char* key : {"task", "name", "method", "units", "error_unit", "solutions", "notes", "designs"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["task"], "function");
+  ASSERT_EQ(j["designs"].size(), 1u);
+  for (const char* key : {"rank", "grashof", "lengths", "defects", "targets", "structural_error"})
+    EXPECT_TRUE(j["designs"][0].contains(key)) << key;
+}
+
+TEST(RunSynthesis, CancelledOrOutOfTimeStopsQuickly) {
+  const SynthesisTask task = io::load_synthesis_task(kFivePoint);
+  SynthesisRunOptions cancelled;
+  cancelled.control.token.cancel();
+  auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(kind_of([&] { run_synthesis(task, cancelled); }), ErrorKind::Cancelled);
+
+  SynthesisRunOptions hurried;
+  hurried.threads = 1;
+  hurried.control.token.set_time_budget(std::chrono::microseconds(200));
+  EXPECT_EQ(kind_of([&] { run_synthesis(task, hurried); }), ErrorKind::Cancelled);
+
+  // Asked to stop by the progress callback after the first path.
+  SynthesisRunOptions asked;
+  asked.threads = 1;
+  int paths_seen = 0;
+  asked.control.on_progress = [&](const Progress& p) {
+    if (std::string(p.stage) == "paths" && p.done > 0) ++paths_seen;
+    return paths_seen < 1;
+  };
+  EXPECT_EQ(kind_of([&] { run_synthesis(task, asked); }), ErrorKind::Cancelled);
+  EXPECT_LE(paths_seen, 2);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 0.5);
+}
+
+TEST(RunSynthesis, TaskDataTheSolverRejectsIsAnInvalidModelAtTheTask) {
+  SynthesisTask task = io::load_synthesis_task(kFivePoint);
+  task.pivot_b = task.pivot_a;  // coincident pivots
+  try {
+    run_synthesis(task);
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::InvalidModel);
+    EXPECT_EQ(e.file(), kFivePoint);
+  }
+}
+
+}  // namespace
+}  // namespace nbar::synthesis
