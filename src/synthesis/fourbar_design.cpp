@@ -216,184 +216,227 @@ std::vector<Placement> motion_placement(const FourBar& fb, const Vector2d& targe
   return {p};
 }
 
-DesignCheck check_with(const FourBarDesign& design, const TargetRules& rules) {
-  const FourBar fb(design);
-  DesignCheck check;
-  check.frame = fb.d;
-  check.input = fb.a;
-  check.coupler = fb.b;
-  check.output = fb.c;
-  const double tiny = 1e-9 * fb.size;
-  if (!(fb.size > 0.0) || !std::isfinite(fb.size)) {
-    check.invalid = "the points coincide or are not finite";
-    return check;
-  }
-  if (fb.d <= tiny)
-    check.invalid = "the fixed pivots coincide";
-  else if (fb.a <= tiny)
-    check.invalid = "the input link has zero length";
-  else if (fb.b <= tiny)
-    check.invalid = "the coupler has zero length";
-  else if (fb.c <= tiny)
-    check.invalid = "the output link has zero length";
-  if (!check.invalid.empty()) return check;
-  check.grashof = classify_grashof(fb.d, fb.a, fb.b, fb.c, tiny);
-  check.input_turns_fully = fb.crank();
+// check_design, step by step, for any kind of target.
+class Checker {
+ public:
+  Checker(const FourBarDesign& design, const TargetRules& rules) : design_(design), rules_(rules), fb_(design) {}
 
-  // Which pose meets each target: the first target's branch when possible, then its circuit.
+  DesignCheck run() {
+    if (!valid_links()) return check_;
+    check_.grashof = classify_grashof(fb_.d, fb_.a, fb_.b, fb_.c, 1e-9 * fb_.size);
+    check_.input_turns_fully = fb_.crank();
+    theta0_ = angle_of(fb_.a0 - fb_.o2);
+    sigma0_ = side(fb_.o4, fb_.a0, fb_.b0);
+    interval0_ = fb_.interval(theta0_);
+    place_targets();
+    classify_targets();
+    unwrapped_.assign(rules_.count, theta0_);
+    if (fb_.crank())
+      unwrap_crank();
+    else
+      unwrap_rocker();
+    if (check_.direction == 0) check_.direction = 1;
+    for (int i : along_) check_.targets[i].input_angle = unwrapped_[i];
+    motion_and_transmission();
+    simulate();
+    for (std::size_t i = 0; i < check_.targets.size(); ++i)
+      if (!check_.targets[i].reached) check_.targets[i].error = placed_[i].miss;
+    return check_;
+  }
+
+ private:
+  bool valid_links() {
+    check_.frame = fb_.d;
+    check_.input = fb_.a;
+    check_.coupler = fb_.b;
+    check_.output = fb_.c;
+    const double tiny = 1e-9 * fb_.size;
+    if (!(fb_.size > 0.0) || !std::isfinite(fb_.size)) {
+      check_.invalid = "the points coincide or are not finite";
+      return false;
+    }
+    if (fb_.d <= tiny)
+      check_.invalid = "the fixed pivots coincide";
+    else if (fb_.a <= tiny)
+      check_.invalid = "the input link has zero length";
+    else if (fb_.b <= tiny)
+      check_.invalid = "the coupler has zero length";
+    else if (fb_.c <= tiny)
+      check_.invalid = "the output link has zero length";
+    return check_.invalid.empty();
+  }
+
   // A crank's circuits are its two branches; a rocker's circuit is a gap between toggles,
   // holding both branches.
-  const double theta0 = angle_of(fb.a0 - fb.o2);
-  const int sigma0 = side(fb.o4, fb.a0, fb.b0);
-  const int interval0 = fb.interval(theta0);
-  const auto same_circuit = [&](const Placement& p) {
-    return fb.crank() ? p.sigma == sigma0 : fb.interval(p.theta) == interval0;
-  };
-  const auto on_branch = [&](const Placement& p) { return p.sigma == sigma0 && fb.interval(p.theta) == interval0; };
-  std::vector<Placement> placed{{theta0, sigma0, 0.0}};
-  for (int i = 1; i < rules.count; ++i) {
-    const std::vector<Placement> candidates = rules.place(i);
-    const auto rank = [&](const Placement& p) { return on_branch(p) ? 0 : same_circuit(p) ? 1 : 2; };
-    const auto best =
-        std::min_element(candidates.begin(), candidates.end(), [&](const Placement& x, const Placement& y) {
-          return rank(x) != rank(y) ? rank(x) < rank(y) : x.miss < y.miss;
-        });
-    placed.push_back(best == candidates.end() ? Placement{theta0, -sigma0, kInfinity} : *best);
+  bool same_circuit(const Placement& p) const {
+    return fb_.crank() ? p.sigma == sigma0_ : fb_.interval(p.theta) == interval0_;
   }
+  bool on_branch(const Placement& p) const { return p.sigma == sigma0_ && fb_.interval(p.theta) == interval0_; }
 
-  check.targets.resize(rules.count);
-  std::vector<int> along;  // targets on the branch, in the given order
-  for (int i = 0; i < rules.count; ++i) {
-    TargetCheck& t = check.targets[i];
-    t.branch = placed[i].sigma;
-    t.on_branch = std::isfinite(placed[i].miss) && on_branch(placed[i]);
-    t.input_angle = placed[i].theta;
-    t.error = placed[i].miss;
-    if (t.on_branch) {
-      along.push_back(i);
-    } else if (std::isfinite(placed[i].miss)) {  // otherwise no pose meets it: unreached
-      check.branch_defect = true;
-      (same_circuit(placed[i]) ? check.toggle_between : check.circuit_defect) = true;
+  // Which pose meets each target: the first target's branch when possible, then its circuit.
+  void place_targets() {
+    placed_ = {{theta0_, sigma0_, 0.0}};
+    for (int i = 1; i < rules_.count; ++i) {
+      const std::vector<Placement> candidates = rules_.place(i);
+      const auto rank = [&](const Placement& p) { return on_branch(p) ? 0 : same_circuit(p) ? 1 : 2; };
+      const auto best =
+          std::min_element(candidates.begin(), candidates.end(), [&](const Placement& x, const Placement& y) {
+            return rank(x) != rank(y) ? rank(x) < rank(y) : x.miss < y.miss;
+          });
+      placed_.push_back(best == candidates.end() ? Placement{theta0_, -sigma0_, kInfinity} : *best);
     }
   }
 
-  // Unwrap the input angles along the motion and check the order.
-  std::vector<double> unwrapped(rules.count, theta0);
-  if (fb.crank()) {
-    // Each step turns the input onward by 0..2 pi; in order means less than a turn in all.
+  void classify_targets() {
+    check_.targets.resize(rules_.count);
+    for (int i = 0; i < rules_.count; ++i) {
+      TargetCheck& t = check_.targets[i];
+      t.branch = placed_[i].sigma;
+      t.on_branch = std::isfinite(placed_[i].miss) && on_branch(placed_[i]);
+      t.input_angle = placed_[i].theta;
+      t.error = placed_[i].miss;
+      if (t.on_branch) {
+        along_.push_back(i);
+      } else if (std::isfinite(placed_[i].miss)) {  // otherwise no pose meets it: unreached
+        check_.branch_defect = true;
+        (same_circuit(placed_[i]) ? check_.toggle_between : check_.circuit_defect) = true;
+      }
+    }
+  }
+
+  // Each step turns a crank onward by 0..2 pi; in order means less than a turn in all.
+  void unwrap_crank() {
     double best_total = kInfinity;
     for (int direction : {1, -1}) {
-      std::vector<double> u{theta0};
+      std::vector<double> u{theta0_};
       double total = 0.0;
-      for (std::size_t k = 1; k < along.size(); ++k) {
-        double step = wrap_positive(direction * (placed[along[k]].theta - placed[along[k - 1]].theta));
+      for (std::size_t k = 1; k < along_.size(); ++k) {
+        double step = wrap_positive(direction * (placed_[along_[k]].theta - placed_[along_[k - 1]].theta));
         if (step > kTwoPi - 1e-12) step = 0.0;  // the same angle, within rounding
         total += step;
-        u.push_back(theta0 + direction * total);
+        u.push_back(theta0_ + direction * total);
       }
       if (total < best_total) {
         best_total = total;
-        check.direction = direction;
-        for (std::size_t k = 0; k < along.size(); ++k) unwrapped[along[k]] = u[k];
+        check_.direction = direction;
+        for (std::size_t k = 0; k < along_.size(); ++k) unwrapped_[along_[k]] = u[k];
       }
     }
-    check.order_defect = best_total >= kTwoPi - 1e-12;
-  } else {
-    // Within the gap between toggles the angle is continuous: measure it from theta0 the way
-    // that stays inside the gap.
-    const double forward = fb.room(theta0, 1);
-    for (int i : along) {
-      const double ahead = wrap_positive(placed[i].theta - theta0);
-      unwrapped[i] = ahead <= forward ? theta0 + ahead : theta0 - (kTwoPi - ahead);
+    check_.order_defect = best_total >= kTwoPi - 1e-12;
+  }
+
+  // Within a rocker's gap between toggles the angle is continuous: measure it from theta0 the
+  // way that stays inside the gap.
+  void unwrap_rocker() {
+    const double forward = fb_.room(theta0_, 1);
+    for (int i : along_) {
+      const double ahead = wrap_positive(placed_[i].theta - theta0_);
+      unwrapped_[i] = ahead <= forward ? theta0_ + ahead : theta0_ - (kTwoPi - ahead);
     }
-    for (std::size_t k = 1; k < along.size(); ++k) {
-      const double step = unwrapped[along[k]] - unwrapped[along[k - 1]];
+    for (std::size_t k = 1; k < along_.size(); ++k) {
+      const double step = unwrapped_[along_[k]] - unwrapped_[along_[k - 1]];
       if (std::abs(step) <= 1e-12) continue;
       const int direction = step > 0 ? 1 : -1;
-      if (check.direction == 0) check.direction = direction;
-      if (direction != check.direction) check.order_defect = true;
+      if (check_.direction == 0) check_.direction = direction;
+      if (direction != check_.direction) check_.order_defect = true;
     }
   }
-  if (check.direction == 0) check.direction = 1;
-  for (int i : along) check.targets[i].input_angle = unwrapped[i];
 
-  // The motion: first to last target on the branch (the span of those met, when out of order).
-  double lo = theta0, hi = theta0;
-  for (int i : along) {
-    lo = std::min(lo, unwrapped[i]);
-    hi = std::max(hi, unwrapped[i]);
-  }
-  check.travel = along.empty() ? 0.0 : std::abs(unwrapped[along.back()] - theta0);
-  check.min_transmission = fb.min_transmission(lo, hi);
-  check.min_transmission_full = fb.crank()
-                                    ? fb.min_transmission(0.0, kTwoPi)
-                                    : fb.min_transmission(theta0 - fb.room(theta0, -1), theta0 + fb.room(theta0, 1));
-
-  // The exported sweep: a crank's full turn from the first target, a rocker's motion through
-  // the targets (when there is none, most of its branch).
-  if (fb.crank()) {
-    check.motion = {theta0, theta0 + check.direction * kTwoPi, 361};
-  } else {
-    if (!check.order_defect && !along.empty() && unwrapped[along.back()] != theta0) {
-      check.motion = {theta0, unwrapped[along.back()], 0};
+  // The motion, first to last target on the branch (the span of those met, when out of order),
+  // its transmission angles, and the exported sweep: a crank's full turn from the first
+  // target, a rocker's motion through the targets (when there is none, most of its branch).
+  void motion_and_transmission() {
+    double lo = theta0_, hi = theta0_;
+    for (int i : along_) {
+      lo = std::min(lo, unwrapped_[i]);
+      hi = std::max(hi, unwrapped_[i]);
+    }
+    check_.travel = along_.empty() ? 0.0 : std::abs(unwrapped_[along_.back()] - theta0_);
+    check_.min_transmission = fb_.min_transmission(lo, hi);
+    check_.min_transmission_full =
+        fb_.crank() ? fb_.min_transmission(0.0, kTwoPi)
+                    : fb_.min_transmission(theta0_ - fb_.room(theta0_, -1), theta0_ + fb_.room(theta0_, 1));
+    if (fb_.crank()) {
+      check_.motion = {theta0_, theta0_ + check_.direction * kTwoPi, 361};
+      return;
+    }
+    if (!check_.order_defect && !along_.empty() && unwrapped_[along_.back()] != theta0_) {
+      check_.motion = {theta0_, unwrapped_[along_.back()], 0};
     } else if (hi > lo) {
-      check.motion = {check.direction > 0 ? lo : hi, check.direction > 0 ? hi : lo, 0};
+      check_.motion = {check_.direction > 0 ? lo : hi, check_.direction > 0 ? hi : lo, 0};
     } else {
-      check.motion = {theta0 - 0.9 * fb.room(theta0, -1), theta0 + 0.9 * fb.room(theta0, 1), 0};
+      check_.motion = {theta0_ - 0.9 * fb_.room(theta0_, -1), theta0_ + 0.9 * fb_.room(theta0_, 1), 0};
     }
-    check.motion.steps =
-        std::max(2, static_cast<int>(std::ceil(std::abs(check.motion.to - check.motion.from) * 180.0 / kPi)) + 1);
+    check_.motion.steps =
+        std::max(2, static_cast<int>(std::ceil(std::abs(check_.motion.to - check_.motion.from) * 180.0 / kPi)) + 1);
   }
 
-  // Simulation: drive the model from the first target through the others in turn, on the
-  // branch it was drawn on, and measure each target where the engine reaches it.
-  for (TargetCheck& t : check.targets) t.error = kInfinity;
-  try {
-    const Mechanism mech(make_fourbar_model(design, "check", Units{}, InputMotion{theta0, theta0, 2}));
-    State state(mech);
-    assemble(mech, state, {theta0});
-    const DriverPath path = [](double p, int terms, std::vector<Series>& out) {
-      out.assign(1, Series::variable(terms, p));
-    };
-    constexpr int kTerms = 4;
-    std::vector<Series> values;
-    state.parameter = theta0;
-    path(theta0, kTerms, values);
-    set_drivers(mech, state, values);
-    compute_series(mech, state, kTerms);
-    const Vector2d coupler0 = fb.b0 - fb.a0;
-    for (int i : along) {
-      if (unwrapped[i] != state.parameter && !track(mech, state, path, unwrapped[i]).reached) break;
-      // The tracker stops at its tolerance (1e-12 of the size); two more Newton steps give
-      // the pose to rounding, so that the misses measure the design, not the tracker.
-      for (int k = 0; k < 2 && factorize_jacobian(mech, state); ++k) {
-        max_residual(mech, state);
-        state.rhs = -state.phi;
-        state.solver().solve(state.rhs, state.dq);
-        state.q += state.dq;
-      }
-      if (!factorize_jacobian(mech, state)) break;
+  // Drive the model from the first target through the others in turn, on the branch it was
+  // drawn on, and measure each target where the engine reaches it.
+  void simulate() {
+    for (TargetCheck& t : check_.targets) t.error = kInfinity;
+    try {
+      const Mechanism mech(make_fourbar_model(design_, "check", Units{}, InputMotion{theta0_, theta0_, 2}));
+      State state(mech);
+      assemble(mech, state, {theta0_});
+      const DriverPath path = [](double p, int terms, std::vector<Series>& out) {
+        out.assign(1, Series::variable(terms, p));
+      };
+      constexpr int kTerms = 4;
+      std::vector<Series> values;
+      state.parameter = theta0_;
+      path(theta0_, kTerms, values);
+      set_drivers(mech, state, values);
       compute_series(mech, state, kTerms);
-      EnginePose pose;
-      pose.a = mech.point_position(kA, state.q);
-      pose.b = mech.point_position(kB, state.q);
-      pose.p = mech.point_position(kP, state.q);
-      pose.o4 = fb.o4;
-      pose.rotation = wrap_signed(angle_of(pose.b - pose.a) - angle_of(coupler0));
-      if (side(pose.o4, pose.a, pose.b) != sigma0) break;  // never expected: the engine keeps its branch
-      TargetCheck& t = check.targets[i];
-      t.reached = true;
-      std::tie(t.error, t.rotation_error) = rules.measure(i, pose);
-      check.max_error = std::max(check.max_error, t.error);
-      check.max_rotation_error = std::max(check.max_rotation_error, t.rotation_error);
+      for (int i : along_) {
+        if (unwrapped_[i] != state.parameter && !track(mech, state, path, unwrapped_[i]).reached) break;
+        if (!measure_target(mech, state, i)) break;
+      }
+    } catch (const std::exception& e) {  // ModelError, AssemblyError: the design is not a linkage
+      check_.invalid = e.what();
     }
-  } catch (const std::exception& e) {  // ModelError, AssemblyError: the design is not a linkage
-    check.invalid = e.what();
   }
-  for (std::size_t i = 0; i < check.targets.size(); ++i)
-    if (!check.targets[i].reached) check.targets[i].error = placed[i].miss;
-  return check;
-}
+
+  // False when the engine cannot go on from this pose.
+  bool measure_target(const Mechanism& mech, State& state, int i) {
+    constexpr int kTerms = 4;
+    // The tracker stops at its tolerance (1e-12 of the size); two more Newton steps give the
+    // pose to rounding, so that the misses measure the design, not the tracker.
+    for (int k = 0; k < 2 && factorize_jacobian(mech, state); ++k) {
+      max_residual(mech, state);
+      state.rhs = -state.phi;
+      state.solver().solve(state.rhs, state.dq);
+      state.q += state.dq;
+    }
+    if (!factorize_jacobian(mech, state)) return false;
+    compute_series(mech, state, kTerms);
+    EnginePose pose;
+    pose.a = mech.point_position(kA, state.q);
+    pose.b = mech.point_position(kB, state.q);
+    pose.p = mech.point_position(kP, state.q);
+    pose.o4 = fb_.o4;
+    pose.rotation = wrap_signed(angle_of(pose.b - pose.a) - angle_of(fb_.b0 - fb_.a0));
+    if (side(pose.o4, pose.a, pose.b) != sigma0_) return false;  // never expected: the engine keeps its branch
+    TargetCheck& t = check_.targets[i];
+    t.reached = true;
+    std::tie(t.error, t.rotation_error) = rules_.measure(i, pose);
+    check_.max_error = std::max(check_.max_error, t.error);
+    check_.max_rotation_error = std::max(check_.max_rotation_error, t.rotation_error);
+    return true;
+  }
+
+  const FourBarDesign& design_;
+  const TargetRules& rules_;
+  const FourBar fb_;
+  DesignCheck check_;
+  double theta0_ = 0.0;
+  int sigma0_ = 0, interval0_ = 0;
+  std::vector<Placement> placed_;
+  std::vector<int> along_;  // targets on the branch, in the given order
+  std::vector<double> unwrapped_;
+};
+
+DesignCheck check_with(const FourBarDesign& design, const TargetRules& rules) { return Checker(design, rules).run(); }
 
 }  // namespace
 
