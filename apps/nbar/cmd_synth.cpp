@@ -1,15 +1,12 @@
 // nbar synth: four-bars from a task file (five-point path generation, Burmester motion
 // generation, Freudenstein function generation), checked with the kinematics engine, ranked,
-// printed as a table or JSON and exported as model files. docs/synthesis.md.
+// printed as a table or JSON and exported as model files. docs/synthesis.md. The work is the
+// library's (synthesis/run.hpp, io/synthesis_writer.hpp); this file reads options and prints.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
-#include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <mutex>
-#include <numbers>
 
 #include "commands.hpp"
 #include "common.hpp"
@@ -21,11 +18,8 @@ namespace nbar::cli {
 
 namespace {
 
-namespace fs = std::filesystem;
 using io::SynthesisKind;
 using io::SynthesisTask;
-using synthesis::DesignCheck;
-using synthesis::FourBarDesign;
 
 // A task key given as an option instead of in a file: --input-range 90,150.
 struct TaskOption {
