@@ -1,6 +1,7 @@
 #include "nbar/analysis/columns.hpp"
 
 #include <algorithm>
+#include <unordered_map>
 
 #include "nbar/dynamics/dynamics_table.hpp"
 #include "nbar/kinematics/table.hpp"
@@ -11,23 +12,20 @@ namespace {
 
 std::vector<ColumnInfo> kinematic_columns(const Mechanism& mech, int order) {
   SweepResult empty;
-  std::vector<ColumnInfo> out;
-  // A column's order is the lowest at which the table has it.
-  for (int k = 0; k <= order; ++k) {
-    empty.order = k;
-    const ResultTable t = make_table(mech, empty);
-    for (std::size_t c = 0; c < t.columns.size(); ++c) {
-      const auto known = std::find_if(out.begin(), out.end(), [&](const ColumnInfo& i) { return i.name == t.columns[c]; });
-      if (known == out.end()) out.push_back({t.columns[c], t.units[c], Stage::Sweep, k});
-    }
-  }
-  // In the table's own order, which interleaves orders point by point.
   empty.order = order;
-  const ResultTable t = make_table(mech, empty);
-  std::vector<ColumnInfo> ordered;
-  for (const std::string& name : t.columns)
-    ordered.push_back(*std::find_if(out.begin(), out.end(), [&](const ColumnInfo& i) { return i.name == name; }));
-  return ordered;
+  const ResultTable table = make_table(mech, empty);
+  std::unordered_map<std::string, std::size_t> index;
+  std::vector<ColumnInfo> out;
+  for (std::size_t c = 0; c < table.columns.size(); ++c) {
+    index.emplace(table.columns[c], c);
+    out.push_back({table.columns[c], table.units[c], Stage::Sweep, order});
+  }
+  // A column's order is the lowest at which the table has it.
+  for (int k = order - 1; k >= 0; --k) {
+    empty.order = k;
+    for (const std::string& name : make_table(mech, empty).columns) out[index.at(name)].order = k;
+  }
+  return out;
 }
 
 std::vector<ColumnInfo> dynamic_columns(const Mechanism& mech) {
