@@ -8,6 +8,10 @@ packages=(
   libcairo2-dev libcgif-dev
   libtinyxml2-dev chromium  # tests: SVG parsed as XML; the HTML animation run in headless Chromium
   phcpack  # tests and bench/: the five-point synthesis cross-checked and timed against PHCpack
+  # The Python module, for Debian's /usr/bin/python3, and its tests: pytest, the notebooks run
+  # by nbclient on an ipykernel, sympy's derivatives as a reference
+  pybind11-dev python3-dev python3-numpy python3-matplotlib
+  python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-sympy
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,12 +1,14 @@
 // nbar draw: the mechanism in one pose, as SVG or PNG.
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 #include "commands.hpp"
 #include "common.hpp"
 #include "nbar/analysis/pose.hpp"
 #include "nbar/render/drawing.hpp"
-#include "nbar/render/image_canvas.hpp"
+#include "nbar/render/pictures.hpp"
 
 namespace nbar::cli {
 
@@ -70,20 +72,20 @@ int run_draw(const DrawArgs& args) {
     if (!check_step(step, sweep)) return kBadUsage;
     points = render::sample_points(mech, sweep.samples[step]);
   }
-  const render::View view = render::fit_view(mech, sweep, draw);
   try {
     if (format == "svg") {
-      render::SvgCanvas canvas(draw.width, draw.height);
-      render::draw_mechanism(canvas, view, mech, sweep, points, draw);
       std::ofstream out(args.output);
-      if (!(out << canvas.document())) {
+      if (!(out << render::drawing_svg(mech, sweep, points, draw))) {
         std::cerr << "error: cannot write " << args.output << '\n';
         return kBadUsage;
       }
     } else {
-      render::ImageCanvas canvas(draw.width, draw.height);
-      render::draw_mechanism(canvas, view, mech, sweep, points, draw);
-      canvas.write_png(args.output);
+      const std::vector<std::uint8_t> png = render::drawing_png(mech, sweep, points, draw);
+      std::ofstream out(args.output, std::ios::binary);
+      if (!out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()))) {
+        std::cerr << "error: cannot write " << args.output << ": " << std::strerror(errno) << '\n';
+        return kBadUsage;
+      }
     }
   } catch (const std::runtime_error& e) {
     std::cerr << "error: " << e.what() << '\n';

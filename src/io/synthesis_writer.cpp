@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "nbar/io/model_export.hpp"
 #include "nbar/io/synthesis_task.hpp"
@@ -134,26 +135,34 @@ std::string synthesis_json(const SynthesisTask& task, const Outcome& out, const 
   return j.dump(2) + '\n';
 }
 
+std::string design_model_yaml(const SynthesisTask& task, const Outcome& out, int row, int rank) {
+  const Row& r = out.rows.at(static_cast<std::size_t>(row));
+  if (!r.real || !r.check.invalid.empty())
+    throw Error(ErrorKind::BadInput, "design " + std::to_string(rank) + " is not a real four-bar: it has no model");
+  const std::string title = task.name.empty() ? fs::path(task.file).stem().string() : task.name;
+  std::vector<std::string> comments{
+      fmt::format("Design {} of nbar synth {} {}", rank, synthesis::to_string(task.kind), task.file)};
+  for (std::string& line : io::design_comments(r.check, task.units)) comments.push_back(std::move(line));
+  const Model model = synthesis::make_fourbar_model(r.design, fmt::format("{}, design {}", title, rank), task.units,
+                                                    r.motion.value_or(r.check.motion));
+  std::ostringstream text;
+  io::write_model_yaml(text, model, comments);
+  return text.str();
+}
+
 // DIR/design-01.yaml... for the real designs shown, in rank order.
 void export_designs(const SynthesisTask& task, const Outcome& out, const SynthesisListing& args) {
-  const std::vector<int>& shown = args.shown;
   std::error_code error;
   fs::create_directories(args.export_dir, error);
   if (error) throw Error(ErrorKind::BadInput, "--export " + args.export_dir + ": " + error.message());
-  const std::string title = task.name.empty() ? fs::path(task.file).stem().string() : task.name;
   int rank = 0;
-  for (int i : shown) {
+  for (int i : args.shown) {
     const Row& r = out.rows[i];
     ++rank;
     if (!r.real || !r.check.invalid.empty()) continue;
-    std::vector<std::string> comments{
-        fmt::format("Design {} of nbar synth {} {}", rank, synthesis::to_string(task.kind), task.file)};
-    for (std::string& line : io::design_comments(r.check, task.units)) comments.push_back(std::move(line));
-    const Model model = synthesis::make_fourbar_model(r.design, fmt::format("{}, design {}", title, rank), task.units,
-                                                      r.motion.value_or(r.check.motion));
     const fs::path path = fs::path(args.export_dir) / design_file_name(rank);
     std::ofstream file(path);
-    io::write_model_yaml(file, model, comments);
+    file << design_model_yaml(task, out, i, rank);
     if (!file) throw Error(ErrorKind::BadInput, "cannot write " + path.string());
   }
 }

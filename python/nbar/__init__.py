@@ -1,0 +1,28 @@
+"""nbar: analysis, simulation and synthesis of planar linkages.
+
+>>> import nbar
+>>> m = nbar.load("examples/fourbar-crank-rocker.yaml")
+>>> print(m.check())                      # degrees of freedom, Grashof class, transmission angle
+>>> r = m.solve(steps=361)                # numpy arrays by column name
+>>> nbar.plot(r, "rocker.omega")
+>>> m.explain()                           # the method step by step
+
+Everything is computed by nbar's C++ core; this package only translates.
+"""
+
+from . import synth
+from ._nbar import __version__
+from .errors import (AssemblyError, BadInputError, Cancelled, Error, LimitError, ModelError,
+                     UndefinedLawError)
+from .explain import Explanation
+from .model import Model, StressResult, Summary, load, loads
+from .pictures import Animation, Drawing, Report
+from .plotting import plot
+from .results import Result, Table, Warning
+
+__all__ = [
+    "Model", "load", "loads", "Summary", "Result", "Table", "Warning", "StressResult", "Explanation",
+    "Drawing", "Animation", "Report", "plot", "synth",
+    "Error", "ModelError", "UndefinedLawError", "BadInputError", "AssemblyError", "LimitError", "Cancelled",
+    "__version__",
+]

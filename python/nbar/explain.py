@@ -1,0 +1,36 @@
+"""The step-by-step explanation (``Model.explain``): the method as a course writes it out."""
+
+from __future__ import annotations
+
+
+class Explanation:
+    """Gruebler's count, q, Φ and Φq (symbolic and numeric), every Newton–Raphson iteration,
+    the velocity and acceleration systems and the instant centres, at one sample. Jupyter shows
+    it as Markdown with LaTeX; ``print()`` gives plain text; ``.latex`` a LaTeX fragment."""
+
+    def __init__(self, native):
+        self._native = native
+
+    def __getattr__(self, name):
+        return getattr(self._native, name)
+
+    @property
+    def text(self) -> str:
+        return self._native.render("text")
+
+    @property
+    def markdown(self) -> str:
+        return self._native.render("markdown")
+
+    @property
+    def latex(self) -> str:
+        return self._native.render("latex")
+
+    def __str__(self) -> str:
+        return self.text
+
+    def __repr__(self) -> str:
+        return self.text
+
+    def _repr_markdown_(self) -> str:
+        return self.markdown

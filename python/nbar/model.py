@@ -1,0 +1,243 @@
+"""Models: loading, building from a dict, checking, solving, stresses, pictures."""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+from types import SimpleNamespace
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+from . import _nbar
+from .errors import BadInputError, LimitError
+from .pictures import Animation, Drawing, Report, _write
+from .results import Result, Table
+
+Columns = Union[None, str, Sequence[str]]
+
+
+def _patterns(columns: Columns) -> Optional[List[str]]:
+    if columns is None:
+        return None
+    if isinstance(columns, str):
+        return [c.strip() for c in columns.split(",") if c.strip()]
+    return list(columns)
+
+
+class Summary:
+    """What ``nbar check`` says: degrees of freedom counted two ways, redundant constraints,
+    drivers, bodies with their mass properties, the assembly at the start and every four-bar
+    loop with its Grashof class, branch and transmission angle. ``print(s)`` shows the text."""
+
+    def __init__(self, data: Dict[str, Any]):
+        self._data = data
+        self.dof: int = data["dof"]
+        self.gruebler: int = data["gruebler"]
+        self.redundant: List[str] = data["redundant"]
+        self.drivers: List[str] = data["drivers"]
+        self.joints: List[str] = data["joints"]
+        self.bodies = [SimpleNamespace(**b) for b in data["bodies"]]
+        self.loops = [SimpleNamespace(**loop) for loop in data["loops"]]
+        self.assembly = SimpleNamespace(**data["assembly"]) if data["assembly"] else None
+        self.assembly_error: Optional[str] = data["assembly_error"]
+        self.has_kinetics: bool = data["has_kinetics"]
+        self.text: str = data["text"]
+
+    def __str__(self) -> str:
+        return self.text
+
+    def __repr__(self) -> str:
+        return self.text
+
+    def _repr_html_(self) -> str:
+        rows = [("degrees of freedom", f"{self.dof} (Gruebler–Kutzbach: {self.gruebler})")]
+        if self.redundant:
+            rows.append(("redundant", ", ".join(self.redundant)))
+        rows += [("driver", d) for d in self.drivers]
+        for loop in self.loops:
+            rows.append((loop.name, f"{loop.grashof}, {loop.branch} branch, transmission angle "
+                                    f"{loop.transmission_angle:.4g}"))
+        if self.assembly_error:
+            rows.append(("assembly", self.assembly_error))
+        cells = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th><td style='text-align:left'>"
+                        f"{html.escape(v)}</td></tr>" for k, v in rows)
+        return f"<table>{cells}</table>"
+
+
+class StressResult:
+    """Each shaped link's largest von Mises stress over the sweep (``nbar stress``): where, when,
+    N, V, M and the safety factor. ``.links`` is a list of dicts (stresses in MPa),
+    ``.profile(body, step)`` every section of one link at one step."""
+
+    def __init__(self, analysis):
+        self._analysis = analysis
+        self.json: str = analysis.stress_report("json")
+        data = json.loads(self.json)
+        self.links: List[Dict[str, Any]] = data.get("links", data.get("bodies", []))
+        self.data: Dict[str, Any] = data
+
+    def profile(self, body: str, step: int = 0) -> Table:
+        return Table(*self._analysis.section_profile(body, step))
+
+    def __getitem__(self, body: str) -> Dict[str, Any]:
+        for link in self.links:
+            if link.get("body") == body or link.get("name") == body:
+                return link
+        raise BadInputError(f"'{body}' has no stress result")
+
+    def __str__(self) -> str:
+        return self._analysis.stress_report("table")
+
+    __repr__ = __str__
+
+    def to_pandas(self):
+        import pandas
+        return pandas.json_normalize(self.links)
+
+
+class Model:
+    """A planar linkage, compiled and ready to analyse.
+
+    Make one with ``nbar.load(path)``, ``nbar.loads(yaml_text)`` or ``nbar.Model.from_dict({...})``
+    (the keys of a model file: ``points``, ``ground``, ``bodies``, ``drivers``...).
+    """
+
+    def __init__(self, compiled):
+        self._c = compiled
+
+    # --- making models -------------------------------------------------------------------------
+    @classmethod
+    def from_dict(cls, data: Dict[str, Any], name: str = "<dict>") -> "Model":
+        """A model from a dict with a model file's keys. Errors name the line and column of the
+        dict written as indented JSON (``e.text`` holds that text)."""
+        try:
+            text = json.dumps(data, indent=2, allow_nan=False)
+        except (TypeError, ValueError) as e:
+            raise BadInputError(f"{name}: the model must hold only numbers, strings, lists and dicts: {e}") from None
+        try:
+            return cls(_nbar.loads(text, name))
+        except Exception as e:
+            if hasattr(e, "message"):
+                e.text = text
+            raise
+
+    # --- what it is ----------------------------------------------------------------------------
+    @property
+    def name(self) -> str:
+        return self._c.name
+
+    @property
+    def units(self) -> Dict[str, str]:
+        return {"length": self._c.length_unit, "angle": self._c.angle_unit}
+
+    @property
+    def points(self) -> Dict[str, Tuple[float, float]]:
+        """Every point's drawn position, in the model's length unit."""
+        return {p[0]: (p[1], p[2]) for p in self._c.points}
+
+    @property
+    def ground(self) -> List[str]:
+        return [p[0] for p in self._c.points if p[3]]
+
+    @property
+    def bodies(self) -> Dict[str, List[str]]:
+        return {b[0]: b[1] for b in self._c.bodies}
+
+    @property
+    def drivers(self) -> List[str]:
+        return list(self._c.drivers)
+
+    def columns(self, order: int = 2, dynamics: bool = False) -> List[str]:
+        """The names of the columns ``solve`` can give (with ``dynamics``, the force columns too)."""
+        return [c[0] for c in self._c.catalogue(order, dynamics)]
+
+    def to_yaml(self) -> str:
+        """The kinematic model as a model file."""
+        return self._c.yaml()
+
+    def __repr__(self) -> str:
+        return (f"<nbar.Model '{self.name}': {len(self._c.points)} points, {len(self._c.bodies)} bodies, "
+                f"drivers {', '.join(self.drivers) or 'none'}>")
+
+    # --- analyses ------------------------------------------------------------------------------
+    def check(self) -> Summary:
+        """The summary ``nbar check`` prints, as data (``print()`` it for the text)."""
+        return Summary(self._c.summary())
+
+    def analyse(self, steps: Optional[int] = None, order: int = 2, dynamics: bool = False, stress: bool = False,
+                sections: int = 200, timeout: Optional[float] = None):
+        """The pipeline's raw result (sweep, then dynamics, then stress), for the other methods."""
+        return _nbar.analyse(self._c, steps=steps, order=order, dynamics=dynamics, stress=stress, sections=sections,
+                             timeout=timeout)
+
+    def solve(self, steps: Optional[int] = None, order: Optional[int] = None, columns: Columns = None,
+              dynamics: bool = False, partial: bool = False, timeout: Optional[float] = None) -> Result:
+        """Sweeps the drivers: positions, velocities, accelerations (to ``order``, at most 5) of
+        every point and body, and with ``dynamics=True`` every joint force and driver effort.
+
+        ``columns`` picks columns by name or glob (``"rocker.*"``); asking for force columns
+        switches dynamics on. A sweep that stops at a toggle raises ``nbar.LimitError`` (its
+        ``.result`` holds the rows solved) unless ``partial=True``. Ctrl-C (Jupyter's interrupt)
+        stops a long run; ``timeout`` (s) bounds it.
+        """
+        patterns = _patterns(columns)
+        if patterns:
+            needs = self._c.needs(patterns, order, dynamics)
+            if needs["unmatched"] >= 0:
+                raise BadInputError(needs["message"])
+            order, dynamics = needs["order"], needs["dynamics"]
+        analysis = self.analyse(steps=steps, order=2 if order is None else order, dynamics=dynamics, timeout=timeout)
+        result = Result(analysis, *analysis.table(patterns))
+        if not result.complete and not partial:
+            raise LimitError(f"{result.stop_reason} ({result.rows} rows solved; solve(..., partial=True) returns "
+                             f"them)", kind="stopped_at_limit", file=self._c.file, result=result)
+        return result
+
+    def dynamics(self, steps: Optional[int] = None, columns: Columns = None, **options) -> Result:
+        """``solve(dynamics=True)``: forces at every joint (N), driver torques (N m) or forces,
+        kinetic and potential energy."""
+        return self.solve(steps=steps, columns=columns, dynamics=True, **options)
+
+    def stress(self, steps: Optional[int] = None, sections: int = 200, timeout: Optional[float] = None) -> StressResult:
+        """Stresses along every link with a shape (``nbar stress``)."""
+        return StressResult(self.analyse(steps=steps, stress=True, sections=sections, timeout=timeout))
+
+    # --- pictures ------------------------------------------------------------------------------
+    def draw(self, step: Optional[int] = None, at: Optional[float] = None, labels: bool = True,
+             traces: Iterable[str] = (), width: int = 900, height: int = 640, title: str = "",
+             steps: Optional[int] = None) -> Drawing:
+        """The mechanism at sample ``step`` of the sweep, or where the first driver is ``at``
+        (model units), with the paths of ``traces``."""
+        return Drawing(self.analyse(steps=steps, order=0), step=step, at=at, labels=labels, traces=list(traces),
+                       width=width, height=height, title=title)
+
+    def animate(self, frames: int = 0, fps: float = 24.0, labels: bool = False, traces: Iterable[str] = (),
+                width: int = 900, height: int = 640, title: str = "", steps: Optional[int] = None) -> Animation:
+        """The sweep as an animation: HTML in Jupyter; ``.save()`` as .html, .svg, .gif or .mp4."""
+        return Animation(self.analyse(steps=steps, order=0), frames=frames, fps=fps, labels=labels,
+                         traces=list(traces), width=width, height=height, title=title)
+
+    def report(self, path: Union[None, str, os.PathLike] = None, frames: int = 72,
+               timeout: Optional[float] = None) -> Report:
+        """The one-file HTML report of ``nbar report``; written to ``path`` when given."""
+        report = Report(_nbar.report(self._c, frames=frames, timeout=timeout))
+        if path is not None:
+            _write(path, report.html)
+        return report
+
+    def explain(self, step: int = 0, steps: Optional[int] = None):
+        """The method step by step at one sample: Gruebler's count, q, Φ and Φq, every
+        Newton–Raphson iteration, the velocity and acceleration systems and the instant centres.
+        Renders as Markdown with LaTeX in Jupyter; ``print()`` it for plain text."""
+        from .explain import Explanation
+        return Explanation(_nbar.explain(self._c, step=step, steps=steps))
+
+
+def load(path: Union[str, os.PathLike]) -> Model:
+    """Reads a model file (YAML or JSON). Errors are ``nbar.ModelError`` with file, line, column."""
+    return Model(_nbar.load(os.fspath(path)))
+
+
+def loads(text: str, name: str = "<string>") -> Model:
+    """A model from YAML or JSON text; ``name`` stands for the file in messages."""
+    return Model(_nbar.loads(text, name))

@@ -1,0 +1,101 @@
+"""Pictures that show themselves in Jupyter and save to files."""
+
+from __future__ import annotations
+
+import base64
+import html
+import os
+from typing import Union
+
+
+def _write(path: Union[str, os.PathLike], data: Union[str, bytes]) -> None:
+    mode = "wb" if isinstance(data, bytes) else "w"
+    try:
+        with open(path, mode, **({} if isinstance(data, bytes) else {"encoding": "utf-8"})) as f:
+            f.write(data)
+    except OSError as e:
+        from .errors import BadInputError
+        folder = os.path.dirname(os.fspath(path)) or "."
+        reason = f"the folder {folder} does not exist" if not os.path.isdir(folder) else e.strerror
+        raise BadInputError(f"cannot write {os.fspath(path)}: {reason}") from None
+
+
+class Drawing:
+    """The mechanism in one pose. Shown as SVG in Jupyter; ``.svg`` is the text, ``.png()``
+    the PNG bytes, ``.save("pose.svg"|"pose.png")`` writes a file."""
+
+    def __init__(self, analysis, **options):
+        self._analysis = analysis
+        self._options = options
+        self.svg: str = analysis.draw("svg", **options)
+
+    def png(self) -> bytes:
+        return self._analysis.draw("png", **self._options)
+
+    def save(self, path: Union[str, os.PathLike]) -> None:
+        name = os.fspath(path)
+        if name.endswith(".png"):
+            _write(path, self.png())
+        elif name.endswith(".svg"):
+            _write(path, self.svg)
+        else:
+            from .errors import BadInputError
+            raise BadInputError(f"{name}: a drawing is saved as .svg or .png")
+
+    def _repr_svg_(self) -> str:
+        return self.svg
+
+    def __repr__(self) -> str:
+        return "<nbar.Drawing: .svg, .png(), .save(path)>"
+
+
+class Animation:
+    """The whole sweep moving. Shown in Jupyter as the self-contained HTML player (in an
+    iframe); ``.save(path)`` writes .html, .svg, .gif or .mp4 (MP4 needs the ffmpeg program)."""
+
+    def __init__(self, analysis, **options):
+        self._analysis = analysis
+        self._options = options
+        self.html: str = analysis.animate("html", **options)
+
+    def data(self, format: str) -> Union[str, bytes]:
+        """The animation as "html", "svg" (text) or "gif", "mp4" (bytes)."""
+        return self.html if format == "html" else self._analysis.animate(format, **self._options)
+
+    def save(self, path: Union[str, os.PathLike]) -> None:
+        ext = os.fspath(path).rsplit(".", 1)[-1].lower()
+        if ext not in ("html", "svg", "gif", "mp4"):
+            from .errors import BadInputError
+            raise BadInputError(f"{os.fspath(path)}: an animation is saved as .html, .svg, .gif or .mp4")
+        _write(path, self.data(ext))
+
+    def _repr_html_(self) -> str:
+        width = self._options.get("width", 900)
+        height = self._options.get("height", 640) + 90
+        return (f'<iframe srcdoc="{html.escape(self.html, quote=True)}" style="width:100%;max-width:{width}px;'
+                f'aspect-ratio:{width}/{height};border:0" sandbox="allow-scripts"></iframe>')
+
+    def __repr__(self) -> str:
+        return "<nbar.Animation: .html, .data(format), .save(path)>"
+
+
+class Report:
+    """The one-file HTML report of ``nbar report``. ``.html`` is the page, ``.save(path)``
+    writes it; Jupyter shows it in an iframe."""
+
+    def __init__(self, page: str):
+        self.html = page
+
+    def save(self, path: Union[str, os.PathLike]) -> None:
+        _write(path, self.html)
+
+    def _repr_html_(self) -> str:
+        return (f'<iframe srcdoc="{html.escape(self.html, quote=True)}" style="width:100%;height:80vh;border:0" '
+                f'sandbox="allow-scripts"></iframe>')
+
+    def __repr__(self) -> str:
+        return "<nbar.Report: .html, .save(path)>"
+
+
+def png_data_uri(data: bytes) -> str:
+    return "data:image/png;base64," + base64.b64encode(data).decode("ascii")

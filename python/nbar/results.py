@@ -1,0 +1,133 @@
+"""Results of an analysis as numpy arrays by column name, with units and the solver's report."""
+
+from __future__ import annotations
+
+import html
+from collections.abc import Mapping
+from typing import Dict, Iterator, List, NamedTuple, Optional
+
+import numpy as np
+
+
+class Warning(NamedTuple):  # noqa: A001 - the name users read in nbar's output
+    """Something to read a result with: a change point passed, a loop that changed branch."""
+
+    code: str
+    step: int
+    message: str
+
+
+class Table(Mapping):
+    """Named columns of equal length, each a 1-D numpy array, with their units.
+
+    ``t["rocker.omega"]`` is a column; ``t.units["rocker.omega"]`` its unit; ``t.columns`` the
+    names in order. ``t.to_pandas()`` makes a DataFrame when pandas is installed.
+    """
+
+    def __init__(self, names: List[str], units: List[str], arrays: List[np.ndarray]):
+        self.columns: List[str] = list(names)
+        self.units: Dict[str, str] = dict(zip(names, units))
+        self._data: Dict[str, np.ndarray] = dict(zip(names, arrays))
+        for a in arrays:
+            a.flags.writeable = False
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        try:
+            return self._data[name]
+        except KeyError:
+            from .errors import BadInputError
+            raise BadInputError(f"no column '{name}'" + _did_you_mean(name, self.columns)) from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.columns)
+
+    def __len__(self) -> int:
+        return len(self.columns)
+
+    @property
+    def rows(self) -> int:
+        """The number of samples."""
+        return len(next(iter(self._data.values()))) if self._data else 0
+
+    def to_numpy(self) -> np.ndarray:
+        """All columns as one 2-D array, one row per sample."""
+        return np.column_stack([self._data[c] for c in self.columns]) if self.columns else np.empty((0, 0))
+
+    def to_pandas(self):
+        """A pandas DataFrame of the columns (needs ``python3-pandas``)."""
+        try:
+            import pandas
+        except ImportError as e:  # pragma: no cover - depends on the machine
+            raise ImportError("to_pandas() needs pandas: apt-get install python3-pandas") from e
+        frame = pandas.DataFrame({c: self._data[c] for c in self.columns})
+        frame.attrs["units"] = dict(self.units)
+        return frame
+
+    def _repr_html_(self) -> str:
+        return _html_table(self, max_rows=8, max_columns=6)
+
+    def __repr__(self) -> str:
+        return f"<nbar.Table: {self.rows} rows x {len(self.columns)} columns>"
+
+
+class Result(Table):
+    """The sweep (and, when asked, its dynamics) as columns, plus what the solver reports.
+
+    - ``complete``: the sweep reached its end; otherwise ``stop_reason`` says where and why.
+    - ``warnings``: change points passed, branch changes, forces that are not unique.
+    - ``max_residual``: the largest constraint residual over the sweep, in the model's length unit.
+    """
+
+    def __init__(self, analysis, names, units, arrays):
+        super().__init__(names, units, arrays)
+        self._analysis = analysis
+        self.complete: bool = analysis.complete
+        self.stop_reason: Optional[str] = None if analysis.complete else analysis.stop_reason
+        self.warnings: List[Warning] = [Warning(*w) for w in analysis.warnings]
+        self.max_residual: float = analysis.max_residual
+        self.branches: List[str] = list(analysis.branches)
+        self.forces_unique: Optional[bool] = analysis.forces_unique
+
+    def to_json(self) -> str:
+        """The JSON that ``nbar solve --format json`` writes for these columns."""
+        return self._analysis.json(self.columns)
+
+    def __repr__(self) -> str:
+        state = "complete" if self.complete else f"stopped: {self.stop_reason}"
+        return f"<nbar.Result: {self.rows} samples x {len(self.columns)} columns, {state}>"
+
+    def _repr_html_(self) -> str:
+        head = "complete" if self.complete else "stopped early: " + html.escape(self.stop_reason or "")
+        notes = "".join(f"<li>{html.escape(w.message)}</li>" for w in self.warnings)
+        return (f"<p>{self.rows} samples, {head}; largest residual {self.max_residual:.3g}</p>"
+                + (f"<ul>{notes}</ul>" if notes else "") + super()._repr_html_())
+
+
+def _did_you_mean(name: str, names: List[str]) -> str:
+    import difflib
+    folded = {n.lower(): n for n in names}
+    if name.lower() in folded:
+        return f"; did you mean '{folded[name.lower()]}'?"
+    close = difflib.get_close_matches(name, names, n=3)
+    return f"; did you mean {', '.join(repr(c) for c in close)}?" if close else ""
+
+
+def _format(value: float) -> str:
+    return f"{value:.6g}"
+
+
+def _html_table(table: Table, max_rows: int, max_columns: int) -> str:
+    """A small table that fits a phone: a few columns and rows, with a note of what is left out."""
+    columns = table.columns[:max_columns]
+    n = table.rows
+    picked = list(range(n)) if n <= max_rows else list(range(max_rows // 2)) + list(range(n - max_rows // 2, n))
+    head = "".join(f"<th>{html.escape(c)}<br><small>{html.escape(table.units.get(c, ''))}</small></th>"
+                   for c in columns)
+    body = []
+    for i, r in enumerate(picked):
+        if i == max_rows // 2 and n > max_rows:
+            body.append(f"<tr><td colspan='{len(columns)}'>…</td></tr>")
+        body.append("<tr>" + "".join(f"<td>{_format(table[c][r])}</td>" for c in columns) + "</tr>")
+    more = len(table.columns) - len(columns)
+    note = f"<p><small>{n} rows; {more} more columns: t.columns lists them</small></p>" if more > 0 else ""
+    return f"<div style='overflow-x:auto'><table><tr>{head}</tr>{''.join(body)}</table></div>{note}"

@@ -1,0 +1,196 @@
+"""Four-bar synthesis: every four-bar that does a task, checked with the kinematics engine and
+ranked (``nbar synth``).
+
+>>> designs = nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=[...], units="mm")
+>>> best = designs[0]; best.model().animate()
+
+Each function builds the task a task file would hold (the same keys: see docs/synthesis.md), so
+its checks and messages are the command line's.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+from . import _nbar
+from .errors import BadInputError
+
+Point = Sequence[float]
+
+
+class Design:
+    """One four-bar found: its rank, Grashof class, link lengths, smallest transmission angle,
+    defects and how far the simulated linkage misses the targets (``error``). ``.model()``
+    makes it a Model to solve, draw and animate; ``.yaml`` is its model file."""
+
+    def __init__(self, outcome, row: int, data: Dict[str, Any]):
+        self._outcome = outcome
+        self._row = row
+        self.data = data
+        self.rank: int = data.get("rank", 0)
+        self.real: bool = data.get("real", True)
+        self.grashof: Optional[str] = data.get("grashof")
+        self.lengths: Optional[Dict[str, float]] = data.get("lengths")
+        self.defects: Optional[Dict[str, Any]] = data.get("defects")
+        self.defect_free: bool = bool(data.get("defect_free", False))
+        self.min_transmission: Optional[float] = data.get("min_transmission")
+        self.error: Optional[float] = data.get("max_error")
+
+    @property
+    def yaml(self) -> str:
+        return self._outcome.design_yaml(self._row, self.rank)
+
+    def model(self):
+        """The design as a Model (a four-bar driven through its targets)."""
+        from .model import loads
+        return loads(self.yaml, f"<design {self.rank}>")
+
+    def __getitem__(self, key: str) -> Any:
+        return self.data[key]
+
+    def __repr__(self) -> str:
+        if not self.real:
+            return f"<nbar.synth.Design {self.rank}: complex>"
+        lengths = ", ".join(f"{k} {v:.6g}" for k, v in (self.lengths or {}).items())
+        return (f"<nbar.synth.Design {self.rank}: {self.grashof}, {lengths}; mu min {self.min_transmission:.4g}, "
+                f"{'no defects' if self.defect_free else 'defective'}, error {self.error:.3g}>")
+
+
+class Designs(list):
+    """The designs of one task, best first (a list of Design). ``print()`` shows the table
+    ``nbar synth`` prints; ``.json`` is its JSON; ``.export(dir)`` writes every design as a model
+    file; ``.notes`` says how the solve went."""
+
+    def __init__(self, outcome, all: bool = False, top: int = 0):
+        self._outcome = outcome
+        self._all = all
+        self._top = top
+        self.json: str = outcome.json(all, top)
+        data = json.loads(self.json)
+        self.data: Dict[str, Any] = data
+        self.method: str = outcome.method
+        self.notes: List[str] = list(outcome.notes)
+        rows = outcome.shown(all, top)
+        super().__init__(Design(outcome, row, d) for row, d in zip(rows, data.get("designs", [])))
+
+    @property
+    def best(self) -> Design:
+        if not self:
+            raise BadInputError("no design does the task: " + "; ".join(self.notes))
+        return self[0]
+
+    def table(self) -> str:
+        return self._outcome.table(self._all, self._top)
+
+    def export(self, folder: Union[str, os.PathLike]) -> None:
+        self._outcome.export(os.fspath(folder), self._all, self._top)
+
+    def write_curves(self, path: Union[str, os.PathLike]) -> None:
+        """Burmester through four poses: the centre- and circle-point curves (.svg, .csv, .json)."""
+        self._outcome.write_curves(os.fspath(path))
+
+    def __str__(self) -> str:
+        return self.table()
+
+    def __repr__(self) -> str:
+        return f"<nbar.synth.Designs: {len(self)} designs ({self.method})>"
+
+    def _repr_html_(self) -> str:
+        rows = []
+        for d in self:
+            if not d.real:
+                rows.append(f"<tr><td>{d.rank}</td><td colspan='4'>complex</td></tr>")
+                continue
+            rows.append(f"<tr><td>{d.rank}</td><td>{html.escape(str(d.grashof))}</td>"
+                        f"<td>{d.min_transmission:.4g}</td><td>{'none' if d.defect_free else 'yes'}</td>"
+                        f"<td>{d.error:.2g}</td></tr>")
+        notes = "".join(f"<li>{html.escape(n)}</li>" for n in self.notes)
+        return (f"<ul>{notes}</ul><table><tr><th>rank</th><th>Grashof</th><th>μ min</th><th>defects</th>"
+                f"<th>error</th></tr>{''.join(rows)}</table>")
+
+
+def _units(units: Union[None, str, Dict[str, str]]) -> Optional[Dict[str, str]]:
+    if units is None:
+        return None
+    if isinstance(units, str):
+        return {"length": units, "angle": "deg"}
+    return dict(units)
+
+
+def task(data: Dict[str, Any], name: str = "<task>"):
+    """A task from a dict with a task file's keys (``task: five-point``, ``points``...)."""
+    try:
+        text = json.dumps(data, indent=2, allow_nan=False)
+    except (TypeError, ValueError) as e:
+        raise BadInputError(f"{name}: the task must hold only numbers, strings, lists and dicts: {e}") from None
+    return _nbar.parse_task(text, name)
+
+
+def load(path: Union[str, os.PathLike]):
+    """Reads a task file (docs/synthesis.md)."""
+    return _nbar.load_task(os.fspath(path))
+
+
+def run(the_task, all: bool = False, top: int = 0, threads: int = 0, seed: int = 1,
+        timeout: Optional[float] = None) -> Designs:
+    """Solves a task (from ``task()``, ``load()`` or a path): the designs, best first. With
+    ``all``, defective and complex solutions too; ``top`` keeps the best few."""
+    if isinstance(the_task, (str, os.PathLike)):
+        the_task = load(the_task)
+    elif isinstance(the_task, dict):
+        the_task = task(the_task)
+    return Designs(_nbar.synthesize(the_task, threads=threads, seed=seed, timeout=timeout), all=all, top=top)
+
+
+def _task_dict(kind: str, name: Optional[str], units, **keys) -> Dict[str, Any]:
+    d: Dict[str, Any] = {"task": kind}
+    if name:
+        d["name"] = name
+    if _units(units):
+        d["units"] = _units(units)
+    d.update({k: v for k, v in keys.items() if v is not None})
+    return d
+
+
+def _xy(p: Point) -> List[float]:
+    return [float(p[0]), float(p[1])]
+
+
+def five_point(pivots: Tuple[Point, Point], points: Iterable[Point], units=None, name: Optional[str] = None,
+               **run_options) -> Designs:
+    """Every four-bar with fixed pivots ``pivots`` (input's, output's) whose coupler point passes
+    through the five ``points`` in order (all 36 solutions by homotopy continuation)."""
+    a, b = pivots
+    d = _task_dict("five-point", name, units, pivots={"a": _xy(a), "b": _xy(b)}, points=[_xy(p) for p in points])
+    return run(task(d, "<five_point>"), **run_options)
+
+
+def burmester(poses: Iterable[Sequence[float]], fixed_pivots: Optional[Tuple[Point, Point]] = None,
+              moving_pivots: Optional[Tuple[Point, Point]] = None, curves: Optional[Dict[str, Any]] = None,
+              samples: Optional[int] = None, units=None, name: Optional[str] = None, **run_options) -> Designs:
+    """Four-bars whose coupler takes 3, 4 or 5 poses ``(x, y, angle)``. Three poses need the two
+    ``fixed_pivots`` or ``moving_pivots`` you choose."""
+    pose_list = [{"point": [float(p[0]), float(p[1])], "angle": float(p[2])} for p in poses]
+    extra: Dict[str, Any] = {}
+    if fixed_pivots is not None:
+        extra["fixed_pivots"] = {"a": _xy(fixed_pivots[0]), "b": _xy(fixed_pivots[1])}
+    if moving_pivots is not None:
+        extra["moving_pivots"] = {"a": _xy(moving_pivots[0]), "b": _xy(moving_pivots[1])}
+    d = _task_dict("burmester", name, units, poses=pose_list, curves=curves, samples=samples, **extra)
+    return run(task(d, "<burmester>"), **run_options)
+
+
+def function(function: str, x: Tuple[float, float], input_range: Tuple[float, float],
+             output_range: Tuple[float, float], points: int = 3, spacing: str = "chebyshev",
+             frame: Optional[float] = None, units=None, name: Optional[str] = None, **run_options) -> Designs:
+    """Freudenstein function generation: a four-bar whose output angle follows ``function`` of x
+    (an expression in x) while the input turns through ``input_range``."""
+    d = _task_dict("function", name, units, function=function, x=list(x), input_range=list(input_range),
+                   output_range=list(output_range), points=points, spacing=spacing, frame=frame)
+    return run(task(d, "<function>"), **run_options)
+
+
+__all__ = ["Design", "Designs", "task", "load", "run", "five_point", "burmester", "function"]

@@ -1,0 +1,211 @@
+// The analysis pipeline from Python: one call runs the stages, then tables as numpy arrays,
+// the CLI's JSON and stress report, pictures, animations and the report render what it kept.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <sstream>
+
+#include "bindings.hpp"
+#include "nbar/analysis/columns.hpp"
+#include "nbar/analysis/pose.hpp"
+#include "nbar/analysis/summary.hpp"
+#include "nbar/io/results_writer.hpp"
+#include "nbar/render/animation.hpp"
+#include "nbar/render/pictures.hpp"
+#include "nbar/render/report.hpp"
+
+namespace nbar::python {
+
+namespace {
+
+struct PyAnalysis {
+  std::shared_ptr<PyModel> model;
+  Analysis analysis;
+};
+
+std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::optional<int> steps, int order,
+                                         bool dynamics, bool stress, int sections, std::optional<double> timeout) {
+  auto out = std::make_shared<PyAnalysis>();
+  out->model = model;
+  AnalysisOptions options;
+  options.steps = steps;
+  options.order = order;
+  options.dynamics = dynamics;
+  options.stress = stress;
+  options.sections = sections;
+  run_interruptible(options.control, timeout, [&] {
+    try {
+      out->analysis = analyse(model->mechanism, options);
+    } catch (const Error& e) {
+      throw located(*model, e);
+    }
+  });
+  return out;
+}
+
+ResultTable selected(const ResultTable& table, const std::optional<std::vector<std::string>>& patterns) {
+  if (!patterns) return table;
+  try {
+    return select_columns(table, *patterns);
+  } catch (const std::invalid_argument& e) {
+    throw Error(ErrorKind::BadInput, std::string(e.what()) + "; the columns are: " + [&] {
+      std::string names;
+      for (const std::string& c : table.columns) names += (names.empty() ? "" : ", ") + c;
+      return names;
+    }());
+  }
+}
+
+// Column names, units and one numpy array per column, filled straight from the table's rows.
+py::tuple as_arrays(const ResultTable& table) {
+  const std::size_t rows = table.rows.size();
+  py::list arrays;
+  for (std::size_t c = 0; c < table.columns.size(); ++c) {
+    py::array_t<double> column(static_cast<py::ssize_t>(rows));
+    double* data = column.mutable_data();
+    for (std::size_t r = 0; r < rows; ++r) data[r] = table.rows[r][c];
+    arrays.append(std::move(column));
+  }
+  return py::make_tuple(table.columns, table.units, arrays);
+}
+
+py::list warning_list(const std::vector<Warning>& warnings) {
+  py::list out;
+  for (const Warning& w : warnings) out.append(py::make_tuple(w.code, w.step, w.message));
+  return out;
+}
+
+render::DrawOptions draw_options(const Model& m, bool labels, const std::vector<std::string>& traces, int width,
+                                 int height, const std::string& title) {
+  if (width < 100 || width > 10000 || height < 100 || height > 10000)
+    throw Error(ErrorKind::BadInput, "width and height must be between 100 and 10000 pixels");
+  render::DrawOptions draw;
+  draw.labels = labels;
+  draw.traces = render::trace_points(m, traces);
+  draw.width = width;
+  draw.height = height;
+  draw.title = title;
+  return draw;
+}
+
+// The pose to draw: a sample of the sweep, or where the first driver has `at`.
+std::vector<Eigen::Vector2d> pose_points(const PyAnalysis& a, std::optional<int> step, std::optional<double> at) {
+  const Mechanism& mech = *a.model->mechanism;
+  if (at) {
+    try {
+      return render::sample_points(mech, pose_at(mech, *at));
+    } catch (const Error& e) {
+      throw located(*a.model, e);
+    }
+  }
+  const int k = step.value_or(0);
+  const int solved = static_cast<int>(a.analysis.sweep.samples.size());
+  if (k < 0 || k >= solved)
+    throw Error(ErrorKind::BadInput, "step " + std::to_string(k) + " is not a solved step (0 to " +
+                                         std::to_string(solved - 1) + ")");
+  return render::sample_points(mech, a.analysis.sweep.samples[k]);
+}
+
+py::object draw(const PyAnalysis& a, const std::string& format, std::optional<int> step, std::optional<double> at,
+                bool labels, const std::vector<std::string>& traces, int width, int height, const std::string& title) {
+  const Mechanism& mech = *a.model->mechanism;
+  const render::DrawOptions options = draw_options(mech.model(), labels, traces, width, height, title);
+  const std::vector<Eigen::Vector2d> points = pose_points(a, step, at);
+  if (format == "svg") return py::str(render::drawing_svg(mech, a.analysis.sweep, points, options));
+  if (format == "png") {
+    const std::vector<std::uint8_t> png = render::drawing_png(mech, a.analysis.sweep, points, options);
+    return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
+  }
+  throw Error(ErrorKind::BadInput, "a drawing's format is svg or png, not '" + format + "'");
+}
+
+py::object animate(const PyAnalysis& a, const std::string& format, int frames, double fps, bool labels,
+                   const std::vector<std::string>& traces, int width, int height, const std::string& title) {
+  const render::DrawOptions options = draw_options(a.model->file.model, labels, traces, width, height, title);
+  if (!(fps > 0 && fps <= 240)) throw Error(ErrorKind::BadInput, "fps must be above 0 and at most 240");
+  if (frames < 0 || frames > 10000) throw Error(ErrorKind::BadInput, "frames must be between 0 (every sample) and 10000");
+  const render::Animation animation(a.model->mechanism, a.analysis.sweep, options, frames, fps);
+  const auto as_bytes = [](const std::vector<std::uint8_t>& b) {
+    return py::bytes(reinterpret_cast<const char*>(b.data()), b.size());
+  };
+  if (format == "html") return py::str(animation.html_animation());
+  if (format == "svg") return py::str(animation.svg_animation());
+  if (format == "gif") return as_bytes(animation.gif_bytes());
+  if (format == "mp4") return as_bytes(animation.mp4_bytes());
+  throw Error(ErrorKind::BadInput, "an animation's format is html, svg, gif or mp4, not '" + format + "'");
+}
+
+std::string report(std::shared_ptr<PyModel> model, int frames, std::optional<double> timeout) {
+  const ModelSummary summary = summarize(*model->mechanism);
+  AnalysisOptions options = render::report_analysis_options(summary);
+  Analysis analysis;
+  run_interruptible(options.control, timeout, [&] {
+    try {
+      analysis = analyse(model->mechanism, options);
+    } catch (const Error& e) {
+      throw located(*model, e);
+    }
+  });
+  render::ReportOptions report;
+  report.source = model->file.source.file;
+  report.frames = frames;
+  return render::html_report(analysis, summary, report);
+}
+
+std::string stress_report(const PyAnalysis& a, const std::string& format) {
+  if (!a.analysis.stress) throw Error(ErrorKind::BadInput, "the analysis has no stress stage: run it with stress=True");
+  std::ostringstream out;
+  io::write_stress_report(out, format, a.analysis);
+  return out.str();
+}
+
+py::tuple section_profile(const PyAnalysis& a, const std::string& body_name, int step) {
+  if (!a.analysis.stress) throw Error(ErrorKind::BadInput, "the analysis has no stress stage: run it with stress=True");
+  const int body = a.analysis.model().find_body(body_name);
+  if (body < 0) throw Error(ErrorKind::BadInput, "'" + body_name + "' is not a body of the model");
+  return as_arrays(section_profile_table(a.analysis, body, step));
+}
+
+}  // namespace
+
+void bind_analysis(py::module_& m) {
+  py::class_<PyAnalysis, std::shared_ptr<PyAnalysis>>(m, "Analysis", "The stages of one analysis, run once and kept")
+      .def_property_readonly("complete", [](const PyAnalysis& a) { return a.analysis.complete(); })
+      .def_property_readonly("stop_reason", [](const PyAnalysis& a) { return a.analysis.sweep.stop_reason; })
+      .def_property_readonly("samples", [](const PyAnalysis& a) { return a.analysis.sweep.samples.size(); })
+      .def_property_readonly("order", [](const PyAnalysis& a) { return a.analysis.sweep.order; })
+      .def_property_readonly("max_residual", [](const PyAnalysis& a) {
+        return a.analysis.sweep.max_residual / a.analysis.model().units.length_scale;
+      })
+      .def_property_readonly("branches", [](const PyAnalysis& a) { return a.analysis.sweep.branches; })
+      .def_property_readonly("warnings", [](const PyAnalysis& a) { return warning_list(a.analysis.warnings()); })
+      .def_property_readonly("has_dynamics", [](const PyAnalysis& a) { return a.analysis.dynamics.has_value(); })
+      .def_property_readonly("has_stress", [](const PyAnalysis& a) { return a.analysis.stress.has_value(); })
+      .def_property_readonly("forces_unique", [](const PyAnalysis& a) {
+        return a.analysis.dynamics ? py::object(py::bool_(a.analysis.dynamics->unique)) : py::none();
+      })
+      .def("table", [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
+             return as_arrays(selected(result_table(a.analysis), columns));
+           }, py::arg("columns") = std::nullopt)
+      .def("json", [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
+             std::ostringstream out;
+             io::write_json(out, a.analysis, selected(result_table(a.analysis), columns),
+                            a.analysis.dynamics ? &*a.analysis.dynamics : nullptr);
+             return out.str();
+           }, py::arg("columns") = std::nullopt)
+      .def("stress_report", &stress_report, py::arg("format") = "json")
+      .def("section_profile", &section_profile, py::arg("body"), py::arg("step"))
+      .def("draw", &draw, py::arg("format") = "svg", py::arg("step") = std::nullopt, py::arg("at") = std::nullopt,
+           py::arg("labels") = false, py::arg("traces") = std::vector<std::string>{}, py::arg("width") = 900,
+           py::arg("height") = 640, py::arg("title") = "")
+      .def("animate", &animate, py::arg("format") = "html", py::arg("frames") = 0, py::arg("fps") = 24.0,
+           py::arg("labels") = false, py::arg("traces") = std::vector<std::string>{}, py::arg("width") = 900,
+           py::arg("height") = 640, py::arg("title") = "");
+
+  m.def("analyse", &run_analysis, py::arg("model"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
+        py::arg("dynamics") = false, py::arg("stress") = false, py::arg("sections") = 200,
+        py::arg("timeout") = std::nullopt);
+  m.def("report", &report, py::arg("model"), py::arg("frames") = 72, py::arg("timeout") = std::nullopt);
+}
+
+}  // namespace nbar::python

@@ -1,0 +1,43 @@
+// The pieces of the Python module's C++ layer. It only translates: models in, library calls,
+// numpy arrays, strings and Python exceptions out.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "nbar/analysis/analysis.hpp"
+#include "nbar/io/model_file.hpp"
+
+namespace nbar::python {
+
+namespace py = pybind11;
+
+// A model as Python holds it: the file's text and source map, for locating errors, and the
+// compiled mechanism every analysis shares.
+struct PyModel {
+  io::LoadedModel file;
+  std::shared_ptr<const Mechanism> mechanism;
+};
+
+// Parses and compiles; an invalid model raises nbar.ModelError at file:line:column.
+PyModel compile_model(io::LoadedModel loaded);
+
+// nbar::Error -> the nbar.errors class of its kind, with message, file, line, column, entity.
+void register_error_translation(py::module_& m);
+// The same error with the model file's place of its entity, when it has none of its own.
+Error located(const PyModel& model, const Error& error);
+
+// Runs `work` with the GIL released. Ctrl-C (a Jupyter interrupt) cancels `control`'s token,
+// and the call then raises KeyboardInterrupt; `timeout` (s) sets a deadline.
+void run_interruptible(RunControl& control, std::optional<double> timeout, const std::function<void()>& work);
+
+void bind_model(py::module_& m);
+void bind_analysis(py::module_& m);
+void bind_explain(py::module_& m);
+void bind_synthesis(py::module_& m);
+
+}  // namespace nbar::python

@@ -1,0 +1,126 @@
+// Errors cross into Python as the nbar.errors classes; Ctrl-C crosses into C++ as a cancelled
+// token.
+#include <pybind11/pybind11.h>
+
+#include <atomic>
+#include <csignal>
+#include <exception>
+
+#include "bindings.hpp"
+#include "nbar/kinematics/continuation.hpp"
+
+namespace nbar::python {
+
+namespace {
+
+const char* error_class(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::InvalidModel: return "ModelError";
+    case ErrorKind::UndefinedLaw: return "UndefinedLawError";
+    case ErrorKind::BadInput: return "BadInputError";
+    case ErrorKind::CannotAssemble: return "AssemblyError";
+    case ErrorKind::StoppedAtLimit: return "LimitError";
+    case ErrorKind::Cancelled: return "Cancelled";
+  }
+  return "Error";
+}
+
+const char* entity_kind(EntityRef::Kind kind) {
+  switch (kind) {
+    case EntityRef::Kind::Model: return "model";
+    case EntityRef::Kind::Point: return "point";
+    case EntityRef::Kind::Body: return "body";
+    case EntityRef::Kind::Slider: return "slider";
+    case EntityRef::Kind::Slot: return "slot";
+    case EntityRef::Kind::Driver: return "driver";
+    case EntityRef::Kind::Sweep: return "sweep";
+    case EntityRef::Kind::PointLoad: return "force";
+    case EntityRef::Kind::Torque: return "torque";
+    case EntityRef::Kind::Spring: return "spring";
+  }
+  return "model";
+}
+
+void raise(const Error& e) {
+  py::object errors = py::module_::import("nbar.errors");
+  py::object cls = errors.attr(error_class(e.kind()));
+  py::object file = e.file().empty() ? py::none() : py::object(py::str(e.file()));
+  py::object line = e.mark().line > 0 ? py::object(py::int_(e.mark().line)) : py::none();
+  py::object column = e.mark().column > 0 ? py::object(py::int_(e.mark().column)) : py::none();
+  py::object entity = py::none();
+  if (e.where().kind != EntityRef::Kind::Model && e.where().index >= 0)
+    entity = py::make_tuple(entity_kind(e.where().kind), e.where().index);
+  py::object instance = cls(e.message(), py::arg("kind") = to_string(e.kind()), py::arg("file") = file,
+                            py::arg("line") = line, py::arg("column") = column, py::arg("entity") = entity);
+  PyErr_SetObject(cls.ptr(), instance.ptr());
+}
+
+// The token Ctrl-C cancels while a computation runs with the GIL released.
+std::atomic<const CancelToken*> interrupt_target{nullptr};
+std::atomic<bool> interrupted{false};
+
+extern "C" void on_interrupt(int) {
+  interrupted.store(true);
+  if (const CancelToken* token = interrupt_target.load()) token->cancel();
+}
+
+// Called with the GIL held.
+bool on_main_thread() {
+  py::object threading = py::module_::import("threading");
+  return threading.attr("current_thread")().is(threading.attr("main_thread")());
+}
+
+}  // namespace
+
+void register_error_translation(py::module_&) {
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const Error& e) {
+      raise(e);
+    }
+  });
+}
+
+Error located(const PyModel& model, const Error& error) {
+  if (!error.file().empty()) return error;
+  const SourceMark mark = model.file.source.find(error.where());
+  return Error(error.kind(), error.message(), error.where(), model.file.source.file, mark);
+}
+
+void run_interruptible(RunControl& control, std::optional<double> timeout, const std::function<void()>& work) {
+  if (timeout) {
+    if (!(*timeout > 0)) throw Error(ErrorKind::BadInput, "timeout must be a positive number of seconds");
+    control.token.set_time_budget(std::chrono::duration<double>(*timeout));
+  }
+  const bool catch_interrupt = on_main_thread();
+  struct sigaction previous {};
+  if (catch_interrupt) {
+    interrupted.store(false);
+    interrupt_target.store(&control.token);
+    struct sigaction action {};
+    action.sa_handler = on_interrupt;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &previous);
+  }
+  std::exception_ptr failure;
+  {
+    py::gil_scoped_release release;
+    try {
+      work();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  }
+  if (catch_interrupt) {
+    sigaction(SIGINT, &previous, nullptr);
+    interrupt_target.store(nullptr);
+    if (interrupted.exchange(false)) {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
+      throw py::error_already_set();
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace nbar::python

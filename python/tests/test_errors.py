@@ -1,0 +1,125 @@
+"""Bad input from Python: exceptions with the CLI's message and its place, never a crash."""
+
+import os
+import signal
+import threading
+import time
+
+import pytest
+
+import nbar
+
+BASE = """points: {O: [0, 0], A: [1, 0]}
+ground: [O]
+bodies: {crank: [O, A]}
+"""
+
+
+def test_syntax_error_has_file_line_and_column():
+    with pytest.raises(nbar.ModelError) as e:
+        nbar.loads(BASE + "drivers: [{angle: crank, from: 0, to: 90}\n", "bad.yaml")
+    err = e.value
+    assert err.file == "bad.yaml" and err.line is not None and err.column is not None
+    assert str(err).startswith(f"bad.yaml:{err.line}:{err.column}: ")
+    assert err.kind == "invalid_model"
+
+
+def test_unknown_point_is_located_at_its_line():
+    text = BASE + "drivers:\n  - {angle: crank, from: 0, to: 90}\nforces:\n  - {point: Q, force: [0, 1]}\n"
+    with pytest.raises(nbar.ModelError) as e:
+        nbar.loads(text, "m.yaml")
+    assert (e.value.line, e.value.column) == (7, 13) and "Q" in e.value.message
+
+
+def test_wrong_driver_count_is_a_model_error():
+    with pytest.raises(nbar.ModelError) as e:
+        nbar.loads(BASE, "m.yaml")
+    assert "driver" in e.value.message
+
+
+def test_missing_file_names_the_file():
+    with pytest.raises(nbar.Error) as e:
+        nbar.load("no/such/model.yaml")
+    assert "no/such/model.yaml" in str(e.value)
+
+
+def test_a_loop_that_cannot_close_cannot_assemble():
+    text = """points: {O2: [0, 0], O4: [200, 0], A: [40, 0], B: [120, 40]}
+ground: [O2, O4]
+bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
+lengths: {crank: 40, coupler: 50, rocker: 50}
+drivers: [{angle: crank, from: 0, to: 360}]
+"""
+    with pytest.raises(nbar.AssemblyError) as e:
+        nbar.loads(text, "short.yaml").solve(steps=5)
+    assert e.value.kind == "cannot_assemble" and e.value.message
+
+
+def test_toggle_stop_raises_with_the_rows_so_far(examples):
+    text = (examples / "fourbar-crank-rocker.yaml").read_text().replace("lengths: {crank: 80, rocker: 150}",
+                                                                       "lengths: {crank: 130, rocker: 150}")
+    m = nbar.loads(text, "long-crank.yaml")
+    with pytest.raises(nbar.LimitError) as e:
+        m.solve(steps=361)
+    partial = e.value.result
+    assert not partial.complete and 0 < partial.rows < 361
+    assert partial.stop_reason in str(e.value)
+    again = m.solve(steps=361, partial=True)
+    assert again.rows == partial.rows and again.stop_reason == partial.stop_reason
+
+
+def test_unknown_column_suggests_the_right_case(examples):
+    m = nbar.load(examples / "compressor-myszka.yaml")
+    with pytest.raises(nbar.BadInputError) as e:
+        m.solve(columns="C.X")
+    assert "C.X" in str(e.value)
+    r = m.solve(steps=3, columns="C.x")
+    with pytest.raises(nbar.BadInputError, match="did you mean 'C.x'"):
+        r["C.X"]
+
+
+def test_bad_options_are_bad_input(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    with pytest.raises(nbar.BadInputError):
+        m.solve(order=9)
+    with pytest.raises(nbar.BadInputError):
+        m.draw(step=1000, steps=10)
+    with pytest.raises(nbar.BadInputError, match="not a point"):
+        m.draw(traces=["Z"])
+    with pytest.raises(nbar.BadInputError, match="does not exist"):
+        m.draw().save("/no/such/folder/pose.svg")
+
+
+def test_undefined_law_is_located():
+    text = BASE + "drivers:\n  - {angle: crank, law: \"sqrt(t - 1)\"}\nsweep: {duration: 2}\n"
+    with pytest.raises(nbar.Error) as e:
+        nbar.loads(text, "law.yaml").solve()
+    assert e.value.kind in ("undefined_law", "cannot_assemble")
+    assert e.value.file == "law.yaml"
+
+
+def test_from_dict_rejects_what_json_cannot_hold():
+    with pytest.raises(nbar.BadInputError):
+        nbar.Model.from_dict({"points": {"O": [0, float("nan")]}})
+    with pytest.raises(nbar.ModelError) as e:
+        nbar.Model.from_dict({"points": {"O": [0, 0]}, "ground": ["O"], "bodies": {"crank": ["O", "B"]}})
+    assert "B" in e.value.message and e.value.line and "\"crank\"" in e.value.text
+
+
+def test_ctrl_c_stops_a_long_sweep_within_a_second(examples):
+    m = nbar.load(examples / "machine-18.yaml")
+    main = threading.main_thread().ident
+    timer = threading.Timer(0.3, lambda: signal.pthread_kill(main, signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        m.solve(steps=20_000_000)
+    assert time.monotonic() - start < 1.5
+    # The interpreter and the model are still fine.
+    assert m.solve(steps=3).complete
+
+
+def test_timeout_cancels(examples):
+    m = nbar.load(examples / "machine-18.yaml")
+    with pytest.raises(nbar.Cancelled):
+        m.solve(steps=20_000_000, timeout=0.2)

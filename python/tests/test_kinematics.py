@@ -1,0 +1,127 @@
+"""Kinematics from Python against independent references: Norton's closed form for the
+four-bar, sympy's derivatives of the slider-crank's closed form, and the CLI's own numbers."""
+
+import csv
+import io
+import math
+import subprocess
+
+import numpy as np
+import pytest
+
+import nbar
+
+
+def fourbar_closed_form(a, b, c, d, theta2, open_branch):
+    """Norton, Design of Machinery, eq. 4.10: the rocker angle theta4 of a four-bar with frame d,
+    crank a, coupler b, rocker c."""
+    k1, k2, k3 = d / a, d / c, (a * a - b * b + c * c + d * d) / (2 * a * c)
+    A = math.cos(theta2) - k1 - k2 * math.cos(theta2) + k3
+    B = -2 * math.sin(theta2)
+    C = k1 - (k2 + 1) * math.cos(theta2) + k3
+    root = math.sqrt(B * B - 4 * A * C)
+    return 2 * math.atan2(-B - root if open_branch else -B + root, 2 * A)
+
+
+def test_fourbar_rocker_angle_matches_nortons_closed_form(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    r = m.solve(steps=73, columns="crank,rocker.angle,rocker.omega")
+    assert r.complete and r.units["rocker.angle"] == "deg"
+    worst = 0.0
+    for crank, rocker in zip(r["crank"], r["rocker.angle"]):
+        expected = fourbar_closed_form(80, math.hypot(101.25, 148.823511), 150, 200, math.radians(crank), True)
+        diff = (math.radians(rocker) - expected + math.pi) % (2 * math.pi) - math.pi
+        worst = max(worst, abs(diff))
+    assert worst < 1e-9
+
+
+def test_angular_velocity_is_the_derivative_of_the_angle(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    r = m.solve(steps=3601, columns="t,rocker.angle,rocker.omega")
+    numeric = np.gradient(r["rocker.angle"], r["t"])
+    assert np.max(np.abs(numeric[5:-5] - r["rocker.omega"][5:-5])) < 1e-3 * np.max(np.abs(r["rocker.omega"]))
+
+
+def test_slider_crank_derivatives_to_fifth_order_match_sympy(examples):
+    sympy = pytest.importorskip("sympy")
+    t = sympy.symbols("t")
+    r_, l_, w = 0.75, 2.0, 1750 * 2 * sympy.pi / 60
+    theta = w * t
+    x = r_ * sympy.cos(theta) + sympy.sqrt(l_ ** 2 - (r_ * sympy.sin(theta)) ** 2)
+    derivatives = [x]
+    for _ in range(5):
+        derivatives.append(sympy.diff(derivatives[-1], t))
+    m = nbar.load(examples / "compressor-myszka.yaml")
+    names = ["C.x", "C.vx", "C.ax", "C.jx", "C.d4x", "C.d5x"]
+    res = m.solve(steps=25, order=5, columns=["t"] + names)
+    for k, name in enumerate(names):
+        f = sympy.lambdify(t, derivatives[k], "math")
+        exact = np.array([f(tt) for tt in res["t"]])
+        scale = np.max(np.abs(exact))
+        assert np.max(np.abs(res[name] - exact)) < 1e-9 * scale, name
+
+
+def test_columns_agree_with_the_cli_csv(examples, cli):
+    path = examples / "five-bar.yaml"
+    out = subprocess.run([cli, "solve", str(path), "--steps", "7"], capture_output=True, text=True, check=True)
+    rows = list(csv.reader(io.StringIO(out.stdout)))
+    r = nbar.load(path).solve(steps=7)
+    assert rows[0] == r.columns
+    for c, name in enumerate(rows[0]):
+        assert [float(v[c]) for v in rows[1:]] == pytest.approx(list(r[name]), rel=1e-10, abs=1e-10)
+
+
+def test_result_carries_units_warnings_and_residual(examples):
+    r = nbar.load(examples / "fourbar-crank-rocker.yaml").solve(steps=13)
+    assert r.rows == 13 and "P.vx" in r and r.units["P.vx"] == "mm/s"
+    assert r.complete and r.stop_reason is None and r.warnings == []
+    assert 0 <= r.max_residual < 1e-9
+    assert r.branches == ["open"]
+    with pytest.raises(ValueError):
+        r["P.vx"][0] = 1.0  # results are read-only views
+
+
+def test_globs_and_order_follow_the_columns_asked(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    r = m.solve(steps=5, columns="rocker.*")
+    assert r.columns == ["rocker.angle", "rocker.omega", "rocker.alpha"]
+    r3 = m.solve(steps=5, columns="rocker.jerk")
+    assert r3.columns == ["rocker.jerk"]
+
+
+def test_a_model_from_a_dict_equals_the_file(examples):
+    L1, L2, L3, d, theta = 80.0, math.hypot(101.25, 148.823511), 150.0, 200.0, 0.0
+    file_model = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    pts = file_model.points
+    m = nbar.Model.from_dict({
+        "units": {"length": "mm", "angle": "deg"},
+        "points": {"O2": [0, 0], "O4": [d, 0], "A": [L1 * math.cos(theta), L1 * math.sin(theta)],
+                   "B": list(pts["B"])},
+        "ground": ["O2", "O4"],
+        "bodies": {"crank": ["O2", "A"], "coupler": ["A", "B"], "rocker": ["O4", "B"]},
+        "lengths": {"crank": L1, "rocker": L3},
+        "drivers": [{"angle": "crank", "from": 0, "to": 360, "speed": "120 rpm"}],
+    })
+    a = m.solve(steps=19, columns="rocker.angle")["rocker.angle"]
+    b = file_model.solve(steps=19, columns="rocker.angle")["rocker.angle"]
+    assert np.max(np.abs(a - b)) < 1e-9
+    assert L2 > 0 and L3 > 0
+
+
+def test_check_gives_the_structure(examples):
+    s = nbar.load(examples / "fourbar-crank-rocker.yaml").check()
+    assert (s.dof, s.gruebler) == (1, 1)
+    assert s.loops[0].grashof == "crank-rocker" and s.loops[0].branch == "open"
+    assert s.loops[0].input_turns_fully and not s.loops[0].output_turns_fully
+    assert "Grashof" in str(s) or "crank-rocker" in str(s)
+    assert "<table>" in s._repr_html_()
+    red = nbar.load(examples / "parallelogram-redundant.yaml").check()
+    assert red.dof == 1 and red.gruebler == 0 and len(red.redundant) == 1
+
+
+def test_pandas_frame_has_the_columns(examples):
+    pytest.importorskip("pandas")
+    r = nbar.load(examples / "fourbar-crank-rocker.yaml").solve(steps=5, columns="crank,rocker.angle")
+    frame = r.to_pandas()
+    assert list(frame.columns) == ["crank", "rocker.angle"] and len(frame) == 5
+    assert frame.attrs["units"]["crank"] == "deg"

@@ -1,0 +1,42 @@
+"""Dynamics and stresses from Python: power balance, and the CLI's own numbers."""
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import nbar
+
+
+def test_driver_power_balances_the_energy_rate_and_the_loads(examples):
+    # Gravity and the spring's stiffness are in the potential energy; the tool force on P and
+    # the spring's damper (0.5 N s/m between S and B) do work of their own.
+    m = nbar.load(examples / "crank-rocker-gravity-spring.yaml")
+    r = m.dynamics(steps=3601)
+    omega = np.radians(r["crank.omega"])
+    rate = np.gradient(r["energy.kinetic"] + r["energy.potential"], r["t"])
+    tool = -40.0 * r["P.vy"] / 1000.0
+    sx, sy = m.points["S"]
+    length = np.hypot(r["B.x"] - sx, r["B.y"] - sy) / 1000.0
+    stretch_rate = ((r["B.x"] - sx) * r["B.vx"] + (r["B.y"] - sy) * r["B.vy"]) / 1e6 / length
+    damper = -0.5 * stretch_rate ** 2
+    power = r["crank.torque"] * omega
+    mismatch = power - (rate - tool - damper)
+    assert np.max(np.abs(mismatch)[10:-10]) < 1e-4 * np.max(np.abs(power))
+
+
+def test_stress_peaks_equal_the_cli(examples, cli):
+    path = examples / "fourbar-steel-bars.yaml"
+    s = nbar.load(path).stress(steps=37)
+    out = subprocess.run([cli, "stress", str(path), "--steps", "37", "--format", "json"], capture_output=True,
+                         text=True, check=True)
+    assert json.loads(out.stdout) == s.data
+    assert s.links and "crank" in str(s)
+    profile = s.profile("coupler", step=3)
+    assert profile.rows >= 200 and "von_mises" in " ".join(profile.columns)
+
+
+def test_stress_on_a_model_without_shapes_is_a_model_error(examples):
+    with pytest.raises(nbar.ModelError):
+        nbar.load(examples / "fourbar-crank-rocker.yaml").stress()

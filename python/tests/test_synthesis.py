@@ -1,0 +1,59 @@
+"""Synthesis from Python: the designs the CLI finds, and designs that become models which do the
+task when the kinematics engine drives them."""
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import nbar
+
+POINTS = [(-74.772, 20.544), (-3.664, 70.026), (44.303, 194.508), (-56.040, 164.598), (-90.203, 97.034)]
+
+
+def test_five_point_finds_the_crank_rocker_and_its_model_passes_through_the_points():
+    designs = nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=POINTS, units="mm")
+    assert "36 solutions" in " ".join(designs.notes) or designs.data
+    best = designs.best
+    assert best.defect_free and best.grashof == "crank-rocker"
+    assert best.lengths["frame"] == pytest.approx(200, rel=1e-9)
+    assert best.lengths["input"] == pytest.approx(80, rel=1e-4)
+    m = best.model()
+    r = m.solve(steps=3601, columns="P.x,P.y")
+    xy = np.column_stack([r["P.x"], r["P.y"]])
+    for p in POINTS:
+        assert np.min(np.linalg.norm(xy - np.array(p), axis=1)) < 0.2  # within the sampling of 0.1 deg
+
+
+def test_five_point_from_a_file_equals_the_cli(examples, cli):
+    path = examples / "synthesis" / "five-point-crank-rocker.yaml"
+    designs = nbar.synth.run(path)
+    out = subprocess.run([cli, "synth", "five-point", str(path), "--format", "json"], capture_output=True,
+                         text=True, check=True)
+    assert json.loads(out.stdout) == designs.data
+    assert str(designs).startswith("five-point task")
+
+
+def test_all_lists_the_complex_solutions_too():
+    designs = nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=POINTS, units="mm", all=True)
+    assert len(designs) == 36
+    assert sum(1 for d in designs if not d.real) == 20
+
+
+def test_burmester_and_function_run(examples):
+    poses = [(-74.772, 20.544, 65.248), (22.802, 111.483, 55.771), (44.303, 194.508, 26.642)]
+    three = nbar.synth.burmester(poses, fixed_pivots=[(0, 0), (200, 0)], units="mm")
+    assert len(three) >= 1 and three.best.model().check().dof == 1
+    log = nbar.synth.function("log10(x)", x=(1, 2), input_range=(90, 150), output_range=(60, 120), frame=100,
+                              units="mm")
+    assert len(log) >= 1 and log.best.data.get("structural_error") is not None
+
+
+def test_bad_tasks_are_located():
+    with pytest.raises(nbar.ModelError) as e:
+        nbar.synth.five_point(pivots=[(0, 0), (0, 0)], points=POINTS)
+    assert e.value.file == "<five_point>"
+    with pytest.raises(nbar.ModelError) as e:
+        nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=POINTS[:4])
+    assert e.value.line is not None
