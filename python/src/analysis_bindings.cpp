@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <sstream>
 
 #include "bindings.hpp"
@@ -43,30 +44,39 @@ std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::op
   return out;
 }
 
-ResultTable selected(const ResultTable& table, const std::optional<std::vector<std::string>>& patterns) {
+template <class Table>
+Table selected(Table table, const std::optional<std::vector<std::string>>& patterns) {
   if (!patterns) return table;
   try {
     return select_columns(table, *patterns);
   } catch (const std::invalid_argument& e) {
-    throw Error(ErrorKind::BadInput, std::string(e.what()) + "; the columns are: " + [&] {
-      std::string names;
-      for (const std::string& c : table.columns) names += (names.empty() ? "" : ", ") + c;
-      return names;
-    }());
+    std::string names;
+    for (const std::string& c : table.columns) names += (names.empty() ? "" : ", ") + c;
+    throw Error(ErrorKind::BadInput, std::string(e.what()) + "; the columns are: " + names);
   }
 }
 
-// Column names, units and one numpy array per column, filled straight from the table's rows.
-py::tuple as_arrays(const ResultTable& table) {
-  const std::size_t rows = table.rows.size();
+// Column names, units and one numpy array per column. The arrays are views into one matrix the
+// table was built in, which they keep alive: nothing is copied after the sweep's table.
+py::tuple as_arrays(ColumnTable table) {
+  auto* values = new Eigen::MatrixXd(std::move(table.values));
+  py::capsule owner(values, [](void* p) { delete static_cast<Eigen::MatrixXd*>(p); });
+  const auto rows = static_cast<py::ssize_t>(values->rows());
   py::list arrays;
-  for (std::size_t c = 0; c < table.columns.size(); ++c) {
-    py::array_t<double> column(static_cast<py::ssize_t>(rows));
-    double* data = column.mutable_data();
-    for (std::size_t r = 0; r < rows; ++r) data[r] = table.rows[r][c];
-    arrays.append(std::move(column));
-  }
+  for (Eigen::Index c = 0; c < values->cols(); ++c)
+    arrays.append(py::array_t<double>({rows}, {static_cast<py::ssize_t>(sizeof(double))}, values->col(c).data(), owner));
   return py::make_tuple(table.columns, table.units, arrays);
+}
+
+py::tuple as_arrays(const ResultTable& rows) {
+  ColumnTable table;
+  table.columns = rows.columns;
+  table.units = rows.units;
+  table.values.resize(static_cast<Eigen::Index>(rows.rows.size()), static_cast<Eigen::Index>(rows.columns.size()));
+  for (std::size_t r = 0; r < rows.rows.size(); ++r)
+    for (std::size_t c = 0; c < rows.columns.size(); ++c)
+      table.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows.rows[r][c];
+  return as_arrays(std::move(table));
 }
 
 py::list warning_list(const std::vector<Warning>& warnings) {
@@ -185,7 +195,7 @@ void bind_analysis(py::module_& m) {
         return a.analysis.dynamics ? py::object(py::bool_(a.analysis.dynamics->unique)) : py::none();
       })
       .def("table", [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
-             return as_arrays(selected(result_table(a.analysis), columns));
+             return as_arrays(selected(result_columns(a.analysis), columns));
            }, py::arg("columns") = std::nullopt)
       .def("json", [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
              std::ostringstream out;
@@ -205,6 +215,21 @@ void bind_analysis(py::module_& m) {
   m.def("analyse", &run_analysis, py::arg("model"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
         py::arg("dynamics") = false, py::arg("stress") = false, py::arg("sections") = 200,
         py::arg("timeout") = std::nullopt);
+  // For bench/python: the same solve timed inside C++ (the sweep, then the sweep and its column
+  // table), the reference Python's own cost is measured against.
+  m.def("_time_in_cpp", [](std::shared_ptr<PyModel> model, int steps, int order) {
+    py::gil_scoped_release release;
+    AnalysisOptions options;
+    options.steps = steps;
+    options.order = order;
+    const auto start = std::chrono::steady_clock::now();
+    const Analysis analysis = analyse(model->mechanism, options);
+    const auto swept = std::chrono::steady_clock::now();
+    const ColumnTable table = result_columns(analysis);
+    const auto tabled = std::chrono::steady_clock::now();
+    const std::chrono::duration<double> sweep = swept - start, total = tabled - start;
+    return std::make_pair(sweep.count(), table.values.size() > 0 ? total.count() : 0.0);
+  }, py::arg("model"), py::arg("steps"), py::arg("order") = 2);
   m.def("report", &report, py::arg("model"), py::arg("frames") = 72, py::arg("timeout") = std::nullopt);
 }
 

@@ -81,6 +81,13 @@ ResultTable result_table(const Analysis& analysis) {
   return table;
 }
 
+ColumnTable result_columns(const Analysis& analysis) {
+  ColumnTable table = make_column_table(*analysis.mechanism, analysis.sweep);
+  if (analysis.dynamics)
+    append_dynamics_columns(*analysis.dynamics->solver, analysis.sweep, analysis.dynamics->samples, table);
+  return table;
+}
+
 ResultTable section_profile_table(const Analysis& analysis, int body, int step) {
   const Model& m = analysis.model();
   if (!analysis.stress) throw Error(ErrorKind::BadInput, "section profiles need the stress stage");

@@ -1,5 +1,7 @@
 #include "nbar/dynamics/dynamics_table.hpp"
 
+#include <array>
+
 #include <cmath>
 
 namespace nbar {
@@ -55,40 +57,70 @@ std::vector<ColumnName> dynamics_columns(const InverseDynamics& dynamics) {
   return columns;
 }
 
-void append_dynamics_columns(const InverseDynamics& dynamics, const SweepResult& sweep,
-                             const std::vector<DynamicsResult>& results, ResultTable& table) {
-  const Mechanism& mech = dynamics.mechanism();
+namespace {
+
+// One sample's dynamics columns, value j at out[j * stride] (see make_column_table).
+void fill_dynamics_row(const Mechanism& mech, const std::vector<JointForceColumn>& forces, const Sample& sample,
+                       const DynamicsResult& r, double* out, std::ptrdiff_t stride) {
   const Model& m = mech.model();
+  std::ptrdiff_t j = 0;
+  auto put = [&](double v) { out[stride * j++] = v; };
+  std::array<double, Series::kCapacity> ax{}, ay{}, bx{}, by{};
+  for (const JointForceColumn& f : forces) {
+    const Eigen::Vector2d& force = r.pin_forces[f.joint_link];
+    put(force.x());
+    put(force.y());
+    if (f.receiver >= 0) {
+      const auto& pts = m.bodies[f.receiver].points;
+      point_derivatives(mech, sample, pts[0], ax.data(), ay.data());
+      point_derivatives(mech, sample, pts[1], bx.data(), by.data());
+      const Eigen::Vector2d axis = Eigen::Vector2d(bx[0] - ax[0], by[0] - ay[0]).normalized();
+      put(force.dot(axis));
+      put(axis.x() * force.y() - axis.y() * force.x());
+    }
+  }
+  for (std::size_t s = 0; s < m.sliders.size(); ++s) {
+    put(r.slider_normal[s]);
+    put(r.slider_couple[s]);
+  }
+  for (double n : r.slot_normal) put(n);
+  for (double e : r.driver_effort) put(e);
+  put(r.kinetic_energy);
+  put(r.potential_energy);
+}
+
+template <class Table>
+void name_dynamics_columns(const InverseDynamics& dynamics, Table& table) {
   for (ColumnName& c : dynamics_columns(dynamics)) {
     table.columns.push_back(std::move(c.name));
     table.units.push_back(std::move(c.unit));
   }
+}
+
+}  // namespace
+
+void append_dynamics_columns(const InverseDynamics& dynamics, const SweepResult& sweep,
+                             const std::vector<DynamicsResult>& results, ResultTable& table) {
+  const std::size_t first = table.columns.size();
+  name_dynamics_columns(dynamics, table);
   const std::vector<JointForceColumn> forces = joint_force_columns(dynamics);
   for (std::size_t row = 0; row < sweep.samples.size(); ++row) {
-    const Sample& sample = sweep.samples[row];
-    const DynamicsResult& r = results[row];
     std::vector<double>& out = table.rows[row];
-    for (const JointForceColumn& f : forces) {
-      const Eigen::Vector2d& force = r.pin_forces[f.joint_link];
-      out.push_back(force.x());
-      out.push_back(force.y());
-      if (f.receiver >= 0) {
-        const auto& pts = m.bodies[f.receiver].points;
-        const Motion2 a = point_motion(mech, sample, pts[0]), b = point_motion(mech, sample, pts[1]);
-        const Eigen::Vector2d axis = Eigen::Vector2d(b.x[0] - a.x[0], b.y[0] - a.y[0]).normalized();
-        out.push_back(force.dot(axis));
-        out.push_back(axis.x() * force.y() - axis.y() * force.x());
-      }
-    }
-    for (std::size_t s = 0; s < m.sliders.size(); ++s) {
-      out.push_back(r.slider_normal[s]);
-      out.push_back(r.slider_couple[s]);
-    }
-    for (double n : r.slot_normal) out.push_back(n);
-    for (double e : r.driver_effort) out.push_back(e);
-    out.push_back(r.kinetic_energy);
-    out.push_back(r.potential_energy);
+    out.resize(table.columns.size());
+    fill_dynamics_row(dynamics.mechanism(), forces, sweep.samples[row], results[row], out.data() + first, 1);
   }
+}
+
+void append_dynamics_columns(const InverseDynamics& dynamics, const SweepResult& sweep,
+                             const std::vector<DynamicsResult>& results, ColumnTable& table) {
+  const auto first = static_cast<Eigen::Index>(table.columns.size());
+  name_dynamics_columns(dynamics, table);
+  const auto samples = static_cast<std::ptrdiff_t>(sweep.samples.size());
+  table.values.conservativeResize(samples, static_cast<Eigen::Index>(table.columns.size()));
+  const std::vector<JointForceColumn> forces = joint_force_columns(dynamics);
+  for (std::ptrdiff_t r = 0; r < samples; ++r)
+    fill_dynamics_row(dynamics.mechanism(), forces, sweep.samples[r], results[r],
+                      table.values.data() + first * samples + r, samples);
 }
 
 }  // namespace nbar

@@ -364,25 +364,31 @@ std::vector<Eigen::Vector2d> point_positions(const Mechanism& mech, const Eigen:
   return out;
 }
 
+void point_derivatives(const Mechanism& mech, const Sample& sample, int point, double* x, double* y) {
+  const int terms = static_cast<int>(sample.taylor.cols());
+  const int col = mech.column_of(point);
+  if (col < 0) {
+    x[0] = mech.model().points[point].position.x();
+    y[0] = mech.model().points[point].position.y();
+    for (int k = 1; k < terms; ++k) x[k] = y[k] = 0.0;
+    return;
+  }
+  for (int k = 0; k < terms; ++k) {
+    x[k] = factorial(k) * sample.taylor(col, k);
+    y[k] = factorial(k) * sample.taylor(col + 1, k);
+  }
+}
+
 Motion2 point_motion(const Mechanism& mech, const Sample& sample, int point) {
   const int terms = static_cast<int>(sample.taylor.cols());
   Motion2 m;
   m.x.assign(terms, 0.0);
   m.y.assign(terms, 0.0);
-  const int col = mech.column_of(point);
-  if (col < 0) {
-    m.x[0] = mech.model().points[point].position.x();
-    m.y[0] = mech.model().points[point].position.y();
-    return m;
-  }
-  for (int k = 0; k < terms; ++k) {
-    m.x[k] = factorial(k) * sample.taylor(col, k);
-    m.y[k] = factorial(k) * sample.taylor(col + 1, k);
-  }
+  point_derivatives(mech, sample, point, m.x.data(), m.y.data());
   return m;
 }
 
-std::vector<double> body_angle_motion(const Mechanism& mech, const Sample& sample, int body) {
+void body_angle_derivatives(const Mechanism& mech, const Sample& sample, int body, double* out) {
   const int terms = static_cast<int>(sample.taylor.cols());
   const Body& b = mech.model().bodies[body];
   auto coordinate = [&](int point, int axis) {
@@ -398,8 +404,12 @@ std::vector<double> body_angle_motion(const Mechanism& mech, const Sample& sampl
   const Series ux = coordinate(b.points[1], 0) - coordinate(b.points[0], 0);
   const Series uy = coordinate(b.points[1], 1) - coordinate(b.points[0], 1);
   const Series angle = atan2(uy, ux);
-  std::vector<double> out(terms);
   for (int k = 0; k < terms; ++k) out[k] = factorial(k) * angle[k];
+}
+
+std::vector<double> body_angle_motion(const Mechanism& mech, const Sample& sample, int body) {
+  std::vector<double> out(sample.taylor.cols());
+  body_angle_derivatives(mech, sample, body, out.data());
   return out;
 }
 

@@ -1,6 +1,7 @@
 #include "nbar/kinematics/table.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -24,71 +25,112 @@ double unwrap(double angle, double reference) {
   return angle + two_pi * std::round((reference - angle) / two_pi);
 }
 
+// Names the kinematic columns and fills them sample by sample, in the order the samples come
+// (the angles are unwrapped against the sample before), writing value j of a row at
+// out[j * stride]: stride 1 fills a row, stride = samples a column-major matrix. Nothing is
+// allocated per sample.
+class KinematicRows {
+ public:
+  KinematicRows(const Mechanism& mech, const SweepResult& sweep) : mech_(mech), order_(sweep.order) {
+    const Model& m = mech.model();
+    for (std::size_t b = 0; b < m.bodies.size(); ++b)
+      if (m.bodies[b].points.size() >= 2) angled_.push_back(static_cast<int>(b));
+    // A body driven by an absolute angle starts at its driver's value, not at atan2's range.
+    previous_.assign(m.bodies.size(), 0.0);
+    started_.assign(m.bodies.size(), false);
+    for (std::size_t d = 0; d < m.drivers.size(); ++d) {
+      const Driver& drv = m.drivers[d];
+      if (drv.kind == DriverKind::Angle && drv.relative_to < 0 && !sweep.samples.empty()) {
+        previous_[drv.body] = sweep.samples.front().driver_values[d];
+        started_[drv.body] = true;
+      }
+    }
+    positions_.resize(m.points.size());
+  }
+
+  void name_columns(std::vector<std::string>& columns, std::vector<std::string>& units) const {
+    const Model& m = mech_.model();
+    const Units& u = m.units;
+    auto add = [&](std::string name, std::string unit) {
+      columns.push_back(std::move(name));
+      units.push_back(std::move(unit));
+    };
+    add("step", "");
+    add("t", "s");
+    for (const Driver& d : m.drivers) add(d.name, d.is_angular() ? u.angle : u.length);
+    for (const Point& p : m.points)
+      for (int k = 0; k <= order_; ++k) {
+        add(p.name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
+        add(p.name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
+      }
+    for (int b : angled_)
+      for (int k = 0; k <= order_; ++k) add(m.bodies[b].name + "." + kAngleName[k], per_time(u.angle, k));
+    for (const FourBarLoop& loop : mech_.four_bar_loops()) add(loop.name + ".mu", u.angle);
+  }
+
+  void fill(const Sample& s, double* out, std::ptrdiff_t stride) {
+    const Model& m = mech_.model();
+    const Units& u = m.units;
+    std::ptrdiff_t j = 0;
+    auto put = [&](double v) { out[stride * j++] = v; };
+    put(s.step);
+    put(s.time);
+    for (std::size_t d = 0; d < m.drivers.size(); ++d)
+      put(s.driver_values[d] / (m.drivers[d].is_angular() ? u.angle_scale : u.length_scale));
+    std::array<double, Series::kCapacity> x{}, y{};
+    for (std::size_t p = 0; p < m.points.size(); ++p) {
+      point_derivatives(mech_, s, static_cast<int>(p), x.data(), y.data());
+      for (int k = 0; k <= order_; ++k) {
+        put(x[k] / u.length_scale);
+        put(y[k] / u.length_scale);
+      }
+    }
+    for (int b : angled_) {
+      body_angle_derivatives(mech_, s, b, x.data());
+      x[0] = started_[b] ? unwrap(x[0], previous_[b]) : x[0];
+      previous_[b] = x[0];
+      started_[b] = true;
+      for (int k = 0; k <= order_; ++k) put(x[k] / u.angle_scale);
+    }
+    if (!mech_.four_bar_loops().empty()) {
+      const Eigen::VectorXd& q = s.taylor.col(0);
+      for (std::size_t i = 0; i < positions_.size(); ++i) positions_[i] = mech_.point_position(static_cast<int>(i), q);
+      for (const FourBarLoop& loop : mech_.four_bar_loops())
+        put(transmission_angle(loop, positions_) / u.angle_scale);
+    }
+  }
+
+ private:
+  const Mechanism& mech_;
+  int order_;
+  std::vector<int> angled_;
+  std::vector<double> previous_;
+  std::vector<bool> started_;
+  std::vector<Eigen::Vector2d> positions_;
+};
+
 }  // namespace
 
 ResultTable make_table(const Mechanism& mech, const SweepResult& sweep) {
-  const Model& m = mech.model();
-  const Units& u = m.units;
-  const int order = sweep.order;
   ResultTable t;
-  auto add = [&](std::string name, std::string unit) {
-    t.columns.push_back(std::move(name));
-    t.units.push_back(std::move(unit));
-  };
-  add("step", "");
-  add("t", "s");
-  for (const Driver& d : m.drivers) add(d.name, d.is_angular() ? u.angle : u.length);
-  for (const Point& p : m.points)
-    for (int k = 0; k <= order; ++k) {
-      add(p.name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
-      add(p.name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
-    }
-  std::vector<int> angled;
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    if (m.bodies[b].points.size() < 2) continue;
-    angled.push_back(static_cast<int>(b));
-    for (int k = 0; k <= order; ++k) add(m.bodies[b].name + "." + kAngleName[k], per_time(u.angle, k));
-  }
-  for (const FourBarLoop& loop : mech.four_bar_loops()) add(loop.name + ".mu", u.angle);
-
-  // A body driven by an absolute angle starts at its driver's value, not at atan2's range.
-  std::vector<double> previous(m.bodies.size(), 0.0);
-  std::vector<bool> started(m.bodies.size(), false);
-  for (std::size_t d = 0; d < m.drivers.size(); ++d) {
-    const Driver& drv = m.drivers[d];
-    if (drv.kind == DriverKind::Angle && drv.relative_to < 0 && !sweep.samples.empty()) {
-      previous[drv.body] = sweep.samples.front().driver_values[d];
-      started[drv.body] = true;
-    }
-  }
-
+  KinematicRows rows(mech, sweep);
+  rows.name_columns(t.columns, t.units);
+  t.rows.reserve(sweep.samples.size());
   for (const Sample& s : sweep.samples) {
-    std::vector<double> row;
-    row.reserve(t.columns.size());
-    row.push_back(s.step);
-    row.push_back(s.time);
-    for (std::size_t d = 0; d < m.drivers.size(); ++d)
-      row.push_back(s.driver_values[d] / (m.drivers[d].is_angular() ? u.angle_scale : u.length_scale));
-    for (std::size_t p = 0; p < m.points.size(); ++p) {
-      const Motion2 motion = point_motion(mech, s, static_cast<int>(p));
-      for (int k = 0; k <= order; ++k) {
-        row.push_back(motion.x[k] / u.length_scale);
-        row.push_back(motion.y[k] / u.length_scale);
-      }
-    }
-    for (int b : angled) {
-      std::vector<double> a = body_angle_motion(mech, s, b);
-      a[0] = started[b] ? unwrap(a[0], previous[b]) : a[0];
-      previous[b] = a[0];
-      started[b] = true;
-      for (int k = 0; k <= order; ++k) row.push_back(a[k] / u.angle_scale);
-    }
-    if (!mech.four_bar_loops().empty()) {
-      const auto points = point_positions(mech, s.taylor.col(0));
-      for (const FourBarLoop& loop : mech.four_bar_loops()) row.push_back(transmission_angle(loop, points) / u.angle_scale);
-    }
+    std::vector<double> row(t.columns.size());
+    rows.fill(s, row.data(), 1);
     t.rows.push_back(std::move(row));
   }
+  return t;
+}
+
+ColumnTable make_column_table(const Mechanism& mech, const SweepResult& sweep) {
+  ColumnTable t;
+  KinematicRows rows(mech, sweep);
+  rows.name_columns(t.columns, t.units);
+  const auto samples = static_cast<std::ptrdiff_t>(sweep.samples.size());
+  t.values.resize(samples, static_cast<Eigen::Index>(t.columns.size()));
+  for (std::ptrdiff_t r = 0; r < samples; ++r) rows.fill(sweep.samples[r], t.values.data() + r, samples);
   return t;
 }
 
@@ -112,17 +154,27 @@ bool glob_match(const std::string& pattern, const std::string& text) {
   return p == pattern.size();
 }
 
-ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns) {
+namespace {
+
+// Which columns the patterns pick, in the order of the patterns, each once.
+std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns, const std::vector<std::string>& patterns) {
   std::vector<std::size_t> picked;
   for (const std::string& pattern : patterns) {
     bool any = false;
-    for (std::size_t c = 0; c < table.columns.size(); ++c) {
-      if (!glob_match(pattern, table.columns[c])) continue;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (!glob_match(pattern, columns[c])) continue;
       any = true;
       if (std::find(picked.begin(), picked.end(), c) == picked.end()) picked.push_back(c);
     }
     if (!any) throw std::invalid_argument("no column matches '" + pattern + "'");
   }
+  return picked;
+}
+
+}  // namespace
+
+ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns) {
+  const std::vector<std::size_t> picked = pick_columns(table.columns, patterns);
   ResultTable out;
   for (std::size_t c : picked) {
     out.columns.push_back(table.columns[c]);
@@ -133,6 +185,18 @@ ResultTable select_columns(const ResultTable& table, const std::vector<std::stri
     r.reserve(picked.size());
     for (std::size_t c : picked) r.push_back(row[c]);
     out.rows.push_back(std::move(r));
+  }
+  return out;
+}
+
+ColumnTable select_columns(const ColumnTable& table, const std::vector<std::string>& patterns) {
+  const std::vector<std::size_t> picked = pick_columns(table.columns, patterns);
+  ColumnTable out;
+  out.values.resize(table.values.rows(), static_cast<Eigen::Index>(picked.size()));
+  for (std::size_t i = 0; i < picked.size(); ++i) {
+    out.columns.push_back(table.columns[picked[i]]);
+    out.units.push_back(table.units[picked[i]]);
+    out.values.col(static_cast<Eigen::Index>(i)) = table.values.col(static_cast<Eigen::Index>(picked[i]));
   }
   return out;
 }

@@ -66,6 +66,8 @@ Analysis analyse(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptio
 // The sweep as a table in the model's units: the kinematic columns, then the dynamics columns
 // when that stage ran (kinematics/table.hpp and dynamics/dynamics_table.hpp name them).
 ResultTable result_table(const Analysis& analysis);
+// The same columns stored column by column, for front-ends that hand columns out whole.
+ColumnTable result_columns(const Analysis& analysis);
 
 // Every cross-section of one link at one sample: x, area, N, V, M, sigma at both fibres, tau
 // and von Mises. Needs the stress stage; throws Error(BadInput) for a body without a shape or a

@@ -35,5 +35,7 @@ std::vector<ColumnName> dynamics_columns(const InverseDynamics& dynamics);
 // solution at sweep.samples[i].
 void append_dynamics_columns(const InverseDynamics& dynamics, const SweepResult& sweep,
                              const std::vector<DynamicsResult>& results, ResultTable& table);
+void append_dynamics_columns(const InverseDynamics& dynamics, const SweepResult& sweep,
+                             const std::vector<DynamicsResult>& results, ColumnTable& table);
 
 }  // namespace nbar

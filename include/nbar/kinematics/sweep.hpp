@@ -92,6 +92,9 @@ struct Motion2 {
 };
 Motion2 point_motion(const Mechanism& mech, const Sample& sample, int point);
 std::vector<double> body_angle_motion(const Mechanism& mech, const Sample& sample, int body);
+// The same without allocating, for tables: order + 1 values written to each of x, y (out).
+void point_derivatives(const Mechanism& mech, const Sample& sample, int point, double* x, double* y);
+void body_angle_derivatives(const Mechanism& mech, const Sample& sample, int body, double* out);
 std::vector<Eigen::Vector2d> point_positions(const Mechanism& mech, const Eigen::VectorXd& q);
 
 }  // namespace nbar

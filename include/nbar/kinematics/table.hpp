@@ -2,6 +2,8 @@
 // (CSV, JSON, web, Python) shows, so column names and units are decided in one place.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <string>
 #include <vector>
 
@@ -20,6 +22,17 @@ struct ResultTable {
 // B.angle, B.omega, B.alpha, B.jerk, B.d4, B.d5 (the angle unwrapped over the sweep), then
 // the transmission angle of every four-bar loop as <input>-<coupler>-<output>.mu.
 ResultTable make_table(const Mechanism& mech, const SweepResult& sweep);
+
+// The same columns stored column by column, every column contiguous (samples x columns,
+// column-major): what front-ends hand out without copying (Python's numpy arrays).
+struct ColumnTable {
+  std::vector<std::string> columns;
+  std::vector<std::string> units;
+  Eigen::MatrixXd values;
+};
+ColumnTable make_column_table(const Mechanism& mech, const SweepResult& sweep);
+// The columns matching `patterns` (as select_columns), in the order of the patterns.
+ColumnTable select_columns(const ColumnTable& table, const std::vector<std::string>& patterns);
 
 // The columns matching any of `patterns` (exact names, or globs with '*' such as
 // "rocker.*"), in the order of the patterns. Throws std::invalid_argument naming a pattern
