@@ -188,6 +188,7 @@ class Model:
             order, dynamics = needs["order"], needs["dynamics"]
         analysis = self.analyse(steps=steps, order=2 if order is None else order, dynamics=dynamics, timeout=timeout)
         result = Result(analysis, *analysis.table(patterns))
+        result.time_law = self._c.has_time_law
         if not result.complete and not partial:
             raise LimitError(f"{result.stop_reason} ({result.rows} rows solved; solve(..., partial=True) returns "
                              f"them)", kind="stopped_at_limit", file=self._c.file, result=result)

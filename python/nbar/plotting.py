@@ -8,12 +8,18 @@ from .results import Table
 
 
 def default_x(result: Table) -> str:
-    """The column plots run along: the first driver when it moves, otherwise time."""
+    """The column plots run along: time for models driven by laws in time, otherwise the first
+    driver when it moves, otherwise time."""
+    if getattr(result, "time_law", False) and "t" in result:
+        return "t"
     names = result.columns
     first_driver = names[2] if len(names) > 2 and names[0] == "step" and names[1] == "t" else None
     if first_driver and result.units.get(first_driver) and len(set(result[first_driver])) > 1:
         return first_driver
-    return "t"
+    if "t" in result:
+        return "t"
+    from .errors import BadInputError
+    raise BadInputError("these columns have neither the driver nor t to plot against: pass x=")
 
 
 def plot(result: Table, y: Union[str, Sequence[str]], x: Optional[str] = None, ax=None, **line_options):

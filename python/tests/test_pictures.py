@@ -48,3 +48,11 @@ def test_plot_with_units_and_equal_scales(examples):
     assert ax.get_xlabel() == "crank [deg]" and "deg/s" in ax.get_ylabel()
     ax2 = nbar.plot(r, "P.y", x="P.x")
     assert ax2.get_aspect() == 1.0
+
+
+def test_time_law_models_plot_against_time(examples):
+    pytest.importorskip("matplotlib")
+    import matplotlib
+    matplotlib.use("Agg")
+    r = nbar.load(examples / "fourbar-oscillating.yaml").solve(steps=41)
+    assert nbar.plot(r, "output.omega").get_xlabel() == "t [s]"
