@@ -40,9 +40,19 @@ int draw_centres(const ExplainArgs& args, const Explanation& ex) {
   }
   const Eigen::Vector2d centre = 0.5 * (lo + hi);
   const double reach = 2.0 * std::max(mech.characteristic_length(), (hi - lo).norm());
+  // Links numbered as textbooks do: 1 the ground, then the bodies; I23 is the centre of links 2, 3.
+  std::vector<int> number(m.bodies.size() + 1, 0);  // by body index + 1
+  std::string legend;
+  number[0] = 1;
+  legend = "1 ground";
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    number[b + 1] = static_cast<int>(b) + 2;
+    legend += ", " + std::to_string(b + 2) + " " + m.bodies[b].name;
+  }
+  const bool short_labels = m.bodies.size() + 1 < 10;
   render::DrawOptions draw;
   draw.labels = true;
-  draw.title = "Instant centres at step " + std::to_string(ex.step);
+  draw.title = "Instant centres at step " + std::to_string(ex.step) + " (links: " + legend + ")";
   int off_picture = 0;
   for (const InstantCentre& c : ex.centres) {
     if (c.at_infinity || c.indeterminate) continue;
@@ -53,9 +63,9 @@ int draw_centres(const ExplainArgs& args, const Explanation& ex) {
     }
     lo = lo.cwiseMin(at);
     hi = hi.cwiseMax(at);
-    std::string label = c.name;
-    if (label.rfind("I(", 0) == 0) label = "I" + label.substr(1);
-    draw.marked_points.push_back({at, label});
+    const int a = number[c.body_a + 1], b = number[c.body_b + 1];
+    draw.marked_points.push_back({at, short_labels ? "I" + std::to_string(a) + std::to_string(b)
+                                                   : "I(" + std::to_string(a) + "," + std::to_string(b) + ")"});
   }
   const render::View view(lo, hi, draw.width, draw.height, draw.margin + 30.0);
   SweepResult none;  // no traces, no guide spans from a sweep: the pose alone

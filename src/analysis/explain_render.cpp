@@ -118,13 +118,14 @@ class Renderer {
   std::string cell3(double v) const { return text() ? number(v, 3) : "$" + latex_number(v, 3) + "$"; }
   std::string sym(std::size_t c) const { return text() ? sym_[c] : tsym_[c]; }
 
-  void heading(const std::string& t) {
+  // A heading; `words` and `maths` (LaTeX) replace the plain text's tail in Markdown and LaTeX.
+  void heading(const std::string& t, const std::string& words = {}, const std::string& maths = {}) {
     if (text())
       out_ << "\n" << t << "\n" << std::string(t.size(), '-') << "\n";
     else if (md())
-      out_ << "\n### " << t << "\n\n";
+      out_ << "\n### " << (maths.empty() ? t : words + "$" + maths + "$") << "\n\n";
     else
-      out_ << "\n\\subsection*{" << tex_escape(t) << "}\n";
+      out_ << "\n\\subsection*{" << (maths.empty() ? tex_escape(t) : tex_escape(words) + "$" + maths + "$") << "}\n";
   }
   void para(const std::string& t) {
     if (text())
@@ -141,15 +142,21 @@ class Renderer {
     else
       out_ << "\\[ " << latex << " \\]\n";
   }
-  static std::string wrap(const std::string& t, std::size_t width = 92) {
+  // Words filled to `width` columns; continuation lines indented by `hang` spaces.
+  static std::string wrap(const std::string& t, std::size_t hang = 0, std::size_t width = 92) {
+    std::size_t lead = t.find_first_not_of(' ');
+    if (lead == std::string::npos) lead = 0;
     std::istringstream words(t);
-    std::string word, line, out;
+    std::string word, line = t.substr(0, lead), out;
+    bool empty = true;
     while (words >> word) {
-      if (!line.empty() && line.size() + 1 + word.size() > width) {
+      if (!empty && line.size() + 1 + word.size() > width) {
         out += line + "\n";
-        line.clear();
+        line = std::string(hang, ' ');
+        empty = true;
       }
-      line += (line.empty() ? "" : " ") + word;
+      line += (empty ? "" : " ") + word;
+      empty = false;
     }
     return out + line;
   }
@@ -216,7 +223,7 @@ class Renderer {
   }
 
   void coordinates() {
-    heading("2. The coordinates q");
+    heading("2. The coordinates q", "2. The coordinates ", "\\mathbf{q}");
     para("nbar uses natural coordinates: q holds the x and y of every moving point (" +
          std::to_string(ex_.coordinates.size()) +
          " coordinates). There are no angle coordinates: each driver is a known function of time that enters "
@@ -243,7 +250,7 @@ class Renderer {
   }
 
   void equations() {
-    heading("3. Constraint equations Phi(q, t) = 0");
+    heading("3. Constraint equations Phi(q, t) = 0", "3. Constraint equations ", "\\Phi(\\mathbf{q}, t) = \\mathbf{0}");
     std::ostringstream s;
     s << ex_.equations.size() << " rows: the joints and the shapes of the links, then one row per driver. The solver "
       << "multiplies each row by a constant so that its residual is a length (shown as 'scale').";
@@ -263,22 +270,27 @@ class Renderer {
   }
 
   void symbolic_jacobian() {
-    heading("4. The Jacobian Phi_q, symbolically");
-    para("The non-zero derivatives of each row (before the row's scale):");
+    heading("4. The Jacobian Phi_q, symbolically", "4. The Jacobian, symbolically: ", "\\Phi_{\\mathbf{q}}");
+    para("The non-zero derivatives of each row (before the row's scale), one a line:");
     for (std::size_t r = 0; r < ex_.equations.size(); ++r) {
       const EquationRow& e = ex_.equations[r];
       std::string plain, latex;
       for (const auto& d : e.jacobian) {
-        plain += (plain.empty() ? "" : ";  ") + ("d/d" + sym_[d.column] + " = " + d.text);
-        latex += (latex.empty() ? "" : ",\\quad ") +
-                 ("\\frac{\\partial\\Phi_{" + std::to_string(r + 1) + "}}{\\partial " + tsym_[d.column] + "} = " + d.latex);
+        if (plain.empty()) {
+          plain.append("  ").append(std::to_string(r + 1)).append(": ");
+        } else {
+          plain.append("\n").append(std::to_string(r + 1).size() + 4, ' ');
+        }
+        plain.append("d/d").append(sym_[d.column]).append(" = ").append(d.text);
+        latex += (latex.empty() ? "" : " \\\\ ") +
+                 ("\\frac{\\partial\\Phi_{" + std::to_string(r + 1) + "}}{\\partial " + tsym_[d.column] + "} &= " + d.latex);
       }
       if (text())
-        out_ << wrap("  " + std::to_string(r + 1) + ": " + plain) << "\n";
-      else if (md())
-        out_ << "$$" << latex << "$$\n\n";
+        out_ << plain << "\n";
+      else if (md())  // one derivative a line: narrow enough for a phone
+        out_ << "$$\\begin{aligned}" << latex << "\\end{aligned}$$\n\n";
       else
-        out_ << "\\[ " << latex << " \\]\n";
+        out_ << "\\[ \\begin{aligned}" << latex << "\\end{aligned} \\]\n";
     }
   }
 
@@ -310,7 +322,7 @@ class Renderer {
       }
       out_ << "\n" << aligned(q);
     } else {
-      const std::vector<std::string> head{"$k$", "$\\max|\\Phi|$ " + unit, "$\\max|\\Delta q|$ " + unit};
+      const std::vector<std::string> head{"$k$", "$\\max\\lvert\\Phi\\rvert$ " + unit, "$\\max\\lvert\\Delta q\\rvert$ " + unit};
       out_ << (md() ? md_table(head, rows) + "\n" : tex_table(head, rows));
       const std::size_t first = ex_.newton.size() > 6 ? ex_.newton.size() - 6 : 0;
       std::string latex = "\\begin{array}{c|" + std::string(ex_.newton.size() - first, 'r') + "} & ";
@@ -369,7 +381,7 @@ class Renderer {
   }
 
   void numeric_jacobian() {
-    heading("6. Phi_q at the solution");
+    heading("6. Phi_q at the solution", "6. At the solution: ", "\\Phi_{\\mathbf{q}}");
     para("Each row multiplied by its scale, as the solver factorises it (dimensionless).");
     matrix(ex_.jacobian, "Phi_q", "\\Phi_{\\mathbf{q}}");
   }
@@ -378,12 +390,13 @@ class Renderer {
     const LinearSystem& s = acceleration ? ex_.acceleration : ex_.velocity;
     const std::string unit = m_.units.length + (acceleration ? "/s^2" : "/s");
     if (!acceleration) {
-      heading("7. Velocity: Phi_q qdot = -Phi_t");
+      heading("7. Velocity: Phi_q qdot = -Phi_t", "7. Velocity: ", "\\Phi_{\\mathbf{q}}\\dot{\\mathbf{q}} = -\\Phi_{t}");
       para("Phi_t is the rate of change of Phi with the drivers moving and q held: it comes from the driver rows. "
            "The right-hand side and the solution are in " + unit + ".");
       display("Phi_q qdot = -Phi_t", "\\Phi_{\\mathbf{q}}\\,\\dot{\\mathbf{q}} = -\\Phi_{t}");
     } else {
-      heading("8. Acceleration: Phi_q qddot = -(Phi_q qdot)_q qdot - 2 Phi_qt qdot - Phi_tt");
+      heading("8. Acceleration: Phi_q qddot = -(Phi_q qdot)_q qdot - 2 Phi_qt qdot - Phi_tt", "8. Acceleration: ",
+              "\\Phi_{\\mathbf{q}}\\ddot{\\mathbf{q}} = \\dots");
       para("The right-hand side uses the velocities just found; Phi_q is the same matrix, factorised once. In " + unit +
            ".");
       display("Phi_q qddot = -(Phi_q qdot)_q qdot - 2 Phi_qt qdot - Phi_tt",
@@ -444,7 +457,7 @@ class Renderer {
     heading("Notes");
     for (const std::string& n : ex_.notes) {
       if (text())
-        out_ << wrap("- " + n) << "\n";
+        out_ << wrap("- " + n, 2) << "\n";
       else if (md())
         out_ << "- " << n << "\n";
       else
