@@ -34,7 +34,7 @@ class RowWriter {
  public:
   explicit RowWriter(const Mechanism& mech) : mech_(mech), m_(mech.model()), ls_(m_.units.length_scale) {}
 
-  EquationRow write(int r) const {
+  EquationRow write(int r) {
     const Constraint& c = mech_.rows()[r];
     EquationRow row;
     row.label = c.label;
@@ -177,7 +177,7 @@ class RowWriter {
   E y(int point) const { return coordinate(point, 1); }
   E dx(int from, int to) const { return sum({{1, x(to)}, {-1, x(from)}}); }
   E dy(int from, int to) const { return sum({{1, y(to)}, {-1, y(from)}}); }
-  void add(int point, int axis, E e) const {
+  void add(int point, int axis, E e) {
     const int col = mech_.column_of(point);
     if (col < 0) return;
     derivatives_[col + axis].push_back(std::move(e));
@@ -186,7 +186,7 @@ class RowWriter {
   const Mechanism& mech_;
   const Model& m_;
   double ls_;
-  mutable std::map<int, std::vector<E>> derivatives_;
+  std::map<int, std::vector<E>> derivatives_;  // of the row being written, by column
 };
 
 Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
@@ -321,6 +321,7 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
   const PairCount pairs = count_pairs(m);
   ex.count = {pairs.links, pairs.lower_pairs, pairs.higher_pairs, pairs.dof, mech.mobility().dof};
 
+  // Columns are given to the moving points in their order: q's order is theirs.
   for (std::size_t p = 0; p < m.points.size(); ++p) {
     const int col = mech.column_of(static_cast<int>(p));
     if (col < 0) continue;
@@ -333,11 +334,8 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
       ex.coordinates.push_back(c);
     }
   }
-  std::sort(ex.coordinates.begin(), ex.coordinates.end(), [&](const Coordinate& a, const Coordinate& b) {
-    return mech.column_of(a.point) + a.axis < mech.column_of(b.point) + b.axis;
-  });
 
-  const RowWriter writer(mech);
+  RowWriter writer(mech);
   for (int r = 0; r < mech.row_count(); ++r) ex.equations.push_back(writer.write(r));
 
   // Newton-Raphson, by the sweep's own solver, from the drawn pose (step 0) or from the sweep's

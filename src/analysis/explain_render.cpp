@@ -180,8 +180,6 @@ class Renderer {
   }
 
   void title() {
-    const int samples = ex_.step;
-    (void)samples;
     std::ostringstream t;
     t << "Step by step: " << (m_.name.empty() ? std::string("the model") : m_.name) << ", step " << ex_.step
       << " (t = " << number(clean(ex_.time, 1e-15)) << " s)";
@@ -324,7 +322,8 @@ class Renderer {
     } else {
       const std::vector<std::string> head{"$k$", "$\\max\\lvert\\Phi\\rvert$ " + unit, "$\\max\\lvert\\Delta q\\rvert$ " + unit};
       out_ << (md() ? md_table(head, rows) + "\n" : tex_table(head, rows));
-      const std::size_t first = ex_.newton.size() > 6 ? ex_.newton.size() - 6 : 0;
+      // The last few iterates, narrow enough for a phone.
+      const std::size_t first = ex_.newton.size() > 4 ? ex_.newton.size() - 4 : 0;
       std::string latex = "\\begin{array}{c|" + std::string(ex_.newton.size() - first, 'r') + "} & ";
       for (std::size_t k = first; k < ex_.newton.size(); ++k) latex += (k > first ? " & " : "") + ("q_{" + std::to_string(k) + "}");
       latex += " \\\\ \\hline ";
