@@ -1,15 +1,15 @@
 // nbar explain: the method, step by step, at one sample of the sweep (Gruebler count, q, Phi,
 // Phi_q, Newton's iterations, the velocity and acceleration systems, the instant centres), as
 // text, Markdown, LaTeX or JSON, and optionally a drawing with the instant centres marked.
-#include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 
 #include "commands.hpp"
 #include "common.hpp"
 #include "nbar/analysis/explain.hpp"
 #include "nbar/io/explain_writer.hpp"
-#include "nbar/render/drawing.hpp"
-#include "nbar/render/image_canvas.hpp"
+#include "nbar/render/pictures.hpp"
 
 namespace nbar::cli {
 
@@ -26,63 +26,24 @@ std::string extension(const std::string& path) {
   return dot == std::string::npos ? "" : path.substr(dot + 1);
 }
 
-// The pose with its finite instant centres marked; the view takes in the centres that are not
-// too far from the mechanism.
+// The pose with its finite instant centres marked.
 int draw_centres(const ExplainArgs& args, const Explanation& ex) {
-  const Mechanism& mech = *ex.mechanism;
-  const Model& m = mech.model();
-  const double lu = m.units.length_scale;
-  const std::vector<Eigen::Vector2d> points = point_positions(mech, ex.q * lu);
-  Eigen::Vector2d lo = points.front(), hi = lo;
-  for (const auto& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const Eigen::Vector2d centre = 0.5 * (lo + hi);
-  const double reach = 2.0 * std::max(mech.characteristic_length(), (hi - lo).norm());
-  // Links numbered as textbooks do: 1 the ground, then the bodies; I23 is the centre of links 2, 3.
-  std::vector<int> number(m.bodies.size() + 1, 0);  // by body index + 1
-  std::string legend;
-  number[0] = 1;
-  legend = "1 ground";
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    number[b + 1] = static_cast<int>(b) + 2;
-    legend += ", " + std::to_string(b + 2) + " " + m.bodies[b].name;
-  }
-  const bool short_labels = m.bodies.size() + 1 < 10;
-  render::DrawOptions draw;
-  draw.labels = true;
-  draw.title = "Instant centres at step " + std::to_string(ex.step) + " (links: " + legend + ")";
   int off_picture = 0;
-  for (const InstantCentre& c : ex.centres) {
-    if (c.at_infinity || c.indeterminate) continue;
-    const Eigen::Vector2d at = c.position * lu;
-    if ((at - centre).norm() > reach) {
-      ++off_picture;
-      continue;
-    }
-    lo = lo.cwiseMin(at);
-    hi = hi.cwiseMax(at);
-    const int a = number[c.body_a + 1], b = number[c.body_b + 1];
-    draw.marked_points.push_back({at, short_labels ? "I" + std::to_string(a) + std::to_string(b)
-                                                   : "I(" + std::to_string(a) + "," + std::to_string(b) + ")"});
-  }
-  const render::View view(lo, hi, draw.width, draw.height, draw.margin + 30.0);
-  SweepResult none;  // no traces, no guide spans from a sweep: the pose alone
-  const std::string format = extension(args.draw);
   try {
-    if (format == "svg") {
-      render::SvgCanvas canvas(draw.width, draw.height);
-      render::draw_mechanism(canvas, view, mech, none, points, draw);
+    if (extension(args.draw) == "svg") {
+      const std::string svg = render::instant_centres_svg(ex, &off_picture);
       std::ofstream out(args.draw);
-      if (!(out << canvas.document())) {
+      if (!(out << svg)) {
         std::cerr << "error: cannot write " << args.draw << '\n';
         return kBadUsage;
       }
     } else {
-      render::ImageCanvas canvas(draw.width, draw.height);
-      render::draw_mechanism(canvas, view, mech, none, points, draw);
-      canvas.write_png(args.draw);
+      const std::vector<std::uint8_t> png = render::instant_centres_png(ex, &off_picture);
+      std::ofstream out(args.draw, std::ios::binary);
+      if (!out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()))) {
+        std::cerr << "error: cannot write " << args.draw << ": " << std::strerror(errno) << '\n';
+        return kBadUsage;
+      }
     }
   } catch (const std::runtime_error& e) {
     std::cerr << "error: " << e.what() << '\n';

@@ -24,13 +24,20 @@ class Drawing:
     """The mechanism in one pose. Shown as SVG in Jupyter; ``.svg`` is the text, ``.png()``
     the PNG bytes, ``.save("pose.svg"|"pose.png")`` writes a file."""
 
-    def __init__(self, analysis, **options):
-        self._analysis = analysis
-        self._options = options
-        self.svg: str = analysis.draw("svg", **options)
+    def __init__(self, analysis=None, **options):
+        self._png = (lambda: analysis.draw("png", **options)) if analysis is not None else None
+        self.svg: str = analysis.draw("svg", **options) if analysis is not None else ""
+
+    @classmethod
+    def from_data(cls, svg: str, png) -> "Drawing":
+        """A drawing of an SVG text, with ``png`` making its PNG bytes when asked."""
+        d = cls()
+        d.svg = svg
+        d._png = png
+        return d
 
     def png(self) -> bytes:
-        return self._analysis.draw("png", **self._options)
+        return self._png()
 
     def save(self, path: Union[str, os.PathLike]) -> None:
         name = os.fspath(path)
