@@ -67,6 +67,18 @@ std::string tex_table(const std::vector<std::string>& head, const std::vector<st
   return out + "\\end{tabular}\n\n";
 }
 
+// Markdown would read q_k ... q_k as emphasis: escape _ and * outside $maths$.
+std::string md_escape(const std::string& s) {
+  std::string out;
+  bool maths = false;
+  for (char ch : s) {
+    if (ch == '$') maths = !maths;
+    if (!maths && (ch == '_' || ch == '*')) out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
 std::string tex_escape(const std::string& s) {
   std::string out;
   for (char ch : s) {
@@ -131,7 +143,7 @@ class Renderer {
     if (text())
       out_ << wrap(t) << "\n";
     else
-      out_ << (tex() ? tex_escape(t) : t) << "\n\n";
+      out_ << (tex() ? tex_escape(t) : md_escape(t)) << "\n\n";
   }
   // Displayed maths: plain text form and LaTeX form.
   void display(const std::string& plain, const std::string& latex) {
