@@ -300,7 +300,7 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
   const SweepPath plan = sweep_path(mech, options.steps);
   const int samples = static_cast<int>(plan.parameters.size());
   if (options.step < 0 || options.step >= samples)
-    throw Error(ErrorKind::BadInput, "--step " + std::to_string(options.step) + " is not a step of the sweep (0 to " +
+    throw Error(ErrorKind::BadInput, "step " + std::to_string(options.step) + " is not a step of the sweep (0 to " +
                                          std::to_string(samples - 1) + ")");
   SweepOptions sweep_options;
   sweep_options.steps = options.steps;
