@@ -149,6 +149,7 @@ void export_designs(const SynthesisTask& task, const Outcome& out, const Synthes
     std::vector<std::string> comments{
         fmt::format("Design {} of nbar synth {} {}", rank, synthesis::to_string(task.kind), task.file)};
     for (std::string& line : io::design_comments(r.check, task.units)) comments.push_back(std::move(line));
+    for (std::string& line : io::design_angle_comments(r.design)) comments.push_back(std::move(line));
     const Model model = synthesis::make_fourbar_model(r.design, fmt::format("{}, design {}", title, rank), task.units,
                                                       r.motion.value_or(r.check.motion));
     const fs::path path = fs::path(args.export_dir) / design_file_name(rank);
