@@ -106,6 +106,10 @@ void write_summary_text(std::ostream& out, const Mechanism& mechanism, const Mod
   write_mobility(out, summary);
   write_kinetics(out, m, summary);
   write_start(out, m, summary);
+  if (!summary.warnings.empty()) {
+    out << "Warnings: " << summary.warnings.size() << '\n';
+    for (const Warning& w : summary.warnings) out << "  warning: " << w.message << '\n';
+  }
 }
 
 }  // namespace nbar::io

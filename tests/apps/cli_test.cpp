@@ -167,6 +167,29 @@ TEST(Cli, DriversNotMatchingTheDegreesOfFreedomAreAnInvalidModel) {
   EXPECT_THAT(r.err, HasSubstr(m.path() + ":"));
 }
 
+TEST(Cli, CheckWarnsOfASweepThatWillStopOrTurnTooOften) {
+  const std::string body = "points: {O2: [0, 0], O4: [200, 0], A: [80, 0], B: [181.25, 148.823511]}\n"
+                           "ground: [O2, O4]\nbodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n";
+  TempModel limited("units: {length: mm, angle: deg}\n" + body +
+                    "lengths: {crank: 130, rocker: 150}\ndrivers: [{angle: crank, from: 0, to: 360}]\n");
+  const CliRun r = nbar("check " + limited.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("Warnings: 1\n  warning: the sweep asks crank to turn 360 deg, from 0 deg to 360 deg, "
+                               "but loop crank-coupler-rocker lets it turn only between -179.99"));
+  EXPECT_EQ(nbar("solve " + limited.path()).code, 4);
+
+  TempModel rad("units: {length: mm, angle: rad}\n" + body + "drivers: [{angle: crank, from: 0, to: 360}]\n");
+  const CliRun turns = nbar("check " + rad.path());
+  EXPECT_EQ(turns.code, 0) << turns.err;
+  EXPECT_THAT(turns.out, HasSubstr("warning: the sweep turns crank 57.3 times, from 0 rad to 360 rad (the model's "
+                                   "angle unit is rad: for 360 degrees, write `units: {angle: deg}`)"));
+
+  const CliRun dynamics =
+      nbar("solve " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml --dynamics --steps 3");
+  EXPECT_EQ(dynamics.code, 0);
+  EXPECT_THAT(dynamics.err, HasSubstr("warning: the model has no masses or loads"));
+}
+
 TEST(Cli, BarsTooShortToCloseCannotAssemble) {
   TempModel m(std::string(kFourBar) + "lengths: {coupler: 20}\ndrivers:\n  - {angle: crank, from: 90, to: 100}\n");
   const CliRun check = nbar("check " + m.path());
