@@ -63,8 +63,11 @@ void write_kinetics(std::ostream& out, const Model& m, const ModelSummary& s) {
     const MassProperties& mp = b.mass;
     const std::string area =
         mp.from_shape || m.bodies[i].shape ? fmt::format("  area {:.6g}", mp.area / (unit * unit)) : "";
-    out << fmt::format("  {:<12} mass {:.6g}  cg ({:.6g}, {:.6g})  inertia {:.6g}{}  [{}]\n", b.name, mp.mass,
-                       mp.cg.x() / unit, mp.cg.y() / unit, mp.inertia, area, b.mass_source);
+    if (mp.mass > 0.0)
+      out << fmt::format("  {:<12} mass {:.6g}  cg ({:.6g}, {:.6g})  inertia {:.6g}{}  [{}]\n", b.name, mp.mass,
+                         mp.cg.x() / unit, mp.cg.y() / unit, mp.inertia, area, b.mass_source);
+    else  // no centre of mass to speak of
+      out << fmt::format("  {:<12} mass 0{}  [{}]\n", b.name, area, b.mass_source);
   }
   out << fmt::format("Loads: gravity ({:.6g}, {:.6g}) m/s^2, {} point force{}, {} torque{}, {} spring{}\n",
                      m.gravity.x(), m.gravity.y(), m.point_loads.size(), plural(m.point_loads.size()),

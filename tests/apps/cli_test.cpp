@@ -134,6 +134,8 @@ TEST(Cli, HelpAndBadUsage) {
   EXPECT_EQ(nbar("solve --help").code, 0);
   EXPECT_EQ(nbar("").code, 2);
   EXPECT_EQ(nbar("frobnicate").code, 2);
+  EXPECT_THAT(nbar("frobnicate").err, HasSubstr("error: 'frobnicate' is not an nbar command (the commands are: check, solve, "));
+  EXPECT_THAT(nbar("sovle x.yaml").err, testing::EndsWith("synth); did you mean 'solve'?\n"));
   const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml";
   EXPECT_EQ(nbar("solve " + model + " --order 6").code, 2);
   EXPECT_EQ(nbar("solve " + model + " --order -1").code, 2);
@@ -188,6 +190,21 @@ TEST(Cli, CheckWarnsOfASweepThatWillStopOrTurnTooOften) {
       nbar("solve " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml --dynamics --steps 3");
   EXPECT_EQ(dynamics.code, 0);
   EXPECT_THAT(dynamics.err, HasSubstr("warning: the model has no masses or loads"));
+}
+
+TEST(Cli, CheckPrintsNoCentreOfMassForABodyWithoutMass) {
+  // The four-bar with a given mass on the crank only, and gravity.
+  TempModel m(
+      "name: four-bar\nunits: {length: mm, angle: deg}\n"
+      "points: {O2: [0, 0], O4: [200, 0], A: [0, 80], B: [160, 150]}\nground: [O2, O4]\ngravity: [0, -9.81]\n"
+      "bodies:\n  crank: {points: [O2, A], mass: 0.5, cg: [0, 40], inertia: 0.001}\n"
+      "  coupler: [A, B]\n  rocker: [O4, B]\n"
+      "drivers:\n  - {angle: crank, from: 90, to: 100}\n");
+  const CliRun r = nbar("check " + m.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("  crank        mass 0.5  cg (0, 40)  inertia 0.001  [given]\n"));
+  EXPECT_THAT(r.out, HasSubstr("  coupler      mass 0  [none]\n"));
+  EXPECT_THAT(r.out, Not(HasSubstr("cg (0, 0)")));
 }
 
 TEST(Cli, BarsTooShortToCloseCannotAssemble) {
