@@ -91,6 +91,8 @@ TEST(Cli, EveryExampleChecksAndSolves) {
     EXPECT_EQ(j["columns"].size(), j["rows"][0].size());
     EXPECT_EQ(j["column_units"].size(), j["columns"].size());
     EXPECT_TRUE(j["complete"].get<bool>());
+    ASSERT_TRUE(j.contains("stop_reason"));  // always written, as the README says
+    EXPECT_TRUE(j["stop_reason"].is_null());
   }
 }
 
@@ -227,6 +229,11 @@ TEST(Cli, DriverOutsideItsRangeStopsTheSweepEarlyAndKeepsTheRows) {
   EXPECT_THAT(r.err, HasSubstr("toggle"));
   EXPECT_GT(count_lines(r.out), 3);
   EXPECT_LT(count_lines(r.out), 362);
+  const CliRun json = nbar("solve " + m.path() + " --format json");
+  EXPECT_EQ(json.code, 4);
+  const auto j = nlohmann::json::parse(json.out);
+  EXPECT_FALSE(j["complete"].get<bool>());
+  EXPECT_THAT(j["stop_reason"].get<std::string>(), HasSubstr("toggle"));
 }
 
 TEST(Cli, DynamicsColumnsAndJson) {
