@@ -209,6 +209,23 @@ TEST(Cli, CheckPrintsNoCentreOfMassForABodyWithoutMass) {
   EXPECT_THAT(r.out, Not(HasSubstr("cg (0, 0)")));
 }
 
+TEST(Cli, DegreesOfFreedomNotMatchingPointAtTheLikelyCulprit) {
+  const std::string head = "name: s\npoints: {O2: [0, 0], X: [400, 0], A: [50, 20], C: [230, 0]}\n"
+                           "ground: [O2, X]\nbodies:\n  crank: [O2, A]\n  rod: [A, C]\n";
+  const std::string driver = "drivers:\n  - {angle: crank, from: 0, to: 360}\n";
+  TempModel wrong(head + "sliders:\n  - {body: rod, point: C, along: [O2, X]}\n" + driver);
+  const CliRun w = nbar("check " + wrong.path());
+  EXPECT_EQ(w.code, 1);
+  EXPECT_THAT(w.err, HasSubstr(wrong.path() + ":8:5: the mechanism has 0 degrees of freedom"));
+  EXPECT_THAT(w.err, HasSubstr("is the slider on the right body?"));
+  TempModel forgotten(std::string(head).replace(head.find("C: [230, 0]"), 11, "C: [230, 0], D: [260, 0]") +
+                      "  piston: [C, D]\n" + driver);
+  const CliRun f = nbar("check " + forgotten.path());
+  EXPECT_EQ(f.code, 1);
+  EXPECT_THAT(f.err, HasSubstr(forgotten.path() + ":7:3: the mechanism has 3 degrees of freedom"));
+  EXPECT_THAT(f.err, HasSubstr("body 'piston' can still move with the drivers held"));
+}
+
 TEST(Cli, BarsTooShortToCloseCannotAssemble) {
   TempModel m(std::string(kFourBar) + "lengths: {coupler: 20}\ndrivers:\n  - {angle: crank, from: 90, to: 100}\n");
   const CliRun check = nbar("check " + m.path());

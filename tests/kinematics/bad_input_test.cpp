@@ -74,7 +74,55 @@ TEST(BadInput, TwoDriversForAOneDofLinkage) {
     FAIL() << "a four-bar with two drivers was accepted";
   } catch (const ModelError& e) {
     EXPECT_THAT(e.what(), AllOf(HasSubstr("1 degree of freedom"), HasSubstr("2 drivers are given"),
-                                HasSubstr("remove drivers")));
+                                HasSubstr("driver 'rocker' moves what the joints and the drivers before it "
+                                          "already fix: remove it")));
+    EXPECT_EQ(e.where().kind, EntityRef::Kind::Driver);
+    EXPECT_EQ(e.where().index, 1);
+  }
+}
+
+// A slider-crank whose slider was put on the rod instead of the piston: the joints alone lock
+// it, and the slider's constraint is the one named, at the slider.
+TEST(BadInput, SliderOnTheWrongBodyIsNamed) {
+  Model m;
+  const int o2 = add_point(m, "O2", {0, 0}, true);
+  const int x = add_point(m, "X", {0.4, 0}, true);
+  const int a = add_point(m, "A", {0.05, 0.02});
+  const int c = add_point(m, "C", {0.23, 0});
+  const int crank = add_body(m, "crank", {o2, a});
+  const int rod = add_body(m, "rod", {a, c});
+  m.sliders.push_back(Slider{rod, c, {o2, x}});
+  m.drivers.push_back(angle_driver("crank", crank));
+  try {
+    Mechanism mech(m);
+    FAIL() << "a slider-crank locked by its slider was accepted";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("0 degrees of freedom"), HasSubstr("is the slider on the right body?")));
+    EXPECT_EQ(e.where().kind, EntityRef::Kind::Slider);
+    EXPECT_EQ(e.where().index, 0);
+  }
+}
+
+// A slider-crank whose piston has two points but no slider: the piston is free, and named.
+TEST(BadInput, ForgottenSliderNamesTheFreeBody) {
+  Model m;
+  const int o2 = add_point(m, "O2", {0, 0}, true);
+  const int a = add_point(m, "A", {0.05, 0.02});
+  const int c = add_point(m, "C", {0.23, 0});
+  const int d = add_point(m, "D", {0.26, 0});
+  const int crank = add_body(m, "crank", {o2, a});
+  add_body(m, "rod", {a, c});
+  const int piston = add_body(m, "piston", {c, d});
+  m.drivers.push_back(angle_driver("crank", crank));
+  try {
+    Mechanism mech(m);
+    FAIL() << "a slider-crank without its slider was accepted";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("3 degrees of freedom"),
+                                HasSubstr("body 'piston' can still move with the drivers held (it is joined to the "
+                                          "rest only at C)")));
+    EXPECT_EQ(e.where().kind, EntityRef::Kind::Body);
+    EXPECT_EQ(e.where().index, piston);
   }
 }
 
