@@ -306,6 +306,24 @@ TEST(Cli, StressBadUsage) {
   EXPECT_THAT(no_shapes.err, HasSubstr("no link has a shape"));
 }
 
+TEST(Cli, PlotOfASweepInTimeIsAgainstTimeByDefault) {
+  TempModel dir("");
+  const std::string svg = dir.dir() + "/omega.svg";
+  const CliRun r = nbar("plot " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-oscillating.yaml --y output.omega -o " + svg);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(svg);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, HasSubstr(">t [s]<"));
+  EXPECT_THAT(text, Not(HasSubstr(">input [deg]<")));
+  // Swept by a driver's from/to, the plot stays against that driver.
+  const CliRun driver = nbar("plot " + std::string(NBAR_EXAMPLES_DIR) +
+                             "/fourbar-crank-rocker.yaml --y rocker.angle --steps 13 -o " + svg);
+  ASSERT_EQ(driver.code, 0) << driver.err;
+  std::ifstream again(svg);
+  EXPECT_THAT(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()),
+              HasSubstr(">crank [deg]<"));
+}
+
 TEST(Cli, DrawWritesSvgAndPngAndChecksItsArguments) {
   TempModel dir("");
   const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml";
