@@ -164,6 +164,15 @@ TEST(SynthCli, BurmesterThreeFourAndFivePoses) {
     EXPECT_EQ(c.code, 0) << c.err;
     EXPECT_GT(fs::file_size(dir.path("curves." + ext)), 1000u);
   }
+  // The picture can be read: labelled axes in the task's unit, a grid, numbered poses.
+  std::ifstream svg_file(dir.path("curves.svg"));
+  const std::string svg((std::istreambuf_iterator<char>(svg_file)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(svg, HasSubstr(">x (mm)<"));
+  EXPECT_THAT(svg, HasSubstr(">y (mm)<"));
+  EXPECT_THAT(svg, HasSubstr(">200<"));  // a tick label
+  EXPECT_THAT(svg, HasSubstr(">-200<"));
+  for (const char* pose : {">1<", ">2<", ">3<", ">4<"}) EXPECT_THAT(svg, HasSubstr(pose));
+  EXPECT_THAT(svg, HasSubstr("poses 1-4 with their angles"));
 
   const CliRun five = nbar("synth burmester " + kExamples + "burmester-five-positions.yaml --all");
   ASSERT_EQ(five.code, 0) << five.err;
