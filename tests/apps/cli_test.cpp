@@ -324,6 +324,18 @@ TEST(Cli, PlotOfASweepInTimeIsAgainstTimeByDefault) {
               HasSubstr(">crank [deg]<"));
 }
 
+TEST(Cli, DrawAtAValuePastATogglePositionSaysWhereItStops) {
+  // The double-rocker's 161-step sweep runs from -80 to 80 deg; 120 deg lies past its toggle.
+  // The message speaks of driver values, not of steps (it once gave step numbers of an
+  // internal refinement, "between steps 404 and 405").
+  TempModel dir("");
+  const CliRun r = nbar("draw " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-double-rocker.yaml --at 120 -o " +
+                        dir.dir() + "/x.svg");
+  EXPECT_EQ(r.code, 4);
+  EXPECT_THAT(r.err, HasSubstr("cannot reach input = 120 deg: it stops at input = 99.7"));
+  EXPECT_THAT(r.err, Not(HasSubstr("step")));
+}
+
 TEST(Cli, DrawWritesSvgAndPngAndChecksItsArguments) {
   TempModel dir("");
   const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml";
