@@ -81,6 +81,32 @@ TEST(BadInput, TwoDriversForAOneDofLinkage) {
   }
 }
 
+// A parallelogram with a redundant third crank, driven twice: the second driver is named, not
+// the redundant crank (a redundancy of the joints themselves is no mistake).
+TEST(BadInput, SecondDriverOfARedundantParallelogramIsNamed) {
+  Model m;
+  const int o1 = add_point(m, "O1", {0, 0}, true);
+  const int o2 = add_point(m, "O2", {0.2, 0}, true);
+  const int o3 = add_point(m, "O3", {0.1, 0.08}, true);
+  const int a1 = add_point(m, "A1", {0, 0.05});
+  const int a2 = add_point(m, "A2", {0.2, 0.05});
+  const int a3 = add_point(m, "A3", {0.1, 0.13});
+  const int crank1 = add_body(m, "crank1", {o1, a1});
+  const int crank2 = add_body(m, "crank2", {o2, a2});
+  add_body(m, "crank3", {o3, a3});
+  add_body(m, "coupler", {a1, a2, a3});
+  m.drivers.push_back(angle_driver("first", crank1));
+  m.drivers.push_back(angle_driver("second", crank2));
+  try {
+    Mechanism mech(m);
+    FAIL() << "a parallelogram with two drivers was accepted";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("driver 'second' moves what the joints and the drivers before it already fix"));
+    EXPECT_EQ(e.where().kind, EntityRef::Kind::Driver);
+    EXPECT_EQ(e.where().index, 1);
+  }
+}
+
 // A slider-crank whose slider was put on the rod instead of the piston: the joints alone lock
 // it, and the slider's constraint is the one named, at the slider.
 TEST(BadInput, SliderOnTheWrongBodyIsNamed) {
