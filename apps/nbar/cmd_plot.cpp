@@ -31,7 +31,8 @@ struct PlotArgs {
 };
 
 const char* const kPlotHelp =
-    "Plots columns of `nbar solve` against the first driver, or against any other column with\n"
+    "Plots columns of `nbar solve` against the first driver (against time, t, when a driver\n"
+    "follows a time law), or against any other column with\n"
     "--x. Name the columns, or globs of them, comma-separated as with `solve --columns`.\n"
     "Inverse-dynamics columns (crank.torque, A.crank>coupler.Fx, energy.*...) switch on\n"
     "--dynamics by themselves, and jerk or higher derivatives raise --order as needed.\n"
@@ -67,7 +68,7 @@ int run_plot(const PlotArgs& args) {
   Loaded loaded;
   if (int code = load(args.model, loaded)) return code;
   const Model& m = loaded.mechanism->model();
-  const std::string x_pattern = !args.x.empty() ? args.x : m.drivers.empty() ? std::string("t") : m.drivers[0].name;
+  const std::string x_pattern = !args.x.empty() ? args.x : default_abscissa(m);
 
   // Which stages and order the columns need, from the library's column catalogue.
   std::vector<std::string> patterns = args.y;
@@ -151,7 +152,7 @@ Command add_plot_command(CLI::App& app) {
   sub->add_option("--y", args.y, "columns to plot: names or globs, comma-separated, e.g. 'rocker.omega,B.v*'")
       ->required()
       ->delimiter(',');
-  sub->add_option("--x", args.x, "the column along the x axis (default: the first driver's)");
+  sub->add_option("--x", args.x, "the column along the x axis (default: the first driver's, or t when a driver follows a time law)");
   sub->add_option("-o,--output", args.output, "the picture to write: FILE.svg or FILE.png")->required();
   sub->add_option("--steps", args.steps, "number of samples, ends included (overrides the model's sweep)")
       ->check(CLI::PositiveNumber);

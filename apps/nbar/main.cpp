@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "nbar/analysis/summary.hpp"
 #include "nbar/io/results_writer.hpp"
 #include "nbar/io/summary_writer.hpp"
+#include "nbar/io/yaml_support.hpp"
 #include "nbar/version.hpp"
 
 namespace {
@@ -184,6 +186,16 @@ int main(int argc, char** argv) {
   std::vector<std::pair<CLI::App*, std::function<int()>>> more;
   for (const auto& add : nbar::cli::more_commands()) more.push_back(add(app));
 
+  // A first argument that is neither an option nor a command: say so, with the nearest command
+  // (CLI11 alone says only that a subcommand is required).
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+  if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+    const auto close = nbar::io::yaml::suggestion(argv[1], names);
+    std::cerr << "error: '" << argv[1] << "' is not an nbar command (the commands are: " << join(names) << ")"
+              << (close ? "; did you mean '" + *close + "'?" : std::string()) << "\n";
+    return kBadUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -35,6 +35,13 @@ DynamicsStage run_dynamics_stage(const Analysis& analysis, const AnalysisOptions
     stage.unique = stage.unique && stage.samples.back().unique;
     stage.max_residual = std::max(stage.max_residual, stage.samples.back().residual);
   }
+  const Model& m = analysis.model();
+  bool kinetics = !m.gravity.isZero() || !m.point_loads.empty() || !m.torques.empty() || !m.springs.empty();
+  for (const Body& b : m.bodies) kinetics = kinetics || mass_properties(b).mass > 0.0;
+  if (!kinetics)
+    stage.warnings.push_back({"no_kinetics", -1,
+                              "the model has no masses or loads (no `mass`, material, gravity, forces, torques or "
+                              "springs): every joint force and driver effort is zero"});
   if (!stage.unique)
     stage.warnings.push_back(
         {"forces_not_unique", -1,

@@ -65,6 +65,10 @@ std::vector<std::string> column_names(const std::vector<ColumnInfo>& columns) {
 
 bool column_matches(const std::string& pattern, const std::string& name) { return glob_match(pattern, name); }
 
+std::string default_abscissa(const Model& model) {
+  return model.drivers.empty() || model.has_time_law() ? std::string("t") : model.drivers[0].name;
+}
+
 ColumnNeeds column_needs(const Mechanism& mech, const std::vector<std::string>& patterns, std::optional<int> order,
                          bool dynamics) {
   const std::vector<std::string> all_kinematic = column_names(kinematic_columns(mech, 5));

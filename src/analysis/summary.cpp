@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/sweep.hpp"
 
@@ -74,6 +78,71 @@ std::vector<std::string> describe_joints(const Model& m) {
   return joints;
 }
 
+double angle_of(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
+
+// An angle driver (from +x, with from/to) on the input of a loop on the ground whose sweep goes
+// past the loop's toggles: the sweep would stop there.
+void warn_about_input_limits(const Mechanism& mech, const std::vector<Eigen::Vector2d>& p, ModelSummary& out) {
+  const Model& m = mech.model();
+  for (std::size_t d = 0; d < m.drivers.size(); ++d) {
+    const Driver& drv = m.drivers[d];
+    if (drv.kind != DriverKind::Angle || drv.relative_to >= 0 || drv.law || m.bodies[drv.body].points.size() < 2)
+      continue;
+    const double start = out.assembly->driver_values[d];
+    const double end = drv.to.value_or(start);
+    const double lo = std::min(start, end), hi = std::max(start, end);
+    const Body& body = m.bodies[drv.body];
+    for (const LoopSummary& l : out.loops) {
+      const FourBarLoop& loop = l.loop;
+      // Grashof's class, with the model's tolerance, decides a crank (change points included:
+      // the input turns fully through them).
+      if (loop.frame >= 0 || loop.input != drv.body || l.grashof.input_turns_fully) continue;
+      // The driver measures the body from its first to its second point; the loop the
+      // direction o2 -> a. `at` is o2 -> a in the driver's turn.
+      const double frame_angle = angle_of(p[loop.o4] - p[loop.o2]);
+      const double offset = std::remainder(
+          angle_of(p[body.points[1]] - p[body.points[0]]) - angle_of(p[loop.a] - p[loop.o2]), 2 * std::numbers::pi);
+      const InputLimits limits = input_limits(l.grashof.frame, l.grashof.input, l.grashof.coupler, l.grashof.output,
+                                              frame_angle, start - offset);
+      if (limits.full || !limits.closes) continue;
+      const double from = limits.from + offset, to = limits.to + offset;
+      const double slack = 1e-9;
+      if (lo >= from - slack && hi <= to + slack) continue;
+      const double stop = end > start ? to : from;
+      out.warnings.push_back(
+          {"input_limited", -1,
+           fmt::format("the sweep asks {} to turn {}, from {} to {}, but loop {} lets it turn only between {} and {} "
+                       "(toggle positions): the sweep will stop near {}",
+                       drv.name, format_driver_value(m, static_cast<int>(d), std::abs(end - start)),
+                       format_driver_value(m, static_cast<int>(d), start),
+                       format_driver_value(m, static_cast<int>(d), end), loop.name,
+                       format_driver_value(m, static_cast<int>(d), from),
+                       format_driver_value(m, static_cast<int>(d), to),
+                       format_driver_value(m, static_cast<int>(d), stop))});
+    }
+  }
+}
+
+// Angle drivers asked to turn more than a few times: most often degrees written with
+// `angle: rad`.
+void warn_about_many_turns(const Model& m, ModelSummary& out) {
+  constexpr double kTurn = 2 * std::numbers::pi;
+  for (std::size_t d = 0; d < m.drivers.size(); ++d) {
+    const Driver& drv = m.drivers[d];
+    if (!drv.is_angular() || drv.law || !drv.from || !drv.to) continue;
+    const double turns = std::abs(*drv.to - *drv.from) / kTurn;
+    if (turns <= 4.0) continue;
+    std::string hint;
+    if (m.units.angle == "rad")
+      hint = fmt::format(" (the model's angle unit is rad: for {} degrees, write `units: {{angle: deg}}`)",
+                         fmt::format("{:.6g}", std::abs(*drv.to - *drv.from) / m.units.angle_scale));
+    out.warnings.push_back({"many_turns", -1,
+                            fmt::format("the sweep turns {} {:.4g} times, from {} to {}{}", drv.name, turns,
+                                        format_driver_value(m, static_cast<int>(d), *drv.from),
+                                        format_driver_value(m, static_cast<int>(d), *drv.to), hint)});
+  }
+}
+
 // Assembles at the start of the sweep and classifies every four-bar loop in that pose.
 void summarize_start(const Mechanism& mech, ModelSummary& out) {
   State state(mech);
@@ -101,6 +170,7 @@ void summarize_start(const Mechanism& mech, ModelSummary& out) {
     l.transmission_angle = transmission_angle(loop, points);
     out.loops.push_back(std::move(l));
   }
+  warn_about_input_limits(mech, points, out);
 }
 
 }  // namespace
@@ -121,6 +191,7 @@ ModelSummary summarize(const Mechanism& mech) {
   s.mobility = mech.mobility();
   for (int r : s.mobility.redundant) s.redundant.push_back(mech.rows()[r].label);
   for (std::size_t d = 0; d < m.drivers.size(); ++d) s.drivers.push_back(describe_driver(m, static_cast<int>(d)));
+  warn_about_many_turns(m, s);
   summarize_start(mech, s);
   return s;
 }

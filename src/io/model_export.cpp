@@ -4,6 +4,8 @@
 
 #include <array>
 #include <cctype>
+#include <cmath>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -173,10 +175,23 @@ std::vector<std::string> design_comments(const synthesis::DesignCheck& check, co
   return lines;
 }
 
+std::vector<std::string> design_angle_comments(const synthesis::FourBarDesign& design) {
+  const auto turned = [](double offset) { return std::abs(std::remainder(offset, 2 * std::numbers::pi)) > 1e-12; };
+  std::vector<std::string> lines;
+  if (turned(design.input_angle_offset))
+    lines.push_back("The input angle is the direction O2 -> Ip, a pointer on the input opposite to A "
+                    "(the synthesis gave the input a negative length)");
+  if (turned(design.output_angle_offset))
+    lines.push_back("The output angle (output.angle) is the direction O4 -> Op, a pointer on the output opposite to B "
+                    "(the synthesis gave the output a negative length)");
+  return lines;
+}
+
 std::string design_yaml(const synthesis::FourBarDesign& design, const synthesis::DesignCheck& check,
                         const std::string& name, const Units& units, const std::vector<std::string>& comments) {
   std::vector<std::string> all = comments;
   for (std::string& line : design_comments(check, units)) all.push_back(std::move(line));
+  for (std::string& line : design_angle_comments(design)) all.push_back(std::move(line));
   return model_yaml(synthesis::make_fourbar_model(design, name, units, check.motion), all);
 }
 

@@ -80,7 +80,8 @@ void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& 
   j["branches"] = loops;
   j["order"] = sweep.order;
   j["complete"] = sweep.complete;
-  if (!sweep.complete) j["stop_reason"] = sweep.stop_reason;
+  // Always there, so that readers need not test for it: null for a sweep that ran to its end.
+  j["stop_reason"] = sweep.complete ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(sweep.stop_reason);
   j["warnings"] = messages(sweep.warnings);
   j["max_residual"] = sweep.max_residual / m.units.length_scale;
   if (dynamics) {

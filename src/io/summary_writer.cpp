@@ -63,8 +63,11 @@ void write_kinetics(std::ostream& out, const Model& m, const ModelSummary& s) {
     const MassProperties& mp = b.mass;
     const std::string area =
         mp.from_shape || m.bodies[i].shape ? fmt::format("  area {:.6g}", mp.area / (unit * unit)) : "";
-    out << fmt::format("  {:<12} mass {:.6g}  cg ({:.6g}, {:.6g})  inertia {:.6g}{}  [{}]\n", b.name, mp.mass,
-                       mp.cg.x() / unit, mp.cg.y() / unit, mp.inertia, area, b.mass_source);
+    if (mp.mass > 0.0)
+      out << fmt::format("  {:<12} mass {:.6g}  cg ({:.6g}, {:.6g})  inertia {:.6g}{}  [{}]\n", b.name, mp.mass,
+                         mp.cg.x() / unit, mp.cg.y() / unit, mp.inertia, area, b.mass_source);
+    else  // no centre of mass to speak of
+      out << fmt::format("  {:<12} mass 0{}  [{}]\n", b.name, area, b.mass_source);
   }
   out << fmt::format("Loads: gravity ({:.6g}, {:.6g}) m/s^2, {} point force{}, {} torque{}, {} spring{}\n",
                      m.gravity.x(), m.gravity.y(), m.point_loads.size(), plural(m.point_loads.size()),
@@ -106,6 +109,10 @@ void write_summary_text(std::ostream& out, const Mechanism& mechanism, const Mod
   write_mobility(out, summary);
   write_kinetics(out, m, summary);
   write_start(out, m, summary);
+  if (!summary.warnings.empty()) {
+    out << "Warnings: " << summary.warnings.size() << '\n';
+    for (const Warning& w : summary.warnings) out << "  warning: " << w.message << '\n';
+  }
 }
 
 }  // namespace nbar::io

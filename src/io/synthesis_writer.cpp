@@ -11,6 +11,7 @@
 #include "nbar/io/model_export.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/render/canvas.hpp"
+#include "nbar/render/plot.hpp"
 
 namespace nbar::io {
 
@@ -143,6 +144,7 @@ std::string design_model_yaml(const SynthesisTask& task, const Outcome& out, int
   std::vector<std::string> comments{
       fmt::format("Design {} of nbar synth {} {}", rank, synthesis::to_string(task.kind), task.file)};
   for (std::string& line : io::design_comments(r.check, task.units)) comments.push_back(std::move(line));
+  for (std::string& line : io::design_angle_comments(r.design)) comments.push_back(std::move(line));
   const Model model = synthesis::make_fourbar_model(r.design, fmt::format("{}, design {}", title, rank), task.units,
                                                     r.motion.value_or(r.check.motion));
   std::ostringstream text;
@@ -191,22 +193,67 @@ void write_burmester_curves(const std::string& path, const SynthesisTask& task, 
     });
     out << j.dump(2) << '\n';
   } else if (ext == ".svg") {
-    // Both curves at one scale: centre points in blue, circle points in orange, the poses'
-    // reference points as dots.
-    constexpr int kSize = 700;
+    // Both curves at one scale, on a grid with labelled axes in the task's length unit, so that
+    // pivots can be read off: centre points in blue, circle points in orange, each pose's
+    // reference point as a dot with its number and a tick along its angle.
+    constexpr int kSize = 760;
+    constexpr double kMargin = 64;  // room for the tick labels
     const Eigen::Vector2d half = Eigen::Vector2d::Constant(curves.window_radius);
-    const render::View view(curves.window_centre - half, curves.window_centre + half, kSize, kSize, 30);
+    const Eigen::Vector2d lo = curves.window_centre - half, hi = curves.window_centre + half;
+    const render::View view(lo, hi, kSize, kSize, kMargin);
     render::SvgCanvas canvas(kSize, kSize);
+    const render::Color ink = render::Color::rgb(0x000000), grid = render::Color::rgb(0xdddddd);
+    const Eigen::Vector2d corner_lo = view.to_pixels(lo), corner_hi = view.to_pixels(hi);  // y grows down
+    canvas.begin_group("grid", "grid");
+    const std::vector<double> all_x = render::nice_ticks(lo.x(), hi.x(), 8), all_y = render::nice_ticks(lo.y(), hi.y(), 8);
+    std::vector<double> xs, ys;
+    for (double t : all_x)
+      if (t >= lo.x() - 1e-9 * curves.window_radius && t <= hi.x() + 1e-9 * curves.window_radius) xs.push_back(t);
+    for (double t : all_y)
+      if (t >= lo.y() - 1e-9 * curves.window_radius && t <= hi.y() + 1e-9 * curves.window_radius) ys.push_back(t);
+    const std::vector<std::string> x_labels = render::format_ticks(xs), y_labels = render::format_ticks(ys);
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      const double px = view.to_pixels({xs[i], lo.y()}).x();
+      canvas.polyline({{px, corner_lo.y()}, {px, corner_hi.y()}}, render::Stroke{grid, 1.0, {}});
+      canvas.text({px, corner_lo.y() + 16}, x_labels[i], 11, render::Anchor::Middle, ink);
+    }
+    for (std::size_t i = 0; i < ys.size(); ++i) {
+      const double py = view.to_pixels({lo.x(), ys[i]}).y();
+      canvas.polyline({{corner_lo.x(), py}, {corner_hi.x(), py}}, render::Stroke{grid, 1.0, {}});
+      canvas.text({corner_lo.x() - 6, py + 4}, y_labels[i], 11, render::Anchor::End, ink);
+    }
+    canvas.end_group();
+    canvas.begin_group("axes", "axes");
+    canvas.polyline({{corner_lo.x(), corner_lo.y()}, {corner_hi.x(), corner_lo.y()}, {corner_hi.x(), corner_hi.y()},
+                     {corner_lo.x(), corner_hi.y()}, {corner_lo.x(), corner_lo.y()}},
+                    render::Stroke{ink, 1.0, {}});
+    canvas.text({0.5 * (corner_lo.x() + corner_hi.x()), corner_lo.y() + 36}, "x (" + task.units.length + ")", 12,
+                render::Anchor::Middle, ink);
+    canvas.text({corner_lo.x() - 6, corner_hi.y() - 10}, "y (" + task.units.length + ")", 12, render::Anchor::Middle,
+                ink);
+    canvas.end_group();
+    canvas.begin_group("curves", "curves");
     each([&](const char* which, int, const std::vector<synthesis::BurmesterPair>& line) {
       const bool centre = std::string(which) == "centre";
       std::vector<Eigen::Vector2d> points;
       for (const auto& s : line) points.push_back(view.to_pixels(centre ? s.centre : s.circle));
       canvas.polyline(points, render::Stroke{render::Color::rgb(centre ? 0x0072b2 : 0xe69f00), 1.5, {}});
     });
-    for (const synthesis::BodyPose& p : task.poses)
-      canvas.circle(view.to_pixels(p.point), 3.0, render::Paint{render::Color::rgb(0x000000), std::nullopt});
-    canvas.text({30, 20}, "centre-point curve (blue), circle-point curve (orange), poses (dots)", 13,
-                render::Anchor::Start, render::Color::rgb(0x000000));
+    canvas.end_group();
+    canvas.begin_group("poses", "poses");
+    for (std::size_t i = 0; i < task.poses.size(); ++i) {
+      const synthesis::BodyPose& p = task.poses[i];
+      const Eigen::Vector2d at = view.to_pixels(p.point);
+      const Eigen::Vector2d along(std::cos(p.angle), -std::sin(p.angle));  // pixels: y down
+      canvas.polyline({at, at + 22.0 * along}, render::Stroke{ink, 1.5, {}});
+      canvas.circle(at, 3.0, render::Paint{ink, std::nullopt});
+      canvas.text(at - 10.0 * along + Eigen::Vector2d(0, 4), std::to_string(i + 1), 12, render::Anchor::Middle, ink);
+    }
+    canvas.end_group();
+    canvas.text({kMargin, 20},
+                "centre-point curve (blue), circle-point curve (orange), poses 1-" + std::to_string(task.poses.size()) +
+                    " with their angles",
+                13, render::Anchor::Start, ink);
     out << canvas.document();
   } else {
     out << "curve,branch,centre_x,centre_y,circle_x,circle_y\n";

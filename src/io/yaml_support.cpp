@@ -66,7 +66,21 @@ YAML::Node Reader::load(const DocumentWording& wording) const {
   try {
     documents = YAML::LoadAll(text_);
   } catch (const YAML::Exception& e) {
-    fail(mark(e.mark), std::string("invalid YAML: ").append(e.msg));
+    // yaml-cpp reports a tab in the indentation as some structure it could not close, at some
+    // later place: name the tab, at its line and column, when one comes before the error.
+    const SourceMark at = mark(e.mark);
+    int line = 1;
+    for (std::size_t start = 0; start < text_.size() && (at.line == 0 || line <= at.line); ++line) {
+      const std::size_t end = std::min(text_.find('\n', start), text_.size());
+      const std::string_view row = std::string_view(text_).substr(start, end - start);
+      const std::size_t content = row.find_first_not_of(" \t\r");
+      const std::size_t tab = row.find('\t');
+      if (content != std::string_view::npos && tab < content && row[content] != '#')
+        fail(SourceMark{line, static_cast<int>(tab) + 1}, "invalid YAML: tab characters are not allowed in YAML "
+                                                           "indentation; indent with spaces");
+      start = end + 1;
+    }
+    fail(at, std::string("invalid YAML: ").append(e.msg));
   }
   if (documents.empty() || (documents.size() == 1 && documents[0].IsNull())) {
     fail(SourceMark{1, 1}, std::string(wording.empty));

@@ -182,6 +182,46 @@ std::string describe(const GrashofReport& r, const FourBarLoop& loop, const Mode
   return s.str();
 }
 
+InputLimits input_limits(double frame, double input, double coupler, double output, double frame_angle, double at) {
+  constexpr double kPi = 3.14159265358979323846;
+  InputLimits r;
+  r.from = r.to = at;
+  const double a = input, d = frame;
+  // |alpha| (the input from the frame line) where the diagonal has length f: acos of the law
+  // of cosines, 0 when f is below the shortest diagonal and pi above the longest.
+  const auto alpha_at = [&](double f) {
+    const double k = (a * a + d * d - f * f) / (2.0 * a * d);
+    return k >= 1.0 ? 0.0 : k <= -1.0 ? kPi : std::acos(k);
+  };
+  const double lo = alpha_at(std::abs(coupler - output));  // below: the diagonal is too short
+  const double hi = alpha_at(coupler + output);            // above: too long
+  if (lo <= 0.0 && hi >= kPi) {
+    r.full = true;
+    return r;
+  }
+  const double alpha = std::remainder(at - frame_angle, 2.0 * kPi);  // [-pi, pi]
+  const double size = std::abs(alpha);
+  if (size < lo || size > hi) {
+    r.closes = false;
+    return r;
+  }
+  if (lo <= 0.0) {  // one range about the frame line's direction: [-hi, hi]
+    r.from = at - alpha - hi;
+    r.to = at - alpha + hi;
+  } else if (hi >= kPi) {  // one range through the opposite direction: [lo, 2 pi - lo]
+    const double beta = alpha < 0 ? alpha + 2.0 * kPi : alpha;
+    r.from = at - beta + lo;
+    r.to = at - beta + 2.0 * kPi - lo;
+  } else if (alpha >= 0) {  // two ranges, [lo, hi] and [-hi, -lo]
+    r.from = at - alpha + lo;
+    r.to = at - alpha + hi;
+  } else {
+    r.from = at - alpha - hi;
+    r.to = at - alpha - lo;
+  }
+  return r;
+}
+
 double transmission_angle(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p) {
   const Eigen::Vector2d coupler = p[loop.a] - p[loop.b];
   const Eigen::Vector2d output = p[loop.o4] - p[loop.b];

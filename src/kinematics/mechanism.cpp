@@ -230,6 +230,88 @@ PairCount count_pairs(const Model& m) {
   return c;
 }
 
+namespace {
+
+// Places where a body is joined to the rest: points it shares with the ground or other bodies,
+// sliders on it, slots its points run in.
+std::vector<std::string> joint_places(const Model& model, int body) {
+  std::vector<std::string> places;
+  for (int p : model.bodies[body].points) {
+    bool shared = model.points[p].ground;
+    for (std::size_t o = 0; o < model.bodies.size() && !shared; ++o)
+      if (static_cast<int>(o) != body)
+        shared = std::find(model.bodies[o].points.begin(), model.bodies[o].points.end(), p) !=
+                 model.bodies[o].points.end();
+    if (shared) places.push_back(model.points[p].name);
+  }
+  for (const Slider& s : model.sliders)
+    if (s.body == body) places.push_back("slider at " + model.points[s.point].name);
+  for (const Slot& s : model.slots)
+    if (std::find(model.bodies[body].points.begin(), model.bodies[body].points.end(), s.point) !=
+        model.bodies[body].points.end())
+      places.push_back("slot at " + model.points[s.point].name);
+  return places;
+}
+
+// Where there are more drivers than degrees of freedom, the row most likely put on by mistake:
+// the first that depends on the rows before it (Gram-Schmidt). When the joints alone lock the
+// mechanism (`drivers_first`), the rows are taken drivers first, then the constraints in the
+// model's order, and the row found is a constraint (a slider on the wrong body...); otherwise
+// the constraints come first, their own redundancies are passed over, and the row is a driver.
+int first_dependent_row(const Eigen::MatrixXd& J, int constraint_rows, bool drivers_first) {
+  std::vector<int> order;
+  for (int c = 0; c < constraint_rows; ++c) order.push_back(c);
+  for (int d = constraint_rows; d < static_cast<int>(J.rows()); ++d)
+    order.insert(drivers_first ? order.begin() + (d - constraint_rows) : order.end(), d);
+  std::vector<Eigen::VectorXd> basis;
+  for (int row : order) {
+    Eigen::VectorXd v = J.row(row).transpose();
+    const double norm = v.norm();
+    if (!(norm > 0.0)) continue;  // a row that touches no moving point
+    for (int pass = 0; pass < 2; ++pass)
+      for (const Eigen::VectorXd& b : basis) v -= b.dot(v) * b;
+    if (v.norm() <= kRankTolerance * norm) {
+      if (drivers_first || row >= constraint_rows) return row;
+      continue;  // a redundant constraint, as in a parallelogram with a third crank
+    }
+    basis.push_back(v / v.norm());
+  }
+  return -1;
+}
+
+// The body that moves when the drivers are held: of those the null space of every row moves,
+// the one joined to the rest at the fewest places (the last such in the model), or -1.
+int free_body(const Eigen::MatrixXd& J, const Model& model, const std::vector<int>& column) {
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
+  lu.setThreshold(kRankTolerance);
+  const Eigen::MatrixXd kernel = lu.kernel();
+  if (kernel.cols() == 0 || kernel.isZero()) return -1;
+  int best = -1, best_joints = 0;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    double moves = 0.0;
+    for (int p : model.bodies[b].points)
+      if (column[p] >= 0) moves = std::max(moves, kernel.middleRows(column[p], 2).norm());
+    if (moves <= 1e-6 * kernel.norm()) continue;
+    const int joints = static_cast<int>(joint_places(model, static_cast<int>(b)).size());
+    if (best < 0 || joints <= best_joints) {
+      best = static_cast<int>(b);
+      best_joints = joints;
+    }
+  }
+  return best;
+}
+
+std::string joints_of(const Model& model, int body) {
+  const std::vector<std::string> places = joint_places(model, body);
+  if (places.empty()) return "it is joined to nothing";
+  std::string s = "it is joined to the rest only at ";
+  for (std::size_t i = 0; i < places.size(); ++i)
+    s += (i == 0 ? "" : i + 1 == places.size() ? " and " : ", ") + places[i];
+  return s;
+}
+
+}  // namespace
+
 void Mechanism::analyse_mobility() {
   MobilityReport& r = mobility_;
   r.coordinates = n_;
@@ -280,14 +362,37 @@ void Mechanism::analyse_mobility() {
                              std::to_string(drivers_count) + " driver" + (drivers_count == 1 ? " is" : "s are") +
                              " given";
   if (r.dof != drivers_count) {
-    std::string hint;
     if (r.grubler == drivers_count)
-      hint = "; the drawn pose may be a singular (toggle or flat) position: draw the mechanism in a general pose";
-    else if (drivers_count < r.dof)
-      hint = "; add one driver per free input";
-    else
-      hint = "; remove drivers, or check for missing joints";
-    throw ModelError({EntityRef::Kind::Model, -1}, counts + hint);
+      throw ModelError({EntityRef::Kind::Model, -1},
+                       counts + "; the drawn pose may be a singular (toggle or flat) position: draw the mechanism "
+                                "in a general pose");
+    if (drivers_count < r.dof) {
+      const int body = drivers_count > 0 ? free_body(J, model_, column_) : -1;
+      if (body >= 0)
+        throw ModelError({EntityRef::Kind::Body, body},
+                         counts + "; body '" + model_.bodies[body].name + "' can still move with the drivers held (" +
+                             joints_of(model_, body) +
+                             "): give it a joint, a slider or a driver, or add one driver per free input");
+      throw ModelError({EntityRef::Kind::Model, -1}, counts + "; add one driver per free input");
+    }
+    // Joints that lock the mechanism by themselves: a constraint is at fault; otherwise a driver.
+    const int row = first_dependent_row(J, constraint_rows_, r.dof == 0);
+    if (row >= 0) {
+      const Constraint& c = rows_[row];
+      std::string why;
+      if (c.is_driver())
+        why = "driver '" + model_.drivers[c.driver].name +
+              "' moves what the joints and the drivers before it already fix: remove it";
+      else
+        why = "'" + c.label + "' is already fixed by the drivers and the joints before it: " +
+              (c.source.kind == EntityRef::Kind::Slider ? std::string("is the slider on the right body?")
+               : c.source.kind == EntityRef::Kind::Slot ? std::string("is the slot where it should be?")
+                                                        : "is a joint of body '" + model_.bodies[c.source.index].name +
+                                                              "' too many?") +
+              " (or remove drivers)";
+      throw ModelError(c.source, counts + "; " + why);
+    }
+    throw ModelError({EntityRef::Kind::Model, -1}, counts + "; remove drivers, or check for missing joints");
   }
 
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> full(J.transpose());

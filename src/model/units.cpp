@@ -69,6 +69,20 @@ Quantity parse_rate(const std::string& text, int order) {
     }
     return false;
   };
+  // Units are case-sensitive; a unit that only differs in case gets the right spelling.
+  std::string lower = unit;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower != unit) {
+    const std::string suggestion = s.substr(0, used) + " " + lower;
+    bool fits = true;
+    try {
+      parse_rate(suggestion, order);
+    } catch (const std::invalid_argument&) {
+      fits = false;
+    }
+    if (fits)
+      throw std::invalid_argument("'" + text + "': units are case-sensitive: did you mean '" + suggestion + "'?");
+  }
   Quantity q;
   if (order == 1 && unit == "rpm") {
     q.value_si = number * 2.0 * std::numbers::pi / 60.0;

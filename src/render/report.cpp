@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "nbar/analysis/columns.hpp"
 #include "nbar/dynamics/dynamics_table.hpp"
 #include "nbar/version.hpp"
 #include "nbar/model/units.hpp"
@@ -255,7 +256,7 @@ std::string html_report(const Analysis& analysis, const ModelSummary& summary, c
   const Model& m = analysis.model();
   const ResultTable table = result_table(analysis);
   Axis x;
-  x.name = m.drivers.empty() ? "t" : m.drivers[0].name;
+  x.name = default_abscissa(m);  // t for a sweep in time
   x.values = column(table, x.name);
   x.unit = unit_of(table, x.name);
 

@@ -241,6 +241,10 @@ class Checker {
     simulate();
     for (std::size_t i = 0; i < check_.targets.size(); ++i)
       if (!check_.targets[i].reached) check_.targets[i].error = placed_[i].miss;
+    // Reported in the design's angles (the link's direction plus its offset).
+    for (TargetCheck& t : check_.targets) t.input_angle += design_.input_angle_offset;
+    check_.motion.from += design_.input_angle_offset;
+    check_.motion.to += design_.input_angle_offset;
     return check_;
   }
 
@@ -376,7 +380,9 @@ class Checker {
   void simulate() {
     for (TargetCheck& t : check_.targets) t.error = kInfinity;
     try {
-      const Mechanism mech(make_fourbar_model(design_, "check", Units{}, InputMotion{theta0_, theta0_, 2}));
+      FourBarDesign plain = design_;  // driven by the link's own direction
+      plain.input_angle_offset = plain.output_angle_offset = 0.0;
+      const Mechanism mech(make_fourbar_model(plain, "check", Units{}, InputMotion{theta0_, theta0_, 2}));
       State state(mech);
       assemble(mech, state, {theta0_});
       const DriverPath path = [](double p, int terms, std::vector<Series>& out) {
@@ -488,6 +494,8 @@ DesignCheck check_design(const FourBarDesign& design, const std::vector<Rotation
 }
 
 double min_transmission_angle(const FourBarDesign& design, double from, double to) {
+  from -= design.input_angle_offset;
+  to -= design.input_angle_offset;
   return FourBar(design).min_transmission(std::min(from, to), std::max(from, to));
 }
 
@@ -545,14 +553,25 @@ Model make_fourbar_model(const FourBarDesign& design, const std::string& name, c
     b.points = std::move(points);
     m.bodies.push_back(std::move(b));
   };
-  body("input", {kO2, kA});
+  // A pointer where a link's angle is not its direction (offsets of pi: function generation).
+  const auto turned = [](double offset) { return std::abs(wrap_signed(offset)) > 1e-12; };
+  std::vector<int> input_points{kO2, kA}, output_points{kO4, kB};
+  if (turned(design.input_angle_offset)) {
+    point("Ip", design.ground_a + rotate(design.moving_a - design.ground_a, design.input_angle_offset), false);
+    input_points = {kO2, static_cast<int>(m.points.size()) - 1, kA};
+  }
+  if (turned(design.output_angle_offset)) {
+    point("Op", design.ground_b + rotate(design.moving_b - design.ground_b, design.output_angle_offset), false);
+    output_points = {kO4, static_cast<int>(m.points.size()) - 1, kB};
+  }
+  body("input", input_points);
   body("coupler", {kA, kB, kP});
-  body("output", {kO4, kB});
+  body("output", output_points);
   Driver input;
   input.name = "input";
   input.kind = DriverKind::Angle;
   input.body = 0;
-  const double drawn = angle_of(design.moving_a - design.ground_a);
+  const double drawn = angle_of(design.moving_a - design.ground_a) + design.input_angle_offset;
   input.from = motion ? motion->from : drawn;
   input.to = motion ? motion->to : drawn;
   // One turn a second, in the direction of the motion.

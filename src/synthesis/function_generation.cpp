@@ -180,6 +180,15 @@ FunctionDesign freudenstein_design(const FunctionTask& task, const std::vector<d
   out.design.moving_a = l.crank_pin(phi[0]);
   out.design.moving_b = *l.output_pin(phi[0], out.branch);
   out.design.coupler_point = out.design.moving_b;
+  // A negative length points its link opposite to phi (psi): the task's angles are those of
+  // the link turned by pi, in the turn the task gives them.
+  const auto offset = [](double length, double wanted, double direction) {
+    const double base = length < 0 ? kPi : 0.0;
+    return base + 2 * kPi * std::round((wanted - direction - base) / (2 * kPi));
+  };
+  out.design.input_angle_offset = offset(l.a, phi[0], std::atan2(out.design.moving_a.y(), out.design.moving_a.x()));
+  const Vec2 output_link = out.design.moving_b - out.design.ground_b;
+  out.design.output_angle_offset = offset(l.c, psi[0], std::atan2(output_link.y(), output_link.x()));
 
   auto error_at = [&](double x) {
     const auto generated = simulate(l, map.phi(x), out.branch);

@@ -181,8 +181,10 @@ Outcome function(const SynthesisTask& task, const SynthesisRunOptions& run) {
   check_rows(
       out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
   // Over the whole range of x, when the linkage gets there.
+  // In the task's input angles (the design's input angle offset included).
   const double theta0 =
-      std::atan2(fd.design.moving_a.y() - fd.design.ground_a.y(), fd.design.moving_a.x() - fd.design.ground_a.x());
+      std::atan2(fd.design.moving_a.y() - fd.design.ground_a.y(), fd.design.moving_a.x() - fd.design.ground_a.x()) +
+      fd.design.input_angle_offset;
   if (fd.whole_range) {
     const double from = theta0 + phi(task.x_start) - phi(xs[0]), to = theta0 + phi(task.x_end) - phi(xs[0]);
     out.rows[0].motion = InputMotion{

@@ -197,5 +197,59 @@ TEST(Summary, CountsClassifiesAndDecidesKineticsOnce) {
   EXPECT_EQ(redundant.mobility.dof, 1);
 }
 
+// The crank-rocker with its crank lengthened from 80 to 130 mm: s + l = p + q within the
+// drawing's rounding, and the crank folds against the coupler near 180 deg.
+std::shared_ptr<const Mechanism> long_crank(const std::string& units, const std::string& to) {
+  return std::make_shared<const Mechanism>(
+      io::parse_model("units: {length: mm, angle: " + units +
+                      "}\n"
+                      "points: {O2: [0, 0], O4: [200, 0], A: [80, 0], B: [181.25, 148.823511]}\n"
+                      "ground: [O2, O4]\n"
+                      "bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n"
+                      "lengths: {crank: 130, rocker: 150}\n"
+                      "drivers: [{angle: crank, from: 0, to: " +
+                      to + "}]\n")
+          .model);
+}
+
+TEST(Summary, WarnsOfASweepPastTheInputsToggles) {
+  const ModelSummary s = summarize(*long_crank("deg", "360"));
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].code, "input_limited");
+  EXPECT_EQ(s.warnings[0].step, -1);
+  EXPECT_NE(s.warnings[0].message.find("the sweep asks crank to turn 360 deg, from 0 deg to 360 deg, but loop "
+                                       "crank-coupler-rocker lets it turn only between -179.99"),
+            std::string::npos)
+      << s.warnings[0].message;
+  // The sweep does stop there.
+  const Analysis a = analyse(long_crank("deg", "360"), {});
+  EXPECT_FALSE(a.sweep.complete);
+  // Within the range: no warning.
+  EXPECT_TRUE(summarize(*long_crank("deg", "170")).warnings.empty());
+  // A crank that turns fully: none either.
+  EXPECT_TRUE(summarize(*example("fourbar-crank-rocker.yaml")).warnings.empty());
+}
+
+TEST(Summary, WarnsOfManyTurnsAndNamesTheUnit) {
+  const ModelSummary s = summarize(*long_crank("rad", "360"));
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_EQ(s.warnings[0].code, "many_turns");
+  EXPECT_NE(s.warnings[0].message.find("the sweep turns crank 57.3 times, from 0 rad to 360 rad (the model's angle "
+                                       "unit is rad"),
+            std::string::npos)
+      << s.warnings[0].message;
+  EXPECT_TRUE(summarize(*long_crank("rad", "2")).warnings.empty());
+}
+
+TEST(Analysis, DynamicsOfAModelWithoutMassesOrLoadsSaysSo) {
+  AnalysisOptions o;
+  o.steps = 3;
+  o.dynamics = true;
+  const Analysis bare = analyse(example("fourbar-crank-rocker.yaml"), o);
+  ASSERT_EQ(bare.warnings().size(), 1u);
+  EXPECT_EQ(bare.warnings()[0].code, "no_kinetics");
+  EXPECT_TRUE(analyse(example("fourbar-steel-bars.yaml"), o).warnings().empty());
+}
+
 }  // namespace
 }  // namespace nbar

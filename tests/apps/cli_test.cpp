@@ -91,6 +91,8 @@ TEST(Cli, EveryExampleChecksAndSolves) {
     EXPECT_EQ(j["columns"].size(), j["rows"][0].size());
     EXPECT_EQ(j["column_units"].size(), j["columns"].size());
     EXPECT_TRUE(j["complete"].get<bool>());
+    ASSERT_TRUE(j.contains("stop_reason"));  // always written, as the README says
+    EXPECT_TRUE(j["stop_reason"].is_null());
   }
 }
 
@@ -134,6 +136,8 @@ TEST(Cli, HelpAndBadUsage) {
   EXPECT_EQ(nbar("solve --help").code, 0);
   EXPECT_EQ(nbar("").code, 2);
   EXPECT_EQ(nbar("frobnicate").code, 2);
+  EXPECT_THAT(nbar("frobnicate").err, HasSubstr("error: 'frobnicate' is not an nbar command (the commands are: check, solve, "));
+  EXPECT_THAT(nbar("sovle x.yaml").err, testing::EndsWith("synth, explain); did you mean 'solve'?\n"));
   const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml";
   EXPECT_EQ(nbar("solve " + model + " --order 6").code, 2);
   EXPECT_EQ(nbar("solve " + model + " --order -1").code, 2);
@@ -167,6 +171,61 @@ TEST(Cli, DriversNotMatchingTheDegreesOfFreedomAreAnInvalidModel) {
   EXPECT_THAT(r.err, HasSubstr(m.path() + ":"));
 }
 
+TEST(Cli, CheckWarnsOfASweepThatWillStopOrTurnTooOften) {
+  const std::string body = "points: {O2: [0, 0], O4: [200, 0], A: [80, 0], B: [181.25, 148.823511]}\n"
+                           "ground: [O2, O4]\nbodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n";
+  TempModel limited("units: {length: mm, angle: deg}\n" + body +
+                    "lengths: {crank: 130, rocker: 150}\ndrivers: [{angle: crank, from: 0, to: 360}]\n");
+  const CliRun r = nbar("check " + limited.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("Warnings: 1\n  warning: the sweep asks crank to turn 360 deg, from 0 deg to 360 deg, "
+                               "but loop crank-coupler-rocker lets it turn only between -179.99"));
+  EXPECT_EQ(nbar("solve " + limited.path()).code, 4);
+
+  TempModel rad("units: {length: mm, angle: rad}\n" + body + "drivers: [{angle: crank, from: 0, to: 360}]\n");
+  const CliRun turns = nbar("check " + rad.path());
+  EXPECT_EQ(turns.code, 0) << turns.err;
+  EXPECT_THAT(turns.out, HasSubstr("warning: the sweep turns crank 57.3 times, from 0 rad to 360 rad (the model's "
+                                   "angle unit is rad: for 360 degrees, write `units: {angle: deg}`)"));
+
+  const CliRun dynamics =
+      nbar("solve " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml --dynamics --steps 3");
+  EXPECT_EQ(dynamics.code, 0);
+  EXPECT_THAT(dynamics.err, HasSubstr("warning: the model has no masses or loads"));
+}
+
+TEST(Cli, CheckPrintsNoCentreOfMassForABodyWithoutMass) {
+  // The four-bar with a given mass on the crank only, and gravity.
+  TempModel m(
+      "name: four-bar\nunits: {length: mm, angle: deg}\n"
+      "points: {O2: [0, 0], O4: [200, 0], A: [0, 80], B: [160, 150]}\nground: [O2, O4]\ngravity: [0, -9.81]\n"
+      "bodies:\n  crank: {points: [O2, A], mass: 0.5, cg: [0, 40], inertia: 0.001}\n"
+      "  coupler: [A, B]\n  rocker: [O4, B]\n"
+      "drivers:\n  - {angle: crank, from: 90, to: 100}\n");
+  const CliRun r = nbar("check " + m.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("  crank        mass 0.5  cg (0, 40)  inertia 0.001  [given]\n"));
+  EXPECT_THAT(r.out, HasSubstr("  coupler      mass 0  [none]\n"));
+  EXPECT_THAT(r.out, Not(HasSubstr("cg (0, 0)")));
+}
+
+TEST(Cli, DegreesOfFreedomNotMatchingPointAtTheLikelyCulprit) {
+  const std::string head = "name: s\npoints: {O2: [0, 0], X: [400, 0], A: [50, 20], C: [230, 0]}\n"
+                           "ground: [O2, X]\nbodies:\n  crank: [O2, A]\n  rod: [A, C]\n";
+  const std::string driver = "drivers:\n  - {angle: crank, from: 0, to: 360}\n";
+  TempModel wrong(head + "sliders:\n  - {body: rod, point: C, along: [O2, X]}\n" + driver);
+  const CliRun w = nbar("check " + wrong.path());
+  EXPECT_EQ(w.code, 1);
+  EXPECT_THAT(w.err, HasSubstr(wrong.path() + ":8:5: the mechanism has 0 degrees of freedom"));
+  EXPECT_THAT(w.err, HasSubstr("is the slider on the right body?"));
+  TempModel forgotten(std::string(head).replace(head.find("C: [230, 0]"), 11, "C: [230, 0], D: [260, 0]") +
+                      "  piston: [C, D]\n" + driver);
+  const CliRun f = nbar("check " + forgotten.path());
+  EXPECT_EQ(f.code, 1);
+  EXPECT_THAT(f.err, HasSubstr(forgotten.path() + ":7:3: the mechanism has 3 degrees of freedom"));
+  EXPECT_THAT(f.err, HasSubstr("body 'piston' can still move with the drivers held"));
+}
+
 TEST(Cli, BarsTooShortToCloseCannotAssemble) {
   TempModel m(std::string(kFourBar) + "lengths: {coupler: 20}\ndrivers:\n  - {angle: crank, from: 90, to: 100}\n");
   const CliRun check = nbar("check " + m.path());
@@ -187,6 +246,11 @@ TEST(Cli, DriverOutsideItsRangeStopsTheSweepEarlyAndKeepsTheRows) {
   EXPECT_THAT(r.err, HasSubstr("toggle"));
   EXPECT_GT(count_lines(r.out), 3);
   EXPECT_LT(count_lines(r.out), 362);
+  const CliRun json = nbar("solve " + m.path() + " --format json");
+  EXPECT_EQ(json.code, 4);
+  const auto j = nlohmann::json::parse(json.out);
+  EXPECT_FALSE(j["complete"].get<bool>());
+  EXPECT_THAT(j["stop_reason"].get<std::string>(), HasSubstr("toggle"));
 }
 
 TEST(Cli, DynamicsColumnsAndJson) {
@@ -240,6 +304,36 @@ TEST(Cli, StressBadUsage) {
   const CliRun no_shapes = nbar(std::string("stress ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml");
   EXPECT_EQ(no_shapes.code, 1);
   EXPECT_THAT(no_shapes.err, HasSubstr("no link has a shape"));
+}
+
+TEST(Cli, PlotOfASweepInTimeIsAgainstTimeByDefault) {
+  TempModel dir("");
+  const std::string svg = dir.dir() + "/omega.svg";
+  const CliRun r = nbar("plot " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-oscillating.yaml --y output.omega -o " + svg);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(svg);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, HasSubstr(">t [s]<"));
+  EXPECT_THAT(text, Not(HasSubstr(">input [deg]<")));
+  // Swept by a driver's from/to, the plot stays against that driver.
+  const CliRun driver = nbar("plot " + std::string(NBAR_EXAMPLES_DIR) +
+                             "/fourbar-crank-rocker.yaml --y rocker.angle --steps 13 -o " + svg);
+  ASSERT_EQ(driver.code, 0) << driver.err;
+  std::ifstream again(svg);
+  EXPECT_THAT(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()),
+              HasSubstr(">crank [deg]<"));
+}
+
+TEST(Cli, DrawAtAValuePastATogglePositionSaysWhereItStops) {
+  // The double-rocker's 161-step sweep runs from -80 to 80 deg; 120 deg lies past its toggle.
+  // The message speaks of driver values, not of steps (it once gave step numbers of an
+  // internal refinement, "between steps 404 and 405").
+  TempModel dir("");
+  const CliRun r = nbar("draw " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-double-rocker.yaml --at 120 -o " +
+                        dir.dir() + "/x.svg");
+  EXPECT_EQ(r.code, 4);
+  EXPECT_THAT(r.err, HasSubstr("cannot reach input = 120 deg: it stops at input = 99.7"));
+  EXPECT_THAT(r.err, Not(HasSubstr("step")));
 }
 
 TEST(Cli, DrawWritesSvgAndPngAndChecksItsArguments) {

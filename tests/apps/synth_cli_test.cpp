@@ -17,6 +17,7 @@
 #include <string>
 
 #include "apps/cli_support.hpp"
+#include "nbar/analysis/pose.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/kinematics/mechanism.hpp"
@@ -163,6 +164,15 @@ TEST(SynthCli, BurmesterThreeFourAndFivePoses) {
     EXPECT_EQ(c.code, 0) << c.err;
     EXPECT_GT(fs::file_size(dir.path("curves." + ext)), 1000u);
   }
+  // The picture can be read: labelled axes in the task's unit, a grid, numbered poses.
+  std::ifstream svg_file(dir.path("curves.svg"));
+  const std::string svg((std::istreambuf_iterator<char>(svg_file)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(svg, HasSubstr(">x (mm)<"));
+  EXPECT_THAT(svg, HasSubstr(">y (mm)<"));
+  EXPECT_THAT(svg, HasSubstr(">200<"));  // a tick label
+  EXPECT_THAT(svg, HasSubstr(">-200<"));
+  for (const char* pose : {">1<", ">2<", ">3<", ">4<"}) EXPECT_THAT(svg, HasSubstr(pose));
+  EXPECT_THAT(svg, HasSubstr("poses 1-4 with their angles"));
 
   const CliRun five = nbar("synth burmester " + kExamples + "burmester-five-positions.yaml --all");
   ASSERT_EQ(five.code, 0) << five.err;
@@ -179,13 +189,45 @@ TEST(SynthCli, FunctionGeneratorRunsOverTheRangeOfX) {
   EXPECT_THAT(r.out, HasSubstr("Freudenstein, 3 Chebyshev precision points\n1 solution, 1 real, 1 without defects\n"));
   EXPECT_THAT(r.out, HasSubstr("note: structural error: the output is off by up to 0.472 deg"));
   EXPECT_THAT(r.out, HasSubstr("   1  triple-rocker          100     33.8673     85.6935      29.565     54.58  none"));
-  // The exported sweep is the input's range: 90 to 150 deg from the frame line, here with the
-  // crank pointing the other way (K1 < 0), so -90 to -30 deg.
+  // The task's own angles (the example's convention: from the frame line O2 -> O4, counter-
+  // clockwise): the exported model sweeps the input from 90 to 150 deg, and its output.angle
+  // column reads the output against 60 to 120 deg. Freudenstein gives this design a negative
+  // input and output length (K1, K2 < 0), so both links point opposite to their angles, which
+  // put them 180 deg off before.
   const CliRun solve = nbar("solve " + dir.path("design-01.yaml") + " --format json --steps 3");
   ASSERT_EQ(solve.code, 0) << solve.err;
   const auto j = nlohmann::json::parse(solve.out);
-  EXPECT_NEAR(j["rows"][0][2].get<double>(), -90, 1e-9);
-  EXPECT_NEAR(j["rows"][2][2].get<double>(), -30, 1e-9);
+  EXPECT_NEAR(j["rows"][0][2].get<double>(), 90, 1e-9);
+  EXPECT_NEAR(j["rows"][2][2].get<double>(), 150, 1e-9);
+
+  // Driven through the task's input range, the exported model meets f at the precision points:
+  // phi = 90 + 60 (x - 1) deg, and the output angle psi = 60 + 60 log10(x) / log10(2) deg.
+  const nbar::Mechanism mech(nbar::io::load_model_file(dir.path("design-01.yaml")).model);
+  const int output = mech.model().find_body("output");
+  ASSERT_GE(output, 0);
+  const auto& pts = mech.model().bodies[output].points;
+  const double deg = std::numbers::pi / 180;
+  const auto output_angle = [&](double phi_deg) {
+    const Eigen::VectorXd q = nbar::pose_at(mech, phi_deg).positions();
+    const Eigen::Vector2d v = mech.point_position(pts[1], q) - mech.point_position(pts[0], q);
+    return std::atan2(v.y(), v.x()) / deg;
+  };
+  for (int j = 1; j <= 3; ++j) {
+    const double x = 1.5 - 0.5 * std::cos((2 * j - 1) * std::numbers::pi / 6);  // Chebyshev on [1, 2]
+    const double phi = 90 + 60 * (x - 1), psi = 60 + 60 * std::log10(x) / std::log10(2.0);
+    EXPECT_NEAR(output_angle(phi), psi, 1e-9) << "at precision point x = " << x;
+  }
+  // And between them within the structural error the table reports (0.472 deg).
+  EXPECT_NEAR(output_angle(90), 60, 0.48);
+  EXPECT_NEAR(output_angle(150), 120, 0.48);
+
+  // The report says the same: the targets' input angles are the task's.
+  const CliRun json = nbar("synth function " + kExamples + "function-log10.yaml --format json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  const auto targets = nlohmann::json::parse(json.out)["designs"][0]["targets"];
+  ASSERT_EQ(targets.size(), 3u);
+  EXPECT_NEAR(targets[0]["input_angle"].get<double>(), 90 + 60 * (1.5 - 0.5 * std::cos(std::numbers::pi / 6) - 1), 1e-9);
+  EXPECT_NEAR(targets[1]["input_angle"].get<double>(), 120, 1e-9);
 }
 
 TEST(SynthCli, BadTaskFilesSayWhereTheProblemIs) {

@@ -350,7 +350,12 @@ TEST(ModelFileErrors, ErrorFormat) {
 
 TEST(ModelFileErrors, MalformedYaml) {
   EXPECT_TRUE(fails_at("points:\n  O: [0, 0\n  A: [1, 0]\n", "3:4", "invalid YAML: end of sequence flow not found"));
-  EXPECT_TRUE(fails_at("points:\n\tO: [0, 0]\n", "2:3", "invalid YAML"));
+  EXPECT_TRUE(fails_at("points:\n\tO: [0, 0]\n", "2:1",
+                       "invalid YAML: tab characters are not allowed in YAML indentation; indent with spaces"));
+  EXPECT_TRUE(fails_at("name: t\npoints:\n  O2: [0, 0]\n \tA: [1, 0]\n", "4:2",
+                       "tab characters are not allowed in YAML indentation"));
+  // A tab after the indentation, where YAML allows it, is no error by itself.
+  EXPECT_TRUE(fails_at("name:\tt\npoints:\n  O: [0, 0\n", "4:1", "invalid YAML: end of sequence flow not found"));
   EXPECT_TRUE(fails_at("points:\n  O: [0, 0]\n A: [1, 0]\n", "3:2", "invalid YAML: end of map not found"));
   EXPECT_TRUE(fails_at(R"({"points": {"A": [0, 0] "B": [1, 1]}})", "1:25", "invalid YAML: end of map flow not found"));
 }
@@ -535,6 +540,11 @@ TEST(ModelFileErrors, Speeds) {
   EXPECT_TRUE(fails_at(head + "  - {angle: crank, speed: 3 furlongs/s}\n", "12:27", "unknown unit"));
   EXPECT_TRUE(fails_at(head + "  - {angle: crank, speed: fast}\n", "12:27", "expected a number followed by a unit"));
   EXPECT_TRUE(fails_at(head + "  - {angle: crank, accel: 100 rpm}\n", "12:27", "needs a unit per time"));
+  // Units are case-sensitive, and a unit in the wrong case gets its right spelling.
+  EXPECT_TRUE(fails_at(head + "  - {angle: crank, speed: 120 RPM}\n", "12:27",
+                       "'120 RPM': units are case-sensitive: did you mean '120 rpm'?"));
+  EXPECT_TRUE(fails_at(head + "  - {angle: crank, accel: 2 Deg/S^2}\n", "12:27",
+                       "'2 Deg/S^2': units are case-sensitive: did you mean '2 deg/s^2'?"));
   EXPECT_TRUE(fails_at(head + "  - {angle: crank, speed: [1, 2]}\n", "12:27",
                        "the speed must be a number or a quantity like '1750 rpm', not a list"));
   EXPECT_TRUE(

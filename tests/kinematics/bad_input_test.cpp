@@ -74,7 +74,81 @@ TEST(BadInput, TwoDriversForAOneDofLinkage) {
     FAIL() << "a four-bar with two drivers was accepted";
   } catch (const ModelError& e) {
     EXPECT_THAT(e.what(), AllOf(HasSubstr("1 degree of freedom"), HasSubstr("2 drivers are given"),
-                                HasSubstr("remove drivers")));
+                                HasSubstr("driver 'rocker' moves what the joints and the drivers before it "
+                                          "already fix: remove it")));
+    EXPECT_EQ(e.where().kind, EntityRef::Kind::Driver);
+    EXPECT_EQ(e.where().index, 1);
+  }
+}
+
+// A parallelogram with a redundant third crank, driven twice: the second driver is named, not
+// the redundant crank (a redundancy of the joints themselves is no mistake).
+TEST(BadInput, SecondDriverOfARedundantParallelogramIsNamed) {
+  Model m;
+  const int o1 = add_point(m, "O1", {0, 0}, true);
+  const int o2 = add_point(m, "O2", {0.2, 0}, true);
+  const int o3 = add_point(m, "O3", {0.1, 0.08}, true);
+  const int a1 = add_point(m, "A1", {0, 0.05});
+  const int a2 = add_point(m, "A2", {0.2, 0.05});
+  const int a3 = add_point(m, "A3", {0.1, 0.13});
+  const int crank1 = add_body(m, "crank1", {o1, a1});
+  const int crank2 = add_body(m, "crank2", {o2, a2});
+  add_body(m, "crank3", {o3, a3});
+  add_body(m, "coupler", {a1, a2, a3});
+  m.drivers.push_back(angle_driver("first", crank1));
+  m.drivers.push_back(angle_driver("second", crank2));
+  try {
+    Mechanism mech(m);
+    FAIL() << "a parallelogram with two drivers was accepted";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("driver 'second' moves what the joints and the drivers before it already fix"));
+    EXPECT_EQ(e.where().kind, EntityRef::Kind::Driver);
+    EXPECT_EQ(e.where().index, 1);
+  }
+}
+
+// A slider-crank whose slider was put on the rod instead of the piston: the joints alone lock
+// it, and the slider's constraint is the one named, at the slider.
+TEST(BadInput, SliderOnTheWrongBodyIsNamed) {
+  Model m;
+  const int o2 = add_point(m, "O2", {0, 0}, true);
+  const int x = add_point(m, "X", {0.4, 0}, true);
+  const int a = add_point(m, "A", {0.05, 0.02});
+  const int c = add_point(m, "C", {0.23, 0});
+  const int crank = add_body(m, "crank", {o2, a});
+  const int rod = add_body(m, "rod", {a, c});
+  m.sliders.push_back(Slider{rod, c, {o2, x}});
+  m.drivers.push_back(angle_driver("crank", crank));
+  try {
+    Mechanism mech(m);
+    FAIL() << "a slider-crank locked by its slider was accepted";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("0 degrees of freedom"), HasSubstr("is the slider on the right body?")));
+    EXPECT_EQ(e.where().kind, EntityRef::Kind::Slider);
+    EXPECT_EQ(e.where().index, 0);
+  }
+}
+
+// A slider-crank whose piston has two points but no slider: the piston is free, and named.
+TEST(BadInput, ForgottenSliderNamesTheFreeBody) {
+  Model m;
+  const int o2 = add_point(m, "O2", {0, 0}, true);
+  const int a = add_point(m, "A", {0.05, 0.02});
+  const int c = add_point(m, "C", {0.23, 0});
+  const int d = add_point(m, "D", {0.26, 0});
+  const int crank = add_body(m, "crank", {o2, a});
+  add_body(m, "rod", {a, c});
+  const int piston = add_body(m, "piston", {c, d});
+  m.drivers.push_back(angle_driver("crank", crank));
+  try {
+    Mechanism mech(m);
+    FAIL() << "a slider-crank without its slider was accepted";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("3 degrees of freedom"),
+                                HasSubstr("body 'piston' can still move with the drivers held (it is joined to the "
+                                          "rest only at C)")));
+    EXPECT_EQ(e.where().kind, EntityRef::Kind::Body);
+    EXPECT_EQ(e.where().index, piston);
   }
 }
 

@@ -189,6 +189,48 @@ double equation_residual(const FunctionTask& t, const std::array<double, 3>& k, 
   return sum;
 }
 
+// The design keeps the task's angles: where a length comes out negative its link points
+// opposite to phi (psi), and the offset of pi says so; the check reports input angles as phi,
+// and the model gets a pointer whose body angle is phi (psi).
+TEST(FunctionGenerationFreudenstein, DesignUsesTheTasksAngles) {
+  FunctionTask task = log10_task();
+  task.input_start = 90 * kDeg;  // the example's task: both lengths come out negative
+  task.output_start = 60 * kDeg;
+  const std::vector<double> xs = chebyshev_spacing(1, 2, 3);
+  const FunctionDesign d = freudenstein_design(task, xs);
+  ASSERT_LT(d.k[0], 0);
+  ASSERT_LT(d.k[1], 0);
+  const double phi1 = task.input_start + task.input_range * (xs[0] - 1);
+  const Vec2 input = d.design.moving_a - d.design.ground_a;
+  EXPECT_NEAR(std::atan2(input.y(), input.x()) + d.design.input_angle_offset, phi1, 1e-12);
+  EXPECT_NEAR(std::abs(wrap(d.design.input_angle_offset)), kPi, 1e-12);
+  EXPECT_NEAR(std::abs(wrap(d.design.output_angle_offset)), kPi, 1e-12);
+
+  const DesignCheck check = check_design(d.design, rotation_targets(task, xs));
+  ASSERT_EQ(check.targets.size(), 3u);
+  for (std::size_t j = 0; j < 3; ++j)
+    EXPECT_NEAR(check.targets[j].input_angle, task.input_start + task.input_range * (xs[j] - 1), 1e-9);
+
+  const Model m = make_fourbar_model(d.design, "log10", {}, check.motion);
+  ASSERT_EQ(m.points.size(), 7u);  // O2, O4, A, B, P and the pointers Ip, Op
+  const Body& in = m.bodies[0];
+  const Body& out = m.bodies[2];
+  ASSERT_EQ(in.points.size(), 3u);
+  ASSERT_EQ(out.points.size(), 3u);
+  const Vec2 pointer = m.points[in.points[1]].position - m.points[in.points[0]].position;
+  EXPECT_NEAR(std::atan2(pointer.y(), pointer.x()), phi1, 1e-12);
+  const Vec2 output = m.points[out.points[1]].position - m.points[out.points[0]].position;
+  EXPECT_NEAR(std::atan2(output.y(), output.x()), task.output_start + task.output_range *
+                                                                           std::log10(xs[0]) / std::log10(2.0),
+              1e-9);
+
+  // Positive lengths (the 45 deg task above): no offsets, no pointers.
+  const FunctionDesign plain = freudenstein_design(log10_task(), xs);
+  ASSERT_GT(plain.k[0], 0);
+  EXPECT_EQ(plain.design.input_angle_offset, 0.0);
+  EXPECT_EQ(make_fourbar_model(plain.design, "plain").points.size(), 5u);
+}
+
 TEST(FunctionGenerationFreudenstein, LeastSquaresMinimisesTheEquationResiduals) {
   const FunctionTask task = log10_task();
   std::vector<double> many;

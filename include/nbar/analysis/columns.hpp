@@ -42,4 +42,8 @@ struct ColumnNeeds {
 ColumnNeeds column_needs(const Mechanism& mechanism, const std::vector<std::string>& patterns,
                          std::optional<int> order = std::nullopt, bool dynamics = false);
 
+// The column results are best plotted against by default: time, `t`, for a sweep in time (a
+// driver with a time law) or a model without drivers; otherwise the first driver's column.
+std::string default_abscissa(const Model& model);
+
 }  // namespace nbar

@@ -58,6 +58,11 @@ struct ModelSummary {
   std::optional<AssemblySummary> assembly;
   std::optional<Error> assembly_error;
   std::vector<LoopSummary> loops;
+
+  // What the sweep asks that it will not get, or may not mean, said before it runs:
+  // "input_limited" (an angle driver asked to turn past the toggles of its four-bar loop) and
+  // "many_turns" (an angle driver asked to turn more than 4 times, a likely unit mistake).
+  std::vector<Warning> warnings;
 };
 
 // Never throws for a compiled mechanism: an assembly failure is kept in assembly_error.

@@ -21,8 +21,12 @@ std::string model_yaml(const Model& model, const std::vector<std::string>& comme
 // defects, transmission angles and each target's input angle, in `units`.
 std::vector<std::string> design_comments(const synthesis::DesignCheck& check, const Units& units = {});
 
+// Where the design's angles are measured from, as comment lines: none when they are the links'
+// own directions, otherwise which pointer (Ip, Op) carries the input or output angle.
+std::vector<std::string> design_angle_comments(const synthesis::FourBarDesign& design);
+
 // A synthesised four-bar as a model file: make_fourbar_model with the check's motion, its
-// coordinates in `units`, `comments` then design_comments.
+// coordinates in `units`, `comments`, design_comments then design_angle_comments.
 std::string design_yaml(const synthesis::FourBarDesign& design, const synthesis::DesignCheck& check,
                         const std::string& name, const Units& units = {},
                         const std::vector<std::string>& comments = {});

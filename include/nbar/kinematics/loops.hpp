@@ -56,6 +56,20 @@ std::string grashof_name(GrashofClass kind, bool input_turns_fully = true);
 std::string to_string(GrashofClass kind);  // grashof_name(kind)
 std::string describe(const GrashofReport& report, const FourBarLoop& loop, const Model& model);
 
+// How far the input of a four-bar can turn relative to its frame, on the part of its range that
+// holds the input angle `at` (rad, the direction o2 -> a, any turn). Closed form: the diagonal
+// from a to o4 has length f, f^2 = input^2 + frame^2 - 2 input frame cos(at - frame_angle) (law
+// of cosines), and the loop closes while |coupler - output| <= f <= coupler + output; the limits
+// (toggles) are where f reaches either bound. `full` when the input turns fully (no limit);
+// otherwise from <= at <= to, in the turn of `at`. `closes` is false when the loop cannot be
+// closed at `at` at all (then from = to = at).
+struct InputLimits {
+  bool full = false;
+  bool closes = true;
+  double from = 0, to = 0;  // rad
+};
+InputLimits input_limits(double frame, double input, double coupler, double output, double frame_angle, double at);
+
 // Angle between the coupler and the output link at their joint, in [0, pi].
 double transmission_angle(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& points);
 

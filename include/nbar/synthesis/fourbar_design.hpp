@@ -21,6 +21,14 @@ struct FourBarDesign {
   Eigen::Vector2d moving_a{0, 0};  // coupler-input joint
   Eigen::Vector2d moving_b{0, 0};  // coupler-output joint
   Eigen::Vector2d coupler_point{0, 0};
+  // Where the design's input and output angles are measured from (rad): the input angle is
+  // the direction ground_a -> moving_a plus input_angle_offset, the output angle the direction
+  // ground_b -> moving_b plus output_angle_offset. 0 but for function generation, where a
+  // negative Freudenstein length points a link opposite to its angle (an offset of pi): the
+  // task's angles are those of a pointer on the link. make_fourbar_model then adds that
+  // pointer, and check_design reports input angles and motions in the design's angles.
+  double input_angle_offset = 0;
+  double output_angle_offset = 0;
 };
 
 // ---- Checking a design with the kinematics engine (fourbar_design.cpp) -------------------
@@ -43,7 +51,8 @@ struct RotationTarget {
   double output = 0;
 };
 
-// How an exported model moves its input: angles of the input link from +x (rad).
+// How an exported model moves its input: the design's input angles (rad; the direction of the
+// input link from +x, plus FourBarDesign::input_angle_offset).
 struct InputMotion {
   double from = 0;
   double to = 0;
@@ -116,7 +125,10 @@ std::string describe_defects(const DesignCheck& check);
 
 // The four-bar as a model: ground points O2 (ground_a) and O4 (ground_b); bodies input
 // [O2, A], coupler [A, B, P], output [O4, B]; an angle driver on the input moving as
-// `motion` says (a static pose at the drawn angle without it). Coordinates are in `units`
+// `motion` says (a static pose at the drawn angle without it). A link whose angle offset is
+// not a multiple of 2 pi gets a pointer, so that its body angle (first to second point) is the
+// design's angle: the input becomes [O2, Ip, A] and the output [O4, Op, B], Ip and Op being A
+// and B turned by the offset about the link's fixed pivot (points appended after P). Coordinates are in `units`
 // (converted to SI in the model); `motion` is in rad.
 Model make_fourbar_model(const FourBarDesign& design, const std::string& name, const Units& units = {},
                          const std::optional<InputMotion>& motion = std::nullopt);
