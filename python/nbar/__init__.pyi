@@ -50,6 +50,7 @@ class Result(Table):
     max_residual: float
     branches: List[str]
     forces_unique: Optional[bool]
+    default_x: Optional[str]
     def to_json(self) -> str: ...
 
 class Summary:
@@ -63,6 +64,7 @@ class Summary:
     assembly: Any
     assembly_error: Optional[str]
     has_kinetics: bool
+    warnings: List[Warning]
     text: str
 
 class StressResult:

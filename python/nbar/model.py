@@ -42,6 +42,8 @@ class Summary:
         self.assembly = SimpleNamespace(**data["assembly"]) if data["assembly"] else None
         self.assembly_error: Optional[str] = data["assembly_error"]
         self.has_kinetics: bool = data["has_kinetics"]
+        from .results import Warning
+        self.warnings = [Warning(*w) for w in data["warnings"]]
         self.text: str = data["text"]
 
     def __str__(self) -> str:
@@ -189,7 +191,7 @@ class Model:
             order, dynamics = needs["order"], needs["dynamics"]
         analysis = self.analyse(steps=steps, order=2 if order is None else order, dynamics=dynamics, timeout=timeout)
         result = Result(analysis, *analysis.table(patterns))
-        result.time_law = self._c.has_time_law
+        result.default_x = self._c.default_abscissa
         if not result.complete and not partial:
             raise LimitError(f"{result.stop_reason} ({result.rows} rows solved; solve(..., partial=True) returns "
                              f"them)", kind="stopped_at_limit", file=self._c.file, result=result)

@@ -8,16 +8,12 @@ from .results import Table
 
 
 def default_x(result: Table) -> str:
-    """The column plots run along: time for models driven by laws in time, otherwise the first
-    driver when it moves, otherwise time."""
-    if getattr(result, "time_law", False) and "t" in result:
-        return "t"
-    names = result.columns
-    first_driver = names[2] if len(names) > 2 and names[0] == "step" and names[1] == "t" else None
-    if first_driver and result.units.get(first_driver) and len(set(result[first_driver])) > 1:
-        return first_driver
-    if "t" in result:
-        return "t"
+    """The column plots run along: what ``nbar plot`` uses (t for sweeps in time, else the first
+    driver), when the result has it; otherwise t."""
+    preferred = getattr(result, "default_x", None)
+    for name in (preferred, "t"):
+        if name and name in result:
+            return name
     from .errors import BadInputError
     raise BadInputError("these columns have neither the driver nor t to plot against: pass x=")
 

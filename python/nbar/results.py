@@ -87,7 +87,7 @@ class Result(Table):
         self.max_residual: float = analysis.max_residual
         self.branches: List[str] = list(analysis.branches)
         self.forces_unique: Optional[bool] = analysis.forces_unique
-        self.time_law: bool = False  # driven by laws in time: plots run along t
+        self.default_x: Optional[str] = None  # the column plots run along, as the CLI's plots
 
     def to_json(self) -> str:
         """The JSON that ``nbar solve --format json`` writes for these columns."""

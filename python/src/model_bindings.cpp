@@ -93,6 +93,9 @@ py::dict summary_dict(const PyModel& model) {
   }
   d["assembly_error"] = s.assembly_error ? py::object(py::str(located(model, *s.assembly_error).what())) : py::none();
   d["loops"] = loop_list(mech, s);
+  py::list warnings;
+  for (const Warning& w : s.warnings) warnings.append(py::make_tuple(w.code, w.step, w.message));
+  d["warnings"] = warnings;
   std::ostringstream text;
   io::write_summary_text(text, mech, s, model.file.source.file);
   d["text"] = text.str();
@@ -163,6 +166,7 @@ void bind_model(py::module_& m) {
         return names;
       })
       .def_property_readonly("has_time_law", [](const PyModel& p) { return p.file.model.has_time_law(); })
+      .def_property_readonly("default_abscissa", [](const PyModel& p) { return default_abscissa(p.file.model); })
       .def("summary", &summary_dict)
       .def("catalogue", &catalogue, py::arg("max_order") = 5, py::arg("dynamics") = true)
       .def("needs", &needs, py::arg("patterns"), py::arg("order") = std::nullopt, py::arg("dynamics") = false)

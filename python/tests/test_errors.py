@@ -59,6 +59,7 @@ def test_toggle_stop_raises_with_the_rows_so_far(examples):
     text = (examples / "fourbar-crank-rocker.yaml").read_text().replace("lengths: {crank: 80, rocker: 150}",
                                                                        "lengths: {crank: 130, rocker: 150}")
     m = nbar.loads(text, "long-crank.yaml")
+    assert [w.code for w in m.check().warnings] == ["input_limited"]  # check says so before the sweep
     with pytest.raises(nbar.LimitError) as e:
         m.solve(steps=361)
     partial = e.value.result
