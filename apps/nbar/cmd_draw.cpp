@@ -1,7 +1,5 @@
 // nbar draw: the mechanism in one pose, as SVG or PNG.
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 
 #include "commands.hpp"
@@ -73,20 +71,9 @@ int run_draw(const DrawArgs& args) {
     points = render::sample_points(mech, sweep.samples[step]);
   }
   try {
-    if (format == "svg") {
-      std::ofstream out(args.output);
-      if (!(out << render::drawing_svg(mech, sweep, points, draw))) {
-        std::cerr << "error: cannot write " << args.output << '\n';
-        return kBadUsage;
-      }
-    } else {
-      const std::vector<std::uint8_t> png = render::drawing_png(mech, sweep, points, draw);
-      std::ofstream out(args.output, std::ios::binary);
-      if (!out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()))) {
-        std::cerr << "error: cannot write " << args.output << ": " << std::strerror(errno) << '\n';
-        return kBadUsage;
-      }
-    }
+    const bool written = format == "svg" ? write_file(args.output, render::drawing_svg(mech, sweep, points, draw))
+                                         : write_file(args.output, render::drawing_png(mech, sweep, points, draw));
+    if (!written) return kBadUsage;
   } catch (const std::runtime_error& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kBadUsage;

@@ -1,9 +1,6 @@
 // nbar explain: the method, step by step, at one sample of the sweep (Gruebler count, q, Phi,
 // Phi_q, Newton's iterations, the velocity and acceleration systems, the instant centres), as
 // text, Markdown, LaTeX or JSON, and optionally a drawing with the instant centres marked.
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 
 #include "commands.hpp"
 #include "common.hpp"
@@ -30,21 +27,10 @@ std::string extension(const std::string& path) {
 int draw_centres(const ExplainArgs& args, const Explanation& ex) {
   int off_picture = 0;
   try {
-    if (extension(args.draw) == "svg") {
-      const std::string svg = render::instant_centres_svg(ex, &off_picture);
-      std::ofstream out(args.draw);
-      if (!(out << svg)) {
-        std::cerr << "error: cannot write " << args.draw << '\n';
-        return kBadUsage;
-      }
-    } else {
-      const std::vector<std::uint8_t> png = render::instant_centres_png(ex, &off_picture);
-      std::ofstream out(args.draw, std::ios::binary);
-      if (!out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()))) {
-        std::cerr << "error: cannot write " << args.draw << ": " << std::strerror(errno) << '\n';
-        return kBadUsage;
-      }
-    }
+    const bool written = extension(args.draw) == "svg"
+                             ? write_file(args.draw, render::instant_centres_svg(ex, &off_picture))
+                             : write_file(args.draw, render::instant_centres_png(ex, &off_picture));
+    if (!written) return kBadUsage;
   } catch (const std::runtime_error& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kBadUsage;

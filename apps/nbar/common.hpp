@@ -2,6 +2,9 @@
 // the documented exit codes, printing warnings, writing to a file or standard output.
 #pragma once
 
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -96,6 +99,18 @@ inline bool check_step(int step, const SweepResult& sweep) {
   if (step >= 0 && step < static_cast<int>(sweep.samples.size())) return true;
   std::cerr << "error: --step " << step << " is not a solved step (0 to " << sweep.samples.size() - 1 << ")\n";
   return false;
+}
+
+// Writes a picture's or a document's bytes to `path`; false, after saying why, when it cannot.
+inline bool write_file(const std::string& path, const char* data, std::size_t size) {
+  std::ofstream out(path, std::ios::binary);
+  if (out.write(data, static_cast<std::streamsize>(size))) return true;
+  std::cerr << "error: cannot write " << path << ": " << std::strerror(errno) << '\n';
+  return false;
+}
+inline bool write_file(const std::string& path, const std::string& text) { return write_file(path, text.data(), text.size()); }
+inline bool write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  return write_file(path, reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 
 // Standard output, or the file named by -o.

@@ -91,6 +91,9 @@ class Explanation:
     acceleration: Dict[str, np.ndarray]
     centres: List[Dict[str, Any]]
     residual: float
+    matches_sweep: bool
+    sweep_difference: float
+    notes: List[str]
     @property
     def text(self) -> str: ...
     @property

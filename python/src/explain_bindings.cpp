@@ -92,6 +92,9 @@ void bind_explain(py::module_& m) {
       .def_property_readonly("acceleration", [](const Explanation& e) { return system_dict(e.acceleration); })
       .def_property_readonly("centres", &centre_list)
       .def_readonly("residual", &Explanation::residual)
+      .def_readonly("matches_sweep", &Explanation::matches_sweep)
+      .def_readonly("sweep_difference", &Explanation::sweep_difference)
+      .def_readonly("notes", &Explanation::notes)
       .def("json", [](const Explanation& e) { return io::explanation_json(e).dump(2); })
       .def("centres_picture", [](const Explanation& e, const std::string& format) -> py::object {
              if (format == "svg") return py::str(render::instant_centres_svg(e));

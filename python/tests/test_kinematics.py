@@ -125,3 +125,21 @@ def test_pandas_frame_has_the_columns(examples):
     frame = r.to_pandas()
     assert list(frame.columns) == ["crank", "rocker.angle"] and len(frame) == 5
     assert frame.attrs["units"]["crank"] == "deg"
+
+
+def test_explanation_is_the_solvers_own_numbers(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    r = m.solve(steps=37, columns="A.vx,A.vy,B.vx,B.vy,B.ax,B.ay")
+    e = m.explain(step=5, steps=37)
+    assert e.converged and e.matches_sweep and e.coordinates == ["A.x", "A.y", "B.x", "B.y", "P.x", "P.y"]
+    assert (e.count["links"], e.count["lower_pairs"], e.count["higher_pairs"], e.count["dof"]) == (4, 4, 0, 1)
+    v = e.velocity["solution"]
+    assert np.allclose(v[:4], [r["A.vx"][5], r["A.vy"][5], r["B.vx"][5], r["B.vy"][5]], rtol=1e-9, atol=1e-9)
+    assert np.allclose(e.velocity["matrix"] @ v, e.velocity["rhs"], atol=1e-9 * np.abs(e.velocity["rhs"]).max())
+    assert np.allclose(e.acceleration["solution"][2:4], [r["B.ax"][5], r["B.ay"][5]], rtol=1e-8)
+    residuals = [it["residual"] for it in e.newton]
+    assert residuals[-1] < 1e-9 and all(b < a for a, b in zip(residuals, residuals[1:]))
+    # three link lengths, the coupler point P held on the coupler (x and y), the driver
+    assert [q["kind"] for q in e.equations].count("distance") == 3 and len(e.equations) == 6
+    assert "\\Phi" in e.markdown and "Newton" in e.text and e.draw().svg.count("I") > 0
+    assert len(e.centres) == 6

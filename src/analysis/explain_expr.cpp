@@ -167,11 +167,9 @@ std::string plain_name(const std::string& name) {
   return out;
 }
 
-std::string latex_name(const std::string& name) {
+std::string tex_escape(const std::string& s) {
   std::string out;
-  int letters = 0;
-  for (char ch : name) {
-    if ((ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z')) ++letters;
+  for (char ch : s) {
     if (ch == '_' || ch == '#' || ch == '%' || ch == '&' || ch == '$' || ch == '{' || ch == '}')
       out += std::string("\\") + ch;
     else if (ch == '\\' || ch == '^' || ch == '~')
@@ -179,6 +177,14 @@ std::string latex_name(const std::string& name) {
     else
       out += ch;
   }
+  return out;
+}
+
+std::string latex_name(const std::string& name) {
+  int letters = 0;
+  for (char ch : name)
+    if ((ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z')) ++letters;
+  const std::string out = tex_escape(name);
   return letters > 1 ? "\\mathrm{" + out + "}" : out;
 }
 

@@ -37,6 +37,8 @@ std::string latex(const E& e);
 // Names as symbols: plain text keeps letters, digits and '_' (others become '_'); LaTeX escapes
 // what it must and sets multi-letter names upright.
 std::string plain_name(const std::string& name);
+// Text set in LaTeX: _ # % & $ { } escaped, \ ^ ~ (which have no text form) as a dash.
+std::string tex_escape(const std::string& s);
 std::string latex_name(const std::string& name);
 
 // Six significant digits, no "-0", no exponent for ordinary magnitudes.

@@ -14,6 +14,7 @@ namespace {
 
 using explain_detail::clean;
 using explain_detail::latex_name;
+using explain_detail::tex_escape;
 using explain_detail::latex_number;
 using explain_detail::number;
 
@@ -75,19 +76,6 @@ std::string md_escape(const std::string& s) {
     if (ch == '$') maths = !maths;
     if (!maths && (ch == '_' || ch == '*')) out += '\\';
     out += ch;
-  }
-  return out;
-}
-
-std::string tex_escape(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    if (ch == '_' || ch == '#' || ch == '%' || ch == '&' || ch == '$' || ch == '{' || ch == '}')
-      out += std::string("\\") + ch;
-    else if (ch == '\\' || ch == '^' || ch == '~')
-      out += "{-}";
-    else
-      out += ch;
   }
   return out;
 }
