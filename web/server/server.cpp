@@ -17,7 +17,7 @@ struct HttpServer::Impl {
   ServerConfig config;
   httplib::Server server;
   int port = -1;
-  std::atomic<bool> listening{false};
+  std::atomic<bool> listening{false}, stopping{false};
 };
 
 namespace {
@@ -42,6 +42,12 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   // Bodies up to twice the limit are read, so that handle_api answers them with its own 413;
   // httplib refuses larger ones from their Content-Length alone.
   server.set_payload_max_length(options.limits.max_body_bytes * 2);
+  // SO_REUSEADDR but not httplib's SO_REUSEPORT: a second server on a port in use fails to
+  // bind instead of sharing it silently.
+  server.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
   server.set_read_timeout(10, 0);
   server.set_write_timeout(30, 0);
   const ServerConfig* config = &impl_->config;
@@ -88,12 +94,14 @@ int HttpServer::bound_port() const { return impl_->port; }
 
 void HttpServer::listen() {
   impl_->listening = true;
-  impl_->server.listen_after_bind();
+  if (!impl_->stopping) impl_->server.listen_after_bind();
   impl_->listening = false;
 }
 
 void HttpServer::stop() {
-  // A listen() started on another thread may not be running yet: wait for it (briefly).
+  // listen() may have been called on another thread and not be running yet: it either sees
+  // `stopping` and returns, or runs soon and is stopped here.
+  impl_->stopping = true;
   for (int i = 0; i < 500 && impl_->listening && !impl_->server.is_running(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   impl_->server.stop();
