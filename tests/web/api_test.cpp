@@ -124,6 +124,18 @@ TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
   const ApiResponse five = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml"));
   ASSERT_EQ(five.status, 200);
   EXPECT_NE(five.body.find("crank-rocker"), std::string::npos);
+  // Another seed, one thread: still the CLI's answer for that seed.
+  const ApiResponse seeded = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml",
+                                                                    {{"seed", 7}, {"threads", 1}, {"top", 0}}));
+  ASSERT_EQ(seeded.status, 200) << seeded.body;
+  EXPECT_EQ(seeded.body,
+            cli("synth five-point examples/synthesis/five-point-crank-rocker.yaml --seed 7 --top 0 --format json").out);
+  // The task as a JSON object.
+  const Json task = {{"task", "function"}, {"name", "square"}, {"function", "x^2"}, {"x", {0, 1}},
+                     {"input_range", {90, 150}}, {"output_range", {60, 120}}};
+  const ApiResponse object = post("/api/synth/function", {{"task", task}});
+  ASSERT_EQ(object.status, 200) << object.body;
+  EXPECT_EQ(Json::parse(object.body)["name"], "square");
 }
 
 TEST(WebApi, RenderDrawIsNbarDraw) {

@@ -94,19 +94,27 @@ class Body {
   std::optional<long long> integer(const char* key, long long lo, long long hi) const {
     if (!has(key)) return std::nullopt;
     const nlohmann::json& v = json_[key];
-    double d = 0;
-    if (v.is_number_integer()) {
-      d = static_cast<double>(v.get<long long>());
-    } else if (v.is_number_float() && std::floor(v.get<double>()) == v.get<double>() && std::isfinite(v.get<double>())) {
-      d = v.get<double>();
-    } else if (v.is_number_unsigned()) {
-      d = static_cast<double>(v.get<unsigned long long>());
-    } else {
-      bad_input(std::string("'") + key + "' must be a whole number");
+    const auto out_of_range = [&](const std::string& shown) {
+      bad_input(fmt::format("'{}' must be from {} to {}; it is {}", key, lo, hi, shown));
+    };
+    if (v.is_number_unsigned()) {
+      const unsigned long long u = v.get<unsigned long long>();
+      if (u > static_cast<unsigned long long>(hi) || (lo > 0 && u < static_cast<unsigned long long>(lo)))
+        out_of_range(std::to_string(u));
+      return static_cast<long long>(u);
     }
-    if (d < static_cast<double>(lo) || d > static_cast<double>(hi))
-      bad_input(fmt::format("'{}' must be from {} to {}; it is {}", key, lo, hi, d));
-    return static_cast<long long>(d);
+    if (v.is_number_integer()) {
+      const long long i = v.get<long long>();
+      if (i < lo || i > hi) out_of_range(std::to_string(i));
+      return i;
+    }
+    if (v.is_number_float()) {
+      const double d = v.get<double>();
+      if (!(std::isfinite(d) && std::floor(d) == d)) bad_input(std::string("'") + key + "' must be a whole number");
+      if (d < static_cast<double>(lo) || d > static_cast<double>(hi)) out_of_range(fmt::format("{}", d));
+      return static_cast<long long>(d);
+    }
+    bad_input(std::string("'") + key + "' must be a whole number");
   }
   std::optional<double> number(const char* key) const {
     if (!has(key)) return std::nullopt;
