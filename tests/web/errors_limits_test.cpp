@@ -174,6 +174,13 @@ TEST(WebLimits, Steps) {
   law = law.substr(0, at) + "\nsweep: {duration: 1e12, step: 1e-6}\n";
   expect_limit(post("/api/solve", {{"model", law}}), "steps");
   expect_limit(post("/api/render", {{"model", law}, {"kind", "draw"}}), "steps");
+  // The table: samples x columns (machine-18 has hundreds of columns).
+  const ApiResponse table = post("/api/solve", with_model("examples/machine-18.yaml", {{"steps", 100001}}));
+  expect_limit(table, "table_values");
+  expect_limit(post("/api/render", with_model("examples/machine-18.yaml", {{"kind", "plot"}, {"y", "crank"}, {"steps", 100001}})),
+               "table_values");
+  EXPECT_EQ(post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 100001}, {"columns", "crank"}})).status,
+            200);
   // The order: 0 to 5, as the CLI's.
   expect_error(post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"order", 6}})), 400, "bad_input");
 }
@@ -211,6 +218,7 @@ TEST(WebLimits, Synthesis) {
 TEST(WebLimits, TimeBudgetCancelsAHugeSweep) {
   ServerConfig config = test_config();
   config.limits.time_budget_seconds = 0.2;
+  config.limits.max_table_values = 1e12;
   const auto start = std::chrono::steady_clock::now();
   const ApiResponse r = post("/api/solve", with_model("examples/machine-18.yaml",
                                                       {{"steps", 100001}, {"order", 5}, {"dynamics", true}}),
@@ -246,6 +254,7 @@ TEST(WebLimits, OneMoreSimultaneousHeavyJobThanSlotsGetsOne503) {
   ServerConfig config = test_config();
   config.jobs = std::make_shared<web::JobSlots>(kSlots);
   config.limits.time_budget_seconds = 1.5;  // each heavy job runs into it
+  config.limits.max_table_values = 1e12;  // the sweep must run into the time budget
   const Json huge = with_model("examples/machine-18.yaml", {{"steps", 100001}, {"order", 5}, {"dynamics", true}});
   std::vector<std::future<int>> statuses;
   std::promise<void> go;

@@ -214,6 +214,16 @@ std::optional<int> sweep_steps(const Job& job, const Body& body) {
   return steps;
 }
 
+// The table a solve or plot builds, samples x columns, against the limit (its memory and the
+// answer's size grow with it).
+void check_table_size(const Job& job, const AnalysisOptions& options) {
+  const double samples = sweep_sample_count(job.mechanism->model(), options.steps);
+  const int order = options.dynamics ? std::max(2, options.order) : options.order;
+  const double columns = static_cast<double>(column_catalogue(*job.mechanism, order, options.dynamics).size());
+  check_limit("table_values", samples * columns, job.limits.max_table_values,
+              fmt::format("the table (samples x columns, {} columns)", columns));
+}
+
 Analysis run_analysis(Job& job, AnalysisOptions options) {
   options.control = job.control;
   return analyse(job.mechanism, options);
@@ -265,6 +275,7 @@ ApiResponse api_solve(Job& job, const std::string& request) {
   options.order = static_cast<int>(body.integer("order", 0, 5).value_or(2));
   options.dynamics = body.flag("dynamics");
   const std::vector<std::string> columns = body.list("columns");
+  check_table_size(job, options);
   const Analysis analysis = run_analysis(job, options);
   ResultTable table = result_table(analysis);
   if (!columns.empty()) {
@@ -455,6 +466,7 @@ ApiResponse render_plot(Job& job, const std::string& request) {
   options.steps = sweep_steps(job, body);
   options.order = needs.order;
   options.dynamics = needs.dynamics;
+  check_table_size(job, options);
   const Analysis analysis = run_analysis(job, options);
   const ResultTable table = result_table(analysis);
   const ResultTable x_column = select_columns(table, {x});
@@ -608,6 +620,7 @@ ApiResponse api_health(const ServerConfig& config) {
                  {"max_bodies", l.max_bodies},
                  {"max_steps", l.max_steps},
                  {"max_order", 5},
+                 {"max_table_values", l.max_table_values},
                  {"max_sections", l.max_sections},
                  {"max_frames", l.max_frames},
                  {"max_pixels", l.max_pixels},

@@ -21,6 +21,7 @@ struct Limits {
   int max_points = 2000;                 // points of a model
   int max_bodies = 1000;                 // bodies of a model
   int max_steps = 100001;                // samples of a sweep (the model's or `steps`)
+  double max_table_values = 5e6;         // solve and plot: samples x columns of the table
   int max_sections = 2000;               // stress: cross-sections per link
   int max_frames = 360;                  // animations and reports
   int max_pixels = 2048;                 // width and height of a picture, each
