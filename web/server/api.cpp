@@ -527,6 +527,7 @@ ApiResponse api_report(Job& job, const std::string& request) {
   const ModelSummary summary = summarize(*job.mechanism);
   AnalysisOptions options = render::report_analysis_options(summary);
   options.steps = sweep_steps(job, body);
+  check_table_size(job, options);
   const Analysis analysis = run_analysis(job, options);
   job.checkpoint("report");
   render::ReportOptions report;
