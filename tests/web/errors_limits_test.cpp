@@ -87,11 +87,21 @@ TEST(WebErrors, ModelErrorsPointAtTheEntity) {
   expect_error(r, 422, "invalid_model");
   EXPECT_EQ(error_of(r)["line"], 4);
   // Drivers that do not match the mobility: found when the model is compiled, at the driver.
-  const std::string two_drivers = repo_file("examples/fourbar-crank-rocker.yaml") +
-                                  "  - {angle: rocker, from: 0, to: 10}\n";
+  std::string two_drivers = repo_file("examples/fourbar-crank-rocker.yaml");
+  const std::size_t sweep = two_drivers.find("\nsweep:");
+  ASSERT_NE(sweep, std::string::npos);
+  two_drivers.insert(sweep, "\n  - {angle: rocker, from: 90, to: 100}");
   const ApiResponse d = post("/api/solve", {{"model", two_drivers}});
   expect_error(d, 422, "invalid_model");
-  EXPECT_GT(error_of(d).value("line", 0), 0) << d.body;
+  const Json e = error_of(d);
+  EXPECT_GT(e.value("line", 0), 0) << d.body;
+  // The same place the CLI gives.
+  const auto dir = temp_folder("drivers");
+  std::ofstream(dir / "model") << two_drivers;
+  const cli_test::CliRun run = cli_test::run_shell("cd '" + dir.string() + "' && '" + NBAR_CLI_PATH + "' solve model");
+  EXPECT_EQ(run.code, 1);
+  EXPECT_NE(run.err.find("model:" + std::to_string(e.value("line", 0)) + ":"), std::string::npos) << run.err << d.body;
+  std::filesystem::remove_all(dir);
 }
 
 TEST(WebErrors, CannotAssembleAndNoShapes) {
