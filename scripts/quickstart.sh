@@ -9,6 +9,12 @@ launcher=()
 if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
 cmake --build "$root/build" -j"$(nproc)" --target nbar
+# The Python module, when pybind11 was found (scripts/install-deps.sh installs it).
+python_module=0
+if grep -q '^NBAR_BUILD_PYTHON:BOOL=ON' "$root/build/CMakeCache.txt"; then
+  cmake --build "$root/build" -j"$(nproc)" --target nbar_python
+  python_module=1
+fi
 nbar="$root/build/apps/nbar/nbar"
 model="$root/examples/fourbar-crank-rocker.yaml"
 echo
@@ -17,3 +23,13 @@ echo "\$ nbar check examples/fourbar-crank-rocker.yaml"
 echo
 echo "\$ nbar solve examples/fourbar-crank-rocker.yaml --steps 13 --format table --columns 'crank,coupler.*,rocker.*'"
 "$nbar" solve "$model" --steps 13 --format table --columns 'crank,coupler.*,rocker.*'
+if [ "$python_module" = 1 ]; then
+  echo
+  echo "\$ PYTHONPATH=build/python /usr/bin/python3 -c 'import nbar; ...'"
+  PYTHONPATH="$root/build/python" /usr/bin/python3 -c "
+import nbar
+r = nbar.load('$model').solve(steps=5, columns='crank,rocker.angle,rocker.omega')
+for name in r.columns:
+    print(f'{name:>14} [{r.units[name]}]', ' '.join(f'{v:9.3f}' for v in r[name]))
+"
+fi

@@ -26,6 +26,16 @@ class Explanation:
     def latex(self) -> str:
         return self._native.render("latex")
 
+    def to_json(self) -> str:
+        """The JSON ``nbar explain --format json`` writes."""
+        return self._native.json()
+
+    def draw(self):
+        """The pose with its instant centres marked (I12, I13...: links numbered from 1 for the
+        ground), as a Drawing."""
+        from .pictures import Drawing
+        return Drawing.from_data(self._native.centres_picture("svg"), lambda: self._native.centres_picture("png"))
+
     def __str__(self) -> str:
         return self.text
 

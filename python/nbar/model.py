@@ -19,9 +19,10 @@ Columns = Union[None, str, Sequence[str]]
 def _patterns(columns: Columns) -> Optional[List[str]]:
     if columns is None:
         return None
-    if isinstance(columns, str):
-        return [c.strip() for c in columns.split(",") if c.strip()]
-    return list(columns)
+    patterns = [c.strip() for c in columns.split(",") if c.strip()] if isinstance(columns, str) else list(columns)
+    if not patterns:
+        raise BadInputError("columns is empty: give names or globs, or None for every column")
+    return patterns
 
 
 class Summary:

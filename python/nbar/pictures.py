@@ -24,13 +24,20 @@ class Drawing:
     """The mechanism in one pose. Shown as SVG in Jupyter; ``.svg`` is the text, ``.png()``
     the PNG bytes, ``.save("pose.svg"|"pose.png")`` writes a file."""
 
-    def __init__(self, analysis, **options):
-        self._analysis = analysis
-        self._options = options
-        self.svg: str = analysis.draw("svg", **options)
+    def __init__(self, analysis=None, **options):
+        self._png = (lambda: analysis.draw("png", **options)) if analysis is not None else None
+        self.svg: str = analysis.draw("svg", **options) if analysis is not None else ""
+
+    @classmethod
+    def from_data(cls, svg: str, png) -> "Drawing":
+        """A drawing of an SVG text, with ``png`` making its PNG bytes when asked."""
+        d = cls()
+        d.svg = svg
+        d._png = png
+        return d
 
     def png(self) -> bytes:
-        return self._analysis.draw("png", **self._options)
+        return self._png()
 
     def save(self, path: Union[str, os.PathLike]) -> None:
         name = os.fspath(path)
@@ -43,7 +50,17 @@ class Drawing:
             raise BadInputError(f"{name}: a drawing is saved as .svg or .png")
 
     def _repr_svg_(self) -> str:
-        return self.svg
+        # Without the XML declaration: notebook tools (nbconvert) embed the SVG in HTML.
+        svg = self.svg
+        if svg.startswith("<?xml"):
+            svg = svg[svg.index("?>") + 2:].lstrip()
+        return svg
+
+    def _repr_html_(self) -> str:
+        # An image of the SVG: it scales to a phone's width, and notebook exporters that strip
+        # inline SVG (nbconvert) keep it.
+        data = base64.b64encode(self.svg.encode("utf-8")).decode("ascii")
+        return f'<img src="data:image/svg+xml;base64,{data}" style="max-width:100%;height:auto" alt="nbar drawing">'
 
     def __repr__(self) -> str:
         return "<nbar.Drawing: .svg, .png(), .save(path)>"
@@ -71,7 +88,7 @@ class Animation:
 
     def _repr_html_(self) -> str:
         width = self._options.get("width", 900)
-        height = self._options.get("height", 640) + 90
+        height = self._options.get("height", 640) + 150  # the title, the controls and the readout
         return (f'<iframe srcdoc="{html.escape(self.html, quote=True)}" style="width:100%;max-width:{width}px;'
                 f'aspect-ratio:{width}/{height};border:0" sandbox="allow-scripts"></iframe>')
 

@@ -108,7 +108,10 @@ class Designs(list):
                         f"<td>{d.min_transmission:.4g}</td><td>{'none' if d.defect_free else 'yes'}</td>"
                         f"<td>{d.error:.2g}</td></tr>")
         notes = "".join(f"<li>{html.escape(n)}</li>" for n in self.notes)
-        return (f"<ul>{notes}</ul><table><tr><th>rank</th><th>Grashof</th><th>μ min</th><th>defects</th>"
+        real = sum(1 for d in self if d.real)
+        head = (f"<p>{html.escape(self.method)}: {self.data.get('solutions', len(self))} solutions; "
+                f"{real} real design{'s' if real != 1 else ''} listed</p>")
+        return (f"{head}{'<ul>' + notes + '</ul>' if notes else ''}<table><tr><th>rank</th><th>Grashof</th><th>μ min</th><th>defects</th>"
                 f"<th>error</th></tr>{''.join(rows)}</table>")
 
 
@@ -145,10 +148,12 @@ def run(the_task, all: bool = False, top: int = 0, threads: int = 0, seed: int =
     return Designs(_nbar.synthesize(the_task, threads=threads, seed=seed, timeout=timeout), all=all, top=top)
 
 
+_DEFAULT_NAMES = {"five-point": "Five-point synthesis", "burmester": "Burmester synthesis",
+                  "function": "Function generation"}
+
+
 def _task_dict(kind: str, name: Optional[str], units, **keys) -> Dict[str, Any]:
-    d: Dict[str, Any] = {"task": kind}
-    if name:
-        d["name"] = name
+    d: Dict[str, Any] = {"task": kind, "name": name or _DEFAULT_NAMES[kind]}
     if _units(units):
         d["units"] = _units(units)
     d.update({k: v for k, v in keys.items() if v is not None})

@@ -83,7 +83,8 @@ void register_error_translation(py::module_&) {
 }
 
 Error located(const PyModel& model, const Error& error) {
-  if (!error.file().empty()) return error;
+  // Bad input is about the call's arguments, a cancellation about time: neither has a place in the file.
+  if (!error.file().empty() || error.kind() == ErrorKind::BadInput || error.kind() == ErrorKind::Cancelled) return error;
   const SourceMark mark = model.file.source.find(error.where());
   return Error(error.kind(), error.message(), error.where(), model.file.source.file, mark);
 }

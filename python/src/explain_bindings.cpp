@@ -1,8 +1,126 @@
-// The step-by-step explanation (nbar/analysis/explain.hpp) from Python.
+// The step-by-step explanation (nbar/analysis/explain.hpp) from Python: every part as numpy
+// arrays and plain data, and the documents render_explanation writes.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
 #include "bindings.hpp"
+#include "nbar/analysis/explain.hpp"
+#include "nbar/io/explain_writer.hpp"
+#include "nbar/render/pictures.hpp"
 
 namespace nbar::python {
 
-void bind_explain(py::module_&) {}
+namespace {
+
+ExplainFormat format_of(const std::string& name) {
+  if (name == "text") return ExplainFormat::Text;
+  if (name == "markdown") return ExplainFormat::Markdown;
+  if (name == "latex") return ExplainFormat::Latex;
+  throw Error(ErrorKind::BadInput, "an explanation is rendered as text, markdown or latex, not '" + name + "'");
+}
+
+py::dict system_dict(const LinearSystem& s) {
+  return py::dict(py::arg("matrix") = s.matrix, py::arg("rhs") = s.rhs, py::arg("solution") = s.solution);
+}
+
+py::list equation_list(const Explanation& e) {
+  py::list rows;
+  for (const EquationRow& r : e.equations) {
+    py::list derivatives;
+    for (const EquationRow::Derivative& d : r.jacobian) derivatives.append(py::make_tuple(d.column, d.text, d.latex));
+    py::dict d;
+    d["label"] = r.label;
+    d["kind"] = r.kind;
+    d["text"] = r.text;
+    d["latex"] = r.latex;
+    d["jacobian"] = derivatives;
+    d["driver"] = r.driver;
+    d["scale"] = r.scale;
+    rows.append(d);
+  }
+  return rows;
+}
+
+py::list centre_list(const Explanation& e) {
+  py::list centres;
+  for (const InstantCentre& c : e.centres) {
+    py::dict d;
+    d["name"] = c.name;
+    d["bodies"] = py::make_tuple(c.body_a, c.body_b);
+    d["at_infinity"] = c.at_infinity;
+    d["position"] = c.at_infinity ? py::object(py::none()) : py::object(py::make_tuple(c.position.x(), c.position.y()));
+    d["direction"] = c.at_infinity ? py::object(py::make_tuple(c.direction.x(), c.direction.y())) : py::object(py::none());
+    d["at_joint"] = c.at_joint;
+    d["indeterminate"] = c.indeterminate;
+    centres.append(d);
+  }
+  return centres;
+}
+
+py::list newton_list(const Explanation& e) {
+  py::list iterations;
+  for (const NewtonIteration& it : e.newton)
+    iterations.append(py::dict(py::arg("iteration") = it.iteration, py::arg("q") = it.q,
+                               py::arg("residual") = it.residual, py::arg("dq") = it.dq));
+  return iterations;
+}
+
+}  // namespace
+
+void bind_explain(py::module_& m) {
+  py::class_<Explanation, std::shared_ptr<Explanation>>(m, "NativeExplanation")
+      .def_readonly("step", &Explanation::step)
+      .def_readonly("time", &Explanation::time)
+      .def_readonly("driver_values", &Explanation::driver_values)
+      .def_property_readonly("count", [](const Explanation& e) {
+        return py::dict(py::arg("links") = e.count.links, py::arg("lower_pairs") = e.count.lower_pairs,
+                        py::arg("higher_pairs") = e.count.higher_pairs, py::arg("dof") = e.count.dof,
+                        py::arg("mobility") = e.count.mobility);
+      })
+      .def_property_readonly("coordinates", [](const Explanation& e) {
+        std::vector<std::string> names;
+        for (const Coordinate& c : e.coordinates) names.push_back(c.name);
+        return names;
+      })
+      .def_property_readonly("equations", &equation_list)
+      .def_property_readonly("newton", &newton_list)
+      .def_readonly("converged", &Explanation::converged)
+      .def_readonly("start", &Explanation::start)
+      .def_readonly("jacobian", &Explanation::jacobian)
+      .def_readonly("q", &Explanation::q)
+      .def_property_readonly("velocity", [](const Explanation& e) { return system_dict(e.velocity); })
+      .def_property_readonly("acceleration", [](const Explanation& e) { return system_dict(e.acceleration); })
+      .def_property_readonly("centres", &centre_list)
+      .def_readonly("residual", &Explanation::residual)
+      .def("json", [](const Explanation& e) { return io::explanation_json(e).dump(2); })
+      .def("centres_picture", [](const Explanation& e, const std::string& format) -> py::object {
+             if (format == "svg") return py::str(render::instant_centres_svg(e));
+             if (format == "png") {
+               const std::vector<std::uint8_t> png = render::instant_centres_png(e);
+               return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
+             }
+             throw Error(ErrorKind::BadInput, "a picture's format is svg or png, not '" + format + "'");
+           }, py::arg("format") = "svg")
+      .def("render", [](const Explanation& e, const std::string& format) {
+             return render_explanation(e, format_of(format));
+           }, py::arg("format") = "text");
+
+  m.def("explain", [](std::shared_ptr<PyModel> model, int step, std::optional<int> steps) {
+          ExplainOptions options;
+          options.step = step;
+          options.steps = steps;
+          auto out = std::make_shared<Explanation>();
+          RunControl control;
+          run_interruptible(control, std::nullopt, [&] {
+            try {
+              *out = explain(model->mechanism, options);
+            } catch (const Error& e) {
+              throw located(*model, e);
+            }
+          });
+          return out;
+        },
+        py::arg("model"), py::arg("step") = 0, py::arg("steps") = std::nullopt);
+}
 
 }  // namespace nbar::python

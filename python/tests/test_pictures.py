@@ -13,7 +13,8 @@ def test_drawing_is_the_cli_drawing(examples, cli, tmp_path):
     d = nbar.load(path).draw(labels=True, traces=["P"])
     subprocess.run([cli, "draw", str(path), "-o", str(tmp_path / "cli.svg"), "--labels", "--trace", "P"], check=True)
     assert d.svg == (tmp_path / "cli.svg").read_text()
-    assert d._repr_svg_() == d.svg
+    assert d._repr_svg_().startswith("<svg") and d._repr_svg_() in d.svg
+    assert d._repr_html_().startswith('<img src="data:image/svg+xml;base64,')
     ET.fromstring(d.svg)
     assert d.png().startswith(b"\x89PNG")
     d.save(tmp_path / "pose.png")

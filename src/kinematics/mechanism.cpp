@@ -216,28 +216,25 @@ void Mechanism::build_pattern() {
   }
 }
 
-namespace {
-
-// Gruebler-Kutzbach: each point shared by k links (bodies, and the ground when the point is
-// fixed) makes k - 1 revolute pairs; each slider one prismatic pair; each slot a two-freedom pair.
-int grubler_count(const Model& m) {
+PairCount count_pairs(const Model& m) {
   std::vector<int> links_at(m.points.size(), 0);
   for (std::size_t i = 0; i < m.points.size(); ++i) links_at[i] = m.points[i].ground ? 1 : 0;
   for (const Body& b : m.bodies)
     for (int p : b.points) ++links_at[p];
-  int p1 = static_cast<int>(m.sliders.size());
-  for (int k : links_at) p1 += std::max(0, k - 1);
-  const int p2 = static_cast<int>(m.slots.size());
-  return 3 * static_cast<int>(m.bodies.size()) - 2 * p1 - p2;
+  PairCount c;
+  c.links = static_cast<int>(m.bodies.size()) + 1;
+  c.lower_pairs = static_cast<int>(m.sliders.size());
+  for (int k : links_at) c.lower_pairs += std::max(0, k - 1);
+  c.higher_pairs = static_cast<int>(m.slots.size());
+  c.dof = 3 * (c.links - 1) - 2 * c.lower_pairs - c.higher_pairs;
+  return c;
 }
-
-}  // namespace
 
 void Mechanism::analyse_mobility() {
   MobilityReport& r = mobility_;
   r.coordinates = n_;
   r.constraint_rows = constraint_rows_;
-  r.grubler = grubler_count(model_);
+  r.grubler = count_pairs(model_).dof;
 
   std::vector<DriverState> drivers;
   for (std::size_t d = 0; d < model_.drivers.size(); ++d)

@@ -39,20 +39,27 @@ double max_residual(const Mechanism& mech, State& state, int* worst_row) {
   return std::isfinite(r) ? r : std::numeric_limits<double>::infinity();
 }
 
-NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterations) {
+NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterations, NewtonTrace* trace) {
   NewtonReport report;
   const double tol = mech.tolerance();
   double r = max_residual(mech, state, &report.worst_row);
   double merit = state.phi.squaredNorm();
+  if (trace) trace->iterates.push_back({state.q, r, {}, 1.0, false});
   for (int it = 0; it < max_iterations; ++it) {
     report.iterations = it;
     if (r <= tol) break;
     if (!factorize_jacobian(mech, state)) {
       // A singular Jacobian away from the solution: nudge the pose off the singular set.
       const double eps = 1e-6 * mech.characteristic_length();
+      const Eigen::VectorXd q_before = trace ? state.q : Eigen::VectorXd();
       for (Eigen::Index i = 0; i < state.q.size(); ++i) state.q[i] += eps * std::sin(1.0 + 7.0 * i);
       r = max_residual(mech, state, &report.worst_row);
       merit = state.phi.squaredNorm();
+      if (trace) {
+        trace->iterates.back().dq = state.q - q_before;
+        trace->iterates.back().nudged = true;
+        trace->iterates.push_back({state.q, r, {}, 1.0, false});
+      }
       continue;
     }
     state.rhs = -state.phi;
@@ -76,6 +83,11 @@ NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterati
       state.q = q0;
       r = max_residual(mech, state, &report.worst_row);
       break;
+    }
+    if (trace) {
+      trace->iterates.back().dq = state.q - q0;
+      trace->iterates.back().damping = step;
+      trace->iterates.push_back({state.q, r, {}, 1.0, false});
     }
   }
   report.residual = r;

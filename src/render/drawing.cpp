@@ -300,6 +300,19 @@ void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, con
     canvas.end_group();
   }
 
+  if (!options.marked_points.empty()) {
+    const Color mark = Color::rgb(0x1f5fbf);
+    canvas.begin_group("marked-points", "marked-points");
+    for (const MarkedPoint& mp : options.marked_points) {
+      const Eigen::Vector2d at = px(mp.position);
+      canvas.circle(at, 5, Paint{std::nullopt, Stroke{mark, 1.6, {}}});
+      canvas.polyline({at + Eigen::Vector2d(-7, 0), at + Eigen::Vector2d(7, 0)}, Stroke{mark, 1.2, {}});
+      canvas.polyline({at + Eigen::Vector2d(0, -7), at + Eigen::Vector2d(0, 7)}, Stroke{mark, 1.2, {}});
+      if (!mp.label.empty()) canvas.text(at + Eigen::Vector2d(8, 14), mp.label, 11, Anchor::Start, mark);
+    }
+    canvas.end_group();
+  }
+
   if (options.scale_bar) {
     const double unit = m.units.length_scale;
     const double length = nice_length(0.2 * canvas.width() / scale / unit);  // model units

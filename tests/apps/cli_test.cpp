@@ -274,3 +274,44 @@ TEST(Cli, ReportWritesOneHtmlFile) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Cli, ExplainWritesEveryFormatAndDrawsTheCentres) {
+  const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml";
+  const CliRun text = nbar("explain " + model + " --step 30");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("x_A*sin(th_crank) - y_A*cos(th_crank) = 0"));
+  EXPECT_THAT(text.out, HasSubstr("G = 3 (n - 1) - 2 PI - PII = 3 (4 - 1) - 2*4 - 0 = 1"));
+  EXPECT_THAT(text.out, HasSubstr("I(crank,rocker)"));
+  const CliRun md = nbar("explain " + model + " --step 30 --format markdown");
+  ASSERT_EQ(md.code, 0) << md.err;
+  EXPECT_THAT(md.out, HasSubstr("$$"));
+  const CliRun json = nbar("explain " + model + " --step 30 --format json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["count"]["links"], 4);
+  EXPECT_EQ(j["centres"].size(), 6u);
+  EXPECT_THAT(json.out, Not(HasSubstr("null")));
+
+  const fs::path dir = fs::temp_directory_path() / ("nbar_explain_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const CliRun drawn = nbar("explain " + model + " --step 30 -o " + (dir / "e.md").string() + " --format markdown --draw " +
+                            (dir / "c.svg").string());
+  ASSERT_EQ(drawn.code, 0) << drawn.err;
+  EXPECT_TRUE(drawn.out.empty());
+  std::ifstream svg(dir / "c.svg");
+  std::stringstream ss;
+  ss << svg.rdbuf();
+  EXPECT_THAT(ss.str(), HasSubstr("marked-points"));
+  for (const char* label : {"I12", "I13", "I14", "I23", "I24", "I34"}) EXPECT_THAT(ss.str(), HasSubstr(label));
+  EXPECT_TRUE(fs::exists(dir / "e.md"));
+  fs::remove_all(dir);
+
+  EXPECT_EQ(nbar("explain " + model + " --step 400").code, 2);
+  EXPECT_EQ(nbar("explain " + model + " --format docx").code, 2);
+  EXPECT_EQ(nbar("explain " + model + " --draw x.gif").code, 2);
+  EXPECT_EQ(nbar("explain no-such-file.yaml").code, 1);
+}
+
+}  // namespace

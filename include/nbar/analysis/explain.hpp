@@ -57,7 +57,9 @@ struct EquationRow {
   std::vector<Derivative> jacobian;
   EntityRef source;
   bool driver = false;
-  double scale = 1.0;     // the solver scales the row by this so that its residual is a length
+  double scale = 1.0;     // the solver scales the row by this so that its residual is a length:
+                          // scale * (the left-hand side of `text`, in model units) is the row's
+                          // residual in model length units; scale * each Derivative is Phi_q's entry
 };
 
 struct NewtonIteration {
@@ -84,6 +86,7 @@ struct InstantCentre {
   Eigen::Vector2d position{0, 0}; // model length units, when finite
   Eigen::Vector2d direction{0, 0};// unit vector, when at infinity
   bool at_joint = false;          // a primary centre: a revolute joint the two links share
+  bool indeterminate = false;     // no relative motion at this instant: every point qualifies
 };
 
 struct Explanation {
@@ -103,6 +106,14 @@ struct Explanation {
   LinearSystem acceleration;              // Phi_q qddot = -(Phi_q qdot)_q qdot - 2 Phi_qt qdot - Phi_tt
   std::vector<InstantCentre> centres;     // every pair of links
   double residual = 0.0;                  // max |Phi| at the solution
+  // Whether Newton's solution is the sweep's sample (same branch), and by how much they differ
+  // (max |q - q_sweep|, model length units). When they differ, q, Phi_q, the velocity and
+  // acceleration systems and the centres are the sweep's sample, and `notes` says so.
+  bool matches_sweep = true;
+  double sweep_difference = 0.0;
+  // Everything the reader should know that the numbers do not say: a start on another branch, a
+  // least-squares (redundant) system, links without an angle that have no centres.
+  std::vector<std::string> notes;
 };
 
 // Explains one sample of the sweep. Throws Error: BadInput for a step outside the sweep,

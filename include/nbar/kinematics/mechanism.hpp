@@ -21,6 +21,17 @@ struct JacobianEntry {
   int col = 0;
 };
 
+// The terms of the Gruebler-Kutzbach count G = 3 (n - 1) - 2 PI - PII: each point shared by k
+// links (bodies, and the ground when the point is fixed) makes k - 1 revolute pairs, each slider
+// one prismatic pair (PI, one freedom each); each slot a pin-in-slot pair (PII, two freedoms).
+struct PairCount {
+  int links = 0;         // n, the ground included
+  int lower_pairs = 0;   // PI
+  int higher_pairs = 0;  // PII
+  int dof = 0;           // G
+};
+PairCount count_pairs(const Model& model);
+
 struct MobilityReport {
   int coordinates = 0;          // moving points x 2
   int constraint_rows = 0;      // without drivers

@@ -25,12 +25,20 @@ struct Marker {
   std::string label;
 };
 
+// A point to mark where it is (not on a body), e.g. an instant centre: a cross in a circle and
+// a label.
+struct MarkedPoint {
+  Eigen::Vector2d position{0, 0};  // m
+  std::string label;
+};
+
 struct DrawOptions {
   int width = 900, height = 640;  // px
   double margin = 36;             // px around the mechanism
   bool labels = false;            // point names
   std::vector<int> traces;        // points whose paths over the sweep are drawn
   std::vector<Marker> markers;
+  std::vector<MarkedPoint> marked_points;  // drawn last, in the group "marked-points"
   bool scale_bar = true;
   std::string title;              // drawn at the top left when not empty
 };
@@ -42,7 +50,7 @@ View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions
 std::vector<Eigen::Vector2d> sample_points(const Mechanism& mech, const Sample& sample);
 
 // One pose. Groups: "ground", "traces", "body-<name>" (one per body, with its joints),
-// "labels", "markers", "scale-bar".
+// "labels", "markers", "marked-points", "scale-bar".
 void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
                     const std::vector<Eigen::Vector2d>& points, const DrawOptions& options);
 

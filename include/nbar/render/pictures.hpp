@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "nbar/analysis/explain.hpp"
 #include "nbar/render/drawing.hpp"
 
 namespace nbar::render {
@@ -16,5 +17,12 @@ std::string drawing_svg(const Mechanism& mech, const SweepResult& sweep, const s
                         const DrawOptions& options);
 std::vector<std::uint8_t> drawing_png(const Mechanism& mech, const SweepResult& sweep,
                                       const std::vector<Eigen::Vector2d>& points, const DrawOptions& options);
+
+// The pose of an explanation with its finite instant centres marked, labelled as textbooks
+// number the links (1 the ground, then the bodies: I23 is the centre of links 2 and 3), on a
+// view that takes in the centres not too far from the mechanism; `off_picture` (when given)
+// counts the centres left out for lying too far.
+std::string instant_centres_svg(const Explanation& explanation, int* off_picture = nullptr);
+std::vector<std::uint8_t> instant_centres_png(const Explanation& explanation, int* off_picture = nullptr);
 
 }  // namespace nbar::render
