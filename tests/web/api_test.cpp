@@ -220,6 +220,23 @@ TEST(WebApi, ReportIsNbarReport) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(WebApi, ExplainIsNbarExplain) {
+  const ApiResponse r = post("/api/explain", with_model("examples/scissor-lift.yaml", {{"steps", 13}, {"step", 3}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.content_type, "application/json");
+  EXPECT_EQ(r.body, cli("explain examples/scissor-lift.yaml --steps 13 --step 3 --format json").out);
+  for (const std::string format : {"text", "markdown", "latex"}) {
+    const ApiResponse doc = post("/api/explain", with_model("examples/fourbar-crank-rocker.yaml",
+                                                            {{"step", 30}, {"format", format}}));
+    ASSERT_EQ(doc.status, 200) << doc.body;
+    EXPECT_EQ(doc.body, cli("explain examples/fourbar-crank-rocker.yaml --step 30 --format " + format).out) << format;
+  }
+  // A step the sweep does not have: bad input, as the CLI's exit code 2.
+  const ApiResponse bad = post("/api/explain", with_model("examples/fourbar-crank-rocker.yaml", {{"step", 361}}));
+  EXPECT_EQ(bad.status, 400) << bad.body;
+  EXPECT_EQ(cli("explain examples/fourbar-crank-rocker.yaml --step 361").code, 2);
+}
+
 TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
   const ApiResponse list = call("GET", "/api/examples");
   ASSERT_EQ(list.status, 200);

@@ -212,6 +212,17 @@ TEST(WebLimits, SectionsFramesAndPixels) {
                "animation_pixels");
 }
 
+TEST(WebLimits, ExplainTakesSmallModels) {
+  ServerConfig config = test_config();
+  config.limits.max_explain_bodies = 10;
+  expect_limit(post("/api/explain", with_model("examples/machine-18.yaml"), config), "explain_bodies");
+  config = test_config();
+  config.limits.max_explain_points = 10;
+  expect_limit(post("/api/explain", with_model("examples/machine-18.yaml"), config), "explain_points");
+  EXPECT_EQ(post("/api/explain", with_model("examples/machine-18.yaml", {{"steps", 5}, {"step", 2}})).status, 200);
+  expect_limit(post("/api/explain", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 200000}})), "steps");
+}
+
 TEST(WebLimits, Synthesis) {
   expect_limit(post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml", {{"top", 1000}})),
                "top");

@@ -14,9 +14,11 @@
 #include "api_internal.hpp"
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/analysis/columns.hpp"
+#include "nbar/analysis/explain.hpp"
 #include "nbar/analysis/pose.hpp"
 #include "nbar/analysis/summary.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/io/explain_writer.hpp"
 #include "nbar/io/results_writer.hpp"
 #include "nbar/io/summary_writer.hpp"
 #include "nbar/io/synthesis_task.hpp"
@@ -536,6 +538,30 @@ ApiResponse api_report(Job& job, const std::string& request) {
   return answer_html(render::html_report(analysis, summary, report));
 }
 
+ApiResponse api_explain(Job& job, const std::string& request) {
+  const Body body(request, {"model", "step", "steps", "format"});
+  const std::string format = body.choice("format", {"json", "text", "markdown", "latex"}, "json");
+  load_model(job, body.text("model", true));
+  // The explanation writes Phi_q whole and every pair of links' instant centre: small models.
+  const Model& m = job.mechanism->model();
+  check_limit("explain_points", static_cast<double>(m.points.size()), job.limits.max_explain_points,
+              "the number of points of a model to explain");
+  check_limit("explain_bodies", static_cast<double>(m.bodies.size()), job.limits.max_explain_bodies,
+              "the number of bodies of a model to explain");
+  ExplainOptions options;
+  options.steps = sweep_steps(job, body);
+  options.step = static_cast<int>(body.integer("step", 0, std::numeric_limits<int>::max()).value_or(0));
+  const Explanation ex = explain(job.mechanism, options);
+  job.checkpoint("explain");
+  if (format == "json") return answer(io::explanation_json(ex).dump(2) + '\n');
+  const ExplainFormat f = format == "markdown" ? ExplainFormat::Markdown
+                          : format == "latex"  ? ExplainFormat::Latex
+                                               : ExplainFormat::Text;
+  return answer(render_explanation(ex, f), format == "markdown" ? "text/markdown; charset=utf-8"
+                                           : format == "latex"  ? "application/x-latex; charset=utf-8"
+                                                                : "text/plain; charset=utf-8");
+}
+
 // ----------------------------------------------------------------------- examples and statics
 
 struct Example {
@@ -623,6 +649,8 @@ ApiResponse api_health(const ServerConfig& config) {
                  {"max_order", 5},
                  {"max_table_values", l.max_table_values},
                  {"max_sections", l.max_sections},
+                 {"max_explain_points", l.max_explain_points},
+                 {"max_explain_bodies", l.max_explain_bodies},
                  {"max_frames", l.max_frames},
                  {"max_pixels", l.max_pixels},
                  {"max_animation_pixels", l.max_animation_pixels},
@@ -682,6 +710,7 @@ const std::map<std::string, Endpoint, std::less<>>& post_endpoints() {
       {"/api/synth/function", &synth_function},
       {"/api/render", &api_render},
       {"/api/report", &api_report},
+      {"/api/explain", &api_explain},
   };
   return endpoints;
 }
