@@ -25,11 +25,14 @@ namespace {
 
 using namespace nbar::cli;
 
-int run_check(const std::string& path) {
+int run_check(const std::string& path, const std::string& format) {
   Loaded loaded;
   if (int code = load(path, loaded)) return code;
   const nbar::ModelSummary summary = nbar::summarize(*loaded.mechanism);
-  nbar::io::write_summary_text(std::cout, *loaded.mechanism, summary, path);
+  if (format == "json")
+    std::cout << nbar::io::summary_json(*loaded.mechanism, summary, loaded.file.source);
+  else
+    nbar::io::write_summary_text(std::cout, *loaded.mechanism, summary, path);
   if (summary.assembly_error) return fail(path, *summary.assembly_error);
   return kOk;
 }
@@ -141,11 +144,13 @@ int main(int argc, char** argv) {
       "            4 sweep stopped early (the rows solved so far are written).\n"
       "Model files: see docs/model-format.md.");
 
-  std::string check_model;
+  std::string check_model, check_format = "text";
   CLI::App* check = app.add_subcommand("check", "Summarise a model: bodies, joints, degrees of freedom, redundant "
                                                 "constraints, drivers, assembly at the start, Grashof class of "
                                                 "every four-bar loop");
   check->add_option("MODEL", check_model, "model file (YAML or JSON)")->required();
+  check->add_option("--format", check_format, "text (default) or json (the same summary as data, in the model's units)")
+      ->check(CLI::IsMember({"text", "json"}));
 
   SolveArgs solve_args;
   CLI::App* solve = app.add_subcommand("solve", "Sweep the drivers and write positions, velocities, accelerations "
@@ -205,7 +210,7 @@ int main(int argc, char** argv) {
   // Each command reports what it expects; anything else still ends in a message and an exit
   // code, never an abort.
   try {
-    if (check->parsed()) return run_check(check_model);
+    if (check->parsed()) return run_check(check_model, check_format);
     if (solve->parsed()) return run_solve(solve_args);
     if (stress->parsed()) return run_stress(stress_args);
     for (const auto& [command, run] : more)

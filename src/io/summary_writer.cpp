@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
 #include "nbar/kinematics/continuation.hpp"
 
 namespace nbar::io {
@@ -100,7 +102,110 @@ void write_start(std::ostream& out, const Model& m, const ModelSummary& s) {
   }
 }
 
+using Json = nlohmann::ordered_json;
+
+Json optional_number(const std::optional<double>& v, double scale) { return v ? Json(*v / scale) : Json(nullptr); }
+
+Json bodies_json(const Model& m, const ModelSummary& s) {
+  const double unit = m.units.length_scale;
+  Json bodies = Json::array();
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const BodySummary& b = s.bodies[i];
+    const MassProperties& mp = b.mass;
+    Json mass = {{"mass", mp.mass},
+                 {"cg", {mp.cg.x() / unit, mp.cg.y() / unit}},
+                 {"inertia", mp.inertia},
+                 {"area", mp.from_shape || m.bodies[i].shape ? Json(mp.area / (unit * unit)) : Json(nullptr)},
+                 {"source", b.mass_source}};
+    bodies.push_back({{"name", b.name},
+                      {"points", b.points},
+                      {"length", optional_number(b.length, unit)},
+                      {"length_given", b.length_given},
+                      {"mass", mass}});
+  }
+  return bodies;
+}
+
+Json loops_json(const Model& m, const ModelSummary& s) {
+  const double unit = m.units.length_scale;
+  const auto name = [&](int body) { return body < 0 ? std::string("ground") : m.bodies[body].name; };
+  Json loops = Json::array();
+  for (const LoopSummary& l : s.loops) {
+    const GrashofReport& g = l.grashof;
+    loops.push_back({{"name", l.loop.name},
+                     {"frame", name(l.loop.frame)},
+                     {"input", name(l.loop.input)},
+                     {"coupler", name(l.loop.coupler)},
+                     {"output", name(l.loop.output)},
+                     {"grashof", grashof_name(g.kind, g.input_turns_fully)},
+                     {"lengths",
+                      {{"frame", g.frame / unit}, {"input", g.input / unit}, {"coupler", g.coupler / unit},
+                       {"output", g.output / unit}}},
+                     {"grashof_margin", g.margin / unit},
+                     {"input_turns_fully", g.input_turns_fully},
+                     {"output_turns_fully", g.output_turns_fully},
+                     {"description", l.description},
+                     {"branch", l.branch},
+                     {"transmission_angle", l.transmission_angle / m.units.angle_scale}});
+  }
+  return loops;
+}
+
 }  // namespace
+
+std::string summary_json(const Mechanism& mechanism, const ModelSummary& s, const SourceMap& source) {
+  const Model& m = mechanism.model();
+  const MobilityReport& mob = s.mobility;
+  Json j;
+  j["model"] = m.name;
+  j["source"] = source.file;
+  j["units"] = {{"length", m.units.length}, {"angle", m.units.angle}, {"time", "s"}};
+  j["points"] = {{"count", m.points.size()}, {"ground", s.ground_points}, {"moving", s.moving_points}};
+  j["bodies"] = bodies_json(m, s);
+  j["joints"] = s.joints;
+  j["dof"] = {{"gruebler", mob.grubler},
+              {"mobility", mob.dof},
+              {"coordinates", mob.coordinates},
+              {"constraint_equations", mob.constraint_rows},
+              {"rank", mob.rank},
+              {"redundant_constraints", s.redundant}};
+  j["drivers"] = s.drivers;
+  j["kinetics"] = {{"has_masses", s.has_masses},
+                   {"has_mass_data", s.has_mass_data},
+                   {"has_shapes", s.has_shapes},
+                   {"has_loads", s.has_loads},
+                   {"has_stress_links", s.has_stress_links},
+                   {"gravity", {m.gravity.x(), m.gravity.y()}},
+                   {"point_forces", m.point_loads.size()},
+                   {"torques", m.torques.size()},
+                   {"springs", m.springs.size()}};
+  if (s.assembly) {
+    Json values = Json::object();
+    for (std::size_t d = 0; d < s.assembly->driver_values.size(); ++d)
+      values[m.drivers[d].name] =
+          s.assembly->driver_values[d] / (m.drivers[d].is_angular() ? m.units.angle_scale : m.units.length_scale);
+    j["assembly"] = {{"converged", true},
+                     {"driver_values", values},
+                     {"residual", s.assembly->residual / m.units.length_scale},
+                     {"passed_singularity", s.assembly->passed_singularity}};
+  } else {
+    j["assembly"] = nullptr;
+  }
+  if (s.assembly_error) {
+    const Error& e = *s.assembly_error;
+    const SourceMark mark = e.file().empty() ? source.find(e.where()) : e.mark();
+    Json error = {{"kind", to_string(e.kind())}, {"message", e.message()}};
+    if (mark.line > 0) {
+      error["line"] = mark.line;
+      error["column"] = mark.column;
+    }
+    j["assembly_error"] = error;
+  } else {
+    j["assembly_error"] = nullptr;
+  }
+  j["loops"] = loops_json(m, s);
+  return j.dump(2) + '\n';
+}
 
 void write_summary_text(std::ostream& out, const Mechanism& mechanism, const ModelSummary& summary,
                         const std::string& source) {

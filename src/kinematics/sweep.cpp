@@ -1,6 +1,7 @@
 #include "nbar/kinematics/sweep.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -70,13 +71,10 @@ DriverPath motion_in_time(const Model& m, std::vector<double> from) {
 SweepPath plan_time_law(const Mechanism& mech, std::optional<int> steps, SweepPath plan) {
   const Model& m = mech.model();
   const double duration = m.sweep.duration;
-  int samples = 0;
-  if (steps) {
-    samples = *steps;
-  } else {
-    const double dt = m.sweep.time_step.value_or(duration / 100.0);
-    samples = static_cast<int>(std::floor(duration / dt + 1e-9)) + 1;
-  }
+  const double count = sweep_sample_count(m, steps);
+  if (!(count <= static_cast<double>(std::numeric_limits<int>::max())))
+    throw Error(ErrorKind::BadInput, "the sweep has too many samples");
+  const int samples = static_cast<int>(count);
   if (samples < 1) throw Error(ErrorKind::BadInput, "a sweep needs at least one step");
   const double dt = m.sweep.time_step && !steps ? *m.sweep.time_step : (samples > 1 ? duration / (samples - 1) : 0.0);
   for (int i = 0; i < samples; ++i) {
@@ -123,6 +121,13 @@ std::string values_text(const Model& m, const std::vector<Series>& values) {
 }
 
 }  // namespace
+
+double sweep_sample_count(const Model& m, std::optional<int> steps) {
+  if (steps) return *steps;
+  if (!m.has_time_law()) return m.sweep.steps;
+  const double dt = m.sweep.time_step.value_or(m.sweep.duration / 100.0);
+  return std::floor(m.sweep.duration / dt + 1e-9) + 1;
+}
 
 SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps) {
   const Model& m = mech.model();

@@ -72,7 +72,11 @@ struct SweepPath {
   // The time at parameter p.
   double time_at(double p) const;
 };
-// Throws Error(BadInput) for a sweep of fewer than one sample.
+// The number of samples sweep_path plans (`steps`, or the model's sweep: its steps, or for time
+// laws its duration over its time step, plus one). A double, so that a front-end can refuse an
+// absurd sweep before anything is allocated.
+double sweep_sample_count(const Model& model, std::optional<int> steps = std::nullopt);
+// Throws Error(BadInput) for a sweep of fewer than one sample or of more than INT_MAX.
 SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps = std::nullopt);
 
 // One pose, like MuJoCo's mj_forward at a state: Newton from state.q with the drivers at

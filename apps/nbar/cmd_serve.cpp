@@ -1,0 +1,84 @@
+// nbar serve: the web app's server (web/server): the JSON API over the library and the
+// embedded static files, on 127.0.0.1 unless --host says otherwise. docs/web-api.md.
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "nbar/web/server.hpp"
+
+extern char** environ;
+
+namespace nbar::cli {
+
+namespace {
+
+struct ServeArgs {
+  std::string host = "127.0.0.1";
+  int port = 8080;
+  bool open = false;
+  int max_jobs = 2;
+  double time_budget = 30;
+  int threads = 8;
+};
+
+// The browser, by xdg-open with the URL as its one argument: no shell.
+void open_browser(const std::string& url) {
+  std::string program = "xdg-open";
+  char* argv[] = {program.data(), const_cast<char*>(url.c_str()), nullptr};
+  pid_t pid = 0;
+  if (::posix_spawnp(&pid, "xdg-open", nullptr, nullptr, argv, environ) != 0) {
+    std::cerr << "note: cannot start xdg-open; open " << url << " in a browser\n";
+    return;
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+}
+
+int run_serve(const ServeArgs& args) {
+  web::ServeOptions options;
+  options.host = args.host;
+  options.port = args.port;
+  options.max_jobs = args.max_jobs;
+  options.threads = args.threads;
+  options.limits.time_budget_seconds = args.time_budget;
+  options.limits.max_synthesis_threads = 2;
+  web::HttpServer server(options);
+  std::string error;
+  if (!server.bind(error)) {
+    std::cerr << "error: " << error << '\n';
+    return kBadUsage;
+  }
+  const std::string shown_host = args.host == "0.0.0.0" || args.host == "::" ? "localhost" : args.host;
+  const std::string url = "http://" + (shown_host.find(':') != std::string::npos ? "[" + shown_host + "]" : shown_host) +
+                          ":" + std::to_string(server.bound_port()) + "/";
+  std::cerr << "nbar serve: " << url << " (the API is under " << url << "api/; Ctrl-C stops)\n";
+  if (args.host != "127.0.0.1" && args.host != "localhost" && args.host != "::1")
+    std::cerr << "note: listening on " << args.host << ": other machines can reach this server\n";
+  if (args.open) open_browser(url);
+  server.listen();
+  return kOk;
+}
+
+}  // namespace
+
+Command add_serve_command(CLI::App& app) {
+  auto args = std::make_shared<ServeArgs>();
+  CLI::App* sub = app.add_subcommand("serve", "Serve the web app and its JSON API (docs/web-api.md) on this machine");
+  sub->add_option("--port", args->port, "TCP port (default 8080; 0 for any free port)")->check(CLI::Range(0, 65535));
+  sub->add_option("--host", args->host,
+                  "address to listen on (default 127.0.0.1, this machine only; 0.0.0.0 for a classroom)");
+  sub->add_flag("--open", args->open, "open the page in a browser");
+  sub->add_option("--max-jobs", args->max_jobs, "computations at once; more are answered 503 (default 2)")
+      ->check(CLI::Range(1, 256));
+  sub->add_option("--time-budget", args->time_budget, "seconds one request may compute before it is stopped (default 30)")
+      ->check(CLI::Range(0.01, 86400.0));
+  sub->add_option("--threads", args->threads, "connections served at once (default 8)")->check(CLI::Range(2, 1024));
+  return {sub, [args] { return run_serve(*args); }};
+}
+
+}  // namespace nbar::cli

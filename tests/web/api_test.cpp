@@ -1,0 +1,277 @@
+// Every endpoint of the web API with real models and tasks, against the CLI's own output for
+// the same request: the answers must be the same JSON (byte for byte where the CLI writes it
+// as it is) and the same pictures.
+#include "web/web_support.hpp"
+
+#include "nbar/render/animation.hpp"
+
+namespace nbar::web_test {
+namespace {
+
+TEST(WebApi, CheckIsTheJsonOfNbarCheck) {
+  for (const std::string file : {"examples/fourbar-crank-rocker.yaml", "examples/fourbar-steel-bars.yaml",
+                                 "examples/parallelogram-redundant.yaml", "examples/machine-18.yaml"}) {
+    SCOPED_TRACE(file);
+    const ApiResponse r = post("/api/check", with_model(file));
+    ASSERT_EQ(r.status, 200) << r.body;
+    EXPECT_EQ(r.content_type, "application/json");
+    const cli_test::CliRun run = cli("check " + file + " --format json");
+    ASSERT_EQ(run.code, 0) << run.err;
+    Json expected = Json::parse(run.out);
+    expected["source"] = "model";  // the CLI names the file, the server the request's model
+    EXPECT_EQ(Json::parse(r.body), expected);
+    EXPECT_EQ(Json::parse(r.body)["dof"]["mobility"], 1);
+  }
+}
+
+TEST(WebApi, CheckReportsAnAssemblyFailureInTheSummary) {
+  const ApiResponse r = post("/api/check", with_model("tests/golden/inputs/cannot-assemble.yaml"));
+  ASSERT_EQ(r.status, 200) << r.body;
+  const Json j = Json::parse(r.body);
+  EXPECT_TRUE(j["assembly"].is_null());
+  EXPECT_EQ(j["assembly_error"]["kind"], "cannot_assemble");
+  EXPECT_GT(j["assembly_error"]["line"].get<int>(), 0);
+}
+
+TEST(WebApi, CheckTakesAModelWrittenAsJson) {
+  // JSON is YAML: the model can come as JSON text, or as a JSON object inside the body.
+  const Json model = {{"name", "json four-bar"},
+                      {"points", {{"O2", {0, 0}}, {"O4", {4, 0}}, {"A", {1, 0}}, {"B", {4.5, 3}}}},
+                      {"ground", {"O2", "O4"}},
+                      {"bodies", {{"crank", {"O2", "A"}}, {"coupler", {"A", "B"}}, {"rocker", {"O4", "B"}}}},
+                      {"drivers", {{{"angle", "crank"}, {"from", 0}, {"to", 360}}}}};
+  const ApiResponse as_text = post("/api/check", {{"model", model.dump()}});
+  const ApiResponse as_object = post("/api/check", {{"model", model}});
+  ASSERT_EQ(as_text.status, 200) << as_text.body;
+  EXPECT_EQ(as_text.body, as_object.body);
+  EXPECT_EQ(Json::parse(as_text.body)["model"], "json four-bar");
+}
+
+TEST(WebApi, SolveIsByteForByteNbarSolveFormatJson) {
+  const ApiResponse r = post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 7}, {"order", 3}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  const cli_test::CliRun run = cli("solve examples/fourbar-crank-rocker.yaml --steps 7 --order 3 --format json");
+  ASSERT_EQ(run.code, 0);
+  EXPECT_EQ(r.body, run.out);
+  // The numbers themselves: the rocker's angle at the start of the crank-rocker.
+  const Json j = Json::parse(r.body);
+  const auto& columns = j["columns"];
+  const auto at = std::find(columns.begin(), columns.end(), "rocker.angle") - columns.begin();
+  EXPECT_NEAR(j["rows"][0][at].get<double>(), 97.18075589957508, 1e-9);
+}
+
+TEST(WebApi, SolveWithDynamicsColumnsAndOrderFive) {
+  const ApiResponse r = post("/api/solve", with_model("examples/fourbar-steel-bars.yaml",
+                                                      {{"steps", 13}, {"dynamics", true},
+                                                       {"columns", {"crank", "crank.torque", "*.Fx"}}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.body, cli("solve examples/fourbar-steel-bars.yaml --steps 13 --dynamics --columns 'crank,crank.torque,*.Fx' "
+                        "--format json")
+                        .out);
+  const ApiResponse o5 = post("/api/solve", with_model("examples/compressor-myszka.yaml",
+                                                       {{"steps", 5}, {"order", 5}, {"columns", "crank,C.*"}}));
+  ASSERT_EQ(o5.status, 200) << o5.body;
+  EXPECT_EQ(o5.body, cli("solve examples/compressor-myszka.yaml --steps 5 --order 5 --columns 'crank,C.*' --format json").out);
+}
+
+TEST(WebApi, SolveAsCsvAndTable) {
+  const ApiResponse csv = post("/api/solve", with_model("examples/five-bar.yaml", {{"steps", 5}, {"format", "csv"}}));
+  ASSERT_EQ(csv.status, 200);
+  EXPECT_EQ(csv.content_type, "text/csv; charset=utf-8");
+  EXPECT_EQ(csv.body, cli("solve examples/five-bar.yaml --steps 5").out);
+  const ApiResponse table = post("/api/solve", with_model("examples/five-bar.yaml", {{"steps", 5}, {"format", "table"}}));
+  EXPECT_EQ(table.body, cli("solve examples/five-bar.yaml --steps 5 --format table").out);
+}
+
+TEST(WebApi, ASweepStoppedAtAToggleIsNotAnError) {
+  const ApiResponse r = post("/api/solve", with_model("tests/golden/inputs/toggle-stop.yaml",
+                                                      {{"columns", {"input", "output.angle"}}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  const Json j = Json::parse(r.body);
+  EXPECT_FALSE(j["complete"].get<bool>());
+  EXPECT_FALSE(j["stop_reason"].get<std::string>().empty());
+  const cli_test::CliRun run = cli("solve tests/golden/inputs/toggle-stop.yaml --columns input,output.angle --format json");
+  EXPECT_EQ(run.code, 4);
+  EXPECT_EQ(r.body, run.out);
+}
+
+TEST(WebApi, StressIsNbarStressFormatJson) {
+  const ApiResponse r = post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"steps", 13}, {"sections", 40}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.body, cli("stress examples/fourbar-steel-bars.yaml --steps 13 --sections 40 --format json").out);
+  const ApiResponse profile =
+      post("/api/stress", with_model("examples/crank-rocker-gravity-spring.yaml",
+                                     {{"steps", 13}, {"section_profile", "coupler"}, {"step", 9}, {"sections", 40}}));
+  ASSERT_EQ(profile.status, 200) << profile.body;
+  EXPECT_EQ(profile.body, cli("stress examples/crank-rocker-gravity-spring.yaml --steps 13 --section-profile coupler "
+                              "--step 9 --sections 40 --format json")
+                              .out);
+}
+
+TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"five-point", "examples/synthesis/five-point-crank-rocker.yaml"},
+      {"burmester", "examples/synthesis/burmester-five-positions.yaml"},
+      {"burmester", "examples/synthesis/burmester-three-positions.yaml"},
+      {"function", "examples/synthesis/function-log10.yaml"},
+  };
+  for (const auto& [kind, file] : cases) {
+    SCOPED_TRACE(file);
+    const ApiResponse r = post("/api/synth/" + kind, with_task(file, {{"all", true}, {"top", 5}}));
+    ASSERT_EQ(r.status, 200) << r.body;
+    EXPECT_EQ(r.body, cli("synth " + kind + " " + file + " --all --top 5 --format json").out);
+  }
+  const ApiResponse five = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml"));
+  ASSERT_EQ(five.status, 200);
+  EXPECT_NE(five.body.find("crank-rocker"), std::string::npos);
+  // Another seed, one thread: still the CLI's answer for that seed.
+  const ApiResponse seeded = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml",
+                                                                    {{"seed", 7}, {"threads", 1}, {"top", 0}}));
+  ASSERT_EQ(seeded.status, 200) << seeded.body;
+  EXPECT_EQ(seeded.body,
+            cli("synth five-point examples/synthesis/five-point-crank-rocker.yaml --seed 7 --top 0 --format json").out);
+  // The task as a JSON object.
+  const Json task = {{"task", "function"}, {"name", "square"}, {"function", "x^2"}, {"x", {0, 1}},
+                     {"input_range", {90, 150}}, {"output_range", {60, 120}}};
+  const ApiResponse object = post("/api/synth/function", {{"task", task}});
+  ASSERT_EQ(object.status, 200) << object.body;
+  EXPECT_EQ(Json::parse(object.body)["name"], "square");
+}
+
+TEST(WebApi, RenderDrawIsNbarDraw) {
+  const auto dir = temp_folder("draw");
+  for (const std::string format : {"svg", "png"}) {
+    const ApiResponse r = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
+                                                         {{"kind", "draw"}, {"format", format}, {"labels", true},
+                                                          {"trace", "P"}, {"step", 30}, {"width", 400}, {"height", 300}}));
+    ASSERT_EQ(r.status, 200) << r.body;
+    EXPECT_EQ(r.content_type, format == "svg" ? "image/svg+xml" : "image/png");
+    const std::string out = (dir / ("draw." + format)).string();
+    ASSERT_EQ(cli("draw examples/fourbar-crank-rocker.yaml --labels --trace P --step 30 --width 400 --height 300 -o " + out).code, 0);
+    EXPECT_EQ(r.body, read_file(out)) << format;
+  }
+  const ApiResponse at = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"at", 90}}));
+  ASSERT_EQ(at.status, 200);
+  const std::string out = (dir / "at.svg").string();
+  ASSERT_EQ(cli("draw examples/fourbar-crank-rocker.yaml --at 90 -o " + out).code, 0);
+  EXPECT_EQ(at.body, read_file(out));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(WebApi, RenderAnimateIsNbarAnimate) {
+  const auto dir = temp_folder("animate");
+  for (const std::string format : {"gif", "svg", "html"}) {
+    const ApiResponse r = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
+                                                         {{"kind", "animate"}, {"format", format}, {"frames", 12},
+                                                          {"fps", 10}, {"width", 300}, {"height", 200}}));
+    ASSERT_EQ(r.status, 200) << r.body;
+    const std::string out = (dir / ("anim." + format)).string();
+    ASSERT_EQ(cli("animate examples/fourbar-crank-rocker.yaml --frames 12 --fps 10 --width 300 --height 200 -o " + out).code, 0);
+    EXPECT_EQ(r.body, read_file(out)) << format;
+    if (format == "html") {
+      EXPECT_EQ(header(r, "Content-Security-Policy"), "sandbox allow-scripts");
+    }
+  }
+  const ApiResponse mp4 = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
+                                                         {{"kind", "animate"}, {"format", "mp4"}, {"frames", 4}}));
+  if (render::Animation::program_available("ffmpeg")) {
+    EXPECT_EQ(mp4.status, 200);
+    EXPECT_EQ(mp4.content_type, "video/mp4");
+  } else {
+    EXPECT_EQ(mp4.status, 501);
+    EXPECT_EQ(error_of(mp4)["kind"], "not_implemented");
+    EXPECT_NE(error_of(mp4)["message"].get<std::string>().find("ffmpeg"), std::string::npos);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(WebApi, RenderPlotIsNbarPlot) {
+  const auto dir = temp_folder("plot");
+  for (const std::string format : {"svg", "png"}) {
+    const ApiResponse r = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
+                                                         {{"kind", "plot"}, {"format", format}, {"x", "P.x"}, {"y", "P.y"},
+                                                          {"steps", 37}, {"title", "coupler curve"}}));
+    ASSERT_EQ(r.status, 200) << r.body;
+    const std::string out = (dir / ("plot." + format)).string();
+    ASSERT_EQ(cli("plot examples/fourbar-crank-rocker.yaml --x P.x --y P.y --steps 37 --title 'coupler curve' -o " + out).code, 0);
+    EXPECT_EQ(r.body, read_file(out)) << format;
+  }
+  // Force columns switch the dynamics on, as in the CLI.
+  const ApiResponse torque = post("/api/render", with_model("examples/fourbar-steel-bars.yaml",
+                                                            {{"kind", "plot"}, {"y", {"crank.torque"}}, {"steps", 19}}));
+  ASSERT_EQ(torque.status, 200) << torque.body;
+  const std::string out = (dir / "torque.svg").string();
+  ASSERT_EQ(cli("plot examples/fourbar-steel-bars.yaml --y crank.torque --steps 19 -o " + out).code, 0);
+  EXPECT_EQ(torque.body, read_file(out));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(WebApi, ReportIsNbarReport) {
+  const ApiResponse r = post("/api/report", with_model("examples/fourbar-steel-bars.yaml", {{"steps", 13}, {"frames", 6}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.content_type, "text/html; charset=utf-8");
+  const auto dir = temp_folder("report");
+  // The CLI shows the file's path where the server shows "model": the same report otherwise.
+  const std::filesystem::path model = dir / "model";
+  std::filesystem::copy_file(std::filesystem::path(NBAR_SOURCE_DIR) / "examples/fourbar-steel-bars.yaml", model);
+  const std::string out = (dir / "report.html").string();
+  ASSERT_EQ(cli_test::run_shell("cd '" + dir.string() + "' && '" + NBAR_CLI_PATH + "' report model --steps 13 --frames 6 -o " + out).code, 0);
+  EXPECT_EQ(r.body, read_file(out));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(WebApi, ExplainIsNbarExplain) {
+  const ApiResponse r = post("/api/explain", with_model("examples/scissor-lift.yaml", {{"steps", 13}, {"step", 3}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.content_type, "application/json");
+  EXPECT_EQ(r.body, cli("explain examples/scissor-lift.yaml --steps 13 --step 3 --format json").out);
+  for (const std::string format : {"text", "markdown", "latex"}) {
+    const ApiResponse doc = post("/api/explain", with_model("examples/fourbar-crank-rocker.yaml",
+                                                            {{"step", 30}, {"format", format}}));
+    ASSERT_EQ(doc.status, 200) << doc.body;
+    EXPECT_EQ(doc.body, cli("explain examples/fourbar-crank-rocker.yaml --step 30 --format " + format).out) << format;
+  }
+  // A step the sweep does not have: bad input, as the CLI's exit code 2.
+  const ApiResponse bad = post("/api/explain", with_model("examples/fourbar-crank-rocker.yaml", {{"step", 361}}));
+  EXPECT_EQ(bad.status, 400) << bad.body;
+  EXPECT_EQ(cli("explain examples/fourbar-crank-rocker.yaml --step 361").code, 2);
+}
+
+TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
+  const ApiResponse list = call("GET", "/api/examples");
+  ASSERT_EQ(list.status, 200);
+  const Json j = Json::parse(list.body)["examples"];
+  int models = 0, tasks = 0;
+  for (const Json& e : j) {
+    (e["kind"] == "task" ? tasks : models) += 1;
+    EXPECT_FALSE(e["title"].get<std::string>().empty()) << e;
+    EXPECT_FALSE(e["description"].get<std::string>().empty()) << e;
+    const ApiResponse text = call("GET", "/api/examples/" + e["name"].get<std::string>());
+    ASSERT_EQ(text.status, 200);
+    EXPECT_EQ(text.content_type, "application/yaml; charset=utf-8");
+    EXPECT_EQ(text.body, repo_file(e["file"].get<std::string>()));
+  }
+  EXPECT_EQ(models, 23);
+  EXPECT_EQ(tasks, 5);
+  // Each runs as it is.
+  const Json crank_rocker = {{"model", call("GET", "/api/examples/fourbar-crank-rocker").body}};
+  EXPECT_EQ(post("/api/check", crank_rocker).status, 200);
+  const Json log10 = {{"task", call("GET", "/api/examples/function-log10").body}};
+  EXPECT_EQ(post("/api/synth/function", log10).status, 200);
+}
+
+TEST(WebApi, HealthAndStaticPages) {
+  const ApiResponse health = call("GET", "/api/health");
+  ASSERT_EQ(health.status, 200);
+  const Json h = Json::parse(health.body);
+  EXPECT_EQ(h["status"], "ok");
+  EXPECT_EQ(h["limits"]["max_steps"], 100001);
+  const ApiResponse index = call("GET", "/");
+  ASSERT_EQ(index.status, 200);
+  EXPECT_EQ(index.content_type, "text/html; charset=utf-8");
+  EXPECT_NE(index.body.find("coming"), std::string::npos);
+  EXPECT_EQ(call("GET", "/index.html").body, index.body);
+}
+
+}  // namespace
+}  // namespace nbar::web_test

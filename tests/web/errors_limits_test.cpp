@@ -1,0 +1,302 @@
+// The web API's errors (bad JSON, bad YAML with its line and column, unknown endpoints and
+// methods, path traversal) and every limit: body size, points, bodies, steps, order, sections,
+// frames, pixels, synthesis, the time budget and the cap on concurrent jobs.
+#include <chrono>
+#include <future>
+#include <thread>
+
+#include "web/web_support.hpp"
+
+namespace nbar::web_test {
+namespace {
+
+void expect_error(const ApiResponse& r, int status, const std::string& kind) {
+  EXPECT_EQ(r.status, status) << r.body;
+  EXPECT_EQ(r.content_type, "application/json");
+  const Json e = error_of(r);
+  EXPECT_EQ(e["kind"], kind) << r.body;
+  EXPECT_FALSE(e["message"].get<std::string>().empty());
+}
+
+void expect_limit(const ApiResponse& r, const std::string& limit) {
+  expect_error(r, 413, "limit_exceeded");
+  EXPECT_EQ(error_of(r)["limit"], limit) << r.body;
+}
+
+TEST(WebErrors, BadJson) {
+  const ApiResponse r = call("POST", "/api/solve", "{\"model\": \"x\",\n  \"steps\": }");
+  expect_error(r, 400, "bad_json");
+  EXPECT_EQ(error_of(r)["line"], 2);
+  expect_error(call("POST", "/api/check", ""), 400, "bad_json");
+  expect_error(call("POST", "/api/check", "[1, 2]"), 400, "bad_json");
+  expect_error(call("POST", "/api/check", "\"model\""), 400, "bad_json");
+}
+
+TEST(WebErrors, BadOptions) {
+  expect_error(post("/api/check", Json::object()), 400, "bad_input");  // no model
+  expect_error(post("/api/check", {{"model", 3}}), 400, "bad_input");
+  const ApiResponse unknown = post("/api/solve", with_model("examples/five-bar.yaml", {{"stepz", 3}}));
+  expect_error(unknown, 400, "bad_input");
+  EXPECT_NE(error_of(unknown)["message"].get<std::string>().find("stepz"), std::string::npos);
+  expect_error(post("/api/solve", with_model("examples/five-bar.yaml", {{"steps", "3"}})), 400, "bad_input");
+  expect_error(post("/api/solve", with_model("examples/five-bar.yaml", {{"steps", 2.5}})), 400, "bad_input");
+  expect_error(post("/api/solve", with_model("examples/five-bar.yaml", {{"steps", 0}})), 400, "bad_input");
+  expect_error(post("/api/solve", with_model("examples/five-bar.yaml", {{"dynamics", "yes"}})), 400, "bad_input");
+  expect_error(post("/api/solve", with_model("examples/five-bar.yaml", {{"format", "xml"}})), 400, "bad_input");
+  const ApiResponse columns = post("/api/solve", with_model("examples/five-bar.yaml", {{"columns", "nothing.*"}}));
+  expect_error(columns, 400, "bad_input");
+  EXPECT_NE(error_of(columns)["message"].get<std::string>().find("the columns are"), std::string::npos);
+  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "sculpt"}})), 400, "bad_input");
+  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "draw"}, {"frames", 3}})), 400, "bad_input");
+  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "draw"}, {"format", "gif"}})), 400,
+               "bad_input");
+  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "draw"}, {"step", 10000}})), 400,
+               "bad_input");
+  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "draw"}, {"trace", "Q9"}})), 400,
+               "bad_input");
+  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "plot"}})), 400, "bad_input");
+  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "plot"}, {"y", "zz"}})), 400, "bad_input");
+  expect_error(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"section_profile", "nobody"}})), 400,
+               "bad_input");
+  expect_error(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"step", 3}})), 400, "bad_input");
+}
+
+TEST(WebErrors, YamlErrorsHaveTheirLineAndColumn) {
+  const std::string model = "name: broken\npoints:\n  A: [0, 0\n  B: [1, 1]\n";
+  const ApiResponse r = post("/api/check", {{"model", model}});
+  expect_error(r, 422, "invalid_model");
+  const Json e = error_of(r);
+  EXPECT_EQ(e["file"], "model");
+  EXPECT_GT(e["line"].get<int>(), 2);
+  EXPECT_GT(e["column"].get<int>(), 0);
+  // The same place the CLI reports for the same text.
+  const auto dir = temp_folder("yaml");
+  std::ofstream(dir / "model") << model;
+  const cli_test::CliRun run = cli_test::run_shell("cd '" + dir.string() + "' && '" + NBAR_CLI_PATH + "' check model");
+  EXPECT_EQ(run.code, 1);
+  EXPECT_NE(run.err.find("model:" + std::to_string(e["line"].get<int>()) + ":" + std::to_string(e["column"].get<int>())),
+            std::string::npos)
+      << run.err << r.body;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(WebErrors, ModelErrorsPointAtTheEntity) {
+  // An unknown point in a body: the parser's error at its place.
+  const std::string unknown = "points: {A: [0, 0], B: [1, 0]}\nground: [A]\nbodies:\n  crank: [A, C]\n";
+  const ApiResponse r = post("/api/solve", {{"model", unknown}});
+  expect_error(r, 422, "invalid_model");
+  EXPECT_EQ(error_of(r)["line"], 4);
+  // Drivers that do not match the mobility: found when the model is compiled, at the driver.
+  std::string two_drivers = repo_file("examples/fourbar-crank-rocker.yaml");
+  const std::size_t sweep = two_drivers.find("\nsweep:");
+  ASSERT_NE(sweep, std::string::npos);
+  two_drivers.insert(sweep, "\n  - {angle: rocker, from: 90, to: 100}");
+  const ApiResponse d = post("/api/solve", {{"model", two_drivers}});
+  expect_error(d, 422, "invalid_model");
+  const Json e = error_of(d);
+  EXPECT_GT(e.value("line", 0), 0) << d.body;
+  // The same place the CLI gives.
+  const auto dir = temp_folder("drivers");
+  std::ofstream(dir / "model") << two_drivers;
+  const cli_test::CliRun run = cli_test::run_shell("cd '" + dir.string() + "' && '" + NBAR_CLI_PATH + "' solve model");
+  EXPECT_EQ(run.code, 1);
+  EXPECT_NE(run.err.find("model:" + std::to_string(e.value("line", 0)) + ":"), std::string::npos) << run.err << d.body;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(WebErrors, CannotAssembleAndNoShapes) {
+  const ApiResponse r = post("/api/solve", with_model("tests/golden/inputs/cannot-assemble.yaml"));
+  expect_error(r, 422, "cannot_assemble");
+  expect_error(post("/api/stress", with_model("examples/fourbar-crank-rocker.yaml")), 422, "invalid_model");
+}
+
+TEST(WebErrors, SynthesisTasks) {
+  const ApiResponse wrong = post("/api/synth/burmester", with_task("examples/synthesis/function-log10.yaml"));
+  expect_error(wrong, 400, "bad_input");
+  EXPECT_NE(error_of(wrong)["message"].get<std::string>().find("/api/synth/function"), std::string::npos);
+  const ApiResponse bad = post("/api/synth/function", {{"task", "task: function\nname: x\nfunction: \"log10(x\"\n"}});
+  expect_error(bad, 422, "invalid_model");
+  EXPECT_EQ(error_of(bad)["file"], "task");
+  EXPECT_EQ(error_of(bad)["line"], 3);
+  expect_error(post("/api/synth/five-point", with_model("examples/fourbar-crank-rocker.yaml")), 400, "bad_input");
+}
+
+TEST(WebErrors, UnknownEndpointsAndMethods) {
+  expect_error(call("POST", "/api/simulate", "{}"), 404, "not_found");
+  expect_error(call("GET", "/api/synth/six-point"), 404, "not_found");
+  expect_error(call("GET", "/no-such-page.html"), 404, "not_found");
+  const ApiResponse get_solve = call("GET", "/api/solve");
+  expect_error(get_solve, 405, "method_not_allowed");
+  EXPECT_EQ(header(get_solve, "Allow"), "POST");
+  expect_error(call("DELETE", "/api/check"), 405, "method_not_allowed");
+  expect_error(call("POST", "/api/health", "{}"), 405, "method_not_allowed");
+  expect_error(call("PUT", "/api/examples/five-bar", "x"), 405, "method_not_allowed");
+  expect_error(call("POST", "/", "{}"), 405, "method_not_allowed");
+}
+
+TEST(WebErrors, NoPathTraversal) {
+  // Paths as the HTTP layer hands them over (decoded), and as they may arrive undecoded.
+  for (const std::string name :
+       {"../README.md", "../../../../etc/passwd", "/etc/passwd", "%2e%2e/README.md", "%2e%2e%2fREADME.md",
+        "..%2f..%2fetc%2fpasswd", "synthesis/../fourbar-crank-rocker", "fourbar-crank-rocker.yaml",
+        "./fourbar-crank-rocker", "fourbar-crank-rocker/", "synthesis", "", ".", "..",
+        "..\\..\\etc\\passwd", "~/.ssh/id_rsa"}) {
+    SCOPED_TRACE(name);
+    expect_error(call("GET", "/api/examples/" + name), 404, "not_found");
+  }
+  expect_error(call("GET", "/api/examples/" + std::string("fourbar-crank-rocker\0/../x", 26)), 404, "not_found");
+  for (const std::string path : {"/../README.md", "/../../etc/passwd", "/%2e%2e/README.md", "/web/ui/index.html",
+                                 "//etc/passwd", "/examples/five-bar.yaml"}) {
+    SCOPED_TRACE(path);
+    expect_error(call("GET", path), 404, "not_found");
+  }
+}
+
+TEST(WebLimits, BodySize) {
+  ServerConfig config = test_config();
+  config.limits.max_body_bytes = 1000;
+  const ApiResponse r = post("/api/check", with_model("examples/machine-18.yaml"), config);
+  expect_error(r, 413, "body_too_large");
+  EXPECT_EQ(error_of(r)["max"], 1000);
+  // The default: 1 MiB.
+  expect_error(call("POST", "/api/check", std::string(2 << 20, ' ')), 413, "body_too_large");
+}
+
+TEST(WebLimits, PointsAndBodies) {
+  ServerConfig config = test_config();
+  config.limits.max_points = 4;
+  expect_limit(post("/api/check", with_model("examples/fourbar-crank-rocker.yaml"), config), "points");
+  config = test_config();
+  config.limits.max_bodies = 2;
+  expect_limit(post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml"), config), "bodies");
+  EXPECT_EQ(post("/api/check", with_model("examples/machine-18.yaml")).status, 200);
+}
+
+TEST(WebLimits, Steps) {
+  expect_limit(post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 100002}})), "steps");
+  // The model's own sweep counts too, from/to and time laws.
+  std::string many = repo_file("examples/fourbar-crank-rocker.yaml");
+  many.replace(many.find("sweep: {steps: 361}"), 19, "sweep: {steps: 200000}");
+  expect_limit(post("/api/solve", {{"model", many}}), "steps");
+  std::string law = repo_file("examples/fourbar-oscillating.yaml");
+  const auto at = law.find("\nsweep:");
+  ASSERT_NE(at, std::string::npos);
+  law = law.substr(0, at) + "\nsweep: {duration: 1e12, step: 1e-6}\n";
+  expect_limit(post("/api/solve", {{"model", law}}), "steps");
+  expect_limit(post("/api/render", {{"model", law}, {"kind", "draw"}}), "steps");
+  // The table: samples x columns (machine-18 has hundreds of columns).
+  const ApiResponse table = post("/api/solve", with_model("examples/machine-18.yaml", {{"steps", 100001}}));
+  expect_limit(table, "table_values");
+  expect_limit(post("/api/render", with_model("examples/machine-18.yaml", {{"kind", "plot"}, {"y", "crank"}, {"steps", 100001}})),
+               "table_values");
+  expect_limit(post("/api/report", with_model("examples/machine-18.yaml", {{"steps", 100001}})), "table_values");
+  EXPECT_EQ(post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 100001}, {"columns", "crank"}})).status,
+            200);
+  // The order: 0 to 5, as the CLI's.
+  expect_error(post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"order", 6}})), 400, "bad_input");
+}
+
+TEST(WebLimits, SectionsFramesAndPixels) {
+  expect_limit(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"sections", 5000}})), "sections");
+  expect_error(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"sections", 5}})), 400, "bad_input");
+  expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "animate"}, {"frames", 1000}})),
+               "frames");
+  expect_limit(post("/api/report", with_model("examples/fourbar-crank-rocker.yaml", {{"frames", 900}})), "frames");
+  expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 5000}})),
+               "pixels");
+  expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "plot"}, {"y", "P.y"},
+                                                                                     {"height", 3000}})),
+               "pixels");
+  expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
+                                              {{"kind", "animate"}, {"frames", 360}, {"width", 2000}, {"height", 2000}})),
+               "animation_pixels");
+}
+
+TEST(WebLimits, ExplainTakesSmallModels) {
+  ServerConfig config = test_config();
+  config.limits.max_explain_bodies = 10;
+  expect_limit(post("/api/explain", with_model("examples/machine-18.yaml"), config), "explain_bodies");
+  config = test_config();
+  config.limits.max_explain_points = 10;
+  expect_limit(post("/api/explain", with_model("examples/machine-18.yaml"), config), "explain_points");
+  EXPECT_EQ(post("/api/explain", with_model("examples/machine-18.yaml", {{"steps", 5}, {"step", 2}})).status, 200);
+  expect_limit(post("/api/explain", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 200000}})), "steps");
+}
+
+TEST(WebLimits, Synthesis) {
+  expect_limit(post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml", {{"top", 1000}})),
+               "top");
+  expect_limit(post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml", {{"threads", 64}})),
+               "threads");
+  std::string curves = repo_file("examples/synthesis/burmester-four-positions.yaml");
+  const std::string window = "curves: {radius: 400}";
+  ASSERT_NE(curves.find(window), std::string::npos);
+  curves.replace(curves.find(window), window.size(), "curves: {radius: 1000, step: 0.001}");
+  expect_limit(post("/api/synth/burmester", {{"task", curves}}), "curve_samples");
+  curves.replace(curves.find("radius: 1000, "), 14, "");
+  expect_limit(post("/api/synth/burmester", {{"task", curves}}), "curve_samples");
+}
+
+TEST(WebLimits, TimeBudgetCancelsAHugeSweep) {
+  ServerConfig config = test_config();
+  config.limits.time_budget_seconds = 0.2;
+  config.limits.max_table_values = 1e12;
+  const auto start = std::chrono::steady_clock::now();
+  const ApiResponse r = post("/api/solve", with_model("examples/machine-18.yaml",
+                                                      {{"steps", 100001}, {"order", 5}, {"dynamics", true}}),
+                             config);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  expect_error(r, 504, "time_budget_exceeded");
+  EXPECT_LT(seconds, 3.0);
+  std::cout << "[ web      ] a 100001-step sweep of machine-18 with a 0.2 s budget answered 504 after " << seconds << " s\n";
+  // Synthesis too.
+  config.limits.time_budget_seconds = 1e-6;
+  expect_error(post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml"), config), 504,
+               "time_budget_exceeded");
+}
+
+TEST(WebLimits, TooManyJobsIsA503WithRetryAfter) {
+  ServerConfig config = test_config();
+  config.jobs = std::make_shared<web::JobSlots>(2);
+  {
+    web::JobSlots::Slot a = config.jobs->try_acquire(), b = config.jobs->try_acquire();
+    ASSERT_TRUE(a && b);
+    const ApiResponse r = post("/api/check", with_model("examples/five-bar.yaml"), config);
+    expect_error(r, 503, "too_many_jobs");
+    EXPECT_EQ(header(r, "Retry-After"), "2");
+    // What computes nothing is still answered.
+    EXPECT_EQ(call("GET", "/api/health", "", config).status, 200);
+  }
+  EXPECT_EQ(config.jobs->in_use(), 0);
+  EXPECT_EQ(post("/api/check", with_model("examples/five-bar.yaml"), config).status, 200);
+}
+
+TEST(WebLimits, OneMoreSimultaneousHeavyJobThanSlotsGetsOne503) {
+  constexpr int kSlots = 2;
+  ServerConfig config = test_config();
+  config.jobs = std::make_shared<web::JobSlots>(kSlots);
+  config.limits.time_budget_seconds = 1.5;  // each heavy job runs into it
+  config.limits.max_table_values = 1e12;  // the sweep must run into the time budget
+  const Json huge = with_model("examples/machine-18.yaml", {{"steps", 100001}, {"order", 5}, {"dynamics", true}});
+  std::vector<std::future<int>> statuses;
+  std::promise<void> go;
+  std::shared_future<void> started = go.get_future().share();
+  for (int i = 0; i < kSlots + 1; ++i)
+    statuses.push_back(std::async(std::launch::async, [&, started] {
+      started.wait();
+      return post("/api/solve", huge, config).status;
+    }));
+  go.set_value();
+  int busy = 0, timed_out = 0;
+  for (auto& s : statuses) {
+    const int status = s.get();
+    busy += status == 503;
+    timed_out += status == 504;
+  }
+  EXPECT_EQ(busy, 1);
+  EXPECT_EQ(timed_out, kSlots);
+  EXPECT_EQ(config.jobs->in_use(), 0);
+}
+
+}  // namespace
+}  // namespace nbar::web_test

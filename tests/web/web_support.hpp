@@ -1,0 +1,84 @@
+// The web API's tests: requests to handle_api without a socket, and the CLI's answers to the
+// same requests, to compare with.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "apps/cli_support.hpp"
+#include "nbar/web/api.hpp"
+
+namespace nbar::web_test {
+
+using Json = nlohmann::json;
+using web::ApiRequest;
+using web::ApiResponse;
+using web::ServerConfig;
+
+inline std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A file of the repository, by its path from the root.
+inline std::string repo_file(const std::string& path) { return read_file(std::filesystem::path(NBAR_SOURCE_DIR) / path); }
+
+inline ServerConfig test_config() {
+  ServerConfig config;
+  config.jobs = std::make_shared<web::JobSlots>(4);
+  return config;
+}
+
+inline ApiResponse call(const std::string& method, const std::string& path, const std::string& body = "",
+                        const ServerConfig& config = test_config()) {
+  return web::handle_api(ApiRequest{method, path, body}, config);
+}
+
+inline ApiResponse post(const std::string& path, const Json& body, const ServerConfig& config = test_config()) {
+  return call("POST", path, body.dump(), config);
+}
+
+// {"model": <the text of the repository's file>, ...options}
+inline Json with_model(const std::string& file, Json options = Json::object()) {
+  options["model"] = repo_file(file);
+  return options;
+}
+
+inline Json with_task(const std::string& file, Json options = Json::object()) {
+  options["task"] = repo_file(file);
+  return options;
+}
+
+// The error object of an error answer.
+inline Json error_of(const ApiResponse& r) {
+  const Json j = Json::parse(r.body);
+  return j.at("error");
+}
+
+inline std::string header(const ApiResponse& r, const std::string& name) {
+  for (const auto& [n, v] : r.headers)
+    if (n == name) return v;
+  return {};
+}
+
+// Runs nbar ARGS from the repository's root.
+inline cli_test::CliRun cli(const std::string& args) {
+  return cli_test::run_shell("cd '" + std::string(NBAR_SOURCE_DIR) + "' && '" + NBAR_CLI_PATH + "' " + args);
+}
+
+// A fresh empty folder for files the CLI writes.
+inline std::filesystem::path temp_folder(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("nbar_web_test_" + std::to_string(::getpid()) + "_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace nbar::web_test

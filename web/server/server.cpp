@@ -1,0 +1,110 @@
+// HTTP with cpp-httplib: every request goes to handle_api, whose answer is sent as it is. The
+// only decisions taken here are those httplib takes before the body is read (a body far over
+// the limit, a malformed request); they are answered with the API's JSON errors too.
+#include "nbar/web/server.hpp"
+
+#include <httplib.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <thread>
+
+namespace nbar::web {
+
+struct HttpServer::Impl {
+  ServeOptions options;
+  ServerConfig config;
+  httplib::Server server;
+  int port = -1;
+  std::atomic<bool> listening{false}, stopping{false};
+};
+
+namespace {
+
+void send(const ApiResponse& answer, httplib::Response& res) {
+  res.status = answer.status;
+  for (const auto& [name, value] : answer.headers) res.set_header(name, value);
+  res.set_header("X-Content-Type-Options", "nosniff");
+  res.set_header("Cache-Control", "no-store");
+  res.set_content(answer.body, answer.content_type);
+}
+
+}  // namespace
+
+HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
+  impl_->config.limits = options.limits;
+  impl_->config.jobs = std::make_shared<JobSlots>(std::max(1, options.max_jobs));
+  httplib::Server& server = impl_->server;
+  const int threads = std::max(2, options.threads);
+  server.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+  // Bodies up to twice the limit are read, so that handle_api answers them with its own 413;
+  // httplib refuses larger ones from their Content-Length alone.
+  server.set_payload_max_length(options.limits.max_body_bytes * 2);
+  // SO_REUSEADDR but not httplib's SO_REUSEPORT: a second server on a port in use fails to
+  // bind instead of sharing it silently.
+  server.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
+  server.set_read_timeout(10, 0);
+  server.set_write_timeout(30, 0);
+  const ServerConfig* config = &impl_->config;
+  const auto handler = [config](const httplib::Request& req, httplib::Response& res) {
+    send(handle_api(ApiRequest{req.method, req.path, req.body}, *config), res);
+  };
+  const char* everything = R"(/.*)";
+  server.Get(everything, handler);
+  server.Post(everything, handler);
+  server.Put(everything, handler);
+  server.Patch(everything, handler);
+  server.Delete(everything, handler);
+  server.Options(everything, handler);
+  // Statuses httplib sets itself (413 before reading, 400 for a malformed request line...):
+  // the same JSON errors. Answers of handle_api already have their body.
+  server.set_error_handler([](const httplib::Request&, httplib::Response& res) {
+    if (!res.body.empty()) return;
+    const std::string message = res.status == 413   ? "the body is too large for this server"
+                                : res.status == 404 ? "not found"
+                                                    : "the request could not be read as HTTP";
+    send(error_response(res.status, message), res);
+  });
+}
+
+HttpServer::~HttpServer() { stop(); }
+
+bool HttpServer::bind(std::string& error) {
+  // A client that goes away mid-answer must not end the server (ffmpeg's pipe too).
+  std::signal(SIGPIPE, SIG_IGN);
+  const ServeOptions& o = impl_->options;
+  if (o.port == 0) {
+    impl_->port = impl_->server.bind_to_any_port(o.host);
+  } else {
+    impl_->port = impl_->server.bind_to_port(o.host, o.port) ? o.port : -1;
+  }
+  if (impl_->port < 0) {
+    error = "cannot listen on " + o.host + ":" + std::to_string(o.port) + " (in use, or not an address of this machine)";
+    return false;
+  }
+  return true;
+}
+
+int HttpServer::bound_port() const { return impl_->port; }
+
+void HttpServer::listen() {
+  impl_->listening = true;
+  if (!impl_->stopping) impl_->server.listen_after_bind();
+  impl_->listening = false;
+}
+
+void HttpServer::stop() {
+  // listen() may have been called on another thread and not be running yet: it either sees
+  // `stopping` and returns, or runs soon and is stopped here.
+  impl_->stopping = true;
+  for (int i = 0; i < 500 && impl_->listening && !impl_->server.is_running(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  impl_->server.stop();
+}
+
+}  // namespace nbar::web
