@@ -69,7 +69,7 @@ let quiet = false;
 const editor = new EditorView({
   parent: $('#editor'),
   extensions: [
-    basicSetup, yaml(), lintGutter(),
+    basicSetup, yaml(), lintGutter(), EditorView.lineWrapping,
     EditorView.updateListener.of((u) => {
       if (!u.docChanged || quiet) return;
       clearTimeout(timer);
