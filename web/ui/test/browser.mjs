@@ -150,6 +150,8 @@ async function desktop() {
   assert.ok(pose > 240 && pose < 300, `plot click at 3/4 poses near sample 270, not ${pose}`);
   assert.match(await page.locator('.u-legend').textContent(), /coupler\.omega/);
   await shot(page, 'desktop-2-model');
+  await click(page, false, '[data-tab="editor"]');
+  await shot(page, 'desktop-app');  // the README's picture, docs/images/web-desktop.png
 
   await errorInEditor(page, false, 'desktop');
 
