@@ -48,10 +48,12 @@ export function drawingSvg(g, solve) {
     + `<g class="traces">${traces}</g><g class="frame"></g></svg>`;
 }
 
-export function frameGroup(g, solve, row) {
+// `moved` overrides one point's position while it is dragged: {name, x, y} in model coordinates.
+export function frameGroup(g, solve, row, moved = null) {
   const at = columns(solve);
   const s = g.scale;
   const pos = new Map(g.points.map((p) => { const [i, j] = at(p); return [p, [n(row[i]), n(-row[j])]]; }));
+  if (moved && pos.has(moved.name)) pos.set(moved.name, [n(moved.x), n(-moved.y)]);
   let out = '';
   // Ground pivots: a triangle under the point and a hatched base.
   for (const p of g.ground) {
@@ -73,7 +75,8 @@ export function frameGroup(g, solve, row) {
     }
   });
   for (const [p, [x, y]] of pos) {
-    out += `<circle class="pt" data-point="${p}" cx="${x}" cy="${y}" r="${1.1 * s}" fill="#fff" stroke="#1d2330" stroke-width="1.5" vector-effect="non-scaling-stroke"/>`
+    out += `<circle class="hit" data-point="${p}" cx="${x}" cy="${y}" r="${3 * s}" fill="transparent"/>`
+      + `<circle class="pt" data-point="${p}" cx="${x}" cy="${y}" r="${1.1 * s}" fill="#fff" stroke="#1d2330" stroke-width="1.5" vector-effect="non-scaling-stroke"/>`
       + `<text x="${x + 1.8 * s}" y="${y - 1.8 * s}" font-size="${3.2 * s}" fill="#344054" font-family="system-ui, sans-serif">${p}</text>`;
   }
   return out;

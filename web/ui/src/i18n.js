@@ -15,6 +15,7 @@ const strings = {
     minMu: 'min. transmission', maxErr: 'max. error', copied: 'Link copied',
     nothing: 'Open a model from the gallery, or type one in the editor.',
     design: (r, name) => `Design ${r} of “${name}”`, failed: 'Failed',
+    noDrag: (p) => `${p} is not written as [x, y]: edit it in the editor`,
   },
   es: {
     noModel: 'Sin modelo', share: 'Compartir', shareTitle: 'Copiar un enlace con este modelo',
@@ -31,6 +32,7 @@ const strings = {
     minMu: 'transmisión mín.', maxErr: 'error máx.', copied: 'Enlace copiado',
     nothing: 'Abra un modelo de la galería o escriba uno en el editor.',
     design: (r, name) => `Diseño ${r} de «${name}»`, failed: 'Error',
+    noDrag: (p) => `${p} no está escrito como [x, y]: edítelo en el editor`,
   },
 };
 

@@ -190,6 +190,49 @@ function setFrame(i) {
   }
 }
 
+// ------------------------------------------------------------------------------ dragging
+
+// A point dragged in the drawing moves it in the model: its `NAME: [x, y]` line is rewritten and
+// the model analysed again. Points are written at the start pose, so dragging shows sample 0.
+let drag = null;
+function svgPoint(e) {
+  const svg = $('#drawing svg');
+  const p = new DOMPoint(e.clientX, e.clientY).matrixTransform(svg.getScreenCTM().inverse());
+  return { x: p.x, y: -p.y };
+}
+function startDrag(e) {
+  const c = e.target.closest('circle[data-point]');
+  if (!c || !state.solve) return;
+  e.preventDefault();
+  play(false);
+  if (state.frame !== 0) setFrame(0);
+  drag = { name: c.dataset.point, id: e.pointerId, moved: false };
+  $('#drawing svg').setPointerCapture(e.pointerId);
+}
+function moveDrag(e) {
+  if (!drag || e.pointerId !== drag.id) return;
+  const p = svgPoint(e);
+  drag.moved = true;
+  drag.x = p.x; drag.y = p.y;
+  $('#drawing svg .frame').innerHTML = frameGroup(state.geometry, state.solve, state.solve.rows[0], { name: drag.name, ...p });
+}
+function endDrag(e) {
+  if (!drag || e.pointerId !== drag.id) return;
+  const d = drag;
+  drag = null;
+  if (!d.moved) return;
+  const digits = Math.max(0, Math.min(6, 2 - Math.floor(Math.log10(state.geometry.scale || 1))));
+  const doc = editor.state.doc.toString();
+  const re = new RegExp(`^(\\s*${d.name.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}\\s*:\\s*)\\[[^\\]\\n]*\\]`, 'm');
+  const m = re.exec(doc);
+  if (!m) { status(t('noDrag', d.name), true); setFrame(0); return; }
+  const text = `${m[1]}[${+d.x.toFixed(digits)}, ${+d.y.toFixed(digits)}]`;
+  quiet = true;
+  editor.dispatch({ changes: { from: m.index, to: m.index + m[0].length, insert: text } });
+  quiet = false;
+  analyse();
+}
+
 // ------------------------------------------------------------------------------ animation
 
 let last = 0;
@@ -425,6 +468,10 @@ async function start() {
   for (const b of document.querySelectorAll('[data-rtab]')) b.addEventListener('click', () => showResultTab(b.dataset.rtab));
   for (const b of document.querySelectorAll('[data-download]')) b.addEventListener('click', () => download(b.dataset.download));
   $('#play').addEventListener('click', () => play(!state.playing));
+  $('#drawing').addEventListener('pointerdown', startDrag);
+  $('#drawing').addEventListener('pointermove', moveDrag);
+  $('#drawing').addEventListener('pointerup', endDrag);
+  $('#drawing').addEventListener('pointercancel', endDrag);
   $('#scrub').addEventListener('input', (e) => { play(false); setFrame(+e.target.value); });
   $('#ycol').addEventListener('change', (e) => { state.ycol = e.target.value; buildPlot(); buildTable(); setFrame(state.frame); });
   $('#table').addEventListener('click', (e) => { const tr = e.target.closest('tr[data-i]'); if (tr) { play(false); setFrame(+tr.dataset.i); } });

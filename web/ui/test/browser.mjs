@@ -172,6 +172,21 @@ async function desktop() {
   assert.match(await other.locator('.cm-content').textContent(), /P: {2}\[77\.81169, 150\]/);
   await other.close();
 
+  // A point dragged in the drawing moves in the model and the numbers follow.
+  await page.locator('#scrub').fill('90');
+  await page.locator('#drawing circle.pt[data-point="P"]').hover();  // the drag goes back to sample 0
+  await page.mouse.down();
+  const p = await page.locator('#drawing circle.pt[data-point="P"]').boundingBox();
+  await page.mouse.move(p.x + p.width / 2 + 40, p.y + p.height / 2 + 20, { steps: 5 });
+  await page.mouse.up();
+  await page.waitForFunction(() => document.querySelector('#table tbody tr td:nth-last-child(2)')?.textContent !== '77.8117');
+  assert.equal(await page.locator('#scrub').inputValue(), '0');
+  const moved = await page.locator('.cm-line', { hasText: '# coupler point' }).textContent();
+  assert.match(moved, /^ {2}P: {2}\[\d+\.?\d*, \d+\.?\d*\]/);
+  assert.doesNotMatch(moved, /77\.81169/);
+  assert.equal(await page.locator('#problems').textContent(), 'No errors.');
+  await shot(page, 'desktop-4b-dragged');
+
   await synthesis(page, false, 'desktop');
 
   // Downloads: the CSV built from the solve, and the server's SVG.
