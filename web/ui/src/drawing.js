@@ -55,10 +55,23 @@ export function frameGroup(g, solve, row, moved = null) {
   const pos = new Map(g.points.map((p) => { const [i, j] = at(p); return [p, [n(row[i]), n(-row[j])]]; }));
   if (moved && pos.has(moved.name)) pos.set(moved.name, [n(moved.x), n(-moved.y)]);
   let out = '';
-  // Ground pivots: a triangle under the point and a hatched base.
+  // Slider guides (dashed, through the axis points) and blocks along them.
+  for (const sl of g.sliders ?? []) {
+    const [a, b] = sl.along.map((p) => pos.get(p));
+    const c = pos.get(sl.point);
+    const len = Math.hypot(b[0] - a[0], b[1] - a[1]);
+    if (!len) continue;
+    const ux = (b[0] - a[0]) / len; const uy = (b[1] - a[1]) / len;
+    const far = 1e3 * s;  // the guide drawn well past its points, clipped by the view
+    out += `<line class="guide" x1="${n(a[0] - ux * far)}" y1="${n(a[1] - uy * far)}" x2="${n(b[0] + ux * far)}" y2="${n(b[1] + uy * far)}" stroke="#98a2b3" stroke-width="1.5" stroke-dasharray="6 4" vector-effect="non-scaling-stroke"/>`;
+    const angle = n(Math.atan2(uy, ux) * 180 / Math.PI);
+    out += `<rect class="block" x="${n(c[0] - 5 * s)}" y="${n(c[1] - 3 * s)}" width="${n(10 * s)}" height="${n(6 * s)}" rx="${n(s)}" transform="rotate(${angle} ${c[0]} ${c[1]})" fill="#fef0c7" stroke="#b54708" stroke-width="2" vector-effect="non-scaling-stroke"/>`;
+  }
+  // Ground pivots (ground points of a body): a triangle under the point and a base line.
+  const pivots = new Set(g.bodies.flatMap((b) => b.points));
   for (const p of g.ground) {
     const q = pos.get(p);
-    if (!q) continue;
+    if (!q || !pivots.has(p)) continue;
     const [x, y] = q;
     out += `<path d="M${x},${y} l${-2.4 * s},${4 * s} h${4.8 * s} z" fill="#e4e7ec" stroke="#475467" stroke-width="1.5" vector-effect="non-scaling-stroke"/>`
       + `<line x1="${x - 3.4 * s}" y1="${y + 4 * s}" x2="${x + 3.4 * s}" y2="${y + 4 * s}" stroke="#475467" stroke-width="2" vector-effect="non-scaling-stroke"/>`;

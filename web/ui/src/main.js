@@ -144,7 +144,14 @@ function onSolved() {
   const ascending = col(driver) >= 0 && xs.every((v, i) => i === 0 || v >= xs[i - 1]);
   state.xcol = ascending ? driver : (col('t') >= 0 && solve.rows.every((r, i, a) => i === 0 || r[col('t')] >= a[i - 1][col('t')]) ? 't' : 'step');
   const points = [...(check.points?.ground ?? []), ...(check.points?.moving ?? [])].filter((p) => col(`${p}.x`) >= 0);
-  state.geometry = { points, ground: new Set(check.points?.ground ?? []), bodies: (check.bodies ?? []).map((b) => ({ name: b.name, points: b.points.filter((p) => points.includes(p)) })) };
+  // Sliders, from the check's joint list: "slider BODY at POINT along P1-P2".
+  const sliders = (check.joints ?? []).map((j) => /^slider (\S+) at (\S+) along (\S+)-(\S+)$/.exec(j))
+    .filter((m) => m && [m[2], m[3], m[4]].every((p) => points.includes(p)))
+    .map((m) => ({ body: m[1], point: m[2], along: [m[3], m[4]] }));
+  state.geometry = {
+    points, sliders, ground: new Set(check.points?.ground ?? []),
+    bodies: (check.bodies ?? []).map((b) => ({ name: b.name, points: b.points.filter((p) => points.includes(p)) })),
+  };
   // The column picker: every column but step; keep the choice across edits.
   const pick = $('#ycol');
   const names = solve.columns.filter((c) => c !== 'step');

@@ -130,6 +130,8 @@ async function desktop() {
 
   // A model from the gallery, drawn and animated.
   await openExample(page, false, 'slider-crank-offset');
+  assert.equal(await page.locator('#drawing svg .block').count(), 1, 'the slider block is drawn');
+  assert.equal(await page.locator('#drawing svg .guide').count(), 1, 'the slider guide is drawn');
   await openExample(page, false, 'fourbar-crank-rocker');
   assert.equal(await page.locator('#scrub').inputValue(), '0');
   const before = await page.locator('#drawing svg .frame').innerHTML();
