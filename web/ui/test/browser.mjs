@@ -53,7 +53,7 @@ let failed = false;
 
 async function open(name, viewport, mobile) {
   const context = await browser.newContext({
-    viewport, hasTouch: mobile, isMobile: mobile, deviceScaleFactor: mobile ? 2 : 1, acceptDownloads: true,
+    viewport, hasTouch: mobile, isMobile: mobile, deviceScaleFactor: mobile ? 2 : 1, acceptDownloads: true, locale: 'en-US',
   });
   const page = await context.newPage();
   page.on('pageerror', (e) => errors.push(`${name}: ${e.message}`));
