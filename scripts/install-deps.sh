@@ -14,6 +14,9 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-matplotlib
   python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-sympy
 )
+# The web app is bundled by npm packages (web/ui) during the build: Node and npm, unless a Node
+# is already installed (from Debian or elsewhere).
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

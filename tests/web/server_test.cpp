@@ -43,7 +43,7 @@ TEST_F(WebServer, HealthAndIndex) {
   const auto index = client_->Get("/");
   ASSERT_TRUE(index);
   EXPECT_EQ(index->status, 200);
-  EXPECT_NE(index->body.find("coming"), std::string::npos);
+  EXPECT_NE(index->body.find("<title>nbar</title>"), std::string::npos);
 }
 
 TEST_F(WebServer, SolveOverHttpIsTheApiAnswer) {

@@ -1,0 +1,507 @@
+// The web app of `nbar serve`: a gallery of the bundled models, a YAML editor whose errors the
+// server's /api/check and /api/solve place at their line and column, the mechanism drawn and
+// animated from the solve's point columns, a plot and a table of any column, five-point
+// synthesis whose designs open as models, and downloads. Everything it needs is served by nbar.
+import './style.css';
+import 'uplot/dist/uPlot.min.css';
+import uPlot from 'uplot';
+import { EditorView, basicSetup } from 'codemirror';
+import { yaml } from '@codemirror/lang-yaml';
+import { setDiagnostics, lintGutter } from '@codemirror/lint';
+import { t, setLang, getLang, translatePage } from './i18n.js';
+import { drawingSvg, frameGroup } from './drawing.js';
+import { encodeModel, decodeModel } from './share.js';
+
+const $ = (s) => document.querySelector(s);
+const state = {
+  seq: 0, text: '', check: null, solve: null, frame: 0, playing: false,
+  xcol: 't', ycol: null, geometry: null, plot: null, current: null, lastOk: null,
+};
+
+// ------------------------------------------------------------------------------ API
+
+async function api(path, body, as = 'json') {
+  const init = body === undefined ? {} : {
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body),
+  };
+  const r = await fetch(path, init);
+  if (!r.ok) {
+    let info;
+    try { info = (await r.json()).error; } catch { info = { message: `${r.status} ${r.statusText}` }; }
+    const e = new Error(info.message);
+    e.info = info;
+    throw e;
+  }
+  if (as === 'json') return r.json();
+  if (as === 'text') return r.text();
+  return r.blob();
+}
+
+function status(text, bad = false) {
+  const el = $('#status');
+  el.textContent = text;
+  el.classList.toggle('bad', bad);
+}
+
+function setTitle(name) {
+  const h = $('#model-name');
+  if (name) { h.textContent = name; h.dataset.named = '1'; } else { delete h.dataset.named; h.textContent = t('noModel'); }
+  document.title = name ? `${name} · nbar` : 'nbar';
+}
+
+// ------------------------------------------------------------------------------ tabs
+
+function showTab(name) {
+  for (const b of document.querySelectorAll('[data-tab]')) b.setAttribute('aria-selected', String(b.dataset.tab === name));
+  for (const p of document.querySelectorAll('.panel')) p.classList.toggle('active', p.id === `panel-${name}`);
+  if (name === 'editor') editor.requestMeasure();
+}
+function showResultTab(name) {
+  for (const b of document.querySelectorAll('[data-rtab]')) b.setAttribute('aria-selected', String(b.dataset.rtab === name));
+  for (const p of document.querySelectorAll('.rpanel')) p.classList.toggle('active', p.id === `rpanel-${name}`);
+  if (name === 'plot') resizePlot();
+}
+
+// ------------------------------------------------------------------------------ editor
+
+let timer = 0;
+let quiet = false;
+const editor = new EditorView({
+  parent: $('#editor'),
+  extensions: [
+    basicSetup, yaml(), lintGutter(), EditorView.lineWrapping,
+    EditorView.updateListener.of((u) => {
+      if (!u.docChanged || quiet) return;
+      clearTimeout(timer);
+      timer = setTimeout(analyse, 600);
+    }),
+  ],
+});
+
+function setText(text) {
+  quiet = true;
+  editor.dispatch({ changes: { from: 0, to: editor.state.doc.length, insert: text } });
+  quiet = false;
+  clearTimeout(timer);
+  return analyse();
+}
+
+function showProblem(info) {
+  const el = $('#problems');
+  if (!info) {
+    editor.dispatch(setDiagnostics(editor.state, []));
+    el.textContent = t('noErrors');
+    el.classList.remove('bad');
+    return;
+  }
+  const doc = editor.state.doc;
+  const where = info.line ? t('errorAt', info.line, info.column ?? 1) : '';
+  el.textContent = where + info.message;
+  el.classList.add('bad');
+  if (!info.line || info.file === 'request') { editor.dispatch(setDiagnostics(editor.state, [])); return; }
+  const line = doc.line(Math.min(Math.max(info.line, 1), doc.lines));
+  const from = Math.min(line.from + Math.max((info.column ?? 1) - 1, 0), line.to);
+  const word = /^[\w.+-]+/.exec(doc.sliceString(from, line.to));
+  const to = word ? from + word[0].length : Math.min(from + 1, line.to);
+  editor.dispatch(setDiagnostics(editor.state, [{ from, to: Math.max(to, from), severity: 'error', message: info.message }]));
+}
+
+async function analyse() {
+  const seq = ++state.seq;
+  const text = editor.state.doc.toString();
+  state.text = text;
+  if (!text.trim()) { showProblem(null); return; }
+  status(t('analysing'));
+  try {
+    const check = await api('/api/check', { model: text });
+    if (seq !== state.seq) return;
+    const solve = await api('/api/solve', { model: text });
+    if (seq !== state.seq) return;
+    state.check = check;
+    state.solve = solve;
+    state.lastOk = text;
+    showProblem(null);
+    setTitle(solve.model || check.name);
+    const why = solve.complete ? '' : ` · ${t('incomplete', solve.stop_reason ?? '')}`;
+    status(`${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why}`, !solve.complete);
+    onSolved();
+    updateHash(text);
+  } catch (e) {
+    if (seq !== state.seq) return;
+    showProblem(e.info ?? { message: e.message });
+    status(t('failed'), true);
+  }
+}
+
+// ------------------------------------------------------------------------------ results
+
+function col(name) { return state.solve ? state.solve.columns.indexOf(name) : -1; }
+
+function onSolved() {
+  const { solve, check } = state;
+  const driver = (check.drivers?.[0] ?? '').split(':')[0];
+  const xs = solve.rows.map((r) => r[col(driver)]);
+  const ascending = col(driver) >= 0 && xs.every((v, i) => i === 0 || v >= xs[i - 1]);
+  state.xcol = ascending ? driver : (col('t') >= 0 && solve.rows.every((r, i, a) => i === 0 || r[col('t')] >= a[i - 1][col('t')]) ? 't' : 'step');
+  const points = [...(check.points?.ground ?? []), ...(check.points?.moving ?? [])].filter((p) => col(`${p}.x`) >= 0);
+  // Sliders, from the check's joint list: "slider BODY at POINT along P1-P2".
+  const sliders = (check.joints ?? []).map((j) => /^slider (\S+) at (\S+) along (\S+)-(\S+)$/.exec(j))
+    .filter((m) => m && [m[2], m[3], m[4]].every((p) => points.includes(p)))
+    .map((m) => ({ body: m[1], point: m[2], along: [m[3], m[4]] }));
+  state.geometry = {
+    points, sliders, ground: new Set(check.points?.ground ?? []),
+    bodies: (check.bodies ?? []).map((b) => ({ name: b.name, points: b.points.filter((p) => points.includes(p)) })),
+  };
+  // The column picker: every column but step; keep the choice across edits.
+  const pick = $('#ycol');
+  const names = solve.columns.filter((c) => c !== 'step');
+  pick.replaceChildren(...names.map((c) => new Option(c, c)));
+  if (!names.includes(state.ycol)) {
+    const angles = names.filter((c) => c.endsWith('.angle'));
+    state.ycol = angles.at(-1) ?? names.find((c) => c !== state.xcol) ?? names[0];
+  }
+  pick.value = state.ycol;
+  const scrub = $('#scrub');
+  scrub.max = String(Math.max(solve.rows.length - 1, 0));
+  state.frame = Math.min(state.frame, solve.rows.length - 1);
+  $('#drawing').innerHTML = drawingSvg(state.geometry, solve);
+  buildPlot();
+  buildTable();
+  setFrame(state.frame);
+}
+
+function fmt(v) {
+  if (v === null || v === undefined || Number.isNaN(v)) return '–';
+  const a = Math.abs(v);
+  if (a !== 0 && (a >= 1e6 || a < 1e-3)) return v.toExponential(3);
+  return String(+v.toFixed(a >= 100 ? 2 : 4));
+}
+function unitOf(name) { const i = col(name); return i >= 0 ? (state.solve.column_units[i] ?? '') : ''; }
+
+function setFrame(i) {
+  const { solve } = state;
+  if (!solve || !solve.rows.length) return;
+  const n = solve.rows.length;
+  state.frame = ((Math.round(i) % n) + n) % n;
+  const row = solve.rows[state.frame];
+  const g = document.querySelector('#drawing svg .frame');
+  if (g) g.innerHTML = frameGroup(state.geometry, solve, row);
+  $('#scrub').value = String(state.frame);
+  $('#readout').textContent = `${state.xcol} = ${fmt(row[col(state.xcol)])} ${unitOf(state.xcol)}`;
+  state.plot?.redraw(false, false);
+  const tr = $('#table tbody')?.children;
+  if (tr) {
+    $('#table tr.current')?.classList.remove('current');
+    const k = Math.round(state.frame / state.tableStride);
+    if (state.frame % state.tableStride === 0 && tr[k]) tr[k].classList.add('current');
+  }
+}
+
+// ------------------------------------------------------------------------------ dragging
+
+// A point dragged in the drawing moves it in the model: its `NAME: [x, y]` line is rewritten and
+// the model analysed again. Points are written at the start pose, so dragging shows sample 0.
+let drag = null;
+function svgPoint(e) {
+  const svg = $('#drawing svg');
+  const p = new DOMPoint(e.clientX, e.clientY).matrixTransform(svg.getScreenCTM().inverse());
+  return { x: p.x, y: -p.y };
+}
+function startDrag(e) {
+  const c = e.target.closest('circle[data-point]');
+  if (!c || !state.solve) return;
+  e.preventDefault();
+  play(false);
+  if (state.frame !== 0) setFrame(0);
+  drag = { name: c.dataset.point, id: e.pointerId, moved: false };
+  $('#drawing svg').setPointerCapture(e.pointerId);
+}
+function moveDrag(e) {
+  if (!drag || e.pointerId !== drag.id) return;
+  const p = svgPoint(e);
+  drag.moved = true;
+  drag.x = p.x; drag.y = p.y;
+  $('#drawing svg .frame').innerHTML = frameGroup(state.geometry, state.solve, state.solve.rows[0], { name: drag.name, ...p });
+}
+function endDrag(e) {
+  if (!drag || e.pointerId !== drag.id) return;
+  const d = drag;
+  drag = null;
+  if (!d.moved) return;
+  const digits = Math.max(0, Math.min(6, 2 - Math.floor(Math.log10(state.geometry.scale || 1))));
+  const doc = editor.state.doc.toString();
+  const re = new RegExp(`^(\\s*${d.name.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}\\s*:\\s*)\\[[^\\]\\n]*\\]`, 'm');
+  const m = re.exec(doc);
+  if (!m) { status(t('noDrag', d.name), true); setFrame(0); return; }
+  const text = `${m[1]}[${+d.x.toFixed(digits)}, ${+d.y.toFixed(digits)}]`;
+  quiet = true;
+  editor.dispatch({ changes: { from: m.index, to: m.index + m[0].length, insert: text } });
+  quiet = false;
+  analyse();
+}
+
+// ------------------------------------------------------------------------------ animation
+
+let last = 0;
+function tick(now) {
+  if (!state.playing) return;
+  const n = state.solve?.rows.length ?? 0;
+  if (n > 1 && last) state.frame = (state.frame + ((now - last) / 4000) * n) % n;
+  last = now;
+  if (n > 1) setFrame(Math.floor(state.frame));
+  requestAnimationFrame(tick);
+}
+function play(on) {
+  state.playing = on;
+  const b = $('#play');
+  b.textContent = on ? '❚❚' : '▶';
+  b.setAttribute('aria-label', on ? 'Pause' : 'Play');
+  last = 0;
+  if (on) requestAnimationFrame(tick);
+}
+
+// ------------------------------------------------------------------------------ plot and table
+
+function buildPlot() {
+  const el = $('#plot');
+  state.plot?.destroy();
+  state.plot = null;
+  const { solve } = state;
+  const xi = col(state.xcol); const yi = col(state.ycol);
+  if (xi < 0 || yi < 0) return;
+  const data = [solve.rows.map((r) => r[xi]), solve.rows.map((r) => r[yi])];
+  const xu = unitOf(state.xcol); const yu = unitOf(state.ycol);
+  const opts = {
+    width: Math.max(el.clientWidth, 200), height: 240,
+    scales: { x: { time: false } },
+    series: [
+      { label: `${state.xcol}${xu ? ` (${xu})` : ''}`, value: (u, v) => fmt(v) },
+      { label: `${state.ycol}${yu ? ` (${yu})` : ''}`, stroke: '#2563eb', width: 2, value: (u, v) => fmt(v) },
+    ],
+    axes: [{ label: `${state.xcol}${xu ? ` (${xu})` : ''}`, size: 40 }, { label: `${state.ycol}${yu ? ` (${yu})` : ''}`, size: 60 }],
+    cursor: { drag: { x: false, y: false } },
+    hooks: {
+      draw: [(u) => {
+        const x = data[0][Math.floor(state.frame)];
+        if (x === undefined) return;
+        const px = u.valToPos(x, 'x', true);
+        const ctx = u.ctx;
+        ctx.save();
+        ctx.strokeStyle = '#f97316'; ctx.lineWidth = 2 * devicePixelRatio;
+        ctx.beginPath(); ctx.moveTo(px, u.bbox.top); ctx.lineTo(px, u.bbox.top + u.bbox.height); ctx.stroke();
+        ctx.restore();
+      }],
+    },
+  };
+  state.plot = new uPlot(opts, data, el);
+  // Clicking (or tapping) the plot poses the mechanism at that sample.
+  state.plot.over.addEventListener('pointerdown', (e) => {
+    const r = state.plot.over.getBoundingClientRect();
+    const i = state.plot.posToIdx(e.clientX - r.left);
+    if (i !== null && i !== undefined) { play(false); setFrame(i); }
+  });
+}
+function resizePlot() {
+  const el = $('#plot');
+  if (state.plot && el.clientWidth) state.plot.setSize({ width: el.clientWidth, height: 240 });
+}
+
+function buildTable() {
+  const { solve, geometry } = state;
+  const traced = geometry.points.filter((p) => !geometry.ground.has(p)).slice(-1);
+  const names = [...new Set(['step', state.xcol, state.ycol, ...traced.flatMap((p) => [`${p}.x`, `${p}.y`])])].filter((c) => col(c) >= 0);
+  const idx = names.map(col);
+  const n = solve.rows.length;
+  state.tableStride = Math.max(1, Math.ceil(n / 400));
+  const head = `<thead><tr>${names.map((c) => `<th>${esc(c)}${unitOf(c) ? ` <small>${esc(unitOf(c))}</small>` : ''}</th>`).join('')}</tr></thead>`;
+  let body = '';
+  for (let i = 0; i < n; i += state.tableStride) {
+    body += `<tr data-i="${i}">${idx.map((k) => `<td>${fmt(solve.rows[i][k])}</td>`).join('')}</tr>`;
+  }
+  $('#table').innerHTML = `${head}<tbody>${body}</tbody>`;
+}
+
+function esc(s) { return String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c])); }
+
+// ------------------------------------------------------------------------------ gallery
+
+async function loadGallery() {
+  const { examples } = await api('/api/examples');
+  const models = examples.filter((e) => e.kind === 'model');
+  $('#gallery').replaceChildren(...models.map((e) => {
+    const li = document.createElement('li');
+    const b = document.createElement('button');
+    b.dataset.example = e.name;
+    b.innerHTML = `<b>${esc(e.title || e.name)}</b><small>${esc(e.description || '')}</small>`;
+    b.addEventListener('click', () => openExample(e.name));
+    li.append(b);
+    return li;
+  }));
+  return examples;
+}
+
+async function openExample(name) {
+  status(t('loading'));
+  const text = await api(`/api/examples/${encodeURIComponent(name)}`, undefined, 'text');
+  for (const b of document.querySelectorAll('[data-example]')) b.classList.toggle('current', b.dataset.example === name);
+  state.current = name;
+  await setText(text);
+}
+
+// ------------------------------------------------------------------------------ synthesis
+
+const num = (v) => String(+(+v).toFixed(6));
+
+// The API's design has its pivots, not a model file: the four-bar is written here, posed at the
+// first target point, its crank driven through a turn (or the design's travel).
+function designModel(d, res) {
+  const p = d.pivots;
+  const deg = res.units?.angle === 'rad' ? 180 / Math.PI : 1;
+  const start = Math.atan2(p.moving_a[1] - p.ground_a[1], p.moving_a[0] - p.ground_a[0]) * 180 / Math.PI;
+  const sign = d.direction === 'clockwise' ? -1 : 1;
+  const turn = d.input_turns_fully ? 360 : Math.abs(d.travel ?? 360) * deg;
+  const xy = (v) => `[${num(v[0])}, ${num(v[1])}]`;
+  return `# Design ${d.rank} of the five-point synthesis "${res.name}", written by the web app from the
+# design's pivots (nbar synth five-point ... --export writes the same linkage from the CLI).
+# Grashof: ${d.grashof}; minimum transmission angle ${num(d.min_transmission ?? 0)} deg.
+name: "${t('design', d.rank, res.name).replace(/"/g, "'")}"
+units: {length: ${res.units?.length ?? 'mm'}, angle: deg}
+points:
+  O2: ${xy(p.ground_a)}
+  O4: ${xy(p.ground_b)}
+  A: ${xy(p.moving_a)}
+  B: ${xy(p.moving_b)}
+  P: ${xy(p.coupler_point)}
+ground: [O2, O4]
+bodies:
+  crank: [O2, A]
+  coupler: [A, B, P]
+  rocker: [O4, B]
+drivers:
+  - {angle: crank, from: ${num(start)}, to: ${num(start + sign * turn)}, speed: 60 rpm}
+sweep: {steps: 361}
+`;
+}
+
+async function runSynthesis() {
+  const list = $('#designs');
+  const st = $('#synth-status');
+  list.replaceChildren();
+  st.textContent = t('running');
+  $('#synth-run').disabled = true;
+  try {
+    const res = await api('/api/synth/five-point', { task: $('#task').value, top: 10 });
+    st.textContent = t('designsFound', res.designs.length, res.solutions);
+    list.replaceChildren(...res.designs.map((d) => {
+      const li = document.createElement('li');
+      const tags = [d.real ? '' : `<span class="tag warn">${t('complex')}</span>`,
+        d.grashof ? `<span class="tag">${esc(d.grashof)}</span>` : '',
+        d.defect_free ? `<span class="tag">${t('defectFree')}</span>` : `<span class="tag warn">${t('defects')}</span>`].join('');
+      li.innerHTML = `<span class="rank">${d.rank}</span><span class="info">${tags}<br>${t('minMu')} ${fmt(d.min_transmission)}° · ${t('maxErr')} ${fmt(d.max_error)} ${esc(res.error_unit ?? '')}</span>`;
+      const b = document.createElement('button');
+      b.textContent = t('open');
+      b.dataset.design = d.rank;
+      b.disabled = !d.real || !d.pivots;
+      b.addEventListener('click', async () => {
+        for (const x of document.querySelectorAll('[data-example]')) x.classList.remove('current');
+        showTab('editor');
+        await setText(designModel(d, res));
+      });
+      li.append(b);
+      return li;
+    }));
+  } catch (e) {
+    const i = e.info ?? {};
+    st.textContent = (i.line ? t('errorAt', i.line, i.column ?? 1) : '') + e.message;
+  } finally {
+    $('#synth-run').disabled = false;
+  }
+}
+
+// ------------------------------------------------------------------------------ downloads
+
+function slug() { return (state.current || state.solve?.model || 'model').toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-|-$/g, '') || 'model'; }
+
+function save(blob, name) {
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(blob);
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+}
+
+async function download(kind) {
+  const model = editor.state.doc.toString();
+  const name = slug();
+  try {
+    status(t('loading'));
+    if (kind === 'csv') {
+      const s = state.solve;
+      if (!s) return;
+      const lines = [s.columns.join(','), ...s.rows.map((r) => r.map((v) => (v === null ? '' : String(v))).join(','))];
+      save(new Blob([`${lines.join('\n')}\n`], { type: 'text/csv' }), `${name}.csv`);
+    } else if (kind === 'model') {
+      save(new Blob([model], { type: 'application/yaml' }), `${name}.yaml`);
+    } else if (kind === 'svg' || kind === 'png') {
+      save(await api('/api/render', { model, kind: 'draw', format: kind, labels: true }, 'blob'), `${name}.${kind}`);
+    } else if (kind === 'gif') {
+      save(await api('/api/render', { model, kind: 'animate', format: 'gif', frames: 36 }, 'blob'), `${name}.gif`);
+    } else if (kind === 'report') {
+      save(await api('/api/report', { model }, 'blob'), `${name}-report.html`);
+    }
+    status(t('ok'));
+  } catch (e) {
+    status(`${t('failed')}: ${e.message}`, true);
+  }
+}
+
+// ------------------------------------------------------------------------------ sharing
+
+async function updateHash(text) {
+  try {
+    history.replaceState(null, '', `#m=${await encodeModel(text)}`);
+  } catch { /* no CompressionStream: no link */ }
+}
+
+// ------------------------------------------------------------------------------ start
+
+async function start() {
+  $('#lang').value = getLang();
+  translatePage();
+  $('#lang').addEventListener('change', (e) => { setLang(e.target.value); });
+  for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', () => showTab(b.dataset.tab));
+  for (const b of document.querySelectorAll('[data-rtab]')) b.addEventListener('click', () => showResultTab(b.dataset.rtab));
+  for (const b of document.querySelectorAll('[data-download]')) b.addEventListener('click', () => download(b.dataset.download));
+  $('#play').addEventListener('click', () => play(!state.playing));
+  $('#drawing').addEventListener('pointerdown', startDrag);
+  $('#drawing').addEventListener('pointermove', moveDrag);
+  $('#drawing').addEventListener('pointerup', endDrag);
+  $('#drawing').addEventListener('pointercancel', endDrag);
+  $('#scrub').addEventListener('input', (e) => { play(false); setFrame(+e.target.value); });
+  $('#ycol').addEventListener('change', (e) => { state.ycol = e.target.value; buildPlot(); buildTable(); setFrame(state.frame); });
+  $('#table').addEventListener('click', (e) => { const tr = e.target.closest('tr[data-i]'); if (tr) { play(false); setFrame(+tr.dataset.i); } });
+  $('#synth-run').addEventListener('click', runSynthesis);
+  $('#share').addEventListener('click', async () => {
+    await updateHash(editor.state.doc.toString());
+    try { await navigator.clipboard.writeText(location.href); } catch { /* http: no clipboard */ }
+    status(t('copied'));
+  });
+  new ResizeObserver(resizePlot).observe($('#plot'));
+  showTab('gallery');
+  showResultTab('plot');
+  $('#drawing').innerHTML = `<div class="empty">${esc(t('nothing'))}</div>`;
+
+  await loadGallery().catch((e) => status(e.message, true));
+  api('/api/examples/five-point-crank-rocker', undefined, 'text').then((txt) => { $('#task').value = txt; }).catch(() => {});
+  const m = /^#m=(.+)$/.exec(location.hash);
+  let opened = false;
+  if (m) {
+    try { await setText(await decodeModel(m[1])); opened = true; showTab('editor'); } catch { /* a bad link: the default */ }
+  }
+  if (!opened) await openExample('fourbar-crank-rocker');
+  document.body.dataset.ready = '1';
+}
+
+start();

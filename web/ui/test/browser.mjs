@@ -1,0 +1,242 @@
+// Browser test of the web app: starts `nbar serve` on a free port of 127.0.0.1, drives Debian's
+// Chromium (never a downloaded one) through playwright-core at a desktop and a phone viewport,
+// and saves screenshots. Exit 77 (ctest's SKIP_RETURN_CODE) when playwright-core, Chromium or
+// the built web app is missing.
+//   node web/ui/test/browser.mjs --nbar build/apps/nbar/nbar --out build/web-screenshots
+import { spawn } from 'node:child_process';
+import { existsSync, mkdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import assert from 'node:assert/strict';
+
+const SKIP = 77;
+const arg = (name, fallback) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : fallback; };
+const nbar = arg('--nbar', 'build/apps/nbar/nbar');
+const out = arg('--out', 'build/web-screenshots');
+const chromiumPath = arg('--chromium', process.env.CHROMIUM || '/usr/bin/chromium');
+
+let chromium;
+try {
+  ({ chromium } = await import('playwright-core'));
+} catch {
+  console.log('SKIP: playwright-core is not installed (npm ci in web/ui)');
+  process.exit(SKIP);
+}
+if (!existsSync(chromiumPath)) { console.log(`SKIP: no Chromium at ${chromiumPath}`); process.exit(SKIP); }
+if (!existsSync(nbar)) { console.error(`no nbar program at ${nbar}`); process.exit(1); }
+mkdirSync(out, { recursive: true });
+
+// The server, on a port the system picks; its first line says which.
+const server = spawn(nbar, ['serve', '--port', '0', '--host', '127.0.0.1'], { stdio: ['ignore', 'pipe', 'pipe'] });
+const stop = () => { try { server.kill('SIGTERM'); } catch { /* gone */ } };
+process.on('exit', stop);
+for (const signal of ['SIGINT', 'SIGTERM']) process.on(signal, () => { stop(); process.exit(1); });
+const base = await new Promise((resolve, reject) => {
+  let text = '';
+  const timer = setTimeout(() => reject(new Error(`nbar serve did not start: ${text}`)), 10000);
+  const read = (d) => {
+    text += d;
+    const m = /http:\/\/127\.0\.0\.1:(\d+)\//.exec(text);
+    if (m) { clearTimeout(timer); resolve(`http://127.0.0.1:${m[1]}/`); }
+  };
+  server.stdout.on('data', read);
+  server.stderr.on('data', read);
+  server.on('exit', (code) => reject(new Error(`nbar serve exited (${code}): ${text}`)));
+}).catch((e) => { console.error(e.message); stop(); process.exit(1); });
+const watchdog = setTimeout(() => { console.error('FAIL: over the time limit'); stop(); process.exit(1); }, 110000);
+
+const index = await (await fetch(base)).text();
+if (!index.includes('app.js')) { console.log('SKIP: this nbar carries the placeholder page, not the web app'); stop(); process.exit(SKIP); }
+
+const browser = await chromium.launch({ executablePath: chromiumPath, args: ['--no-sandbox', '--disable-gpu'] });
+const errors = [];
+let failed = false;
+
+async function open(name, viewport, mobile) {
+  const context = await browser.newContext({
+    viewport, hasTouch: mobile, isMobile: mobile, deviceScaleFactor: mobile ? 2 : 1, acceptDownloads: true, locale: 'en-US',
+  });
+  const page = await context.newPage();
+  page.on('pageerror', (e) => errors.push(`${name}: ${e.message}`));
+  // The API's 4xx answers (the model errors the test makes) are logged by Chromium: not errors.
+  page.on('console', (m) => {
+    if (m.type() === 'error' && !/Failed to load resource: .* 422/.test(m.text())) errors.push(`${name}: console: ${m.text()}`);
+  });
+  page.setDefaultTimeout(20000);
+  await page.goto(base);
+  await page.waitForSelector('body[data-ready="1"]');
+  return { context, page };
+}
+
+const shot = (page, name, fullPage = false) => page.screenshot({ path: join(out, `${name}.png`), fullPage });
+const click = (page, mobile, selector) => (mobile ? page.locator(selector).first().tap() : page.locator(selector).first().click());
+const bodies = (page) => page.locator('#drawing svg .body').count();
+
+async function openExample(page, mobile, name) {
+  const title = (await page.locator(`[data-example="${name}"] b`).textContent()).trim();
+  await click(page, mobile, '[data-tab="gallery"]');
+  await click(page, mobile, `[data-example="${name}"]`);
+  await page.waitForFunction((t) => document.querySelector('#model-name').textContent === t, title);
+  assert.ok(await bodies(page) > 0, `${name}: the drawing has bodies`);
+  return title;
+}
+
+// Replaces the text `from` of the editor's line holding `line` by `to`, typed as a user would:
+// the cursor put at the line's start, moved right, the text selected and typed over.
+async function retype(page, mobile, line, from, to) {
+  const target = page.locator('.cm-line', { hasText: line }).first();
+  const text = await target.textContent();
+  const at = text.lastIndexOf(from);
+  assert.ok(at >= 0, `"${from}" in "${text}"`);
+  if (mobile) await target.tap({ position: { x: 1, y: 4 } }); else await target.click({ position: { x: 1, y: 4 } });
+  for (let i = 0; i < at; i++) await page.keyboard.press('ArrowRight');
+  for (let i = 0; i < from.length; i++) await page.keyboard.press('Shift+ArrowRight');
+  await page.keyboard.type(to);
+}
+
+async function errorInEditor(page, mobile, tag) {
+  await openExample(page, mobile, 'fourbar-crank-rocker');
+  await click(page, mobile, '[data-tab="editor"]');
+  await retype(page, mobile, 'crank:   [O2, A]', 'A]', 'Q]');
+  await page.waitForSelector('.cm-lintRange-error');
+  const problem = await page.locator('#problems').textContent();
+  assert.match(problem, /line 16, column 17: unknown point 'Q'/);
+  assert.equal(await page.locator('.cm-lintRange-error').first().textContent(), 'Q');
+  await shot(page, `${tag}-3-error`);
+  await retype(page, mobile, 'crank:   [O2, Q]', 'Q]', 'A]');
+  await page.waitForFunction(() => document.querySelector('#problems').textContent === 'No errors.');
+  assert.equal(await page.locator('.cm-lintRange-error').count(), 0);
+}
+
+async function synthesis(page, mobile, tag) {
+  await click(page, mobile, '[data-tab="synthesis"]');
+  assert.match(await page.locator('#task').inputValue(), /task: five-point/);
+  await click(page, mobile, '#synth-run');
+  await page.waitForSelector('[data-design]', { timeout: 60000 });
+  const n = await page.locator('[data-design]').count();
+  assert.ok(n >= 1, 'at least one design');
+  assert.match(await page.locator('#synth-status').textContent(), /^\d+ designs? \(36 solutions\)$/);
+  await shot(page, `${tag}-5-synthesis`);
+  await click(page, mobile, '[data-design="1"]');
+  await page.waitForFunction(() => document.querySelector('#model-name').textContent.startsWith('Design 1'));
+  await page.waitForSelector('#drawing svg .body');
+  assert.match(await page.locator('#status').textContent(), /1 DOF · 361 samples$/);
+  await shot(page, `${tag}-6-design`);
+}
+
+async function desktop() {
+  const { context, page } = await open('desktop', { width: 1280, height: 800 }, false);
+  assert.ok(await page.locator('[data-example]').count() >= 10, 'the gallery lists the examples');
+  await shot(page, 'desktop-1-gallery');
+
+  // A model from the gallery, drawn and animated.
+  await openExample(page, false, 'slider-crank-offset');
+  assert.equal(await page.locator('#drawing svg .block').count(), 1, 'the slider block is drawn');
+  assert.equal(await page.locator('#drawing svg .guide').count(), 1, 'the slider guide is drawn');
+  await openExample(page, false, 'fourbar-crank-rocker');
+  assert.equal(await page.locator('#scrub').inputValue(), '0');
+  const before = await page.locator('#drawing svg .frame').innerHTML();
+  await page.click('#play');
+  await page.waitForTimeout(800);
+  await page.click('#play');
+  assert.ok(+(await page.locator('#scrub').inputValue()) > 0, 'the animation moved the slider');
+  assert.notEqual(await page.locator('#drawing svg .frame').innerHTML(), before, 'the animation moved the mechanism');
+  await page.locator('#scrub').fill('60');
+  assert.match(await page.locator('#readout').textContent(), /^crank = 60 deg$/);
+
+  // Clicking the plot poses the mechanism at that sample; a hover read-out in the legend.
+  await page.selectOption('#ycol', 'coupler.omega');
+  const plot = await page.locator('#plot .u-over').boundingBox();
+  await page.mouse.move(plot.x + plot.width * 0.75, plot.y + plot.height / 2);
+  await page.mouse.down(); await page.mouse.up();
+  const pose = +(await page.locator('#scrub').inputValue());
+  assert.ok(pose > 240 && pose < 300, `plot click at 3/4 poses near sample 270, not ${pose}`);
+  assert.match(await page.locator('.u-legend').textContent(), /coupler\.omega/);
+  await shot(page, 'desktop-2-model');
+  await click(page, false, '[data-tab="editor"]');
+  await shot(page, 'desktop-app');  // the README's picture, docs/images/web-desktop.png
+
+  await errorInEditor(page, false, 'desktop');
+
+  // A number changed in the editor changes the table.
+  await click(page, false, '[data-rtab="table"]');
+  const cell = () => page.locator('#table tbody tr').first().locator('td').last().textContent();
+  assert.equal(await cell(), '121.23');
+  await retype(page, false, 'P:  [77.81169, 121.227931]', '121.227931]', '150]');
+  await page.waitForFunction(() => document.querySelector('#table tbody tr td:last-child')?.textContent === '150');
+  await shot(page, 'desktop-4-table');
+
+  // The model in the link opens the same model elsewhere.
+  const link = page.url();
+  assert.match(link, /#m=[A-Za-z0-9_-]+$/);
+  const other = await context.newPage();
+  await other.goto(link);
+  await other.waitForSelector('body[data-ready="1"]');
+  assert.match(await other.locator('.cm-content').textContent(), /P: {2}\[77\.81169, 150\]/);
+  await other.close();
+
+  // A point dragged in the drawing moves in the model and the numbers follow.
+  await page.locator('#scrub').fill('90');
+  await page.locator('#drawing circle.pt[data-point="P"]').hover();  // the drag goes back to sample 0
+  await page.mouse.down();
+  const p = await page.locator('#drawing circle.pt[data-point="P"]').boundingBox();
+  await page.mouse.move(p.x + p.width / 2 + 40, p.y + p.height / 2 + 20, { steps: 5 });
+  await page.mouse.up();
+  await page.waitForFunction(() => document.querySelector('#table tbody tr td:nth-last-child(2)')?.textContent !== '77.8117');
+  assert.equal(await page.locator('#scrub').inputValue(), '0');
+  const moved = await page.locator('.cm-line', { hasText: '# coupler point' }).textContent();
+  assert.match(moved, /^ {2}P: {2}\[\d+\.?\d*, \d+\.?\d*\]/);
+  assert.doesNotMatch(moved, /77\.81169/);
+  assert.equal(await page.locator('#problems').textContent(), 'No errors.');
+  await shot(page, 'desktop-4b-dragged');
+
+  await synthesis(page, false, 'desktop');
+
+  // Downloads: the CSV built from the solve, and the server's SVG.
+  await click(page, false, '[data-tab="downloads"]');
+  const [csv] = await Promise.all([page.waitForEvent('download'), page.click('[data-download="csv"]')]);
+  const csvText = readFileSync(await csv.path(), 'utf8').split('\n');
+  assert.match(csvText[0], /^step,t,crank,O2\.x,O2\.y/);
+  assert.equal(csvText.filter(Boolean).length, 362);
+  const [svg] = await Promise.all([page.waitForEvent('download'), page.click('[data-download="svg"]')]);
+  assert.match(readFileSync(await svg.path(), 'utf8'), /<svg/);
+  await shot(page, 'desktop-7-downloads');
+
+  // Spanish.
+  await page.selectOption('#lang', 'es');
+  assert.equal(await page.locator('[data-tab="gallery"]').textContent(), 'Galería');
+  await page.selectOption('#lang', 'en');
+  await context.close();
+}
+
+async function phone() {
+  const { context, page } = await open('phone', { width: 390, height: 844 }, true);
+  assert.ok(await page.locator('[data-example]').count() >= 10);
+  const width = await page.evaluate(() => document.documentElement.scrollWidth);
+  assert.ok(width <= 390, `no sideways scrolling at 390 px (page is ${width} px wide)`);
+  await shot(page, 'phone-1-gallery');
+  await openExample(page, true, 'five-bar');
+  await page.locator('#play').tap();
+  await page.waitForTimeout(600);
+  await page.locator('#play').tap();
+  assert.ok(+(await page.locator('#scrub').inputValue()) > 0);
+  await shot(page, 'phone-2-model', true);
+  await errorInEditor(page, true, 'phone');
+  await synthesis(page, true, 'phone');
+  await context.close();
+}
+
+try {
+  await desktop();
+  await phone();
+  assert.deepEqual(errors, [], 'no errors in the page');
+  console.log(`OK: screenshots in ${out}`);
+} catch (e) {
+  failed = true;
+  console.error('FAIL:', e);
+  if (errors.length) console.error(errors.join('\n'));
+} finally {
+  clearTimeout(watchdog);
+  await browser.close();
+  stop();
+}
+process.exit(failed ? 1 : 0);
