@@ -119,7 +119,9 @@ TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
     SCOPED_TRACE(file);
     const ApiResponse r = post("/api/synth/" + kind, with_task(file, {{"all", true}, {"top", 5}}));
     ASSERT_EQ(r.status, 200) << r.body;
-    EXPECT_EQ(r.body, cli("synth " + kind + " " + file + " --all --top 5 --format json").out);
+    // The same designs; the last bits of the homotopy's numbers may differ between runs in
+    // unoptimised builds (paths on several threads), so numbers are compared to 1e-9.
+    EXPECT_TRUE(json_near(Json::parse(r.body), Json::parse(cli("synth " + kind + " " + file + " --all --top 5 --format json").out)));
   }
   const ApiResponse five = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml"));
   ASSERT_EQ(five.status, 200);
@@ -128,8 +130,10 @@ TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
   const ApiResponse seeded = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml",
                                                                     {{"seed", 7}, {"threads", 1}, {"top", 0}}));
   ASSERT_EQ(seeded.status, 200) << seeded.body;
-  EXPECT_EQ(seeded.body,
-            cli("synth five-point examples/synthesis/five-point-crank-rocker.yaml --seed 7 --top 0 --format json").out);
+  EXPECT_TRUE(json_near(Json::parse(seeded.body),
+                        Json::parse(cli("synth five-point examples/synthesis/five-point-crank-rocker.yaml --seed 7 --top 0 "
+                                        "--format json")
+                                        .out)));
   // The task as a JSON object.
   const Json task = {{"task", "function"}, {"name", "square"}, {"function", "x^2"}, {"x", {0, 1}},
                      {"input_range", {90, 150}}, {"output_range", {60, 120}}};

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -66,6 +68,35 @@ inline std::string header(const ApiResponse& r, const std::string& name) {
   for (const auto& [n, v] : r.headers)
     if (n == name) return v;
   return {};
+}
+
+// The same JSON up to rounding: equal structure, strings and booleans; numbers within
+// `absolute` + `relative` x their size. For results that may differ in their last bits between
+// runs (synthesis paths tracked on several threads in unoptimised builds).
+inline ::testing::AssertionResult json_near(const Json& a, const Json& b, double relative = 1e-9,
+                                            double absolute = 1e-5, const std::string& at = "$") {
+  if (a.is_number() && b.is_number()) {
+    const double x = a.get<double>(), y = b.get<double>();
+    if (std::abs(x - y) <= absolute + relative * std::max(std::abs(x), std::abs(y))) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << at << ": " << x << " != " << y;
+  }
+  if (a.type() != b.type()) return ::testing::AssertionFailure() << at << ": " << a.dump() << " != " << b.dump();
+  if (a.is_object()) {
+    if (a.size() != b.size()) return ::testing::AssertionFailure() << at << ": different keys";
+    for (const auto& [key, value] : a.items()) {
+      if (!b.contains(key)) return ::testing::AssertionFailure() << at << ": no " << key;
+      if (auto r = json_near(value, b[key], relative, absolute, at + "." + key); !r) return r;
+    }
+    return ::testing::AssertionSuccess();
+  }
+  if (a.is_array()) {
+    if (a.size() != b.size()) return ::testing::AssertionFailure() << at << ": " << a.size() << " != " << b.size() << " items";
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (auto r = json_near(a[i], b[i], relative, absolute, at + "[" + std::to_string(i) + "]"); !r) return r;
+    return ::testing::AssertionSuccess();
+  }
+  if (a == b) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << at << ": " << a.dump() << " != " << b.dump();
 }
 
 // Runs nbar ARGS from the repository's root.
