@@ -25,21 +25,6 @@ const char* error_class(ErrorKind kind) {
   return "Error";
 }
 
-const char* entity_kind(EntityRef::Kind kind) {
-  switch (kind) {
-    case EntityRef::Kind::Model: return "model";
-    case EntityRef::Kind::Point: return "point";
-    case EntityRef::Kind::Body: return "body";
-    case EntityRef::Kind::Slider: return "slider";
-    case EntityRef::Kind::Slot: return "slot";
-    case EntityRef::Kind::Driver: return "driver";
-    case EntityRef::Kind::Sweep: return "sweep";
-    case EntityRef::Kind::PointLoad: return "force";
-    case EntityRef::Kind::Torque: return "torque";
-    case EntityRef::Kind::Spring: return "spring";
-  }
-  return "model";
-}
 
 void raise(const Error& e) {
   py::object errors = py::module_::import("nbar.errors");
@@ -49,7 +34,7 @@ void raise(const Error& e) {
   py::object column = e.mark().column > 0 ? py::object(py::int_(e.mark().column)) : py::none();
   py::object entity = py::none();
   if (e.where().kind != EntityRef::Kind::Model && e.where().index >= 0)
-    entity = py::make_tuple(entity_kind(e.where().kind), e.where().index);
+    entity = py::make_tuple(to_string(e.where().kind), e.where().index);
   py::object instance = cls(e.message(), py::arg("kind") = to_string(e.kind()), py::arg("file") = file,
                             py::arg("line") = line, py::arg("column") = column, py::arg("entity") = entity);
   PyErr_SetObject(cls.ptr(), instance.ptr());

@@ -14,6 +14,22 @@ const char* to_string(ErrorKind kind) {
   return "error";
 }
 
+const char* to_string(EntityRef::Kind kind) {
+  switch (kind) {
+    case EntityRef::Kind::Model: return "model";
+    case EntityRef::Kind::Point: return "point";
+    case EntityRef::Kind::Body: return "body";
+    case EntityRef::Kind::Slider: return "slider";
+    case EntityRef::Kind::Slot: return "slot";
+    case EntityRef::Kind::Driver: return "driver";
+    case EntityRef::Kind::Sweep: return "sweep";
+    case EntityRef::Kind::PointLoad: return "force";
+    case EntityRef::Kind::Torque: return "torque";
+    case EntityRef::Kind::Spring: return "spring";
+  }
+  return "model";
+}
+
 std::string compose_location(const std::string& file, SourceMark mark, const std::string& message) {
   if (file.empty()) return message;
   if (mark.line <= 0) return file + ": " + message;

@@ -70,21 +70,6 @@ ApiResponse error_answer(ApiErrorKind kind, const std::string& message, const Js
 
 namespace {
 
-const char* entity_kind(EntityRef::Kind kind) {
-  switch (kind) {
-    case EntityRef::Kind::Model: return "model";
-    case EntityRef::Kind::Point: return "point";
-    case EntityRef::Kind::Body: return "body";
-    case EntityRef::Kind::Slider: return "slider";
-    case EntityRef::Kind::Slot: return "slot";
-    case EntityRef::Kind::Driver: return "driver";
-    case EntityRef::Kind::Sweep: return "sweep";
-    case EntityRef::Kind::PointLoad: return "force";
-    case EntityRef::Kind::Torque: return "torque";
-    case EntityRef::Kind::Spring: return "spring";
-  }
-  return "model";
-}
 
 // The entity's name in the model, when it has one.
 std::string entity_name(const Model& m, const EntityRef& ref) {
@@ -117,7 +102,7 @@ ApiResponse error_answer(const Error& error, const Model* model, const io::Sourc
   }
   const EntityRef& where = error.where();
   if (where.kind != EntityRef::Kind::Model && where.index >= 0) {
-    Json entity = {{"kind", entity_kind(where.kind)}, {"index", where.index}};
+    Json entity = {{"kind", to_string(where.kind)}, {"index", where.index}};
     if (model) {
       const std::string name = entity_name(*model, where);
       if (!name.empty()) entity["name"] = name;

@@ -35,6 +35,10 @@ struct EntityRef {
   int index = -1;
 };
 
+// "model", "point", "body", "slider", "slot", "driver", "sweep", "force", "torque", "spring":
+// stable names of the kinds of entity for JSON and Python.
+const char* to_string(EntityRef::Kind kind);
+
 class Error : public std::runtime_error {
  public:
   // what() is "file:line:column: message", "file: message" without a line, or the message alone
