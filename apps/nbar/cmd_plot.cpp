@@ -105,14 +105,7 @@ int run_plot(const PlotArgs& args) {
   }
   spec.width = args.width;
   spec.height = args.height;
-  spec.x_name = x_column.columns[0];
-  spec.x_unit = x_column.units[0];
-  for (const auto& row : x_column.rows) spec.x.push_back(row[0]);
-  for (std::size_t c = 0; c < y_columns.columns.size(); ++c) {
-    render::PlotSeries s{y_columns.columns[c], y_columns.units[c], {}};
-    for (const auto& row : y_columns.rows) s.y.push_back(row[c]);
-    spec.series.push_back(std::move(s));
-  }
+  render::set_plot_data(spec, x_column, y_columns);
 
   if (format == ".svg") {
     render::SvgCanvas canvas(spec.width, spec.height);

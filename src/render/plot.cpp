@@ -510,4 +510,17 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
   return layout.frame;
 }
 
+void set_plot_data(PlotSpec& spec, const ResultTable& x_column, const ResultTable& y_columns) {
+  spec.x_name = x_column.columns.at(0);
+  spec.x_unit = x_column.units.at(0);
+  spec.x.clear();
+  for (const auto& row : x_column.rows) spec.x.push_back(row[0]);
+  spec.series.clear();
+  for (std::size_t c = 0; c < y_columns.columns.size(); ++c) {
+    PlotSeries s{y_columns.columns[c], y_columns.units[c], {}};
+    for (const auto& row : y_columns.rows) s.y.push_back(row[c]);
+    spec.series.push_back(std::move(s));
+  }
+}
+
 }  // namespace nbar::render

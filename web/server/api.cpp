@@ -484,14 +484,7 @@ ApiResponse render_plot(Job& job, const std::string& request) {
   }
   spec.width = width;
   spec.height = height;
-  spec.x_name = x_column.columns[0];
-  spec.x_unit = x_column.units[0];
-  for (const auto& row : x_column.rows) spec.x.push_back(row[0]);
-  for (std::size_t c = 0; c < y_columns.columns.size(); ++c) {
-    render::PlotSeries s{y_columns.columns[c], y_columns.units[c], {}};
-    for (const auto& row : y_columns.rows) s.y.push_back(row[c]);
-    spec.series.push_back(std::move(s));
-  }
+  render::set_plot_data(spec, x_column, y_columns);
   job.checkpoint("render");
   if (format == "svg") {
     render::SvgCanvas canvas(spec.width, spec.height);

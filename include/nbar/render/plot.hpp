@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "nbar/kinematics/table.hpp"
 #include "nbar/render/canvas.hpp"
 
 namespace nbar::render {
@@ -27,6 +28,10 @@ struct PlotSpec {
   std::optional<double> y_lo, y_hi;
   int width = 900, height = 520;  // px: the size of the canvas to make (draw_plot uses the canvas's own)
 };
+
+// The x data and the series of `spec` from result columns: the first column of `x_column`
+// along x, one series per column of `y_columns` (both tables with the same rows).
+void set_plot_data(PlotSpec& spec, const ResultTable& x_column, const ResultTable& y_columns);
 
 // Where the data went: the plot area in pixels and the data ranges its edges stand for.
 struct PlotFrame {
