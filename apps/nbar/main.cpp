@@ -70,12 +70,7 @@ int run_solve(const SolveArgs& args) {
   Output output;
   if (!output.open(args.output)) return kBadUsage;
   std::ostream& out = output.stream();
-  if (args.format == "json")
-    nbar::io::write_json(out, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr);
-  else if (args.format == "table")
-    nbar::io::write_text_table(out, table);
-  else
-    nbar::io::write_csv(out, table);
+  nbar::io::write_table(out, args.format, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr);
   out.flush();
   print_warnings(analysis.warnings());
   return finish(args.model, analysis.sweep);
@@ -102,12 +97,7 @@ int write_section_profile(const StressArgs& args, const nbar::Analysis& analysis
   const int step = args.profile_step.value_or(0);
   if (!check_step(step, analysis.sweep)) return kBadUsage;
   const nbar::ResultTable t = nbar::section_profile_table(analysis, body, step);
-  if (args.format == "json")
-    nbar::io::write_json(out, analysis, t);
-  else if (args.format == "csv")
-    nbar::io::write_csv(out, t);
-  else
-    nbar::io::write_text_table(out, t);
+  nbar::io::write_table(out, args.format, analysis, t);
   return kOk;
 }
 

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -94,6 +96,18 @@ void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& 
   j["column_units"] = table.units;
   j["rows"] = table.rows;
   out << j.dump(1) << '\n';
+}
+
+void write_table(std::ostream& out, const std::string& format, const Analysis& analysis, const ResultTable& table,
+                 const DynamicsStage* dynamics) {
+  if (format == "json")
+    write_json(out, analysis, table, dynamics);
+  else if (format == "table")
+    write_text_table(out, table);
+  else if (format == "csv")
+    write_csv(out, table);
+  else
+    throw std::invalid_argument("a table is written as csv, table or json, not '" + format + "'");
 }
 
 void write_stress_report(std::ostream& out, const std::string& format, const Analysis& analysis) {

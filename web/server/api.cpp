@@ -291,12 +291,7 @@ ApiResponse api_solve(Job& job, const std::string& request) {
     }
   }
   return answer(write([&](std::ostream& out) {
-                  if (format == "json")
-                    io::write_json(out, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr);
-                  else if (format == "table")
-                    io::write_text_table(out, table);
-                  else
-                    io::write_csv(out, table);
+                  io::write_table(out, format, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr);
                 }),
                 text_type(format));
 }
@@ -323,15 +318,7 @@ ApiResponse api_stress(Job& job, const std::string& request) {
   if (!profile) return answer(write([&](std::ostream& out) { io::write_stress_report(out, format, analysis); }), text_type(format));
   if (!analysis.stress->links->analysed(profile_body)) bad_input("section_profile: '" + *profile + "' has no shape to cut");
   const ResultTable t = section_profile_table(analysis, profile_body, static_cast<int>(step.value_or(0)));
-  return answer(write([&](std::ostream& out) {
-                  if (format == "json")
-                    io::write_json(out, analysis, t);
-                  else if (format == "csv")
-                    io::write_csv(out, t);
-                  else
-                    io::write_text_table(out, t);
-                }),
-                text_type(format));
+  return answer(write([&](std::ostream& out) { io::write_table(out, format, analysis, t); }), text_type(format));
 }
 
 ApiResponse api_synth(Job& job, const std::string& request, synthesis::SynthesisKind kind) {

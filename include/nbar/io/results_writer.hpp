@@ -23,6 +23,11 @@ void write_text_table(std::ostream& out, const ResultTable& table);
 void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& table,
                 const DynamicsStage* dynamics = nullptr);
 
+// The table in `format`: "csv" (write_csv), "table" (write_text_table) or "json" (write_json with
+// `dynamics`); throws std::invalid_argument for another format.
+void write_table(std::ostream& out, const std::string& format, const Analysis& analysis, const ResultTable& table,
+                 const DynamicsStage* dynamics = nullptr);
+
 // The largest von Mises stress of every link over the sweep, where and when, and its safety
 // factor: format "table", "csv" or "json". Stresses in MPa, forces in N, moments in N m,
 // positions in the model's length unit (x along the link from its first point to its second,
