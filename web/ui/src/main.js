@@ -11,6 +11,10 @@ import { setDiagnostics, lintGutter } from '@codemirror/lint';
 import { t, setLang, getLang, translatePage } from './i18n.js';
 import { drawingSvg, frameGroup } from './drawing.js';
 import { encodeModel, decodeModel } from './share.js';
+import { initModelEdit, applyEdit } from './model-edit.js';
+import { initCanvasTools } from './canvas-tools.js';
+import { initTables, showBody } from './tables.js';
+import { setIn } from './yaml-text.js';
 
 const $ = (s) => document.querySelector(s);
 const state = {
@@ -83,6 +87,7 @@ function setText(text) {
   editor.dispatch({ changes: { from: 0, to: editor.state.doc.length, insert: text } });
   quiet = false;
   clearTimeout(timer);
+  document.dispatchEvent(new Event('nbar:opened'));
   return analyse();
 }
 
@@ -126,10 +131,12 @@ async function analyse() {
     status(`${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why}`, !solve.complete);
     onSolved();
     updateHash(text);
+    document.dispatchEvent(new CustomEvent('nbar:analysed', { detail: { error: null } }));
   } catch (e) {
     if (seq !== state.seq) return;
     showProblem(e.info ?? { message: e.message });
     status(t('failed'), true);
+    document.dispatchEvent(new CustomEvent('nbar:analysed', { detail: { error: e.info ?? { message: e.message } } }));
   }
 }
 
@@ -229,15 +236,8 @@ function endDrag(e) {
   drag = null;
   if (!d.moved) return;
   const digits = Math.max(0, Math.min(6, 2 - Math.floor(Math.log10(state.geometry.scale || 1))));
-  const doc = editor.state.doc.toString();
-  const re = new RegExp(`^(\\s*${d.name.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}\\s*:\\s*)\\[[^\\]\\n]*\\]`, 'm');
-  const m = re.exec(doc);
-  if (!m) { status(t('noDrag', d.name), true); setFrame(0); return; }
-  const text = `${m[1]}[${+d.x.toFixed(digits)}, ${+d.y.toFixed(digits)}]`;
-  quiet = true;
-  editor.dispatch({ changes: { from: m.index, to: m.index + m[0].length, insert: text } });
-  quiet = false;
-  analyse();
+  // The point's value in the YAML is replaced where it is, the rest of the text kept as written.
+  if (!applyEdit((text) => setIn(text, ['points', d.name], [+d.x.toFixed(digits), +d.y.toFixed(digits)]))) setFrame(0);
 }
 
 // ------------------------------------------------------------------------------ animation
@@ -489,6 +489,9 @@ async function start() {
     status(t('copied'));
   });
   new ResizeObserver(resizePlot).observe($('#plot'));
+  initModelEdit({ editor, state, status, showTab, setFrame, analyse: () => { clearTimeout(timer); return analyse(); } });
+  initCanvasTools(showBody);
+  initTables();
   showTab('gallery');
   showResultTab('plot');
   $('#drawing').innerHTML = `<div class="empty">${esc(t('nothing'))}</div>`;

@@ -1,0 +1,284 @@
+// The Model tab: the model's points, bodies, joints, drivers and loads as tables of fields, and
+// the selected body's properties (bar or shape, thickness, material, mass). The tables are read
+// from the editor's text and every change is written back into it (model-edit.js); a value the
+// server rejects is marked in its field with the server's message.
+import { t } from './i18n.js';
+import { setIn, deleteIn, parseModel } from './yaml-text.js';
+import { applyEdit, modelText, editContext } from './model-edit.js';
+import { selectBody } from './canvas-tools.js';
+
+const $ = (s) => document.querySelector(s);
+const builtInMaterials = ['steel', 'stainless-steel', 'aluminium', 'brass', 'cast-iron', 'titanium', 'abs', 'acrylic', 'nylon'];
+let selected = null;
+let lastError = null;
+
+const esc = (s) => String(s ?? '').replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
+const isObj = (v) => v && typeof v === 'object' && !Array.isArray(v);
+
+// A field's text as typed, back to a YAML value: '' removes the key; numbers stay numbers;
+// 'list' fields are comma-separated names; anything else is written as text for the server to
+// judge (a bad value then gets its located error).
+function parseField(kind, s) {
+  const v = s.trim();
+  if (v === '') return undefined;
+  if (kind === 'list') return v.replace(/^\[|\]$/g, '').split(',').map((x) => x.trim()).filter(Boolean);
+  if (kind === 'pair') {
+    const parts = v.replace(/^\[|\]$/g, '').split(',').map((x) => x.trim());
+    return parts.map((x) => (/^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(x) ? Number(x) : x));
+  }
+  if (/^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(v)) return Number(v);
+  return v;
+}
+function showValue(v) {
+  if (v === undefined || v === null) return '';
+  if (Array.isArray(v)) return v.map(showValue).join(', ');
+  if (isObj(v)) return JSON.stringify(v);
+  return String(v);
+}
+
+// <input> for the value at `path`; `kind` says how to read it back.
+function field(path, value, kind = 'num', label = '') {
+  const attrs = `data-path="${esc(JSON.stringify(path))}" data-kind="${kind}" aria-label="${esc(label || path.join(' '))}"`;
+  const mode = kind === 'num' ? ' inputmode="decimal"' : '';
+  return `<input class="cell" ${attrs}${mode} value="${esc(showValue(value))}" spellcheck="false" autocomplete="off">`;
+}
+
+function commit(input) {
+  const path = JSON.parse(input.dataset.path);
+  const value = parseField(input.dataset.kind, input.value);
+  applyEdit((text) => (value === undefined ? deleteIn(text, path) : setIn(text, path, value)));
+}
+
+// ------------------------------------------------------------------------------ sections
+
+function section(title, head, rows, empty) {
+  const body = rows.length ? rows.join('') : `<tr><td colspan="${head.length}" class="none">${esc(empty)}</td></tr>`;
+  return `<h3>${esc(title)}</h3><div class="mtable"><table><thead><tr>${head.map((h) => `<th>${esc(h)}</th>`).join('')}</tr></thead><tbody>${body}</tbody></table></div>`;
+}
+
+function pointsSection(m) {
+  const ground = new Set(Array.isArray(m.ground) ? m.ground : []);
+  const rows = Object.entries(isObj(m.points) ? m.points : {}).map(([p, xy]) => {
+    const pair = Array.isArray(xy);
+    return `<tr data-row-point="${esc(p)}"><th>${esc(p)}</th>`
+      + `<td>${pair ? field(['points', p, 0], xy[0], 'num', `${p} x`) : field(['points', p], xy, 'pair', p)}</td>`
+      + `<td>${pair ? field(['points', p, 1], xy[1], 'num', `${p} y`) : ''}</td>`
+      + `<td><input type="checkbox" class="ground" data-point="${esc(p)}" aria-label="${esc(t('groundOf', p))}"${ground.has(p) ? ' checked' : ''}></td></tr>`;
+  });
+  return section(t('points'), [t('name'), 'x', 'y', t('ground')], rows, t('none'));
+}
+
+function bodiesSection(m) {
+  const lengths = isObj(m.lengths) ? m.lengths : {};
+  const rows = Object.entries(isObj(m.bodies) ? m.bodies : {}).map(([b, v]) => {
+    const long = isObj(v);
+    const pts = long ? v.points : v;
+    const path = long ? ['bodies', b, 'points'] : ['bodies', b];
+    const two = Array.isArray(pts) && pts.length === 2;
+    return `<tr data-row-body="${esc(b)}"><th><button type="button" class="link" data-select-body="${esc(b)}">${esc(b)}</button></th>`
+      + `<td>${field(path, pts, 'list', `${b} ${t('bodyPoints')}`)}</td>`
+      + `<td>${two ? field(['lengths', b], lengths[b], 'num', `${b} ${t('length')}`) : ''}</td></tr>`;
+  });
+  return section(t('bodies'), [t('name'), t('bodyPoints'), t('length')], rows, t('none'));
+}
+
+// Revolute joints are implicit (bodies sharing a point), listed from the server's check; sliders
+// and slots are written in the model and edited here.
+function jointsSection(m) {
+  const check = editContext().state.check;
+  const rows = (check?.joints ?? []).filter((j) => j.startsWith('revolute')).map((j) => `<tr><td colspan="3" class="note">${esc(j)}</td></tr>`);
+  for (const kind of ['sliders', 'slots']) {
+    (Array.isArray(m[kind]) ? m[kind] : []).forEach((s, i) => {
+      if (!isObj(s)) return;
+      rows.push(`<tr><th>${kind === 'sliders' ? t('slider') : t('slot')}${s.body ? ` ${esc(s.body)}` : ''}</th>`
+        + `<td>${field([kind, i, 'point'], s.point, 'text', `${kind} ${i + 1} point`)}</td>`
+        + `<td>${field([kind, i, 'along'], s.along, 'list', `${kind} ${i + 1} along`)}</td></tr>`);
+    });
+  }
+  return section(t('joints'), [t('joint'), t('point'), t('along')], rows, t('none'));
+}
+
+function driversSection(m) {
+  const rows = (Array.isArray(m.drivers) ? m.drivers : []).map((d, i) => {
+    if (!isObj(d)) return '';
+    const what = ['angle', 'distance', 'slide'].find((k) => k in d);
+    const label = what ? `${what}: ${showValue(d[what])}${d.relative_to ? ` / ${d.relative_to}` : ''}` : '?';
+    const cells = d.law !== undefined
+      ? `<td colspan="3">${field(['drivers', i, 'law'], d.law, 'text', `driver ${i + 1} law`)}</td>`
+      : ['from', 'to', 'speed'].map((k) => `<td>${field(['drivers', i, k], d[k], 'num', `driver ${i + 1} ${k}`)}</td>`).join('');
+    return `<tr><th>${esc(label)}</th>${cells}</tr>`;
+  });
+  return section(t('drivers'), [t('driver'), t('from'), t('to'), t('speed')], rows, t('none'));
+}
+
+function loadsSection(m) {
+  const rows = [];
+  (Array.isArray(m.forces) ? m.forces : []).forEach((f, i) => {
+    if (!isObj(f)) return;
+    const comps = Array.isArray(f.force)
+      ? `<td>${field(['forces', i, 'force', 0], f.force[0], 'num', `force ${i + 1} fx`)}</td><td>${field(['forces', i, 'force', 1], f.force[1], 'num', `force ${i + 1} fy`)}</td>`
+      : `<td>${field(['forces', i, 'fx'], f.fx, 'num', `force ${i + 1} fx`)}</td><td>${field(['forces', i, 'fy'], f.fy, 'num', `force ${i + 1} fy`)}</td>`;
+    rows.push(`<tr><th>${t('force')} ${esc(f.point)}</th>${comps}</tr>`);
+  });
+  (Array.isArray(m.torques) ? m.torques : []).forEach((q, i) => {
+    if (!isObj(q)) return;
+    rows.push(`<tr><th>${t('torque')} ${esc(q.body)}</th><td colspan="2">${field(['torques', i, 'torque'], q.torque, 'num', `torque ${i + 1}`)}</td></tr>`);
+  });
+  (Array.isArray(m.springs) ? m.springs : []).forEach((s, i) => {
+    if (!isObj(s)) return;
+    rows.push(`<tr><th>${t('spring')} ${esc(showValue(s.between))}</th><td>${field(['springs', i, 'stiffness'], s.stiffness, 'num', `spring ${i + 1} stiffness`)}</td>`
+      + `<td>${field(['springs', i, 'free_length'], s.free_length, 'num', `spring ${i + 1} free length`)}</td></tr>`);
+  });
+  return section(t('loads'), [t('load'), t('value1'), t('value2')], rows, t('noLoads'));
+}
+
+// ------------------------------------------------------------------------------ body panel
+
+// The path of a body property: the long form's key; a short-form body is rewritten in long form
+// ({points: [...], key: value}) by the first property set on it.
+function setBodyProperty(name, key, value) {
+  applyEdit((text) => {
+    const body = parseModel(text).toJS()?.bodies?.[name];
+    if (value === undefined) return isObj(body) ? deleteIn(text, ['bodies', name, key]) : text;
+    if (isObj(body)) return setIn(text, ['bodies', name, key], value);
+    return setIn(text, ['bodies', name], { points: body ?? [], [key]: value });
+  });
+}
+
+function bodyPanel(m) {
+  const body = m.bodies?.[selected];
+  if (body === undefined) return '';
+  const b = isObj(body) ? body : { points: body };
+  const form = b.shape ? 'shape' : (b.bar ? 'bar' : 'none');
+  const mats = [...builtInMaterials, ...Object.keys(isObj(m.materials) ? m.materials : {})];
+  const opt = (v, label) => `<option value="${v}"${form === v ? ' selected' : ''}>${esc(label)}</option>`;
+  const bar = isObj(b.bar) ? b.bar : {};
+  const row = (label, html) => `<label class="prop"><span>${esc(label)}</span>${html}</label>`;
+  const prop = (key, label) => row(label, `<input class="cell" data-body-prop="${key}" inputmode="decimal" value="${esc(showValue(b[key]))}" aria-label="${esc(label)}">`);
+  const barField = (key, label) => row(label, `<input class="cell" data-bar-prop="${key}" inputmode="decimal" value="${esc(showValue(bar[key]))}" aria-label="${esc(label)}">`);
+  return `<div class="bodypanel" data-body-panel="${esc(selected)}">
+    <div class="row"><h3>${esc(t('bodyTitle', selected))}</h3><button type="button" class="ghost" data-close-body aria-label="${esc(t('close'))}">×</button></div>
+    ${row(t('bodyPoints'), `<input class="cell" data-body-prop="points" data-kind="list" value="${esc(showValue(b.points))}" aria-label="${esc(t('bodyPoints'))}">`)}
+    ${row(t('form'), `<select data-body-form aria-label="${esc(t('form'))}">${opt('none', t('formNone'))}${opt('bar', t('formBar'))}${form === 'shape' ? opt('shape', t('formShape')) : ''}</select>`)}
+    ${form === 'bar' ? barField('width', t('barWidth')) + barField('margin', t('barMargin')) + barField('hole', t('barHole')) : ''}
+    ${form === 'shape' ? `<p class="hint">${esc(t('shapeInYaml'))}</p>` : ''}
+    ${prop('thickness', t('thickness'))}
+    ${row(t('material'), `<input class="cell" data-body-prop="material" data-kind="text" list="nbar-materials" value="${esc(isObj(b.material) ? '' : showValue(b.material))}" aria-label="${esc(t('material'))}"><datalist id="nbar-materials">${mats.map((x) => `<option value="${esc(x)}">`).join('')}</datalist>`)}
+    ${prop('mass', t('mass'))}
+    ${prop('inertia', t('inertia'))}
+  </div>`;
+}
+
+function commitBody(input) {
+  if (input.dataset.bodyProp) {
+    setBodyProperty(selected, input.dataset.bodyProp, parseField(input.dataset.kind || 'num', input.value));
+  } else if (input.dataset.barProp) {
+    const v = parseField('num', input.value);
+    applyEdit((text) => (v === undefined ? deleteIn(text, ['bodies', selected, 'bar', input.dataset.barProp]) : setIn(text, ['bodies', selected, 'bar', input.dataset.barProp], v)));
+  } else if (input.dataset.bodyForm !== undefined) {
+    const form = input.value;
+    applyEdit((text) => {
+      const m = parseModel(text).toJS();
+      const body = m.bodies?.[selected];
+      let out = text;
+      if (form === 'none') {
+        if (isObj(body)) for (const k of ['bar', 'shape']) out = deleteIn(out, ['bodies', selected, k]);
+        return out;
+      }
+      // A first guess for the bar's width, a tenth of the body's drawn length, for the user to set.
+      const pts = (isObj(body) ? body.points : body) ?? [];
+      const [p, q] = pts.slice(0, 2).map((n) => m.points?.[n]);
+      const len = p && q ? Math.hypot(q[0] - p[0], q[1] - p[1]) : 10;
+      const width = +(len / 10).toPrecision(2) || 1;
+      if (!isObj(body)) return setIn(out, ['bodies', selected], { points: pts, bar: { width } });
+      return setIn(out, ['bodies', selected, 'bar'], { width });
+    });
+  }
+}
+
+// ------------------------------------------------------------------------------ rendering
+
+// Marks the field whose value the server's error points at (its line and column).
+function markError() {
+  for (const x of document.querySelectorAll('#model-tables .cell.bad')) { x.classList.remove('bad'); x.removeAttribute('title'); }
+  const note = $('#model-problem');
+  if (!note) return;
+  note.textContent = lastError ? `${lastError.line ? t('errorAt', lastError.line, lastError.column ?? 1) : ''}${lastError.message}` : '';
+  note.hidden = !lastError;
+  if (!lastError?.line) return;
+  const text = modelText();
+  const lines = text.split('\n');
+  let at = 0;
+  for (let i = 0; i < Math.min(lastError.line - 1, lines.length); i++) at += lines[i].length + 1;
+  at += Math.max((lastError.column ?? 1) - 1, 0);
+  let doc;
+  try { doc = parseModel(text); } catch { return; }
+  let best = null;
+  for (const input of document.querySelectorAll('#model-tables .cell[data-path]')) {
+    const node = doc.getIn(JSON.parse(input.dataset.path), true);
+    if (node?.range && at >= node.range[0] && at <= node.range[1] && (!best || node.range[1] - node.range[0] < best.size)) {
+      best = { input, size: node.range[1] - node.range[0] };
+    }
+  }
+  if (best) { best.input.classList.add('bad'); best.input.title = lastError.message; }
+}
+
+export function renderTables() {
+  const host = $('#model-tables');
+  if (!host) return;
+  const focused = document.activeElement?.closest?.('#model-tables') ? document.activeElement : null;
+  const keep = focused && (focused.dataset.path || focused.dataset.bodyProp || focused.dataset.barProp);
+  const m = (() => { try { return parseModel(modelText()).toJS() ?? {}; } catch { return null; } })();
+  if (!m) {
+    host.innerHTML = `<p id="model-problem" class="problems bad"></p><p class="hint">${esc(t('fixYamlFirst'))}</p>`;
+    markError();
+    return;
+  }
+  if (selected && m.bodies?.[selected] === undefined) selected = null;
+  host.innerHTML = `<p id="model-problem" class="problems bad" hidden></p>${selected ? bodyPanel(m) : `<p class="hint">${esc(t('modelHint'))}</p>`}`
+    + pointsSection(m) + bodiesSection(m) + jointsSection(m) + driversSection(m) + loadsSection(m);
+  markError();
+  if (keep) {
+    const sel = focused.dataset.path ? `[data-path="${CSS.escape(focused.dataset.path)}"]`
+      : focused.dataset.bodyProp ? `[data-body-prop="${focused.dataset.bodyProp}"]` : `[data-bar-prop="${focused.dataset.barProp}"]`;
+    host.querySelector(sel)?.focus();
+  }
+}
+
+export function showBody(name) {
+  selected = name;
+  selectBody(name);
+  renderTables();
+  if (name) {
+    editContext().showTab('model');
+    $('#model-tables .bodypanel')?.scrollIntoView({ block: 'nearest' });
+  }
+}
+
+export function initTables() {
+  const host = $('#model-tables');
+  // A field is written when it is left or Enter is pressed, not at each keystroke.
+  host.addEventListener('change', (e) => {
+    const x = e.target;
+    if (x.matches('input.ground')) {
+      const name = x.dataset.point;
+      applyEdit((text) => {
+        const g = parseModel(text).toJS()?.ground;
+        const list = Array.isArray(g) ? g : [];
+        const i = list.indexOf(name);
+        if (x.checked && i < 0) return setIn(text, ['ground', list.length], name);
+        if (!x.checked && i >= 0) return deleteIn(text, ['ground', i]);
+        return text;
+      });
+    } else if (x.dataset.path) commit(x);
+    else commitBody(x);
+  });
+  host.addEventListener('keydown', (e) => { if (e.key === 'Enter' && e.target.matches('input.cell')) e.target.blur(); });
+  host.addEventListener('click', (e) => {
+    const b = e.target.closest('[data-select-body]');
+    if (b) showBody(b.dataset.selectBody);
+    if (e.target.closest('[data-close-body]')) showBody(null);
+  });
+  document.addEventListener('nbar:analysed', (e) => { lastError = e.detail?.error ?? null; renderTables(); });
+  document.addEventListener('nbar:opened', () => { selected = null; lastError = null; });
+}
