@@ -20,10 +20,10 @@ const svgEl = () => $('#drawing svg');
 // ------------------------------------------------------------------------------ tool bar
 
 const tools = [
-  { id: 'select', icon: '⬚', key: 'toolSelect' },
+  { id: 'select', icon: '↖', key: 'toolSelect' },
   { id: 'point', icon: '•', key: 'toolPoint' },
   { id: 'link', icon: '╱', key: 'toolLink' },
-  { id: 'ground', icon: '⏚', key: 'toolGround' },
+  { id: 'ground', icon: '⊥', key: 'toolGround' },
 ];
 
 function button(id, icon, key, onClick) {
@@ -238,8 +238,9 @@ function linkTap(end) {
   });
 }
 
-function tap(e) {
-  const pt = pointAt(e.target);
+// `target`: what was under the pointer when it went down (the pointer is captured since).
+function tap(e, target) {
+  const pt = pointAt(target);
   if (tool.name === 'select') {
     tool.selected = bodyAt(e.clientX, e.clientY);
     redrawOverlay();
@@ -263,13 +264,13 @@ function down(e) {
   if (tool.name === 'select' && onPoint && pointers.size === 1) return;
   e.stopPropagation();
   e.preventDefault();
-  $('#drawing').setPointerCapture?.(e.pointerId);
+  try { $('#drawing').setPointerCapture(e.pointerId); } catch { /* a synthetic or finished pointer */ }
   const box = currentBox(svgEl());
   if (pointers.size === 2) {
     const [p, q] = [...pointers.values()];
     gesture = { kind: 'pinch', box, dist: Math.hypot(p.x - q.x, p.y - q.y) || 1, mid: toSvg((p.x + q.x) / 2, (p.y + q.y) / 2) };
   } else if (pointers.size === 1) {
-    gesture = { kind: 'pan', box, x: e.clientX, y: e.clientY, k: unitsPerPixel(), moved: false };
+    gesture = { kind: 'pan', box, x: e.clientX, y: e.clientY, k: unitsPerPixel(), moved: false, target: e.target };
   }
 }
 function move(e) {
@@ -300,7 +301,7 @@ function up(e) {
   const g = gesture;
   if (pointers.size === 0) gesture = null;
   else if (g?.kind === 'pinch') gesture = { kind: 'done' };
-  if (e.type === 'pointerup' && g?.kind === 'pan' && !g.moved) tap(e);
+  if (e.type === 'pointerup' && g?.kind === 'pan' && !g.moved) tap(e, g.target);
 }
 function wheel(e) {
   if (!svgEl()) return;

@@ -7,6 +7,7 @@ import { spawn } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
+import { run as runEditing } from './edit.mjs';
 
 const SKIP = 77;
 const arg = (name, fallback) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : fallback; };
@@ -205,6 +206,7 @@ async function desktop() {
   await page.selectOption('#lang', 'es');
   assert.equal(await page.locator('[data-tab="gallery"]').textContent(), 'Galería');
   await page.selectOption('#lang', 'en');
+  await runEditing(page, { base, out, viewport: 'desktop', mobile: false });
   await context.close();
 }
 
@@ -222,6 +224,7 @@ async function phone() {
   await shot(page, 'phone-2-model', true);
   await errorInEditor(page, true, 'phone');
   await synthesis(page, true, 'phone');
+  await runEditing(page, { base, out, viewport: 'phone', mobile: true });
   await context.close();
 }
 
