@@ -96,9 +96,16 @@ function unitsPerPixel() { return 1 / svgEl().getScreenCTM().a; }
 
 // ------------------------------------------------------------------------------ snapping
 
+// The part of the plane the drawing shows: wider or taller than the viewBox when the element's
+// shape differs from the box's (preserveAspectRatio meet).
+function visibleBox() {
+  const r = svgEl().getBoundingClientRect();
+  const a = toSvg(r.left, r.top); const c = toSvg(r.right, r.bottom);
+  return { x: a.x, y: a.y, w: c.x - a.x, h: c.y - a.y };
+}
 function gridStep() {
-  const b = currentBox(svgEl());
-  const raw = b.w / 20;
+  const b = visibleBox();
+  const raw = b.w / 30;
   const p = 10 ** Math.floor(Math.log10(raw));
   return [1, 2, 5, 10].map((m) => m * p).find((s) => s >= raw) ?? 10 * p;
 }
@@ -140,7 +147,7 @@ export function redrawOverlay() {
   svg.querySelector('.edit-grid')?.remove();
   svg.querySelector('.edit-overlay')?.remove();
   const s = editContext().state.geometry?.scale || currentBox(svg).w / 100;
-  const b = currentBox(svg);
+  const b = visibleBox();
   if (tool.snap) {
     const step = gridStep();
     const g = el('g', { class: 'edit-grid' });

@@ -43,7 +43,7 @@ const base = await new Promise((resolve, reject) => {
   server.stderr.on('data', read);
   server.on('exit', (code) => reject(new Error(`nbar serve exited (${code}): ${text}`)));
 }).catch((e) => { console.error(e.message); stop(); process.exit(1); });
-const watchdog = setTimeout(() => { console.error('FAIL: over the time limit'); stop(); process.exit(1); }, 110000);
+const watchdog = setTimeout(() => { console.error('FAIL: over the time limit'); stop(); process.exit(1); }, 200000);
 
 const index = await (await fetch(base)).text();
 if (!index.includes('app.js')) { console.log('SKIP: this nbar carries the placeholder page, not the web app'); stop(); process.exit(SKIP); }

@@ -55,11 +55,19 @@ export async function run(page, ctx) {
 
   // 3. A point placed by tapping, then two links from it to A and to B: a rigid triangle on the
   // coupler, so the linkage keeps one degree of freedom.
+  // With grid snap on, the point lands on a grid line crossing.
   await press('#edit-tools [data-tool="point"]');
+  await press('#edit-tools [data-tool="snap"]');
+  const step = await page.evaluate(() => { const l = document.querySelectorAll('#drawing .edit-grid line'); return +l[1].getAttribute('x1') - +l[0].getAttribute('x1'); });
+  assert.ok([1, 2, 5].some((m) => Math.abs(step / 10 ** Math.floor(Math.log10(step)) - m) < 1e-9), `grid step ${step}`);
   const box = await page.locator('#drawing').boundingBox();
   await tapAt(box.x + box.width * 0.12, box.y + box.height * 0.12);
   await page.waitForSelector('#drawing circle.pending[data-pending="P1"]');
-  assert.match(await yamlText(page), /\n {2}P1: \[-?\d+(\.\d+)?, \d+(\.\d+)?\]\nground:/);
+  await shot('9a-point-snapped');
+  await press('#edit-tools [data-tool="snap"]');
+  const p1 = /\n {2}P1: \[(-?\d+(?:\.\d+)?), (-?\d+(?:\.\d+)?)\]\nground:/.exec(await yamlText(page));
+  assert.ok(p1, 'P1 written after the other points');
+  for (const v of [+p1[1], +p1[2]]) assert.ok(Math.abs(v / step - Math.round(v / step)) < 1e-9, `${v} on the ${step} grid`);
   await press('#edit-tools [data-tool="link"]');
   await tapAt(...await centre('#drawing circle.pending[data-pending="P1"]'));
   await tapAt(...await centre('#drawing circle.pt[data-point="A"]'));
