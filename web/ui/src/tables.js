@@ -201,6 +201,7 @@ function commitBody(input) {
 // Marks the field whose value the server's error points at (its line and column).
 function markError() {
   for (const x of document.querySelectorAll('#model-tables .cell.bad')) { x.classList.remove('bad'); x.removeAttribute('title'); }
+  for (const x of document.querySelectorAll('#model-tables .cell-error')) x.remove();
   const note = $('#model-problem');
   if (!note) return;
   note.textContent = lastError ? `${lastError.line ? t('errorAt', lastError.line, lastError.column ?? 1) : ''}${lastError.message}` : '';
@@ -220,7 +221,12 @@ function markError() {
       best = { input, size: node.range[1] - node.range[0] };
     }
   }
-  if (best) { best.input.classList.add('bad'); best.input.title = lastError.message; }
+  if (best) {
+    best.input.classList.add('bad');
+    best.input.title = lastError.message;
+    // The message beside the field too: on a phone the panel's top may be scrolled away.
+    best.input.insertAdjacentHTML('afterend', `<small class="cell-error">${esc(lastError.message)}</small>`);
+  }
 }
 
 export function renderTables() {
@@ -281,4 +287,5 @@ export function initTables() {
   });
   document.addEventListener('nbar:analysed', (e) => { lastError = e.detail?.error ?? null; renderTables(); });
   document.addEventListener('nbar:opened', () => { selected = null; lastError = null; });
+  $('#lang')?.addEventListener('change', () => renderTables());
 }

@@ -46,6 +46,7 @@ export async function run(page, ctx) {
   await page.locator(field(['points', 'A', 0])).press('Enter');
   await page.waitForSelector(`${field(['points', 'A', 0])}.bad`);
   assert.match(await page.locator('#model-problem').textContent(), /^line 11, column 8: x must be a number, not 'abc'/);
+  assert.equal(await page.locator('#model-tables .cell-error').textContent(), "x must be a number, not 'abc'");
   await shot('8-model-error');
   await page.locator(field(['points', 'A', 0])).fill('80');
   await page.locator(field(['points', 'A', 0])).press('Enter');
