@@ -55,7 +55,7 @@ function columnOf(text, at) { return at - lineStart(text, at); }
 // (aligned comments are common in model files: `A:  [80, 0]      # crank pin`).
 function splice(text, from, to, insert) {
   const after = text.slice(to, lineEnd(text, to));
-  const gap = /^([^\s#]*)( +)#/.exec(after);
+  const gap = /^([^#'"]*?)( +)#/.exec(after);
   if (!gap || insert.includes('\n')) return text.slice(0, from) + insert + text.slice(to);
   const spaces = Math.max(1, gap[2].length - (insert.length - (to - from)));
   return text.slice(0, from) + insert + gap[1] + ' '.repeat(spaces) + text.slice(to + gap[0].length - 1);
