@@ -159,7 +159,7 @@ function bodyPanel(m) {
   return `<div class="bodypanel" data-body-panel="${esc(selected)}">
     <div class="row"><h3>${esc(t('bodyTitle', selected))}</h3><button type="button" class="ghost" data-close-body aria-label="${esc(t('close'))}">×</button></div>
     ${row(t('bodyPoints'), `<input class="cell" data-body-prop="points" data-kind="list" value="${esc(showValue(b.points))}" aria-label="${esc(t('bodyPoints'))}">`)}
-    ${row(t('form'), `<select data-body-form aria-label="${esc(t('form'))}">${opt('none', t('formNone'))}${opt('bar', t('formBar'))}${form === 'shape' ? opt('shape', t('formShape')) : ''}</select>`)}
+    ${row(t('form'), `<select data-body-form aria-label="${esc(t('form'))}">${opt('none', t('formNone'))}${opt('bar', t('formBar'))}${opt('shape', t('formShape'))}</select>`)}
     ${form === 'bar' ? barField('width', t('barWidth')) + barField('margin', t('barMargin')) + barField('hole', t('barHole')) : ''}
     ${form === 'shape' ? `<p class="hint">${esc(t('shapeInYaml'))}</p>` : ''}
     ${prop('thickness', t('thickness'))}
@@ -185,13 +185,24 @@ function commitBody(input) {
         if (isObj(body)) for (const k of ['bar', 'shape']) out = deleteIn(out, ['bodies', selected, k]);
         return out;
       }
-      // A first guess for the bar's width, a tenth of the body's drawn length, for the user to set.
+      // A first guess for the user to adjust: a bar a tenth of the body's drawn length wide, or a
+      // plate outline around the body's drawn points, half that width clear of them.
       const pts = (isObj(body) ? body.points : body) ?? [];
-      const [p, q] = pts.slice(0, 2).map((n) => m.points?.[n]);
+      const xy = pts.map((n) => m.points?.[n]).filter((v) => Array.isArray(v) && v.every(Number.isFinite));
+      const [p, q] = xy;
       const len = p && q ? Math.hypot(q[0] - p[0], q[1] - p[1]) : 10;
       const width = +(len / 10).toPrecision(2) || 1;
-      if (!isObj(body)) return setIn(out, ['bodies', selected], { points: pts, bar: { width } });
-      return setIn(out, ['bodies', selected, 'bar'], { width });
+      const other = form === 'bar' ? 'shape' : 'bar';
+      if (isObj(body)) out = deleteIn(out, ['bodies', selected, other]);
+      let value = { width };
+      if (form === 'shape') {
+        const r = width / 2;
+        const xs = xy.map((v) => v[0]); const ys = xy.map((v) => v[1]);
+        const [x0, x1, y0, y1] = [Math.min(...xs) - r, Math.max(...xs) + r, Math.min(...ys) - r, Math.max(...ys) + r].map((v) => +v.toPrecision(6));
+        value = { outline: [[x0, y0], [x1, y0], [x1, y1], [x0, y1]] };
+      }
+      if (!isObj(body)) return setIn(out, ['bodies', selected], { points: pts, [form]: value });
+      return setIn(out, ['bodies', selected, form], value);
     });
   }
 }

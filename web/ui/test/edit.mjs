@@ -122,6 +122,17 @@ export async function run(page, ctx) {
   assert.ok(Math.abs(mass - 0.15543) < 1e-5, `rocker mass ${mass}`);
   await shot('10-body');
 
+  // The coupler, opened from its name in the bodies table, made a plate: its outline starts as
+  // the rectangle around A, B and P, 9 mm (half of a tenth of A-B = 180) clear of them.
+  await press('#model-tables [data-select-body="coupler"]');
+  await page.waitForSelector('[data-body-panel="coupler"]');
+  await page.selectOption('[data-body-form]', 'shape');
+  await page.waitForFunction(() => /shape:/.test(document.querySelector('#editor .cm-content').textContent));
+  assert.match(await yamlText(page), /\n {2}coupler:\n {4}points: \[A, B, P\]\n {4}shape: \{outline: \[\[68\.8117, -9\], \[190\.25, -9\], \[190\.25, 159\], \[68\.8117, 159\]\]\}\n/);
+  await settled();
+  assert.match(await page.locator('#problems').textContent(), /coupler/, 'a plate without thickness is an error the server places');
+  await press('[data-close-body]');
+
   // 6. Zoom (wheel on a desktop, pinch on a phone), pan, and fit.
   const fitted = await viewBox(page);
   const d = await page.locator('#drawing').boundingBox();
