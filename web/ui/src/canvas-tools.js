@@ -109,6 +109,13 @@ function gridStep() {
   const p = 10 ** Math.floor(Math.log10(raw));
   return [1, 2, 5, 10].map((m) => m * p).find((s) => s >= raw) ?? 10 * p;
 }
+// A model point on the grid when snap is on (for main.js's drag), else null.
+export function snapPoint(x, y) {
+  if (!tool.snap || !svgEl()) return null;
+  const step = gridStep();
+  const digits = Math.max(0, -Math.floor(Math.log10(step)) + 1);
+  return [roundTo(Math.round(x / step) * step, digits), roundTo(Math.round(y / step) * step, digits)];
+}
 function modelPoint(clientX, clientY) {
   const s = toSvg(clientX, clientY);
   let x = s.x; let y = -s.y;

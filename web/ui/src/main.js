@@ -12,7 +12,7 @@ import { t, setLang, getLang, translatePage } from './i18n.js';
 import { drawingSvg, frameGroup } from './drawing.js';
 import { encodeModel, decodeModel } from './share.js';
 import { initModelEdit, applyEdit } from './model-edit.js';
-import { initCanvasTools } from './canvas-tools.js';
+import { initCanvasTools, snapPoint } from './canvas-tools.js';
 import { initTables, showBody } from './tables.js';
 import { setIn } from './yaml-text.js';
 
@@ -237,7 +237,8 @@ function endDrag(e) {
   if (!d.moved) return;
   const digits = Math.max(0, Math.min(6, 2 - Math.floor(Math.log10(state.geometry.scale || 1))));
   // The point's value in the YAML is replaced where it is, the rest of the text kept as written.
-  if (!applyEdit((text) => setIn(text, ['points', d.name], [+d.x.toFixed(digits), +d.y.toFixed(digits)]))) setFrame(0);
+  const xy = snapPoint(d.x, d.y) ?? [+d.x.toFixed(digits), +d.y.toFixed(digits)];
+  if (!applyEdit((text) => setIn(text, ['points', d.name], xy))) setFrame(0);
 }
 
 // ------------------------------------------------------------------------------ animation
