@@ -335,6 +335,7 @@ export function initCanvasTools(onBodySelected) {
   drawing.addEventListener('pointerup', up, true);
   drawing.addEventListener('pointercancel', up, true);
   drawing.addEventListener('wheel', wheel, { passive: false });
+  document.addEventListener('keydown', (e) => { if (e.key === 'Escape' && tool.first) { tool.first = null; redrawOverlay(); } });
   // Every solve redraws the svg: keep its fitted box, put back the user's view and the overlay.
   new MutationObserver(() => {
     const svg = svgEl();

@@ -166,6 +166,7 @@ function bodyPanel(m) {
     ${row(t('material'), `<input class="cell" data-body-prop="material" data-kind="text" list="nbar-materials" value="${esc(isObj(b.material) ? '' : showValue(b.material))}" aria-label="${esc(t('material'))}"><datalist id="nbar-materials">${mats.map((x) => `<option value="${esc(x)}">`).join('')}</datalist>`)}
     ${prop('mass', t('mass'))}
     ${prop('inertia', t('inertia'))}
+    <div class="row"><button type="button" data-delete-body>${esc(t('deleteBody'))}</button></div>
   </div>`;
 }
 
@@ -295,6 +296,12 @@ export function initTables() {
     const b = e.target.closest('[data-select-body]');
     if (b) showBody(b.dataset.selectBody);
     if (e.target.closest('[data-close-body]')) showBody(null);
+    // The body and its exact length go; its points stay (the server says if one is left unattached).
+    if (e.target.closest('[data-delete-body]')) {
+      const name = selected;
+      showBody(null);
+      applyEdit((text) => deleteIn(deleteIn(text, ['lengths', name]), ['bodies', name]));
+    }
   });
   document.addEventListener('nbar:analysed', (e) => { lastError = e.detail?.error ?? null; renderTables(); });
   document.addEventListener('nbar:opened', () => { selected = null; lastError = null; });

@@ -132,6 +132,10 @@ export async function run(page, ctx) {
   await settled();
   assert.match(await page.locator('#problems').textContent(), /coupler/, 'a plate without thickness is an error the server places');
   await press('[data-close-body]');
+  await press('#edit-tools [data-tool="undo"]');
+  await page.waitForFunction(() => !/shape:/.test(document.querySelector('#editor .cm-content').textContent));
+  await settled();
+  assert.equal(await page.locator('#problems').textContent(), 'No errors.');
 
   // 6. Zoom (wheel on a desktop, pinch on a phone), pan, and fit.
   const fitted = await viewBox(page);
@@ -160,4 +164,16 @@ export async function run(page, ctx) {
   }
   await press('#edit-tools [data-tool="fit"]');
   assert.deepEqual(await viewBox(page), fitted);
+
+  // 7. A body deleted from its panel goes with its exact length; B is then left on the coupler
+  // alone and the four-bar is a free dyad: the server says so. Undo brings it back as it was.
+  const whole = await yamlText(page);
+  await press('#model-tables [data-select-body="rocker"]');
+  await press('[data-delete-body]');
+  await page.waitForFunction(() => !/bodies:[^]*\n {2}rocker:/.test([...document.querySelectorAll('#editor .cm-line')].map((l) => l.textContent).join('\n')));
+  assert.match(await yamlText(page), /\nlengths: \{crank: 80\}\n/);
+  await page.waitForFunction(() => /degrees of freedom/.test(document.querySelector('#problems').textContent));
+  await press('#edit-tools [data-tool="undo"]');
+  await page.waitForFunction((t) => [...document.querySelectorAll('#editor .cm-line')].map((l) => l.textContent).join('\n') === t, whole);
+  await settled();
 }
