@@ -191,7 +191,11 @@ function drawStress(row, s, svg) {
     const big = l === top;
     out += `<circle class="${big ? 'peak' : 'lpeak'}" data-step="${l.step}" cx="${+x.toFixed(4)}" cy="${+(-y).toFixed(4)}" r="${(big ? 1.8 : 1.1) * s}" fill="${colour}" stroke="#fff" stroke-width="1.5" vector-effect="non-scaling-stroke"/>`;
     if (big) {
-      out += `<text class="peak-label" data-step="${l.step}" x="${+(x + 2.5 * s).toFixed(4)}" y="${+(-y - 2.5 * s).toFixed(4)}" font-size="${3.4 * s}" font-weight="700" fill="#b42318" font-family="system-ui, sans-serif">${app.fmt(l.von_mises)} ${app.esc(ov.stress.ok.units?.stress ?? '')} (${t('atStep', l.step)})</text>`;
+      // The label on the side of the peak facing the middle of the drawing, so that it stays in view.
+      const vb = svg.viewBox.baseVal;
+      const right = x > vb.x + vb.width / 2;
+      const lx = x + (right ? -2.5 : 2.5) * s;
+      out += `<text class="peak-label" data-step="${l.step}" x="${+lx.toFixed(4)}" y="${+(-y - 2.5 * s).toFixed(4)}" text-anchor="${right ? 'end' : 'start'}" font-size="${3.4 * s}" font-weight="700" fill="#b42318" stroke="#fff" stroke-width="4" paint-order="stroke" vector-effect="non-scaling-stroke" font-family="system-ui, sans-serif">${app.fmt(l.von_mises)} ${app.esc(ov.stress.ok.units?.stress ?? '')} (${t('atStep', l.step)})</text>`;
     }
   }
   return `<g class="ov-stress">${out}</g>`;
@@ -324,9 +328,12 @@ function warningFlag(s, svg) {
   if (!here.length) return '';
   const vb = svg.viewBox.baseVal;
   const text = here.map((w) => w.text).join(' · ');
-  const short = text.length > 90 ? `${text.slice(0, 88)}…` : text;
-  return `<g class="ov-warning"><rect x="${vb.x + s}" y="${vb.y + s}" width="${vb.width - 2 * s}" height="${6 * s}" rx="${s}" fill="#fef3f2" stroke="#d92d20" vector-effect="non-scaling-stroke"/>`
-    + `<text x="${vb.x + 2.5 * s}" y="${vb.y + 5 * s}" font-size="${3.3 * s}" fill="#b42318" font-family="system-ui, sans-serif">⚠ ${app.esc(short)}</text></g>`;
+  // As many characters as fit the drawing's width (about 0.55 of the font size each).
+  const size = 2.8 * s;
+  const fit = Math.max(12, Math.floor((vb.width - 5 * s) / (size * 0.56)));
+  const short = text.length > fit ? `${text.slice(0, fit - 1)}…` : text;
+  return `<g class="ov-warning"><title>${app.esc(text)}</title><rect x="${vb.x + s}" y="${vb.y + s}" width="${vb.width - 2 * s}" height="${5.5 * s}" rx="${s}" fill="#fef3f2" stroke="#d92d20" vector-effect="non-scaling-stroke"/>`
+    + `<text x="${vb.x + 2.5 * s}" y="${vb.y + 4.7 * s}" font-size="${size}" fill="#b42318" font-family="system-ui, sans-serif">⚠ ${app.esc(short)}</text></g>`;
 }
 
 function refresh() {
