@@ -76,6 +76,18 @@ async function burmesterAndFunction(page, ctx) {
   await page.waitForSelector('[data-design="1"]:not([disabled])', { timeout: 60000 });
   assert.match(await page.locator('#synth-status').textContent(), /designs? \(\d+ solutions?\)/);
   await ctx.shot(page, `${ctx.tag}-m3-function`);
+  // Poses tapped on the drawing fill the table (their angles are typed).
+  await page.selectOption('#synth-method', 'burmester');
+  await click(page, mobile, '#pose-tap');
+  assert.equal(await page.locator('#poses tr').count(), 0);
+  const box = await page.locator('#drawing svg').boundingBox();
+  for (const [fx, fy] of [[0.3, 0.3], [0.5, 0.25], [0.7, 0.35]]) await tapAt(page, mobile, box.x + box.width * fx, box.y + box.height * fy);
+  assert.equal(await page.locator('#poses tr').count(), 3);
+  assert.equal(await page.locator('#drawing .synth-marks .target').count(), 3);
+  const xs = await page.locator('#poses .px').evaluateAll((els) => els.map((e) => +e.value));
+  assert.ok(xs[0] < xs[1] && xs[1] < xs[2], `tapped left to right: ${xs}`);
+  await click(page, mobile, '#pose-tap');
+  assert.equal(await page.locator('#drawing .synth-marks').count(), 0);
   await page.selectOption('#synth-method', 'five-point');
 }
 
@@ -155,7 +167,10 @@ async function explainPanel(page, ctx) {
 // The page reloaded without a network: the service worker serves the app and the last answers;
 // a new analysis says it is offline.
 async function offline(page, ctx) {
-  const { mobile, context } = ctx;
+  const { mobile, context, click, base } = ctx;
+  // The MP4 download is offered exactly when the server has ffmpeg.
+  const health = await (await fetch(new URL('api/health', base))).json();
+  assert.equal(await page.locator('[data-download="mp4"]').evaluate((b) => b.hidden), !health.mp4);
   await page.evaluate(() => navigator.serviceWorker.ready);
   await page.waitForFunction(() => navigator.serviceWorker.controller !== null);
   await ctx.openExample(page, mobile, 'five-bar');  // analysed under the worker: its answers kept
@@ -168,6 +183,10 @@ async function offline(page, ctx) {
     assert.ok(await page.locator('#drawing svg .body').count() > 0, 'the last results are drawn offline');
     assert.ok(await page.locator('#offline').isVisible(), 'the header says offline');
     await ctx.shot(page, `${ctx.tag}-m7-offline`);
+    // A change cannot be analysed: it says why.
+    await click(page, mobile, '[data-tab="editor"]');
+    await ctx.retype(page, mobile, 'name: "Five-bar linkage', '(2 DOF)', '(two)');
+    await page.waitForFunction(() => /^Offline: the analysis needs the nbar server/.test(document.querySelector('#problems').textContent));
   } finally {
     await context.setOffline(false);
   }
