@@ -81,6 +81,7 @@ function showMethod(m) {
   synth.method = m;
   stopTapping();
   $('#task').hidden = m !== 'five-point';
+  setTimeout(drawMarks);
   $('#five-tap').hidden = m !== 'five-point';
   $('#synth-burmester').hidden = m !== 'burmester';
   $('#synth-function').hidden = m !== 'function';
@@ -112,8 +113,7 @@ function burmesterTask() {
   if (rows.length === 3 && $('#bm-fixed').checked) {
     lines.push('fixed_pivots:', `  a: [${$('#bm-ax').value}, ${$('#bm-ay').value}]`, `  b: [${$('#bm-bx').value}, ${$('#bm-by').value}]`);
   }
-  if (rows.length === 4) lines.push('curves: {radius: 400}', 'samples: 24');
-  synth.targets = rows.map(([x, y]) => [+x, +y]);
+  synth.targets = rows.map(([x, y, a]) => [+x, +y, +a]);
   return `${lines.join('\n')}\n`;
 }
 
@@ -197,24 +197,35 @@ function onTap(e) {
   drawMarks();
 }
 
-// The tapped (or typed) targets, drawn over the mechanism.
+// The targets over the mechanism while the synthesis panel is open: the points being tapped, the
+// five-point task's points or the Burmester poses (with their angles).
+function markedTargets() {
+  if (synth.tapping === 'five') return synth.taps;
+  if (!document.querySelector('#panel-synthesis.active')) return [];
+  if (synth.method === 'burmester') return poses().map(([x, y, a]) => [+x, +y, +a]).filter(([x, y]) => Number.isFinite(x) && Number.isFinite(y));
+  if (synth.method === 'five-point') return fivePointTargets($('#task').value);
+  return [];
+}
+
 function drawMarks() {
   const svg = document.querySelector('#drawing svg');
   if (!svg) return;
   svg.querySelector('.synth-marks')?.remove();
-  const pts = synth.tapping === 'five' ? synth.taps
-    : synth.tapping === 'poses' ? poses().map(([x, y]) => [+x, +y]) : [];
+  const pts = markedTargets();
   if (!pts.length) return;
   const s = app.state.geometry?.scale ?? 1;
   const g = document.createElementNS('http://www.w3.org/2000/svg', 'g');
   g.setAttribute('class', 'synth-marks');
-  g.innerHTML = pts.map(([x, y], i) => targetMark(x, y, s, i + 1)).join('');
+  g.innerHTML = pts.map(([x, y, a], i) => targetMark(x, y, s, i + 1, a)).join('');
   svg.append(g);
 }
 
-function targetMark(x, y, s, label) {
+// A target point, or a pose: the point and a tick along the coupler's angle.
+function targetMark(x, y, s, label, angle = undefined) {
   const X = +x; const Y = -y;
-  return `<g class="target"><circle cx="${X}" cy="${Y}" r="${1.6 * s}" fill="none" stroke="#d92d20" stroke-width="2" vector-effect="non-scaling-stroke"/>`
+  const r = (angle ?? 0) * Math.PI / 180;
+  const tick = Number.isFinite(angle) ? `<path d="M${X},${Y}l${+(7 * s * Math.cos(r)).toFixed(4)},${+(-7 * s * Math.sin(r)).toFixed(4)}" stroke="#d92d20" stroke-width="2.5" vector-effect="non-scaling-stroke"/>` : '';
+  return `<g class="target">${tick}<circle cx="${X}" cy="${Y}" r="${1.6 * s}" fill="none" stroke="#d92d20" stroke-width="2" vector-effect="non-scaling-stroke"/>`
     + `<path d="M${X - 2.6 * s},${Y}h${5.2 * s}M${X},${Y - 2.6 * s}v${5.2 * s}" stroke="#d92d20" stroke-width="1.5" vector-effect="non-scaling-stroke"/>`
     + `<text x="${X + 2 * s}" y="${Y + 4.5 * s}" font-size="${3.2 * s}" fill="#d92d20" font-family="system-ui, sans-serif">${label}</text></g>`;
 }
@@ -308,7 +319,7 @@ async function preview(d, li) {
     el.innerHTML = drawingSvg(g, solve);
     const svg = el.querySelector('svg');
     const marks = document.createElementNS('http://www.w3.org/2000/svg', 'g');
-    marks.innerHTML = synth.targets.map(([x, y], i) => targetMark(x, y, g.scale, i + 1)).join('');
+    marks.innerHTML = synth.targets.map(([x, y, a], i) => targetMark(x, y, g.scale, i + 1, a)).join('');
     svg.append(marks);
     const frame = svg.querySelector('.frame');
     const n = solve.rows.length;
@@ -345,5 +356,8 @@ export function initSynthesis(context) {
   $('#synth-run').addEventListener('click', runSynthesis);
   $('#drawing').addEventListener('pointerdown', onTap, true);
   document.addEventListener('nbar:solved', drawMarks);
+  $('#poses').addEventListener('input', drawMarks);
+  $('#task').addEventListener('input', drawMarks);
+  for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', drawMarks);
   showMethod(methods[0]);
 }

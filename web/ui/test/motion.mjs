@@ -87,7 +87,10 @@ async function burmesterAndFunction(page, ctx) {
   const xs = await page.locator('#poses .px').evaluateAll((els) => els.map((e) => +e.value));
   assert.ok(xs[0] < xs[1] && xs[1] < xs[2], `tapped left to right: ${xs}`);
   await click(page, mobile, '#pose-tap');
-  assert.equal(await page.locator('#drawing .synth-marks').count(), 0);
+  assert.equal(await page.locator('#drawing .synth-marks .target').count(), 3, 'the poses stay marked while the panel is open');
+  await click(page, mobile, '[data-tab="gallery"]');
+  assert.equal(await page.locator('#drawing .synth-marks').count(), 0, 'and go with it');
+  await click(page, mobile, '[data-tab="synthesis"]');
   await page.selectOption('#synth-method', 'five-point');
 }
 
