@@ -146,7 +146,7 @@ function drawVectors(kind, row, s) {
   const source = kind === 'forces' ? ov.forces?.ok : solve;
   if (!vs.length || !source) return { svg: '', scale: null };
   const scale = vectorScale(source, vs.map((v) => [v.i, v.j]), s);
-  if (!scale) return { svg: '', scale: null };
+  if (!scale) return { svg: '', scale: { zero: true } };
   const srow = source.rows[app.state.frame];
   if (!srow) return { svg: '', scale };
   let out = '';
@@ -252,11 +252,13 @@ function legend() {
     if (!ov.on.has(k)) continue;
     const sc = scales[k];
     if (k === 'forces' && ov.forces?.error) { parts.push(`<span class="bad">${t('ov_forces')}: ${app.esc(ov.forces.error)}</span>`); continue; }
+    if (sc?.zero) { parts.push(`<span>${t(`ov_${k}`)}: ${t('allZero')}</span>`); continue; }
     if (!sc) { parts.push(`<span>${t(`ov_${k}`)}: ${t(k === 'forces' && !ov.forces ? 'loading' : 'noVectors')}</span>`); continue; }
     // The legend's bar is drawn at the same scale as the arrows, in the drawing's pixels.
     const px = pixelsPerUnit();
     const w = Math.max(8, Math.min(160, sc.legendLength * px));
-    parts.push(`<span class="leg" data-legend="${k}"><svg width="${w + 8}" height="10"><line x1="1" y1="5" x2="${w}" y2="5" stroke="${colours[k]}" stroke-width="2.5"/><path d="M${w + 6},5 L${w - 1},1 L${w - 1},9 z" fill="${colours[k]}"/></svg>`
+    const note = k === 'forces' ? ` title="${app.esc(t('forcesNote'))}"` : '';
+    parts.push(`<span class="leg" data-legend="${k}"${note}><svg width="${w + 8}" height="10"><line x1="1" y1="5" x2="${w}" y2="5" stroke="${colours[k]}" stroke-width="2.5"/><path d="M${w + 6},5 L${w - 1},1 L${w - 1},9 z" fill="${colours[k]}"/></svg>`
       + ` = ${app.fmt(sc.legendValue)} ${app.esc(sc.unit ?? '')} <small>(${t('maxIs')} ${app.fmt(sc.max)})</small></span>`);
   }
   if (ov.on.has('stress')) {
@@ -287,7 +289,7 @@ function info(row) {
       const vals = app.state.solve.rows.map((r) => r[i]).filter(Number.isFinite);
       mu = ` · μ = ${app.fmt(row[i])}° <small>(${t('minIs')} ${app.fmt(Math.min(...vals))}°)</small>`;
     }
-    return `<span class="loop"><b>${app.esc(l.name)}</b>: ${app.esc(l.grashof ?? '')}${mu}</span>`;
+    return `<span class="loop" title="${app.esc(l.description ?? '')}"><b>${app.esc(l.name)}</b>: ${app.esc(l.grashof ?? '')}${mu}</span>`;
   });
   $('#motion-info').innerHTML = parts.join('');
 }
