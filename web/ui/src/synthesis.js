@@ -183,9 +183,7 @@ function onTap(e) {
     $('#synth-status').textContent = t('tapFiveNow', synth.taps.length);
     if (synth.taps.length === 5) {
       setFivePointTargets(synth.taps);
-      synth.targets = synth.taps.slice();
       stopTapping();
-      synth.targets = fivePointTargets($('#task').value);
       $('#synth-status').textContent = t('tapped');
     }
   } else {
