@@ -142,6 +142,56 @@ TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
   EXPECT_EQ(Json::parse(object.body)["name"], "square");
 }
 
+TEST(WebApi, SynthesisModelsAreTheFilesOfSynthExport) {
+  // "models": true gives each real design the model file `nbar synth --export` writes for it;
+  // complex designs have none.
+  const auto dir = temp_folder("synth-export");
+  const std::string file = "examples/synthesis/five-point-crank-rocker.yaml";
+  const ApiResponse r =
+      post("/api/synth/five-point", with_task(file, {{"models", true}, {"all", true}, {"top", 0}, {"threads", 1}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  const cli_test::CliRun run = cli("synth five-point " + file + " --all --top 0 --threads 1 --export " + dir.string());
+  ASSERT_EQ(run.code, 0) << run.err;
+  const Json designs = Json::parse(r.body)["designs"];
+  ASSERT_EQ(designs.size(), 36u);  // every solution of the 36 paths
+  const auto file_of = [&](int rank) { return dir / ((rank < 10 ? "design-0" : "design-") + std::to_string(rank) + ".yaml"); };
+  int with_model = 0;
+  int without = 0;
+  for (const Json& d : designs) {
+    const int rank = d["rank"].get<int>();
+    SCOPED_TRACE(rank);
+    if (!d["real"].get<bool>() || !d.value("valid", false)) {
+      EXPECT_FALSE(d.contains("model"));
+      EXPECT_FALSE(std::filesystem::exists(file_of(rank)));
+      ++without;
+      continue;
+    }
+    ++with_model;
+    ASSERT_TRUE(d.contains("model"));
+    const std::string got = d["model"].get<std::string>();
+    const std::string expected = read_file(file_of(rank));
+    // The CLI's first comment names the task file, the server's the request's task.
+    const auto after_first_line = [](const std::string& s) { return s.substr(s.find('\n')); };
+    EXPECT_EQ(after_first_line(got), after_first_line(expected));
+    EXPECT_EQ(got.rfind("# Design " + std::to_string(rank) + " of nbar synth five-point task\n", 0), 0u);
+    // A model the server analyses: one degree of freedom, the design's coupler point at P.
+    const ApiResponse check = post("/api/check", {{"model", got}});
+    ASSERT_EQ(check.status, 200) << check.body;
+    EXPECT_EQ(Json::parse(check.body)["dof"]["mobility"], 1);
+    const ApiResponse solve = post("/api/solve", {{"model", got}, {"steps", 2}, {"columns", "P.x,P.y"}});
+    ASSERT_EQ(solve.status, 200) << solve.body;
+    const Json row = Json::parse(solve.body)["rows"][0];
+    EXPECT_NEAR(row[0].get<double>(), d["pivots"]["coupler_point"][0].get<double>(), 1e-6);
+    EXPECT_NEAR(row[1].get<double>(), d["pivots"]["coupler_point"][1].get<double>(), 1e-6);
+  }
+  EXPECT_GE(with_model, 2);
+  EXPECT_GE(without, 1);
+  // Without the option, no model (the CLI's JSON as it is).
+  const ApiResponse plain = post("/api/synth/five-point", with_task(file, {{"top", 3}}));
+  EXPECT_FALSE(Json::parse(plain.body)["designs"][0].contains("model"));
+  EXPECT_EQ(error_of(post("/api/synth/five-point", with_task(file, {{"models", 1}})))["kind"], "bad_input");
+}
+
 TEST(WebApi, RenderDrawIsNbarDraw) {
   const auto dir = temp_folder("draw");
   for (const std::string format : {"svg", "png"}) {

@@ -321,8 +321,21 @@ ApiResponse api_stress(Job& job, const std::string& request) {
   return answer(write([&](std::ostream& out) { io::write_table(out, format, analysis, t); }), text_type(format));
 }
 
+// "models": true adds each listed design's model file (what `nbar synth --export` writes for
+// it), so a client opens a design without writing a model of its own.
+std::string with_design_models(const std::string& json, const synthesis::SynthesisTask& task,
+                               const synthesis::SynthesisOutcome& outcome, const io::SynthesisListing& listing) {
+  Json j = Json::parse(json);
+  Json& designs = j["designs"];
+  for (std::size_t k = 0; k < designs.size() && k < listing.shown.size(); ++k) {
+    if (!designs[k].value("real", false) || !designs[k].value("valid", false)) continue;
+    designs[k]["model"] = io::design_model_yaml(task, outcome, listing.shown[k], static_cast<int>(k) + 1);
+  }
+  return j.dump(2) + '\n';
+}
+
 ApiResponse api_synth(Job& job, const std::string& request, synthesis::SynthesisKind kind) {
-  const Body body(request, {"task", "all", "top", "seed", "threads"});
+  const Body body(request, {"task", "all", "top", "seed", "threads", "models"});
   const synthesis::SynthesisTask task = io::parse_synthesis_task(body.text("task", true), "task");
   if (task.kind != kind)
     bad_input("this is a " + io::to_string(task.kind) + " task: send it to /api/synth/" + io::to_string(task.kind));
@@ -346,7 +359,8 @@ ApiResponse api_synth(Job& job, const std::string& request, synthesis::Synthesis
   listing.all = body.flag("all");
   // top 0 lists every design (the CLI's meaning), here at most the limit.
   listing.shown = synthesis::shown_rows(outcome, listing.all, top == 0 ? job.limits.max_synthesis_top : static_cast<int>(top));
-  return answer(io::synthesis_json(task, outcome, listing));
+  if (!body.flag("models")) return answer(io::synthesis_json(task, outcome, listing));
+  return answer(with_design_models(io::synthesis_json(task, outcome, listing), task, outcome, listing));
 }
 
 render::DrawOptions draw_options(const Job& job, const Body& body, int min_size, int width, int height) {

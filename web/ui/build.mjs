@@ -1,4 +1,4 @@
-// Bundles the web app into OUTDIR (default dist/): index.html, app.js and app.css, the files
+// Bundles the web app into OUTDIR (default dist/): index.html, app.js, app.css and sw.js, the files
 // web/server embeds into the nbar program. Run by CMake (web/ui/build-ui.cmake) or by hand:
 //   npm ci && node build.mjs [OUTDIR]
 import { build } from 'esbuild';
@@ -20,3 +20,5 @@ await build({
   logLevel: 'warning',
 });
 copyFileSync(join(here, 'src/index.html'), join(out, 'index.html'));
+// The service worker is its own script, served at the root so that its scope is the whole app.
+copyFileSync(join(here, 'src/sw.js'), join(out, 'sw.js'));

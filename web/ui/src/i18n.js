@@ -67,6 +67,12 @@ const strings = {
   },
 };
 
+// More strings from a module of their own (e.g. i18n-motion.js), so that parts of the app add
+// theirs without editing the lists above.
+export function addStrings(more) {
+  for (const l of Object.keys(strings)) Object.assign(strings[l], more[l] ?? {});
+}
+
 let lang = 'en';
 try { lang = localStorage.getItem('nbar.lang') || (navigator.language || 'en').slice(0, 2); } catch { /* private mode */ }
 if (!strings[lang]) lang = 'en';

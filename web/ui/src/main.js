@@ -15,6 +15,11 @@ import { initModelEdit, applyEdit } from './model-edit.js';
 import { initCanvasTools, snapPoint } from './canvas-tools.js';
 import { initTables, showBody } from './tables.js';
 import { setIn } from './yaml-text.js';
+import './i18n-motion.js';
+import { initSynthesis } from './synthesis.js';
+import { initOverlays } from './overlays.js';
+import { initExplain } from './explain.js';
+import { initOffline } from './offline.js';
 
 const $ = (s) => document.querySelector(s);
 const state = {
@@ -174,6 +179,7 @@ function onSolved() {
   $('#drawing').innerHTML = drawingSvg(state.geometry, solve);
   buildPlot();
   buildTable();
+  document.dispatchEvent(new CustomEvent('nbar:solved'));
   setFrame(state.frame);
 }
 
@@ -196,6 +202,7 @@ function setFrame(i) {
   $('#scrub').value = String(state.frame);
   $('#readout').textContent = `${state.xcol} = ${fmt(row[col(state.xcol)])} ${unitOf(state.xcol)}`;
   state.plot?.redraw(false, false);
+  document.dispatchEvent(new CustomEvent('nbar:frame'));
   const tr = $('#table tbody')?.children;
   if (tr) {
     $('#table tr.current')?.classList.remove('current');
@@ -351,73 +358,7 @@ async function openExample(name) {
 
 // ------------------------------------------------------------------------------ synthesis
 
-const num = (v) => String(+(+v).toFixed(6));
-
-// The API's design has its pivots, not a model file: the four-bar is written here, posed at the
-// first target point, its crank driven through a turn (or the design's travel).
-function designModel(d, res) {
-  const p = d.pivots;
-  const deg = res.units?.angle === 'rad' ? 180 / Math.PI : 1;
-  const start = Math.atan2(p.moving_a[1] - p.ground_a[1], p.moving_a[0] - p.ground_a[0]) * 180 / Math.PI;
-  const sign = d.direction === 'clockwise' ? -1 : 1;
-  const turn = d.input_turns_fully ? 360 : Math.abs(d.travel ?? 360) * deg;
-  const xy = (v) => `[${num(v[0])}, ${num(v[1])}]`;
-  return `# Design ${d.rank} of the five-point synthesis "${res.name}", written by the web app from the
-# design's pivots (nbar synth five-point ... --export writes the same linkage from the CLI).
-# Grashof: ${d.grashof}; minimum transmission angle ${num(d.min_transmission ?? 0)} deg.
-name: "${t('design', d.rank, res.name).replace(/"/g, "'")}"
-units: {length: ${res.units?.length ?? 'mm'}, angle: deg}
-points:
-  O2: ${xy(p.ground_a)}
-  O4: ${xy(p.ground_b)}
-  A: ${xy(p.moving_a)}
-  B: ${xy(p.moving_b)}
-  P: ${xy(p.coupler_point)}
-ground: [O2, O4]
-bodies:
-  crank: [O2, A]
-  coupler: [A, B, P]
-  rocker: [O4, B]
-drivers:
-  - {angle: crank, from: ${num(start)}, to: ${num(start + sign * turn)}, speed: 60 rpm}
-sweep: {steps: 361}
-`;
-}
-
-async function runSynthesis() {
-  const list = $('#designs');
-  const st = $('#synth-status');
-  list.replaceChildren();
-  st.textContent = t('running');
-  $('#synth-run').disabled = true;
-  try {
-    const res = await api('/api/synth/five-point', { task: $('#task').value, top: 10 });
-    st.textContent = t('designsFound', res.designs.length, res.solutions);
-    list.replaceChildren(...res.designs.map((d) => {
-      const li = document.createElement('li');
-      const tags = [d.real ? '' : `<span class="tag warn">${t('complex')}</span>`,
-        d.grashof ? `<span class="tag">${esc(d.grashof)}</span>` : '',
-        d.defect_free ? `<span class="tag">${t('defectFree')}</span>` : `<span class="tag warn">${t('defects')}</span>`].join('');
-      li.innerHTML = `<span class="rank">${d.rank}</span><span class="info">${tags}<br>${t('minMu')} ${fmt(d.min_transmission)}° · ${t('maxErr')} ${fmt(d.max_error)} ${esc(res.error_unit ?? '')}</span>`;
-      const b = document.createElement('button');
-      b.textContent = t('open');
-      b.dataset.design = d.rank;
-      b.disabled = !d.real || !d.pivots;
-      b.addEventListener('click', async () => {
-        for (const x of document.querySelectorAll('[data-example]')) x.classList.remove('current');
-        showTab('editor');
-        await setText(designModel(d, res));
-      });
-      li.append(b);
-      return li;
-    }));
-  } catch (e) {
-    const i = e.info ?? {};
-    st.textContent = (i.line ? t('errorAt', i.line, i.column ?? 1) : '') + e.message;
-  } finally {
-    $('#synth-run').disabled = false;
-  }
-}
+// The synthesis panel lives in synthesis.js; the designs' models come from the server.
 
 // ------------------------------------------------------------------------------ downloads
 
@@ -449,6 +390,8 @@ async function download(kind) {
       save(await api('/api/render', { model, kind: 'draw', format: kind, labels: true }, 'blob'), `${name}.${kind}`);
     } else if (kind === 'gif') {
       save(await api('/api/render', { model, kind: 'animate', format: 'gif', frames: 36 }, 'blob'), `${name}.gif`);
+    } else if (kind === 'mp4') {
+      save(await api('/api/render', { model, kind: 'animate', format: 'mp4', frames: 72 }, 'blob'), `${name}.mp4`);
     } else if (kind === 'report') {
       save(await api('/api/report', { model }, 'blob'), `${name}-report.html`);
     }
@@ -483,7 +426,8 @@ async function start() {
   $('#scrub').addEventListener('input', (e) => { play(false); setFrame(+e.target.value); });
   $('#ycol').addEventListener('change', (e) => { state.ycol = e.target.value; buildPlot(); buildTable(); setFrame(state.frame); });
   $('#table').addEventListener('click', (e) => { const tr = e.target.closest('tr[data-i]'); if (tr) { play(false); setFrame(+tr.dataset.i); } });
-  $('#synth-run').addEventListener('click', runSynthesis);
+  const app = { state, api, setText, analyse, showTab, esc, fmt, status, play, setFrame, unitOf, col, model: () => editor.state.doc.toString() };
+  initSynthesis(app); initOverlays(app); initExplain(app); initOffline(app);
   $('#share').addEventListener('click', async () => {
     await updateHash(editor.state.doc.toString());
     try { await navigator.clipboard.writeText(location.href); } catch { /* http: no clipboard */ }

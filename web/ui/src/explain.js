@@ -1,0 +1,82 @@
+// The step-by-step panel: /api/explain for the model on screen at the pose shown (the same
+// explanation as `nbar explain --format json`, built once in the core), rendered as HTML: the
+// Gruebler-Kutzbach count, q, the equations Φ, the Jacobian Φq as a table, Newton-Raphson's
+// iterations with their residual norms, and the velocity and acceleration solutions. The maths
+// is the core's plain-text form set with HTML sub- and superscripts: no maths library, no network.
+import { t } from './i18n.js';
+
+const $ = (s) => document.querySelector(s);
+let app = null;
+
+// "x_A^2 + th_crank" -> x<sub>A</sub><sup>2</sup> + θ<sub>crank</sub>, escaped first.
+export function maths(text) {
+  return app.esc(text)
+    .replace(/\bth_(\w+)/g, 'θ<sub>$1</sub>')
+    .replace(/\b([A-Za-z])_(\w+)/g, '<i>$1</i><sub>$2</sub>')
+    .replace(/\^(\(?-?[\w.]+\)?)/g, '<sup>$1</sup>')
+    .replace(/\*/g, '·');
+}
+
+const num = (v) => (Number.isFinite(v) ? app.fmt(Math.abs(v) < 1e-12 ? 0 : v) : '–');
+
+function matrixTable(cls, rowHeads, colHeads, rows) {
+  const head = `<thead><tr><th></th>${colHeads.map((c) => `<th>${c}</th>`).join('')}</tr></thead>`;
+  const body = rows.map((r, i) => `<tr><th>${rowHeads[i]}</th>${r.map((v) => `<td class="${Math.abs(v) < 1e-12 ? 'zero' : ''}">${num(v)}</td>`).join('')}</tr>`).join('');
+  return `<div class="mwrap"><table class="matrix ${cls}">${head}<tbody>${body}</tbody></table></div>`;
+}
+
+function render(ex) {
+  const sym = ex.coordinates.map((c) => maths(c.symbol));
+  const c = ex.count;
+  const rowsHead = ex.equations.map((_, i) => `${i + 1}`);
+  const iters = ex.newton?.iterations ?? [];
+  const units = ex.units ?? {};
+  const parts = [];
+  parts.push(`<h3>${t('exTitle', app.esc(ex.model), ex.step, app.fmt(ex.time))}</h3>`);
+  parts.push(`<section><h4>1. ${t('exDof')}</h4><p class="eq">G = 3(n − 1) − 2P<sub>I</sub> − P<sub>II</sub> = 3(${c.links} − 1) − 2·${c.lower_pairs} − ${c.higher_pairs} = <b>${c.dof}</b></p>`
+    + `<p class="hint">${t('exMobility', c.mobility)}</p></section>`);
+  parts.push(`<section><h4>2. q</h4>${matrixTable('q', ['q'], sym, [ex.q])}<p class="hint">${t('exUnits', app.esc(units.length ?? ''))}</p></section>`);
+  parts.push(`<section><h4>3. Φ(q, t) = 0</h4><ol class="eqs">${ex.equations.map((e) => `<li><span class="lbl">${app.esc(e.label)}</span><span class="eq">${maths(e.text)}</span></li>`).join('')}</ol></section>`);
+  parts.push(`<section><h4>4. Φ<sub>q</sub></h4>${matrixTable('jac', rowsHead, sym, ex.jacobian)}<p class="hint">${t('exJacobian')}</p></section>`);
+  const newton = iters.map((it) => `<tr><td>${it.iteration}</td><td>${num(it.residual)}</td><td>${it.dq ? num(Math.hypot(...it.dq)) : '–'}</td></tr>`).join('');
+  parts.push(`<section><h4>5. Newton–Raphson</h4><p class="hint">${t('exNewton', app.esc(ex.newton?.start ?? ''))}</p>`
+    + `<div class="mwrap"><table class="matrix newton"><thead><tr><th>k</th><th>‖Φ(q<sub>k</sub>)‖</th><th>‖Δq‖</th></tr></thead><tbody>${newton}</tbody></table></div>`
+    + `<p class="hint">${ex.newton?.converged ? t('exConverged', iters.length) : t('exNotConverged')}</p></section>`);
+  if (ex.velocity) {
+    parts.push(`<section><h4>6. Φ<sub>q</sub> q̇ = −Φ<sub>t</sub></h4>${matrixTable('vel', ['q̇'], sym, [ex.velocity.solution])}</section>`);
+  }
+  if (ex.acceleration) {
+    parts.push(`<section><h4>7. Φ<sub>q</sub> q̈ = γ</h4>${matrixTable('acc', ['q̈'], sym, [ex.acceleration.solution])}</section>`);
+  }
+  if (ex.notes?.length) parts.push(`<p class="hint">${ex.notes.map(app.esc).join('<br>')}</p>`);
+  return parts.join('');
+}
+
+async function explainNow() {
+  const out = $('#explain-out');
+  const { state } = app;
+  if (!state.solve || !state.lastOk) { out.textContent = t('nothing'); return; }
+  const step = Math.max(0, Math.min(+$('#explain-step').value || 0, state.solve.rows.length - 1));
+  out.textContent = t('loading');
+  try {
+    const ex = await app.api('/api/explain', { model: state.lastOk, step });
+    out.innerHTML = render(ex);
+    out.dataset.step = String(step);
+  } catch (e) {
+    out.innerHTML = `<p class="bad">${app.esc(e.message)}</p>`;
+  }
+}
+
+export function initExplain(context) {
+  app = context;
+  $('#explain-run').addEventListener('click', explainNow);
+  // The step follows the pose shown until the panel is asked.
+  document.addEventListener('nbar:frame', () => { $('#explain-step').value = String(app.state.frame); });
+  const tab = document.querySelector('[data-tab="explain"]');
+  tab.addEventListener('click', () => { if (!$('#explain-out').dataset.step) explainNow(); });
+  // A new model: the explanation shown is of the old one.
+  document.addEventListener('nbar:solved', () => {
+    delete $('#explain-out').dataset.step;
+    if (tab.getAttribute('aria-selected') === 'true') explainNow();
+  });
+}

@@ -1,0 +1,73 @@
+// The web app's service worker (served by nbar serve as /sw.js, so its scope is the whole app):
+// the app shell and every answer are fetched from the network first and kept, so that without a
+// network the page, the editor and the last results still open. POST answers (check, solve,
+// stress, explain) are kept under a digest of the request's body: the same model asked again
+// offline gets the answer it had. Anything else asked offline is a 503 that says so.
+const CACHE = 'nbar-app-v1';
+const SHELL = ['./', 'index.html', 'app.js', 'app.css', 'api/examples'];
+const KEPT_POSTS = ['/api/check', '/api/solve', '/api/stress', '/api/explain', '/api/synth/'];
+const MAX_POSTS = 60;
+
+self.addEventListener('install', (event) => {
+  event.waitUntil(caches.open(CACHE).then((c) => c.addAll(SHELL)).catch(() => {}).then(() => self.skipWaiting()));
+});
+self.addEventListener('activate', (event) => {
+  event.waitUntil(caches.keys()
+    .then((keys) => Promise.all(keys.filter((k) => k !== CACHE).map((k) => caches.delete(k))))
+    .then(() => self.clients.claim()));
+});
+
+function offlineAnswer() {
+  const error = {
+    kind: 'offline',
+    message: 'Offline: the analysis needs the nbar server. The editor and the last results still work.',
+  };
+  return new Response(JSON.stringify({ error }), {
+    status: 503, headers: { 'Content-Type': 'application/json', 'X-Nbar-Offline': '1' },
+  });
+}
+
+async function postKey(request) {
+  const body = await request.clone().arrayBuffer();
+  const digest = await crypto.subtle.digest('SHA-256', body);
+  const hex = [...new Uint8Array(digest)].map((b) => b.toString(16).padStart(2, '0')).join('');
+  return new Request(`${new URL(request.url).pathname}?post=${hex}`);
+}
+
+async function trim(cache) {
+  const posts = (await cache.keys()).filter((r) => new URL(r.url).searchParams.has('post'));
+  for (const r of posts.slice(0, Math.max(posts.length - MAX_POSTS, 0))) await cache.delete(r);
+}
+
+async function networkFirst(request) {
+  const cache = await caches.open(CACHE);
+  const isPost = request.method === 'POST';
+  const key = isPost ? await postKey(request) : request;
+  try {
+    const answer = await fetch(request);
+    if (answer.ok) {
+      // Kept again, so the newest is last (trim removes the oldest).
+      if (isPost) await cache.delete(key);
+      await cache.put(key, answer.clone());
+      if (isPost) await trim(cache);
+    }
+    return answer;
+  } catch {
+    const kept = await cache.match(key) ?? (request.mode === 'navigate' ? await cache.match('./') : undefined);
+    if (!kept) return offlineAnswer();
+    const headers = new Headers(kept.headers);
+    headers.set('X-Nbar-Offline', '1');
+    return new Response(await kept.blob(), { status: kept.status, headers });
+  }
+}
+
+self.addEventListener('fetch', (event) => {
+  const { request } = event;
+  const url = new URL(request.url);
+  if (url.origin !== self.location.origin) return;
+  if (request.method === 'GET' || (request.method === 'POST' && KEPT_POSTS.some((p) => url.pathname.startsWith(p)))) {
+    event.respondWith(networkFirst(request));
+  } else if (request.method === 'POST') {
+    event.respondWith(fetch(request).catch(offlineAnswer));
+  }
+});

@@ -1,0 +1,361 @@
+// The synthesis panel: five-point path synthesis (points typed or tapped on the drawing),
+// Burmester motion generation from poses (a form, or poses tapped on the drawing) and function
+// generation (a form). Every task goes to the server's /api/synth/* with "models": true, so each
+// design comes with the model file the core writes for it (`nbar synth --export`'s): the browser
+// writes task text from the form, never a model. A design can be previewed animating through the
+// targets, and opened in the editor.
+import { t, translatePage } from './i18n.js';
+import { drawingSvg, frameGroup } from './drawing.js';
+
+const $ = (s) => document.querySelector(s);
+const num = (v) => String(+(+v).toFixed(6));
+const methods = ['five-point', 'burmester', 'function'];
+
+let app = null;
+const synth = { method: 'five-point', tapping: null, taps: [], targets: [], preview: null };
+
+// ------------------------------------------------------------------------------ forms
+
+function field(key, id, value, attrs = '') {
+  return `<label class="field"><span data-i18n="${key}">${t(key)}</span><input id="${id}" value="${value}" ${attrs}></label>`;
+}
+
+function burmesterForm() {
+  return `<div id="synth-burmester" class="synth-form" hidden>
+    <p class="hint" data-i18n="burmesterHint">${t('burmesterHint')}</p>
+    <table class="poses"><thead><tr><th>#</th><th>x</th><th>y</th><th data-i18n="angleDeg">${t('angleDeg')}</th><th></th></tr></thead><tbody id="poses"></tbody></table>
+    <div class="row wrap">
+      <button id="pose-add" type="button" data-i18n="addPose">${t('addPose')}</button>
+      <button id="pose-tap" type="button" class="tap" data-i18n="tapPoses">${t('tapPoses')}</button>
+      <label class="check"><input type="checkbox" id="bm-fixed" checked><span data-i18n="fixedPivots">${t('fixedPivots')}</span></label>
+    </div>
+    <div class="grid4" id="bm-pivots">
+      ${field('pivotAx', 'bm-ax', '0', 'inputmode="decimal"')}${field('pivotAy', 'bm-ay', '0', 'inputmode="decimal"')}
+      ${field('pivotBx', 'bm-bx', '200', 'inputmode="decimal"')}${field('pivotBy', 'bm-by', '0', 'inputmode="decimal"')}
+    </div>
+  </div>`;
+}
+
+function functionForm() {
+  return `<div id="synth-function" class="synth-form" hidden>
+    <p class="hint" data-i18n="functionHint">${t('functionHint')}</p>
+    ${field('fnExpr', 'fn-expr', 'log10(x)', 'spellcheck="false" autocapitalize="off"')}
+    <div class="grid4">
+      ${field('fnX0', 'fn-x0', '1', 'inputmode="decimal"')}${field('fnX1', 'fn-x1', '2', 'inputmode="decimal"')}
+      ${field('fnIn0', 'fn-in0', '90', 'inputmode="decimal"')}${field('fnIn1', 'fn-in1', '150', 'inputmode="decimal"')}
+      ${field('fnOut0', 'fn-out0', '60', 'inputmode="decimal"')}${field('fnOut1', 'fn-out1', '120', 'inputmode="decimal"')}
+      ${field('fnPoints', 'fn-points', '3', 'inputmode="numeric"')}${field('fnFrame', 'fn-frame', '100', 'inputmode="decimal"')}
+    </div>
+    <label class="field"><span data-i18n="fnSpacing">${t('fnSpacing')}</span><select id="fn-spacing"><option value="chebyshev">Chebyshev</option><option value="even" data-i18n="even">${t('even')}</option></select></label>
+  </div>`;
+}
+
+function buildForms() {
+  const task = $('#task');
+  const bar = document.createElement('div');
+  bar.className = 'row wrap';
+  bar.innerHTML = `<label class="field inline"><span data-i18n="method">${t('method')}</span><select id="synth-method">
+      <option value="five-point" data-i18n="mFive">${t('mFive')}</option>
+      <option value="burmester" data-i18n="mBurmester">${t('mBurmester')}</option>
+      <option value="function" data-i18n="mFunction">${t('mFunction')}</option></select></label>
+    <button id="five-tap" type="button" class="tap" data-i18n="tapFive">${t('tapFive')}</button>`;
+  task.before(bar);
+  task.insertAdjacentHTML('afterend', burmesterForm() + functionForm());
+  for (const p of [[-74.772, 20.544, 65.248], [22.802, 111.483, 55.771], [44.303, 194.508, 26.642]]) addPose(...p);
+}
+
+function addPose(x = 0, y = 0, angle = 0) {
+  const tr = document.createElement('tr');
+  const n = $('#poses').children.length + 1;
+  tr.innerHTML = `<td>${n}</td><td><input class="px" inputmode="decimal" value="${num(x)}"></td><td><input class="py" inputmode="decimal" value="${num(y)}"></td>`
+    + `<td><input class="pa" inputmode="decimal" value="${num(angle)}"></td><td><button type="button" class="ghost x" aria-label="${t('remove')}">×</button></td>`;
+  tr.querySelector('.x').addEventListener('click', () => { tr.remove(); renumber(); });
+  $('#poses').append(tr);
+}
+function renumber() { [...$('#poses').children].forEach((tr, i) => { tr.firstChild.textContent = String(i + 1); }); }
+function poses() {
+  return [...$('#poses').children].map((tr) => ['.px', '.py', '.pa'].map((c) => tr.querySelector(c).value.trim()));
+}
+
+function showMethod(m) {
+  synth.method = m;
+  stopTapping();
+  $('#task').hidden = m !== 'five-point';
+  setTimeout(drawMarks);
+  $('#five-tap').hidden = m !== 'five-point';
+  $('#synth-burmester').hidden = m !== 'burmester';
+  $('#synth-function').hidden = m !== 'function';
+  $('#synth-hint').hidden = m !== 'five-point';
+}
+
+// ------------------------------------------------------------------------------ task text
+
+// The five-point task's target points, read back from its text (for the preview's marks).
+function fivePointTargets(text) {
+  const block = /^points:\s*(?:#.*)?\n((?:[ \t]*-[^\n]*\n?)+)/m.exec(text);
+  if (!block) return [];
+  return [...block[1].matchAll(/\[\s*([-+\d.eE]+)\s*,\s*([-+\d.eE]+)\s*\]/g)].map((m) => [+m[1], +m[2]]);
+}
+
+function setFivePointTargets(points) {
+  const ta = $('#task');
+  const list = points.map(([x, y]) => `  - [${num(x)}, ${num(y)}]`).join('\n');
+  const re = /^points:[^\n]*\n(?:[ \t]*-[^\n]*\n?)*/m;
+  ta.value = re.test(ta.value) ? ta.value.replace(re, `points:            # tapped on the drawing\n${list}\n`) : `${ta.value.trimEnd()}\npoints:\n${list}\n`;
+}
+
+function lengthUnit() { return app.state.check?.units?.length ?? 'mm'; }
+
+function burmesterTask() {
+  const rows = poses();
+  const lines = [`task: burmester`, `name: ${JSON.stringify(t('bmName', rows.length))}`, `units: {length: ${lengthUnit()}, angle: deg}`, 'poses:'];
+  for (const [x, y, a] of rows) lines.push(`  - {point: [${x}, ${y}], angle: ${a}}`);
+  if (rows.length === 3 && $('#bm-fixed').checked) {
+    lines.push('fixed_pivots:', `  a: [${$('#bm-ax').value}, ${$('#bm-ay').value}]`, `  b: [${$('#bm-bx').value}, ${$('#bm-by').value}]`);
+  }
+  synth.targets = rows.map(([x, y, a]) => [+x, +y, +a]);
+  return `${lines.join('\n')}\n`;
+}
+
+function functionTask() {
+  const v = (id) => $(`#${id}`).value.trim();
+  synth.targets = [];
+  return `task: function
+name: ${JSON.stringify(`y = ${v('fn-expr')}`)}
+units: {length: ${lengthUnit()}, angle: deg}
+function: ${JSON.stringify(v('fn-expr'))}
+x: [${v('fn-x0')}, ${v('fn-x1')}]
+input_range: [${v('fn-in0')}, ${v('fn-in1')}]
+output_range: [${v('fn-out0')}, ${v('fn-out1')}]
+points: ${v('fn-points')}
+spacing: ${$('#fn-spacing').value}
+frame: ${v('fn-frame')}
+`;
+}
+
+function taskText() {
+  if (synth.method === 'burmester') return burmesterTask();
+  if (synth.method === 'function') return functionTask();
+  const text = $('#task').value;
+  synth.targets = fivePointTargets(text);
+  return text;
+}
+
+// ------------------------------------------------------------------------------ tapping
+
+function stopTapping() {
+  synth.tapping = null;
+  synth.taps = [];
+  for (const b of document.querySelectorAll('button.tap')) b.classList.remove('on');
+  document.querySelector('#drawing')?.classList.remove('tapping');
+  drawMarks();
+}
+
+function startTapping(kind) {
+  if (synth.tapping === kind) { stopTapping(); return; }
+  if (!document.querySelector('#drawing svg')) { $('#synth-status').textContent = t('tapNeedsDrawing'); return; }
+  stopTapping();
+  synth.tapping = kind;
+  $(kind === 'five' ? '#five-tap' : '#pose-tap').classList.add('on');
+  $('#drawing').classList.add('tapping');
+  $('#synth-status').textContent = t(kind === 'five' ? 'tapFiveNow' : 'tapPosesNow', 0);
+  if (kind === 'poses') $('#poses').replaceChildren();
+  // On a phone the drawing is above the panel: bring it into view.
+  $('#drawing').scrollIntoView({ block: 'nearest' });
+}
+
+function modelPoint(e) {
+  const svg = $('#drawing svg');
+  const p = new DOMPoint(e.clientX, e.clientY).matrixTransform(svg.getScreenCTM().inverse());
+  return [p.x, -p.y];
+}
+
+// Taps are caught before the drawing's own handlers (dragging, creating points).
+function onTap(e) {
+  if (!synth.tapping || !e.target.closest('#drawing svg')) return;
+  e.preventDefault();
+  e.stopImmediatePropagation();
+  const [x, y] = modelPoint(e);
+  const digits = Math.max(0, Math.min(6, 2 - Math.floor(Math.log10(app.state.geometry?.scale || 1))));
+  const p = [+x.toFixed(digits), +y.toFixed(digits)];
+  if (synth.tapping === 'five') {
+    synth.taps.push(p);
+    $('#synth-status').textContent = t('tapFiveNow', synth.taps.length);
+    if (synth.taps.length === 5) {
+      setFivePointTargets(synth.taps);
+      stopTapping();
+      $('#synth-status').textContent = t('tapped');
+    }
+  } else {
+    addPose(p[0], p[1], 0);
+    const n = $('#poses').children.length;
+    $('#synth-status').textContent = t('tapPosesNow', n);
+    if (n === 5) { stopTapping(); $('#synth-status').textContent = t('tapped'); }
+  }
+  drawMarks();
+}
+
+// The targets over the mechanism while the synthesis panel is open: the points being tapped, the
+// five-point task's points or the Burmester poses (with their angles).
+function markedTargets() {
+  if (synth.tapping === 'five') return synth.taps;
+  if (!document.querySelector('#panel-synthesis.active')) return [];
+  if (synth.method === 'burmester') return poses().map(([x, y, a]) => [+x, +y, +a]).filter(([x, y]) => Number.isFinite(x) && Number.isFinite(y));
+  if (synth.method === 'five-point') return fivePointTargets($('#task').value);
+  return [];
+}
+
+function drawMarks() {
+  const svg = document.querySelector('#drawing svg');
+  if (!svg) return;
+  svg.querySelector('.synth-marks')?.remove();
+  const pts = markedTargets();
+  if (!pts.length) return;
+  const s = app.state.geometry?.scale ?? 1;
+  const g = document.createElementNS('http://www.w3.org/2000/svg', 'g');
+  g.setAttribute('class', 'synth-marks');
+  g.innerHTML = pts.map(([x, y, a], i) => targetMark(x, y, s, i + 1, a)).join('');
+  svg.append(g);
+}
+
+// A target point, or a pose: the point and a tick along the coupler's angle.
+function targetMark(x, y, s, label, angle = undefined) {
+  const X = +x; const Y = -y;
+  const r = (angle ?? 0) * Math.PI / 180;
+  const tick = Number.isFinite(angle) ? `<path d="M${X},${Y}l${+(7 * s * Math.cos(r)).toFixed(4)},${+(-7 * s * Math.sin(r)).toFixed(4)}" stroke="#d92d20" stroke-width="2.5" vector-effect="non-scaling-stroke"/>` : '';
+  return `<g class="target">${tick}<circle cx="${X}" cy="${Y}" r="${1.6 * s}" fill="none" stroke="#d92d20" stroke-width="2" vector-effect="non-scaling-stroke"/>`
+    + `<path d="M${X - 2.6 * s},${Y}h${5.2 * s}M${X},${Y - 2.6 * s}v${5.2 * s}" stroke="#d92d20" stroke-width="1.5" vector-effect="non-scaling-stroke"/>`
+    + `<text x="${X + 2 * s}" y="${Y + 4.5 * s}" font-size="${3.2 * s}" fill="#d92d20" font-family="system-ui, sans-serif">${label}</text></g>`;
+}
+
+// ------------------------------------------------------------------------------ designs
+
+function tags(d) {
+  const out = [];
+  if (!d.real) out.push(`<span class="tag warn">${t('complex')}</span>`);
+  if (d.grashof) out.push(`<span class="tag">${app.esc(d.grashof)}</span>`);
+  if (d.real && d.valid === false) out.push(`<span class="tag warn">${t('invalidDesign')}</span>`);
+  if (d.defect_free) out.push(`<span class="tag">${t('defectFree')}</span>`);
+  else if (d.defects) {
+    for (const k of ['circuit', 'branch', 'order', 'unreached']) if (d.defects[k]) out.push(`<span class="tag warn">${t(`defect_${k}`)}</span>`);
+  }
+  return out.join('');
+}
+
+function designItem(d, res) {
+  const li = document.createElement('li');
+  li.dataset.rank = d.rank;
+  const { fmt, esc } = app;
+  const err = d.max_error === undefined ? '' : ` · ${t('maxErr')} ${fmt(d.max_error)} ${esc(res.error_unit ?? '')}`;
+  li.innerHTML = `<div class="head"><span class="rank">${d.rank}</span><span class="info">${tags(d)}<br>${t('minMu')} ${fmt(d.min_transmission)}°${err}</span>`
+    + `<span class="acts"><button type="button" class="ghost" data-preview="${d.rank}" data-i18n="preview">${t('preview')}</button>`
+    + `<button type="button" data-design="${d.rank}" data-i18n="open">${t('open')}</button></span></div><div class="pv"></div>`;
+  const ok = Boolean(d.model);
+  li.querySelector('[data-design]').disabled = !ok;
+  li.querySelector('[data-preview]').disabled = !ok;
+  li.querySelector('[data-design]').addEventListener('click', async () => {
+    stopPreview();
+    for (const x of document.querySelectorAll('[data-example]')) x.classList.remove('current');
+    app.showTab('editor');
+    await app.setText(d.model);
+  });
+  li.querySelector('[data-preview]').addEventListener('click', () => preview(d, li));
+  return li;
+}
+
+async function runSynthesis() {
+  const list = $('#designs');
+  const st = $('#synth-status');
+  stopTapping();
+  stopPreview();
+  list.replaceChildren();
+  st.textContent = t('running');
+  $('#synth-run').disabled = true;
+  try {
+    const res = await app.api(`/api/synth/${synth.method}`, { task: taskText(), top: 10, models: true });
+    st.textContent = t('designsFound', res.designs.length, res.solutions);
+    list.replaceChildren(...res.designs.map((d) => designItem(d, res)));
+    if (res.notes?.length) st.textContent += ` · ${res.notes.join(' ')}`;
+  } catch (e) {
+    const i = e.info ?? {};
+    st.textContent = (i.line ? t('errorAt', i.line, i.column ?? 1) : '') + e.message;
+  } finally {
+    $('#synth-run').disabled = false;
+  }
+}
+
+// ------------------------------------------------------------------------------ preview
+
+function geometryOf(check, solve) {
+  const has = (p) => solve.columns.includes(`${p}.x`);
+  const points = [...(check.points?.ground ?? []), ...(check.points?.moving ?? [])].filter(has);
+  return {
+    points, sliders: [], ground: new Set(check.points?.ground ?? []),
+    bodies: (check.bodies ?? []).map((b) => ({ name: b.name, points: b.points.filter((p) => points.includes(p)) })),
+  };
+}
+
+function stopPreview() {
+  if (!synth.preview) return;
+  cancelAnimationFrame(synth.preview.raf);
+  synth.preview.el.replaceChildren();
+  synth.preview.li.classList.remove('previewing');
+  synth.preview = null;
+}
+
+// The design's own model, solved by the server, animated in the list with the targets marked.
+async function preview(d, li) {
+  const same = synth.preview?.li === li;
+  stopPreview();
+  if (same) return;
+  const el = li.querySelector('.pv');
+  el.textContent = t('loading');
+  try {
+    const [check, solve] = await Promise.all([
+      app.api('/api/check', { model: d.model }), app.api('/api/solve', { model: d.model, order: 0 })]);
+    const g = geometryOf(check, solve);
+    el.innerHTML = drawingSvg(g, solve);
+    const svg = el.querySelector('svg');
+    const marks = document.createElementNS('http://www.w3.org/2000/svg', 'g');
+    marks.innerHTML = synth.targets.map(([x, y, a], i) => targetMark(x, y, g.scale, i + 1, a)).join('');
+    svg.append(marks);
+    const frame = svg.querySelector('.frame');
+    const n = solve.rows.length;
+    const p = { el, li, raf: 0, start: 0 };
+    synth.preview = p;
+    li.classList.add('previewing');
+    const step = (now) => {
+      if (synth.preview !== p) return;
+      if (!p.start) p.start = now;
+      const i = Math.floor(((now - p.start) / 4000) * n) % n;
+      frame.innerHTML = frameGroup(g, solve, solve.rows[i]);
+      el.dataset.frame = String(i);
+      p.raf = requestAnimationFrame(step);
+    };
+    p.raf = requestAnimationFrame(step);
+  } catch (e) {
+    el.textContent = `${t('failed')}: ${e.message}`;
+  }
+}
+
+// ------------------------------------------------------------------------------ start
+
+export function initSynthesis(context) {
+  app = context;
+  buildForms();
+  const hint = document.querySelector('#panel-synthesis .hint');
+  hint.id = 'synth-hint';
+  translatePage();
+  $('#synth-method').addEventListener('change', (e) => showMethod(e.target.value));
+  $('#five-tap').addEventListener('click', () => startTapping('five'));
+  $('#pose-tap').addEventListener('click', () => startTapping('poses'));
+  $('#pose-add').addEventListener('click', () => { if ($('#poses').children.length < 5) addPose(); });
+  $('#bm-fixed').addEventListener('change', (e) => { $('#bm-pivots').hidden = !e.target.checked; });
+  $('#synth-run').addEventListener('click', runSynthesis);
+  $('#drawing').addEventListener('pointerdown', onTap, true);
+  document.addEventListener('nbar:solved', drawMarks);
+  $('#poses').addEventListener('input', drawMarks);
+  $('#task').addEventListener('input', drawMarks);
+  for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', drawMarks);
+  showMethod(methods[0]);
+}
