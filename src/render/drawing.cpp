@@ -531,7 +531,9 @@ void draw_body(Canvas& canvas, const View& view, const Mechanism& mech, const Sw
   const double scale = view.pixels_per_metre();
   const Color color = body_color(b);
   const Paint plate{Color{color.r, color.g, color.b, 150}, Stroke{darker(color), 1.4, {}}};
-  const double bar_width = carries_slot(m, body) ? kSlottedBarWidth : kBarWidth;
+  // A body with a slot or a guide (a slotted lever, a cylinder's barrel) is wider than what
+  // rides in it.
+  const double bar_width = carries_guide(m, body) ? kSlottedBarWidth : kBarWidth;
   canvas.begin_group("body-" + body.name, "body");
   const Placement place = placement(m, b, points);
   const auto ends = collinear_ends(m, body);
