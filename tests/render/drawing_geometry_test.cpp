@@ -203,6 +203,34 @@ TEST(DrawingGeometry, LabelsStayOffBarsGuidesAndBlocks) {
   }
 }
 
+// A stress marker's label (which the report draws on the steel four-bar's plates) is read
+// beside the plates, not over them.
+TEST(DrawingGeometry, AMarkerLabelStaysOffThePlates) {
+  const Example e("fourbar-steel-bars.yaml");
+  const Model& m = e.mech.model();
+  for (int step : {0, 1, 35}) {
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+      DrawOptions options;
+      // Near the body's first point, on its axis: the label's first choice (up right) would
+      // cross the plate.
+      options.markers.push_back({static_cast<int>(b), {0.02, 0.0}, "44.9 MPa"});
+      const Picture pic(e, step, options);
+      const auto labels = pic.canvas.in("markers", Drawn::Text);
+      ASSERT_EQ(labels.size(), 1u);
+      const auto box = text_box(*labels[0]);
+      for (const Drawn& plate : pic.canvas.drawn) {
+        if (plate.kind != Drawn::Outline) continue;
+        for (const Eigen::Vector2d& c : {Eigen::Vector2d(box[0], box[1]), Eigen::Vector2d(box[2], box[1]),
+                                         Eigen::Vector2d(box[2], box[3]), Eigen::Vector2d(box[0], box[3]),
+                                         Eigen::Vector2d(0.5 * (box[0] + box[2]), 0.5 * (box[1] + box[3]))}) {
+          EXPECT_FALSE(inside(plate.points, c)) << "step " << step << ", marker on " << m.bodies[b].name
+                                                << ": its label is on " << plate.group;
+        }
+      }
+    }
+  }
+}
+
 TEST(DrawingGeometry, TracesAreSmoothWhateverTheSweepsSampleCount) {
   const Example e("fourbar-crank-rocker.yaml", 13);
   DrawOptions options;
