@@ -490,6 +490,14 @@ void draw_fixed_guides(Canvas& canvas, const View& view, const Mechanism& mech, 
     }
 }
 
+// A guide's end outside the fitted view (or at its very edge): left out with its label, since
+// the guide is drawn where it is used.
+bool far_guide_end(const Model& m, int point, const Eigen::Vector2d& at, const Canvas& canvas) {
+  const double inset = 20;
+  return guide_end_only(m, point) && (at.x() < inset || at.y() < inset || at.x() > canvas.width() - inset ||
+                                      at.y() > canvas.height() - inset);
+}
+
 void draw_ground(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
                  const std::vector<Eigen::Vector2d>& points, Obstacles& obstacles) {
   const Model& m = mech.model();
@@ -502,7 +510,7 @@ void draw_ground(Canvas& canvas, const View& view, const Mechanism& mech, const 
       draw_pivot(canvas, c);
       obstacles.blocks.push_back({c, {c.x() - 0.6 * kPivotSize, c.y() + kPivotSize}, {c.x() + 0.6 * kPivotSize, c.y() + kPivotSize}});
       obstacles.segments.push_back({{c.x() - kPivotSize, c.y() + kPivotSize + 3}, {c.x() + kPivotSize, c.y() + kPivotSize + 3}, 3.0});
-    } else {  // a fixed point of no body: a guide's end, a spring's anchor
+    } else if (!far_guide_end(m, static_cast<int>(p), c, canvas)) {  // a guide's end, a spring's anchor
       canvas.polygon(rectangle(c, {1, 0}, 7, 7), Paint{Color::rgb(0x9a9a9a), Stroke{kGround, 1.0, {}}});
     }
   }
@@ -615,6 +623,12 @@ void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, con
   if (options.labels) {
     canvas.begin_group("labels", "labels");
     for (std::size_t p = 0; p < m.points.size(); ++p) {
+      // One text per point, in order (animations find a point's label by its place), empty
+      // for a far guide end.
+      if (far_guide_end(m, static_cast<int>(p), px(points[p]), canvas)) {
+        canvas.text(px(points[p]), "", 12, Anchor::Start, kInk);
+        continue;
+      }
       const Eigen::Vector2d at = place_label(obstacles, canvas, px(points[p]), m.points[p].name, 12, 1.0, {8.0, 13.0});
       canvas.text(at, m.points[p].name, 12, Anchor::Start, kInk);
     }

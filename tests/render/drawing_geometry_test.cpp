@@ -288,6 +288,13 @@ TEST(DrawingGeometry, TheViewFitsTheMovingPartsNotFarGuideEnds) {
   }
   EXPECT_GT(bottom - top, 0.7 * options.height);
   EXPECT_GT(view.to_pixels(e.mech.model().points[e.point("G2")].position).x(), options.width);
+  // Nor are the far guide ends drawn at the canvas's edge, with or without their names.
+  DrawOptions labelled;
+  labelled.labels = true;
+  const Picture pic(e, 0, labelled);
+  for (const Drawn* d : pic.canvas.in("ground", Drawn::Polygon))
+    for (const auto& p : d->points) EXPECT_TRUE(p.x() > 0 && p.x() < options.width) << p.transpose();
+  for (const Drawn* t : pic.canvas.in("labels", Drawn::Text)) EXPECT_NE(t->text, "G1");
 }
 
 TEST(DrawingGeometry, AFlatStartIsNotTheDefaultDrawnPose) {
