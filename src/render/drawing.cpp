@@ -629,7 +629,7 @@ void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, con
         canvas.text(px(points[p]), "", 12, Anchor::Start, kInk);
         continue;
       }
-      const Eigen::Vector2d at = place_label(obstacles, canvas, px(points[p]), m.points[p].name, 12, 1.0, {8.0, 13.0});
+      const Eigen::Vector2d at = place_label(obstacles, canvas, px(points[p]), m.points[p].name, 12, 1.0, {8.0, 13.0, 20.0});
       canvas.text(at, m.points[p].name, 12, Anchor::Start, kInk);
     }
     canvas.end_group();
