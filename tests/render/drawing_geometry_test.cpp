@@ -117,6 +117,41 @@ TEST(DrawingGeometry, APinInASlotHasAJointCircleAndTheSlotIsARoundedOutlineOverI
   }
 }
 
+// The slotted-lever quick return: the crank pin A runs in a slot of the lever O4-T (no block).
+TEST(DrawingGeometry, TheCrankPinOfASlottedLeverIsAJointInTheLeversSlot) {
+  const io::LoadedModel file = io::parse_model(
+      "units: {length: mm, angle: deg}\n"
+      "points: {O4: [0, 0], O2: [0, 250], A: [100, 250], T: [185.695338, 464.238345]}\n"
+      "ground: [O4, O2]\n"
+      "bodies: {crank: [O2, A], lever: [O4, T]}\n"
+      "slots:\n  - {point: A, along: [O4, T]}\n"
+      "drivers:\n  - {angle: crank, from: 0, to: 360, speed: 30 rpm}\n"
+      "sweep: {steps: 37}\n");
+  const Mechanism mech(file.model);
+  SweepOptions o;
+  o.order = 0;
+  const SweepResult sweep = run_sweep(mech, o);
+  ASSERT_TRUE(sweep.complete);
+  DrawOptions options;
+  const View view = fit_view(mech, sweep, options);
+  for (int step : {0, 12, 25}) {
+    RecordingCanvas canvas(options.width, options.height);
+    const auto points = sample_points(mech, sweep.samples[step]);
+    draw_mechanism(canvas, view, mech, sweep, points, options);
+    const Eigen::Vector2d a = view.to_pixels(points[file.model.find_point("A")]);
+    const Drawn* pin = circle_at(canvas, "body-crank", a, 4.5);
+    ASSERT_NE(pin, nullptr) << "step " << step;
+    const auto slots = canvas.in("body-lever", Drawn::Polygon);
+    ASSERT_EQ(slots.size(), 1u);
+    EXPECT_TRUE(inside(slots[0]->points, a)) << "step " << step;
+    EXPECT_LT(slots[0], pin);  // the lever first, the pin over it
+    // The lever is wider than the slot it carries.
+    const auto lever = canvas.in("body-lever", Drawn::Polyline);
+    ASSERT_EQ(lever.size(), 1u);
+    EXPECT_GT(lever[0]->size, 2 * 6.5);
+  }
+}
+
 TEST(DrawingGeometry, ACollinearThreePointBodyIsABarAsWideAsATwoPointOne) {
   const Example scissor("scissor-lift.yaml");
   const Picture pic(scissor, 0, {});
