@@ -66,7 +66,7 @@ int run_draw(const DrawArgs& args) {
       return fail(args.model, e);
     }
   } else {
-    const int step = args.step.value_or(0);
+    const int step = args.step.value_or(render::default_drawn_step(mech, sweep));
     if (!check_step(step, sweep)) return kBadUsage;
     points = render::sample_points(mech, sweep.samples[step]);
   }
@@ -90,7 +90,7 @@ Command add_draw_command(CLI::App& app) {
                                              "pivots, sliders, slots, labels, paths of chosen points, scale bar");
   sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
   sub->add_option("-o,--output", args->output, "FILE.svg or FILE.png")->required();
-  auto* step = sub->add_option("--step", args->step, "draw this sample of the sweep (default 0, the start)");
+  auto* step = sub->add_option("--step", args->step, "draw this sample of the sweep (default 0, the start, unless every point lies on one line there: then the most open pose)");
   sub->add_option("--at", args->at, "draw where the first driver has this value (model units; a time for time laws)")
       ->excludes(step);
   sub->add_option("--steps", args->steps, "samples of the sweep (for --step and the traces)")->check(CLI::PositiveNumber);

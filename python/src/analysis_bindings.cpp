@@ -108,7 +108,7 @@ std::vector<Eigen::Vector2d> pose_points(const PyAnalysis& a, std::optional<int>
       throw located(*a.model, e);
     }
   }
-  const int k = step.value_or(0);
+  const int k = step.value_or(render::default_drawn_step(mech, a.analysis.sweep));
   const int solved = static_cast<int>(a.analysis.sweep.samples.size());
   if (k < 0 || k >= solved)
     throw Error(ErrorKind::BadInput, "step " + std::to_string(k) + " is not a solved step (0 to " +

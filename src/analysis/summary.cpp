@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "nbar/analysis/cylinders.hpp"
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/sweep.hpp"
 
@@ -193,6 +194,8 @@ ModelSummary summarize(const Mechanism& mech) {
   for (std::size_t d = 0; d < m.drivers.size(); ++d) s.drivers.push_back(describe_driver(m, static_cast<int>(d)));
   warn_about_many_turns(m, s);
   summarize_start(mech, s);
+  if (s.assembly)
+    for (Warning& w : cylinder_warnings(mech)) s.warnings.push_back(std::move(w));
   return s;
 }
 

@@ -225,6 +225,9 @@ Animation::Animation(std::shared_ptr<const Mechanism> mechanism, const SweepResu
     steps_.push_back(static_cast<int>(std::clamp<long>(step, 0, n - 1)));
   }
   for (int s : steps_) points_.push_back(sample_points(mech, sweep.samples[s]));
+  // Solved once for every frame.
+  if (options_.trace_paths.size() != options_.traces.size())
+    options_.trace_paths = trace_paths(mech, sweep, options_.traces);
 }
 
 ImageCanvas Animation::render_frame(int frame, bool antialias) const {

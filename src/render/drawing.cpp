@@ -5,6 +5,8 @@
 #include <limits>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <array>
 #include <string>
 
 #include "nbar/dynamics/inverse_dynamics.hpp"
@@ -107,10 +109,10 @@ void draw_pivot(Canvas& c, const Eigen::Vector2d& at) {
   }
 }
 
-// A fixed guide line with hatching on one side.
-void draw_ground_line(Canvas& c, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+// A fixed guide line with hatching on the side `away` (a unit vector, px) points to.
+void draw_ground_line(Canvas& c, const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& away) {
   c.polyline({a, b}, Stroke{kGround, 1.6, {}});
-  const Eigen::Vector2d e = (b - a).normalized(), n = perp(e);
+  const Eigen::Vector2d e = (b - a).normalized(), n = away;
   const double length = (b - a).norm();
   for (double s = 4; s < length; s += 10) {
     const Eigen::Vector2d p = a + s * e + 0.5 * kBlockWidth * n;
@@ -134,14 +136,235 @@ std::string number(double v) {
 }  // namespace
 
 Color body_color(int index) {
-  static const std::uint32_t palette[] = {0x1f77b4, 0xff7f0e, 0x2ca02c, 0xd62728, 0x9467bd,
-                                          0x8c564b, 0xe377c2, 0x17becf, 0xbcbd22, 0x7f7f7f};
-  return Color::rgb(palette[index % 10]);
+  // Tableau's ten, then their light and dark companions: a machine of up to 30 bodies gets a
+  // colour for each.
+  static const std::uint32_t palette[] = {
+      0x1f77b4, 0xff7f0e, 0x2ca02c, 0xd62728, 0x9467bd, 0x8c564b, 0xe377c2, 0x17becf, 0xbcbd22, 0x7f7f7f,
+      0x9edae5, 0xffbb78, 0x98df8a, 0xff9896, 0xc5b0d5, 0xc49c94, 0xf7b6d2, 0xaec7e8, 0xdbdb8d, 0x393b79,
+      0x637939, 0x8c6d31, 0x843c39, 0x7b4173, 0x3182bd, 0xe6550d, 0x31a354, 0x756bb1, 0x636363, 0xa55194};
+  constexpr int count = static_cast<int>(sizeof palette / sizeof palette[0]);
+  return Color::rgb(palette[((index % count) + count) % count]);
 }
 
 std::vector<Eigen::Vector2d> sample_points(const Mechanism& mech, const Sample& sample) {
   return point_positions(mech, sample.taylor.col(0));
 }
+
+namespace {
+
+bool is_slot_pin(const Model& m, int point) {
+  return std::any_of(m.slots.begin(), m.slots.end(), [&](const Slot& s) { return s.point == point; });
+}
+
+// A joint: a point shared by two links, or a pin in a slot.
+bool is_joint(const Model& m, int point) { return links_at(m, point).size() >= 2 || is_slot_pin(m, point); }
+
+bool fixed_guide(const Model& m, const std::array<int, 2>& along) {
+  return m.points[along[0]].ground && m.points[along[1]].ground;
+}
+
+// A ground point that no body holds and only guides use (a guide's far end, a slide's zero):
+// where it is says nothing about where the mechanism moves.
+bool guide_end_only(const Model& m, int point) {
+  if (!m.points[point].ground || links_at(m, point).size() >= 2) return false;
+  bool guide = false;
+  for (const Slider& s : m.sliders) guide = guide || s.along[0] == point || s.along[1] == point;
+  for (const Slot& s : m.slots) guide = guide || s.along[0] == point || s.along[1] == point;
+  return guide;
+}
+
+// The two end points of a body whose points all lie on one line (a scissor arm with its middle
+// pin), or nothing for a body with a real area.
+std::optional<std::pair<int, int>> collinear_ends(const Model& m, const Body& body) {
+  if (body.points.size() < 2) return std::nullopt;
+  std::pair<int, int> ends{body.points[0], body.points[1]};
+  double longest = -1;
+  for (int i : body.points)
+    for (int j : body.points) {
+      const double d = (m.points[i].position - m.points[j].position).norm();
+      if (d > longest) longest = d, ends = {i, j};
+    }
+  const Eigen::Vector2d a = m.points[ends.first].position;
+  const Eigen::Vector2d e = (m.points[ends.second].position - a) / std::max(longest, 1e-300);
+  for (int p : body.points) {
+    const Eigen::Vector2d d = m.points[p].position - a;
+    if (std::abs(e.x() * d.y() - e.y() * d.x()) > 1e-6 * longest) return std::nullopt;
+  }
+  return ends;
+}
+
+// Whether `body` holds both points of a guide (a shared end alone does not make it the guide's).
+bool holds_guide(const Body& body, const std::array<int, 2>& along) {
+  auto on = [&](int p) { return std::find(body.points.begin(), body.points.end(), p) != body.points.end(); };
+  return on(along[0]) && on(along[1]);
+}
+
+bool carries_slot(const Model& m, const Body& body) {
+  return std::any_of(m.slots.begin(), m.slots.end(),
+                     [&](const Slot& s) { return !fixed_guide(m, s.along) && holds_guide(body, s.along); });
+}
+
+bool carries_guide(const Model& m, const Body& body) {
+  return carries_slot(m, body) || std::any_of(m.sliders.begin(), m.sliders.end(), [&](const Slider& s) {
+           return !fixed_guide(m, s.along) && holds_guide(body, s.along);
+         });
+}
+
+// Plates first, then the bodies that carry guides and slots, then bars and blocks: whatever
+// rides on or is pinned to a plate is drawn over it.
+std::vector<int> drawing_order(const Model& m) {
+  auto rank = [&](int b) {
+    const Body& body = m.bodies[b];
+    if (body.shape || (body.points.size() >= 3 && !collinear_ends(m, body))) return 0;
+    return carries_guide(m, body) ? 1 : 2;
+  };
+  std::vector<int> order(m.bodies.size());
+  for (std::size_t b = 0; b < order.size(); ++b) order[b] = static_cast<int>(b);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return rank(a) < rank(b); });
+  return order;
+}
+
+constexpr double kSlotHalfWidth = kJointRadius + 2.0;  // px
+constexpr double kSlottedBarWidth = 2 * kSlotHalfWidth + 6.0;
+
+// A slot: a rounded outline from `a` to `b` (px).
+std::vector<Eigen::Vector2d> stadium(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double radius) {
+  const Eigen::Vector2d e = (b - a).norm() > 0 ? Eigen::Vector2d((b - a).normalized()) : Eigen::Vector2d(1, 0);
+  const Eigen::Vector2d n = perp(e);
+  std::vector<Eigen::Vector2d> out;
+  constexpr int kArc = 8;
+  for (int i = 0; i <= kArc; ++i) {
+    const double t = std::numbers::pi * i / kArc;
+    out.push_back(b + radius * (std::sin(t) * e - std::cos(t) * n));
+  }
+  for (int i = 0; i <= kArc; ++i) {
+    const double t = std::numbers::pi * i / kArc;
+    out.push_back(a + radius * (-std::sin(t) * e + std::cos(t) * n));
+  }
+  return out;
+}
+
+// The stretch (m, from along[0] towards along[1]) of a guide that `point` travels over the
+// sweep, or where it is now when there is no sweep.
+std::pair<double, double> travel(const Mechanism& mech, const SweepResult& sweep, int point,
+                                 const std::array<int, 2>& along, const std::vector<Eigen::Vector2d>& now) {
+  auto coordinate = [&](const std::vector<Eigen::Vector2d>& p) {
+    const Eigen::Vector2d e = (p[along[1]] - p[along[0]]).normalized();
+    return e.dot(p[point] - p[along[0]]);
+  };
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Sample& s : sweep.samples) {
+    const double t = coordinate(sample_points(mech, s));
+    lo = std::min(lo, t);
+    hi = std::max(hi, t);
+  }
+  if (sweep.samples.empty()) lo = hi = coordinate(now);
+  return {lo, hi};
+}
+
+// What a label should not cover: lines (with their half widths) and filled areas.
+struct Obstacles {
+  struct Segment {
+    Eigen::Vector2d a, b;
+    double half_width;
+  };
+  std::vector<Segment> segments;
+  std::vector<std::vector<Eigen::Vector2d>> blocks;  // slider blocks: never covered
+  std::vector<std::vector<Eigen::Vector2d>> plates;  // plates: better not covered
+  std::vector<std::pair<Eigen::Vector2d, double>> circles;
+  std::vector<std::array<double, 4>> boxes;  // labels already placed: left, top, right, bottom
+
+  void polyline(const std::vector<Eigen::Vector2d>& p, double half_width, bool closed) {
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) segments.push_back({p[i], p[i + 1], half_width});
+    if (closed && p.size() > 2) segments.push_back({p.back(), p.front(), half_width});
+  }
+};
+
+bool segments_cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                    const Eigen::Vector2d& d) {
+  auto side = [](const Eigen::Vector2d& o, const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+    return (p - o).x() * (q - o).y() - (p - o).y() * (q - o).x();
+  };
+  return side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0;
+}
+
+bool contains(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
+  bool in = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
+    if ((polygon[i].y() > p.y()) != (polygon[j].y() > p.y()) &&
+        p.x() < (polygon[j].x() - polygon[i].x()) * (p.y() - polygon[i].y()) / (polygon[j].y() - polygon[i].y()) +
+                    polygon[i].x())
+      in = !in;
+  return in;
+}
+
+bool box_meets_segment(const std::array<double, 4>& box, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                       double half_width) {
+  const std::array<double, 4> grown = {box[0] - half_width, box[1] - half_width, box[2] + half_width,
+                                       box[3] + half_width};
+  auto inside = [&](const Eigen::Vector2d& p) {
+    return p.x() >= grown[0] && p.x() <= grown[2] && p.y() >= grown[1] && p.y() <= grown[3];
+  };
+  if (inside(a) || inside(b)) return true;
+  const Eigen::Vector2d corners[4] = {{grown[0], grown[1]}, {grown[2], grown[1]}, {grown[2], grown[3]}, {grown[0], grown[3]}};
+  for (int i = 0; i < 4; ++i)
+    if (segments_cross(a, b, corners[i], corners[(i + 1) % 4])) return true;
+  return false;
+}
+
+std::array<double, 4> label_box(const Eigen::Vector2d& baseline_start, const std::string& text, double size) {
+  const double width = 0.6 * size * static_cast<double>(text.size());
+  return {baseline_start.x(), baseline_start.y() - 0.8 * size, baseline_start.x() + width,
+          baseline_start.y() + 0.2 * size};
+}
+
+// How much a label's box at `box` covers: lines and blocks count fully, plates a little,
+// other labels fully, leaving the canvas most.
+double cover(const Obstacles& o, const std::array<double, 4>& box, const Canvas& canvas, double plate_weight) {
+  double penalty = 0;
+  for (const auto& s : o.segments)
+    if (box_meets_segment(box, s.a, s.b, s.half_width)) penalty += 1;
+  const Eigen::Vector2d centre(0.5 * (box[0] + box[2]), 0.5 * (box[1] + box[3]));
+  const Eigen::Vector2d corners[5] = {centre, {box[0], box[1]}, {box[2], box[1]}, {box[2], box[3]}, {box[0], box[3]}};
+  for (const auto& block : o.blocks)
+    for (const auto& c : corners)
+      if (contains(block, c)) penalty += 1;
+  for (const auto& plate : o.plates)
+    for (const auto& c : corners)
+      if (contains(plate, c)) penalty += plate_weight / 5;
+  for (const auto& [c, r] : o.circles) {
+    const Eigen::Vector2d nearest(std::clamp(c.x(), box[0], box[2]), std::clamp(c.y(), box[1], box[3]));
+    if ((nearest - c).norm() < r) penalty += 1;
+  }
+  for (const auto& b : o.boxes)
+    if (box[0] < b[2] && b[0] < box[2] && box[1] < b[3] && b[1] < box[3]) penalty += 2;
+  if (box[0] < 0 || box[1] < 0 || box[2] > canvas.width() || box[3] > canvas.height()) penalty += 4;
+  return penalty;
+}
+
+// Where a label of `text` next to `at` covers least (up right when nothing is in the way).
+Eigen::Vector2d place_label(Obstacles& o, const Canvas& canvas, const Eigen::Vector2d& at, const std::string& text,
+                            double size, double plate_weight, const std::vector<double>& distances) {
+  const double width = 0.6 * size * static_cast<double>(text.size());
+  Eigen::Vector2d best = at + Eigen::Vector2d(distances.front(), -distances.front());
+  double least = std::numeric_limits<double>::infinity();
+  for (double d : distances)
+    for (double degrees : {45.0, 135.0, -45.0, -135.0, 0.0, 180.0, 90.0, -90.0}) {  // up right first
+      const double angle = degrees * std::numbers::pi / 180.0;
+      const Eigen::Vector2d dir(std::cos(angle), -std::sin(angle));
+      // The box's nearest corner or edge at distance d from the point.
+      const Eigen::Vector2d anchor = at + d * dir;
+      const Eigen::Vector2d start(dir.x() < -0.3 ? anchor.x() - width : dir.x() > 0.3 ? anchor.x() : anchor.x() - 0.5 * width,
+                                  dir.y() < -0.3 ? anchor.y() : dir.y() > 0.3 ? anchor.y() + 0.8 * size
+                                                                               : anchor.y() + 0.3 * size);
+      const double penalty = cover(o, label_box(start, text, size), canvas, plate_weight);
+      if (penalty < least - 1e-9) least = penalty, best = start;
+    }
+  o.boxes.push_back(label_box(best, text, size));
+  return best;
+}
+
+}  // namespace
 
 View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions& options) {
   const Model& m = mech.model();
@@ -157,8 +380,10 @@ View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions
     for (const Point& p : m.points) drawn.push_back(p.position);
     poses.push_back(drawn);
   }
+  // Far guide ends would stretch the view: the guides are drawn over their used length only.
   for (const auto& points : poses) {
-    for (const auto& p : points) include(p);
+    for (std::size_t p = 0; p < points.size(); ++p)
+      if (!guide_end_only(m, static_cast<int>(p))) include(points[p]);
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       if (!m.bodies[b].shape) continue;
       const Placement place = placement(m, static_cast<int>(b), points);
@@ -170,118 +395,243 @@ View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions
   return View(lo, hi, options.width, options.height, options.margin + room);
 }
 
+int default_drawn_step(const Mechanism& mech, const SweepResult& sweep) {
+  const Model& m = mech.model();
+  auto spread = [&](const Sample& s) {
+    std::vector<Eigen::Vector2d> points;
+    const auto at = sample_points(mech, s);
+    for (std::size_t p = 0; p < at.size(); ++p)
+      if (!guide_end_only(m, static_cast<int>(p))) points.push_back(at[p]);
+    const auto h = hull(points);
+    double area = 0;
+    for (std::size_t i = 0; h.size() >= 3 && i < h.size(); ++i) {
+      const auto& a = h[i];
+      const auto& b = h[(i + 1) % h.size()];
+      area += 0.5 * (a.x() * b.y() - a.y() * b.x());
+    }
+    Eigen::Vector2d lo = points.empty() ? Eigen::Vector2d::Zero() : points[0], hi = lo;
+    for (const auto& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    return std::pair{std::abs(area), (hi - lo).squaredNorm()};
+  };
+  if (sweep.samples.empty()) return 0;
+  const auto [area, size] = spread(sweep.samples[0]);
+  if (area > 0.01 * size) return 0;
+  int best = 0;
+  double widest = area;
+  for (std::size_t k = 1; k < sweep.samples.size(); ++k) {
+    const double a = spread(sweep.samples[k]).first;
+    if (a > widest) widest = a, best = static_cast<int>(k);
+  }
+  return best;
+}
+
+std::vector<std::vector<Eigen::Vector2d>> trace_paths(const Mechanism& mech, const SweepResult& sweep,
+                                                      const std::vector<int>& points) {
+  std::vector<std::vector<Eigen::Vector2d>> paths(points.size());
+  if (points.empty() || sweep.samples.empty()) return paths;
+  const SweepResult* source = &sweep;
+  SweepResult finer;
+  if (sweep.complete && sweep.samples.size() > 1 && sweep.samples.size() < static_cast<std::size_t>(kTraceSamples)) {
+    try {
+      SweepOptions options;
+      options.steps = kTraceSamples;
+      options.order = 0;
+      finer = run_sweep(mech, options);
+      if (finer.complete) source = &finer;
+    } catch (const Error&) {
+      // the sweep's own samples then
+    }
+  }
+  for (const Sample& s : source->samples) {
+    const auto at = sample_points(mech, s);
+    for (std::size_t i = 0; i < points.size(); ++i) paths[i].push_back(at[points[i]]);
+  }
+  return paths;
+}
+
+namespace {
+
+// Fixed guides: the stretch the point travels plus a block's length, hatched on the side away
+// from the moving parts (the mechanism stands on it, or hangs under it).
+void draw_fixed_guides(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
+                       const std::vector<Eigen::Vector2d>& points, Obstacles& obstacles) {
+  const Model& m = mech.model();
+  auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  int moving = 0;
+  for (std::size_t p = 0; p < m.points.size(); ++p)
+    if (!m.points[p].ground) centroid += px(points[p]), ++moving;
+  if (moving) centroid /= moving;
+  auto span = [&](int point, const std::array<int, 2>& along) {
+    const auto [lo, hi] = travel(mech, sweep, point, along, points);
+    const Eigen::Vector2d a = points[along[0]], e = (points[along[1]] - a).normalized();
+    const double pad = kBlockLength / view.pixels_per_metre();
+    return std::pair{px(a + (lo - pad) * e), px(a + (hi + pad) * e)};
+  };
+  for (const Slider& s : m.sliders)
+    if (fixed_guide(m, s.along)) {
+      const auto [a, b] = span(s.point, s.along);
+      Eigen::Vector2d away = perp((b - a).normalized());
+      if (moving && away.dot(centroid - a) > 0) away = -away;
+      canvas.begin_group("guide-" + m.points[s.point].name, "guide");
+      draw_ground_line(canvas, a, b, away);
+      canvas.end_group();
+      obstacles.segments.push_back({a, b, 1.0});
+      obstacles.segments.push_back({a + 0.5 * kBlockWidth * away, b + (0.5 * kBlockWidth + 6) * away, 1.0});
+    }
+  for (const Slot& s : m.slots)
+    if (fixed_guide(m, s.along)) {
+      const auto [a, b] = span(s.point, s.along);
+      const Eigen::Vector2d n = perp((b - a).normalized()) * kSlotHalfWidth;
+      canvas.polyline({a + n, b + n}, Stroke{kGround, 1.4, {}});
+      canvas.polyline({a - n, b - n}, Stroke{kGround, 1.4, {}});
+      obstacles.segments.push_back({a + n, b + n, 1.0});
+      obstacles.segments.push_back({a - n, b - n, 1.0});
+    }
+}
+
+// A guide's end outside the fitted view (or at its very edge): left out with its label, since
+// the guide is drawn where it is used.
+bool far_guide_end(const Model& m, int point, const Eigen::Vector2d& at, const Canvas& canvas) {
+  const double inset = 20;
+  return guide_end_only(m, point) && (at.x() < inset || at.y() < inset || at.x() > canvas.width() - inset ||
+                                      at.y() > canvas.height() - inset);
+}
+
+void draw_ground(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
+                 const std::vector<Eigen::Vector2d>& points, Obstacles& obstacles) {
+  const Model& m = mech.model();
+  canvas.begin_group("ground", "ground");
+  draw_fixed_guides(canvas, view, mech, sweep, points, obstacles);
+  for (std::size_t p = 0; p < m.points.size(); ++p) {
+    if (!m.points[p].ground) continue;
+    const Eigen::Vector2d c = view.to_pixels(points[p]);
+    if (links_at(m, static_cast<int>(p)).size() >= 2) {
+      draw_pivot(canvas, c);
+      obstacles.blocks.push_back({c, {c.x() - 0.6 * kPivotSize, c.y() + kPivotSize}, {c.x() + 0.6 * kPivotSize, c.y() + kPivotSize}});
+      obstacles.segments.push_back({{c.x() - kPivotSize, c.y() + kPivotSize + 3}, {c.x() + kPivotSize, c.y() + kPivotSize + 3}, 3.0});
+    } else if (!far_guide_end(m, static_cast<int>(p), c, canvas)) {  // a guide's end, a spring's anchor
+      canvas.polygon(rectangle(c, {1, 0}, 7, 7), Paint{Color::rgb(0x9a9a9a), Stroke{kGround, 1.0, {}}});
+    }
+  }
+  canvas.end_group();
+}
+
+// The slots a moving body carries: a rounded outline over the stretch its pin travels.
+void draw_body_slots(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
+                     const std::vector<Eigen::Vector2d>& points, const Body& body, const Color& color) {
+  const Model& m = mech.model();
+  for (const Slot& s : m.slots) {
+    if (fixed_guide(m, s.along) || !holds_guide(body, s.along)) continue;
+    const auto [lo, hi] = travel(mech, sweep, s.point, s.along, points);
+    const Eigen::Vector2d a = points[s.along[0]], e = (points[s.along[1]] - a).normalized();
+    canvas.polygon(stadium(view.to_pixels(a + lo * e), view.to_pixels(a + hi * e), kSlotHalfWidth),
+                   Paint{kPaper, Stroke{darker(color), 1.2, {}}});
+  }
+}
+
+void draw_body(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
+               const std::vector<Eigen::Vector2d>& points, int b, const std::vector<int>& joint_owner,
+               Obstacles& obstacles) {
+  const Model& m = mech.model();
+  const Body& body = m.bodies[b];
+  auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
+  const double scale = view.pixels_per_metre();
+  const Color color = body_color(b);
+  const Paint plate{Color{color.r, color.g, color.b, 150}, Stroke{darker(color), 1.4, {}}};
+  // A body with a slot or a guide (a slotted lever, a cylinder's barrel) is wider than what
+  // rides in it.
+  const double bar_width = carries_guide(m, body) ? kSlottedBarWidth : kBarWidth;
+  canvas.begin_group("body-" + body.name, "body");
+  const Placement place = placement(m, b, points);
+  const auto ends = collinear_ends(m, body);
+  if (body.shape) {
+    Outline o;
+    for (const auto& v : body.shape->outline) o.outer.push_back(px(place(v)));
+    for (const auto& hole : body.shape->polygon_holes) {
+      o.polygon_holes.emplace_back();
+      for (const auto& v : hole) o.polygon_holes.back().push_back(px(place(v)));
+    }
+    for (const Circle& c : body.shape->circle_holes) o.circle_holes.push_back({px(place(c.centre)), c.radius * scale});
+    canvas.outline(o, plate);
+    obstacles.plates.push_back(o.outer);
+    obstacles.polyline(o.outer, 1.0, true);
+  } else if (body.points.size() == 1) {
+    const Eigen::Vector2d along = px(place(place.origin_drawn + place.direction_drawn)) - px(place.origin);
+    const auto block = rectangle(px(points[body.points[0]]), along, kBlockLength, kBlockWidth);
+    canvas.polygon(block, plate);
+    obstacles.blocks.push_back(block);
+  } else if (ends) {  // two points, or more on one line: a bar
+    const Eigen::Vector2d a = px(points[ends->first]), c = px(points[ends->second]);
+    canvas.polyline({a, c}, Stroke{color, bar_width, {}});
+    obstacles.segments.push_back({a, c, 0.5 * bar_width});
+  } else {
+    std::vector<Eigen::Vector2d> corners;
+    for (int p : body.points) corners.push_back(px(points[p]));
+    const auto outline = hull(corners);
+    canvas.polygon(outline, plate);
+    obstacles.plates.push_back(outline);
+    obstacles.polyline(outline, 1.0, true);
+  }
+  // Guides and slots that ride on this body.
+  for (const Slider& s : m.sliders)
+    if (!fixed_guide(m, s.along) && holds_guide(body, s.along))
+      canvas.polyline({px(points[s.along[0]]), px(points[s.along[1]])}, Stroke{darker(color), 2.0, {6, 3}});
+  draw_body_slots(canvas, view, mech, sweep, points, body, color);
+  for (int p : body.points) {
+    if (joint_owner[p] != b) continue;
+    if (is_joint(m, p))
+      canvas.circle(px(points[p]), kJointRadius, Paint{kPaper, Stroke{kInk, 1.5, {}}});
+    else
+      canvas.circle(px(points[p]), 2.5, Paint{kInk, std::nullopt});
+    obstacles.circles.push_back({px(points[p]), kJointRadius + 1});
+  }
+  canvas.end_group();
+}
+
+}  // namespace
+
 void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
                     const std::vector<Eigen::Vector2d>& points, const DrawOptions& options) {
   const Model& m = mech.model();
   auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
   const double scale = view.pixels_per_metre();
+  Obstacles obstacles;
 
-  // Ground: guides of sliders and slots fixed to the frame, then pivots.
-  canvas.begin_group("ground", "ground");
-  auto guide_span = [&](int point, const std::array<int, 2>& along) {
-    // The stretch of the guide line the point travels, plus a block's length.
-    const Eigen::Vector2d a = m.points[along[0]].position, e = (m.points[along[1]].position - a).normalized();
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const Sample& s : sweep.samples) {
-      const double t = e.dot(sample_points(mech, s)[point] - a);
-      lo = std::min(lo, t);
-      hi = std::max(hi, t);
-    }
-    if (sweep.samples.empty()) lo = hi = e.dot(points[point] - a);
-    const double pad = kBlockLength / scale;
-    return std::pair{px(a + (lo - pad) * e), px(a + (hi + pad) * e)};
-  };
-  for (const Slider& s : m.sliders)
-    if (m.points[s.along[0]].ground && m.points[s.along[1]].ground) {
-      const auto [a, b] = guide_span(s.point, s.along);
-      draw_ground_line(canvas, a, b);
-    }
-  for (const Slot& s : m.slots)
-    if (m.points[s.along[0]].ground && m.points[s.along[1]].ground) {
-      const auto [a, b] = guide_span(s.point, s.along);
-      const Eigen::Vector2d n = perp((b - a).normalized()) * (kJointRadius + 2);
-      canvas.polyline({a + n, b + n}, Stroke{kGround, 1.4, {}});
-      canvas.polyline({a - n, b - n}, Stroke{kGround, 1.4, {}});
-    }
-  for (std::size_t p = 0; p < m.points.size(); ++p) {
-    if (!m.points[p].ground) continue;
-    if (links_at(m, static_cast<int>(p)).size() >= 2) {
-      draw_pivot(canvas, px(points[p]));
-    } else {  // a fixed point of no body: a guide's end, a spring's anchor
-      const Eigen::Vector2d c = px(points[p]);
-      canvas.polygon(rectangle(c, {1, 0}, 7, 7), Paint{Color::rgb(0x9a9a9a), Stroke{kGround, 1.0, {}}});
-    }
-  }
-  canvas.end_group();
+  draw_ground(canvas, view, mech, sweep, points, obstacles);
 
   if (!options.traces.empty()) {
+    const auto paths = options.trace_paths.size() == options.traces.size() ? options.trace_paths
+                                                                            : trace_paths(mech, sweep, options.traces);
     canvas.begin_group("traces", "traces");
-    for (int t : options.traces) {
-      std::vector<Eigen::Vector2d> path;
-      for (const Sample& s : sweep.samples) path.push_back(px(sample_points(mech, s)[t]));
-      canvas.polyline(path, Stroke{Color::rgb(0x444444, 200), 1.3, {5, 3}});
+    for (const auto& path : paths) {
+      std::vector<Eigen::Vector2d> drawn;
+      for (const auto& p : path) drawn.push_back(px(p));
+      canvas.polyline(drawn, Stroke{Color::rgb(0x444444, 200), 1.3, {5, 3}});
     }
     canvas.end_group();
   }
 
-  // Bodies, each with the joints it is the last moving body of: drawn after every body that
+  // Bodies, each with the joints it is the last drawn body of: drawn after every body that
   // meets there, a joint stays visible.
+  const std::vector<int> order = drawing_order(m);
   std::vector<int> joint_owner(m.points.size(), -1);
-  for (std::size_t bi = 0; bi < m.bodies.size(); ++bi)
-    for (int p : m.bodies[bi].points) joint_owner[p] = static_cast<int>(bi);
-  for (std::size_t bi = 0; bi < m.bodies.size(); ++bi) {
-    const Body& body = m.bodies[bi];
-    const int b = static_cast<int>(bi);
-    const Color color = body_color(b);
-    const Paint plate{Color{color.r, color.g, color.b, 150}, Stroke{darker(color), 1.4, {}}};
-    canvas.begin_group("body-" + body.name, "body");
-    const Placement place = placement(m, b, points);
-    if (body.shape) {
-      Outline o;
-      for (const auto& v : body.shape->outline) o.outer.push_back(px(place(v)));
-      for (const auto& hole : body.shape->polygon_holes) {
-        o.polygon_holes.emplace_back();
-        for (const auto& v : hole) o.polygon_holes.back().push_back(px(place(v)));
-      }
-      for (const Circle& c : body.shape->circle_holes) o.circle_holes.push_back({px(place(c.centre)), c.radius * scale});
-      canvas.outline(o, plate);
-    } else if (body.points.size() == 1) {
-      const Eigen::Vector2d along = px(place(place.origin_drawn + place.direction_drawn)) - px(place.origin);
-      canvas.polygon(rectangle(px(points[body.points[0]]), along, kBlockLength, kBlockWidth), plate);
-    } else if (body.points.size() == 2) {
-      canvas.polyline({px(points[body.points[0]]), px(points[body.points[1]])}, Stroke{color, kBarWidth, {}});
-    } else {
-      std::vector<Eigen::Vector2d> corners;
-      for (int p : body.points) corners.push_back(px(points[p]));
-      canvas.polygon(hull(corners), plate);
-    }
-    // Guides and slots that ride on this body.
-    for (const Slider& s : m.sliders)
-      if (!(m.points[s.along[0]].ground && m.points[s.along[1]].ground) &&
-          std::find(body.points.begin(), body.points.end(), s.along[0]) != body.points.end())
-        canvas.polyline({px(points[s.along[0]]), px(points[s.along[1]])}, Stroke{darker(color), 2.0, {6, 3}});
-    for (const Slot& s : m.slots)
-      if (std::find(body.points.begin(), body.points.end(), s.along[0]) != body.points.end() &&
-          !(m.points[s.along[0]].ground && m.points[s.along[1]].ground)) {
-        const Eigen::Vector2d a = px(points[s.along[0]]), c = px(points[s.along[1]]);
-        canvas.polygon(rectangle(0.5 * (a + c), c - a, (c - a).norm() + 2 * kJointRadius, 2 * kJointRadius + 3),
-                       Paint{kPaper, Stroke{darker(color), 1.2, {}}});
-      }
-    for (int p : body.points) {
-      if (joint_owner[p] != b) continue;
-      const bool joint = links_at(m, p).size() >= 2;
-      if (joint)
-        canvas.circle(px(points[p]), kJointRadius, Paint{kPaper, Stroke{kInk, 1.5, {}}});
-      else
-        canvas.circle(px(points[p]), 2.5, Paint{kInk, std::nullopt});
-    }
-    canvas.end_group();
-  }
+  for (int b : order)
+    for (int p : m.bodies[b].points) joint_owner[p] = b;
+  for (int b : order) draw_body(canvas, view, mech, sweep, points, b, joint_owner, obstacles);
 
   if (options.labels) {
     canvas.begin_group("labels", "labels");
-    for (std::size_t p = 0; p < m.points.size(); ++p)
-      canvas.text(px(points[p]) + Eigen::Vector2d(7, -7), m.points[p].name, 12, Anchor::Start, kInk);
+    for (std::size_t p = 0; p < m.points.size(); ++p) {
+      // One text per point, in order (animations find a point's label by its place), empty
+      // for a far guide end.
+      if (far_guide_end(m, static_cast<int>(p), px(points[p]), canvas)) {
+        canvas.text(px(points[p]), "", 12, Anchor::Start, kInk);
+        continue;
+      }
+      const Eigen::Vector2d at = place_label(obstacles, canvas, px(points[p]), m.points[p].name, 12, 1.0, {8.0, 13.0, 20.0});
+      canvas.text(at, m.points[p].name, 12, Anchor::Start, kInk);
+    }
     canvas.end_group();
   }
 
@@ -295,7 +645,12 @@ void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, con
       const Eigen::Vector2d at = px(o + mk.local.x() * e + mk.local.y() * perp(e));
       canvas.circle(at, 7, Paint{std::nullopt, Stroke{Color::rgb(0xd00000), 2.2, {}}});
       canvas.circle(at, 2, Paint{Color::rgb(0xd00000), std::nullopt});
-      if (!mk.label.empty()) canvas.text(at + Eigen::Vector2d(10, -10), mk.label, 12, Anchor::Start, Color::rgb(0xb00000));
+      obstacles.circles.push_back({at, 8});
+      if (!mk.label.empty()) {
+        // Outside plates, where it can be read.
+        const Eigen::Vector2d where = place_label(obstacles, canvas, at, mk.label, 12, 5.0, {10.0, 24.0, 40.0, 60.0});
+        canvas.text(where, mk.label, 12, Anchor::Start, Color::rgb(0xb00000));
+      }
     }
     canvas.end_group();
   }

@@ -188,6 +188,23 @@ Vec2 PlotFrame::to_pixels(double x, double y) const {
   return {left + u * (right - left), bottom - v * (bottom - top)};
 }
 
+Vec2 PlotFrame::to_pixels_right(double x, double y) const {
+  PlotFrame right = *this;
+  right.y_lo = y2_lo;
+  right.y_hi = y2_hi;
+  return right.to_pixels(x, y);
+}
+
+bool plots_a_path(const PlotSpec& spec) {
+  if (spec.equal_scales) return *spec.equal_scales;
+  auto coordinate = [](const std::string& name) {
+    return name.size() > 2 && (name.ends_with(".x") || name.ends_with(".y"));
+  };
+  if (spec.series.empty() || spec.x_unit.empty() || !coordinate(spec.x_name)) return false;
+  return std::all_of(spec.series.begin(), spec.series.end(),
+                     [&](const PlotSeries& s) { return s.unit == spec.x_unit && coordinate(s.name); });
+}
+
 std::vector<double> nice_ticks(double lo, double hi, int target) {
   if (!std::isfinite(lo) || !std::isfinite(hi)) throw std::invalid_argument("nice_ticks: the range is not finite");
   if (std::abs(lo) > kLargest || std::abs(hi) > kLargest)
@@ -285,12 +302,15 @@ void check_spec(const PlotSpec& spec) {
 struct DataRange {
   double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
 };
-DataRange data_range(const PlotSpec& spec) {
+// Over the series `on_right` says (all when it is empty).
+DataRange data_range(const PlotSpec& spec, const std::vector<bool>& on_right = {}, bool right = false) {
   DataRange r;
   for (std::size_t i = 0; i < spec.x.size(); ++i) {
     if (!usable(spec.x[i])) continue;
     bool any = spec.series.empty();
-    for (const PlotSeries& s : spec.series) {
+    for (std::size_t k = 0; k < spec.series.size(); ++k) {
+      const PlotSeries& s = spec.series[k];
+      if (!on_right.empty() && on_right[k] != right) continue;
       if (!usable(s.y[i])) continue;
       any = true;
       r.y_lo = std::min(r.y_lo, s.y[i]);
@@ -307,11 +327,47 @@ DataRange data_range(const PlotSpec& spec) {
 
 // The axis labels and legend entries: one unit for all, or each series' own in the legend.
 struct Labels {
-  std::string x, y;
+  std::string x, y, y2;
   std::vector<std::string> entries;
 };
+
+// The series of a second unit, when there are exactly two units and no fixed range.
+std::vector<bool> right_series(const PlotSpec& spec) {
+  std::vector<std::string> units;
+  for (const PlotSeries& s : spec.series)
+    if (std::find(units.begin(), units.end(), s.unit) == units.end()) units.push_back(s.unit);
+  std::vector<bool> right(spec.series.size(), false);
+  if (units.size() != 2 || spec.y_lo || plots_a_path(spec)) return {};
+  for (std::size_t k = 0; k < spec.series.size(); ++k) right[k] = spec.series[k].unit == units[1];
+  return right;
+}
+
+// "path of P" for P.y against P.x, "Q.y against P.x" otherwise.
+std::string path_name(const std::string& x, const std::string& y) {
+  const std::string px = x.substr(0, x.size() - 2), py = y.substr(0, y.size() - 2);
+  if (px == py && x.back() != y.back()) return "path of " + px;
+  return y + " against " + x;
+}
+
 Labels labels_of(const PlotSpec& spec) {
   Labels l;
+  const std::vector<bool> right = right_series(spec);
+  if (!right.empty()) {
+    for (std::size_t k = 0; k < spec.series.size(); ++k) {
+      std::string& label = right[k] ? l.y2 : l.y;
+      if (label.empty()) label = with_unit("", spec.series[k].unit);
+      l.entries.push_back(with_unit(spec.series[k].name, spec.series[k].unit) + (right[k] ? " (right)" : ""));
+    }
+    l.x = with_unit(spec.x_name, spec.x_unit);
+    return l;
+  }
+  if (plots_a_path(spec)) {
+    l.y = spec.series.size() == 1 ? with_unit(spec.series[0].name, spec.series[0].unit)
+                                  : with_unit("", spec.series[0].unit);
+    for (const PlotSeries& s : spec.series) l.entries.push_back(path_name(spec.x_name, s.name));
+    l.x = with_unit(spec.x_name, spec.x_unit);
+    return l;
+  }
   bool same_unit = true;
   for (const PlotSeries& s : spec.series) same_unit = same_unit && s.unit == spec.series.front().unit;
   if (spec.series.size() == 1) {
@@ -339,7 +395,8 @@ struct Layout {
   bool legend_right = false;
   double legend_width = 0, legend_rows_height = 0;
   std::vector<std::pair<std::size_t, Vec2>> legend_places;  // entry, offset from the legend's top left
-  std::vector<std::string> x_tick_labels, y_tick_labels;
+  std::vector<std::string> x_tick_labels, y_tick_labels, y2_tick_labels;
+  double right_axis_room = 0;  // px right of the plot area taken by the right axis's labels
 };
 
 void place_legend(const Labels& labels, bool titled, double width, double height, Layout& layout) {
@@ -382,7 +439,47 @@ void place_y_axis(const PlotSpec& spec, const DataRange& data, Layout& layout) {
   }
   layout.y_tick_labels = format_ticks(f.y_ticks);
   f.left = kPad + widest(layout.y_tick_labels, kTickFont) + kTickLength + 6;
+  if (f.right_axis) {
+    const DataRange right = data_range(spec, f.series_on_right, true);
+    f.y2_ticks = nice_ticks(right.y_lo, right.y_hi, y_target);
+    f.y2_lo = f.y2_ticks.front();
+    f.y2_hi = f.y2_ticks.back();
+    layout.y2_tick_labels = format_ticks(f.y2_ticks);
+    layout.right_axis_room = widest(layout.y2_tick_labels, kTickFont) + kTickLength + 6;
+    f.right -= layout.right_axis_room;
+  }
   f.right = std::max(f.right, f.left + 10);
+}
+
+// A path in the plane: both axes from a round tick to a round tick around the data with a
+// margin of 4%, and one scale for both, so that a circle stays round. The plot area shrinks
+// along the axis that has room to spare, and stays centred in the room it had.
+void place_path_axes(const DataRange& data, Layout& layout) {
+  PlotFrame& f = layout.frame;
+  const double span = std::max({data.x_hi - data.x_lo, data.y_hi - data.y_lo, 1e-300});
+  const double margin = 0.04 * span;
+  const double room_w = f.right - f.left, room_h = f.bottom - f.top;
+  const int target = std::clamp(static_cast<int>(std::min(room_w, room_h) / 50), 2, 12);
+  f.x_ticks = nice_ticks(data.x_lo - margin, data.x_hi + margin, target);
+  f.y_ticks = nice_ticks(data.y_lo - margin, data.y_hi + margin, target);
+  // One step for both axes: the larger.
+  const double step = std::max(f.x_ticks[1] - f.x_ticks[0], f.y_ticks[1] - f.y_ticks[0]);
+  auto on_step = [&](double lo, double hi) {
+    std::vector<double> ticks;
+    for (double k = std::floor(lo / step + 1e-9); k <= std::ceil(hi / step - 1e-9); k += 1.0) ticks.push_back(k * step);
+    return ticks;
+  };
+  f.x_ticks = on_step(data.x_lo - margin, data.x_hi + margin);
+  f.y_ticks = on_step(data.y_lo - margin, data.y_hi + margin);
+  f.x_lo = f.x_ticks.front(), f.x_hi = f.x_ticks.back();
+  f.y_lo = f.y_ticks.front(), f.y_hi = f.y_ticks.back();
+  layout.x_tick_labels = format_ticks(f.x_ticks);
+  layout.y_tick_labels = format_ticks(f.y_ticks);
+  const double scale = std::min(room_w / (f.x_hi - f.x_lo), room_h / (f.y_hi - f.y_lo));
+  const double w = scale * (f.x_hi - f.x_lo), h = scale * (f.y_hi - f.y_lo);
+  f.left += 0.5 * (room_w - w);
+  f.right = f.left + w;
+  f.bottom = f.top + h;
 }
 
 // x spans the data exactly (a single value gets a range around it); as many ticks as fit.
@@ -426,7 +523,9 @@ void draw_series(Canvas& canvas, const PlotSpec& spec, const PlotFrame& f) {
   for (std::size_t i = 0; i < spec.series.size(); ++i) {
     const Stroke stroke = series_stroke(i);
     canvas.begin_group("series-" + std::to_string(i), "plot-series");
-    const Pieces pieces = clip_series(spec.x, spec.series[i].y, f);
+    PlotFrame axis = f;
+    if (f.right_axis && f.series_on_right[i]) axis.y_lo = f.y2_lo, axis.y_hi = f.y2_hi;
+    const Pieces pieces = clip_series(spec.x, spec.series[i].y, axis);
     for (const auto& line : pieces.lines) canvas.polyline(line, stroke);
     for (const Vec2& dot : pieces.dots) canvas.circle(dot, 2.0, Paint{stroke.color, std::nullopt});
     canvas.end_group();
@@ -451,10 +550,19 @@ void draw_axes(Canvas& canvas, const PlotSpec& spec, const Labels& labels, const
     canvas.text({f.left - kTickLength - 4, py + 0.35 * kTickFont}, layout.y_tick_labels[i], kTickFont, Anchor::End,
                 kInk);
   }
+  for (std::size_t i = 0; f.right_axis && i < f.y2_ticks.size(); ++i) {
+    const double py = f.to_pixels_right(0, f.y2_ticks[i]).y();
+    canvas.polyline({{f.right, py}, {f.right + kTickLength, py}}, Stroke{kFrame, 1.0, {}});
+    canvas.text({f.right + kTickLength + 4, py + 0.35 * kTickFont}, layout.y2_tick_labels[i], kTickFont, Anchor::Start,
+                kInk);
+  }
+  if (!labels.y2.empty()) canvas.text({f.right, f.top - 14}, labels.y2, kLabelFont, Anchor::End, kInk);
   if (!labels.x.empty())
     canvas.text({0.5 * (f.left + f.right), f.bottom + kTickLength + kTickFont + 10 + kLabelFont}, labels.x,
                 kLabelFont, Anchor::Middle, kInk);
-  if (!labels.y.empty()) canvas.text({kPad, f.top - 14}, labels.y, kLabelFont, Anchor::Start, kInk);
+  if (!labels.y.empty())
+    canvas.text({std::max(kPad, f.left - widest(layout.y_tick_labels, kTickFont) - kTickLength - 4), f.top - 14}, labels.y,
+                kLabelFont, Anchor::Start, kInk);
   if (!spec.title.empty())
     canvas.text({0.5 * canvas.width(), kPad + kTitleFont}, spec.title, kTitleFont, Anchor::Middle, kInk);
   canvas.end_group();
@@ -469,7 +577,7 @@ void draw_legend(Canvas& canvas, const Labels& labels, Layout layout) {
   Vec2 corner;
   double box_w = 0, box_h = 0;
   if (layout.legend_right) {
-    corner = {f.right + 14, f.top};
+    corner = {f.right + 14 + layout.right_axis_room, f.top};
     box_w = layout.legend_width;
     box_h = static_cast<double>(entries.size()) * kEntryHeight + 12;
     layout.legend_places.clear();
@@ -498,11 +606,18 @@ void draw_legend(Canvas& canvas, const Labels& labels, Layout layout) {
 PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
   check_spec(spec);
   const Labels labels = labels_of(spec);
-  const DataRange data = data_range(spec);
   Layout layout;
+  layout.frame.series_on_right = right_series(spec);
+  layout.frame.right_axis = !layout.frame.series_on_right.empty();
+  const DataRange data = data_range(spec, layout.frame.series_on_right, false);
   place_legend(labels, !spec.title.empty(), canvas.width(), canvas.height(), layout);
-  place_y_axis(spec, data, layout);
-  place_x_axis(data, layout);
+  if (plots_a_path(spec) && !spec.y_lo) {
+    layout.frame.left = kPad + widest(format_ticks(nice_ticks(data.y_lo, data.y_hi, 8)), kTickFont) + kTickLength + 6;
+    place_path_axes(data, layout);
+  } else {
+    place_y_axis(spec, data, layout);
+    place_x_axis(data, layout);
+  }
   draw_grid(canvas, layout.frame);
   draw_series(canvas, spec, layout.frame);
   draw_axes(canvas, spec, labels, layout);

@@ -30,9 +30,43 @@ th, td { border: 1px solid #ddd; padding: 3px 8px; text-align: left; vertical-al
 th { background: #f4f4f4; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; }
 svg { width: 100%; height: auto; display: block; }
-iframe { width: 100%; aspect-ratio: 10 / 9; height: auto; border: 1px solid #ddd; }
+iframe { width: 100%; height: 640px; border: 1px solid #ddd; display: block; }
 .warn { color: #a40; }
+.narrow { display: none; }
+.peaks { display: grid; grid-template-columns: repeat(auto-fit, minmax(min(100%, 400px), 1fr)); gap: 12px; }
+.peaks figure { margin: 0; }
+.peaks figcaption { font-size: 0.92em; color: #444; }
+table.facts th { width: 11em; }
+@media (max-width: 600px) {
+  .wide { display: none; }
+  .narrow { display: block; }
+  body { padding: 0 8px 32px; }
+  table { font-size: 0.82em; }
+  th, td { padding: 2px 5px; }
+  table.facts th { width: auto; }
+}
 )";
+
+// The animation's frame as tall as the page in it, at any width: the page has a fixed part
+// (title, controls) and a drawing that scales with the width.
+constexpr const char* kFitFrames = R"(<script>
+(function () {
+  function fit() {
+    document.querySelectorAll("iframe").forEach(function (f) {
+      var main = f.contentDocument && f.contentDocument.querySelector("main");
+      if (main) f.style.height = Math.ceil(main.getBoundingClientRect().height) + 4 + "px";
+    });
+  }
+  window.addEventListener("load", fit);
+  window.addEventListener("resize", fit);
+  document.querySelectorAll("iframe").forEach(function (f) { f.addEventListener("load", fit); });
+})();
+</script>
+)";
+
+// Phone screens get pictures drawn for their width, so that the text in them stays readable
+// (a 900 px plot shrunk to 370 px would have 5 px text).
+constexpr int kNarrowWidth = 440;
 
 std::string esc(const std::string& s) { return xml_escape(s); }
 
@@ -53,9 +87,30 @@ std::string unit_of(const ResultTable& t, const std::string& name) {
 }
 
 std::string plot_svg(const PlotSpec& spec) {
-  SvgCanvas canvas(spec.width, spec.height);
-  draw_plot(canvas, spec);
-  return canvas.element();
+  SvgCanvas wide(spec.width, spec.height);
+  draw_plot(wide, spec);
+  PlotSpec small = spec;
+  small.width = kNarrowWidth;
+  small.height = 400;
+  SvgCanvas narrow(small.width, small.height);
+  draw_plot(narrow, small);
+  return "<div class=\"wide\">" + wide.element() + "</div><div class=\"narrow\">" + narrow.element() + "</div>\n";
+}
+
+// A drawing at its own size for wide screens and at kNarrowWidth for phones (or only at
+// kNarrowWidth, for pictures side by side).
+std::string drawing_html(const Analysis& analysis, int step, const DrawOptions& options, bool small_only = false) {
+  std::string out;
+  for (const bool narrow : {false, true}) {
+    if (small_only && !narrow) continue;
+    DrawOptions o = options;
+    if (narrow) o.width = kNarrowWidth, o.height = kNarrowWidth * 4 / 5, o.margin = 16;
+    SvgCanvas canvas(o.width, o.height);
+    draw_sample(canvas, *analysis.mechanism, analysis.sweep, step, o);
+    if (small_only) return canvas.element() + "\n";
+    out += std::string("<div class=\"") + (narrow ? "narrow" : "wide") + "\">" + canvas.element() + "</div>";
+  }
+  return out + "\n";
 }
 
 struct Html {
@@ -113,20 +168,21 @@ void write_model_table(Html& h, const Analysis& analysis, const ModelSummary& su
   h << "</table></div>\n";
 }
 
+// One small table of facts per loop, not one wide table: the Grashof description is long, and
+// a column of it on a phone would be a word wide.
 void write_loops_table(Html& h, const Analysis& analysis, const ModelSummary& summary, const ResultTable& table) {
   const Model& m = analysis.model();
   if (summary.loops.empty() || analysis.sweep.samples.empty()) return;
-  h << "<h3>Four-bar loops</h3><div class=\"scroll\"><table><tr><th>Loop</th><th>Grashof</th><th>Branch</th>"
-    << "<th>Transmission angle</th></tr>\n";
+  h << "<h3>Four-bar loops</h3>\n";
   for (std::size_t l = 0; l < summary.loops.size(); ++l) {
     const LoopSummary& loop = summary.loops[l];
     const std::vector<double> mu = column(table, loop.loop.name + ".mu");
     const auto [lo, hi] = std::minmax_element(mu.begin(), mu.end());
-    h << "<tr><td>" << esc(loop.loop.name) << "</td><td>" << esc(loop.description) << "</td><td>"
-      << esc(analysis.sweep.branches[l]) << "</td><td>"
-      << (mu.empty() ? "" : num(*lo) + " to " + num(*hi) + " " + esc(m.units.angle)) << "</td></tr>\n";
+    h << "<table class=\"facts\"><tr><th>Loop</th><td>" << esc(loop.loop.name) << "</td></tr>\n<tr><th>Grashof</th><td>"
+      << esc(loop.description) << "</td></tr>\n<tr><th>Branch</th><td>" << esc(analysis.sweep.branches[l])
+      << "</td></tr>\n<tr><th>Transmission angle</th><td>"
+      << (mu.empty() ? "" : num(*lo) + " to " + num(*hi) + " " + esc(m.units.angle)) << "</td></tr></table>\n";
   }
-  h << "</table></div>\n";
 }
 
 void write_bodies_table(Html& h, const Model& m, const ModelSummary& summary) {
@@ -166,9 +222,7 @@ void write_motion(Html& h, const Analysis& analysis, const DrawOptions& draw, co
     h << "<h3>Paths of the coupler points</h3>\n";
     DrawOptions paths = draw;
     paths.labels = true;
-    SvgCanvas canvas(paths.width, paths.height);
-    draw_sample(canvas, *analysis.mechanism, analysis.sweep, 0, paths);
-    h << canvas.element();
+    h << drawing_html(analysis, 0, paths);
   }
   h << "</section>\n";
 }
@@ -224,8 +278,7 @@ void write_stresses(Html& h, const Analysis& analysis, const DrawOptions& draw, 
   h << "<section id=\"stresses\"><h2>Stresses</h2><div class=\"scroll\"><table><tr><th>Link</th>"
     << "<th>Largest von Mises [MPa]</th><th>at " << esc(x.name) << " [" << esc(x.unit) << "]</th><th>x, y ["
     << esc(m.units.length) << "]</th><th>&sigma;, &tau; [MPa]</th><th>Safety factor</th></tr>\n";
-  DrawOptions marked = draw;
-  marked.traces.clear();
+  std::vector<std::pair<const StressPeak*, double>> drawn;
   for (const StressPeak& p : analysis.stress->peaks) {
     const double at = p.step >= 0 ? x.values[static_cast<std::size_t>(p.step)] : 0.0;
     h << "<tr><td>" << esc(m.bodies[p.body].name) << "</td><td class=\"num\">" << num(to_megapascal(p.at.von_mises))
@@ -233,13 +286,19 @@ void write_stresses(Html& h, const Analysis& analysis, const DrawOptions& draw, 
       << num(p.at.where.x() / m.units.length_scale) << ", " << num(p.at.where.y() / m.units.length_scale)
       << "</td><td class=\"num\">" << num(to_megapascal(p.at.sigma)) << ", " << num(to_megapascal(p.at.tau))
       << "</td><td class=\"num\">" << (p.safety_factor ? num(*p.safety_factor, 3) : "") << "</td></tr>\n";
-    marked.markers.push_back({p.body, p.at.where, num(to_megapascal(p.at.von_mises), 3) + " MPa"});
+    drawn.emplace_back(&p, at);
   }
-  h << "</table></div><p>Each link's largest stress is marked (in the starting pose). Beam theory on the net "
-    << "sections, no stress concentration factors: see docs/kinetics.md.</p>\n";
-  SvgCanvas canvas(marked.width, marked.height);
-  draw_sample(canvas, *analysis.mechanism, analysis.sweep, 0, marked);
-  h << canvas.element() << "</section>\n";
+  h << "</table></div><p>Each link's largest stress is marked in the pose where it occurs. Beam theory on the net "
+    << "sections, no stress concentration factors: see docs/kinetics.md.</p>\n<div class=\"peaks\">\n";
+  for (const auto& [peak, at] : drawn) {
+    DrawOptions marked = draw;
+    marked.traces.clear();
+    marked.markers.push_back({peak->body, peak->at.where, num(to_megapascal(peak->at.von_mises), 3) + " MPa"});
+    h << "<figure>" << drawing_html(analysis, std::max(peak->step, 0), marked, true) << "<figcaption>"
+      << esc(m.bodies[peak->body].name) << ": " << num(to_megapascal(peak->at.von_mises), 3) << " MPa at "
+      << esc(x.name) << " = " << num(at) << " " << esc(x.unit) << "</figcaption></figure>\n";
+  }
+  h << "</div></section>\n";
 }
 
 }  // namespace
@@ -274,7 +333,7 @@ std::string html_report(const Analysis& analysis, const ModelSummary& summary, c
   write_kinematics(h, analysis, table, x);
   if (analysis.dynamics) write_forces(h, analysis, table, x);
   if (analysis.stress) write_stresses(h, analysis, draw, x);
-  h << "</body></html>\n";
+  h << kFitFrames << "</body></html>\n";
   return h.out;
 }
 

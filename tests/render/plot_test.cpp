@@ -270,10 +270,78 @@ TEST(DrawPlot, LegendOneEntryPerSeriesInItsColour) {
   EXPECT_NE(attribute(swatches[0], "stroke"), attribute(swatches[1], "stroke"));
 }
 
-TEST(DrawPlot, DifferentUnitsNamedInTheLegend) {
-  const std::string svg = svg_of(trig_spec("deg", "deg/s"));
-  EXPECT_THAT(texts(group(svg, "legend")), ElementsAre("sin [deg]", "cos [deg/s]"));
-  EXPECT_THAT(texts(group(svg, "axes")), testing::Contains("[deg], [deg/s]"));
+TEST(DrawPlot, TwoUnitsGetAYAxisEach) {
+  PlotFrame f;
+  PlotSpec spec = trig_spec("deg", "deg/s");
+  for (double& y : spec.series[1].y) y *= 300;  // cos in deg/s, 300 times larger
+  const std::string svg = svg_of(spec, &f);
+  EXPECT_THAT(texts(group(svg, "legend")), ElementsAre("sin [deg]", "cos [deg/s] (right)"));
+  const auto axes = texts(group(svg, "axes"));
+  EXPECT_THAT(axes, testing::Contains("[deg]"));
+  EXPECT_THAT(axes, testing::Contains("[deg/s]"));
+  EXPECT_THAT(axes, testing::Contains("300"));  // a right tick
+  ASSERT_TRUE(f.right_axis);
+  EXPECT_EQ(f.y_ticks.front(), -1.0);
+  EXPECT_EQ(f.y_ticks.back(), 1.0);
+  EXPECT_EQ(f.y2_ticks.front(), -300.0);
+  EXPECT_EQ(f.y2_ticks.back(), 300.0);
+  // Each series fills the height on its own axis: cos 0 = 300 deg/s at the top, sin 90 = 1 deg too.
+  const auto sine = points(elements(group(svg, "series-0"), "polyline")[0]);
+  const auto cosine = points(elements(group(svg, "series-1"), "polyline")[0]);
+  EXPECT_NEAR(sine[90].y(), f.top, kPx);
+  EXPECT_NEAR(cosine[0].y(), f.top, kPx);
+  EXPECT_NEAR(cosine[180].y(), f.bottom, kPx);
+  // The right axis's labels and the legend do not overlap.
+  const Rect r = frame_of(svg);
+  EXPECT_NEAR(r.right, f.right, kPx);
+}
+
+TEST(DrawPlot, ThreeUnitsNamedInTheLegend) {
+  PlotSpec spec = trig_spec("deg", "deg/s");
+  spec.series.push_back({"tan", "1", spec.series[0].y});
+  const std::string svg = svg_of(spec);
+  EXPECT_THAT(texts(group(svg, "legend")), ElementsAre("sin [deg]", "cos [deg/s]", "tan [1]"));
+  EXPECT_THAT(texts(group(svg, "axes")), testing::Contains("[deg], [deg/s], [1]"));
+}
+
+TEST(DrawPlot, APathGetsEqualScalesRoundEndsAMarginAndItsName) {
+  // An ellipse 200 wide and 50 high about (30, 70): equal scales keep it 4 times as wide.
+  PlotSpec spec;
+  spec.x_name = "P.x";
+  spec.x_unit = "mm";
+  PlotSeries y{"P.y", "mm", {}};
+  for (int i = 0; i <= 360; ++i) {
+    spec.x.push_back(30 + 100 * std::cos(i * std::numbers::pi / 180));
+    y.y.push_back(70 + 25 * std::sin(i * std::numbers::pi / 180));
+  }
+  spec.series = {y};
+  ASSERT_TRUE(plots_a_path(spec));
+  PlotFrame f;
+  const std::string svg = svg_of(spec, &f);
+  const double x_scale = (f.right - f.left) / (f.x_hi - f.x_lo), y_scale = (f.bottom - f.top) / (f.y_hi - f.y_lo);
+  EXPECT_NEAR(x_scale, y_scale, 1e-9 * x_scale);
+  // Both ends of both axes on round ticks, with room between the data and the frame.
+  EXPECT_EQ(f.x_lo, f.x_ticks.front());
+  EXPECT_EQ(f.x_hi, f.x_ticks.back());
+  EXPECT_EQ(f.y_lo, f.y_ticks.front());
+  const double step = f.x_ticks[1] - f.x_ticks[0];
+  EXPECT_NEAR(std::remainder(f.x_lo, step), 0.0, 1e-9);
+  EXPECT_LT(f.x_lo, -70.0 - 1.0);
+  EXPECT_GT(f.x_hi, 130.0 + 1.0);
+  EXPECT_LT(f.y_lo, 45.0 - 1.0);
+  EXPECT_GT(f.y_hi, 95.0 + 1.0);
+  const auto drawn = points(elements(group(svg, "series-0"), "polyline")[0]);
+  double w = 0, h = 0;
+  for (const auto& a : drawn)
+    for (const auto& b : drawn) w = std::max(w, std::abs(a.x() - b.x())), h = std::max(h, std::abs(a.y() - b.y()));
+  EXPECT_NEAR(w / h, 4.0, 0.01);
+  EXPECT_THAT(texts(group(svg, "legend")), ElementsAre("path of P"));
+  // Forced off, the same data spans the plot area.
+  spec.equal_scales = false;
+  EXPECT_FALSE(plots_a_path(spec));
+  PlotFrame g;
+  svg_of(spec, &g);
+  EXPECT_EQ(g.x_lo, -70.0);
 }
 
 TEST(DrawPlot, OneSeriesNamedOnTheYAxis) {
@@ -492,7 +560,7 @@ TEST_F(PlotCli, TwoColumnsAsSvg) {
   EXPECT_EQ(elements(group(svg, "series-0"), "polyline").size(), 1u);
   EXPECT_EQ(elements(group(svg, "series-1"), "polyline").size(), 1u);
   EXPECT_THAT(svg, Not(HasSubstr("series-2")));
-  EXPECT_THAT(texts(group(svg, "legend")), ElementsAre("rocker.angle [deg]", "rocker.omega [deg/s]"));
+  EXPECT_THAT(texts(group(svg, "legend")), ElementsAre("rocker.angle [deg]", "rocker.omega [deg/s] (right)"));
   EXPECT_THAT(texts(group(svg, "axes")), testing::Contains("crank [deg]"));  // the driver by default
   EXPECT_EQ(points(elements(group(svg, "series-0"), "polyline")[0]).size(), 361u);  // the model's steps
 }

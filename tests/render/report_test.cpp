@@ -71,6 +71,39 @@ TEST(Report, KineticsAndStressesWhenTheModelHasThem) {
   EXPECT_THAT(html, Not(HasSubstr("nan")));
 }
 
+// Each link's largest stress is drawn in the pose where it occurs: one picture per link, its
+// caption saying where, its marker and label on it.
+TEST(Report, StressMarkersInThePoseOfEachMaximum) {
+  const io::LoadedModel file = io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-steel-bars.yaml");
+  const auto mech = std::make_shared<const Mechanism>(file.model);
+  const ModelSummary summary = summarize(*mech);
+  AnalysisOptions o = report_analysis_options(summary);
+  o.steps = 37;
+  o.sections = 100;
+  const Analysis analysis = analyse(mech, o);
+  ReportOptions options;
+  options.frames = 12;
+  const std::string html = html_report(analysis, summary, options);
+  const std::string stresses = html.substr(html.find("id=\"stresses\""));
+  ASSERT_EQ(analysis.stress->peaks.size(), 3u);
+  std::size_t figures = 0, markers = 0;
+  for (std::size_t i = stresses.find("<figure>"); i != std::string::npos; i = stresses.find("<figure>", i + 1)) ++figures;
+  for (std::size_t i = stresses.find("id=\"markers\""); i != std::string::npos; i = stresses.find("id=\"markers\"", i + 1))
+    ++markers;
+  EXPECT_EQ(figures, 3u);
+  EXPECT_EQ(markers, 3u);  // one marker a picture
+  for (const StressPeak& p : analysis.stress->peaks) {
+    // The drawing of that pose: the crank at its angle at the peak's step (10 deg a step).
+    char caption[128];
+    std::snprintf(caption, sizeof caption, "%s: %.3g MPa at crank = %g deg", mech->model().bodies[p.body].name.c_str(),
+                  p.at.von_mises / 1e6, 10.0 * p.step);
+    EXPECT_THAT(stresses, HasSubstr(caption));
+  }
+  // Not all at the start: the maxima of this example are at 350 and 10 deg.
+  EXPECT_TRUE(std::any_of(analysis.stress->peaks.begin(), analysis.stress->peaks.end(),
+                          [](const StressPeak& p) { return p.step != 0; }));
+}
+
 // Opens the report in headless Chromium (installed by scripts/install-deps.sh): no script
 // error, a page that is not blank, at phone width too.
 TEST(Report, OpensInChromiumAtDesktopAndPhoneWidth) {

@@ -403,7 +403,7 @@ ApiResponse render_draw(Job& job, const std::string& request) {
   if (at) {
     points = render::sample_points(mech, pose_at(mech, *at, 0, job.control));
   } else {
-    const long long k = step.value_or(0);
+    const long long k = step.value_or(render::default_drawn_step(mech, analysis.sweep));
     if (k >= static_cast<long long>(analysis.sweep.samples.size()))
       bad_input(fmt::format("step {} is not a solved step (0 to {})", k, analysis.sweep.samples.size() - 1));
     points = render::sample_points(mech, analysis.sweep.samples[static_cast<std::size_t>(k)]);

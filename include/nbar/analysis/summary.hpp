@@ -61,7 +61,8 @@ struct ModelSummary {
 
   // What the sweep asks that it will not get, or may not mean, said before it runs:
   // "input_limited" (an angle driver asked to turn past the toggles of its four-bar loop) and
-  // "many_turns" (an angle driver asked to turn more than 4 times, a likely unit mistake).
+  // "many_turns" (an angle driver asked to turn more than 4 times, a likely unit mistake) and
+  // "rod_leaves_barrel" (a cylinder's rod would leave its barrel over the sweep, cylinders.hpp).
   std::vector<Warning> warnings;
 };
 

@@ -37,6 +37,8 @@ struct DrawOptions {
   double margin = 36;             // px around the mechanism
   bool labels = false;            // point names
   std::vector<int> traces;        // points whose paths over the sweep are drawn
+  // The paths of `traces` (m), when already computed (trace_paths); empty: computed when drawn.
+  std::vector<std::vector<Eigen::Vector2d>> trace_paths;
   std::vector<Marker> markers;
   std::vector<MarkedPoint> marked_points;  // drawn last, in the group "marked-points"
   bool scale_bar = true;
@@ -45,6 +47,19 @@ struct DrawOptions {
 
 // A view in which every pose of the sweep fits, so that animation frames share it.
 View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions& options);
+
+// The paths of `points` over the sweep's path, sampled finely enough for a smooth curve
+// whatever the sweep's own number of samples: when it has fewer than kTraceSamples, the same
+// sweep is solved again (positions only) with kTraceSamples samples. Falls back to the sweep's
+// own samples when that finer sweep does not get as far.
+constexpr int kTraceSamples = 361;
+std::vector<std::vector<Eigen::Vector2d>> trace_paths(const Mechanism& mech, const SweepResult& sweep,
+                                                      const std::vector<int>& points);
+
+// The sample to draw when none is asked for: the first, unless every point there lies on (or
+// next to) one line, as a slider-crank at dead centre, which tells little; then the sample
+// where the points spread widest (the largest area of their convex hull).
+int default_drawn_step(const Mechanism& mech, const SweepResult& sweep);
 
 // The positions of every point at a sample (m).
 std::vector<Eigen::Vector2d> sample_points(const Mechanism& mech, const Sample& sample);

@@ -27,7 +27,13 @@ struct PlotSpec {
   // cut at its edges.
   std::optional<double> y_lo, y_hi;
   int width = 900, height = 520;  // px: the size of the canvas to make (draw_plot uses the canvas's own)
+  // Equal scales on both axes, for a path in the plane. By default (nullopt) when x and every
+  // series are coordinates (names ending in ".x" or ".y") in one unit.
+  std::optional<bool> equal_scales;
 };
+
+// Whether draw_plot gives `spec` equal scales (its own choice, or the default above).
+bool plots_a_path(const PlotSpec& spec);
 
 // The x data and the series of `spec` from result columns: the first column of `x_column`
 // along x, one series per column of `y_columns` (both tables with the same rows).
@@ -38,12 +44,21 @@ struct PlotFrame {
   double left = 0, top = 0, right = 0, bottom = 0;  // px
   double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;    // data at the left, right, bottom and top edges
   std::vector<double> x_ticks, y_ticks;
+  // A second y axis on the right, for the series of a second unit (series_on_right).
+  bool right_axis = false;
+  double y2_lo = 0, y2_hi = 1;
+  std::vector<double> y2_ticks;
+  std::vector<bool> series_on_right;  // one per series
   Eigen::Vector2d to_pixels(double x, double y) const;
+  Eigen::Vector2d to_pixels_right(double x, double y) const;  // y on the right axis
 };
 
 // Draws the plot over the whole canvas. The x axis spans the data exactly; the y axis runs from
 // a tick below the data to a tick above it. Series whose units all agree share a y label with
-// that unit; otherwise each legend entry says "name [unit]". A series that never changes is
+// that unit; otherwise each legend entry says "name [unit]", and with exactly two units (and no
+// fixed y range) the series of the second unit get their own y axis on the right. A path
+// (plots_a_path) gets equal scales, both axes from a round tick to a round tick around the
+// data with a margin, and the legend names the path ("path of P" for P.y against P.x). A series that never changes is
 // shown in a range around its value. Groups: "grid", "series-<i>" (one per series, in order),
 // "axes" (frame, ticks, labels, title), "legend".
 // Throws std::invalid_argument when a series has a different number of values than x, or for a
