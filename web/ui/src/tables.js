@@ -12,6 +12,7 @@ const builtInMaterials = ['steel', 'stainless-steel', 'aluminium', 'brass', 'cas
 let selected = null;
 let lastError = null;
 let lastRefusal = null;  // a structured edit refused (a rename that cannot be done safely)
+let lastRefusalAt = null;
 
 const esc = (s) => String(s ?? '').replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
 const isObj = (v) => v && typeof v === 'object' && !Array.isArray(v);
@@ -63,7 +64,7 @@ function removeButton(path, label) {
 }
 // A <select> of names for an adder form.
 function picker(role, names, label, chosen = names[0]) {
-  return `<select data-add="${role}" aria-label="${esc(label)}">${names.map((n) => `<option value="${esc(n)}"${n === chosen ? ' selected' : ''}>${esc(n)}</option>`).join('')}</select>`;
+  return `<label class="add-field"><small>${esc(label)}</small><select data-add="${role}" aria-label="${esc(label)}">${names.map((n) => `<option value="${esc(n)}"${n === chosen ? ' selected' : ''}>${esc(n)}</option>`).join('')}</select></label>`;
 }
 function adder(kind, parts, label) {
   return `<div class="adder" data-adder="${kind}">${parts.join('')}<button type="button" data-add-go="${kind}">${esc(label)}</button></div>`;
@@ -102,7 +103,7 @@ function bodiesSection(m) {
 // and slots are written in the model and edited here.
 function jointsSection(m) {
   const check = editContext().state.check;
-  const rows = (check?.joints ?? []).filter((j) => j.startsWith('revolute')).map((j) => `<tr><td colspan="3" class="note">${esc(j)}</td></tr>`);
+  const rows = (check?.joints ?? []).filter((j) => j.startsWith('revolute')).map((j) => `<tr><td colspan="4" class="note">${esc(j)}</td></tr>`);
   for (const kind of ['sliders', 'slots']) {
     (Array.isArray(m[kind]) ? m[kind] : []).forEach((s, i) => {
       if (!isObj(s)) return;
@@ -247,6 +248,10 @@ function markError() {
   if (!note) return;
   note.textContent = lastError ? `${lastError.line ? t('errorAt', lastError.line, lastError.column ?? 1) : ''}${lastError.message}` : (lastRefusal ?? '');
   note.hidden = !lastError && !lastRefusal;
+  if (lastRefusal && !lastError) {
+    const near = lastRefusalAt && document.querySelector(`#model-tables ${lastRefusalAt}`);
+    near?.closest('tr')?.insertAdjacentHTML('afterend', `<tr class="refusal"><td colspan="9"><small class="cell-error" role="alert">${esc(lastRefusal)}</small></td></tr>`);
+  }
   if (!lastError?.line) return;
   const text = modelText();
   const lines = text.split('\n');
@@ -291,12 +296,15 @@ function addEntry(form) {
 
 // A refused structured edit (yaml-text.js's EditError) is said in the Model tab, beside the
 // tables, as well as in the status line.
-function refusable(change) {
+// `at` is the selector of the field or button the edit came from: the message goes beside it
+// too, for on a phone the top of the tab may be scrolled away.
+function refusable(change, at) {
   lastRefusal = null;
   try {
     change(modelText());
   } catch (e) {
     lastRefusal = t('editFailed', e.message);
+    lastRefusalAt = at;
     editContext().status(lastRefusal, true);
     renderTables();
     return;
@@ -307,7 +315,7 @@ function rename(input) {
   const from = input.dataset.rename;
   const to = input.value.trim();
   if (to === from) return;
-  refusable((text) => renamePoint(text, from, to));
+  refusable((text) => renamePoint(text, from, to), `[data-rename="${CSS.escape(from)}"]`);
 }
 
 export function renderTables() {
@@ -369,7 +377,7 @@ export function initTables() {
     const del = e.target.closest('[data-delete-path]');
     if (del) applyEdit((text) => deleteIn(text, JSON.parse(del.dataset.deletePath)));
     const delPoint = e.target.closest('[data-delete-point]');
-    if (delPoint) refusable((text) => deletePoint(text, delPoint.dataset.deletePoint));
+    if (delPoint) refusable((text) => deletePoint(text, delPoint.dataset.deletePoint), `[data-delete-point="${CSS.escape(delPoint.dataset.deletePoint)}"]`);
     const b = e.target.closest('[data-select-body]');
     if (b) showBody(b.dataset.selectBody);
     if (e.target.closest('[data-close-body]')) showBody(null);

@@ -139,6 +139,8 @@ export async function run(page, ctx) {
   await page.locator('#model-tables [data-rename="Pin"]').press('Enter');
   await page.waitForFunction(() => /crank is the name of a body/.test(document.querySelector('#model-problem')?.textContent ?? ''));
   assert.equal(await yamlText(page), again);
+  assert.match(await page.locator('#model-tables tr.refusal').textContent(), /^Cannot edit: crank is the name of a body$/);
+  await ctx.shot(page, `${tag}-files-4a-refused`);
   // Deleting the slider's point is refused too: the slider uses it.
   await press('#model-tables [data-delete-point="Pin"]');
   await page.waitForFunction(() => /Pin is used by sliders\.point/.test(document.querySelector('#model-problem')?.textContent ?? ''));
