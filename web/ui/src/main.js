@@ -344,7 +344,11 @@ async function loadGallery() {
   const { examples } = await api('/api/examples');
   const models = examples.filter((e) => e.kind === 'model');
   // The "New" menu: the templates (examples/templates/), small models to start from.
-  $('#templates').replaceChildren(...examples.filter((e) => e.kind === 'template').map((e) => {
+  // Simplest first; a template the list does not know goes last.
+  const order = ['four-bar', 'slider-crank', 'inverted-slider-crank', 'five-bar', 'watt-six-bar', 'stephenson-six-bar'].map((n) => `template-${n}`);
+  const rank = (e) => (order.includes(e.name) ? order.indexOf(e.name) : order.length);
+  const templates = examples.filter((e) => e.kind === 'template').sort((a, b) => rank(a) - rank(b));
+  $('#templates').replaceChildren(...templates.map((e) => {
     const b = document.createElement('button');
     b.type = 'button';
     b.dataset.template = e.name;
