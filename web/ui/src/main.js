@@ -411,6 +411,7 @@ async function openFile(file) {
 
 function initFiles() {
   const input = $('#open-file');
+  $('#open-button').addEventListener('click', () => input.click());
   input.addEventListener('change', () => { const f = input.files?.[0]; input.value = ''; openFile(f); });
   const hasFiles = (e) => [...(e.dataTransfer?.types ?? [])].includes('Files');
   document.addEventListener('dragover', (e) => {

@@ -41,10 +41,12 @@ export async function run(page, ctx) {
   assert.equal(await statusText(page), '2 DOF · 181 samples');
   await ctx.shot(page, `${tag}-files-2-template`);
 
-  // 2. A model file given to the Open button: into the editor, analysed.
+  // 2. A model file chosen with the Open button: into the editor, analysed.
   const fourBar = await (await fetch(`${ctx.base}api/examples/template-four-bar`)).text();
   const mine = fourBar.replace('name: "Four-bar"', 'name: "My four-bar"');
-  await page.setInputFiles('#open-file', { name: 'my-four-bar.yaml', mimeType: 'application/yaml', buffer: Buffer.from(mine) });
+  await press('[data-tab="gallery"]');
+  const [chooser] = await Promise.all([page.waitForEvent('filechooser'), press('#open-button')]);
+  await chooser.setFiles({ name: 'my-four-bar.yaml', mimeType: 'application/yaml', buffer: Buffer.from(mine) });
   await page.waitForFunction(() => document.querySelector('#model-name').textContent === 'My four-bar');
   await settled(page);
   assert.equal(await statusText(page), '1 DOF · 181 samples');
