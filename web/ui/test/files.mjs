@@ -156,6 +156,14 @@ export async function run(page, ctx) {
   await page.waitForFunction(() => /- \{body: crank, point: A, along: \[G1, Y2\]\}/.test(document.querySelector('#editor .cm-content').innerText));
   await settled(page);
 
+  // The new strings in Spanish too.
+  await page.selectOption('#lang', 'es');
+  assert.equal(await page.locator('#new-menu > summary').textContent(), 'Nuevo');
+  assert.equal(await page.locator('#open-button').textContent(), 'Abrir…');
+  assert.equal(await page.locator('[data-download="json"]').textContent(), 'Cálculo (JSON)');
+  assert.equal(await page.locator('[data-add-go="driver"]').textContent(), 'Añadir un accionamiento');
+  await page.selectOption('#lang', 'en');
+
   // 6. With snap on, a dragged point's preview is on the grid (desktop: a mouse drag).
   if (!mobile) {
     await openTemplate(page, press, 'template-four-bar', 'Four-bar');
