@@ -295,9 +295,9 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
   const ApiResponse list = call("GET", "/api/examples");
   ASSERT_EQ(list.status, 200);
   const Json j = Json::parse(list.body)["examples"];
-  int models = 0, tasks = 0;
+  int models = 0, tasks = 0, templates = 0;
   for (const Json& e : j) {
-    (e["kind"] == "task" ? tasks : models) += 1;
+    (e["kind"] == "task" ? tasks : e["kind"] == "template" ? templates : models) += 1;
     EXPECT_FALSE(e["title"].get<std::string>().empty()) << e;
     EXPECT_FALSE(e["description"].get<std::string>().empty()) << e;
     const ApiResponse text = call("GET", "/api/examples/" + e["name"].get<std::string>());
@@ -307,7 +307,13 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
   }
   EXPECT_EQ(models, 23);
   EXPECT_EQ(tasks, 5);
-  // Each runs as it is.
+  EXPECT_EQ(templates, 6);
+  // Each runs as it is; a template too, and its name never clashes with the example's.
+  const ApiResponse five_bar = call("GET", "/api/examples/template-five-bar");
+  ASSERT_EQ(five_bar.status, 200);
+  EXPECT_EQ(five_bar.body, repo_file("examples/templates/five-bar.yaml"));
+  EXPECT_NE(call("GET", "/api/examples/five-bar").body, five_bar.body);
+  EXPECT_EQ(Json::parse(post("/api/check", Json{{"model", five_bar.body}}).body)["dof"]["mobility"], 2);
   const Json crank_rocker = {{"model", call("GET", "/api/examples/fourbar-crank-rocker").body}};
   EXPECT_EQ(post("/api/check", crank_rocker).status, 200);
   const Json log10 = {{"task", call("GET", "/api/examples/function-log10").body}};

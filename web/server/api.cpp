@@ -589,9 +589,15 @@ const std::vector<Example>& examples() {
       e.name = path.substr(slash == std::string::npos ? 0 : slash + 1);
       if (e.name.size() > 5 && e.name.ends_with(".yaml")) e.name.resize(e.name.size() - 5);
       e.text = f.data;
+      // A template (examples/templates/) is a small model to start a new one from; its name
+      // is prefixed so that it never clashes with an example's.
+      const bool is_template = path.starts_with("templates/");
+      if (is_template) e.name = "template-" + e.name;
       try {
         const YAML::Node node = YAML::Load(std::string(f.data));
-        if (node["task"]) {
+        if (is_template) {
+          e.kind = "template";
+        } else if (node["task"]) {
           e.kind = "task";
           e.task = node["task"].as<std::string>();
         } else {
@@ -600,12 +606,12 @@ const std::vector<Example>& examples() {
         if (node["name"]) e.title = node["name"].as<std::string>();
         if (node["description"]) e.description = node["description"].as<std::string>();
       } catch (const YAML::Exception&) {
-        e.kind = "model";
+        e.kind = is_template ? "template" : "model";
       }
       if (e.description.empty()) e.description = leading_comment(f.data);
       out.push_back(std::move(e));
     }
-    // Models first, then tasks, each by name.
+    // Models first, then tasks, then templates, each by name.
     std::stable_sort(out.begin(), out.end(), [](const Example& a, const Example& b) {
       return std::tie(a.kind, a.name) < std::tie(b.kind, b.name);
     });

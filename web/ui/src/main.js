@@ -16,6 +16,7 @@ import { initCanvasTools, snapPoint } from './canvas-tools.js';
 import { initTables, showBody } from './tables.js';
 import { setIn } from './yaml-text.js';
 import './i18n-motion.js';
+import './i18n-files.js';
 import { initSynthesis } from './synthesis.js';
 import { initOverlays } from './overlays.js';
 import { initExplain } from './explain.js';
@@ -125,10 +126,13 @@ async function analyse() {
   try {
     const check = await api('/api/check', { model: text });
     if (seq !== state.seq) return;
-    const solve = await api('/api/solve', { model: text });
+    // The answer's text is kept as the server wrote it: the JSON download is those bytes.
+    const solveText = await api('/api/solve', { model: text }, 'text');
     if (seq !== state.seq) return;
+    const solve = JSON.parse(solveText);
     state.check = check;
     state.solve = solve;
+    state.solveText = solveText;
     state.lastOk = text;
     showProblem(null);
     setTitle(solve.model || check.name);
@@ -232,7 +236,10 @@ function startDrag(e) {
 }
 function moveDrag(e) {
   if (!drag || e.pointerId !== drag.id) return;
-  const p = svgPoint(e);
+  // With snap on, the preview sits on the grid where the point will be written.
+  const raw = svgPoint(e);
+  const snapped = snapPoint(raw.x, raw.y);
+  const p = snapped ? { x: snapped[0], y: snapped[1] } : raw;
   drag.moved = true;
   drag.x = p.x; drag.y = p.y;
   $('#drawing svg .frame').innerHTML = frameGroup(state.geometry, state.solve, state.solve.rows[0], { name: drag.name, ...p });
@@ -336,6 +343,20 @@ function esc(s) { return String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<
 async function loadGallery() {
   const { examples } = await api('/api/examples');
   const models = examples.filter((e) => e.kind === 'model');
+  // The "New" menu: the templates (examples/templates/), small models to start from.
+  // Simplest first; a template the list does not know goes last.
+  const order = ['four-bar', 'slider-crank', 'inverted-slider-crank', 'five-bar', 'watt-six-bar', 'stephenson-six-bar'].map((n) => `template-${n}`);
+  const rank = (e) => (order.includes(e.name) ? order.indexOf(e.name) : order.length);
+  const templates = examples.filter((e) => e.kind === 'template').sort((a, b) => rank(a) - rank(b));
+  $('#templates').replaceChildren(...templates.map((e) => {
+    const b = document.createElement('button');
+    b.type = 'button';
+    b.dataset.template = e.name;
+    b.title = e.description || '';
+    b.textContent = e.title || e.name;
+    b.addEventListener('click', () => { $('#new-menu').open = false; openExample(e.name).then(() => showTab('editor')); });
+    return b;
+  }));
   $('#gallery').replaceChildren(...models.map((e) => {
     const li = document.createElement('li');
     const b = document.createElement('button');
@@ -356,13 +377,70 @@ async function openExample(name) {
   await setText(text);
 }
 
+// ------------------------------------------------------------------------------ opening files
+
+// A model file from this computer (the Open button or a file dropped on the app): its text goes
+// into the editor and is analysed like typed text. Only text is taken, and no more than the
+// server accepts in a request.
+const maxFileBytes = 1 << 20;
+const modelFile = /\.(ya?ml|json)$/i;
+
+async function openFile(file) {
+  if (!file) return;
+  if (!modelFile.test(file.name) && !/^(text\/|application\/(json|ya?ml|x-yaml))/.test(file.type)) {
+    status(t('fileNotModel', file.name), true);
+    return;
+  }
+  if (file.size > maxFileBytes) {
+    status(t('fileTooLarge', file.name, Math.ceil(file.size / 1024), maxFileBytes / 1024), true);
+    return;
+  }
+  let text;
+  try {
+    text = new TextDecoder('utf-8', { fatal: true }).decode(await file.arrayBuffer());
+    if (text.includes('\0')) throw new Error('NUL');
+  } catch {
+    status(t('fileNotText', file.name), true);
+    return;
+  }
+  for (const b of document.querySelectorAll('[data-example]')) b.classList.remove('current');
+  state.current = file.name.replace(/\.[^.]*$/, '');
+  showTab('editor');
+  await setText(text);
+}
+
+function initFiles() {
+  const input = $('#open-file');
+  $('#open-button').addEventListener('click', () => input.click());
+  input.addEventListener('change', () => { const f = input.files?.[0]; input.value = ''; openFile(f); });
+  const hasFiles = (e) => [...(e.dataTransfer?.types ?? [])].includes('Files');
+  document.addEventListener('dragover', (e) => {
+    if (!hasFiles(e)) return;
+    e.preventDefault();
+    e.dataTransfer.dropEffect = 'copy';
+    document.body.classList.add('dropping');
+  }, true);
+  document.addEventListener('dragleave', (e) => { if (!e.relatedTarget) document.body.classList.remove('dropping'); });
+  // Capture phase: the editor would otherwise insert a file dropped on it into its text.
+  document.addEventListener('drop', (e) => {
+    if (!hasFiles(e)) return;
+    e.preventDefault();
+    e.stopPropagation();
+    document.body.classList.remove('dropping');
+    const files = e.dataTransfer.files;
+    if (files.length > 1) status(t('fileOneOnly'));
+    openFile(files[0]);
+  }, true);
+}
+
 // ------------------------------------------------------------------------------ synthesis
 
 // The synthesis panel lives in synthesis.js; the designs' models come from the server.
 
 // ------------------------------------------------------------------------------ downloads
 
-function slug() { return (state.current || state.solve?.model || 'model').toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-|-$/g, '') || 'model'; }
+// A template's downloads are named after the model it started (four-bar.yaml, not template-...).
+function slug() { return (state.current || state.solve?.model || 'model').replace(/^template-/, '').toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-|-$/g, '') || 'model'; }
 
 function save(blob, name) {
   const a = document.createElement('a');
@@ -384,6 +462,9 @@ async function download(kind) {
       if (!s) return;
       const lines = [s.columns.join(','), ...s.rows.map((r) => r.map((v) => (v === null ? '' : String(v))).join(','))];
       save(new Blob([`${lines.join('\n')}\n`], { type: 'text/csv' }), `${name}.csv`);
+    } else if (kind === 'json') {
+      if (!state.solveText) return;
+      save(new Blob([state.solveText], { type: 'application/json' }), `${name}.json`);
     } else if (kind === 'model') {
       save(new Blob([model], { type: 'application/yaml' }), `${name}.yaml`);
     } else if (kind === 'svg' || kind === 'png') {
@@ -434,6 +515,7 @@ async function start() {
     status(t('copied'));
   });
   new ResizeObserver(resizePlot).observe($('#plot'));
+  initFiles();
   initModelEdit({ editor, state, status, showTab, setFrame, analyse: () => { clearTimeout(timer); return analyse(); } });
   initCanvasTools(showBody);
   initTables();

@@ -3,7 +3,7 @@
 // from the editor's text and every change is written back into it (model-edit.js); a value the
 // server rejects is marked in its field with the server's message.
 import { t } from './i18n.js';
-import { setIn, deleteIn, parseModel } from './yaml-text.js';
+import { setIn, deleteIn, parseModel, renamePoint, deletePoint } from './yaml-text.js';
 import { applyEdit, modelText, editContext } from './model-edit.js';
 import { selectBody } from './canvas-tools.js';
 
@@ -11,6 +11,8 @@ const $ = (s) => document.querySelector(s);
 const builtInMaterials = ['steel', 'stainless-steel', 'aluminium', 'brass', 'cast-iron', 'titanium', 'abs', 'acrylic', 'nylon'];
 let selected = null;
 let lastError = null;
+let lastRefusal = null;  // a structured edit refused (a rename that cannot be done safely)
+let lastRefusalAt = null;
 
 const esc = (s) => String(s ?? '').replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
 const isObj = (v) => v && typeof v === 'object' && !Array.isArray(v);
@@ -51,21 +53,36 @@ function commit(input) {
 
 // ------------------------------------------------------------------------------ sections
 
-function section(title, head, rows, empty) {
+function section(title, head, rows, empty, adder = '') {
   const body = rows.length ? rows.join('') : `<tr><td colspan="${head.length}" class="none">${esc(empty)}</td></tr>`;
-  return `<h3>${esc(title)}</h3><div class="mtable"><table><thead><tr>${head.map((h) => `<th>${esc(h)}</th>`).join('')}</tr></thead><tbody>${body}</tbody></table></div>`;
+  return `<h3>${esc(title)}</h3><div class="mtable"><table><thead><tr>${head.map((h) => `<th>${esc(h)}</th>`).join('')}</tr></thead><tbody>${body}</tbody></table></div>${adder}`;
 }
+
+// A row's × button: deletes the entry at `path` (a list item or a mapping's pair).
+function removeButton(path, label) {
+  return `<td class="acts"><button type="button" class="ghost" data-delete-path="${esc(JSON.stringify(path))}" aria-label="${esc(label)}" title="${esc(label)}">×</button></td>`;
+}
+// A <select> of names for an adder form.
+function picker(role, names, label, chosen = names[0]) {
+  return `<label class="add-field"><small>${esc(label)}</small><select data-add="${role}" aria-label="${esc(label)}">${names.map((n) => `<option value="${esc(n)}"${n === chosen ? ' selected' : ''}>${esc(n)}</option>`).join('')}</select></label>`;
+}
+function adder(kind, parts, label) {
+  return `<div class="adder" data-adder="${kind}">${parts.join('')}<button type="button" data-add-go="${kind}">${esc(label)}</button></div>`;
+}
+const pointNames = (m) => Object.keys(isObj(m.points) ? m.points : {});
+const bodyNames = (m) => Object.keys(isObj(m.bodies) ? m.bodies : {});
 
 function pointsSection(m) {
   const ground = new Set(Array.isArray(m.ground) ? m.ground : []);
   const rows = Object.entries(isObj(m.points) ? m.points : {}).map(([p, xy]) => {
     const pair = Array.isArray(xy);
-    return `<tr data-row-point="${esc(p)}"><th>${esc(p)}</th>`
+    return `<tr data-row-point="${esc(p)}"><th><input class="cell pname" data-rename="${esc(p)}" value="${esc(p)}" spellcheck="false" autocomplete="off" aria-label="${esc(t('nameOf', p))}"></th>`
       + `<td>${pair ? field(['points', p, 0], xy[0], 'num', `${p} x`) : field(['points', p], xy, 'pair', p)}</td>`
       + `<td>${pair ? field(['points', p, 1], xy[1], 'num', `${p} y`) : ''}</td>`
-      + `<td><input type="checkbox" class="ground" data-point="${esc(p)}" aria-label="${esc(t('groundOf', p))}"${ground.has(p) ? ' checked' : ''}></td></tr>`;
+      + `<td><input type="checkbox" class="ground" data-point="${esc(p)}" aria-label="${esc(t('groundOf', p))}"${ground.has(p) ? ' checked' : ''}></td>`
+      + `<td class="acts"><button type="button" class="ghost" data-delete-point="${esc(p)}" aria-label="${esc(t('deletePoint', p))}" title="${esc(t('deletePoint', p))}">×</button></td></tr>`;
   });
-  return section(t('points'), [t('name'), 'x', 'y', t('ground')], rows, t('none'));
+  return section(t('points'), [t('name'), 'x', 'y', t('ground'), ''], rows, t('none'));
 }
 
 function bodiesSection(m) {
@@ -86,16 +103,22 @@ function bodiesSection(m) {
 // and slots are written in the model and edited here.
 function jointsSection(m) {
   const check = editContext().state.check;
-  const rows = (check?.joints ?? []).filter((j) => j.startsWith('revolute')).map((j) => `<tr><td colspan="3" class="note">${esc(j)}</td></tr>`);
+  const rows = (check?.joints ?? []).filter((j) => j.startsWith('revolute')).map((j) => `<tr><td colspan="4" class="note">${esc(j)}</td></tr>`);
   for (const kind of ['sliders', 'slots']) {
     (Array.isArray(m[kind]) ? m[kind] : []).forEach((s, i) => {
       if (!isObj(s)) return;
       rows.push(`<tr><th>${kind === 'sliders' ? t('slider') : t('slot')}${s.body ? ` ${esc(s.body)}` : ''}</th>`
         + `<td>${field([kind, i, 'point'], s.point, 'text', `${kind} ${i + 1} point`)}</td>`
-        + `<td>${field([kind, i, 'along'], s.along, 'list', `${kind} ${i + 1} along`)}</td></tr>`);
+        + `<td>${field([kind, i, 'along'], s.along, 'list', `${kind} ${i + 1} along`)}</td>${removeButton([kind, i], t('deleteRow'))}</tr>`);
     });
   }
-  return section(t('joints'), [t('joint'), t('point'), t('along')], rows, t('none'));
+  // A new slider: a body, its sliding point, and the two points of its guide.
+  const pts = pointNames(m); const bs = bodyNames(m);
+  const add = pts.length >= 3 && bs.length ? adder('slider', [
+    picker('body', bs, t('body'), bs.at(-1)), picker('point', pts, t('point'), pts.at(-1)),
+    picker('along0', pts, `${t('along')} 1`, pts[0]), picker('along1', pts, `${t('along')} 2`, pts[1]),
+  ], t('addSlider')) : '';
+  return section(t('joints'), [t('joint'), t('point'), t('along'), ''], rows, t('none'), add);
 }
 
 function driversSection(m) {
@@ -106,9 +129,12 @@ function driversSection(m) {
     const cells = d.law !== undefined
       ? `<td colspan="3">${field(['drivers', i, 'law'], d.law, 'text', `driver ${i + 1} law`)}</td>`
       : ['from', 'to', 'speed'].map((k) => `<td>${field(['drivers', i, k], d[k], 'num', `driver ${i + 1} ${k}`)}</td>`).join('');
-    return `<tr><th>${esc(label)}</th>${cells}</tr>`;
+    return `<tr><th>${esc(label)}</th>${cells}${removeButton(['drivers', i], t('deleteRow'))}</tr>`;
   });
-  return section(t('drivers'), [t('driver'), t('from'), t('to'), t('speed')], rows, t('none'));
+  // A new driver: the angle of a body, a full turn at 60 rpm (edit the numbers after).
+  const bs = bodyNames(m);
+  const add = bs.length ? adder('driver', [picker('body', bs, t('body'))], t('addDriver')) : '';
+  return section(t('drivers'), [t('driver'), t('from'), t('to'), t('speed'), ''], rows, t('none'), add);
 }
 
 function loadsSection(m) {
@@ -118,18 +144,22 @@ function loadsSection(m) {
     const comps = Array.isArray(f.force)
       ? `<td>${field(['forces', i, 'force', 0], f.force[0], 'num', `force ${i + 1} fx`)}</td><td>${field(['forces', i, 'force', 1], f.force[1], 'num', `force ${i + 1} fy`)}</td>`
       : `<td>${field(['forces', i, 'fx'], f.fx, 'num', `force ${i + 1} fx`)}</td><td>${field(['forces', i, 'fy'], f.fy, 'num', `force ${i + 1} fy`)}</td>`;
-    rows.push(`<tr><th>${t('force')} ${esc(f.point)}</th>${comps}</tr>`);
+    rows.push(`<tr><th>${t('force')} ${esc(f.point)}</th>${comps}${removeButton(['forces', i], t('deleteRow'))}</tr>`);
   });
   (Array.isArray(m.torques) ? m.torques : []).forEach((q, i) => {
     if (!isObj(q)) return;
-    rows.push(`<tr><th>${t('torque')} ${esc(q.body)}</th><td colspan="2">${field(['torques', i, 'torque'], q.torque, 'num', `torque ${i + 1}`)}</td></tr>`);
+    rows.push(`<tr><th>${t('torque')} ${esc(q.body)}</th><td colspan="2">${field(['torques', i, 'torque'], q.torque, 'num', `torque ${i + 1}`)}</td>${removeButton(['torques', i], t('deleteRow'))}</tr>`);
   });
   (Array.isArray(m.springs) ? m.springs : []).forEach((s, i) => {
     if (!isObj(s)) return;
     rows.push(`<tr><th>${t('spring')} ${esc(showValue(s.between))}</th><td>${field(['springs', i, 'stiffness'], s.stiffness, 'num', `spring ${i + 1} stiffness`)}</td>`
-      + `<td>${field(['springs', i, 'free_length'], s.free_length, 'num', `spring ${i + 1} free length`)}</td></tr>`);
+      + `<td>${field(['springs', i, 'free_length'], s.free_length, 'num', `spring ${i + 1} free length`)}</td>${removeButton(['springs', i], t('deleteRow'))}</tr>`);
   });
-  return section(t('loads'), [t('load'), t('value1'), t('value2')], rows, t('noLoads'));
+  // A new force at a point (N, pointing down) or torque on a body (N m): edit the values after.
+  const pts = pointNames(m); const bs = bodyNames(m);
+  const add = (pts.length ? adder('force', [picker('point', pts, t('point'), pts.at(-1))], t('addForce')) : '')
+    + (bs.length ? adder('torque', [picker('body', bs, t('body'), bs.at(-1))], t('addTorque')) : '');
+  return section(t('loads'), [t('load'), t('value1'), t('value2'), ''], rows, t('noLoads'), add);
 }
 
 // ------------------------------------------------------------------------------ body panel
@@ -216,8 +246,12 @@ function markError() {
   for (const x of document.querySelectorAll('#model-tables .cell-error')) x.remove();
   const note = $('#model-problem');
   if (!note) return;
-  note.textContent = lastError ? `${lastError.line ? t('errorAt', lastError.line, lastError.column ?? 1) : ''}${lastError.message}` : '';
-  note.hidden = !lastError;
+  note.textContent = lastError ? `${lastError.line ? t('errorAt', lastError.line, lastError.column ?? 1) : ''}${lastError.message}` : (lastRefusal ?? '');
+  note.hidden = !lastError && !lastRefusal;
+  if (lastRefusal && !lastError) {
+    const near = lastRefusalAt && document.querySelector(`#model-tables ${lastRefusalAt}`);
+    near?.closest('tr')?.insertAdjacentHTML('afterend', `<tr class="refusal"><td colspan="9"><small class="cell-error" role="alert">${esc(lastRefusal)}</small></td></tr>`);
+  }
   if (!lastError?.line) return;
   const text = modelText();
   const lines = text.split('\n');
@@ -241,11 +275,54 @@ function markError() {
   }
 }
 
+// ------------------------------------------------------------------------------ adding, renaming
+
+// Adds what an adder form describes at the end of its list (the list is created if missing).
+function addEntry(form) {
+  const pick = (role) => form.querySelector(`[data-add="${role}"]`)?.value;
+  const kind = form.dataset.adder;
+  const m = parseModel(modelText()).toJS() ?? {};
+  const count = (key) => (Array.isArray(m[key]) ? m[key].length : 0);
+  const entry = {
+    driver: () => ['drivers', { angle: pick('body'), from: 0, to: 360, speed: '60 rpm' }],
+    force: () => ['forces', { point: pick('point'), force: [0, -10] }],
+    torque: () => ['torques', { body: pick('body'), torque: 1 }],
+    slider: () => ['sliders', { body: pick('body'), point: pick('point'), along: [pick('along0'), pick('along1')] }],
+  }[kind];
+  if (!entry) return;
+  const [key, value] = entry();
+  applyEdit((text) => setIn(text, [key, count(key)], value));
+}
+
+// A refused structured edit (yaml-text.js's EditError) is said in the Model tab, beside the
+// tables, as well as in the status line.
+// `at` is the selector of the field or button the edit came from: the message goes beside it
+// too, for on a phone the top of the tab may be scrolled away.
+function refusable(change, at) {
+  lastRefusal = null;
+  try {
+    change(modelText());
+  } catch (e) {
+    lastRefusal = t('editFailed', e.message);
+    lastRefusalAt = at;
+    editContext().status(lastRefusal, true);
+    renderTables();
+    return;
+  }
+  applyEdit(change);
+}
+function rename(input) {
+  const from = input.dataset.rename;
+  const to = input.value.trim();
+  if (to === from) return;
+  refusable((text) => renamePoint(text, from, to), `[data-rename="${CSS.escape(from)}"]`);
+}
+
 export function renderTables() {
   const host = $('#model-tables');
   if (!host) return;
   const focused = document.activeElement?.closest?.('#model-tables') ? document.activeElement : null;
-  const keep = focused && (focused.dataset.path || focused.dataset.bodyProp || focused.dataset.barProp);
+  const keep = focused && (focused.dataset.path || focused.dataset.bodyProp || focused.dataset.barProp) && !focused.dataset.rename;
   const m = (() => { try { return parseModel(modelText()).toJS() ?? {}; } catch { return null; } })();
   if (!m) {
     host.innerHTML = `<p id="model-problem" class="problems bad"></p><p class="hint">${esc(t('fixYamlFirst'))}</p>`;
@@ -288,11 +365,19 @@ export function initTables() {
         if (!x.checked && i >= 0) return deleteIn(text, ['ground', i]);
         return text;
       });
+    } else if (x.dataset.rename !== undefined) {
+      rename(x);
     } else if (x.dataset.path) commit(x);
-    else commitBody(x);
+    else if (!x.dataset.add) commitBody(x);
   });
   host.addEventListener('keydown', (e) => { if (e.key === 'Enter' && e.target.matches('input.cell')) e.target.blur(); });
   host.addEventListener('click', (e) => {
+    const go = e.target.closest('[data-add-go]');
+    if (go) addEntry(go.closest('[data-adder]'));
+    const del = e.target.closest('[data-delete-path]');
+    if (del) applyEdit((text) => deleteIn(text, JSON.parse(del.dataset.deletePath)));
+    const delPoint = e.target.closest('[data-delete-point]');
+    if (delPoint) refusable((text) => deletePoint(text, delPoint.dataset.deletePoint), `[data-delete-point="${CSS.escape(delPoint.dataset.deletePoint)}"]`);
     const b = e.target.closest('[data-select-body]');
     if (b) showBody(b.dataset.selectBody);
     if (e.target.closest('[data-close-body]')) showBody(null);
@@ -303,7 +388,7 @@ export function initTables() {
       applyEdit((text) => deleteIn(deleteIn(text, ['lengths', name]), ['bodies', name]));
     }
   });
-  document.addEventListener('nbar:analysed', (e) => { lastError = e.detail?.error ?? null; renderTables(); });
-  document.addEventListener('nbar:opened', () => { selected = null; lastError = null; });
+  document.addEventListener('nbar:analysed', (e) => { lastError = e.detail?.error ?? null; lastRefusal = null; renderTables(); });
+  document.addEventListener('nbar:opened', () => { selected = null; lastError = null; lastRefusal = null; });
   $('#lang')?.addEventListener('change', () => renderTables());
 }

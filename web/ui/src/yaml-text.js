@@ -2,7 +2,7 @@
 // it (comments, alignment, quoting, flow or block style): the text is parsed with the `yaml`
 // package's Document API only to find where each node lies, and the edit splices that span.
 // Re-printing the whole document (doc.toString()) would have re-flowed the user's file.
-import { parseDocument, isMap, isSeq, isScalar, isPair } from 'yaml';
+import { parseDocument, isMap, isSeq, isScalar, isPair, isAlias } from 'yaml';
 
 export class EditError extends Error {}
 
@@ -169,3 +169,76 @@ export function readModel(text) {
 
 // A number for the text, rounded to what the drawing's scale can show.
 export function roundTo(v, digits) { return +(+v).toFixed(Math.max(0, Math.min(6, digits))); }
+
+// ------------------------------------------------------------------------------ point names
+
+const pointName = /^[A-Za-z_]\w*$/;
+const lineOf = (text, at) => text.slice(0, at).split('\n').length;
+const wordIn = (name, s) => new RegExp(`(^|[^\\w.])${name.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}($|[^\\w])`).test(s);
+
+// Every place of the model that names point `name`: {path, node, key} for the points key itself
+// and each scalar equal to it. Throws an EditError when the name is also something else's name
+// (a body, a material, a driver), or is mentioned inside a longer text (a law, a note) where no
+// structured edit can tell a reference from a coincidence: the user then edits by hand.
+function pointReferences(text, doc, name) {
+  const refs = [];
+  const refuse = (node, why) => { throw new EditError(`${why} (line ${lineOf(text, node.range[0])})`); };
+  const visit = (node, path) => {
+    if (isAlias(node)) refuse(node, `an alias (*${node.source}) may stand for ${name}`);
+    if (isMap(node)) {
+      for (const pair of node.items) {
+        const key = isScalar(pair.key) ? String(pair.key.value) : null;
+        if (key === name) {
+          if (path.length === 1 && path[0] === 'points') refs.push({ path: [...path, key], node: pair.key, key: true });
+          else refuse(pair.key, `${name} is also the name of ${path.length ? `an entry of ${path.join('.')}` : 'a section'}`);
+        }
+        // The model's own title and description are prose, not references.
+        if (path.length === 0 && (key === 'name' || key === 'description')) continue;
+        if (key === 'name' && isScalar(pair.value) && String(pair.value.value) === name) refuse(pair.value, `${name} is also the name of ${path.join('.')}`);
+        if (pair.value) visit(pair.value, [...path, key]);
+      }
+    } else if (isSeq(node)) {
+      node.items.forEach((item, i) => visit(item, [...path, i]));
+    } else if (isScalar(node) && typeof node.value === 'string') {
+      if (node.value === name) refs.push({ path, node, key: false });
+      else if (wordIn(name, node.value)) refuse(node, `${name} is mentioned in “${node.value}”: rename it by hand in the editor`);
+    }
+  };
+  visit(doc.contents, []);
+  return refs;
+}
+
+// The text with point `from` renamed `to` everywhere the model names it (its entry in points,
+// ground, bodies, joints, drivers, loads...), each name replaced where it is written; an
+// EditError when the rename cannot be done safely.
+export function renamePoint(text, from, to) {
+  const doc = parseModel(text);
+  const points = doc.get('points');
+  if (!isMap(points) || !points.has(from)) throw new EditError(`there is no point ${from}`);
+  if (!pointName.test(to)) throw new EditError(`“${to}” is not a name: a letter or _ first, then letters, digits or _`);
+  if (to === from) return text;
+  if (points.has(to)) throw new EditError(`there is already a point ${to}`);
+  const bodies = doc.get('bodies');
+  if (isMap(bodies) && bodies.has(to)) throw new EditError(`${to} is the name of a body`);
+  const refs = pointReferences(text, doc, from);
+  let out = text;
+  for (const r of refs.sort((a, b) => b.node.range[0] - a.node.range[0])) {
+    out = splice(out, r.node.range[0], r.node.range[1], r.key ? keySource(to) : scalarSource(to, true));
+  }
+  return out;
+}
+
+// The text without point `name`: its entry in points, in ground and in the bodies' point lists.
+// An EditError when something else uses it (a slider, a driver, a load...): that goes first.
+export function deletePoint(text, name) {
+  const doc = parseModel(text);
+  const refs = pointReferences(text, doc, name);
+  const removable = (p) => (p[0] === 'points' && p.length === 2) || (p[0] === 'ground' && p.length === 2)
+    || (p[0] === 'bodies' && (p.length === 3 || (p.length === 4 && p[2] === 'points')));
+  const other = refs.find((r) => !removable(r.path));
+  if (other) throw new EditError(`${name} is used by ${other.path.filter((k) => typeof k === 'string').join('.')} (line ${lineOf(text, other.node.range[0])}): remove that first`);
+  // Last first, so that the list indices of the entries still to delete stay right.
+  let out = text;
+  for (const r of refs.sort((a, b) => b.node.range[0] - a.node.range[0])) out = deleteIn(out, r.path);
+  return out;
+}

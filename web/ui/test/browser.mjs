@@ -9,6 +9,7 @@ import { join } from 'node:path';
 import assert from 'node:assert/strict';
 import { run as runEditing } from './edit.mjs';
 import * as motion from './motion.mjs';
+import * as files from './files.mjs';
 
 const SKIP = 77;
 const arg = (name, fallback) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : fallback; };
@@ -209,6 +210,7 @@ async function desktop() {
   await page.selectOption('#lang', 'en');
   await runEditing(page, { base, out, viewport: 'desktop', mobile: false });
   await motion.run(page, { mobile: false, tag: 'desktop', base, context, shot, click, openExample, retype });
+  await files.run(page, { mobile: false, tag: 'desktop', base, shot, click });
   await context.close();
 }
 
@@ -228,6 +230,7 @@ async function phone() {
   await synthesis(page, true, 'phone');
   await runEditing(page, { base, out, viewport: 'phone', mobile: true });
   await motion.run(page, { mobile: true, tag: 'phone', base, context, shot, click, openExample, retype });
+  await files.run(page, { mobile: true, tag: 'phone', base, shot, click });
   await context.close();
 }
 

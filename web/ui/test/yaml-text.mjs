@@ -11,7 +11,7 @@ try {
   console.log(`SKIP: ${e.message} (npm ci in web/ui)`);
   process.exit(77);
 }
-const { setIn, deleteIn, readModel, EditError } = lib;
+const { setIn, deleteIn, readModel, renamePoint, deletePoint, EditError } = lib;
 
 const model = `# A four-bar (mm).
 units: {length: mm}
@@ -56,6 +56,31 @@ check('body removed', deleteIn(model, ['bodies', 'coupler']), model.replace('  c
 check('empty section', setIn('points:\n  A: [0, 0]\nforces:\n', ['forces', 0], { point: 'A', force: [0, -1] }), 'points:\n  A: [0, 0]\nforces: [{point: A, force: [0, -1]}]\n');
 // JSON text is YAML too: edited in place.
 check('json', setIn('{"points": {"A": [0, 0]}, "ground": ["A"]}', ['points', 'A', 1], 3), '{"points": {"A": [0, 3]}, "ground": ["A"]}');
+// A point renamed: its key and every reference (ground, bodies, a slider, a force), comments kept.
+const slider = `points:
+  O: [0, 0]     # pivot
+  A: [1, 0]
+  C: [3, 0]     # pin
+  Y: [9, 0]
+ground: [O, Y]
+bodies:
+  crank: [O, A]
+  rod: {points: [A, C], mass: 1}
+  block: [C]
+sliders:
+  - {body: block, point: C, along: [O, Y]}
+forces:
+  - {point: C, force: [-10, 0]}
+drivers:
+  - {angle: crank, from: 0, to: 360}
+`;
+check('rename point', renamePoint(slider, 'C', 'Pin'), slider.replace('  C: [3, 0]     #', '  Pin: [3, 0]   #').replace('[A, C]', '[A, Pin]')
+  .replace('block: [C]', 'block: [Pin]').replace('point: C,', 'point: Pin,').replace('{point: C', '{point: Pin'));
+check('rename ground point', renamePoint(slider, 'O', 'O2'), slider.replace('  O: [0, 0]     #', '  O2: [0, 0]    #').replace('[O, Y]\nbodies', '[O2, Y]\nbodies')
+  .replace('[O, A]', '[O2, A]').replace('along: [O, Y]', 'along: [O2, Y]'));
+// A point deleted with its ground entry and its places in the bodies' lists (also long form).
+check('delete point', deletePoint(model, 'B'), model.replace('  B:  [181.25, 148.8]\n', '').replace('coupler: [A, B]', 'coupler: [A]').replace('rocker:  [O4, B]', 'rocker:  [O4]'));
+check('delete ground point', deletePoint(model, 'O4'), model.replace('  O4: [200, 0]        # rocker pivot\n', '').replace('ground: [O2, O4]', 'ground: [O2]').replace('rocker:  [O4, B]', 'rocker:  [B]'));
 
 let failed = 0;
 for (const [name, got, want] of cases) {
@@ -65,5 +90,12 @@ for (const [name, got, want] of cases) {
 assert.deepEqual(readModel(setIn(model, ['points', 'P1'], [1, 2])).points.P1, [1, 2]);
 // Broken YAML is refused with the parser's message, not edited blindly.
 assert.throws(() => setIn('points: [1, 2', ['points', 0], 3), EditError);
+// What a structured rename or delete cannot do safely is refused with the reason.
+assert.throws(() => renamePoint(slider, 'C', 'crank'), /crank is the name of a body/);
+assert.throws(() => renamePoint(slider, 'C', 'Y'), /already a point Y/);
+assert.throws(() => renamePoint(slider, 'C', '2x'), /not a name/);
+assert.throws(() => renamePoint(`${slider}torques:\n  - {body: rod, torque: "C*2"}\n`, 'C', 'D'), /C is mentioned in “C\*2”/);
+assert.throws(() => renamePoint(slider.replace('to: 360}', 'to: 360, name: A}'), 'A', 'B'), /A is also the name of drivers/);
+assert.throws(() => deletePoint(slider, 'C'), /C is used by sliders.point \(line 12\): remove that first/);
 if (failed) process.exit(1);
 console.log(`OK: ${cases.length} edits`);
