@@ -15,6 +15,7 @@
 
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/io/results_writer.hpp"
 #include "nbar/model/file_errors.hpp"
 
 namespace nbar::cli {
@@ -115,11 +116,12 @@ inline bool write_file(const std::string& path, const std::vector<std::uint8_t>&
   return write_file(path, reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 
-// The width a text table is wrapped to: $COLUMNS when it is a sensible number, else 80.
+// The width a text table is wrapped to: $COLUMNS when it is a sensible number, else 80
+// (io::kTextTableWidth, as the web API).
 inline std::size_t terminal_width() {
   const char* columns = std::getenv("COLUMNS");
   const long value = columns ? std::strtol(columns, nullptr, 10) : 0;
-  return value >= 20 && value <= 10000 ? static_cast<std::size_t>(value) : 80;
+  return value >= 20 && value <= 10000 ? static_cast<std::size_t>(value) : io::kTextTableWidth;
 }
 
 // Standard output, or the file named by -o.

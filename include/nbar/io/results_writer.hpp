@@ -18,6 +18,9 @@ void write_csv(std::ostream& out, const ResultTable& table);
 // line_width (characters, 0: no limit), a table wider than that is written as groups of
 // columns one under the other, each group led by the first column (step) and fitting the width.
 void write_text_table(std::ostream& out, const ResultTable& table, std::size_t line_width = 0);
+// The width text tables are wrapped to where there is no terminal to ask (the web API), and
+// the CLI's when $COLUMNS says nothing.
+constexpr std::size_t kTextTableWidth = 80;
 
 // The table's columns and rows, plus units per column, the degrees of freedom, the assembly
 // branch of every four-bar loop, the sweep's residual and warnings. With `dynamics`, also
