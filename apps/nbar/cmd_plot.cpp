@@ -115,7 +115,7 @@ int run_plot(const PlotArgs& args) {
     output.stream() << canvas.document();
     output.stream().flush();
     if (!output.stream()) {
-      std::cerr << "error: cannot write " << args.output << '\n';
+      std::cerr << "error: " << cannot_write_message(args.output) << '\n';
       return kBadUsage;
     }
   } else {

@@ -34,7 +34,7 @@ int run_report(const ReportArgs& args) {
   const std::string html = render::html_report(analysis, summary, report);
   std::ofstream out(args.output);
   if (!(out << html)) {
-    std::cerr << "error: cannot write " << args.output << '\n';
+    std::cerr << "error: " << cannot_write_message(args.output) << '\n';
     return kBadUsage;
   }
   print_warnings(analysis.warnings());

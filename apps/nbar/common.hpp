@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -14,6 +15,8 @@
 
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/io/results_writer.hpp"
+#include "nbar/model/file_errors.hpp"
 
 namespace nbar::cli {
 
@@ -105,12 +108,20 @@ inline bool check_step(int step, const SweepResult& sweep) {
 inline bool write_file(const std::string& path, const char* data, std::size_t size) {
   std::ofstream out(path, std::ios::binary);
   if (out.write(data, static_cast<std::streamsize>(size))) return true;
-  std::cerr << "error: cannot write " << path << ": " << std::strerror(errno) << '\n';
+  std::cerr << "error: " << cannot_write_message(path) << '\n';
   return false;
 }
 inline bool write_file(const std::string& path, const std::string& text) { return write_file(path, text.data(), text.size()); }
 inline bool write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   return write_file(path, reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+
+// The width a text table is wrapped to: $COLUMNS when it is a sensible number, else 80
+// (io::kTextTableWidth, as the web API).
+inline std::size_t terminal_width() {
+  const char* columns = std::getenv("COLUMNS");
+  const long value = columns ? std::strtol(columns, nullptr, 10) : 0;
+  return value >= 20 && value <= 10000 ? static_cast<std::size_t>(value) : io::kTextTableWidth;
 }
 
 // Standard output, or the file named by -o.
@@ -120,7 +131,7 @@ class Output {
   bool open(const std::string& path) {
     if (path.empty()) return true;
     file_.open(path);
-    if (!file_) std::cerr << "error: cannot write " << path << '\n';
+    if (!file_) std::cerr << "error: " << cannot_write_message(path) << '\n';
     return static_cast<bool>(file_);
   }
   std::ostream& stream() { return file_.is_open() ? file_ : std::cout; }

@@ -70,7 +70,8 @@ int run_solve(const SolveArgs& args) {
   Output output;
   if (!output.open(args.output)) return kBadUsage;
   std::ostream& out = output.stream();
-  nbar::io::write_table(out, args.format, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr);
+  nbar::io::write_table(out, args.format, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr,
+                        terminal_width());
   out.flush();
   print_warnings(analysis.warnings());
   return finish(args.model, analysis.sweep);

@@ -39,6 +39,8 @@ class Summary:
         self.joints: List[str] = data["joints"]
         self.bodies = [SimpleNamespace(**b) for b in data["bodies"]]
         self.loops = [SimpleNamespace(**loop) for loop in data["loops"]]
+        self.slider_cranks = [SimpleNamespace(**f) for f in data["slider_cranks"]]
+        self.quick_returns = [SimpleNamespace(**f) for f in data["quick_returns"]]
         self.assembly = SimpleNamespace(**data["assembly"]) if data["assembly"] else None
         self.assembly_error: Optional[str] = data["assembly_error"]
         self.has_kinetics: bool = data["has_kinetics"]
@@ -60,6 +62,8 @@ class Summary:
         for loop in self.loops:
             rows.append((loop.name, f"{loop.grashof}, {loop.branch} branch, transmission angle "
                                     f"{loop.transmission_angle:.4g}"))
+        rows += [("slider-crank", f.description) for f in self.slider_cranks]
+        rows += [("quick-return", f.description) for f in self.quick_returns]
         if self.assembly_error:
             rows.append(("assembly", self.assembly_error))
         cells = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th><td style='text-align:left'>"

@@ -55,6 +55,9 @@ py::list loop_list(const Mechanism& mech, const ModelSummary& s) {
     d["output_turns_fully"] = l.grashof.output_turns_fully;
     d["branch"] = l.branch;
     d["transmission_angle"] = l.transmission_angle / u.angle_scale;
+    d["toggles"] = l.toggle_from && l.toggle_to
+                       ? py::object(py::make_tuple(*l.toggle_from / u.angle_scale, *l.toggle_to / u.angle_scale))
+                       : py::object(py::none());
     d["description"] = l.description;
     loops.append(d);
   }
@@ -93,6 +96,10 @@ py::dict summary_dict(const PyModel& model) {
   }
   d["assembly_error"] = s.assembly_error ? py::object(py::str(located(model, *s.assembly_error).what())) : py::none();
   d["loops"] = loop_list(mech, s);
+  // The slider-cranks' and quick-returns' facts as the JSON summary has them (one rendering).
+  const py::object facts = py::module_::import("json").attr("loads")(io::summary_json(mech, s, model.file.source));
+  d["slider_cranks"] = facts["slider_cranks"];
+  d["quick_returns"] = facts["quick_returns"];
   py::list warnings;
   for (const Warning& w : s.warnings) warnings.append(py::make_tuple(w.code, w.step, w.message));
   d["warnings"] = warnings;

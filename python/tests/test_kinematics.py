@@ -119,6 +119,21 @@ def test_check_gives_the_structure(examples):
     assert red.dof == 1 and red.gruebler == 0 and len(red.redundant) == 1
 
 
+def test_check_gives_slider_crank_and_quick_return_facts(examples):
+    # Closed forms: offset slider-crank stroke sqrt((l+r)^2-e^2) - sqrt((l-r)^2-e^2);
+    # quick-return time ratio (360 - 2 acos(r/d)) / (2 acos(r/d)) with r = 100, d = 250 mm.
+    s = nbar.load(examples / "slider-crank-offset.yaml").check()
+    f = s.slider_cranks[0]
+    r, l, e = 50.0, math.hypot(178.255435, 25.0), 25.0
+    assert f.stroke == pytest.approx(math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e), abs=1e-9)
+    assert f.dead_centres["outer"] == pytest.approx(math.degrees(math.asin(e / (l + r))), abs=1e-9)
+    q = nbar.load(examples / "inverted-slider-crank-shaper.yaml").check().quick_returns[0]
+    beta = 2 * math.acos(0.4)
+    assert q.time_ratio == pytest.approx((2 * math.pi - beta) / beta, rel=1e-12)
+    assert q.swing == pytest.approx(math.degrees(2 * math.asin(0.4)), abs=1e-9)
+    assert "Slider-cranks: 1" in str(s)
+
+
 def test_pandas_frame_has_the_columns(examples):
     pytest.importorskip("pandas")
     r = nbar.load(examples / "fourbar-crank-rocker.yaml").solve(steps=5, columns="crank,rocker.angle")

@@ -1,8 +1,10 @@
 #include "nbar/analysis/analysis.hpp"
 
+#include <sstream>
 #include <string>
 
 #include "nbar/dynamics/dynamics_table.hpp"
+#include "nbar/kinematics/continuation.hpp"
 #include "nbar/model/units.hpp"
 
 namespace nbar {
@@ -85,6 +87,7 @@ ResultTable result_table(const Analysis& analysis) {
   ResultTable table = make_table(*analysis.mechanism, analysis.sweep);
   if (analysis.dynamics)
     append_dynamics_columns(*analysis.dynamics->solver, analysis.sweep, analysis.dynamics->samples, table);
+  zero_numerical_noise(table);
   return table;
 }
 
@@ -92,6 +95,7 @@ ColumnTable result_columns(const Analysis& analysis) {
   ColumnTable table = make_column_table(*analysis.mechanism, analysis.sweep);
   if (analysis.dynamics)
     append_dynamics_columns(*analysis.dynamics->solver, analysis.sweep, analysis.dynamics->samples, table);
+  zero_numerical_noise(table);
   return table;
 }
 
@@ -117,6 +121,16 @@ ResultTable section_profile_table(const Analysis& analysis, int body, int step) 
     t.rows.push_back({sec.position / unit, sec.area / (unit * unit), sec.axial, sec.shear, sec.moment,
                       to_megapascal(sec.sigma_low), to_megapascal(sec.sigma_high), to_megapascal(sec.tau_max),
                       to_megapascal(sec.von_mises)});
+  zero_numerical_noise(t);
+  const Sample& at = analysis.sweep.samples[step];
+  std::string inputs;
+  for (std::size_t d = 0; d < m.drivers.size(); ++d)
+    inputs += m.drivers[d].name + " = " + format_driver_value(m, static_cast<int>(d), at.driver_values[d]) + ", ";
+  std::ostringstream time;
+  time << at.time;
+  t.title = "Sections of " + m.bodies[body].name + " at step " + std::to_string(step) + " (" + inputs + "t = " +
+            time.str() + " s): x from " + m.points[m.bodies[body].points[0]].name + " towards " +
+            m.points[m.bodies[body].points[1]].name;
   return t;
 }
 

@@ -99,7 +99,9 @@ ColumnNeeds column_needs(const Mechanism& mech, const std::vector<std::string>& 
   for (std::size_t i = 0; i < patterns.size(); ++i) {
     if (any_matches(available, patterns[i])) continue;
     needs.unmatched = static_cast<int>(i);
-    needs.message = "no column matches '" + patterns[i] + "'; the columns are: " + join(available);
+    std::vector<std::string> every = available;
+    if (!needs.dynamics) every.insert(every.end(), dynamic.begin(), dynamic.end());
+    needs.message = no_column_message(patterns[i], every) + "; the columns are: " + join(available);
     if (!needs.dynamics && !dynamic.empty()) needs.message += "; with inverse dynamics also: " + join(dynamic);
     break;
   }

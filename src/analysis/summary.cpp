@@ -1,4 +1,5 @@
 #include "nbar/analysis/summary.hpp"
+#include "nbar/analysis/summary_facts.hpp"
 
 #include <fmt/format.h>
 
@@ -144,6 +145,29 @@ void warn_about_many_turns(const Model& m, ModelSummary& out) {
   }
 }
 
+// The input angles of the toggle positions of a loop on the ground whose input cannot turn
+// fully, in the measure of the input's angle driver when it has one (from +x), else of the
+// input's direction from its first point to its second.
+void add_input_toggles(const Mechanism& mech, const std::vector<Eigen::Vector2d>& p, LoopSummary& l) {
+  const FourBarLoop& loop = l.loop;
+  const Model& m = mech.model();
+  if (loop.frame >= 0 || l.grashof.input_turns_fully || m.bodies[loop.input].points.size() < 2) return;
+  const Body& body = m.bodies[loop.input];
+  const double offset = std::remainder(
+      angle_of(p[body.points[1]] - p[body.points[0]]) - angle_of(p[loop.a] - p[loop.o2]), 2 * std::numbers::pi);
+  const InputLimits limits = input_limits(l.grashof.frame, l.grashof.input, l.grashof.coupler, l.grashof.output,
+                                          angle_of(p[loop.o4] - p[loop.o2]), angle_of(p[loop.a] - p[loop.o2]));
+  if (limits.full || !limits.closes) return;
+  // Near the driver's start value when driven (the same turn), else as the drawing has it.
+  double shift = 0.0;
+  for (const Driver& d : m.drivers)
+    if (d.kind == DriverKind::Angle && d.body == loop.input && d.relative_to < 0 && d.from)
+      shift = 2 * std::numbers::pi * std::round((*d.from - (angle_of(p[loop.a] - p[loop.o2]) + offset)) /
+                                                (2 * std::numbers::pi));
+  l.toggle_from = limits.from + offset + shift;
+  l.toggle_to = limits.to + offset + shift;
+}
+
 // Assembles at the start of the sweep and classifies every four-bar loop in that pose.
 void summarize_start(const Mechanism& mech, ModelSummary& out) {
   State state(mech);
@@ -169,6 +193,7 @@ void summarize_start(const Mechanism& mech, ModelSummary& out) {
     l.description = describe(l.grashof, loop, mech.model());
     l.branch = branch_name(branch_sign(loop, points));
     l.transmission_angle = transmission_angle(loop, points);
+    add_input_toggles(mech, points, l);
     out.loops.push_back(std::move(l));
   }
   warn_about_input_limits(mech, points, out);
@@ -193,6 +218,7 @@ ModelSummary summarize(const Mechanism& mech) {
   for (int r : s.mobility.redundant) s.redundant.push_back(mech.rows()[r].label);
   for (std::size_t d = 0; d < m.drivers.size(); ++d) s.drivers.push_back(describe_driver(m, static_cast<int>(d)));
   warn_about_many_turns(m, s);
+  summarize_crank_mechanisms(m, s);
   summarize_start(mech, s);
   if (s.assembly)
     for (Warning& w : cylinder_warnings(mech)) s.warnings.push_back(std::move(w));

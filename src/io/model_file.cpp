@@ -485,7 +485,7 @@ class Parser : yaml::Reader {
     SweepSpec& sweep = model_.sweep;
     if (steps) {
       sweep.steps = whole_number(*steps, "`steps`");
-      if (sweep.steps < 2) fail(mark(*steps), "the sweep needs at least 2 steps (ends included)");
+      if (sweep.steps < 1) fail(mark(*steps), "the sweep needs at least 1 step (1: the start pose alone)");
     }
     if (duration) {
       sweep.duration = number(*duration, "`duration` (s)");
@@ -495,7 +495,7 @@ class Parser : yaml::Reader {
       sweep.time_step = number(*step, "`step` (s)");
       if (*sweep.time_step <= 0.0) fail(mark(*step), "the sweep `step` must be positive");
       if (*sweep.time_step > sweep.duration) fail(mark(*step), "the sweep `step` is longer than its duration");
-    } else if (steps && time_sweep) {
+    } else if (steps && time_sweep && sweep.steps > 1) {
       sweep.time_step = sweep.duration / (sweep.steps - 1);
     }
   }

@@ -31,9 +31,10 @@ void write_csv(std::ostream& out, const ResultTable& table) {
   }
 }
 
-void write_text_table(std::ostream& out, const ResultTable& table) {
+void write_text_table(std::ostream& out, const ResultTable& table, std::size_t line_width) {
   const std::size_t n = table.columns.size();
   std::vector<std::vector<std::string>> cells(table.rows.size());
+  if (!table.title.empty()) out << table.title << '\n';
   std::vector<std::size_t> width(n, 0);
   for (std::size_t c = 0; c < n; ++c) {
     const std::string unit = table.units[c].empty() ? "" : "[" + table.units[c] + "]";
@@ -45,14 +46,32 @@ void write_text_table(std::ostream& out, const ResultTable& table) {
       width[c] = std::max(width[c], cells[r].back().size());
     }
   }
-  auto line = [&](auto cell) {
-    std::string s;
-    for (std::size_t c = 0; c < n; ++c) s += fmt::format("{}{:>{}}", c ? "  " : "", cell(c), width[c]);
-    out << s << '\n';
-  };
-  line([&](std::size_t c) { return table.columns[c]; });
-  line([&](std::size_t c) { return table.units[c].empty() ? std::string() : "[" + table.units[c] + "]"; });
-  for (std::size_t r = 0; r < cells.size(); ++r) line([&](std::size_t c) { return cells[r][c]; });
+  // Column groups that fit line_width, each led by the first column (step) again.
+  if (n == 0) return;
+  std::vector<std::vector<std::size_t>> groups{{0}};
+  std::size_t used = width[0];
+  for (std::size_t c = 1; c < n; ++c) {
+    if (line_width > 0 && groups.back().size() > 1 && used + 2 + width[c] > line_width) {
+      groups.push_back({0});
+      used = width[0];
+    }
+    groups.back().push_back(c);
+    used += 2 + width[c];
+  }
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    if (g) out << '\n';
+    const auto line = [&](auto cell) {
+      std::string s;
+      for (std::size_t i = 0; i < groups[g].size(); ++i) {
+        const std::size_t c = groups[g][i];
+        s += fmt::format("{}{:>{}}", i ? "  " : "", cell(c), width[c]);
+      }
+      out << s << '\n';
+    };
+    line([&](std::size_t c) { return table.columns[c]; });
+    line([&](std::size_t c) { return table.units[c].empty() ? std::string() : "[" + table.units[c] + "]"; });
+    for (std::size_t r = 0; r < cells.size(); ++r) line([&](std::size_t c) { return cells[r][c]; });
+  }
 }
 
 namespace {
@@ -72,6 +91,7 @@ void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& 
   const MobilityReport& mob = mech.mobility();
   nlohmann::ordered_json j;
   j["model"] = m.name;
+  if (!table.title.empty()) j["title"] = table.title;
   j["units"] = {{"length", m.units.length}, {"angle", m.units.angle}, {"time", "s"}};
   nlohmann::ordered_json redundant = nlohmann::json::array();
   for (int r : mob.redundant) redundant.push_back(mech.rows()[r].label);
@@ -99,11 +119,11 @@ void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& 
 }
 
 void write_table(std::ostream& out, const std::string& format, const Analysis& analysis, const ResultTable& table,
-                 const DynamicsStage* dynamics) {
+                 const DynamicsStage* dynamics, std::size_t line_width) {
   if (format == "json")
     write_json(out, analysis, table, dynamics);
   else if (format == "table")
-    write_text_table(out, table);
+    write_text_table(out, table, line_width);
   else if (format == "csv")
     write_csv(out, table);
   else

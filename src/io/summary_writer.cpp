@@ -99,6 +99,22 @@ void write_start(std::ostream& out, const Model& m, const ModelSummary& s) {
     out << "  " << l.loop.name << ": " << l.description << '\n';
     out << fmt::format("    at the start: {} branch, transmission angle {:.4g} {}\n", l.branch,
                        l.transmission_angle / m.units.angle_scale, m.units.angle);
+    if (l.toggle_from && l.toggle_to)
+      out << fmt::format("    the input turns only between its toggle positions, {:.6g} {} and {:.6g} {}\n",
+                         *l.toggle_from / m.units.angle_scale, m.units.angle, *l.toggle_to / m.units.angle_scale,
+                         m.units.angle);
+  }
+}
+
+// Slider-cranks and quick-returns: stroke, dead centres, swing and time ratio.
+void write_crank_mechanisms(std::ostream& out, const ModelSummary& s) {
+  if (!s.slider_cranks.empty()) {
+    out << "Slider-cranks: " << s.slider_cranks.size() << '\n';
+    for (const SliderCrankSummary& f : s.slider_cranks) out << "  " << f.description << '\n';
+  }
+  if (!s.quick_returns.empty()) {
+    out << "Quick-returns: " << s.quick_returns.size() << '\n';
+    for (const QuickReturnSummary& f : s.quick_returns) out << "  " << f.description << '\n';
   }
 }
 
@@ -146,9 +162,48 @@ Json loops_json(const Model& m, const ModelSummary& s) {
                      {"output_turns_fully", g.output_turns_fully},
                      {"description", l.description},
                      {"branch", l.branch},
-                     {"transmission_angle", l.transmission_angle / m.units.angle_scale}});
+                     {"transmission_angle", l.transmission_angle / m.units.angle_scale},
+                     {"toggles", l.toggle_from && l.toggle_to
+                                     ? Json::array({*l.toggle_from / m.units.angle_scale, *l.toggle_to / m.units.angle_scale})
+                                     : Json(nullptr)}});
   }
   return loops;
+}
+
+void crank_mechanisms_json(const Model& m, const ModelSummary& s, Json& j) {
+  const double length = m.units.length_scale, angle = m.units.angle_scale;
+  Json sliders = Json::array();
+  for (const SliderCrankSummary& f : s.slider_cranks) {
+    Json one = {{"crank", f.crank},         {"rod", f.rod},
+                {"slider", f.slider},       {"crank_length", f.crank_length / length},
+                {"rod_length", f.rod_length / length}, {"offset", f.offset / length},
+                {"crank_turns_fully", f.crank_turns_fully}};
+    if (f.crank_turns_fully) {
+      one["stroke"] = f.stroke / length;
+      one["dead_centres"] = {{"outer", f.outer_dead_centre / angle}, {"inner", f.inner_dead_centre / angle}};
+      one["outstroke_turn"] = f.outstroke_turn / angle;
+      one["return_turn"] = f.return_turn / angle;
+      one["time_ratio"] = f.time_ratio;
+    }
+    one["description"] = f.description;
+    sliders.push_back(one);
+  }
+  j["slider_cranks"] = sliders;
+  Json quick = Json::array();
+  for (const QuickReturnSummary& f : s.quick_returns) {
+    Json one = {{"crank", f.crank}, {"arm", f.arm}, {"crank_length", f.crank_length / length},
+                {"pivot_distance", f.pivot_distance / length}, {"arm_turns_fully", f.arm_turns_fully}};
+    if (!f.arm_turns_fully) {
+      one["swing"] = f.swing / angle;
+      one["limits"] = {f.limit_from / angle, f.limit_to / angle};
+      one["slow_turn"] = f.slow_turn / angle;
+      one["fast_turn"] = f.fast_turn / angle;
+      one["time_ratio"] = f.time_ratio;
+    }
+    one["description"] = f.description;
+    quick.push_back(one);
+  }
+  j["quick_returns"] = quick;
 }
 
 }  // namespace
@@ -204,6 +259,7 @@ std::string summary_json(const Mechanism& mechanism, const ModelSummary& s, cons
     j["assembly_error"] = nullptr;
   }
   j["loops"] = loops_json(m, s);
+  crank_mechanisms_json(m, s, j);
   return j.dump(2) + '\n';
 }
 
@@ -214,6 +270,7 @@ void write_summary_text(std::ostream& out, const Mechanism& mechanism, const Mod
   write_mobility(out, summary);
   write_kinetics(out, m, summary);
   write_start(out, m, summary);
+  write_crank_mechanisms(out, summary);
   if (!summary.warnings.empty()) {
     out << "Warnings: " << summary.warnings.size() << '\n';
     for (const Warning& w : summary.warnings) out << "  warning: " << w.message << '\n';

@@ -10,6 +10,7 @@
 
 #include "nbar/io/model_export.hpp"
 #include "nbar/io/synthesis_task.hpp"
+#include "nbar/model/file_errors.hpp"
 #include "nbar/render/canvas.hpp"
 #include "nbar/render/plot.hpp"
 
@@ -165,7 +166,7 @@ void export_designs(const SynthesisTask& task, const Outcome& out, const Synthes
     const fs::path path = fs::path(args.export_dir) / design_file_name(rank);
     std::ofstream file(path);
     file << design_model_yaml(task, out, i, rank);
-    if (!file) throw Error(ErrorKind::BadInput, "cannot write " + path.string());
+    if (!file) throw Error(ErrorKind::BadInput, cannot_write_message(path.string()));
   }
 }
 
@@ -173,7 +174,7 @@ void export_designs(const SynthesisTask& task, const Outcome& out, const Synthes
 void write_burmester_curves(const std::string& path, const SynthesisTask& task, const synthesis::BurmesterCurves& curves) {
   const std::string ext = fs::path(path).extension().string();
   std::ofstream out(path);
-  if (!out) throw Error(ErrorKind::BadInput, "cannot write " + path);
+  if (!out) throw Error(ErrorKind::BadInput, cannot_write_message(path));
   const auto each = [&](const auto& visit) {
     for (const char* which : {"centre", "circle"}) {
       const auto& lines = std::string(which) == "centre" ? curves.centre_curve : curves.circle_curve;
@@ -263,7 +264,7 @@ void write_burmester_curves(const std::string& path, const SynthesisTask& task, 
                            s.circle.y());
     });
   }
-  if (!out) throw Error(ErrorKind::BadInput, "cannot write " + path);
+  if (!out) throw Error(ErrorKind::BadInput, cannot_write_message(path));
 }
 
 }  // namespace nbar::io

@@ -4,6 +4,8 @@
 #include <numbers>
 #include <sstream>
 
+#include "nbar/kinematics/loop_closure.hpp"
+
 namespace nbar {
 
 namespace {
@@ -179,8 +181,9 @@ AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<d
     if (!newton.converged) {
       int worst = -1;
       max_residual(mech, state, &worst);
+      const std::string open_loop = loop_closure_failure(mech.model(), mech.four_bar_loops());
       throw AssemblyError("cannot assemble the drawn pose with the given lengths: " +
-                              worst_constraint_message(mech, state),
+                              (open_loop.empty() ? worst_constraint_message(mech, state) : open_loop),
                           worst);
     }
     compute_series(mech, state, options.terms);

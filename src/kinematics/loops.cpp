@@ -1,4 +1,5 @@
 #include "nbar/kinematics/loops.hpp"
+#include "nbar/kinematics/loop_closure.hpp"
 
 #include <algorithm>
 #include <array>
@@ -220,6 +221,41 @@ InputLimits input_limits(double frame, double input, double coupler, double outp
     r.to = at - alpha - lo;
   }
   return r;
+}
+
+double link_length(const Model& m, int link, int from_point, int to_point) {
+  const double drawn = (m.points[to_point].position - m.points[from_point].position).norm();
+  if (link < 0) return drawn;
+  const Body& body = m.bodies[link];
+  if (!body.length || body.points.size() < 2) return drawn;
+  const double first_two = (m.points[body.points[1]].position - m.points[body.points[0]].position).norm();
+  return first_two > 0.0 ? drawn * (*body.length / first_two) : drawn;
+}
+
+std::string loop_closure_failure(const Model& m, const std::vector<FourBarLoop>& loops) {
+  for (const FourBarLoop& loop : loops) {
+    const std::array<int, 4> links{loop.input, loop.coupler, loop.output, loop.frame};
+    const std::array<double, 4> lengths{link_length(m, loop.input, loop.o2, loop.a),
+                                        link_length(m, loop.coupler, loop.a, loop.b),
+                                        link_length(m, loop.output, loop.b, loop.o4),
+                                        link_length(m, loop.frame, loop.o4, loop.o2)};
+    const int longest = static_cast<int>(std::max_element(lengths.begin(), lengths.end()) - lengths.begin());
+    const double others = lengths[0] + lengths[1] + lengths[2] + lengths[3] - lengths[longest];
+    if (lengths[longest] - others <= 1e-9 * lengths[longest]) continue;
+    const double unit = m.units.length_scale;
+    const auto name = [&](int i) { return links[i] < 0 ? std::string("frame") : link_name(m, links[i]); };
+    std::ostringstream s;
+    bool first = true;
+    for (int i = 0; i < 4; ++i) {
+      if (i == longest) continue;
+      s << (first ? "" : " + ") << name(i) << " " << lengths[i] / unit;
+      first = false;
+    }
+    s << " < " << name(longest) << " " << lengths[longest] / unit << " " << m.units.length << ": loop " << loop.name
+      << " cannot close (its longest link is longer than the other three together)";
+    return s.str();
+  }
+  return {};
 }
 
 double transmission_angle(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p) {

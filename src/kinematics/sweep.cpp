@@ -125,6 +125,8 @@ std::string values_text(const Model& m, const std::vector<Series>& values) {
 double sweep_sample_count(const Model& m, std::optional<int> steps) {
   if (steps) return *steps;
   if (!m.has_time_law()) return m.sweep.steps;
+  // `steps: 1` in a time sweep leaves no time step to sample by: the one pose at t = 0.
+  if (!m.sweep.time_step && m.sweep.steps == 1) return 1;
   const double dt = m.sweep.time_step.value_or(m.sweep.duration / 100.0);
   return std::floor(m.sweep.duration / dt + 1e-9) + 1;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -134,6 +135,48 @@ ColumnTable make_column_table(const Mechanism& mech, const SweepResult& sweep) {
   return t;
 }
 
+namespace {
+
+// For every column, the largest size of a value of its unit; 0 for unitless columns.
+template <class ValueAt>
+std::vector<double> unit_scales(const std::vector<std::string>& units, std::size_t rows, ValueAt value_at) {
+  std::vector<double> column_max(units.size(), 0.0);
+  for (std::size_t c = 0; c < units.size(); ++c)
+    for (std::size_t r = 0; r < rows; ++r)
+      if (std::isfinite(value_at(r, c))) column_max[c] = std::max(column_max[c], std::abs(value_at(r, c)));
+  std::vector<double> scale(units.size(), 0.0);
+  for (std::size_t c = 0; c < units.size(); ++c) {
+    if (units[c].empty()) continue;
+    for (std::size_t other = 0; other < units.size(); ++other)
+      if (units[other] == units[c]) scale[c] = std::max(scale[c], column_max[other]);
+  }
+  return scale;
+}
+
+template <class ValueAt>
+void zero_below_scales(const std::vector<std::string>& units, std::size_t rows, ValueAt value_at) {
+  const std::vector<double> scale = unit_scales(units, rows, value_at);
+  for (std::size_t c = 0; c < units.size(); ++c) {
+    const double threshold = kNoiseRelative * scale[c];
+    for (std::size_t r = 0; r < rows; ++r)
+      if (std::abs(value_at(r, c)) <= threshold) value_at(r, c) = 0.0;
+  }
+}
+
+}  // namespace
+
+void zero_numerical_noise(ResultTable& table) {
+  zero_below_scales(table.units, table.rows.size(),
+                    [&](std::size_t r, std::size_t c) -> double& { return table.rows[r][c]; });
+}
+
+void zero_numerical_noise(ColumnTable& table) {
+  zero_below_scales(table.units, static_cast<std::size_t>(table.values.rows()),
+                    [&](std::size_t r, std::size_t c) -> double& {
+                      return table.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
+                    });
+}
+
 bool glob_match(const std::string& pattern, const std::string& text) {
   std::size_t p = 0, t = 0, star = std::string::npos, mark = 0;
   while (t < text.size()) {
@@ -154,6 +197,23 @@ bool glob_match(const std::string& pattern, const std::string& text) {
   return p == pattern.size();
 }
 
+std::optional<std::string> column_suggestion(const std::string& pattern, const std::vector<std::string>& columns) {
+  const auto lower = [](std::string text) {
+    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return text;
+  };
+  const std::string folded = lower(pattern);
+  for (const std::string& column : columns)
+    if (glob_match(folded, lower(column))) return column;
+  return std::nullopt;
+}
+
+std::string no_column_message(const std::string& pattern, const std::vector<std::string>& columns) {
+  std::string message = "no column matches '" + pattern + "'";
+  if (auto close = column_suggestion(pattern, columns)) message += " (did you mean '" + *close + "'?)";
+  return message;
+}
+
 namespace {
 
 // Which columns the patterns pick, in the order of the patterns, each once.
@@ -166,7 +226,7 @@ std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns, c
       any = true;
       if (std::find(picked.begin(), picked.end(), c) == picked.end()) picked.push_back(c);
     }
-    if (!any) throw std::invalid_argument("no column matches '" + pattern + "'");
+    if (!any) throw std::invalid_argument(no_column_message(pattern, columns));
   }
   return picked;
 }

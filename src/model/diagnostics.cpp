@@ -1,4 +1,10 @@
 #include "nbar/model/diagnostics.hpp"
+#include "nbar/model/file_errors.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
 
 namespace nbar {
 
@@ -43,5 +49,19 @@ Error::Error(ErrorKind kind, const std::string& message, EntityRef where, const 
       where_(where),
       file_(file),
       mark_(mark) {}
+
+std::string cannot_write_message(const std::string& path) {
+  const int error = errno;
+  namespace fs = std::filesystem;
+  std::string message = "cannot write " + path;
+  const fs::path folder = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!folder.empty() && !fs::exists(folder, ec)) return message + ": the folder '" + folder.string() + "' does not exist";
+  if (!folder.empty() && !fs::is_directory(folder, ec))
+    return message + ": '" + folder.string() + "' is a file, not a folder";
+  if (fs::is_directory(path, ec)) return message + ": it is a folder";
+  if (error != 0) return message + ": " + std::strerror(error);
+  return message;
+}
 
 }  // namespace nbar

@@ -351,7 +351,7 @@ class Validator {
   void check_sweep() const {
     const SweepSpec& s = m_.sweep;
     const EntityRef where{EntityRef::Kind::Sweep, -1};
-    if (s.steps < 2) fail(where, "the sweep needs at least 2 steps (got " + std::to_string(s.steps) + ")");
+    if (s.steps < 1) fail(where, "the sweep needs at least 1 step (got " + std::to_string(s.steps) + ")");
     if (!std::isfinite(s.duration) || s.duration <= 0.0) fail(where, "the sweep duration must be positive");
     if (s.time_step) {
       if (!std::isfinite(*s.time_step) || *s.time_step <= 0.0) fail(where, "the sweep time step must be positive");

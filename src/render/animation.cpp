@@ -1,4 +1,5 @@
 #include "nbar/render/animation.hpp"
+#include "nbar/model/file_errors.hpp"
 
 #include <cgif.h>
 #include <stdlib.h>
@@ -68,11 +69,7 @@ std::string js_string(const std::string& text) {
 void write_text_file(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   if (out) out << text;
-  if (!out) {
-    std::string message = "cannot write ";
-    message += path;
-    throw std::runtime_error(message);
-  }
+  if (!out) throw std::runtime_error(cannot_write_message(path));
 }
 
 // The angle (deg) equal to `angle` modulo 360 that is nearest to `previous`.

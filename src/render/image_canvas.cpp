@@ -1,4 +1,5 @@
 #include "nbar/render/image_canvas.hpp"
+#include "nbar/model/file_errors.hpp"
 
 #include <cairo.h>
 #include <vector>
@@ -213,7 +214,7 @@ void ImageCanvas::write_png(const std::string& path) const {
   const std::vector<std::uint8_t> bytes = png_bytes();
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  if (!out) throw std::runtime_error(cannot_write_message(path));
 }
 
 ImageCanvas ImageCanvas::read_png(const std::string& path) {

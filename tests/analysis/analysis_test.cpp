@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
+#include <numbers>
 
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/analysis/columns.hpp"
@@ -60,6 +62,7 @@ TEST(Analysis, TableAgreesWithTheStagesRunOneByOne) {
   for (const Sample& s : sweep.samples) results.push_back(dynamics.solve(s));
   ResultTable expected = make_table(*mech, sweep);
   append_dynamics_columns(dynamics, sweep, results, expected);
+  zero_numerical_noise(expected);
 
   ASSERT_EQ(table.columns, expected.columns);
   ASSERT_EQ(table.units, expected.units);
@@ -133,6 +136,13 @@ TEST(Columns, NeedsSayWhichStagesAndOrder) {
   n = column_needs(*mech, {"crank", "C.jx"}, 2);  // an order given is kept
   EXPECT_EQ(n.unmatched, 1);
   EXPECT_NE(n.message.find("no column matches 'C.jx'"), std::string::npos);
+  n = column_needs(*mech, {"crank", "C.X"});  // case folded: did you mean
+  EXPECT_EQ(n.unmatched, 1);
+  EXPECT_EQ(n.message.rfind("no column matches 'C.X' (did you mean 'C.x'?); the columns are: step, t, crank,", 0), 0u)
+      << n.message;
+  EXPECT_EQ(no_column_message("CRANK.TOR*", {"crank", "crank.torque"}),
+            "no column matches 'CRANK.TOR*' (did you mean 'crank.torque'?)");
+  EXPECT_EQ(no_column_message("zz", {"crank"}), "no column matches 'zz'");
   n = column_needs(*mech, {"nothing*"});
   EXPECT_EQ(n.unmatched, 0);
   EXPECT_NE(n.message.find("with inverse dynamics also: "), std::string::npos);
@@ -239,6 +249,156 @@ TEST(Summary, WarnsOfManyTurnsAndNamesTheUnit) {
             std::string::npos)
       << s.warnings[0].message;
   EXPECT_TRUE(summarize(*long_crank("rad", "2")).warnings.empty());
+}
+
+// Stroke, dead centres and time ratio of an offset slider-crank against the closed forms
+// (Norton): stroke = sqrt((l+r)^2 - e^2) - sqrt((l-r)^2 - e^2); the crank lies along the rod at
+// asin(e/(l+r)) (outer) and pi + asin(e/(l-r)) (inner), measured from the guide's direction.
+TEST(Summary, SliderCrankStrokeDeadCentresAndTimeRatio) {
+  const auto mech = example("slider-crank-offset.yaml");
+  const ModelSummary s = summarize(*mech);
+  ASSERT_EQ(s.slider_cranks.size(), 1u);
+  const SliderCrankSummary& f = s.slider_cranks[0];
+  EXPECT_EQ(f.crank, "crank");
+  EXPECT_EQ(f.rod, "rod");
+  const double r = 0.050, e = 0.025, l = std::hypot(0.228255435 - 0.050, 0.025);
+  EXPECT_NEAR(f.crank_length, r, 1e-12);
+  EXPECT_NEAR(f.rod_length, l, 1e-12);
+  EXPECT_NEAR(f.offset, e, 1e-12);
+  ASSERT_TRUE(f.crank_turns_fully);
+  EXPECT_NEAR(f.stroke, std::sqrt((l + r) * (l + r) - e * e) - std::sqrt((l - r) * (l - r) - e * e), 1e-12);
+  const double outer = std::asin(e / (l + r)), inner = std::numbers::pi + std::asin(e / (l - r));
+  EXPECT_NEAR(f.outer_dead_centre, outer, 1e-12);
+  EXPECT_NEAR(f.inner_dead_centre, inner, 1e-12);
+  EXPECT_NEAR(f.outstroke_turn, 2 * std::numbers::pi + outer - inner, 1e-12);
+  EXPECT_NEAR(f.time_ratio, (inner - outer) / (2 * std::numbers::pi + outer - inner), 1e-12);
+  EXPECT_NE(f.description.find("stroke 101.0"), std::string::npos) << f.description;
+
+  // In line: the stroke is twice the crank and both strokes take 180 deg.
+  const ModelSummary centred = summarize(*example("slider-crank-centred.yaml"));
+  ASSERT_EQ(centred.slider_cranks.size(), 1u);
+  EXPECT_NEAR(centred.slider_cranks[0].stroke, 2 * centred.slider_cranks[0].crank_length, 1e-12);
+  EXPECT_NEAR(centred.slider_cranks[0].time_ratio, 1.0, 1e-12);
+}
+
+// The crank-shaper's own description: forward 227.2 deg, return 132.8 deg of crank turn. Closed
+// form: limits where the crank is perpendicular to the arm, 2 acos(r/d) apart; swing 2 asin(r/d).
+TEST(Summary, QuickReturnSwingAndTimeRatio) {
+  const ModelSummary s = summarize(*example("inverted-slider-crank-shaper.yaml"));
+  ASSERT_EQ(s.quick_returns.size(), 1u);
+  const QuickReturnSummary& q = s.quick_returns[0];
+  EXPECT_EQ(q.crank, "crank");
+  EXPECT_EQ(q.arm, "arm");
+  EXPECT_NEAR(q.swing, 2 * std::asin(100.0 / 250.0), 1e-12);
+  EXPECT_NEAR(q.fast_turn * 180 / std::numbers::pi, 132.8, 0.05);
+  EXPECT_NEAR(q.slow_turn * 180 / std::numbers::pi, 227.2, 0.05);
+  EXPECT_NEAR(q.time_ratio, (2 * std::numbers::pi - 2 * std::acos(0.4)) / (2 * std::acos(0.4)), 1e-12);
+  // The ram's slider is driven by the arm, a rocker: not a slider-crank.
+  EXPECT_TRUE(s.slider_cranks.empty());
+}
+
+// A Grashof double-rocker (frame 40, input 30, coupler 20, output 35): the input turns only
+// while the diagonal from its pin to the output's pivot is between |20 - 35| and 20 + 35; by
+// the law of cosines, between acos(2275/2400) and acos(-525/2400) from the frame line.
+TEST(Summary, FourBarToggleInputAngles) {
+  const auto mech = std::make_shared<const Mechanism>(
+      io::parse_model("units: {length: mm, angle: deg}\n"
+                      "points: {O: [0, 0], A: [15, 25.980762113533157], B: [33.17477564823534, 34.328068872980296], "
+                      "Q: [40, 0]}\n"
+                      "ground: [O, Q]\n"
+                      "bodies: {input: [O, A], coupler: [A, B], output: [Q, B]}\n"
+                      "drivers:\n  - {angle: input, from: 60, to: 90}\n")
+          .model);
+  const ModelSummary s = summarize(*mech);
+  ASSERT_EQ(s.loops.size(), 1u);
+  ASSERT_TRUE(s.loops[0].toggle_from && s.loops[0].toggle_to);
+  EXPECT_NEAR(*s.loops[0].toggle_from, std::acos(2275.0 / 2400.0), 1e-9);
+  EXPECT_NEAR(*s.loops[0].toggle_to, std::acos(-525.0 / 2400.0), 1e-9);
+  // A crank-rocker's crank turns fully: no toggles.
+  const ModelSummary crank_rocker = summarize(*example("fourbar-crank-rocker.yaml"));
+  ASSERT_FALSE(crank_rocker.loops.empty());
+  EXPECT_FALSE(crank_rocker.loops[0].toggle_from);
+}
+
+// A loop whose longest link is longer than the other three cannot close: said plainly.
+TEST(Summary, ALoopThatCannotCloseSaysSo) {
+  const auto mech = std::make_shared<const Mechanism>(
+      io::parse_model("units: {length: mm}\n"
+                      "points: {O: [0, 0], A: [40, 0], B: [60, 40], Q: [200, 0]}\n"
+                      "ground: [O, Q]\n"
+                      "bodies: {crank: [O, A], coupler: [A, B], rocker: [Q, B]}\n"
+                      "lengths: {coupler: 50, rocker: 50}\n"
+                      "drivers:\n  - {angle: crank, from: 0, to: 360}\n")
+          .model);
+  const ModelSummary s = summarize(*mech);
+  ASSERT_TRUE(s.assembly_error);
+  EXPECT_NE(s.assembly_error->message().find(
+                "crank 40 + coupler 50 + rocker 50 < frame 200 mm: loop crank-coupler-rocker cannot close"),
+            std::string::npos)
+      << s.assembly_error->message();
+}
+
+// Where the exact value is 0 (the piston's velocity at dead centre, a constant-speed crank's
+// angular acceleration), the tables say 0, not rounding noise; real values are untouched.
+TEST(Analysis, TablesWriteExactZerosForNumericalNoise) {
+  AnalysisOptions options;
+  options.steps = 13;  // every 30 deg
+  const Analysis a = analyse(example("compressor-myszka.yaml"), options);
+  const ResultTable table = result_table(a);
+  const ColumnTable columns = result_columns(a);
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin());
+  };
+  const std::size_t vx = column("C.vx"), alpha = column("crank.alpha"), crank = column("crank");
+  ASSERT_LT(alpha, table.columns.size());
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    EXPECT_EQ(table.rows[r][alpha], 0.0) << "row " << r;
+    for (std::size_t c = 0; c < table.columns.size(); ++c)
+      EXPECT_EQ(table.rows[r][c], columns.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)));
+  }
+  // Dead centres at 0 and 180 deg: v = 0 exactly; at 90 deg v = -r omega (r = 0.75 in, 1750 rpm).
+  EXPECT_EQ(table.rows[0][vx], 0.0);
+  EXPECT_EQ(table.rows[6][vx], 0.0);
+  EXPECT_EQ(table.rows[12][vx], 0.0);
+  EXPECT_NEAR(table.rows[6][crank], 180.0, 1e-12);
+  EXPECT_NEAR(table.rows[3][vx], -0.75 * 1750 * 2 * std::numbers::pi / 60, 1e-9);
+
+  // The rule itself: per unit, relative to the largest value of that unit.
+  ResultTable t;
+  t.columns = {"step", "a", "b", "c"};
+  t.units = {"", "mm/s", "mm/s", "N"};
+  t.rows = {{1e-20, 1000.0, 1e-10, 1e-14}, {2, -2e-9, 5e-8, 2e-14}};
+  zero_numerical_noise(t);
+  // mm/s: the scale is 1000 (column a), so 1e-10 is noise but -2e-9 is not; N: small but all alike.
+  EXPECT_EQ(t.rows[0], (std::vector<double>{1e-20, 1000.0, 0.0, 1e-14}));
+  EXPECT_EQ(t.rows[1], (std::vector<double>{2, -2e-9, 5e-8, 2e-14}));
+}
+
+// A single pose is a sweep of one step, from the model file (`from` alone, `steps: 1`) or from
+// the options, for from/to sweeps and time sweeps alike.
+TEST(Analysis, OneStepIsOnePose) {
+  const std::string four_bar =
+      "points: {O: [0, 0], A: [10, 0], B: [30, 20], Q: [40, 0]}\n"
+      "ground: [O, Q]\n"
+      "bodies: {crank: [O, A], coupler: [A, B], rocker: [Q, B]}\n";
+  const auto single = std::make_shared<const Mechanism>(
+      io::parse_model(four_bar + "drivers:\n  - {angle: crank, from: 60}\nsweep: {steps: 1}\n").model);
+  const Analysis a = analyse(single, AnalysisOptions{});
+  ASSERT_EQ(a.sweep.samples.size(), 1u);
+  EXPECT_TRUE(a.sweep.complete);
+  EXPECT_NEAR(a.sweep.samples[0].driver_values[0], 60 * std::numbers::pi / 180, 1e-15);
+
+  const auto timed = std::make_shared<const Mechanism>(
+      io::parse_model(four_bar + "drivers:\n  - {angle: crank, law: 10*t}\nsweep: {duration: 2, steps: 1}\n").model);
+  const Analysis t = analyse(timed, AnalysisOptions{});
+  ASSERT_EQ(t.sweep.samples.size(), 1u);
+  EXPECT_EQ(t.sweep.samples[0].time, 0.0);
+
+  AnalysisOptions one;
+  one.steps = 1;
+  EXPECT_EQ(analyse(example("fourbar-crank-rocker.yaml"), one).sweep.samples.size(), 1u);
+  one.steps = 0;
+  EXPECT_THROW(analyse(example("fourbar-crank-rocker.yaml"), one), Error);
 }
 
 TEST(Analysis, DynamicsOfAModelWithoutMassesOrLoadsSaysSo) {

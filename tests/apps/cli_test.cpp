@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -294,6 +295,48 @@ TEST(Cli, StressReportAndProfile) {
   ASSERT_EQ(profile.code, 0) << profile.err;
   EXPECT_THAT(profile.out, testing::StartsWith("x,area,N,V,M,sigma_right,sigma_left,tau,von_mises\n"));
   EXPECT_GE(count_lines(profile.out), 101);
+}
+
+TEST(Cli, SectionProfileSaysWhichBodyAndStep) {
+  const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-steel-bars.yaml";
+  const CliRun profile = nbar("stress " + model + " --steps 37 --section-profile coupler --step 3");
+  ASSERT_EQ(profile.code, 0) << profile.err;
+  EXPECT_THAT(profile.out, testing::StartsWith("Sections of coupler at step 3 (crank = 30 deg, t = "));
+}
+
+TEST(Cli, WritingIntoAMissingFolderSaysTheFolderIsMissing) {
+  TempModel dir("");
+  const std::string missing = dir.dir() + "/no-such-folder";
+  const CliRun solve = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml -o " + missing + "/a.csv");
+  EXPECT_EQ(solve.code, 2);
+  EXPECT_THAT(solve.err, HasSubstr("cannot write " + missing + "/a.csv: the folder '" + missing + "' does not exist"));
+  const CliRun draw = nbar(std::string("draw ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml -o " + missing + "/a.png");
+  EXPECT_NE(draw.code, 0);
+  EXPECT_THAT(draw.err, HasSubstr("the folder '" + missing + "' does not exist"));
+}
+
+TEST(Cli, WideTablesAreWrappedIntoColumnGroups) {
+  ::setenv("COLUMNS", "80", 1);
+  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --steps 3 --format table");
+  ::unsetenv("COLUMNS");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string line;
+  int groups = 0;
+  while (std::getline(lines, line)) {
+    EXPECT_LE(line.size(), 80u) << line;
+    std::istringstream words(line);
+    std::string first;
+    words >> first;
+    if (first == "step") ++groups;  // every group is led by the step column
+  }
+  EXPECT_GT(groups, 2);
+}
+
+TEST(Cli, ColumnsSuggestTheNameWithItsCase) {
+  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/compressor-myszka.yaml --columns C.X");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("no column matches 'C.X' (did you mean 'C.x'?); the columns are: step"));
 }
 
 TEST(Cli, StressBadUsage) {

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -143,6 +144,7 @@ class Golden : public ::testing::TestWithParam<GoldenCase> {};
 
 TEST_P(Golden, Output) {
   const GoldenCase& c = GetParam();
+  ::setenv("COLUMNS", "80", 1);  // text tables wrap to the terminal's width: pin it, as update-goldens.sh does
   std::string dir_template = (fs::temp_directory_path() / "nbar-golden.XXXXXX").string();
   ASSERT_NE(::mkdtemp(dir_template.data()), nullptr) << "cannot make a temporary directory";
   const fs::path out_dir = dir_template;

@@ -600,7 +600,8 @@ TEST(ModelFileErrors, Laws) {
 TEST(ModelFileErrors, Sweep) {
   const std::string head = kFourBar + "drivers:\n  - {angle: crank, to: 90}\n";  // sweep on line 13
   const std::string timed = kFourBar + "drivers:\n  - {angle: crank, law: 10*t}\n";
-  EXPECT_TRUE(fails_at(head + "sweep: {steps: 1}\n", "13:16", "the sweep needs at least 2 steps"));
+  EXPECT_TRUE(fails_at(head + "sweep: {steps: 0}\n", "13:16", "the sweep needs at least 1 step"));
+  EXPECT_EQ(parse_model(head + "sweep: {steps: 1}\n").model.sweep.steps, 1);
   EXPECT_TRUE(fails_at(head + "sweep: {steps: 2.5}\n", "13:16", "`steps` must be a whole number"));
   EXPECT_TRUE(fails_at(head + "sweep: {steps: many}\n", "13:16", "`steps` must be a number, not 'many'"));
   EXPECT_TRUE(

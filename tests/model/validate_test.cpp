@@ -434,11 +434,11 @@ TEST(Validate, LawDrivers) {
 
 TEST(Validate, Sweep) {
   Model m = four_bar();
-  m.sweep.steps = 1;
-  expect_error(m, Kind::Sweep, -1, "the sweep needs at least 2 steps (got 1)");
+  m.sweep.steps = 0;
+  expect_error(m, Kind::Sweep, -1, "the sweep needs at least 1 step (got 0)");
 
   m = four_bar();
-  m.sweep.steps = 2;
+  m.sweep.steps = 1;  // one pose
   EXPECT_NO_THROW(validate(m));
 
   m = four_bar();

@@ -291,7 +291,8 @@ ApiResponse api_solve(Job& job, const std::string& request) {
     }
   }
   return answer(write([&](std::ostream& out) {
-                  io::write_table(out, format, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr);
+                  io::write_table(out, format, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr,
+                                  io::kTextTableWidth);
                 }),
                 text_type(format));
 }

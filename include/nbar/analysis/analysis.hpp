@@ -64,7 +64,8 @@ struct Analysis {
 Analysis analyse(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options = {});
 
 // The sweep as a table in the model's units: the kinematic columns, then the dynamics columns
-// when that stage ran (kinematics/table.hpp and dynamics/dynamics_table.hpp name them).
+// when that stage ran (kinematics/table.hpp and dynamics/dynamics_table.hpp name them), with
+// numerical noise made exact 0 (zero_numerical_noise); so is section_profile_table's.
 ResultTable result_table(const Analysis& analysis);
 // The same columns stored column by column, for front-ends that hand columns out whole.
 ColumnTable result_columns(const Analysis& analysis);

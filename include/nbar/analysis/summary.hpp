@@ -29,6 +29,38 @@ struct LoopSummary {
   std::string description;  // loops.hpp describe(): class, lengths, which links turn fully
   std::string branch;       // "open" or "crossed" at the start
   double transmission_angle = 0.0;  // rad, at the start
+  // When the input cannot turn fully (the loop on the ground): the input angles of its two
+  // toggle positions, rad, on the start's part of the range, in the input's measure (its
+  // driver's, or the direction of the input from its first point to its second, from +x).
+  std::optional<double> toggle_from, toggle_to;
+};
+
+// A slider-crank: a crank on a ground pivot, a rod, and a block sliding on a fixed guide.
+// Angles are the crank's input angle (its angle driver's measure, or its direction from its
+// first point to its second, from +x), rad, in [from, from + 2 pi) of its driver (else [0, 2 pi)).
+struct SliderCrankSummary {
+  std::string crank, rod, slider;                       // body names
+  double crank_length = 0, rod_length = 0, offset = 0;  // m; offset: the crank pivot from the guide line
+  bool crank_turns_fully = false;                       // rod - crank > |offset|
+  double stroke = 0;                                    // m, between the dead centres
+  double outer_dead_centre = 0, inner_dead_centre = 0;  // rad: crank and rod in line, stretched and folded
+  // Crank turn (rad, in its sense of rotation) from the inner to the outer dead centre (the
+  // outstroke) and back; time_ratio = the longer over the shorter (1 for an in-line one).
+  double outstroke_turn = 0, return_turn = 0, time_ratio = 1;
+  std::string description;
+};
+
+// A quick-return (slotted lever, crank-shaper): a crank whose pin slides along an arm pivoted on
+// the ground. When the crank is shorter than the distance between the pivots the arm swings:
+// limit positions where the crank is perpendicular to the arm.
+struct QuickReturnSummary {
+  std::string crank, arm;                     // body names
+  double crank_length = 0, pivot_distance = 0;  // m
+  bool arm_turns_fully = false;               // crank longer than the pivot distance (Whitworth)
+  double swing = 0;                           // rad, the arm's angle between its limits
+  double limit_from = 0, limit_to = 0;        // rad, the crank's input angles at the arm's limits
+  double slow_turn = 0, fast_turn = 0, time_ratio = 1;  // rad of crank turn per stroke; slow / fast
+  std::string description;
 };
 
 struct AssemblySummary {
@@ -58,6 +90,9 @@ struct ModelSummary {
   std::optional<AssemblySummary> assembly;
   std::optional<Error> assembly_error;
   std::vector<LoopSummary> loops;
+  // From the geometry alone (the model's lengths), whether or not the start assembles.
+  std::vector<SliderCrankSummary> slider_cranks;
+  std::vector<QuickReturnSummary> quick_returns;
 
   // What the sweep asks that it will not get, or may not mean, said before it runs:
   // "input_limited" (an angle driver asked to turn past the toggles of its four-bar loop) and

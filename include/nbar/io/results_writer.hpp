@@ -14,8 +14,13 @@ namespace nbar::io {
 // Header line of column names, then one line per sample; values in the model's units.
 void write_csv(std::ostream& out, const ResultTable& table);
 
-// Aligned columns for people reading a terminal, with a units line under the names.
-void write_text_table(std::ostream& out, const ResultTable& table);
+// Aligned columns for people reading a terminal, with a units line under the names. With a
+// line_width (characters, 0: no limit), a table wider than that is written as groups of
+// columns one under the other, each group led by the first column (step) and fitting the width.
+void write_text_table(std::ostream& out, const ResultTable& table, std::size_t line_width = 0);
+// The width text tables are wrapped to where there is no terminal to ask (the web API), and
+// the CLI's when $COLUMNS says nothing.
+constexpr std::size_t kTextTableWidth = 80;
 
 // The table's columns and rows, plus units per column, the degrees of freedom, the assembly
 // branch of every four-bar loop, the sweep's residual and warnings. With `dynamics`, also
@@ -26,7 +31,7 @@ void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& 
 // The table in `format`: "csv" (write_csv), "table" (write_text_table) or "json" (write_json with
 // `dynamics`); throws std::invalid_argument for another format.
 void write_table(std::ostream& out, const std::string& format, const Analysis& analysis, const ResultTable& table,
-                 const DynamicsStage* dynamics = nullptr);
+                 const DynamicsStage* dynamics = nullptr, std::size_t line_width = 0);
 
 // The largest von Mises stress of every link over the sweep, where and when, and its safety
 // factor: format "table", "csv" or "json". Stresses in MPa, forces in N, moments in N m,

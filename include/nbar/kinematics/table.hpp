@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,9 @@ struct ResultTable {
   std::vector<std::string> columns;
   std::vector<std::string> units;  // per column: "mm", "deg/s^2", "s", "" for counts
   std::vector<std::vector<double>> rows;
+  // What the table is of, when that is not the sweep: "sections of coupler at step 90 (...)".
+  // The text table prints it first and JSON has it as "title"; CSV leaves it out.
+  std::string title;
 };
 
 // step, t, one column per driver, then for every point P.x, P.y, P.vx, P.vy, P.ax, P.ay,
@@ -31,6 +35,18 @@ struct ColumnTable {
   Eigen::MatrixXd values;
 };
 ColumnTable make_column_table(const Mechanism& mech, const SweepResult& sweep);
+// Numerical noise made exact: a value whose size is at most kNoiseRelative times the largest
+// size of any value of the same unit in the table (every column in mm/s, every column in
+// deg/s^2, every force in N, ...) over the sweep becomes 0. The position solve stops at that
+// relative tolerance (Mechanism::tolerance is 1e-12 of the model's size) and what is smaller
+// cannot be told from 0: the 5e-11 mm/s a piston's velocity has at dead centre, or the 4e-16
+// deg/s^2 of a crank turning at constant speed. Unitless columns (step) are left alone. The
+// scale is per unit rather than per column, so that a column that is 0 throughout (a crank's
+// alpha) is measured against the other columns of its unit, not against its own noise.
+constexpr double kNoiseRelative = 1e-12;
+void zero_numerical_noise(ResultTable& table);
+void zero_numerical_noise(ColumnTable& table);
+
 // The columns matching `patterns` (as select_columns), in the order of the patterns.
 ColumnTable select_columns(const ColumnTable& table, const std::vector<std::string>& patterns);
 
@@ -41,5 +57,11 @@ ResultTable select_columns(const ResultTable& table, const std::vector<std::stri
 
 // Whether `text` matches `pattern`, where '*' stands for any run of characters.
 bool glob_match(const std::string& pattern, const std::string& text);
+
+// For a pattern that matches no column: the first column it matches when case is ignored
+// ("C.X" -> "C.x", "Crank.*" -> "crank.angle"), or nothing.
+std::optional<std::string> column_suggestion(const std::string& pattern, const std::vector<std::string>& columns);
+// "no column matches 'C.X'", plus " (did you mean 'C.x'?)" when column_suggestion has one.
+std::string no_column_message(const std::string& pattern, const std::vector<std::string>& columns);
 
 }  // namespace nbar
