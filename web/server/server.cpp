@@ -36,6 +36,9 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   impl_->options = options;
   impl_->config.limits = options.limits;
   impl_->config.jobs = std::make_shared<JobSlots>(std::max(1, options.max_jobs));
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  impl_->config.light_jobs = std::make_shared<JobSlots>(options.light_jobs > 0 ? options.light_jobs : std::max(2, cores));
+  impl_->config.queue_wait_seconds = options.queue_wait_seconds;
   httplib::Server& server = impl_->server;
   const int threads = std::max(2, options.threads);
   server.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
@@ -48,6 +51,19 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
     int yes = 1;
     ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
   });
+  // httplib serves a connection on one thread from its first request to its close, so an idle
+  // keep-alive connection holds a thread: there are many threads (they mostly sleep), and an
+  // idle connection is closed after a few seconds. Behind nginx every request comes on a
+  // connection of its own.
+  if (options.keep_alive_seconds > 0) {
+    server.set_keep_alive_timeout(options.keep_alive_seconds);
+    server.set_keep_alive_max_count(100);
+  } else {
+    server.set_keep_alive_max_count(1);  // "Connection: close" after every answer
+  }
+  // Headers and body go out in separate writes: without this, Nagle's algorithm holds the body
+  // until the client's delayed acknowledgement, 40 ms on Linux, on every kept-alive request.
+  server.set_tcp_nodelay(true);
   server.set_read_timeout(10, 0);
   server.set_write_timeout(30, 0);
   const ServerConfig* config = &impl_->config;
