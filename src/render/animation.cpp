@@ -304,7 +304,7 @@ std::vector<std::uint8_t> Animation::gif_bytes() const {
   for (int k = 0; k < frame_count() && result == CGIF_OK; ++k) {
     if (control_.should_stop("frames", frame_count() + k, 2L * frame_count())) {
       cgif_close(gif);
-      control_.checkpoint("frames", frame_count() + k, 2L * frame_count());
+      control_.throw_stopped("frames");
     }
     const ImageCanvas image = render_frame(k, false);
     const std::uint8_t* data = image.data();
@@ -646,7 +646,7 @@ void Animation::write_mp4(const std::string& path) const {
   if (stopped) {
     std::error_code ignored;
     std::filesystem::remove(path, ignored);
-    control_.checkpoint("frames", 0, frame_count());
+    control_.throw_stopped("frames");
   }
   if (!ok || status != 0) {
     std::string message = "cannot write ";
