@@ -3,7 +3,10 @@
 // the limit, a malformed request); they are answered with the API's JSON errors too.
 #include "nbar/web/server.hpp"
 
+#include <arpa/inet.h>
 #include <httplib.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 
 #include <atomic>
 #include <chrono>
@@ -21,6 +24,25 @@ struct HttpServer::Impl {
 };
 
 namespace {
+
+// httplib 0.11 listens with a backlog of 5: a burst of new connections (a class's browsers, or
+// nginx's one connection per request) overflows it, and each dropped SYN costs its client a
+// 1 s retransmission. Listening again on the bound socket raises the backlog; httplib does not
+// hand the socket out, so it is found among the process's descriptors by its port.
+void raise_listen_backlog(int port) {
+  for (int fd = 0; fd < 4096; ++fd) {
+    int listening = 0;
+    socklen_t size = sizeof listening;
+    if (::getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &size) != 0 || !listening) continue;
+    sockaddr_storage address{};
+    socklen_t length = sizeof address;
+    if (::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0) continue;
+    const int bound = address.ss_family == AF_INET    ? ntohs(reinterpret_cast<sockaddr_in*>(&address)->sin_port)
+                      : address.ss_family == AF_INET6 ? ntohs(reinterpret_cast<sockaddr_in6*>(&address)->sin6_port)
+                                                      : -1;
+    if (bound == port) ::listen(fd, SOMAXCONN);
+  }
+}
 
 void send(const ApiResponse& answer, httplib::Response& res) {
   res.status = answer.status;
@@ -103,6 +125,7 @@ bool HttpServer::bind(std::string& error) {
     error = "cannot listen on " + o.host + ":" + std::to_string(o.port) + " (in use, or not an address of this machine)";
     return false;
   }
+  raise_listen_backlog(impl_->port);
   return true;
 }
 
