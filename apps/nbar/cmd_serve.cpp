@@ -22,8 +22,11 @@ struct ServeArgs {
   int port = 8080;
   bool open = false;
   int max_jobs = 2;
+  int light_jobs = 0;
+  double queue_wait = 10;
   double time_budget = 30;
-  int threads = 8;
+  int threads = 256;
+  int keep_alive = 5;
 };
 
 // The browser, by xdg-open with the URL as its one argument: no shell.
@@ -44,7 +47,10 @@ int run_serve(const ServeArgs& args) {
   options.host = args.host;
   options.port = args.port;
   options.max_jobs = args.max_jobs;
+  options.light_jobs = args.light_jobs;
+  options.queue_wait_seconds = args.queue_wait;
   options.threads = args.threads;
+  options.keep_alive_seconds = args.keep_alive;
   options.limits.time_budget_seconds = args.time_budget;
   options.limits.max_synthesis_threads = 2;
   web::HttpServer server(options);
@@ -73,11 +79,21 @@ Command add_serve_command(CLI::App& app) {
   sub->add_option("--host", args->host,
                   "address to listen on (default 127.0.0.1, this machine only; 0.0.0.0 for a classroom)");
   sub->add_flag("--open", args->open, "open the page in a browser");
-  sub->add_option("--max-jobs", args->max_jobs, "computations at once; more are answered 503 (default 2)")
+  sub->add_option("--max-jobs", args->max_jobs,
+                  "heavy computations at once (synthesis, stresses, reports, animations, large sweeps; default 2)")
       ->check(CLI::Range(1, 256));
+  sub->add_option("--light-jobs", args->light_jobs,
+                  "light computations at once (checks, small solves, drawings; default one per core, at least 2)")
+      ->check(CLI::Range(1, 256));
+  sub->add_option("--queue-wait", args->queue_wait,
+                  "seconds a computation may wait for its turn before it is answered 503 (default 10)")
+      ->check(CLI::Range(0.0, 600.0));
   sub->add_option("--time-budget", args->time_budget, "seconds one request may compute before it is stopped (default 30)")
       ->check(CLI::Range(0.01, 86400.0));
-  sub->add_option("--threads", args->threads, "connections served at once (default 8)")->check(CLI::Range(2, 1024));
+  sub->add_option("--threads", args->threads, "connections served at once (default 256; each open connection holds one)")->check(CLI::Range(2, 1024));
+  sub->add_option("--keep-alive", args->keep_alive,
+                  "seconds an idle connection keeps its thread (default 5; 0: closed after every answer)")
+      ->check(CLI::Range(0, 3600));
   return {sub, [args] { return run_serve(*args); }};
 }
 

@@ -305,7 +305,8 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
   SweepOptions sweep_options;
   sweep_options.steps = options.steps;
   sweep_options.order = 2;
-  const SweepResult sweep = run_sweep(mech, sweep_options);
+  const SweepResult sweep = run_sweep(mech, sweep_options, options.control);
+  options.control.checkpoint("explain", 0, 3);
   if (options.step >= static_cast<int>(sweep.samples.size()))
     throw Error(ErrorKind::StoppedAtLimit, sweep.stop_reason + ": step " + std::to_string(options.step) +
                                                " is not reached");
@@ -336,7 +337,10 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
   }
 
   RowWriter writer(mech);
-  for (int r = 0; r < mech.row_count(); ++r) ex.equations.push_back(writer.write(r));
+  for (int r = 0; r < mech.row_count(); ++r) {
+    options.control.checkpoint("explain", 1, 3);
+    ex.equations.push_back(writer.write(r));
+  }
 
   // Newton-Raphson, by the sweep's own solver, from the drawn pose (step 0) or from the sweep's
   // previous sample, with the drivers at this sample's values.
@@ -425,6 +429,7 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
       ex.notes.push_back("the velocities or accelerations differ from the sweep's at this step");
   }
 
+  options.control.checkpoint("explain", 2, 3);
   ex.centres = instant_centres(mech, ex.q, ex.velocity.solution, ex.notes);
   return ex;
 }

@@ -22,7 +22,10 @@ bool RunControl::should_stop(const char* stage, long done, long total) const {
 }
 
 void RunControl::checkpoint(const char* stage, long done, long total) const {
-  if (!should_stop(stage, done, total)) return;
+  if (should_stop(stage, done, total)) throw_stopped(stage);
+}
+
+void RunControl::throw_stopped(const char* stage) const {
   throw Error(ErrorKind::Cancelled, token.deadline_passed()
                                         ? std::string("stopped: the time budget ran out during the ") + stage
                                         : std::string("cancelled during the ") + stage);

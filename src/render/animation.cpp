@@ -16,6 +16,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 #include <utility>
@@ -275,7 +276,10 @@ std::vector<std::uint8_t> Animation::gif_bytes() const {
   // Two passes: the colours of every frame, then the frames in that palette. Without
   // antialiasing the colours are those drawn and the blends of translucent plates.
   Palette palette;
-  for (int k = 0; k < frame_count(); ++k) palette.count(render_frame(k, false));
+  for (int k = 0; k < frame_count(); ++k) {
+    control_.checkpoint("frames", k, 2L * frame_count());
+    palette.count(render_frame(k, false));
+  }
   palette.build();
   std::vector<std::uint8_t> table = palette.rgb_table();
 
@@ -298,6 +302,10 @@ std::vector<std::uint8_t> Animation::gif_bytes() const {
   int result = CGIF_OK;
   long shown_cs = 0;  // delays add up to the exact time, in hundredths of a second
   for (int k = 0; k < frame_count() && result == CGIF_OK; ++k) {
+    if (control_.should_stop("frames", frame_count() + k, 2L * frame_count())) {
+      cgif_close(gif);
+      control_.throw_stopped("frames");
+    }
     const ImageCanvas image = render_frame(k, false);
     const std::uint8_t* data = image.data();
     std::uint32_t last = 0xffffffff;
@@ -329,7 +337,10 @@ std::vector<std::uint8_t> Animation::gif_bytes() const {
 
 std::vector<std::vector<PixelTransform>> Animation::transforms() const {
   std::vector<std::vector<PixelTransform>> out;
-  for (int k = 0; k < frame_count(); ++k) out.push_back(body_transforms(mech_, view_, points_[0], points_[k]));
+  for (int k = 0; k < frame_count(); ++k) {
+    control_.checkpoint("frames", k, frame_count());
+    out.push_back(body_transforms(mech_, view_, points_[0], points_[k]));
+  }
   // Where the loop goes on to: back to the first pose, or staying at the last for a frame.
   std::vector<PixelTransform> after = periodic_ ? body_transforms(mech_, view_, points_[0], points_[0]) : out.back();
   out.push_back(std::move(after));
@@ -622,7 +633,9 @@ void Animation::write_mp4(const std::string& path) const {
   std::fflush(nullptr);
   FILE* pipe = ::popen(command.c_str(), "w");
   bool ok = pipe != nullptr;
+  bool stopped = false;
   for (int k = 0; ok && k < frame_count(); ++k) {
+    if ((stopped = control_.should_stop("frames", k, frame_count()))) break;
     const ImageCanvas image = render_frame(k, true);
     const std::uint8_t* data = image.data();
     for (int y = 0; ok && y < h; ++y)
@@ -630,6 +643,11 @@ void Animation::write_mp4(const std::string& path) const {
   }
   const int status = pipe ? ::pclose(pipe) : -1;
   sigaction(SIGPIPE, &previous, nullptr);
+  if (stopped) {
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+    control_.throw_stopped("frames");
+  }
   if (!ok || status != 0) {
     std::string message = "cannot write ";
     message += path;
@@ -645,15 +663,19 @@ std::vector<std::uint8_t> Animation::mp4_bytes() const {
   const std::string path = std::string(folder) + "/animation.mp4";
   std::vector<std::uint8_t> bytes;
   std::string failure;
+  std::optional<Error> stopped;
   try {
     write_mp4(path);
     std::ifstream in(path, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const Error& e) {
+    stopped = e;
   } catch (const std::runtime_error& e) {
     failure = e.what();
   }
   std::error_code ignored;
   std::filesystem::remove_all(folder, ignored);
+  if (stopped) throw *stopped;
   if (!failure.empty()) throw std::runtime_error(failure);
   return bytes;
 }

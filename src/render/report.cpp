@@ -216,7 +216,8 @@ DrawOptions report_drawing(const Model& m) {
 
 void write_motion(Html& h, const Analysis& analysis, const DrawOptions& draw, const ReportOptions& options) {
   h << "<section id=\"motion\"><h2>Motion</h2>\n";
-  const Animation animation(analysis.mechanism, analysis.sweep, draw, options.frames);
+  Animation animation(analysis.mechanism, analysis.sweep, draw, options.frames);
+  animation.set_control(options.control);
   h << "<iframe title=\"animation\" srcdoc=\"" << esc(animation.html_animation()) << "\"></iframe>\n";
   if (!draw.traces.empty()) {
     h << "<h3>Paths of the coupler points</h3>\n";
@@ -329,9 +330,14 @@ std::string html_report(const Analysis& analysis, const ModelSummary& summary, c
     return h.out;
   }
   const DrawOptions draw = report_drawing(m);
+  const RunControl& control = options.control;
+  control.checkpoint("report", 0, 4);
   write_motion(h, analysis, draw, options);
+  control.checkpoint("report", 1, 4);
   write_kinematics(h, analysis, table, x);
+  control.checkpoint("report", 2, 4);
   if (analysis.dynamics) write_forces(h, analysis, table, x);
+  control.checkpoint("report", 3, 4);
   if (analysis.stress) write_stresses(h, analysis, draw, x);
   h << kFitFrames << "</body></html>\n";
   return h.out;

@@ -594,4 +594,44 @@ TEST(Animation, GifBytesAreTheFilesBytes) {
   EXPECT_EQ(std::string(bytes.begin(), bytes.begin() + 6), "GIF89a");
 }
 
+// A control that stops the writer at its n-th "frames" checkpoint only (and would let it go on
+// if asked again): every writer stops there, with the Cancelled error, whichever pass it is in.
+TEST(Animation, EveryWriterStopsBetweenFramesWhenItsControlSaysSo) {
+  const Example ex("fourbar-crank-rocker.yaml", 13);
+  Animation a(ex.shared, ex.sweep, small(), 6);
+  const auto stop_at = [&](long n, long& calls) {
+    calls = 0;
+    nbar::RunControl control;
+    control.on_progress = [n, &calls](const nbar::Progress& p) { return std::string(p.stage) != "frames" || ++calls != n; };
+    a.set_control(control);
+  };
+  const auto expect_cancelled = [](const auto& write) {
+    try {
+      write();
+      ADD_FAILURE() << "not stopped";
+    } catch (const nbar::Error& e) {
+      EXPECT_EQ(e.kind(), nbar::ErrorKind::Cancelled);
+    }
+  };
+  long calls = 0;
+  // The GIF: in the palette pass (frame 2) and in the frames pass (frame 6 + 3).
+  for (long n : {2L, 9L}) {
+    stop_at(n, calls);
+    expect_cancelled([&] { (void)a.gif_bytes(); });
+    EXPECT_EQ(calls, n);
+  }
+  stop_at(4, calls);
+  expect_cancelled([&] { (void)a.svg_animation(); });
+  stop_at(4, calls);
+  expect_cancelled([&] { (void)a.html_animation(); });
+  // Never stopped: every frame was checked, twice for the GIF.
+  stop_at(-1, calls);
+  EXPECT_EQ(a.gif_bytes(), Animation(ex.shared, ex.sweep, small(), 6).gif_bytes());
+  EXPECT_EQ(calls, 12);
+  if (Animation::program_available("ffmpeg")) {
+    stop_at(3, calls);
+    expect_cancelled([&] { (void)a.mp4_bytes(); });
+  }
+}
+
 }  // namespace

@@ -3,6 +3,7 @@
 // frames, pixels, synthesis, the time budget and the cap on concurrent jobs.
 #include <chrono>
 #include <future>
+#include <mutex>
 #include <thread>
 
 #include "web/web_support.hpp"
@@ -30,6 +31,36 @@ TEST(WebErrors, BadJson) {
   expect_error(call("POST", "/api/check", ""), 400, "bad_json");
   expect_error(call("POST", "/api/check", "[1, 2]"), 400, "bad_json");
   expect_error(call("POST", "/api/check", "\"model\""), 400, "bad_json");
+}
+
+TEST(WebErrors, EveryComputingEndpointRefusesBadJsonBadYamlAndOversizedBodies) {
+  ServerConfig config = test_config();
+  config.limits.max_body_bytes = 4096;
+  const std::string broken_yaml = "name: broken\npoints:\n  A: [0, 0\n  B: [1, 1]\n";
+  for (const std::string path : {"/api/check", "/api/solve", "/api/stress", "/api/synth/five-point",
+                                 "/api/synth/burmester", "/api/synth/function", "/api/render", "/api/report",
+                                 "/api/explain"}) {
+    SCOPED_TRACE(path);
+    expect_error(call("POST", path, "{\"model\": \"points: {}\",", config), 400, "bad_json");
+    expect_error(call("POST", path, "not json at all", config), 400, "bad_json");
+    const ApiResponse big = call("POST", path, std::string(4097, ' '), config);
+    expect_error(big, 413, "body_too_large");
+    EXPECT_EQ(error_of(big)["max"], 4096);
+    // The model (or task) text as broken YAML: 422 at its line and column.
+    const bool task = path.starts_with("/api/synth/");
+    const ApiResponse yaml = post(path, {{task ? "task" : "model", broken_yaml}}, config);
+    expect_error(yaml, 422, "invalid_model");
+    EXPECT_EQ(error_of(yaml)["file"], task ? "task" : "model");
+    EXPECT_GT(error_of(yaml)["line"].get<int>(), 2);
+  }
+}
+
+TEST(WebErrors, AModelWrittenAsBrokenJsonIsLocatedToo) {
+  // JSON is YAML: the model's own text, not the request, has the error, at line 3.
+  const std::string model = "{\n  \"name\": \"x\",\n  \"points\": {\"A\": [0, 0}\n}\n";
+  const ApiResponse r = post("/api/check", {{"model", model}});
+  expect_error(r, 422, "invalid_model");
+  EXPECT_EQ(error_of(r)["line"], 3);
 }
 
 TEST(WebErrors, BadOptions) {
@@ -258,23 +289,49 @@ TEST(WebLimits, TimeBudgetCancelsAHugeSweep) {
 TEST(WebLimits, TooManyJobsIsA503WithRetryAfter) {
   ServerConfig config = test_config();
   config.jobs = std::make_shared<web::JobSlots>(2);
+  config.light_jobs = std::make_shared<web::JobSlots>(1);
+  config.queue_wait_seconds = 0;  // no waiting: a full pool answers at once
+  const Json task = with_task("examples/synthesis/five-point-crank-rocker.yaml");
+  const Json fourbar = with_model("examples/fourbar-crank-rocker.yaml");
   {
     web::JobSlots::Slot a = config.jobs->try_acquire(), b = config.jobs->try_acquire();
     ASSERT_TRUE(a && b);
-    const ApiResponse r = post("/api/check", with_model("examples/five-bar.yaml"), config);
+    const ApiResponse r = post("/api/synth/five-point", task, config);
     expect_error(r, 503, "too_many_jobs");
     EXPECT_EQ(header(r, "Retry-After"), "2");
+    EXPECT_EQ(error_of(r)["limit"], "jobs");
+    expect_error(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml"), config), 503, "too_many_jobs");
+    expect_error(post("/api/report", fourbar, config), 503, "too_many_jobs");
+    // Light computations have slots of their own: a class's solves never wait for a synthesis.
+    EXPECT_EQ(post("/api/check", fourbar, config).status, 200);
+    const ApiResponse solve = post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 361}}), config);
+    EXPECT_EQ(solve.status, 200);
+    EXPECT_EQ(Json::parse(solve.body)["rows"].size(), 361u);
+    // A sweep whose table is over light_table_values is heavy.
+    expect_error(post("/api/solve", with_model("examples/machine-18.yaml", {{"steps", 361}}), config), 503, "too_many_jobs");
     // What computes nothing is still answered.
     EXPECT_EQ(call("GET", "/api/health", "", config).status, 200);
   }
+  {
+    web::JobSlots::Slot light = config.light_jobs->try_acquire();
+    ASSERT_TRUE(light);
+    const ApiResponse r = post("/api/check", fourbar, config);
+    expect_error(r, 503, "too_many_jobs");
+    EXPECT_EQ(error_of(r)["limit"], "light_jobs");
+    // A request over a limit is answered before it would wait for a slot.
+    expect_error(post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 200000}}), config), 413,
+                 "limit_exceeded");
+  }
   EXPECT_EQ(config.jobs->in_use(), 0);
-  EXPECT_EQ(post("/api/check", with_model("examples/five-bar.yaml"), config).status, 200);
+  EXPECT_EQ(config.light_jobs->in_use(), 0);
+  EXPECT_EQ(post("/api/synth/five-point", task, config).status, 200);
 }
 
-TEST(WebLimits, OneMoreSimultaneousHeavyJobThanSlotsGetsOne503) {
+TEST(WebLimits, OneMoreSimultaneousHeavyJobThanSlotsGetsOne503WhenNoneMayWait) {
   constexpr int kSlots = 2;
   ServerConfig config = test_config();
   config.jobs = std::make_shared<web::JobSlots>(kSlots);
+  config.queue_wait_seconds = 0;
   config.limits.time_budget_seconds = 1.5;  // each heavy job runs into it
   config.limits.max_table_values = 1e12;  // the sweep must run into the time budget
   const Json huge = with_model("examples/machine-18.yaml", {{"steps", 100001}, {"order", 5}, {"dynamics", true}});
@@ -296,6 +353,56 @@ TEST(WebLimits, OneMoreSimultaneousHeavyJobThanSlotsGetsOne503) {
   EXPECT_EQ(busy, 1);
   EXPECT_EQ(timed_out, kSlots);
   EXPECT_EQ(config.jobs->in_use(), 0);
+}
+
+TEST(WebLimits, AJobWaitsForItsTurnAndItsBudgetStartsThen) {
+  // One slot: a job that runs into its 0.5 s budget, and a quick heavy one that waits for it,
+  // then gets its whole budget (a budget counted from the request would have run out while it
+  // waited, and answered 504).
+  ServerConfig config = test_config();
+  config.jobs = std::make_shared<web::JobSlots>(1);
+  config.queue_wait_seconds = 30;
+  config.limits.time_budget_seconds = 0.5;
+  config.limits.max_table_values = 1e12;
+  const Json huge = with_model("examples/machine-18.yaml", {{"steps", 100001}, {"order", 5}, {"dynamics", true}});
+  auto first = std::async(std::launch::async, [&] { return post("/api/solve", huge, config); });
+  while (config.jobs->in_use() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  const Json quick = with_model("examples/fourbar-steel-bars.yaml", {{"steps", 13}, {"sections", 10}});
+  auto second = std::async(std::launch::async, [&] { return post("/api/stress", quick, config); });
+  const ApiResponse a = first.get(), b = second.get();
+  expect_error(a, 504, "time_budget_exceeded");
+  EXPECT_EQ(b.status, 200) << b.body;
+  EXPECT_EQ(b.body, post("/api/stress", quick).body);
+  EXPECT_EQ(config.jobs->in_use(), 0);
+  EXPECT_EQ(config.jobs->waiting(), 0);
+}
+
+TEST(WebJobSlots, FirstComeFirstServedWithABoundedWait) {
+  web::JobSlots slots(1, /*max_waiting=*/2);
+  web::JobSlots::Slot held = slots.try_acquire();
+  ASSERT_TRUE(held);
+  EXPECT_FALSE(slots.try_acquire());
+  // A wait that runs out gives nothing and leaves the queue.
+  EXPECT_FALSE(slots.acquire(std::chrono::milliseconds(20)));
+  EXPECT_EQ(slots.waiting(), 0);
+  // Two waiters are served in their order of arrival; a third finds the queue full at once.
+  std::vector<int> order;
+  std::mutex order_mutex;
+  const auto waiter = [&](int id) {
+    web::JobSlots::Slot s = slots.acquire(std::chrono::seconds(30));
+    const std::lock_guard lock(order_mutex);
+    order.push_back(s ? id : -id);
+  };
+  std::thread one(waiter, 1);
+  while (slots.waiting() < 1) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  std::thread two(waiter, 2);
+  while (slots.waiting() < 2) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  EXPECT_FALSE(slots.acquire(std::chrono::seconds(30)));  // the queue is full: no wait
+  held = web::JobSlots::Slot();                            // gives the slot back
+  one.join();
+  two.join();
+  EXPECT_EQ(order, (std::vector<int>{1, 2}));
+  EXPECT_EQ(slots.in_use(), 0);
 }
 
 }  // namespace

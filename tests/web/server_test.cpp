@@ -1,6 +1,11 @@
 // The server over a real socket: started on 127.0.0.1 with a free port in a thread, and asked
 // with httplib's client. Its answers are handle_api's.
+#include <arpa/inet.h>
+#include <fmt/format.h>
 #include <httplib.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <thread>
 
@@ -94,7 +99,10 @@ TEST_F(WebServer, OversizedBodies) {
 TEST_F(WebServer, PathTraversalOverHttp) {
   for (const std::string path : {"/api/examples/..%2f..%2fREADME.md", "/api/examples/%2e%2e%2f%2e%2e%2fetc%2fpasswd",
                                  "/api/examples/../../etc/passwd", "/../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd",
-                                 "/api/examples/%2Fetc%2Fpasswd", "/api/examples//etc/passwd"}) {
+                                 "/api/examples/%2Fetc%2Fpasswd", "/api/examples//etc/passwd",
+                                 "/index.html/../../etc/passwd", "/..%5c..%5cetc%5cpasswd", "/%2e%2e%2fREADME.md",
+                                 "/app.js%00.html", "/api/examples/five-bar%00../../etc/passwd",
+                                 "/api/examples/%2e%2e%2f%2e%2e%2fexamples%2ffive-bar.yaml"}) {
     SCOPED_TRACE(path);
     const auto r = client_->Get(path);
     ASSERT_TRUE(r);
@@ -106,6 +114,57 @@ TEST_F(WebServer, PathTraversalOverHttp) {
   const auto ok = client_->Get("/api/examples/five-bar");
   ASSERT_TRUE(ok);
   EXPECT_EQ(ok->body, repo_file("examples/five-bar.yaml"));
+}
+
+// Raw bytes to the server, and what it answers (everything until it closes, or 5 s).
+std::string raw_exchange(int port, const std::string& bytes) {
+  const int sock = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(sock, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+    ::close(sock);
+    return {};
+  }
+  timeval timeout{5, 0};
+  ::setsockopt(sock, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  for (std::size_t sent = 0; sent < bytes.size();) {
+    const ssize_t n = ::send(sock, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) break;  // the server may refuse before reading it all
+    sent += static_cast<std::size_t>(n);
+  }
+  std::string answer;
+  char buffer[4096];
+  for (ssize_t n; (n = ::recv(sock, buffer, sizeof buffer, 0)) > 0;) answer.append(buffer, static_cast<std::size_t>(n));
+  ::close(sock);
+  return answer;
+}
+
+TEST_F(WebServer, MalformedRequestsAndChunkedBodiesAreAnsweredAsJsonAndTheServerStaysUp) {
+  const int port = server_->bound_port();
+  const std::string garbage = raw_exchange(port, "HELLO there\r\n\r\n");
+  EXPECT_EQ(garbage.rfind("HTTP/1.1 400", 0), 0u) << garbage.substr(0, 200);
+  EXPECT_NE(garbage.find("\"bad_input\""), std::string::npos) << garbage;
+  // A body over the limit without a Content-Length, in chunks: refused as it grows.
+  std::string chunked = "POST /api/check HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n"
+                        "Content-Type: application/json\r\nConnection: close\r\n\r\n";
+  const std::string chunk(64 * 1024, ' ');
+  for (int i = 0; i < 48; ++i) chunked += "10000\r\n" + chunk + "\r\n";  // 3 MiB
+  chunked += "0\r\n\r\n";
+  const std::string big = raw_exchange(port, chunked);
+  EXPECT_EQ(big.rfind("HTTP/1.1 413", 0), 0u) << big.substr(0, 200);
+  EXPECT_NE(big.find("\"body_too_large\""), std::string::npos) << big.substr(0, 400);
+  // A small chunked body is a request like any other.
+  const std::string body = Json{{"model", repo_file("examples/five-bar.yaml")}}.dump();
+  std::string small = "POST /api/check HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n"
+                      "Content-Type: application/json\r\nConnection: close\r\n\r\n";
+  small += fmt::format("{:x}\r\n", body.size()) + body + "\r\n0\r\n\r\n";
+  const std::string ok = raw_exchange(port, small);
+  EXPECT_EQ(ok.rfind("HTTP/1.1 200", 0), 0u) << ok.substr(0, 300);
+  const auto health = client_->Get("/api/health");
+  ASSERT_TRUE(health);
+  EXPECT_EQ(health->status, 200);
 }
 
 TEST_F(WebServer, BindsOnlyWhereAsked) {

@@ -176,20 +176,44 @@ class Body {
 
 // ------------------------------------------------------------------------------------ context
 
-// One request's computation: its limits, its deadline, and what the error answer may point at.
+// How much a computation asks of the machine, for the choice of its job slots.
+enum class Weight { Light, Heavy };
+
+// One request's computation: its limits, its job slot, its deadline, and what the error answer
+// may point at.
 struct Job {
+  const ServerConfig& config;
   const Limits& limits;
   RunControl control;
   std::optional<io::LoadedModel> file;
   std::shared_ptr<const Mechanism> mechanism;
+  JobSlots::Slot slot;
 
-  explicit Job(const Limits& l) : limits(l) {
-    control.token.set_time_budget(std::chrono::duration<double>(l.time_budget_seconds));
+  explicit Job(const ServerConfig& c) : config(c), limits(c.limits) {
+    control.on_progress = c.on_progress;
+    start_clock();
   }
   const Model* model() const { return file ? &file->model : nullptr; }
   const io::SourceMap* source() const { return file ? &file->source : nullptr; }
+  // Waits for a job slot of its weight (the first call only; the request is read and checked
+  // against the limits before, so that nothing over a limit ever waits). The time budget runs
+  // from the moment the slot is held: waiting is bounded on its own.
+  void start(Weight weight) {
+    if (slot) return;
+    JobSlots& slots = weight == Weight::Heavy ? *config.jobs : *config.light_jobs;
+    slot = slots.acquire(std::chrono::duration<double>(config.queue_wait_seconds));
+    if (!slot)
+      throw ApiError(ApiErrorKind::TooManyJobs,
+                     fmt::format("the server is busy ({} {} computations running, {} waiting); try again in a moment",
+                                 slots.total(), weight == Weight::Heavy ? "heavy" : "light", slots.waiting()),
+                     Json{{"limit", weight == Weight::Heavy ? "jobs" : "light_jobs"}, {"max", slots.total()}});
+    start_clock();
+  }
   // Between stages that do not check the deadline themselves.
   void checkpoint(const char* stage) const { control.checkpoint(stage, 0, 0); }
+
+ private:
+  void start_clock() { control.token.set_time_budget(std::chrono::duration<double>(limits.time_budget_seconds)); }
 };
 
 constexpr const char* kModelFile = "model";  // the model's name in messages
@@ -218,15 +242,22 @@ std::optional<int> sweep_steps(const Job& job, const Body& body) {
 
 // The table a solve or plot builds, samples x columns, against the limit (its memory and the
 // answer's size grow with it).
-void check_table_size(const Job& job, const AnalysisOptions& options) {
+double table_values(const Job& job, const AnalysisOptions& options) {
   const double samples = sweep_sample_count(job.mechanism->model(), options.steps);
   const int order = options.dynamics ? std::max(2, options.order) : options.order;
-  const double columns = static_cast<double>(column_catalogue(*job.mechanism, order, options.dynamics).size());
-  check_limit("table_values", samples * columns, job.limits.max_table_values,
-              fmt::format("the table (samples x columns, {} columns)", columns));
+  return samples * static_cast<double>(column_catalogue(*job.mechanism, order, options.dynamics).size());
 }
 
+void check_table_size(const Job& job, const AnalysisOptions& options) {
+  const double values = table_values(job, options);
+  const double samples = sweep_sample_count(job.mechanism->model(), options.steps);
+  check_limit("table_values", values, job.limits.max_table_values,
+              fmt::format("the table (samples x columns, {} columns)", values / samples));
+}
+
+// Stresses and large tables are heavy; a sweep that asks neither is light.
 Analysis run_analysis(Job& job, AnalysisOptions options) {
+  job.start(options.stress || table_values(job, options) > job.config.light_table_values ? Weight::Heavy : Weight::Light);
   options.control = job.control;
   return analyse(job.mechanism, options);
 }
@@ -254,6 +285,7 @@ ApiResponse answer_html(std::string html) {
 ApiResponse api_check(Job& job, const std::string& request) {
   const Body body(request, {"model"});
   load_model(job, body.text("model", true));
+  job.start(Weight::Light);
   const ModelSummary summary = summarize(*job.mechanism);
   return answer(io::summary_json(*job.mechanism, summary, job.file->source));
 }
@@ -354,6 +386,7 @@ ApiResponse api_synth(Job& job, const std::string& request, synthesis::Synthesis
   run.threads = static_cast<unsigned>(body.integer("threads", 1, 1024).value_or(max_threads));
   check_limit("threads", run.threads, max_threads, "threads");
   if (body.has("seed")) run.seed = static_cast<std::uint64_t>(*body.integer("seed", 0, std::numeric_limits<long long>::max()));
+  job.start(Weight::Heavy);
   run.control = job.control;
   const synthesis::SynthesisOutcome outcome = synthesis::run_synthesis(task, run);
   io::SynthesisListing listing;
@@ -429,9 +462,11 @@ ApiResponse render_animate(Job& job, const std::string& request) {
   AnalysisOptions options;
   options.steps = sweep_steps(job, body);
   options.order = 0;
+  job.start(Weight::Heavy);  // the frames
   const Analysis analysis = run_analysis(job, options);
   if (analysis.sweep.samples.empty()) bad_input("the sweep has no sample to show");
-  const render::Animation animation(analysis.mechanism, analysis.sweep, draw, static_cast<int>(frames.value_or(0)), fps);
+  render::Animation animation(analysis.mechanism, analysis.sweep, draw, static_cast<int>(frames.value_or(0)), fps);
+  animation.set_control(job.control);  // every format checks the deadline between frames
   check_limit("animation_pixels", static_cast<double>(animation.frame_count()) * draw.width * draw.height,
               job.limits.max_animation_pixels, "frames x width x height");
   job.checkpoint("render");
@@ -525,11 +560,13 @@ ApiResponse api_report(Job& job, const std::string& request) {
   AnalysisOptions options = render::report_analysis_options(summary);
   options.steps = sweep_steps(job, body);
   check_table_size(job, options);
+  job.start(Weight::Heavy);
   const Analysis analysis = run_analysis(job, options);
   job.checkpoint("report");
   render::ReportOptions report;
   report.source = kModelFile;
   report.frames = static_cast<int>(frames);
+  report.control = job.control;
   return answer_html(render::html_report(analysis, summary, report));
 }
 
@@ -546,6 +583,8 @@ ApiResponse api_explain(Job& job, const std::string& request) {
   ExplainOptions options;
   options.steps = sweep_steps(job, body);
   options.step = static_cast<int>(body.integer("step", 0, std::numeric_limits<int>::max()).value_or(0));
+  options.control = job.control;
+  job.start(Weight::Light);
   const Explanation ex = explain(job.mechanism, options);
   job.checkpoint("explain");
   if (format == "json") return answer(io::explanation_json(ex).dump(2) + '\n');
@@ -659,10 +698,15 @@ ApiResponse api_health(const ServerConfig& config) {
                  {"max_synthesis_threads", l.max_synthesis_threads},
                  {"max_curve_samples", l.max_curve_samples},
                  {"time_budget_seconds", l.time_budget_seconds},
-                 {"max_jobs", config.jobs->total()}};
+                 {"max_jobs", config.jobs->total()},
+                 {"max_light_jobs", config.light_jobs->total()},
+                 {"light_table_values", config.light_table_values},
+                 {"queue_wait_seconds", config.queue_wait_seconds}};
   Json j = {{"status", "ok"},
             {"version", kVersion},
-            {"jobs", {{"running", config.jobs->in_use()}, {"max", config.jobs->total()}}},
+            {"jobs", {{"running", config.jobs->in_use()}, {"waiting", config.jobs->waiting()}, {"max", config.jobs->total()}}},
+            {"light_jobs",
+             {{"running", config.light_jobs->in_use()}, {"waiting", config.light_jobs->waiting()}, {"max", config.light_jobs->total()}}},
             {"mp4", render::Animation::program_available("ffmpeg")},
             {"limits", limits}};
   return answer(j.dump(2) + '\n');
@@ -733,16 +777,7 @@ ApiResponse route(const ApiRequest& request, const ServerConfig& config) {
                      fmt::format("the body has {} bytes; this server takes at most {}", request.body.size(),
                                  config.limits.max_body_bytes),
                      Json{{"limit", "body_bytes"}, {"max", config.limits.max_body_bytes}});
-    JobSlots::Slot slot = config.jobs->try_acquire();
-    if (!slot) {
-      ApiResponse r = error_answer(ApiErrorKind::TooManyJobs,
-                                   fmt::format("the server is busy with {} computations; try again in a moment",
-                                               config.jobs->total()),
-                                   Json{{"limit", "jobs"}, {"max", config.jobs->total()}});
-      r.headers.emplace_back("Retry-After", std::to_string(config.retry_after_seconds));
-      return r;
-    }
-    Job job(config.limits);
+    Job job(config);
     try {
       return it->second(job, request.body);
     } catch (const Error& e) {
@@ -761,7 +796,9 @@ ApiResponse route(const ApiRequest& request, const ServerConfig& config) {
 
 }  // namespace
 
-ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config) {
+namespace {
+
+ApiResponse answer_or_error(const ApiRequest& request, const ServerConfig& config) {
   try {
     return route(request, config);
   } catch (const ApiError& e) {
@@ -775,6 +812,15 @@ ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config) {
   } catch (const std::exception& e) {
     return error_answer(ApiErrorKind::Internal, e.what());
   }
+}
+
+}  // namespace
+
+ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config) {
+  ApiResponse r = answer_or_error(request, config);
+  if (r.status == http_status(ApiErrorKind::TooManyJobs))
+    r.headers.emplace_back("Retry-After", std::to_string(config.retry_after_seconds));
+  return r;
 }
 
 ApiResponse error_response(int status, const std::string& message) {

@@ -3,7 +3,10 @@
 // the limit, a malformed request); they are answered with the API's JSON errors too.
 #include "nbar/web/server.hpp"
 
+#include <arpa/inet.h>
 #include <httplib.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 
 #include <atomic>
 #include <chrono>
@@ -22,6 +25,25 @@ struct HttpServer::Impl {
 
 namespace {
 
+// httplib 0.11 listens with a backlog of 5: a burst of new connections (a class's browsers, or
+// nginx's one connection per request) overflows it, and each dropped SYN costs its client a
+// 1 s retransmission. Listening again on the bound socket raises the backlog; httplib does not
+// hand the socket out, so it is found among the process's descriptors by its port.
+void raise_listen_backlog(int port) {
+  for (int fd = 0; fd < 4096; ++fd) {
+    int listening = 0;
+    socklen_t size = sizeof listening;
+    if (::getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &size) != 0 || !listening) continue;
+    sockaddr_storage address{};
+    socklen_t length = sizeof address;
+    if (::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0) continue;
+    const int bound = address.ss_family == AF_INET    ? ntohs(reinterpret_cast<sockaddr_in*>(&address)->sin_port)
+                      : address.ss_family == AF_INET6 ? ntohs(reinterpret_cast<sockaddr_in6*>(&address)->sin6_port)
+                                                      : -1;
+    if (bound == port) ::listen(fd, SOMAXCONN);
+  }
+}
+
 void send(const ApiResponse& answer, httplib::Response& res) {
   res.status = answer.status;
   for (const auto& [name, value] : answer.headers) res.set_header(name, value);
@@ -36,6 +58,9 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   impl_->options = options;
   impl_->config.limits = options.limits;
   impl_->config.jobs = std::make_shared<JobSlots>(std::max(1, options.max_jobs));
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  impl_->config.light_jobs = std::make_shared<JobSlots>(options.light_jobs > 0 ? options.light_jobs : std::max(2, cores));
+  impl_->config.queue_wait_seconds = options.queue_wait_seconds;
   httplib::Server& server = impl_->server;
   const int threads = std::max(2, options.threads);
   server.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
@@ -48,6 +73,19 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
     int yes = 1;
     ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
   });
+  // httplib serves a connection on one thread from its first request to its close, so an idle
+  // keep-alive connection holds a thread: there are many threads (they mostly sleep), and an
+  // idle connection is closed after a few seconds. Behind nginx every request comes on a
+  // connection of its own.
+  if (options.keep_alive_seconds > 0) {
+    server.set_keep_alive_timeout(options.keep_alive_seconds);
+    server.set_keep_alive_max_count(100);
+  } else {
+    server.set_keep_alive_max_count(1);  // "Connection: close" after every answer
+  }
+  // Headers and body go out in separate writes: without this, Nagle's algorithm holds the body
+  // until the client's delayed acknowledgement, 40 ms on Linux, on every kept-alive request.
+  server.set_tcp_nodelay(true);
   server.set_read_timeout(10, 0);
   server.set_write_timeout(30, 0);
   const ServerConfig* config = &impl_->config;
@@ -87,6 +125,7 @@ bool HttpServer::bind(std::string& error) {
     error = "cannot listen on " + o.host + ":" + std::to_string(o.port) + " (in use, or not an address of this machine)";
     return false;
   }
+  raise_listen_backlog(impl_->port);
   return true;
 }
 

@@ -53,6 +53,9 @@ struct RunControl {
   void checkpoint(const char* stage, long done, long total) const;
   // The same test without throwing.
   bool should_stop(const char* stage, long done, long total) const;
+  // The error checkpoint throws, for a caller that saw should_stop() and cleaned up first (it
+  // must not ask again: on_progress may answer differently the second time).
+  [[noreturn]] void throw_stopped(const char* stage) const;
 };
 
 }  // namespace nbar

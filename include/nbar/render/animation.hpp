@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "nbar/kinematics/sweep.hpp"
+#include "nbar/model/run_control.hpp"
 #include "nbar/render/drawing.hpp"
 #include "nbar/render/image_canvas.hpp"
 
@@ -29,6 +30,10 @@ class Animation {
             int frames = 0, double fps = 24.0);
 
   static constexpr int kDefaultMaxFrames = 120;
+
+  // Checked between frames by every writer (stage "frames"): a cancelled control or a passed
+  // deadline stops the writer with Error(ErrorKind::Cancelled), and no file is left behind.
+  void set_control(RunControl control) { control_ = std::move(control); }
 
   int frame_count() const { return static_cast<int>(steps_.size()); }
   const std::vector<int>& steps() const { return steps_; }  // the sample shown by each frame
@@ -75,6 +80,7 @@ class Animation {
   bool periodic_ = false;
   std::vector<int> steps_;
   std::vector<std::vector<Eigen::Vector2d>> points_;  // per frame
+  RunControl control_;
 };
 
 }  // namespace nbar::render

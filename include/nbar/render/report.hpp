@@ -10,12 +10,16 @@
 
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/analysis/summary.hpp"
+#include "nbar/model/run_control.hpp"
 
 namespace nbar::render {
 
 struct ReportOptions {
   std::string source;  // the model file's name, for the header
   int frames = 72;     // animation frames
+  // Checked between the report's sections (stage "report") and its animation's frames
+  // ("frames"): Error(ErrorKind::Cancelled) when it says stop.
+  RunControl control;
 };
 
 // The analysis's sweep should have order 3 (jerk is plotted; lower orders plot less). Forces

@@ -5,12 +5,19 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
 #include <cstddef>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "nbar/model/run_control.hpp"
 
 namespace nbar::web {
 
@@ -34,10 +41,11 @@ struct Limits {
   double time_budget_seconds = 30;       // wall time of one request's computation
 };
 
-// A cap on the computations running at once: a counting semaphore that never waits.
+// A cap on the computations running at once: a counting semaphore whose waiters are served in
+// the order they came, each for at most its own wait, and at most `max_waiting` of them.
 class JobSlots {
  public:
-  explicit JobSlots(int slots) : free_(slots), total_(slots) {}
+  explicit JobSlots(int slots, int max_waiting = 256) : free_(slots), total_(slots), max_waiting_(max_waiting) {}
   // Holds a slot until destroyed.
   class Slot {
    public:
@@ -63,34 +71,42 @@ class JobSlots {
     }
     JobSlots* owner_ = nullptr;
   };
-  // A held slot, or an empty one when all are taken.
-  Slot try_acquire() {
-    const std::lock_guard lock(mutex_);
-    if (free_ <= 0) return Slot();
-    --free_;
-    return Slot(this);
-  }
-  int in_use() const {
-    const std::lock_guard lock(mutex_);
-    return total_ - free_;
-  }
+  // A held slot, or an empty one when all are taken (or others are waiting for one).
+  Slot try_acquire() { return acquire(std::chrono::duration<double>(0)); }
+  // A held slot as soon as one is free and every earlier waiter has had one; an empty one when
+  // none came within `max_wait` or `max_waiting` requests are already waiting.
+  Slot acquire(std::chrono::duration<double> max_wait);
+  int in_use() const;
+  int waiting() const;
   int total() const { return total_; }
 
  private:
-  void give_back() {
-    const std::lock_guard lock(mutex_);
-    ++free_;
-  }
+  void give_back();
   mutable std::mutex mutex_;
+  std::condition_variable freed_;
+  std::deque<std::uint64_t> queue_;  // tickets of the waiters, first come first
+  std::uint64_t next_ticket_ = 0;
   int free_;
   const int total_;
+  const int max_waiting_;
 };
 
 struct ServerConfig {
   Limits limits;
-  // Shared by every request of one server; computations over the cap are answered 503.
+  // Shared by every request of one server. Heavy computations (synthesis, stresses, reports,
+  // animations, sweeps whose table is over `light_table_values`) take a slot of `jobs`; light
+  // ones (checks, explanations, drawings, small solves and plots) one of `light_jobs`, so that
+  // a class's quick solves never queue behind a synthesis. A computation waits for its slot at
+  // most `queue_wait_seconds`, then it is answered 503 with Retry-After.
   std::shared_ptr<JobSlots> jobs = std::make_shared<JobSlots>(2);
+  std::shared_ptr<JobSlots> light_jobs = std::make_shared<JobSlots>(2);
+  double light_table_values = 50000;  // samples x columns of a light sweep
+  double queue_wait_seconds = 10;
   int retry_after_seconds = 2;  // the Retry-After of a 503
+  // Called at every checkpoint of a request's computation (sweep samples, stages, synthesis
+  // paths, animation frames, report sections, the explanation's parts); returning false stops
+  // it as a passed deadline does (504). For tests; empty in `nbar serve`.
+  std::function<bool(const Progress&)> on_progress;
 };
 
 struct ApiRequest {

@@ -13,8 +13,11 @@ namespace nbar::web {
 struct ServeOptions {
   std::string host = "127.0.0.1";  // only this machine unless told otherwise
   int port = 8080;                 // 0: any free port (bound_port() says which)
-  int max_jobs = 2;                // computations at once; more are answered 503
-  int threads = 8;                 // connections served at once
+  int max_jobs = 2;                // heavy computations at once (ServerConfig::jobs)
+  int light_jobs = 0;              // light computations at once; 0: one per core, at least 2
+  double queue_wait_seconds = 10;  // a computation waits this long for a slot, then 503
+  int threads = 256;               // connections served at once (each one holds a thread)
+  int keep_alive_seconds = 5;      // an idle connection gives its thread back after this
   Limits limits;
 };
 
