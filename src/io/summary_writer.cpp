@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "nbar/kinematics/continuation.hpp"
+#include "nbar/io/json_text.hpp"
 
 namespace nbar::io {
 
@@ -204,7 +205,7 @@ std::string summary_json(const Mechanism& mechanism, const ModelSummary& s, cons
     j["assembly_error"] = nullptr;
   }
   j["loops"] = loops_json(m, s);
-  return j.dump(2) + '\n';
+  return json_text(j, 2) + '\n';
 }
 
 void write_summary_text(std::ostream& out, const Mechanism& mechanism, const ModelSummary& summary,
