@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -220,6 +221,10 @@ int main(int argc, char** argv) {
       if (command->parsed()) return run();
   } catch (const nbar::Error& e) {
     return fail("", e);
+  } catch (const std::bad_alloc&) {
+    // Within the limits a run can still outgrow the machine: every sample is kept.
+    std::cerr << "error: out of memory: ask for fewer steps (--steps) or a smaller model\n";
+    return kBadUsage;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kBadUsage;
