@@ -29,15 +29,16 @@ std::string point_pair(const Model& m, int i, int j) { return m.points[i].name +
 }  // namespace
 
 Mechanism::Mechanism(Model model) : model_(std::move(model)) {
-  validate(model_);
-  if (model_.bodies.empty()) throw ModelError({EntityRef::Kind::Model, -1}, "the model has no moving bodies");
-
-  // Natural coordinates: x, y of every point not fixed to the frame.
+  // Before the validation, whose checks also grow with the size.
   const auto moving = std::count_if(model_.points.begin(), model_.points.end(), [](const Point& p) { return !p.ground; });
   if (moving > kMaxMovingPoints)
     throw ModelError({EntityRef::Kind::Model, -1}, "the model has " + std::to_string(moving) +
                                                        " moving points; nbar analyses at most " +
                                                        std::to_string(kMaxMovingPoints));
+  validate(model_);
+  if (model_.bodies.empty()) throw ModelError({EntityRef::Kind::Model, -1}, "the model has no moving bodies");
+
+  // Natural coordinates: x, y of every point not fixed to the frame.
   column_.assign(model_.points.size(), -1);
   for (std::size_t i = 0; i < model_.points.size(); ++i) {
     if (!model_.points[i].ground) {

@@ -9,8 +9,10 @@
 
 namespace nbar::io {
 
-inline std::string json_text(const nlohmann::json& j, int indent) {
-  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+// For nlohmann::json and nlohmann::ordered_json alike (a conversion would reorder the keys).
+template <typename Json>
+std::string json_text(const Json& j, int indent) {
+  return j.dump(indent, ' ', false, Json::error_handler_t::replace);
 }
 
 }  // namespace nbar::io
