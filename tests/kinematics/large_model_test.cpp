@@ -13,15 +13,18 @@ namespace {
 
 using ::testing::HasSubstr;
 
+// "P12" (built by appending: g++ 12 warns falsely, -Wrestrict, on numbered("P", i)).
+std::string numbered(const char* prefix, int i) { return std::string(prefix).append(std::to_string(i)); }
+
 // A rigid truss: a chain of n links from ground point O, every joint also tied to ground point
 // G, plus one brace from P0 to P2 that the others already fix (one redundant row).
 std::string braced_truss(int n) {
   std::string text = "points:\n  O: [0, 0]\n  G: [0, 5]\n";
   for (int i = 0; i < n; ++i)
-    text += "  P" + std::to_string(i) + ": [" + std::to_string(1 + i) + ", " + (i % 2 ? "-0.3" : "0.3") + "]\n";
+    text += numbered("  P", i) + ": [" + std::to_string(1 + i) + ", " + (i % 2 ? "-0.3" : "0.3") + "]\n";
   text += "ground: [O, G]\nbodies:\n  c0: [O, P0]\n";
-  for (int i = 1; i < n; ++i) text += "  c" + std::to_string(i) + ": [P" + std::to_string(i - 1) + ", P" + std::to_string(i) + "]\n";
-  for (int i = 0; i < n; ++i) text += "  g" + std::to_string(i) + ": [G, P" + std::to_string(i) + "]\n";
+  for (int i = 1; i < n; ++i) text += numbered("  c", i) + ": [" + numbered("P", i - 1) + ", " + numbered("P", i) + "]\n";
+  for (int i = 0; i < n; ++i) text += numbered("  g", i) + ": [G, " + numbered("P", i) + "]\n";
   text += "  brace: [P0, P2]\ndrivers: []\n";
   return text;
 }
@@ -41,9 +44,9 @@ TEST(LargeModel, SparseAndDenseRankAnalysesFindTheSameRedundancy) {
 TEST(LargeModel, TooFewDriversIsRejectedFromTheCounts) {
   std::string text = "points:\n  O: [0, 0]\n";
   const int n = 2000;
-  for (int i = 0; i < n; ++i) text += "  P" + std::to_string(i) + ": [1, " + std::to_string(i) + "]\n";
+  for (int i = 0; i < n; ++i) text += numbered("  P", i) + ": [1, " + std::to_string(i) + "]\n";
   text += "ground: [O]\nbodies:\n";
-  for (int i = 0; i < n; ++i) text += "  b" + std::to_string(i) + ": [O, P" + std::to_string(i) + "]\n";
+  for (int i = 0; i < n; ++i) text += numbered("  b", i) + ": [O, " + numbered("P", i) + "]\n";
   text += "drivers: [{angle: b0, from: 0, to: 90}]\n";
   const io::LoadedModel loaded = io::parse_model(text);
   try {
@@ -57,7 +60,7 @@ TEST(LargeModel, TooFewDriversIsRejectedFromTheCounts) {
 TEST(LargeModel, MoreMovingPointsThanTheLimitIsAnError) {
   Model m;
   m.points.push_back({"O", {0, 0}, true});
-  for (int i = 0; i <= kMaxMovingPoints; ++i) m.points.push_back({"P" + std::to_string(i), {1.0 + i, 0.0}, false});
+  for (int i = 0; i <= kMaxMovingPoints; ++i) m.points.push_back({numbered("P", i), {1.0 + i, 0.0}, false});
   Body b;
   b.name = "b";
   b.points = {0, 1};
