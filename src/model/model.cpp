@@ -393,7 +393,10 @@ class Validator {
         if (!std::isfinite(b.thickness) || b.thickness <= 0.0) {
           fail(where, name + " has a shape, so its thickness must be a positive number");
         }
-        if (b.material && !b.inertia) check_weighable(b, where, name);
+        // (A density or a gravity that is not a number is reported below, as such.)
+        if (b.material && !b.inertia && b.material->density > 0.0 && std::isfinite(b.material->density) &&
+            m_.gravity.allFinite())
+          check_weighable(b, where, name);
       }
       if (b.material) {
         const Material& mat = *b.material;
@@ -408,7 +411,7 @@ class Validator {
       if (b.inertia) {
         const GivenInertia& g = *b.inertia;
         if (!std::isfinite(g.mass) || g.mass < 0.0) fail(where, "the mass of " + name + " must not be negative");
-        if (!std::isfinite(g.mass * m_.gravity.norm()))
+        if (m_.gravity.allFinite() && !std::isfinite(g.mass * m_.gravity.norm()))
           fail(where, "the weight of " + name + " (its mass times gravity) is too large to compute with");
         if (!g.cg.allFinite()) fail(where, "the centre of mass of " + name + " is not a finite point");
         if (!std::isfinite(g.inertia) || g.inertia < 0.0) {
