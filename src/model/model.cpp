@@ -368,11 +368,12 @@ class Validator {
       if (!std::isfinite(*s.time_step) || *s.time_step <= 0.0) fail(where, "the sweep time step must be positive");
       if (*s.time_step > s.duration) fail(where, "the sweep time step is longer than its duration");
     }
-    // A time sweep's samples are its duration over its step: check the count before anything
-    // converts it to an integer (sweep_path then applies the caller's limit).
+    // A time sweep's samples are its duration over its step: a count that is not even a number
+    // is the model's mistake; a finite one is bounded by sweep_path against the caller's limit
+    // (as a double, before anything converts it to an integer).
     if (m_.has_time_law()) {
       const double samples = s.duration / s.time_step.value_or(s.duration / 100.0);
-      if (!(samples < static_cast<double>(std::numeric_limits<int>::max() - 1)))
+      if (!std::isfinite(samples))
         fail(where, "the sweep's duration over its time step makes more samples than nbar can count: "
                     "give a longer `step` or a shorter `duration`");
     }

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -80,6 +81,16 @@ TEST(Overflow, ASpeedTooSmallToMeanAMotionIsRejectedAtTheDriver) {
   EXPECT_THAT(e.message(), HasSubstr("the speed is too small"));
 }
 
+TEST(SweepSize, ATimeSweepOfMoreSamplesThanAnIntHoldsIsLimitedWithoutOverflow) {
+  const auto mech = compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"t\"}]\n"
+                                    "sweep: {duration: 2147483647, step: 1}\n");
+  AnalysisOptions options;
+  options.max_steps = std::numeric_limits<int>::max();
+  const Error e = error_of([&] { analyse(mech, options); });
+  EXPECT_EQ(e.where().kind, EntityRef::Kind::Sweep);
+  EXPECT_THAT(e.message(), HasSubstr("the sweep asks for 2147483648 steps, more than the limit of 2147483647"));
+}
+
 TEST(SweepSize, TheModelsSweepIsLimitedAtTheSweepAndAnOptionAsBadInput) {
   const auto mech = compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 360}]\n"
                                     "sweep: {steps: 1000000000}\n");
@@ -98,7 +109,7 @@ TEST(SweepSize, TheModelsSweepIsLimitedAtTheSweepAndAnOptionAsBadInput) {
 
 TEST(SweepSize, ATimeSweepTooLongToCountIsRejectedAtTheSweep) {
   const Error e = error_of([&] {
-    compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"t\"}]\nsweep: {duration: 2147483647, step: 1}\n");
+    compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"t\"}]\nsweep: {duration: 1e300, step: 1e-10}\n");
   });
   EXPECT_EQ(e.mark().line, 5);  // the sweep's line
   EXPECT_THAT(e.message(), HasSubstr("more samples than nbar can count"));
