@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nbar/analysis/explain.hpp"
+#include "nbar/io/json_text.hpp"
 #include "nbar/io/explain_writer.hpp"
 #include "nbar/render/pictures.hpp"
 
@@ -61,7 +62,7 @@ int run_explain(const ExplainArgs& args) {
   if (!output.open(args.output)) return kBadUsage;
   std::ostream& out = output.stream();
   if (args.format == "json")
-    out << io::explanation_json(ex).dump(2) << '\n';
+    out << io::json_text(io::explanation_json(ex), 2) << '\n';
   else
     out << render_explanation(ex, args.format == "markdown" ? ExplainFormat::Markdown
                                   : args.format == "latex"  ? ExplainFormat::Latex

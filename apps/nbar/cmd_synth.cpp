@@ -12,6 +12,7 @@
 #include "common.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/io/synthesis_writer.hpp"
+#include "nbar/io/yaml_support.hpp"
 #include "nbar/synthesis/run.hpp"
 
 namespace nbar::cli {
@@ -94,7 +95,8 @@ class OptionTask {
     for (const TaskOption& o : args.task_options) {
       if (o.value.empty()) continue;
       std::string value = o.value;
-      if (std::string(o.key) == "function" || std::string(o.key) == "name") {
+      // Text that is not UTF-8 is left as it is: the task reader reports it at this option's line.
+      if ((std::string(o.key) == "function" || std::string(o.key) == "name") && !io::yaml::first_invalid_utf8(value)) {
         value = nlohmann::json(value).dump();  // a quoted YAML string
       } else if (value.find(',') != std::string::npos && value.front() != '[' && value.front() != '{') {
         value = "[" + value + "]";  // 1,2 for [1, 2]

@@ -85,6 +85,15 @@ inline int finish(const std::string& model, const SweepResult& sweep) {
   return kOk;
 }
 
+// An error found after loading (by the sweep, the dynamics or the stresses) that names an entity
+// of the model, placed at that entity in the file; other errors as they are.
+inline Error locate(const std::string& path, const Loaded& loaded, const Error& e) {
+  if (!e.file().empty() || e.where().kind == EntityRef::Kind::Model || e.kind() == ErrorKind::BadInput) return e;
+  const SourceMark at = loaded.file.source.find(e.where());
+  if (at.line == 0) return e;
+  return Error(e.kind(), e.message(), e.where(), path, at);
+}
+
 // Runs the analysis; the exit code says what went wrong (0 when it ran, even if the sweep
 // stopped early).
 inline int analyse_model(const std::string& path, const Loaded& loaded, const AnalysisOptions& options,
@@ -92,7 +101,7 @@ inline int analyse_model(const std::string& path, const Loaded& loaded, const An
   try {
     out = analyse(loaded.mechanism, options);
   } catch (const Error& e) {
-    return fail(path, e);
+    return fail(path, locate(path, loaded, e));
   }
   return kOk;
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -25,6 +26,11 @@ namespace {
 
 using namespace nbar::cli;
 
+// Every sample of a sweep is kept in memory, so its size is bounded.
+const std::string kMaxStepsHelp = "the most samples the sweep may have, the model's or --steps (default " +
+                                  std::to_string(nbar::kDefaultMaxSweepSamples) +
+                                  "; every sample is kept in memory)";
+
 int run_check(const std::string& path, const std::string& format) {
   Loaded loaded;
   if (int code = load(path, loaded)) return code;
@@ -33,13 +39,14 @@ int run_check(const std::string& path, const std::string& format) {
     std::cout << nbar::io::summary_json(*loaded.mechanism, summary, loaded.file.source);
   else
     nbar::io::write_summary_text(std::cout, *loaded.mechanism, summary, path);
-  if (summary.assembly_error) return fail(path, *summary.assembly_error);
+  if (summary.assembly_error) return fail(path, locate(path, loaded, *summary.assembly_error));
   return kOk;
 }
 
 struct SolveArgs {
   std::string model;
   std::optional<int> steps;
+  int max_steps = nbar::kDefaultMaxSweepSamples;
   int order = 2;
   std::string format = "csv";
   std::string output;
@@ -52,6 +59,7 @@ int run_solve(const SolveArgs& args) {
   if (int code = load(args.model, loaded)) return code;
   nbar::AnalysisOptions options;
   options.steps = args.steps;
+  options.max_steps = args.max_steps;
   options.order = args.order;
   options.dynamics = args.dynamics;
   nbar::Analysis analysis;
@@ -80,6 +88,7 @@ int run_solve(const SolveArgs& args) {
 struct StressArgs {
   std::string model;
   std::optional<int> steps;
+  int max_steps = nbar::kDefaultMaxSweepSamples;
   int sections = 200;
   std::string format = "table";
   std::string output;
@@ -107,6 +116,7 @@ int run_stress(const StressArgs& args) {
   if (int code = load(args.model, loaded)) return code;
   nbar::AnalysisOptions options;
   options.steps = args.steps;
+  options.max_steps = args.max_steps;
   options.stress = true;
   options.sections = args.sections;
   nbar::Analysis analysis;
@@ -133,6 +143,8 @@ int main(int argc, char** argv) {
   app.footer(
       "Exit codes: 0 success, 1 invalid model, 2 bad usage, 3 cannot assemble at the start,\n"
       "            4 sweep stopped early (the rows solved so far are written).\n"
+      "Limits: a sweep has at most 10000000 samples (solve and stress: --max-steps), model files at most\n"
+      "        16 MB, names at most 256 characters, models at most 20000 moving points.\n"
       "Model files: see docs/model-format.md.");
 
   std::string check_model, check_format = "text";
@@ -149,6 +161,7 @@ int main(int argc, char** argv) {
   solve->add_option("MODEL", solve_args.model, "model file (YAML or JSON)")->required();
   solve->add_option("--steps", solve_args.steps, "number of samples, ends included (overrides the model's sweep)")
       ->check(CLI::PositiveNumber);
+  solve->add_option("--max-steps", solve_args.max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
   solve->add_option("--order", solve_args.order, "highest time derivative: 0 positions, 1 velocities, 2 "
                                                  "accelerations (default), 3 jerk, up to 5")
       ->check(CLI::Range(0, 5));
@@ -169,6 +182,7 @@ int main(int argc, char** argv) {
   stress->add_option("MODEL", stress_args.model, "model file (YAML or JSON)")->required();
   stress->add_option("--steps", stress_args.steps, "number of samples, ends included (overrides the model's sweep)")
       ->check(CLI::PositiveNumber);
+  stress->add_option("--max-steps", stress_args.max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
   stress->add_option("--sections", stress_args.sections, "cross-sections per link, at least (default 200)")
       ->check(CLI::Range(10, 100000));
   stress->add_option("--format", stress_args.format, "table (default), csv or json")
@@ -208,6 +222,10 @@ int main(int argc, char** argv) {
       if (command->parsed()) return run();
   } catch (const nbar::Error& e) {
     return fail("", e);
+  } catch (const std::bad_alloc&) {
+    // Within the limits a run can still outgrow the machine: every sample is kept.
+    std::cerr << "error: out of memory: ask for fewer steps (--steps) or a smaller model\n";
+    return kBadUsage;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kBadUsage;

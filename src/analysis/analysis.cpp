@@ -6,6 +6,7 @@
 #include "nbar/dynamics/dynamics_table.hpp"
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/model/units.hpp"
+#include "overflow.hpp"
 
 namespace nbar {
 
@@ -22,6 +23,7 @@ void check_options(const AnalysisOptions& options) {
 SweepResult run_sweep_stage(const Mechanism& mech, const AnalysisOptions& options) {
   SweepOptions sweep;
   sweep.steps = options.steps;
+  sweep.max_steps = options.max_steps;
   sweep.order = options.dynamics || options.stress ? std::max(options.order, 2) : options.order;
   return run_sweep(mech, sweep, options.control);
 }
@@ -34,6 +36,7 @@ DynamicsStage run_dynamics_stage(const Analysis& analysis, const AnalysisOptions
   for (std::size_t i = 0; i < samples.size(); ++i) {
     options.control.checkpoint("dynamics", static_cast<long>(i), static_cast<long>(samples.size()));
     stage.samples.push_back(stage.solver->solve(samples[i]));
+    detail::check_finite_dynamics(analysis.model(), samples[i], stage.samples.back());
     stage.unique = stage.unique && stage.samples.back().unique;
     stage.max_residual = std::max(stage.max_residual, stage.samples.back().residual);
   }
@@ -62,6 +65,7 @@ StressStage run_stress_stage(const Analysis& analysis, const AnalysisOptions& op
     throw Error(ErrorKind::InvalidModel,
                 "no link has a shape (`shape:` or `bar:` with a thickness), so there is nothing to compute stresses in");
   stage.peaks = stress_peaks(*stage.links, analysis.sweep, analysis.dynamics->samples, options.control);
+  detail::check_finite_stress(analysis.model(), analysis.sweep.samples, stage.peaks);
   return stage;
 }
 

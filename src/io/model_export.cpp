@@ -1,5 +1,7 @@
 #include "nbar/io/model_export.hpp"
 
+#include "nbar/io/yaml_support.hpp"
+
 #include <fmt/format.h>
 
 #include <array>
@@ -19,9 +21,20 @@ std::string number(double v) { return fmt::format("{}", v); }
 // Names are written plain when YAML cannot read them as anything else, otherwise quoted.
 std::string quoted(const std::string& text) {
   std::string out = "\"";
-  for (const char ch : text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
     const auto c = static_cast<unsigned char>(ch);
-    if (ch == '"' || ch == '\\') {
+    if (c >= 0x80) {
+      // Whole characters only: a byte that is not UTF-8 (from a caller that bypassed the
+      // readers) becomes U+FFFD, so that the file written always reads back.
+      const std::size_t length = yaml::utf8_character_length(text, i);
+      if (length == 0) {
+        out += "\\uFFFD";
+      } else {
+        out.append(text, i, length);
+        i += length - 1;
+      }
+    } else if (ch == '"' || ch == '\\') {
       out += '\\';
       out += ch;
     } else if (c < 0x20 || c == 0x7f) {
@@ -32,11 +45,31 @@ std::string quoted(const std::string& text) {
   }
   return out + "\"";
 }
+// A comment line as it can be written: a line break (a file name may hold one) would start
+// YAML of its own, and a byte that is not UTF-8 would make the file unreadable.
+std::string comment_text(const std::string& text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7f) {
+      out += ' ';
+    } else if (c < 0x80) {
+      out += text[i];
+    } else if (const std::size_t length = yaml::utf8_character_length(text, i); length > 0) {
+      out.append(text, i, length);
+      i += length - 1;
+    } else {
+      out += "\xEF\xBF\xBD";  // U+FFFD
+    }
+  }
+  return out;
+}
+
 std::string name(const std::string& text) {
   bool plain = !text.empty() && text != "null" && text != "Null" && text != "NULL";
   for (std::size_t i = 0; i < text.size() && plain; ++i) {
     const auto c = static_cast<unsigned char>(text[i]);
-    plain = std::isalnum(c) || c == '_' || (i > 0 && (c == '-' || c == '.'));
+    plain = c < 0x80 && (std::isalnum(c) || c == '_' || (i > 0 && (c == '-' || c == '.')));
   }
   return plain ? text : quoted(text);
 }
@@ -81,7 +114,7 @@ void refuse_kinetics(const Model& m) {
 void write_model_yaml(std::ostream& out, const Model& m, const std::vector<std::string>& comments) {
   refuse_kinetics(m);
   const double unit = m.units.length_scale;
-  for (const std::string& c : comments) out << (c.empty() ? "#" : "# " + c) << '\n';
+  for (const std::string& c : comments) out << (c.empty() ? "#" : "# " + comment_text(c)) << '\n';
   if (!m.name.empty()) out << "name: " << quoted(m.name) << '\n';
   out << "units: {length: " << m.units.length << ", angle: " << m.units.angle << "}\n";
   out << "points:\n";

@@ -174,6 +174,7 @@ class Parser : yaml::Reader {
     if (!node.IsScalar() || node.Scalar().empty()) {
       fail(node, std::string(what) + " must be a name, not " + describe(node));
     }
+    check_name_length(node);
     return node.Scalar();
   }
 

@@ -1,6 +1,7 @@
 #include "nbar/io/results_writer.hpp"
 
 #include "nbar/model/units.hpp"
+#include "nbar/io/json_text.hpp"
 
 #include <fmt/format.h>
 
@@ -115,7 +116,7 @@ void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& 
   j["columns"] = table.columns;
   j["column_units"] = table.units;
   j["rows"] = table.rows;
-  out << j.dump(1) << '\n';
+  out << json_text(j, 1) << '\n';
 }
 
 void write_table(std::ostream& out, const std::string& format, const Analysis& analysis, const ResultTable& table,
@@ -179,7 +180,7 @@ void write_stress_report(std::ostream& out, const std::string& format, const Ana
       bodies.push_back(b);
     }
     j["links"] = bodies;
-    out << j.dump(1) << '\n';
+    out << json_text(j, 1) << '\n';
     return;
   }
   // Text and CSV: the body's name first; a missing safety factor (no yield strength) is blank.

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "nbar/kinematics/continuation.hpp"
+#include "nbar/io/json_text.hpp"
 
 namespace nbar::io {
 
@@ -260,7 +261,7 @@ std::string summary_json(const Mechanism& mechanism, const ModelSummary& s, cons
   }
   j["loops"] = loops_json(m, s);
   crank_mechanisms_json(m, s, j);
-  return j.dump(2) + '\n';
+  return json_text(j, 2) + '\n';
 }
 
 void write_summary_text(std::ostream& out, const Mechanism& mechanism, const ModelSummary& summary,

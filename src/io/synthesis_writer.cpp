@@ -13,6 +13,7 @@
 #include "nbar/model/file_errors.hpp"
 #include "nbar/render/canvas.hpp"
 #include "nbar/render/plot.hpp"
+#include "nbar/io/json_text.hpp"
 
 namespace nbar::io {
 
@@ -134,7 +135,7 @@ std::string synthesis_json(const SynthesisTask& task, const Outcome& out, const 
     }
     j["designs"].push_back(d);
   }
-  return j.dump(2) + '\n';
+  return json_text(j, 2) + '\n';
 }
 
 std::string design_model_yaml(const SynthesisTask& task, const Outcome& out, int row, int rank) {
@@ -192,7 +193,7 @@ void write_burmester_curves(const std::string& path, const SynthesisTask& task, 
         samples.push_back({{"centre", {s.centre.x(), s.centre.y()}}, {"circle", {s.circle.x(), s.circle.y()}}});
       j[std::string(which) + "_curve"].push_back(samples);
     });
-    out << j.dump(2) << '\n';
+    out << json_text(j, 2) << '\n';
   } else if (ext == ".svg") {
     // Both curves at one scale, on a grid with labelled axes in the task's length unit, so that
     // pivots can be read off: centre points in blue, circle points in orange, each pose's

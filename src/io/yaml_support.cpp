@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <system_error>
+#include <unordered_map>
 
 namespace nbar::io::yaml {
 
@@ -23,22 +24,67 @@ std::string describe(const YAML::Node& node) {
   return "nothing";
 }
 
-int edit_distance(std::string_view a, std::string_view b) {
+int edit_distance(std::string_view a, std::string_view b, int cutoff) {
   const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
+  if (a.size() < b.size()) std::swap(a, b);  // rows along the longer name, so a row costs min(n, m)
   const std::size_t n = a.size(), m = b.size();
-  std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1, 0));
-  for (std::size_t i = 0; i <= n; ++i) d[i][0] = static_cast<int>(i);
-  for (std::size_t j = 0; j <= m; ++j) d[0][j] = static_cast<int>(j);
+  // The distance is at least the difference in length: no table needed when that is over the cut.
+  if (n - m > static_cast<std::size_t>(cutoff)) return cutoff + 1;
+  // Three rolling rows: the transposition looks two rows back.
+  std::vector<int> before(m + 1), previous(m + 1), current(m + 1);
+  for (std::size_t j = 0; j <= m; ++j) previous[j] = static_cast<int>(j);
   for (std::size_t i = 1; i <= n; ++i) {
+    current[0] = static_cast<int>(i);
+    int row_best = current[0];
     for (std::size_t j = 1; j <= m; ++j) {
       const int cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + cost});
       if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1])) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        current[j] = std::min(current[j], before[j - 2] + 1);
       }
+      row_best = std::min(row_best, current[j]);
     }
+    // Every later row's cells are at least the smallest of this row's minus nothing: the
+    // distance can only grow from here, so stop once it is past the cut.
+    if (row_best > cutoff) return cutoff + 1;
+    std::swap(before, previous);
+    std::swap(previous, current);
   }
-  return d[n][m];
+  return std::min(previous[m], cutoff + 1);
+}
+
+std::size_t utf8_character_length(std::string_view text, std::size_t at) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  const unsigned char c = byte(at);
+  std::size_t length = 0;
+  unsigned char low = 0x80, high = 0xBF;  // the allowed range of the second byte
+  if (c < 0x80) return 1;
+  if (c >= 0xC2 && c <= 0xDF) {
+    length = 2;
+  } else if (c >= 0xE0 && c <= 0xEF) {
+    length = 3;
+    if (c == 0xE0) low = 0xA0;   // overlong
+    if (c == 0xED) high = 0x9F;  // UTF-16 surrogates
+  } else if (c >= 0xF0 && c <= 0xF4) {
+    length = 4;
+    if (c == 0xF0) low = 0x90;   // overlong
+    if (c == 0xF4) high = 0x8F;  // past U+10FFFF
+  } else {
+    return 0;
+  }
+  if (at + length > text.size() || byte(at + 1) < low || byte(at + 1) > high) return 0;
+  for (std::size_t k = 2; k < length; ++k)
+    if ((byte(at + k) & 0xC0) != 0x80) return 0;
+  return length;
+}
+
+std::optional<std::size_t> first_invalid_utf8(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t length = utf8_character_length(text, i);
+    if (length == 0) return i;
+    i += length;
+  }
+  return std::nullopt;
 }
 
 NumberStatus parse_number(std::string_view text, double& value) {
@@ -61,7 +107,30 @@ void Reader::fail(SourceMark at, const std::string& message) const { throw Model
 
 void Reader::fail(const YAML::Node& at, const std::string& message) const { fail(mark(at), message); }
 
+void Reader::check_name_length(const YAML::Node& name) const {
+  if (name.IsScalar() && name.Scalar().size() > kMaxNameLength)
+    fail(name, "a key or name may have at most " + std::to_string(kMaxNameLength) + " characters (this one has " +
+                   std::to_string(name.Scalar().size()) + ")");
+}
+
+void Reader::check_text() const {
+  if (text_.size() > kMaxFileBytes)
+    fail(SourceMark{1, 1}, "the file is " + std::to_string(text_.size()) + " bytes long; nbar reads at most " +
+                               std::to_string(kMaxFileBytes) + " bytes");
+  const std::optional<std::size_t> bad = first_invalid_utf8(text_);
+  if (!bad) return;
+  const std::size_t line_start = text_.rfind('\n', *bad == 0 ? 0 : *bad - 1);
+  const std::size_t column_start = line_start == std::string::npos || text_[line_start] != '\n' ? 0 : line_start + 1;
+  const int line = 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + static_cast<long>(*bad), '\n'));
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  const unsigned char c = static_cast<unsigned char>(text_[*bad]);
+  fail(SourceMark{line, static_cast<int>(*bad - column_start) + 1},
+       std::string("the file is not valid UTF-8 text: byte 0x").append(1, kHex[c >> 4]).append(1, kHex[c & 15])
+           .append(" here is not a character; save the file as UTF-8"));
+}
+
 YAML::Node Reader::load(const DocumentWording& wording) const {
+  check_text();
   std::vector<YAML::Node> documents;
   try {
     documents = YAML::LoadAll(text_);
@@ -93,12 +162,15 @@ YAML::Node Reader::load(const DocumentWording& wording) const {
 
 std::vector<Entry> Reader::entries(const YAML::Node& map, std::string_view entity) const {
   std::vector<Entry> out;
+  // Keys seen so far, to their entry: a mapping of thousands of bodies is read in linear time.
+  std::unordered_map<std::string, std::size_t> seen;
   for (auto it = map.begin(); it != map.end(); ++it) {
     const YAML::Node key = it->first;
     check_key(key);
+    check_name_length(key);
     const std::string name = key.Scalar();
-    for (const Entry& previous : out) {
-      if (previous.key != name) continue;
+    if (const auto [at, inserted] = seen.emplace(name, out.size()); !inserted) {
+      const Entry& previous = out[at->second];
       const std::string first =
           std::string(" (first given on line ").append(std::to_string(mark(previous.key_node).line)).append(")");
       if (entity.empty()) fail(key, std::string("duplicate key '").append(name).append("'").append(first));

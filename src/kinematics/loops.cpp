@@ -35,37 +35,51 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() 
 
 std::vector<FourBarLoop> find_four_bar_loops(const Model& model) {
   const int links = static_cast<int>(model.bodies.size()) + 1;
-  std::vector<std::vector<Edge>> adjacent(links);
+  // Links meet at points. The walk goes link -> point -> link and leaves a link by another
+  // point than it came in by, so a point shared by many links (a hub pinning thousands of
+  // bodies) costs its links once per visit, not their square.
+  std::vector<std::vector<int>> points_of(links);
   std::vector<std::vector<int>> links_at(model.points.size());
   for (std::size_t p = 0; p < model.points.size(); ++p)
-    if (model.points[p].ground) links_at[p].push_back(0);
-  for (std::size_t b = 0; b < model.bodies.size(); ++b)
-    for (int p : model.bodies[b].points) links_at[p].push_back(static_cast<int>(b) + 1);
-  for (std::size_t p = 0; p < links_at.size(); ++p)
-    for (int l1 : links_at[p])
-      for (int l2 : links_at[p])
-        if (l1 != l2) adjacent[l1].push_back({l2, static_cast<int>(p)});
+    if (model.points[p].ground) {
+      links_at[p].push_back(0);
+      points_of[0].push_back(static_cast<int>(p));
+    }
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    std::vector<int>& own = points_of[b + 1];
+    own = model.bodies[b].points;
+    std::sort(own.begin(), own.end());
+    own.erase(std::unique(own.begin(), own.end()), own.end());
+    for (int p : own) links_at[p].push_back(static_cast<int>(b) + 1);
+  }
+  // The links joined to `link`, each with the point they share, in the order of the points
+  // and then of the links at a point, skipping the points in `except`.
+  const auto for_each_neighbour = [&](int link, std::initializer_list<int> except, const auto& visit) {
+    for (int p : points_of[link]) {
+      if (std::find(except.begin(), except.end(), p) != except.end()) continue;
+      for (int other : links_at[p])
+        if (other != link) visit(Edge{other, p});
+    }
+  };
 
   std::set<std::array<int, 8>> seen;
   std::vector<FourBarLoop> loops;
   // The frame of a loop is its lowest-numbered link: the ground whenever the loop has it.
   for (int l0 = 0; l0 < links; ++l0) {
-    for (const Edge& e1 : adjacent[l0]) {
-      if (e1.link <= l0) continue;
-      for (const Edge& e2 : adjacent[e1.link]) {
-        if (e2.link <= l0 || e2.link == e1.link || e2.point == e1.point) continue;
-        for (const Edge& e3 : adjacent[e2.link]) {
-          if (e3.link <= l0 || e3.link == e1.link || e3.link == e2.link) continue;
-          if (e3.point == e1.point || e3.point == e2.point) continue;
-          for (const Edge& e4 : adjacent[e3.link]) {
-            if (e4.link != l0) continue;
-            if (e4.point == e1.point || e4.point == e2.point || e4.point == e3.point) continue;
+    for_each_neighbour(l0, {}, [&](const Edge& e1) {
+      if (e1.link <= l0) return;
+      for_each_neighbour(e1.link, {e1.point}, [&](const Edge& e2) {
+        if (e2.link <= l0 || e2.link == e1.link) return;
+        for_each_neighbour(e2.link, {e1.point, e2.point}, [&](const Edge& e3) {
+          if (e3.link <= l0 || e3.link == e1.link || e3.link == e2.link) return;
+          for_each_neighbour(e3.link, {e1.point, e2.point, e3.point}, [&](const Edge& e4) {
+            if (e4.link != l0) return;
             std::array<int, 4> ls{l0, e1.link, e2.link, e3.link};
             std::array<int, 4> ps{e1.point, e2.point, e3.point, e4.point};
             std::sort(ls.begin(), ls.end());
             std::sort(ps.begin(), ps.end());
             std::array<int, 8> key{ls[0], ls[1], ls[2], ls[3], ps[0], ps[1], ps[2], ps[3]};
-            if (!seen.insert(key).second) continue;
+            if (!seen.insert(key).second) return;
 
             // Walk l0 -> e1.link -> e2.link -> e3.link -> l0; the input is the frame's
             // neighbour that carries a driver, else the lower-numbered one.
@@ -90,10 +104,10 @@ std::vector<FourBarLoop> find_four_bar_loops(const Model& model) {
             loop.name = link_name(model, loop.input) + "-" + link_name(model, loop.coupler) + "-" +
                         link_name(model, loop.output);
             loops.push_back(loop);
-          }
-        }
-      }
-    }
+          });
+        });
+      });
+    });
   }
   return loops;
 }

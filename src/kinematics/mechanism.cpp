@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
+#include <Eigen/SparseQR>
+#include <Eigen/OrderingMethods>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +17,9 @@ namespace {
 // Dense rank analysis is cubic (70 ms at 600 coordinates); beyond this many coordinates a
 // sparse LU of the driven system first tries to prove it regular (the common case).
 constexpr int kDenseAnalysisLimit = 100;
+// Beyond this many coordinates the rank analysis is sparse (a rank-revealing sparse QR, Eigen's
+// SparseQR) and the diagnosis of a wrong number of drivers gives counts, not the body at fault.
+constexpr int kDenseRankLimit = 600;
 constexpr double kRankTolerance = 1e-9;
 
 double angle_of(const Eigen::Vector2d& u) { return std::atan2(u.y(), u.x()); }
@@ -24,6 +29,12 @@ std::string point_pair(const Model& m, int i, int j) { return m.points[i].name +
 }  // namespace
 
 Mechanism::Mechanism(Model model) : model_(std::move(model)) {
+  // Before the validation, whose checks also grow with the size.
+  const auto moving = std::count_if(model_.points.begin(), model_.points.end(), [](const Point& p) { return !p.ground; });
+  if (moving > kMaxMovingPoints)
+    throw ModelError({EntityRef::Kind::Model, -1}, "the model has " + std::to_string(moving) +
+                                                       " moving points; nbar analyses at most " +
+                                                       std::to_string(kMaxMovingPoints));
   validate(model_);
   if (model_.bodies.empty()) throw ModelError({EntityRef::Kind::Model, -1}, "the model has no moving bodies");
 
@@ -51,8 +62,10 @@ Mechanism::Mechanism(Model model) : model_(std::move(model)) {
 
   build_rows();
   build_pattern();
-  loops_ = find_four_bar_loops(model_);
+  // The mobility first: a model with the wrong number of drivers is rejected before the loop
+  // search, whose cost grows with the number of bodies joined at one point.
   analyse_mobility();
+  loops_ = find_four_bar_loops(model_);
 }
 
 Eigen::Vector2d Mechanism::point_position(int point, const Eigen::VectorXd& q) const {
@@ -312,6 +325,59 @@ std::string joints_of(const Model& model, int body) {
 
 }  // namespace
 
+std::string Mechanism::mobility_counts(bool at_least) const {
+  const MobilityReport& r = mobility_;
+  const int drivers = static_cast<int>(model_.drivers.size());
+  return "the mechanism has " + std::string(at_least ? "at least " : "") + std::to_string(r.dof) + " degree" +
+         (r.dof == 1 ? "" : "s") + " of freedom (Gruebler-Kutzbach count: " + std::to_string(r.grubler) + ") but " +
+         std::to_string(drivers) + " driver" + (drivers == 1 ? " is" : "s are") + " given";
+}
+
+// Large models: every factorisation sparse. The constraint rows alone give the rank and the
+// redundant rows; then the driven system must have full column rank.
+void Mechanism::analyse_mobility_sparse(const std::vector<double>& values) {
+  MobilityReport& r = mobility_;
+  const int drivers = static_cast<int>(model_.drivers.size());
+  // The rank is at most the number of constraint rows: too few drivers shows in the counts,
+  // before any factorisation.
+  if (n_ - constraint_rows_ > drivers) {
+    r.dof = n_ - constraint_rows_;
+    throw ModelError({EntityRef::Kind::Model, -1}, mobility_counts(true) + "; add one driver per free input");
+  }
+  using Sparse = Eigen::SparseMatrix<double>;
+  const auto transposed = [&](int rows) {
+    // Phi_q^T: columns are rows of Phi_q, so that the pivoting picks independent rows.
+    Sparse jt(n_, rows);
+    std::vector<Eigen::Triplet<double>> t;
+    for (std::size_t e = 0; e < pattern_.size(); ++e)
+      if (pattern_[e].row < rows) t.emplace_back(pattern_[e].col, pattern_[e].row, values[e]);
+    jt.setFromTriplets(t.begin(), t.end());
+    jt.makeCompressed();
+    return jt;
+  };
+  Eigen::SparseQR<Sparse, Eigen::COLAMDOrdering<int>> qr;
+  qr.setPivotThreshold(kRankTolerance);
+  qr.compute(transposed(constraint_rows_));
+  r.rank = constraint_rows_ == 0 ? 0 : static_cast<int>(qr.rank());
+  r.dof = n_ - r.rank;
+  const auto& perm = qr.colsPermutation().indices();
+  for (int c = r.rank; c < constraint_rows_; ++c) r.redundant.push_back(perm[c]);
+  std::sort(r.redundant.begin(), r.redundant.end());
+  if (r.dof != drivers) {
+    throw ModelError({EntityRef::Kind::Model, -1},
+                     mobility_counts(false) + (drivers < r.dof ? "; add one driver per free input"
+                                                               : "; remove drivers, or check for missing joints"));
+  }
+  Eigen::SparseQR<Sparse, Eigen::COLAMDOrdering<int>> full;
+  full.setPivotThreshold(kRankTolerance);
+  full.compute(transposed(row_count()));
+  if (full.rank() < n_)
+    throw ModelError({EntityRef::Kind::Model, -1},
+                     "the drivers do not move the mechanism independently: what one drives is already fixed by the "
+                     "joints or by the other drivers");
+  r.reciprocal_condition = 1.0;  // not estimated for sparse systems
+}
+
 void Mechanism::analyse_mobility() {
   MobilityReport& r = mobility_;
   r.coordinates = n_;
@@ -340,6 +406,11 @@ void Mechanism::analyse_mobility() {
       r.reciprocal_condition = 1.0;  // not estimated for sparse systems
       return;
     }
+  }
+
+  if (n_ > kDenseRankLimit) {
+    analyse_mobility_sparse(values);
+    return;
   }
 
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, n_);

@@ -71,11 +71,8 @@ DriverPath motion_in_time(const Model& m, std::vector<double> from) {
 SweepPath plan_time_law(const Mechanism& mech, std::optional<int> steps, SweepPath plan) {
   const Model& m = mech.model();
   const double duration = m.sweep.duration;
-  const double count = sweep_sample_count(m, steps);
-  if (!(count <= static_cast<double>(std::numeric_limits<int>::max())))
-    throw Error(ErrorKind::BadInput, "the sweep has too many samples");
-  const int samples = static_cast<int>(count);
-  if (samples < 1) throw Error(ErrorKind::BadInput, "a sweep needs at least one step");
+  // check_sample_count (in sweep_path) has bounded the count.
+  const int samples = static_cast<int>(sweep_sample_count(m, steps));
   const double dt = m.sweep.time_step && !steps ? *m.sweep.time_step : (samples > 1 ? duration / (samples - 1) : 0.0);
   for (int i = 0; i < samples; ++i) {
     plan.parameters.push_back(i * dt);
@@ -122,6 +119,14 @@ std::string values_text(const Model& m, const std::vector<Series>& values) {
 
 }  // namespace
 
+// A whole number of samples, as "1000000000" (not "1e+09").
+static std::string fmt_count(double count) {
+  std::ostringstream s;
+  s.precision(0);
+  s << std::fixed << count;
+  return s.str();
+}
+
 double sweep_sample_count(const Model& m, std::optional<int> steps) {
   if (steps) return *steps;
   if (!m.has_time_law()) return m.sweep.steps;
@@ -131,8 +136,9 @@ double sweep_sample_count(const Model& m, std::optional<int> steps) {
   return std::floor(m.sweep.duration / dt + 1e-9) + 1;
 }
 
-SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps) {
+SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps, int max_steps) {
   const Model& m = mech.model();
+  check_sample_count(m, steps, max_steps);
   const int nd = static_cast<int>(m.drivers.size());
   const std::vector<double>& drawn = mech.drawn_driver_values();
   SweepPath plan;
@@ -146,9 +152,28 @@ SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps) {
   }
   plan.time_law = m.has_time_law();
   if (plan.time_law) return plan_time_law(mech, steps, std::move(plan));
-  const int samples = steps.value_or(m.sweep.steps);
-  if (samples < 1) throw Error(ErrorKind::BadInput, "a sweep needs at least one step");
-  return plan_from_to(mech, samples, std::move(plan));
+  return plan_from_to(mech, steps.value_or(m.sweep.steps), std::move(plan));
+}
+
+void check_sample_count(const Model& m, std::optional<int> steps, int max_steps) {
+  const double count = sweep_sample_count(m, steps);
+  const std::string limit = std::to_string(max_steps);
+  if (steps) {
+    if (*steps < 1) throw Error(ErrorKind::BadInput, "a sweep needs at least one step (got " + std::to_string(*steps) + ")");
+    if (*steps > max_steps)
+      throw Error(ErrorKind::BadInput, "the sweep asks for " + std::to_string(*steps) + " steps, more than the limit of " +
+                                           limit + " (raise it with --max-steps)");
+    return;
+  }
+  // The model's own sweep: validate() has made sure that the count is finite and at least 1.
+  if (!(count >= 1.0 && count <= max_steps)) {
+    const std::string asked = std::isfinite(count) ? fmt_count(count) : "too many";
+    throw Error(ErrorKind::InvalidModel,
+                "the sweep asks for " + asked + " steps, more than the limit of " + limit +
+                    (m.has_time_law() ? " (its duration over its time step)" : "") +
+                    ": ask for fewer, or raise the limit with --max-steps",
+                EntityRef{EntityRef::Kind::Sweep, -1});
+  }
 }
 
 double SweepPath::parameter_of(double value) const {
@@ -165,7 +190,10 @@ double SweepPath::time_at(double p) const {
 }
 
 std::vector<double> sweep_start_values(const Mechanism& mech) {
-  const SweepPath plan = sweep_path(mech);
+  // The start is the same whatever the number of samples: plan one, after checking the
+  // model's own count, so that an oversized sweep is reported here too.
+  check_sample_count(mech.model(), std::nullopt);
+  const SweepPath plan = sweep_path(mech, 1);
   std::vector<Series> values;
   plan.drivers(plan.parameters.front(), 1, values);
   std::vector<double> start;
@@ -219,6 +247,44 @@ std::string nonpositive_distance(const Mechanism& mech, const std::vector<Series
   return {};
 }
 
+// The driver whose motion is largest at a sample, in the size of its Taylor coefficients
+// (speed, acceleration and beyond): what makes the derivatives of the mechanism overflow.
+int largest_driver(const std::vector<DriverState>& drivers) {
+  int best = -1;
+  double largest = -1.0;
+  for (std::size_t d = 0; d < drivers.size(); ++d) {
+    double size = 0.0;
+    for (int k = 1; k < drivers[d].value.terms(); ++k) {
+      const double c = std::abs(drivers[d].value[k]);
+      size = std::isfinite(c) ? std::max(size, c) : std::numeric_limits<double>::infinity();
+    }
+    if (size > largest) {
+      largest = size;
+      best = static_cast<int>(d);
+    }
+  }
+  return best;
+}
+
+// A sample whose positions or derivatives are not finite numbers came from inputs too large to
+// compute with (a driver's acceleration of 1e300 makes the fifth derivative overflow): an error
+// about the driver that moves fastest, never a row of nan.
+void check_finite(const Mechanism& mech, const Sample& s, const std::vector<DriverState>& drivers) {
+  if (s.taylor.allFinite()) [[likely]]
+    return;
+  int order = 0;
+  while (order + 1 < s.taylor.cols() && s.taylor.col(order).allFinite()) ++order;
+  const char* names[] = {"positions", "velocities", "accelerations", "jerks", "4th derivatives", "5th derivatives"};
+  const int d = largest_driver(drivers);
+  const std::string what = "at step " + std::to_string(s.step) + " the " + names[order] +
+                           " of the mechanism overflow (are not finite numbers)";
+  if (d < 0) throw Error(ErrorKind::InvalidModel, what + ": the model's numbers are too large to compute with");
+  throw Error(ErrorKind::InvalidModel,
+              what + ": driver '" + mech.model().drivers[d].name +
+                  "' moves too fast for them (check its speed, acceleration or law, or ask for a lower order)",
+              EntityRef{EntityRef::Kind::Driver, d});
+}
+
 // Checking the control costs a clock read: every few samples is often enough.
 constexpr std::size_t kControlInterval = 16;
 
@@ -229,7 +295,7 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
     throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
   const Model& m = mech.model();
   const int nd = static_cast<int>(m.drivers.size());
-  const SweepPath plan = sweep_path(mech, options.steps);
+  const SweepPath plan = sweep_path(mech, options.steps, options.max_steps);
   const std::size_t samples = plan.parameters.size();
   control.checkpoint("sweep", 0, static_cast<long>(samples));
   SweepResult result;
@@ -268,6 +334,7 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
       time_drivers(mech, now, plan.speed, plan.accel, terms_out, drivers_in_time);
       result.samples.push_back(make_sample(mech, state, i, plan.times[i], drivers_in_time, terms_out));
     }
+    check_finite(mech, result.samples.back(), plan.parameter_is_time ? state.drivers : drivers_in_time);
     result.max_residual = std::max(result.max_residual, result.samples.back().residual);
   };
   record(0);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -38,6 +39,9 @@ std::string quoted(const std::string& name) {
   out.append(1, '\'').append(name).append(1, '\'');
   return out;
 }
+
+// Below this (SI: rad/s or m/s) a driver's speed is a mistake, not a motion.
+constexpr double kMinDriverSpeed = 1e-12;
 
 // Checks run in the order a reader would fix them: names first, then the references
 // between entities, then geometry, so that the first error reported is the root cause.
@@ -335,6 +339,13 @@ class Validator {
       if (!std::isfinite(d.speed)) fail(where, name + ": the speed is not a finite number");
       if (!std::isfinite(d.accel)) fail(where, name + ": the acceleration is not a finite number");
       if (d.speed == 0.0) fail(where, name + ": the speed must not be zero");
+      // Time is travel over speed: a speed that is zero in all but name (1e-308) would make
+      // it infinite, and every rate computed from it meaningless.
+      if (std::abs(d.speed) < kMinDriverSpeed)
+        fail(where, name + ": the speed is too small to mean a motion (its size must be at least 1e-12 rad/s or "
+                           "m/s); give a real speed, or leave `speed` out");
+      if (d.from && d.to && !std::isfinite((*d.to - *d.from) / d.speed))
+        fail(where, name + ": its travel over its speed is not a finite time");
       if (d.law && (d.from || d.to)) {
         fail(where, name + " follows a law, so it takes no `from` or `to`");
       }
@@ -357,6 +368,15 @@ class Validator {
       if (!std::isfinite(*s.time_step) || *s.time_step <= 0.0) fail(where, "the sweep time step must be positive");
       if (*s.time_step > s.duration) fail(where, "the sweep time step is longer than its duration");
     }
+    // A time sweep's samples are its duration over its step: a count that is not even a number
+    // is the model's mistake; a finite one is bounded by sweep_path against the caller's limit
+    // (as a double, before anything converts it to an integer).
+    if (m_.has_time_law()) {
+      const double samples = s.duration / s.time_step.value_or(s.duration / 100.0);
+      if (!std::isfinite(samples))
+        fail(where, "the sweep's duration over its time step makes more samples than nbar can count: "
+                    "give a longer `step` or a shorter `duration`");
+    }
   }
 
   // Shapes, materials and given mass properties: what the dynamics and stress stages need.
@@ -374,6 +394,10 @@ class Validator {
         if (!std::isfinite(b.thickness) || b.thickness <= 0.0) {
           fail(where, name + " has a shape, so its thickness must be a positive number");
         }
+        // (A density or a gravity that is not a number is reported below, as such.)
+        if (b.material && !b.inertia && b.material->density > 0.0 && std::isfinite(b.material->density) &&
+            m_.gravity.allFinite())
+          check_weighable(b, where, name);
       }
       if (b.material) {
         const Material& mat = *b.material;
@@ -388,6 +412,8 @@ class Validator {
       if (b.inertia) {
         const GivenInertia& g = *b.inertia;
         if (!std::isfinite(g.mass) || g.mass < 0.0) fail(where, "the mass of " + name + " must not be negative");
+        if (m_.gravity.allFinite() && !std::isfinite(g.mass * m_.gravity.norm()))
+          fail(where, "the weight of " + name + " (its mass times gravity) is too large to compute with");
         if (!g.cg.allFinite()) fail(where, "the centre of mass of " + name + " is not a finite point");
         if (!std::isfinite(g.inertia) || g.inertia < 0.0) {
           fail(where, "the moment of inertia of " + name + " must not be negative");
@@ -398,6 +424,18 @@ class Validator {
       }
     }
     if (!m_.gravity.allFinite()) fail({EntityRef::Kind::Model, -1}, "gravity is not a finite vector");
+  }
+
+  // A body weighed from its shape: density x thickness x area (and the polar moment) must be
+  // numbers, and so must its weight; 1e306 m thick overflows.
+  void check_weighable(const Body& b, EntityRef where, const std::string& name) const {
+    const AreaProperties a = area_properties(*b.shape);
+    const double per_area = b.material->density * b.thickness;
+    const double mass = per_area * a.area;
+    if (!std::isfinite(mass) || !std::isfinite(per_area * a.polar()) || !std::isfinite(mass * m_.gravity.norm()))
+      fail(where, "the mass of " + name +
+                      " (density x thickness x area) is too large to compute with: check its `thickness` and its "
+                      "material's density");
   }
 
   // A law that was never parsed has no text.

@@ -189,7 +189,10 @@ std::vector<StressPeak> stress_peaks(const LinkStress& stress, const SweepResult
     control.checkpoint("stress", static_cast<long>(i), static_cast<long>(sweep.samples.size()));
     for (StressPeak& peak : peaks) {
       for (const SectionStress& s : stress.profile(per_sample[i], peak.body)) {
-        if (peak.step < 0 || s.von_mises > peak.at.von_mises) {
+        // A section whose stress is not a number (an overflow) is kept as the peak, so that the
+        // analysis reports it instead of passing over it.
+        const bool worse = peak.step < 0 || !std::isfinite(s.von_mises) || s.von_mises > peak.at.von_mises;
+        if (worse && (peak.step < 0 || std::isfinite(peak.at.von_mises))) {
           peak.step = sweep.samples[i].step;
           peak.at = s;
         }

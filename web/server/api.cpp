@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "api_internal.hpp"
+#include "nbar/io/json_text.hpp"
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/analysis/columns.hpp"
 #include "nbar/analysis/explain.hpp"
@@ -84,7 +85,7 @@ class Body {
     if (!has(key)) bad_input(std::string("missing '") + key + "'");
     const nlohmann::json& v = json_[key];
     if (v.is_string()) return v.get<std::string>();
-    if (document && v.is_object()) return v.dump(2) + "\n";
+    if (document && v.is_object()) return io::json_text(v, 2) + "\n";
     bad_input(std::string("'") + key + "' must be " + (document ? "the text of a YAML or JSON document" : "a string"));
   }
   std::optional<std::string> optional_text(const char* key) const {
@@ -587,7 +588,7 @@ ApiResponse api_explain(Job& job, const std::string& request) {
   job.start(Weight::Light);
   const Explanation ex = explain(job.mechanism, options);
   job.checkpoint("explain");
-  if (format == "json") return answer(io::explanation_json(ex).dump(2) + '\n');
+  if (format == "json") return answer(io::json_text(io::explanation_json(ex), 2) + '\n');
   const ExplainFormat f = format == "markdown" ? ExplainFormat::Markdown
                           : format == "latex"  ? ExplainFormat::Latex
                                                : ExplainFormat::Text;
@@ -670,7 +671,7 @@ ApiResponse api_examples() {
     item["file"] = e.file;
     list.push_back(item);
   }
-  return answer(Json{{"examples", list}}.dump(2) + '\n');
+  return answer(io::json_text(Json{{"examples", list}}, 2) + '\n');
 }
 
 // Only a name from the embedded list: nothing a request says ever reaches the file system.
@@ -709,7 +710,7 @@ ApiResponse api_health(const ServerConfig& config) {
              {{"running", config.light_jobs->in_use()}, {"waiting", config.light_jobs->waiting()}, {"max", config.light_jobs->total()}}},
             {"mp4", render::Animation::program_available("ffmpeg")},
             {"limits", limits}};
-  return answer(j.dump(2) + '\n');
+  return answer(io::json_text(j, 2) + '\n');
 }
 
 std::string content_type_of(std::string_view path) {

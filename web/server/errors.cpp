@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "api_internal.hpp"
+#include "nbar/io/json_text.hpp"
 
 namespace nbar::web {
 
@@ -64,7 +65,7 @@ ApiResponse error_answer(ApiErrorKind kind, const std::string& message, const Js
   for (const auto& [key, value] : details.items()) error[key] = value;
   ApiResponse r;
   r.status = http_status(kind);
-  r.body = Json{{"error", error}}.dump(2) + '\n';
+  r.body = io::json_text(Json{{"error", error}}, 2) + '\n';
   return r;
 }
 

@@ -26,6 +26,7 @@ struct AnalysisOptions {
   bool dynamics = false;     // joint forces, driver efforts, energies at every sample
   bool stress = false;       // the largest von Mises stress of every link with a shape (implies dynamics)
   int sections = 200;        // stress: cross-sections per link, at least
+  int max_steps = kDefaultMaxSweepSamples;  // a larger sweep (the model's or `steps`) is an error
   RunControl control;        // cancellation, deadline and progress for every stage
 };
 

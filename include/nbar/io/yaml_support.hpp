@@ -54,18 +54,33 @@ SourceMark mark(const Entry& e);
 std::string describe(const YAML::Node& node);
 
 // Optimal string alignment distance (Levenshtein plus adjacent transpositions, the most
-// common typo), ignoring case so that "o2" finds "O2".
-int edit_distance(std::string_view a, std::string_view b);
+// common typo), ignoring case so that "o2" finds "O2". Memory grows with the shorter name
+// only; a distance over `cutoff` is returned as cutoff + 1 as soon as it is certain, so a
+// suggestion among long names costs little.
+int edit_distance(std::string_view a, std::string_view b, int cutoff = std::numeric_limits<int>::max() - 1);
+
+// Names longer than this are not names: the readers reject them (where they are read) before
+// any suggestion compares them.
+inline constexpr std::size_t kMaxNameLength = 256;
+// The largest model or task file the readers take.
+inline constexpr std::size_t kMaxFileBytes = 16u << 20;
+
+// The offset of the first byte that does not begin a well-formed UTF-8 character (overlong
+// forms, surrogates and code points past U+10FFFF are not), or nothing for valid text.
+std::optional<std::size_t> first_invalid_utf8(std::string_view text);
+// The length in bytes of the well-formed UTF-8 character at `at` (< text.size()), or 0.
+std::size_t utf8_character_length(std::string_view text, std::size_t at);
 
 // The closest candidate, if it is close enough to be a plausible typo. One-letter names
 // are all one edit apart, so a distance equal to the length suggests nothing.
 template <typename Names>
 std::optional<std::string> suggestion(std::string_view wrong, const Names& candidates) {
+  if (wrong.size() > kMaxNameLength) return std::nullopt;
   const int limit = std::max<int>(1, static_cast<int>(wrong.size()) / 3);
   std::optional<std::string> best;
   int best_distance = std::numeric_limits<int>::max();
   for (const auto& candidate : candidates) {
-    const int d = edit_distance(wrong, candidate);
+    const int d = edit_distance(wrong, candidate, limit);
     if (d < best_distance && d <= limit && d < static_cast<int>(wrong.size())) {
       best = std::string(candidate);
       best_distance = d;
@@ -116,7 +131,11 @@ class Reader {
   [[noreturn]] void fail(SourceMark at, const std::string& message) const;
   [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const;
 
-  // The single document of the file, which must be a mapping.
+  // Rejects a key or a reference longer than kMaxNameLength, at its place.
+  void check_name_length(const YAML::Node& name) const;
+  // Rejects a file too long to be a model or not UTF-8 text, at the first bad byte.
+  void check_text() const;
+  // The single document of the file (checked by check_text), which must be a mapping.
   YAML::Node load(const DocumentWording& wording) const;
 
   // Rejects a key that is not a name. Each kind of file words this itself: model files

@@ -32,6 +32,10 @@ struct PairCount {
 };
 PairCount count_pairs(const Model& model);
 
+// The largest model a Mechanism is built for: its rank analysis and every sweep step grow with
+// the number of moving points.
+inline constexpr int kMaxMovingPoints = 20000;
+
 struct MobilityReport {
   int coordinates = 0;          // moving points x 2
   int constraint_rows = 0;      // without drivers
@@ -77,6 +81,9 @@ class Mechanism {
   void build_rows();
   void build_pattern();
   void analyse_mobility();
+  void analyse_mobility_sparse(const std::vector<double>& jacobian_values);
+  // "the mechanism has N degrees of freedom (Gruebler-Kutzbach count: G) but D drivers are given"
+  std::string mobility_counts(bool at_least) const;
 
   Model model_;
   int n_ = 0;

@@ -14,9 +14,14 @@
 
 namespace nbar {
 
+// The most samples a sweep may have unless its caller raises the limit (`--max-steps` on the
+// command line): every sample is kept, so the limit bounds the memory and the time of a run.
+inline constexpr int kDefaultMaxSweepSamples = 10'000'000;
+
 struct SweepOptions {
   std::optional<int> steps;  // overrides the model's sweep: number of samples, ends included
   int order = 2;             // highest time derivative (0 = positions only), at most 5
+  int max_steps = kDefaultMaxSweepSamples;  // more samples than this is an error
 };
 
 struct Sample {
@@ -76,8 +81,13 @@ struct SweepPath {
 // laws its duration over its time step, plus one). A double, so that a front-end can refuse an
 // absurd sweep before anything is allocated.
 double sweep_sample_count(const Model& model, std::optional<int> steps = std::nullopt);
-// Throws Error(BadInput) for a sweep of fewer than one sample or of more than INT_MAX.
-SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps = std::nullopt);
+// Throws Error(BadInput) for `steps` below one or above `max_steps`, and
+// Error(InvalidModel) about the model's sweep (EntityRef::Kind::Sweep) when the model's own
+// sweep has more than `max_steps` samples.
+SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps = std::nullopt,
+                     int max_steps = kDefaultMaxSweepSamples);
+// The check sweep_path makes of the number of samples, alone (nothing is allocated).
+void check_sample_count(const Model& model, std::optional<int> steps, int max_steps = kDefaultMaxSweepSamples);
 
 // One pose, like MuJoCo's mj_forward at a state: Newton from state.q with the drivers at
 // `driver_values` (SI; moving at each driver's `speed` and `accel`), then the Taylor

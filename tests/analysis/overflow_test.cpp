@@ -1,0 +1,119 @@
+// Overflow is an error about the input that caused it, from the library itself, so that every
+// front-end (CLI, server, Python) reports it alike (issue 16, items 5-8 and 11).
+#include "nbar/analysis/analysis.hpp"
+#include "nbar/io/model_file.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <memory>
+#include <string>
+
+namespace nbar {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kBase = "points: {O: [0, 0], A: [1, 0]}\nground: [O]\n";
+
+std::shared_ptr<const Mechanism> compile(const std::string& text) {
+  return std::make_shared<const Mechanism>(io::parse_model(text).model);
+}
+
+// The error `run` throws: its kind, entity and message.
+template <typename Run>
+Error error_of(Run run) {
+  try {
+    run();
+  } catch (const Error& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no error";
+  return Error(ErrorKind::BadInput, "none");
+}
+
+TEST(Overflow, AHugeDriverAccelerationIsAnErrorAtTheDriverNotNanDerivatives) {
+  const auto mech = compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 90, accel: 1e300}]\n");
+  AnalysisOptions options;
+  options.order = 2;
+  const Analysis ok = analyse(mech, options);  // accelerations of 1e300 are still numbers
+  EXPECT_TRUE(ok.sweep.samples.back().taylor.allFinite());
+  options.order = 5;
+  const Error e = error_of([&] { analyse(mech, options); });
+  EXPECT_EQ(e.kind(), ErrorKind::InvalidModel);
+  EXPECT_EQ(e.where().kind, EntityRef::Kind::Driver);
+  EXPECT_EQ(e.where().index, 0);
+  EXPECT_THAT(e.message(), HasSubstr("4th derivatives of the mechanism overflow"));
+}
+
+TEST(Overflow, AMassThatOverflowsIsRejectedAtTheBody) {
+  for (const std::string body : {"{points: [O, A], bar: {width: 0.1}, thickness: 1e306, material: steel}",
+                                 "{points: [O, A], mass: 1e308}"}) {
+    const Error e = error_of([&] {
+      compile(kBase + "gravity: [0, -9.81]\nbodies:\n  crank: " + body + "\ndrivers: [{angle: crank, from: 0, to: 90}]\n");
+    });
+    // Found while reading: placed at the body, line 5 of the text.
+    EXPECT_EQ(e.kind(), ErrorKind::InvalidModel) << body;
+    EXPECT_EQ(e.mark().line, 5) << body;
+    EXPECT_EQ(e.mark().column, 3) << body;
+    EXPECT_THAT(e.message(), HasSubstr("too large to compute with")) << body;
+  }
+}
+
+TEST(Overflow, AHugeForceIsAnErrorAtTheForceWhenStressesOverflow) {
+  const auto mech = compile(kBase +
+                            "bodies:\n  crank: {points: [O, A], bar: {width: 0.1}, thickness: 0.01, material: steel}\n"
+                            "forces: [{point: A, body: crank, force: [1e300, 1e300]}]\n"
+                            "drivers: [{angle: crank, from: 0, to: 90}]\nsweep: {steps: 5}\n");
+  AnalysisOptions options;
+  options.stress = true;
+  const Error e = error_of([&] { analyse(mech, options); });
+  EXPECT_EQ(e.where().kind, EntityRef::Kind::PointLoad);
+  EXPECT_EQ(e.where().index, 0);
+  EXPECT_THAT(e.message(), HasSubstr("the stresses in body 'crank' overflow"));
+}
+
+TEST(Overflow, ASpeedTooSmallToMeanAMotionIsRejectedAtTheDriver) {
+  const Error e = error_of(
+      [&] { compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 90, speed: 1e-308}]\n"); });
+  EXPECT_EQ(e.mark().line, 4);  // the driver's line
+  EXPECT_THAT(e.message(), HasSubstr("the speed is too small"));
+}
+
+TEST(SweepSize, ATimeSweepOfMoreSamplesThanAnIntHoldsIsLimitedWithoutOverflow) {
+  const auto mech = compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"t\"}]\n"
+                                    "sweep: {duration: 2147483647, step: 1}\n");
+  AnalysisOptions options;
+  options.max_steps = std::numeric_limits<int>::max();
+  const Error e = error_of([&] { analyse(mech, options); });
+  EXPECT_EQ(e.where().kind, EntityRef::Kind::Sweep);
+  EXPECT_THAT(e.message(), HasSubstr("the sweep asks for 2147483648 steps, more than the limit of 2147483647"));
+}
+
+TEST(SweepSize, TheModelsSweepIsLimitedAtTheSweepAndAnOptionAsBadInput) {
+  const auto mech = compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 360}]\n"
+                                    "sweep: {steps: 1000000000}\n");
+  const Error model = error_of([&] { analyse(mech, {}); });
+  EXPECT_EQ(model.kind(), ErrorKind::InvalidModel);
+  EXPECT_EQ(model.where().kind, EntityRef::Kind::Sweep);
+  EXPECT_THAT(model.message(), HasSubstr("the sweep asks for 1000000000 steps, more than the limit of 10000000"));
+  AnalysisOptions options;
+  options.steps = 20;
+  options.max_steps = 10;
+  const Error option = error_of([&] { analyse(mech, options); });
+  EXPECT_EQ(option.kind(), ErrorKind::BadInput);
+  options.max_steps = 20;
+  EXPECT_EQ(analyse(mech, options).sweep.samples.size(), 20u);
+}
+
+TEST(SweepSize, ATimeSweepTooLongToCountIsRejectedAtTheSweep) {
+  const Error e = error_of([&] {
+    compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"t\"}]\nsweep: {duration: 1e300, step: 1e-10}\n");
+  });
+  EXPECT_EQ(e.mark().line, 5);  // the sweep's line
+  EXPECT_THAT(e.message(), HasSubstr("more samples than nbar can count"));
+}
+
+}  // namespace
+}  // namespace nbar
