@@ -560,17 +560,56 @@ class Parser : yaml::Reader {
     return {number(node[0], mark(node[0]), "x"), number(node[1], mark(node[1]), "y")};
   }
 
-  std::vector<Eigen::Vector2d> polygon(const Entry& e, std::string_view what) const {
+  // An outline or polygon hole: vertices [x, y], each optionally [x, y, {bulge: b}] or
+  // [x, y, {through: [x, y]}] to make the edge to the next vertex a circular arc.
+  struct Ring {
+    std::vector<Eigen::Vector2d> vertices;
+    std::vector<double> bulges;  // empty when every edge is straight
+  };
+
+  Ring polygon(const Entry& e, std::string_view what) const {
     if (!e.value.IsSequence()) {
       fail(mark(e), "`" + e.key + "` must be a list of vertices like [[0, 0], [100, 0], [100, 20]], not " +
                         describe(e.value));
     }
-    std::vector<Eigen::Vector2d> vertices;
-    for (const YAML::Node& v : e.value) vertices.push_back(coordinates(v, "a vertex"));
-    if (vertices.size() < 3) {
-      fail(mark(e), std::string(what) + " needs at least 3 vertices, not " + std::to_string(vertices.size()));
+    Ring ring;
+    std::vector<double> bulges;
+    std::vector<std::optional<std::pair<YAML::Node, Eigen::Vector2d>>> through;
+    bool arcs = false;
+    for (const YAML::Node& v : e.value) {
+      const bool with_arc = v.IsSequence() && v.size() == 3;
+      if (!v.IsSequence() || (v.size() != 2 && !with_arc)) {
+        fail(v, "a vertex needs [x, y] (or [x, y, {bulge: b}] for an arc to the next vertex), not " + describe(v));
+      }
+      ring.vertices.emplace_back(number(v[0], mark(v[0]), "x"), number(v[1], mark(v[1]), "y"));
+      bulges.push_back(0.0);
+      through.emplace_back();
+      if (!with_arc) continue;
+      const YAML::Node arc = v[2];
+      if (!arc.IsMap() || arc.size() != 1 || !(arc["bulge"] || arc["through"])) {
+        fail(arc, "an arc on a vertex is {bulge: b} or {through: [x, y]}, not " + describe(arc));
+      }
+      arcs = true;
+      if (arc["bulge"]) {
+        bulges.back() = number(arc["bulge"], mark(arc["bulge"]), "the bulge");
+      } else {
+        through.back() = std::make_pair(arc["through"], coordinates(arc["through"], "`through`"));
+      }
     }
-    return vertices;
+    const std::size_t n = ring.vertices.size();
+    if (n < (arcs ? 2u : 3u)) {
+      fail(mark(e), std::string(what) + " needs at least 3 vertices (2 with an arc), not " + std::to_string(n));
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!through[i]) continue;
+      try {
+        bulges[i] = bulge_through(ring.vertices[i], ring.vertices[(i + 1) % n], through[i]->second);
+      } catch (const std::invalid_argument& error) {
+        fail(through[i]->first, std::string("`through`: ") + error.what());
+      }
+    }
+    if (arcs) ring.bulges = std::move(bulges);
+    return ring;
   }
 
   // The position of a point in model units, for geometry written in model units.
@@ -712,14 +751,16 @@ class Parser : yaml::Reader {
   struct Hole {
     YAML::Node node;
     std::optional<Circle> circle;
-    std::vector<Eigen::Vector2d> polygon;
+    Ring polygon;
   };
 
+  // Every polygon hole gets its list of bulges, empty when straight, so the lists stay aligned.
   static void add_hole(Region& r, const Hole& h) {
     if (h.circle) {
       r.circle_holes.push_back(*h.circle);
     } else {
-      r.polygon_holes.push_back(h.polygon);
+      r.polygon_holes.push_back(h.polygon.vertices);
+      r.polygon_hole_bulges.push_back(h.polygon.bulges);
     }
   }
 
@@ -764,7 +805,9 @@ class Parser : yaml::Reader {
     const std::string invalid = "the shape of " + body + " is not valid: ";
     const Entry& outline = required(f, e.value, "outline", "a shape");
     Region region;
-    region.outline = polygon(outline, "an outline");
+    Ring outer = polygon(outline, "an outline");
+    region.outline = std::move(outer.vertices);
+    region.outline_bulges = std::move(outer.bulges);
     try {
       check_region(region);
     } catch (const std::invalid_argument& error) {
@@ -775,7 +818,7 @@ class Parser : yaml::Reader {
       for (const YAML::Node& item : section_list(*h, "[{at: A, radius: 5}]")) holes.push_back(parse_hole(item));
     }
     for (std::size_t k = 0; k < holes.size(); ++k) {
-      Region alone{region.outline, {}, {}};
+      Region alone{region.outline, {}, {}, region.outline_bulges, {}};
       add_hole(alone, holes[k]);
       try {
         check_region(alone);
@@ -788,7 +831,7 @@ class Parser : yaml::Reader {
         fail(holes[k].node, invalid + reason);
       }
       for (std::size_t j = 0; j < k; ++j) {
-        Region pair{region.outline, {}, {}};
+        Region pair{region.outline, {}, {}, region.outline_bulges, {}};
         add_hole(pair, holes[j]);
         add_hole(pair, holes[k]);
         try {
