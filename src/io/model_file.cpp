@@ -579,7 +579,7 @@ class Parser : yaml::Reader {
     for (const YAML::Node& v : e.value) {
       const bool with_arc = v.IsSequence() && v.size() == 3;
       if (!v.IsSequence() || (v.size() != 2 && !with_arc)) {
-        fail(v, "a vertex needs [x, y] (or [x, y, {bulge: b}] for an arc to the next vertex), not " + describe(v));
+        fail(v, "a vertex needs [x, y], not " + describe(v) + " (or [x, y, {bulge: b}] for an arc to the next vertex)");
       }
       ring.vertices.emplace_back(number(v[0], mark(v[0]), "x"), number(v[1], mark(v[1]), "y"));
       bulges.push_back(0.0);
@@ -598,7 +598,8 @@ class Parser : yaml::Reader {
     }
     const std::size_t n = ring.vertices.size();
     if (n < (arcs ? 2u : 3u)) {
-      fail(mark(e), std::string(what) + " needs at least 3 vertices (2 with an arc), not " + std::to_string(n));
+      fail(mark(e), std::string(what) + " needs at least " + (arcs ? "2 vertices with an arc" : "3 vertices") +
+                        ", not " + std::to_string(n));
     }
     for (std::size_t i = 0; i < n; ++i) {
       if (!through[i]) continue;
