@@ -14,6 +14,7 @@
 #include <system_error>
 #include <utility>
 
+#include "nbar/io/dxf_reader.hpp"
 #include "nbar/io/yaml_support.hpp"
 #include "nbar/model/geometry.hpp"
 #include "nbar/model/materials.hpp"
@@ -71,7 +72,7 @@ const AllowedKeys kDriverKeys{
     "in a driver", {"name", "angle", "relative_to", "distance", "slide", "from", "to", "speed", "accel", "law"}};
 const AllowedKeys kSweepKeys{"in `sweep`", {"steps", "duration", "step"}};
 const AllowedKeys kBodyKeys{"in a body", {"points", "shape", "bar", "thickness", "material", "mass", "cg", "inertia"}};
-const AllowedKeys kShapeKeys{"in a `shape`", {"outline", "holes"}};
+const AllowedKeys kShapeKeys{"in a `shape`", {"outline", "import", "layer", "holes"}};
 const AllowedKeys kHoleKeys{"in a hole", {"at", "circle", "radius", "polygon"}};
 const AllowedKeys kBarKeys{"in a `bar`", {"width", "margin", "hole", "holes", "between"}};
 const AllowedKeys kMaterialKeys{"in a material", {"density", "yield"}};
@@ -103,6 +104,10 @@ const yaml::DocumentWording kModelDocument{
 class Parser : yaml::Reader {
  public:
   Parser(std::string text, std::string file) : Reader(std::move(text), file) { source_.file = std::move(file); }
+
+  // Lets `shape: {import: FILE}` read files, relative to `dir` (the model file's folder). A
+  // model parsed from text (the web server's) may not open files.
+  void allow_imports(std::filesystem::path dir) { import_dir_ = std::move(dir); }
 
   LoadedModel parse() {
     const YAML::Node root = load(kModelDocument);
@@ -136,6 +141,7 @@ class Parser : yaml::Reader {
 
  private:
   Model model_;
+  std::optional<std::filesystem::path> import_dir_;
   SourceMap source_;
   std::vector<Material> user_materials_;  // from `materials:`
 
@@ -804,11 +810,21 @@ class Parser : yaml::Reader {
     }
     const Fields f = fields(e.value, kShapeKeys);
     const std::string invalid = "the shape of " + body + " is not valid: ";
-    const Entry& outline = required(f, e.value, "outline", "a shape");
+    const Entry* imported = f.find("import");
+    if (imported && f.find("outline")) {
+      fail(f.find("outline")->key_node, "a shape has `outline` or `import`, not both");
+    }
+    const Entry& outline = imported ? *imported : required(f, e.value, "outline", "a shape");
     Region region;
-    Ring outer = polygon(outline, "an outline");
-    region.outline = std::move(outer.vertices);
-    region.outline_bulges = std::move(outer.bulges);
+    const Entry* layer = f.find("layer");
+    if (layer && !imported) fail(layer->key_node, "`layer` goes with `import`: the layer of the DXF drawing to read");
+    if (imported) {
+      region = import_plate(*imported, layer ? text_value(*layer, "`layer`") : std::string());
+    } else {
+      Ring outer = polygon(outline, "an outline");
+      region.outline = std::move(outer.vertices);
+      region.outline_bulges = std::move(outer.bulges);
+    }
     try {
       check_region(region);
     } catch (const std::invalid_argument& error) {
@@ -844,7 +860,36 @@ class Parser : yaml::Reader {
       }
     }
     for (const Hole& h : holes) add_hole(region, h);
+    if (imported) {
+      // The drawing's own holes were not checked one by one above.
+      try {
+        check_region(region);
+      } catch (const std::invalid_argument& error) {
+        fail(mark(outline), invalid + error.what());
+      }
+    }
     return to_si(std::move(region));
+  }
+
+  // `import: FILE`: a plate drawn in a DXF file (on one layer, if given), in the model's units.
+  Region import_plate(const Entry& e, const std::string& layer) const {
+    const std::string name = text_value(e, "`import`");
+    if (!import_dir_) {
+      fail(mark(e), "`import` reads a file, which only a model read from a file may do");
+    }
+    std::filesystem::path path(name);
+    if (path.is_relative()) path = *import_dir_ / path;
+    std::string extension = path.extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension != ".dxf") fail(mark(e), "`import` reads DXF drawings (.dxf), not '" + name + "'");
+    std::error_code status_error;
+    std::ifstream in(path, std::ios::binary);
+    if (!in || std::filesystem::is_directory(path, status_error)) {
+      fail(mark(e), "cannot read " + path.string());
+    }
+    std::ostringstream contents;
+    contents << in.rdbuf();
+    return read_dxf_plate(contents.str(), path.string(), model_.units.length_scale, layer);
   }
 
   Region parse_bar(const Entry& e, const Body& body, const std::string& name) const {
@@ -1077,7 +1122,9 @@ LoadedModel load_model_file(const std::string& path) {
   std::ostringstream contents;
   contents << in.rdbuf();
   if (in.bad()) throw ModelFileError(path, SourceMark{}, "cannot read: input error");
-  return parse_model(contents.str(), path);
+  Parser parser(contents.str(), path);
+  parser.allow_imports(std::filesystem::path(path).parent_path());
+  return parser.parse();
 }
 
 }  // namespace nbar::io
