@@ -158,6 +158,9 @@ constexpr double kStraightBulge = 1e-8;
 
 bool is_arc(double bulge) { return std::abs(bulge) > kStraightBulge; }
 
+// Beyond this the arc is all but a full circle and its radius, chord / bulge, drowns the chord.
+constexpr double kLargestBulge = 1e6;
+
 double bulge_of(const std::vector<double>& bulges, std::size_t i) { return bulges.empty() ? 0.0 : bulges[i]; }
 
 // The circular segment between the chord a-b and the arc of the given bulge, as raw moments
@@ -209,6 +212,8 @@ void ring_box(const Polygon& ring, const std::vector<double>& bulges, Vector2d& 
     include_in_box(ring[i], lo, hi);
     if (!is_arc(bulge_of(bulges, i))) continue;
     const Arc arc = arc_from_bulge(ring[i], ring[(i + 1) % ring.size()], bulges[i]);
+    // An unchecked ring may hold a bulge too large to place; check_region reports it.
+    if (!std::isfinite(arc.radius) || !arc.centre.allFinite() || !std::isfinite(arc.start_angle)) continue;
     const double from = std::min(arc.start_angle, arc.start_angle + arc.sweep);
     const double to = std::max(arc.start_angle, arc.start_angle + arc.sweep);
     for (int k = static_cast<int>(std::ceil(from / (kPi / 2))); k * (kPi / 2) <= to; ++k) {
@@ -411,6 +416,9 @@ Polygon checked_ring(const Polygon& ring, const std::vector<double>& bulges, dou
     }
     for (std::size_t i = 0; i < bulges.size(); ++i) {
       if (!std::isfinite(bulges[i])) fail(what + " bulge " + std::to_string(i) + " is not finite");
+      if (std::abs(bulges[i]) > kLargestBulge) {
+        fail(what + " bulge " + std::to_string(i) + " is larger than 1e6 (an arc of all but 0.0002 degrees of a circle)");
+      }
       arcs = arcs || is_arc(bulges[i]);
     }
   }

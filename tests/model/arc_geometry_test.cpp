@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -184,6 +185,10 @@ TEST(ArcCheck, BadBulges) {
   Region two;
   two.outline = {{0, 0}, {1, 0}};
   EXPECT_THROW(check_region(two), std::invalid_argument);  // two vertices and no arc: no area
+  r.outline_bulges = {0, 1e300, 0, 1};
+  EXPECT_THROW(check_region(r), std::invalid_argument);
+  r.outline_bulges = {0, std::numeric_limits<double>::infinity(), 0, 1};
+  EXPECT_THROW(check_region(r), std::invalid_argument);
   EXPECT_THROW(bulge_through({0, 0}, {1, 0}, {2, 0}), std::invalid_argument);
   EXPECT_THROW(bulge_through({0, 0}, {1, 0}, {1, 0}), std::invalid_argument);
 }
