@@ -21,8 +21,10 @@ class DxfOut {
   void pair(int code, std::string_view value) { out_ += fmt::format("{:>3}\n{}\n", code, value); }
   void pair(int code, int value) { pair(code, std::to_string(value)); }
   void number(int code, double value) {
-    // Enough digits to round-trip a coordinate in mm to well below a micrometre.
-    const double tidy = value == 0.0 ? 0.0 : value;  // no "-0"
+    // To 1e-9 of the unit, far below any cutting tolerance: a pose solved to rounding then
+    // writes 0, not 2.5e-11, and 12 digits keep a coordinate in mm to well below a micrometre.
+    double tidy = std::round(value * 1e9) / 1e9;
+    if (tidy == 0.0) tidy = 0.0;  // no "-0"
     pair(code, fmt::format("{:.12g}", tidy));
   }
   void point(int x_code, const Eigen::Vector2d& v) {
