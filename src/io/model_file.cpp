@@ -14,6 +14,7 @@
 #include <system_error>
 #include <utility>
 
+#include "nbar/io/dxf_reader.hpp"
 #include "nbar/io/yaml_support.hpp"
 #include "nbar/model/geometry.hpp"
 #include "nbar/model/materials.hpp"
@@ -71,7 +72,7 @@ const AllowedKeys kDriverKeys{
     "in a driver", {"name", "angle", "relative_to", "distance", "slide", "from", "to", "speed", "accel", "law"}};
 const AllowedKeys kSweepKeys{"in `sweep`", {"steps", "duration", "step"}};
 const AllowedKeys kBodyKeys{"in a body", {"points", "shape", "bar", "thickness", "material", "mass", "cg", "inertia"}};
-const AllowedKeys kShapeKeys{"in a `shape`", {"outline", "holes"}};
+const AllowedKeys kShapeKeys{"in a `shape`", {"outline", "import", "layer", "holes"}};
 const AllowedKeys kHoleKeys{"in a hole", {"at", "circle", "radius", "polygon"}};
 const AllowedKeys kBarKeys{"in a `bar`", {"width", "margin", "hole", "holes", "between"}};
 const AllowedKeys kMaterialKeys{"in a material", {"density", "yield"}};
@@ -103,6 +104,10 @@ const yaml::DocumentWording kModelDocument{
 class Parser : yaml::Reader {
  public:
   Parser(std::string text, std::string file) : Reader(std::move(text), file) { source_.file = std::move(file); }
+
+  // Lets `shape: {import: FILE}` read files, relative to `dir` (the model file's folder). A
+  // model parsed from text (the web server's) may not open files.
+  void allow_imports(std::filesystem::path dir) { import_dir_ = std::move(dir); }
 
   LoadedModel parse() {
     const YAML::Node root = load(kModelDocument);
@@ -136,6 +141,7 @@ class Parser : yaml::Reader {
 
  private:
   Model model_;
+  std::optional<std::filesystem::path> import_dir_;
   SourceMap source_;
   std::vector<Material> user_materials_;  // from `materials:`
 
@@ -561,17 +567,57 @@ class Parser : yaml::Reader {
     return {number(node[0], mark(node[0]), "x"), number(node[1], mark(node[1]), "y")};
   }
 
-  std::vector<Eigen::Vector2d> polygon(const Entry& e, std::string_view what) const {
+  // An outline or polygon hole: vertices [x, y], each optionally [x, y, {bulge: b}] or
+  // [x, y, {through: [x, y]}] to make the edge to the next vertex a circular arc.
+  struct Ring {
+    std::vector<Eigen::Vector2d> vertices;
+    std::vector<double> bulges;  // empty when every edge is straight
+  };
+
+  Ring polygon(const Entry& e, std::string_view what) const {
     if (!e.value.IsSequence()) {
       fail(mark(e), "`" + e.key + "` must be a list of vertices like [[0, 0], [100, 0], [100, 20]], not " +
                         describe(e.value));
     }
-    std::vector<Eigen::Vector2d> vertices;
-    for (const YAML::Node& v : e.value) vertices.push_back(coordinates(v, "a vertex"));
-    if (vertices.size() < 3) {
-      fail(mark(e), std::string(what) + " needs at least 3 vertices, not " + std::to_string(vertices.size()));
+    Ring ring;
+    std::vector<double> bulges;
+    std::vector<std::optional<std::pair<YAML::Node, Eigen::Vector2d>>> through;
+    bool arcs = false;
+    for (const YAML::Node& v : e.value) {
+      const bool with_arc = v.IsSequence() && v.size() == 3;
+      if (!v.IsSequence() || (v.size() != 2 && !with_arc)) {
+        fail(v, "a vertex needs [x, y], not " + describe(v) + " (or [x, y, {bulge: b}] for an arc to the next vertex)");
+      }
+      ring.vertices.emplace_back(number(v[0], mark(v[0]), "x"), number(v[1], mark(v[1]), "y"));
+      bulges.push_back(0.0);
+      through.emplace_back();
+      if (!with_arc) continue;
+      const YAML::Node arc = v[2];
+      if (!arc.IsMap() || arc.size() != 1 || !(arc["bulge"] || arc["through"])) {
+        fail(arc, "an arc on a vertex is {bulge: b} or {through: [x, y]}, not " + describe(arc));
+      }
+      arcs = true;
+      if (arc["bulge"]) {
+        bulges.back() = number(arc["bulge"], mark(arc["bulge"]), "the bulge");
+      } else {
+        through.back() = std::make_pair(arc["through"], coordinates(arc["through"], "`through`"));
+      }
     }
-    return vertices;
+    const std::size_t n = ring.vertices.size();
+    if (n < (arcs ? 2u : 3u)) {
+      fail(mark(e), std::string(what) + " needs at least " + (arcs ? "2 vertices with an arc" : "3 vertices") +
+                        ", not " + std::to_string(n));
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!through[i]) continue;
+      try {
+        bulges[i] = bulge_through(ring.vertices[i], ring.vertices[(i + 1) % n], through[i]->second);
+      } catch (const std::invalid_argument& error) {
+        fail(through[i]->first, std::string("`through`: ") + error.what());
+      }
+    }
+    if (arcs) ring.bulges = std::move(bulges);
+    return ring;
   }
 
   // The position of a point in model units, for geometry written in model units.
@@ -713,14 +759,16 @@ class Parser : yaml::Reader {
   struct Hole {
     YAML::Node node;
     std::optional<Circle> circle;
-    std::vector<Eigen::Vector2d> polygon;
+    Ring polygon;
   };
 
+  // Every polygon hole gets its list of bulges, empty when straight, so the lists stay aligned.
   static void add_hole(Region& r, const Hole& h) {
     if (h.circle) {
       r.circle_holes.push_back(*h.circle);
     } else {
-      r.polygon_holes.push_back(h.polygon);
+      r.polygon_holes.push_back(h.polygon.vertices);
+      r.polygon_hole_bulges.push_back(h.polygon.bulges);
     }
   }
 
@@ -763,9 +811,21 @@ class Parser : yaml::Reader {
     }
     const Fields f = fields(e.value, kShapeKeys);
     const std::string invalid = "the shape of " + body + " is not valid: ";
-    const Entry& outline = required(f, e.value, "outline", "a shape");
+    const Entry* imported = f.find("import");
+    if (imported && f.find("outline")) {
+      fail(f.find("outline")->key_node, "a shape has `outline` or `import`, not both");
+    }
+    const Entry& outline = imported ? *imported : required(f, e.value, "outline", "a shape");
     Region region;
-    region.outline = polygon(outline, "an outline");
+    const Entry* layer = f.find("layer");
+    if (layer && !imported) fail(layer->key_node, "`layer` goes with `import`: the layer of the DXF drawing to read");
+    if (imported) {
+      region = import_plate(*imported, layer ? text_value(*layer, "`layer`") : std::string());
+    } else {
+      Ring outer = polygon(outline, "an outline");
+      region.outline = std::move(outer.vertices);
+      region.outline_bulges = std::move(outer.bulges);
+    }
     try {
       check_region(region);
     } catch (const std::invalid_argument& error) {
@@ -776,7 +836,7 @@ class Parser : yaml::Reader {
       for (const YAML::Node& item : section_list(*h, "[{at: A, radius: 5}]")) holes.push_back(parse_hole(item));
     }
     for (std::size_t k = 0; k < holes.size(); ++k) {
-      Region alone{region.outline, {}, {}};
+      Region alone{region.outline, {}, {}, region.outline_bulges, {}};
       add_hole(alone, holes[k]);
       try {
         check_region(alone);
@@ -789,7 +849,7 @@ class Parser : yaml::Reader {
         fail(holes[k].node, invalid + reason);
       }
       for (std::size_t j = 0; j < k; ++j) {
-        Region pair{region.outline, {}, {}};
+        Region pair{region.outline, {}, {}, region.outline_bulges, {}};
         add_hole(pair, holes[j]);
         add_hole(pair, holes[k]);
         try {
@@ -801,7 +861,36 @@ class Parser : yaml::Reader {
       }
     }
     for (const Hole& h : holes) add_hole(region, h);
+    if (imported) {
+      // The drawing's own holes were not checked one by one above.
+      try {
+        check_region(region);
+      } catch (const std::invalid_argument& error) {
+        fail(mark(outline), invalid + error.what());
+      }
+    }
     return to_si(std::move(region));
+  }
+
+  // `import: FILE`: a plate drawn in a DXF file (on one layer, if given), in the model's units.
+  Region import_plate(const Entry& e, const std::string& layer) const {
+    const std::string name = text_value(e, "`import`");
+    if (!import_dir_) {
+      fail(mark(e), "`import` reads a file, which only a model read from a file may do");
+    }
+    std::filesystem::path path(name);
+    if (path.is_relative()) path = *import_dir_ / path;
+    std::string extension = path.extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension != ".dxf") fail(mark(e), "`import` reads DXF drawings (.dxf), not '" + name + "'");
+    std::error_code status_error;
+    std::ifstream in(path, std::ios::binary);
+    if (!in || std::filesystem::is_directory(path, status_error)) {
+      fail(mark(e), "cannot read " + path.string());
+    }
+    std::ostringstream contents;
+    contents << in.rdbuf();
+    return read_dxf_plate(contents.str(), path.string(), model_.units.length_scale, layer);
   }
 
   Region parse_bar(const Entry& e, const Body& body, const std::string& name) const {
@@ -1034,7 +1123,9 @@ LoadedModel load_model_file(const std::string& path) {
   std::ostringstream contents;
   contents << in.rdbuf();
   if (in.bad()) throw ModelFileError(path, SourceMark{}, "cannot read: input error");
-  return parse_model(contents.str(), path);
+  Parser parser(contents.str(), path);
+  parser.allow_imports(std::filesystem::path(path).parent_path());
+  return parser.parse();
 }
 
 }  // namespace nbar::io

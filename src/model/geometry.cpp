@@ -102,13 +102,6 @@ Moments polygon_moments(const Polygon& poly, const Vector2d& origin) {
 
 double signed_area(const Polygon& poly) { return poly.empty() ? 0.0 : polygon_moments(poly, poly[0]).a; }
 
-// Orientation-free: a clockwise polygon has the same material as the counterclockwise one.
-Moments unsigned_polygon_moments(const Polygon& poly, const Vector2d& origin) {
-  Moments m = polygon_moments(poly, origin);
-  if (m.a < 0) m.negate();
-  return m;
-}
-
 Moments disc_moments(const Circle& c, const Vector2d& origin) {
   AreaProperties p;
   p.area = kPi * c.radius * c.radius;
@@ -157,6 +150,105 @@ Moments clipped_disc_moments(const Circle& c, const Vector2d& m, double offset, 
   Moments rest = disc_moments(c, origin);
   rest -= seg;
   return rest;
+}
+
+// Bulges smaller than this are straight edges: below it the segment's closed forms (terms in r⁴
+// with r ~ chord/bulge) lose more to cancellation than the segment itself weighs.
+constexpr double kStraightBulge = 1e-8;
+
+bool is_arc(double bulge) { return std::abs(bulge) > kStraightBulge; }
+
+// Beyond this the arc is all but a full circle and its radius, chord / bulge, drowns the chord.
+constexpr double kLargestBulge = 1e6;
+
+double bulge_of(const std::vector<double>& bulges, std::size_t i) { return bulges.empty() ? 0.0 : bulges[i]; }
+
+// The circular segment between the chord a-b and the arc of the given bulge, as raw moments
+// about origin: the region's own moments, whatever side of the chord it is on.
+Moments arc_segment_moments(const Vector2d& a, const Vector2d& b, double bulge, const Vector2d& origin) {
+  const Vector2d chord = b - a;
+  const double half = chord.norm() / 2;
+  const Vector2d right = Vector2d(chord.y(), -chord.x()).normalized();
+  const double radius = half * (1 + bulge * bulge) / (2 * std::abs(bulge));
+  const Vector2d axis = bulge > 0 ? right : Vector2d(-right);  // from the centre towards the arc's middle
+  const Vector2d arc_middle = (a + b) / 2 + bulge * half * right;
+  const Circle circle{arc_middle - radius * axis, radius};
+  // The segment is {axis·(x − centre) >= radius − sagitta}.
+  return clipped_disc_moments(circle, axis, -(radius - std::abs(bulge) * half), origin);
+}
+
+// Green's theorem along a ring whose edges may be arcs: an arc's line integral is its chord's
+// plus that over the boundary of its segment, which bulges to the right of a counterclockwise
+// ring's edge (outwards) for a positive bulge. Signed like polygon_moments.
+Moments ring_moments(const Polygon& ring, const std::vector<double>& bulges, const Vector2d& origin) {
+  Moments m = polygon_moments(ring, origin);
+  for (std::size_t i = 0; i < bulges.size(); ++i) {
+    if (!is_arc(bulges[i])) continue;
+    const Moments seg = arc_segment_moments(ring[i], ring[(i + 1) % ring.size()], bulges[i], origin);
+    if (bulges[i] > 0) {
+      m += seg;
+    } else {
+      m -= seg;
+    }
+  }
+  return m;
+}
+
+Moments unsigned_ring_moments(const Polygon& ring, const std::vector<double>& bulges, const Vector2d& origin) {
+  Moments m = ring_moments(ring, bulges, origin);
+  if (m.a < 0) m.negate();
+  return m;
+}
+
+void include_in_box(const Vector2d& v, Vector2d& lo, Vector2d& hi) {
+  lo = lo.cwiseMin(v);
+  hi = hi.cwiseMax(v);
+}
+
+// The ring's bounding box including the arcs' bulges: an arc reaches centre ± radius along an
+// axis when its sweep passes that direction.
+void ring_box(const Polygon& ring, const std::vector<double>& bulges, Vector2d& lo, Vector2d& hi) {
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    include_in_box(ring[i], lo, hi);
+    if (!is_arc(bulge_of(bulges, i))) continue;
+    const Arc arc = arc_from_bulge(ring[i], ring[(i + 1) % ring.size()], bulges[i]);
+    // An unchecked ring may hold a bulge too large to place; check_region reports it.
+    if (!std::isfinite(arc.radius) || !arc.centre.allFinite() || !std::isfinite(arc.start_angle)) continue;
+    const double from = std::min(arc.start_angle, arc.start_angle + arc.sweep);
+    const double to = std::max(arc.start_angle, arc.start_angle + arc.sweep);
+    for (int k = static_cast<int>(std::ceil(from / (kPi / 2))); k * (kPi / 2) <= to; ++k) {
+      include_in_box(arc.centre + arc.radius * Vector2d(std::cos(k * kPi / 2), std::sin(k * kPi / 2)), lo, hi);
+    }
+  }
+}
+
+// The ring with its arcs as chords within `tolerance`; `source`, when given, receives for every
+// vertex of the result the index of the ring's vertex whose edge it lies on.
+Polygon polygonised_ring(const Polygon& ring, const std::vector<double>& bulges, double tolerance,
+                         std::vector<std::size_t>* source = nullptr) {
+  Polygon out;
+  if (source) source->clear();
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    out.push_back(ring[i]);
+    if (source) source->push_back(i);
+    if (!is_arc(bulge_of(bulges, i))) continue;
+    const Arc arc = arc_from_bulge(ring[i], ring[(i + 1) % ring.size()], bulges[i]);
+    // A chord spanning the angle φ strays r (1 − cos φ/2) from its arc.
+    const double step = 2 * std::acos(std::max(-1.0, 1 - tolerance / arc.radius));
+    const int pieces = static_cast<int>(std::clamp(std::ceil(std::abs(arc.sweep) / step), 2.0, 4096.0));
+    for (int k = 1; k < pieces; ++k) {
+      const double angle = arc.start_angle + arc.sweep * k / pieces;
+      out.push_back(arc.centre + arc.radius * Vector2d(std::cos(angle), std::sin(angle)));
+      if (source) source->push_back(i);
+    }
+  }
+  return out;
+}
+
+double chord_tolerance_for(const Region& r) {
+  Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  ring_box(r.outline, r.outline_bulges, lo, hi);
+  return kRelativeChordTolerance * (hi - lo).norm();
 }
 
 // Sutherland–Hodgman against one half-plane. For a non-convex polygon the output may run back
@@ -256,8 +348,13 @@ bool circle_clear_of_edges(const Circle& c, const Polygon& poly) {
   return true;
 }
 
-void check_polygon(const Polygon& poly, const std::string& what) {
+// `source` (optional) maps the vertices of a polygonised ring back to the ring's own, so that
+// messages name the vertices and edges the user wrote.
+void check_polygon(const Polygon& poly, const std::string& what, const std::vector<std::size_t>* source = nullptr,
+                   std::size_t source_count = 0) {
   const std::size_t n = poly.size();
+  const auto src = [&](std::size_t i) { return source ? (*source)[i] : i; };
+  const auto next = [&](std::size_t i) { return source ? ((*source)[i] + 1) % source_count : (i + 1) % n; };
   if (n < 3) {
     std::ostringstream os;
     os << what << " has " << n << (n == 1 ? " vertex" : " vertices") << "; a polygon needs at least 3";
@@ -292,21 +389,58 @@ void check_polygon(const Polygon& poly, const std::string& what) {
     const Vector2d& c = poly[(i + 2) % n];
     if (orient(a, b, c) == 0 && (b - a).dot(c - b) < 0) {
       std::ostringstream os;
-      os << what << " doubles back on itself at vertex " << (i + 1) % n << ' ' << point_text(b);
+      os << what << " doubles back on itself at vertex " << src((i + 1) % n) << ' ' << point_text(b);
       fail(os.str());
     }
     for (std::size_t j = i + 2; j < n; ++j) {
       if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
       if (segments_meet(a, b, poly[j], poly[(j + 1) % n])) {
         std::ostringstream os;
-        os << what << " intersects itself: edge " << i << "-" << (i + 1) % n << " meets edge " << j << "-"
-           << (j + 1) % n;
+        os << what << " intersects itself: edge " << src(i) << "-" << next(i) << " meets edge " << src(j) << "-"
+           << next(j);
         fail(os.str());
       }
     }
   }
   // A simple polygon that is not flat has area; this only catches what rounding let through.
   if (signed_area(poly) == 0) fail(what + " has zero area");
+}
+
+// A ring with arcs: its own vertices and bulges first, then its polygonisation as a polygon.
+Polygon checked_ring(const Polygon& ring, const std::vector<double>& bulges, double tolerance, const std::string& what) {
+  bool arcs = false;
+  if (!bulges.empty()) {
+    if (bulges.size() != ring.size()) {
+      fail(what + " has " + std::to_string(ring.size()) + " vertices but " + std::to_string(bulges.size()) +
+           " bulges");
+    }
+    for (std::size_t i = 0; i < bulges.size(); ++i) {
+      if (!std::isfinite(bulges[i])) fail(what + " bulge " + std::to_string(i) + " is not finite");
+      if (std::abs(bulges[i]) > kLargestBulge) {
+        fail(what + " bulge " + std::to_string(i) + " is larger than 1e6 (an arc of all but 0.0002 degrees of a circle)");
+      }
+      arcs = arcs || is_arc(bulges[i]);
+    }
+  }
+  if (!arcs) {
+    check_polygon(ring, what);
+    return ring;
+  }
+  if (ring.size() < 2) fail(what + " has 1 vertex; an outline with arcs needs at least 2");
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    if (!ring[i].allFinite()) fail(what + " vertex " + std::to_string(i) + " is not finite");
+    const std::size_t j = (i + 1) % ring.size();
+    if (ring[i] == ring[j]) {
+      std::ostringstream os;
+      os << what << " vertices " << i << " and " << j << " coincide at " << point_text(ring[i]);
+      fail(os.str());
+    }
+  }
+  if (!(tolerance > 0) || !std::isfinite(tolerance)) fail(what + " has no extent");
+  std::vector<std::size_t> source;
+  Polygon chords = polygonised_ring(ring, bulges, tolerance, &source);
+  check_polygon(chords, what, &source, ring.size());
+  return chords;
 }
 
 std::string circle_name(std::size_t i, const Circle& c) {
@@ -322,8 +456,12 @@ std::string polygon_name(std::size_t i) { return "polygon hole " + std::to_strin
 AreaProperties area_properties(const Region& r) {
   if (r.outline.empty()) return {};
   const Vector2d origin = mean(r.outline);
-  Moments m = unsigned_polygon_moments(r.outline, origin);
-  for (const Polygon& hole : r.polygon_holes) m -= unsigned_polygon_moments(hole, origin);
+  Moments m = unsigned_ring_moments(r.outline, r.outline_bulges, origin);
+  for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
+    const std::vector<double> none;
+    const std::vector<double>& bulges = i < r.polygon_hole_bulges.size() ? r.polygon_hole_bulges[i] : none;
+    m -= unsigned_ring_moments(r.polygon_holes[i], bulges, origin);
+  }
   for (const Circle& hole : r.circle_holes) m -= disc_moments(hole, origin);
   return to_properties(m, origin);
 }
@@ -332,6 +470,7 @@ AreaProperties clipped_area_properties(const Region& r, const Vector2d& p, const
   if (!p.allFinite() || !n.allFinite()) fail("clipped_area_properties: the cut line is not finite");
   const double norm = n.norm();
   if (!(norm > 0)) fail("clipped_area_properties: the normal of the cut line is zero");
+  if (has_arcs(r)) return clipped_area_properties(straight_edged(r), p, n);
   const Polygon outline = clip_polygon(r.outline, p, n);
   if (outline.empty()) return {};
   const Vector2d origin = mean(outline);
@@ -349,8 +488,27 @@ AreaProperties clipped_area_properties(const Region& r, const Vector2d& p, const
 }
 
 void check_region(const Region& r) {
-  check_polygon(r.outline, "the outline");
-  for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) check_polygon(r.polygon_holes[i], polygon_name(i));
+  if (!r.polygon_hole_bulges.empty() && r.polygon_hole_bulges.size() != r.polygon_holes.size()) {
+    fail("the region has " + std::to_string(r.polygon_holes.size()) + " polygon holes but " +
+         std::to_string(r.polygon_hole_bulges.size()) + " lists of bulges");
+  }
+  const double tolerance = chord_tolerance_for(r);
+  const std::vector<double> none;
+  const auto hole_bulges = [&](std::size_t i) -> const std::vector<double>& {
+    return r.polygon_hole_bulges.empty() ? none : r.polygon_hole_bulges[i];
+  };
+  checked_ring(r.outline, r.outline_bulges, tolerance, "the outline");
+  for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
+    checked_ring(r.polygon_holes[i], hole_bulges(i), tolerance, polygon_name(i));
+  }
+  if (has_arcs(r)) {
+    // The rest (holes inside the outline and apart) on the one polygonisation.
+    Region chords = straight_edged(r);
+    chords.outline_bulges.clear();
+    chords.polygon_hole_bulges.clear();
+    check_region(chords);
+    return;
+  }
   for (std::size_t i = 0; i < r.circle_holes.size(); ++i) {
     const Circle& c = r.circle_holes[i];
     if (!c.centre.allFinite() || !std::isfinite(c.radius)) fail(circle_name(i, c) + " is not finite");
@@ -465,6 +623,59 @@ PlateMass plate_mass(const AreaProperties& a, double density, double thickness) 
   if (!std::isfinite(thickness) || !(thickness > 0)) fail("plate_mass: the thickness must be finite and positive");
   const double areal = density * thickness;
   return {areal * a.area, a.centroid, areal * a.polar()};
+}
+
+Arc arc_from_bulge(const Vector2d& a, const Vector2d& b, double bulge) {
+  const Vector2d chord = b - a;
+  const double half = chord.norm() / 2;
+  const Vector2d right = Vector2d(chord.y(), -chord.x()).normalized();
+  const double radius = half * (1 + bulge * bulge) / (2 * std::abs(bulge));
+  const Vector2d axis = bulge > 0 ? right : Vector2d(-right);
+  const Vector2d centre = (a + b) / 2 + bulge * half * right - radius * axis;
+  const Vector2d from = a - centre;
+  return {centre, radius, std::atan2(from.y(), from.x()), 4 * std::atan(bulge)};
+}
+
+double bulge_through(const Vector2d& a, const Vector2d& b, const Vector2d& m) {
+  if (m == a || m == b) fail("the arc's middle point coincides with one of its ends " + point_text(m));
+  if (a == b) fail("the arc's two ends coincide at " + point_text(a));
+  // The inscribed angle φ at m sees the arc's included angle θ = 2π − 2φ, so bulge = tan(θ/4)
+  // = cot(φ/2); the arc bulges to the right of a->b (positive bulge) when m is on the right.
+  const Vector2d ma = a - m, mb = b - m;
+  const double cross = ma.x() * mb.y() - ma.y() * mb.x();
+  const double phi = std::atan2(std::abs(cross), ma.dot(mb));
+  if (!(phi > 0)) fail("the point " + point_text(m) + " is on the line through the arc's ends but not between them");
+  const double size = 1 / std::tan(phi / 2);
+  return orient(a, b, m) < 0 ? size : -size;
+}
+
+bool has_arcs(const Region& r) {
+  for (double b : r.outline_bulges)
+    if (is_arc(b)) return true;
+  for (const auto& bulges : r.polygon_hole_bulges)
+    for (double b : bulges)
+      if (is_arc(b)) return true;
+  return false;
+}
+
+Region polygonised(const Region& r, double chord_tolerance) {
+  if (!(chord_tolerance > 0)) fail("polygonised: the chord tolerance must be positive");
+  Region out;
+  out.outline = polygonised_ring(r.outline, r.outline_bulges, chord_tolerance);
+  for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
+    const std::vector<double> none;
+    const std::vector<double>& bulges = i < r.polygon_hole_bulges.size() ? r.polygon_hole_bulges[i] : none;
+    out.polygon_holes.push_back(polygonised_ring(r.polygon_holes[i], bulges, chord_tolerance));
+  }
+  out.circle_holes = r.circle_holes;
+  return out;
+}
+
+Region straight_edged(const Region& r) {
+  if (!has_arcs(r)) return r;
+  const double tolerance = chord_tolerance_for(r);
+  if (!(tolerance > 0) || !std::isfinite(tolerance)) return r;
+  return polygonised(r, tolerance);
 }
 
 }  // namespace nbar

@@ -387,7 +387,7 @@ View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       if (!m.bodies[b].shape) continue;
       const Placement place = placement(m, static_cast<int>(b), points);
-      for (const auto& v : m.bodies[b].shape->outline) include(place(v));
+      for (const auto& v : straight_edged(*m.bodies[b].shape).outline) include(place(v));
     }
   }
   // Room for pivots, blocks and labels around the outermost points.
@@ -547,8 +547,9 @@ void draw_body(Canvas& canvas, const View& view, const Mechanism& mech, const Sw
   const auto ends = collinear_ends(m, body);
   if (body.shape) {
     Outline o;
-    for (const auto& v : body.shape->outline) o.outer.push_back(px(place(v)));
-    for (const auto& hole : body.shape->polygon_holes) {
+    const Region shape = straight_edged(*body.shape);  // arcs as chords within 1e-5 of the plate's size
+    for (const auto& v : shape.outline) o.outer.push_back(px(place(v)));
+    for (const auto& hole : shape.polygon_holes) {
       o.polygon_holes.emplace_back();
       for (const auto& v : hole) o.polygon_holes.back().push_back(px(place(v)));
     }

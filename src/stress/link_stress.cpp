@@ -16,7 +16,7 @@ Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 std::vector<double> section_positions(const Model& m, const Body& body, const Eigen::Vector2d& origin,
                                       const Eigen::Vector2d& axis, int count) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const Eigen::Vector2d& v : body.shape->outline) {
+  for (const Eigen::Vector2d& v : straight_edged(*body.shape).outline) {
     lo = std::min(lo, axis.dot(v - origin));
     hi = std::max(hi, axis.dot(v - origin));
   }
@@ -76,16 +76,17 @@ LinkStress::LinkStress(std::shared_ptr<const InverseDynamics> dynamics, int sect
     const double area = area_properties(*body.shape).area;
     const double mass = dynamics_->masses()[b].mass;
     const double per_area = area > 0.0 ? mass / area : 0.0;
+    const Region plate = straight_edged(*body.shape);  // sections cut arcs as chords within 1e-5 of the size
     for (double s : section_positions(m, body, bs.origin, bs.axis, sections)) {
       const Eigen::Vector2d cut = bs.origin + s * bs.axis;
-      const auto intervals = section_intervals(*body.shape, cut, across);
+      const auto intervals = section_intervals(plate, cut, across);
       if (intervals.empty()) continue;
       Section sec;
       sec.position = s;
       sec.props = section_properties(intervals, body.thickness);
       sec.centroid = cut + sec.props.centroid * across;
       for (int side = 0; side < 2; ++side) {
-        const AreaProperties a = clipped_area_properties(*body.shape, cut, side == 0 ? Eigen::Vector2d(-bs.axis) : bs.axis);
+        const AreaProperties a = clipped_area_properties(plate, cut, side == 0 ? Eigen::Vector2d(-bs.axis) : bs.axis);
         sec.part[side] = {per_area * a.area, a.centroid, per_area * a.polar()};
       }
       bs.sections.push_back(sec);

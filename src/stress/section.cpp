@@ -86,6 +86,7 @@ Intervals minus(const Intervals& material, const Intervals& holes) {
 std::vector<std::pair<double, double>> section_intervals(const Region& r, const Vector2d& p, const Vector2d& d) {
   if (!p.allFinite() || !d.allFinite()) fail("section_intervals: the section line is not finite");
   if (!(d.squaredNorm() > 0)) fail("section_intervals: the direction of the section line is zero");
+  if (has_arcs(r)) return section_intervals(straight_edged(r), p, d);
   Intervals holes;
   for (const auto& hole : r.polygon_holes) {
     const Intervals chords = polygon_chords(hole, p, d);

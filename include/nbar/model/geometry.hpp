@@ -15,12 +15,49 @@ struct Circle {
   double radius;
 };
 
-// A flat plate: an outline polygon (any orientation, simple, >= 3 vertices) minus holes.
+// A flat plate: an outline (any orientation, simple, >= 3 vertices, or >= 2 when some of its
+// edges are arcs) minus holes.
+//
+// Edges may be circular arcs, given by a bulge as DXF writes it: bulges[i] makes the edge from
+// vertex i to vertex i + 1 (the last vertex: back to vertex 0) an arc whose included angle is
+// 4 atan(bulge), counterclockwise when positive; 0 is a straight edge, ±1 a half circle. An
+// empty list means every edge is straight; otherwise it has one bulge per vertex.
+// `polygon_hole_bulges` is empty or has one such list per polygon hole.
 struct Region {
   std::vector<Eigen::Vector2d> outline;
   std::vector<std::vector<Eigen::Vector2d>> polygon_holes;
   std::vector<Circle> circle_holes;
+  std::vector<double> outline_bulges;
+  std::vector<std::vector<double>> polygon_hole_bulges;
 };
+
+// A circular arc from a start angle through a signed sweep (rad, counterclockwise positive).
+struct Arc {
+  Eigen::Vector2d centre;
+  double radius;
+  double start_angle;
+  double sweep;
+};
+
+// The arc from a to b with the given bulge (non-zero, finite; a != b).
+Arc arc_from_bulge(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double bulge);
+
+// The bulge of the arc from a to b through m. Throws std::invalid_argument when m is a or b, or
+// lies on the line through a and b but not between them (no arc passes through it).
+double bulge_through(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& m);
+
+// Some edge of the outline or of a polygon hole is an arc.
+bool has_arcs(const Region& r);
+
+// r with every arc replaced by chords that stray at most `chord_tolerance` (> 0) from it; the
+// chords' ends lie on the arc. Straight edges and circle holes are kept as they are.
+Region polygonised(const Region& r, double chord_tolerance);
+
+// The one polygonisation used wherever straight edges are needed (sections, clipping, drawing,
+// validation): chords within 1e-5 of the outline's bounding-box diagonal. r itself when it has
+// no arcs.
+Region straight_edged(const Region& r);
+constexpr double kRelativeChordTolerance = 1e-5;
 
 struct AreaProperties {
   double area = 0;                   // m^2
@@ -43,10 +80,11 @@ struct PlateMass {
 };
 
 // The properties of the plate r (which must pass check_region; it is not re-checked here).
+// Exact for arcs too: each arc adds the closed-form moments of its circular segment.
 AreaProperties area_properties(const Region& r);
 
 // The part of r on the side n·(x − p) >= 0 of the line through p with normal n (not necessarily
-// unit). An empty part has area 0 and every other member 0. Throws std::invalid_argument when n
+// unit). Arcs are cut as straight_edged(r). An empty part has area 0 and every other member 0. Throws std::invalid_argument when n
 // is zero or p, n are not finite.
 AreaProperties clipped_area_properties(const Region& r, const Eigen::Vector2d& p, const Eigen::Vector2d& n);
 
