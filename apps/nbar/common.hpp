@@ -73,10 +73,14 @@ inline void print_warnings(const std::vector<Warning>& warnings) {
 }
 
 // The exit code of a sweep that stopped early (its rows are written), or 0.
-inline int finish(const std::string& model, const SweepResult& sweep) {
+// A sweep that stopped is reported at the sweep's settings, or at the first driver when the
+// model has no `sweep:`: what asked for the motion that could not be followed.
+inline int finish(const Loaded& loaded, const SweepResult& sweep) {
   if (!sweep.complete) {
-    std::cerr << "error: " << model << ": " << sweep.stop_reason << " (" << sweep.samples.size()
-              << " rows written)\n";
+    const nbar::io::SourceMap& source = loaded.file.source;
+    const SourceMark at = source.sweep.line > 0 ? source.sweep : source.find({EntityRef::Kind::Driver, 0});
+    std::cerr << "error: " << compose_location(source.file, at, sweep.stop_reason) << " ("
+              << sweep.samples.size() << " rows written)\n";
     return kStoppedEarly;
   }
   return kOk;
@@ -89,7 +93,7 @@ inline int analyse_model(const std::string& path, const Loaded& loaded, const An
   try {
     out = analyse(loaded.mechanism, options);
   } catch (const Error& e) {
-    return fail(path, e);
+    return fail(path, nbar::io::located(loaded.file.source, e));
   }
   return kOk;
 }

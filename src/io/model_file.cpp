@@ -46,6 +46,11 @@ std::string locate(const SourceMap& source, const ModelError& error) {
   return compose_location(source.file, source.find(error.where()), error.message());
 }
 
+Error located(const SourceMap& source, const Error& error) {
+  if (!error.file().empty() || error.kind() == ErrorKind::BadInput || error.kind() == ErrorKind::Cancelled) return error;
+  return Error(error.kind(), error.message(), error.where(), source.file, source.find(error.where()));
+}
+
 namespace {
 
 using yaml::AllowedKeys;
