@@ -47,7 +47,9 @@ std::string locate(const SourceMap& source, const ModelError& error) {
 }
 
 Error located(const SourceMap& source, const Error& error) {
-  if (!error.file().empty() || error.kind() == ErrorKind::BadInput || error.kind() == ErrorKind::Cancelled) return error;
+  if (!error.file().empty() || error.kind() == ErrorKind::BadInput || error.kind() == ErrorKind::Cancelled ||
+      error.where().kind == EntityRef::Kind::Model)
+    return error;
   return Error(error.kind(), error.message(), error.where(), source.file, source.find(error.where()));
 }
 

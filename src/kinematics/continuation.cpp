@@ -181,7 +181,7 @@ AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<d
       max_residual(mech, state, &worst);
       throw AssemblyError("cannot assemble the drawn pose with the given lengths: " +
                               worst_constraint_message(mech, state),
-                          worst);
+                          worst, worst >= 0 ? mech.rows()[worst].source : EntityRef{});
     }
     compute_series(mech, state, options.terms);
   };
@@ -222,7 +222,7 @@ AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<d
         << "' cannot be met (the closest pose found leaves it off by " << r / m.units.length_scale << " "
         << m.units.length << ")";
     }
-    throw AssemblyError(s.str(), worst);
+    throw AssemblyError(s.str(), worst, worst >= 0 ? mech.rows()[worst].source : EntityRef{});
   }
   report.passed_singularity = tracked.passed_singularity;
   report.residual = state.residual;

@@ -321,7 +321,8 @@ void converge(const Mechanism& mech, State& state, const std::string& what) {
   std::ostringstream s;
   s << what << ": " << mech.rows()[std::max(newton.worst_row, 0)].label << " is off by "
     << newton.residual / m.units.length_scale << " " << m.units.length;
-  throw AssemblyError(s.str(), newton.worst_row);
+  throw AssemblyError(s.str(), newton.worst_row,
+                      newton.worst_row >= 0 ? mech.rows()[newton.worst_row].source : EntityRef{});
 }
 
 }  // namespace
