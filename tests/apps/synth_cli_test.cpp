@@ -301,7 +301,7 @@ TEST(SynthCli, AnOptionWithALineBreakAddsNoKey) {
       "--points '[[0, 1], [1, 1], [2, 1.5], [3, 1], [4, 0.5]]'");
   EXPECT_EQ(injected.code, 2);
   EXPECT_EQ(injected.err,
-            "error: --pivots: the value holds a line break or another control character (at character 24); give it "
+            "error: --pivots: the value holds a line break or another control character (at character 23); give it "
             "on one line\n");
 }
 
