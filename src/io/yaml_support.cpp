@@ -118,7 +118,8 @@ SourceMark stray_closing_bracket(std::string_view text, char& bracket) {
   return {};
 }
 
-// Counts a text's documents without building them, and keeps where the second starts.
+// Counts a text's documents without building them, and keeps where the second starts: at its
+// first node, or at its marker when it has none.
 class DocumentCounter : public YAML::EventHandler {
  public:
   int documents = 0;
@@ -127,13 +128,25 @@ class DocumentCounter : public YAML::EventHandler {
     if (++documents == 2) second = at;
   }
   void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnNull(const YAML::Mark& at, YAML::anchor_t) override { node(at); }
+  void OnAlias(const YAML::Mark& at, YAML::anchor_t) override { node(at); }
+  void OnScalar(const YAML::Mark& at, const std::string&, YAML::anchor_t, const std::string&) override { node(at); }
+  void OnSequenceStart(const YAML::Mark& at, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(at);
+  }
   void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapStart(const YAML::Mark& at, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(at);
+  }
   void OnMapEnd() override {}
+
+ private:
+  bool second_has_node_ = false;
+  void node(const YAML::Mark& at) {
+    if (documents != 2 || second_has_node_) return;
+    second_has_node_ = true;
+    second = at;
+  }
 };
 
 }  // namespace
