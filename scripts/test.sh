@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds everything and runs the whole test suite twice: an
-# optimised build, then one under AddressSanitizer and UndefinedBehaviorSanitizer.
+# optimised build, then one under AddressSanitizer and UndefinedBehaviorSanitizer; then a short
+# run of each libFuzzer harness (scripts/fuzz.sh, clang, ASan + UBSan; docs/fuzzing.md).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 jobs="$(nproc)"
@@ -21,3 +22,6 @@ cmake --build "$root/build-asan" -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions="$root/scripts/lsan-suppressions.txt" \
   ctest --test-dir "$root/build-asan" --output-on-failure -j"$jobs"
+
+echo "== libFuzzer harnesses, ${NBAR_FUZZ_SECONDS:-60} s each (clang, ASan + UBSan)"
+"$root/scripts/fuzz.sh" "${NBAR_FUZZ_SECONDS:-60}"

@@ -71,7 +71,7 @@ int run_animate(const AnimateArgs& args) {
   nbar::Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
   const nbar::SweepResult& sweep = analysis.sweep;
-  if (sweep.samples.empty()) return finish(args.model, sweep);
+  if (sweep.samples.empty()) return finish(loaded, sweep);
 
   try {
     const nbar::render::Animation animation(analysis.mechanism, sweep, draw, args.frames.value_or(0), args.fps);
@@ -91,7 +91,7 @@ int run_animate(const AnimateArgs& args) {
     return kBadUsage;
   }
   print_warnings(sweep.warnings);
-  return finish(args.model, sweep);
+  return finish(loaded, sweep);
 }
 
 }  // namespace

@@ -130,7 +130,7 @@ int run_plot(const PlotArgs& args) {
   }
 
   print_warnings(analysis.warnings());
-  return finish(args.model, analysis.sweep);
+  return finish(loaded, analysis.sweep);
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ int run_report(const ReportArgs& args) {
     return kBadUsage;
   }
   print_warnings(analysis.warnings());
-  return finish(args.model, analysis.sweep);
+  return finish(loaded, analysis.sweep);
 }
 
 }  // namespace

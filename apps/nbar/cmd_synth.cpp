@@ -4,6 +4,8 @@
 // library's (synthesis/run.hpp, io/synthesis_writer.hpp); this file reads options and prints.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <unistd.h>
 
 #include <mutex>
@@ -121,7 +123,22 @@ class OptionTask {
   std::vector<const TaskOption*> lines_;
 };
 
+// An option's value becomes one line of the task text: a line break (or another control
+// character) in it would add keys of its own, so it is refused, naming the option.
+bool options_are_one_line(const SynthArgs& args) {
+  for (const TaskOption& o : args.task_options) {
+    const auto control = std::find_if(o.value.begin(), o.value.end(),
+                                      [](char c) { return static_cast<unsigned char>(c) < 0x20 && c != '\t'; });
+    if (control == o.value.end()) continue;
+    std::cerr << "error: " << o.flag << ": the value holds a line break or another control character (at character "
+              << (control - o.value.begin()) + 1 << "); give it on one line\n";
+    return false;
+  }
+  return true;
+}
+
 int run_synth(const SynthArgs& args) {
+  if (!options_are_one_line(args)) return kBadUsage;
   const OptionTask options(args);
   if (!options.empty() && !args.file.empty()) {
     std::cerr << "error: give a task file or task options (--points, --poses, --function...), not both\n";

@@ -76,22 +76,17 @@ inline void print_warnings(const std::vector<Warning>& warnings) {
 }
 
 // The exit code of a sweep that stopped early (its rows are written), or 0.
-inline int finish(const std::string& model, const SweepResult& sweep) {
+// A sweep that stopped is reported at the sweep's settings, or at the first driver when the
+// model has no `sweep:`: what asked for the motion that could not be followed.
+inline int finish(const Loaded& loaded, const SweepResult& sweep) {
   if (!sweep.complete) {
-    std::cerr << "error: " << model << ": " << sweep.stop_reason << " (" << sweep.samples.size()
-              << " rows written)\n";
+    const nbar::io::SourceMap& source = loaded.file.source;
+    const SourceMark at = source.sweep.line > 0 ? source.sweep : source.find({EntityRef::Kind::Driver, 0});
+    std::cerr << "error: " << compose_location(source.file, at, sweep.stop_reason) << " ("
+              << sweep.samples.size() << " rows written)\n";
     return kStoppedEarly;
   }
   return kOk;
-}
-
-// An error found after loading (by the sweep, the dynamics or the stresses) that names an entity
-// of the model, placed at that entity in the file; other errors as they are.
-inline Error locate(const std::string& path, const Loaded& loaded, const Error& e) {
-  if (!e.file().empty() || e.where().kind == EntityRef::Kind::Model || e.kind() == ErrorKind::BadInput) return e;
-  const SourceMark at = loaded.file.source.find(e.where());
-  if (at.line == 0) return e;
-  return Error(e.kind(), e.message(), e.where(), path, at);
 }
 
 // Runs the analysis; the exit code says what went wrong (0 when it ran, even if the sweep
@@ -101,7 +96,7 @@ inline int analyse_model(const std::string& path, const Loaded& loaded, const An
   try {
     out = analyse(loaded.mechanism, options);
   } catch (const Error& e) {
-    return fail(path, locate(path, loaded, e));
+    return fail(path, nbar::io::located(loaded.file.source, e));
   }
   return kOk;
 }

@@ -39,7 +39,8 @@ int run_check(const std::string& path, const std::string& format) {
     std::cout << nbar::io::summary_json(*loaded.mechanism, summary, loaded.file.source);
   else
     nbar::io::write_summary_text(std::cout, *loaded.mechanism, summary, path);
-  if (summary.assembly_error) return fail(path, locate(path, loaded, *summary.assembly_error));
+  if (summary.assembly_error) return fail(path, nbar::io::located(loaded.file.source, *summary.assembly_error));
+  if (summary.law_error) return fail(path, nbar::io::located(loaded.file.source, *summary.law_error));
   return kOk;
 }
 
@@ -82,7 +83,7 @@ int run_solve(const SolveArgs& args) {
                         terminal_width());
   out.flush();
   print_warnings(analysis.warnings());
-  return finish(args.model, analysis.sweep);
+  return finish(loaded, analysis.sweep);
 }
 
 struct StressArgs {
@@ -131,7 +132,7 @@ int run_stress(const StressArgs& args) {
     nbar::io::write_stress_report(out, args.format, analysis);
   }
   out.flush();
-  return finish(args.model, analysis.sweep);
+  return finish(loaded, analysis.sweep);
 }
 
 }  // namespace

@@ -61,9 +61,11 @@ StressStage run_stress_stage(const Analysis& analysis, const AnalysisOptions& op
   bool any = false;
   for (std::size_t b = 0; b < analysis.model().bodies.size(); ++b)
     any = any || stage.links->analysed(static_cast<int>(b));
+  // Said at the first body, where a shape would be given.
   if (!any)
     throw Error(ErrorKind::InvalidModel,
-                "no link has a shape (`shape:` or `bar:` with a thickness), so there is nothing to compute stresses in");
+                "no link has a shape (`shape:` or `bar:` with a thickness), so there is nothing to compute stresses in",
+                EntityRef{EntityRef::Kind::Body, 0});
   stage.peaks = stress_peaks(*stage.links, analysis.sweep, analysis.dynamics->samples, options.control);
   detail::check_finite_stress(analysis.model(), analysis.sweep.samples, stage.peaks);
   return stage;

@@ -168,6 +168,48 @@ void add_input_toggles(const Mechanism& mech, const std::vector<Eigen::Vector2d>
   l.toggle_to = limits.to + offset + shift;
 }
 
+// Every law at the times the sweep reaches (at most kLawSamples of them, evenly picked), so
+// that a law undefined inside the sweep, like 1/(t-1) over 0..2 s, is found before solving.
+// Driver laws need their first two derivatives too (velocities and accelerations).
+void check_laws_over_sweep(const Mechanism& mech, ModelSummary& out) {
+  constexpr double kLawSamples = 20000;
+  const Model& m = mech.model();
+  bool any_law = !m.point_loads.empty() || !m.torques.empty();
+  for (const Driver& d : m.drivers) any_law = any_law || d.law.has_value();
+  if (!any_law || !(sweep_sample_count(m) <= 1e6)) return;  // a sweep too large is refused by the sweep itself
+  std::vector<double> times;
+  try {
+    times = sweep_path(mech).times;
+  } catch (const Error&) {
+    return;  // the sweep's own error, which solving reports
+  }
+  const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(times.size() / kLawSamples)));
+  const auto check = [&](const Law& law, EntityRef::Kind kind, std::size_t index, double t, int terms) {
+    try {
+      if (terms > 1)
+        (void)law.series(t, terms);
+      else
+        (void)law.value(t);
+    } catch (const Error& e) {
+      out.law_error = Error(e.kind(), e.message(), EntityRef{kind, static_cast<int>(index)});
+    }
+  };
+  std::vector<double> picked;
+  for (std::size_t k = 0; k < times.size(); k += stride) picked.push_back(times[k]);
+  if (!times.empty() && (times.size() - 1) % stride != 0) picked.push_back(times.back());
+  for (const double t : picked) {
+    if (out.law_error) break;
+    for (std::size_t d = 0; d < m.drivers.size() && !out.law_error; ++d)
+      if (m.drivers[d].law) check(*m.drivers[d].law, EntityRef::Kind::Driver, d, t, 3);
+    for (std::size_t i = 0; i < m.point_loads.size() && !out.law_error; ++i) {
+      check(m.point_loads[i].fx, EntityRef::Kind::PointLoad, i, t, 1);
+      if (!out.law_error) check(m.point_loads[i].fy, EntityRef::Kind::PointLoad, i, t, 1);
+    }
+    for (std::size_t i = 0; i < m.torques.size() && !out.law_error; ++i)
+      check(m.torques[i].torque, EntityRef::Kind::Torque, i, t, 1);
+  }
+}
+
 // Assembles at the start of the sweep and classifies every four-bar loop in that pose.
 void summarize_start(const Mechanism& mech, ModelSummary& out) {
   State state(mech);
@@ -222,6 +264,7 @@ ModelSummary summarize(const Mechanism& mech) {
   summarize_start(mech, s);
   if (s.assembly)
     for (Warning& w : cylinder_warnings(mech)) s.warnings.push_back(std::move(w));
+  check_laws_over_sweep(mech, s);
   return s;
 }
 

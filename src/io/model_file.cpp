@@ -47,6 +47,15 @@ std::string locate(const SourceMap& source, const ModelError& error) {
   return compose_location(source.file, source.find(error.where()), error.message());
 }
 
+Error located(const SourceMap& source, const Error& error) {
+  if (!error.file().empty() || error.kind() == ErrorKind::BadInput || error.kind() == ErrorKind::Cancelled ||
+      error.where().kind == EntityRef::Kind::Model)
+    return error;
+  const SourceMark at = source.find(error.where());
+  if (at.line == 0) return error;  // an entity the file does not name (made by the program)
+  return Error(error.kind(), error.message(), error.where(), source.file, at);
+}
+
 namespace {
 
 using yaml::AllowedKeys;

@@ -259,6 +259,16 @@ std::string summary_json(const Mechanism& mechanism, const ModelSummary& s, cons
   } else {
     j["assembly_error"] = nullptr;
   }
+  if (s.law_error) {  // only when there is one, so that the answer for a sound model is unchanged
+    const Error& e = *s.law_error;
+    const SourceMark mark = source.find(e.where());
+    Json error = {{"kind", to_string(e.kind())}, {"message", e.message()}};
+    if (mark.line > 0) {
+      error["line"] = mark.line;
+      error["column"] = mark.column;
+    }
+    j["law_error"] = error;
+  }
   j["loops"] = loops_json(m, s);
   crank_mechanisms_json(m, s, j);
   return json_text(j, 2) + '\n';

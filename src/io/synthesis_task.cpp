@@ -44,51 +44,11 @@ AllowedKeys keys_under(const Entry& e, std::vector<std::string_view> keys) {
   return {std::string("in `").append(e.key).append("`"), std::move(keys)};
 }
 
-// The function of x as a law in t: x becomes t, and log10(u) becomes (log(u)/2.30...), which
-// the law grammar reads. `origin` maps each character of the result back to the text, so
-// that syntax errors point into what the user wrote.
-std::string law_text(const std::string& text, std::vector<int>& origin, bool& uses_t) {
-  constexpr std::string_view kLn10 = "/2.302585092994046)";
-  std::string out;
-  std::vector<std::pair<std::size_t, int>> closings;  // where to append kLn10 (original index)
-  const auto emit = [&](std::string_view s, int from) {
-    out += s;
-    origin.insert(origin.end(), s.size(), from);
-  };
-  uses_t = false;
-  for (std::size_t i = 0; i < text.size();) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (std::isalpha(c) || c == '_') {
-      std::size_t j = i;
-      while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) ++j;
-      const std::string word = text.substr(i, j - i);
-      std::size_t open = j;
-      while (open < text.size() && text[open] == ' ') ++open;
-      if (word == "x") {
-        emit("t", static_cast<int>(i));
-      } else if (word == "log10" && open < text.size() && text[open] == '(') {
-        int depth = 0;
-        for (std::size_t k = open; k < text.size(); ++k) {
-          depth += text[k] == '(' ? 1 : text[k] == ')' ? -1 : 0;
-          if (depth == 0) {
-            closings.push_back({k, static_cast<int>(k)});
-            break;
-          }
-        }
-        emit("(log", static_cast<int>(i));
-      } else {
-        uses_t = uses_t || word == "t";
-        emit(word, static_cast<int>(i));
-      }
-      i = j;
-      continue;
-    }
-    emit(std::string_view(&text[i], 1), static_cast<int>(i));
-    for (const auto& [at, from] : closings)
-      if (at == i) emit(kLn10, from);
-    ++i;
-  }
-  return out;
+// The function's text as messages quote it: whole when short, else its start.
+std::string quoted_function(const std::string& text) {
+  constexpr std::size_t kShown = 60;
+  if (text.size() <= kShown) return "'" + text + "'";
+  return "'" + text.substr(0, kShown) + "...' (" + std::to_string(text.size()) + " characters)";
 }
 
 class TaskParser : yaml::Reader {
@@ -178,12 +138,51 @@ class TaskParser : yaml::Reader {
     const Vector2d a = point(required(f, e.value, "a", "`" + e.key + "`"), "pivot a");
     const Entry& b_entry = required(f, e.value, "b", "`" + e.key + "`");
     const Vector2d b = point(b_entry, "pivot b");
+    // Beyond this their squares, summed in every distance, overflow.
+    constexpr double kMaxCoordinate = 1e100;
+    if (!(std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff()) <= kMaxCoordinate))
+      fail(mark(e), "the " + what + " have a coordinate beyond 1e100: use a larger length unit");
     if ((a - b).norm() <= 1e-9 * std::max({1.0, a.norm(), b.norm()}))
       fail(mark(b_entry), "the " + what + " a and b coincide: a four-bar needs two distinct " + what);
     return {a, b};
   }
 
   // ---- the tasks ----
+
+  // The five-point solver works in the task's own scale, the distance between the fixed
+  // pivots: coordinates must stay far from overflow (their squares are summed), every point
+  // within kMaxSpread pivot distances of the pivots, and the points off a single line (the
+  // start system degenerates there and tracking crawls for many seconds).
+  void check_five_point_scale(const std::vector<YAML::Node>& items) const {
+    constexpr double kMaxCoordinate = 1e100, kMaxSpread = 1000.0, kCollinear = 1e-9;
+    const auto big = [](const Vector2d& p) { return !(p.cwiseAbs().maxCoeff() <= kMaxCoordinate); };
+    const double frame = (task_.pivot_a - task_.pivot_b).norm();
+    const Vector2d middle = 0.5 * (task_.pivot_a + task_.pivot_b);
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const Vector2d& p = task_.points[i];
+      if (big(p)) fail(items[i], "point " + std::to_string(i + 1) + " has a coordinate beyond 1e100: use a larger length unit");
+      const double spread = (p - middle).norm() / frame;
+      if (!(spread <= kMaxSpread)) {
+        std::ostringstream s;
+        s.precision(3);
+        s << "point " << i + 1 << " is " << spread << " times as far from the fixed pivots as they are apart; the "
+          << "five-point solver takes points within " << static_cast<int>(kMaxSpread) << " times the pivots' distance (" << frame
+          << "): check the point, the pivots and the units";
+        fail(items[i], s.str());
+      }
+    }
+    double extent = frame, area = 0.0;
+    for (const Vector2d& p : task_.points) extent = std::max(extent, (p - middle).norm());
+    const Vector2d& o = task_.points[0];
+    for (std::size_t i = 1; i < task_.points.size(); ++i)
+      for (std::size_t j = 1; j < i; ++j) {
+        const Vector2d u = task_.points[i] - o, v = task_.points[j] - o;
+        area = std::max(area, std::abs(u.x() * v.y() - u.y() * v.x()));
+      }
+    if (area <= kCollinear * extent * extent)
+      fail(items[0], "the five points lie on one straight line: the five-point solver needs them spread over a "
+                     "curve; move one off the line");
+  }
 
   void parse_five_point(const Fields& top, const YAML::Node& root) {
     const auto [a, b] = pivots(required(top, root, "pivots", "a five-point task"), "fixed pivots");
@@ -202,6 +201,7 @@ class TaskParser : yaml::Reader {
         if ((task_.points[i] - task_.points[j]).norm() <= 1e-9 * size)
           fail(items[i], std::string("points ") + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
                              " coincide: the five points must be distinct");
+    check_five_point_scale(items);
   }
 
   void parse_burmester(const Fields& top, const YAML::Node& root) {
@@ -266,17 +266,11 @@ class TaskParser : yaml::Reader {
     if (!f.value.IsScalar() || f.value.Scalar().empty())
       fail(mark(f), std::string("`function` must be an expression in x like \"log10(x)\", not ") + describe(f.value));
     task_.function_text = f.value.Scalar();
-    std::vector<int> origin;
-    bool uses_t = false;
-    const std::string text = law_text(task_.function_text, origin, uses_t);
-    if (uses_t) fail(mark(f), "the function is an expression in x, not t");
     try {
-      task_.function = Law::parse(text);
+      task_.function = Law::parse(task_.function_text, 1.0, "x");
     } catch (const LawSyntaxError& e) {
-      const int at = e.column() >= 0 && e.column() < static_cast<int>(origin.size())
-                         ? origin[e.column()]
-                         : static_cast<int>(task_.function_text.size());
-      fail(column_in(f.value, at), "in the function '" + task_.function_text + "': " + e.what());
+      const int at = std::clamp(e.column(), 0, static_cast<int>(task_.function_text.size()));
+      fail(column_in(f.value, at), "in the function " + quoted_function(task_.function_text) + ": " + e.what());
     }
     const Entry& x = required(top, root, "x", "a function task");
     const auto [x0, x1] = pair(x.value, mark(x), "x", "[1, 2]");
@@ -313,7 +307,8 @@ class TaskParser : yaml::Reader {
         if (k == 100) y1 = y;
       } catch (const Error&) {
         std::ostringstream s;
-        s << "the function '" << task_.function_text << "' is undefined at x = " << xk << ", inside the range of x";
+        s << "the function " << quoted_function(task_.function_text) << " is undefined at x = " << xk
+          << ", inside the range of x";
         fail(mark(f), s.str());
       }
     }

@@ -1,8 +1,12 @@
 #include "nbar/io/yaml_support.hpp"
 
+#include <yaml-cpp/depthguard.h>
+#include <yaml-cpp/eventhandler.h>
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <sstream>
 #include <system_error>
 #include <unordered_map>
 
@@ -103,6 +107,96 @@ NumberStatus parse_number(std::string_view text, double& value) {
   return std::isfinite(value) ? NumberStatus::Ok : NumberStatus::NotFinite;
 }
 
+namespace {
+
+// Where the flow collections ([ and {) of `text` first reach `depth` levels, or no mark. A
+// '#' after a space starts a comment; quotes are not followed, so this only places an error
+// the YAML parser has already found.
+SourceMark flow_depth_reached(std::string_view text, int depth) {
+  int level = 0, line = 1;
+  std::size_t line_start = 0;
+  bool comment = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      line_start = i + 1;
+      comment = false;
+    } else if (comment) {
+      continue;
+    } else if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t')) {
+      comment = true;
+    } else if (c == '[' || c == '{') {
+      if (++level >= depth) return SourceMark{line, static_cast<int>(i - line_start) + 1};
+    } else if ((c == ']' || c == '}') && level > 0) {
+      --level;
+    }
+  }
+  return {};
+}
+
+// The first ']' or '}' of `text` that closes nothing, or no mark (comments skipped, quotes not
+// followed: only used to place an error the parser has found).
+SourceMark stray_closing_bracket(std::string_view text, char& bracket) {
+  int level = 0, line = 1;
+  std::size_t line_start = 0;
+  bool comment = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      line_start = i + 1;
+      comment = false;
+    } else if (comment) {
+      continue;
+    } else if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t')) {
+      comment = true;
+    } else if (c == '[' || c == '{') {
+      ++level;
+    } else if (c == ']' || c == '}') {
+      if (level == 0) {
+        bracket = c;
+        return SourceMark{line, static_cast<int>(i - line_start) + 1};
+      }
+      --level;
+    }
+  }
+  return {};
+}
+
+// Counts a text's documents without building them, and keeps where the second starts: at its
+// first node, or at its marker when it has none.
+class DocumentCounter : public YAML::EventHandler {
+ public:
+  int documents = 0;
+  YAML::Mark second;
+  void OnDocumentStart(const YAML::Mark& at) override {
+    if (++documents == 2) second = at;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& at, YAML::anchor_t) override { node(at); }
+  void OnAlias(const YAML::Mark& at, YAML::anchor_t) override { node(at); }
+  void OnScalar(const YAML::Mark& at, const std::string&, YAML::anchor_t, const std::string&) override { node(at); }
+  void OnSequenceStart(const YAML::Mark& at, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(at);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& at, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(at);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  bool second_has_node_ = false;
+  void node(const YAML::Mark& at) {
+    if (documents != 2 || second_has_node_) return;
+    second_has_node_ = true;
+    second = at;
+  }
+};
+
+}  // namespace
+
 void Reader::fail(SourceMark at, const std::string& message) const { throw ModelFileError(file_, at, message); }
 
 void Reader::fail(const YAML::Node& at, const std::string& message) const { fail(mark(at), message); }
@@ -131,9 +225,38 @@ void Reader::check_text() const {
 
 YAML::Node Reader::load(const DocumentWording& wording) const {
   check_text();
+  // Not YAML::LoadAll: after a stray '}' or ']' (", a: 1}") yaml-cpp 0.7 makes empty
+  // documents forever, and LoadAll never returns (a fuzzer's finding). Counting the documents,
+  // and stopping at the second, reads every text in one pass.
   std::vector<YAML::Node> documents;
   try {
-    documents = YAML::LoadAll(text_);
+    std::istringstream in(text_);
+    YAML::Parser parser(in);
+    DocumentCounter counter;
+    while (counter.documents < 2 && parser.HandleNextDocument(counter)) {
+    }
+    if (counter.documents > 1) {
+      // Without a document marker, the second document is the parser's way of skipping a
+      // bracket that closes nothing.
+      char bracket = ' ';
+      const SourceMark stray = stray_closing_bracket(text_, bracket);
+      const bool markers = text_.rfind("---", 0) == 0 || text_.find("\n---") != std::string::npos ||
+                           text_.rfind("...", 0) == 0 || text_.find("\n...") != std::string::npos;
+      if (!markers && stray.line > 0) {
+        fail(stray, std::string("invalid YAML: a '") + bracket + "' that closes no '" + (bracket == '}' ? '{' : '[') + "'");
+      }
+      fail(mark(counter.second), std::string(wording.several));
+    }
+    if (counter.documents == 1) documents.push_back(YAML::Load(text_));
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp stops at a fixed depth, with "bad file" at some later place: say what and
+    // where, at the bracket that went too deep when the nesting is of [ and {.
+    // yaml-cpp counts four of its calls per level of nesting.
+    const int levels = e.depth() / 4;
+    const SourceMark bracket = flow_depth_reached(text_, levels - 1);
+    fail(bracket.line > 0 ? bracket : mark(e.mark),
+         "invalid YAML: lists and mappings nested too deeply (the reader stops at " + std::to_string(levels) +
+             " levels; a model or task needs a handful)");
   } catch (const YAML::Exception& e) {
     // yaml-cpp reports a tab in the indentation as some structure it could not close, at some
     // later place: name the tab, at its line and column, when one comes before the error.
@@ -154,7 +277,6 @@ YAML::Node Reader::load(const DocumentWording& wording) const {
   if (documents.empty() || (documents.size() == 1 && documents[0].IsNull())) {
     fail(SourceMark{1, 1}, std::string(wording.empty));
   }
-  if (documents.size() > 1) fail(documents[1], std::string(wording.several));
   const YAML::Node root = documents[0];
   if (!root.IsMap()) fail(root, std::string(wording.not_mapping).append(describe(root)));
   return root;

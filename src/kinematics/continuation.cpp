@@ -184,7 +184,7 @@ AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<d
       const std::string open_loop = loop_closure_failure(mech.model(), mech.four_bar_loops());
       throw AssemblyError("cannot assemble the drawn pose with the given lengths: " +
                               (open_loop.empty() ? worst_constraint_message(mech, state) : open_loop),
-                          worst);
+                          worst, worst >= 0 ? mech.rows()[worst].source : EntityRef{});
     }
     compute_series(mech, state, options.terms);
   };
@@ -225,7 +225,7 @@ AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<d
         << "' cannot be met (the closest pose found leaves it off by " << r / m.units.length_scale << " "
         << m.units.length << ")";
     }
-    throw AssemblyError(s.str(), worst);
+    throw AssemblyError(s.str(), worst, worst >= 0 ? mech.rows()[worst].source : EntityRef{});
   }
   report.passed_singularity = tracked.passed_singularity;
   report.residual = state.residual;

@@ -59,7 +59,11 @@ DriverPath motion_in_time(const Model& m, std::vector<double> from) {
     for (std::size_t d = 0; d < m.drivers.size(); ++d) {
       const Driver& drv = m.drivers[d];
       if (drv.law) {
-        out[d] = drv.law->series(t, terms);
+        try {
+          out[d] = drv.law->series(t, terms);
+        } catch (const Error& e) {  // said at the driver whose law it is
+          throw Error(e.kind(), e.message(), EntityRef{EntityRef::Kind::Driver, static_cast<int>(d)});
+        }
       } else {
         Series s = Series::variable(terms, t);
         out[d] = from[d] + drv.speed * s + 0.5 * drv.accel * (s * s);
@@ -386,7 +390,8 @@ void converge(const Mechanism& mech, State& state, const std::string& what) {
   std::ostringstream s;
   s << what << ": " << mech.rows()[std::max(newton.worst_row, 0)].label << " is off by "
     << newton.residual / m.units.length_scale << " " << m.units.length;
-  throw AssemblyError(s.str(), newton.worst_row);
+  throw AssemblyError(s.str(), newton.worst_row,
+                      newton.worst_row >= 0 ? mech.rows()[newton.worst_row].source : EntityRef{});
 }
 
 }  // namespace

@@ -37,9 +37,10 @@ enum class Op : std::uint8_t {
   kSinh,
   kCosh,
   kTanh,
+  kLog10,
 };
 
-constexpr bool is_function(Op op) { return op >= Op::kSin && op <= Op::kTanh; }
+constexpr bool is_function(Op op) { return op >= Op::kSin && op <= Op::kLog10; }
 
 struct FunctionName {
   std::string_view name;
@@ -50,7 +51,7 @@ constexpr FunctionName kFunctions[] = {
     {"sin", Op::kSin},   {"cos", Op::kCos},   {"tan", Op::kTan},   {"exp", Op::kExp},
     {"log", Op::kLog},   {"sqrt", Op::kSqrt}, {"abs", Op::kAbs},   {"asin", Op::kAsin},
     {"acos", Op::kAcos}, {"atan", Op::kAtan}, {"sinh", Op::kSinh}, {"cosh", Op::kCosh},
-    {"tanh", Op::kTanh},
+    {"tanh", Op::kTanh}, {"log10", Op::kLog10},
 };
 
 // A constant of the same kind as `like`: a double, or a series with as many terms.
@@ -93,6 +94,7 @@ S apply_function(Op op, const S& x) {
     case Op::kSinh: return sinh(x);
     case Op::kCosh: return cosh(x);
     case Op::kTanh: return tanh(x);
+    case Op::kLog10: return log(x) / std::numbers::ln10;
     default: break;
   }
   assert(false && "not a function");
@@ -223,7 +225,7 @@ namespace {
 
 class Parser {
  public:
-  explicit Parser(std::string_view text) : text_(text) {}
+  Parser(std::string_view text, std::string_view variable) : text_(text), variable_(variable) {}
 
   Expression parse() {
     skip_space();
@@ -384,7 +386,7 @@ class Parser {
       ++pos_;
     }
     const std::string_view name = text_.substr(start, pos_ - start);
-    if (name == "t") return expr_.add_leaf(Op::kTime, 0.0);
+    if (name == variable_) return expr_.add_leaf(Op::kTime, 0.0);
     if (name == "pi") return expr_.add_leaf(Op::kNumber, std::numbers::pi);
     if (name == "e") return expr_.add_leaf(Op::kNumber, std::numbers::e);
     for (const FunctionName& f : kFunctions) {
@@ -396,10 +398,11 @@ class Parser {
     }
     skip_space();
     if (!at_end() && text_[pos_] == '(') fail_at(start, "unknown function " + quoted(name));
-    fail_at(start, "unknown name " + quoted(name) + " (the variable is t)");
+    fail_at(start, "unknown name " + quoted(name) + " (the variable is " + std::string(variable_) + ")");
   }
 
   std::string_view text_;
+  std::string_view variable_;
   std::size_t pos_ = 0;
   int depth_ = 0;
   Expression expr_;
@@ -407,10 +410,11 @@ class Parser {
 
 }  // namespace
 
-Law Law::parse(const std::string& text, double scale) {
+Law Law::parse(const std::string& text, double scale, std::string_view variable) {
   Law law;
-  law.root_ = std::make_shared<const Expression>(Parser(text).parse());
+  law.root_ = std::make_shared<const Expression>(Parser(text, variable).parse());
   law.text_ = text;
+  law.variable_ = variable;
   law.scale_ = scale;
   return law;
 }
@@ -419,7 +423,7 @@ double Law::value(double t) const {
   if (!root_) throw std::logic_error("law evaluated before being parsed");
   const double v = root_->evaluate(t) * scale_;
   if (!std::isfinite(v)) {
-    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " is undefined at t = " + format_time(t));
+    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " is undefined at " + variable_ + " = " + format_time(t));
   }
   return v;
 }
@@ -434,17 +438,17 @@ Series Law::series(double t0, int terms) const {
   try {
     s = root_->evaluate(Series::variable(terms, t0));
   } catch (const std::domain_error& e) {  // from an operation that has no derivative there
-    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " at t = " + format_time(t0) + ": " +
+    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " at " + variable_ + " = " + format_time(t0) + ": " +
                             e.what());
   }
   s *= scale_;
   if (!std::isfinite(s[0])) {
-    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " is undefined at t = " + format_time(t0));
+    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " is undefined at " + variable_ + " = " + format_time(t0));
   }
   for (int k = 1; k < s.terms(); ++k) {
     if (!std::isfinite(s[k])) {
       throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " has no finite " + ordinal(k) +
-                              " derivative at t = " + format_time(t0));
+                              " derivative at " + variable_ + " = " + format_time(t0));
     }
   }
   return s;

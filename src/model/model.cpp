@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -283,6 +285,14 @@ class Validator {
   void check_drivers() const {
     std::set<std::string> seen;
     const bool time_sweep = m_.has_time_law();
+    // The mechanism's size: the diagonal of its points' bounding box.
+    Eigen::Vector2d low = Eigen::Vector2d::Constant(0.0), high = low;
+    if (!m_.points.empty()) low = high = m_.points.front().position;
+    for (const Point& p : m_.points) {
+      low = low.cwiseMin(p.position);
+      high = high.cwiseMax(p.position);
+    }
+    const double size = (high - low).norm();
     for (std::size_t i = 0; i < m_.drivers.size(); ++i) {
       const Driver& d = m_.drivers[i];
       const auto where = ref(EntityRef::Kind::Driver, i);
@@ -346,6 +356,7 @@ class Validator {
                            "m/s); give a real speed, or leave `speed` out");
       if (d.from && d.to && !std::isfinite((*d.to - *d.from) / d.speed))
         fail(where, name + ": its travel over its speed is not a finite time");
+      check_travel(d, time_sweep, size, where, name);
       if (d.law && (d.from || d.to)) {
         fail(where, name + " follows a law, so it takes no `from` or `to`");
       }
@@ -356,6 +367,39 @@ class Validator {
                         ": `to` has no meaning when another driver follows a time law (drivers without a "
                         "law then move at their speed from `from`)");
       }
+    }
+  }
+
+  // The sweep tracks the motion in steps no longer than a fraction of a turn or of the
+  // mechanism's size, so its work grows with the travel whatever the number of samples: an
+  // angle driver may turn at most kMaxTurns times, a distance or slide at most kMaxSizes
+  // times the mechanism's size.
+  void check_travel(const Driver& d, bool time_sweep, double size, EntityRef where, const std::string& name) const {
+    constexpr double kMaxTurns = 1000.0, kMaxSizes = 1000.0;
+    double travel = 0.0;
+    if (!d.law && time_sweep) {
+      const double t = m_.sweep.duration;
+      travel = std::abs(d.speed * t) + 0.5 * std::abs(d.accel) * t * t;
+    } else if (!d.law && d.from && d.to) {
+      travel = std::abs(*d.to - *d.from);
+    }
+    if (d.is_angular()) {
+      const double turns = travel / (2 * std::numbers::pi);
+      if (!(turns <= kMaxTurns)) {
+        std::ostringstream s;
+        s.precision(3);
+        s << name << " turns " << turns << " times over the sweep; a sweep is limited to "
+          << static_cast<int>(kMaxTurns) << " turns (the work grows with the travel): check `from`, `to`, the speed and the units";
+        fail(where, s.str());
+      }
+      return;
+    }
+    if (size > 0.0 && !(travel <= kMaxSizes * size)) {
+      std::ostringstream s;
+      s.precision(3);
+      s << name << " travels " << travel / size << " times the mechanism's size over the sweep; a sweep is limited to "
+        << static_cast<int>(kMaxSizes) << " times (the work grows with the travel): check `from`, `to`, the speed and the units";
+      fail(where, s.str());
     }
   }
 

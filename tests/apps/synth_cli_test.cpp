@@ -293,6 +293,18 @@ TEST(SynthCli, TaskOptionsInsteadOfAFile) {
   EXPECT_THAT(both.err, HasSubstr("give a task file or task options"));
 }
 
+// Issue 16, item 15: an option's value becomes one line of the task; a line break in it must
+// not add a key of its own (here a second `points`, which would have replaced the first).
+TEST(SynthCli, AnOptionWithALineBreakAddsNoKey) {
+  const CliRun injected = nbar(
+      "synth five-point --pivots \"$(printf '{a: [0, 0], b: [1, 0]}\\npoints: [[0, 0]]')\" "
+      "--points '[[0, 1], [1, 1], [2, 1.5], [3, 1], [4, 0.5]]'");
+  EXPECT_EQ(injected.code, 2);
+  EXPECT_EQ(injected.err,
+            "error: --pivots: the value holds a line break or another control character (at character 23); give it "
+            "on one line\n");
+}
+
 TEST(SynthCli, BadUsage) {
   TempDir dir;
   const std::string task = kExamples + "five-point-crank-rocker.yaml";

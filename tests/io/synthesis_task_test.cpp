@@ -232,7 +232,7 @@ TEST(SynthesisTask, FunctionErrors) {
   EXPECT_THAT(error_of(replaced(kFunction, "\"log10(x)\"", "log10(x) + foo(x)")),
               testing::StartsWith("task.yaml:2:22: in the function 'log10(x) + foo(x)': "));
   EXPECT_EQ(error_of(replaced(kFunction, "\"log10(x)\"", "sin(t)")),
-            "task.yaml:2:11: the function is an expression in x, not t");
+            "task.yaml:2:15: in the function 'sin(t)': unknown name 't' (the variable is x)");
   EXPECT_EQ(error_of(replaced(kFunction, "[1, 2]", "[-1, 2]")),
             "task.yaml:2:11: the function 'log10(x)' is undefined at x = -1, inside the range of x");
   EXPECT_EQ(error_of(replaced(kFunction, "\"log10(x)\"", "\"x*(x - 3)\"")),

@@ -353,6 +353,43 @@ TEST(LawSyntax, NestingIsBounded) {
   EXPECT_THROW(Law::parse(std::string(100000, '-') + "t"), LawSyntaxError);
 }
 
+// A synthesis task's function is a law in x: its messages name x, never the t of driver laws.
+TEST(LawSyntax, AnotherVariableName) {
+  const Law f = Law::parse("log10(x) + x^2", 1.0, "x");
+  EXPECT_NEAR(f.value(100.0), 2.0 + 10000.0, 1e-12);
+  // d/dx log10(x) = 1/(x ln 10); d/dx x^2 = 2x; at x = 1: 0.4342944819032518 + 2.
+  EXPECT_NEAR(f.series(1.0, 2)[1], 1.0 / std::numbers::ln10 + 2.0, 1e-15);
+  try {
+    Law::parse("x x", 1.0, "x");
+    ADD_FAILURE() << "'x x' parsed";
+  } catch (const LawSyntaxError& e) {
+    EXPECT_EQ(e.column(), 2);
+    EXPECT_STREQ(e.what(), "unexpected 'x' (use '*' to multiply)");
+  }
+  try {
+    Law::parse("sin(t)", 1.0, "x");
+    ADD_FAILURE() << "'sin(t)' parsed as a law in x";
+  } catch (const LawSyntaxError& e) {
+    EXPECT_EQ(e.column(), 4);
+    EXPECT_STREQ(e.what(), "unknown name 't' (the variable is x)");
+  }
+  try {
+    (void)Law::parse("log(x)", 1.0, "x").value(0.0);
+    ADD_FAILURE() << "log(0) had a value";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "law 'log(x)' is undefined at x = 0");
+  }
+}
+
+// Issue 16, item 13: 1000 nested log10( end in the depth limit, the scan staying linear (the
+// test has no time limit of its own: a quadratic scan would show in Fuzz.Regression's).
+TEST(LawSyntax, NestedFunctionsAreBounded) {
+  std::string nested;
+  for (int i = 0; i < 1000; ++i) nested += "log10(";
+  nested += "x" + std::string(1000, ')');
+  EXPECT_THROW(Law::parse(nested, 1.0, "x"), LawSyntaxError);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Random laws: series derivatives against central differences of the double evaluation
 

@@ -89,6 +89,9 @@ struct ModelSummary {
   // At the start of the sweep: the assembly, or why it failed; the loops when it succeeded.
   std::optional<AssemblySummary> assembly;
   std::optional<Error> assembly_error;
+  // The first law (of a driver, a force or a torque) that has no value at a time the sweep
+  // reaches, at that driver, force or torque; `nbar check` reports it as an error.
+  std::optional<Error> law_error;
   std::vector<LoopSummary> loops;
   // From the geometry alone (the model's lengths), whether or not the start assembles.
   std::vector<SliderCrankSummary> slider_cranks;

@@ -39,7 +39,9 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
 
 class AssemblyError : public Error {
  public:
-  AssemblyError(const std::string& message, int row) : Error(ErrorKind::CannotAssemble, message), row_(row) {}
+  // `where` is the model entity of the row, so that the message is located at it.
+  AssemblyError(const std::string& message, int row, EntityRef where = {})
+      : Error(ErrorKind::CannotAssemble, message, where), row_(row) {}
   int row() const { return row_; }  // the constraint that cannot be met, or -1
 
  private:

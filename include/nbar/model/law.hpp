@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/series.hpp"
@@ -28,9 +29,10 @@ class LawSyntaxError : public std::runtime_error {
 class Law {
  public:
   // Grammar: numbers, t, pi, e, + - * / ^ (right associative), unary minus, parentheses,
-  // functions sin cos tan exp log sqrt abs asin acos atan sinh cosh tanh.
-  // `scale` multiplies the result (model units -> SI).
-  static Law parse(const std::string& text, double scale = 1.0);
+  // functions sin cos tan exp log sqrt abs asin acos atan sinh cosh tanh log10.
+  // `scale` multiplies the result (model units -> SI). `variable` names the variable (t for a
+  // driver's law, x for a synthesis task's function); messages use that name.
+  static Law parse(const std::string& text, double scale = 1.0, std::string_view variable = "t");
 
   // Both throw Error(ErrorKind::UndefinedLaw) where the law (or a derivative asked for) has no finite value.
   double value(double t) const;
@@ -41,6 +43,7 @@ class Law {
  private:
   std::shared_ptr<const Expression> root_;
   std::string text_;
+  std::string variable_ = "t";
   double scale_ = 1.0;
 };
 

