@@ -109,11 +109,12 @@ NumberStatus parse_number(std::string_view text, double& value) {
 
 namespace {
 
-// Where the flow collections ([ and {) of `text` first reach `depth` levels, or no mark. A
-// '#' after a space starts a comment; quotes are not followed, so this only places an error
-// the YAML parser has already found.
-SourceMark flow_depth_reached(std::string_view text, int depth) {
-  int level = 0, line = 1;
+// Calls visit(bracket, mark) for each [ { ] } of `text` outside comments, in order, until visit
+// returns false. A '#' after a space starts a comment; quotes are not followed, so this only
+// places an error the YAML parser has already found.
+template <class Visit>
+void for_each_flow_bracket(std::string_view text, Visit visit) {
+  int line = 1;
   std::size_t line_start = 0;
   bool comment = false;
   for (std::size_t i = 0; i < text.size(); ++i) {
@@ -126,42 +127,47 @@ SourceMark flow_depth_reached(std::string_view text, int depth) {
       continue;
     } else if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t')) {
       comment = true;
-    } else if (c == '[' || c == '{') {
-      if (++level >= depth) return SourceMark{line, static_cast<int>(i - line_start) + 1};
-    } else if ((c == ']' || c == '}') && level > 0) {
-      --level;
+    } else if (c == '[' || c == '{' || c == ']' || c == '}') {
+      if (!visit(c, SourceMark{line, static_cast<int>(i - line_start) + 1})) return;
     }
   }
-  return {};
 }
 
-// The first ']' or '}' of `text` that closes nothing, or no mark (comments skipped, quotes not
-// followed: only used to place an error the parser has found).
-SourceMark stray_closing_bracket(std::string_view text, char& bracket) {
-  int level = 0, line = 1;
-  std::size_t line_start = 0;
-  bool comment = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (c == '\n') {
-      ++line;
-      line_start = i + 1;
-      comment = false;
-    } else if (comment) {
-      continue;
-    } else if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t')) {
-      comment = true;
-    } else if (c == '[' || c == '{') {
-      ++level;
-    } else if (c == ']' || c == '}') {
-      if (level == 0) {
-        bracket = c;
-        return SourceMark{line, static_cast<int>(i - line_start) + 1};
-      }
-      --level;
+bool opens(char bracket) { return bracket == '[' || bracket == '{'; }
+
+// Where the flow collections ([ and {) of `text` first reach `depth` levels, or no mark.
+SourceMark flow_depth_reached(std::string_view text, int depth) {
+  int level = 0;
+  SourceMark found;
+  for_each_flow_bracket(text, [&](char c, SourceMark at) {
+    if (opens(c)) {
+      if (++level < depth) return true;
+      found = at;
+      return false;
     }
-  }
-  return {};
+    if (level > 0) --level;
+    return true;
+  });
+  return found;
+}
+
+// The first ']' or '}' of `text` that closes nothing, or no mark.
+SourceMark stray_closing_bracket(std::string_view text, char& bracket) {
+  int level = 0;
+  SourceMark found;
+  for_each_flow_bracket(text, [&](char c, SourceMark at) {
+    if (opens(c)) {
+      ++level;
+    } else if (level > 0) {
+      --level;
+    } else {
+      bracket = c;
+      found = at;
+      return false;
+    }
+    return true;
+  });
+  return found;
 }
 
 // Counts a text's documents without building them, and keeps where the second starts: at its
