@@ -19,25 +19,46 @@ async function tapAt(page, mobile, x, y) {
 // Five points tapped on the drawing, on the coupler curve of the crank-rocker on screen (the
 // positions of its point P at five samples); the synthesis with the task's pivots, which are the
 // crank-rocker's, must find designs; one is previewed, then opened from the server's model.
+// Taps P at five samples on the drawing; returns where P was drawn at each.
+async function tapFivePoints(page, mobile) {
+  const wanted = [];
+  for (const frame of [270, 330, 30, 100, 170]) {
+    await page.locator('#scrub').fill(String(frame));
+    // The drawing is at the top of the page on a phone: in full view, not under the sticky header.
+    if (mobile) {
+      await page.evaluate(() => window.scrollTo({ top: 0, left: 0, behavior: 'instant' }));
+      await page.waitForFunction(() => window.scrollY === 0);
+    }
+    const c = page.locator('#drawing circle.pt[data-point="P"]');
+    wanted.push([+(await c.getAttribute('cx')), -(await c.getAttribute('cy'))]);
+    const b = await c.boundingBox();
+    await tapAt(page, mobile, b.x + b.width / 2, b.y + b.height / 2);
+    // The tap is taken (marked on the drawing) before the next sample is shown.
+    await page.waitForFunction((n) => document.querySelectorAll('#drawing .synth-marks .target').length >= n, wanted.length);
+  }
+  return wanted;
+}
+
 async function fivePointByTapping(page, ctx) {
   const { mobile, click } = ctx;
   await ctx.openExample(page, mobile, 'fourbar-crank-rocker');
   await click(page, mobile, '[data-tab="synthesis"]');
   await page.waitForFunction(() => /task: five-point/.test(document.querySelector('#task').value));
   await page.selectOption('#synth-method', 'five-point');
-  await click(page, mobile, '#five-tap');
-  await page.locator('#drawing').scrollIntoViewIfNeeded();
-  const wanted = [];
-  for (const frame of [270, 330, 30, 100, 170]) {
-    await page.locator('#scrub').fill(String(frame));
-    // The drawing is at the top of the page on a phone: in full view, not under the sticky header.
-    if (mobile) await page.evaluate(() => window.scrollTo(0, 0));
-    const c = page.locator('#drawing circle.pt[data-point="P"]');
-    wanted.push([+(await c.getAttribute('cx')), -(await c.getAttribute('cy'))]);
-    const b = await c.boundingBox();
-    await tapAt(page, mobile, b.x + b.width / 2, b.y + b.height / 2);
+  // A late answer may redraw the drawing with another view while the points are tapped (the
+  // tap then lands where the finger is, as it should, but not on P): such an attempt is
+  // discarded and tapped again, up to three times.
+  let wanted = [];
+  for (let attempt = 1; attempt <= 3; ++attempt) {
+    const view = () => page.evaluate(() => document.querySelector('#drawing svg')?.getAttribute('viewBox'));
+    await click(page, mobile, '#five-tap');
+    await page.locator('#drawing').scrollIntoViewIfNeeded();
+    const start = await view();
+    wanted = await tapFivePoints(page, mobile);
+    if (await view() === start) break;
+    console.log(`five-point taps: the drawing's view changed during attempt ${attempt}; tapping again`);
+    await page.waitForTimeout(1000);
   }
-  await page.waitForFunction(() => !document.querySelector('#five-tap').classList.contains('on'));
   const task = await page.locator('#task').inputValue();
   const got = [...task.split('points:')[1].matchAll(/\[([-\d.]+), ([-\d.]+)\]/g)].map((m) => [+m[1], +m[2]]);
   assert.equal(got.length, 5, `five tapped points in the task:\n${task}`);
