@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
 #include "nbar/model/run_control.hpp"
 #include "nbar/model/diagnostics.hpp"
 
@@ -22,6 +23,7 @@ namespace nbar {
 struct ExplainOptions {
   int step = 0;                // the sample of the sweep to explain (0 = the start)
   std::optional<int> steps;    // samples of the sweep, as `nbar solve --steps`; unset: the model's
+  int max_steps = kDefaultMaxSweepSamples;  // a larger sweep (the model's or `steps`) is an error
   int max_iterations = 50;     // of the Newton-Raphson iterations shown
   // The sweep to the step checks it between samples, the explanation between its parts
   // (stage "explain"): Error(ErrorKind::Cancelled) when it says stop.
