@@ -23,11 +23,11 @@ namespace nbar {
 struct ExplainOptions {
   int step = 0;                // the sample of the sweep to explain (0 = the start)
   std::optional<int> steps;    // samples of the sweep, as `nbar solve --steps`; unset: the model's
-  int max_steps = kDefaultMaxSweepSamples;  // a larger sweep (the model's or `steps`) is an error
   int max_iterations = 50;     // of the Newton-Raphson iterations shown
   // The sweep to the step checks it between samples, the explanation between its parts
   // (stage "explain"): Error(ErrorKind::Cancelled) when it says stop.
   RunControl control;
+  int max_steps = kDefaultMaxSweepSamples;  // a larger sweep (the model's or `steps`) is an error
 };
 
 // G = 3 (n - 1) - 2 PI - PII, with n the links including the ground.
