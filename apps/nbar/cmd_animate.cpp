@@ -21,6 +21,7 @@ struct AnimateArgs {
   double fps = 24.0;
   std::optional<int> frames;
   std::optional<int> steps;
+  int max_steps = nbar::kDefaultMaxSweepSamples;
   bool labels = false;
   std::vector<std::string> traces;
   int width = 900, height = 640;
@@ -67,6 +68,7 @@ int run_animate(const AnimateArgs& args) {
 
   nbar::AnalysisOptions options;
   options.steps = args.steps;
+  options.max_steps = args.max_steps;
   options.order = 0;  // positions are all a picture needs
   nbar::Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
@@ -109,6 +111,7 @@ Command add_animate_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000));
   sub->add_option("--steps", args->steps, "number of samples of the sweep, ends included (overrides the model's)")
       ->check(CLI::PositiveNumber);
+  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
   sub->add_flag("--labels", args->labels, "write the name of every point");
   sub->add_option("--trace", args->traces, "draw the paths of these points, comma-separated, e.g. P,B")
       ->delimiter(',');

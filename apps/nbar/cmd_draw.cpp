@@ -17,6 +17,7 @@ struct DrawArgs {
   std::optional<int> step;
   std::optional<double> at;
   std::optional<int> steps;
+  int max_steps = nbar::kDefaultMaxSweepSamples;
   bool labels = false;
   std::vector<std::string> traces;
   int width = 900, height = 640;
@@ -53,6 +54,7 @@ int run_draw(const DrawArgs& args) {
 
   AnalysisOptions options;
   options.steps = args.steps;
+  options.max_steps = args.max_steps;
   options.order = 0;
   Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
@@ -94,6 +96,7 @@ Command add_draw_command(CLI::App& app) {
   sub->add_option("--at", args->at, "draw where the first driver has this value (model units; a time for time laws)")
       ->excludes(step);
   sub->add_option("--steps", args->steps, "samples of the sweep (for --step and the traces)")->check(CLI::PositiveNumber);
+  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
   sub->add_flag("--labels", args->labels, "write point names");
   sub->add_option("--trace", args->traces, "points whose paths over the sweep are drawn, e.g. P,Q")->delimiter(',');
   sub->add_option("--width", args->width, "pixels (default 900)")->check(CLI::Range(100, 10000));

@@ -17,6 +17,7 @@ struct ExplainArgs {
   std::string model, output, format = "text", draw;
   int step = 0;
   std::optional<int> steps;
+  int max_steps = nbar::kDefaultMaxSweepSamples;
 };
 
 std::string extension(const std::string& path) {
@@ -52,6 +53,7 @@ int run_explain(const ExplainArgs& args) {
   ExplainOptions options;
   options.step = args.step;
   options.steps = args.steps;
+  options.max_steps = args.max_steps;
   Explanation ex;
   try {
     ex = explain(loaded.mechanism, options);
@@ -84,6 +86,7 @@ Command add_explain_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--steps", args->steps, "samples of the sweep, ends included (overrides the model's sweep)")
       ->check(CLI::PositiveNumber);
+  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
   sub->add_option("--format", args->format, "text (default), markdown (with LaTeX maths, for Jupyter), latex or json")
       ->check(CLI::IsMember({"text", "markdown", "latex", "json"}));
   sub->add_option("-o,--output", args->output, "write to FILE instead of standard output");

@@ -26,6 +26,7 @@ struct PlotArgs {
   std::vector<std::string> y;
   std::vector<double> y_range;
   std::optional<int> steps, order;
+  int max_steps = nbar::kDefaultMaxSweepSamples;
   bool dynamics = false;
   int width = 900, height = 520;
 };
@@ -81,6 +82,7 @@ int run_plot(const PlotArgs& args) {
   }
   AnalysisOptions options;
   options.steps = args.steps;
+  options.max_steps = args.max_steps;
   options.order = needs.order;
   options.dynamics = needs.dynamics;
   Analysis analysis;
@@ -149,6 +151,7 @@ Command add_plot_command(CLI::App& app) {
   sub->add_option("-o,--output", args.output, "the picture to write: FILE.svg or FILE.png")->required();
   sub->add_option("--steps", args.steps, "number of samples, ends included (overrides the model's sweep)")
       ->check(CLI::PositiveNumber);
+  sub->add_option("--max-steps", args.max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
   sub->add_option("--order", args.order, "highest time derivative to solve, 0 to 5 (default: 2, or what the "
                                          "columns need)")
       ->check(CLI::Range(0, 5));

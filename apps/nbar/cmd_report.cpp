@@ -13,6 +13,7 @@ namespace {
 struct ReportArgs {
   std::string model, output;
   std::optional<int> steps;
+  int max_steps = nbar::kDefaultMaxSweepSamples;
   int frames = 72;
 };
 
@@ -26,6 +27,7 @@ int run_report(const ReportArgs& args) {
   const ModelSummary summary = summarize(*loaded.mechanism);
   AnalysisOptions options = render::report_analysis_options(summary);
   options.steps = args.steps;
+  options.max_steps = args.max_steps;
   Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
   render::ReportOptions report;
@@ -51,6 +53,7 @@ Command add_report_command(CLI::App& app) {
   sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
   sub->add_option("-o,--output", args->output, "FILE.html")->required();
   sub->add_option("--steps", args->steps, "samples of the sweep (overrides the model's sweep)")->check(CLI::PositiveNumber);
+  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
   sub->add_option("--frames", args->frames, "animation frames (default 72)")->check(CLI::Range(2, 1000));
   return {sub, [args] { return run_report(*args); }};
 }

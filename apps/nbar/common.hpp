@@ -51,6 +51,12 @@ struct Loaded {
   std::shared_ptr<const Mechanism> mechanism;
 };
 
+// Every sample of a sweep is kept in memory, so its size is bounded (--max-steps of every
+// command that runs a sweep).
+inline const std::string kMaxStepsHelp = "the most samples the sweep may have, the model's or --steps (default " +
+                                         std::to_string(nbar::kDefaultMaxSweepSamples) +
+                                         "; every sample is kept in memory)";
+
 inline int load(const std::string& path, Loaded& out) {
   try {
     out.file = nbar::io::load_model_file(path);

@@ -26,10 +26,6 @@ namespace {
 
 using namespace nbar::cli;
 
-// Every sample of a sweep is kept in memory, so its size is bounded.
-const std::string kMaxStepsHelp = "the most samples the sweep may have, the model's or --steps (default " +
-                                  std::to_string(nbar::kDefaultMaxSweepSamples) +
-                                  "; every sample is kept in memory)";
 
 int run_check(const std::string& path, const std::string& format) {
   Loaded loaded;

@@ -172,20 +172,24 @@ class Model:
         return Summary(self._c.summary())
 
     def analyse(self, steps: Optional[int] = None, order: int = 2, dynamics: bool = False, stress: bool = False,
-                sections: int = 200, timeout: Optional[float] = None):
-        """The pipeline's raw result (sweep, then dynamics, then stress), for the other methods."""
+                sections: int = 200, timeout: Optional[float] = None, max_steps: Optional[int] = None):
+        """The pipeline's raw result (sweep, then dynamics, then stress), for the other methods.
+
+        A sweep of more than ``max_steps`` samples (default 10 000 000, as ``--max-steps``) is an error."""
         return _nbar.analyse(self._c, steps=steps, order=order, dynamics=dynamics, stress=stress, sections=sections,
-                             timeout=timeout)
+                             timeout=timeout, max_steps=max_steps)
 
     def solve(self, steps: Optional[int] = None, order: Optional[int] = None, columns: Columns = None,
-              dynamics: bool = False, partial: bool = False, timeout: Optional[float] = None) -> Result:
+              dynamics: bool = False, partial: bool = False, timeout: Optional[float] = None,
+              max_steps: Optional[int] = None) -> Result:
         """Sweeps the drivers: positions, velocities, accelerations (to ``order``, at most 5) of
         every point and body, and with ``dynamics=True`` every joint force and driver effort.
 
         ``columns`` picks columns by name or glob (``"rocker.*"``); asking for force columns
         switches dynamics on. A sweep that stops at a toggle raises ``nbar.LimitError`` (its
         ``.result`` holds the rows solved) unless ``partial=True``. Ctrl-C (Jupyter's interrupt)
-        stops a long run; ``timeout`` (s) bounds it.
+        stops a long run; ``timeout`` (s) bounds it. A sweep of more than ``max_steps`` samples
+        (default 10 000 000, as ``nbar solve --max-steps``) is an error.
         """
         patterns = _patterns(columns)
         if patterns:
@@ -193,7 +197,8 @@ class Model:
             if needs["unmatched"] >= 0:
                 raise BadInputError(needs["message"])
             order, dynamics = needs["order"], needs["dynamics"]
-        analysis = self.analyse(steps=steps, order=2 if order is None else order, dynamics=dynamics, timeout=timeout)
+        analysis = self.analyse(steps=steps, order=2 if order is None else order, dynamics=dynamics, timeout=timeout,
+                                max_steps=max_steps)
         result = Result(analysis, *analysis.table(patterns))
         result.default_x = self._c.default_abscissa
         if not result.complete and not partial:
@@ -206,9 +211,11 @@ class Model:
         kinetic and potential energy."""
         return self.solve(steps=steps, columns=columns, dynamics=True, **options)
 
-    def stress(self, steps: Optional[int] = None, sections: int = 200, timeout: Optional[float] = None) -> StressResult:
+    def stress(self, steps: Optional[int] = None, sections: int = 200, timeout: Optional[float] = None,
+               max_steps: Optional[int] = None) -> StressResult:
         """Stresses along every link with a shape (``nbar stress``)."""
-        return StressResult(self.analyse(steps=steps, stress=True, sections=sections, timeout=timeout))
+        return StressResult(self.analyse(steps=steps, stress=True, sections=sections, timeout=timeout,
+                                         max_steps=max_steps))
 
     # --- pictures ------------------------------------------------------------------------------
     def draw(self, step: Optional[int] = None, at: Optional[float] = None, labels: bool = True,

@@ -25,7 +25,8 @@ struct PyAnalysis {
 };
 
 std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::optional<int> steps, int order,
-                                         bool dynamics, bool stress, int sections, std::optional<double> timeout) {
+                                         bool dynamics, bool stress, int sections, std::optional<double> timeout,
+                                         std::optional<int> max_steps) {
   auto out = std::make_shared<PyAnalysis>();
   out->model = model;
   AnalysisOptions options;
@@ -34,6 +35,7 @@ std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::op
   options.dynamics = dynamics;
   options.stress = stress;
   options.sections = sections;
+  if (max_steps) options.max_steps = *max_steps;
   run_interruptible(options.control, timeout, [&] {
     try {
       out->analysis = analyse(model->mechanism, options);
@@ -214,7 +216,7 @@ void bind_analysis(py::module_& m) {
 
   m.def("analyse", &run_analysis, py::arg("model"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
         py::arg("dynamics") = false, py::arg("stress") = false, py::arg("sections") = 200,
-        py::arg("timeout") = std::nullopt);
+        py::arg("timeout") = std::nullopt, py::arg("max_steps") = std::nullopt);
   // For bench/python: the same solve timed inside C++ (the sweep, then the sweep and its column
   // table), the reference Python's own cost is measured against.
   m.def("_time_in_cpp", [](std::shared_ptr<PyModel> model, int steps, int order) {

@@ -133,3 +133,12 @@ def test_timeout_cancels(examples):
     with pytest.raises(nbar.Cancelled):
         m.solve(steps=5_000_000, timeout=0.2)
     assert time.monotonic() - start < 1.5
+
+
+def test_max_steps_bounds_the_sweep_as_the_cli_does():
+    model = nbar.loads(BASE + "drivers: [{angle: crank, from: 0, to: 90}]\n", "m.yaml")
+    with pytest.raises(nbar.BadInputError, match="the sweep asks for 20 steps, more than the limit of 10"):
+        model.solve(steps=20, max_steps=10)
+    with pytest.raises(nbar.BadInputError, match="more than the limit of 10"):
+        model.analyse(steps=20, max_steps=10)
+    assert model.solve(steps=20, max_steps=20).rows == 20

@@ -297,7 +297,7 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
   const int n = mech.coordinate_count();
   const int nd = static_cast<int>(m.drivers.size());
   if (options.max_iterations < 1) throw Error(ErrorKind::BadInput, "at least one Newton iteration is needed");
-  const SweepPath plan = sweep_path(mech, options.steps);
+  const SweepPath plan = sweep_path(mech, options.steps, options.max_steps);
   const int samples = static_cast<int>(plan.parameters.size());
   if (options.step < 0 || options.step >= samples)
     throw Error(ErrorKind::BadInput, "step " + std::to_string(options.step) + " is not a step of the sweep (0 to " +

@@ -184,14 +184,14 @@ void check_laws_over_sweep(const Mechanism& mech, ModelSummary& out) {
     return;  // the sweep's own error, which solving reports
   }
   const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(times.size() / kLawSamples)));
-  const auto check = [&](const Law& law, EntityRef::Kind kind, std::size_t index, double t, int terms) {
+  const auto check = [&](const Law& law, EntityRef::Kind kind, std::size_t index, int which, double t, int terms) {
     try {
       if (terms > 1)
         (void)law.series(t, terms);
       else
         (void)law.value(t);
     } catch (const Error& e) {
-      out.law_error = Error(e.kind(), e.message(), EntityRef{kind, static_cast<int>(index)});
+      out.law_error = Error(e.kind(), e.message(), EntityRef{kind, static_cast<int>(index), which});
     }
   };
   std::vector<double> picked;
@@ -200,13 +200,13 @@ void check_laws_over_sweep(const Mechanism& mech, ModelSummary& out) {
   for (const double t : picked) {
     if (out.law_error) break;
     for (std::size_t d = 0; d < m.drivers.size() && !out.law_error; ++d)
-      if (m.drivers[d].law) check(*m.drivers[d].law, EntityRef::Kind::Driver, d, t, 3);
+      if (m.drivers[d].law) check(*m.drivers[d].law, EntityRef::Kind::Driver, d, 0, t, 3);
     for (std::size_t i = 0; i < m.point_loads.size() && !out.law_error; ++i) {
-      check(m.point_loads[i].fx, EntityRef::Kind::PointLoad, i, t, 1);
-      if (!out.law_error) check(m.point_loads[i].fy, EntityRef::Kind::PointLoad, i, t, 1);
+      check(m.point_loads[i].fx, EntityRef::Kind::PointLoad, i, 0, t, 1);
+      if (!out.law_error) check(m.point_loads[i].fy, EntityRef::Kind::PointLoad, i, 1, t, 1);
     }
     for (std::size_t i = 0; i < m.torques.size() && !out.law_error; ++i)
-      check(m.torques[i].torque, EntityRef::Kind::Torque, i, t, 1);
+      check(m.torques[i].torque, EntityRef::Kind::Torque, i, 0, t, 1);
   }
 }
 

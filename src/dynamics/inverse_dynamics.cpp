@@ -255,21 +255,21 @@ class InverseDynamics::Assembly {
   void known_loads() {
     const double t = sample_.time;
     // A law undefined at t is said at the force or torque whose law it is.
-    const auto law_at = [t](const Law& law, EntityRef::Kind kind, std::size_t index) {
+    const auto law_at = [t](const Law& law, EntityRef::Kind kind, std::size_t index, int which) {
       try {
         return law.value(t);
       } catch (const Error& e) {
-        throw Error(e.kind(), e.message(), EntityRef{kind, static_cast<int>(index)});
+        throw Error(e.kind(), e.message(), EntityRef{kind, static_cast<int>(index), which});
       }
     };
     for (std::size_t i = 0; i < m_.point_loads.size(); ++i) {
       const PointLoad& load = m_.point_loads[i];
       known_at_point(load.point, load.body,
-                     {law_at(load.fx, EntityRef::Kind::PointLoad, i), law_at(load.fy, EntityRef::Kind::PointLoad, i)});
+                     {law_at(load.fx, EntityRef::Kind::PointLoad, i, 0), law_at(load.fy, EntityRef::Kind::PointLoad, i, 1)});
     }
     for (std::size_t i = 0; i < m_.torques.size(); ++i) {
       const BodyTorque& torque = m_.torques[i];
-      known_couple(torque.body, law_at(torque.torque, EntityRef::Kind::Torque, i), first_point(torque.body));
+      known_couple(torque.body, law_at(torque.torque, EntityRef::Kind::Torque, i, 0), first_point(torque.body));
     }
     for (const Spring& s : m_.springs) {
       const Eigen::Vector2d d = r_[s.points[1]] - r_[s.points[0]];

@@ -22,6 +22,15 @@
 namespace nbar::io {
 
 SourceMark SourceMap::find(const EntityRef& ref) const {
+  const auto law_mark = [&](const std::vector<std::array<SourceMark, 2>>& laws) {
+    if (ref.law < 0 || ref.law > 1 || ref.index < 0 || ref.index >= static_cast<int>(laws.size())) return SourceMark{};
+    return laws[ref.index][ref.law];
+  };
+  SourceMark law_at;
+  if (ref.kind == EntityRef::Kind::Driver) law_at = law_mark(driver_laws);
+  if (ref.kind == EntityRef::Kind::PointLoad) law_at = law_mark(point_load_laws);
+  if (ref.kind == EntityRef::Kind::Torque) law_at = law_mark(torque_laws);
+  if (law_at.line > 0) return law_at;
   const auto pick = [&](const std::vector<SourceMark>& marks) {
     if (ref.index >= 0 && ref.index < static_cast<int>(marks.size()) && marks[ref.index].line > 0) {
       return marks[ref.index];
@@ -392,7 +401,9 @@ class Parser : yaml::Reader {
     d.speed = scale;
     if (const Entry* speed = f.find("speed")) d.speed = rate(*speed, 1, d, scale);
     if (const Entry* accel = f.find("accel")) d.accel = rate(*accel, 2, d, scale);
+    std::array<SourceMark, 2> law_marks{};
     if (const Entry* law = f.find("law")) {
+      law_marks[0] = mark(*law);
       for (std::string_view key : {"from", "to", "speed", "accel"}) {
         if (const Entry* other = f.find(key)) {
           fail(other->key_node, "driver '" + d.name + "' follows a `law`, which sets its motion, so it takes no `" +
@@ -403,6 +414,7 @@ class Parser : yaml::Reader {
     }
     model_.drivers.push_back(std::move(d));
     source_.drivers.push_back(mark(item));
+    source_.driver_laws.push_back(law_marks);
   }
 
   // A bare number is in driver units (angle or length unit) per second, or per second
@@ -1018,13 +1030,17 @@ class Parser : yaml::Reader {
       if (force && (fx || fy)) {
         fail((fx ? fx : fy)->key_node, "give a force either as `force: [fx, fy]` or as `fx` and `fy`, not both");
       }
+      std::array<SourceMark, 2> law_marks{};
       if (force) {
         if (!force->value.IsSequence() || force->value.size() != 2) {
           fail(mark(*force), "`force` needs two components [fx, fy] in N, not " + describe(force->value));
         }
-        load.fx = load_law(force->value[0], mark(force->value[0]), "fx", "N");
-        load.fy = load_law(force->value[1], mark(force->value[1]), "fy", "N");
+        law_marks = {mark(force->value[0]), mark(force->value[1])};
+        load.fx = load_law(force->value[0], law_marks[0], "fx", "N");
+        load.fy = load_law(force->value[1], law_marks[1], "fy", "N");
       } else if (fx || fy) {
+        if (fx) law_marks[0] = mark(*fx);
+        if (fy) law_marks[1] = mark(*fy);
         load.fx = fx ? load_law(fx->value, mark(*fx), "fx", "N") : Law::parse("0");
         load.fy = fy ? load_law(fy->value, mark(*fy), "fy", "N") : Law::parse("0");
       } else {
@@ -1032,6 +1048,7 @@ class Parser : yaml::Reader {
       }
       model_.point_loads.push_back(std::move(load));
       source_.point_loads.push_back(mark(item));
+      source_.point_load_laws.push_back(law_marks);
     }
   }
 
@@ -1045,6 +1062,7 @@ class Parser : yaml::Reader {
       torque.torque = load_law(value.value, mark(value), "the torque", "N m");
       model_.torques.push_back(std::move(torque));
       source_.torques.push_back(mark(item));
+      source_.torque_laws.push_back({mark(value), SourceMark{}});
     }
   }
 

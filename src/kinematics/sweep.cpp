@@ -62,7 +62,7 @@ DriverPath motion_in_time(const Model& m, std::vector<double> from) {
         try {
           out[d] = drv.law->series(t, terms);
         } catch (const Error& e) {  // said at the driver whose law it is
-          throw Error(e.kind(), e.message(), EntityRef{EntityRef::Kind::Driver, static_cast<int>(d)});
+          throw Error(e.kind(), e.message(), EntityRef{EntityRef::Kind::Driver, static_cast<int>(d), 0});
         }
       } else {
         Series s = Series::variable(terms, t);

@@ -521,7 +521,7 @@ TEST(Explain, DocumentsHaveNoNegativeZerosOrNoise) {
 }
 
 TEST(Explain, TextSaysWhatTheCourseNotebooksWouldAsk) {
-  const Explanation ex = explain(example("fourbar-crank-rocker.yaml"), ExplainOptions{30, std::nullopt, 50, {}});
+  const Explanation ex = explain(example("fourbar-crank-rocker.yaml"), ExplainOptions{30, std::nullopt, 50, {}, kDefaultMaxSweepSamples});
   const std::string text = render_explanation(ex, ExplainFormat::Text);
   for (const char* expected : {"n = 4, PI = 4, PII = 0", "G = 3 (n - 1) - 2 PI - PII = 3 (4 - 1) - 2*4 - 0 = 1",
                                "q = [x_A, y_A, x_B, y_B, x_P, y_P]^T", "x_A^2 + y_A^2 - 80^2 = 0",

@@ -82,7 +82,7 @@ TEST(Overflow, ASpeedTooSmallToMeanAMotionIsRejectedAtTheDriver) {
 }
 
 TEST(SweepSize, ATimeSweepOfMoreSamplesThanAnIntHoldsIsLimitedWithoutOverflow) {
-  const auto mech = compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"t\"}]\n"
+  const auto mech = compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"1e-6*t\"}]\n"
                                     "sweep: {duration: 2147483647, step: 1}\n");
   AnalysisOptions options;
   options.max_steps = std::numeric_limits<int>::max();
@@ -113,6 +113,35 @@ TEST(SweepSize, ATimeSweepTooLongToCountIsRejectedAtTheSweep) {
   });
   EXPECT_EQ(e.mark().line, 5);  // the sweep's line
   EXPECT_THAT(e.message(), HasSubstr("more samples than nbar can count"));
+}
+
+TEST(SweepSize, ALawThatTurnsTooFarIsRejectedAtTheLawsText) {
+  // 1e12 deg/s for 2 s: 5.56e9 turns, beyond the 1000 turns a sweep may follow.
+  const Error e = error_of([&] {
+    compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"1e12*t\"}]\nsweep: {duration: 2, step: 0.5}\n");
+  });
+  EXPECT_EQ(e.mark().line, 4);
+  EXPECT_EQ(e.mark().column, 31);  // the law's text, not the driver's mapping at column 11
+  EXPECT_THAT(e.message(), HasSubstr("turns 5.56e+09 times over the sweep"));
+  // 179000 deg/s for 2 s is 994 turns: within the limit.
+  EXPECT_NO_THROW(compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"179000*t\"}]\n"
+                                  "sweep: {duration: 2, step: 0.5}\n"));
+}
+
+TEST(LawLocation, AForcesUndefinedFyIsReportedAtItsText) {
+  const io::LoadedModel loaded = io::parse_model(kBase + "bodies: {crank: {points: [O, A], mass: 1}}\n"
+                                                         "drivers: [{angle: crank, law: \"90*t\"}]\n"
+                                                         "forces: [{point: A, body: crank, fx: 1, fy: \"log(t-1)\"}]\n"
+                                                         "sweep: {duration: 2, step: 0.5}\n");
+  AnalysisOptions options;
+  options.dynamics = true;
+  const Error e = error_of([&] { analyse(std::make_shared<const Mechanism>(loaded.model), options); });
+  EXPECT_EQ(e.where().kind, EntityRef::Kind::PointLoad);
+  EXPECT_EQ(e.where().law, 1);  // fy
+  const Error at = io::located(loaded.source, e);
+  EXPECT_EQ(at.mark().line, 5);
+  EXPECT_EQ(at.mark().column, 45);  // the quote before log(t-1), not the force's mapping at column 9
+  EXPECT_THAT(e.message(), HasSubstr("law 'log(t-1)' is undefined at t = "));
 }
 
 }  // namespace

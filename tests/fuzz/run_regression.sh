@@ -3,7 +3,7 @@
 # folder under a 2 GB address-space limit (under the sanitizers, which reserve far more address
 # space than they use, a 2 GB resident limit instead) and a time limit, and checks its exit code,
 # that its standard error matches the expected message, and that its standard output holds no
-# nan, inf or null number. An argument @TMP@ stands for a scratch folder (for files nbar writes).
+# nan, inf or null number. @TMP@ in an argument stands for a scratch path (for files nbar writes: @TMP@.svg).
 #   run_regression.sh NBAR REGRESSIONS_DIR EXIT_CODE MESSAGE_REGEX ARGS...
 set -uo pipefail
 nbar="$1" dir="$2" want_code="$3" want_message="$4"
@@ -13,7 +13,7 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 args=()
 for arg in "$@"; do
-  if [ "$arg" = "@TMP@" ]; then args+=("$work/scratch"); else args+=("$arg"); fi
+  args+=("${arg//@TMP@/$work/scratch}")
 done
 if [ "${NBAR_SANITIZED:-0}" = 1 ]; then
   export ASAN_OPTIONS="${ASAN_OPTIONS:-}:hard_rss_limit_mb=2048:allocator_may_return_null=0"

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
 #include "nbar/model/run_control.hpp"
 #include "nbar/model/diagnostics.hpp"
 
@@ -26,6 +27,7 @@ struct ExplainOptions {
   // The sweep to the step checks it between samples, the explanation between its parts
   // (stage "explain"): Error(ErrorKind::Cancelled) when it says stop.
   RunControl control;
+  int max_steps = kDefaultMaxSweepSamples;  // a larger sweep (the model's or `steps`) is an error
 };
 
 // G = 3 (n - 1) - 2 PI - PII, with n the links including the ground.

@@ -2,6 +2,7 @@
 // Errors carry file:line:column so users can find the offending line.
 #pragma once
 
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,6 +21,9 @@ struct SourceMap {
   std::vector<SourceMark> points, bodies, sliders, slots, drivers;
   SourceMark sweep;
   std::vector<SourceMark> point_loads, torques, springs;  // the items of `forces`, `torques`, `springs`
+  // Where each entity's laws were written (EntityRef::law indexes the pair): a driver's `law`,
+  // a torque's value, a force's fx and fy. An unmarked law is shown at its entity.
+  std::vector<std::array<SourceMark, 2>> driver_laws, point_load_laws, torque_laws;
 
   SourceMark find(const EntityRef& ref) const;
 };

@@ -33,6 +33,9 @@ struct SourceMark {
 struct EntityRef {
   enum class Kind { Model, Point, Body, Slider, Slot, Driver, Sweep, PointLoad, Torque, Spring } kind = Kind::Model;
   int index = -1;
+  // Which law of the entity the error is about, so that it is shown at the law's text: 0 for a
+  // driver's `law`, a torque or a force's fx, 1 for a force's fy; -1 for the entity as a whole.
+  int law = -1;
 };
 
 // "model", "point", "body", "slider", "slot", "driver", "sweep", "force", "torque", "spring":
