@@ -1,0 +1,64 @@
+// Quality triangle meshes of flat link plates for plane-stress finite elements.
+//
+// mesh_region() triangulates a Region (outline minus polygonal and circular holes; arcs given by
+// bulges) into quadratic 6-node triangles. Triangles are graded: about `size` long far from
+// features, finer around holes and re-entrant corners. Mid-side nodes of edges on a circle hole
+// or an arc lie on the true curve, so curved boundaries are represented isoparametrically. The
+// result depends only on the inputs (no randomness, no threads), so a mesh is reproducible.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+#include "nbar/model/geometry.hpp"
+
+namespace nbar::fe {
+
+struct MeshOptions {
+  // Target edge length far from holes and corners, m. 0: a twentieth of the outline's bounding
+  // box diagonal.
+  double size = 0.0;
+  // Edges along each circle hole (and per full turn of an arc), at least.
+  int segments_per_hole = 48;
+  // Growth of element size away from a refined feature, per element (> 1).
+  double grading = 1.25;
+  // Refuse to make more nodes than this (std::invalid_argument), so a bad size cannot hang.
+  int max_nodes = 400000;
+};
+
+// Where a boundary edge lies.
+struct BoundaryTag {
+  enum class Kind { outline, circle_hole, polygon_hole };
+  Kind kind = Kind::outline;
+  int index = 0;  // the circle or polygon hole's index in the Region; 0 for the outline
+};
+
+struct BoundaryEdge {
+  std::array<int, 3> nodes{};  // first end, second end, middle; the plate lies to the left of first -> second
+  BoundaryTag on;
+};
+
+struct TriMesh {
+  std::vector<Eigen::Vector2d> nodes;  // corner nodes first (`corner_count` of them), then mid-side nodes
+  int corner_count = 0;
+  // Corners 0, 1, 2 counterclockwise, then mid-side nodes 3 (0-1), 4 (1-2), 5 (2-0).
+  std::vector<std::array<int, 6>> triangles;
+  std::vector<BoundaryEdge> boundary;
+};
+
+// Quality figures of a mesh, for tests and reports.
+struct MeshQuality {
+  double min_angle_deg = 0.0;  // smallest corner angle of any triangle (straight-sided measure)
+  double max_edge = 0.0, min_edge = 0.0;  // m
+  double area = 0.0;  // sum of the triangles' areas, with curved edges, m^2
+};
+
+// Throws std::invalid_argument with a readable message when r fails check_region or the mesh
+// would exceed options.max_nodes.
+TriMesh mesh_region(const Region& r, const MeshOptions& options = {});
+
+MeshQuality mesh_quality(const TriMesh& mesh);
+
+}  // namespace nbar::fe
