@@ -102,6 +102,9 @@ ImageCanvas::ImageCanvas(int width, int height, const Color& background)
                              " image: " + describe(cairo_surface_status(impl_->surface)));
   impl_->cr = cairo_create(impl_->surface);
   release_caches_at_exit();
+  // Explicit font options: with cairo's defaults, glyphs drawn after an unantialiased canvas
+  // (a GIF frame) came out differently in the same process.
+  set_antialias(true);
   clear();
 }
 
@@ -121,6 +124,7 @@ void ImageCanvas::set_antialias(bool on) {
   cairo_font_options_t* fo = cairo_font_options_create();
   cairo_font_options_set_antialias(fo, on ? CAIRO_ANTIALIAS_GRAY : CAIRO_ANTIALIAS_NONE);
   cairo_font_options_set_hint_style(fo, CAIRO_HINT_STYLE_NONE);
+  cairo_font_options_set_hint_metrics(fo, CAIRO_HINT_METRICS_OFF);
   cairo_set_font_options(impl_->cr, fo);
   cairo_font_options_destroy(fo);
 }
