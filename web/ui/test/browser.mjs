@@ -10,12 +10,15 @@ import assert from 'node:assert/strict';
 import { run as runEditing } from './edit.mjs';
 import * as motion from './motion.mjs';
 import * as files from './files.mjs';
+import * as draw from './draw.mjs';
 
 const SKIP = 77;
 const arg = (name, fallback) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : fallback; };
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const out = arg('--out', 'build/web-screenshots');
 const chromiumPath = arg('--chromium', process.env.CHROMIUM || '/usr/bin/chromium');
+// `--only draw`: only the comparison of the drawing with nbar draw's, at both viewports.
+const onlyDraw = arg('--only', '') === 'draw';
 
 let chromium;
 try {
@@ -74,11 +77,20 @@ const shot = (page, name, fullPage = false) => page.screenshot({ path: join(out,
 const click = (page, mobile, selector) => (mobile ? page.locator(selector).first().tap() : page.locator(selector).first().click());
 const bodies = (page) => page.locator('#drawing svg .body').count();
 
+// Waits until a model opened after `opened` others is analysed and drawn: the title alone is no
+// sign, when the model opened is the one on screen (perhaps edited), whose late answer would
+// then redraw the drawing in the middle of the next step.
+async function analysedAfter(page, opened) {
+  await page.waitForFunction((n) => +(document.body.dataset.opened ?? 0) > n && !document.body.dataset.busy, opened);
+}
+
 async function openExample(page, mobile, name) {
   const title = (await page.locator(`[data-example="${name}"] b`).textContent()).trim();
   await click(page, mobile, '[data-tab="gallery"]');
+  const opened = await page.evaluate(() => +(document.body.dataset.opened ?? 0));
   await click(page, mobile, `[data-example="${name}"]`);
-  await page.waitForFunction((t) => document.querySelector('#model-name').textContent === t, title);
+  await analysedAfter(page, opened);
+  assert.equal(await page.locator('#model-name').textContent(), title);
   assert.ok(await bodies(page) > 0, `${name}: the drawing has bodies`);
   return title;
 }
@@ -130,10 +142,12 @@ async function desktop() {
   const { context, page } = await open('desktop', { width: 1280, height: 800 }, false);
   assert.ok(await page.locator('[data-example]').count() >= 10, 'the gallery lists the examples');
   await shot(page, 'desktop-1-gallery');
+  await draw.run(page, { mobile: false, tag: 'desktop', base, out, shot, click, openExample });
+  if (onlyDraw) { await context.close(); return; }
 
   // A model from the gallery, drawn and animated.
   await openExample(page, false, 'slider-crank-offset');
-  assert.equal(await page.locator('#drawing svg .block').count(), 1, 'the slider block is drawn');
+  assert.equal(await page.locator('#drawing svg g[data-link="slider"] > polygon.body').count(), 1, 'the slider block is drawn');
   assert.equal(await page.locator('#drawing svg .guide').count(), 1, 'the slider guide is drawn');
   await openExample(page, false, 'fourbar-crank-rocker');
   assert.equal(await page.locator('#scrub').inputValue(), '0');
@@ -220,6 +234,8 @@ async function phone() {
   const width = await page.evaluate(() => document.documentElement.scrollWidth);
   assert.ok(width <= 390, `no sideways scrolling at 390 px (page is ${width} px wide)`);
   await shot(page, 'phone-1-gallery');
+  await draw.run(page, { mobile: true, tag: 'phone', base, out, shot, click, openExample });
+  if (onlyDraw) { await context.close(); return; }
   await openExample(page, true, 'five-bar');
   await page.locator('#play').tap();
   await page.waitForTimeout(600);
