@@ -3,57 +3,29 @@
 // and saves screenshots. Exit 77 (ctest's SKIP_RETURN_CODE) when playwright-core, Chromium or
 // the built web app is missing.
 //   node web/ui/test/browser.mjs --nbar build/apps/nbar/nbar --out build/web-screenshots
-import { spawn } from 'node:child_process';
-import { existsSync, mkdirSync, readFileSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
+import { SKIP, arg, launchChromium, startServer, watchdog as startWatchdog } from './harness.mjs';
 import { run as runEditing } from './edit.mjs';
 import * as motion from './motion.mjs';
 import * as files from './files.mjs';
 import * as draw from './draw.mjs';
 
-const SKIP = 77;
-const arg = (name, fallback) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : fallback; };
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const out = arg('--out', 'build/web-screenshots');
-const chromiumPath = arg('--chromium', process.env.CHROMIUM || '/usr/bin/chromium');
 // `--only draw`: only the comparison of the drawing with nbar draw's, at both viewports.
 const onlyDraw = arg('--only', '') === 'draw';
 
-let chromium;
-try {
-  ({ chromium } = await import('playwright-core'));
-} catch {
-  console.log('SKIP: playwright-core is not installed (npm ci in web/ui)');
-  process.exit(SKIP);
-}
-if (!existsSync(chromiumPath)) { console.log(`SKIP: no Chromium at ${chromiumPath}`); process.exit(SKIP); }
-if (!existsSync(nbar)) { console.error(`no nbar program at ${nbar}`); process.exit(1); }
+const browser = await launchChromium();
 mkdirSync(out, { recursive: true });
-
-// The server, on a port the system picks; its first line says which.
-const server = spawn(nbar, ['serve', '--port', '0', '--host', '127.0.0.1'], { stdio: ['ignore', 'pipe', 'pipe'] });
-const stop = () => { try { server.kill('SIGTERM'); } catch { /* gone */ } };
-process.on('exit', stop);
-for (const signal of ['SIGINT', 'SIGTERM']) process.on(signal, () => { stop(); process.exit(1); });
-const base = await new Promise((resolve, reject) => {
-  let text = '';
-  const timer = setTimeout(() => reject(new Error(`nbar serve did not start: ${text}`)), 10000);
-  const read = (d) => {
-    text += d;
-    const m = /http:\/\/127\.0\.0\.1:(\d+)\//.exec(text);
-    if (m) { clearTimeout(timer); resolve(`http://127.0.0.1:${m[1]}/`); }
-  };
-  server.stdout.on('data', read);
-  server.stderr.on('data', read);
-  server.on('exit', (code) => reject(new Error(`nbar serve exited (${code}): ${text}`)));
-}).catch((e) => { console.error(e.message); stop(); process.exit(1); });
-const watchdog = setTimeout(() => { console.error('FAIL: over the time limit'); stop(); process.exit(1); }, 420000);
+const { base, stop } = await startServer(nbar);
+const watchdog = startWatchdog(420000, stop);
 
 const index = await (await fetch(base)).text();
-if (!index.includes('app.js')) { console.log('SKIP: this nbar carries the placeholder page, not the web app'); stop(); process.exit(SKIP); }
+if (!index.includes('app.js')) { console.log('SKIP: this nbar carries the placeholder page, not the web app'); stop(); await browser.close(); process.exit(SKIP); }
 
-const browser = await chromium.launch({ executablePath: chromiumPath, args: ['--no-sandbox', '--disable-gpu'] });
 const errors = [];
 let failed = false;
 
@@ -216,6 +188,17 @@ async function desktop() {
   assert.equal(csvText.filter(Boolean).length, 362);
   const [svg] = await Promise.all([page.waitForEvent('download'), page.click('[data-download="svg"]')]);
   assert.match(readFileSync(await svg.path(), 'utf8'), /<svg/);
+  // The MP4, when the server has ffmpeg: an H.264 video of the 72 frames the button asks for.
+  const health = await (await fetch(new URL('api/health', base))).json();
+  if (health.mp4) {
+    const [mp4] = await Promise.all([page.waitForEvent('download', { timeout: 60000 }), page.click('[data-download="mp4"]')]);
+    assert.match(mp4.suggestedFilename(), /\.mp4$/);
+    const file = await mp4.path();
+    assert.equal(readFileSync(file).subarray(4, 8).toString('latin1'), 'ftyp', 'the download is an MP4 file');
+    const probe = spawnSync('ffprobe', ['-v', 'error', '-count_frames', '-select_streams', 'v:0', '-show_entries',
+      'stream=nb_read_frames,codec_name', '-of', 'csv=p=0', file], { encoding: 'utf8' });
+    if (probe.status === 0) assert.equal(probe.stdout.trim(), 'h264,72', 'ffprobe: the MP4 has the 72 frames asked for');
+  }
   await shot(page, 'desktop-7-downloads');
 
   // Spanish.
