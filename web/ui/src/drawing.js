@@ -83,10 +83,10 @@ export function drawingSvg(scene) {
     + `<g class="frame">${sceneGroup(scene)}<g class="handles"></g></g></svg>`;
 }
 
-// The size of marks drawn over the drawing (model units): a hundredth of the view.
+// The size unit of marks drawn over the drawing (arrows, targets, handles; model units): 4.5
+// of the scene's pixels, which are about the screen's, as the scene is drawn at the drawing's size.
 export function markScale(scene) {
-  const b = sceneBox(scene);
-  return Math.max(b.w, b.h) / 100;
+  return scene.to_model[0] * 4.5;
 }
 
 // Poses the scene at sample `step`: each body group moved by its motion, each label shifted.
