@@ -351,6 +351,8 @@ export function initOverlays(context) {
   buildControls();
   document.addEventListener('nbar:solved', () => { chips(); warnings(); refresh(); });
   document.addEventListener('nbar:frame', drawFrame);
+  // The drawing drawn again for a new size: the traces go back on it.
+  document.addEventListener('nbar:drawn', drawTraces);
   document.querySelector('#drawing').addEventListener('click', (e) => {
     const peak = e.target.closest('[data-step].peak, .peak-label');
     if (peak) { app.play(false); app.setFrame(+peak.dataset.step); }

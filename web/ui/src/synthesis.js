@@ -345,6 +345,7 @@ export function initSynthesis(context) {
   $('#synth-run').addEventListener('click', runSynthesis);
   $('#drawing').addEventListener('pointerdown', onTap, true);
   document.addEventListener('nbar:solved', drawMarks);
+  document.addEventListener('nbar:drawn', drawMarks);
   $('#poses').addEventListener('input', drawMarks);
   $('#task').addEventListener('input', drawMarks);
   for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', drawMarks);

@@ -169,10 +169,10 @@ async function desktop() {
   await page.mouse.down();
   const p = await page.locator('#drawing circle.pt[data-point="P"]').boundingBox();
   const coupler = () => page.locator('#drawing g[data-link="coupler"] > .body').getAttribute('points');
-  const before = await coupler();
+  const couplerBefore = await coupler();
   await page.mouse.move(p.x + p.width / 2 + 40, p.y + p.height / 2 + 20, { steps: 5 });
   // While the finger is down, the server's drawing of the edited model follows it.
-  await page.waitForFunction((b) => document.querySelector('#drawing g[data-link="coupler"] > .body')?.getAttribute('points') !== b, before);
+  await page.waitForFunction((b) => document.querySelector('#drawing g[data-link="coupler"] > .body')?.getAttribute('points') !== b, couplerBefore);
   await shot(page, 'desktop-4a-dragging');
   await page.mouse.up();
   await page.waitForFunction(() => document.querySelector('#table tbody tr td:nth-last-child(2)')?.textContent !== '77.8117');

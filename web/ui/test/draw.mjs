@@ -75,4 +75,21 @@ export async function run(page, ctx) {
     await ctx.shot(page, `${ctx.tag}-draw-${name}`);
     await page.locator('#scrub').fill('0');
   }
+  if (ctx.mobile) return;
+  // A window made much narrower: the drawing is drawn again for its new size, still nbar draw's.
+  const size = page.viewportSize();
+  const width = () => page.locator('#drawing svg').getAttribute('data-width');
+  const wide = await width();
+  await page.setViewportSize({ width: 480, height: size.height });
+  await page.waitForFunction((w) => document.querySelector('#drawing svg')?.dataset.width !== w, wide);
+  const name = examples.at(-1);
+  const model = await (await fetch(`${ctx.base}api/examples/${name}`)).text();
+  const reference = +(await page.locator('#drawing svg').getAttribute('data-reference-step'));
+  await page.locator('#scrub').fill(String(reference));
+  const narrow = await difference(page, model, reference, true);
+  assert.ok(narrow.differ < 0.0005, `${name} at ${await width()} px: ${(narrow.differ * 100).toFixed(3)} % of the pixels differ from nbar draw's`);
+  await ctx.shot(page, `${ctx.tag}-draw-narrow`);
+  await page.setViewportSize(size);
+  await page.waitForFunction((w) => document.querySelector('#drawing svg')?.dataset.width === w, wide);
+  await page.locator('#scrub').fill('0');
 }
