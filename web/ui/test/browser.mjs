@@ -2,7 +2,7 @@
 // Chromium (never a downloaded one) through playwright-core at a desktop and a phone viewport,
 // and saves screenshots. Exit 77 (ctest's SKIP_RETURN_CODE) when playwright-core, Chromium or
 // the built web app is missing.
-//   node web/ui/test/browser.mjs --nbar build/apps/nbar/nbar --out build/web-screenshots
+//   node web/ui/test/browser.mjs --nbar build/apps/nbar/nbar --out build/web-screenshots [--only draw]
 import { spawnSync } from 'node:child_process';
 import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
