@@ -7,6 +7,7 @@ packages=(
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
   libcairo2-dev libcgif-dev
   libcpp-httplib-dev  # nbar serve: the web server
+  ffmpeg  # nbar animate -o x.mp4 and the MP4 of nbar serve (run as a program; tests check its videos with ffprobe)
   nginx  # tests: docs/deploy.md's two nbar serve instances behind nginx (Web.Nginx)
   libtinyxml2-dev chromium  # tests: SVG parsed as XML; the HTML animation run in headless Chromium
   phcpack  # tests and bench/: the five-point synthesis cross-checked and timed against PHCpack

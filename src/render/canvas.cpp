@@ -94,6 +94,11 @@ Eigen::Vector2d View::to_pixels(const Eigen::Vector2d& world) const {
   return {pixel_centre_.x() + d.x(), pixel_centre_.y() - d.y()};
 }
 
+Eigen::Vector2d View::to_world(const Eigen::Vector2d& pixels) const {
+  const Eigen::Vector2d d(pixels.x() - pixel_centre_.x(), pixel_centre_.y() - pixels.y());
+  return world_centre_ + d / scale_;
+}
+
 SvgCanvas::SvgCanvas(int width, int height, const std::string& background)
     : Canvas(width, height), background_(background) {}
 

@@ -451,17 +451,32 @@ std::vector<std::vector<Eigen::Vector2d>> trace_paths(const Mechanism& mech, con
 
 namespace {
 
+// Where the moving points are on average over the sweep (px), or at `points` without a sweep;
+// false when nothing moves.
+bool moving_centroid(const Mechanism& mech, const SweepResult& sweep, const View& view,
+                     const std::vector<Eigen::Vector2d>& points, Eigen::Vector2d& centroid) {
+  const Model& m = mech.model();
+  centroid = Eigen::Vector2d::Zero();
+  int count = 0;
+  auto add = [&](const std::vector<Eigen::Vector2d>& at) {
+    for (std::size_t p = 0; p < m.points.size(); ++p)
+      if (!m.points[p].ground) centroid += view.to_pixels(at[p]), ++count;
+  };
+  if (sweep.samples.empty()) add(points);
+  for (const Sample& s : sweep.samples) add(sample_points(mech, s));
+  if (count) centroid /= count;
+  return count > 0;
+}
+
 // Fixed guides: the stretch the point travels plus a block's length, hatched on the side away
-// from the moving parts (the mechanism stands on it, or hangs under it).
+// from the moving parts over the whole sweep (the mechanism stands on it, or hangs under it), so
+// that the hatching stays on its side in every pose and every frame of an animation.
 void draw_fixed_guides(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
                        const std::vector<Eigen::Vector2d>& points, Obstacles& obstacles) {
   const Model& m = mech.model();
   auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  int moving = 0;
-  for (std::size_t p = 0; p < m.points.size(); ++p)
-    if (!m.points[p].ground) centroid += px(points[p]), ++moving;
-  if (moving) centroid /= moving;
+  Eigen::Vector2d centroid;
+  const bool moving = moving_centroid(mech, sweep, view, points, centroid);
   auto span = [&](int point, const std::array<int, 2>& along) {
     const auto [lo, hi] = travel(mech, sweep, point, along, points);
     const Eigen::Vector2d a = points[along[0]], e = (points[along[1]] - a).normalized();
@@ -472,7 +487,10 @@ void draw_fixed_guides(Canvas& canvas, const View& view, const Mechanism& mech, 
     if (fixed_guide(m, s.along)) {
       const auto [a, b] = span(s.point, s.along);
       Eigen::Vector2d away = perp((b - a).normalized());
-      if (moving && away.dot(centroid - a) > 0) away = -away;
+      // A guide the moving parts straddle evenly (an in-line slider-crank) is hatched below, or
+      // on the right when it stands upright: a choice that does not change from pose to pose.
+      const double side = moving ? away.dot(centroid - a) : 0.0;
+      if (std::abs(side) < 1.0 ? (std::abs(away.y()) > 1e-9 ? away.y() < 0 : away.x() < 0) : side > 0) away = -away;
       canvas.begin_group("guide-" + m.points[s.point].name, "guide");
       draw_ground_line(canvas, a, b, away);
       canvas.end_group();

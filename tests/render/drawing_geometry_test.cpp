@@ -174,6 +174,33 @@ TEST(DrawingGeometry, ACollinearThreePointBodyIsABarAsWideAsATwoPointOne) {
   }
 }
 
+// +1 when every hatch stroke of the guide group `guide` lies below its line on screen, -1 when
+// every one lies above it, 0 otherwise.
+int hatch_side(const Picture& pic, const std::string& guide) {
+  const auto lines = pic.canvas.in(guide, Drawn::Polyline);
+  if (lines.size() < 5) return 0;
+  const double line_y = lines[0]->points[0].y();
+  bool below = true, above = true;
+  for (std::size_t i = 1; i < lines.size(); ++i)
+    for (const auto& p : lines[i]->points) below = below && p.y() > line_y + 1, above = above && p.y() < line_y - 1;
+  return below ? 1 : above ? -1 : 0;
+}
+
+// The side comes from the whole sweep, not from the pose drawn: an offset slider-crank's
+// hatching stays on one side through the turn (the web app moves the drawing of one pose
+// through the others), and an in-line one, which the crank straddles evenly, stands on it.
+TEST(DrawingGeometry, AGuideKeepsItsHatchedSideInEveryPose) {
+  for (const auto& [file, side] : {std::pair{"slider-crank-offset.yaml", -1}, std::pair{"compressor-myszka.yaml", 1},
+                                   std::pair{"slider-crank-centred.yaml", 1}}) {
+    const Example e(file);
+    const Model& m = e.mech.model();
+    ASSERT_FALSE(m.sliders.empty()) << file;
+    const std::string guide = "guide-" + m.points[m.sliders[0].point].name;
+    for (std::size_t k = 0; k < e.sweep.samples.size(); k += 4)
+      EXPECT_EQ(hatch_side(Picture(e, static_cast<int>(k), {}), guide), side) << file << " sample " << k;
+  }
+}
+
 TEST(DrawingGeometry, AGuideIsHatchedOnTheSideAwayFromTheMechanism) {
   // The scissor lift stands on its slide: hatching below the line (larger y on screen).
   {

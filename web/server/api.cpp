@@ -30,6 +30,7 @@
 #include "nbar/render/pictures.hpp"
 #include "nbar/render/plot.hpp"
 #include "nbar/render/report.hpp"
+#include "nbar/render/scene.hpp"
 #include "nbar/synthesis/run.hpp"
 #include "nbar/version.hpp"
 #include "nbar/web/embedded.hpp"
@@ -423,8 +424,9 @@ const std::vector<std::string> kPlotKeys{"model", "kind", "format", "y", "x", "s
 
 ApiResponse render_draw(Job& job, const std::string& request) {
   const Body body(request, kDrawKeys);
-  const std::string format = body.choice("format", {"svg", "png"}, "svg");
+  const std::string format = body.choice("format", {"svg", "png", "scene"}, "svg");
   if (body.has("step") && body.has("at")) bad_input("give 'step' or 'at', not both");
+  if (format == "scene" && body.has("at")) bad_input("a scene is drawn at a solved step: give 'step', not 'at'");
   load_model(job, body.text("model", true));
   const render::DrawOptions draw = draw_options(job, body, 100, 900, 640);
   AnalysisOptions options;
@@ -444,6 +446,9 @@ ApiResponse render_draw(Job& job, const std::string& request) {
     points = render::sample_points(mech, analysis.sweep.samples[static_cast<std::size_t>(k)]);
   }
   job.checkpoint("render");
+  if (format == "scene")
+    return answer(render::drawing_scene_json(mech, analysis.sweep, draw,
+                                             static_cast<int>(step.value_or(render::default_drawn_step(mech, analysis.sweep)))));
   if (format == "svg") return answer(render::drawing_svg(mech, analysis.sweep, points, draw), "image/svg+xml");
   return answer_bytes(render::drawing_png(mech, analysis.sweep, points, draw), "image/png");
 }

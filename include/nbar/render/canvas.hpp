@@ -70,6 +70,7 @@ class View {
  public:
   View(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int width, int height, double margin_px);
   Eigen::Vector2d to_pixels(const Eigen::Vector2d& world) const;
+  Eigen::Vector2d to_world(const Eigen::Vector2d& pixels) const;
   double pixels_per_metre() const { return scale_; }
 
  private:

@@ -176,7 +176,7 @@ export function redrawOverlay() {
   svg.append(o);
   let style = $('#edit-style');
   if (!style) { style = document.createElement('style'); style.id = 'edit-style'; document.head.append(style); }
-  style.textContent = tool.selected ? `#drawing .body[data-body="${CSS.escape(tool.selected)}"] { stroke-width: 9px; stroke-opacity: .85; filter: drop-shadow(0 0 2px #f97316); }` : '';
+  style.textContent = tool.selected ? `#drawing .body[data-body="${CSS.escape(tool.selected)}"] { stroke-opacity: .85; filter: drop-shadow(0 0 3px #f97316) drop-shadow(0 0 2px #f97316); }` : '';
 }
 
 // Where a point is drawn now (svg units): its circle in the frame, or its pending marker.

@@ -1,96 +1,122 @@
-// The mechanism drawn as SVG from a solve's point columns: the frame (traces of coupler points,
-// drawn once) and, for each sample, the bodies, pivots and labels.
-const palette = ['#2563eb', '#059669', '#9333ea', '#db2777', '#0891b2', '#ca8a04', '#4f46e5', '#dc2626'];
+// The mechanism as the core draws it, `nbar draw` for this size: the server's scene (/api/render,
+// kind draw, format scene; src/render/scene.cpp) is the list of primitives the core's drawing
+// gives a canvas at one pose, and for every sample the motion of each body and the shift of each
+// point label. This module only writes those primitives as SVG elements (with the attributes the
+// core's SVG canvas writes) and moves the groups; every drawing decision (shapes, colours,
+// hatching, joints, labels) is the core's. The SVG's units are the model's length units (y
+// down): the scene's pixels are mapped there by its `to_model`, so that overlays, taps and drags
+// work in model coordinates. The point handles (for dragging and tapping) are invisible.
 
-function columns(solve) {
+const num = (v) => (Number.isFinite(v) ? +v.toFixed(4) : 0);
+const esc = (s) => String(s).replace(/[&<>"']/g, (c) => `&#${c.charCodeAt(0)};`);
+
+function pairs(flat) {
+  let s = '';
+  for (let i = 0; i + 1 < flat.length; i += 2) s += `${i ? ' ' : ''}${flat[i]},${flat[i + 1]}`;
+  return s;
+}
+
+// As SvgCanvas's paint_attributes (src/render/canvas.cpp).
+function paint(it) {
+  let s = it.fill ? ` fill="${it.fill}"` : ' fill="none"';
+  if (it.fill && it.fill_opacity !== undefined) s += ` fill-opacity="${it.fill_opacity}"`;
+  if (it.stroke) {
+    s += ` stroke="${it.stroke}" stroke-width="${it.stroke_width}"`;
+    if (it.stroke_opacity !== undefined) s += ` stroke-opacity="${it.stroke_opacity}"`;
+    if (it.dash) s += ` stroke-dasharray="${it.dash.join(',')}"`;
+    s += ' stroke-linejoin="round" stroke-linecap="round"';
+  }
+  return s;
+}
+
+function ring(flat) {
+  let d = '';
+  for (let i = 0; i + 1 < flat.length; i += 2) d += `${i ? ' L' : 'M'}${flat[i]} ${flat[i + 1]}`;
+  return `${d} Z `;
+}
+
+// One primitive; `where` says which group it is in: a body's first item is its shape (class
+// "body", data-body), which the stress overlay colours and the body tool selects.
+function element(it, where) {
+  const shape = where.body && where.first ? ` class="body" data-body="${esc(where.body)}"` : '';
+  where.first = false;
+  switch (it.type) {
+    case 'group': {
+      const body = where.bodies.get(it.id);
+      const inner = { ...where, body, first: true, labels: it.id === 'labels' };
+      const attrs = `${body !== undefined ? ` data-link="${esc(body)}"` : ''} data-group="${esc(it.id)}" class="${esc(it.class)}"`;
+      return `<g${attrs}>${it.items.map((x) => element(x, inner)).join('')}</g>`;
+    }
+    case 'polygon': return `<polygon${shape} points="${pairs(it.points)}"${paint(it)}/>`;
+    case 'polyline': return `<polyline${shape} points="${pairs(it.points)}"${paint(it)}/>`;
+    case 'circle': return `<circle${shape} cx="${it.cx}" cy="${it.cy}" r="${it.r}"${paint(it)}/>`;
+    case 'outline': {
+      let d = it.rings.map(ring).join('');
+      for (const [cx, cy, r] of it.circles) d += `M${cx + r} ${cy} A${r} ${r} 0 1 0 ${cx - r} ${cy} A${r} ${r} 0 1 0 ${cx + r} ${cy} Z `;
+      return `<path${shape} fill-rule="evenodd" d="${d}"${paint(it)}/>`;
+    }
+    case 'text': {
+      const label = where.labels ? ` data-label="${where.label++}"` : '';
+      return `<text${label} x="${it.x}" y="${it.y}" font-size="${it.size}" font-family="sans-serif" text-anchor="${it.anchor}" fill="${it.color}">${esc(it.text)}</text>`;
+    }
+    default: return '';
+  }
+}
+
+// The part of the model plane (model units, y down) the scene's canvas covers.
+export function sceneBox(scene) {
+  const [k, tx, ty] = scene.to_model;
+  return { x: tx, y: ty, w: k * scene.width, h: k * scene.height };
+}
+
+// The scene's primitives, mapped to model units, in a <g class="scene">.
+export function sceneGroup(scene) {
+  const [k, tx, ty] = scene.to_model;
+  const where = { bodies: new Map(scene.bodies.map((b) => [b.group, b.name])), first: false, label: 0 };
+  return `<g class="scene" transform="matrix(${k} 0 0 ${k} ${tx} ${ty})">${scene.items.map((it) => element(it, where)).join('')}</g>`;
+}
+
+// The whole drawing: the scene's canvas fills the view; `.handles` takes the point handles.
+export function drawingSvg(scene) {
+  const b = sceneBox(scene);
+  return `<svg xmlns="http://www.w3.org/2000/svg" viewBox="${num(b.x)} ${num(b.y)} ${num(b.w)} ${num(b.h)}" preserveAspectRatio="xMidYMid meet" role="img" data-width="${scene.width}" data-height="${scene.height}" data-reference-step="${scene.reference_step}">`
+    + `<g class="frame">${sceneGroup(scene)}<g class="handles"></g></g></svg>`;
+}
+
+// The size unit of marks drawn over the drawing (arrows, targets, handles; model units): 4.5
+// of the scene's pixels, which are about the screen's, as the scene is drawn at the drawing's size.
+export function markScale(scene) {
+  return scene.to_model[0] * 4.5;
+}
+
+// Poses the scene at sample `step`: each body group moved by its motion, each label shifted.
+export function poseDrawing(root, scene, step) {
+  const motion = scene.steps[step];
+  if (!motion) return;
+  for (const [b, body] of scene.bodies.entries()) {
+    const el = root.querySelector(`g[data-group="${CSS.escape(body.group)}"]`);
+    const [angle, dx, dy] = motion.bodies[b];
+    el?.setAttribute('transform', `translate(${dx} ${dy}) rotate(${angle} ${body.pivot[0]} ${body.pivot[1]})`);
+  }
+  for (const el of root.querySelectorAll('g[data-group="labels"] text[data-label]')) {
+    const d = motion.labels[+el.dataset.label];
+    if (d) el.setAttribute('transform', `translate(${d[0]} ${d[1]})`);
+  }
+}
+
+// Invisible handles on the points (model units) at `row` of the solve, to drag and tap them;
+// `moved` = {name, x, y} puts the dragged one under the finger.
+export function handlesSvg(g, solve, row, moved = null) {
   const index = new Map(solve.columns.map((c, i) => [c, i]));
-  return (p) => [index.get(`${p}.x`), index.get(`${p}.y`)];
-}
-
-// Points traced: moving points of exactly one body that has three points or more (coupler points).
-function tracedPoints(g) {
-  return g.points.filter((p) => {
-    if (g.ground.has(p)) return false;
-    const on = g.bodies.filter((b) => b.points.includes(p));
-    return on.length === 1 && on[0].points.length >= 3;
-  });
-}
-
-function bounds(g, solve) {
-  const at = columns(solve);
-  let x0 = Infinity; let y0 = Infinity; let x1 = -Infinity; let y1 = -Infinity;
-  for (const p of g.points) {
-    const [i, j] = at(p);
-    for (const r of solve.rows) {
-      const x = r[i]; const y = r[j];
-      if (!Number.isFinite(x) || !Number.isFinite(y)) continue;
-      x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y);
-    }
-  }
-  if (!Number.isFinite(x0)) return { x0: -1, y0: -1, x1: 1, y1: 1 };
-  const pad = Math.max(x1 - x0, y1 - y0, 1e-9) * 0.12;
-  return { x0: x0 - pad, y0: y0 - pad, x1: x1 + pad, y1: y1 + pad };
-}
-
-const n = (v) => (Number.isFinite(v) ? +v.toFixed(4) : 0);
-
-export function drawingSvg(g, solve) {
-  const b = bounds(g, solve);
-  const w = b.x1 - b.x0; const h = b.y1 - b.y0;
-  g.scale = Math.max(w, h) / 100;
-  const at = columns(solve);
-  const traces = tracedPoints(g).map((p) => {
-    const [i, j] = at(p);
-    const pts = solve.rows.map((r) => `${n(r[i])},${n(-r[j])}`).join(' ');
-    return `<polyline class="trace" points="${pts}" fill="none" stroke="#f97316" stroke-width="1.5" stroke-dasharray="4 3" vector-effect="non-scaling-stroke"/>`;
-  }).join('');
-  return `<svg xmlns="http://www.w3.org/2000/svg" viewBox="${n(b.x0)} ${n(-b.y1)} ${n(w)} ${n(h)}" preserveAspectRatio="xMidYMid meet" role="img">`
-    + `<g class="traces">${traces}</g><g class="frame"></g></svg>`;
-}
-
-// `moved` overrides one point's position while it is dragged: {name, x, y} in model coordinates.
-export function frameGroup(g, solve, row, moved = null) {
-  const at = columns(solve);
   const s = g.scale;
-  const pos = new Map(g.points.map((p) => { const [i, j] = at(p); return [p, [n(row[i]), n(-row[j])]]; }));
-  if (moved && pos.has(moved.name)) pos.set(moved.name, [n(moved.x), n(-moved.y)]);
   let out = '';
-  // Slider guides (dashed, through the axis points) and blocks along them.
-  for (const sl of g.sliders ?? []) {
-    const [a, b] = sl.along.map((p) => pos.get(p));
-    const c = pos.get(sl.point);
-    const len = Math.hypot(b[0] - a[0], b[1] - a[1]);
-    if (!len) continue;
-    const ux = (b[0] - a[0]) / len; const uy = (b[1] - a[1]) / len;
-    const far = 1e3 * s;  // the guide drawn well past its points, clipped by the view
-    out += `<line class="guide" x1="${n(a[0] - ux * far)}" y1="${n(a[1] - uy * far)}" x2="${n(b[0] + ux * far)}" y2="${n(b[1] + uy * far)}" stroke="#98a2b3" stroke-width="1.5" stroke-dasharray="6 4" vector-effect="non-scaling-stroke"/>`;
-    const angle = n(Math.atan2(uy, ux) * 180 / Math.PI);
-    out += `<rect class="block" x="${n(c[0] - 5 * s)}" y="${n(c[1] - 3 * s)}" width="${n(10 * s)}" height="${n(6 * s)}" rx="${n(s)}" transform="rotate(${angle} ${c[0]} ${c[1]})" fill="#fef0c7" stroke="#b54708" stroke-width="2" vector-effect="non-scaling-stroke"/>`;
-  }
-  // Ground pivots (ground points of a body): a triangle under the point and a base line.
-  const pivots = new Set(g.bodies.flatMap((b) => b.points));
-  for (const p of g.ground) {
-    const q = pos.get(p);
-    if (!q || !pivots.has(p)) continue;
-    const [x, y] = q;
-    out += `<path d="M${x},${y} l${-2.4 * s},${4 * s} h${4.8 * s} z" fill="#e4e7ec" stroke="#475467" stroke-width="1.5" vector-effect="non-scaling-stroke"/>`
-      + `<line x1="${x - 3.4 * s}" y1="${y + 4 * s}" x2="${x + 3.4 * s}" y2="${y + 4 * s}" stroke="#475467" stroke-width="2" vector-effect="non-scaling-stroke"/>`;
-  }
-  g.bodies.forEach((body, k) => {
-    const c = palette[k % palette.length];
-    const pts = body.points.map((p) => pos.get(p)).filter(Boolean);
-    if (pts.length < 2) return;
-    const list = pts.map(([x, y]) => `${x},${y}`).join(' ');
-    if (pts.length >= 3) {
-      out += `<polygon class="body" data-body="${body.name}" points="${list}" fill="${c}" fill-opacity=".14" stroke="${c}" stroke-width="4" stroke-linejoin="round" vector-effect="non-scaling-stroke"/>`;
-    } else {
-      out += `<polyline class="body" data-body="${body.name}" points="${list}" fill="none" stroke="${c}" stroke-width="5" stroke-linecap="round" vector-effect="non-scaling-stroke"/>`;
-    }
-  });
-  for (const [p, [x, y]] of pos) {
-    out += `<circle class="hit" data-point="${p}" cx="${x}" cy="${y}" r="${3 * s}" fill="transparent"/>`
-      + `<circle class="pt" data-point="${p}" cx="${x}" cy="${y}" r="${1.1 * s}" fill="#fff" stroke="#1d2330" stroke-width="1.5" vector-effect="non-scaling-stroke"/>`
-      + `<text x="${x + 1.8 * s}" y="${y - 1.8 * s}" font-size="${3.2 * s}" fill="#344054" font-family="system-ui, sans-serif">${p}</text>`;
+  for (const p of g.points) {
+    let x = row[index.get(`${p}.x`)]; let y = row[index.get(`${p}.y`)];
+    if (moved?.name === p) ({ x, y } = moved);
+    const cx = num(x); const cy = num(-y);
+    const cls = moved?.name === p ? 'pt dragged' : 'pt';
+    out += `<circle class="hit" data-point="${esc(p)}" cx="${cx}" cy="${cy}" r="${num(3 * s)}" fill="transparent"/>`
+      + `<circle class="${cls}" data-point="${esc(p)}" cx="${cx}" cy="${cy}" r="${num(1.1 * s)}" fill="transparent"/>`;
   }
   return out;
 }

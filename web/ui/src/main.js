@@ -1,6 +1,6 @@
 // The web app of `nbar serve`: a gallery of the bundled models, a YAML editor whose errors the
 // server's /api/check and /api/solve place at their line and column, the mechanism drawn and
-// animated from the solve's point columns, a plot and a table of any column, five-point
+// animated as the core draws it (the server's scene), a plot and a table of any column, five-point
 // synthesis whose designs open as models, and downloads. Everything it needs is served by nbar.
 import './style.css';
 import 'uplot/dist/uPlot.min.css';
@@ -9,7 +9,7 @@ import { EditorView, basicSetup } from 'codemirror';
 import { yaml } from '@codemirror/lang-yaml';
 import { setDiagnostics, lintGutter } from '@codemirror/lint';
 import { t, setLang, getLang, translatePage } from './i18n.js';
-import { drawingSvg, frameGroup } from './drawing.js';
+import { drawingSvg, sceneGroup, poseDrawing, handlesSvg, markScale } from './drawing.js';
 import { encodeModel, decodeModel } from './share.js';
 import { initModelEdit, applyEdit } from './model-edit.js';
 import { initCanvasTools, snapPoint } from './canvas-tools.js';
@@ -24,7 +24,7 @@ import { initOffline } from './offline.js';
 
 const $ = (s) => document.querySelector(s);
 const state = {
-  seq: 0, text: '', check: null, solve: null, frame: 0, playing: false,
+  seq: 0, text: '', check: null, solve: null, scene: null, sceneSize: null, frame: 0, playing: false,
   xcol: 't', ycol: null, geometry: null, plot: null, current: null, lastOk: null,
 };
 
@@ -88,11 +88,13 @@ const editor = new EditorView({
   ],
 });
 
+let opens = 0;
 function setText(text) {
   quiet = true;
   editor.dispatch({ changes: { from: 0, to: editor.state.doc.length, insert: text } });
   quiet = false;
   clearTimeout(timer);
+  document.body.dataset.opened = String(++opens);
   document.dispatchEvent(new Event('nbar:opened'));
   return analyse();
 }
@@ -123,15 +125,19 @@ async function analyse() {
   state.text = text;
   if (!text.trim()) { showProblem(null); return; }
   status(t('analysing'));
+  document.body.dataset.busy = '1';
   try {
     const check = await api('/api/check', { model: text });
     if (seq !== state.seq) return;
     // The answer's text is kept as the server wrote it: the JSON download is those bytes.
-    const solveText = await api('/api/solve', { model: text }, 'text');
+    const size = sceneSize();
+    const [solveText, scene] = await Promise.all([api('/api/solve', { model: text }, 'text'), api('/api/render', sceneRequest(text, size))]);
     if (seq !== state.seq) return;
     const solve = JSON.parse(solveText);
     state.check = check;
     state.solve = solve;
+    state.scene = scene;
+    state.sceneSize = size;
     state.solveText = solveText;
     state.lastOk = text;
     showProblem(null);
@@ -146,7 +152,48 @@ async function analyse() {
     showProblem(e.info ?? { message: e.message });
     status(t('failed'), true);
     document.dispatchEvent(new CustomEvent('nbar:analysed', { detail: { error: e.info ?? { message: e.message } } }));
+  } finally {
+    // The text on screen is analysed and drawn (tests wait for this rather than for a title,
+    // which a model opened again over an edited copy of itself already shows).
+    if (seq === state.seq) delete document.body.dataset.busy;
   }
+}
+
+// The scene is drawn for the drawing's size in CSS pixels, as `nbar draw --width --height`
+// would draw it there.
+function sceneSize() {
+  const r = $('#drawing').getBoundingClientRect();
+  if (r.width < 50 || r.height < 50) return [900, 640];
+  return [Math.round(Math.min(Math.max(r.width, 100), 2400)), Math.round(Math.min(Math.max(r.height, 100), 2400))];
+}
+function sceneRequest(model, [width, height]) {
+  return { model, kind: 'draw', format: 'scene', labels: true, width, height };
+}
+
+// A drawing resized by much (a phone turned, a window resized) is drawn again for its new size.
+let resizeTimer = 0;
+function onDrawingResized() {
+  const [w, h] = sceneSize();
+  const old = state.sceneSize;
+  if (!old || !state.scene || (Math.abs(w - old[0]) < 0.25 * old[0] && Math.abs(h - old[1]) < 0.25 * old[1])) return;
+  clearTimeout(resizeTimer);
+  resizeTimer = setTimeout(async () => {
+    const seq = state.seq;
+    try {
+      const scene = await api('/api/render', sceneRequest(state.lastOk, [w, h]));
+      if (seq !== state.seq || drag) return;
+      state.scene = scene;
+      state.sceneSize = [w, h];
+      showDrawing();
+    } catch { /* the old drawing stays */ }
+  }, 250);
+}
+
+function showDrawing() {
+  state.geometry.scale = markScale(state.scene);
+  $('#drawing').innerHTML = drawingSvg(state.scene);
+  document.dispatchEvent(new CustomEvent('nbar:drawn'));
+  setFrame(state.frame);
 }
 
 // ------------------------------------------------------------------------------ results
@@ -160,12 +207,8 @@ function onSolved() {
   const ascending = col(driver) >= 0 && xs.every((v, i) => i === 0 || v >= xs[i - 1]);
   state.xcol = ascending ? driver : (col('t') >= 0 && solve.rows.every((r, i, a) => i === 0 || r[col('t')] >= a[i - 1][col('t')]) ? 't' : 'step');
   const points = [...(check.points?.ground ?? []), ...(check.points?.moving ?? [])].filter((p) => col(`${p}.x`) >= 0);
-  // Sliders, from the check's joint list: "slider BODY at POINT along P1-P2".
-  const sliders = (check.joints ?? []).map((j) => /^slider (\S+) at (\S+) along (\S+)-(\S+)$/.exec(j))
-    .filter((m) => m && [m[2], m[3], m[4]].every((p) => points.includes(p)))
-    .map((m) => ({ body: m[1], point: m[2], along: [m[3], m[4]] }));
   state.geometry = {
-    points, sliders, ground: new Set(check.points?.ground ?? []),
+    points, ground: new Set(check.points?.ground ?? []),
     bodies: (check.bodies ?? []).map((b) => ({ name: b.name, points: b.points.filter((p) => points.includes(p)) })),
   };
   // The column picker: every column but step; keep the choice across edits.
@@ -180,7 +223,8 @@ function onSolved() {
   const scrub = $('#scrub');
   scrub.max = String(Math.max(solve.rows.length - 1, 0));
   state.frame = Math.min(state.frame, solve.rows.length - 1);
-  $('#drawing').innerHTML = drawingSvg(state.geometry, solve);
+  state.geometry.scale = markScale(state.scene);
+  $('#drawing').innerHTML = drawingSvg(state.scene);
   buildPlot();
   buildTable();
   document.dispatchEvent(new CustomEvent('nbar:solved'));
@@ -201,8 +245,11 @@ function setFrame(i) {
   const n = solve.rows.length;
   state.frame = ((Math.round(i) % n) + n) % n;
   const row = solve.rows[state.frame];
-  const g = document.querySelector('#drawing svg .frame');
-  if (g) g.innerHTML = frameGroup(state.geometry, solve, row);
+  const svg = document.querySelector('#drawing svg');
+  if (svg && state.scene?.steps.length === n) {
+    poseDrawing(svg, state.scene, state.frame);
+    svg.querySelector('.handles').innerHTML = handlesSvg(state.geometry, solve, row);
+  }
   $('#scrub').value = String(state.frame);
   $('#readout').textContent = `${state.xcol} = ${fmt(row[col(state.xcol)])} ${unitOf(state.xcol)}`;
   state.plot?.redraw(false, false);
@@ -219,6 +266,8 @@ function setFrame(i) {
 
 // A point dragged in the drawing moves it in the model: its `NAME: [x, y]` line is rewritten and
 // the model analysed again. Points are written at the start pose, so dragging shows sample 0.
+// While the finger moves, the server draws the edited model's scene (one request at a time, the
+// latest position next), shown at sample 0 in the same view: it re-assembles live.
 let drag = null;
 function svgPoint(e) {
   const svg = $('#drawing svg');
@@ -242,17 +291,41 @@ function moveDrag(e) {
   const p = snapped ? { x: snapped[0], y: snapped[1] } : raw;
   drag.moved = true;
   drag.x = p.x; drag.y = p.y;
-  $('#drawing svg .frame').innerHTML = frameGroup(state.geometry, state.solve, state.solve.rows[0], { name: drag.name, ...p });
+  $('#drawing svg .handles').innerHTML = handlesSvg(state.geometry, state.solve, state.solve.rows[0], { name: drag.name, ...p });
+  redrawDragged(drag);
 }
 function endDrag(e) {
   if (!drag || e.pointerId !== drag.id) return;
   const d = drag;
   drag = null;
   if (!d.moved) return;
-  const digits = Math.max(0, Math.min(6, 2 - Math.floor(Math.log10(state.geometry.scale || 1))));
   // The point's value in the YAML is replaced where it is, the rest of the text kept as written.
-  const xy = snapPoint(d.x, d.y) ?? [+d.x.toFixed(digits), +d.y.toFixed(digits)];
-  if (!applyEdit((text) => setIn(text, ['points', d.name], xy))) setFrame(0);
+  if (!applyEdit((text) => setIn(text, ['points', d.name], draggedValue(d)))) {
+    if (d.scene) showDrawing();
+    else setFrame(0);
+  }
+}
+function draggedValue(d) {
+  const digits = Math.max(0, Math.min(6, 2 - Math.floor(Math.log10(state.geometry.scale || 1))));
+  return snapPoint(d.x, d.y) ?? [+d.x.toFixed(digits), +d.y.toFixed(digits)];
+}
+async function redrawDragged(d) {
+  if (d.busy) { d.again = true; return; }
+  d.busy = true;
+  try {
+    const text = setIn(state.text, ['points', d.name], draggedValue(d));
+    const scene = typeof text === 'string' ? await api('/api/render', sceneRequest(text, state.sceneSize)) : null;
+    const svg = $('#drawing svg');
+    if (scene && drag === d && svg && scene.steps.length) {
+      d.scene = true;  // the drawing no longer is the model's: drawn again when the drag ends
+      const old = svg.querySelector('.scene');
+      old.insertAdjacentHTML('afterend', sceneGroup(scene));
+      old.remove();
+      poseDrawing(svg, scene, 0);
+    }
+  } catch { /* a pose that does not assemble: the last drawing stays */ }
+  d.busy = false;
+  if (d.again && drag === d) { d.again = false; redrawDragged(d); }
 }
 
 // ------------------------------------------------------------------------------ animation
@@ -515,6 +588,7 @@ async function start() {
     status(t('copied'));
   });
   new ResizeObserver(resizePlot).observe($('#plot'));
+  new ResizeObserver(onDrawingResized).observe($('#drawing'));
   initFiles();
   initModelEdit({ editor, state, status, showTab, setFrame, analyse: () => { clearTimeout(timer); return analyse(); } });
   initCanvasTools(showBody);

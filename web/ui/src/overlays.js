@@ -179,7 +179,7 @@ function drawStress(row, s, svg) {
     const colour = stressColour(max > 0 ? l.von_mises / max : 0);
     for (const el of svg.querySelectorAll(`.frame .body[data-body="${CSS.escape(l.body)}"]`)) {
       el.setAttribute('stroke', colour);
-      if (el.tagName === 'polygon') el.setAttribute('fill', colour);
+      if (el.tagName !== 'polyline') el.setAttribute('fill', colour);
     }
     // The peak's place: x along the body's axis (its first point to its second), y to its left.
     const body = app.state.geometry.bodies.find((b) => b.name === l.body);
@@ -351,6 +351,8 @@ export function initOverlays(context) {
   buildControls();
   document.addEventListener('nbar:solved', () => { chips(); warnings(); refresh(); });
   document.addEventListener('nbar:frame', drawFrame);
+  // The drawing drawn again for a new size: the traces go back on it.
+  document.addEventListener('nbar:drawn', drawTraces);
   document.querySelector('#drawing').addEventListener('click', (e) => {
     const peak = e.target.closest('[data-step].peak, .peak-label');
     if (peak) { app.play(false); app.setFrame(+peak.dataset.step); }

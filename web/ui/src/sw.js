@@ -1,7 +1,7 @@
 // The web app's service worker (served by nbar serve as /sw.js, so its scope is the whole app):
 // the app shell and every answer are fetched from the network first and kept, so that without a
 // network the page, the editor and the last results still open. POST answers (check, solve,
-// stress, explain) are kept under a digest of the request's body: the same model asked again
+// stress, explain, synthesis, and the drawing's scene) are kept under a digest of the request's body: the same model asked again
 // offline gets the answer it had. Anything else asked offline is a 503 that says so.
 const CACHE = 'nbar-app-v1';
 const SHELL = ['./', 'index.html', 'app.js', 'app.css', 'api/examples'];
@@ -61,12 +61,21 @@ async function networkFirst(request) {
   }
 }
 
+// Of the pictures, only the drawing's scene is kept (not the downloads: GIF, MP4, reports).
+async function sceneOrPicture(request) {
+  let scene = false;
+  try { scene = JSON.parse(await request.clone().text()).format === 'scene'; } catch { /* not JSON */ }
+  return scene ? networkFirst(request) : fetch(request).catch(offlineAnswer);
+}
+
 self.addEventListener('fetch', (event) => {
   const { request } = event;
   const url = new URL(request.url);
   if (url.origin !== self.location.origin) return;
   if (request.method === 'GET' || (request.method === 'POST' && KEPT_POSTS.some((p) => url.pathname.startsWith(p)))) {
     event.respondWith(networkFirst(request));
+  } else if (request.method === 'POST' && url.pathname === '/api/render') {
+    event.respondWith(sceneOrPicture(request));
   } else if (request.method === 'POST') {
     event.respondWith(fetch(request).catch(offlineAnswer));
   }

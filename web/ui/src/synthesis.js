@@ -5,7 +5,7 @@
 // writes task text from the form, never a model. A design can be previewed animating through the
 // targets, and opened in the editor.
 import { t, translatePage } from './i18n.js';
-import { drawingSvg, frameGroup } from './drawing.js';
+import { drawingSvg, poseDrawing, markScale } from './drawing.js';
 
 const $ = (s) => document.querySelector(s);
 const num = (v) => String(+(+v).toFixed(6));
@@ -286,15 +286,6 @@ async function runSynthesis() {
 
 // ------------------------------------------------------------------------------ preview
 
-function geometryOf(check, solve) {
-  const has = (p) => solve.columns.includes(`${p}.x`);
-  const points = [...(check.points?.ground ?? []), ...(check.points?.moving ?? [])].filter(has);
-  return {
-    points, sliders: [], ground: new Set(check.points?.ground ?? []),
-    bodies: (check.bodies ?? []).map((b) => ({ name: b.name, points: b.points.filter((p) => points.includes(p)) })),
-  };
-}
-
 function stopPreview() {
   if (!synth.preview) return;
   cancelAnimationFrame(synth.preview.raf);
@@ -311,16 +302,16 @@ async function preview(d, li) {
   const el = li.querySelector('.pv');
   el.textContent = t('loading');
   try {
-    const [check, solve] = await Promise.all([
-      app.api('/api/check', { model: d.model }), app.api('/api/solve', { model: d.model, order: 0 })]);
-    const g = geometryOf(check, solve);
-    el.innerHTML = drawingSvg(g, solve);
+    // The core's drawing of the design at the preview's size, moved through its sweep.
+    const box = el.getBoundingClientRect();
+    const width = Math.round(Math.min(Math.max(box.width || 320, 100), 1200));
+    const scene = await app.api('/api/render', { model: d.model, kind: 'draw', format: 'scene', width, height: Math.round(width * 0.62) });
+    el.innerHTML = drawingSvg(scene);
     const svg = el.querySelector('svg');
     const marks = document.createElementNS('http://www.w3.org/2000/svg', 'g');
-    marks.innerHTML = synth.targets.map(([x, y, a], i) => targetMark(x, y, g.scale, i + 1, a)).join('');
+    marks.innerHTML = synth.targets.map(([x, y, a], i) => targetMark(x, y, markScale(scene), i + 1, a)).join('');
     svg.append(marks);
-    const frame = svg.querySelector('.frame');
-    const n = solve.rows.length;
+    const n = scene.steps.length;
     const p = { el, li, raf: 0, start: 0 };
     synth.preview = p;
     li.classList.add('previewing');
@@ -328,7 +319,7 @@ async function preview(d, li) {
       if (synth.preview !== p) return;
       if (!p.start) p.start = now;
       const i = Math.floor(((now - p.start) / 4000) * n) % n;
-      frame.innerHTML = frameGroup(g, solve, solve.rows[i]);
+      poseDrawing(svg, scene, i);
       el.dataset.frame = String(i);
       p.raf = requestAnimationFrame(step);
     };
@@ -354,6 +345,7 @@ export function initSynthesis(context) {
   $('#synth-run').addEventListener('click', runSynthesis);
   $('#drawing').addEventListener('pointerdown', onTap, true);
   document.addEventListener('nbar:solved', drawMarks);
+  document.addEventListener('nbar:drawn', drawMarks);
   $('#poses').addEventListener('input', drawMarks);
   $('#task').addEventListener('input', drawMarks);
   for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', drawMarks);

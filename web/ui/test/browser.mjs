@@ -2,55 +2,30 @@
 // Chromium (never a downloaded one) through playwright-core at a desktop and a phone viewport,
 // and saves screenshots. Exit 77 (ctest's SKIP_RETURN_CODE) when playwright-core, Chromium or
 // the built web app is missing.
-//   node web/ui/test/browser.mjs --nbar build/apps/nbar/nbar --out build/web-screenshots
-import { spawn } from 'node:child_process';
-import { existsSync, mkdirSync, readFileSync } from 'node:fs';
+//   node web/ui/test/browser.mjs --nbar build/apps/nbar/nbar --out build/web-screenshots [--only draw]
+import { spawnSync } from 'node:child_process';
+import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
+import { SKIP, arg, launchChromium, startServer, watchdog as startWatchdog } from './harness.mjs';
 import { run as runEditing } from './edit.mjs';
 import * as motion from './motion.mjs';
 import * as files from './files.mjs';
+import * as draw from './draw.mjs';
 
-const SKIP = 77;
-const arg = (name, fallback) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : fallback; };
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const out = arg('--out', 'build/web-screenshots');
-const chromiumPath = arg('--chromium', process.env.CHROMIUM || '/usr/bin/chromium');
+// `--only draw`: only the comparison of the drawing with nbar draw's, at both viewports.
+const onlyDraw = arg('--only', '') === 'draw';
 
-let chromium;
-try {
-  ({ chromium } = await import('playwright-core'));
-} catch {
-  console.log('SKIP: playwright-core is not installed (npm ci in web/ui)');
-  process.exit(SKIP);
-}
-if (!existsSync(chromiumPath)) { console.log(`SKIP: no Chromium at ${chromiumPath}`); process.exit(SKIP); }
-if (!existsSync(nbar)) { console.error(`no nbar program at ${nbar}`); process.exit(1); }
+const browser = await launchChromium();
 mkdirSync(out, { recursive: true });
-
-// The server, on a port the system picks; its first line says which.
-const server = spawn(nbar, ['serve', '--port', '0', '--host', '127.0.0.1'], { stdio: ['ignore', 'pipe', 'pipe'] });
-const stop = () => { try { server.kill('SIGTERM'); } catch { /* gone */ } };
-process.on('exit', stop);
-for (const signal of ['SIGINT', 'SIGTERM']) process.on(signal, () => { stop(); process.exit(1); });
-const base = await new Promise((resolve, reject) => {
-  let text = '';
-  const timer = setTimeout(() => reject(new Error(`nbar serve did not start: ${text}`)), 10000);
-  const read = (d) => {
-    text += d;
-    const m = /http:\/\/127\.0\.0\.1:(\d+)\//.exec(text);
-    if (m) { clearTimeout(timer); resolve(`http://127.0.0.1:${m[1]}/`); }
-  };
-  server.stdout.on('data', read);
-  server.stderr.on('data', read);
-  server.on('exit', (code) => reject(new Error(`nbar serve exited (${code}): ${text}`)));
-}).catch((e) => { console.error(e.message); stop(); process.exit(1); });
-const watchdog = setTimeout(() => { console.error('FAIL: over the time limit'); stop(); process.exit(1); }, 420000);
+const { base, stop } = await startServer(nbar);
+const watchdog = startWatchdog(420000, stop);
 
 const index = await (await fetch(base)).text();
-if (!index.includes('app.js')) { console.log('SKIP: this nbar carries the placeholder page, not the web app'); stop(); process.exit(SKIP); }
+if (!index.includes('app.js')) { console.log('SKIP: this nbar carries the placeholder page, not the web app'); stop(); await browser.close(); process.exit(SKIP); }
 
-const browser = await chromium.launch({ executablePath: chromiumPath, args: ['--no-sandbox', '--disable-gpu'] });
 const errors = [];
 let failed = false;
 
@@ -74,11 +49,20 @@ const shot = (page, name, fullPage = false) => page.screenshot({ path: join(out,
 const click = (page, mobile, selector) => (mobile ? page.locator(selector).first().tap() : page.locator(selector).first().click());
 const bodies = (page) => page.locator('#drawing svg .body').count();
 
+// Waits until a model opened after `opened` others is analysed and drawn: the title alone is no
+// sign, when the model opened is the one on screen (perhaps edited), whose late answer would
+// then redraw the drawing in the middle of the next step.
+async function analysedAfter(page, opened) {
+  await page.waitForFunction((n) => +(document.body.dataset.opened ?? 0) > n && !document.body.dataset.busy, opened);
+}
+
 async function openExample(page, mobile, name) {
   const title = (await page.locator(`[data-example="${name}"] b`).textContent()).trim();
   await click(page, mobile, '[data-tab="gallery"]');
+  const opened = await page.evaluate(() => +(document.body.dataset.opened ?? 0));
   await click(page, mobile, `[data-example="${name}"]`);
-  await page.waitForFunction((t) => document.querySelector('#model-name').textContent === t, title);
+  await analysedAfter(page, opened);
+  assert.equal(await page.locator('#model-name').textContent(), title);
   assert.ok(await bodies(page) > 0, `${name}: the drawing has bodies`);
   return title;
 }
@@ -130,10 +114,12 @@ async function desktop() {
   const { context, page } = await open('desktop', { width: 1280, height: 800 }, false);
   assert.ok(await page.locator('[data-example]').count() >= 10, 'the gallery lists the examples');
   await shot(page, 'desktop-1-gallery');
+  await draw.run(page, { mobile: false, tag: 'desktop', base, out, shot, click, openExample });
+  if (onlyDraw) { await context.close(); return; }
 
   // A model from the gallery, drawn and animated.
   await openExample(page, false, 'slider-crank-offset');
-  assert.equal(await page.locator('#drawing svg .block').count(), 1, 'the slider block is drawn');
+  assert.equal(await page.locator('#drawing svg g[data-link="slider"] > polygon.body').count(), 1, 'the slider block is drawn');
   assert.equal(await page.locator('#drawing svg .guide').count(), 1, 'the slider guide is drawn');
   await openExample(page, false, 'fourbar-crank-rocker');
   assert.equal(await page.locator('#scrub').inputValue(), '0');
@@ -182,7 +168,12 @@ async function desktop() {
   await page.locator('#drawing circle.pt[data-point="P"]').hover();  // the drag goes back to sample 0
   await page.mouse.down();
   const p = await page.locator('#drawing circle.pt[data-point="P"]').boundingBox();
+  const coupler = () => page.locator('#drawing g[data-link="coupler"] > .body').getAttribute('points');
+  const couplerBefore = await coupler();
   await page.mouse.move(p.x + p.width / 2 + 40, p.y + p.height / 2 + 20, { steps: 5 });
+  // While the finger is down, the server's drawing of the edited model follows it.
+  await page.waitForFunction((b) => document.querySelector('#drawing g[data-link="coupler"] > .body')?.getAttribute('points') !== b, couplerBefore);
+  await shot(page, 'desktop-4a-dragging');
   await page.mouse.up();
   await page.waitForFunction(() => document.querySelector('#table tbody tr td:nth-last-child(2)')?.textContent !== '77.8117');
   assert.equal(await page.locator('#scrub').inputValue(), '0');
@@ -202,6 +193,17 @@ async function desktop() {
   assert.equal(csvText.filter(Boolean).length, 362);
   const [svg] = await Promise.all([page.waitForEvent('download'), page.click('[data-download="svg"]')]);
   assert.match(readFileSync(await svg.path(), 'utf8'), /<svg/);
+  // The MP4, when the server has ffmpeg: an H.264 video of the 72 frames the button asks for.
+  const health = await (await fetch(new URL('api/health', base))).json();
+  if (health.mp4) {
+    const [mp4] = await Promise.all([page.waitForEvent('download', { timeout: 60000 }), page.click('[data-download="mp4"]')]);
+    assert.match(mp4.suggestedFilename(), /\.mp4$/);
+    const file = await mp4.path();
+    assert.equal(readFileSync(file).subarray(4, 8).toString('latin1'), 'ftyp', 'the download is an MP4 file');
+    const probe = spawnSync('ffprobe', ['-v', 'error', '-count_frames', '-select_streams', 'v:0', '-show_entries',
+      'stream=nb_read_frames,codec_name', '-of', 'csv=p=0', file], { encoding: 'utf8' });
+    if (probe.status === 0) assert.equal(probe.stdout.trim(), 'h264,72', 'ffprobe: the MP4 has the 72 frames asked for');
+  }
   await shot(page, 'desktop-7-downloads');
 
   // Spanish.
@@ -220,6 +222,8 @@ async function phone() {
   const width = await page.evaluate(() => document.documentElement.scrollWidth);
   assert.ok(width <= 390, `no sideways scrolling at 390 px (page is ${width} px wide)`);
   await shot(page, 'phone-1-gallery');
+  await draw.run(page, { mobile: true, tag: 'phone', base, out, shot, click, openExample });
+  if (onlyDraw) { await context.close(); return; }
   await openExample(page, true, 'five-bar');
   await page.locator('#play').tap();
   await page.waitForTimeout(600);

@@ -16,8 +16,10 @@ async function openTemplate(page, press, name, title) {
   await press('[data-tab="gallery"]');
   await press('#new-menu > summary');
   await page.waitForSelector(`[data-template="${name}"]`, { state: 'visible' });
+  const opened = await page.evaluate(() => +(document.body.dataset.opened ?? 0));
   await press(`[data-template="${name}"]`);
-  await page.waitForFunction((t) => document.querySelector('#model-name').textContent === t, title);
+  await page.waitForFunction((n) => +(document.body.dataset.opened ?? 0) > n && !document.body.dataset.busy, opened);
+  assert.equal(await page.locator('#model-name').textContent(), title);
   await settled(page);
 }
 
@@ -36,7 +38,7 @@ export async function run(page, ctx) {
   await press('#new-menu > summary');
   await openTemplate(page, press, 'template-slider-crank', 'Slider-crank');
   assert.equal(await statusText(page), '1 DOF · 181 samples');
-  assert.equal(await page.locator('#drawing svg .block').count(), 1, 'the slider block is drawn');
+  assert.equal(await page.locator('#drawing svg g[data-link="slider"] > polygon.body').count(), 1, 'the slider block is drawn');
   await openTemplate(page, press, 'template-five-bar', 'Five-bar');
   assert.equal(await statusText(page), '2 DOF · 181 samples');
   await ctx.shot(page, `${tag}-files-2-template`);

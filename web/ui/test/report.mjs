@@ -6,32 +6,22 @@
 // Exit 77 (ctest's SKIP_RETURN_CODE) when playwright-core or Chromium is missing.
 //   node web/ui/test/report.mjs --nbar build/apps/nbar/nbar --examples examples --out build/report-screenshots
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync } from 'node:fs';
+import { mkdirSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
+import { arg, launchChromium, watchdog as startWatchdog } from './harness.mjs';
 
-const SKIP = 77;
-const arg = (name, fallback) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : fallback; };
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const examples = arg('--examples', 'examples');
 const out = resolve(arg('--out', 'build/report-screenshots'));
-const chromiumPath = arg('--chromium', process.env.CHROMIUM || '/usr/bin/chromium');
 
-let chromium;
-try {
-  ({ chromium } = await import('playwright-core'));
-} catch {
-  console.log('SKIP: playwright-core is not installed (npm ci in web/ui)');
-  process.exit(SKIP);
-}
-if (!existsSync(chromiumPath)) { console.log(`SKIP: no Chromium at ${chromiumPath}`); process.exit(SKIP); }
+const browser = await launchChromium();
 mkdirSync(out, { recursive: true });
-const watchdog = setTimeout(() => { console.error('FAIL: over the time limit'); process.exit(1); }, 110000);
+const watchdog = startWatchdog(110000);
 
 const failures = [];
 const check = (ok, what) => { if (!ok) failures.push(what); };
 
-const browser = await chromium.launch({ executablePath: chromiumPath, args: ['--no-sandbox', '--disable-gpu'] });
 for (const example of ['fourbar-steel-bars', 'crank-rocker-gravity-spring']) {
   const page_file = join(out, `${example}.html`);
   execFileSync(nbar, ['report', join(examples, `${example}.yaml`), '--steps', '73', '--frames', '12', '-o', page_file]);
