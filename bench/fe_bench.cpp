@@ -23,7 +23,9 @@ LoadCase step_loads(const TriMesh& mesh, int step) {
   loads.body = RigidBodyField{{0.08, 0}, {3, -2}, 10.0, 50.0 * std::sin(angle), {0, -9.81}};
   structured::add_edge_traction(
       mesh, kSteel.thickness, [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() > 0.1599 && b.x() > 0.1599; },
-      [&](const Eigen::Vector2d&) { return Eigen::Vector2d(1000 * std::cos(angle), -1000 * std::sin(angle)) / (0.04 * kSteel.thickness); },
+      [&](const Eigen::Vector2d&) -> Eigen::Vector2d {
+        return Eigen::Vector2d(1000 * std::cos(angle), -1000 * std::sin(angle)) / (0.04 * kSteel.thickness);
+      },
       loads.nodal);
   return loads;
 }
