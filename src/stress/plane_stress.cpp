@@ -127,7 +127,6 @@ struct PlateModel::Impl {
   std::map<int, HoleGeometry> holes;
   std::array<Support, 3> supports;
   std::vector<int> reduced_index;  // per dof: its row in the reduced system, -1 when supported
-  Eigen::SimplicialLLT<SparseColumns> factor;
   SparseRows support_rows;  // the stiffness rows of the three supported dofs (for the reactions)
   SparseRows recovery;      // nodal (σxx, σyy, τxy) from the displacements: element values at the node, averaged
 
@@ -146,7 +145,115 @@ struct PlateModel::Impl {
   template <class Traction>
   void add_hole_traction(const HoleGeometry& h, Traction traction, Eigen::VectorXd& f) const;
   NodalLoads nodal_loads(const LoadCase& loads) const;
+
+  // The factor L (P K P^T = L L^T) as plain arrays: strictly-lower entries by column and the
+  // reciprocal diagonal, and each dof's row in the permuted system (-1 when supported).
+  std::vector<int> lower_start, lower_row;
+  std::vector<double> lower_value, inverse_diagonal;
+  std::vector<int> solve_row;
+  void keep_factor(const Eigen::SimplicialLLT<SparseColumns>& factor);
+  // Several load cases at once, `kBlock` at most: each factor entry then updates a row of
+  // right-hand sides, so the factor is read once per block instead of once per case.
+  static constexpr int kBlock = 16;
+  using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  template <int Width>
+  void substitute(double* x) const;
+  void solve_block(const LoadCase* cases, int count, std::vector<StressField>& out) const;
 };
+
+void PlateModel::Impl::keep_factor(const Eigen::SimplicialLLT<SparseColumns>& factor) {
+  const SparseColumns& l = factor.matrixL().nestedExpression();
+  const int n = static_cast<int>(l.cols());
+  lower_start.assign(1, 0);
+  inverse_diagonal.assign(n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    for (SparseColumns::InnerIterator it(l, j); it; ++it) {
+      if (it.row() == j) {
+        inverse_diagonal[j] = 1.0 / it.value();
+      } else if (it.row() > j) {
+        lower_row.push_back(static_cast<int>(it.row()));
+        lower_value.push_back(it.value());
+      }
+    }
+    lower_start.push_back(static_cast<int>(lower_row.size()));
+  }
+  const auto& p = factor.permutationP().indices();
+  solve_row.assign(dofs(), -1);
+  for (int i = 0; i < dofs(); ++i)
+    if (reduced_index[i] >= 0) solve_row[i] = p.size() > 0 ? p[reduced_index[i]] : reduced_index[i];
+}
+
+// x := L^-T L^-1 x for `Width` right-hand sides stored row by row (x[Width * row + case]),
+// column by column of L: each entry updates a whole row of cases at once.
+template <int Width>
+void PlateModel::Impl::substitute(double* x) const {
+  const int n = static_cast<int>(inverse_diagonal.size());
+  const int* rows = lower_row.data();
+  const double* values = lower_value.data();
+  for (int j = 0; j < n; ++j) {
+    double* xj = x + static_cast<std::ptrdiff_t>(Width) * j;
+    for (int c = 0; c < Width; ++c) xj[c] *= inverse_diagonal[j];
+    for (int k = lower_start[j]; k < lower_start[j + 1]; ++k) {
+      double* xi = x + static_cast<std::ptrdiff_t>(Width) * rows[k];
+      const double l = values[k];
+      for (int c = 0; c < Width; ++c) xi[c] -= l * xj[c];
+    }
+  }
+  for (int j = n - 1; j >= 0; --j) {
+    double* xj = x + static_cast<std::ptrdiff_t>(Width) * j;
+    double sum[Width];
+    for (int c = 0; c < Width; ++c) sum[c] = xj[c];
+    for (int k = lower_start[j]; k < lower_start[j + 1]; ++k) {
+      const double* xi = x + static_cast<std::ptrdiff_t>(Width) * rows[k];
+      const double l = values[k];
+      for (int c = 0; c < Width; ++c) sum[c] -= l * xi[c];
+    }
+    for (int c = 0; c < Width; ++c) xj[c] = sum[c] * inverse_diagonal[j];
+  }
+}
+
+void PlateModel::Impl::solve_block(const LoadCase* cases, int count, std::vector<StressField>& out) const {
+  const int n = static_cast<int>(mesh.nodes.size()), n_dofs = dofs();
+  std::vector<NodalLoads> applied;
+  applied.reserve(count);
+  const int width = count == 1 ? 1 : kBlock;  // a block is padded with empty cases
+  Block x = Block::Zero(n_dofs - 3, width);
+  for (int c = 0; c < count; ++c) {
+    applied.push_back(nodal_loads(cases[c]));
+    for (int i = 0; i < n_dofs; ++i)
+      if (solve_row[i] >= 0) x(solve_row[i], c) = applied[c].forces[i];
+  }
+  if (width == 1)
+    substitute<1>(x.data());
+  else
+    substitute<kBlock>(x.data());
+  Block displacement = Block::Zero(n_dofs, count);
+  for (int i = 0; i < n_dofs; ++i)
+    if (solve_row[i] >= 0) displacement.row(i) = x.row(solve_row[i]).head(count);
+  const Block stress = recovery * displacement;
+  const Block reactions = support_rows * displacement;
+  for (int c = 0; c < count; ++c) {
+    StressField field;
+    field.load_unbalance = applied[c].load_unbalance;
+    field.displacement = displacement.col(c);
+    if (applied[c].load_scale > 0) {
+      double largest = 0;
+      for (int k = 0; k < 3; ++k)
+        largest = std::max(largest, std::abs(reactions(k, c) - applied[c].forces[2 * supports[k].node + supports[k].direction]));
+      field.support_reaction = largest / applied[c].load_scale;
+    }
+    field.stress.resize(n);
+    field.von_mises.resize(n);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3d s(stress(3 * i, c), stress(3 * i + 1, c), stress(3 * i + 2, c));
+      field.stress[i] = s;
+      field.von_mises[i] = std::sqrt(std::max(0.0, s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3 * s[2] * s[2]));
+      if (field.peak_node < 0 || field.von_mises[i] > field.peak) field.peak = field.von_mises[i], field.peak_node = i;
+    }
+    field.peak_at = mesh.nodes[field.peak_node];
+    out.push_back(std::move(field));
+  }
+}
 
 // x and y held at the leftmost node (lowest, on a tie), and the direction across the line to the
 // node farthest from it held there: no rigid-body motion is left, and nothing more is held.
@@ -251,9 +358,10 @@ void PlateModel::Impl::assemble_and_factorise() {
   stiffness.setFromTriplets(free_part.begin(), free_part.end());
   support_rows.resize(3, n_dofs);
   support_rows.setFromTriplets(support_part.begin(), support_part.end());
-  factor.compute(stiffness);
+  const Eigen::SimplicialLLT<SparseColumns> factor(stiffness);
   if (factor.info() != Eigen::Success)
     throw std::invalid_argument("finite elements: the stiffness matrix could not be factorised (degenerate mesh?)");
+  keep_factor(factor);
 }
 
 void PlateModel::Impl::build_recovery() {
@@ -462,38 +570,15 @@ std::pair<Eigen::Vector2d, double> PlateModel::hole_circle(int hole) const {
   return {h.centre, h.radius};
 }
 
-StressField PlateModel::solve(const LoadCase& loads) const {
-  const Impl& m = *impl_;
-  const int n = static_cast<int>(m.mesh.nodes.size()), n_dofs = m.dofs();
-  NodalLoads applied = m.nodal_loads(loads);
-  StressField out;
-  out.load_unbalance = applied.load_unbalance;
-  Eigen::VectorXd reduced(n_dofs - 3);
-  for (int i = 0; i < n_dofs; ++i)
-    if (m.reduced_index[i] >= 0) reduced[m.reduced_index[i]] = applied.forces[i];
-  const Eigen::VectorXd solution = m.factor.solve(reduced);
-  out.displacement = Eigen::VectorXd::Zero(n_dofs);
-  for (int i = 0; i < n_dofs; ++i)
-    if (m.reduced_index[i] >= 0) out.displacement[i] = solution[m.reduced_index[i]];
-  if (applied.load_scale > 0) {
-    const Eigen::Vector3d reactions = m.support_rows * out.displacement;
-    double largest = 0;
-    for (int k = 0; k < 3; ++k) {
-      const Support& s = m.supports[k];
-      largest = std::max(largest, std::abs(reactions[k] - applied.forces[2 * s.node + s.direction]));
-    }
-    out.support_reaction = largest / applied.load_scale;
+StressField PlateModel::solve(const LoadCase& loads) const { return std::move(solve_many({loads})[0]); }
+
+std::vector<StressField> PlateModel::solve_many(const std::vector<LoadCase>& cases) const {
+  std::vector<StressField> out;
+  out.reserve(cases.size());
+  for (std::size_t first = 0; first < cases.size(); first += Impl::kBlock) {
+    const std::size_t count = std::min<std::size_t>(Impl::kBlock, cases.size() - first);
+    impl_->solve_block(cases.data() + first, static_cast<int>(count), out);
   }
-  const Eigen::VectorXd stress = m.recovery * out.displacement;
-  out.stress.resize(n);
-  out.von_mises.resize(n);
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d s = stress.segment<3>(3 * i);
-    out.stress[i] = s;
-    out.von_mises[i] = std::sqrt(std::max(0.0, s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3 * s[2] * s[2]));
-    if (out.peak_node < 0 || out.von_mises[i] > out.peak) out.peak = out.von_mises[i], out.peak_node = i;
-  }
-  out.peak_at = m.mesh.nodes[out.peak_node];
   return out;
 }
 

@@ -346,3 +346,33 @@ TEST(PlaneStress, AgreesWithCalculix) {
 
 }  // namespace
 }  // namespace nbar::fe
+
+namespace nbar::fe {
+namespace {
+
+// solve_many gives what solve gives, case by case, across several blocks.
+TEST(PlaneStress, SolveManyMatchesSolve) {
+  const TriMesh mesh = structured::plate_with_hole(-0.05, -0.02, 0.15, 0.02, {0, 0}, 0.008, 32, 8, 2.0);
+  const PlateModel model(mesh, kSteel);
+  std::vector<LoadCase> cases;
+  for (int i = 0; i < 37; ++i) {
+    LoadCase c;
+    c.bearings.push_back({0, {100.0 * std::cos(0.3 * i), 100.0 * std::sin(0.3 * i)}});
+    c.couples.push_back({0, 0.5 * i});
+    c.body = RigidBodyField{{0.05, 0}, {1, 2}, 3.0 + i, 10.0 - i, {0, -9.81}};
+    cases.push_back(c);
+  }
+  const std::vector<StressField> many = model.solve_many(cases);
+  ASSERT_EQ(many.size(), cases.size());
+  for (std::size_t i = 0; i < cases.size(); i += 6) {
+    const StressField one = model.solve(cases[i]);
+    EXPECT_NEAR(many[i].peak, one.peak, 1e-12 * one.peak);
+    EXPECT_EQ(many[i].peak_node, one.peak_node);
+    EXPECT_LT((many[i].displacement - one.displacement).norm(), 1e-12 * one.displacement.norm());
+    EXPECT_LT(one.support_reaction, 1e-9);
+  }
+  EXPECT_TRUE(model.solve_many({}).empty());
+}
+
+}  // namespace
+}  // namespace nbar::fe

@@ -112,6 +112,9 @@ class PlateModel {
 
   // Throws std::invalid_argument for a hole index the plate does not have or a point outside it.
   StressField solve(const LoadCase& loads) const;
+  // The same for many load cases (the steps of a sweep), in order: several times faster per case
+  // than solve() one by one, since each block of cases reads the factor once.
+  std::vector<StressField> solve_many(const std::vector<LoadCase>& cases) const;
 
   const TriMesh& mesh() const;
   const ElasticMaterial& material() const;
