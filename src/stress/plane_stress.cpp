@@ -23,7 +23,9 @@ using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 std::string at_point(const Eigen::Vector2d& p) {
-  return "(" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ")";
+  std::string out(1, '(');  // appended piece by piece: GCC 12 warns (wrongly) on "(" + std::string
+  out.append(std::to_string(p.x())).append(", ").append(std::to_string(p.y())).append(")");
+  return out;
 }
 
 void check_material(const ElasticMaterial& m) {
@@ -76,6 +78,8 @@ struct HoleGeometry {
   Eigen::Vector2d centre{0, 0};
   double radius = 0;
   std::vector<int> edges;  // indices into TriMesh::boundary
+  std::vector<int> nodes;  // the nodes on the hole, each once
+  std::vector<std::array<int, 3>> edge_nodes;  // per edge, its nodes' positions in `nodes`
 };
 
 // Least-squares circle through points that lie on one (Kasa's fit, then exact for them).
@@ -142,8 +146,9 @@ struct PlateModel::Impl {
   double add_couple(const HoleCouple& load, Eigen::VectorXd& f) const;
   double add_point_force(const PointForce& load, Eigen::VectorXd& f) const;
   double add_body(const RigidBodyField& body, Eigen::VectorXd& f) const;
+  // The nodal forces of a traction on hole h, per node of h.nodes.
   template <class Traction>
-  void add_hole_traction(const HoleGeometry& h, Traction traction, Eigen::VectorXd& f) const;
+  std::vector<Eigen::Vector2d> hole_traction(const HoleGeometry& h, Traction traction) const;
   NodalLoads nodal_loads(const LoadCase& loads) const;
 
   // The factor L (P K P^T = L L^T) as plain arrays: strictly-lower entries by column and the
@@ -309,7 +314,20 @@ void PlateModel::Impl::find_holes() {
     holes[e.on.index].edges.push_back(static_cast<int>(i));
     for (int v : e.nodes) points[e.on.index].push_back(mesh.nodes[v]);
   }
-  for (auto& [index, h] : holes) std::tie(h.centre, h.radius) = fit_circle(points[index]);
+  for (auto& [index, h] : holes) {
+    std::tie(h.centre, h.radius) = fit_circle(points[index]);
+    std::map<int, int> position;
+    for (int edge : h.edges) {
+      std::array<int, 3> local{};
+      for (int k = 0; k < 3; ++k) {
+        const int node = mesh.boundary[edge].nodes[k];
+        const auto [it, added] = position.emplace(node, static_cast<int>(h.nodes.size()));
+        if (added) h.nodes.push_back(node);
+        local[k] = it->second;
+      }
+      h.edge_nodes.push_back(local);
+    }
+  }
 }
 
 const HoleGeometry& PlateModel::Impl::hole(int index) const {
@@ -390,18 +408,20 @@ void PlateModel::Impl::build_recovery() {
 }
 
 template <class Traction>
-void PlateModel::Impl::add_hole_traction(const HoleGeometry& h, Traction traction, Eigen::VectorXd& f) const {
-  for (int edge : h.edges) {
-    const auto& nodes = mesh.boundary[edge].nodes;  // first, second, middle
+std::vector<Eigen::Vector2d> PlateModel::Impl::hole_traction(const HoleGeometry& h, Traction traction) const {
+  std::vector<Eigen::Vector2d> out(h.nodes.size(), Eigen::Vector2d::Zero());
+  for (std::size_t e = 0; e < h.edges.size(); ++e) {
+    const auto& nodes = mesh.boundary[h.edges[e]].nodes;  // first, second, middle
     const std::array<Eigen::Vector2d, 3> x{mesh.nodes[nodes[0]], mesh.nodes[nodes[1]], mesh.nodes[nodes[2]]};
     for (const auto& [s, w] : t6::kGaussLine5) {
       const Eigen::Vector3d n = t6::edge_shape(s), dn = t6::edge_shape_derivative(s);
       const Eigen::Vector2d at = n[0] * x[0] + n[1] * x[1] + n[2] * x[2];
       const Eigen::Vector2d tangent = dn[0] * x[0] + dn[1] * x[1] + dn[2] * x[2];
       const Eigen::Vector2d t = traction((at - h.centre).normalized()) * (w * tangent.norm() * material.thickness);
-      for (int i = 0; i < 3; ++i) f.segment<2>(2 * nodes[i]) += n[i] * t;
+      for (int i = 0; i < 3; ++i) out[h.edge_nodes[e][i]] += n[i] * t;
     }
   }
+  return out;
 }
 
 // The pin presses on the hole wall facing the force: p(θ) = p0 cos(θ − θ_F) over that half, with
@@ -414,12 +434,13 @@ double PlateModel::Impl::add_bearing(const BearingLoad& load, Eigen::VectorXd& f
   if (magnitude == 0) return 0;
   const Eigen::Vector2d direction = load.force / magnitude;
   const double p0 = 2 * magnitude / (std::numbers::pi * h.radius * material.thickness);
-  Eigen::VectorXd part = Eigen::VectorXd::Zero(f.size());
-  add_hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
+  const std::vector<Eigen::Vector2d> part = hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
     return std::max(0.0, radial.dot(direction)) * p0 * radial;
-  }, part);
-  const Eigen::Vector2d resultant = part.reshaped(2, part.size() / 2).rowwise().sum();
-  f += (magnitude * magnitude / load.force.dot(resultant)) * part;
+  });
+  Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
+  for (const auto& p : part) resultant += p;
+  const double scale = magnitude * magnitude / load.force.dot(resultant);
+  for (std::size_t i = 0; i < part.size(); ++i) f.segment<2>(2 * h.nodes[i]) += scale * part[i];
   return magnitude;
 }
 
@@ -431,13 +452,12 @@ double PlateModel::Impl::add_couple(const HoleCouple& load, Eigen::VectorXd& f) 
     throw std::invalid_argument("finite elements: the couple on hole " + std::to_string(load.hole) + " is not finite");
   if (load.moment == 0) return 0;
   const double tau = load.moment / (2 * std::numbers::pi * h.radius * h.radius * material.thickness);
-  Eigen::VectorXd part = Eigen::VectorXd::Zero(f.size());
-  add_hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
+  const std::vector<Eigen::Vector2d> part = hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
     return tau * Eigen::Vector2d(-radial.y(), radial.x());
-  }, part);
+  });
   double moment = 0;
-  for (int i = 0; i < part.size() / 2; ++i) moment += cross(mesh.nodes[i] - h.centre, part.segment<2>(2 * i));
-  f += (load.moment / moment) * part;
+  for (std::size_t i = 0; i < part.size(); ++i) moment += cross(mesh.nodes[h.nodes[i]] - h.centre, part[i]);
+  for (std::size_t i = 0; i < part.size(); ++i) f.segment<2>(2 * h.nodes[i]) += (load.moment / moment) * part[i];
   return std::abs(load.moment) / size;
 }
 
