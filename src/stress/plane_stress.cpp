@@ -237,27 +237,35 @@ void PlateModel::Impl::solve_block(const LoadCase* cases, int count, std::vector
     if (solve_row[i] >= 0) displacement.row(i) = x.row(solve_row[i]).head(count);
   const Block stress = recovery * displacement;
   const Block reactions = support_rows * displacement;
+  // Row by row of the blocks (cases side by side in memory), filling every case's field at once.
+  const std::size_t first = out.size();
   for (int c = 0; c < count; ++c) {
     StressField field;
     field.load_unbalance = applied[c].load_unbalance;
-    field.displacement = displacement.col(c);
     if (applied[c].load_scale > 0) {
       double largest = 0;
       for (int k = 0; k < 3; ++k)
         largest = std::max(largest, std::abs(reactions(k, c) - applied[c].forces[2 * supports[k].node + supports[k].direction]));
       field.support_reaction = largest / applied[c].load_scale;
     }
+    field.displacement.resize(n_dofs);
     field.stress.resize(n);
     field.von_mises.resize(n);
-    for (int i = 0; i < n; ++i) {
+    out.push_back(std::move(field));
+  }
+  StressField* fields = out.data() + first;
+  for (int i = 0; i < n_dofs; ++i)
+    for (int c = 0; c < count; ++c) fields[c].displacement[i] = displacement(i, c);
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < count; ++c) {
       const Eigen::Vector3d s(stress(3 * i, c), stress(3 * i + 1, c), stress(3 * i + 2, c));
+      StressField& field = fields[c];
       field.stress[i] = s;
       field.von_mises[i] = std::sqrt(std::max(0.0, s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3 * s[2] * s[2]));
       if (field.peak_node < 0 || field.von_mises[i] > field.peak) field.peak = field.von_mises[i], field.peak_node = i;
     }
-    field.peak_at = mesh.nodes[field.peak_node];
-    out.push_back(std::move(field));
   }
+  for (int c = 0; c < count; ++c) fields[c].peak_at = mesh.nodes[fields[c].peak_node];
 }
 
 // x and y held at the leftmost node (lowest, on a tie), and the direction across the line to the
