@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -372,6 +373,40 @@ TEST(PlaneStress, SolveManyMatchesSolve) {
     EXPECT_LT(one.support_reaction, 1e-9);
   }
   EXPECT_TRUE(model.solve_many({}).empty());
+}
+
+}  // namespace
+}  // namespace nbar::fe
+
+namespace nbar::fe {
+namespace {
+
+TEST(PlaneStress, CalculixResultsReaderReadsBlocksAndLocatesBadLines) {
+  std::istringstream good(
+      "    2C                             2                                     1\n"
+      " -1         1 0.00000E+00 0.00000E+00 0.00000E+00\n"
+      " -3\n"
+      " -4  DISP        4    1\n"
+      " -5  D1          1    2    1    0\n"
+      " -1         1 1.00000E-03-2.00000E-03 0.00000E+00\n"
+      " -1         2 3.00000E-03 4.00000E-03 0.00000E+00\n"
+      " -3\n"
+      " -4  STRESS      6    1\n"
+      " -1         2 1.00000E+06 2.00000E+06 0.00000E+00 3.00000E+06 0.00000E+00 0.00000E+00\n"
+      " -3\n");
+  const CalculixResults r = read_calculix_frd(good);
+  ASSERT_EQ(r.displacement.size(), 2u);
+  EXPECT_EQ(r.displacement[0], Eigen::Vector2d(1e-3, -2e-3));
+  EXPECT_EQ(r.displacement[1], Eigen::Vector2d(3e-3, 4e-3));
+  ASSERT_EQ(r.stress.size(), 2u);
+  EXPECT_EQ(r.stress[1], Eigen::Vector3d(1e6, 2e6, 3e6));
+  std::istringstream bad(" -4  DISP        4    1\n -1         1 1.0000\n");
+  try {
+    read_calculix_frd(bad);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
