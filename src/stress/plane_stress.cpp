@@ -1,6 +1,7 @@
 #include "nbar/stress/plane_stress.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -147,8 +148,9 @@ struct PlateModel::Impl {
   double add_point_force(const PointForce& load, Eigen::VectorXd& f) const;
   double add_body(const RigidBodyField& body, Eigen::VectorXd& f) const;
   // The nodal forces of a traction on hole h, per node of h.nodes.
+  // The traction may have a kink where `cut`·(x − centre) changes sign (zero `cut`: none).
   template <class Traction>
-  std::vector<Eigen::Vector2d> hole_traction(const HoleGeometry& h, Traction traction) const;
+  std::vector<Eigen::Vector2d> hole_traction(const HoleGeometry& h, Traction traction, const Eigen::Vector2d& cut) const;
   NodalLoads nodal_loads(const LoadCase& loads) const;
 
   // The factor L (P K P^T = L L^T) as plain arrays: strictly-lower entries by column and the
@@ -416,24 +418,40 @@ void PlateModel::Impl::build_recovery() {
 }
 
 template <class Traction>
-std::vector<Eigen::Vector2d> PlateModel::Impl::hole_traction(const HoleGeometry& h, Traction traction) const {
+std::vector<Eigen::Vector2d> PlateModel::Impl::hole_traction(const HoleGeometry& h, Traction traction,
+                                                            const Eigen::Vector2d& cut) const {
   std::vector<Eigen::Vector2d> out(h.nodes.size(), Eigen::Vector2d::Zero());
   for (std::size_t e = 0; e < h.edges.size(); ++e) {
     const auto& nodes = mesh.boundary[h.edges[e]].nodes;  // first, second, middle
     const std::array<Eigen::Vector2d, 3> x{mesh.nodes[nodes[0]], mesh.nodes[nodes[1]], mesh.nodes[nodes[2]]};
-    for (const auto& [s, w] : t6::kGaussLine5) {
-      const Eigen::Vector3d n = t6::edge_shape(s), dn = t6::edge_shape_derivative(s);
-      const Eigen::Vector2d at = n[0] * x[0] + n[1] * x[1] + n[2] * x[2];
-      const Eigen::Vector2d tangent = dn[0] * x[0] + dn[1] * x[1] + dn[2] * x[2];
-      const Eigen::Vector2d t = traction((at - h.centre).normalized()) * (w * tangent.norm() * material.thickness);
-      for (int i = 0; i < 3; ++i) out[h.edge_nodes[e][i]] += n[i] * t;
+    const auto point = [&](double s) { const Eigen::Vector3d n = t6::edge_shape(s); return Eigen::Vector2d(n[0] * x[0] + n[1] * x[1] + n[2] * x[2]); };
+    const auto side = [&](double s) { return cut.dot(point(s) - h.centre); };
+    // Integrate each smooth piece on its own: split where the traction has its kink.
+    std::array<double, 3> ends{-1, 1, 1};
+    int pieces = 1;
+    if (cut.squaredNorm() > 0 && (side(-1) > 0) != (side(1) > 0)) {
+      double lo = -1, hi = 1;
+      for (int it = 0; it < 60; ++it) ((side(lo) > 0) == (side(0.5 * (lo + hi)) > 0) ? lo : hi) = 0.5 * (lo + hi);
+      ends = {-1, 0.5 * (lo + hi), 1};
+      pieces = 2;
+    }
+    for (int piece = 0; piece < pieces; ++piece) {
+      const double a = ends[piece], b = ends[piece + 1];
+      for (const auto& [g, w] : t6::kGaussLine5) {
+        const double s = 0.5 * (a + b) + 0.5 * (b - a) * g;
+        const Eigen::Vector3d n = t6::edge_shape(s), dn = t6::edge_shape_derivative(s);
+        const Eigen::Vector2d tangent = dn[0] * x[0] + dn[1] * x[1] + dn[2] * x[2];
+        const Eigen::Vector2d t =
+            traction((point(s) - h.centre).normalized()) * (0.5 * (b - a) * w * tangent.norm() * material.thickness);
+        for (int i = 0; i < 3; ++i) out[h.edge_nodes[e][i]] += n[i] * t;
+      }
     }
   }
   return out;
 }
 
 // The pin presses on the hole wall facing the force: p(θ) = p0 cos(θ − θ_F) over that half, with
-// p0 = 2|F| / (π r t) so the resultant is F; rescaled so the discrete resultant is F exactly.
+// p0 = 2|F| / (π r t) so the resultant is F; the discrete resultant is made F exactly.
 double PlateModel::Impl::add_bearing(const BearingLoad& load, Eigen::VectorXd& f) const {
   const HoleGeometry& h = hole(load.hole);
   if (!load.force.allFinite())
@@ -444,11 +462,14 @@ double PlateModel::Impl::add_bearing(const BearingLoad& load, Eigen::VectorXd& f
   const double p0 = 2 * magnitude / (std::numbers::pi * h.radius * material.thickness);
   const std::vector<Eigen::Vector2d> part = hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
     return std::max(0.0, radial.dot(direction)) * p0 * radial;
-  });
+  }, direction);
   Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
   for (const auto& p : part) resultant += p;
-  const double scale = magnitude * magnitude / load.force.dot(resultant);
-  for (std::size_t i = 0; i < part.size(); ++i) f.segment<2>(2 * h.nodes[i]) += scale * part[i];
+  // The discrete circle bends the resultant by ~1e-8: turn and scale it onto F (a tangential
+  // part of that size is negligible, a force off F would be reported as unbalance).
+  const double turn = std::atan2(cross(resultant, load.force), resultant.dot(load.force));
+  const Eigen::Matrix2d onto = (magnitude / resultant.norm()) * Eigen::Rotation2Dd(turn).toRotationMatrix();
+  for (std::size_t i = 0; i < part.size(); ++i) f.segment<2>(2 * h.nodes[i]) += onto * part[i];
   return magnitude;
 }
 
@@ -462,7 +483,7 @@ double PlateModel::Impl::add_couple(const HoleCouple& load, Eigen::VectorXd& f) 
   const double tau = load.moment / (2 * std::numbers::pi * h.radius * h.radius * material.thickness);
   const std::vector<Eigen::Vector2d> part = hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
     return tau * Eigen::Vector2d(-radial.y(), radial.x());
-  });
+  }, Eigen::Vector2d::Zero());
   double moment = 0;
   for (std::size_t i = 0; i < part.size(); ++i) moment += cross(mesh.nodes[h.nodes[i]] - h.centre, part[i]);
   for (std::size_t i = 0; i < part.size(); ++i) f.segment<2>(2 * h.nodes[i]) += (load.moment / moment) * part[i];
