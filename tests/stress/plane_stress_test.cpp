@@ -482,3 +482,24 @@ TEST(PlaneStress, MeshedKirschPlate) {
 
 }  // namespace
 }  // namespace nbar::fe
+
+namespace nbar::fe {
+namespace {
+
+// docs/fe.md's example, as written there.
+TEST(PlaneStress, DocsExampleRuns) {
+  const Region bar = make_bar({0, 0}, {0.2, 0}, 0.04, 0.03, 0.01, 0.01);
+  const fe::PlateModel model(fe::mesh_region(bar, {.size = 0.004}), {200e9, 0.3, 0.01, 7850});
+  fe::LoadCase loads;
+  loads.bearings = {{0, {-1000, 0}}, {1, {1000, 0}}};
+  loads.body = fe::RigidBodyField{.origin = {0, 0}, .omega = 5.0, .gravity = {0, -9.81}};
+  const fe::StressField field = model.solve(loads);
+  // Beside a hole, about Ktn × P / ((H − d) t) = 2.3 × 5 MPa.
+  EXPECT_NEAR(field.peak, 2.3 * 1000 / (0.02 * 0.01), 0.1 * 2.3 * 1000 / (0.02 * 0.01));
+  EXPECT_NEAR(std::min(field.peak_at.norm(), (field.peak_at - Eigen::Vector2d(0.2, 0)).norm()), 0.01, 1e-6);
+  EXPECT_GT(field.load_unbalance, 0);  // the spin and gravity are relieved
+  EXPECT_LT(field.support_reaction, 1e-9);
+}
+
+}  // namespace
+}  // namespace nbar::fe
