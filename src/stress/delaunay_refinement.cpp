@@ -371,8 +371,25 @@ class Refiner {
       if (apex < kSuper) continue;
       if ((pts_[a] - pts_[apex]).dot(pts_[b] - pts_[apex]) < 0) return true;
     }
-    return false;
+    return in_.curved[seg.s.curve] && too_curved(seg);
   }
+
+  // A 6-node triangle whose edge bulges by the sagitta s towards the opposite corner, at height
+  // h above it, has det J = L (h − 4 s x / L) at the edge's ends (x: the corner's offset along
+  // the edge), positive only while s < h / 4. A curved segment whose triangle inside is not
+  // several times taller than the arc's sagitta is split (which quarters the sagitta).
+  bool too_curved(const Seg& seg) const {
+    const auto [t, i] = find_edge(seg.s.a, seg.s.b);
+    if (t < 0) return false;
+    const Vector2d& a = pts_[seg.s.a];
+    const Vector2d& b = pts_[seg.s.b];
+    const Vector2d& apex = pts_[tris_[t].v[(i + 2) % 3]];
+    const double length = (b - a).norm();
+    const double height = orient(a, b, apex) / length;
+    const double sagitta = (in_.curve_point(seg.s.curve, (seg.s.ta + seg.s.tb) / 2) - (a + b) / 2).norm();
+    return height < kHeightPerSagitta * sagitta;
+  }
+  static constexpr double kHeightPerSagitta = 8.0;
 
   bool is_edge(int a, int b) const { return find_edge(a, b).first >= 0; }
 
@@ -572,6 +589,17 @@ class Refiner {
     const int n = static_cast<int>(m.points.size());
     std::vector<char> fixed(n, 0);
     for (const BoundarySegment& s : m.segments) fixed[s.a] = fixed[s.b] = 1;
+    // The corners facing curved edges stay too: their height above the edge keeps the curved
+    // triangle's Jacobian positive (too_curved()).
+    std::unordered_map<std::uint64_t, char> curved_edge;
+    for (const BoundarySegment& s : m.segments) {
+      if (in_.curved[s.curve]) curved_edge[key(s.a, s.b)] = 1;
+    }
+    for (const auto& t : m.triangles) {
+      for (int i = 0; i < 3; ++i) {
+        if (curved_edge.count(key(t[i], t[(i + 1) % 3]))) fixed[t[(i + 2) % 3]] = 1;
+      }
+    }
     std::vector<int> first(n + 1, 0);
     for (const auto& t : m.triangles) {
       for (int v : t) ++first[v + 1];

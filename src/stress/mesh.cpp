@@ -5,6 +5,7 @@
 #include "nbar/stress/mesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -294,9 +295,31 @@ detail::RefinementInput refinement_input(const Boundary& b, const Sizing& h, con
   in.curve_point = [&b](int curve, double t) { return b.curves[curve].at(t); };
   in.size_at = [&h](const Vector2d& x) { return h(x); };
   in.min_angle_deg = kMinAngleDeg;
-  in.min_length = shortest / 32;
+  in.min_length = shortest / 1024;
   in.max_vertices = o.max_nodes;
   return in;
+}
+
+// det J of the 6-node triangle t at the reference point (xi, eta).
+double jacobian(const std::vector<Vector2d>& nodes, const std::array<int, 6>& t, double xi, double eta) {
+  const double l1 = 1 - xi - eta;
+  const double dxi[6] = {-(4 * l1 - 1), 4 * xi - 1, 0, 4 * (l1 - xi), 4 * eta, -4 * eta};
+  const double deta[6] = {-(4 * l1 - 1), 0, 4 * eta - 1, -4 * xi, 4 * xi, 4 * (l1 - eta)};
+  Vector2d along_xi(0, 0), along_eta(0, 0);
+  for (int i = 0; i < 6; ++i) {
+    along_xi += dxi[i] * nodes[t[i]];
+    along_eta += deta[i] * nodes[t[i]];
+  }
+  return cross(along_xi, along_eta);
+}
+
+// det J is quadratic: positive at the six nodes is the usual test of a usable element.
+bool positive_at_nodes(const std::vector<Vector2d>& nodes, const std::array<int, 6>& t) {
+  constexpr double kNodes[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
+  for (const auto& p : kNodes) {
+    if (!(jacobian(nodes, t, p[0], p[1]) > 0)) return false;
+  }
+  return true;
 }
 
 std::uint64_t edge_key(int a, int b) {
@@ -349,6 +372,12 @@ TriMesh quadratic_mesh(const detail::RefinedMesh& m, const Boundary& b, int max_
     }
     mesh.triangles[e.triangle][3 + e.side] = static_cast<int>(mesh.nodes.size()) - 1;
   }
+  // Refinement keeps curved triangles tall enough for a positive Jacobian; should one still
+  // fold, its edge goes straight (a sagitta's error in the boundary, not an unusable element).
+  for (auto& t : mesh.triangles) {
+    if (positive_at_nodes(mesh.nodes, t)) continue;
+    for (int i = 0; i < 3; ++i) mesh.nodes[t[3 + i]] = (mesh.nodes[t[i]] + mesh.nodes[t[(i + 1) % 3]]) / 2;
+  }
   for (const detail::BoundarySegment& s : m.segments) {
     mesh.boundary.push_back({{s.a, s.b, middle_of.at(edge_key(s.a, s.b))}, b.curves[s.curve].tag});
   }
@@ -389,17 +418,7 @@ MeshQuality mesh_quality(const TriMesh& mesh) {
     const double area2 = std::abs(cross(b - a, c - a));
     const double sine = area2 / std::max({lb * lc, la * lc, la * lb});
     q.min_angle_deg = std::min(q.min_angle_deg, std::asin(std::min(1.0, sine)) * 180 / kPi);
-    for (const auto& p : kRule) {
-      const double l1 = 1 - p[0] - p[1], l2 = p[0], l3 = p[1];
-      const double dxi[6] = {-(4 * l1 - 1), 4 * l2 - 1, 0, 4 * (l1 - l2), 4 * l3, -4 * l3};
-      const double deta[6] = {-(4 * l1 - 1), 0, 4 * l3 - 1, -4 * l2, 4 * l2, 4 * (l1 - l3)};
-      Vector2d dx_dxi(0, 0), dx_deta(0, 0);
-      for (int i = 0; i < 6; ++i) {
-        dx_dxi += dxi[i] * mesh.nodes[t[i]];
-        dx_deta += deta[i] * mesh.nodes[t[i]];
-      }
-      q.area += cross(dx_dxi, dx_deta) / 6;
-    }
+    for (const auto& p : kRule) q.area += jacobian(mesh.nodes, t, p[0], p[1]) / 6;
   }
   if (mesh.triangles.empty()) q.min_angle_deg = q.min_edge = 0;
   return q;
