@@ -1,6 +1,7 @@
 #include "nbar/synthesis/run.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,7 @@
 
 #include "nbar/synthesis/five_point.hpp"
 #include "nbar/synthesis/function_generation.hpp"
+#include "nbar/synthesis/path_fit.hpp"
 
 namespace nbar::synthesis {
 
@@ -20,6 +22,8 @@ std::string to_string(SynthesisKind kind) {
       return "burmester";
     case SynthesisKind::Function:
       return "function";
+    case SynthesisKind::Path:
+      return "path";
   }
   return {};
 }
@@ -198,6 +202,52 @@ Outcome function(const SynthesisTask& task, const SynthesisRunOptions& run) {
   return out;
 }
 
+// Best fit through many points: the distinct local optima, each checked like a five-point
+// design (the targets, in order, on one branch), defect-free ones first, then by RMS deviation.
+Outcome path(const SynthesisTask& task, const SynthesisRunOptions& run) {
+  PathFitTask problem;
+  problem.targets = task.points;
+  problem.constraints = task.constraints;
+  PathFitOptions options;
+  options.seed = run.seed;
+  options.stop = [&run] { return run.control.should_stop("starts", 0, 0); };
+  options.progress = [&run](int done, int total) {
+    if (run.control.on_progress && !run.control.on_progress(Progress{"starts", done, total})) run.control.token.cancel();
+  };
+  const PathFitResult result = fit_path(problem, options);
+  run.control.checkpoint("starts", result.starts, result.starts);
+  Outcome out;
+  out.method = fmt::format("Levenberg-Marquardt fit to {} points from {} starts", task.points.size(), result.starts);
+  out.ranked = true;
+  for (const PathFit& fit : result.fits) {
+    Row row;
+    row.design = fit.design;
+    row.rms_error = fit.rms_deviation;
+    row.fit_max_error = fit.max_deviation;
+    out.rows.push_back(row);
+  }
+  std::vector<Target> targets;
+  for (const Eigen::Vector2d& p : task.points) targets.push_back({p, std::nullopt});
+  check_rows(
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+  // The engine's deviations, when it reached every target, are the ones listed.
+  for (Row& row : out.rows) {
+    if (row.check.unreached() || row.check.targets.empty()) continue;
+    double sum = 0;
+    for (const TargetCheck& t : row.check.targets) sum += t.error * t.error;
+    row.rms_error = std::sqrt(sum / static_cast<double>(row.check.targets.size()));
+  }
+  std::stable_sort(out.rows.begin(), out.rows.end(), [](const Row& x, const Row& y) {
+    if (x.check.defect_free() != y.check.defect_free()) return x.check.defect_free();
+    return x.rms_error < y.rms_error;
+  });
+  out.notes.push_back(fmt::format("starts: {}; {} coupler-point evaluations", fmt::join(result.start_counts, ", "),
+                                  result.evaluations));
+  if (result.rejected > 0)
+    out.notes.push_back(fmt::format("{} local optima broke a constraint and are not listed", result.rejected));
+  return out;
+}
+
 }  // namespace
 
 SynthesisOutcome run_synthesis(const SynthesisTask& task, const SynthesisRunOptions& options) {
@@ -210,6 +260,8 @@ SynthesisOutcome run_synthesis(const SynthesisTask& task, const SynthesisRunOpti
         return burmester(task, options);
       case SynthesisKind::Function:
         return function(task, options);
+      case SynthesisKind::Path:
+        return path(task, options);
     }
   } catch (const std::invalid_argument& e) {  // the solvers' complaints about the task's data
     throw Error(ErrorKind::InvalidModel, e.what(), {}, task.file, task.where);
@@ -227,8 +279,13 @@ std::vector<int> shown_rows(const SynthesisOutcome& out, bool all, int top) {
       real.push_back(static_cast<int>(i));
       checks.push_back(out.rows[i].check);
     }
+  std::vector<int> order = rank_designs(checks);
+  if (out.ranked) std::sort(order.begin(), order.end(), [&](int i, int j) {
+    if (checks[i].defect_free() != checks[j].defect_free()) return checks[i].defect_free();
+    return i < j;
+  });
   std::vector<int> shown;
-  for (int k : rank_designs(checks))
+  for (int k : order)
     if (all || checks[k].defect_free()) shown.push_back(real[k]);
   if (all)
     for (std::size_t i = 0; i < out.rows.size(); ++i)

@@ -12,12 +12,18 @@
 #include "nbar/model/law.hpp"
 #include "nbar/model/units.hpp"
 #include "nbar/synthesis/burmester.hpp"
+#include "nbar/synthesis/path_fit.hpp"
 
 namespace nbar::synthesis {
 
-enum class SynthesisKind { FivePoint, Burmester, Function };
+enum class SynthesisKind {
+  FivePoint,
+  Burmester,
+  Function,
+  Path,
+};
 
-// "five-point", "burmester", "function".
+// "five-point", "burmester", "function", "path".
 std::string to_string(SynthesisKind kind);
 
 // Lengths are in the task's length unit (the solvers work in it and exported models keep
@@ -52,6 +58,11 @@ struct SynthesisTask {
   int precision_points = 3;
   bool chebyshev = true;  // else evenly spaced, ends included
   double frame = 1;       // length of the frame link (sets the size)
+
+  // path: `points` holds the targets (10 or more, from the file or its `curve` CSV), and these
+  // bound the designs.
+  PathConstraints constraints;
+  std::string curve_file;  // the CSV the targets came from, if any
 
 };
 
