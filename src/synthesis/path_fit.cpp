@@ -555,8 +555,10 @@ PathFitResult fit_path(const PathFitTask& task, const PathFitOptions& options) {
   // Distinct optima, best first: many starts fall into the same basin.
   std::stable_sort(fits.begin(), fits.end(),
                    [](const PathFit& x, const PathFit& y) { return x.rms_deviation < y.rms_deviation; });
+  // Within a hundredth of the targets' size: starts that stop along one flat valley differ
+  // by less and are the same design for a designer.
   const auto same = [&](const PathFit& x, const PathFit& y) {
-    const double tolerance = 1e-6 * frame.scale;
+    const double tolerance = 1e-2 * frame.scale;
     return (x.design.ground_a - y.design.ground_a).norm() < tolerance &&
            (x.design.ground_b - y.design.ground_b).norm() < tolerance &&
            (x.design.moving_a - y.design.moving_a).norm() < tolerance &&

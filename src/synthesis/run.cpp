@@ -244,7 +244,9 @@ Outcome path(const SynthesisTask& task, const SynthesisRunOptions& run) {
   out.notes.push_back(fmt::format("starts: {}; {} coupler-point evaluations", fmt::join(result.start_counts, ", "),
                                   result.evaluations));
   if (result.rejected > 0)
-    out.notes.push_back(fmt::format("{} local optima broke a constraint and are not listed", result.rejected));
+    out.notes.push_back(fmt::format("{} local {} a constraint and {} not listed", result.rejected,
+                                    result.rejected == 1 ? "optimum broke" : "optima broke",
+                                    result.rejected == 1 ? "is" : "are"));
   return out;
 }
 
