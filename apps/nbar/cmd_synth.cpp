@@ -42,6 +42,7 @@ struct SynthArgs {
        "five-point: the 5 points '[[x, y], ...]'; path: 10 or more; function: the number of precision points", {}},
       {"curve", "--curve-csv", "path: a CSV file of the target points (x, y a line)", {}},
       {"constraints", "--constraints", "path: e.g. '{crank: true, min_transmission: 30, lengths: [10, 200]}'", {}},
+      {"nine_point_starts", "--nine-point-starts", "path: subsets of nine targets solved for starting designs (slow)", {}},
       {"poses", "--poses", "burmester: '[{point: [x, y], angle: a}, ...]'", {}},
       {"fixed_pivots", "--fixed-pivots", "burmester, 3 poses: '{a: [x, y], b: [x, y]}'", {}},
       {"moving_pivots", "--moving-pivots", "burmester, 3 poses: '{a: [x, y], b: [x, y]}'", {}},

@@ -33,7 +33,7 @@ const std::vector<std::string_view> kFivePointKeys{"pivots", "points"};
 const std::vector<std::string_view> kBurmesterKeys{"poses", "fixed_pivots", "moving_pivots", "curves", "samples"};
 const std::vector<std::string_view> kFunctionKeys{"function", "x",       "input_range", "output_range",
                                                   "points",   "spacing", "frame"};
-const std::vector<std::string_view> kPathKeys{"points", "curve", "constraints"};
+const std::vector<std::string_view> kPathKeys{"points", "curve", "constraints", "nine_point_starts"};
 
 // The words of the task file's document-level errors.
 const yaml::DocumentWording kTaskDocument{
@@ -385,6 +385,7 @@ class TaskParser : yaml::Reader {
         }
     check_not_collinear(points ? mark(*points) : mark(*curve));
     if (const Entry* c = top.find("constraints")) parse_constraints(*c);
+    if (const Entry* s = top.find("nine_point_starts")) task_.nine_point_starts = whole(*s, "`nine_point_starts`", 0, 10);
   }
 
   // The targets must span an area: a straight line is not a coupler curve to fit.

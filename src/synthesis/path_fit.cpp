@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -14,6 +15,7 @@
 #include <stdexcept>
 
 #include "nbar/synthesis/five_point.hpp"
+#include "nbar/synthesis/nine_point.hpp"
 
 namespace nbar::synthesis {
 
@@ -500,7 +502,32 @@ std::vector<PathStart> five_point_starts(const PathFitTask& task, const PathFitO
   return out;
 }
 
-std::vector<StartProvider> default_start_providers() { return {sampled_starts, five_point_starts}; }
+std::vector<PathStart> nine_point_starts(const PathFitTask& task, const PathFitOptions& options) {
+  const Frame frame = frame_of(task.targets);
+  const int n = static_cast<int>(task.targets.size());
+  std::vector<PathStart> out;
+  for (int subset = 0; subset < options.nine_point_subsets; ++subset) {
+    if (options.stop && options.stop()) break;
+    // Subset 0 spans the targets end to end; the others are shifted along them.
+    std::array<Vector2d, 9> points;
+    const double shift = static_cast<double>(subset) / std::max(1, options.nine_point_subsets);
+    for (int k = 0; k < 9; ++k) {
+      const double at = subset == 0 ? k * (n - 1) / 8.0 : (k + shift) * (n - 1) / (8.0 + shift);
+      points[static_cast<std::size_t>(k)] = frame.to_unit(task.targets[static_cast<std::size_t>(std::lround(at))]);
+    }
+    NinePointOptions solver;
+    solver.seed = options.seed + static_cast<std::uint64_t>(subset);
+    solver.stop = options.stop;
+    try {
+      for (const NinePointLinkage& linkage : solve_nine_point(points, solver).linkages)
+        for (const FourBarDesign& d : linkage.designs) out.push_back({frame.to_task(d), "nine-point"});
+    } catch (const std::exception&) {  // nine targets the solver refuses (on a line...), or stopped
+    }
+  }
+  return out;
+}
+
+std::vector<StartProvider> default_start_providers() { return {sampled_starts, five_point_starts, nine_point_starts}; }
 
 PathFitResult fit_path(const PathFitTask& task, const PathFitOptions& options) {
   const long evaluations_before = coupler_point_evaluations();

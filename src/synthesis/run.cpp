@@ -210,6 +210,7 @@ Outcome path(const SynthesisTask& task, const SynthesisRunOptions& run) {
   problem.constraints = task.constraints;
   PathFitOptions options;
   options.seed = run.seed;
+  options.nine_point_subsets = task.nine_point_starts;
   options.stop = [&run] { return run.control.should_stop("starts", 0, 0); };
   options.progress = [&run](int done, int total) {
     if (run.control.on_progress && !run.control.on_progress(Progress{"starts", done, total})) run.control.token.cancel();

@@ -1,5 +1,6 @@
 #include "nbar/synthesis/path_fit.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,6 +116,25 @@ TEST(PathFit, ExactPointsAreMetExactly) {
   task.targets = curve_points(truth, turns);
   const PathFitResult result = fit_path(task);
   ASSERT_FALSE(result.fits.empty());
+  EXPECT_LT(result.fits.front().max_deviation, 1e-6);
+}
+
+// The nine-point provider alone: its designs pass exactly through nine of twelve points of one
+// coupler curve, one of them is the linkage itself (or a cognate), and the fit meets all twelve.
+TEST(PathFit, NinePointStartsMeetExactPointsExactly) {
+  const FourBarDesign truth = crank_rocker();
+  std::vector<double> turns;
+  for (int k = 0; k < 12; ++k) turns.push_back(2 * kPi * k / 12);
+  PathFitTask task;
+  task.targets = curve_points(truth, turns);
+  PathFitOptions options;
+  options.providers = {nine_point_starts};
+  options.nine_point_subsets = 1;
+  const PathFitResult result = fit_path(task, options);
+  ASSERT_EQ(result.start_counts.size(), 1u);
+  EXPECT_THAT(result.start_counts[0], ::testing::EndsWith(" nine-point"));
+  ASSERT_FALSE(result.fits.empty());
+  EXPECT_EQ(result.fits.front().origin, "nine-point");
   EXPECT_LT(result.fits.front().max_deviation, 1e-6);
 }
 

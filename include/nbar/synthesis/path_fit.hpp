@@ -68,6 +68,7 @@ struct PathFitOptions {
   int samples = 4000;          // random four-bars screened by sampled_starts
   int sampled_fits = 40;       // the best of them fitted
   int five_point_solves = 8;   // five-point problems solved by five_point_starts
+  int nine_point_subsets = 0;  // nine-target subsets solved by nine_point_starts (0: none)
   int max_iterations = 200;    // Levenberg–Marquardt, per start
   int max_fits = 30;           // distinct optima kept, best first
   // Empty: default_start_providers().
@@ -76,10 +77,14 @@ struct PathFitOptions {
   std::function<void(int, int)> progress;  // (starts fitted, starts)
 };
 
-// sampled_starts and five_point_starts.
+// sampled_starts and five_point_starts, and nine_point_starts when nine_point_subsets > 0
+// (each subset costs a whole nine-point solve: seconds to minutes, where the rest takes about one).
 std::vector<StartProvider> default_start_providers();
 std::vector<PathStart> sampled_starts(const PathFitTask& task, const PathFitOptions& options);
 std::vector<PathStart> five_point_starts(const PathFitTask& task, const PathFitOptions& options);
+// Every real four-bar (with its two cognates) through nine of the targets, spread along them,
+// for `nine_point_subsets` such subsets (nine_point.hpp's solver).
+std::vector<PathStart> nine_point_starts(const PathFitTask& task, const PathFitOptions& options);
 
 // One local optimum.
 struct PathFit {

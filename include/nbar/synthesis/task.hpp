@@ -63,6 +63,7 @@ struct SynthesisTask {
   // bound the designs.
   PathConstraints constraints;
   std::string curve_file;  // the CSV the targets came from, if any
+  int nine_point_starts = 0;  // subsets of nine targets whose nine-point designs start fits too
 
 };
 
