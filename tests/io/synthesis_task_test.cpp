@@ -304,6 +304,10 @@ TEST(SynthesisTask, PathWithPointsAndConstraints) {
   EXPECT_NEAR(t.constraints.min_transmission, 30 * kDegree, 1e-15);
   EXPECT_EQ(t.constraints.min_length, 5);
   EXPECT_EQ(t.constraints.max_length, 200);
+  EXPECT_EQ(t.nine_point_starts, 0);
+  EXPECT_EQ(nbar::io::parse_synthesis_task(kPath + "nine_point_starts: 2\n", "task.yaml").nine_point_starts, 2);
+  EXPECT_EQ(error_of(kPath + "nine_point_starts: 11\n"),
+            "task.yaml:17:20: `nine_point_starts` must be a whole number from 0 to 10");
 }
 
 TEST(SynthesisTask, PathFromACurveFile) {
