@@ -104,6 +104,7 @@ struct UnitConstraints {
   bool region = false;
   Vector2d lo{0, 0}, hi{0, 0};
   bool crank = false;
+  double crank_margin = 0;      // how far inside the crank's conditions
   double cos_transmission = 1;  // |cos mu| must stay below it
   double min_length = 0, max_length = kInfinity;
   int rows(int targets) const {
@@ -120,6 +121,7 @@ UnitConstraints unit_constraints(const PathConstraints& c, const Frame& f, doubl
     u.hi = f.to_unit(*c.region_max) - Vector2d::Constant(margin);
   }
   u.crank = c.crank;
+  u.crank_margin = margin;
   if (c.min_transmission > 0) u.cos_transmission = std::cos(c.min_transmission + margin);
   if (c.min_length > 0) u.min_length = c.min_length / f.scale * (1 + margin);
   if (c.max_length > 0) u.max_length = c.max_length / f.scale * (1 - margin);
@@ -151,11 +153,10 @@ void penalty_rows(const UnitConstraints& c, const FourBarShape& s, const double*
   if (std::isfinite(c.max_length))
     for (double length : {d, a, b, o}) out[k++] = over(length - c.max_length);
   // The input turns fully when |A - O4|, which ranges over [|d - a|, d + a], stays within
-  // [|b - o|, b + o]; a margin keeps it off the toggle.
-  constexpr double kCrankMargin = 1e-3;
+  // [|b - o|, b + o]; the margin keeps it off the toggle.
   if (c.crank) {
-    out[k++] = over(d + a - (b + o) + kCrankMargin);
-    out[k++] = over(std::abs(b - o) - std::abs(d - a) + kCrankMargin);
+    out[k++] = over(d + a - (b + o) + c.crank_margin);
+    out[k++] = over(std::abs(b - o) - std::abs(d - a) + c.crank_margin);
   }
   if (c.cos_transmission < 1) {
     if (c.crank) {  // the extremes of a full turn: the input along the frame line
