@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "fourbar_support.hpp"
+#include "nbar/synthesis/run.hpp"
 
 namespace nbar::synthesis {
 namespace {
@@ -173,6 +174,27 @@ TEST(PathFit, ConstraintsHoldOnEveryFit) {
     EXPECT_TRUE(check.input_turns_fully);
     EXPECT_GE(min_transmission_angle(d, 0, 2 * kPi), 35 * kPi / 180 - 1e-9);
   }
+}
+
+TEST(PathFit, ARunStopsWhenItsProgressSaysSo) {
+  SynthesisTask task;
+  task.kind = SynthesisKind::Path;
+  std::vector<double> turns;
+  for (int k = 0; k < 12; ++k) turns.push_back(2 * kPi * k / 12);
+  task.points = curve_points(crank_rocker(), turns);
+  SynthesisRunOptions options;
+  int calls = 0;
+  options.control.on_progress = [&calls](const Progress& p) {
+    if (std::string(p.stage) == "starts" && p.total > 0) ++calls;
+    return calls < 3;  // stop at the third start
+  };
+  try {
+    run_synthesis(task, options);
+    ADD_FAILURE() << "the run should stop";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Cancelled);
+  }
+  EXPECT_EQ(calls, 4);  // the third start asked to stop; the run's last checkpoint asks again
 }
 
 TEST(PathFit, RejectsTasksNoFitCanUse) {
