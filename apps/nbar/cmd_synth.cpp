@@ -1,4 +1,4 @@
-// nbar synth: four-bars from a task file (five-point path generation, Burmester motion
+// nbar synth: four-bars from a task file (five-point and nine-point path generation, Burmester motion
 // generation, Freudenstein function generation), checked with the kinematics engine, ranked,
 // printed as a table or JSON and exported as model files. docs/synthesis.md. The work is the
 // library's (synthesis/run.hpp, io/synthesis_writer.hpp); this file reads options and prints.
@@ -38,7 +38,7 @@ struct SynthArgs {
       {"name", "--name", "the task's title (names the exported models)", {}},
       {"units", "--units", "e.g. '{length: mm, angle: deg}'", {}},
       {"pivots", "--pivots", "five-point: the fixed pivots, e.g. '{a: [0, 0], b: [1, 0]}'", {}},
-      {"points", "--points", "five-point: the 5 points '[[x, y], ...]'; function: the number of precision points", {}},
+      {"points", "--points", "five-point: the 5 points '[[x, y], ...]'; nine-point: the 9 points; function: the number of precision points", {}},
       {"poses", "--poses", "burmester: '[{point: [x, y], angle: a}, ...]'", {}},
       {"fixed_pivots", "--fixed-pivots", "burmester, 3 poses: '{a: [x, y], b: [x, y]}'", {}},
       {"moving_pivots", "--moving-pivots", "burmester, 3 poses: '{a: [x, y], b: [x, y]}'", {}},
@@ -209,11 +209,11 @@ Command add_synth_command(CLI::App& app) {
   static SynthArgs args;
   CLI::App* synth = app.add_subcommand(
       "synth",
-      "Synthesise four-bars from a task file: five-point path generation, Burmester motion generation or "
+      "Synthesise four-bars from a task file: five-point and nine-point path generation, Burmester motion generation or "
       "function generation; every real solution is checked for defects and ranked");
-  synth->add_option("TASK", args.kind, "five-point, burmester or function")
+  synth->add_option("TASK", args.kind, "five-point, nine-point, burmester or function")
       ->required()
-      ->check(CLI::IsMember({"five-point", "burmester", "function"}));
+      ->check(CLI::IsMember({"five-point", "nine-point", "burmester", "function"}));
   synth->add_option("FILE", args.file, "task file (YAML; see docs/synthesis.md), or the task options below");
   synth->add_option("--format", args.format, "table (default) or json")->check(CLI::IsMember({"table", "json"}));
   synth->add_option("-o,--output", args.output, "write the table or JSON to FILE instead of standard output");

@@ -15,9 +15,9 @@
 
 namespace nbar::synthesis {
 
-enum class SynthesisKind { FivePoint, Burmester, Function };
+enum class SynthesisKind { FivePoint, Burmester, Function, NinePoint };
 
-// "five-point", "burmester", "function".
+// "five-point", "burmester", "function", "nine-point".
 std::string to_string(SynthesisKind kind);
 
 // Lengths are in the task's length unit (the solvers work in it and exported models keep
@@ -30,6 +30,7 @@ struct SynthesisTask {
   SourceMark where;  // the section the solver's own complaints are reported at
 
   // five-point: both fixed pivots and the coupler point's five positions, in order.
+  // nine-point: the coupler point's nine positions, in order (no pivots).
   Eigen::Vector2d pivot_a{0, 0}, pivot_b{0, 0};
   std::vector<Eigen::Vector2d> points;
 
