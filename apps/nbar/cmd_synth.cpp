@@ -1,4 +1,4 @@
-// nbar synth: four-bars from a task file (five-point path generation, Burmester motion
+// nbar synth: four-bars from a task file (five-point and nine-point path generation, Burmester motion
 // generation, Freudenstein function generation), checked with the kinematics engine, ranked,
 // printed as a table or JSON and exported as model files. docs/synthesis.md. The work is the
 // library's (synthesis/run.hpp, io/synthesis_writer.hpp); this file reads options and prints.
@@ -39,7 +39,9 @@ struct SynthArgs {
       {"units", "--units", "e.g. '{length: mm, angle: deg}'", {}},
       {"pivots", "--pivots", "five-point: the fixed pivots, e.g. '{a: [0, 0], b: [1, 0]}'", {}},
       {"points", "--points",
-       "five-point: the 5 points '[[x, y], ...]'; path: 10 or more; function: the number of precision points", {}},
+       "five-point: the 5 points '[[x, y], ...]'; nine-point: the 9 points; path: 10 or more; function: the number "
+       "of precision points",
+       {}},
       {"curve", "--curve-csv", "path: a CSV file of the target points (x, y a line)", {}},
       {"constraints", "--constraints", "path: e.g. '{crank: true, min_transmission: 30, lengths: [10, 200]}'", {}},
       {"nine_point_starts", "--nine-point-starts", "path: subsets of nine targets solved for starting designs (slow)", {}},
@@ -213,12 +215,12 @@ Command add_synth_command(CLI::App& app) {
   static SynthArgs args;
   CLI::App* synth = app.add_subcommand(
       "synth",
-      "Synthesise four-bars from a task file: five-point path generation, Burmester motion generation, "
-      "function generation or a best fit through many path points; every real solution is checked for defects "
-      "and ranked");
-  synth->add_option("TASK", args.kind, "five-point, burmester, function or path")
+      "Synthesise four-bars from a task file: five-point and nine-point path generation, Burmester motion "
+      "generation, function generation or a best fit through many path points; every real solution is checked for "
+      "defects and ranked");
+  synth->add_option("TASK", args.kind, "five-point, nine-point, burmester, function or path")
       ->required()
-      ->check(CLI::IsMember({"five-point", "burmester", "function", "path"}));
+      ->check(CLI::IsMember({"five-point", "nine-point", "burmester", "function", "path"}));
   synth->add_option("FILE", args.file, "task file (YAML; see docs/synthesis.md), or the task options below");
   synth->add_option("--format", args.format, "table (default) or json")->check(CLI::IsMember({"table", "json"}));
   synth->add_option("-o,--output", args.output, "write the table or JSON to FILE instead of standard output");

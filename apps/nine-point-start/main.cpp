@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <random>
 
 #include "nbar/synthesis/nine_point_start.hpp"
 
@@ -15,7 +16,18 @@ int main(int argc, char** argv) {
   options.max_loops = 200;
   options.progress = [](const std::string&, int done, int) { std::fprintf(stderr, "\r%d orbits", done); };
   const auto begin = std::chrono::steady_clock::now();
-  const NinePointStart start = generate_nine_point_start(seed, options);
+  const NinePointStart generated = generate_nine_point_start(seed, options);
+  // Tasks are real: keep the instance near a random real one (nine points in [-1, 2]^2, with a
+  // complex perturbation that keeps it generic), where its solutions are as well conditioned
+  // as a task's, so that paths from it to a task are short.
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 2.0);
+  std::normal_distribution<double> normal(0.0, 0.25);
+  std::array<Eigen::Vector2d, 9> points;
+  for (auto& p : points) p = {uniform(rng), uniform(rng)};
+  CVector near_real = nine_point_parameters(points);
+  for (Eigen::Index k = 0; k < near_real.size(); ++k) near_real[k] += Complex(normal(rng), normal(rng));
+  const NinePointStart start = move_nine_point_start(generated, near_real, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   std::fprintf(stderr, "\n%zu orbits, %d paths, %d edges, closed: %s, %.1f s\n", start.representatives.size(),
                start.paths, start.loops, start.closed ? "yes" : "no", seconds);

@@ -30,6 +30,7 @@ using yaml::mark;
 // Keys every task takes, then each task's own.
 const std::vector<std::string_view> kCommonKeys{"task", "name", "description", "units"};
 const std::vector<std::string_view> kFivePointKeys{"pivots", "points"};
+const std::vector<std::string_view> kNinePointKeys{"points"};
 const std::vector<std::string_view> kBurmesterKeys{"poses", "fixed_pivots", "moving_pivots", "curves", "samples"};
 const std::vector<std::string_view> kFunctionKeys{"function", "x",       "input_range", "output_range",
                                                   "points",   "spacing", "frame"};
@@ -38,7 +39,7 @@ const std::vector<std::string_view> kPathKeys{"points", "curve", "constraints", 
 // The words of the task file's document-level errors.
 const yaml::DocumentWording kTaskDocument{
     "the file holds no task (it is empty or only comments): start with `task: five-point`, "
-    "`task: burmester`, `task: function` or `task: path`",
+    "`task: nine-point`, `task: burmester`, `task: function` or `task: path`",
     "a task file holds a single YAML document",
     "a task file is a mapping of keys (task:, ...), not "};
 
@@ -62,7 +63,9 @@ class TaskParser : yaml::Reader {
     const YAML::Node root = load(kTaskDocument);
     const Fields top{entries(root, "")};
     const Entry* kind = top.find("task");
-    if (!kind) fail(root, "a task file needs `task: five-point`, `task: burmester`, `task: function` or `task: path`");
+    if (!kind)
+      fail(root, "a task file needs `task: five-point`, `task: nine-point`, `task: burmester`, `task: function` or "
+                 "`task: path`");
     const std::string k = kind->value.IsScalar() ? kind->value.Scalar() : "";
     const std::vector<std::string_view>* own = nullptr;
     if (k == "five-point") {
@@ -74,12 +77,15 @@ class TaskParser : yaml::Reader {
     } else if (k == "function") {
       task_.kind = SynthesisKind::Function;
       own = &kFunctionKeys;
+    } else if (k == "nine-point") {
+      task_.kind = SynthesisKind::NinePoint;
+      own = &kNinePointKeys;
     } else if (k == "path") {
       task_.kind = SynthesisKind::Path;
       own = &kPathKeys;
     } else {
       fail(mark(*kind), std::string("unknown task ") + describe(kind->value) +
-                            " (tasks are: five-point, burmester, function, path)");
+                            " (tasks are: five-point, nine-point, burmester, function, path)");
     }
     std::vector<std::string_view> allowed = kCommonKeys;
     allowed.insert(allowed.end(), own->begin(), own->end());
@@ -99,6 +105,9 @@ class TaskParser : yaml::Reader {
         break;
       case SynthesisKind::Function:
         parse_function(top, root);
+        break;
+      case SynthesisKind::NinePoint:
+        parse_nine_point(top, root);
         break;
       case SynthesisKind::Path:
         parse_path(top, root);
@@ -211,6 +220,49 @@ class TaskParser : yaml::Reader {
           fail(items[i], std::string("points ") + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
                              " coincide: the five points must be distinct");
     check_five_point_scale(items);
+  }
+
+  // Nine distinct points, not on one line, with coordinates far from overflow.
+  void parse_nine_point(const Fields& top, const YAML::Node& root) {
+    const Entry& points = required(top, root, "points", "a nine-point task");
+    task_.where = mark(points);
+    const std::vector<YAML::Node> items = list(points, "[[x, y], ...]");
+    if (items.size() != 9)
+      fail(mark(points), std::string("a nine-point task needs exactly 9 points for the coupler point, not ") +
+                             std::to_string(items.size()));
+    constexpr double kMaxCoordinate = 1e100;
+    for (const YAML::Node& item : items) {
+      task_.points.push_back(point(item, mark(item), "a point"));
+      if (!(task_.points.back().cwiseAbs().maxCoeff() <= kMaxCoordinate))
+        fail(item, "point " + std::to_string(task_.points.size()) + " has a coordinate beyond 1e100: use a larger length unit");
+    }
+    Vector2d centroid = Vector2d::Zero();
+    for (const Vector2d& p : task_.points) centroid += p / 9.0;
+    double spread = 0.0;
+    for (const Vector2d& p : task_.points) spread = std::max(spread, (p - centroid).norm());
+    for (std::size_t i = 0; i < items.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if ((task_.points[i] - task_.points[j]).norm() <= 1e-9 * spread)
+          fail(items[i], std::string("points ") + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
+                             " coincide: the nine points must be distinct");
+    if (!(spread > 0)) fail(mark(points), "the nine points coincide");
+    // Collinear: every point within a tiny distance of the line through the two farthest apart.
+    std::size_t far_a = 0, far_b = 1;
+    for (std::size_t i = 0; i < 9; ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if ((task_.points[i] - task_.points[j]).norm() > (task_.points[far_a] - task_.points[far_b]).norm()) {
+          far_a = i;
+          far_b = j;
+        }
+    const Vector2d along = (task_.points[far_b] - task_.points[far_a]).normalized();
+    double off = 0.0;
+    for (const Vector2d& p : task_.points) {
+      const Vector2d d = p - task_.points[far_a];
+      off = std::max(off, std::abs(along.x() * d.y() - along.y() * d.x()));
+    }
+    if (off <= 1e-9 * spread)
+      fail(mark(points), "the nine points lie on one straight line, which is no four-bar's coupler curve: "
+                         "move some off the line");
   }
 
   void parse_burmester(const Fields& top, const YAML::Node& root) {

@@ -16,6 +16,9 @@ namespace nbar::synthesis {
 namespace {
 
 constexpr int kPositions = 8;
+// Some solutions of real tasks lie near the degenerate sets (x -> 0 while t -> infinity), with
+// Jacobians of condition 1e18 and more in these coordinates; Newton still converges to them.
+constexpr double kSingularCondition = 1e22;
 using Key = Eigen::Matrix<Complex, 6, 1>;
 
 Complex random_complex(std::mt19937_64& rng) {
@@ -75,11 +78,12 @@ struct Arrival {
 // endpoint in affine coordinates.
 std::vector<Arrival> track_all(const CVector& from, const CVector& to, const CVector& bend,
                                const std::vector<CVector>& starts, const NinePointOptions& options,
-                               const std::function<void()>& on_path = {}) {
+                               const std::function<void()>& on_path = {}, const TrackSettings& given = {}) {
   const ParameterizedSystem& f = nine_point_system();
   const ArcHomotopy homotopy(f, from, to, bend);
   std::vector<Arrival> arrivals(starts.size());
-  TrackSettings settings;
+  TrackSettings settings = given;
+  settings.singular_condition = kSingularCondition;
   std::atomic<size_t> next{0};
   std::atomic<bool> stopped{false};
   auto worker = [&] {
@@ -91,8 +95,9 @@ std::vector<Arrival> track_all(const CVector& from, const CVector& to, const CVe
       const TrackResult r = track_path(homotopy, f.from_affine(starts[i]), settings);
       if (on_path) on_path();
       if (r.status != TrackStatus::Success || !r.x.allFinite() || r.winding != 1 ||
-          !(r.condition < 1e13) || f.infinity_measure(r.x) < 1e-10)
+          !(r.condition < kSingularCondition) || f.infinity_measure(r.x) < 1e-10) {
         continue;
+      }
       arrivals[i] = {true, f.to_affine(r.x), r.condition};
     }
   };
@@ -198,6 +203,42 @@ FourBarDesign design_of(const CVector& s, const Frame& frame) {
   return d;
 }
 
+// Failed paths, and every path whose orbit another path also reached.
+std::vector<size_t> suspect_paths(const std::vector<Arrival>& arrivals) {
+  OrbitSet seen;
+  std::vector<size_t> owner, suspects;
+  for (size_t i = 0; i < arrivals.size(); ++i) {
+    const Key key = arrivals[i].ok ? orbit_key(arrivals[i].affine) : Key();
+    if (!arrivals[i].ok || !key.allFinite()) {
+      suspects.push_back(i);
+      continue;
+    }
+    const int at = seen.find(key);
+    if (at >= 0) {
+      suspects.push_back(i);
+      suspects.push_back(owner[static_cast<size_t>(at)]);
+    } else {
+      seen.keys.push_back(key);
+      owner.push_back(i);
+    }
+  }
+  std::sort(suspects.begin(), suspects.end());
+  suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
+  return suspects;
+}
+
+TrackSettings careful_settings(int round) {
+  TrackSettings s;
+  const double f = std::pow(0.1, round);
+  s.max_step *= 0.25 * f;
+  s.initial_step *= 0.1 * f;
+  s.corrector_tolerance *= 1e-2 * f;
+  s.contraction = 0.1;
+  s.corrector_iterations = 4;
+  s.max_steps *= 4;
+  return s;
+}
+
 }  // namespace
 
 CVector nine_point_parameters(const std::array<Eigen::Vector2d, 9>& points) {
@@ -282,6 +323,19 @@ NinePointStart generate_nine_point_start(std::uint64_t seed, const NinePointOpti
   return start;
 }
 
+NinePointStart move_nine_point_start(const NinePointStart& from, const CVector& to, const NinePointOptions& options) {
+  NinePointStart moved;
+  moved.parameters = to;
+  OrbitSet found;
+  for (const auto& a : track_all(from.parameters, to, CVector::Zero(to.size()), from.representatives, options))
+    if (a.ok) found.add(a.affine);
+  moved.paths = static_cast<int>(from.representatives.size());
+  moved.representatives = found.representatives;
+  moved.closed = from.closed && moved.representatives.size() == from.representatives.size();
+  if (!moved.closed) moved.closed = nine_point_monodromy(to, moved.representatives, options, moved.paths, moved.loops);
+  return moved;
+}
+
 NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, const NinePointOptions& options) {
   check_points(points);
   const CVector target = nine_point_parameters(points);
@@ -298,47 +352,35 @@ NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, c
   result.paths = total;
 
   // Paths that failed, or that arrived at an orbit another path reached (one of them jumped),
-  // are tracked again along bent arcs, which avoid whatever the straight one met.
-  std::mt19937_64 rng(options.seed);
-  const double scale = parameter_scale(target);
-  for (int round = 0; round < 3; ++round) {
-    OrbitSet seen;
-    std::vector<int> owner;
-    std::vector<size_t> suspects;
-    for (size_t i = 0; i < arrivals.size(); ++i) {
-      if (!arrivals[i].ok) {
-        suspects.push_back(i);
-        continue;
-      }
-      const Key key = orbit_key(arrivals[i].affine);
-      const int at = seen.find(key);
-      if (at >= 0) {
-        suspects.push_back(i);
-        suspects.push_back(static_cast<size_t>(owner[at]));
-      } else if (key.allFinite()) {
-        seen.representatives.push_back(arrivals[i].affine);
-        seen.keys.push_back(key);
-        owner.push_back(static_cast<int>(i));
-      } else {
-        suspects.push_back(i);
-      }
-    }
+  // are tracked again on the same segment with smaller steps and a stricter corrector.
+  const CVector straight = CVector::Zero(target.size());
+  for (int round = 0; round < 2; ++round) {
+    const std::vector<size_t> suspects = suspect_paths(arrivals);
     if (round == 0) result.failed_paths = static_cast<int>(suspects.size());
     if (suspects.empty()) break;
-    std::sort(suspects.begin(), suspects.end());
-    suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
     std::vector<CVector> again;
     for (size_t i : suspects) again.push_back(start.representatives[i]);
-    const auto retracked = track_all(start.parameters, target, random_parameters(rng, scale), again, options);
+    const auto retracked = track_all(start.parameters, target, straight, again, options, {}, careful_settings(round));
     result.paths += static_cast<int>(again.size());
     for (size_t k = 0; k < suspects.size(); ++k) arrivals[suspects[k]] = retracked[k];
   }
-
   OrbitSet found;
   std::vector<double> condition;
   for (const auto& a : arrivals)
     if (a.ok && found.add(a.affine)) condition.push_back(a.condition);
   result.method = "parameter homotopy from a stored generic instance (" + std::to_string(total) + " paths)";
+
+  // Still short: the whole homotopy again along a bent arc (another correspondence of the
+  // orbits, so its arrivals are only merged), then monodromy at the task.
+  std::mt19937_64 rng(options.seed);
+  if (static_cast<int>(found.representatives.size()) < total) {
+    const auto bent = track_all(start.parameters, target, 0.5 * random_parameters(rng, parameter_scale(target)),
+                                start.representatives, options);
+    result.paths += total;
+    for (const auto& a : bent)
+      if (a.ok && found.add(a.affine)) condition.push_back(a.condition);
+    result.method += ", again along a bent arc";
+  }
   bool closed = false;
   if (static_cast<int>(found.representatives.size()) < total) {
     std::vector<CVector> representatives = found.representatives;

@@ -10,6 +10,7 @@
 
 #include "nbar/synthesis/five_point.hpp"
 #include "nbar/synthesis/function_generation.hpp"
+#include "nbar/synthesis/nine_point.hpp"
 #include "nbar/synthesis/path_fit.hpp"
 
 namespace nbar::synthesis {
@@ -22,6 +23,8 @@ std::string to_string(SynthesisKind kind) {
       return "burmester";
     case SynthesisKind::Function:
       return "function";
+    case SynthesisKind::NinePoint:
+      return "nine-point";
     case SynthesisKind::Path:
       return "path";
   }
@@ -75,6 +78,50 @@ Outcome five_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
       out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
   if (result.failed_paths > 0)
     out.notes.push_back(fmt::format("{} of {} paths failed", result.failed_paths, result.paths));
+  return out;
+}
+
+// Every real cognate triple: three rows, the solution and its two Roberts cognates.
+Outcome nine_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
+  if (task.points.size() != 9) throw std::invalid_argument("a nine-point task needs exactly 9 points");
+  std::array<Eigen::Vector2d, 9> points;
+  std::copy(task.points.begin(), task.points.end(), points.begin());
+  NinePointOptions options;
+  options.threads = run.threads;
+  options.seed = run.seed;
+  options.progress = [&run](const std::string& stage, int done, int total) {
+    if (run.control.on_progress &&
+        !run.control.on_progress(Progress{stage == "paths" ? "paths" : "monodromy", done, total}))
+      run.control.token.cancel();
+  };
+  options.stop = [&run] { return run.control.token.cancelled(); };
+  NinePointResult result;
+  try {
+    result = solve_nine_point(points, options);
+  } catch (const std::runtime_error& e) {
+    if (run.control.token.cancelled()) run.control.checkpoint("paths", 0, 0);  // throws Cancelled
+    throw;
+  }
+  run.control.checkpoint("paths", result.paths, result.paths);
+  Outcome out;
+  out.method = result.method;
+  for (const NinePointLinkage& linkage : result.linkages)
+    for (const FourBarDesign& design : linkage.designs) {
+      Row row;
+      row.design = design;
+      row.solver_residual = linkage.residual;
+      row.solver_condition = linkage.condition;
+      out.rows.push_back(row);
+    }
+  std::vector<Target> targets;
+  for (const Eigen::Vector2d& p : task.points) targets.push_back({p, std::nullopt});
+  check_rows(
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+  out.notes.push_back(fmt::format("{} of {} orbits (Roberts cognate triples) found, {} of them real: {}", result.orbits,
+                                  kNinePointOrbits, result.real_orbits, result.certificate));
+  if (result.failed_paths > 0)
+    out.notes.push_back(fmt::format("{} of {} paths from the stored instance were tracked again", result.failed_paths,
+                                    kNinePointOrbits));
   return out;
 }
 
@@ -263,6 +310,8 @@ SynthesisOutcome run_synthesis(const SynthesisTask& task, const SynthesisRunOpti
         return burmester(task, options);
       case SynthesisKind::Function:
         return function(task, options);
+      case SynthesisKind::NinePoint:
+        return nine_point(task, options);
       case SynthesisKind::Path:
         return path(task, options);
     }

@@ -139,9 +139,10 @@ TEST(SynthesisTask, DocumentErrors) {
   EXPECT_EQ(error_of("- task: five-point\n"),
             "task.yaml:1:1: a task file is a mapping of keys (task:, ...), not a list");
   EXPECT_EQ(error_of("name: x\n"),
-            "task.yaml:1:1: a task file needs `task: five-point`, `task: burmester`, `task: function` or `task: path`");
+            "task.yaml:1:1: a task file needs `task: five-point`, `task: nine-point`, `task: burmester`, `task: function` or "
+            "`task: path`");
   EXPECT_EQ(error_of("name: x\ntask: six-point\n"),
-            "task.yaml:2:7: unknown task 'six-point' (tasks are: five-point, burmester, function, path)");
+            "task.yaml:2:7: unknown task 'six-point' (tasks are: five-point, nine-point, burmester, function, path)");
   EXPECT_EQ(error_of("task: five-point\ntask: burmester\n"),
             "task.yaml:2:1: duplicate key 'task' (first given on line 1)");
   EXPECT_EQ(error_of("task: five-point\nposes: []\n"),

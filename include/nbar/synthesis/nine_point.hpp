@@ -34,7 +34,7 @@ inline constexpr int kNinePointSolutions = 8652;    // of the isotropic system (
 struct NinePointOptions {
   unsigned threads = 0;       // 0: every hardware thread
   std::uint64_t seed = 1;     // random parameter nodes and gammas
-  // Called with (stage, done, total) from the solving thread: stage "paths" (parameter
+  // Called with (stage, done, total), from worker threads: stage "paths" (parameter
   // homotopy) or "monodromy" (done = orbits known, total = 1442 as a guide, not a rule).
   std::function<void(const std::string&, int, int)> progress;
   // Asked between paths (thread-safe); true stops the run, which then throws

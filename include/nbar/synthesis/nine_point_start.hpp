@@ -40,6 +40,11 @@ struct NinePointStart {
 // the sets are closed under it. Every orbit is tracked by one representative.
 NinePointStart generate_nine_point_start(std::uint64_t seed, const NinePointOptions& options = {});
 
+// The instance moved to other generic parameters by a parameter homotopy, then monodromy at
+// them if orbits were lost on the way.
+NinePointStart move_nine_point_start(const NinePointStart& from, const CVector& to,
+                                     const NinePointOptions& options = {});
+
 // Monodromy at `parameters` from known representatives (grown in place); returns whether
 // the graph closed. `paths` and `loops` accumulate.
 bool nine_point_monodromy(const CVector& parameters, std::vector<CVector>& representatives,

@@ -20,10 +20,11 @@ enum class SynthesisKind {
   FivePoint,
   Burmester,
   Function,
+  NinePoint,
   Path,
 };
 
-// "five-point", "burmester", "function", "path".
+// "five-point", "burmester", "function", "nine-point", "path".
 std::string to_string(SynthesisKind kind);
 
 // Lengths are in the task's length unit (the solvers work in it and exported models keep
@@ -36,6 +37,7 @@ struct SynthesisTask {
   SourceMark where;  // the section the solver's own complaints are reported at
 
   // five-point: both fixed pivots and the coupler point's five positions, in order.
+  // nine-point: the coupler point's nine positions, in order (no pivots).
   Eigen::Vector2d pivot_a{0, 0}, pivot_b{0, 0};
   std::vector<Eigen::Vector2d> points;
 
