@@ -1,4 +1,4 @@
-// nbar synth: four-bars from a task file (five-point path generation, Burmester motion
+// nbar synth: four-bars from a task file (five-point and nine-point path generation, Burmester motion
 // generation, Freudenstein function generation), checked with the kinematics engine, ranked,
 // printed as a table or JSON and exported as model files. docs/synthesis.md. The work is the
 // library's (synthesis/run.hpp, io/synthesis_writer.hpp); this file reads options and prints.
@@ -38,7 +38,13 @@ struct SynthArgs {
       {"name", "--name", "the task's title (names the exported models)", {}},
       {"units", "--units", "e.g. '{length: mm, angle: deg}'", {}},
       {"pivots", "--pivots", "five-point: the fixed pivots, e.g. '{a: [0, 0], b: [1, 0]}'", {}},
-      {"points", "--points", "five-point: the 5 points '[[x, y], ...]'; function: the number of precision points", {}},
+      {"points", "--points",
+       "five-point: the 5 points '[[x, y], ...]'; nine-point: the 9 points; path: 10 or more; function: the number "
+       "of precision points",
+       {}},
+      {"curve", "--curve-csv", "path: a CSV file of the target points (x, y a line)", {}},
+      {"constraints", "--constraints", "path: e.g. '{crank: true, min_transmission: 30, lengths: [10, 200]}'", {}},
+      {"nine_point_starts", "--nine-point-starts", "path: subsets of nine targets solved for starting designs (slow)", {}},
       {"poses", "--poses", "burmester: '[{point: [x, y], angle: a}, ...]'", {}},
       {"fixed_pivots", "--fixed-pivots", "burmester, 3 poses: '{a: [x, y], b: [x, y]}'", {}},
       {"moving_pivots", "--moving-pivots", "burmester, 3 poses: '{a: [x, y], b: [x, y]}'", {}},
@@ -209,11 +215,12 @@ Command add_synth_command(CLI::App& app) {
   static SynthArgs args;
   CLI::App* synth = app.add_subcommand(
       "synth",
-      "Synthesise four-bars from a task file: five-point path generation, Burmester motion generation or "
-      "function generation; every real solution is checked for defects and ranked");
-  synth->add_option("TASK", args.kind, "five-point, burmester or function")
+      "Synthesise four-bars from a task file: five-point and nine-point path generation, Burmester motion "
+      "generation, function generation or a best fit through many path points; every real solution is checked for "
+      "defects and ranked");
+  synth->add_option("TASK", args.kind, "five-point, nine-point, burmester, function or path")
       ->required()
-      ->check(CLI::IsMember({"five-point", "burmester", "function"}));
+      ->check(CLI::IsMember({"five-point", "nine-point", "burmester", "function", "path"}));
   synth->add_option("FILE", args.file, "task file (YAML; see docs/synthesis.md), or the task options below");
   synth->add_option("--format", args.format, "table (default) or json")->check(CLI::IsMember({"table", "json"}));
   synth->add_option("-o,--output", args.output, "write the table or JSON to FILE instead of standard output");
@@ -222,7 +229,7 @@ Command add_synth_command(CLI::App& app) {
   synth->add_option("--top", args.top, "list (and export) at most N designs, best first; 0 for all (default 20)")
       ->check(CLI::NonNegativeNumber);
   synth->add_option("--threads", args.threads, "threads for path tracking (default: all)");
-  synth->add_option("--seed", args.seed, "random seed of the homotopy (default 1)");
+  synth->add_option("--seed", args.seed, "random seed of the homotopy and of path's random starts (default 1)");
   synth->add_option("--curves", args.curves,
                     "burmester, 4 poses: write the centre- and circle-point curves to FILE (.csv, .json or .svg)");
   for (TaskOption& o : args.task_options) synth->add_option(o.flag, o.value, o.help)->group("Task (instead of a file)");

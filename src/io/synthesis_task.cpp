@@ -6,6 +6,8 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
+#include <numbers>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,14 +30,16 @@ using yaml::mark;
 // Keys every task takes, then each task's own.
 const std::vector<std::string_view> kCommonKeys{"task", "name", "description", "units"};
 const std::vector<std::string_view> kFivePointKeys{"pivots", "points"};
+const std::vector<std::string_view> kNinePointKeys{"points"};
 const std::vector<std::string_view> kBurmesterKeys{"poses", "fixed_pivots", "moving_pivots", "curves", "samples"};
 const std::vector<std::string_view> kFunctionKeys{"function", "x",       "input_range", "output_range",
                                                   "points",   "spacing", "frame"};
+const std::vector<std::string_view> kPathKeys{"points", "curve", "constraints", "nine_point_starts"};
 
 // The words of the task file's document-level errors.
 const yaml::DocumentWording kTaskDocument{
     "the file holds no task (it is empty or only comments): start with `task: five-point`, "
-    "`task: burmester` or `task: function`",
+    "`task: nine-point`, `task: burmester`, `task: function` or `task: path`",
     "a task file holds a single YAML document",
     "a task file is a mapping of keys (task:, ...), not "};
 
@@ -59,7 +63,9 @@ class TaskParser : yaml::Reader {
     const YAML::Node root = load(kTaskDocument);
     const Fields top{entries(root, "")};
     const Entry* kind = top.find("task");
-    if (!kind) fail(root, "a task file needs `task: five-point`, `task: burmester` or `task: function`");
+    if (!kind)
+      fail(root, "a task file needs `task: five-point`, `task: nine-point`, `task: burmester`, `task: function` or "
+                 "`task: path`");
     const std::string k = kind->value.IsScalar() ? kind->value.Scalar() : "";
     const std::vector<std::string_view>* own = nullptr;
     if (k == "five-point") {
@@ -71,9 +77,15 @@ class TaskParser : yaml::Reader {
     } else if (k == "function") {
       task_.kind = SynthesisKind::Function;
       own = &kFunctionKeys;
+    } else if (k == "nine-point") {
+      task_.kind = SynthesisKind::NinePoint;
+      own = &kNinePointKeys;
+    } else if (k == "path") {
+      task_.kind = SynthesisKind::Path;
+      own = &kPathKeys;
     } else {
-      fail(mark(*kind),
-           std::string("unknown task ") + describe(kind->value) + " (tasks are: five-point, burmester, function)");
+      fail(mark(*kind), std::string("unknown task ") + describe(kind->value) +
+                            " (tasks are: five-point, nine-point, burmester, function, path)");
     }
     std::vector<std::string_view> allowed = kCommonKeys;
     allowed.insert(allowed.end(), own->begin(), own->end());
@@ -93,6 +105,12 @@ class TaskParser : yaml::Reader {
         break;
       case SynthesisKind::Function:
         parse_function(top, root);
+        break;
+      case SynthesisKind::NinePoint:
+        parse_nine_point(top, root);
+        break;
+      case SynthesisKind::Path:
+        parse_path(top, root);
         break;
     }
     return std::move(task_);
@@ -202,6 +220,49 @@ class TaskParser : yaml::Reader {
           fail(items[i], std::string("points ") + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
                              " coincide: the five points must be distinct");
     check_five_point_scale(items);
+  }
+
+  // Nine distinct points, not on one line, with coordinates far from overflow.
+  void parse_nine_point(const Fields& top, const YAML::Node& root) {
+    const Entry& points = required(top, root, "points", "a nine-point task");
+    task_.where = mark(points);
+    const std::vector<YAML::Node> items = list(points, "[[x, y], ...]");
+    if (items.size() != 9)
+      fail(mark(points), std::string("a nine-point task needs exactly 9 points for the coupler point, not ") +
+                             std::to_string(items.size()));
+    constexpr double kMaxCoordinate = 1e100;
+    for (const YAML::Node& item : items) {
+      task_.points.push_back(point(item, mark(item), "a point"));
+      if (!(task_.points.back().cwiseAbs().maxCoeff() <= kMaxCoordinate))
+        fail(item, "point " + std::to_string(task_.points.size()) + " has a coordinate beyond 1e100: use a larger length unit");
+    }
+    Vector2d centroid = Vector2d::Zero();
+    for (const Vector2d& p : task_.points) centroid += p / 9.0;
+    double spread = 0.0;
+    for (const Vector2d& p : task_.points) spread = std::max(spread, (p - centroid).norm());
+    for (std::size_t i = 0; i < items.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if ((task_.points[i] - task_.points[j]).norm() <= 1e-9 * spread)
+          fail(items[i], std::string("points ") + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
+                             " coincide: the nine points must be distinct");
+    if (!(spread > 0)) fail(mark(points), "the nine points coincide");
+    // Collinear: every point within a tiny distance of the line through the two farthest apart.
+    std::size_t far_a = 0, far_b = 1;
+    for (std::size_t i = 0; i < 9; ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if ((task_.points[i] - task_.points[j]).norm() > (task_.points[far_a] - task_.points[far_b]).norm()) {
+          far_a = i;
+          far_b = j;
+        }
+    const Vector2d along = (task_.points[far_b] - task_.points[far_a]).normalized();
+    double off = 0.0;
+    for (const Vector2d& p : task_.points) {
+      const Vector2d d = p - task_.points[far_a];
+      off = std::max(off, std::abs(along.x() * d.y() - along.y() * d.x()));
+    }
+    if (off <= 1e-9 * spread)
+      fail(mark(points), "the nine points lie on one straight line, which is no four-bar's coupler curve: "
+                         "move some off the line");
   }
 
   void parse_burmester(const Fields& top, const YAML::Node& root) {
@@ -316,6 +377,201 @@ class TaskParser : yaml::Reader {
       fail(mark(f),
            "the function has the same value at both ends of the range of x, so it cannot be "
            "mapped onto the output's range");
+  }
+
+  // ---- path: many target points, from the file or a CSV, and constraints ----
+
+  static constexpr std::size_t kMinPathPoints = 10, kMaxPathPoints = 1000;
+
+  void parse_path(const Fields& top, const YAML::Node& root) {
+    const Entry* points = top.find("points");
+    const Entry* curve = top.find("curve");
+    if (points && curve) fail(curve->key_node, "give the targets as `points` or as a `curve` file, not both");
+    if (!points && !curve)
+      fail(root, "a path task needs its target points: `points: [[x, y], ...]` (10 or more) or `curve: FILE.csv`");
+    std::vector<SourceMark> marks;  // of each point, where messages about it point
+    std::string where_file = file_;  // the file those marks are in
+    if (points) {
+      task_.where = mark(*points);
+      const std::vector<YAML::Node> items = list(*points, "[[x, y], ...]");
+      for (const YAML::Node& item : items) {
+        task_.points.push_back(point(item, mark(item), "a point"));
+        marks.push_back(mark(item));
+      }
+    } else {
+      task_.where = mark(*curve);
+      const std::string name = text_value(*curve, "`curve`");
+      if (name.empty()) fail(mark(*curve), "`curve` names a CSV file of the target points (x, y on each line)");
+      task_.curve_file = resolve_beside_task(name);
+      read_curve_csv(task_.curve_file, mark(*curve), marks);
+      where_file = task_.curve_file;
+    }
+    const auto at = [&](std::size_t i) { return marks[i]; };
+    const auto fail_at = [&](SourceMark m, const std::string& message) -> void {
+      if (where_file == file_) fail(m, message);
+      throw ModelFileError(where_file, m, message);
+    };
+    const std::size_t n = task_.points.size();
+    const std::string from = points ? "" : " (in " + task_.curve_file + ")";
+    if (n < kMinPathPoints)
+      fail(points ? mark(*points) : mark(*curve),
+           "a path task needs at least " + std::to_string(kMinPathPoints) + " target points" + from + ", not " +
+               std::to_string(n) + " (with 5 points and both pivots, use `task: five-point`)");
+    if (n > kMaxPathPoints)
+      fail(points ? mark(*points) : mark(*curve),
+           "a path task takes at most " + std::to_string(kMaxPathPoints) + " target points" + from + ", not " +
+               std::to_string(n) + ": take every k-th point of the curve");
+    constexpr double kMaxCoordinate = 1e100;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!(task_.points[i].cwiseAbs().maxCoeff() <= kMaxCoordinate))
+        fail_at(at(i), "point " + std::to_string(i + 1) + " has a coordinate beyond 1e100: use a larger length unit");
+    double extent = 0;
+    for (const Vector2d& p : task_.points) extent = std::max(extent, (p - task_.points[0]).norm());
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if ((task_.points[i] - task_.points[j]).norm() <= 1e-9 * std::max(extent, 1e-300)) {
+          std::string message = "points " + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
+                                " coincide: the coupler point meets each target once";
+          if (j == 0 && i == n - 1) message += " (a closed curve is given once round: leave out the last point)";
+          fail_at(at(i), message);
+        }
+    check_not_collinear(points ? mark(*points) : mark(*curve));
+    if (const Entry* c = top.find("constraints")) parse_constraints(*c);
+    if (const Entry* s = top.find("nine_point_starts")) task_.nine_point_starts = whole(*s, "`nine_point_starts`", 0, 10);
+  }
+
+  // The targets must span an area: a straight line is not a coupler curve to fit.
+  void check_not_collinear(SourceMark at) const {
+    Vector2d centre = Vector2d::Zero();
+    for (const Vector2d& p : task_.points) centre += p;
+    centre /= static_cast<double>(task_.points.size());
+    double xx = 0, xy = 0, yy = 0;
+    for (const Vector2d& p : task_.points) {
+      const Vector2d d = p - centre;
+      xx += d.x() * d.x();
+      xy += d.x() * d.y();
+      yy += d.y() * d.y();
+    }
+    const double mean = 0.5 * (xx + yy), half = std::hypot(0.5 * (xx - yy), xy);
+    if (mean - half <= 1e-12 * (mean + half))
+      fail(at, "the target points lie on one straight line: a path task fits a four-bar's coupler curve to points "
+               "spread over a curve");
+  }
+
+  // A file named in the task, relative to the task file's folder.
+  std::string resolve_beside_task(const std::string& name) const {
+    const std::filesystem::path given(name);
+    if (given.is_absolute() || file_.empty() || file_.front() == '<') return given.string();
+    return (std::filesystem::path(file_).parent_path() / given).lexically_normal().string();
+  }
+
+  // x, y on each line (comma, semicolon, tab or spaces between them); blank lines and lines
+  // starting with # are skipped, and a first line of words (a header) too.
+  void read_curve_csv(const std::string& path, SourceMark from, std::vector<SourceMark>& marks) {
+    std::error_code status;
+    if (std::filesystem::is_directory(path, status)) fail(from, "`curve`: " + path + " is a folder, not a CSV file");
+    errno = 0;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      const std::error_code error(errno != 0 ? errno : ENOENT, std::generic_category());
+      fail(from, "`curve`: cannot read " + path + ": " + error.message());
+    }
+    std::string line;
+    int number_of_line = 0;
+    bool first_data = true;
+    while (std::getline(in, line)) {
+      ++number_of_line;
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (number_of_line > static_cast<int>(kMaxPathPoints) * 4 + 100)
+        throw ModelFileError(path, SourceMark{number_of_line, 1},
+                             "too many lines: a path task takes at most " + std::to_string(kMaxPathPoints) + " points");
+      const auto fields = split_fields(line);
+      if (fields.empty() || line[fields.front().first] == '#') continue;
+      const bool header = first_data && marks.empty() && !starts_a_number(line[fields.front().first]);
+      first_data = false;
+      if (header) continue;
+      if (fields.size() != 2)
+        throw ModelFileError(path, SourceMark{number_of_line, static_cast<int>(fields.front().first) + 1},
+                             "a line holds two numbers, x and y (found " + std::to_string(fields.size()) + " fields)");
+      Vector2d p;
+      for (int k = 0; k < 2; ++k) {
+        const auto [begin, length] = fields[static_cast<std::size_t>(k)];
+        const std::string text = line.substr(begin, length);
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end != text.c_str() + text.size() || text.empty() || !std::isfinite(v))
+          throw ModelFileError(path, SourceMark{number_of_line, static_cast<int>(begin) + 1},
+                               "'" + text.substr(0, 40) + "' is not a finite number (" + (k == 0 ? "x" : "y") + ")");
+        p(k) = v;
+      }
+      task_.points.push_back(p);
+      marks.push_back(SourceMark{number_of_line, static_cast<int>(fields.front().first) + 1});
+    }
+  }
+
+  static bool starts_a_number(char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.';
+  }
+
+  // (start, length) of each field: separated by a comma, a semicolon, or blanks.
+  static std::vector<std::pair<std::size_t, std::size_t>> split_fields(const std::string& line) {
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    const auto blank = [](char c) { return c == ' ' || c == '\t'; };
+    std::size_t i = 0;
+    while (i < line.size() && blank(line[i])) ++i;
+    if (i == line.size()) return out;
+    while (true) {
+      std::size_t j = i;
+      while (j < line.size() && line[j] != ',' && line[j] != ';' && !blank(line[j])) ++j;
+      out.emplace_back(i, j - i);
+      while (j < line.size() && blank(line[j])) ++j;
+      if (j == line.size()) break;
+      if (line[j] == ',' || line[j] == ';') ++j;
+      while (j < line.size() && blank(line[j])) ++j;
+      i = j;
+      if (i == line.size()) {
+        out.emplace_back(i, 0);  // a separator at the end: an empty field
+        break;
+      }
+    }
+    return out;
+  }
+
+  bool flag(const Entry& e, const std::string& what) const {
+    if (e.value.IsScalar() && (e.value.Scalar() == "true" || e.value.Scalar() == "false")) return e.value.Scalar() == "true";
+    fail(mark(e), what + " is true or false, not " + describe(e.value));
+  }
+
+  // constraints: {pivots: {min: [x, y], max: [x, y]}, crank: true, min_transmission: 30,
+  //               lengths: [min, max]}
+  void parse_constraints(const Entry& e) {
+    const Fields f = mapping(e, keys_under(e, {"pivots", "crank", "min_transmission", "lengths"}),
+                             "{pivots: {min: [0, 0], max: [100, 50]}, crank: true, min_transmission: 30, lengths: [10, 200]}");
+    synthesis::PathConstraints& c = task_.constraints;
+    if (const Entry* p = f.find("pivots")) {
+      const Fields box = mapping(*p, keys_under(*p, {"min", "max"}), "{min: [0, 0], max: [100, 50]}");
+      const Vector2d lo = point(required(box, p->value, "min", "`pivots`"), "the region's min corner");
+      const Entry& hi_entry = required(box, p->value, "max", "`pivots`");
+      const Vector2d hi = point(hi_entry, "the region's max corner");
+      if (!(hi.x() > lo.x() && hi.y() > lo.y()))
+        fail(mark(hi_entry), "the pivots' region is empty: max must exceed min in x and in y");
+      c.region_min = lo;
+      c.region_max = hi;
+    }
+    if (const Entry* k = f.find("crank")) c.crank = flag(*k, "`crank`");
+    if (const Entry* m = f.find("min_transmission")) {
+      const double mu = angle(m->value, mark(*m), "`min_transmission`");
+      if (!(mu >= 0 && mu < std::numbers::pi / 2))
+        fail(mark(*m), "`min_transmission` must be at least 0 and less than a right angle (90 deg, the best a linkage can keep)");
+      c.min_transmission = mu;
+    }
+    if (const Entry* l = f.find("lengths")) {
+      const auto [lo, hi] = pair(l->value, mark(*l), "`lengths` (" + task_.units.length + ")", "[10, 200]");
+      if (!(lo >= 0 && hi > lo)) fail(mark(*l), "`lengths` is [min, max] with 0 <= min < max");
+      c.min_length = lo;
+      c.max_length = hi;
+    }
   }
 
   // Where the character at `offset` of a plain or quoted one-line scalar sits in the file.

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -54,11 +55,14 @@ void write_synthesis_table(std::ostream& os, const SynthesisTask& task, const Ou
   const int listable = args.all ? static_cast<int>(out.rows.size()) : clean;
   if (static_cast<int>(shown.size()) < listable)
     os << fmt::format("the best {} of {} (--top N for more)\n", shown.size(), listable);
-  os << fmt::format("{:>4}  {:<14} {:>11} {:>11} {:>11} {:>11}  {:>8}  {:<22} {:>9}\n", "rank", "Grashof", "frame",
-                    "input", "coupler", "output", "mu min", "defects", "error");
-  os << fmt::format("{:>4}  {:<14} {:>11} {:>11} {:>11} {:>11}  {:>8}  {:<22} {:>9}\n", "", "",
+  // Path fits list their RMS deviation beside the largest.
+  const bool rms = std::any_of(out.rows.begin(), out.rows.end(), [](const Row& r) { return r.rms_error.has_value(); });
+  const std::string rms_head = rms ? fmt::format(" {:>9}", "rms") : "";
+  os << fmt::format("{:>4}  {:<14} {:>11} {:>11} {:>11} {:>11}  {:>8}  {:<22} {:>9}{}\n", "rank", "Grashof", "frame",
+                    "input", "coupler", "output", "mu min", "defects", "error", rms_head);
+  os << fmt::format("{:>4}  {:<14} {:>11} {:>11} {:>11} {:>11}  {:>8}  {:<22} {:>9}{}\n", "", "",
                     "(" + task.units.length + ")", "", "", "", "(" + task.units.angle + ")", "",
-                    "(" + error_unit + ")");
+                    "(" + error_unit + ")", rms ? fmt::format(" {:>9}", "(" + error_unit + ")") : "");
   int rank = 0;
   for (int i : shown) {
     const Row& r = out.rows[i];
@@ -70,9 +74,10 @@ void write_synthesis_table(std::ostream& os, const SynthesisTask& task, const Ou
     }
     const DesignCheck& c = r.check;
     const double error = out.angle_errors ? c.max_error * to_angle : c.max_error;
-    os << fmt::format("{:>4}  {:<14} {:>11.6g} {:>11.6g} {:>11.6g} {:>11.6g}  {:>8.4g}  {:<22} {:>9.2g}\n", rank,
+    os << fmt::format("{:>4}  {:<14} {:>11.6g} {:>11.6g} {:>11.6g} {:>11.6g}  {:>8.4g}  {:<22} {:>9.2g}{}\n", rank,
                       c.invalid.empty() ? grashof_name(c) : "invalid", c.frame, c.input, c.coupler, c.output,
-                      c.min_transmission * to_angle, synthesis::describe_defects(c), error);
+                      c.min_transmission * to_angle, synthesis::describe_defects(c), error,
+                      rms ? fmt::format(" {:>9.2g}", r.rms_error.value_or(NAN)) : "");
   }
   if (!args.export_dir.empty()) os << fmt::format("exported to {}/design-01.yaml ...\n", args.export_dir);
 }
@@ -123,6 +128,8 @@ std::string synthesis_json(const SynthesisTask& task, const Outcome& out, const 
       d["max_error"] = c.max_error * error_scale;
       d["max_rotation_error"] = c.max_rotation_error * to_angle;
       if (r.structural_error) d["structural_error"] = *r.structural_error * to_angle;
+      if (r.rms_error) d["rms_error"] = *r.rms_error;
+      if (r.fit_max_error) d["fit_max_error"] = *r.fit_max_error;
       d["targets"] = nlohmann::ordered_json::array();
       for (const synthesis::TargetCheck& t : c.targets)
         d["targets"].push_back({{"input_angle", t.input_angle * to_angle},

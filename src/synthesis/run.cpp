@@ -1,6 +1,7 @@
 #include "nbar/synthesis/run.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,8 @@
 
 #include "nbar/synthesis/five_point.hpp"
 #include "nbar/synthesis/function_generation.hpp"
+#include "nbar/synthesis/nine_point.hpp"
+#include "nbar/synthesis/path_fit.hpp"
 
 namespace nbar::synthesis {
 
@@ -20,6 +23,10 @@ std::string to_string(SynthesisKind kind) {
       return "burmester";
     case SynthesisKind::Function:
       return "function";
+    case SynthesisKind::NinePoint:
+      return "nine-point";
+    case SynthesisKind::Path:
+      return "path";
   }
   return {};
 }
@@ -71,6 +78,50 @@ Outcome five_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
       out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
   if (result.failed_paths > 0)
     out.notes.push_back(fmt::format("{} of {} paths failed", result.failed_paths, result.paths));
+  return out;
+}
+
+// Every real cognate triple: three rows, the solution and its two Roberts cognates.
+Outcome nine_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
+  if (task.points.size() != 9) throw std::invalid_argument("a nine-point task needs exactly 9 points");
+  std::array<Eigen::Vector2d, 9> points;
+  std::copy(task.points.begin(), task.points.end(), points.begin());
+  NinePointOptions options;
+  options.threads = run.threads;
+  options.seed = run.seed;
+  options.progress = [&run](const std::string& stage, int done, int total) {
+    if (run.control.on_progress &&
+        !run.control.on_progress(Progress{stage == "paths" ? "paths" : "monodromy", done, total}))
+      run.control.token.cancel();
+  };
+  options.stop = [&run] { return run.control.token.cancelled(); };
+  NinePointResult result;
+  try {
+    result = solve_nine_point(points, options);
+  } catch (const std::runtime_error& e) {
+    if (run.control.token.cancelled()) run.control.checkpoint("paths", 0, 0);  // throws Cancelled
+    throw;
+  }
+  run.control.checkpoint("paths", result.paths, result.paths);
+  Outcome out;
+  out.method = result.method;
+  for (const NinePointLinkage& linkage : result.linkages)
+    for (const FourBarDesign& design : linkage.designs) {
+      Row row;
+      row.design = design;
+      row.solver_residual = linkage.residual;
+      row.solver_condition = linkage.condition;
+      out.rows.push_back(row);
+    }
+  std::vector<Target> targets;
+  for (const Eigen::Vector2d& p : task.points) targets.push_back({p, std::nullopt});
+  check_rows(
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+  out.notes.push_back(fmt::format("{} of {} orbits (Roberts cognate triples) found, {} of them real: {}", result.orbits,
+                                  kNinePointOrbits, result.real_orbits, result.certificate));
+  if (result.failed_paths > 0)
+    out.notes.push_back(fmt::format("{} of {} paths from the stored instance were tracked again", result.failed_paths,
+                                    kNinePointOrbits));
   return out;
 }
 
@@ -198,6 +249,55 @@ Outcome function(const SynthesisTask& task, const SynthesisRunOptions& run) {
   return out;
 }
 
+// Best fit through many points: the distinct local optima, each checked like a five-point
+// design (the targets, in order, on one branch), defect-free ones first, then by RMS deviation.
+Outcome path(const SynthesisTask& task, const SynthesisRunOptions& run) {
+  PathFitTask problem;
+  problem.targets = task.points;
+  problem.constraints = task.constraints;
+  PathFitOptions options;
+  options.seed = run.seed;
+  options.nine_point_subsets = task.nine_point_starts;
+  options.stop = [&run] { return run.control.should_stop("starts", 0, 0); };
+  options.progress = [&run](int done, int total) {
+    if (run.control.on_progress && !run.control.on_progress(Progress{"starts", done, total})) run.control.token.cancel();
+  };
+  const PathFitResult result = fit_path(problem, options);
+  run.control.checkpoint("starts", result.starts, result.starts);
+  Outcome out;
+  out.method = fmt::format("Levenberg-Marquardt fit to {} points from {} starts", task.points.size(), result.starts);
+  out.ranked = true;
+  for (const PathFit& fit : result.fits) {
+    Row row;
+    row.design = fit.design;
+    row.rms_error = fit.rms_deviation;
+    row.fit_max_error = fit.max_deviation;
+    out.rows.push_back(row);
+  }
+  std::vector<Target> targets;
+  for (const Eigen::Vector2d& p : task.points) targets.push_back({p, std::nullopt});
+  check_rows(
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+  // The engine's deviations, when it reached every target, are the ones listed.
+  for (Row& row : out.rows) {
+    if (row.check.unreached() || row.check.targets.empty()) continue;
+    double sum = 0;
+    for (const TargetCheck& t : row.check.targets) sum += t.error * t.error;
+    row.rms_error = std::sqrt(sum / static_cast<double>(row.check.targets.size()));
+  }
+  std::stable_sort(out.rows.begin(), out.rows.end(), [](const Row& x, const Row& y) {
+    if (x.check.defect_free() != y.check.defect_free()) return x.check.defect_free();
+    return x.rms_error < y.rms_error;
+  });
+  out.notes.push_back(fmt::format("starts: {}; {} coupler-point evaluations", fmt::join(result.start_counts, ", "),
+                                  result.evaluations));
+  if (result.rejected > 0)
+    out.notes.push_back(fmt::format("{} local {} a constraint and {} not listed", result.rejected,
+                                    result.rejected == 1 ? "optimum broke" : "optima broke",
+                                    result.rejected == 1 ? "is" : "are"));
+  return out;
+}
+
 }  // namespace
 
 SynthesisOutcome run_synthesis(const SynthesisTask& task, const SynthesisRunOptions& options) {
@@ -210,6 +310,10 @@ SynthesisOutcome run_synthesis(const SynthesisTask& task, const SynthesisRunOpti
         return burmester(task, options);
       case SynthesisKind::Function:
         return function(task, options);
+      case SynthesisKind::NinePoint:
+        return nine_point(task, options);
+      case SynthesisKind::Path:
+        return path(task, options);
     }
   } catch (const std::invalid_argument& e) {  // the solvers' complaints about the task's data
     throw Error(ErrorKind::InvalidModel, e.what(), {}, task.file, task.where);
@@ -227,8 +331,13 @@ std::vector<int> shown_rows(const SynthesisOutcome& out, bool all, int top) {
       real.push_back(static_cast<int>(i));
       checks.push_back(out.rows[i].check);
     }
+  std::vector<int> order = rank_designs(checks);
+  if (out.ranked) std::sort(order.begin(), order.end(), [&](int i, int j) {
+    if (checks[i].defect_free() != checks[j].defect_free()) return checks[i].defect_free();
+    return i < j;
+  });
   std::vector<int> shown;
-  for (int k : rank_designs(checks))
+  for (int k : order)
     if (all || checks[k].defect_free()) shown.push_back(real[k]);
   if (all)
     for (std::size_t i = 0; i < out.rows.size(); ++i)

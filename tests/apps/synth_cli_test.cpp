@@ -31,6 +31,7 @@ using ::testing::StartsWith;
 
 using nbar::cli_test::CliRun;
 using nbar::cli_test::nbar;
+using nbar::io::SynthesisTask;
 
 // A scratch directory, removed at the end of the test.
 class TempDir {
@@ -228,6 +229,60 @@ TEST(SynthCli, FunctionGeneratorRunsOverTheRangeOfX) {
   ASSERT_EQ(targets.size(), 3u);
   EXPECT_NEAR(targets[0]["input_angle"].get<double>(), 90 + 60 * (1.5 - 0.5 * std::cos(std::numbers::pi / 6) - 1), 1e-9);
   EXPECT_NEAR(targets[1]["input_angle"].get<double>(), 120, 1e-9);
+}
+
+// 30 points measured (0.3 mm of noise) on a crank-rocker's coupler curve: the best fit is within
+// the noise, and its exported model, driven to each target's input angle, puts the coupler point
+// where the check says.
+TEST(SynthCli, PathFitsThirtyMeasuredPoints) {
+  TempDir dir;
+  const std::string file = kExamples + "path/crank-rocker-measured.yaml";
+  const CliRun r = nbar("synth path " + file + " --format json --top 3 --export " + dir.path("designs"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["task"], "path");
+  ASSERT_EQ(j["designs"].size(), 3u);
+  const nlohmann::json& best = j["designs"][0];
+  EXPECT_TRUE(best["defect_free"].get<bool>());
+  EXPECT_TRUE(best["input_turns_fully"].get<bool>());  // the task asks for a crank
+  EXPECT_GE(best["min_transmission_full"].get<double>(), 30);
+  // The true linkage misses the targets by the noise (0.42 mm RMS): the fit does no worse.
+  EXPECT_LT(best["rms_error"].get<double>(), 0.42);
+  EXPECT_LT(best["max_error"].get<double>(), 1.0);
+  double previous = 0;
+  for (const auto& d : j["designs"]) {
+    EXPECT_GE(d["rms_error"].get<double>(), previous);  // ranked by RMS deviation
+    previous = d["rms_error"].get<double>();
+  }
+  const SynthesisTask t = nbar::io::load_synthesis_task(file);
+  std::vector<double> angles;
+  for (const auto& target : best["targets"]) angles.push_back(target["input_angle"].get<double>());
+  const auto at = coupler_points_at(dir.path("designs") + "/design-01.yaml", angles);
+  double worst = 0;
+  for (std::size_t i = 0; i < at.size(); ++i) worst = std::max(worst, (at[i] - t.points[i]).norm());
+  EXPECT_NEAR(worst, best["max_error"].get<double>(), 1e-6);
+  EXPECT_EQ(nbar("solve " + dir.path("designs") + "/design-03.yaml").code, 0);
+}
+
+TEST(SynthCli, BadPathTasksSayWhereTheProblemIs) {
+  TempDir dir;
+  std::string points = "points:\n";
+  for (int k = 0; k < 11; ++k)
+    points += "  - [" + std::to_string(std::cos(k * 0.5)) + ", " + std::to_string(std::sin(k * 0.5)) + "]\n";
+  const CliRun repeated = nbar("synth path " + dir.file("r.yaml", "task: path\n" + points + "  - [1, 0]\n"));
+  EXPECT_EQ(repeated.code, 1);
+  EXPECT_EQ(repeated.err, "error: " + dir.path("r.yaml") +
+                              ":14:5: points 1 and 12 coincide: the coupler point meets each target once (a closed "
+                              "curve is given once round: leave out the last point)\n");
+  dir.file("c.csv", "x,y\n0,0\n1,1\n2,oops\n");
+  const CliRun csv = nbar("synth path " + dir.file("c.yaml", "task: path\ncurve: c.csv\n"));
+  EXPECT_EQ(csv.code, 1);
+  EXPECT_EQ(csv.err, "error: " + dir.path("c.csv") + ":4:3: 'oops' is not a finite number (y)\n");
+  const CliRun few = nbar("synth path --points '[[0, 0], [1, 1], [2, 0]]'");
+  EXPECT_EQ(few.code, 2);
+  EXPECT_EQ(few.err,
+            "error: --points: a path task needs at least 10 target points, not 3 (with 5 points and both pivots, use "
+            "`task: five-point`)\n");
 }
 
 TEST(SynthCli, BadTaskFilesSayWhereTheProblemIs) {

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <numbers>
 
+#include <unistd.h>
+
 #include "nbar/io/synthesis_task.hpp"
 
 namespace {
@@ -31,7 +33,8 @@ std::string error_of(const std::string& text) {
 
 TEST(SynthesisTask, EveryExampleParses) {
   int count = 0;
-  for (const auto& entry : fs::directory_iterator(kDir)) {
+  for (const auto& entry : fs::recursive_directory_iterator(kDir)) {
+    if (entry.path().extension() != ".yaml") continue;  // path/d-shape.csv is a task's curve
     SCOPED_TRACE(entry.path().string());
     EXPECT_NO_THROW(nbar::io::load_synthesis_task(entry.path().string()));
     ++count;
@@ -127,7 +130,7 @@ TEST(SynthesisTask, TheDocumentationsExamplesParse) {
       block += line + "\n";
     }
   }
-  EXPECT_EQ(tasks, 3);
+  EXPECT_EQ(tasks, 4);
 }
 
 TEST(SynthesisTask, DocumentErrors) {
@@ -136,9 +139,10 @@ TEST(SynthesisTask, DocumentErrors) {
   EXPECT_EQ(error_of("- task: five-point\n"),
             "task.yaml:1:1: a task file is a mapping of keys (task:, ...), not a list");
   EXPECT_EQ(error_of("name: x\n"),
-            "task.yaml:1:1: a task file needs `task: five-point`, `task: burmester` or `task: function`");
+            "task.yaml:1:1: a task file needs `task: five-point`, `task: nine-point`, `task: burmester`, `task: function` or "
+            "`task: path`");
   EXPECT_EQ(error_of("name: x\ntask: six-point\n"),
-            "task.yaml:2:7: unknown task 'six-point' (tasks are: five-point, burmester, function)");
+            "task.yaml:2:7: unknown task 'six-point' (tasks are: five-point, nine-point, burmester, function, path)");
   EXPECT_EQ(error_of("task: five-point\ntask: burmester\n"),
             "task.yaml:2:1: duplicate key 'task' (first given on line 1)");
   EXPECT_EQ(error_of("task: five-point\nposes: []\n"),
@@ -268,6 +272,121 @@ TEST(SynthesisTask, MisspeltKeysSuggestTheRightOne) {
   EXPECT_EQ(error_of(replaced(kFivePoint, "pivots:", "anchors:")),
             "task.yaml:2:1: unknown key 'anchors' in a five-point task (allowed: task, name, description, units, "
             "pivots, points)");
+}
+
+// A path task: twelve points on an ellipse.
+const std::string kPath = R"(task: path
+units: {length: mm, angle: deg}
+points:
+  - [50, 0]
+  - [43.3, 10]
+  - [25, 17.3]
+  - [0, 20]
+  - [-25, 17.3]
+  - [-43.3, 10]
+  - [-50, 0]
+  - [-43.3, -10]
+  - [-25, -17.3]
+  - [0, -20]
+  - [25, -17.3]
+  - [43.3, -10]
+constraints: {pivots: {min: [-100, -100], max: [100, 0]}, crank: true, min_transmission: 30, lengths: [5, 200]}
+)";
+
+TEST(SynthesisTask, PathWithPointsAndConstraints) {
+  const SynthesisTask t = nbar::io::parse_synthesis_task(kPath, "task.yaml");
+  EXPECT_EQ(t.kind, SynthesisKind::Path);
+  ASSERT_EQ(t.points.size(), 12u);
+  EXPECT_EQ(t.points[1], Eigen::Vector2d(43.3, 10));
+  ASSERT_TRUE(t.constraints.region_min && t.constraints.region_max);
+  EXPECT_EQ(*t.constraints.region_min, Eigen::Vector2d(-100, -100));
+  EXPECT_EQ(*t.constraints.region_max, Eigen::Vector2d(100, 0));
+  EXPECT_TRUE(t.constraints.crank);
+  EXPECT_NEAR(t.constraints.min_transmission, 30 * kDegree, 1e-15);
+  EXPECT_EQ(t.constraints.min_length, 5);
+  EXPECT_EQ(t.constraints.max_length, 200);
+  EXPECT_EQ(t.nine_point_starts, 0);
+  EXPECT_EQ(nbar::io::parse_synthesis_task(kPath + "nine_point_starts: 2\n", "task.yaml").nine_point_starts, 2);
+  EXPECT_EQ(error_of(kPath + "nine_point_starts: 11\n"),
+            "task.yaml:17:20: `nine_point_starts` must be a whole number from 0 to 10");
+}
+
+TEST(SynthesisTask, PathFromACurveFile) {
+  const SynthesisTask t = nbar::io::load_synthesis_task(kDir + "path/d-shape.yaml");
+  EXPECT_EQ(t.kind, SynthesisKind::Path);
+  ASSERT_EQ(t.points.size(), 24u);
+  EXPECT_EQ(t.points[0], Eigen::Vector2d(0, 0));
+  EXPECT_EQ(t.points[9], Eigen::Vector2d(120, 0));
+  EXPECT_EQ(t.curve_file, kDir + "path/d-shape.csv");
+}
+
+TEST(SynthesisTask, PathErrors) {
+  EXPECT_EQ(error_of(kPath), "");
+  EXPECT_EQ(error_of(replaced(kPath, "  - [0, -20]\n  - [25, -17.3]\n  - [43.3, -10]\n", "")),
+            "task.yaml:4:3: a path task needs at least 10 target points, not 9 (with 5 points and both pivots, use "
+            "`task: five-point`)");
+  EXPECT_EQ(error_of(replaced(kPath, "[-25, 17.3]", "[43.3, 10]")),
+            "task.yaml:8:5: points 2 and 5 coincide: the coupler point meets each target once");
+  EXPECT_EQ(error_of(replaced(kPath, "  - [43.3, -10]\n", "  - [43.3, -10]\n  - [50, 0]\n")),
+            "task.yaml:16:5: points 1 and 13 coincide: the coupler point meets each target once (a closed curve is "
+            "given once round: leave out the last point)");
+  std::string line = "task: path\npoints:\n";
+  for (int k = 0; k < 12; ++k) line += "  - [" + std::to_string(k) + ", " + std::to_string(3 * k - 1) + "]\n";
+  EXPECT_EQ(error_of(line), "task.yaml:3:3: the target points lie on one straight line: a path task fits a "
+                            "four-bar's coupler curve to points spread over a curve");
+  EXPECT_EQ(error_of(replaced(kPath, "[0, 20]", "[0, x]")), "task.yaml:7:9: a point must be a number, not 'x'");
+  EXPECT_EQ(error_of(replaced(kPath, "units:", "curve: c.csv\nunits:")),
+            "task.yaml:2:1: give the targets as `points` or as a `curve` file, not both");
+  EXPECT_EQ(error_of("task: path\n"),
+            "task.yaml:1:1: a path task needs its target points: `points: [[x, y], ...]` (10 or more) or "
+            "`curve: FILE.csv`");
+  EXPECT_EQ(error_of(replaced(kPath, "crank: true", "crank: yes please")),
+            "task.yaml:16:66: `crank` is true or false, not 'yes please'");
+  EXPECT_EQ(error_of(replaced(kPath, "min_transmission: 30", "min_transmission: 95")),
+            "task.yaml:16:90: `min_transmission` must be at least 0 and less than a right angle (90 deg, the best a "
+            "linkage can keep)");
+  EXPECT_EQ(error_of(replaced(kPath, "max: [100, 0]", "max: [100, -100]")),
+            "task.yaml:16:48: the pivots' region is empty: max must exceed min in x and in y");
+  EXPECT_EQ(error_of(replaced(kPath, "lengths: [5, 200]", "lengths: [50, 20]")),
+            "task.yaml:16:103: `lengths` is [min, max] with 0 <= min < max");
+  EXPECT_EQ(error_of(replaced(kPath, "crank: true", "crank: true, grashof: 1")),
+            "task.yaml:16:72: unknown key 'grashof' in `constraints` (allowed: pivots, crank, min_transmission, lengths)");
+}
+
+// The CSV's own mistakes are reported at its line and column.
+TEST(SynthesisTask, PathCurveFileErrors) {
+  const fs::path dir = fs::temp_directory_path() / ("nbar_path_task_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const auto load_error = [&](const std::string& csv) {
+    std::ofstream(dir / "c.csv") << csv;
+    std::ofstream(dir / "t.yaml") << "task: path\ncurve: c.csv\n";
+    try {
+      nbar::io::load_synthesis_task((dir / "t.yaml").string());
+    } catch (const nbar::io::ModelFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::string good = "x,y\n";
+  for (int k = 0; k < 12; ++k) good += std::to_string(std::cos(k * 0.5)) + ", " + std::to_string(std::sin(k * 0.5)) + "\n";
+  EXPECT_EQ(load_error(good), "");
+  const std::string c = (dir / "c.csv").string(), t = (dir / "t.yaml").string();
+  EXPECT_EQ(load_error(good + "1, 2, 3\n"), c + ":14:1: a line holds two numbers, x and y (found 3 fields)");
+  EXPECT_EQ(load_error(good + "\n# a comment\n0.5; zero\n"), c + ":16:6: 'zero' is not a finite number (y)");
+  EXPECT_EQ(load_error(good + "nan, 1\n"), c + ":14:1: 'nan' is not a finite number (x)");
+  EXPECT_EQ(load_error(good + "1.000000, 0.000000\n"),
+            c + ":14:1: points 1 and 13 coincide: the coupler point meets each target once (a closed curve is given "
+                "once round: leave out the last point)");
+  EXPECT_EQ(load_error("x,y\n1,2\n3,1\n"), t + ":2:8: a path task needs at least 10 target points (in " + c +
+                                                 "), not 2 (with 5 points and both pivots, use `task: five-point`)");
+  std::ofstream(dir / "missing.yaml") << "task: path\ncurve: missing.csv\n";
+  try {
+    nbar::io::load_synthesis_task((dir / "missing.yaml").string());
+    ADD_FAILURE() << "a missing curve file is an error";
+  } catch (const nbar::io::ModelFileError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("missing.yaml:2:8: `curve`: cannot read " + (dir / "missing.csv").string() + ": "));
+  }
+  fs::remove_all(dir);
 }
 
 TEST(SynthesisTask, UnreadableFile) {

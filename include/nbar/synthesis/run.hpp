@@ -24,6 +24,8 @@ struct DesignRow {
   double solver_residual = 0;
   double solver_condition = 0;             // five-point: the homotopy's condition number at the endpoint
   std::optional<double> structural_error;  // function generation: worst output error over the range (rad)
+  std::optional<double> rms_error;         // path: RMS distance from the targets to the coupler point
+  std::optional<double> fit_max_error;     // path: the fit's largest distance, at its own input angles
 };
 
 struct SynthesisOutcome {
@@ -32,6 +34,7 @@ struct SynthesisOutcome {
   std::vector<std::string> notes;
   bool angle_errors = false;                // errors are output angles (function generation), not lengths
   std::optional<BurmesterCurves> curves;    // burmester with 4 poses: the centre- and circle-point curves
+  bool ranked = false;                      // rows are in rank order already (path: by RMS deviation)
 };
 
 struct SynthesisRunOptions {

@@ -12,12 +12,19 @@
 #include "nbar/model/law.hpp"
 #include "nbar/model/units.hpp"
 #include "nbar/synthesis/burmester.hpp"
+#include "nbar/synthesis/path_fit.hpp"
 
 namespace nbar::synthesis {
 
-enum class SynthesisKind { FivePoint, Burmester, Function };
+enum class SynthesisKind {
+  FivePoint,
+  Burmester,
+  Function,
+  NinePoint,
+  Path,
+};
 
-// "five-point", "burmester", "function".
+// "five-point", "burmester", "function", "nine-point", "path".
 std::string to_string(SynthesisKind kind);
 
 // Lengths are in the task's length unit (the solvers work in it and exported models keep
@@ -30,6 +37,7 @@ struct SynthesisTask {
   SourceMark where;  // the section the solver's own complaints are reported at
 
   // five-point: both fixed pivots and the coupler point's five positions, in order.
+  // nine-point: the coupler point's nine positions, in order (no pivots).
   Eigen::Vector2d pivot_a{0, 0}, pivot_b{0, 0};
   std::vector<Eigen::Vector2d> points;
 
@@ -52,6 +60,12 @@ struct SynthesisTask {
   int precision_points = 3;
   bool chebyshev = true;  // else evenly spaced, ends included
   double frame = 1;       // length of the frame link (sets the size)
+
+  // path: `points` holds the targets (10 or more, from the file or its `curve` CSV), and these
+  // bound the designs.
+  PathConstraints constraints;
+  std::string curve_file;  // the CSV the targets came from, if any
+  int nine_point_starts = 0;  // subsets of nine targets whose nine-point designs start fits too
 
 };
 

@@ -1,0 +1,79 @@
+// Alt's problem: every four-bar whose coupler point passes through nine given points
+// (Wampler, Morgan & Sommese, J. Mech. Des. 114(1), 1992). A generic instance has 4326
+// four-bars in 1442 triples of Roberts cognates; the isotropic formulation below (24
+// equations in 24 unknowns, plus two patch equations for the homogenized dyads) counts each
+// triple six times (cognates x the relabelling of the two dyads): 8652 solutions.
+//
+// Unknowns, in a frame with the first point at the origin: per dyad the fixed pivot a and the
+// moving pivot x (relative to the first point, in the first position) with their isotropic
+// "conjugates", homogenized per dyad on a random patch so that far pivots stay bounded; per
+// position j = 1..8 the coupler rotation t_j = e^{i theta_j} and tb_j = 1 / t_j.
+//   |delta_j + t_j x - a|^2 = |x - a|^2   (each dyad),   t_j tb_j = 1.
+//
+// New tasks are solved by a parameter homotopy from a stored generic complex instance with
+// one representative of each of its 1442 orbits (nine_point_start.cpp); failed paths are
+// recovered by monodromy, and generate_nine_point_start makes such an instance from scratch.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "nbar/synthesis/fourbar_design.hpp"
+#include "nbar/synthesis/polynomial.hpp"
+
+namespace nbar::synthesis {
+
+inline constexpr int kNinePointOrbits = 1442;       // generic number of cognate triples
+inline constexpr int kNinePointSolutions = 8652;    // of the isotropic system (6 per orbit)
+
+struct NinePointOptions {
+  unsigned threads = 0;       // 0: every hardware thread
+  std::uint64_t seed = 1;     // random parameter nodes and gammas
+  // Called with (stage, done, total), from worker threads: stage "paths" (parameter
+  // homotopy) or "monodromy" (done = orbits known, total = 1442 as a guide, not a rule).
+  std::function<void(const std::string&, int, int)> progress;
+  // Asked between paths (thread-safe); true stops the run, which then throws
+  // std::runtime_error("cancelled").
+  std::function<bool()> stop;
+  // When the parameter homotopy loses orbits, monodromy loops at the task recover them until
+  // this many loops in a row bring nothing new.
+  int stale_loops = 3;
+  int max_loops = 40;
+};
+
+// One real four-bar through the nine points and its two Roberts cognates (same coupler curve).
+struct NinePointLinkage {
+  // designs[0] is the solution itself; designs[1], designs[2] its cognates. Positions with the
+  // coupler point at points[0]. Link lengths: check_design or the pivots.
+  std::array<FourBarDesign, 3> designs;
+  double residual = 0;   // largest relative residual of the 24 equations (task units)
+  double condition = 0;  // condition number of the solver's Jacobian at the endpoint
+};
+
+struct NinePointResult {
+  std::vector<NinePointLinkage> linkages;  // one per real orbit (cognate triple)
+  int orbits = 0;          // distinct orbits found, real or complex (1442 generically)
+  int real_orbits = 0;     // = linkages.size()
+  int paths = 0;           // paths tracked in all (parameter homotopy and monodromy)
+  int failed_paths = 0;    // of the parameter homotopy from the stored instance
+  int monodromy_loops = 0; // loops run to recover what the parameter homotopy lost
+  // How complete the set is: "complete" when the count of orbits equals the generic count
+  // and the closing monodromy loops (if any) found nothing new; otherwise a sentence.
+  std::string certificate;
+  bool complete = false;
+  std::string method;
+  // Every orbit representative, affine solver coordinates in the solver's frame (for tests).
+  std::vector<CVector> representatives;
+};
+
+// Throws std::invalid_argument for non-finite, repeated (within 1e-9 of the spread) or
+// collinear points (a line is no coupler curve).
+NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points,
+                                 const NinePointOptions& options = {});
+
+}  // namespace nbar::synthesis
