@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "nbar/io/dxf_reader.hpp"
+#include "nbar/io/sketch.hpp"
 #include "nbar/io/yaml_support.hpp"
 #include "nbar/model/curves.hpp"
 #include "nbar/model/geometry.hpp"
@@ -1191,7 +1192,7 @@ class Parser : yaml::Reader {
     const Entry& outline = imported ? *imported : written ? *written : lower ? *lower : *upper;
     Region region;
     const Entry* layer = f.find("layer");
-    if (layer && !imported) fail(layer->key_node, "`layer` goes with `import`: the layer of the DXF drawing to read");
+    if (layer && !imported) fail(layer->key_node, "`layer` goes with `import`: the layer (DXF) or group (SVG) of the drawing to read");
     const Entry* units = f.find("units");
     if (units && !imported) fail(units->key_node, "`units` goes with `import`: the length unit of the file read");
     Ring outer;
@@ -1256,9 +1257,8 @@ class Parser : yaml::Reader {
     }
     std::filesystem::path path(name);
     if (path.is_relative()) path = *import_dir_ / path;
-    std::string extension = path.extension().string();
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (extension != ".dxf") fail(mark(e), "`import` reads DXF drawings (.dxf), not '" + name + "'");
+    const std::optional<SketchFormat> format = sketch_format(path.string());
+    if (!format) fail(mark(e), "`import` reads DXF (.dxf), SVG (.svg) or sketch CSV (.csv) drawings, not '" + name + "'");
     std::error_code status_error;
     std::ifstream in(path, std::ios::binary);
     if (!in || std::filesystem::is_directory(path, status_error)) {
@@ -1271,8 +1271,8 @@ class Parser : yaml::Reader {
       stated = length_unit_scale(text_value(*units, "`units`"));
       if (!stated) fail(mark(*units), "the unit of the file read is one of mm, cm, m, in, ft");
     }
-    (void)stated;
-    return read_dxf_plate(contents.str(), path.string(), model_.units.length_scale, layer);
+    const Sketch sketch = read_sketch(contents.str(), path.string(), *format, layer);
+    return plate_from_sketch(sketch, sketch_scale(sketch, stated, model_.units.length_scale));
   }
 
   Region parse_bar(const Entry& e, const Body& body, const std::string& name) const {

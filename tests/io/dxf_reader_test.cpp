@@ -86,8 +86,8 @@ TEST(DxfReader, BadFilesAtTheirLine) {
   EXPECT_THAT(message("0\nSECTION\n2\nENTITIES\n0\nLINE\n10\n20\n0\n11\n10\n21\n0\n0\nENDSEC\n0\nEOF\n"),
               HasSubstr("bad.dxf:15:1: a DXF group code (an integer) was expected here, not 'ENDSEC'"));
   EXPECT_THAT(message("0\nSECTION\n2\nENTITIES\n0\nLINE\n10\n"), HasSubstr("bad.dxf:7:1: group code 10 has no value"));
-  EXPECT_THAT(message(dxf({{0, "SECTION"}, {2, "ENTITIES"}, {0, "SPLINE"}, {0, "ENDSEC"}, {0, "EOF"}})),
-              HasSubstr("bad.dxf:5:1: nbar reads LINE, ARC, CIRCLE, LWPOLYLINE and POLYLINE entities for a plate, not SPLINE"));
+  EXPECT_THAT(message(dxf({{0, "SECTION"}, {2, "ENTITIES"}, {0, "3DFACE"}, {0, "ENDSEC"}, {0, "EOF"}})),
+              HasSubstr("bad.dxf:5:1: nbar reads LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, SPLINE, ELLIPSE and POINT entities, not 3DFACE"));
   EXPECT_THAT(message(dxf({{0, "SECTION"}, {2, "ENTITIES"}, {0, "CIRCLE"}, {10, "x"}, {20, "0"}, {40, "1"},
                            {0, "ENDSEC"}, {0, "EOF"}})),
               HasSubstr("bad.dxf:8:1: group 10 needs a finite number, not 'x'"));
