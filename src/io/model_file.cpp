@@ -672,7 +672,9 @@ class Parser : yaml::Reader {
 
   int curve_steps(const YAML::Node& node) const {
     const double n = number(node, mark(node), "`steps`");
-    if (n != std::floor(n) || n < 1 || n > 100000) fail(node, "`steps` must be a whole number from 1 to 100000");
+    if (n != std::floor(n) || n < 1 || n > kMaxCurveSteps) {
+      fail(node, "`steps` must be a whole number from 1 to " + std::to_string(kMaxCurveSteps));
+    }
     return static_cast<int>(n);
   }
 
@@ -705,8 +707,9 @@ class Parser : yaml::Reader {
       if (c.from == c.to) fail(function, "the profile's interval " + text.substr(brace) + " is empty");
       double n = 0;
       if (yaml::parse_number(std::string(trimmed(parts[2])), n) != yaml::NumberStatus::Ok || n != std::floor(n) ||
-          n < 1 || n > 100000) {
-        fail(function, "the steps in a profile's braces must be a whole number from 1 to 100000, not '" + parts[2] + "'");
+          n < 1 || n > kMaxCurveSteps) {
+        fail(function, "the steps in a profile's braces must be a whole number from 1 to " +
+                           std::to_string(kMaxCurveSteps) + ", not '" + parts[2] + "'");
       }
       c.steps = static_cast<int>(n);
       text.resize(brace);
@@ -882,6 +885,10 @@ class Parser : yaml::Reader {
       through.pop_back();
     }
     const std::size_t n = ring.vertices.size();
+    if (ring.curves && n > 2 * static_cast<std::size_t>(kMaxCurveSteps)) {
+      fail(where, std::string(what) + " has " + std::to_string(n) + " vertices with its curves, more than " +
+                      std::to_string(2 * kMaxCurveSteps) + ": give its curves fewer `steps`");
+    }
     if (n < (arcs ? 2u : 3u)) {
       fail(where, std::string(what) + " needs at least " + (arcs ? "2 vertices with an arc" : "3 vertices") +
                       ", not " + std::to_string(n));

@@ -21,13 +21,18 @@ using CurveFunction = std::function<Eigen::Vector2d(double)>;
 // outline's bounding box (0.01 mm on a 100 mm link).
 constexpr double kRelativeCurveTolerance = 1e-4;
 
+// The most vertices one curve may become (adaptive or by steps): the checks of an outline and
+// its sections grow with its vertices (the crossing check as their square), so that no input
+// makes them run for long.
+constexpr int kMaxCurveSteps = 10000;
+
 // The vertices of the curve from s = a to s = b, both ends included, adaptive as described
 // above, starting from 16 equal parameter intervals. Throws std::invalid_argument when the
 // tolerance is not positive, a or b is not finite, or the curve would need more than
 // `max_vertices` vertices (a curve that never settles, such as sin(1/s) near 0). Exceptions
 // from `f` pass through.
 std::vector<Eigen::Vector2d> sample_curve(const CurveFunction& f, double a, double b, double tolerance,
-                                          int max_vertices = 100000);
+                                          int max_vertices = kMaxCurveSteps);
 
 // The vertices at `steps` equal parameter intervals from a to b: steps + 1 vertices, b
 // included (the convention of the thesis tool's `f{a, b, steps}`).
