@@ -97,6 +97,10 @@ using sketch_detail::Segment;
 using sketch_detail::Stroke;
 using sketch_detail::StrokeSet;
 
+// A group's integer value; a value out of int's range (which a cast would make undefined)
+// becomes one no code means.
+int whole(double v) { return std::abs(v) < 1e9 ? static_cast<int>(v) : -1; }
+
 // DXF $INSUNITS codes nbar knows, in metres.
 std::optional<double> insunits_metres(int code) {
   switch (code) {
@@ -215,7 +219,7 @@ class SketchBuilder {
     std::vector<double> bulges;
     int flags = 0;
     for (const Pair& p : e.pairs) {
-      if (p.code == 70) flags = static_cast<int>(reader_.number(p));
+      if (p.code == 70) flags = whole(reader_.number(p));
       if (p.code == 10) {
         v.emplace_back(reader_.number(p), 0.0);
         bulges.push_back(0.0);
@@ -228,7 +232,7 @@ class SketchBuilder {
 
   void polyline() {
     const Entity& e = *polyline_;
-    const int flags = static_cast<int>(get_or(e, 70, 0));
+    const int flags = whole(get_or(e, 70, 0));
     std::vector<Vector2d> v;
     std::vector<double> bulges;
     for (const Entity& vertex : vertices_) {
@@ -243,7 +247,7 @@ class SketchBuilder {
   // Fit points (11, 21) make a cubic spline through them; otherwise the control points
   // (10, 20), knots (40) and weights (41) make the NURBS.
   void spline(const Entity& e) {
-    const int flags = static_cast<int>(get_or(e, 70, 0));
+    const int flags = whole(get_or(e, 70, 0));
     std::vector<Vector2d> control, fit;
     std::vector<double> knots, weights;
     for (const Pair& p : e.pairs) {
@@ -263,7 +267,7 @@ class SketchBuilder {
         add_stroke(e, {{a, b, 0, [through](double s) { return (*through)(s); }, 0.0, through->end()}}, closed);
         return;
       }
-      const int degree = static_cast<int>(get_or(e, 71, 3));
+      const int degree = whole(get_or(e, 71, 3));
       auto nurbs = std::make_shared<const BSpline>(degree, control, knots, weights);
       const Vector2d a = (*nurbs)(nurbs->start()), b = (*nurbs)(nurbs->end());
       add_stroke(e, {{a, b, 0, [nurbs](double u) { return (*nurbs)(u); }, nurbs->start(), nurbs->end()}}, closed);
@@ -341,7 +345,7 @@ StrokeSet read_dxf_strokes(const std::string& text, const std::string& file_name
       break;
     }
     if (section == "HEADER" && p.code == 9 && p.value == "$INSUNITS" && i + 1 < pairs.size()) {
-      builder.set.metres_per_unit = insunits_metres(static_cast<int>(reader.number(pairs[i + 1])));
+      builder.set.metres_per_unit = insunits_metres(whole(reader.number(pairs[i + 1])));
       continue;
     }
     if (section != "ENTITIES") continue;

@@ -203,8 +203,9 @@ Vector2d BSpline::operator()(double u) const {
   const std::size_t n = control_.size();
   u = std::clamp(u, start(), end());
   // The knot span k with knots[k] <= u < knots[k + 1], the last non-empty one at the end.
-  std::size_t k = p;
-  while (k + 1 < n && knots_[k + 1] <= u) ++k;
+  const auto after = std::upper_bound(knots_.begin() + static_cast<std::ptrdiff_t>(p + 1),
+                                      knots_.begin() + static_cast<std::ptrdiff_t>(n), u);
+  const std::size_t k = static_cast<std::size_t>(after - knots_.begin()) - 1;
   // De Boor's algorithm in homogeneous coordinates (w x, w y, w).
   std::vector<Eigen::Vector3d> d(p + 1);
   for (std::size_t j = 0; j <= p; ++j) {
