@@ -93,6 +93,30 @@ TEST(SketchImport, InkscapeSvgPathsArcsBeziersAndUnits) {
   EXPECT_THAT(error_of(fixture("inkscape-slot.svg"), "s.svg"), HasSubstr("s.svg:37:1: nbar reads paths"));
 }
 
+// Each kind of SVG curve against its closed form (unitless: read in the model's unit).
+TEST(SketchImport, SvgCurvesAgainstClosedForms) {
+  const auto area = [](const std::string& svg) {
+    const Sketch s = read_sketch(svg, "c.svg", SketchFormat::kSvg);
+    return area_properties(plate_from_sketch(s, 1.0)).area;
+  };
+  const auto within = [](double size, double length) { return 2.0 / 3 * kRelativeCurveTolerance * size * length; };
+  // A cubic from (0, 0) over controls (0, -10), (40, -10) to (40, 0), closed by its chord:
+  // ∫ y dx = 18 h w ∫ t²(1 - t)² dt = 0.6 h w = 240 (relative c, s after it: the same shape).
+  EXPECT_NEAR(area("<svg><path d=\"M 0 0 C 0 -10 40 -10 40 0 Z\"/></svg>"), 240, within(40, 45));
+  EXPECT_NEAR(area("<svg><path d=\"m 0 0 c 0 -10 40 -10 40 0 z\"/></svg>"), 240, within(40, 45));
+  // Half an ellipse of semi-axes 20 and 10 by an elliptical arc: 100π.
+  EXPECT_NEAR(area("<svg><path d=\"M -20 0 A 20 10 0 0 1 20 0 Z\"/></svg>"), 100 * kPi, within(40, 50));
+  // Half a circle of radius 20 by an arc: exact (a bulge).
+  EXPECT_NEAR(area("<svg><path d=\"M -20 0 A 20 20 0 0 0 20 0 Z\"/></svg>"), 200 * kPi, 1e-10);
+  EXPECT_NEAR(area("<svg><ellipse cx=\"3\" cy=\"4\" rx=\"5\" ry=\"3\"/></svg>"), 15 * kPi, within(10, 26));
+  EXPECT_NEAR(area("<svg><rect x=\"1\" y=\"2\" width=\"30\" height=\"10\"/></svg>"), 300, 1e-12);
+  EXPECT_NEAR(area("<svg><polygon points=\"0,0 10,0 10,10\"/></svg>"), 50, 1e-12);
+  // H and V; a quadratic and its reflection by T (segments of ±2/3 of their triangles, 100
+  // each, cancelling) over a 40 x 10 rectangle: 400.
+  EXPECT_NEAR(area("<svg><path d=\"M 0 0 H 10 V 10 H 0 Z\"/></svg>"), 100, 1e-12);
+  EXPECT_NEAR(area("<svg><path d=\"M 0 0 Q 10 -15 20 0 T 40 0 V 10 H 0 Z\"/></svg>"), 400, within(40, 100));
+}
+
 TEST(SketchImport, ThesisSketchCsv) {
   // Four New_Line entities chained into a 0.1 x 0.02 m rectangle, a New_Circle of points at
   // 0.01 rad steps (a pin hole of radius 4 mm) and two Point joints.
