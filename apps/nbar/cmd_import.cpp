@@ -16,7 +16,7 @@ namespace {
 
 struct ImportArgs {
   std::string sketch, output, units, material = "steel";
-  double thickness = 5;
+  std::optional<double> thickness;
 };
 
 // The name of a length unit nbar knows of `metres` per unit, if any.
@@ -55,7 +55,8 @@ int run_import(const ImportArgs& args) {
                           : sketch.metres_per_unit && unit_name(*sketch.metres_per_unit) ? *unit_name(*sketch.metres_per_unit)
                                                                                 : std::string("mm");
     options.scale = io::sketch_scale(sketch, std::nullopt, *length_unit_scale(options.length_unit));
-    options.thickness = args.thickness;
+    // 5 mm unless given, in the model's unit.
+    options.thickness = args.thickness ? *args.thickness : 5e-3 / *length_unit_scale(options.length_unit);
     options.material = args.material;
     const std::string yaml = io::model_from_sketch(sketch, options);
     if (args.output.empty()) {
@@ -80,7 +81,7 @@ Command add_import_command(CLI::App& app) {
   sub->add_option("--units", args->units,
                   "the model's length unit (mm, cm, m, in, ft; default: the sketch's own, else mm); a sketch that "
                   "states no unit is read in it");
-  sub->add_option("--thickness", args->thickness, "every plate's thickness in that unit (default 5)")
+  sub->add_option("--thickness", args->thickness, "every plate's thickness in the model's unit (default: 5 mm)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--material", args->material, "every plate's material (default steel)");
   return {sub, [args] { return run_import(*args); }};
