@@ -69,7 +69,7 @@ class AdaptiveSampler {
 
 std::vector<Vector2d> sample_curve(const CurveFunction& f, double a, double b, double tolerance, int max_vertices) {
   if (!(tolerance > 0) || !std::isfinite(tolerance)) fail("the curve tolerance must be positive");
-  if (!std::isfinite(a) || !std::isfinite(b)) fail("the curve's parameter range must be finite");
+  if (!std::isfinite(b - a)) fail("the curve's parameter range must be finite");
   AdaptiveSampler sampler(f, tolerance, max_vertices);
   Vector2d previous = f(a);
   sampler.push(previous);
@@ -86,7 +86,7 @@ std::vector<Vector2d> sample_curve(const CurveFunction& f, double a, double b, d
 
 std::vector<Vector2d> sample_curve_uniform(const CurveFunction& f, double a, double b, int steps) {
   if (steps < 1) fail("a curve needs at least 1 step");
-  if (!std::isfinite(a) || !std::isfinite(b)) fail("the curve's parameter range must be finite");
+  if (!std::isfinite(b - a)) fail("the curve's parameter range must be finite");
   std::vector<Vector2d> out;
   out.reserve(static_cast<std::size_t>(steps) + 1);
   for (int k = 0; k <= steps; ++k) {
