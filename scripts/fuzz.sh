@@ -11,7 +11,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 seconds="${1:-60}"
 shift || true
 harnesses=("$@")
-if [ ${#harnesses[@]} -eq 0 ]; then harnesses=(fuzz_model_reader fuzz_task_reader fuzz_law fuzz_check); fi
+if [ ${#harnesses[@]} -eq 0 ]; then harnesses=(fuzz_model_reader fuzz_task_reader fuzz_law fuzz_check fuzz_sketch); fi
 build="${NBAR_FUZZ_BUILD:-$root/build-fuzz}"
 jobs="$(nproc)"
 launcher=()
@@ -27,6 +27,7 @@ seeds_of() {
     fuzz_model_reader | fuzz_check) echo "$root/tests/fuzz/corpus/model" "$build/seeds/examples" ;;
     fuzz_task_reader) echo "$root/tests/fuzz/corpus/task" "$root/examples/synthesis" ;;
     fuzz_law) echo "$root/tests/fuzz/corpus/law" ;;
+    fuzz_sketch) echo "$root/tests/fuzz/corpus/sketch" ;;
   esac
 }
 mkdir -p "$build/seeds/examples" "$build/findings"

@@ -21,11 +21,12 @@ Command add_synth_command(CLI::App& app);     // cmd_synth.cpp
 Command add_explain_command(CLI::App& app);   // cmd_explain.cpp
 Command add_serve_command(CLI::App& app);     // cmd_serve.cpp
 Command add_export_command(CLI::App& app);    // cmd_export.cpp
+Command add_import_command(CLI::App& app);    // cmd_import.cpp
 
 // In the order they appear in --help.
 inline std::vector<AddCommand> more_commands() {
   return {&add_draw_command, &add_plot_command, &add_animate_command, &add_report_command, &add_synth_command,
-          &add_explain_command, &add_export_command,
+          &add_explain_command, &add_export_command, &add_import_command,
           &add_serve_command};
 }
 

@@ -12,7 +12,10 @@
 #include <string_view>
 #include <vector>
 
+#include "sketch_strokes.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/io/sketch.hpp"
+#include "nbar/model/curves.hpp"
 
 namespace nbar::io {
 
@@ -90,23 +93,13 @@ struct Entity {
   std::vector<Pair> pairs;
 };
 
-// An edge to chain: from a to b, an arc when the bulge is not 0.
-struct Piece {
-  Vector2d a, b;
-  double bulge;
-  int line;
-};
+using sketch_detail::Segment;
+using sketch_detail::Stroke;
+using sketch_detail::StrokeSet;
 
-struct Loop {
-  std::vector<Vector2d> vertices;
-  std::vector<double> bulges;
-};
-
-struct Sketch {
-  std::vector<Piece> pieces;
-  std::vector<Loop> loops;
-  std::vector<Circle> circles;
-};
+// A group's integer value; a value out of int's range (which a cast would make undefined)
+// becomes one no code means.
+int whole(double v) { return std::abs(v) < 1e9 ? static_cast<int>(v) : -1; }
 
 // DXF $INSUNITS codes nbar knows, in metres.
 std::optional<double> insunits_metres(int code) {
@@ -125,10 +118,17 @@ class SketchBuilder {
   explicit SketchBuilder(const Reader& reader) : reader_(reader) {}
 
   void add(const Entity& e) {
+    layer_ = layer_of(e);
     if (e.type == "LINE") return line(e);
     if (e.type == "ARC") return arc(e);
     if (e.type == "CIRCLE") return circle(e);
     if (e.type == "LWPOLYLINE") return lwpolyline(e);
+    if (e.type == "SPLINE") return spline(e);
+    if (e.type == "ELLIPSE") return ellipse(e);
+    if (e.type == "POINT") {
+      set.points.push_back({{get(e, 10), get(e, 20)}, e.line});
+      return;
+    }
     if (e.type == "POLYLINE") {
       polyline_ = e;
       vertices_.clear();
@@ -144,28 +144,43 @@ class SketchBuilder {
       polyline();
       return;
     }
-    reader_.fail(e.line, "nbar reads LINE, ARC, CIRCLE, LWPOLYLINE and POLYLINE entities for a plate, not " +
-                             e.type);
+    reader_.fail(e.line, "nbar reads LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, SPLINE, ELLIPSE and POINT entities, not " +
+                             e.type + " (put it on another layer and give `layer`)");
   }
 
-  void finish(int line) const {
+  void finish() const {
     if (polyline_) reader_.fail(polyline_->line, "a POLYLINE without its SEQEND");
-    (void)line;
   }
 
-  Sketch sketch;
+  StrokeSet set;
 
  private:
+  static std::string layer_of(const Entity& e) {
+    for (const Pair& p : e.pairs)
+      if (p.code == 8) return p.value;
+    return std::string(1, '0');
+  }
+
   double get(const Entity& e, int code) const {
     for (const Pair& p : e.pairs)
       if (p.code == code) return reader_.number(p);
     reader_.fail(e.line, e.type + " without group " + std::to_string(code));
   }
 
+  double get_or(const Entity& e, int code, double otherwise) const {
+    for (const Pair& p : e.pairs)
+      if (p.code == code) return reader_.number(p);
+    return otherwise;
+  }
+
+  void add_stroke(const Entity& e, std::vector<Segment> segments, bool closed) {
+    set.strokes.push_back({std::move(segments), closed, e.line, layer_});
+  }
+
   void line(const Entity& e) {
     const Vector2d a(get(e, 10), get(e, 20)), b(get(e, 11), get(e, 21));
     if (a == b) return;  // a zero-length line joins nothing
-    sketch.pieces.push_back({a, b, 0.0, e.line});
+    add_stroke(e, {{a, b}}, false);
   }
 
   void arc(const Entity& e) {
@@ -178,24 +193,25 @@ class SketchBuilder {
     if (sweep <= 0) sweep += 360;  // counterclockwise from start to end
     const Vector2d a = c + r * Vector2d(std::cos(from * deg), std::sin(from * deg));
     const Vector2d b = c + r * Vector2d(std::cos(to * deg), std::sin(to * deg));
-    sketch.pieces.push_back({a, b, std::tan(sweep * deg / 4), e.line});
+    add_stroke(e, {{a, b, std::tan(sweep * deg / 4)}}, false);
   }
 
   void circle(const Entity& e) {
     const double r = get(e, 40);
     if (!(r > 0)) reader_.fail(e.line, "CIRCLE with a radius that is not positive");
-    sketch.circles.push_back({{get(e, 10), get(e, 20)}, r});
+    set.circles.push_back({{{get(e, 10), get(e, 20)}, r}, e.line, layer_});
   }
 
-  // Vertices (10, 20) each followed by its optional bulge (42), as LWPOLYLINE stores them.
-  void add_polyline(const Entity& e, const std::vector<Vector2d>& v, const std::vector<double>& bulges,
-                    bool closed) {
+  // Vertices each with the bulge of the edge it starts, as polylines store them.
+  void add_polyline(const Entity& e, const std::vector<Vector2d>& v, const std::vector<double>& bulges, bool closed) {
     if (v.size() < 2) reader_.fail(e.line, e.type + " with fewer than 2 vertices");
-    if (closed) {
-      sketch.loops.push_back({v, bulges});
-      return;
+    std::vector<Segment> segments;
+    for (std::size_t i = 0; i + 1 < v.size(); ++i) {
+      if (v[i] != v[i + 1]) segments.push_back({v[i], v[i + 1], bulges[i]});
     }
-    for (std::size_t i = 0; i + 1 < v.size(); ++i) sketch.pieces.push_back({v[i], v[i + 1], bulges[i], e.line});
+    if (closed && v.back() != v.front()) segments.push_back({v.back(), v.front(), bulges.back()});
+    if (segments.empty()) reader_.fail(e.line, e.type + " whose vertices are all the same point");
+    add_stroke(e, std::move(segments), closed);
   }
 
   void lwpolyline(const Entity& e) {
@@ -203,7 +219,7 @@ class SketchBuilder {
     std::vector<double> bulges;
     int flags = 0;
     for (const Pair& p : e.pairs) {
-      if (p.code == 70) flags = static_cast<int>(reader_.number(p));
+      if (p.code == 70) flags = whole(reader_.number(p));
       if (p.code == 10) {
         v.emplace_back(reader_.number(p), 0.0);
         bulges.push_back(0.0);
@@ -216,74 +232,69 @@ class SketchBuilder {
 
   void polyline() {
     const Entity& e = *polyline_;
-    int flags = 0;
-    for (const Pair& p : e.pairs)
-      if (p.code == 70) flags = static_cast<int>(reader_.number(p));
+    const int flags = whole(get_or(e, 70, 0));
     std::vector<Vector2d> v;
     std::vector<double> bulges;
     for (const Entity& vertex : vertices_) {
       v.emplace_back(get(vertex, 10), get(vertex, 20));
-      double bulge = 0;
-      for (const Pair& p : vertex.pairs)
-        if (p.code == 42) bulge = reader_.number(p);
-      bulges.push_back(bulge);
+      bulges.push_back(get_or(vertex, 42, 0.0));
     }
+    layer_ = layer_of(e);
     add_polyline(e, v, bulges, (flags & 1) != 0);
     polyline_.reset();
+  }
+
+  // Fit points (11, 21) make a cubic spline through them; otherwise the control points
+  // (10, 20), knots (40) and weights (41) make the NURBS.
+  void spline(const Entity& e) {
+    const int flags = whole(get_or(e, 70, 0));
+    std::vector<Vector2d> control, fit;
+    std::vector<double> knots, weights;
+    for (const Pair& p : e.pairs) {
+      if (p.code == 10) control.emplace_back(reader_.number(p), 0.0);
+      if (p.code == 20 && !control.empty()) control.back().y() = reader_.number(p);
+      if (p.code == 11) fit.emplace_back(reader_.number(p), 0.0);
+      if (p.code == 21 && !fit.empty()) fit.back().y() = reader_.number(p);
+      if (p.code == 40) knots.push_back(reader_.number(p));
+      if (p.code == 41) weights.push_back(reader_.number(p));
+    }
+    const bool closed = (flags & 1) != 0;
+    try {
+      if (control.empty()) {
+        if (closed && fit.size() > 2 && fit.front() == fit.back()) fit.pop_back();
+        auto through = std::make_shared<const CubicSpline>(fit, closed);
+        const Vector2d a = through->points().front(), b = through->points().back();
+        add_stroke(e, {{a, b, 0, [through](double s) { return (*through)(s); }, 0.0, through->end()}}, closed);
+        return;
+      }
+      const int degree = whole(get_or(e, 71, 3));
+      auto nurbs = std::make_shared<const BSpline>(degree, control, knots, weights);
+      const Vector2d a = (*nurbs)(nurbs->start()), b = (*nurbs)(nurbs->end());
+      add_stroke(e, {{a, b, 0, [nurbs](double u) { return (*nurbs)(u); }, nurbs->start(), nurbs->end()}}, closed);
+    } catch (const std::invalid_argument& error) {
+      reader_.fail(e.line, std::string("SPLINE: ") + error.what());
+    }
+  }
+
+  void ellipse(const Entity& e) {
+    const Vector2d c(get(e, 10), get(e, 20)), major(get(e, 11), get(e, 21));
+    const double ratio = get(e, 40);
+    if (!(major.norm() > 0) || !(ratio > 0)) reader_.fail(e.line, "ELLIPSE with an axis that is not positive");
+    const double from = get_or(e, 41, 0.0);
+    double to = get_or(e, 42, 2 * std::numbers::pi);
+    while (to <= from) to += 2 * std::numbers::pi;
+    const Vector2d minor = ratio * Vector2d(-major.y(), major.x());
+    const auto point = [c, major, minor](double t) { return Vector2d(c + std::cos(t) * major + std::sin(t) * minor); };
+    const bool whole = to - from >= 2 * std::numbers::pi - 1e-12;
+    if (whole) to = from + 2 * std::numbers::pi;
+    add_stroke(e, {{point(from), whole ? point(from) : point(to), 0, point, from, to}}, whole);
   }
 
   const Reader& reader_;
   std::optional<Entity> polyline_;
   std::vector<Entity> vertices_;
+  std::string layer_;
 };
-
-// Chains the pieces into closed loops, ends meeting within `tolerance`.
-void chain(Sketch& s, double tolerance, const Reader& reader) {
-  std::vector<bool> used(s.pieces.size(), false);
-  for (std::size_t first = 0; first < s.pieces.size(); ++first) {
-    if (used[first]) continue;
-    used[first] = true;
-    Loop loop;
-    loop.vertices.push_back(s.pieces[first].a);
-    loop.bulges.push_back(s.pieces[first].bulge);
-    Vector2d end = s.pieces[first].b;
-    int last_line = s.pieces[first].line;
-    while ((end - loop.vertices.front()).norm() > tolerance) {
-      bool found = false;
-      for (std::size_t k = 0; k < s.pieces.size() && !found; ++k) {
-        if (used[k]) continue;
-        const Piece& p = s.pieces[k];
-        if ((p.a - end).norm() <= tolerance) {
-          loop.vertices.push_back(p.a);
-          loop.bulges.push_back(p.bulge);
-          end = p.b;
-        } else if ((p.b - end).norm() <= tolerance) {
-          loop.vertices.push_back(p.b);
-          loop.bulges.push_back(-p.bulge);  // run backwards, the arc turns the other way
-          end = p.a;
-        } else {
-          continue;
-        }
-        used[k] = true;
-        last_line = p.line;
-        found = true;
-      }
-      if (!found) {
-        reader.fail(last_line, fmt::format("the outline is not closed: the entity here ends at ({:.6g}, {:.6g}) and no "
-                                           "other entity starts there (within {:.3g})",
-                                           end.x(), end.y(), tolerance));
-      }
-    }
-    s.loops.push_back(std::move(loop));
-  }
-}
-
-double loop_area(const Loop& loop) {
-  Region r;
-  r.outline = loop.vertices;
-  r.outline_bulges = loop.bulges;
-  return std::abs(area_properties(r).area);
-}
 
 bool same_layer(std::string_view a, std::string_view b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
@@ -300,14 +311,15 @@ bool on_layer(const Entity& e, const std::string& layer) {
 
 }  // namespace
 
-Region read_dxf_plate(const std::string& text, const std::string& file_name, double model_metres_per_unit,
-                      const std::string& layer) {
+namespace sketch_detail {
+
+StrokeSet read_dxf_strokes(const std::string& text, const std::string& file_name, const std::string& layer,
+                           int& last_line) {
   const Reader reader(text, file_name);
   const std::vector<Pair> pairs = reader.pairs();
   SketchBuilder builder(reader);
   std::string section;
   std::optional<Entity> current;
-  double scale = 1;
   bool saw_eof = false;
   bool polyline_kept = false;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
@@ -333,8 +345,7 @@ Region read_dxf_plate(const std::string& text, const std::string& file_name, dou
       break;
     }
     if (section == "HEADER" && p.code == 9 && p.value == "$INSUNITS" && i + 1 < pairs.size()) {
-      const auto metres = insunits_metres(static_cast<int>(reader.number(pairs[i + 1])));
-      if (metres) scale = *metres / model_metres_per_unit;
+      builder.set.metres_per_unit = insunits_metres(whole(reader.number(pairs[i + 1])));
       continue;
     }
     if (section != "ENTITIES") continue;
@@ -344,46 +355,18 @@ Region read_dxf_plate(const std::string& text, const std::string& file_name, dou
       current->pairs.push_back(p);
     }
   }
-  const int last_line = pairs.empty() ? 1 : pairs.back().line;
+  last_line = pairs.empty() ? 1 : pairs.back().line;
   if (!saw_eof) reader.fail(last_line, "the DXF file ends without EOF (is it cut short?)");
-  builder.finish(last_line);
-  Sketch& s = builder.sketch;
+  builder.finish();
+  return std::move(builder.set);
+}
 
-  Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const Piece& p : s.pieces) {
-    lo = lo.cwiseMin(p.a).cwiseMin(p.b);
-    hi = hi.cwiseMax(p.a).cwiseMax(p.b);
-  }
-  for (const Loop& l : s.loops)
-    for (const Vector2d& v : l.vertices) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-  const double size = s.pieces.empty() && s.loops.empty() ? 0.0 : (hi - lo).norm();
-  chain(s, 1e-6 * size, reader);
-  if (s.loops.empty()) {
-    reader.fail(last_line, "the drawing has no closed outline (LINEs, ARCs or polylines)" +
-                               (layer.empty() ? std::string() : " on the layer '" + layer + "'"));
-  }
+}  // namespace sketch_detail
 
-  std::size_t outer = 0;
-  for (std::size_t i = 1; i < s.loops.size(); ++i)
-    if (loop_area(s.loops[i]) > loop_area(s.loops[outer])) outer = i;
-  Region r;
-  for (std::size_t i = 0; i < s.loops.size(); ++i) {
-    Loop& l = s.loops[i];
-    for (Vector2d& v : l.vertices) v *= scale;
-    const bool arcs = std::any_of(l.bulges.begin(), l.bulges.end(), [](double b) { return b != 0.0; });
-    if (i == outer) {
-      r.outline = l.vertices;
-      if (arcs) r.outline_bulges = l.bulges;
-    } else {
-      r.polygon_holes.push_back(l.vertices);
-      r.polygon_hole_bulges.push_back(arcs ? l.bulges : std::vector<double>{});
-    }
-  }
-  for (Circle c : s.circles) r.circle_holes.push_back({c.centre * scale, c.radius * scale});
-  return r;
+Region read_dxf_plate(const std::string& text, const std::string& file_name, double model_metres_per_unit,
+                      const std::string& layer) {
+  const Sketch sketch = read_sketch(text, file_name, SketchFormat::kDxf, layer);
+  return plate_from_sketch(sketch, sketch_scale(sketch, std::nullopt, model_metres_per_unit));
 }
 
 }  // namespace nbar::io

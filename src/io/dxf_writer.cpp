@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <string_view>
 
@@ -145,7 +146,84 @@ void plate(DxfOut& dxf, const std::string& layer, const Region& r, const Placeme
   }
 }
 
+// The SVG path of a closed ring in the pose: y turned down, each arc as an A command (a rigid
+// motion keeps its radius and turn; the turn reverses with the y axis).
+std::string svg_ring(const std::vector<Eigen::Vector2d>& vertices, const std::vector<double>& bulges,
+                     const Placement& place, double unit) {
+  const auto xy = [](const Eigen::Vector2d& v) {
+    const auto tidy = [](double x) {
+      double t = std::round(x * 1e9) / 1e9;
+      return t == 0.0 ? 0.0 : t;
+    };
+    return fmt::format("{:.12g} {:.12g}", tidy(v.x()), tidy(-v.y()));
+  };
+  std::string d;
+  const std::size_t n = vertices.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d a = place(vertices[i]) / unit;
+    if (i == 0) d += "M " + xy(a);
+    const Eigen::Vector2d b = place(vertices[(i + 1) % n]) / unit;
+    const double bulge = bulges.empty() ? 0.0 : bulges[i];
+    if (bulge == 0.0) {
+      if (i + 1 < n) d += " L " + xy(b);
+      continue;
+    }
+    const double radius = (b - a).norm() * (1 + bulge * bulge) / (4 * std::abs(bulge));
+    d += fmt::format(" A {:.12g} {:.12g} 0 {} {} ", radius, radius, std::abs(bulge) > 1 ? 1 : 0, bulge < 0 ? 1 : 0) + xy(b);
+  }
+  return d + " Z";
+}
+
 }  // namespace
+
+std::string cutting_svg(const Mechanism& mechanism, const std::vector<Eigen::Vector2d>& points) {
+  const Model& m = mechanism.model();
+  const double unit = m.units.length_scale;
+  std::string groups;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  std::set<std::string> taken;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    if (!m.bodies[b].shape) continue;
+    const Region& r = *m.bodies[b].shape;
+    const Placement place = placement(m, static_cast<int>(b), points);
+    for (const Eigen::Vector2d& v : straight_edged(r).outline) {
+      const Eigen::Vector2d p = place(v) / unit;
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    std::string id = dxf_layer_name(m.bodies[b].name);
+    for (int k = 2; !taken.insert(id).second; ++k) id = dxf_layer_name(m.bodies[b].name) + "_" + std::to_string(k);
+    std::string d = svg_ring(r.outline, r.outline_bulges, place, unit);
+    for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
+      const std::vector<double> none;
+      d.push_back(' ');
+      d.append(svg_ring(r.polygon_holes[i], i < r.polygon_hole_bulges.size() ? r.polygon_hole_bulges[i] : none, place,
+                        unit));
+    }
+    groups += fmt::format("  <g id=\"{}\">\n    <path d=\"{}\"/>\n", id, d);
+    for (const Circle& c : r.circle_holes) {
+      const Eigen::Vector2d centre = place(c.centre) / unit;
+      groups += fmt::format("    <circle cx=\"{:.12g}\" cy=\"{:.12g}\" r=\"{:.12g}\"/>\n", std::round(centre.x() * 1e9) / 1e9 + 0.0,
+                            std::round(-centre.y() * 1e9) / 1e9 + 0.0, c.radius / unit);
+    }
+    groups += "  </g>\n";
+  }
+  if (groups.empty()) throw Error(ErrorKind::BadInput, "no body has a `shape` or a `bar`: there is nothing to cut");
+  const Eigen::Vector2d size = hi - lo;
+  const double margin = 0.02 * std::max(size.x(), size.y());
+  const double x0 = lo.x() - margin, y0 = -hi.y() - margin;
+  const double width = size.x() + 2 * margin, height = size.y() + 2 * margin;
+  const double mm_per_unit = unit * 1e3;
+  return fmt::format(
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      "<!-- Plates written by nbar export: outlines and holes in the model's unit ({}), y downwards as SVG has it. "
+      "-->\n"
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{:.12g}mm\" height=\"{:.12g}mm\" viewBox=\"{:.12g} {:.12g} "
+      "{:.12g} {:.12g}\">\n"
+      "<g fill=\"none\" stroke=\"#000\" stroke-width=\"{:.6g}\" fill-rule=\"evenodd\">\n{}</g>\n</svg>\n",
+      m.units.length, width * mm_per_unit, height * mm_per_unit, x0, y0, width,
+      height, 0.1 / mm_per_unit, groups);
+}
 
 std::string dxf_layer_name(const std::string& body_name) {
   std::string name;

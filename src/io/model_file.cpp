@@ -9,13 +9,19 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <regex>
 #include <sstream>
 #include <string_view>
 #include <system_error>
 #include <utility>
 
 #include "nbar/io/dxf_reader.hpp"
+#include "nbar/io/sketch.hpp"
 #include "nbar/io/yaml_support.hpp"
+#include "nbar/model/curves.hpp"
 #include "nbar/model/geometry.hpp"
 #include "nbar/model/materials.hpp"
 
@@ -90,7 +96,8 @@ const AllowedKeys kDriverKeys{
     "in a driver", {"name", "angle", "relative_to", "distance", "slide", "from", "to", "speed", "accel", "law"}};
 const AllowedKeys kSweepKeys{"in `sweep`", {"steps", "duration", "step"}};
 const AllowedKeys kBodyKeys{"in a body", {"points", "shape", "bar", "thickness", "material", "mass", "cg", "inertia"}};
-const AllowedKeys kShapeKeys{"in a `shape`", {"outline", "import", "layer", "holes"}};
+const AllowedKeys kShapeKeys{"in a `shape`", {"outline", "upper", "lower", "import", "layer", "units", "holes"}};
+const AllowedKeys kCurveKeys{"in a curve", {"x", "y", "s", "steps", "spline"}};
 const AllowedKeys kHoleKeys{"in a hole", {"at", "circle", "radius", "polygon"}};
 const AllowedKeys kBarKeys{"in a `bar`", {"width", "margin", "hole", "holes", "between"}};
 const AllowedKeys kMaterialKeys{"in a material", {"density", "yield"}};
@@ -589,45 +596,302 @@ class Parser : yaml::Reader {
   }
 
   // An outline or polygon hole: vertices [x, y], each optionally [x, y, {bulge: b}] or
-  // [x, y, {through: [x, y]}] to make the edge to the next vertex a circular arc.
+  // [x, y, {through: [x, y]}] to make the edge to the next vertex a circular arc, and curves
+  // (parametric, function profiles, splines) that add their polygonised vertices.
   struct Ring {
     std::vector<Eigen::Vector2d> vertices;
     std::vector<double> bulges;  // empty when every edge is straight
+    std::vector<YAML::Node> origin;  // the item each vertex came from
+    bool curves = false;
   };
 
-  Ring polygon(const Entry& e, std::string_view what) const {
-    if (!e.value.IsSequence()) {
-      fail(mark(e), "`" + e.key + "` must be a list of vertices like [[0, 0], [100, 0], [100, 20]], not " +
-                        describe(e.value));
+  // A curve item of a ring, sampled once the ring's size (and so the tolerance) is known.
+  struct CurveItem {
+    YAML::Node node;
+    CurveFunction point;
+    double from = 0, to = 0;
+    int steps = 0;  // 0: adaptive
+    std::shared_ptr<const CubicSpline> spline;
+  };
+
+  // One item of a ring as written: a vertex (possibly starting an arc) or a curve.
+  struct RingItem {
+    YAML::Node node;
+    std::optional<Eigen::Vector2d> vertex;
+    double bulge = 0;
+    std::optional<std::pair<YAML::Node, Eigen::Vector2d>> through;
+    std::optional<CurveItem> curve;
+  };
+
+  // An expression in `variable` (model length units, angles of sin and cos in radians), its
+  // syntax errors reported at their character.
+  Law curve_law(const YAML::Node& node, const std::string& text, std::string_view variable) const {
+    try {
+      return Law::parse(text, 1.0, variable);
+    } catch (const LawSyntaxError& error) {
+      const std::optional<SourceMark> where = column_in_scalar(node, error.column());
+      fail(where.value_or(mark(node)), "in the expression '" + text + "': " + error.what());
     }
+  }
+
+  static std::string_view trimmed(std::string_view s) {
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+    return s;
+  }
+
+  // A number, or an expression of numbers such as "2*pi", written in `node`.
+  double constant_text(const YAML::Node& node, std::string_view written, std::string_view what) const {
+    const std::string text(trimmed(written));
+    double value = 0;
+    if (yaml::parse_number(text, value) == yaml::NumberStatus::Ok) return value;
+    Law law;
+    try {
+      law = Law::parse(text, 1.0, "nothing");
+    } catch (const LawSyntaxError& error) {
+      fail(node, std::string(what) + " '" + text + "': " + error.what());
+    }
+    try {
+      return law.value(0.0);
+    } catch (const Error& error) {
+      fail(node, std::string(what) + ": " + error.what());
+    }
+  }
+
+  double curve_constant(const YAML::Node& node, std::string_view what) const {
+    if (!node.IsScalar()) fail(node, std::string(what) + " must be a number, not " + describe(node));
+    return constant_text(node, node.Scalar(), what);
+  }
+
+  std::pair<double, double> curve_interval(const YAML::Node& node, std::string_view what) const {
+    if (!node.IsSequence() || node.size() != 2) fail(node, std::string(what) + " must be [from, to], not " + describe(node));
+    const double a = curve_constant(node[0], "the start"), b = curve_constant(node[1], "the end");
+    if (a == b) fail(node, std::string(what) + " is empty: [" + node[0].Scalar() + ", " + node[1].Scalar() + "]");
+    return {a, b};
+  }
+
+  int curve_steps(const YAML::Node& node) const {
+    const double n = number(node, mark(node), "`steps`");
+    if (n != std::floor(n) || n < 1 || n > kMaxCurveSteps) {
+      fail(node, "`steps` must be a whole number from 1 to " + std::to_string(kMaxCurveSteps));
+    }
+    return static_cast<int>(n);
+  }
+
+  // A function profile: `expression` of `variable` (x or y), over [a, b], giving the other
+  // coordinate. The thesis tool's "f{a, b, steps}" gives the interval and steps inline.
+  CurveItem profile(const YAML::Node& node, const YAML::Node& function, std::string_view variable,
+                    const YAML::Node* interval, const YAML::Node* steps) const {
+    if (!function.IsScalar()) fail(function, "a profile is an expression like \"x^2\", not " + describe(function));
+    std::string text = function.Scalar();
+    CurveItem c;
+    c.node = node;
+    const std::size_t brace = text.rfind('{');
+    const bool inline_interval = brace != std::string::npos && !text.empty() && text.back() == '}';
+    if (inline_interval) {
+      if (interval) fail(*interval, "this profile gives its interval in braces already ('" + text + "')");
+      std::vector<std::string> parts{""};
+      for (char ch : text.substr(brace + 1, text.size() - brace - 2)) {
+        if (ch == ',') {
+          parts.emplace_back();
+        } else {
+          parts.back() += ch;
+        }
+      }
+      if (parts.size() != 3) {
+        fail(function, "a profile's braces hold {from, to, steps}, as in \"x^2{0, 2, 15}\", not '" +
+                           text.substr(brace) + "'");
+      }
+      c.from = constant_text(function, parts[0], "the start in the braces");
+      c.to = constant_text(function, parts[1], "the end in the braces");
+      if (c.from == c.to) fail(function, "the profile's interval " + text.substr(brace) + " is empty");
+      double n = 0;
+      if (yaml::parse_number(std::string(trimmed(parts[2])), n) != yaml::NumberStatus::Ok || n != std::floor(n) ||
+          n < 1 || n > kMaxCurveSteps) {
+        fail(function, "the steps in a profile's braces must be a whole number from 1 to " +
+                           std::to_string(kMaxCurveSteps) + ", not '" + parts[2] + "'");
+      }
+      c.steps = static_cast<int>(n);
+      text.resize(brace);
+    } else {
+      if (!interval) {
+        fail(node, "a profile " + std::string(variable == "x" ? "y" : "x") + " = f(" + std::string(variable) +
+                       ") needs its interval: `" + std::string(variable) + ": [from, to]`, or \"f{from, to, steps}\"");
+      }
+      std::tie(c.from, c.to) = curve_interval(*interval, "the interval");
+    }
+    if (steps) {
+      if (inline_interval) fail(*steps, "this profile gives its steps in braces already");
+      c.steps = curve_steps(*steps);
+    }
+    const Law law = curve_law(function, text, variable);
+    const bool of_x = variable == "x";
+    c.point = [law, of_x](double v) {
+      const double w = law.value(v);
+      return of_x ? Eigen::Vector2d(v, w) : Eigen::Vector2d(w, v);
+    };
+    return c;
+  }
+
+  CurveItem curve_item(const YAML::Node& node) const {
+    const Fields f = fields(node, kCurveKeys);
+    const Entry* x = f.find("x");
+    const Entry* y = f.find("y");
+    const Entry* s = f.find("s");
+    const Entry* steps = f.find("steps");
+    const YAML::Node* steps_node = steps ? &steps->value : nullptr;
+    if (const Entry* spline = f.find("spline")) {
+      for (const Entry* other : {x, y, s, steps}) {
+        if (other) fail(other->key_node, "a spline is {spline: [[x, y], ...]} alone, without `" + other->key + "`");
+      }
+      if (!spline->value.IsSequence()) fail(mark(*spline), "`spline` is a list of points [[x, y], ...]");
+      std::vector<Eigen::Vector2d> points;
+      for (const YAML::Node& p : spline->value) points.push_back(coordinates(p, "a spline point"));
+      CurveItem c;
+      c.node = node;
+      try {
+        c.spline = std::make_shared<const CubicSpline>(std::move(points), false);
+      } catch (const std::invalid_argument& error) {
+        fail(mark(*spline), error.what());
+      }
+      return c;
+    }
+    if (s) {
+      if (!x || !y || !x->value.IsScalar() || !y->value.IsScalar()) {
+        fail(node, "a parametric curve is {x: \"expression in s\", y: \"expression in s\", s: [from, to]}");
+      }
+      CurveItem c;
+      c.node = node;
+      std::tie(c.from, c.to) = curve_interval(s->value, "`s`");
+      if (steps) c.steps = curve_steps(steps->value);
+      const Law lx = curve_law(x->value, x->value.Scalar(), "s"), ly = curve_law(y->value, y->value.Scalar(), "s");
+      c.point = [lx, ly](double v) { return Eigen::Vector2d(lx.value(v), ly.value(v)); };
+      return c;
+    }
+    // A function profile: the expression is the scalar of x and y, the other (if any) its interval.
+    if (y && y->value.IsScalar() && (!x || x->value.IsSequence())) {
+      return profile(node, y->value, "x", x ? &x->value : nullptr, steps_node);
+    }
+    if (x && x->value.IsScalar() && (!y || y->value.IsSequence())) {
+      return profile(node, x->value, "y", y ? &y->value : nullptr, steps_node);
+    }
+    fail(node, "a curve is {x: \"f(s)\", y: \"g(s)\", s: [a, b]}, {y: \"f(x)\", x: [a, b]}, {x: \"f(y)\", y: [a, b]} "
+               "or {spline: [[x, y], ...]}, not " + describe(node));
+  }
+
+  RingItem ring_item(const YAML::Node& v) const {
+    RingItem item;
+    item.node = v;
+    if (v.IsMap()) {
+      item.curve = curve_item(v);
+      return item;
+    }
+    const bool with_arc = v.IsSequence() && v.size() == 3;
+    if (!v.IsSequence() || (v.size() != 2 && !with_arc)) {
+      fail(v, "a vertex needs [x, y], not " + describe(v) +
+                  " (or [x, y, {bulge: b}] for an arc to the next vertex, or a curve {x: ..., y: ...})");
+    }
+    item.vertex = Eigen::Vector2d(number(v[0], mark(v[0]), "x"), number(v[1], mark(v[1]), "y"));
+    if (!with_arc) return item;
+    const YAML::Node arc = v[2];
+    if (!arc.IsMap() || arc.size() != 1 || !(arc["bulge"] || arc["through"])) {
+      fail(arc, "an arc on a vertex is {bulge: b} or {through: [x, y]}, not " + describe(arc));
+    }
+    if (arc["bulge"]) {
+      item.bulge = number(arc["bulge"], mark(arc["bulge"]), "the bulge");
+    } else {
+      item.through = std::make_pair(arc["through"], coordinates(arc["through"], "`through`"));
+    }
+    return item;
+  }
+
+  // The vertices of a curve item, at the ring's tolerance (or its fixed steps).
+  std::vector<Eigen::Vector2d> curve_vertices(const CurveItem& c, double tolerance) const {
+    try {
+      if (c.spline) return sample_spline(*c.spline, tolerance);
+      if (c.steps > 0) return sample_curve_uniform(c.point, c.from, c.to, c.steps);
+      return sample_curve(c.point, c.from, c.to, tolerance);
+    } catch (const Error& error) {
+      fail(c.node, std::string("this curve: ") + error.what());
+    } catch (const std::invalid_argument& error) {
+      fail(c.node, std::string("this curve: ") + error.what());
+    }
+  }
+
+  // The tolerance of a ring's curves: kRelativeCurveTolerance of the diagonal of the box
+  // around its vertices and a first coarse sampling of its curves.
+  double ring_tolerance(const std::vector<RingItem>& items) const {
+    Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    const auto grow = [&](const Eigen::Vector2d& p) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    };
+    for (const RingItem& item : items) {
+      if (item.vertex) grow(*item.vertex);
+      if (!item.curve) continue;
+      CurveItem coarse = *item.curve;
+      coarse.steps = 64;
+      if (coarse.spline) {
+        for (double k = 0; k <= 64; ++k) grow((*coarse.spline)(coarse.spline->end() * k / 64));
+      } else {
+        for (const Eigen::Vector2d& p : curve_vertices(coarse, 1.0)) grow(p);
+      }
+    }
+    const double diagonal = (hi - lo).norm();
+    return diagonal > 0 && std::isfinite(diagonal) ? kRelativeCurveTolerance * diagonal : 1.0;
+  }
+
+  Ring ring_of(const std::vector<RingItem>& items, SourceMark where, std::string_view what) const {
     Ring ring;
+    const double tolerance = ring_tolerance(items);
+    // Where a curve ends on the next item's start, up to its rounding (cos(2 pi) is not 1).
+    const double same = 1e-9 * tolerance / kRelativeCurveTolerance;
+    bool after_curve = false;
     std::vector<double> bulges;
     std::vector<std::optional<std::pair<YAML::Node, Eigen::Vector2d>>> through;
     bool arcs = false;
-    for (const YAML::Node& v : e.value) {
-      const bool with_arc = v.IsSequence() && v.size() == 3;
-      if (!v.IsSequence() || (v.size() != 2 && !with_arc)) {
-        fail(v, "a vertex needs [x, y], not " + describe(v) + " (or [x, y, {bulge: b}] for an arc to the next vertex)");
-      }
-      ring.vertices.emplace_back(number(v[0], mark(v[0]), "x"), number(v[1], mark(v[1]), "y"));
-      bulges.push_back(0.0);
-      through.emplace_back();
-      if (!with_arc) continue;
-      const YAML::Node arc = v[2];
-      if (!arc.IsMap() || arc.size() != 1 || !(arc["bulge"] || arc["through"])) {
-        fail(arc, "an arc on a vertex is {bulge: b} or {through: [x, y]}, not " + describe(arc));
-      }
-      arcs = true;
-      if (arc["bulge"]) {
-        bulges.back() = number(arc["bulge"], mark(arc["bulge"]), "the bulge");
+    for (const RingItem& item : items) {
+      std::vector<Eigen::Vector2d> added;
+      if (item.curve) {
+        added = curve_vertices(*item.curve, tolerance);
+        ring.curves = true;
       } else {
-        through.back() = std::make_pair(arc["through"], coordinates(arc["through"], "`through`"));
+        added.push_back(*item.vertex);
+      }
+      for (const Eigen::Vector2d& p : added) {
+        // A curve that starts where the previous item ended shares that vertex.
+        if ((item.curve || after_curve) && !ring.vertices.empty() && (p - ring.vertices.back()).norm() <= same &&
+            bulges.back() == 0 && !through.back()) {
+          continue;
+        }
+        ring.vertices.push_back(p);
+        ring.origin.push_back(item.node);
+        bulges.push_back(0.0);
+        through.emplace_back();
+      }
+      after_curve = item.curve.has_value();
+      if (item.vertex && (item.bulge != 0 || item.through || item.node.size() == 3)) {
+        arcs = true;
+        bulges.back() = item.bulge;
+        through.back() = item.through;
       }
     }
+    // A closed curve ends where the ring starts.
+    while (ring.curves && ring.vertices.size() > 1 && (ring.vertices.back() - ring.vertices.front()).norm() <= same &&
+           bulges.back() == 0) {
+      ring.vertices.pop_back();
+      ring.origin.pop_back();
+      bulges.pop_back();
+      through.pop_back();
+    }
     const std::size_t n = ring.vertices.size();
+    if (ring.curves && n > 2 * static_cast<std::size_t>(kMaxCurveSteps)) {
+      fail(where, std::string(what) + " has " + std::to_string(n) + " vertices with its curves, more than " +
+                      std::to_string(2 * kMaxCurveSteps) + ": give its curves fewer `steps`");
+    }
     if (n < (arcs ? 2u : 3u)) {
-      fail(mark(e), std::string(what) + " needs at least " + (arcs ? "2 vertices with an arc" : "3 vertices") +
-                        ", not " + std::to_string(n));
+      fail(where, std::string(what) + " needs at least " + (arcs ? "2 vertices with an arc" : "3 vertices") +
+                      ", not " + std::to_string(n));
     }
     for (std::size_t i = 0; i < n; ++i) {
       if (!through[i]) continue;
@@ -639,6 +903,93 @@ class Parser : yaml::Reader {
     }
     if (arcs) ring.bulges = std::move(bulges);
     return ring;
+  }
+
+  Ring polygon(const Entry& e, std::string_view what) const {
+    if (!e.value.IsSequence()) {
+      fail(mark(e), "`" + e.key + "` must be a list of vertices like [[0, 0], [100, 0], [100, 20]], not " +
+                        describe(e.value));
+    }
+    std::vector<RingItem> items;
+    for (const YAML::Node& v : e.value) items.push_back(ring_item(v));
+    // A ring that is one spline through points that close on themselves is a periodic spline.
+    if (items.size() == 1 && items[0].curve && items[0].curve->spline) {
+      const YAML::Node points = e.value[0]["spline"];
+      std::vector<Eigen::Vector2d> p;
+      for (const YAML::Node& q : points) p.push_back(coordinates(q, "a spline point"));
+      if (p.size() > 3 && p.front() == p.back()) {
+        p.pop_back();
+        items[0].curve->spline = std::make_shared<const CubicSpline>(std::move(p), true);
+      }
+    }
+    return ring_of(items, mark(e), what);
+  }
+
+  // The outline between a lower and an upper profile, as the thesis tool builds a link: the
+  // lower profiles from left to right, then the upper ones from right to left, joined by
+  // straight edges.
+  Ring profiles_ring(const Entry* lower, const Entry* upper, const YAML::Node& shape) const {
+    if (!lower || !upper) {
+      fail(shape, "a shape by profiles needs both `lower` and `upper` (each like \"x^2{0, 2, 15}\" or "
+                  "{y: \"x^2\", x: [0, 2]})");
+    }
+    const auto profiles = [&](const Entry& e) {
+      std::vector<RingItem> items;
+      const auto one = [&](const YAML::Node& p) {
+        RingItem item;
+        item.node = p;
+        if (p.IsScalar()) {
+          item.curve = profile(p, p, "x", nullptr, nullptr);
+        } else if (p.IsMap()) {
+          item.curve = curve_item(p);
+          if (item.curve->spline || !p["y"] || !p["y"].IsScalar()) {
+            fail(p, "an upper or lower profile is y = f(x): \"f{from, to, steps}\" or {y: \"f\", x: [from, to]}");
+          }
+        } else {
+          fail(p, "an upper or lower profile is \"f{from, to, steps}\" or {y: \"f\", x: [from, to]}, not " +
+                      describe(p));
+        }
+        if (item.curve->from > item.curve->to) std::swap(item.curve->from, item.curve->to);
+        items.push_back(std::move(item));
+      };
+      if (e.value.IsSequence()) {
+        for (const YAML::Node& p : e.value) one(p);
+      } else {
+        one(e.value);
+      }
+      std::vector<double> starts;
+      for (const RingItem& item : items) starts.push_back(item.curve->from);
+      std::vector<std::size_t> order(items.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return starts[a] < starts[b]; });
+      std::vector<RingItem> sorted;
+      for (std::size_t i : order) sorted.push_back(items[i]);
+      return sorted;
+    };
+    std::vector<RingItem> items = profiles(*lower);
+    std::vector<RingItem> top = profiles(*upper);
+    for (auto it = top.rbegin(); it != top.rend(); ++it) {
+      std::swap(it->curve->from, it->curve->to);
+      items.push_back(std::move(*it));
+    }
+    return ring_of(items, mark(shape), "an outline by profiles");
+  }
+
+  // check_region names vertices of the polygonised ring; with curves, say where they came from.
+  static std::string with_origins(std::string message, const Ring& ring) {
+    if (!ring.curves) return message;
+    static const std::regex edge(R"(edge (\d+)-(\d+))");
+    std::string out;
+    auto last = message.cbegin();
+    for (auto it = std::sregex_iterator(message.begin(), message.end(), edge); it != std::sregex_iterator(); ++it) {
+      const std::size_t v = std::stoul((*it)[1].str());
+      out.append(last, (*it)[0].first);
+      out += (*it)[0].str();
+      if (v < ring.origin.size()) out += " (of the item at line " + std::to_string(mark(ring.origin[v]).line) + ")";
+      last = (*it)[0].second;
+    }
+    out.append(last, message.cend());
+    return out;
   }
 
   // The position of a point in model units, for geometry written in model units.
@@ -833,24 +1184,36 @@ class Parser : yaml::Reader {
     const Fields f = fields(e.value, kShapeKeys);
     const std::string invalid = "the shape of " + body + " is not valid: ";
     const Entry* imported = f.find("import");
-    if (imported && f.find("outline")) {
-      fail(f.find("outline")->key_node, "a shape has `outline` or `import`, not both");
+    const Entry* lower = f.find("lower");
+    const Entry* upper = f.find("upper");
+    const Entry* written = f.find("outline");
+    {
+      int ways = 0;
+      const Entry* second = nullptr;
+      for (const Entry* way : {written, imported, lower ? lower : upper}) {
+        if (way && ++ways == 2) second = way;
+      }
+      if (second) fail(second->key_node, "a shape has one of `outline`, `import` or `lower` and `upper`");
     }
-    const Entry& outline = imported ? *imported : required(f, e.value, "outline", "a shape");
+    if (!imported && !lower && !upper) required(f, e.value, "outline", "a shape");
+    const Entry& outline = imported ? *imported : written ? *written : lower ? *lower : *upper;
     Region region;
     const Entry* layer = f.find("layer");
-    if (layer && !imported) fail(layer->key_node, "`layer` goes with `import`: the layer of the DXF drawing to read");
+    if (layer && !imported) fail(layer->key_node, "`layer` goes with `import`: the layer (DXF) or group (SVG) of the drawing to read");
+    const Entry* units = f.find("units");
+    if (units && !imported) fail(units->key_node, "`units` goes with `import`: the length unit of the file read");
+    Ring outer;
     if (imported) {
-      region = import_plate(*imported, layer ? text_value(*layer, "`layer`") : std::string());
+      region = import_plate(*imported, layer ? text_value(*layer, "`layer`") : std::string(), units);
     } else {
-      Ring outer = polygon(outline, "an outline");
-      region.outline = std::move(outer.vertices);
-      region.outline_bulges = std::move(outer.bulges);
+      outer = written ? polygon(*written, "an outline") : profiles_ring(lower, upper, e.value);
+      region.outline = outer.vertices;
+      region.outline_bulges = outer.bulges;
     }
     try {
       check_region(region);
     } catch (const std::invalid_argument& error) {
-      fail(mark(outline), invalid + error.what());
+      fail(mark(outline), invalid + with_origins(error.what(), outer));
     }
     std::vector<Hole> holes;
     if (const Entry* h = f.find("holes")) {
@@ -894,16 +1257,15 @@ class Parser : yaml::Reader {
   }
 
   // `import: FILE`: a plate drawn in a DXF file (on one layer, if given), in the model's units.
-  Region import_plate(const Entry& e, const std::string& layer) const {
+  Region import_plate(const Entry& e, const std::string& layer, const Entry* units) const {
     const std::string name = text_value(e, "`import`");
     if (!import_dir_) {
       fail(mark(e), "`import` reads a file, which only a model read from a file may do");
     }
     std::filesystem::path path(name);
     if (path.is_relative()) path = *import_dir_ / path;
-    std::string extension = path.extension().string();
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (extension != ".dxf") fail(mark(e), "`import` reads DXF drawings (.dxf), not '" + name + "'");
+    const std::optional<SketchFormat> format = sketch_format(path.string());
+    if (!format) fail(mark(e), "`import` reads DXF (.dxf), SVG (.svg) or sketch CSV (.csv) drawings, not '" + name + "'");
     std::error_code status_error;
     std::ifstream in(path, std::ios::binary);
     if (!in || std::filesystem::is_directory(path, status_error)) {
@@ -911,7 +1273,13 @@ class Parser : yaml::Reader {
     }
     std::ostringstream contents;
     contents << in.rdbuf();
-    return read_dxf_plate(contents.str(), path.string(), model_.units.length_scale, layer);
+    std::optional<double> stated;
+    if (units) {
+      stated = length_unit_scale(text_value(*units, "`units`"));
+      if (!stated) fail(mark(*units), "the unit of the file read is one of mm, cm, m, in, ft");
+    }
+    const Sketch sketch = read_sketch(contents.str(), path.string(), *format, layer);
+    return plate_from_sketch(sketch, sketch_scale(sketch, stated, model_.units.length_scale));
   }
 
   Region parse_bar(const Entry& e, const Body& body, const std::string& name) const {

@@ -138,7 +138,7 @@ TEST(Cli, HelpAndBadUsage) {
   EXPECT_EQ(nbar("").code, 2);
   EXPECT_EQ(nbar("frobnicate").code, 2);
   EXPECT_THAT(nbar("frobnicate").err, HasSubstr("error: 'frobnicate' is not an nbar command (the commands are: check, solve, "));
-  EXPECT_THAT(nbar("sovle x.yaml").err, testing::EndsWith("explain, export, serve); did you mean 'solve'?\n"));
+  EXPECT_THAT(nbar("sovle x.yaml").err, testing::EndsWith("explain, export, import, serve); did you mean 'solve'?\n"));
   const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml";
   EXPECT_EQ(nbar("solve " + model + " --order 6").code, 2);
   EXPECT_EQ(nbar("solve " + model + " --order -1").code, 2);

@@ -90,8 +90,41 @@ TEST(ExportCli, Errors) {
                            dir.file("x.dxf"));
   EXPECT_EQ(none.code, 2);
   EXPECT_THAT(none.err, HasSubstr("there is nothing to cut"));
-  EXPECT_EQ(nbar("export " + kExample).code, 2);  // --dxf is required
+  const CliRun neither = nbar("export " + kExample);
+  EXPECT_EQ(neither.code, 2);
+  EXPECT_THAT(neither.err, HasSubstr("needs --dxf FILE.dxf or --svg FILE.svg"));
   EXPECT_EQ(nbar("export " + kExample + " --dxf /nonexistent-dir/x.dxf").code, 2);
+}
+
+// nbar import on the example sketch: three slotted links, pins coinciding at A and B. The
+// skeleton, with the driver its last comment suggests, checks as a crank-rocker whose crank
+// plate is the 50 x 16 mm slot with half-round ends less two 4 mm pin holes.
+TEST(ImportCli, SketchBecomesAModelSkeleton) {
+  TempDir dir;
+  const std::string sketch = std::string(NBAR_EXAMPLES_DIR) + "/sketches/fourbar-sketch.dxf";
+  const CliRun run = nbar("import " + sketch + " -o " + dir.file("skeleton.yaml"));
+  ASSERT_EQ(run.code, 0) << run.err;
+  std::string yaml = read(dir.file("skeleton.yaml"));
+  EXPECT_THAT(yaml, HasSubstr("ground: [P1, P4]\n"));
+  EXPECT_THAT(yaml, HasSubstr("  coupler:\n    points: [P2, P3]"));
+  yaml += "drivers: [{angle: crank, from: 0, to: 360, speed: 60 rpm}]\n";
+  {
+    std::ofstream(dir.file("driven.yaml")) << yaml;
+  }
+  const CliRun check = nbar("check " + dir.file("driven.yaml"));
+  ASSERT_EQ(check.code, 0) << check.err;
+  EXPECT_THAT(check.out, HasSubstr("Degrees of freedom: 1"));
+  EXPECT_THAT(check.out, HasSubstr("crank-coupler-rocker: crank-rocker"));
+  EXPECT_THAT(check.out, HasSubstr("area 900.531"));  // 800 + 64π - 32π
+
+  // A sketch that is not one: exit 1 at the file's line; an unknown format: exit 2.
+  {
+    std::ofstream(dir.file("open.csv")) << "X, Y\nNew_Line\n0, 0\n10, 0\nNew_Line\n10, 0\n10, 10\n";
+  }
+  const CliRun open = nbar("import " + dir.file("open.csv"));
+  EXPECT_EQ(open.code, 1);
+  EXPECT_THAT(open.err, HasSubstr("open.csv:5:1: the outline is not closed"));
+  EXPECT_EQ(nbar("import " + dir.file("skeleton.yaml")).code, 2);
 }
 
 }  // namespace

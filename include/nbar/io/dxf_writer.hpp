@@ -21,6 +21,14 @@ namespace nbar::io {
 // with its body's frame from the drawn pose. Throws Error (BadInput) when no body has a plate.
 std::string cutting_dxf(const Mechanism& mechanism, const std::vector<Eigen::Vector2d>& points);
 
+// The same plates as an SVG for the web app and for vector editors: one <g id="layer name">
+// per plate holding a <path> of its outline and polygon holes (arcs as A commands) and a
+// <circle> per round hole; coordinates in the model's length unit with y turned down (SVG's
+// way), width and height in mm so that the drawing has its true size and reads back
+// (`shape: {import: F.svg}`) in the right unit. Throws Error (BadInput) when no body has a
+// plate.
+std::string cutting_svg(const Mechanism& mechanism, const std::vector<Eigen::Vector2d>& points);
+
 // The layer name a body's plate gets.
 std::string dxf_layer_name(const std::string& body_name);
 

@@ -1,0 +1,90 @@
+// nbar import: a model skeleton from a sketch of several links (DXF, SVG or sketch CSV).
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "nbar/io/sketch.hpp"
+#include "nbar/io/sketch_model.hpp"
+#include "nbar/model/units.hpp"
+
+namespace nbar::cli {
+
+namespace {
+
+struct ImportArgs {
+  std::string sketch, output, units, material = "steel";
+  std::optional<double> thickness;
+};
+
+// The name of a length unit nbar knows of `metres` per unit, if any.
+std::optional<std::string> unit_name(double metres) {
+  for (const char* unit : {"mm", "cm", "m", "in", "ft"}) {
+    if (std::abs(*length_unit_scale(unit) - metres) <= 1e-12 * metres) return std::string(unit);
+  }
+  return std::nullopt;
+}
+
+int run_import(const ImportArgs& args) {
+  const std::optional<io::SketchFormat> format = io::sketch_format(args.sketch);
+  if (!format) {
+    std::cerr << "error: nbar import reads DXF (.dxf), SVG (.svg) or sketch CSV (.csv, .txt) files, not " << args.sketch
+              << '\n';
+    return kBadUsage;
+  }
+  if (!args.units.empty() && !length_unit_scale(args.units)) {
+    std::cerr << "error: --units is one of mm, cm, m, in, ft, not '" << args.units << "'\n";
+    return kBadUsage;
+  }
+  std::ifstream in(args.sketch, std::ios::binary);
+  if (!in) {
+    std::cerr << "error: cannot read " << args.sketch << '\n';
+    return kBadUsage;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    const io::Sketch sketch = io::read_sketch(text.str(), args.sketch, *format);
+    io::SketchModelOptions options;
+    options.source_name = args.sketch;
+    // The model's unit: --units, else the sketch's own, else mm; a sketch without a unit is
+    // taken in the model's.
+    options.length_unit = !args.units.empty()                                   ? args.units
+                          : sketch.metres_per_unit && unit_name(*sketch.metres_per_unit) ? *unit_name(*sketch.metres_per_unit)
+                                                                                : std::string("mm");
+    options.scale = io::sketch_scale(sketch, std::nullopt, *length_unit_scale(options.length_unit));
+    // 5 mm unless given, in the model's unit.
+    options.thickness = args.thickness ? *args.thickness : 5e-3 / *length_unit_scale(options.length_unit);
+    options.material = args.material;
+    const std::string yaml = io::model_from_sketch(sketch, options);
+    if (args.output.empty()) {
+      std::cout << yaml;
+    } else if (!write_file(args.output, yaml)) {
+      return kBadUsage;
+    }
+  } catch (const Error& e) {
+    return fail(args.sketch, e);
+  }
+  return kOk;
+}
+
+}  // namespace
+
+Command add_import_command(CLI::App& app) {
+  auto args = std::make_shared<ImportArgs>();
+  CLI::App* sub = app.add_subcommand("import", "A model skeleton from a sketch of several links (DXF, SVG or sketch "
+                                               "CSV): outlines become bodies, coinciding pin holes joints");
+  sub->add_option("SKETCH", args->sketch, "FILE.dxf, FILE.svg or FILE.csv")->required();
+  sub->add_option("-o,--output", args->output, "the model file to write (default: standard output)");
+  sub->add_option("--units", args->units,
+                  "the model's length unit (mm, cm, m, in, ft; default: the sketch's own, else mm); a sketch that "
+                  "states no unit is read in it");
+  sub->add_option("--thickness", args->thickness, "every plate's thickness in the model's unit (default: 5 mm)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--material", args->material, "every plate's material (default steel)");
+  return {sub, [args] { return run_import(*args); }};
+}
+
+}  // namespace nbar::cli

@@ -1,0 +1,366 @@
+#include "nbar/io/sketch.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <regex>
+#include <stdexcept>
+#include <string_view>
+
+#include "sketch_strokes.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/model/diagnostics.hpp"
+
+namespace nbar::io {
+
+using Eigen::Vector2d;
+
+double SketchLoop::area() const {
+  Region r;
+  r.outline = vertices;
+  if (std::any_of(bulges.begin(), bulges.end(), [](double b) { return b != 0.0; })) r.outline_bulges = bulges;
+  return std::abs(area_properties(r).area);
+}
+
+namespace sketch_detail {
+
+void fail_at(const std::string& file, int line, const std::string& message) {
+  throw ModelFileError(file, SourceMark{line, 1}, message);
+}
+
+namespace {
+
+Stroke reversed(Stroke s) {
+  std::reverse(s.segments.begin(), s.segments.end());
+  for (Segment& g : s.segments) {
+    std::swap(g.a, g.b);
+    std::swap(g.s0, g.s1);
+    g.bulge = -g.bulge;  // run backwards, an arc turns the other way
+  }
+  return s;
+}
+
+struct Chained {
+  std::vector<Segment> segments;
+  std::vector<int> lines;  // per segment
+  std::string layer;
+};
+
+std::vector<Chained> chain(const std::vector<Stroke>& strokes, double tolerance, const std::string& file) {
+  std::vector<Chained> loops;
+  std::vector<bool> used(strokes.size(), false);
+  const auto append = [](Chained& c, const Stroke& s) {
+    for (const Segment& g : s.segments) {
+      c.segments.push_back(g);
+      c.lines.push_back(s.line);
+    }
+  };
+  for (std::size_t first = 0; first < strokes.size(); ++first) {
+    if (used[first]) continue;
+    used[first] = true;
+    Chained loop;
+    loop.layer = strokes[first].layer;
+    append(loop, strokes[first]);
+    const Vector2d start = loop.segments.front().a;
+    if (strokes[first].closed && (loop.segments.back().b - start).norm() > tolerance) {
+      loop.segments.push_back({loop.segments.back().b, start});
+      loop.lines.push_back(strokes[first].line);
+    }
+    while ((loop.segments.back().b - start).norm() > tolerance) {
+      const Vector2d end = loop.segments.back().b;
+      bool found = false;
+      for (std::size_t k = 0; k < strokes.size() && !found; ++k) {
+        if (used[k] || strokes[k].closed) continue;
+        const Stroke& s = strokes[k];
+        if ((s.segments.front().a - end).norm() <= tolerance) {
+          append(loop, s);
+        } else if ((s.segments.back().b - end).norm() <= tolerance) {
+          append(loop, reversed(s));
+        } else {
+          continue;
+        }
+        used[k] = true;
+        found = true;
+      }
+      if (!found) {
+        fail_at(file, loop.lines.back(),
+                fmt::format("the outline is not closed: the entity here ends at ({:.6g}, {:.6g}) and no other entity "
+                            "starts there (within {:.3g})",
+                            end.x(), end.y(), tolerance));
+      }
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+SketchLoop polygonised_loop(const Chained& c, double tolerance, const std::string& file) {
+  SketchLoop loop;
+  loop.layer = c.layer;
+  for (std::size_t i = 0; i < c.segments.size(); ++i) {
+    const Segment& g = c.segments[i];
+    if (!g.curve) {
+      loop.vertices.push_back(g.a);
+      loop.bulges.push_back(g.bulge);
+      loop.lines.push_back(c.lines[i]);
+      continue;
+    }
+    std::vector<Vector2d> points;
+    try {
+      points = sample_curve(g.curve, g.s0, g.s1, tolerance);
+    } catch (const std::invalid_argument& error) {
+      fail_at(file, c.lines[i], std::string("this curve: ") + error.what());
+    }
+    points.front() = g.a;
+    for (std::size_t k = 0; k + 1 < points.size(); ++k) {
+      loop.vertices.push_back(points[k]);
+      loop.bulges.push_back(0.0);
+      loop.lines.push_back(c.lines[i]);
+    }
+  }
+  // Ends that met within the tolerance but not exactly: drop the doubled vertices.
+  const double same = 1e-9 * tolerance / kRelativeCurveTolerance;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < loop.vertices.size(); ++i) {
+    if (kept > 0 && (loop.vertices[i] - loop.vertices[kept - 1]).norm() <= same && loop.bulges[kept - 1] == 0) {
+      loop.bulges[kept - 1] = loop.bulges[i];
+      continue;
+    }
+    loop.vertices[kept] = loop.vertices[i];
+    loop.bulges[kept] = loop.bulges[i];
+    loop.lines[kept] = loop.lines[i];
+    ++kept;
+  }
+  loop.vertices.resize(kept);
+  loop.bulges.resize(kept);
+  loop.lines.resize(kept);
+  return loop;
+}
+
+// A loop that crosses itself (or is otherwise no outline) is reported at its entities' lines.
+void check_loop(const SketchLoop& loop, const std::string& file) {
+  Region r;
+  r.outline = loop.vertices;
+  if (std::any_of(loop.bulges.begin(), loop.bulges.end(), [](double b) { return b != 0.0; })) {
+    r.outline_bulges = loop.bulges;
+  }
+  try {
+    check_region(r);
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    static const std::regex crossing(R"(edge (\d+)-\d+ meets edge (\d+)-\d+)");
+    std::smatch m;
+    if (std::regex_search(message, m, crossing)) {
+      const std::size_t i = std::stoul(m[1].str()), k = std::stoul(m[2].str());
+      if (i < loop.lines.size() && k < loop.lines.size()) {
+        fail_at(file, loop.lines[i], "the outline crosses itself: the entity here meets the one at line " +
+                                         std::to_string(loop.lines[k]));
+      }
+    }
+    fail_at(file, loop.lines.empty() ? 1 : loop.lines.front(), "the loop starting here is not an outline: " + message);
+  }
+}
+
+}  // namespace
+
+Sketch finish_sketch(StrokeSet set, const std::string& file, int last_line, const std::string& what) {
+  Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  const auto grow = [&](const Vector2d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  };
+  for (const Stroke& s : set.strokes) {
+    for (const Segment& g : s.segments) {
+      grow(g.a);
+      grow(g.b);
+      if (!g.curve) continue;
+      for (int k = 1; k < 16; ++k) grow(g.curve(g.s0 + (g.s1 - g.s0) * k / 16));
+    }
+  }
+  const double size = set.strokes.empty() ? 0.0 : (hi - lo).norm();
+  if (!std::isfinite(size)) fail_at(file, last_line, "the drawing's coordinates are too large");
+  Sketch sketch;
+  sketch.circles = std::move(set.circles);
+  sketch.points = std::move(set.points);
+  sketch.metres_per_unit = set.metres_per_unit;
+  const double tolerance = size > 0 ? kRelativeCurveTolerance * size : 1.0;
+  for (const Chained& c : chain(set.strokes, 1e-6 * size, file)) {
+    sketch.loops.push_back(polygonised_loop(c, tolerance, file));
+    check_loop(sketch.loops.back(), file);
+  }
+  if (sketch.loops.empty()) fail_at(file, last_line, "the drawing has no closed outline" + what);
+  return sketch;
+}
+
+namespace {
+
+std::string_view trimmed(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+bool to_number(std::string_view text, double& value) {
+  text = trimmed(text);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return ec == std::errc() && end == text.data() + text.size() && std::isfinite(value);
+}
+
+// The entities of the thesis tool's CSV that are drawn as points all round a circle: the
+// least-squares circle x² + y² + D x + E y + F = 0 (Kåsa's fit), about the points' mean for
+// conditioning; nothing when a point strays from it by more than 1e-3 of the radius.
+std::optional<Circle> fitted_circle(const std::vector<Vector2d>& points) {
+  if (points.size() < 8) return std::nullopt;
+  Vector2d mean = Vector2d::Zero();
+  for (const Vector2d& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::MatrixX3d a(static_cast<Eigen::Index>(points.size()), 3);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vector2d q = points[i] - mean;
+    a.row(static_cast<Eigen::Index>(i)) << q.x(), q.y(), 1.0;
+    b(static_cast<Eigen::Index>(i)) = -q.squaredNorm();
+  }
+  const Eigen::Vector3d def = a.colPivHouseholderQr().solve(b);
+  const Vector2d centre = mean - def.head<2>() / 2;
+  const double r2 = def.head<2>().squaredNorm() / 4 - def(2);
+  if (!(r2 > 0) || !centre.allFinite()) return std::nullopt;
+  const double radius = std::sqrt(r2);
+  for (const Vector2d& p : points) {
+    if (std::abs((p - centre).norm() - radius) > 1e-3 * radius) return std::nullopt;
+  }
+  return Circle{centre, radius};
+}
+
+}  // namespace
+
+StrokeSet read_csv_strokes(const std::string& text, const std::string& file, int& last_line) {
+  StrokeSet set;
+  struct Entity {
+    std::string name;
+    int line;
+    std::vector<Vector2d> points;
+  };
+  std::vector<Entity> entities;
+  bool awaiting_point = false;
+  int line = 0;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view row = trimmed(std::string_view(text).substr(start, end - start));
+    start = end + 1;
+    ++line;
+    if (line == 1 || row.empty()) continue;  // the first line is a header, ignored
+    if (row.find("New") != std::string_view::npos) {
+      entities.push_back({std::string(trimmed(row.substr(row.find("New") + 3))), line, {}});
+      continue;
+    }
+    if (row.find("Point") != std::string_view::npos) {
+      awaiting_point = true;
+      continue;
+    }
+    const std::size_t comma = row.find(',');
+    double x = 0, y = 0;
+    if (comma == std::string_view::npos || !to_number(row.substr(0, comma), x) || !to_number(row.substr(comma + 1), y)) {
+      fail_at(file, line, "a sketch CSV line is 'x, y', 'New <name>' or 'Point', not '" + std::string(row) + "'");
+    }
+    if (awaiting_point) {
+      set.points.push_back({{x, y}, line});
+      awaiting_point = false;
+      continue;
+    }
+    if (entities.empty()) fail_at(file, line, "coordinates before the first 'New <name>' line");
+    entities.back().points.emplace_back(x, y);
+  }
+  last_line = std::max(line, 1);
+  if (awaiting_point) fail_at(file, last_line, "a 'Point' line without its 'x, y' line after it");
+  for (const Entity& e : entities) {
+    std::string lowered = e.name;
+    for (char& c : lowered) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lowered.find("circle") != std::string::npos) {
+      const std::optional<Circle> c = fitted_circle(e.points);
+      if (!c) fail_at(file, e.line, "the points of the circle '" + e.name + "' do not lie on a circle");
+      set.circles.push_back({*c, e.line, e.name});
+      continue;
+    }
+    Stroke s;
+    s.line = e.line;
+    s.layer = e.name;
+    for (std::size_t i = 0; i + 1 < e.points.size(); ++i) {
+      if (e.points[i] != e.points[i + 1]) s.segments.push_back({e.points[i], e.points[i + 1]});
+    }
+    if (s.segments.empty()) fail_at(file, e.line, "the entity '" + e.name + "' needs at least 2 different points");
+    set.strokes.push_back(std::move(s));
+  }
+  return set;
+}
+
+}  // namespace sketch_detail
+
+std::optional<SketchFormat> sketch_format(const std::string& file_name) {
+  const std::size_t dot = file_name.rfind('.');
+  if (dot == std::string::npos) return std::nullopt;
+  std::string extension = file_name.substr(dot + 1);
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == "dxf") return SketchFormat::kDxf;
+  if (extension == "svg") return SketchFormat::kSvg;
+  if (extension == "csv" || extension == "txt") return SketchFormat::kCsv;
+  return std::nullopt;
+}
+
+Sketch read_sketch(const std::string& text, const std::string& file_name, SketchFormat format, const std::string& layer) {
+  using namespace sketch_detail;
+  int last_line = 1;
+  StrokeSet set;
+  switch (format) {
+    case SketchFormat::kDxf: set = read_dxf_strokes(text, file_name, layer, last_line); break;
+    case SketchFormat::kSvg: set = read_svg_strokes(text, file_name, layer, last_line); break;
+    case SketchFormat::kCsv:
+      if (!layer.empty()) fail_at(file_name, 1, "a sketch CSV has no layers: leave `layer` out");
+      set = read_csv_strokes(text, file_name, last_line);
+      break;
+  }
+  const std::string what =
+      layer.empty() ? std::string() : std::string(format == SketchFormat::kSvg ? " in the group '" : " on the layer '") +
+                                          layer + "'";
+  return finish_sketch(std::move(set), file_name, last_line, what);
+}
+
+double sketch_scale(const Sketch& sketch, std::optional<double> stated, double model_metres_per_unit) {
+  if (stated) return *stated / model_metres_per_unit;
+  if (sketch.metres_per_unit) return *sketch.metres_per_unit / model_metres_per_unit;
+  return 1.0;
+}
+
+Region plate_from_sketch(const Sketch& sketch, double scale) {
+  std::size_t outer = 0;
+  for (std::size_t i = 1; i < sketch.loops.size(); ++i) {
+    if (sketch.loops[i].area() > sketch.loops[outer].area()) outer = i;
+  }
+  Region r;
+  for (std::size_t i = 0; i < sketch.loops.size(); ++i) {
+    const SketchLoop& l = sketch.loops[i];
+    std::vector<Vector2d> vertices = l.vertices;
+    for (Vector2d& v : vertices) v *= scale;
+    const bool arcs = std::any_of(l.bulges.begin(), l.bulges.end(), [](double b) { return b != 0.0; });
+    if (i == outer) {
+      r.outline = std::move(vertices);
+      if (arcs) r.outline_bulges = l.bulges;
+    } else {
+      r.polygon_holes.push_back(std::move(vertices));
+      r.polygon_hole_bulges.push_back(arcs ? l.bulges : std::vector<double>{});
+    }
+  }
+  for (const SketchCircle& c : sketch.circles) r.circle_holes.push_back({c.circle.centre * scale, c.circle.radius * scale});
+  return r;
+}
+
+}  // namespace nbar::io

@@ -1,0 +1,199 @@
+#include "nbar/io/sketch_model.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "nbar/model/diagnostics.hpp"
+#include "nbar/model/geometry.hpp"
+
+namespace nbar::io {
+
+namespace {
+
+using Eigen::Vector2d;
+
+// The straight-edged polygon of a loop, for containment tests.
+std::vector<Vector2d> chords(const SketchLoop& loop) {
+  Region r;
+  r.outline = loop.vertices;
+  if (std::any_of(loop.bulges.begin(), loop.bulges.end(), [](double b) { return b != 0.0; })) {
+    r.outline_bulges = loop.bulges;
+  }
+  return straight_edged(r).outline;
+}
+
+bool inside(const std::vector<Vector2d>& polygon, const Vector2d& p) {
+  bool in = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vector2d& a = polygon[i];
+    const Vector2d& b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
+      in = !in;
+    }
+  }
+  return in;
+}
+
+double tidy(double v) {
+  const double t = std::round(v * 1e9) / 1e9;
+  return t == 0.0 ? 0.0 : t;
+}
+
+std::string xy(const Vector2d& v) { return fmt::format("[{:.12g}, {:.12g}", tidy(v.x()), tidy(v.y())); }
+
+std::string ring_yaml(const SketchLoop& loop, double scale, const std::string& indent) {
+  std::string out;
+  for (std::size_t i = 0; i < loop.vertices.size(); ++i) {
+    out += indent + "- " + xy(loop.vertices[i] * scale);
+    if (loop.bulges[i] != 0.0) out += fmt::format(", {{bulge: {:.12g}}}", loop.bulges[i]);
+    out += "]\n";
+  }
+  return out;
+}
+
+bool is_name(const std::string& s) {
+  if (s.empty() || s == "0" || s.size() > 64 || !std::isalpha(static_cast<unsigned char>(s[0]))) return false;
+  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
+}
+
+struct Body {
+  std::size_t loop;
+  std::string name;
+  std::vector<std::size_t> holes;          // loops
+  std::vector<std::size_t> points;         // indices into the points
+  std::map<std::size_t, double> pin_holes;  // point -> radius
+};
+
+}  // namespace
+
+std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& options) {
+  const std::size_t n = sketch.loops.size();
+  std::vector<std::vector<Vector2d>> polygons;
+  std::vector<double> areas;
+  Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const SketchLoop& l : sketch.loops) {
+    polygons.push_back(chords(l));
+    areas.push_back(l.area());
+    for (const Vector2d& v : polygons.back()) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+  }
+  // Each loop's parent: the smallest loop that contains it.
+  std::vector<int> parent(n, -1);
+  std::vector<int> depth(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j || !(areas[j] > areas[i]) || !inside(polygons[j], polygons[i].front())) continue;
+      ++depth[i];
+      if (parent[i] < 0 || areas[j] < areas[static_cast<std::size_t>(parent[i])]) parent[i] = static_cast<int>(j);
+    }
+  }
+  std::vector<Body> bodies;
+  std::map<std::size_t, std::size_t> body_of_loop;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (depth[i] % 2 != 0) continue;
+    body_of_loop[i] = bodies.size();
+    bodies.push_back({i, "", {}, {}, {}});
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (depth[i] % 2 == 1) bodies[body_of_loop.at(static_cast<std::size_t>(parent[i]))].holes.push_back(i);
+  }
+  // Names: the layer, when no other outline has it.
+  std::map<std::string, int> layer_count;
+  for (const Body& b : bodies) ++layer_count[sketch.loops[b.loop].layer];
+  std::set<std::string> taken;
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    const std::string& layer = sketch.loops[bodies[k].loop].layer;
+    std::string name = is_name(layer) && layer_count[layer] == 1 ? layer : "link" + std::to_string(k + 1);
+    while (!taken.insert(name).second) name += "_";
+    bodies[k].name = name;
+  }
+  // Points: circle centres that coincide are one; then the marked points.
+  const double same = 1e-6 * (hi - lo).norm();
+  struct Joint {
+    Vector2d at;
+    double radius = 0;  // 0: a marked point, no hole
+  };
+  std::vector<Joint> joints;
+  for (const SketchCircle& c : sketch.circles) {
+    auto it = std::find_if(joints.begin(), joints.end(),
+                           [&](const Joint& j) { return (j.at - c.circle.centre).norm() <= same; });
+    if (it == joints.end()) {
+      joints.push_back({c.circle.centre, c.circle.radius});
+    } else {
+      it->radius = std::min(it->radius, c.circle.radius);
+    }
+  }
+  for (const SketchPoint& p : sketch.points) {
+    const bool known = std::any_of(joints.begin(), joints.end(), [&](const Joint& j) { return (j.at - p.at).norm() <= same; });
+    if (!known) joints.push_back({p.at, 0.0});
+  }
+  // A point belongs to every body whose plate holds it: inside the outline, outside its holes
+  // (a pin hole's own circle aside).
+  std::vector<int> bodies_at(joints.size(), 0);
+  for (Body& b : bodies) {
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      if (!inside(polygons[b.loop], joints[j].at)) continue;
+      if (std::any_of(b.holes.begin(), b.holes.end(), [&](std::size_t h) { return inside(polygons[h], joints[j].at); })) {
+        continue;
+      }
+      b.points.push_back(j);
+      if (joints[j].radius > 0) b.pin_holes[j] = joints[j].radius;
+      ++bodies_at[j];
+    }
+    if (b.points.empty()) {
+      throw Error(ErrorKind::InvalidModel,
+                  fmt::format("{}:{}: the outline here holds no pin hole (circle) or point: nbar cannot tell how it "
+                              "moves", options.source_name, sketch.loops[b.loop].lines.front()));
+    }
+  }
+  if (bodies.empty()) throw Error(ErrorKind::InvalidModel, options.source_name + ": the sketch has no outline");
+
+  std::string ground, joints_list;
+  int joint_count = 0;
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    if (bodies_at[j] >= 2) ++joint_count;
+    if (bodies_at[j] == 1 && joints[j].radius > 0) ground += (ground.empty() ? "" : ", ") + fmt::format("P{}", j + 1);
+  }
+  std::string out = fmt::format(
+      "# A model skeleton from {} (nbar import): {} link{}, {} joint{} between links.\n"
+      "# Pin holes in a single link are taken as ground pivots: check `ground`, then add a driver\n"
+      "# (see the end of the file) and set each plate's thickness and material.\n",
+      options.source_name, bodies.size(), bodies.size() == 1 ? "" : "s", joint_count, joint_count == 1 ? "" : "s");
+  // The model's name: the sketch file's, without folders and extension, and nothing YAML would escape.
+  std::string name = options.source_name.substr(options.source_name.find_last_of("/\\") + 1);
+  name = name.substr(0, name.rfind('.'));
+  for (char& c : name) {
+    if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) c = '_';
+  }
+  out += fmt::format("name: \"{}\"\nunits: {{length: {}, angle: deg}}\npoints:\n", name, options.length_unit);
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    if (bodies_at[j] == 0) continue;  // a circle outside every outline
+    out += fmt::format("  P{}: {}]\n", j + 1, xy(joints[j].at * options.scale));
+  }
+  out += "ground: [" + ground + "]\n";
+  out += "gravity: standard\nbodies:\n";
+  for (const Body& b : bodies) {
+    out += "  " + b.name + ":\n    points: [";
+    for (std::size_t k = 0; k < b.points.size(); ++k) out += fmt::format("{}P{}", k ? ", " : "", b.points[k] + 1);
+    out += fmt::format("]   # outline at line {} of {}\n", sketch.loops[b.loop].lines.front(), options.source_name);
+    out += "    shape:\n      outline:\n" + ring_yaml(sketch.loops[b.loop], options.scale, "        ");
+    if (!b.holes.empty() || !b.pin_holes.empty()) out += "      holes:\n";
+    for (const auto& [point, radius] : b.pin_holes) {
+      out += fmt::format("        - {{at: P{}, radius: {:.10g}}}\n", point + 1, tidy(radius * options.scale));
+    }
+    for (std::size_t h : b.holes) out += "        - polygon:\n" + ring_yaml(sketch.loops[h], options.scale, "            ");
+    out += fmt::format("    thickness: {:.10g}\n    material: {}\n", options.thickness, options.material);
+  }
+  out += fmt::format("# drivers:\n#   - {{angle: {}, from: 0, to: 360, speed: 60 rpm}}\n", bodies.front().name);
+  return out;
+}
+
+}  // namespace nbar::io
