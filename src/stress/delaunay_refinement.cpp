@@ -380,7 +380,9 @@ class Refiner {
   // A 6-node triangle whose edge bulges by the sagitta s towards the opposite corner, at height
   // h above it, has det J = L (h − 4 s x / L) at the edge's ends (x: the corner's offset along
   // the edge), positive only while s < h / 4. A curved segment whose triangle inside is not
-  // several times taller than the arc's sagitta is split (which quarters the sagitta).
+  // six times taller than the arc's sagitta is split (which quarters the sagitta). Not more:
+  // three consecutive points of an arc make a triangle only about 8 sagittas tall, and splitting
+  // would reproduce it at every scale.
   bool too_curved(const Seg& seg) const {
     const auto [t, i] = find_edge(seg.s.a, seg.s.b);
     if (t < 0) return false;
@@ -392,7 +394,7 @@ class Refiner {
     const double sagitta = (in_.curve_point(seg.s.curve, (seg.s.ta + seg.s.tb) / 2) - (a + b) / 2).norm();
     return height < kHeightPerSagitta * sagitta;
   }
-  static constexpr double kHeightPerSagitta = 8.0;
+  static constexpr double kHeightPerSagitta = 6.0;
 
   bool is_edge(int a, int b) const { return find_edge(a, b).first >= 0; }
 
