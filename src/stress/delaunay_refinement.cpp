@@ -5,8 +5,8 @@
 // segment, in which case the segment is split instead. With no encroached segment every segment
 // is a Delaunay edge, so the triangulation conforms to the boundary without constrained edges.
 //
-// Straight segments touching an input corner are split at powers of two from it (concentric
-// shells), so the splits at a sharp corner match up and refinement there terminates.
+// Segments (straight or arcs) touching an input corner are split at powers of two from it
+// (concentric shells), so the splits at a sharp corner match up and refinement there terminates.
 #include "delaunay_refinement.hpp"
 
 #include <algorithm>
