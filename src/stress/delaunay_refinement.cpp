@@ -5,8 +5,8 @@
 // segment, in which case the segment is split instead. With no encroached segment every segment
 // is a Delaunay edge, so the triangulation conforms to the boundary without constrained edges.
 //
-// Straight segments touching an input corner are split at powers of two from it (concentric
-// shells), so the splits at a sharp corner match up and refinement there terminates.
+// Segments (straight or arcs) touching an input corner are split at powers of two from it
+// (concentric shells), so the splits at a sharp corner match up and refinement there terminates.
 #include "delaunay_refinement.hpp"
 
 #include <algorithm>
@@ -380,7 +380,9 @@ class Refiner {
   // A 6-node triangle whose edge bulges by the sagitta s towards the opposite corner, at height
   // h above it, has det J = L (h − 4 s x / L) at the edge's ends (x: the corner's offset along
   // the edge), positive only while s < h / 4. A curved segment whose triangle inside is not
-  // several times taller than the arc's sagitta is split (which quarters the sagitta).
+  // six times taller than the arc's sagitta is split (which quarters the sagitta). Not more:
+  // three consecutive points of an arc make a triangle only about 8 sagittas tall, and splitting
+  // would reproduce it at every scale.
   bool too_curved(const Seg& seg) const {
     const auto [t, i] = find_edge(seg.s.a, seg.s.b);
     if (t < 0) return false;
@@ -392,7 +394,7 @@ class Refiner {
     const double sagitta = (in_.curve_point(seg.s.curve, (seg.s.ta + seg.s.tb) / 2) - (a + b) / 2).norm();
     return height < kHeightPerSagitta * sagitta;
   }
-  static constexpr double kHeightPerSagitta = 8.0;
+  static constexpr double kHeightPerSagitta = 6.0;
 
   bool is_edge(int a, int b) const { return find_edge(a, b).first >= 0; }
 
@@ -401,11 +403,19 @@ class Refiner {
     const Vector2d& pa = pts_[s.a];
     const Vector2d& pb = pts_[s.b];
     double f = 0.5;
-    if (!in_.curved[s.curve] && corner_[s.a] != corner_[s.b]) {
-      // Concentric shells: the split's distance from the corner is a power of two.
+    if (corner_[s.a] != corner_[s.b]) {
+      // Concentric shells: the split's distance from the corner is a power of two, so that the
+      // splits on the two sides of a sharp corner match and stop encroaching each other.
       const double length = (pb - pa).norm();
       const double d = std::exp2(std::round(std::log2(length / 2)));
-      f = corner_[s.a] ? d / length : 1 - d / length;
+      double from_corner = d / length;
+      if (in_.curved[s.curve]) {
+        // Along an arc of radius R the chord d subtends 2 asin(d / 2R) of the segment's angle.
+        const double radius = in_.arc_radius[s.curve];
+        const double angle = std::abs((s.tb - s.ta) * in_.arc_sweep[s.curve]);
+        from_corner = 2 * std::asin(std::min(1.0, d / (2 * radius))) / angle;
+      }
+      if (from_corner > 0.2 && from_corner < 0.8) f = corner_[s.a] ? from_corner : 1 - from_corner;
     }
     const double tm = s.ta + f * (s.tb - s.ta);
     const Vector2d m = in_.curved[s.curve] ? in_.curve_point(s.curve, tm) : Vector2d(pa + f * (pb - pa));
@@ -464,7 +474,11 @@ class Refiner {
       seg_queue_.pop_front();
       if (!segs_[s].alive) continue;
       const bool edge = is_edge(segs_[s].s.a, segs_[s].s.b);
-      if (!edge && !long_enough(segs_[s])) throw std::runtime_error("mesher: a boundary segment cannot be recovered");
+      if (!edge && !long_enough(segs_[s])) {
+        const Vector2d& at = pts_[segs_[s].s.a];
+        throw std::runtime_error("the boundary cannot be resolved near (" + std::to_string(at.x()) + ", " +
+                                 std::to_string(at.y()) + ") m: a corner too sharp or parts too close");
+      }
       if (!edge || (long_enough(segs_[s]) && encroached(segs_[s]))) split_segment(s);
     }
   }

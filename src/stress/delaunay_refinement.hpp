@@ -24,6 +24,7 @@ struct RefinementInput {
   std::vector<char> corner;               // per point: an input vertex where two curves meet
   std::vector<BoundarySegment> segments;  // closed rings, plate on the left
   std::vector<char> curved;               // per curve: split at the curve's point, not the chord's
+  std::vector<double> arc_radius, arc_sweep;  // per curved curve: radius, sweep (rad) over t in [0, 1]
   std::function<Eigen::Vector2d(int curve, double t)> curve_point;
   std::function<double(const Eigen::Vector2d&)> size_at;  // wanted edge length near a point
   double min_angle_deg = 28.0;  // triangles with a smaller angle are refined

@@ -305,7 +305,11 @@ detail::RefinementInput refinement_input(const Boundary& b, const Sizing& h, con
   }
   double shortest = std::numeric_limits<double>::infinity();
   for (const detail::BoundarySegment& s : in.segments) shortest = std::min(shortest, (in.points[s.a] - in.points[s.b]).norm());
-  for (const Curve& c : b.curves) in.curved.push_back(c.arc ? 1 : 0);
+  for (const Curve& c : b.curves) {
+    in.curved.push_back(c.arc ? 1 : 0);
+    in.arc_radius.push_back(c.arc ? c.circle.radius : 0.0);
+    in.arc_sweep.push_back(c.arc ? c.circle.sweep : 0.0);
+  }
   in.curve_point = [&b](int curve, double t) { return b.curves[curve].at(t); };
   in.size_at = [&h](const Vector2d& x) { return h(x); };
   in.min_angle_deg = kMinAngleDeg;
@@ -423,7 +427,7 @@ TriMesh mesh_region(const Region& r, const MeshOptions& options) {
     fail("the mesh would have more than max_nodes = " + std::to_string(options.max_nodes) +
          " nodes; use a larger element size");
   } catch (const std::runtime_error& e) {
-    fail(std::string("could not mesh the plate (") + e.what() + ")");
+    fail(std::string("could not mesh the plate: ") + e.what());
   }
   return quadratic_mesh(refined, b, options.max_nodes);
 }

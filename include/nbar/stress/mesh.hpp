@@ -5,6 +5,9 @@
 // features, finer around holes and re-entrant corners. Mid-side nodes of edges on a circle hole
 // or an arc lie on the true curve, so curved boundaries are represented isoparametrically. The
 // result depends only on the inputs (no randomness, no threads), so a mesh is reproducible.
+// Every triangle is counterclockwise with a positive Jacobian at its six nodes, and has no angle
+// under 28° when no corner of the plate is sharper than 60° (conforming Delaunay refinement;
+// docs/fe.md, "Mesher").
 #pragma once
 
 #include <Eigen/Core>
