@@ -230,22 +230,42 @@ bool LinearSolver::factorize_small_from(const std::vector<double>& values) {
   return std::isfinite(rcond_) && rcond_ > kSingularRcond;
 }
 
-void LinearSolver::solve_small(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  const int n = cols_;
-  const double* a = small_lu_.data();
-  x.resize(n);
-  for (int i = 0; i < n; ++i) x[i] = b[small_row_[i]];
-  // Eigen's triangular_solve_vector within one panel: column by column, skipping zeros.
-  for (int i = 0; i < n; ++i) {
-    const double xi = x[i];
-    if (xi == 0.0) continue;
-    for (int j = i + 1; j < n; ++j) x[j] -= xi * a[i * n + j];
+namespace {
+
+// Forward and back substitution with the size known at compile time: fully unrolled, the
+// values in registers (through memory, each scalar store followed by a vector load of it
+// stalls). Eigen's triangular_solve_vector within one panel: column by column, skipping zeros.
+template <int N>
+void substitute(const double* lu, const int* row, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  double v[N];
+  for (int i = 0; i < N; ++i) v[i] = b[row[i]];
+  for (int i = 0; i < N; ++i) {
+    if (v[i] == 0.0) continue;
+    for (int j = i + 1; j < N; ++j) v[j] -= v[i] * lu[i * N + j];
   }
-  for (int i = n - 1; i >= 0; --i) {
-    if (x[i] == 0.0) continue;
-    x[i] /= a[i * n + i];
-    const double xi = x[i];
-    for (int j = 0; j < i; ++j) x[j] -= xi * a[i * n + j];
+  for (int i = N - 1; i >= 0; --i) {
+    if (v[i] == 0.0) continue;
+    v[i] /= lu[i * N + i];
+    for (int j = 0; j < i; ++j) v[j] -= v[i] * lu[i * N + j];
+  }
+  for (int i = 0; i < N; ++i) x[i] = v[i];
+}
+
+}  // namespace
+
+void LinearSolver::solve_small(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  x.resize(cols_);
+  const double* lu = small_lu_.data();
+  const int* row = small_row_.data();
+  switch (cols_) {
+    case 1: return substitute<1>(lu, row, b, x);
+    case 2: return substitute<2>(lu, row, b, x);
+    case 3: return substitute<3>(lu, row, b, x);
+    case 4: return substitute<4>(lu, row, b, x);
+    case 5: return substitute<5>(lu, row, b, x);
+    case 6: return substitute<6>(lu, row, b, x);
+    case 7: return substitute<7>(lu, row, b, x);
+    case 8: return substitute<8>(lu, row, b, x);
   }
 }
 
