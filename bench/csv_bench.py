@@ -11,8 +11,9 @@ per-pair ratios nbar / closed form are printed. Wall times are printed too (they
 wait for a shared machine's cores).
 
 Measured 2026-11-25 (5 repetitions, medians, 2-core machine under load): nbar 0.42 s CPU
-against the printf closed form's 0.93 s, ratio 0.45 (before streaming and std::to_chars: nbar
-0.65 s, about 1.5x the closed form).
+against the printf closed form's 0.93 s, ratio 0.45 (before streaming and std::to_chars, the same
+run with the old program: nbar 0.72 s against 0.94 s, ratio 0.77). Peak memory of the whole
+command (/usr/bin/time -v): 13.7 MB at 100 001 and at 1 000 001 steps (before: 75 MB and 638 MB).
 """
 import argparse
 import os
