@@ -19,8 +19,10 @@
 // each measured interleaved in one benchmark (CPU time of the thread), so that a shared
 // machine's load falls on both sides alike. Medians of 5 repetitions, 2-core machine under the
 // load of 7 builds (2026-11-25):
-//   engine step / Norton's closed form: 4.8 before (0.62 us / 0.13 us), 4.1 after (0.48 / 0.12)
-//   chain per loop per step / four-bar step: N = 10: 2.2, 100: 1.8, 1000: 1.8 (linear in N)
+//   engine step / Norton's closed form: 4.6 before (0.57 us / 0.12 us), 4.0 after (0.50 / 0.12)
+//   chain per loop per step / four-bar step, N = 10, 100, 1000: before 2.1, 1.7, 1.9 (1.24,
+//   1.02, 1.19 us per loop); after 2.4, 1.9, 2.3 (1.19, 0.99, 1.13 us: the four-bar step got
+//   faster than the chains' sparse LU); linear in N
 //
 // Run: kinematics_bench --benchmark_min_time=0.2
 //      kinematics_bench --benchmark_filter='Over' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
