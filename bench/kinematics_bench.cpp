@@ -15,13 +15,24 @@
 // BM_FourBarSweep/<steps> times the whole run_sweep() (assembly, recording, branch watch) for
 // comparison: (time(3601) - time(1)) / 3600 is run_sweep's own cost per step.
 //
+// BM_FourBarStepOverClosedForm and BM_ChainPerLoopOverFourBar/<N> are the ratios of issue 14,
+// each measured interleaved in one benchmark (CPU time of the thread), so that a shared
+// machine's load falls on both sides alike. Medians of 5 repetitions, 2-core machine under the
+// load of 7 builds (2026-11-25):
+//   engine step / Norton's closed form: 4.6 before (0.57 us / 0.12 us), 4.0 after (0.50 / 0.12)
+//   chain per loop per step / four-bar step, N = 10, 100, 1000: before 2.1, 1.7, 1.9 (1.24,
+//   1.02, 1.19 us per loop); after 2.4, 1.9, 2.3 (1.19, 0.99, 1.13 us: the four-bar step got
+//   faster than the chains' sparse LU); linear in N
+//
 // Run: kinematics_bench --benchmark_min_time=0.2
+//      kinematics_bench --benchmark_filter='Over' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -37,6 +48,7 @@
 #include "nbar/kinematics/sweep.hpp"
 #include "nbar/model/model.hpp"
 #include "bench_models.hpp"
+#include "norton_closed_form.hpp"
 
 namespace {
 
@@ -131,6 +143,98 @@ void BM_FourBarStep(benchmark::State& st) {
 }
 BENCHMARK(BM_FourBarStep)->Unit(benchmark::kMicrosecond);
 
+// The reference: Norton's closed form of the same crank-rocker, one step of it (angles,
+// angular velocities and accelerations, and the pins' positions, velocities and accelerations:
+// what the engine's step gives), the crank stepping as the engine's does.
+struct ClosedForm {
+  ClosedForm() {
+    // The engine's branch: the root whose B is the drawn one (the model is drawn at crank angle 0).
+    const nbar::Model m = four_bar_model();
+    const NortonFourBar::Pose open = linkage.solve(0.0, 0.0, 0.0);
+    linkage.crossed = std::hypot(open.bx - m.points[3].position.x(), open.by - m.points[3].position.y()) > 1e-9;
+    omega2 = m.drivers[0].speed;
+    step_angle = (*m.drivers[0].to - *m.drivers[0].from) / kStepsPerTurn;
+  }
+  NortonFourBar::Pose step() {
+    ++steps;
+    return linkage.solve(steps * step_angle, omega2, 0.0);
+  }
+  NortonFourBar linkage{0.080, 0.180, 0.150, 0.200};
+  double omega2 = 0.0, step_angle = 0.0;
+  long long steps = 0;
+};
+
+// The closed form and the engine agree at every step of a turn, or the ratio means nothing.
+void check_closed_form() {
+  const nbar::Mechanism mech(four_bar_model());
+  const nbar::SweepResult r = nbar::run_sweep(mech, {.steps = kStepsPerTurn + 1, .order = kOrder});
+  ClosedForm closed;
+  closed.steps = -1;
+  const int bx = mech.column_of(3);
+  for (const nbar::Sample& s : r.samples) {
+    const NortonFourBar::Pose p = closed.step();
+    const double errors[] = {s.taylor(bx, 0) - p.bx, s.taylor(bx + 1, 0) - p.by, s.derivative(bx, 1) - p.bvx,
+                             s.derivative(bx + 1, 1) - p.bvy, (s.derivative(bx, 2) - p.bax) / 100.0,
+                             (s.derivative(bx + 1, 2) - p.bay) / 100.0};
+    for (double e : errors)
+      if (!(std::abs(e) < 1e-9)) die("Norton's closed form and the engine disagree at step " + std::to_string(s.step));
+  }
+}
+
+void BM_FourBarClosedForm(benchmark::State& st) {
+  check_closed_form();
+  ClosedForm closed;
+  for (auto _ : st) {
+    for (int i = 0; i < kStepsPerTurn; ++i) {
+      NortonFourBar::Pose p = closed.step();
+      benchmark::DoNotOptimize(p);
+    }
+  }
+  const auto per = benchmark::Counter::kIsRate | benchmark::Counter::kInvert;
+  st.counters["per_step"] = benchmark::Counter(static_cast<double>(closed.steps), per);
+}
+BENCHMARK(BM_FourBarClosedForm)->Unit(benchmark::kMicrosecond);
+
+// CPU time of this thread: on a machine shared with other work, wall time would count the waits
+// for a core.
+double thread_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+double seconds_since(double start) { return thread_seconds() - start; }
+
+// The ratio the issue asks for, measured interleaved so that load from other processes falls on
+// both alike: per iteration one turn of the engine (BM_FourBarStep's work) and one turn of the
+// closed form, each timed in CPU time. Counter `ratio`: engine time over closed-form time.
+void BM_FourBarStepOverClosedForm(benchmark::State& st) {
+  check_closed_form();
+  Tracker tracker(four_bar_model());
+  ClosedForm closed;
+  double engine = 0.0, reference = 0.0;
+  std::string why;
+  for (auto _ : st) {
+    double start = thread_seconds();
+    for (int i = 0; i < kStepsPerTurn; ++i)
+      if (!tracker.step(&why)) {
+        st.SkipWithError(("tracking failed: " + why).c_str());
+        return;
+      }
+    engine += seconds_since(start);
+    start = thread_seconds();
+    for (int i = 0; i < kStepsPerTurn; ++i) {
+      NortonFourBar::Pose p = closed.step();
+      benchmark::DoNotOptimize(p);
+    }
+    reference += seconds_since(start);
+  }
+  const double steps = static_cast<double>(st.iterations()) * kStepsPerTurn;
+  st.counters["engine_step_us"] = 1e6 * engine / steps;
+  st.counters["closed_form_step_us"] = 1e6 * reference / steps;
+  st.counters["ratio"] = engine / reference;
+}
+BENCHMARK(BM_FourBarStepOverClosedForm)->Unit(benchmark::kMicrosecond);
+
 // The whole run_sweep() with `steps` samples (assembly and recording included).
 void BM_FourBarSweep(benchmark::State& st) {
   const nbar::Mechanism mech(four_bar_model());
@@ -158,6 +262,39 @@ void BM_ChainOfFourBars(benchmark::State& st) {
 // 15 and 16 loops (60 and 64 coordinates) straddle LinearSolver::kDenseLimit, the switch from
 // dense to sparse LU.
 BENCHMARK(BM_ChainOfFourBars)->Arg(1)->Arg(10)->Arg(15)->Arg(16)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+
+// A chain's cost per loop against the single four-bar's step, interleaved as above: per
+// iteration one turn of the chain and one of the four-bar. Counter `ratio`: chain time per
+// step per loop over four-bar time per step.
+void BM_ChainPerLoopOverFourBar(benchmark::State& st) {
+  const int loops = static_cast<int>(st.range(0));
+  const nbar::Model model = chain_model(loops);
+  check_sweep(nbar::Mechanism(model), "chain of " + std::to_string(loops) + " four-bars");
+  Tracker chain(model), single(four_bar_model());
+  double chain_time = 0.0, single_time = 0.0;
+  std::string why;
+  for (auto _ : st) {
+    double start = thread_seconds();
+    for (int i = 0; i < kStepsPerTurn; ++i)
+      if (!chain.step(&why)) {
+        st.SkipWithError(("tracking failed: " + why).c_str());
+        return;
+      }
+    chain_time += seconds_since(start);
+    start = thread_seconds();
+    for (int i = 0; i < kStepsPerTurn; ++i)
+      if (!single.step(&why)) {
+        st.SkipWithError(("tracking failed: " + why).c_str());
+        return;
+      }
+    single_time += seconds_since(start);
+  }
+  const double steps = static_cast<double>(st.iterations()) * kStepsPerTurn;
+  st.counters["per_loop_step_us"] = 1e6 * chain_time / steps / loops;
+  st.counters["four_bar_step_us"] = 1e6 * single_time / steps;
+  st.counters["ratio"] = chain_time / loops / single_time;
+}
+BENCHMARK(BM_ChainPerLoopOverFourBar)->Arg(1)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 
 // 3. One-time cost: compiling the model into a Mechanism (validation, rows, pattern, loop
 // search, mobility analysis), then that plus assembling it at the start of the sweep.

@@ -24,7 +24,7 @@ int run_report(const ReportArgs& args) {
   }
   Loaded loaded;
   if (int code = load(args.model, loaded)) return code;
-  const ModelSummary summary = summarize(*loaded.mechanism);
+  const ModelSummary summary = summarize(*loaded.mechanism, args.max_steps);
   AnalysisOptions options = render::report_analysis_options(summary);
   options.steps = args.steps;
   options.max_steps = args.max_steps;

@@ -51,11 +51,11 @@ struct Loaded {
   std::shared_ptr<const Mechanism> mechanism;
 };
 
-// Every sample of a sweep is kept in memory, so its size is bounded (--max-steps of every
-// command that runs a sweep).
+// A sweep's size is bounded (--max-steps of every command that runs a sweep): most commands keep
+// every sample in memory, and every one takes time per sample.
 inline const std::string kMaxStepsHelp = "the most samples the sweep may have, the model's or --steps (default " +
                                          std::to_string(nbar::kDefaultMaxSweepSamples) +
-                                         "; every sample is kept in memory)";
+                                         "; every sample is kept in memory, except by solve's CSV)";
 
 inline int load(const std::string& path, Loaded& out) {
   try {
@@ -89,7 +89,7 @@ inline int finish(const Loaded& loaded, const SweepResult& sweep) {
     const nbar::io::SourceMap& source = loaded.file.source;
     const SourceMark at = source.sweep.line > 0 ? source.sweep : source.find({EntityRef::Kind::Driver, 0});
     std::cerr << "error: " << compose_location(source.file, at, sweep.stop_reason) << " ("
-              << sweep.samples.size() << " rows written)\n";
+              << sweep.solved << " rows written)\n";
     return kStoppedEarly;
   }
   return kOk;

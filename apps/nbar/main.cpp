@@ -17,6 +17,7 @@
 #include "common.hpp"
 #include "nbar/analysis/columns.hpp"
 #include "nbar/analysis/summary.hpp"
+#include "nbar/analysis/table_stream.hpp"
 #include "nbar/io/results_writer.hpp"
 #include "nbar/io/summary_writer.hpp"
 #include "nbar/io/yaml_support.hpp"
@@ -27,10 +28,10 @@ namespace {
 using namespace nbar::cli;
 
 
-int run_check(const std::string& path, const std::string& format) {
+int run_check(const std::string& path, const std::string& format, int max_steps) {
   Loaded loaded;
   if (int code = load(path, loaded)) return code;
-  const nbar::ModelSummary summary = nbar::summarize(*loaded.mechanism);
+  const nbar::ModelSummary summary = nbar::summarize(*loaded.mechanism, max_steps);
   if (format == "json")
     std::cout << nbar::io::summary_json(*loaded.mechanism, summary, loaded.file.source);
   else
@@ -51,6 +52,46 @@ struct SolveArgs {
   bool dynamics = false;
 };
 
+void print_column_error(const Loaded& loaded, const std::invalid_argument& e) {
+  std::cerr << "error: --columns: " << e.what() << "; the columns are: "
+            << join(nbar::column_names(nbar::column_catalogue(*loaded.mechanism, 2, false))) << '\n';
+}
+
+// CSV is streamed: rows are written as the sweep solves them and none is kept, so memory does
+// not grow with the number of steps (TableStream runs the sweep twice for that). JSON and the
+// text table need every row at once (the text table sizes its columns over all rows).
+int solve_to_csv(const SolveArgs& args, const Loaded& loaded, const nbar::AnalysisOptions& options) {
+  std::optional<nbar::TableStream> stream;
+  try {
+    stream.emplace(loaded.mechanism, options);
+    stream->measure();
+  } catch (const nbar::Error& e) {
+    return fail(args.model, nbar::io::located(loaded.file.source, e));
+  }
+  if (!args.columns.empty()) {
+    try {
+      stream->select(args.columns);
+    } catch (const std::invalid_argument& e) {
+      print_column_error(loaded, e);
+      return kBadUsage;
+    }
+  }
+  Output output;
+  if (!output.open(args.output)) return kBadUsage;
+  std::ostream& out = output.stream();
+  {
+    nbar::io::CsvWriter csv(out, stream->columns());
+    try {
+      stream->rows([&](const double* row) { csv.row(row); });
+    } catch (const nbar::Error& e) {  // the first pass has met every error already
+      return fail(args.model, nbar::io::located(loaded.file.source, e));
+    }
+  }
+  out.flush();
+  print_warnings(stream->warnings());
+  return finish(loaded, stream->sweep());
+}
+
 int run_solve(const SolveArgs& args) {
   Loaded loaded;
   if (int code = load(args.model, loaded)) return code;
@@ -59,6 +100,7 @@ int run_solve(const SolveArgs& args) {
   options.max_steps = args.max_steps;
   options.order = args.order;
   options.dynamics = args.dynamics;
+  if (args.format == "csv") return solve_to_csv(args, loaded, options);
   nbar::Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
   nbar::ResultTable table = nbar::result_table(analysis);
@@ -66,8 +108,7 @@ int run_solve(const SolveArgs& args) {
     try {
       table = nbar::select_columns(table, args.columns);
     } catch (const std::invalid_argument& e) {
-      std::cerr << "error: --columns: " << e.what() << "; the columns are: "
-                << join(nbar::column_names(nbar::column_catalogue(*loaded.mechanism, 2, false))) << '\n';
+      print_column_error(loaded, e);
       return kBadUsage;
     }
   }
@@ -140,17 +181,21 @@ int main(int argc, char** argv) {
   app.footer(
       "Exit codes: 0 success, 1 invalid model, 2 bad usage, 3 cannot assemble at the start,\n"
       "            4 sweep stopped early (the rows solved so far are written).\n"
-      "Limits: a sweep has at most 10000000 samples (solve and stress: --max-steps), model files at most\n"
+      "Limits: a sweep has at most 10000000 samples (--max-steps of every command that sweeps), model files at most\n"
       "        16 MB, names at most 256 characters, models at most 20000 moving points.\n"
       "Model files: see docs/model-format.md.");
 
   std::string check_model, check_format = "text";
+  int check_max_steps = nbar::kDefaultMaxSweepSamples;
   CLI::App* check = app.add_subcommand("check", "Summarise a model: bodies, joints, degrees of freedom, redundant "
                                                 "constraints, drivers, assembly at the start, Grashof class of "
                                                 "every four-bar loop");
   check->add_option("MODEL", check_model, "model file (YAML or JSON)")->required();
   check->add_option("--format", check_format, "text (default) or json (the same summary as data, in the model's units)")
       ->check(CLI::IsMember({"text", "json"}));
+  // check runs no sweep of the model's size (its law and cylinder checks sample a bounded
+  // number of poses), but it says whether the sweep would be refused, at this limit.
+  check->add_option("--max-steps", check_max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
 
   SolveArgs solve_args;
   CLI::App* solve = app.add_subcommand("solve", "Sweep the drivers and write positions, velocities, accelerations "
@@ -212,7 +257,7 @@ int main(int argc, char** argv) {
   // Each command reports what it expects; anything else still ends in a message and an exit
   // code, never an abort.
   try {
-    if (check->parsed()) return run_check(check_model, check_format);
+    if (check->parsed()) return run_check(check_model, check_format, check_max_steps);
     if (solve->parsed()) return run_solve(solve_args);
     if (stress->parsed()) return run_stress(stress_args);
     for (const auto& [command, run] : more)

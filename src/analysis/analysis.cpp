@@ -1,5 +1,7 @@
 #include "nbar/analysis/analysis.hpp"
+#include "nbar/analysis/table_stream.hpp"
 
+#include <cmath>
 #include <sstream>
 #include <string>
 
@@ -28,6 +30,17 @@ SweepResult run_sweep_stage(const Mechanism& mech, const AnalysisOptions& option
   return run_sweep(mech, sweep, options.control);
 }
 
+// One sample's inverse dynamics, checked and counted into the stage's summary.
+DynamicsResult solve_dynamics_sample(DynamicsStage& stage, const Model& m, const Sample& sample) {
+  DynamicsResult r = stage.solver->solve(sample);
+  detail::check_finite_dynamics(m, sample, r);
+  stage.unique = stage.unique && r.unique;
+  stage.max_residual = std::max(stage.max_residual, r.residual);
+  return r;
+}
+
+void add_dynamics_warnings(DynamicsStage& stage, const Model& m);
+
 DynamicsStage run_dynamics_stage(const Analysis& analysis, const AnalysisOptions& options) {
   DynamicsStage stage;
   stage.solver = std::make_shared<const InverseDynamics>(analysis.mechanism);
@@ -35,12 +48,13 @@ DynamicsStage run_dynamics_stage(const Analysis& analysis, const AnalysisOptions
   stage.samples.reserve(samples.size());
   for (std::size_t i = 0; i < samples.size(); ++i) {
     options.control.checkpoint("dynamics", static_cast<long>(i), static_cast<long>(samples.size()));
-    stage.samples.push_back(stage.solver->solve(samples[i]));
-    detail::check_finite_dynamics(analysis.model(), samples[i], stage.samples.back());
-    stage.unique = stage.unique && stage.samples.back().unique;
-    stage.max_residual = std::max(stage.max_residual, stage.samples.back().residual);
+    stage.samples.push_back(solve_dynamics_sample(stage, analysis.model(), samples[i]));
   }
-  const Model& m = analysis.model();
+  add_dynamics_warnings(stage, analysis.model());
+  return stage;
+}
+
+void add_dynamics_warnings(DynamicsStage& stage, const Model& m) {
   bool kinetics = !m.gravity.isZero() || !m.point_loads.empty() || !m.torques.empty() || !m.springs.empty();
   for (const Body& b : m.bodies) kinetics = kinetics || mass_properties(b).mass > 0.0;
   if (!kinetics)
@@ -52,7 +66,6 @@ DynamicsStage run_dynamics_stage(const Analysis& analysis, const AnalysisOptions
         {"forces_not_unique", -1,
          "the mechanism has redundant constraints: its joint forces are not unique (statically indeterminate); "
          "the minimum-norm set is given"});
-  return stage;
 }
 
 StressStage run_stress_stage(const Analysis& analysis, const AnalysisOptions& options) {
@@ -138,6 +151,115 @@ ResultTable section_profile_table(const Analysis& analysis, int body, int step) 
             time.str() + " s): x from " + m.points[m.bodies[body].points[0]].name + " towards " +
             m.points[m.bodies[body].points[1]].name;
   return t;
+}
+
+// TableStream: the pipeline of analyse() with a sink on the sweep, each sample's dynamics solved
+// as it comes and its row filled at once.
+struct TableStream::Pass {
+  std::function<void(const double* full_row)> row;
+};
+
+TableStream::TableStream(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options)
+    : mechanism_(std::move(mechanism)), options_(options) {
+  check_options(options_);
+  if (options_.stress) throw Error(ErrorKind::BadInput, "stresses need the whole sweep: use analyse");
+  const int order = options_.dynamics ? std::max(options_.order, 2) : options_.order;
+  KinematicRows(*mechanism_, order).name_columns(columns_, units_);
+  if (options_.dynamics) {
+    dynamics_ = std::make_shared<const InverseDynamics>(mechanism_);
+    for (ColumnName& c : dynamics_columns(*dynamics_)) {
+      columns_.push_back(std::move(c.name));
+      units_.push_back(std::move(c.unit));
+    }
+  }
+  all_units_ = units_;
+  for (std::size_t c = 0; c < columns_.size(); ++c) picked_.push_back(c);
+}
+
+TableStream::~TableStream() = default;
+
+void TableStream::select(const std::vector<std::string>& patterns) {
+  const std::vector<std::size_t> picked = pick_columns(columns_, patterns);
+  std::vector<std::string> columns, units;
+  std::vector<std::size_t> indices;
+  for (std::size_t c : picked) {
+    columns.push_back(columns_[c]);
+    units.push_back(units_[c]);
+    indices.push_back(picked_[c]);
+  }
+  columns_ = std::move(columns);
+  units_ = std::move(units);
+  picked_ = std::move(indices);
+}
+
+void TableStream::run(Pass& pass) {
+  const Mechanism& mech = *mechanism_;
+  const int order = options_.dynamics ? std::max(options_.order, 2) : options_.order;
+  KinematicRows kinematic(mech, order);
+  const std::size_t kinematic_columns = kinematic.column_count();
+  std::vector<double> row(all_units_.size());
+  dynamics_stage_.reset();
+  std::optional<DynamicsRows> dynamic;
+  if (dynamics_) {
+    dynamics_stage_.emplace();
+    dynamics_stage_->solver = dynamics_;
+    dynamic.emplace(*dynamics_);
+  }
+  SweepOptions sweep;
+  sweep.steps = options_.steps;
+  sweep.max_steps = options_.max_steps;
+  sweep.order = order;
+  sweep_ = run_sweep(mech, sweep, options_.control, [&](const Sample& s) {
+    kinematic.fill(s, row.data());
+    if (dynamic) {
+      const DynamicsResult r = solve_dynamics_sample(*dynamics_stage_, mech.model(), s);
+      dynamic->fill(s, r, row.data() + kinematic_columns);
+    }
+    pass.row(row.data());
+  });
+  if (dynamics_stage_) add_dynamics_warnings(*dynamics_stage_, mech.model());
+}
+
+void TableStream::measure() {
+  // zero_numerical_noise's scales: per column the largest finite size, then per unit the largest
+  // over its columns; unitless columns keep a threshold of 0.
+  const std::size_t n = all_units_.size();
+  std::vector<double> column_max(n, 0.0);
+  Pass pass;
+  pass.row = [&](const double* row) {
+    for (std::size_t c = 0; c < n; ++c)
+      if (std::isfinite(row[c])) column_max[c] = std::max(column_max[c], std::abs(row[c]));
+  };
+  run(pass);
+  threshold_.assign(n, 0.0);
+  for (std::size_t c = 0; c < n; ++c) {
+    if (all_units_[c].empty()) continue;
+    double scale = 0.0;
+    for (std::size_t other = 0; other < n; ++other)
+      if (all_units_[other] == all_units_[c]) scale = std::max(scale, column_max[other]);
+    threshold_[c] = kNoiseRelative * scale;
+  }
+  measured_ = true;
+}
+
+void TableStream::rows(const std::function<void(const double* row)>& sink) {
+  if (!measured_) measure();
+  std::vector<double> out(picked_.size());
+  Pass pass;
+  pass.row = [&](const double* row) {
+    for (std::size_t i = 0; i < picked_.size(); ++i) {
+      const double v = row[picked_[i]];
+      out[i] = std::abs(v) <= threshold_[picked_[i]] ? 0.0 : v;
+    }
+    sink(out.data());
+  };
+  run(pass);
+}
+
+std::vector<Warning> TableStream::warnings() const {
+  std::vector<Warning> all = sweep_.warnings;
+  if (dynamics_stage_) all.insert(all.end(), dynamics_stage_->warnings.begin(), dynamics_stage_->warnings.end());
+  return all;
 }
 
 }  // namespace nbar

@@ -211,11 +211,11 @@ void check_laws_over_sweep(const Mechanism& mech, ModelSummary& out) {
 }
 
 // Assembles at the start of the sweep and classifies every four-bar loop in that pose.
-void summarize_start(const Mechanism& mech, ModelSummary& out) {
+void summarize_start(const Mechanism& mech, int max_steps, ModelSummary& out) {
   State state(mech);
   try {
     AssemblySummary a;
-    a.driver_values = sweep_start_values(mech);
+    a.driver_values = sweep_start_values(mech, max_steps);
     const AssemblyReport report = assemble(mech, state, a.driver_values);
     a.residual = report.residual;
     a.passed_singularity = report.passed_singularity;
@@ -243,7 +243,7 @@ void summarize_start(const Mechanism& mech, ModelSummary& out) {
 
 }  // namespace
 
-ModelSummary summarize(const Mechanism& mech) {
+ModelSummary summarize(const Mechanism& mech, int max_steps) {
   const Model& m = mech.model();
   ModelSummary s;
   for (const Point& p : m.points) (p.ground ? s.ground_points : s.moving_points).push_back(p.name);
@@ -261,7 +261,7 @@ ModelSummary summarize(const Mechanism& mech) {
   for (std::size_t d = 0; d < m.drivers.size(); ++d) s.drivers.push_back(describe_driver(m, static_cast<int>(d)));
   warn_about_many_turns(m, s);
   summarize_crank_mechanisms(m, s);
-  summarize_start(mech, s);
+  summarize_start(mech, max_steps, s);
   if (s.assembly)
     for (Warning& w : cylinder_warnings(mech)) s.warnings.push_back(std::move(w));
   check_laws_over_sweep(mech, s);

@@ -99,6 +99,13 @@ void name_dynamics_columns(const InverseDynamics& dynamics, Table& table) {
 
 }  // namespace
 
+DynamicsRows::DynamicsRows(const InverseDynamics& dynamics)
+    : dynamics_(dynamics), forces_(joint_force_columns(dynamics)), count_(dynamics_columns(dynamics).size()) {}
+
+void DynamicsRows::fill(const Sample& sample, const DynamicsResult& result, double* out, std::ptrdiff_t stride) const {
+  fill_dynamics_row(dynamics_.mechanism(), forces_, sample, result, out, stride);
+}
+
 void append_dynamics_columns(const InverseDynamics& dynamics, const SweepResult& sweep,
                              const std::vector<DynamicsResult>& results, ResultTable& table) {
   const std::size_t first = table.columns.size();

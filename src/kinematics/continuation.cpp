@@ -24,14 +24,17 @@ void predict(const Eigen::MatrixXd& series, double h, Eigen::VectorXd& q) {
 }
 
 // Simplified Newton with the factorisation of the last accepted point; it never destroys
-// that factorisation, so a failed step can be retried shorter.
-bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, const Eigen::VectorXd& q_pred) {
+// that factorisation, so a failed step can be retried shorter. On success `residual` is the
+// largest |Phi| at the point found.
+bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, const Eigen::VectorXd& q_pred,
+             double& residual) {
   const double tol = mech.tolerance();
   const double motion = (q_pred - q_old).lpNorm<Eigen::Infinity>();
   const double allowed = std::max(kMaxCorrectionRatio * motion, 100.0 * tol);
   double previous = std::numeric_limits<double>::infinity();
   for (int it = 0; it <= kMaxCorrections; ++it) {
-    if (max_residual(mech, state) <= tol) return true;
+    residual = max_residual(mech, state);
+    if (residual <= tol) return true;
     if (it == kMaxCorrections) return false;
     state.rhs = -state.phi;
     state.solver().solve(state.rhs, state.dq);
@@ -57,6 +60,10 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
   Eigen::VectorXd& q_pred = state.q_predicted;
   q_old = state.q;
   int sign_old = state.solver().determinant_sign();
+  // The residual at the last accepted point, as correct() found it there (with the drivers
+  // where they are now): computing it again at the end would give the same number.
+  double residual = 0.0;
+  bool residual_known = false;
 
   while (true) {
     const double remaining = p_end - state.parameter;
@@ -67,7 +74,9 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
     path(state.parameter + h, options.terms, values);
     set_drivers(mech, state, values);
     state.q = q_pred;
-    bool ok = correct(mech, state, q_old, q_pred) && factorize_jacobian(mech, state, state.spare_solver());
+    double trial_residual = 0.0;
+    bool ok = correct(mech, state, q_old, q_pred, trial_residual) &&
+              factorize_jacobian(mech, state, state.spare_solver());
     bool crossing = false;
     if (ok) {
       const int sign_new = state.spare_solver().determinant_sign();
@@ -82,6 +91,8 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
       compute_series(mech, state, options.terms);
       sign_old = state.solver().determinant_sign();
       q_old = state.q;
+      residual = trial_residual;
+      residual_known = true;
       ++report.steps;
       if (crossing) {
         report.passed_singularity = true;
@@ -108,7 +119,7 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
       return report;
     }
   }
-  state.residual = max_residual(mech, state);
+  state.residual = residual_known ? residual : max_residual(mech, state);
   report.reached = true;
   return report;
 }

@@ -42,6 +42,7 @@ LinearSolver::LinearSolver(const Mechanism& mech)
   } else {
     dense_.resize(rows_, cols_);
   }
+  small_ = method_ == Method::DenseLU && rows_ == cols_ && cols_ <= kSmallLimit;
 }
 
 LinearSolver::LinearSolver(const LinearSolver& other)
@@ -51,6 +52,9 @@ LinearSolver::LinearSolver(const LinearSolver& other)
       pattern_(other.pattern_),
       dense_(other.dense_),
       lu_(other.lu_),
+      small_(other.small_),
+      small_lu_(other.small_lu_),
+      small_row_(other.small_row_),
       cod_(other.cod_),
       sparse_(other.sparse_),
       value_slot_(other.value_slot_),
@@ -71,6 +75,9 @@ LinearSolver& LinearSolver::operator=(const LinearSolver& other) {
   pattern_ = other.pattern_;
   dense_ = other.dense_;
   lu_ = other.lu_;
+  small_ = other.small_;
+  small_lu_ = other.small_lu_;
+  small_row_ = other.small_row_;
   cod_ = other.cod_;
   sparse_ = other.sparse_;
   value_slot_ = other.value_slot_;
@@ -91,6 +98,7 @@ LinearSolver& LinearSolver::operator=(const LinearSolver& other) {
 bool LinearSolver::factorize(const std::vector<double>& values) {
   switch (method_) {
     case Method::DenseLU: {
+      if (small_) return factorize_small_from(values);
       dense_.setZero();
       for (std::size_t e = 0; e < pattern_.size(); ++e) dense_(pattern_[e].row, pattern_[e].col) += values[e];
       lu_.compute(dense_);
@@ -144,6 +152,10 @@ bool LinearSolver::factorize(const std::vector<double>& values) {
 void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   switch (method_) {
     case Method::DenseLU:
+      if (small_) {
+        solve_small(b, x);
+        return;
+      }
       // In place: Eigen's solve() allocates temporaries, and this runs several times a step.
       x.resize(b.size());
       x.noalias() = lu_.permutationP() * b;
@@ -156,6 +168,104 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     case Method::LeastSquares:
       x = cod_.solve(b);
       return;
+  }
+}
+
+bool LinearSolver::factorize_small_from(const std::vector<double>& values) {
+  const int n = cols_;
+  double* a = small_lu_.data();  // column-major, leading dimension n
+  std::fill(a, a + n * n, 0.0);
+  for (std::size_t e = 0; e < pattern_.size(); ++e) a[pattern_[e].col * n + pattern_[e].row] += values[e];
+  // Eigen's unblocked_lu: pivot on the first largest |a| of the column, swap whole rows, divide
+  // the column below the pivot by it, subtract the outer product from the corner.
+  std::array<int, kSmallLimit> transposition{};
+  int swaps = 0;
+  bool zero_pivot = false;
+  for (int k = 0; k < n; ++k) {
+    int pivot = k;
+    double biggest = std::abs(a[k * n + k]);
+    for (int i = k + 1; i < n; ++i)
+      if (std::abs(a[k * n + i]) > biggest) {
+        biggest = std::abs(a[k * n + i]);
+        pivot = i;
+      }
+    transposition[k] = pivot;
+    if (biggest != 0.0) {
+      if (pivot != k) {
+        for (int j = 0; j < n; ++j) std::swap(a[j * n + k], a[j * n + pivot]);
+        ++swaps;
+      }
+      const double diagonal = a[k * n + k];
+      for (int i = k + 1; i < n; ++i) a[k * n + i] /= diagonal;
+    } else {
+      zero_pivot = true;
+    }
+    for (int j = k + 1; j < n; ++j) {
+      const double u = a[j * n + k];
+      for (int i = k + 1; i < n; ++i) a[j * n + i] -= a[k * n + i] * u;
+    }
+  }
+  // The permutation the transpositions make: row i of P b is b[small_row_[i]].
+  for (int i = 0; i < n; ++i) small_row_[i] = i;
+  for (int k = 0; k < n; ++k) std::swap(small_row_[k], small_row_[transposition[k]]);
+  int sign = swaps % 2 == 0 ? 1 : -1;
+  double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double d = a[i * n + i];
+    sign *= d < 0 ? -1 : 1;
+    smallest = std::min(smallest, std::abs(d));
+    largest = std::max(largest, std::abs(d));
+  }
+  det_sign_ = sign;
+  const double pivot_ratio = largest > 0.0 ? smallest / largest : 0.0;
+  if (pivot_ratio > 1e-6 && !zero_pivot) {
+    rcond_ = pivot_ratio;
+  } else {
+    // Near singular: Eigen's condition estimate, as the general path makes it.
+    dense_.setZero();
+    for (std::size_t e = 0; e < pattern_.size(); ++e) dense_(pattern_[e].row, pattern_[e].col) += values[e];
+    lu_.compute(dense_);
+    rcond_ = lu_.rcond();
+  }
+  return std::isfinite(rcond_) && rcond_ > kSingularRcond;
+}
+
+namespace {
+
+// Forward and back substitution with the size known at compile time: fully unrolled, the
+// values in registers (through memory, each scalar store followed by a vector load of it
+// stalls). Eigen's triangular_solve_vector within one panel: column by column, skipping zeros.
+template <int N>
+void substitute(const double* lu, const int* row, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  double v[N];
+  for (int i = 0; i < N; ++i) v[i] = b[row[i]];
+  for (int i = 0; i < N; ++i) {
+    if (v[i] == 0.0) continue;
+    for (int j = i + 1; j < N; ++j) v[j] -= v[i] * lu[i * N + j];
+  }
+  for (int i = N - 1; i >= 0; --i) {
+    if (v[i] == 0.0) continue;
+    v[i] /= lu[i * N + i];
+    for (int j = 0; j < i; ++j) v[j] -= v[i] * lu[i * N + j];
+  }
+  for (int i = 0; i < N; ++i) x[i] = v[i];
+}
+
+}  // namespace
+
+void LinearSolver::solve_small(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  x.resize(cols_);
+  const double* lu = small_lu_.data();
+  const int* row = small_row_.data();
+  switch (cols_) {
+    case 1: return substitute<1>(lu, row, b, x);
+    case 2: return substitute<2>(lu, row, b, x);
+    case 3: return substitute<3>(lu, row, b, x);
+    case 4: return substitute<4>(lu, row, b, x);
+    case 5: return substitute<5>(lu, row, b, x);
+    case 6: return substitute<6>(lu, row, b, x);
+    case 7: return substitute<7>(lu, row, b, x);
+    case 8: return substitute<8>(lu, row, b, x);
   }
 }
 

@@ -16,7 +16,7 @@ double factorial(int k) {
   return f;
 }
 
-SweepPath plan_from_to(const Mechanism& mech, int samples, SweepPath plan) {
+SweepPath plan_from_to(const Mechanism& mech, int samples, SweepPath plan, bool tabulate) {
   const Model& m = mech.model();
   const int nd = static_cast<int>(m.drivers.size());
   plan.delta.resize(nd);
@@ -31,13 +31,17 @@ SweepPath plan_from_to(const Mechanism& mech, int samples, SweepPath plan) {
                    std::abs(plan.speed[d] * delta[0] - plan.speed[0] * delta[d]) <=
                        1e-12 * std::abs(plan.speed[0] * delta[0]) + 1e-300;
   }
-  const double time_per_fraction = nd > 0 && delta[0] != 0.0 ? delta[0] / plan.speed[0] : 0.0;
-  for (int i = 0; i < samples; ++i) {
-    const double fraction = samples > 1 ? static_cast<double>(i) / (samples - 1) : 0.0;
-    plan.times.push_back(fraction * time_per_fraction);
-    plan.parameters.push_back(proportional ? fraction * time_per_fraction : fraction);
-  }
+  plan.fraction_time = nd > 0 && delta[0] != 0.0 ? delta[0] / plan.speed[0] : 0.0;
+  plan.samples = static_cast<std::size_t>(samples);
   plan.parameter_is_time = proportional;
+  if (tabulate) {
+    plan.times.reserve(plan.samples);
+    plan.parameters.reserve(plan.samples);
+    for (std::size_t i = 0; i < plan.samples; ++i) {
+      plan.times.push_back(plan.sample_time(i));
+      plan.parameters.push_back(plan.sample_parameter(i));
+    }
+  }
   if (proportional) {
     plan.drivers = [from = plan.from, speed = plan.speed](double t, int terms, std::vector<Series>& out) {
       out.resize(from.size());
@@ -72,15 +76,20 @@ DriverPath motion_in_time(const Model& m, std::vector<double> from) {
   };
 }
 
-SweepPath plan_time_law(const Mechanism& mech, std::optional<int> steps, SweepPath plan) {
+SweepPath plan_time_law(const Mechanism& mech, std::optional<int> steps, SweepPath plan, bool tabulate) {
   const Model& m = mech.model();
   const double duration = m.sweep.duration;
   // check_sample_count (in sweep_path) has bounded the count.
   const int samples = static_cast<int>(sweep_sample_count(m, steps));
-  const double dt = m.sweep.time_step && !steps ? *m.sweep.time_step : (samples > 1 ? duration / (samples - 1) : 0.0);
-  for (int i = 0; i < samples; ++i) {
-    plan.parameters.push_back(i * dt);
-    plan.times.push_back(i * dt);
+  plan.time_step = m.sweep.time_step && !steps ? *m.sweep.time_step : (samples > 1 ? duration / (samples - 1) : 0.0);
+  plan.samples = static_cast<std::size_t>(samples);
+  if (tabulate) {
+    plan.times.reserve(plan.samples);
+    plan.parameters.reserve(plan.samples);
+    for (std::size_t i = 0; i < plan.samples; ++i) {
+      plan.parameters.push_back(plan.sample_parameter(i));
+      plan.times.push_back(plan.sample_time(i));
+    }
   }
   plan.drivers = motion_in_time(m, plan.from);
   return plan;
@@ -101,14 +110,20 @@ void time_drivers(const Mechanism& mech, const std::vector<double>& values, cons
 
 // A Sample of the pose in `state` (solved, its Jacobian factorised), with the Taylor
 // coefficients in time for the drivers moving as `drivers` says.
+void fill_sample(const Mechanism& mech, State& state, int step, double time, const std::vector<DriverState>& drivers,
+                 int terms, Sample& s) {
+  s.step = step;
+  s.time = time;
+  s.driver_values.resize(state.drivers.size());
+  for (std::size_t d = 0; d < state.drivers.size(); ++d) s.driver_values[d] = state.drivers[d].value.value();
+  compute_series(mech, state, drivers, terms, s.taylor);
+  s.residual = state.residual;
+}
+
 Sample make_sample(const Mechanism& mech, State& state, int step, double time, const std::vector<DriverState>& drivers,
                    int terms) {
   Sample s;
-  s.step = step;
-  s.time = time;
-  for (const DriverState& d : state.drivers) s.driver_values.push_back(d.value.value());
-  compute_series(mech, state, drivers, terms, s.taylor);
-  s.residual = state.residual;
+  fill_sample(mech, state, step, time, drivers, terms, s);
   return s;
 }
 
@@ -140,7 +155,7 @@ double sweep_sample_count(const Model& m, std::optional<int> steps) {
   return std::floor(m.sweep.duration / dt + 1e-9) + 1;
 }
 
-SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps, int max_steps) {
+SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps, int max_steps, bool tabulate) {
   const Model& m = mech.model();
   check_sample_count(m, steps, max_steps);
   const int nd = static_cast<int>(m.drivers.size());
@@ -155,8 +170,8 @@ SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps, int max_st
     plan.accel[d] = m.drivers[d].accel;
   }
   plan.time_law = m.has_time_law();
-  if (plan.time_law) return plan_time_law(mech, steps, std::move(plan));
-  return plan_from_to(mech, steps.value_or(m.sweep.steps), std::move(plan));
+  if (plan.time_law) return plan_time_law(mech, steps, std::move(plan), tabulate);
+  return plan_from_to(mech, steps.value_or(m.sweep.steps), std::move(plan), tabulate);
 }
 
 void check_sample_count(const Model& m, std::optional<int> steps, int max_steps) {
@@ -188,15 +203,26 @@ double SweepPath::parameter_of(double value) const {
   return parameter_is_time ? fraction * (delta[0] / speed[0]) : fraction;
 }
 
+double SweepPath::sample_time(std::size_t i) const {
+  if (time_law) return static_cast<double>(static_cast<int>(i)) * time_step;
+  const double fraction = samples > 1 ? static_cast<double>(static_cast<int>(i)) / static_cast<int>(samples - 1) : 0.0;
+  return fraction * fraction_time;
+}
+
+double SweepPath::sample_parameter(std::size_t i) const {
+  if (time_law || parameter_is_time) return sample_time(i);
+  return samples > 1 ? static_cast<double>(static_cast<int>(i)) / static_cast<int>(samples - 1) : 0.0;
+}
+
 double SweepPath::time_at(double p) const {
   if (time_law || parameter_is_time) return p;
   return !from.empty() && delta[0] != 0.0 ? p * (delta[0] / speed[0]) : 0.0;
 }
 
-std::vector<double> sweep_start_values(const Mechanism& mech) {
+std::vector<double> sweep_start_values(const Mechanism& mech, int max_steps) {
   // The start is the same whatever the number of samples: plan one, after checking the
   // model's own count, so that an oversized sweep is reported here too.
-  check_sample_count(mech.model(), std::nullopt);
+  check_sample_count(mech.model(), std::nullopt, max_steps);
   const SweepPath plan = sweep_path(mech, 1);
   std::vector<Series> values;
   plan.drivers(plan.parameters.front(), 1, values);
@@ -221,14 +247,19 @@ class BranchWatch {
       watched_.push_back(classify_grashof(loop, points, mech.tolerance()).kind != GrashofClass::ChangePoint);
     }
   }
-  void check(const Eigen::VectorXd& q, int step, const std::string& where, SweepResult& result) {
-    const auto points = point_positions(mech_, q);
+  // `where` is called only for a warning.
+  template <class Where>
+  void check(const Eigen::VectorXd& q, int step, const Where& where, SweepResult& result) {
     const auto& loops = mech_.four_bar_loops();
+    if (loops.empty()) return;
+    points_.resize(mech_.model().points.size());
+    for (std::size_t i = 0; i < points_.size(); ++i) points_[i] = mech_.point_position(static_cast<int>(i), q);
+    const auto& points = points_;
     for (std::size_t l = 0; l < loops.size(); ++l) {
       const int sign = branch_sign(loops[l], points);
       if (watched_[l] && sign != signs_[l])
         result.warnings.push_back({"branch_changed", step,
-                                   "four-bar loop " + loops[l].name + " changed branch " + where + " (now " +
+                                   "four-bar loop " + loops[l].name + " changed branch " + where() + " (now " +
                                        branch_name(sign) + ")"});
       signs_[l] = sign;
     }
@@ -238,6 +269,7 @@ class BranchWatch {
   const Mechanism& mech_;
   std::vector<int> signs_;
   std::vector<bool> watched_;
+  std::vector<Eigen::Vector2d> points_;  // reused from sample to sample
 };
 
 // A driver distance that reaches zero (relative to the model's size) stops the sweep: the
@@ -295,12 +327,17 @@ constexpr std::size_t kControlInterval = 16;
 }  // namespace
 
 SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control) {
+  return run_sweep(mech, options, control, nullptr);
+}
+
+SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control,
+                      const SampleSink& sink) {
   if (options.order < 0 || options.order > 5)
     throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
   const Model& m = mech.model();
   const int nd = static_cast<int>(m.drivers.size());
-  const SweepPath plan = sweep_path(mech, options.steps, options.max_steps);
-  const std::size_t samples = plan.parameters.size();
+  const SweepPath plan = sweep_path(mech, options.steps, options.max_steps, false);
+  const std::size_t samples = plan.samples;
   control.checkpoint("sweep", 0, static_cast<long>(samples));
   SweepResult result;
   result.order = options.order;
@@ -309,43 +346,46 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
   track_options.terms = plan.parameter_is_time ? std::max(4, terms_out) : 4;
 
   std::vector<Series> values;
-  plan.drivers(plan.parameters.front(), 1, values);
+  plan.drivers(plan.sample_parameter(0), 1, values);
   std::vector<double> start(nd);
   for (int d = 0; d < nd; ++d) start[d] = values[d].value();
 
   State state(mech);
   result.assembly = assemble(mech, state, start);
-  state.parameter = plan.parameters.front();
+  state.parameter = plan.sample_parameter(0);
   plan.drivers(state.parameter, track_options.terms, values);
   set_drivers(mech, state, values);
   compute_series(mech, state, track_options.terms);
   BranchWatch branches(mech, state.q, result);
 
   std::vector<DriverState> drivers_in_time(nd);
+  std::vector<double> now(nd);
+  Sample streamed;  // a sink's sample, reused: its buffers are allocated once
   auto record = [&](int i) {
+    Sample& s = sink ? streamed : result.samples.emplace_back();
     if (plan.parameter_is_time) {
       // The tracker's series is already in time.
-      Sample s;
       s.step = i;
-      s.time = plan.times[i];
-      for (int d = 0; d < nd; ++d) s.driver_values.push_back(state.drivers[d].value.value());
+      s.time = plan.sample_time(i);
+      s.driver_values.resize(nd);
+      for (int d = 0; d < nd; ++d) s.driver_values[d] = state.drivers[d].value.value();
       s.taylor = state.series.leftCols(terms_out);
       s.residual = state.residual;
-      result.samples.push_back(std::move(s));
     } else {
-      std::vector<double> now(nd);
       for (int d = 0; d < nd; ++d) now[d] = state.drivers[d].value.value();
       time_drivers(mech, now, plan.speed, plan.accel, terms_out, drivers_in_time);
-      result.samples.push_back(make_sample(mech, state, i, plan.times[i], drivers_in_time, terms_out));
+      fill_sample(mech, state, i, plan.sample_time(i), drivers_in_time, terms_out, s);
     }
-    check_finite(mech, result.samples.back(), plan.parameter_is_time ? state.drivers : drivers_in_time);
-    result.max_residual = std::max(result.max_residual, result.samples.back().residual);
+    check_finite(mech, s, plan.parameter_is_time ? state.drivers : drivers_in_time);
+    result.max_residual = std::max(result.max_residual, s.residual);
+    ++result.solved;
+    if (sink) sink(s);
   };
   record(0);
 
   for (std::size_t i = 1; i < samples; ++i) {
     if (i % kControlInterval == 0) control.checkpoint("sweep", static_cast<long>(i), static_cast<long>(samples));
-    const double p = plan.parameters[i];
+    const double p = plan.sample_parameter(i);
     // Built only for a warning or a stop: formatting it every step costs a third of a step.
     auto where = [i] { return "between steps " + std::to_string(i - 1) + " and " + std::to_string(i); };
     try {
@@ -375,7 +415,7 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
       return result;
     }
     record(static_cast<int>(i));
-    branches.check(state.q, static_cast<int>(i), where(), result);
+    branches.check(state.q, static_cast<int>(i), where, result);
   }
   return result;
 }

@@ -26,95 +26,88 @@ double unwrap(double angle, double reference) {
   return angle + two_pi * std::round((reference - angle) / two_pi);
 }
 
-// Names the kinematic columns and fills them sample by sample, in the order the samples come
-// (the angles are unwrapped against the sample before), writing value j of a row at
-// out[j * stride]: stride 1 fills a row, stride = samples a column-major matrix. Nothing is
-// allocated per sample.
-class KinematicRows {
- public:
-  KinematicRows(const Mechanism& mech, const SweepResult& sweep) : mech_(mech), order_(sweep.order) {
-    const Model& m = mech.model();
-    for (std::size_t b = 0; b < m.bodies.size(); ++b)
-      if (m.bodies[b].points.size() >= 2) angled_.push_back(static_cast<int>(b));
+}  // namespace
+
+KinematicRows::KinematicRows(const Mechanism& mech, int order) : mech_(mech), order_(order) {
+  const Model& m = mech.model();
+  for (std::size_t b = 0; b < m.bodies.size(); ++b)
+    if (m.bodies[b].points.size() >= 2) angled_.push_back(static_cast<int>(b));
+  previous_.assign(m.bodies.size(), 0.0);
+  started_.assign(m.bodies.size(), false);
+  positions_.resize(m.points.size());
+}
+
+void KinematicRows::name_columns(std::vector<std::string>& columns, std::vector<std::string>& units) const {
+  const Model& m = mech_.model();
+  const Units& u = m.units;
+  auto add = [&](std::string name, std::string unit) {
+    columns.push_back(std::move(name));
+    units.push_back(std::move(unit));
+  };
+  add("step", "");
+  add("t", "s");
+  for (const Driver& d : m.drivers) add(d.name, d.is_angular() ? u.angle : u.length);
+  for (const Point& p : m.points)
+    for (int k = 0; k <= order_; ++k) {
+      add(p.name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
+      add(p.name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
+    }
+  for (int b : angled_)
+    for (int k = 0; k <= order_; ++k) add(m.bodies[b].name + "." + kAngleName[k], per_time(u.angle, k));
+  for (const FourBarLoop& loop : mech_.four_bar_loops()) add(loop.name + ".mu", u.angle);
+}
+
+std::size_t KinematicRows::column_count() const {
+  const Model& m = mech_.model();
+  return 2 + m.drivers.size() + 2 * (order_ + 1) * m.points.size() + (order_ + 1) * angled_.size() +
+         mech_.four_bar_loops().size();
+}
+
+void KinematicRows::fill(const Sample& s, double* out, std::ptrdiff_t stride) {
+  const Model& m = mech_.model();
+  const Units& u = m.units;
+  if (!first_done_) {
     // A body driven by an absolute angle starts at its driver's value, not at atan2's range.
-    previous_.assign(m.bodies.size(), 0.0);
-    started_.assign(m.bodies.size(), false);
     for (std::size_t d = 0; d < m.drivers.size(); ++d) {
       const Driver& drv = m.drivers[d];
-      if (drv.kind == DriverKind::Angle && drv.relative_to < 0 && !sweep.samples.empty()) {
-        previous_[drv.body] = sweep.samples.front().driver_values[d];
+      if (drv.kind == DriverKind::Angle && drv.relative_to < 0) {
+        previous_[drv.body] = s.driver_values[d];
         started_[drv.body] = true;
       }
     }
-    positions_.resize(m.points.size());
+    first_done_ = true;
   }
-
-  void name_columns(std::vector<std::string>& columns, std::vector<std::string>& units) const {
-    const Model& m = mech_.model();
-    const Units& u = m.units;
-    auto add = [&](std::string name, std::string unit) {
-      columns.push_back(std::move(name));
-      units.push_back(std::move(unit));
-    };
-    add("step", "");
-    add("t", "s");
-    for (const Driver& d : m.drivers) add(d.name, d.is_angular() ? u.angle : u.length);
-    for (const Point& p : m.points)
-      for (int k = 0; k <= order_; ++k) {
-        add(p.name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
-        add(p.name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
-      }
-    for (int b : angled_)
-      for (int k = 0; k <= order_; ++k) add(m.bodies[b].name + "." + kAngleName[k], per_time(u.angle, k));
-    for (const FourBarLoop& loop : mech_.four_bar_loops()) add(loop.name + ".mu", u.angle);
-  }
-
-  void fill(const Sample& s, double* out, std::ptrdiff_t stride) {
-    const Model& m = mech_.model();
-    const Units& u = m.units;
-    std::ptrdiff_t j = 0;
-    auto put = [&](double v) { out[stride * j++] = v; };
-    put(s.step);
-    put(s.time);
-    for (std::size_t d = 0; d < m.drivers.size(); ++d)
-      put(s.driver_values[d] / (m.drivers[d].is_angular() ? u.angle_scale : u.length_scale));
-    std::array<double, Series::kCapacity> x{}, y{};
-    for (std::size_t p = 0; p < m.points.size(); ++p) {
-      point_derivatives(mech_, s, static_cast<int>(p), x.data(), y.data());
-      for (int k = 0; k <= order_; ++k) {
-        put(x[k] / u.length_scale);
-        put(y[k] / u.length_scale);
-      }
-    }
-    for (int b : angled_) {
-      body_angle_derivatives(mech_, s, b, x.data());
-      x[0] = started_[b] ? unwrap(x[0], previous_[b]) : x[0];
-      previous_[b] = x[0];
-      started_[b] = true;
-      for (int k = 0; k <= order_; ++k) put(x[k] / u.angle_scale);
-    }
-    if (!mech_.four_bar_loops().empty()) {
-      const Eigen::VectorXd& q = s.taylor.col(0);
-      for (std::size_t i = 0; i < positions_.size(); ++i) positions_[i] = mech_.point_position(static_cast<int>(i), q);
-      for (const FourBarLoop& loop : mech_.four_bar_loops())
-        put(transmission_angle(loop, positions_) / u.angle_scale);
+  std::ptrdiff_t j = 0;
+  auto put = [&](double v) { out[stride * j++] = v; };
+  put(s.step);
+  put(s.time);
+  for (std::size_t d = 0; d < m.drivers.size(); ++d)
+    put(s.driver_values[d] / (m.drivers[d].is_angular() ? u.angle_scale : u.length_scale));
+  std::array<double, Series::kCapacity> x{}, y{};
+  for (std::size_t p = 0; p < m.points.size(); ++p) {
+    point_derivatives(mech_, s, static_cast<int>(p), x.data(), y.data());
+    for (int k = 0; k <= order_; ++k) {
+      put(x[k] / u.length_scale);
+      put(y[k] / u.length_scale);
     }
   }
-
- private:
-  const Mechanism& mech_;
-  int order_;
-  std::vector<int> angled_;
-  std::vector<double> previous_;
-  std::vector<bool> started_;
-  std::vector<Eigen::Vector2d> positions_;
-};
-
-}  // namespace
+  for (int b : angled_) {
+    body_angle_derivatives(mech_, s, b, x.data());
+    x[0] = started_[b] ? unwrap(x[0], previous_[b]) : x[0];
+    previous_[b] = x[0];
+    started_[b] = true;
+    for (int k = 0; k <= order_; ++k) put(x[k] / u.angle_scale);
+  }
+  if (!mech_.four_bar_loops().empty()) {
+    q_ = s.taylor.col(0);
+    for (std::size_t i = 0; i < positions_.size(); ++i) positions_[i] = mech_.point_position(static_cast<int>(i), q_);
+    for (const FourBarLoop& loop : mech_.four_bar_loops()) put(transmission_angle(loop, positions_) / u.angle_scale);
+  }
+}
 
 ResultTable make_table(const Mechanism& mech, const SweepResult& sweep) {
   ResultTable t;
-  KinematicRows rows(mech, sweep);
+  KinematicRows rows(mech, sweep.order);
   rows.name_columns(t.columns, t.units);
   t.rows.reserve(sweep.samples.size());
   for (const Sample& s : sweep.samples) {
@@ -127,7 +120,7 @@ ResultTable make_table(const Mechanism& mech, const SweepResult& sweep) {
 
 ColumnTable make_column_table(const Mechanism& mech, const SweepResult& sweep) {
   ColumnTable t;
-  KinematicRows rows(mech, sweep);
+  KinematicRows rows(mech, sweep.order);
   rows.name_columns(t.columns, t.units);
   const auto samples = static_cast<std::ptrdiff_t>(sweep.samples.size());
   t.values.resize(samples, static_cast<Eigen::Index>(t.columns.size()));
@@ -214,8 +207,6 @@ std::string no_column_message(const std::string& pattern, const std::vector<std:
   return message;
 }
 
-namespace {
-
 // Which columns the patterns pick, in the order of the patterns, each once.
 std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns, const std::vector<std::string>& patterns) {
   std::vector<std::size_t> picked;
@@ -230,8 +221,6 @@ std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns, c
   }
   return picked;
 }
-
-}  // namespace
 
 ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns) {
   const std::vector<std::size_t> picked = pick_columns(table.columns, patterns);

@@ -6,6 +6,7 @@
 #include "nbar/synthesis/fourbar_design.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -50,6 +51,7 @@ struct FourBar {
   Vector2d o2, o4, a0, b0, p0;
   double a = 0, b = 0, c = 0, d = 0;  // input, coupler, output, frame
   double frame_angle = 0;
+  double coupler_angle0 = 0;    // of the coupler, A to B, in the first position
   double size = 0;              // for tolerances
   std::vector<double> toggles;  // input angles in [0, 2 pi) where coupler and output fold in line
 
@@ -60,6 +62,7 @@ struct FourBar {
     c = (b0 - o4).norm();
     d = (o4 - o2).norm();
     frame_angle = angle_of(o4 - o2);
+    coupler_angle0 = angle_of(b0 - a0);
     size = std::max({a, b, c, d, (p0 - a0).norm()});
     // |A - O4|^2 = a^2 + d^2 - 2ad cos(theta - frame_angle) reaches (b + c)^2 or (b - c)^2.
     for (double fold : {b + c, std::abs(b - c)}) {
@@ -87,7 +90,7 @@ struct FourBar {
     if (f > b + c || f < std::abs(b - c) || f == 0.0) return std::nullopt;
     const double cos_alpha = std::clamp((b * b + f * f - c * c) / (2.0 * b * f), -1.0, 1.0);
     pose.b = pose.a + b * rotate(diagonal / f, sigma * std::acos(cos_alpha));
-    pose.rotation = angle_of(pose.b - pose.a) - angle_of(b0 - a0);
+    pose.rotation = angle_of(pose.b - pose.a) - coupler_angle0;
     pose.p = pose.a + rotate(p0 - a0, pose.rotation);
     return pose;
   }
@@ -159,17 +162,39 @@ std::pair<double, double> golden_minimum(const std::function<double(double)>& f,
   return f1 <= f2 ? std::pair{x1, f1} : std::pair{x2, f2};
 }
 
+// The coupler curve sampled once per design on both branches, a quarter degree apart (finer
+// than any feature of a sane coupler curve), shared by every target's search.
+struct CurveSamples {
+  static constexpr int kSamples = 1440;
+  explicit CurveSamples(const FourBar& fb) {
+    for (int s = 0; s < 2; ++s) {
+      points[s].resize(kSamples);
+      assembles[s].resize(kSamples);
+      for (int k = 0; k < kSamples; ++k) {
+        const auto pose = fb.pose(kTwoPi * k / kSamples, s == 0 ? 1 : -1);
+        assembles[s][k] = pose.has_value();
+        if (pose) points[s][k] = pose->p;
+      }
+    }
+  }
+  std::array<std::vector<Vector2d>, 2> points;  // [0]: branch sigma = 1, [1]: sigma = -1
+  std::array<std::vector<char>, 2> assembles;
+};
+
 // Every pose whose coupler point is on `target` (within `tolerance`), or the nearest one.
-std::vector<Placement> path_placements(const FourBar& fb, const Vector2d& target, double tolerance) {
-  constexpr int kSamples = 1440;  // a quarter degree: finer than any feature of a sane coupler curve
+std::vector<Placement> path_placements(const FourBar& fb, const CurveSamples& curve, const Vector2d& target,
+                                       double tolerance) {
+  constexpr int kSamples = CurveSamples::kSamples;
   std::vector<Placement> found;
+  std::vector<double> sampled(kSamples);
   for (int sigma : {1, -1}) {
     const auto distance = [&](double theta) {
       const auto pose = fb.pose(theta, sigma);
       return pose ? (pose->p - target).norm() : kInfinity;
     };
-    std::vector<double> sampled(kSamples);
-    for (int k = 0; k < kSamples; ++k) sampled[k] = distance(kTwoPi * k / kSamples);
+    const int s = sigma == 1 ? 0 : 1;
+    for (int k = 0; k < kSamples; ++k)
+      sampled[k] = curve.assembles[s][k] ? (curve.points[s][k] - target).norm() : kInfinity;
     for (int k = 0; k < kSamples; ++k) {
       const double here = sampled[k];
       if (!std::isfinite(here) || here > sampled[(k + kSamples - 1) % kSamples] || here > sampled[(k + 1) % kSamples])
@@ -453,12 +478,14 @@ bool DesignCheck::unreached() const {
 
 DesignCheck check_design(const FourBarDesign& design, const std::vector<Target>& targets, const CheckOptions& options) {
   const FourBar fb(design);
+  std::optional<CurveSamples> curve;  // sampled at the first target on the path
   TargetRules rules;
   rules.count = static_cast<int>(targets.size());
   rules.place = [&](int i) {
     const Target& t = targets[i];
-    return t.rotation ? motion_placement(fb, t.point, *t.rotation)
-                      : path_placements(fb, t.point, options.match_tolerance * fb.size);
+    if (t.rotation) return motion_placement(fb, t.point, *t.rotation);
+    if (!curve) curve.emplace(fb);
+    return path_placements(fb, *curve, t.point, options.match_tolerance * fb.size);
   };
   rules.measure = [&](int i, const EnginePose& pose) {
     const Target& t = targets[i];

@@ -6,7 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <optional>
 #include <stdexcept>
+#include <thread>
 
 #include "nbar/synthesis/five_point.hpp"
 #include "nbar/synthesis/function_generation.hpp"
@@ -36,14 +41,42 @@ namespace {
 using Row = DesignRow;
 using Outcome = SynthesisOutcome;
 
-void check_rows(Outcome& out, const std::function<DesignCheck(const FourBarDesign&)>& check, const RunControl& control) {
-  int done = 0;
+// Every real design checked, on `threads` threads (0: every hardware thread): each check is
+// independent of the others and writes only its own row, so the outcome is the same whatever
+// the number of threads. Workers take rows in turn and stop at the first checkpoint that says
+// to; its error is thrown once every worker has stopped.
+void check_rows(Outcome& out, const std::function<DesignCheck(const FourBarDesign&)>& check, const RunControl& control,
+                unsigned threads) {
   const int total = static_cast<int>(out.rows.size());
-  for (Row& row : out.rows) {
-    control.checkpoint("checking", done, total);
-    if (row.real) row.check = check(row.design);
-    ++done;
-  }
+  std::atomic<int> next{0}, done{0};
+  std::atomic<bool> stop{false}, cancelled{false};
+  std::mutex mutex;
+  std::exception_ptr failure;  // a check that threw (out of memory): rethrown here
+  const auto work = [&] {
+    try {
+      for (int i = next++; i < total && !stop; i = next++) {
+        if (control.should_stop("checking", done, total)) {
+          cancelled = stop = true;
+          return;
+        }
+        Row& row = out.rows[i];
+        if (row.real) row.check = check(row.design);
+        ++done;
+      }
+    } catch (...) {
+      const std::lock_guard lock(mutex);
+      if (!failure) failure = std::current_exception();
+      stop = true;
+    }
+  };
+  unsigned n = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  n = std::min<unsigned>(n, static_cast<unsigned>(std::max(1, total)));
+  std::vector<std::thread> workers;
+  for (unsigned t = 1; t < n; ++t) workers.emplace_back(work);
+  work();
+  for (std::thread& w : workers) w.join();
+  if (failure) std::rethrow_exception(failure);
+  if (cancelled) control.throw_stopped("checking");
   control.checkpoint("checking", done, total);
 }
 
@@ -75,7 +108,7 @@ Outcome five_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
   std::vector<Target> targets;
   for (const Eigen::Vector2d& p : task.points) targets.push_back({p, std::nullopt});
   check_rows(
-      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control, run.threads);
   if (result.failed_paths > 0)
     out.notes.push_back(fmt::format("{} of {} paths failed", result.failed_paths, result.paths));
   return out;
@@ -188,7 +221,7 @@ Outcome burmester(const SynthesisTask& task, const SynthesisRunOptions& run) {
   std::vector<Target> targets;
   for (const BodyPose& p : poses) targets.push_back({p.point, p.angle - poses[0].angle});
   check_rows(
-      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control, run.threads);
   return out;
 }
 
@@ -230,7 +263,7 @@ Outcome function(const SynthesisTask& task, const SynthesisRunOptions& run) {
                                   std::abs(fd.worst.angle) / task.units.angle_scale, task.units.angle,
                                   std::abs(fd.worst.value), fd.worst.x));
   check_rows(
-      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control, run.threads);
   // Over the whole range of x, when the linkage gets there.
   // In the task's input angles (the design's input angle offset included).
   const double theta0 =

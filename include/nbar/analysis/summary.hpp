@@ -104,7 +104,8 @@ struct ModelSummary {
   std::vector<Warning> warnings;
 };
 
-// Never throws for a compiled mechanism: an assembly failure is kept in assembly_error.
-ModelSummary summarize(const Mechanism& mechanism);
+// Never throws for a compiled mechanism: an assembly failure is kept in assembly_error (also a
+// model sweep of more than `max_steps` samples, as every command that sweeps refuses it).
+ModelSummary summarize(const Mechanism& mechanism, int max_steps = kDefaultMaxSweepSamples);
 
 }  // namespace nbar

@@ -31,6 +31,20 @@ struct ColumnName {
 // potential energy (`energy.kinetic`, `energy.potential`).
 std::vector<ColumnName> dynamics_columns(const InverseDynamics& dynamics);
 
+// Those columns for one sample at a time (for writers that stream a sweep), value j at
+// out[j * stride].
+class DynamicsRows {
+ public:
+  explicit DynamicsRows(const InverseDynamics& dynamics);
+  std::size_t column_count() const { return count_; }
+  void fill(const Sample& sample, const DynamicsResult& result, double* out, std::ptrdiff_t stride = 1) const;
+
+ private:
+  const InverseDynamics& dynamics_;
+  std::vector<JointForceColumn> forces_;
+  std::size_t count_ = 0;
+};
+
 // Appends those columns to `table`, whose rows are the sweep's samples; `results[i]` is the
 // solution at sweep.samples[i].
 void append_dynamics_columns(const InverseDynamics& dynamics, const SweepResult& sweep,

@@ -14,6 +14,25 @@ namespace nbar::io {
 // Header line of column names, then one line per sample; values in the model's units.
 void write_csv(std::ostream& out, const ResultTable& table);
 
+// The same CSV written a row at a time, as rows come (TableStream): each number with 12
+// significant digits as printf's %.12g (std::to_chars), -0 written 0, into a buffer handed to
+// the stream in large blocks. write_csv writes with it, so both give the same bytes.
+class CsvWriter {
+ public:
+  CsvWriter(std::ostream& out, const std::vector<std::string>& columns);
+  ~CsvWriter();  // flushes
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+  void row(const double* values);
+  void flush();
+
+ private:
+  std::ostream& out_;
+  std::size_t columns_;
+  std::vector<char> buffer_;
+  std::size_t used_ = 0;
+};
+
 // Aligned columns for people reading a terminal, with a units line under the names. With a
 // line_width (characters, 0: no limit), a table wider than that is written as groups of
 // columns one under the other, each group led by the first column (step) and fitting the width.

@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -22,6 +23,12 @@ class LinearSolver {
 
   // Dense LU up to this many coordinates; above, sparse LU (measured crossover: about 40).
   static constexpr int kDenseLimit = 40;
+  // Up to this many coordinates the dense LU is factorised and solved by the loops below rather
+  // than by Eigen's general routines, whose set-up costs more than the arithmetic at this size.
+  // The loops do Eigen's operations in Eigen's order (unblocked partial-pivoting LU, and the
+  // triangular solves within one panel of EIGEN_TUNE_TRIANGULAR_PANEL_WIDTH = 8), so that the
+  // numbers are the same bit for bit.
+  static constexpr int kSmallLimit = 8;
 
   explicit LinearSolver(const Mechanism& mech);
   // A copy solves exactly as its source: it holds its own pattern, and a factorised sparse LU
@@ -45,10 +52,16 @@ class LinearSolver {
   std::vector<JacobianEntry> pattern_;  // a copy, so a State may outlive its Mechanism's storage
   Eigen::MatrixXd dense_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  bool small_ = false;                                   // the loops' LU, not lu_
+  std::array<double, kSmallLimit * kSmallLimit> small_lu_{};  // column-major, unit lower L and U
+  std::array<int, kSmallLimit> small_row_{};             // row i of P b is b[small_row_[i]]
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_;
   Eigen::SparseMatrix<double> sparse_;
   std::vector<int> value_slot_;  // pattern entry -> index into sparse_.valuePtr()
   Eigen::SparseLU<Eigen::SparseMatrix<double>> sparse_lu_;
+  bool factorize_small_from(const std::vector<double>& values);
+  void solve_small(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+
   bool pattern_analysed_ = false;
   bool sparse_factorized_ = false;
   int det_sign_ = 0;

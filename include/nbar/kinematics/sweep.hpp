@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,24 +50,38 @@ struct SweepResult {
   AssemblyReport assembly;
   std::vector<std::string> branches;   // each four-bar loop's branch at the start: open | crossed
   double max_residual = 0.0;
+  std::size_t solved = 0;              // samples solved: samples.size(), or those handed to a sink
 };
+
+// Receives every sample as the sweep solves it, in order. The sample is the sweep's scratch
+// space, valid only during the call: a sweep with a sink keeps no sample, so its memory does not
+// grow with the number of samples.
+using SampleSink = std::function<void(const Sample&)>;
 
 // Runs the whole sweep. Throws Error: CannotAssemble (an AssemblyError) when the start cannot be
 // assembled, BadInput for bad options, UndefinedLaw for a driver law undefined at the start,
 // Cancelled when `control` says so (checked between samples). A sweep that cannot go on stops
 // early and says why (complete is false).
 SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options = {}, const RunControl& control = {});
+// The same with every sample handed to `sink` instead of kept (result.samples stays empty).
+SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control,
+                      const SampleSink& sink);
 
 // Each driver's value at the start of the sweep (SI).
-std::vector<double> sweep_start_values(const Mechanism& mech);
+// Throws Error(InvalidModel) at the model's sweep when it has more than `max_steps` samples.
+std::vector<double> sweep_start_values(const Mechanism& mech, int max_steps = kDefaultMaxSweepSamples);
 
 // The path the sweep follows: the drivers as series in a tracking parameter, the parameter and
 // the time of every sample. Tracking from the start along `drivers` (assemble, then track)
 // stays on the branch the sweep takes.
 struct SweepPath {
   DriverPath drivers;
-  std::vector<double> parameters;  // of every sample
-  std::vector<double> times;       // s, of every sample
+  std::vector<double> parameters;  // of every sample (empty when planned untabulated)
+  std::vector<double> times;       // s, of every sample (empty when planned untabulated)
+  std::size_t samples = 0;         // how many
+  // The parameter and the time of sample i, the same numbers as parameters[i] and times[i].
+  double sample_parameter(std::size_t i) const;
+  double sample_time(std::size_t i) const;
   bool parameter_is_time = true;
   bool time_law = false;  // some driver follows a law in t: the parameter is the time
   std::vector<double> from, delta, speed, accel;  // per driver (SI), for from/to sweeps
@@ -76,6 +91,8 @@ struct SweepPath {
   double parameter_of(double value) const;
   // The time at parameter p.
   double time_at(double p) const;
+  double fraction_time = 0.0;  // from/to sweeps: the time the first driver takes over its range
+  double time_step = 0.0;      // time-law sweeps
 };
 // The number of samples sweep_path plans (`steps`, or the model's sweep: its steps, or for time
 // laws its duration over its time step, plus one). A double, so that a front-end can refuse an
@@ -84,8 +101,10 @@ double sweep_sample_count(const Model& model, std::optional<int> steps = std::nu
 // Throws Error(BadInput) for `steps` below one or above `max_steps`, and
 // Error(InvalidModel) about the model's sweep (EntityRef::Kind::Sweep) when the model's own
 // sweep has more than `max_steps` samples.
+// With `tabulate` false, parameters and times are left empty (sample_parameter and sample_time
+// give them): run_sweep's memory then does not grow with the number of samples.
 SweepPath sweep_path(const Mechanism& mech, std::optional<int> steps = std::nullopt,
-                     int max_steps = kDefaultMaxSweepSamples);
+                     int max_steps = kDefaultMaxSweepSamples, bool tabulate = true);
 // The check sweep_path makes of the number of samples, alone (nothing is allocated).
 void check_sample_count(const Model& model, std::optional<int> steps, int max_steps = kDefaultMaxSweepSamples);
 

@@ -27,6 +27,28 @@ struct ResultTable {
 // the transmission angle of every four-bar loop as <input>-<coupler>-<output>.mu.
 ResultTable make_table(const Mechanism& mech, const SweepResult& sweep);
 
+// Those columns for one sample at a time, handed the sweep's samples in order (each body's
+// angle is unwrapped against the sample before): what make_table fills its rows with, and what
+// writers use to stream a sweep that is not kept. Value j of a row goes to out[j * stride].
+// Nothing is allocated per sample.
+class KinematicRows {
+ public:
+  KinematicRows(const Mechanism& mech, int order);
+  void name_columns(std::vector<std::string>& columns, std::vector<std::string>& units) const;
+  std::size_t column_count() const;
+  void fill(const Sample& sample, double* out, std::ptrdiff_t stride = 1);
+
+ private:
+  const Mechanism& mech_;
+  int order_;
+  std::vector<int> angled_;
+  std::vector<double> previous_;
+  std::vector<bool> started_;
+  bool first_done_ = false;
+  std::vector<Eigen::Vector2d> positions_;
+  Eigen::VectorXd q_;
+};
+
 // The same columns stored column by column, every column contiguous (samples x columns,
 // column-major): what front-ends hand out without copying (Python's numpy arrays).
 struct ColumnTable {
@@ -54,6 +76,8 @@ ColumnTable select_columns(const ColumnTable& table, const std::vector<std::stri
 // "rocker.*"), in the order of the patterns. Throws std::invalid_argument naming a pattern
 // that matches nothing.
 ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns);
+// The indices of those columns among `columns`.
+std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns, const std::vector<std::string>& patterns);
 
 // Whether `text` matches `pattern`, where '*' stands for any run of characters.
 bool glob_match(const std::string& pattern, const std::string& text);

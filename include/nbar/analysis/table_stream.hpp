@@ -1,0 +1,64 @@
+// The result table of a sweep row by row, without keeping the sweep: for writers of long
+// sweeps (the CSV of `nbar solve`), whose memory then does not grow with the number of samples.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nbar/analysis/analysis.hpp"
+
+namespace nbar {
+
+// The rows of result_table(analyse(mechanism, options)), bit for bit, handed out one at a
+// time. The noise made exact 0 (zero_numerical_noise) is measured against the largest value of
+// each unit over the whole sweep, which is known only at its end, so the pipeline runs twice:
+// measure() runs it keeping nothing but those sizes (and raises every error analyse would, before
+// any row is out), then rows() runs it again and hands out each row as it is solved. Both passes
+// are the same deterministic computation, so they give the same numbers.
+class TableStream {
+ public:
+  // Throws Error(BadInput) for options out of range and for the stress stage (its peaks need
+  // the whole sweep: use analyse).
+  TableStream(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options);
+  ~TableStream();
+  TableStream(const TableStream&) = delete;
+  TableStream& operator=(const TableStream&) = delete;
+
+  // Every column (the selected ones after select()).
+  const std::vector<std::string>& columns() const { return columns_; }
+  const std::vector<std::string>& units() const { return units_; }
+  // Keeps only the columns matching `patterns`, as select_columns does. Throws
+  // std::invalid_argument naming a pattern that matches nothing.
+  void select(const std::vector<std::string>& patterns);
+
+  // The first pass. Throws Error as analyse does.
+  void measure();
+  // The second pass: every row (columns().size() values) to `sink`, in sweep order.
+  void rows(const std::function<void(const double* row)>& sink);
+
+  // Of the last pass: the sweep (complete, stop reason, warnings, solved; no samples kept) and
+  // the warnings of every stage, as Analysis::warnings().
+  const SweepResult& sweep() const { return sweep_; }
+  std::vector<Warning> warnings() const;
+
+ private:
+  struct Pass;
+  void run(Pass& pass);
+
+  std::shared_ptr<const Mechanism> mechanism_;
+  AnalysisOptions options_;
+  std::shared_ptr<const InverseDynamics> dynamics_;
+  std::vector<std::string> columns_, units_;
+  std::vector<std::string> all_units_;
+  std::vector<std::size_t> picked_;       // columns kept, in the order asked
+  std::vector<double> threshold_;         // per column of the whole table: noise below this is 0
+  bool measured_ = false;
+  SweepResult sweep_;
+  std::optional<DynamicsStage> dynamics_stage_;  // its summary only (no samples)
+};
+
+}  // namespace nbar
