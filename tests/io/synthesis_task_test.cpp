@@ -54,6 +54,32 @@ TEST(SynthesisTask, FivePoint) {
   EXPECT_EQ(t.where.line, 14);  // `points`, where the solver's complaints go
 }
 
+TEST(SynthesisTask, NinePoint) {
+  const SynthesisTask t = nbar::io::load_synthesis_task(kDir + "nine-point-crank-rocker.yaml");
+  EXPECT_EQ(t.kind, SynthesisKind::NinePoint);
+  EXPECT_EQ(nbar::io::to_string(t.kind), "nine-point");
+  ASSERT_EQ(t.points.size(), 9u);
+  EXPECT_EQ(t.points[8], Eigen::Vector2d(49.680, 126.456));
+  EXPECT_EQ(t.where.line, 11);  // `points`
+}
+
+// Nine points: too few, repeated, on one line; each at the place to fix.
+TEST(SynthesisTask, NinePointMistakes) {
+  const std::string head = "task: nine-point\npoints:\n";
+  std::string eight = head;
+  for (int i = 0; i < 8; ++i) eight += "  - [" + std::to_string(i) + ", " + std::to_string(i * i) + "]\n";
+  EXPECT_EQ(error_of(eight), "task.yaml:3:3: a nine-point task needs exactly 9 points for the coupler point, not 8");
+  std::string repeated = eight + "  - [2, 4]\n";
+  EXPECT_EQ(error_of(repeated), "task.yaml:11:5: points 3 and 9 coincide: the nine points must be distinct");
+  std::string line = head;
+  for (int i = 0; i < 9; ++i) line += "  - [" + std::to_string(i) + ", " + std::to_string(2 * i + 1) + "]\n";
+  EXPECT_EQ(error_of(line), "task.yaml:3:3: the nine points lie on one straight line, which is no four-bar's coupler "
+                            "curve: move some off the line");
+  EXPECT_EQ(error_of(eight + "  - 3\n"), "task.yaml:11:5: a point needs two numbers, like [x, y], not '3'");
+  EXPECT_EQ(error_of("task: nine-point\npivots: {a: [0, 0], b: [1, 0]}\n"),
+            "task.yaml:2:1: unknown key 'pivots' in a nine-point task (allowed: task, name, description, units, points)");
+}
+
 TEST(SynthesisTask, Burmester) {
   const SynthesisTask three = nbar::io::load_synthesis_task(kDir + "burmester-three-positions.yaml");
   EXPECT_EQ(three.kind, SynthesisKind::Burmester);

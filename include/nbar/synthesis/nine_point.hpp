@@ -11,8 +11,9 @@
 //   |delta_j + t_j x - a|^2 = |x - a|^2   (each dyad),   t_j tb_j = 1.
 //
 // New tasks are solved by a parameter homotopy from a stored generic complex instance with
-// one representative of each of its 1442 orbits (nine_point_start.cpp); failed paths are
-// recovered by monodromy, and generate_nine_point_start makes such an instance from scratch.
+// one representative of each of its 1442 orbits (nine_point_start.cpp); lost orbits are
+// recovered by tracking again and, failing that, by monodromy at the task;
+// generate_nine_point_start (nine_point_start.hpp) makes such an instance from scratch.
 #pragma once
 
 #include <Eigen/Core>
@@ -40,9 +41,8 @@ struct NinePointOptions {
   // Asked between paths (thread-safe); true stops the run, which then throws
   // std::runtime_error("cancelled").
   std::function<bool()> stop;
-  // When the parameter homotopy loses orbits, monodromy loops at the task recover them until
-  // this many loops in a row bring nothing new.
-  int stale_loops = 3;
+  // When the parameter homotopy loses orbits for good, monodromy at the task recovers them: a
+  // graph of three parameter nodes, run until closed or until max_loops rounds of its six edges.
   int max_loops = 40;
 };
 
@@ -62,8 +62,8 @@ struct NinePointResult {
   int paths = 0;           // paths tracked in all (parameter homotopy and monodromy)
   int failed_paths = 0;    // of the parameter homotopy from the stored instance
   int monodromy_loops = 0; // loops run to recover what the parameter homotopy lost
-  // How complete the set is: "complete" when the count of orbits equals the generic count
-  // and the closing monodromy loops (if any) found nothing new; otherwise a sentence.
+  // How complete the set is: complete when as many distinct orbits were reached as the stored
+  // instance has (1442, closed under monodromy when it was made); the sentence says so or not.
   std::string certificate;
   bool complete = false;
   std::string method;
