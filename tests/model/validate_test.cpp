@@ -532,6 +532,15 @@ TEST(Validate, Materials) {
   m = four_bar_with_mass();
   m.bodies[1].material->yield_strength = 0.0;
   expect_error(m, Kind::Body, 1, "the yield strength of material 'steel' must be a positive number");
+
+  m = four_bar_with_mass();
+  m.bodies[1].material->youngs_modulus = -200e9;
+  expect_error(m, Kind::Body, 1, "Young's modulus of material 'steel' must be a positive number");
+  m = four_bar_with_mass();
+  m.bodies[1].material->poisson_ratio = 0.5;
+  expect_error(m, Kind::Body, 1, "Poisson's ratio of material 'steel' must be at least 0 and less than 0.5");
+  m.bodies[1].material->poisson_ratio = std::numeric_limits<double>::quiet_NaN();
+  expect_error(m, Kind::Body, 1, "Poisson's ratio of material 'steel' must be at least 0 and less than 0.5");
 }
 
 TEST(Validate, GivenMassProperties) {
