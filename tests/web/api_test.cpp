@@ -108,6 +108,16 @@ TEST(WebApi, StressIsNbarStressFormatJson) {
                               .out);
 }
 
+TEST(WebApi, FiniteElementStressIsNbarStressMethodFe) {
+  const ApiResponse r = post("/api/stress", with_model("examples/fourbar-steel-bars.yaml",
+                                                       {{"steps", 5}, {"method", "fe"}, {"mesh_size", 4}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.body, cli("stress examples/fourbar-steel-bars.yaml --steps 5 --method fe --mesh-size 4 --format json").out);
+  EXPECT_NE(r.body.find("\"method\": \"fe\""), std::string::npos);
+  EXPECT_EQ(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"method", "fem"}})).status, 400);
+  EXPECT_EQ(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"mesh_size", 4}})).status, 400);
+}
+
 TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"five-point", "examples/synthesis/five-point-crank-rocker.yaml"},
