@@ -8,7 +8,7 @@
 // and BM_FeSetup the one-time work (meshing and factorising every link). The inverse dynamics,
 // solved once by the pipeline, are outside.
 //
-// Run: fe_bench --benchmark_min_time=1
+// Run: link_fe_bench --benchmark_min_time=1
 #include <benchmark/benchmark.h>
 
 #include <cmath>
