@@ -12,8 +12,10 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "nbar/stress/mesh.hpp"
@@ -57,11 +59,19 @@ struct RigidBodyField {
   Eigen::Vector2d gravity{0, 0};
 };
 
+// A force straight on a mesh node (N): for tractions the caller has already made nodal (tests,
+// imported loads).
+struct NodalForce {
+  int node = 0;
+  Eigen::Vector2d force{0, 0};
+};
+
 struct LoadCase {
   std::vector<BearingLoad> bearings;
   std::vector<HoleCouple> couples;
   std::vector<PointForce> forces;
   std::optional<RigidBodyField> body;
+  std::vector<NodalForce> nodal;
 };
 
 struct StressField {
@@ -78,6 +88,20 @@ struct StressField {
   double support_reaction = 0.0;
 };
 
+// The nodal forces of a load case (2 per node, x then y), balanced by inertia relief: what the
+// stiffness is solved against, and what a CalculiX deck (nbar/io/calculix.hpp) applies as *CLOAD.
+struct NodalLoads {
+  Eigen::VectorXd forces;
+  double load_unbalance = 0.0;  // as StressField::load_unbalance
+  double load_scale = 0.0;      // the largest applied load, N (what the unbalance is relative to)
+};
+
+// One of the three minimal supports: `node`'s displacement along x (direction 0) or y (1) held.
+struct Support {
+  int node = -1;
+  int direction = 0;
+};
+
 class PlateModel {
  public:
   // Assembles and factorises. Throws std::invalid_argument for a bad material or mesh.
@@ -91,6 +115,14 @@ class PlateModel {
 
   const TriMesh& mesh() const;
   const ElasticMaterial& material() const;
+
+  // The balanced nodal forces solve() applies (for export and checks).
+  NodalLoads nodal_loads(const LoadCase& loads) const;
+  // The three supports: x and y at one node, one direction at the node farthest from it.
+  const std::array<Support, 3>& supports() const;
+  // Centre and radius of circle hole `hole`, as fitted to its boundary nodes. Throws
+  // std::invalid_argument when the mesh has no such hole.
+  std::pair<Eigen::Vector2d, double> hole_circle(int hole) const;
 
  private:
   struct Impl;
