@@ -1,0 +1,408 @@
+// The mesher: the Region's boundary as curves (straight edges, arcs, circles), a sizing function
+// graded away from holes, arcs and re-entrant corners, the boundary cut to that size, conforming
+// Delaunay refinement (delaunay_refinement.cpp), then mid-side nodes, on the true curve for
+// boundary edges on arcs and circles.
+#include "nbar/stress/mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "delaunay_refinement.hpp"
+
+namespace nbar::fe {
+namespace {
+
+using Eigen::Vector2d;
+constexpr double kPi = std::numbers::pi;
+
+// Bulges at most this are straight edges, as in the geometry (src/model/geometry.cpp).
+constexpr double kStraightBulge = 1e-8;
+// A corner turning the boundary right by more than this (plate on the left) is re-entrant.
+constexpr double kReentrantTurn = 0.05;
+// Re-entrant corners get elements this many times smaller than their shortest edge or `size`.
+constexpr double kCornerRefinement = 5.0;
+constexpr double kMinAngleDeg = 28.0;
+
+[[noreturn]] void fail(const std::string& message) { throw std::invalid_argument("mesh: " + message); }
+
+double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+struct Curve {
+  bool arc = false;
+  Vector2d p0{0, 0}, p1{0, 0};  // a straight edge's ends
+  Arc circle{{0, 0}, 0, 0, 0};  // an arc's
+  BoundaryTag tag;
+
+  Vector2d at(double t) const {
+    if (!arc) return p0 + t * (p1 - p0);
+    const double angle = circle.start_angle + t * circle.sweep;
+    return circle.centre + circle.radius * Vector2d(std::cos(angle), std::sin(angle));
+  }
+  Vector2d derivative(double t) const {
+    if (!arc) return p1 - p0;
+    const double angle = circle.start_angle + t * circle.sweep;
+    return circle.radius * circle.sweep * Vector2d(-std::sin(angle), std::cos(angle));
+  }
+  double length() const { return arc ? circle.radius * std::abs(circle.sweep) : (p1 - p0).norm(); }
+};
+
+// A curve travelled forwards or backwards, so that the plate is on the left.
+struct Piece {
+  int curve = 0;
+  bool reversed = false;
+  double param(double u) const { return reversed ? 1 - u : u; }
+};
+
+struct Ring {
+  std::vector<Piece> pieces;
+  bool has_corners = true;  // false for a circle hole
+};
+
+struct Boundary {
+  std::vector<Curve> curves;
+  std::vector<Ring> rings;
+};
+
+// Wanted edge length at a point: `size`, except near features, whose own length h0 grows by
+// (grading − 1) per unit distance (elements growing by the factor `grading` one to the next).
+struct Sizing {
+  double size = 0, growth = 0;
+  std::vector<std::pair<Circle, double>> circles;
+  std::vector<std::pair<Arc, double>> arcs;
+  std::vector<std::pair<Vector2d, double>> points;
+
+  double operator()(const Vector2d& x) const {
+    double h = size;
+    for (const auto& [c, h0] : circles) h = std::min(h, h0 + growth * std::abs((x - c.centre).norm() - c.radius));
+    for (const auto& [a, h0] : arcs) h = std::min(h, h0 + growth * distance_to_arc(a, x));
+    for (const auto& [p, h0] : points) h = std::min(h, h0 + growth * (x - p).norm());
+    return h;
+  }
+
+  static double distance_to_arc(const Arc& a, const Vector2d& x) {
+    const Vector2d r = x - a.centre;
+    const double along = std::fmod(std::atan2(r.y(), r.x()) - a.start_angle, 2 * kPi) * (a.sweep < 0 ? -1 : 1);
+    const double wrapped = along < 0 ? along + 2 * kPi : along;
+    if (wrapped <= std::abs(a.sweep)) return std::abs(r.norm() - a.radius);
+    const Vector2d e0 = a.centre + a.radius * Vector2d(std::cos(a.start_angle), std::sin(a.start_angle));
+    const double end = a.start_angle + a.sweep;
+    const Vector2d e1 = a.centre + a.radius * Vector2d(std::cos(end), std::sin(end));
+    return std::min((x - e0).norm(), (x - e1).norm());
+  }
+};
+
+void check_options(const MeshOptions& o) {
+  std::ostringstream os;
+  if (!(std::isfinite(o.size) && o.size >= 0)) {
+    os << "the element size must be a finite length >= 0 m (0 for automatic), not " << o.size;
+  } else if (o.segments_per_hole < 8) {
+    os << "segments_per_hole must be at least 8, not " << o.segments_per_hole;
+  } else if (!(std::isfinite(o.grading) && o.grading > 1 && o.grading <= 4)) {
+    os << "grading must be above 1 and at most 4, not " << o.grading;
+  } else if (o.max_nodes < 6) {
+    os << "max_nodes must be at least 6, not " << o.max_nodes;
+  } else {
+    return;
+  }
+  fail(os.str());
+}
+
+void add_polygon_ring(Boundary& b, const std::vector<Vector2d>& vertices, const std::vector<double>& bulges,
+                      BoundaryTag tag) {
+  Ring ring;
+  const std::size_t n = vertices.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    Curve c;
+    c.tag = tag;
+    c.p0 = vertices[i];
+    c.p1 = vertices[(i + 1) % n];
+    const double bulge = bulges.empty() ? 0.0 : bulges[i];
+    if (std::abs(bulge) > kStraightBulge) {
+      c.arc = true;
+      c.circle = arc_from_bulge(c.p0, c.p1, bulge);
+    }
+    ring.pieces.push_back({static_cast<int>(b.curves.size()), false});
+    b.curves.push_back(c);
+  }
+  b.rings.push_back(ring);
+}
+
+double signed_area(const Boundary& b, const Ring& ring) {
+  std::vector<Vector2d> poly;
+  for (const Piece& p : ring.pieces) {
+    for (int k = 0; k < 8; ++k) poly.push_back(b.curves[p.curve].at(p.param(k / 8.0)));
+  }
+  double a = 0;
+  for (std::size_t i = 0; i < poly.size(); ++i) a += cross(poly[i], poly[(i + 1) % poly.size()]);
+  return a / 2;
+}
+
+void orient(const Boundary& b, Ring& ring, bool counterclockwise) {
+  if ((signed_area(b, ring) > 0) == counterclockwise) return;
+  std::reverse(ring.pieces.begin(), ring.pieces.end());
+  for (Piece& p : ring.pieces) p.reversed = !p.reversed;
+}
+
+// The boundary as rings of curves, each travelled with the plate on its left.
+Boundary boundary_of(const Region& r) {
+  Boundary b;
+  add_polygon_ring(b, r.outline, r.outline_bulges, {BoundaryTag::Kind::outline, 0});
+  orient(b, b.rings.back(), true);
+  for (std::size_t k = 0; k < r.polygon_holes.size(); ++k) {
+    const std::vector<double> none;
+    add_polygon_ring(b, r.polygon_holes[k], r.polygon_hole_bulges.empty() ? none : r.polygon_hole_bulges[k],
+                     {BoundaryTag::Kind::polygon_hole, static_cast<int>(k)});
+    orient(b, b.rings.back(), false);
+  }
+  for (std::size_t k = 0; k < r.circle_holes.size(); ++k) {
+    Curve c;
+    c.arc = true;
+    c.circle = {r.circle_holes[k].centre, r.circle_holes[k].radius, 0.0, -2 * kPi};  // clockwise
+    c.tag = {BoundaryTag::Kind::circle_hole, static_cast<int>(k)};
+    b.rings.push_back({{{static_cast<int>(b.curves.size()), false}}, false});
+    b.curves.push_back(c);
+  }
+  return b;
+}
+
+double bounding_diagonal(const Boundary& b, const Ring& ring) {
+  Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Piece& p : ring.pieces) {
+    for (int k = 0; k <= 16; ++k) {
+      const Vector2d x = b.curves[p.curve].at(k / 16.0);
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+  }
+  return (hi - lo).norm();
+}
+
+Sizing sizing_of(const Boundary& b, const MeshOptions& o, double size) {
+  Sizing s;
+  s.size = size;
+  s.growth = o.grading - 1;
+  for (const Curve& c : b.curves) {
+    if (!c.arc) continue;
+    const double h0 = 2 * kPi * c.circle.radius / o.segments_per_hole;
+    if (c.tag.kind == BoundaryTag::Kind::circle_hole) {
+      s.circles.push_back({Circle{c.circle.centre, c.circle.radius}, h0});
+    } else if (h0 < size) {
+      s.arcs.push_back({c.circle, h0});
+    }
+  }
+  for (const Ring& ring : b.rings) {
+    if (!ring.has_corners) continue;
+    const std::size_t n = ring.pieces.size();
+    for (std::size_t j = 0; j < n; ++j) {
+      const Piece& in = ring.pieces[(j + n - 1) % n];
+      const Piece& out = ring.pieces[j];
+      const Curve& cin = b.curves[in.curve];
+      const Curve& cout = b.curves[out.curve];
+      const Vector2d d_in = cin.derivative(in.param(1)) * (in.reversed ? -1 : 1);
+      const Vector2d d_out = cout.derivative(out.param(0)) * (out.reversed ? -1 : 1);
+      const double turn = std::atan2(cross(d_in, d_out), d_in.dot(d_out));
+      if (turn < -kReentrantTurn) {
+        const double h0 = std::min({size, cin.length(), cout.length()}) / kCornerRefinement;
+        s.points.push_back({cout.at(out.param(0)), h0});
+      }
+    }
+  }
+  return s;
+}
+
+// Where a piece's boundary vertices go: parameters u in [0, 1), the first at 0.
+std::vector<double> piece_stations(const Curve& c, const Piece& p, const Sizing& h, double h_min, const MeshOptions& o) {
+  const double length = c.length();
+  const int samples = static_cast<int>(std::clamp(std::ceil(2 * length / h_min), 16.0, 20000.0));
+  // The number of elements along the piece is the integral of ds / h.
+  std::vector<double> cumulative(samples + 1, 0.0);
+  for (int k = 0; k < samples; ++k) {
+    const double u = (k + 0.5) / samples;
+    cumulative[k + 1] = cumulative[k] + length / samples / h(c.at(p.param(u)));
+  }
+  const double total = cumulative.back();
+  if (!(total < o.max_nodes)) {
+    fail("the boundary alone needs more than max_nodes = " + std::to_string(o.max_nodes) +
+         " nodes; use a larger element size or fewer segments per hole");
+  }
+  const int segments = o.segments_per_hole;
+  std::vector<double> u;
+  if (c.arc) {
+    const double sweep = std::abs(c.circle.sweep);
+    const int n = std::max({static_cast<int>(std::ceil(segments * sweep / (2 * kPi) - 1e-9)),
+                            static_cast<int>(std::ceil(sweep / (kPi / 4) - 1e-9)), static_cast<int>(std::lround(total)), 1});
+    for (int j = 0; j < n; ++j) u.push_back(static_cast<double>(j) / n);
+    return u;
+  }
+  const int n = std::max(1, static_cast<int>(std::lround(total)));
+  u.push_back(0.0);
+  int k = 0;
+  for (int j = 1; j < n; ++j) {
+    const double target = total * j / n;
+    while (cumulative[k + 1] < target) ++k;
+    const double f = (target - cumulative[k]) / (cumulative[k + 1] - cumulative[k]);
+    u.push_back((k + f) / samples);
+  }
+  return u;
+}
+
+detail::RefinementInput refinement_input(const Boundary& b, const Sizing& h, const MeshOptions& o) {
+  double h_min = h.size;
+  for (const auto& c : h.circles) h_min = std::min(h_min, c.second);
+  for (const auto& a : h.arcs) h_min = std::min(h_min, a.second);
+  for (const auto& p : h.points) h_min = std::min(h_min, p.second);
+
+  detail::RefinementInput in;
+  std::size_t count = 0;
+  std::vector<std::vector<std::vector<double>>> stations(b.rings.size());
+  for (std::size_t r = 0; r < b.rings.size(); ++r) {
+    for (const Piece& p : b.rings[r].pieces) {
+      stations[r].push_back(piece_stations(b.curves[p.curve], p, h, h_min, o));
+      count += stations[r].back().size();
+      if (count > static_cast<std::size_t>(o.max_nodes)) {
+        fail("the boundary alone needs more than max_nodes = " + std::to_string(o.max_nodes) +
+             " nodes; use a larger element size or fewer segments per hole");
+      }
+    }
+  }
+  for (std::size_t r = 0; r < b.rings.size(); ++r) {
+    const Ring& ring = b.rings[r];
+    const int first = static_cast<int>(in.points.size());
+    for (std::size_t j = 0; j < ring.pieces.size(); ++j) {
+      const Piece& p = ring.pieces[j];
+      const std::vector<double>& u = stations[r][j];
+      for (std::size_t k = 0; k < u.size(); ++k) {
+        const int here = static_cast<int>(in.points.size());
+        in.points.push_back(b.curves[p.curve].at(p.param(u[k])));
+        in.corner.push_back(k == 0 && ring.has_corners ? 1 : 0);
+        const double u_next = k + 1 < u.size() ? u[k + 1] : 1.0;
+        in.segments.push_back({here, here + 1, p.curve, p.param(u[k]), p.param(u_next)});
+      }
+    }
+    in.segments.back().b = first;  // close the ring
+  }
+  double shortest = std::numeric_limits<double>::infinity();
+  for (const detail::BoundarySegment& s : in.segments) shortest = std::min(shortest, (in.points[s.a] - in.points[s.b]).norm());
+  for (const Curve& c : b.curves) in.curved.push_back(c.arc ? 1 : 0);
+  in.curve_point = [&b](int curve, double t) { return b.curves[curve].at(t); };
+  in.size_at = [&h](const Vector2d& x) { return h(x); };
+  in.min_angle_deg = kMinAngleDeg;
+  in.min_length = shortest / 32;
+  in.max_vertices = o.max_nodes;
+  return in;
+}
+
+std::uint64_t edge_key(int a, int b) {
+  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint64_t>(std::max(a, b));
+}
+
+TriMesh quadratic_mesh(const detail::RefinedMesh& m, const Boundary& b, int max_nodes) {
+  TriMesh mesh;
+  mesh.nodes = m.points;
+  mesh.corner_count = static_cast<int>(m.points.size());
+  std::unordered_map<std::uint64_t, int> segment_at;
+  for (std::size_t i = 0; i < m.segments.size(); ++i) segment_at[edge_key(m.segments[i].a, m.segments[i].b)] = static_cast<int>(i);
+
+  struct Edge {
+    std::uint64_t key;
+    int triangle, side;
+  };
+  std::vector<Edge> edges;
+  edges.reserve(3 * m.triangles.size());
+  mesh.triangles.resize(m.triangles.size());
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    for (int i = 0; i < 3; ++i) {
+      mesh.triangles[t][i] = m.triangles[t][i];
+      edges.push_back({edge_key(m.triangles[t][i], m.triangles[t][(i + 1) % 3]), static_cast<int>(t), i});
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) {
+    return x.key != y.key ? x.key < y.key : x.triangle < y.triangle;
+  });
+  std::size_t total = mesh.nodes.size();
+  for (std::size_t k = 0; k < edges.size(); ++k) total += k == 0 || edges[k - 1].key != edges[k].key;
+  if (total > static_cast<std::size_t>(max_nodes)) {
+    fail("the mesh would have " + std::to_string(total) + " nodes, more than max_nodes = " + std::to_string(max_nodes) +
+         "; use a larger element size");
+  }
+  std::unordered_map<std::uint64_t, int> middle_of;
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const Edge& e = edges[k];
+    if (k == 0 || edges[k - 1].key != e.key) {
+      const int a = m.triangles[e.triangle][e.side], c = m.triangles[e.triangle][(e.side + 1) % 3];
+      Vector2d mid = (m.points[a] + m.points[c]) / 2;
+      const auto s = segment_at.find(e.key);
+      if (s != segment_at.end()) {
+        const detail::BoundarySegment& seg = m.segments[s->second];
+        const Curve& curve = b.curves[seg.curve];
+        if (curve.arc) mid = curve.at((seg.ta + seg.tb) / 2);
+        middle_of[e.key] = static_cast<int>(mesh.nodes.size());
+      }
+      mesh.nodes.push_back(mid);
+    }
+    mesh.triangles[e.triangle][3 + e.side] = static_cast<int>(mesh.nodes.size()) - 1;
+  }
+  for (const detail::BoundarySegment& s : m.segments) {
+    mesh.boundary.push_back({{s.a, s.b, middle_of.at(edge_key(s.a, s.b))}, b.curves[s.curve].tag});
+  }
+  return mesh;
+}
+
+}  // namespace
+
+TriMesh mesh_region(const Region& r, const MeshOptions& options) {
+  check_options(options);
+  check_region(r);
+  const Boundary b = boundary_of(r);
+  const double size = options.size > 0 ? options.size : bounding_diagonal(b, b.rings.front()) / 20;
+  const Sizing h = sizing_of(b, options, size);
+  const detail::RefinementInput in = refinement_input(b, h, options);
+  detail::RefinedMesh refined;
+  try {
+    refined = detail::refine(in);
+  } catch (const std::runtime_error& e) {
+    fail(std::string("could not mesh the plate (") + e.what() + ")");
+  }
+  return quadratic_mesh(refined, b, options.max_nodes);
+}
+
+MeshQuality mesh_quality(const TriMesh& mesh) {
+  MeshQuality q;
+  q.min_angle_deg = 180;
+  q.min_edge = std::numeric_limits<double>::infinity();
+  // A 3-point rule exact for quadratics integrates det J of a 6-node triangle exactly.
+  constexpr double kRule[3][2] = {{0.5, 0.0}, {0.5, 0.5}, {0.0, 0.5}};
+  for (const auto& t : mesh.triangles) {
+    const Vector2d& a = mesh.nodes[t[0]];
+    const Vector2d& b = mesh.nodes[t[1]];
+    const Vector2d& c = mesh.nodes[t[2]];
+    const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();
+    q.max_edge = std::max({q.max_edge, la, lb, lc});
+    q.min_edge = std::min({q.min_edge, la, lb, lc});
+    const double area2 = std::abs(cross(b - a, c - a));
+    const double sine = area2 / std::max({lb * lc, la * lc, la * lb});
+    q.min_angle_deg = std::min(q.min_angle_deg, std::asin(std::min(1.0, sine)) * 180 / kPi);
+    for (const auto& p : kRule) {
+      const double l1 = 1 - p[0] - p[1], l2 = p[0], l3 = p[1];
+      const double dxi[6] = {-(4 * l1 - 1), 4 * l2 - 1, 0, 4 * (l1 - l2), 4 * l3, -4 * l3};
+      const double deta[6] = {-(4 * l1 - 1), 0, 4 * l3 - 1, -4 * l2, 4 * l2, 4 * (l1 - l3)};
+      Vector2d dx_dxi(0, 0), dx_deta(0, 0);
+      for (int i = 0; i < 6; ++i) {
+        dx_dxi += dxi[i] * mesh.nodes[t[i]];
+        dx_deta += deta[i] * mesh.nodes[t[i]];
+      }
+      q.area += cross(dx_dxi, dx_deta) / 6;
+    }
+  }
+  if (mesh.triangles.empty()) q.min_angle_deg = q.min_edge = 0;
+  return q;
+}
+
+}  // namespace nbar::fe
