@@ -241,6 +241,10 @@ void Animation::show_stresses(const Analysis& analysis) {
     frame_markers_.push_back(std::move(frame.markers));
   }
   options_.stress_scale = scale;
+  // Room for the legend.
+  DrawOptions with_maps = options_;
+  if (!frame_stress_.empty()) with_maps.stress_maps = frame_stress_.front();
+  view_ = fit_view(mech_, sweep_, with_maps);
 }
 
 ImageCanvas Animation::render_frame(int frame, bool antialias) const {

@@ -393,7 +393,9 @@ View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions
   }
   // Room for pivots, blocks and labels around the outermost points.
   const double room = 30.0;
-  return View(lo, hi, options.width, options.height, options.margin + room);
+  // A stress legend takes the right edge: the mechanism is centred in what is left.
+  const int legend = options.stress_maps.empty() ? 0 : kStressLegendWidth;
+  return View(lo, hi, options.width - legend, options.height, options.margin + room);
 }
 
 int default_drawn_step(const Mechanism& mech, const SweepResult& sweep) {

@@ -55,7 +55,7 @@ void draw_stress_legend(Canvas& canvas, double scale) {
   const Color ink = Color::rgb(0x222222);
   const double bar_height = std::clamp(0.35 * canvas.height(), 80.0, 200.0);
   const double bar_width = 14.0;
-  const double x = canvas.width() - 64.0, top = 44.0;
+  const double x = canvas.width() - kStressLegendWidth + 6.0, top = 44.0;
   constexpr int kBands = 40;
   canvas.begin_group("stress-legend", "stress-legend");
   canvas.text({canvas.width() - 10.0, top - 12.0}, "von Mises", 12, Anchor::End, ink);

@@ -27,6 +27,9 @@ std::string stress_text(double pascals);
 void draw_stress_plate(Canvas& canvas, const StressMap& map, double scale,
                        const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& to_pixels);
 
+// The width the legend takes at the right edge of a drawing, px (fit_view leaves it free).
+constexpr int kStressLegendWidth = 84;
+
 // The colour legend, a vertical bar from 0 to `scale` (Pa) at the top right of the canvas.
 void draw_stress_legend(Canvas& canvas, double scale);
 
