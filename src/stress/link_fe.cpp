@@ -80,14 +80,16 @@ bool in_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen
 // Spreads couple `moment` over `patch` as forces perpendicular to each node's arm from the
 // patch's centre, proportional to the arm (a rigid patch twisted): they add to no force and to
 // exactly `moment`.
-void add_patch_couple(const std::vector<Eigen::Vector2d>& patch, double moment, fe::LoadCase& loads) {
+// Nodal forces, so that the solver need not look for the element of each.
+void add_patch_couple(const fe::TriMesh& mesh, const std::vector<int>& patch, double moment, fe::LoadCase& loads) {
+  if (patch.empty()) return;
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d& x : patch) centre += x;
+  for (int n : patch) centre += mesh.nodes[n];
   centre /= static_cast<double>(patch.size());
   double arms = 0.0;
-  for (const Eigen::Vector2d& x : patch) arms += (x - centre).squaredNorm();
+  for (int n : patch) arms += (mesh.nodes[n] - centre).squaredNorm();
   if (arms <= 0.0) return;
-  for (const Eigen::Vector2d& x : patch) loads.forces.push_back({x, moment / arms * perp(x - centre)});
+  for (int n : patch) loads.nodal.push_back({n, moment / arms * perp(mesh.nodes[n] - centre)});
 }
 
 constexpr int kPatchNodes = 8;
@@ -123,7 +125,7 @@ struct LinkFe::Link {
     for (int n : interior_corners) by_distance.push_back({(mesh.nodes[n] - x).squaredNorm(), n});
     const std::size_t keep = std::min<std::size_t>(kPatchNodes, by_distance.size());
     std::partial_sort(by_distance.begin(), by_distance.begin() + static_cast<std::ptrdiff_t>(keep), by_distance.end());
-    for (std::size_t k = 0; k < keep; ++k) out.patch.push_back(mesh.nodes[by_distance[k].second]);
+    for (std::size_t k = 0; k < keep; ++k) out.patch.push_back(by_distance[k].second);
     if (!out.patch.empty()) out.node = out.patch.front();
     return out;
   }
@@ -222,12 +224,13 @@ fe::LoadCase LinkFe::load_case(const DynamicsResult& forces, int body) const {
     if (!force.isZero(0.0)) {
       if (place.inside) {
         loads.forces.push_back({place.at, force});
-      } else {
-        loads.forces.push_back({place.node, force});
-        couple += cross(place.at - place.node, force);  // carried rigidly to the node
+      } else if (place.node >= 0) {
+        const Eigen::Vector2d& node = link.plate.mesh().nodes[place.node];
+        loads.nodal.push_back({place.node, force});
+        couple += cross(place.at - node, force);  // carried rigidly to the node
       }
     }
-    if (couple != 0.0) add_patch_couple(place.patch, couple, loads);
+    if (couple != 0.0) add_patch_couple(link.plate.mesh(), place.patch, couple, loads);
   };
   const auto& joint_links = dynamics_->joint_links();
   for (std::size_t i = 0; i < joint_links.size(); ++i)
@@ -265,8 +268,13 @@ Eigen::Vector2d body_frame_point(const Model& m, int body, const Eigen::Vector2d
   return {axis.dot(d), cross(axis, d)};
 }
 
-LoadResultant load_resultant(const fe::LoadCase& loads, const Region& plate, const fe::ElasticMaterial& material) {
+LoadResultant load_resultant(const fe::LoadCase& loads, const Region& plate, const fe::ElasticMaterial& material,
+                             const fe::TriMesh& mesh) {
   LoadResultant out;
+  for (const fe::NodalForce& f : loads.nodal) {
+    out.force += f.force;
+    out.moment += cross(mesh.nodes.at(f.node), f.force);
+  }
   for (const fe::BearingLoad& b : loads.bearings) {
     // A bearing pressure is radial, so its resultant passes through the hole's centre.
     const Eigen::Vector2d& centre = plate.circle_holes.at(b.hole).centre;

@@ -46,8 +46,8 @@ struct PlatePlacement {
   Eigen::Vector2d at{0, 0};  // the point, plate frame
   int hole = -1;             // the circle hole it lies in, or -1
   bool inside = true;        // on the plate (when not in a hole); false: carried to `node`
-  Eigen::Vector2d node{0, 0};         // the nearest interior node, for a point off the plate
-  std::vector<Eigen::Vector2d> patch;  // interior corner nodes around the point, for couples
+  int node = -1;             // the nearest interior corner node, for a point off the plate
+  std::vector<int> patch;    // interior corner nodes around the point, for couples
 };
 
 class LinkFe {
@@ -109,12 +109,13 @@ std::vector<FePeak> fe_peaks(const LinkFe& fe, const SweepResult& sweep, const s
 Eigen::Vector2d body_frame_point(const Model& m, int body, const Eigen::Vector2d& drawn);
 
 // The resultant of a load case about the plate-frame origin, its body force integrated over
-// `plate` with the density and thickness of `material`: force (N) and moment (N m). Zero for
-// loads in equilibrium. For tests and reports.
+// `plate` with the density and thickness of `material` and its nodal forces at the nodes of
+// `mesh`: force (N) and moment (N m). Zero for loads in equilibrium. For tests and reports.
 struct LoadResultant {
   Eigen::Vector2d force{0, 0};
   double moment = 0.0;
 };
-LoadResultant load_resultant(const fe::LoadCase& loads, const Region& plate, const fe::ElasticMaterial& material);
+LoadResultant load_resultant(const fe::LoadCase& loads, const Region& plate, const fe::ElasticMaterial& material,
+                             const fe::TriMesh& mesh);
 
 }  // namespace nbar
