@@ -315,7 +315,7 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
     EXPECT_EQ(text.content_type, "application/yaml; charset=utf-8");
     EXPECT_EQ(text.body, repo_file(e["file"].get<std::string>()));
   }
-  EXPECT_EQ(models, 24);  // every model file of examples/, fourbar-rounded-crank.yaml the newest
+  EXPECT_EQ(models, 25);  // every model file of examples/, fourbar-ansys-plates.yaml the newest
   EXPECT_EQ(tasks, 5);
   EXPECT_EQ(templates, 6);
   // Each runs as it is; a template too, and its name never clashes with the example's.
