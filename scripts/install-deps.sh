@@ -10,6 +10,7 @@ packages=(
   nginx  # tests: docs/deploy.md's two nbar serve instances behind nginx (Web.Nginx)
   libtinyxml2-dev chromium  # tests: SVG parsed as XML; the HTML animation run in headless Chromium
   phcpack  # tests and bench/: the five-point synthesis cross-checked and timed against PHCpack
+  calculix-ccx  # tests: the plane-stress finite elements cross-checked against CalculiX (ccx, run as a program)
   clang libclang-rt-14-dev  # scripts/fuzz.sh: the libFuzzer harnesses (clang++ -fsanitize=fuzzer)
   # The Python module, for Debian's /usr/bin/python3, and its tests: pytest, the notebooks run
   # by nbclient on an ipykernel, sympy's derivatives as a reference

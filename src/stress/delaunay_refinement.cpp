@@ -50,13 +50,14 @@ Vector2d circumcentre(const Vector2d& a, const Vector2d& b, const Vector2d& c) {
   return a + Vector2d(ac.y() * ab2 - ab.y() * ac2, ab.x() * ac2 - ac.x() * ab2) / d;
 }
 
-// Smallest angle's sine of the triangle a, b, c (0 for a degenerate one).
-double min_angle_sine(const Vector2d& a, const Vector2d& b, const Vector2d& c) {
-  const double area2 = std::abs(orient(a, b, c));
-  const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();
-  // sin(angle at a) = 2 area / (lb lc): the smallest angle faces the shortest edge.
-  const double longest_pair = std::max({lb * lc, la * lc, la * lb});
-  return longest_pair > 0 ? area2 / longest_pair : 0.0;
+// The square of the sine of the triangle's smallest angle (0 for a degenerate one), without
+// square roots: sin = 2 area / (product of the two longer edges), the smallest angle facing
+// the shortest edge.
+double min_angle_sine_squared(const Vector2d& a, const Vector2d& b, const Vector2d& c) {
+  const double area2 = orient(a, b, c);
+  const double la = (b - c).squaredNorm(), lb = (c - a).squaredNorm(), lc = (a - b).squaredNorm();
+  const double longer_pair = std::max({lb * lc, la * lc, la * lb});
+  return longer_pair > 0 ? area2 * area2 / longer_pair : 0.0;
 }
 
 constexpr int kSuper = 4;  // vertices 0 to 3 frame everything
@@ -64,7 +65,7 @@ constexpr int kSuper = 4;  // vertices 0 to 3 frame everything
 class Refiner {
  public:
   explicit Refiner(const RefinementInput& in)
-      : in_(in), sin_min_(std::sin(in.min_angle_deg * std::numbers::pi / 180)) {}
+      : in_(in), sin_min_squared_(std::pow(std::sin(in.min_angle_deg * std::numbers::pi / 180), 2)) {}
 
   RefinedMesh run() {
     make_frame();
@@ -104,9 +105,9 @@ class Refiner {
   };
 
   const RefinementInput& in_;
-  double sin_min_;
+  double sin_min_squared_;
   std::vector<Vector2d> pts_;
-  std::vector<char> corner_;
+  std::vector<char> corner_, on_boundary_;
   std::vector<int> vertex_tri_;
   std::vector<Tri> tris_;
   std::vector<int> free_tris_;
@@ -126,6 +127,7 @@ class Refiner {
     return (lo << 32) | hi;
   }
   int segment_at(int a, int b) const {
+    if (!on_boundary_[a] || !on_boundary_[b]) return -1;  // most edges: no hashing
     const auto it = seg_at_.find(key(a, b));
     return it == seg_at_.end() ? -1 : it->second;
   }
@@ -138,9 +140,10 @@ class Refiner {
     seg_at_.erase(key(segs_[i].s.a, segs_[i].s.b));
   }
 
-  int add_vertex(const Vector2d& p, bool corner) {
+  int add_vertex(const Vector2d& p, bool corner, bool on_boundary) {
     pts_.push_back(p);
     corner_.push_back(corner ? 1 : 0);
+    on_boundary_.push_back(on_boundary ? 1 : 0);
     vertex_tri_.push_back(-1);
     fan_start_.push_back(-1);
     vertex_mark_.push_back(0);
@@ -171,10 +174,10 @@ class Refiner {
     const double margin = std::max((hi - lo).maxCoeff(), 1e-300);
     lo -= Vector2d::Constant(margin);
     hi += Vector2d::Constant(margin);
-    add_vertex(lo, false);
-    add_vertex({hi.x(), lo.y()}, false);
-    add_vertex(hi, false);
-    add_vertex({lo.x(), hi.y()}, false);
+    add_vertex(lo, false, false);
+    add_vertex({hi.x(), lo.y()}, false, false);
+    add_vertex(hi, false, false);
+    add_vertex({lo.x(), hi.y()}, false, false);
     const int t0 = new_triangle(), t1 = new_triangle();
     tris_[t0].v = {0, 1, 2};
     tris_[t0].n = {-1, t1, -1};
@@ -190,7 +193,7 @@ class Refiner {
       if (seed < 0 || !make_cavity(in_.points[i], seed)) {
         throw std::runtime_error("mesher: could not insert a boundary point");
       }
-      commit(add_vertex(in_.points[i], in_.corner[i] != 0));
+      commit(add_vertex(in_.points[i], in_.corner[i] != 0, true));
       last = new_tris_.front();
     }
   }
@@ -371,8 +374,25 @@ class Refiner {
       if (apex < kSuper) continue;
       if ((pts_[a] - pts_[apex]).dot(pts_[b] - pts_[apex]) < 0) return true;
     }
-    return false;
+    return in_.curved[seg.s.curve] && too_curved(seg);
   }
+
+  // A 6-node triangle whose edge bulges by the sagitta s towards the opposite corner, at height
+  // h above it, has det J = L (h − 4 s x / L) at the edge's ends (x: the corner's offset along
+  // the edge), positive only while s < h / 4. A curved segment whose triangle inside is not
+  // several times taller than the arc's sagitta is split (which quarters the sagitta).
+  bool too_curved(const Seg& seg) const {
+    const auto [t, i] = find_edge(seg.s.a, seg.s.b);
+    if (t < 0) return false;
+    const Vector2d& a = pts_[seg.s.a];
+    const Vector2d& b = pts_[seg.s.b];
+    const Vector2d& apex = pts_[tris_[t].v[(i + 2) % 3]];
+    const double length = (b - a).norm();
+    const double height = orient(a, b, apex) / length;
+    const double sagitta = (in_.curve_point(seg.s.curve, (seg.s.ta + seg.s.tb) / 2) - (a + b) / 2).norm();
+    return height < kHeightPerSagitta * sagitta;
+  }
+  static constexpr double kHeightPerSagitta = 8.0;
 
   bool is_edge(int a, int b) const { return find_edge(a, b).first >= 0; }
 
@@ -395,7 +415,7 @@ class Refiner {
     remove_segment(si);
     // Other segments inside the cavity would stop being edges: split them too.
     find_cavity_segments();
-    const int v = add_vertex(m, false);
+    const int v = add_vertex(m, false, true);
     commit(v);
     // A segment that was no edge may leave halves that are none either: check them too.
     seg_queue_.push_back(static_cast<int>(segs_.size()));
@@ -432,8 +452,7 @@ class Refiner {
       if (tri.inside && is_bad(t)) tri_queue_.push_back(t);
     }
     if (static_cast<int>(pts_.size()) - kSuper > in_.max_vertices) {
-      throw std::invalid_argument("the mesh would have more than the allowed " + std::to_string(in_.max_vertices) +
-                                  " corner nodes; use a larger element size");
+      throw std::length_error("mesher: more than " + std::to_string(in_.max_vertices) + " vertices");
     }
   }
 
@@ -454,11 +473,14 @@ class Refiner {
     const Tri& tri = tris_[t];
     if (tri.v[0] < kSuper || tri.v[1] < kSuper || tri.v[2] < kSuper) return false;
     const Vector2d &a = pts_[tri.v[0]], &b = pts_[tri.v[1]], &c = pts_[tri.v[2]];
-    const double shortest = std::min({(a - b).norm(), (b - c).norm(), (c - a).norm()});
-    if (shortest <= in_.min_length) return false;
-    if (min_angle_sine(a, b, c) < sin_min_) return true;
-    const double radius = (circumcentre(a, b, c) - a).norm();
-    return radius > kRadiusPerSize * in_.size_at((a + b + c) / 3);
+    const double la = (b - c).squaredNorm(), lb = (c - a).squaredNorm(), lc = (a - b).squaredNorm();
+    if (std::min({la, lb, lc}) <= in_.min_length * in_.min_length) return false;
+    const double area2 = orient(a, b, c);
+    if (area2 * area2 < sin_min_squared_ * std::max({lb * lc, la * lc, la * lb})) return true;
+    // Circumradius R = |a - b| |b - c| |c - a| / (4 area), squared; area2 is twice the area.
+    const double radius_squared = la * lb * lc / (4 * area2 * area2);
+    const double wanted = kRadiusPerSize * in_.size_at((a + b + c) / 3);
+    return radius_squared > wanted * wanted;
   }
   // An equilateral triangle of edge h has circumradius h / sqrt(3) = 0.577 h; refining above
   // 0.65 h leaves edges of about the wanted length.
@@ -500,7 +522,7 @@ class Refiner {
       if (split_any && tris_[t].alive) tri_queue_.push_back(t);
       return;
     }
-    commit(add_vertex(c, false));
+    commit(add_vertex(c, false, false));
     after_insertion();
   }
 
@@ -553,8 +575,21 @@ class Refiner {
         out.points.push_back(pts_[v]);
       }
     }
+    std::vector<int> tri_index(tris_.size(), -1);
+    for (std::size_t t = 0; t < tris_.size(); ++t) {
+      const Tri& tri = tris_[t];
+      if (!tri.alive || !tri.inside) continue;
+      tri_index[t] = static_cast<int>(out.triangles.size());
+      out.triangles.push_back({index[tri.v[0]], index[tri.v[1]], index[tri.v[2]]});
+    }
     for (const Tri& tri : tris_) {
-      if (tri.alive && tri.inside) out.triangles.push_back({index[tri.v[0]], index[tri.v[1]], index[tri.v[2]]});
+      if (!tri.alive || !tri.inside) continue;
+      std::array<int, 3> across{};
+      for (int i = 0; i < 3; ++i) {
+        const int nb = tri.n[(i + 2) % 3];  // across the edge v[i] -> v[i + 1]
+        across[i] = nb >= 0 ? tri_index[nb] : -1;
+      }
+      out.neighbours.push_back(across);
     }
     for (const Seg& seg : segs_) {
       if (!seg.alive) continue;
@@ -572,6 +607,17 @@ class Refiner {
     const int n = static_cast<int>(m.points.size());
     std::vector<char> fixed(n, 0);
     for (const BoundarySegment& s : m.segments) fixed[s.a] = fixed[s.b] = 1;
+    // The corners facing curved edges stay too: their height above the edge keeps the curved
+    // triangle's Jacobian positive (too_curved()).
+    std::unordered_map<std::uint64_t, char> curved_edge;
+    for (const BoundarySegment& s : m.segments) {
+      if (in_.curved[s.curve]) curved_edge[key(s.a, s.b)] = 1;
+    }
+    for (const auto& t : m.triangles) {
+      for (int i = 0; i < 3; ++i) {
+        if (curved_edge.count(key(t[i], t[(i + 1) % 3]))) fixed[t[(i + 2) % 3]] = 1;
+      }
+    }
     std::vector<int> first(n + 1, 0);
     for (const auto& t : m.triangles) {
       for (int v : t) ++first[v + 1];
@@ -587,7 +633,7 @@ class Refiner {
         const auto& t = m.triangles[around[k]];
         const Vector2d &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
         if (!(orient(a, b, c) > 0)) return -1.0;
-        w = std::min(w, min_angle_sine(a, b, c));
+        w = std::min(w, min_angle_sine_squared(a, b, c));
       }
       return w;
     };

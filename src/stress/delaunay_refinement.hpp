@@ -28,17 +28,18 @@ struct RefinementInput {
   std::function<double(const Eigen::Vector2d&)> size_at;  // wanted edge length near a point
   double min_angle_deg = 28.0;  // triangles with a smaller angle are refined
   double min_length = 0.0;      // triangles and segments shorter than this are left alone
-  int max_vertices = 0;         // refinement throws std::invalid_argument beyond this
+  int max_vertices = 0;         // refinement throws std::length_error beyond this
   int smoothing_passes = 2;
 };
 
 struct RefinedMesh {
   std::vector<Eigen::Vector2d> points;           // only the vertices of the plate's triangles
   std::vector<std::array<int, 3>> triangles;     // counterclockwise
+  std::vector<std::array<int, 3>> neighbours;    // across the edge from corner i to i + 1; -1: boundary
   std::vector<BoundarySegment> segments;         // the boundary, subdivided, plate on the left
 };
 
-// Throws std::invalid_argument when the mesh would need more than max_vertices vertices, and
+// Throws std::length_error when the mesh would need more than max_vertices vertices, and
 // std::runtime_error if the boundary cannot be recovered (a bug, not bad input).
 RefinedMesh refine(const RefinementInput& input);
 

@@ -5,6 +5,7 @@
 #include "nbar/stress/mesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -70,31 +71,44 @@ struct Boundary {
   std::vector<Ring> rings;
 };
 
+// An arc as the sizing function needs it: distances without trigonometry.
+struct ArcFeature {
+  Vector2d centre, start_direction, end_direction;
+  double radius = 0, turn = 1;  // turn: +1 counterclockwise, −1 clockwise
+  bool over_half = false;       // sweeps more than half a turn
+  double h0 = 0;
+
+  ArcFeature(const Arc& a, double size) : centre(a.centre), radius(a.radius), h0(size) {
+    start_direction = Vector2d(std::cos(a.start_angle), std::sin(a.start_angle));
+    end_direction = Vector2d(std::cos(a.start_angle + a.sweep), std::sin(a.start_angle + a.sweep));
+    turn = a.sweep < 0 ? -1 : 1;
+    over_half = std::abs(a.sweep) > kPi;
+  }
+
+  double distance(const Vector2d& x) const {
+    const Vector2d r = x - centre;
+    const bool after_start = turn * cross(start_direction, r) >= 0;
+    const bool before_end = turn * cross(r, end_direction) >= 0;
+    const bool within = over_half ? after_start || before_end : after_start && before_end;
+    if (within) return std::abs(r.norm() - radius);
+    return std::min((r - radius * start_direction).norm(), (r - radius * end_direction).norm());
+  }
+};
+
 // Wanted edge length at a point: `size`, except near features, whose own length h0 grows by
 // (grading − 1) per unit distance (elements growing by the factor `grading` one to the next).
 struct Sizing {
   double size = 0, growth = 0;
   std::vector<std::pair<Circle, double>> circles;
-  std::vector<std::pair<Arc, double>> arcs;
+  std::vector<ArcFeature> arcs;
   std::vector<std::pair<Vector2d, double>> points;
 
   double operator()(const Vector2d& x) const {
     double h = size;
     for (const auto& [c, h0] : circles) h = std::min(h, h0 + growth * std::abs((x - c.centre).norm() - c.radius));
-    for (const auto& [a, h0] : arcs) h = std::min(h, h0 + growth * distance_to_arc(a, x));
+    for (const ArcFeature& a : arcs) h = std::min(h, a.h0 + growth * a.distance(x));
     for (const auto& [p, h0] : points) h = std::min(h, h0 + growth * (x - p).norm());
     return h;
-  }
-
-  static double distance_to_arc(const Arc& a, const Vector2d& x) {
-    const Vector2d r = x - a.centre;
-    const double along = std::fmod(std::atan2(r.y(), r.x()) - a.start_angle, 2 * kPi) * (a.sweep < 0 ? -1 : 1);
-    const double wrapped = along < 0 ? along + 2 * kPi : along;
-    if (wrapped <= std::abs(a.sweep)) return std::abs(r.norm() - a.radius);
-    const Vector2d e0 = a.centre + a.radius * Vector2d(std::cos(a.start_angle), std::sin(a.start_angle));
-    const double end = a.start_angle + a.sweep;
-    const Vector2d e1 = a.centre + a.radius * Vector2d(std::cos(end), std::sin(end));
-    return std::min((x - e0).norm(), (x - e1).norm());
   }
 };
 
@@ -194,7 +208,7 @@ Sizing sizing_of(const Boundary& b, const MeshOptions& o, double size) {
     if (c.tag.kind == BoundaryTag::Kind::circle_hole) {
       s.circles.push_back({Circle{c.circle.centre, c.circle.radius}, h0});
     } else if (h0 < size) {
-      s.arcs.push_back({c.circle, h0});
+      s.arcs.emplace_back(c.circle, h0);
     }
   }
   for (const Ring& ring : b.rings) {
@@ -220,7 +234,8 @@ Sizing sizing_of(const Boundary& b, const MeshOptions& o, double size) {
 // Where a piece's boundary vertices go: parameters u in [0, 1), the first at 0.
 std::vector<double> piece_stations(const Curve& c, const Piece& p, const Sizing& h, double h_min, const MeshOptions& o) {
   const double length = c.length();
-  const int samples = static_cast<int>(std::clamp(std::ceil(2 * length / h_min), 16.0, 20000.0));
+  // Fine enough to see the smallest feature's size change along the piece.
+  const int samples = static_cast<int>(std::clamp(std::ceil(length / h_min), 16.0, 4096.0));
   // The number of elements along the piece is the integral of ds / h.
   std::vector<double> cumulative(samples + 1, 0.0);
   for (int k = 0; k < samples; ++k) {
@@ -256,7 +271,7 @@ std::vector<double> piece_stations(const Curve& c, const Piece& p, const Sizing&
 detail::RefinementInput refinement_input(const Boundary& b, const Sizing& h, const MeshOptions& o) {
   double h_min = h.size;
   for (const auto& c : h.circles) h_min = std::min(h_min, c.second);
-  for (const auto& a : h.arcs) h_min = std::min(h_min, a.second);
+  for (const ArcFeature& a : h.arcs) h_min = std::min(h_min, a.h0);
   for (const auto& p : h.points) h_min = std::min(h_min, p.second);
 
   detail::RefinementInput in;
@@ -294,9 +309,33 @@ detail::RefinementInput refinement_input(const Boundary& b, const Sizing& h, con
   in.curve_point = [&b](int curve, double t) { return b.curves[curve].at(t); };
   in.size_at = [&h](const Vector2d& x) { return h(x); };
   in.min_angle_deg = kMinAngleDeg;
-  in.min_length = shortest / 32;
-  in.max_vertices = o.max_nodes;
+  in.min_length = shortest / 1024;
+  // A mesh of V corners has at least 2V − 3 edges, so 3V − 3 nodes with its mid-side ones: past
+  // this many corners it cannot fit in max_nodes, and refinement stops early.
+  in.max_vertices = o.max_nodes / 3 + 2;
   return in;
+}
+
+// det J of the 6-node triangle t at the reference point (xi, eta).
+double jacobian(const std::vector<Vector2d>& nodes, const std::array<int, 6>& t, double xi, double eta) {
+  const double l1 = 1 - xi - eta;
+  const double dxi[6] = {-(4 * l1 - 1), 4 * xi - 1, 0, 4 * (l1 - xi), 4 * eta, -4 * eta};
+  const double deta[6] = {-(4 * l1 - 1), 0, 4 * eta - 1, -4 * xi, 4 * xi, 4 * (l1 - eta)};
+  Vector2d along_xi(0, 0), along_eta(0, 0);
+  for (int i = 0; i < 6; ++i) {
+    along_xi += dxi[i] * nodes[t[i]];
+    along_eta += deta[i] * nodes[t[i]];
+  }
+  return cross(along_xi, along_eta);
+}
+
+// det J is quadratic: positive at the six nodes is the usual test of a usable element.
+bool positive_at_nodes(const std::vector<Vector2d>& nodes, const std::array<int, 6>& t) {
+  constexpr double kNodes[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
+  for (const auto& p : kNodes) {
+    if (!(jacobian(nodes, t, p[0], p[1]) > 0)) return false;
+  }
+  return true;
 }
 
 std::uint64_t edge_key(int a, int b) {
@@ -307,50 +346,63 @@ TriMesh quadratic_mesh(const detail::RefinedMesh& m, const Boundary& b, int max_
   TriMesh mesh;
   mesh.nodes = m.points;
   mesh.corner_count = static_cast<int>(m.points.size());
-  std::unordered_map<std::uint64_t, int> segment_at;
-  for (std::size_t i = 0; i < m.segments.size(); ++i) segment_at[edge_key(m.segments[i].a, m.segments[i].b)] = static_cast<int>(i);
-
-  struct Edge {
-    std::uint64_t key;
-    int triangle, side;
-  };
-  std::vector<Edge> edges;
-  edges.reserve(3 * m.triangles.size());
-  mesh.triangles.resize(m.triangles.size());
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-    for (int i = 0; i < 3; ++i) {
-      mesh.triangles[t][i] = m.triangles[t][i];
-      edges.push_back({edge_key(m.triangles[t][i], m.triangles[t][(i + 1) % 3]), static_cast<int>(t), i});
-    }
-  }
-  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) {
-    return x.key != y.key ? x.key < y.key : x.triangle < y.triangle;
-  });
+  const std::size_t triangles = m.triangles.size();
   std::size_t total = mesh.nodes.size();
-  for (std::size_t k = 0; k < edges.size(); ++k) total += k == 0 || edges[k - 1].key != edges[k].key;
+  for (std::size_t t = 0; t < triangles; ++t) {
+    for (int nb : m.neighbours[t]) total += nb < 0 || static_cast<std::size_t>(nb) > t;  // each edge once
+  }
   if (total > static_cast<std::size_t>(max_nodes)) {
     fail("the mesh would have " + std::to_string(total) + " nodes, more than max_nodes = " + std::to_string(max_nodes) +
          "; use a larger element size");
   }
-  std::unordered_map<std::uint64_t, int> middle_of;
-  for (std::size_t k = 0; k < edges.size(); ++k) {
-    const Edge& e = edges[k];
-    if (k == 0 || edges[k - 1].key != e.key) {
-      const int a = m.triangles[e.triangle][e.side], c = m.triangles[e.triangle][(e.side + 1) % 3];
-      Vector2d mid = (m.points[a] + m.points[c]) / 2;
-      const auto s = segment_at.find(e.key);
-      if (s != segment_at.end()) {
-        const detail::BoundarySegment& seg = m.segments[s->second];
+  std::unordered_map<std::uint64_t, int> segment_at;
+  for (std::size_t i = 0; i < m.segments.size(); ++i) segment_at[edge_key(m.segments[i].a, m.segments[i].b)] = static_cast<int>(i);
+
+  mesh.nodes.reserve(total);
+  mesh.triangles.resize(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    for (int i = 0; i < 3; ++i) {
+      mesh.triangles[t][i] = m.triangles[t][i];
+      mesh.triangles[t][3 + i] = -1;
+    }
+  }
+  std::vector<int> middle_of_segment(m.segments.size(), -1);
+  std::vector<char> curved(triangles, 0);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    for (int i = 0; i < 3; ++i) {
+      if (mesh.triangles[t][3 + i] >= 0) continue;  // made from the triangle across
+      const int from = m.triangles[t][i], to = m.triangles[t][(i + 1) % 3];
+      const int id = static_cast<int>(mesh.nodes.size());
+      Vector2d mid = (m.points[from] + m.points[to]) / 2;
+      const int across = m.neighbours[t][i];
+      if (across >= 0) {
+        for (int j = 0; j < 3; ++j) {
+          if (m.triangles[across][j] == to) mesh.triangles[across][3 + j] = id;
+        }
+      } else {
+        const int s = segment_at.at(edge_key(from, to));
+        const detail::BoundarySegment& seg = m.segments[s];
         const Curve& curve = b.curves[seg.curve];
-        if (curve.arc) mid = curve.at((seg.ta + seg.tb) / 2);
-        middle_of[e.key] = static_cast<int>(mesh.nodes.size());
+        if (curve.arc) {
+          mid = curve.at((seg.ta + seg.tb) / 2);
+          curved[t] = 1;
+        }
+        middle_of_segment[s] = id;
       }
       mesh.nodes.push_back(mid);
+      mesh.triangles[t][3 + i] = id;
     }
-    mesh.triangles[e.triangle][3 + e.side] = static_cast<int>(mesh.nodes.size()) - 1;
   }
-  for (const detail::BoundarySegment& s : m.segments) {
-    mesh.boundary.push_back({{s.a, s.b, middle_of.at(edge_key(s.a, s.b))}, b.curves[s.curve].tag});
+  // Refinement keeps curved triangles tall enough for a positive Jacobian; should one still
+  // fold, its edge goes straight (a sagitta's error in the boundary, not an unusable element).
+  for (std::size_t t = 0; t < triangles; ++t) {
+    if (!curved[t] || positive_at_nodes(mesh.nodes, mesh.triangles[t])) continue;
+    const auto& c = mesh.triangles[t];
+    for (int i = 0; i < 3; ++i) mesh.nodes[c[3 + i]] = (mesh.nodes[c[i]] + mesh.nodes[c[(i + 1) % 3]]) / 2;
+  }
+  for (std::size_t i = 0; i < m.segments.size(); ++i) {
+    const detail::BoundarySegment& s = m.segments[i];
+    mesh.boundary.push_back({{s.a, s.b, middle_of_segment[i]}, b.curves[s.curve].tag});
   }
   return mesh;
 }
@@ -367,6 +419,9 @@ TriMesh mesh_region(const Region& r, const MeshOptions& options) {
   detail::RefinedMesh refined;
   try {
     refined = detail::refine(in);
+  } catch (const std::length_error&) {
+    fail("the mesh would have more than max_nodes = " + std::to_string(options.max_nodes) +
+         " nodes; use a larger element size");
   } catch (const std::runtime_error& e) {
     fail(std::string("could not mesh the plate (") + e.what() + ")");
   }
@@ -389,17 +444,7 @@ MeshQuality mesh_quality(const TriMesh& mesh) {
     const double area2 = std::abs(cross(b - a, c - a));
     const double sine = area2 / std::max({lb * lc, la * lc, la * lb});
     q.min_angle_deg = std::min(q.min_angle_deg, std::asin(std::min(1.0, sine)) * 180 / kPi);
-    for (const auto& p : kRule) {
-      const double l1 = 1 - p[0] - p[1], l2 = p[0], l3 = p[1];
-      const double dxi[6] = {-(4 * l1 - 1), 4 * l2 - 1, 0, 4 * (l1 - l2), 4 * l3, -4 * l3};
-      const double deta[6] = {-(4 * l1 - 1), 0, 4 * l3 - 1, -4 * l2, 4 * l2, 4 * (l1 - l3)};
-      Vector2d dx_dxi(0, 0), dx_deta(0, 0);
-      for (int i = 0; i < 6; ++i) {
-        dx_dxi += dxi[i] * mesh.nodes[t[i]];
-        dx_deta += deta[i] * mesh.nodes[t[i]];
-      }
-      q.area += cross(dx_dxi, dx_deta) / 6;
-    }
+    for (const auto& p : kRule) q.area += jacobian(mesh.nodes, t, p[0], p[1]) / 6;
   }
   if (mesh.triangles.empty()) q.min_angle_deg = q.min_edge = 0;
   return q;

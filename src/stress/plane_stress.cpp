@@ -1,6 +1,7 @@
 #include "nbar/stress/plane_stress.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -23,7 +24,9 @@ using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 std::string at_point(const Eigen::Vector2d& p) {
-  return "(" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ")";
+  std::string out(1, '(');  // appended piece by piece: GCC 12 warns (wrongly) on "(" + std::string
+  out.append(std::to_string(p.x())).append(", ").append(std::to_string(p.y())).append(")");
+  return out;
 }
 
 void check_material(const ElasticMaterial& m) {
@@ -76,6 +79,8 @@ struct HoleGeometry {
   Eigen::Vector2d centre{0, 0};
   double radius = 0;
   std::vector<int> edges;  // indices into TriMesh::boundary
+  std::vector<int> nodes;  // the nodes on the hole, each once
+  std::vector<std::array<int, 3>> edge_nodes;  // per edge, its nodes' positions in `nodes`
 };
 
 // Least-squares circle through points that lie on one (Kasa's fit, then exact for them).
@@ -127,7 +132,6 @@ struct PlateModel::Impl {
   std::map<int, HoleGeometry> holes;
   std::array<Support, 3> supports;
   std::vector<int> reduced_index;  // per dof: its row in the reduced system, -1 when supported
-  Eigen::SimplicialLLT<SparseColumns> factor;
   SparseRows support_rows;  // the stiffness rows of the three supported dofs (for the reactions)
   SparseRows recovery;      // nodal (σxx, σyy, τxy) from the displacements: element values at the node, averaged
 
@@ -143,10 +147,128 @@ struct PlateModel::Impl {
   double add_couple(const HoleCouple& load, Eigen::VectorXd& f) const;
   double add_point_force(const PointForce& load, Eigen::VectorXd& f) const;
   double add_body(const RigidBodyField& body, Eigen::VectorXd& f) const;
+  // The nodal forces of a traction on hole h, per node of h.nodes.
+  // The traction may have a kink where `cut`·(x − centre) changes sign (zero `cut`: none).
   template <class Traction>
-  void add_hole_traction(const HoleGeometry& h, Traction traction, Eigen::VectorXd& f) const;
+  std::vector<Eigen::Vector2d> hole_traction(const HoleGeometry& h, Traction traction, const Eigen::Vector2d& cut) const;
   NodalLoads nodal_loads(const LoadCase& loads) const;
+
+  // The factor L (P K P^T = L L^T) as plain arrays: strictly-lower entries by column and the
+  // reciprocal diagonal, and each dof's row in the permuted system (-1 when supported).
+  std::vector<int> lower_start, lower_row;
+  std::vector<double> lower_value, inverse_diagonal;
+  std::vector<int> solve_row;
+  void keep_factor(const Eigen::SimplicialLLT<SparseColumns>& factor);
+  // Several load cases at once, `kBlock` at most: each factor entry then updates a row of
+  // right-hand sides, so the factor is read once per block instead of once per case.
+  static constexpr int kBlock = 16;
+  using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  template <int Width>
+  void substitute(double* x) const;
+  void solve_block(const LoadCase* cases, int count, std::vector<StressField>& out) const;
 };
+
+void PlateModel::Impl::keep_factor(const Eigen::SimplicialLLT<SparseColumns>& factor) {
+  const SparseColumns& l = factor.matrixL().nestedExpression();
+  const int n = static_cast<int>(l.cols());
+  lower_start.assign(1, 0);
+  inverse_diagonal.assign(n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    for (SparseColumns::InnerIterator it(l, j); it; ++it) {
+      if (it.row() == j) {
+        inverse_diagonal[j] = 1.0 / it.value();
+      } else if (it.row() > j) {
+        lower_row.push_back(static_cast<int>(it.row()));
+        lower_value.push_back(it.value());
+      }
+    }
+    lower_start.push_back(static_cast<int>(lower_row.size()));
+  }
+  const auto& p = factor.permutationP().indices();
+  solve_row.assign(dofs(), -1);
+  for (int i = 0; i < dofs(); ++i)
+    if (reduced_index[i] >= 0) solve_row[i] = p.size() > 0 ? p[reduced_index[i]] : reduced_index[i];
+}
+
+// x := L^-T L^-1 x for `Width` right-hand sides stored row by row (x[Width * row + case]),
+// column by column of L: each entry updates a whole row of cases at once.
+template <int Width>
+void PlateModel::Impl::substitute(double* x) const {
+  const int n = static_cast<int>(inverse_diagonal.size());
+  const int* rows = lower_row.data();
+  const double* values = lower_value.data();
+  for (int j = 0; j < n; ++j) {
+    double* xj = x + static_cast<std::ptrdiff_t>(Width) * j;
+    for (int c = 0; c < Width; ++c) xj[c] *= inverse_diagonal[j];
+    for (int k = lower_start[j]; k < lower_start[j + 1]; ++k) {
+      double* xi = x + static_cast<std::ptrdiff_t>(Width) * rows[k];
+      const double l = values[k];
+      for (int c = 0; c < Width; ++c) xi[c] -= l * xj[c];
+    }
+  }
+  for (int j = n - 1; j >= 0; --j) {
+    double* xj = x + static_cast<std::ptrdiff_t>(Width) * j;
+    double sum[Width];
+    for (int c = 0; c < Width; ++c) sum[c] = xj[c];
+    for (int k = lower_start[j]; k < lower_start[j + 1]; ++k) {
+      const double* xi = x + static_cast<std::ptrdiff_t>(Width) * rows[k];
+      const double l = values[k];
+      for (int c = 0; c < Width; ++c) sum[c] -= l * xi[c];
+    }
+    for (int c = 0; c < Width; ++c) xj[c] = sum[c] * inverse_diagonal[j];
+  }
+}
+
+void PlateModel::Impl::solve_block(const LoadCase* cases, int count, std::vector<StressField>& out) const {
+  const int n = static_cast<int>(mesh.nodes.size()), n_dofs = dofs();
+  std::vector<NodalLoads> applied;
+  applied.reserve(count);
+  const int width = count == 1 ? 1 : kBlock;  // a block is padded with empty cases
+  Block x = Block::Zero(n_dofs - 3, width);
+  for (int c = 0; c < count; ++c) {
+    applied.push_back(nodal_loads(cases[c]));
+    for (int i = 0; i < n_dofs; ++i)
+      if (solve_row[i] >= 0) x(solve_row[i], c) = applied[c].forces[i];
+  }
+  if (width == 1)
+    substitute<1>(x.data());
+  else
+    substitute<kBlock>(x.data());
+  Block displacement = Block::Zero(n_dofs, count);
+  for (int i = 0; i < n_dofs; ++i)
+    if (solve_row[i] >= 0) displacement.row(i) = x.row(solve_row[i]).head(count);
+  const Block stress = recovery * displacement;
+  const Block reactions = support_rows * displacement;
+  // Row by row of the blocks (cases side by side in memory), filling every case's field at once.
+  const std::size_t first = out.size();
+  for (int c = 0; c < count; ++c) {
+    StressField field;
+    field.load_unbalance = applied[c].load_unbalance;
+    if (applied[c].load_scale > 0) {
+      double largest = 0;
+      for (int k = 0; k < 3; ++k)
+        largest = std::max(largest, std::abs(reactions(k, c) - applied[c].forces[2 * supports[k].node + supports[k].direction]));
+      field.support_reaction = largest / applied[c].load_scale;
+    }
+    field.displacement.resize(n_dofs);
+    field.stress.resize(n);
+    field.von_mises.resize(n);
+    out.push_back(std::move(field));
+  }
+  StressField* fields = out.data() + first;
+  for (int i = 0; i < n_dofs; ++i)
+    for (int c = 0; c < count; ++c) fields[c].displacement[i] = displacement(i, c);
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < count; ++c) {
+      const Eigen::Vector3d s(stress(3 * i, c), stress(3 * i + 1, c), stress(3 * i + 2, c));
+      StressField& field = fields[c];
+      field.stress[i] = s;
+      field.von_mises[i] = std::sqrt(std::max(0.0, s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3 * s[2] * s[2]));
+      if (field.peak_node < 0 || field.von_mises[i] > field.peak) field.peak = field.von_mises[i], field.peak_node = i;
+    }
+  }
+  for (int c = 0; c < count; ++c) fields[c].peak_at = mesh.nodes[fields[c].peak_node];
+}
 
 // x and y held at the leftmost node (lowest, on a tie), and the direction across the line to the
 // node farthest from it held there: no rigid-body motion is left, and nothing more is held.
@@ -202,7 +324,20 @@ void PlateModel::Impl::find_holes() {
     holes[e.on.index].edges.push_back(static_cast<int>(i));
     for (int v : e.nodes) points[e.on.index].push_back(mesh.nodes[v]);
   }
-  for (auto& [index, h] : holes) std::tie(h.centre, h.radius) = fit_circle(points[index]);
+  for (auto& [index, h] : holes) {
+    std::tie(h.centre, h.radius) = fit_circle(points[index]);
+    std::map<int, int> position;
+    for (int edge : h.edges) {
+      std::array<int, 3> local{};
+      for (int k = 0; k < 3; ++k) {
+        const int node = mesh.boundary[edge].nodes[k];
+        const auto [it, added] = position.emplace(node, static_cast<int>(h.nodes.size()));
+        if (added) h.nodes.push_back(node);
+        local[k] = it->second;
+      }
+      h.edge_nodes.push_back(local);
+    }
+  }
 }
 
 const HoleGeometry& PlateModel::Impl::hole(int index) const {
@@ -251,9 +386,10 @@ void PlateModel::Impl::assemble_and_factorise() {
   stiffness.setFromTriplets(free_part.begin(), free_part.end());
   support_rows.resize(3, n_dofs);
   support_rows.setFromTriplets(support_part.begin(), support_part.end());
-  factor.compute(stiffness);
+  const Eigen::SimplicialLLT<SparseColumns> factor(stiffness);
   if (factor.info() != Eigen::Success)
     throw std::invalid_argument("finite elements: the stiffness matrix could not be factorised (degenerate mesh?)");
+  keep_factor(factor);
 }
 
 void PlateModel::Impl::build_recovery() {
@@ -282,22 +418,40 @@ void PlateModel::Impl::build_recovery() {
 }
 
 template <class Traction>
-void PlateModel::Impl::add_hole_traction(const HoleGeometry& h, Traction traction, Eigen::VectorXd& f) const {
-  for (int edge : h.edges) {
-    const auto& nodes = mesh.boundary[edge].nodes;  // first, second, middle
+std::vector<Eigen::Vector2d> PlateModel::Impl::hole_traction(const HoleGeometry& h, Traction traction,
+                                                            const Eigen::Vector2d& cut) const {
+  std::vector<Eigen::Vector2d> out(h.nodes.size(), Eigen::Vector2d::Zero());
+  for (std::size_t e = 0; e < h.edges.size(); ++e) {
+    const auto& nodes = mesh.boundary[h.edges[e]].nodes;  // first, second, middle
     const std::array<Eigen::Vector2d, 3> x{mesh.nodes[nodes[0]], mesh.nodes[nodes[1]], mesh.nodes[nodes[2]]};
-    for (const auto& [s, w] : t6::kGaussLine5) {
-      const Eigen::Vector3d n = t6::edge_shape(s), dn = t6::edge_shape_derivative(s);
-      const Eigen::Vector2d at = n[0] * x[0] + n[1] * x[1] + n[2] * x[2];
-      const Eigen::Vector2d tangent = dn[0] * x[0] + dn[1] * x[1] + dn[2] * x[2];
-      const Eigen::Vector2d t = traction((at - h.centre).normalized()) * (w * tangent.norm() * material.thickness);
-      for (int i = 0; i < 3; ++i) f.segment<2>(2 * nodes[i]) += n[i] * t;
+    const auto point = [&](double s) { const Eigen::Vector3d n = t6::edge_shape(s); return Eigen::Vector2d(n[0] * x[0] + n[1] * x[1] + n[2] * x[2]); };
+    const auto side = [&](double s) { return cut.dot(point(s) - h.centre); };
+    // Integrate each smooth piece on its own: split where the traction has its kink.
+    std::array<double, 3> ends{-1, 1, 1};
+    int pieces = 1;
+    if (cut.squaredNorm() > 0 && (side(-1) > 0) != (side(1) > 0)) {
+      double lo = -1, hi = 1;
+      for (int it = 0; it < 60; ++it) ((side(lo) > 0) == (side(0.5 * (lo + hi)) > 0) ? lo : hi) = 0.5 * (lo + hi);
+      ends = {-1, 0.5 * (lo + hi), 1};
+      pieces = 2;
+    }
+    for (int piece = 0; piece < pieces; ++piece) {
+      const double a = ends[piece], b = ends[piece + 1];
+      for (const auto& [g, w] : t6::kGaussLine5) {
+        const double s = 0.5 * (a + b) + 0.5 * (b - a) * g;
+        const Eigen::Vector3d n = t6::edge_shape(s), dn = t6::edge_shape_derivative(s);
+        const Eigen::Vector2d tangent = dn[0] * x[0] + dn[1] * x[1] + dn[2] * x[2];
+        const Eigen::Vector2d t =
+            traction((point(s) - h.centre).normalized()) * (0.5 * (b - a) * w * tangent.norm() * material.thickness);
+        for (int i = 0; i < 3; ++i) out[h.edge_nodes[e][i]] += n[i] * t;
+      }
     }
   }
+  return out;
 }
 
 // The pin presses on the hole wall facing the force: p(θ) = p0 cos(θ − θ_F) over that half, with
-// p0 = 2|F| / (π r t) so the resultant is F; rescaled so the discrete resultant is F exactly.
+// p0 = 2|F| / (π r t) so the resultant is F; the discrete resultant is made F exactly.
 double PlateModel::Impl::add_bearing(const BearingLoad& load, Eigen::VectorXd& f) const {
   const HoleGeometry& h = hole(load.hole);
   if (!load.force.allFinite())
@@ -306,12 +460,16 @@ double PlateModel::Impl::add_bearing(const BearingLoad& load, Eigen::VectorXd& f
   if (magnitude == 0) return 0;
   const Eigen::Vector2d direction = load.force / magnitude;
   const double p0 = 2 * magnitude / (std::numbers::pi * h.radius * material.thickness);
-  Eigen::VectorXd part = Eigen::VectorXd::Zero(f.size());
-  add_hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
+  const std::vector<Eigen::Vector2d> part = hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
     return std::max(0.0, radial.dot(direction)) * p0 * radial;
-  }, part);
-  const Eigen::Vector2d resultant = part.reshaped(2, part.size() / 2).rowwise().sum();
-  f += (magnitude * magnitude / load.force.dot(resultant)) * part;
+  }, direction);
+  Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
+  for (const auto& p : part) resultant += p;
+  // The discrete circle bends the resultant by ~1e-8: turn and scale it onto F (a tangential
+  // part of that size is negligible, a force off F would be reported as unbalance).
+  const double turn = std::atan2(cross(resultant, load.force), resultant.dot(load.force));
+  const Eigen::Matrix2d onto = (magnitude / resultant.norm()) * Eigen::Rotation2Dd(turn).toRotationMatrix();
+  for (std::size_t i = 0; i < part.size(); ++i) f.segment<2>(2 * h.nodes[i]) += onto * part[i];
   return magnitude;
 }
 
@@ -323,13 +481,12 @@ double PlateModel::Impl::add_couple(const HoleCouple& load, Eigen::VectorXd& f) 
     throw std::invalid_argument("finite elements: the couple on hole " + std::to_string(load.hole) + " is not finite");
   if (load.moment == 0) return 0;
   const double tau = load.moment / (2 * std::numbers::pi * h.radius * h.radius * material.thickness);
-  Eigen::VectorXd part = Eigen::VectorXd::Zero(f.size());
-  add_hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
+  const std::vector<Eigen::Vector2d> part = hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
     return tau * Eigen::Vector2d(-radial.y(), radial.x());
-  }, part);
+  }, Eigen::Vector2d::Zero());
   double moment = 0;
-  for (int i = 0; i < part.size() / 2; ++i) moment += cross(mesh.nodes[i] - h.centre, part.segment<2>(2 * i));
-  f += (load.moment / moment) * part;
+  for (std::size_t i = 0; i < part.size(); ++i) moment += cross(mesh.nodes[h.nodes[i]] - h.centre, part[i]);
+  for (std::size_t i = 0; i < part.size(); ++i) f.segment<2>(2 * h.nodes[i]) += (load.moment / moment) * part[i];
   return std::abs(load.moment) / size;
 }
 
@@ -462,38 +619,15 @@ std::pair<Eigen::Vector2d, double> PlateModel::hole_circle(int hole) const {
   return {h.centre, h.radius};
 }
 
-StressField PlateModel::solve(const LoadCase& loads) const {
-  const Impl& m = *impl_;
-  const int n = static_cast<int>(m.mesh.nodes.size()), n_dofs = m.dofs();
-  NodalLoads applied = m.nodal_loads(loads);
-  StressField out;
-  out.load_unbalance = applied.load_unbalance;
-  Eigen::VectorXd reduced(n_dofs - 3);
-  for (int i = 0; i < n_dofs; ++i)
-    if (m.reduced_index[i] >= 0) reduced[m.reduced_index[i]] = applied.forces[i];
-  const Eigen::VectorXd solution = m.factor.solve(reduced);
-  out.displacement = Eigen::VectorXd::Zero(n_dofs);
-  for (int i = 0; i < n_dofs; ++i)
-    if (m.reduced_index[i] >= 0) out.displacement[i] = solution[m.reduced_index[i]];
-  if (applied.load_scale > 0) {
-    const Eigen::Vector3d reactions = m.support_rows * out.displacement;
-    double largest = 0;
-    for (int k = 0; k < 3; ++k) {
-      const Support& s = m.supports[k];
-      largest = std::max(largest, std::abs(reactions[k] - applied.forces[2 * s.node + s.direction]));
-    }
-    out.support_reaction = largest / applied.load_scale;
+StressField PlateModel::solve(const LoadCase& loads) const { return std::move(solve_many({loads})[0]); }
+
+std::vector<StressField> PlateModel::solve_many(const std::vector<LoadCase>& cases) const {
+  std::vector<StressField> out;
+  out.reserve(cases.size());
+  for (std::size_t first = 0; first < cases.size(); first += Impl::kBlock) {
+    const std::size_t count = std::min<std::size_t>(Impl::kBlock, cases.size() - first);
+    impl_->solve_block(cases.data() + first, static_cast<int>(count), out);
   }
-  const Eigen::VectorXd stress = m.recovery * out.displacement;
-  out.stress.resize(n);
-  out.von_mises.resize(n);
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d s = stress.segment<3>(3 * i);
-    out.stress[i] = s;
-    out.von_mises[i] = std::sqrt(std::max(0.0, s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3 * s[2] * s[2]));
-    if (out.peak_node < 0 || out.von_mises[i] > out.peak) out.peak = out.von_mises[i], out.peak_node = i;
-  }
-  out.peak_at = m.mesh.nodes[out.peak_node];
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -342,6 +343,162 @@ TEST(PlaneStress, AgreesWithCalculix) {
   EXPECT_LT(worst / largest, 0.01);
   EXPECT_NEAR(ours.peak, their_peak, 0.02 * their_peak);
   std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace nbar::fe
+
+namespace nbar::fe {
+namespace {
+
+// solve_many gives what solve gives, case by case, across several blocks.
+TEST(PlaneStress, SolveManyMatchesSolve) {
+  const TriMesh mesh = structured::plate_with_hole(-0.05, -0.02, 0.15, 0.02, {0, 0}, 0.008, 32, 8, 2.0);
+  const PlateModel model(mesh, kSteel);
+  std::vector<LoadCase> cases;
+  for (int i = 0; i < 37; ++i) {
+    LoadCase c;
+    c.bearings.push_back({0, {100.0 * std::cos(0.3 * i), 100.0 * std::sin(0.3 * i)}});
+    c.couples.push_back({0, 0.5 * i});
+    c.body = RigidBodyField{{0.05, 0}, {1, 2}, 3.0 + i, 10.0 - i, {0, -9.81}};
+    cases.push_back(c);
+  }
+  const std::vector<StressField> many = model.solve_many(cases);
+  ASSERT_EQ(many.size(), cases.size());
+  for (std::size_t i = 0; i < cases.size(); i += 6) {
+    const StressField one = model.solve(cases[i]);
+    EXPECT_NEAR(many[i].peak, one.peak, 1e-12 * one.peak);
+    EXPECT_EQ(many[i].peak_node, one.peak_node);
+    EXPECT_LT((many[i].displacement - one.displacement).norm(), 1e-12 * one.displacement.norm());
+    EXPECT_LT(one.support_reaction, 1e-9);
+  }
+  EXPECT_TRUE(model.solve_many({}).empty());
+}
+
+}  // namespace
+}  // namespace nbar::fe
+
+namespace nbar::fe {
+namespace {
+
+TEST(PlaneStress, CalculixResultsReaderReadsBlocksAndLocatesBadLines) {
+  std::istringstream good(
+      "    2C                             2                                     1\n"
+      " -1         1 0.00000E+00 0.00000E+00 0.00000E+00\n"
+      " -3\n"
+      " -4  DISP        4    1\n"
+      " -5  D1          1    2    1    0\n"
+      " -1         1 1.00000E-03-2.00000E-03 0.00000E+00\n"
+      " -1         2 3.00000E-03 4.00000E-03 0.00000E+00\n"
+      " -3\n"
+      " -4  STRESS      6    1\n"
+      " -1         2 1.00000E+06 2.00000E+06 0.00000E+00 3.00000E+06 0.00000E+00 0.00000E+00\n"
+      " -3\n");
+  const CalculixResults r = read_calculix_frd(good);
+  ASSERT_EQ(r.displacement.size(), 2u);
+  EXPECT_EQ(r.displacement[0], Eigen::Vector2d(1e-3, -2e-3));
+  EXPECT_EQ(r.displacement[1], Eigen::Vector2d(3e-3, 4e-3));
+  ASSERT_EQ(r.stress.size(), 2u);
+  EXPECT_EQ(r.stress[1], Eigen::Vector3d(1e6, 2e6, 3e6));
+  std::istringstream bad(" -4  DISP        4    1\n -1         1 1.0000\n");
+  try {
+    read_calculix_frd(bad);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace nbar::fe
+
+namespace nbar::fe {
+namespace {
+
+// The same checks on meshes from nbar's own mesher (mesh_region), as the link pipeline makes them.
+
+// A bar with a 20 mm hole at each end, 40 mm wide, ends 40 mm beyond the hole centres (h/H = 1,
+// d/H = 0.5), pulled apart by its two pins: each end is the lug above.
+Region two_hole_bar() { return make_bar({0, 0}, {0.2, 0}, 0.04, 0.04, 0.01, 0.01); }
+
+struct MeshedLug {
+  double kt = 0;
+  int nodes = 0;
+  StressField field;
+};
+
+MeshedLug meshed_lug(double size, int segments) {
+  MeshOptions options;
+  options.size = size;
+  options.segments_per_hole = segments;
+  const TriMesh mesh = mesh_region(two_hole_bar(), options);
+  const PlateModel model(mesh, kSteel);
+  LoadCase loads;
+  loads.bearings = {{0, {-1000, 0}}, {1, {1000, 0}}};
+  MeshedLug out;
+  out.field = model.solve(loads);
+  // Quadratic edges approximate the circle: a bearing's discrete resultant is turned onto F by
+  // ~1e-8 rad, which leaves a moment of that order times r / size.
+  EXPECT_LT(out.field.load_unbalance, 1e-8);
+  EXPECT_LT(out.field.support_reaction, 1e-9);
+  out.kt = hole_peak(mesh, out.field) / (1000 / ((0.04 - 0.02) * kSteel.thickness));
+  out.nodes = static_cast<int>(mesh.nodes.size());
+  return out;
+}
+
+TEST(PlaneStress, MeshedTwoHoleBarIsTheLugAndConverges) {
+  const MeshedLug coarse = meshed_lug(0.008, 32), medium = meshed_lug(0.004, 48), fine = meshed_lug(0.002, 96);
+  std::printf("Meshed two-hole bar (lug d/H = 0.5, h/H = 1): Ktn = %.4f (%d nodes), %.4f (%d nodes), %.4f (%d nodes)\n",
+              coarse.kt, coarse.nodes, medium.kt, medium.nodes, fine.kt, fine.nodes);
+  EXPECT_LT(std::abs(fine.kt - medium.kt) / fine.kt, 0.02);
+  EXPECT_NEAR(fine.kt, 2.31, 0.03 * 2.31);  // the structured lug mesh's converged value
+  EXPECT_NEAR(fine.kt, peterson_lug(0.5), 0.10 * peterson_lug(0.5));
+  // The peak sits beside a hole, across the net section.
+  const Eigen::Vector2d at = fine.field.peak_at;
+  const double from_hole = std::min(at.norm(), (at - Eigen::Vector2d(0.2, 0)).norm());
+  EXPECT_NEAR(from_hole, 0.01, 1e-6);
+  EXPECT_GT(std::abs(at.y()), 0.008);
+}
+
+// Kirsch on a mesher-made plate: W = 15 d, length 30 d.
+TEST(PlaneStress, MeshedKirschPlate) {
+  const double radius = 0.01, half_width = 15 * radius, half_length = 30 * radius;
+  Region plate;
+  plate.outline = {{-half_length, -half_width}, {half_length, -half_width}, {half_length, half_width}, {-half_length, half_width}};
+  plate.circle_holes = {Circle{{0, 0}, radius}};
+  MeshOptions options;
+  options.size = 0.02;
+  options.segments_per_hole = 128;
+  const TriMesh mesh = mesh_region(plate, options);
+  const PlateModel model(mesh, kSteel);
+  LoadCase loads;
+  loads.nodal = end_tension(mesh, -half_length, half_length, 1e6, kSteel.thickness);
+  const StressField field = model.solve(loads);
+  const double kt = hole_peak(mesh, field) / 1e6;
+  std::printf("Meshed Kirsch plate (d/W = 1/15): Kt = %.4f with %zu nodes; Heywood 3.014\n", kt, mesh.nodes.size());
+  EXPECT_NEAR(kt, 3.014, 0.015 * 3.014);
+  EXPECT_LT(field.support_reaction, 1e-9);
+}
+
+}  // namespace
+}  // namespace nbar::fe
+
+namespace nbar::fe {
+namespace {
+
+// docs/fe.md's example, as written there.
+TEST(PlaneStress, DocsExampleRuns) {
+  const Region bar = make_bar({0, 0}, {0.2, 0}, 0.04, 0.03, 0.01, 0.01);
+  const fe::PlateModel model(fe::mesh_region(bar, {.size = 0.004}), {200e9, 0.3, 0.01, 7850});
+  fe::LoadCase loads;
+  loads.bearings = {{0, {-1000, 0}}, {1, {1000, 0}}};
+  loads.body = fe::RigidBodyField{.origin = {0, 0}, .omega = 5.0, .gravity = {0, -9.81}};
+  const fe::StressField field = model.solve(loads);
+  // Beside a hole, about Ktn × P / ((H − d) t) = 2.3 × 5 MPa.
+  EXPECT_NEAR(field.peak, 2.3 * 1000 / (0.02 * 0.01), 0.1 * 2.3 * 1000 / (0.02 * 0.01));
+  EXPECT_NEAR(std::min(field.peak_at.norm(), (field.peak_at - Eigen::Vector2d(0.2, 0)).norm()), 0.01, 1e-6);
+  EXPECT_GT(field.load_unbalance, 0);  // the spin and gravity are relieved
+  EXPECT_LT(field.support_reaction, 1e-9);
 }
 
 }  // namespace

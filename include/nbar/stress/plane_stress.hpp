@@ -112,6 +112,11 @@ class PlateModel {
 
   // Throws std::invalid_argument for a hole index the plate does not have or a point outside it.
   StressField solve(const LoadCase& loads) const;
+  // The same for many load cases (the steps of a sweep), in order: about 3 times faster per case
+  // than solve() one by one, since each block of 16 cases reads the factor once. A field holds
+  // 6 doubles per node: to bound memory over a long sweep, pass the steps 16 or 32 at a time and
+  // keep what is needed (the peak, the field of the worst step).
+  std::vector<StressField> solve_many(const std::vector<LoadCase>& cases) const;
 
   const TriMesh& mesh() const;
   const ElasticMaterial& material() const;
