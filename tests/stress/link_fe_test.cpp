@@ -218,7 +218,8 @@ TEST(LinkFe, PeaksOverTheSweepAreTheSameOnOneOrTwoThreads) {
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(p1[k].body, static_cast<int>(k));
     EXPECT_EQ(p1[k].step, p2[k].step);
-    EXPECT_EQ(p1[k].von_mises, p2[k].von_mises);
+    // Blocks of cases are back-substituted together: the same to rounding whatever the blocks.
+    EXPECT_NEAR(p1[k].von_mises, p2[k].von_mises, 1e-12 * p1[k].von_mises);
     EXPECT_GT(p1[k].von_mises, 0.0);
     EXPECT_GT(p1[k].nodes, 100);
     EXPECT_GT(p1[k].elements, 40);
@@ -229,9 +230,9 @@ TEST(LinkFe, PeaksOverTheSweepAreTheSameOnOneOrTwoThreads) {
     EXPECT_LT(p1[k].support_reaction, 1e-6);
     // The peak is the largest nodal stress of its step's field.
     const fe::StressField at_peak = s1.fe.solve(s1.forces[p1[k].step], p1[k].body);
-    EXPECT_EQ(at_peak.peak, p1[k].von_mises);
+    EXPECT_NEAR(at_peak.peak, p1[k].von_mises, 1e-12 * p1[k].von_mises);
     for (std::size_t i = 0; i < s1.forces.size(); ++i)
-      EXPECT_LE(s1.fe.solve(s1.forces[i], p1[k].body).peak, p1[k].von_mises);
+      EXPECT_LE(s1.fe.solve(s1.forces[i], p1[k].body).peak, p1[k].von_mises * (1 + 1e-12));
   }
 }
 
