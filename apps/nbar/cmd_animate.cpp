@@ -25,6 +25,8 @@ struct AnimateArgs {
   bool labels = false;
   std::vector<std::string> traces;
   int width = 900, height = 640;
+  bool stress = false;
+  std::optional<double> mesh_size;
 };
 
 // "gif", "svg", "html" or "mp4" from the file name; empty when it is none of them.
@@ -70,13 +72,19 @@ int run_animate(const AnimateArgs& args) {
   options.steps = args.steps;
   options.max_steps = args.max_steps;
   options.order = 0;  // positions are all a picture needs
+  if (args.stress) {
+    options.stress = true;
+    options.stress_method = nbar::StressMethod::fe;
+    if (args.mesh_size) options.fe.mesh_size = *args.mesh_size * loaded.mechanism->model().units.length_scale;
+  }
   nbar::Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
   const nbar::SweepResult& sweep = analysis.sweep;
   if (sweep.samples.empty()) return finish(loaded, sweep);
 
   try {
-    const nbar::render::Animation animation(analysis.mechanism, sweep, draw, args.frames.value_or(0), args.fps);
+    nbar::render::Animation animation(analysis.mechanism, sweep, draw, args.frames.value_or(0), args.fps);
+    if (args.stress) animation.show_stresses(analysis);
     if (format == "gif")
       animation.write_gif(args.output);
     else if (format == "svg")
@@ -115,6 +123,12 @@ Command add_animate_command(CLI::App& app) {
   sub->add_flag("--labels", args->labels, "write the name of every point");
   sub->add_option("--trace", args->traces, "draw the paths of these points, comma-separated, e.g. P,B")
       ->delimiter(',');
+  sub->add_flag("--stress", args->stress,
+                "GIF and MP4: colour every link with a shape by its von Mises stress in every frame (finite "
+                "elements, one colour scale for the whole sweep), each link's peak marked");
+  sub->add_option("--mesh-size", args->mesh_size,
+                  "with --stress: element edge far from holes, in the model's length unit")
+      ->check(CLI::PositiveNumber);
   sub->add_option("--width", args->width, "picture width in pixels (default 900)")->check(CLI::Range(64, 8192));
   sub->add_option("--height", args->height, "picture height in pixels (default 640)")->check(CLI::Range(64, 8192));
   sub->footer(

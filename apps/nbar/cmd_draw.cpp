@@ -7,6 +7,7 @@
 #include "nbar/analysis/pose.hpp"
 #include "nbar/render/drawing.hpp"
 #include "nbar/render/pictures.hpp"
+#include "nbar/render/stress_map.hpp"
 
 namespace nbar::cli {
 
@@ -22,6 +23,8 @@ struct DrawArgs {
   std::vector<std::string> traces;
   int width = 900, height = 640;
   std::string title;
+  bool stress = false;
+  std::optional<double> mesh_size;
 };
 
 std::string extension(const std::string& path) {
@@ -56,6 +59,15 @@ int run_draw(const DrawArgs& args) {
   options.steps = args.steps;
   options.max_steps = args.max_steps;
   options.order = 0;
+  if (args.stress) {
+    if (args.at) {
+      std::cerr << "error: --stress colours a solved step of the sweep: give --step instead of --at\n";
+      return kBadUsage;
+    }
+    options.stress = true;
+    options.stress_method = StressMethod::fe;
+    if (args.mesh_size) options.fe.mesh_size = *args.mesh_size * m.units.length_scale;
+  }
   Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
   const SweepResult& sweep = analysis.sweep;
@@ -71,6 +83,7 @@ int run_draw(const DrawArgs& args) {
     const int step = args.step.value_or(render::default_drawn_step(mech, sweep));
     if (!check_step(step, sweep)) return kBadUsage;
     points = render::sample_points(mech, sweep.samples[step]);
+    if (args.stress) render::add_stress_maps(draw, analysis, step);
   }
   try {
     const bool written = format == "svg" ? write_file(args.output, render::drawing_svg(mech, sweep, points, draw))
@@ -102,6 +115,13 @@ Command add_draw_command(CLI::App& app) {
   sub->add_option("--width", args->width, "pixels (default 900)")->check(CLI::Range(100, 10000));
   sub->add_option("--height", args->height, "pixels (default 640)")->check(CLI::Range(100, 10000));
   sub->add_option("--title", args->title, "a title at the top left");
+  sub->add_flag("--stress", args->stress,
+                "colour every link with a shape by its von Mises stress at the drawn step (finite elements, as "
+                "`nbar stress --method fe`), with a colour legend and each link's peak marked");
+  sub->add_option("--mesh-size", args->mesh_size,
+                  "with --stress: element edge far from holes, in the model's length unit (default: a twentieth of "
+                  "each plate's size)")
+      ->check(CLI::PositiveNumber);
   return {sub, [args] { return run_draw(*args); }};
 }
 

@@ -15,6 +15,8 @@ struct ReportArgs {
   std::optional<int> steps;
   int max_steps = nbar::kDefaultMaxSweepSamples;
   int frames = 72;
+  std::string method = "beam";
+  std::optional<double> mesh_size;
 };
 
 int run_report(const ReportArgs& args) {
@@ -28,6 +30,10 @@ int run_report(const ReportArgs& args) {
   AnalysisOptions options = render::report_analysis_options(summary);
   options.steps = args.steps;
   options.max_steps = args.max_steps;
+  if (args.method == "fe") {
+    options.stress_method = StressMethod::fe;
+    if (args.mesh_size) options.fe.mesh_size = *args.mesh_size * loaded.mechanism->model().units.length_scale;
+  }
   Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
   render::ReportOptions report;
@@ -55,6 +61,13 @@ Command add_report_command(CLI::App& app) {
   sub->add_option("--steps", args->steps, "samples of the sweep (overrides the model's sweep)")->check(CLI::PositiveNumber);
   sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
   sub->add_option("--frames", args->frames, "animation frames (default 72)")->check(CLI::Range(2, 1000));
+  sub->add_option("--stress-method", args->method,
+                  "the stresses' method, as `nbar stress --method`: beam (default) or fe (links coloured by their "
+                  "finite-element von Mises stress)")
+      ->check(CLI::IsMember({"beam", "fe"}));
+  sub->add_option("--mesh-size", args->mesh_size, "with --stress-method fe: element edge far from holes, in the "
+                                                  "model's length unit")
+      ->check(CLI::PositiveNumber);
   return {sub, [args] { return run_report(*args); }};
 }
 

@@ -128,6 +128,8 @@ struct StressArgs {
   std::optional<int> steps;
   int max_steps = nbar::kDefaultMaxSweepSamples;
   int sections = 200;
+  std::string method = "beam";
+  std::optional<double> mesh_size;
   std::string format = "table";
   std::string output;
   std::string profile_body;
@@ -157,6 +159,14 @@ int run_stress(const StressArgs& args) {
   options.max_steps = args.max_steps;
   options.stress = true;
   options.sections = args.sections;
+  if (args.method == "fe") {
+    options.stress_method = nbar::StressMethod::fe;
+    if (args.mesh_size) options.fe.mesh_size = *args.mesh_size * loaded.mechanism->model().units.length_scale;
+  }
+  if (args.method == "fe" && !args.profile_body.empty()) {
+    std::cerr << "error: --section-profile cuts sections, which the beam method has: leave out --method fe\n";
+    return kBadUsage;
+  }
   nbar::Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
 
@@ -225,8 +235,16 @@ int main(int argc, char** argv) {
   stress->add_option("--steps", stress_args.steps, "number of samples, ends included (overrides the model's sweep)")
       ->check(CLI::PositiveNumber);
   stress->add_option("--max-steps", stress_args.max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
-  stress->add_option("--sections", stress_args.sections, "cross-sections per link, at least (default 200)")
+  stress->add_option("--method", stress_args.method,
+                     "beam (default: quick, beam theory on cross-sections, for slender links between joints) or fe "
+                     "(plane-stress finite elements: the peaks at pin holes, fillets and in plates)")
+      ->check(CLI::IsMember({"beam", "fe"}));
+  stress->add_option("--sections", stress_args.sections, "beam: cross-sections per link, at least (default 200)")
       ->check(CLI::Range(10, 100000));
+  stress->add_option("--mesh-size", stress_args.mesh_size,
+                     "fe: element edge far from holes and corners, in the model's length unit (default: a twentieth "
+                     "of each plate's size; finer around holes)")
+      ->check(CLI::PositiveNumber);
   stress->add_option("--format", stress_args.format, "table (default), csv or json")
       ->check(CLI::IsMember({"table", "csv", "json"}));
   stress->add_option("-o,--output", stress_args.output, "write to FILE instead of standard output");

@@ -172,12 +172,15 @@ class Model:
         return Summary(self._c.summary())
 
     def analyse(self, steps: Optional[int] = None, order: int = 2, dynamics: bool = False, stress: bool = False,
-                sections: int = 200, timeout: Optional[float] = None, max_steps: Optional[int] = None):
+                sections: int = 200, timeout: Optional[float] = None, max_steps: Optional[int] = None,
+                method: str = "beam", mesh_size: Optional[float] = None):
         """The pipeline's raw result (sweep, then dynamics, then stress), for the other methods.
 
-        A sweep of more than ``max_steps`` samples (default 10 000 000, as ``--max-steps``) is an error."""
+        A sweep of more than ``max_steps`` samples (default 10 000 000, as ``--max-steps``) is an error.
+        ``method`` is the stresses' (``"beam"`` or ``"fe"``), ``mesh_size`` the finite elements' edge
+        far from holes, in the model's length unit."""
         return _nbar.analyse(self._c, steps=steps, order=order, dynamics=dynamics, stress=stress, sections=sections,
-                             timeout=timeout, max_steps=max_steps)
+                             timeout=timeout, max_steps=max_steps, method=method, mesh_size=mesh_size)
 
     def solve(self, steps: Optional[int] = None, order: Optional[int] = None, columns: Columns = None,
               dynamics: bool = False, partial: bool = False, timeout: Optional[float] = None,
@@ -212,10 +215,13 @@ class Model:
         return self.solve(steps=steps, columns=columns, dynamics=True, **options)
 
     def stress(self, steps: Optional[int] = None, sections: int = 200, timeout: Optional[float] = None,
-               max_steps: Optional[int] = None) -> StressResult:
-        """Stresses along every link with a shape (``nbar stress``)."""
+               max_steps: Optional[int] = None, method: str = "beam",
+               mesh_size: Optional[float] = None) -> StressResult:
+        """Stresses in every link with a shape (``nbar stress``): ``method="beam"`` (beam theory on
+        cross-sections) or ``"fe"`` (plane-stress finite elements, ``nbar stress --method fe``;
+        ``mesh_size`` in the model's length unit)."""
         return StressResult(self.analyse(steps=steps, stress=True, sections=sections, timeout=timeout,
-                                         max_steps=max_steps))
+                                         max_steps=max_steps, method=method, mesh_size=mesh_size))
 
     # --- pictures ------------------------------------------------------------------------------
     def draw(self, step: Optional[int] = None, at: Optional[float] = None, labels: bool = True,

@@ -26,7 +26,8 @@ struct PyAnalysis {
 
 std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::optional<int> steps, int order,
                                          bool dynamics, bool stress, int sections, std::optional<double> timeout,
-                                         std::optional<int> max_steps) {
+                                         std::optional<int> max_steps, const std::string& method,
+                                         std::optional<double> mesh_size) {
   auto out = std::make_shared<PyAnalysis>();
   out->model = model;
   AnalysisOptions options;
@@ -35,6 +36,15 @@ std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::op
   options.dynamics = dynamics;
   options.stress = stress;
   options.sections = sections;
+  if (method == "fe")
+    options.stress_method = StressMethod::fe;
+  else if (method != "beam")
+    throw Error(ErrorKind::BadInput, "method must be 'beam' or 'fe', not '" + method + "'");
+  // In the model's length unit, as `nbar stress --mesh-size`.
+  if (mesh_size) {
+    if (!(*mesh_size > 0.0)) throw Error(ErrorKind::BadInput, "mesh_size must be a positive length");
+    options.fe.mesh_size = *mesh_size * model->mechanism->model().units.length_scale;
+  }
   if (max_steps) options.max_steps = *max_steps;
   run_interruptible(options.control, timeout, [&] {
     try {
@@ -216,7 +226,8 @@ void bind_analysis(py::module_& m) {
 
   m.def("analyse", &run_analysis, py::arg("model"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
         py::arg("dynamics") = false, py::arg("stress") = false, py::arg("sections") = 200,
-        py::arg("timeout") = std::nullopt, py::arg("max_steps") = std::nullopt);
+        py::arg("timeout") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("method") = "beam",
+        py::arg("mesh_size") = std::nullopt);
   // For bench/python: the same solve timed inside C++ (the sweep, then the sweep and its column
   // table), the reference Python's own cost is measured against.
   m.def("_time_in_cpp", [](std::shared_ptr<PyModel> model, int steps, int order) {

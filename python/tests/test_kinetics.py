@@ -37,6 +37,18 @@ def test_stress_peaks_equal_the_cli(examples, cli):
     assert profile.rows >= 200 and "von_mises" in " ".join(profile.columns)
 
 
+def test_fe_stress_peaks_equal_the_cli(examples, cli):
+    path = examples / "fourbar-steel-bars.yaml"
+    s = nbar.load(path).stress(steps=5, method="fe", mesh_size=4)
+    out = subprocess.run([cli, "stress", str(path), "--steps", "5", "--method", "fe", "--mesh-size", "4",
+                          "--format", "json"], capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout) == s.data
+    assert s.data["method"] == "fe"
+    assert s["crank"]["von_mises"] > 0 and s["crank"]["nodes"] > 100
+    with pytest.raises(nbar.BadInputError):
+        nbar.load(path).stress(steps=5, method="fem")
+
+
 def test_stress_on_a_model_without_shapes_is_a_model_error(examples):
     with pytest.raises(nbar.ModelError):
         nbar.load(examples / "fourbar-crank-rocker.yaml").stress()

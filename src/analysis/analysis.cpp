@@ -20,6 +20,8 @@ void check_options(const AnalysisOptions& options) {
   if (options.steps && *options.steps < 1) throw Error(ErrorKind::BadInput, "a sweep needs at least one step");
   if (options.stress && options.sections < 10)
     throw Error(ErrorKind::BadInput, "stresses need at least 10 sections per link");
+  if (options.stress && (!std::isfinite(options.fe.mesh_size) || options.fe.mesh_size < 0.0))
+    throw Error(ErrorKind::BadInput, "the mesh size must be a positive length (or 0 for the default)");
 }
 
 SweepResult run_sweep_stage(const Mechanism& mech, const AnalysisOptions& options) {
@@ -68,20 +70,46 @@ void add_dynamics_warnings(DynamicsStage& stage, const Model& m) {
          "the minimum-norm set is given"});
 }
 
-StressStage run_stress_stage(const Analysis& analysis, const AnalysisOptions& options) {
+// Said at the first body, where a shape would be given.
+[[noreturn]] void no_shaped_link() {
+  throw Error(ErrorKind::InvalidModel,
+              "no link has a shape (`shape:` or `bar:` with a thickness), so there is nothing to compute stresses in",
+              EntityRef{EntityRef::Kind::Body, 0});
+}
+
+StressStage run_beam_stress(const Analysis& analysis, const AnalysisOptions& options) {
   StressStage stage;
   stage.links = std::make_shared<const LinkStress>(analysis.dynamics->solver, options.sections);
   bool any = false;
   for (std::size_t b = 0; b < analysis.model().bodies.size(); ++b)
     any = any || stage.links->analysed(static_cast<int>(b));
-  // Said at the first body, where a shape would be given.
-  if (!any)
-    throw Error(ErrorKind::InvalidModel,
-                "no link has a shape (`shape:` or `bar:` with a thickness), so there is nothing to compute stresses in",
-                EntityRef{EntityRef::Kind::Body, 0});
+  if (!any) no_shaped_link();
   stage.peaks = stress_peaks(*stage.links, analysis.sweep, analysis.dynamics->samples, options.control);
   detail::check_finite_stress(analysis.model(), analysis.sweep.samples, stage.peaks);
   return stage;
+}
+
+StressStage run_fe_stress(const Analysis& analysis, const AnalysisOptions& options) {
+  StressStage stage;
+  stage.method = StressMethod::fe;
+  stage.fe = std::make_shared<const LinkFe>(analysis.dynamics->solver, options.fe, options.control);
+  bool any = false;
+  for (std::size_t b = 0; b < analysis.model().bodies.size(); ++b)
+    any = any || stage.fe->analysed(static_cast<int>(b));
+  if (!any) no_shaped_link();
+  stage.fe_peaks = fe_peaks(*stage.fe, analysis.sweep, analysis.dynamics->samples, options.control);
+  for (const FePeak& p : stage.fe_peaks)
+    if (!std::isfinite(p.von_mises))
+      throw Error(ErrorKind::InvalidModel,
+                  "the finite-element stress in body '" + analysis.model().bodies[p.body].name +
+                      "' is too large to compute with: check its loads, masses and material",
+                  EntityRef{EntityRef::Kind::Body, p.body});
+  return stage;
+}
+
+StressStage run_stress_stage(const Analysis& analysis, const AnalysisOptions& options) {
+  return options.stress_method == StressMethod::fe ? run_fe_stress(analysis, options)
+                                                   : run_beam_stress(analysis, options);
 }
 
 }  // namespace
@@ -121,6 +149,8 @@ ColumnTable result_columns(const Analysis& analysis) {
 ResultTable section_profile_table(const Analysis& analysis, int body, int step) {
   const Model& m = analysis.model();
   if (!analysis.stress) throw Error(ErrorKind::BadInput, "section profiles need the stress stage");
+  if (!analysis.stress->links)
+    throw Error(ErrorKind::BadInput, "section profiles are the beam method's: the finite elements cut no sections");
   if (body < 0 || body >= static_cast<int>(m.bodies.size()) || !analysis.stress->links->analysed(body))
     throw Error(ErrorKind::BadInput, "'" + (body >= 0 && body < static_cast<int>(m.bodies.size())
                                                 ? m.bodies[body].name

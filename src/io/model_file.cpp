@@ -100,7 +100,7 @@ const AllowedKeys kShapeKeys{"in a `shape`", {"outline", "upper", "lower", "impo
 const AllowedKeys kCurveKeys{"in a curve", {"x", "y", "s", "steps", "spline"}};
 const AllowedKeys kHoleKeys{"in a hole", {"at", "circle", "radius", "polygon"}};
 const AllowedKeys kBarKeys{"in a `bar`", {"width", "margin", "hole", "holes", "between"}};
-const AllowedKeys kMaterialKeys{"in a material", {"density", "yield"}};
+const AllowedKeys kMaterialKeys{"in a material", {"density", "yield", "youngs_modulus", "poisson_ratio"}};
 const AllowedKeys kForceKeys{"in a force", {"point", "body", "force", "fx", "fy"}};
 const AllowedKeys kTorqueKeys{"in a torque", {"body", "torque"}};
 const AllowedKeys kSpringKeys{"in a spring", {"between", "stiffness", "free_length", "damping", "name"}};
@@ -1036,6 +1036,18 @@ class Parser : yaml::Reader {
       if (*m.yield_strength <= 0.0) {
         fail(mark(*y), "the yield strength must be positive (leave `yield` out for a brittle material)");
       }
+    }
+    if (const Entry* e = f.find("youngs_modulus")) {
+      m.youngs_modulus = quantity(*e, "Young's modulus", kStressUnits, "200 GPa");
+      if (*m.youngs_modulus <= 0.0) fail(mark(*e), "Young's modulus must be positive, like 200 GPa for steel");
+    }
+    if (const Entry* nu = f.find("poisson_ratio")) {
+      m.poisson_ratio = number(*nu, "Poisson's ratio");
+      // 0.5 is an incompressible solid, which plane-stress elements cannot take; a negative
+      // ratio (auxetic foams) is left out of a linkage tool's materials on purpose.
+      if (*m.poisson_ratio < 0.0 || *m.poisson_ratio >= 0.5)
+        fail(mark(*nu), "Poisson's ratio must be at least 0 and less than 0.5 (0.3 for steel), not " +
+                            nu->value.Scalar());
     }
     return m;
   }

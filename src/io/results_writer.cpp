@@ -158,15 +158,28 @@ void write_table(std::ostream& out, const std::string& format, const Analysis& a
     throw std::invalid_argument("a table is written as csv, table or json, not '" + format + "'");
 }
 
-void write_stress_report(std::ostream& out, const std::string& format, const Analysis& analysis) {
-  const SweepResult& sweep = analysis.sweep;
-  const std::vector<StressPeak>& peaks = analysis.stress->peaks;
+namespace {
+
+// The step, time and every driver's value at a peak.
+void append_input_columns(const Model& m, std::vector<std::pair<std::string, std::string>>& columns) {
+  columns.insert(columns.end(), {{"step", ""}, {"t", "s"}});
+  for (const Driver& d : m.drivers) columns.push_back({d.name, d.is_angular() ? m.units.angle : m.units.length});
+}
+void append_input_values(const Model& m, const SweepResult& sweep, int step, std::vector<double>& row) {
+  const Sample* at = step >= 0 ? &sweep.samples[step] : nullptr;
+  row.push_back(static_cast<double>(step));
+  row.push_back(at ? at->time : 0.0);
+  for (std::size_t d = 0; d < m.drivers.size(); ++d)
+    row.push_back(at ? at->driver_values[d] / (m.drivers[d].is_angular() ? m.units.angle_scale : m.units.length_scale)
+                     : 0.0);
+}
+
+ResultTable beam_peak_table(const Analysis& analysis) {
   const Model& m = analysis.model();
   const double length = m.units.length_scale;
   ResultTable t;
-  // The input at the peak: step, time and every driver's value.
-  std::vector<std::pair<std::string, std::string>> columns = {{"von_mises", "MPa"}, {"step", ""}, {"t", "s"}};
-  for (const Driver& d : m.drivers) columns.push_back({d.name, d.is_angular() ? m.units.angle : m.units.length});
+  std::vector<std::pair<std::string, std::string>> columns = {{"von_mises", "MPa"}};
+  append_input_columns(m, columns);
   for (auto column : std::vector<std::pair<std::string, std::string>>{{"x", m.units.length},
                                                                       {"y", m.units.length},
                                                                       {"sigma", "MPa"},
@@ -180,24 +193,69 @@ void write_stress_report(std::ostream& out, const std::string& format, const Ana
     t.columns.push_back(name);
     t.units.push_back(unit);
   }
-  std::vector<std::string> names;
-  for (const StressPeak& p : peaks) {
-    names.push_back(m.bodies[p.body].name);
-    const Sample* at = p.step >= 0 ? &sweep.samples[p.step] : nullptr;
-    std::vector<double> row = {to_megapascal(p.at.von_mises), static_cast<double>(p.step), at ? at->time : 0.0};
-    for (std::size_t d = 0; d < m.drivers.size(); ++d)
-      row.push_back(at ? at->driver_values[d] / (m.drivers[d].is_angular() ? m.units.angle_scale : length) : 0.0);
+  for (const StressPeak& p : analysis.stress->peaks) {
+    std::vector<double> row = {to_megapascal(p.at.von_mises)};
+    append_input_values(m, analysis.sweep, p.step, row);
     for (double v : {p.at.where.x() / length, p.at.where.y() / length, to_megapascal(p.at.sigma), to_megapascal(p.at.tau), p.at.axial,
                      p.at.shear, p.at.moment, p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN())})
       row.push_back(v);
     t.rows.push_back(std::move(row));
   }
+  return t;
+}
+
+ResultTable fe_peak_table(const Analysis& analysis) {
+  const Model& m = analysis.model();
+  const double length = m.units.length_scale;
+  ResultTable t;
+  std::vector<std::pair<std::string, std::string>> columns = {{"von_mises", "MPa"}};
+  append_input_columns(m, columns);
+  for (auto column : std::vector<std::pair<std::string, std::string>>{{"x", m.units.length},
+                                                                      {"y", m.units.length},
+                                                                      {"safety_factor", ""},
+                                                                      {"nodes", ""},
+                                                                      {"elements", ""},
+                                                                      {"mesh_size", m.units.length},
+                                                                      {"min_angle", "deg"},
+                                                                      {"unbalance", ""},
+                                                                      {"reaction", ""}})
+    columns.push_back(column);
+  for (const auto& [name, unit] : columns) {
+    t.columns.push_back(name);
+    t.units.push_back(unit);
+  }
+  for (const FePeak& p : analysis.stress->fe_peaks) {
+    std::vector<double> row = {to_megapascal(p.von_mises)};
+    append_input_values(m, analysis.sweep, p.step, row);
+    const Eigen::Vector2d where = body_frame_point(m, p.body, p.at);
+    for (double v : {where.x() / length, where.y() / length,
+                     p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN()), static_cast<double>(p.nodes),
+                     static_cast<double>(p.elements), p.mesh_size / length, p.min_angle_deg, p.load_unbalance,
+                     p.support_reaction})
+      row.push_back(v);
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+}  // namespace
+
+void write_stress_report(std::ostream& out, const std::string& format, const Analysis& analysis) {
+  const Model& m = analysis.model();
+  const bool fe = analysis.stress->method == StressMethod::fe;
+  const ResultTable t = fe ? fe_peak_table(analysis) : beam_peak_table(analysis);
+  std::vector<std::string> names;
+  if (fe)
+    for (const FePeak& p : analysis.stress->fe_peaks) names.push_back(m.bodies[p.body].name);
+  else
+    for (const StressPeak& p : analysis.stress->peaks) names.push_back(m.bodies[p.body].name);
   if (format == "json") {
     nlohmann::ordered_json j;
     j["model"] = m.name;
+    if (fe) j["method"] = "fe";
     j["units"] = {{"stress", "MPa"}, {"force", "N"}, {"moment", "N m"}, {"length", m.units.length}};
     nlohmann::ordered_json bodies = nlohmann::json::array();
-    for (std::size_t i = 0; i < peaks.size(); ++i) {
+    for (std::size_t i = 0; i < names.size(); ++i) {
       nlohmann::ordered_json b;
       b["body"] = names[i];
       for (std::size_t c = 0; c < t.columns.size(); ++c) {
@@ -218,7 +276,7 @@ void write_stress_report(std::ostream& out, const std::string& format, const Ana
     cells.push_back({""});
     for (const auto& u : t.units) cells.back().push_back(u.empty() ? "" : "[" + u + "]");
   }
-  for (std::size_t i = 0; i < peaks.size(); ++i) {
+  for (std::size_t i = 0; i < names.size(); ++i) {
     cells.push_back({names[i]});
     for (double v : t.rows[i]) cells.back().push_back(std::isfinite(v) ? fmt::format("{:.6g}", v + 0.0) : "");
   }

@@ -9,23 +9,28 @@ namespace nbar {
 
 namespace {
 
-// Name, density (kg/m^3), yield strength (MPa; 0 = none, for brittle materials).
+// Name, density (kg/m^3), yield strength (MPa; 0 = none, for brittle materials), Young's
+// modulus (GPa) and Poisson's ratio: room-temperature handbook values (ASM Handbook and
+// MatWeb data sheets of the grades named; docs/kinetics.md tables them).
 struct Entry {
   const char* name;
   double density;
   double yield_mpa;
+  double youngs_gpa;
+  double poisson;
 };
 constexpr Entry kMaterials[] = {
-    {"steel", 7850, 250},            // structural steel, S235 / A36
-    {"stainless-steel", 8000, 215},  // austenitic, 304
-    {"aluminium", 2700, 276},        // 6061-T6
-    {"brass", 8500, 200},            // free-cutting brass
-    {"cast-iron", 7200, 0},          // grey iron: brittle, no yield point
-    {"titanium", 4430, 880},         // Ti-6Al-4V
-    {"abs", 1050, 40},               // moulded ABS
-    {"acrylic", 1180, 70},           // PMMA
-    {"nylon", 1150, 70},             // PA6 / PA66, dry
+    {"steel", 7850, 250, 200, 0.30},            // structural steel, S235 / A36
+    {"stainless-steel", 8000, 215, 193, 0.29},  // austenitic, 304
+    {"aluminium", 2700, 276, 68.9, 0.33},       // 6061-T6
+    {"brass", 8500, 200, 97, 0.31},             // free-cutting brass, C36000
+    {"cast-iron", 7200, 0, 100, 0.26},          // grey iron (class 30): brittle, no yield point
+    {"titanium", 4430, 880, 113.8, 0.34},       // Ti-6Al-4V
+    {"abs", 1050, 40, 2.3, 0.35},               // moulded ABS
+    {"acrylic", 1180, 70, 3.2, 0.37},           // PMMA
+    {"nylon", 1150, 70, 2.8, 0.39},             // PA6 / PA66, dry
 };
+constexpr double kPascalPerGigapascal = 1e9;
 
 constexpr std::pair<const char*, const char*> kAliases[] = {
     {"aluminum", "aluminium"},
@@ -41,6 +46,8 @@ const std::vector<Material>& builtin_materials() {
       m.name = e.name;
       m.density = e.density;
       if (e.yield_mpa > 0) m.yield_strength = e.yield_mpa * kPascalPerMegapascal;
+      m.youngs_modulus = e.youngs_gpa * kPascalPerGigapascal;
+      m.poisson_ratio = e.poisson;
       out.push_back(std::move(m));
     }
     return out;

@@ -476,6 +476,12 @@ class Validator {
         if (mat.yield_strength && (!std::isfinite(*mat.yield_strength) || *mat.yield_strength <= 0.0)) {
           fail(where, "the yield strength of " + what + " must be a positive number");
         }
+        if (mat.youngs_modulus && (!std::isfinite(*mat.youngs_modulus) || *mat.youngs_modulus <= 0.0)) {
+          fail(where, "Young's modulus of " + what + " must be a positive number");
+        }
+        if (mat.poisson_ratio && !(*mat.poisson_ratio >= 0.0 && *mat.poisson_ratio < 0.5)) {
+          fail(where, "Poisson's ratio of " + what + " must be at least 0 and less than 0.5");
+        }
       }
       if (b.inertia) {
         const GivenInertia& g = *b.inertia;

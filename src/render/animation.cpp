@@ -1,4 +1,5 @@
 #include "nbar/render/animation.hpp"
+#include "nbar/render/stress_map.hpp"
 #include "nbar/model/file_errors.hpp"
 
 #include <cgif.h>
@@ -228,9 +229,34 @@ Animation::Animation(std::shared_ptr<const Mechanism> mechanism, const SweepResu
     options_.trace_paths = trace_paths(mech, sweep, options_.traces);
 }
 
+void Animation::show_stresses(const Analysis& analysis) {
+  DrawOptions base = options_;
+  const double scale = sweep_stress_scale(analysis);
+  frame_stress_.clear();
+  frame_markers_.clear();
+  for (int step : steps_) {
+    DrawOptions frame = base;
+    add_stress_maps(frame, analysis, step, scale);
+    frame_stress_.push_back(std::move(frame.stress_maps));
+    frame_markers_.push_back(std::move(frame.markers));
+  }
+  options_.stress_scale = scale;
+  // Room for the legend.
+  DrawOptions with_maps = options_;
+  if (!frame_stress_.empty()) with_maps.stress_maps = frame_stress_.front();
+  view_ = fit_view(mech_, sweep_, with_maps);
+}
+
 ImageCanvas Animation::render_frame(int frame, bool antialias) const {
   ImageCanvas canvas(options_.width, options_.height);
   canvas.set_antialias(antialias);
+  if (!frame_stress_.empty()) {
+    DrawOptions options = options_;
+    options.stress_maps = frame_stress_.at(frame);
+    options.markers = frame_markers_.at(frame);
+    draw_mechanism(canvas, view_, mech_, sweep_, points_.at(frame), options);
+    return canvas;
+  }
   draw_mechanism(canvas, view_, mech_, sweep_, points_.at(frame), options_);
   return canvas;
 }
@@ -401,6 +427,9 @@ std::string animate_element(const std::string& type, const std::string& values, 
 }  // namespace
 
 std::string Animation::svg_animation() const {
+  if (shows_stresses())
+    throw std::invalid_argument("stress colours change from frame to frame, which only GIF and MP4 animations draw "
+                                "(an SVG animation moves the bodies of its first frame)");
   SvgCanvas svg(options_.width, options_.height);
   draw_mechanism(svg, view_, mech_, sweep_, points_[0], options_);
   std::string doc = svg.document();
@@ -465,6 +494,9 @@ std::string Animation::readout(int frame) const {
 }
 
 std::string Animation::html_animation() const {
+  if (shows_stresses())
+    throw std::invalid_argument("stress colours change from frame to frame, which only GIF and MP4 animations draw "
+                                "(an HTML animation moves the bodies of its first frame)");
   SvgCanvas svg(options_.width, options_.height);
   draw_mechanism(svg, view_, mech_, sweep_, points_[0], options_);
   std::string element = svg.element();

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "nbar/dynamics/inverse_dynamics.hpp"
+#include "nbar/render/stress_map.hpp"
 
 namespace nbar::render {
 
@@ -392,7 +393,9 @@ View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions
   }
   // Room for pivots, blocks and labels around the outermost points.
   const double room = 30.0;
-  return View(lo, hi, options.width, options.height, options.margin + room);
+  // A stress legend takes the right edge: the mechanism is centred in what is left.
+  const int legend = options.stress_maps.empty() ? 0 : kStressLegendWidth;
+  return View(lo, hi, options.width - legend, options.height, options.margin + room);
 }
 
 int default_drawn_step(const Mechanism& mech, const SweepResult& sweep) {
@@ -550,7 +553,7 @@ void draw_body_slots(Canvas& canvas, const View& view, const Mechanism& mech, co
 
 void draw_body(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
                const std::vector<Eigen::Vector2d>& points, int b, const std::vector<int>& joint_owner,
-               Obstacles& obstacles) {
+               const DrawOptions& options, Obstacles& obstacles) {
   const Model& m = mech.model();
   const Body& body = m.bodies[b];
   auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
@@ -573,6 +576,11 @@ void draw_body(Canvas& canvas, const View& view, const Mechanism& mech, const Sw
     }
     for (const Circle& c : body.shape->circle_holes) o.circle_holes.push_back({px(place(c.centre)), c.radius * scale});
     canvas.outline(o, plate);
+    for (const StressMap& map : options.stress_maps) {
+      if (map.body != b) continue;
+      draw_stress_plate(canvas, map, stress_scale(options), [&](const Eigen::Vector2d& v) { return px(place(v)); });
+      canvas.outline(o, Paint{std::nullopt, plate.stroke});  // the edge over the colours
+    }
     obstacles.plates.push_back(o.outer);
     obstacles.polyline(o.outer, 1.0, true);
   } else if (body.points.size() == 1) {
@@ -637,7 +645,8 @@ void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, con
   std::vector<int> joint_owner(m.points.size(), -1);
   for (int b : order)
     for (int p : m.bodies[b].points) joint_owner[p] = b;
-  for (int b : order) draw_body(canvas, view, mech, sweep, points, b, joint_owner, obstacles);
+  for (int b : order) draw_body(canvas, view, mech, sweep, points, b, joint_owner, options, obstacles);
+  if (!options.stress_maps.empty()) draw_stress_legend(canvas, stress_scale(options));
 
   if (options.labels) {
     canvas.begin_group("labels", "labels");

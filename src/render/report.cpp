@@ -13,6 +13,7 @@
 #include "nbar/render/animation.hpp"
 #include "nbar/render/drawing.hpp"
 #include "nbar/render/plot.hpp"
+#include "nbar/render/stress_map.hpp"
 #include "nbar/stress/link_stress.hpp"
 
 namespace nbar::render {
@@ -302,6 +303,44 @@ void write_stresses(Html& h, const Analysis& analysis, const DrawOptions& draw, 
   h << "</div></section>\n";
 }
 
+// By finite elements: each link's peak over the sweep with its mesh and numerical checks, and
+// each link coloured by von Mises in the pose of its peak, on the sweep's one scale.
+void write_fe_stresses(Html& h, const Analysis& analysis, const DrawOptions& draw, const Axis& x) {
+  const Model& m = analysis.model();
+  const double length = m.units.length_scale;
+  h << "<section id=\"stresses\"><h2>Stresses (finite elements)</h2><div class=\"scroll\"><table><tr><th>Link</th>"
+    << "<th>Largest von Mises [MPa]</th><th>at " << esc(x.name) << " [" << esc(x.unit) << "]</th><th>x, y ["
+    << esc(m.units.length) << "]</th><th>Safety factor</th><th>Nodes, elements</th><th>Unbalance, reaction</th></tr>\n";
+  for (const FePeak& p : analysis.stress->fe_peaks) {
+    const double at = p.step >= 0 ? x.values[static_cast<std::size_t>(p.step)] : 0.0;
+    const Eigen::Vector2d where = body_frame_point(m, p.body, p.at);
+    h << "<tr><td>" << esc(m.bodies[p.body].name) << "</td><td class=\"num\">" << num(to_megapascal(p.von_mises))
+      << "</td><td class=\"num\">" << num(at) << "</td><td class=\"num\">" << num(where.x() / length) << ", "
+      << num(where.y() / length) << "</td><td class=\"num\">" << (p.safety_factor ? num(*p.safety_factor, 3) : "")
+      << "</td><td class=\"num\">" << std::to_string(p.nodes) << ", " << std::to_string(p.elements)
+      << "</td><td class=\"num\">"
+      << num(p.load_unbalance, 2) << ", " << num(p.support_reaction, 2) << "</td></tr>\n";
+  }
+  h << "</table></div><p>Plane-stress 6-node triangles on each link's plate; pin forces as bearing pressures on "
+    << "their holes, torques as shear around theirs, d'Alembert forces as body forces. Each link is coloured by von "
+    << "Mises in the pose of its largest stress, on one scale for the sweep, its peak marked: see "
+    << "docs/kinetics.md.</p>\n<div class=\"peaks\">\n";
+  const double scale = sweep_stress_scale(analysis);
+  for (const FePeak& p : analysis.stress->fe_peaks) {
+    const int step = std::max(p.step, 0);
+    DrawOptions mapped = draw;
+    mapped.traces.clear();
+    add_stress_maps(mapped, analysis, step, scale);
+    // Only this link's peak is marked: the figure is about it.
+    std::erase_if(mapped.markers, [&](const Marker& mk) { return mk.body != p.body; });
+    const double at = x.values[static_cast<std::size_t>(step)];
+    h << "<figure>" << drawing_html(analysis, step, mapped, true) << "<figcaption>" << esc(m.bodies[p.body].name)
+      << ": " << esc(stress_text(p.von_mises)) << " at " << esc(x.name) << " = " << num(at) << " " << esc(x.unit)
+      << "</figcaption></figure>\n";
+  }
+  h << "</div></section>\n";
+}
+
 }  // namespace
 
 AnalysisOptions report_analysis_options(const ModelSummary& summary) {
@@ -338,7 +377,10 @@ std::string html_report(const Analysis& analysis, const ModelSummary& summary, c
   control.checkpoint("report", 2, 4);
   if (analysis.dynamics) write_forces(h, analysis, table, x);
   control.checkpoint("report", 3, 4);
-  if (analysis.stress) write_stresses(h, analysis, draw, x);
+  if (analysis.stress && analysis.stress->method == StressMethod::fe)
+    write_fe_stresses(h, analysis, draw, x);
+  else if (analysis.stress)
+    write_stresses(h, analysis, draw, x);
   h << kFitFrames << "</body></html>\n";
   return h.out;
 }

@@ -436,6 +436,16 @@ TEST(ModelFileKinetics, Materials) {
   EXPECT_DOUBLE_EQ(*material_of("{density: 1000, yield: 1.2GPa}").yield_strength, 1.2e9);
   EXPECT_DOUBLE_EQ(*material_of("{density: 1000, yield: '500 kPa'}").yield_strength, 5e5);
   EXPECT_DOUBLE_EQ(*material_of("{density: 1000, yield: 7 Pa}").yield_strength, 7);
+
+  // Elastic constants, for finite-element stresses.
+  const Material elastic = material_of("{density: 2800, youngs_modulus: 72 GPa, poisson_ratio: 0.33}");
+  EXPECT_DOUBLE_EQ(*elastic.youngs_modulus, 72e9);
+  EXPECT_DOUBLE_EQ(*elastic.poisson_ratio, 0.33);
+  EXPECT_DOUBLE_EQ(*material_of("{density: 1, youngs_modulus: 3e9, poisson_ratio: 0}").youngs_modulus, 3e9);  // Pa
+  EXPECT_FALSE(material_of("soft").youngs_modulus.has_value());
+  EXPECT_FALSE(material_of("soft").poisson_ratio.has_value());
+  EXPECT_DOUBLE_EQ(*material_of("steel").youngs_modulus, 200e9);
+  EXPECT_DOUBLE_EQ(*material_of("steel").poisson_ratio, 0.3);
 }
 
 TEST(ModelFileKinetics, BuiltinMaterials) {
@@ -447,7 +457,15 @@ TEST(ModelFileKinetics, BuiltinMaterials) {
     const std::optional<Material> m = builtin_material(name);
     ASSERT_TRUE(m.has_value()) << name;
     EXPECT_GT(m->density, 0.0) << name;
+    // Every built-in material can be meshed: E between a soft plastic's and a steel's.
+    ASSERT_TRUE(m->youngs_modulus && m->poisson_ratio) << name;
+    EXPECT_GE(*m->youngs_modulus, 2e9) << name;
+    EXPECT_LE(*m->youngs_modulus, 210e9) << name;
+    EXPECT_GT(*m->poisson_ratio, 0.2) << name;
+    EXPECT_LT(*m->poisson_ratio, 0.45) << name;
   }
+  EXPECT_DOUBLE_EQ(*builtin_material("aluminium")->youngs_modulus, 68.9e9);
+  EXPECT_DOUBLE_EQ(*builtin_material("titanium")->poisson_ratio, 0.34);
   EXPECT_DOUBLE_EQ(builtin_material("steel")->density, 7850);
   EXPECT_DOUBLE_EQ(*builtin_material("steel")->yield_strength, 250e6);
   EXPECT_DOUBLE_EQ(*builtin_material("stainless-steel")->yield_strength, 215e6);
@@ -613,6 +631,16 @@ TEST(ModelFileKineticsErrors, Materials) {
                        "the yield strength must be a number or a quantity like '250 MPa', not 'MPa'"));
   EXPECT_TRUE(fails_at(kLinkage + "materials:\n  foo: {density: 1, yield: 1e999 Pa}\n", "14:28",
                        "the yield strength must be a finite number, not '1e999 Pa'"));
+  EXPECT_TRUE(fails_at(kLinkage + "materials:\n  foo: {density: 1, poisson_ratio: 0.5}\n", "14:36",
+                       "Poisson's ratio must be at least 0 and less than 0.5 (0.3 for steel), not 0.5"));
+  EXPECT_TRUE(fails_at(kLinkage + "materials:\n  foo: {density: 1, poisson_ratio: -0.1}\n", "14:36",
+                       "Poisson's ratio must be at least 0 and less than 0.5"));
+  EXPECT_TRUE(fails_at(kLinkage + "materials:\n  foo: {density: 1, poisson_ratio: soft}\n", "14:36",
+                       "Poisson's ratio"));
+  EXPECT_TRUE(fails_at(kLinkage + "materials:\n  foo: {density: 1, youngs_modulus: 0 GPa}\n", "14:37",
+                       "Young's modulus must be positive, like 200 GPa for steel"));
+  EXPECT_TRUE(fails_at(kLinkage + "materials:\n  foo: {density: 1, youngs_modulus: 200 Gpa}\n", "14:37",
+                       "unknown unit in Young's modulus '200 Gpa' (use Pa, kPa, MPa, GPa, psi, ksi)"));
 }
 
 TEST(ModelFileKineticsErrors, Shapes) {

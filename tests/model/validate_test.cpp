@@ -470,7 +470,7 @@ Model four_bar_with_mass() {
   Body& coupler = m.bodies[1];
   coupler.shape = make_bar(m.points[2].position, m.points[3].position, 0.02, 0.01, 0.004, 0.004);
   coupler.thickness = 0.005;
-  coupler.material = Material{"steel", 7850, 250e6};
+  coupler.material = Material{"steel", 7850, 250e6, 200e9, 0.3};
   m.bodies[0].inertia = GivenInertia{0.3, Eigen::Vector2d(0.02, 0.035), 1e-4};
   m.gravity = Eigen::Vector2d(0, -9.81);
   m.point_loads.push_back(PointLoad{4, 1, Law::parse("0"), Law::parse("-100")});
@@ -513,7 +513,7 @@ TEST(Validate, Shapes) {
   expect_error(m, Kind::Body, 1, "body 'coupler' has a shape but no material and no given mass");
 
   m = four_bar_with_mass();
-  m.bodies[2].material = Material{"steel", 7850, 250e6};
+  m.bodies[2].material = Material{"steel", 7850, 250e6, 200e9, 0.3};
   expect_error(m, Kind::Body, 2, "body 'rocker' has a material but no shape to weigh and no given mass");
 }
 
@@ -532,6 +532,15 @@ TEST(Validate, Materials) {
   m = four_bar_with_mass();
   m.bodies[1].material->yield_strength = 0.0;
   expect_error(m, Kind::Body, 1, "the yield strength of material 'steel' must be a positive number");
+
+  m = four_bar_with_mass();
+  m.bodies[1].material->youngs_modulus = -200e9;
+  expect_error(m, Kind::Body, 1, "Young's modulus of material 'steel' must be a positive number");
+  m = four_bar_with_mass();
+  m.bodies[1].material->poisson_ratio = 0.5;
+  expect_error(m, Kind::Body, 1, "Poisson's ratio of material 'steel' must be at least 0 and less than 0.5");
+  m.bodies[1].material->poisson_ratio = std::numeric_limits<double>::quiet_NaN();
+  expect_error(m, Kind::Body, 1, "Poisson's ratio of material 'steel' must be at least 0 and less than 0.5");
 }
 
 TEST(Validate, GivenMassProperties) {

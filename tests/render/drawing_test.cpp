@@ -10,6 +10,8 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/render/drawing.hpp"
 #include "nbar/render/image_canvas.hpp"
+#include "nbar/render/pictures.hpp"
+#include "nbar/render/stress_map.hpp"
 
 namespace nbar::render {
 namespace {
@@ -166,6 +168,32 @@ TEST(Drawing, EveryExampleDrawsAsWellFormedSvg) {
       }
     EXPECT_GT(inked, 200);
   }
+}
+
+// The plate four-bar coloured by its finite-element von Mises stress: every link's map, the
+// legend from 0 to the crank's peak (the driver's torque as shear around its 20 mm hole,
+// sqrt(3) T / (2 pi r^2 t) = 11.17 MPa for T = 405.6 N m), each peak marked.
+TEST(StressMap, PlateFourBarIsColouredWithLegendAndPeaks) {
+  const io::LoadedModel file = io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-ansys-plates.yaml");
+  const auto mech = std::make_shared<const Mechanism>(file.model);
+  AnalysisOptions options;
+  options.stress = true;
+  options.stress_method = StressMethod::fe;
+  const Analysis analysis = analyse(mech, options);
+  DrawOptions draw;
+  add_stress_maps(draw, analysis, 0);
+  ASSERT_EQ(draw.stress_maps.size(), 3u);
+  ASSERT_EQ(draw.markers.size(), 3u);
+  EXPECT_NEAR(stress_scale(draw), 11.17e6, 0.01 * 11.17e6);
+  EXPECT_EQ(draw.markers[0].label, "11.2 MPa");
+  // The crank's peak is on the edge of its O2 hole (radius 10 mm around the origin of its frame).
+  EXPECT_NEAR(draw.markers[0].local.norm(), 0.01, 1e-3);
+  const std::string svg = drawing_svg(*mech, analysis.sweep, sample_points(*mech, analysis.sweep.samples[0]), draw);
+  EXPECT_NE(svg.find("stress-legend"), std::string::npos);
+  EXPECT_NE(svg.find("11.2 MPa"), std::string::npos);
+  EXPECT_EQ(stress_color(0.0).hex(), "#2b52d9");
+  EXPECT_EQ(stress_color(1.0).hex(), "#de1f1a");
+  EXPECT_EQ(stress_text(246e3), "246 kPa");
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ Model cantilever() {
   m.bodies[bar].shape = make_bar({0, 0}, {kL, 0}, kWidth, kMargin, 0.0, 0.0);
   m.bodies[bar].thickness = kThickness;
   m.bodies[bar].inertia = GivenInertia{0.0, {kL / 2, 0}, 0.0};
-  m.bodies[bar].material = Material{"steel", 7850, 250e6};
+  m.bodies[bar].material = Material{"steel", 7850, 250e6, 200e9, 0.3};
   m.drivers.push_back(angle_driver("bar", bar, 0.0, 0.0, 1.0));
   m.sweep.steps = 2;
   return m;
@@ -138,7 +138,7 @@ TEST(LinkStress, EverySectionOfAMovingFourBarIsInEquilibrium) {
   const int crank = add_body(m, "crank", {o2, pa});
   const int coupler = add_body(m, "coupler", {pa, pb});
   const int rocker = add_body(m, "rocker", {o4, pb});
-  const Material steel{"steel", 7850, 250e6};
+  const Material steel{"steel", 7850, 250e6, 200e9, 0.3};
   auto shape = [&](int body, Eigen::Vector2d p, Eigen::Vector2d q) {
     m.bodies[body].shape = make_bar(p, q, 0.015, 0.01, 0.004, 0.004);
     m.bodies[body].thickness = 0.006;

@@ -332,12 +332,22 @@ ApiResponse api_solve(Job& job, const std::string& request) {
 }
 
 ApiResponse api_stress(Job& job, const std::string& request) {
-  const Body body(request, {"model", "steps", "sections", "format", "section_profile", "step"});
+  const Body body(request, {"model", "steps", "sections", "format", "section_profile", "step", "method", "mesh_size"});
   const std::string format = body.choice("format", {"json", "csv", "table"}, "json");
   load_model(job, body.text("model", true));
   AnalysisOptions options;
   options.steps = sweep_steps(job, body);
   options.stress = true;
+  if (body.choice("method", {"beam", "fe"}, "beam") == "fe") {
+    options.stress_method = StressMethod::fe;
+    options.fe.max_nodes = job.limits.max_fe_nodes;
+    if (const std::optional<double> size = body.number("mesh_size")) {
+      if (!(*size > 0.0)) bad_input("'mesh_size' must be a positive length (in the model's unit)");
+      options.fe.mesh_size = *size * job.mechanism->model().units.length_scale;
+    }
+  } else if (body.has("mesh_size")) {
+    bad_input("'mesh_size' is the finite elements': give \"method\": \"fe\" too");
+  }
   const long long sections = body.integer("sections", 10, 100000).value_or(200);
   check_limit("sections", static_cast<double>(sections), job.limits.max_sections, "the number of sections per link");
   options.sections = static_cast<int>(sections);
@@ -351,6 +361,7 @@ ApiResponse api_stress(Job& job, const std::string& request) {
   }
   const Analysis analysis = run_analysis(job, options);
   if (!profile) return answer(write([&](std::ostream& out) { io::write_stress_report(out, format, analysis); }), text_type(format));
+  if (!analysis.stress->links) bad_input("section_profile cuts sections, which the beam method has: leave out \"method\": \"fe\"");
   if (!analysis.stress->links->analysed(profile_body)) bad_input("section_profile: '" + *profile + "' has no shape to cut");
   const ResultTable t = section_profile_table(analysis, profile_body, static_cast<int>(step.value_or(0)));
   return answer(write([&](std::ostream& out) { io::write_table(out, format, analysis, t); }), text_type(format));
@@ -695,6 +706,7 @@ ApiResponse api_health(const ServerConfig& config) {
                  {"max_order", 5},
                  {"max_table_values", l.max_table_values},
                  {"max_sections", l.max_sections},
+                 {"max_fe_nodes", l.max_fe_nodes},
                  {"max_explain_points", l.max_explain_points},
                  {"max_explain_bodies", l.max_explain_bodies},
                  {"max_frames", l.max_frames},

@@ -16,16 +16,24 @@
 #include "nbar/kinematics/table.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/run_control.hpp"
+#include "nbar/stress/link_fe.hpp"
 #include "nbar/stress/link_stress.hpp"
 
 namespace nbar {
+
+// How stresses are computed: beam theory on cross-sections (quick; slender links between
+// joints), or plane-stress finite elements on each link's plate (the peaks at pin holes,
+// fillets and in plates).
+enum class StressMethod { beam, fe };
 
 struct AnalysisOptions {
   std::optional<int> steps;  // samples of the sweep, ends included; unset: the model's
   int order = 2;             // highest time derivative, 0 to 5; raised to 2 for dynamics and stress
   bool dynamics = false;     // joint forces, driver efforts, energies at every sample
   bool stress = false;       // the largest von Mises stress of every link with a shape (implies dynamics)
-  int sections = 200;        // stress: cross-sections per link, at least
+  StressMethod stress_method = StressMethod::beam;
+  int sections = 200;        // stress, beam: cross-sections per link, at least
+  FeOptions fe;              // stress, fe: mesh size and threads
   int max_steps = kDefaultMaxSweepSamples;  // a larger sweep (the model's or `steps`) is an error
   RunControl control;        // cancellation, deadline and progress for every stage
 };
@@ -39,10 +47,14 @@ struct DynamicsStage {
   std::vector<Warning> warnings;                  // forces that are not unique
 };
 
-// The stresses along every link that has a shape, from the kept dynamics.
+// The stresses in every link that has a shape, from the kept dynamics: by the beam model
+// (`links` and `peaks`) or by finite elements (`fe` and `fe_peaks`), as the options chose.
 struct StressStage {
-  std::shared_ptr<const LinkStress> links;
-  std::vector<StressPeak> peaks;  // one per analysed body
+  StressMethod method = StressMethod::beam;
+  std::shared_ptr<const LinkStress> links;  // beam
+  std::vector<StressPeak> peaks;            // beam: one per analysed body
+  std::shared_ptr<const LinkFe> fe;         // fe: every link's plate model, factorised
+  std::vector<FePeak> fe_peaks;             // fe: one per analysed body
 };
 
 struct Analysis {
@@ -59,7 +71,8 @@ struct Analysis {
 
 // Runs the stages the options ask for. Throws Error: CannotAssemble when the start cannot be
 // assembled, BadInput for options out of range, UndefinedLaw when a law has no value where it
-// is needed, InvalidModel when stresses are asked of a model with no shaped link, Cancelled.
+// is needed, InvalidModel when stresses are asked of a model with no shaped link (or, by finite
+// elements, of a link whose material has no elastic constants), Cancelled.
 // A sweep stopped at a limit position is not an error: complete() is false, the samples solved
 // so far are kept (and analysed by the later stages) and sweep.stop_reason says why.
 Analysis analyse(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options = {});
@@ -72,7 +85,7 @@ ResultTable result_table(const Analysis& analysis);
 ColumnTable result_columns(const Analysis& analysis);
 
 // Every cross-section of one link at one sample: x, area, N, V, M, sigma at both fibres, tau
-// and von Mises. Needs the stress stage; throws Error(BadInput) for a body without a shape or a
+// and von Mises. Needs the stress stage by the beam method; throws Error(BadInput) for a body without a shape or a
 // step that was not solved.
 ResultTable section_profile_table(const Analysis& analysis, int body, int step);
 

@@ -56,7 +56,10 @@ void write_table(std::ostream& out, const std::string& format, const Analysis& a
 // factor: format "table", "csv" or "json". Stresses in MPa, forces in N, moments in N m,
 // positions in the model's length unit (x along the link from its first point to its second,
 // y to the left of that line).
-// Needs the analysis's stress stage.
+// Needs the analysis's stress stage. By finite elements (StressMethod::fe) the columns are the
+// peak's von Mises, step, time, drivers, x, y, safety factor, then the mesh (nodes, elements,
+// mesh_size, min_angle) and the numerical checks (unbalance, reaction: relative, ~0), and the
+// JSON says "method": "fe".
 void write_stress_report(std::ostream& out, const std::string& format, const Analysis& analysis);
 
 }  // namespace nbar::io

@@ -30,6 +30,10 @@ struct Material {
   std::string name;
   double density = 0.0;                  // kg/m^3
   std::optional<double> yield_strength;  // Pa
+  // Elastic constants, for finite-element stresses (`nbar stress --method fe`); the beam model
+  // and the dynamics need neither.
+  std::optional<double> youngs_modulus;  // Pa, > 0
+  std::optional<double> poisson_ratio;   // in [0, 0.5)
 };
 
 // Mass properties given directly instead of computed from a shape.

@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "nbar/analysis/analysis.hpp"
 #include "nbar/kinematics/sweep.hpp"
 #include "nbar/model/run_control.hpp"
 #include "nbar/render/drawing.hpp"
@@ -34,6 +35,13 @@ class Animation {
   // Checked between frames by every writer (stage "frames"): a cancelled control or a passed
   // deadline stops the writer with Error(ErrorKind::Cancelled), and no file is left behind.
   void set_control(RunControl control) { control_ = std::move(control); }
+
+  // Colours every link with a shape by its von Mises stress in every frame (the analysis's
+  // finite-element stage, which must have solved this sweep), on one scale for the whole sweep:
+  // the colours change as the loads do. Only GIF and MP4 draw frames whole: the SVG and HTML
+  // writers then throw std::invalid_argument. Throws Error(BadInput) without that stage.
+  void show_stresses(const Analysis& analysis);
+  bool shows_stresses() const { return !frame_stress_.empty(); }
 
   int frame_count() const { return static_cast<int>(steps_.size()); }
   const std::vector<int>& steps() const { return steps_; }  // the sample shown by each frame
@@ -81,6 +89,8 @@ class Animation {
   std::vector<int> steps_;
   std::vector<std::vector<Eigen::Vector2d>> points_;  // per frame
   RunControl control_;
+  std::vector<std::vector<StressMap>> frame_stress_;  // per frame, when show_stresses was called
+  std::vector<std::vector<Marker>> frame_markers_;    // the options' markers and each frame's peaks
 };
 
 }  // namespace nbar::render

@@ -10,10 +10,12 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "nbar/kinematics/sweep.hpp"
+#include "nbar/stress/mesh.hpp"
 #include "nbar/render/canvas.hpp"
 
 namespace nbar::render {
@@ -32,6 +34,14 @@ struct MarkedPoint {
   std::string label;
 };
 
+// A link's plate coloured by a value at every node of its mesh (the von Mises stress): the
+// mesh in the plate's own frame (the starting pose), one value per node (Pa).
+struct StressMap {
+  int body = -1;
+  std::shared_ptr<const fe::TriMesh> mesh;
+  std::vector<double> values;
+};
+
 struct DrawOptions {
   int width = 900, height = 640;  // px
   double margin = 36;             // px around the mechanism
@@ -43,6 +53,10 @@ struct DrawOptions {
   std::vector<MarkedPoint> marked_points;  // drawn last, in the group "marked-points"
   bool scale_bar = true;
   std::string title;              // drawn at the top left when not empty
+  // Plates coloured by stress (render/stress_map.hpp), with a colour legend at the top right
+  // from 0 to `stress_scale` (Pa; 0: the largest value of the maps).
+  std::vector<StressMap> stress_maps;
+  double stress_scale = 0.0;
 };
 
 // A view in which every pose of the sweep fits, so that animation frames share it.

@@ -30,6 +30,7 @@ struct Limits {
   int max_steps = 100001;                // samples of a sweep (the model's or `steps`)
   double max_table_values = 5e6;         // solve and plot: samples x columns of the table
   int max_sections = 2000;               // stress: cross-sections per link
+  int max_fe_nodes = 50000;              // stress by finite elements: nodes of a link's mesh
   int max_explain_points = 200;          // explain: points of the model (Phi_q is written whole)
   int max_explain_bodies = 100;          // explain: bodies (every pair's instant centre)
   int max_frames = 360;                  // animations and reports
