@@ -63,6 +63,220 @@ void scene_primitives(const Json& items, const Json& scene, const Json& motions,
   }
 }
 
+TEST(WebApi, CheckIsTheJsonOfNbarCheck) {
+  for (const std::string file : {"examples/fourbar-crank-rocker.yaml", "examples/fourbar-steel-bars.yaml",
+                                 "examples/parallelogram-redundant.yaml", "examples/machine-18.yaml"}) {
+    SCOPED_TRACE(file);
+    const ApiResponse r = post("/api/check", with_model(file));
+    ASSERT_EQ(r.status, 200) << r.body;
+    EXPECT_EQ(r.content_type, "application/json");
+    const cli_test::CliRun run = cli("check " + file + " --format json");
+    ASSERT_EQ(run.code, 0) << run.err;
+    Json expected = Json::parse(run.out);
+    expected["source"] = "model";  // the CLI names the file, the server the request's model
+    EXPECT_EQ(Json::parse(r.body), expected);
+    EXPECT_EQ(Json::parse(r.body)["dof"]["mobility"], 1);
+  }
+}
+
+TEST(WebApi, CheckReportsAnAssemblyFailureInTheSummary) {
+  const ApiResponse r = post("/api/check", with_model("tests/golden/inputs/cannot-assemble.yaml"));
+  ASSERT_EQ(r.status, 200) << r.body;
+  const Json j = Json::parse(r.body);
+  EXPECT_TRUE(j["assembly"].is_null());
+  EXPECT_EQ(j["assembly_error"]["kind"], "cannot_assemble");
+  EXPECT_GT(j["assembly_error"]["line"].get<int>(), 0);
+}
+
+TEST(WebApi, CheckTakesAModelWrittenAsJson) {
+  // JSON is YAML: the model can come as JSON text, or as a JSON object inside the body.
+  const Json model = {{"name", "json four-bar"},
+                      {"points", {{"O2", {0, 0}}, {"O4", {4, 0}}, {"A", {1, 0}}, {"B", {4.5, 3}}}},
+                      {"ground", {"O2", "O4"}},
+                      {"bodies", {{"crank", {"O2", "A"}}, {"coupler", {"A", "B"}}, {"rocker", {"O4", "B"}}}},
+                      {"drivers", {{{"angle", "crank"}, {"from", 0}, {"to", 360}}}}};
+  const ApiResponse as_text = post("/api/check", {{"model", model.dump()}});
+  const ApiResponse as_object = post("/api/check", {{"model", model}});
+  ASSERT_EQ(as_text.status, 200) << as_text.body;
+  EXPECT_EQ(as_text.body, as_object.body);
+  EXPECT_EQ(Json::parse(as_text.body)["model"], "json four-bar");
+}
+
+TEST(WebApi, SolveIsByteForByteNbarSolveFormatJson) {
+  const ApiResponse r = post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 7}, {"order", 3}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  const cli_test::CliRun run = cli("solve examples/fourbar-crank-rocker.yaml --steps 7 --order 3 --format json");
+  ASSERT_EQ(run.code, 0);
+  EXPECT_EQ(r.body, run.out);
+  // The numbers themselves: the rocker's angle at the start of the crank-rocker.
+  const Json j = Json::parse(r.body);
+  const auto& columns = j["columns"];
+  const auto at = std::find(columns.begin(), columns.end(), "rocker.angle") - columns.begin();
+  EXPECT_NEAR(j["rows"][0][at].get<double>(), 97.18075589957508, 1e-9);
+}
+
+TEST(WebApi, SolveWithDynamicsColumnsAndOrderFive) {
+  const ApiResponse r = post("/api/solve", with_model("examples/fourbar-steel-bars.yaml",
+                                                      {{"steps", 13}, {"dynamics", true},
+                                                       {"columns", {"crank", "crank.torque", "*.Fx"}}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.body, cli("solve examples/fourbar-steel-bars.yaml --steps 13 --dynamics --columns 'crank,crank.torque,*.Fx' "
+                        "--format json")
+                        .out);
+  const ApiResponse o5 = post("/api/solve", with_model("examples/compressor-myszka.yaml",
+                                                       {{"steps", 5}, {"order", 5}, {"columns", "crank,C.*"}}));
+  ASSERT_EQ(o5.status, 200) << o5.body;
+  EXPECT_EQ(o5.body, cli("solve examples/compressor-myszka.yaml --steps 5 --order 5 --columns 'crank,C.*' --format json").out);
+}
+
+TEST(WebApi, SolveAsCsvAndTable) {
+  const ApiResponse csv = post("/api/solve", with_model("examples/five-bar.yaml", {{"steps", 5}, {"format", "csv"}}));
+  ASSERT_EQ(csv.status, 200);
+  EXPECT_EQ(csv.content_type, "text/csv; charset=utf-8");
+  EXPECT_EQ(csv.body, cli("solve examples/five-bar.yaml --steps 5").out);
+  const ApiResponse table = post("/api/solve", with_model("examples/five-bar.yaml", {{"steps", 5}, {"format", "table"}}));
+  EXPECT_EQ(table.body, cli("solve examples/five-bar.yaml --steps 5 --format table").out);
+}
+
+TEST(WebApi, ASweepStoppedAtAToggleIsNotAnError) {
+  const ApiResponse r = post("/api/solve", with_model("tests/golden/inputs/toggle-stop.yaml",
+                                                      {{"columns", {"input", "output.angle"}}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  const Json j = Json::parse(r.body);
+  EXPECT_FALSE(j["complete"].get<bool>());
+  EXPECT_FALSE(j["stop_reason"].get<std::string>().empty());
+  const cli_test::CliRun run = cli("solve tests/golden/inputs/toggle-stop.yaml --columns input,output.angle --format json");
+  EXPECT_EQ(run.code, 4);
+  EXPECT_EQ(r.body, run.out);
+}
+
+TEST(WebApi, StressIsNbarStressFormatJson) {
+  const ApiResponse r = post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"steps", 13}, {"sections", 40}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.body, cli("stress examples/fourbar-steel-bars.yaml --steps 13 --sections 40 --format json").out);
+  const ApiResponse profile =
+      post("/api/stress", with_model("examples/crank-rocker-gravity-spring.yaml",
+                                     {{"steps", 13}, {"section_profile", "coupler"}, {"step", 9}, {"sections", 40}}));
+  ASSERT_EQ(profile.status, 200) << profile.body;
+  EXPECT_EQ(profile.body, cli("stress examples/crank-rocker-gravity-spring.yaml --steps 13 --section-profile coupler "
+                              "--step 9 --sections 40 --format json")
+                              .out);
+}
+
+TEST(WebApi, FiniteElementStressIsNbarStressMethodFe) {
+  const ApiResponse r = post("/api/stress", with_model("examples/fourbar-steel-bars.yaml",
+                                                       {{"steps", 5}, {"method", "fe"}, {"mesh_size", 4}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.body, cli("stress examples/fourbar-steel-bars.yaml --steps 5 --method fe --mesh-size 4 --format json").out);
+  EXPECT_NE(r.body.find("\"method\": \"fe\""), std::string::npos);
+  EXPECT_EQ(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"method", "fem"}})).status, 400);
+  EXPECT_EQ(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"mesh_size", 4}})).status, 400);
+}
+
+TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"five-point", "examples/synthesis/five-point-crank-rocker.yaml"},
+      {"burmester", "examples/synthesis/burmester-five-positions.yaml"},
+      {"burmester", "examples/synthesis/burmester-three-positions.yaml"},
+      {"function", "examples/synthesis/function-log10.yaml"},
+  };
+  for (const auto& [kind, file] : cases) {
+    SCOPED_TRACE(file);
+    const ApiResponse r = post("/api/synth/" + kind, with_task(file, {{"all", true}, {"top", 5}}));
+    ASSERT_EQ(r.status, 200) << r.body;
+    // The same designs; the last bits of the homotopy's numbers may differ between runs in
+    // unoptimised builds (paths on several threads), so numbers are compared to 1e-9.
+    EXPECT_TRUE(json_near(Json::parse(r.body), Json::parse(cli("synth " + kind + " " + file + " --all --top 5 --format json").out)));
+  }
+  const ApiResponse five = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml"));
+  ASSERT_EQ(five.status, 200);
+  EXPECT_NE(five.body.find("crank-rocker"), std::string::npos);
+  // Another seed, one thread: still the CLI's answer for that seed.
+  const ApiResponse seeded = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml",
+                                                                    {{"seed", 7}, {"threads", 1}, {"top", 0}}));
+  ASSERT_EQ(seeded.status, 200) << seeded.body;
+  EXPECT_TRUE(json_near(Json::parse(seeded.body),
+                        Json::parse(cli("synth five-point examples/synthesis/five-point-crank-rocker.yaml --seed 7 --top 0 "
+                                        "--format json")
+                                        .out)));
+  // The task as a JSON object.
+  const Json task = {{"task", "function"}, {"name", "square"}, {"function", "x^2"}, {"x", {0, 1}},
+                     {"input_range", {90, 150}}, {"output_range", {60, 120}}};
+  const ApiResponse object = post("/api/synth/function", {{"task", task}});
+  ASSERT_EQ(object.status, 200) << object.body;
+  EXPECT_EQ(Json::parse(object.body)["name"], "square");
+}
+
+TEST(WebApi, SynthesisModelsAreTheFilesOfSynthExport) {
+  // "models": true gives each real design the model file `nbar synth --export` writes for it;
+  // complex designs have none.
+  const auto dir = temp_folder("synth-export");
+  const std::string file = "examples/synthesis/five-point-crank-rocker.yaml";
+  const ApiResponse r =
+      post("/api/synth/five-point", with_task(file, {{"models", true}, {"all", true}, {"top", 0}, {"threads", 1}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  const cli_test::CliRun run = cli("synth five-point " + file + " --all --top 0 --threads 1 --export " + dir.string());
+  ASSERT_EQ(run.code, 0) << run.err;
+  const Json designs = Json::parse(r.body)["designs"];
+  ASSERT_EQ(designs.size(), 36u);  // every solution of the 36 paths
+  const auto file_of = [&](int rank) { return dir / ((rank < 10 ? "design-0" : "design-") + std::to_string(rank) + ".yaml"); };
+  int with_model = 0;
+  int without = 0;
+  for (const Json& d : designs) {
+    const int rank = d["rank"].get<int>();
+    SCOPED_TRACE(rank);
+    if (!d["real"].get<bool>() || !d.value("valid", false)) {
+      EXPECT_FALSE(d.contains("model"));
+      EXPECT_FALSE(std::filesystem::exists(file_of(rank)));
+      ++without;
+      continue;
+    }
+    ++with_model;
+    ASSERT_TRUE(d.contains("model"));
+    const std::string got = d["model"].get<std::string>();
+    const std::string expected = read_file(file_of(rank));
+    // The CLI's first comment names the task file, the server's the request's task.
+    const auto after_first_line = [](const std::string& s) { return s.substr(s.find('\n')); };
+    EXPECT_EQ(after_first_line(got), after_first_line(expected));
+    EXPECT_EQ(got.rfind("# Design " + std::to_string(rank) + " of nbar synth five-point task\n", 0), 0u);
+    // A model the server analyses: one degree of freedom, the design's coupler point at P.
+    const ApiResponse check = post("/api/check", {{"model", got}});
+    ASSERT_EQ(check.status, 200) << check.body;
+    EXPECT_EQ(Json::parse(check.body)["dof"]["mobility"], 1);
+    const ApiResponse solve = post("/api/solve", {{"model", got}, {"steps", 2}, {"columns", "P.x,P.y"}});
+    ASSERT_EQ(solve.status, 200) << solve.body;
+    const Json row = Json::parse(solve.body)["rows"][0];
+    EXPECT_NEAR(row[0].get<double>(), d["pivots"]["coupler_point"][0].get<double>(), 1e-6);
+    EXPECT_NEAR(row[1].get<double>(), d["pivots"]["coupler_point"][1].get<double>(), 1e-6);
+  }
+  EXPECT_GE(with_model, 2);
+  EXPECT_GE(without, 1);
+  // Without the option, no model (the CLI's JSON as it is).
+  const ApiResponse plain = post("/api/synth/five-point", with_task(file, {{"top", 3}}));
+  EXPECT_FALSE(Json::parse(plain.body)["designs"][0].contains("model"));
+  EXPECT_EQ(error_of(post("/api/synth/five-point", with_task(file, {{"models", 1}})))["kind"], "bad_input");
+}
+
+TEST(WebApi, RenderDrawIsNbarDraw) {
+  const auto dir = temp_folder("draw");
+  for (const std::string format : {"svg", "png"}) {
+    const ApiResponse r = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
+                                                         {{"kind", "draw"}, {"format", format}, {"labels", true},
+                                                          {"trace", "P"}, {"step", 30}, {"width", 400}, {"height", 300}}));
+    ASSERT_EQ(r.status, 200) << r.body;
+    EXPECT_EQ(r.content_type, format == "svg" ? "image/svg+xml" : "image/png");
+    const std::string out = (dir / ("draw." + format)).string();
+    ASSERT_EQ(cli("draw examples/fourbar-crank-rocker.yaml --labels --trace P --step 30 --width 400 --height 300 -o " + out).code, 0);
+    EXPECT_EQ(r.body, read_file(out)) << format;
+  }
+  const ApiResponse at = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"at", 90}}));
+  ASSERT_EQ(at.status, 200);
+  const std::string out = (dir / "at.svg").string();
+  ASSERT_EQ(cli("draw examples/fourbar-crank-rocker.yaml --at 90 -o " + out).code, 0);
+  EXPECT_EQ(at.body, read_file(out));
+  std::filesystem::remove_all(dir);
+}
+
 // The scene is what nbar draw draws: at its pose the same primitives, and posed at another sample
 // by its motions, the primitives nbar draw --step draws there (labels aside), within 0.05 px.
 TEST(WebApi, RenderSceneIsNbarDrawAtEverySample) {
@@ -237,7 +451,7 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
     EXPECT_EQ(text.content_type, "application/yaml; charset=utf-8");
     EXPECT_EQ(text.body, repo_file(e["file"].get<std::string>()));
   }
-  EXPECT_EQ(models, 25);  // every model file of examples/, fourbar-curved-links.yaml the newest
+  EXPECT_EQ(models, 26);  // every model file of examples/, fourbar-ansys-plates.yaml and fourbar-curved-links.yaml the newest
   EXPECT_EQ(tasks, 5);
   EXPECT_EQ(templates, 6);
   // Each runs as it is; a template too, and its name never clashes with the example's.
