@@ -149,7 +149,7 @@ Outcome nine_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
   std::vector<Target> targets;
   for (const Eigen::Vector2d& p : task.points) targets.push_back({p, std::nullopt});
   check_rows(
-      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control, run.threads);
   out.notes.push_back(fmt::format("{} of {} orbits (Roberts cognate triples) found, {} of them real: {}", result.orbits,
                                   kNinePointOrbits, result.real_orbits, result.certificate));
   if (result.failed_paths > 0)
@@ -310,7 +310,7 @@ Outcome path(const SynthesisTask& task, const SynthesisRunOptions& run) {
   std::vector<Target> targets;
   for (const Eigen::Vector2d& p : task.points) targets.push_back({p, std::nullopt});
   check_rows(
-      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control);
+      out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control, run.threads);
   // The engine's deviations, when it reached every target, are the ones listed.
   for (Row& row : out.rows) {
     if (row.check.unreached() || row.check.targets.empty()) continue;
