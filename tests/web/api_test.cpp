@@ -188,6 +188,14 @@ TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
     // unoptimised builds (paths on several threads), so numbers are compared to 1e-9.
     EXPECT_TRUE(json_near(Json::parse(r.body), Json::parse(cli("synth " + kind + " " + file + " --all --top 5 --format json").out)));
   }
+  // Nine-point tasks have their endpoint; a task sent to another method's is refused, naming the right one.
+  const Json wrong = error_of(post("/api/synth/nine-point", with_task("examples/synthesis/five-point-crank-rocker.yaml")));
+  EXPECT_EQ(wrong["kind"], "bad_input");
+  EXPECT_NE(wrong["message"].get<std::string>().find("/api/synth/five-point"), std::string::npos);
+  EXPECT_NE(error_of(post("/api/synth/five-point", with_task("examples/synthesis/nine-point-crank-rocker.yaml")))["message"]
+                .get<std::string>()
+                .find("/api/synth/nine-point"),
+            std::string::npos);
   const ApiResponse five = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml"));
   ASSERT_EQ(five.status, 200);
   EXPECT_NE(five.body.find("crank-rocker"), std::string::npos);
@@ -452,7 +460,7 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
     EXPECT_EQ(text.body, repo_file(e["file"].get<std::string>()));
   }
   EXPECT_EQ(models, 26);  // every model file of examples/, fourbar-ansys-plates.yaml and fourbar-curved-links.yaml the newest
-  EXPECT_EQ(tasks, 5);
+  EXPECT_EQ(tasks, 6);  // nine-point-crank-rocker.yaml the newest
   EXPECT_EQ(templates, 6);
   // Each runs as it is; a template too, and its name never clashes with the example's.
   const ApiResponse five_bar = call("GET", "/api/examples/template-five-bar");

@@ -762,6 +762,9 @@ ApiResponse synth_burmester(Job& job, const std::string& body) {
 ApiResponse synth_function(Job& job, const std::string& body) {
   return api_synth(job, body, synthesis::SynthesisKind::Function);
 }
+ApiResponse synth_nine_point(Job& job, const std::string& body) {
+  return api_synth(job, body, synthesis::SynthesisKind::NinePoint);
+}
 
 const std::map<std::string, Endpoint, std::less<>>& post_endpoints() {
   static const std::map<std::string, Endpoint, std::less<>> endpoints = {
@@ -771,6 +774,7 @@ const std::map<std::string, Endpoint, std::less<>>& post_endpoints() {
       {"/api/synth/five-point", &synth_five_point},
       {"/api/synth/burmester", &synth_burmester},
       {"/api/synth/function", &synth_function},
+      {"/api/synth/nine-point", &synth_nine_point},
       {"/api/render", &api_render},
       {"/api/report", &api_report},
       {"/api/explain", &api_explain},
