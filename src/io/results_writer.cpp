@@ -174,25 +174,30 @@ void append_input_values(const Model& m, const SweepResult& sweep, int step, std
                      : 0.0);
 }
 
-ResultTable beam_peak_table(const Analysis& analysis) {
-  const Model& m = analysis.model();
-  const double length = m.units.length_scale;
-  ResultTable t;
+// A table of one peak per link: von Mises, the inputs at its step, then the method's columns.
+ResultTable peak_table_columns(const Model& m, const std::vector<std::pair<std::string, std::string>>& own) {
   std::vector<std::pair<std::string, std::string>> columns = {{"von_mises", "MPa"}};
   append_input_columns(m, columns);
-  for (auto column : std::vector<std::pair<std::string, std::string>>{{"x", m.units.length},
-                                                                      {"y", m.units.length},
-                                                                      {"sigma", "MPa"},
-                                                                      {"tau", "MPa"},
-                                                                      {"N", "N"},
-                                                                      {"V", "N"},
-                                                                      {"M", "N m"},
-                                                                      {"safety_factor", ""}})
-    columns.push_back(column);
+  columns.insert(columns.end(), own.begin(), own.end());
+  ResultTable t;
   for (const auto& [name, unit] : columns) {
     t.columns.push_back(name);
     t.units.push_back(unit);
   }
+  return t;
+}
+
+ResultTable beam_peak_table(const Analysis& analysis) {
+  const Model& m = analysis.model();
+  const double length = m.units.length_scale;
+  ResultTable t = peak_table_columns(m, {{"x", m.units.length},
+                                         {"y", m.units.length},
+                                         {"sigma", "MPa"},
+                                         {"tau", "MPa"},
+                                         {"N", "N"},
+                                         {"V", "N"},
+                                         {"M", "N m"},
+                                         {"safety_factor", ""}});
   for (const StressPeak& p : analysis.stress->peaks) {
     std::vector<double> row = {to_megapascal(p.at.von_mises)};
     append_input_values(m, analysis.sweep, p.step, row);
@@ -207,23 +212,15 @@ ResultTable beam_peak_table(const Analysis& analysis) {
 ResultTable fe_peak_table(const Analysis& analysis) {
   const Model& m = analysis.model();
   const double length = m.units.length_scale;
-  ResultTable t;
-  std::vector<std::pair<std::string, std::string>> columns = {{"von_mises", "MPa"}};
-  append_input_columns(m, columns);
-  for (auto column : std::vector<std::pair<std::string, std::string>>{{"x", m.units.length},
-                                                                      {"y", m.units.length},
-                                                                      {"safety_factor", ""},
-                                                                      {"nodes", ""},
-                                                                      {"elements", ""},
-                                                                      {"mesh_size", m.units.length},
-                                                                      {"min_angle", "deg"},
-                                                                      {"unbalance", ""},
-                                                                      {"reaction", ""}})
-    columns.push_back(column);
-  for (const auto& [name, unit] : columns) {
-    t.columns.push_back(name);
-    t.units.push_back(unit);
-  }
+  ResultTable t = peak_table_columns(m, {{"x", m.units.length},
+                                         {"y", m.units.length},
+                                         {"safety_factor", ""},
+                                         {"nodes", ""},
+                                         {"elements", ""},
+                                         {"mesh_size", m.units.length},
+                                         {"min_angle", "deg"},
+                                         {"unbalance", ""},
+                                         {"reaction", ""}});
   for (const FePeak& p : analysis.stress->fe_peaks) {
     std::vector<double> row = {to_megapascal(p.von_mises)};
     append_input_values(m, analysis.sweep, p.step, row);
