@@ -9,6 +9,7 @@
 #include "../kinematics/helpers/kinematics_support.hpp"
 #include "nbar/model/materials.hpp"
 #include "nbar/stress/link_fe.hpp"
+#include "nbar/stress/link_stress.hpp"
 
 namespace nbar::ktest {
 namespace {
@@ -205,6 +206,28 @@ TEST(LinkFe, TurnedCantileverMatchesBeamTheoryBetweenTheHoles) {
     ++checked;
   }
   EXPECT_GE(checked, 10);
+
+  // And nbar's beam model of the same link under the same forces (LinkStress, section by
+  // section): its extreme-fibre stresses are the FE's at the nodes on the plate's edges.
+  const LinkStress beam(s.dynamics, 200);
+  const std::vector<SectionStress> sections = beam.profile(s.forces[0], bar);
+  int compared = 0;
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
+    const Eigen::Vector2d& x = mesh.nodes[n];
+    if (x.x() < 0.1 || x.x() > 0.2 || std::abs(std::abs(x.y()) - kWidth / 2) > 1e-9) continue;
+    const SectionStress* nearest = nullptr;
+    for (const SectionStress& c : sections)
+      if (!nearest || std::abs(c.position - x.x()) < std::abs(nearest->position - x.x())) nearest = &c;
+    ASSERT_NE(nearest, nullptr);
+    ASSERT_LT(std::abs(nearest->position - x.x()), 0.002);
+    // The beam model's section at `position` is the FE's at x up to the gap between them.
+    const double gap = std::abs(nearest->position - x.x()) * std::abs(fy) * (kWidth / 2) / inertia;
+    const double beam_sigma = x.y() > 0 ? nearest->sigma_high : nearest->sigma_low;  // left of the axis is +y
+    EXPECT_NEAR(field.stress[n].x(), beam_sigma, gap + 0.02 * std::abs(fy * (length - x.x()) * kWidth / 2 / inertia))
+        << x.transpose();
+    ++compared;
+  }
+  EXPECT_GE(compared, 10);
 }
 
 TEST(LinkFe, PeaksOverTheSweepAreTheSameOnOneOrTwoThreads) {
