@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <numbers>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -98,6 +99,7 @@ const AllowedKeys kSweepKeys{"in `sweep`", {"steps", "duration", "step"}};
 const AllowedKeys kBodyKeys{"in a body", {"points", "shape", "bar", "thickness", "material", "mass", "cg", "inertia"}};
 const AllowedKeys kShapeKeys{"in a `shape`", {"outline", "upper", "lower", "import", "layer", "units", "holes"}};
 const AllowedKeys kCurveKeys{"in a curve", {"x", "y", "s", "steps", "spline"}};
+const AllowedKeys kArcKeys{"in an arc", {"centre", "radius", "angles"}};
 const AllowedKeys kHoleKeys{"in a hole", {"at", "circle", "radius", "polygon"}};
 const AllowedKeys kBarKeys{"in a `bar`", {"width", "margin", "hole", "holes", "between"}};
 const AllowedKeys kMaterialKeys{"in a material", {"density", "yield", "youngs_modulus", "poisson_ratio"}};
@@ -621,6 +623,7 @@ class Parser : yaml::Reader {
     double bulge = 0;
     std::optional<std::pair<YAML::Node, Eigen::Vector2d>> through;
     std::optional<CurveItem> curve;
+    std::optional<Eigen::Vector2d> arc_end;  // an arc by centre, radius and angles: vertex to arc_end, with `bulge`
   };
 
   // An expression in `variable` (model length units, angles of sin and cos in radians), its
@@ -779,9 +782,39 @@ class Parser : yaml::Reader {
                "or {spline: [[x, y], ...]}, not " + describe(node));
   }
 
+  // {centre: [x, y], radius: r, angles: [from, to]}: the arc from angle `from` to `to` (the
+  // model's angle unit, counterclockwise when to > from), as its two ends and the bulge between.
+  RingItem arc_item(const YAML::Node& node) const {
+    const Fields f = fields(node, kArcKeys);
+    const Entry* centre = f.find("centre");
+    const Entry* radius = f.find("radius");
+    const Entry* angles = f.find("angles");
+    if (!centre || !radius || !angles) fail(node, "an arc is {centre: [x, y], radius: r, angles: [from, to]}");
+    const Eigen::Vector2d c = coordinates(centre->value, "`centre`");
+    const double r = number(radius->value, mark(*radius), "the radius");
+    if (!(r > 0)) fail(mark(*radius), "an arc's radius must be > 0, not " + describe(radius->value));
+    if (!angles->value.IsSequence() || angles->value.size() != 2) {
+      fail(mark(*angles), "`angles` is [from, to] in the model's angle unit, not " + describe(angles->value));
+    }
+    const double scale = model_.units.angle_scale;
+    const double from = scale * number(angles->value[0], mark(angles->value[0]), "the start angle");
+    const double to = scale * number(angles->value[1], mark(angles->value[1]), "the end angle");
+    const double sweep = to - from;
+    if (!(std::abs(sweep) > 1e-9) || !(std::abs(sweep) < 2 * std::numbers::pi - 1e-9)) {
+      fail(mark(*angles), "an arc sweeps more than 0 and less than a full turn; use a circle hole for a whole circle");
+    }
+    RingItem item;
+    item.node = node;
+    item.vertex = c + r * Eigen::Vector2d(std::cos(from), std::sin(from));
+    item.arc_end = c + r * Eigen::Vector2d(std::cos(to), std::sin(to));
+    item.bulge = std::tan(sweep / 4);
+    return item;
+  }
+
   RingItem ring_item(const YAML::Node& v) const {
     RingItem item;
     item.node = v;
+    if (v.IsMap() && v["centre"]) return arc_item(v);
     if (v.IsMap()) {
       item.curve = curve_item(v);
       return item;
@@ -860,7 +893,7 @@ class Parser : yaml::Reader {
       }
       for (const Eigen::Vector2d& p : added) {
         // A curve that starts where the previous item ended shares that vertex.
-        if ((item.curve || after_curve) && !ring.vertices.empty() && (p - ring.vertices.back()).norm() <= same &&
+        if ((item.curve || item.arc_end || after_curve) && !ring.vertices.empty() && (p - ring.vertices.back()).norm() <= same &&
             bulges.back() == 0 && !through.back()) {
           continue;
         }
@@ -869,16 +902,23 @@ class Parser : yaml::Reader {
         bulges.push_back(0.0);
         through.emplace_back();
       }
-      after_curve = item.curve.has_value();
-      if (item.vertex && (item.bulge != 0 || item.through || item.node.size() == 3)) {
+      after_curve = item.curve.has_value() || item.arc_end.has_value();
+      if (item.vertex && (item.bulge != 0 || item.through || item.node.size() == 3 || item.arc_end)) {
         arcs = true;
         bulges.back() = item.bulge;
         through.back() = item.through;
       }
+      if (item.arc_end) {
+        ring.vertices.push_back(*item.arc_end);
+        ring.origin.push_back(item.node);
+        bulges.push_back(0.0);
+        through.emplace_back();
+      }
     }
-    // A closed curve ends where the ring starts.
-    while (ring.curves && ring.vertices.size() > 1 && (ring.vertices.back() - ring.vertices.front()).norm() <= same &&
-           bulges.back() == 0) {
+    // A closed curve (or an arc) ends where the ring starts.
+    const bool ends_with_arc = !items.empty() && items.back().arc_end.has_value();
+    while ((ring.curves || ends_with_arc) && ring.vertices.size() > 1 &&
+           (ring.vertices.back() - ring.vertices.front()).norm() <= same && bulges.back() == 0) {
       ring.vertices.pop_back();
       ring.origin.pop_back();
       bulges.pop_back();

@@ -59,12 +59,37 @@ TEST(ModelFileArcs, QuarterDiscThroughAPointAndAnArcInAHole) {
   EXPECT_NEAR(area_properties(r).area, area * 1e-6, 1e-12);
 }
 
+TEST(ModelFileArcs, ArcsByCentreRadiusAndAngles) {
+  // The same slot as SlotByBulges, its round ends given by centre, radius and angles (degrees):
+  // the right end from -90 to 90 about A, the left from 90 to 270 about O.
+  const Model m = parse_model(crank("      outline: [{centre: [100, 0], radius: 10, angles: [-90, 90]},\n"
+                                    "                {centre: [0, 0], radius: 10, angles: [90, 270]}]\n"
+                                    "      holes: [{at: O, radius: 4}, {at: A, radius: 4}]\n"),
+                              "m.yaml").model;
+  const Region& r = *m.bodies[0].shape;
+  ASSERT_EQ(r.outline.size(), 4u);  // the arcs' ends, each shared with nothing: four vertices
+  EXPECT_NEAR(r.outline_bulges[0], 1.0, 1e-12);
+  EXPECT_NEAR(r.outline_bulges[2], 1.0, 1e-12);
+  const AreaProperties a = area_properties(r);
+  EXPECT_NEAR(a.area, (100 * 20 + kPi * 100 - 2 * kPi * 16) * 1e-6, 1e-12);
+  EXPECT_NEAR(a.centroid.x(), 0.05, 1e-15);
+  // A quarter disc: the arc from the x axis to the y axis closes back at the centre, in radians.
+  std::string quarter = crank("      outline: [[0, 0], {centre: [0, 0], radius: 120, angles: [0, 1.5707963267948966]}]\n");
+  quarter.replace(0, quarter.find('\n'), "units: {length: mm, angle: rad}");
+  const Model q = parse_model(quarter, "q.yaml").model;
+  EXPECT_NEAR(area_properties(*q.bodies[0].shape).area, kPi * 120 * 120 / 4 * 1e-6, 1e-12);
+}
+
 TEST(ModelFileArcs, Errors) {
   EXPECT_TRUE(fails_at(crank("      outline: [[0, 0], [10, 0, {bend: 1}], [0, 10]]\n"), "10:33",
                        "an arc on a vertex is {bulge: b} or {through: [x, y]}"));
   EXPECT_TRUE(fails_at(crank("      outline: [[0, 0], [10, 0, {through: [20, -10]}], [0, 10]]\n"), "10:43",
                        "on the line through the arc's ends but not between them"));
   EXPECT_TRUE(fails_at(crank("      outline: [[0, 0], [10, 0]]\n"), "10:16", "needs at least 3 vertices"));
+  EXPECT_TRUE(fails_at(crank("      outline: [[0, 0], {centre: [0, 0], radius: 10, angles: [0, 360]}]\n"), "10:62",
+                       "less than a full turn"));
+  EXPECT_TRUE(fails_at(crank("      outline: [[0, 0], {centre: [0, 0], radius: -1, angles: [0, 90]}]\n"), "10:50",
+                       "radius must be > 0"));
   EXPECT_TRUE(fails_at(crank("      outline: [[0, 0], [4, 0, {bulge: -1}], [4, 10], [0, 10]]\n"), "10:16",
                        "the outline intersects itself: edge 1-2 meets edge 3-0"));
 }
