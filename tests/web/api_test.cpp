@@ -393,6 +393,28 @@ TEST(WebApi, RenderAnimateIsNbarAnimate) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(WebApi, RenderPlatesIsNbarExport) {
+  const auto dir = temp_folder("plates");
+  const std::string model = "examples/fourbar-rounded-crank.yaml";
+  for (const std::string format : {"svg", "dxf"}) {
+    const std::string out = (dir / ("plates." + format)).string();
+    ASSERT_EQ(cli("export " + model + " --" + format + " " + out).code, 0);
+    const ApiResponse r = post("/api/render", with_model(model, {{"kind", "plates"}, {"format", format}}));
+    ASSERT_EQ(r.status, 200) << r.body;
+    EXPECT_EQ(r.content_type, format == "svg" ? "image/svg+xml" : "image/vnd.dxf");
+    EXPECT_EQ(r.body, read_file(out)) << format;
+    // Posed where the crank is at 90 degrees, as `--at 90`: another drawing.
+    const std::string posed = (dir / ("posed." + format)).string();
+    ASSERT_EQ(cli("export " + model + " --" + format + " " + posed + " --at 90").code, 0);
+    const ApiResponse at = post("/api/render", with_model(model, {{"kind", "plates"}, {"format", format}, {"at", 90}}));
+    ASSERT_EQ(at.status, 200) << at.body;
+    EXPECT_EQ(at.body, read_file(posed)) << format;
+    EXPECT_NE(at.body, r.body);
+  }
+  EXPECT_EQ(error_of(post("/api/render", with_model(model, {{"kind", "plates"}, {"format", "png"}})))["kind"], "bad_input");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(WebApi, RenderPlotIsNbarPlot) {
   const auto dir = temp_folder("plot");
   for (const std::string format : {"svg", "png"}) {

@@ -17,6 +17,7 @@
 #include "nbar/analysis/columns.hpp"
 #include "nbar/analysis/explain.hpp"
 #include "nbar/analysis/pose.hpp"
+#include "nbar/io/dxf_writer.hpp"
 #include "nbar/analysis/summary.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/explain_writer.hpp"
@@ -432,6 +433,22 @@ const std::vector<std::string> kAnimateKeys{"model", "kind", "format", "steps", 
                                             "width", "height", "frames", "fps"};
 const std::vector<std::string> kPlotKeys{"model", "kind", "format", "y", "x", "steps", "order", "dynamics",
                                          "y_range", "width", "height", "title"};
+const std::vector<std::string> kPlatesKeys{"model", "kind", "format", "at"};
+
+// The links' plates for cutting, as `nbar export --dxf/--svg [--at]` writes them.
+ApiResponse render_plates(Job& job, const std::string& request) {
+  const Body body(request, kPlatesKeys);
+  const std::string format = body.choice("format", {"svg", "dxf"}, "svg");
+  load_model(job, body.text("model", true));
+  const Mechanism& mech = *job.mechanism;
+  job.start(Weight::Light);
+  std::vector<Eigen::Vector2d> points;
+  for (const Point& p : mech.model().points) points.push_back(p.position);
+  if (const std::optional<double> at = body.number("at"))
+    points = point_positions(mech, pose_at(mech, *at, 0, job.control).taylor.col(0));
+  if (format == "dxf") return answer(io::cutting_dxf(mech, points), "image/vnd.dxf");
+  return answer(io::cutting_svg(mech, points), "image/svg+xml");
+}
 
 ApiResponse render_draw(Job& job, const std::string& request) {
   const Body body(request, kDrawKeys);
@@ -556,7 +573,7 @@ ApiResponse api_render(Job& job, const std::string& request) {
   try {
     const nlohmann::json j = nlohmann::json::parse(request);
     if (j.is_object() && j.contains("kind")) {
-      if (!j["kind"].is_string()) bad_input("'kind' must be draw, animate or plot");
+      if (!j["kind"].is_string()) bad_input("'kind' must be draw, animate, plot or plates");
       kind = j["kind"].get<std::string>();
     }
   } catch (const nlohmann::json::parse_error&) {
@@ -565,7 +582,8 @@ ApiResponse api_render(Job& job, const std::string& request) {
   if (kind == "draw") return render_draw(job, request);
   if (kind == "animate") return render_animate(job, request);
   if (kind == "plot") return render_plot(job, request);
-  bad_input("'kind' must be draw, animate or plot; it is '" + kind + "'");
+  if (kind == "plates") return render_plates(job, request);
+  bad_input("'kind' must be draw, animate, plot or plates; it is '" + kind + "'");
 }
 
 ApiResponse api_report(Job& job, const std::string& request) {

@@ -548,6 +548,9 @@ async function download(kind) {
       save(await api('/api/render', { model, kind: 'animate', format: 'mp4', frames: 72 }, 'blob'), `${name}.mp4`);
     } else if (kind === 'report') {
       save(await api('/api/report', { model }, 'blob'), `${name}-report.html`);
+    } else if (kind === 'plates-dxf' || kind === 'plates-svg') {
+      const format = kind.slice(7);  // `nbar export --dxf/--svg`: the plates as drawn in the model file
+      save(await api('/api/render', { model, kind: 'plates', format }, 'blob'), `${name}-plates.${format}`);
     }
     status(t('ok'));
   } catch (e) {

@@ -213,6 +213,14 @@ async function desktop() {
   await runEditing(page, { base, out, viewport: 'desktop', mobile: false });
   await motion.run(page, { mobile: false, tag: 'desktop', base, context, shot, click, openExample, retype });
   await files.run(page, { mobile: false, tag: 'desktop', base, shot, click });
+  // A model with plates: its cutting drawing is `nbar export --dxf`'s, arcs and holes included.
+  await openExample(page, false, 'fourbar-rounded-crank');
+  await click(page, false, '[data-tab="downloads"]');
+  const [dxf] = await Promise.all([page.waitForEvent('download'), page.click('[data-download="plates-dxf"]')]);
+  assert.match(dxf.suggestedFilename(), /-plates\.dxf$/);
+  const dxfText = readFileSync(await dxf.path(), 'utf8');
+  assert.match(dxfText, /^ {0,2}0\r?\nSECTION/);
+  assert.match(dxfText, /\nCIRCLE\r?\n/, 'the pin holes are circles');
   await context.close();
 }
 
