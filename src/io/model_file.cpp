@@ -13,7 +13,6 @@
 #include <limits>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -1018,17 +1017,14 @@ class Parser : yaml::Reader {
   // check_region names vertices of the polygonised ring; with curves, say where they came from.
   static std::string with_origins(std::string message, const Ring& ring) {
     if (!ring.curves) return message;
-    static const std::regex edge(R"(edge (\d+)-(\d+))");
     std::string out;
-    auto last = message.cbegin();
-    for (auto it = std::sregex_iterator(message.begin(), message.end(), edge); it != std::sregex_iterator(); ++it) {
-      const std::size_t v = std::stoul((*it)[1].str());
-      out.append(last, (*it)[0].first);
-      out += (*it)[0].str();
-      if (v < ring.origin.size()) out += " (of the item at line " + std::to_string(mark(ring.origin[v]).line) + ")";
-      last = (*it)[0].second;
+    std::size_t last = 0;
+    for (const EdgeMention& edge : edge_mentions(message)) {
+      out.append(message, last, edge.end - last);
+      if (edge.from < ring.origin.size()) out += " (of the item at line " + std::to_string(mark(ring.origin[edge.from]).line) + ")";
+      last = edge.end;
     }
-    out.append(last, message.cend());
+    out.append(message, last, std::string::npos);
     return out;
   }
 

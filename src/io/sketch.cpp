@@ -9,7 +9,6 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
-#include <regex>
 #include <stdexcept>
 #include <string_view>
 
@@ -154,10 +153,9 @@ void check_loop(const SketchLoop& loop, const std::string& file) {
     check_region(r);
   } catch (const std::invalid_argument& error) {
     const std::string message = error.what();
-    static const std::regex crossing(R"(edge (\d+)-\d+ meets edge (\d+)-\d+)");
-    std::smatch m;
-    if (std::regex_search(message, m, crossing)) {
-      const std::size_t i = std::stoul(m[1].str()), k = std::stoul(m[2].str());
+    const std::vector<EdgeMention> edges = edge_mentions(message);
+    if (edges.size() == 2 && message.find(" meets ") != std::string::npos) {
+      const std::size_t i = edges[0].from, k = edges[1].from;
       if (i < loop.lines.size() && k < loop.lines.size()) {
         fail_at(file, loop.lines[i], "the outline crosses itself: the entity here meets the one at line " +
                                          std::to_string(loop.lines[k]));

@@ -1,5 +1,7 @@
 #include "nbar/model/geometry.hpp"
 
+#include <cctype>
+#include <string_view>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -676,6 +678,29 @@ Region straight_edged(const Region& r) {
   const double tolerance = chord_tolerance_for(r);
   if (!(tolerance > 0) || !std::isfinite(tolerance)) return r;
   return polygonised(r, tolerance);
+}
+
+std::vector<EdgeMention> edge_mentions(const std::string& message) {
+  std::vector<EdgeMention> out;
+  const auto digits_at = [&](std::size_t at) {
+    std::size_t end = at;
+    while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end]))) ++end;
+    return end;
+  };
+  static constexpr std::string_view kWord = "edge ";
+  for (std::size_t at = message.find(kWord); at != std::string::npos; at = message.find(kWord, at + 1)) {
+    const std::size_t a = at + kWord.size(), a_end = digits_at(a);
+    if (a_end == a || a_end - a > 9 || a_end >= message.size() || message[a_end] != '-') continue;
+    const std::size_t b = a_end + 1, b_end = digits_at(b);
+    if (b_end == b || b_end - b > 9) continue;
+    EdgeMention m;
+    m.begin = at;
+    m.end = b_end;
+    m.from = std::stoul(message.substr(a, a_end - a));
+    m.to = std::stoul(message.substr(b, b_end - b));
+    out.push_back(m);
+  }
+  return out;
 }
 
 }  // namespace nbar

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 namespace nbar {
@@ -93,6 +94,15 @@ AreaProperties clipped_area_properties(const Region& r, const Eigen::Vector2d& p
 // outline or hole, a hole not strictly inside the outline (touching counts as outside), holes
 // overlapping or touching each other, a non-positive radius.
 void check_region(const Region& r);
+
+// Every "edge a-b" a check_region message names (a, b: the region's vertex indices), with the
+// span [begin, end) of that mention in the message, in order: for readers that point the user
+// at the lines those vertices came from.
+struct EdgeMention {
+  std::size_t begin = 0, end = 0;
+  std::size_t from = 0, to = 0;
+};
+std::vector<EdgeMention> edge_mentions(const std::string& message);
 
 // A straight bar: the rectangle of `width` around the segment p->q, extended by `margin` beyond
 // each end, with round holes of the given radii centred at p and q (radius 0 = no hole).
