@@ -244,7 +244,7 @@ class SvgBuilder {
       const Vector2d c(number(e, "cx", 0), number(e, "cy", 0));
       const double rx = number(e, "rx"), ry = number(e, "ry");
       if (!(rx > 0) || !(ry > 0)) fail_at(file_, line_, "an <ellipse> needs positive `rx` and `ry`");
-      const auto f = [this, c, rx, ry](double t) { return model(c + Vector2d(rx * std::cos(t), ry * std::sin(t))); };
+      const auto f = [shift = shift_, c, rx, ry](double t) { return to_model(shift, c + Vector2d(rx * std::cos(t), ry * std::sin(t))); };
       Stroke s{{{f(0), f(0), 0, f, 0, 2 * std::numbers::pi}}, true, line_, layer_};
       set.strokes.push_back(std::move(s));
       return;
@@ -257,7 +257,8 @@ class SvgBuilder {
 
  private:
   // SVG user units to the sketch's: shifted by the groups' translations, y turned up.
-  Vector2d model(const Vector2d& p) const { return {p.x() + shift_.x(), -(p.y() + shift_.y())}; }
+  Vector2d model(const Vector2d& p) const { return to_model(shift_, p); }
+  static Vector2d to_model(const Vector2d& shift, const Vector2d& p) { return {p.x() + shift.x(), -(p.y() + shift.y())}; }
 
   std::string attribute(const Element& e, const std::string& key) const {
     const auto it = e.attributes.find(key);
@@ -294,7 +295,7 @@ class SvgBuilder {
   }
 
   void cubic_to(Stroke& s, const Vector2d& p0, const Vector2d& p1, const Vector2d& p2, const Vector2d& p3) {
-    const auto f = [this, p0, p1, p2, p3](double t) { return model(cubic_bezier(p0, p1, p2, p3, t)); };
+    const auto f = [shift = shift_, p0, p1, p2, p3](double t) { return to_model(shift, cubic_bezier(p0, p1, p2, p3, t)); };
     s.segments.push_back({model(p0), model(p3), 0, f, 0, 1});
   }
 
@@ -329,9 +330,10 @@ class SvgBuilder {
       s.segments.push_back({model(from), model(to), -std::tan(delta / 4)});
       return;
     }
-    const auto f = [this, centre, rx, ry, cp, sp](double t) {
+    // Sampled after the builder is gone: the curve keeps the shift, never `this`.
+    const auto f = [shift = shift_, centre, rx, ry, cp, sp](double t) {
       const double x = rx * std::cos(t), y = ry * std::sin(t);
-      return model(centre + Vector2d(cp * x - sp * y, sp * x + cp * y));
+      return to_model(shift, centre + Vector2d(cp * x - sp * y, sp * x + cp * y));
     };
     s.segments.push_back({model(from), model(to), 0, f, start, start + delta});
   }
