@@ -74,8 +74,7 @@ int run_animate(const AnimateArgs& args) {
   options.order = 0;  // positions are all a picture needs
   if (args.stress) {
     options.stress = true;
-    options.stress_method = nbar::StressMethod::fe;
-    if (args.mesh_size) options.fe.mesh_size = *args.mesh_size * loaded.mechanism->model().units.length_scale;
+    use_finite_elements(options, loaded.mechanism->model(), args.mesh_size);
   }
   nbar::Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;

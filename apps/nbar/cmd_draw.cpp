@@ -65,8 +65,7 @@ int run_draw(const DrawArgs& args) {
       return kBadUsage;
     }
     options.stress = true;
-    options.stress_method = StressMethod::fe;
-    if (args.mesh_size) options.fe.mesh_size = *args.mesh_size * m.units.length_scale;
+    use_finite_elements(options, m, args.mesh_size);
   }
   Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;

@@ -30,10 +30,7 @@ int run_report(const ReportArgs& args) {
   AnalysisOptions options = render::report_analysis_options(summary);
   options.steps = args.steps;
   options.max_steps = args.max_steps;
-  if (args.method == "fe") {
-    options.stress_method = StressMethod::fe;
-    if (args.mesh_size) options.fe.mesh_size = *args.mesh_size * loaded.mechanism->model().units.length_scale;
-  }
+  if (args.method == "fe") use_finite_elements(options, loaded.mechanism->model(), args.mesh_size);
   Analysis analysis;
   if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
   render::ReportOptions report;

@@ -159,10 +159,7 @@ int run_stress(const StressArgs& args) {
   options.max_steps = args.max_steps;
   options.stress = true;
   options.sections = args.sections;
-  if (args.method == "fe") {
-    options.stress_method = nbar::StressMethod::fe;
-    if (args.mesh_size) options.fe.mesh_size = *args.mesh_size * loaded.mechanism->model().units.length_scale;
-  }
+  if (args.method == "fe") use_finite_elements(options, loaded.mechanism->model(), args.mesh_size);
   if (args.method == "fe" && !args.profile_body.empty()) {
     std::cerr << "error: --section-profile cuts sections, which the beam method has: leave out --method fe\n";
     return kBadUsage;
