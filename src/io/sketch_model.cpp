@@ -103,7 +103,18 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     bodies.push_back({i, "", {}, {}, {}});
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (depth[i] % 2 == 1) bodies[body_of_loop.at(static_cast<std::size_t>(parent[i]))].holes.push_back(i);
+    if (depth[i] % 2 == 0) continue;
+    // Nested outlines alternate plate, hole, plate; a hole whose smallest container is itself a
+    // hole can only come from outlines that cross.
+    const auto body = body_of_loop.find(static_cast<std::size_t>(parent[i]));
+    if (body == body_of_loop.end()) {
+      throw Error(ErrorKind::InvalidModel,
+                  fmt::format("this outline crosses another (the one at line {}); outlines must nest, a plate "
+                              "holding holes, or stand apart",
+                              sketch.loops[static_cast<std::size_t>(parent[i])].lines.front()),
+                  {}, options.source_name, {sketch.loops[i].lines.front(), 1});
+    }
+    bodies[body->second].holes.push_back(i);
   }
   // Names: the layer, when no other outline has it.
   std::map<std::string, int> layer_count;
@@ -150,11 +161,11 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     }
     if (b.points.empty()) {
       throw Error(ErrorKind::InvalidModel,
-                  fmt::format("{}:{}: the outline here holds no pin hole (circle) or point: nbar cannot tell how it "
-                              "moves", options.source_name, sketch.loops[b.loop].lines.front()));
+                  "the outline here holds no pin hole (circle) or point: nbar cannot tell how it moves", {},
+                  options.source_name, {sketch.loops[b.loop].lines.front(), 1});
     }
   }
-  if (bodies.empty()) throw Error(ErrorKind::InvalidModel, options.source_name + ": the sketch has no outline");
+  if (bodies.empty()) throw Error(ErrorKind::InvalidModel, "the sketch has no outline", {}, options.source_name);
 
   std::string ground, joints_list;
   int joint_count = 0;

@@ -4,6 +4,8 @@
 #include "nbar/io/dxf_reader.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/sketch.hpp"
+#include "nbar/io/sketch_model.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/curves.hpp"
 #include "nbar/model/geometry.hpp"
 
@@ -146,6 +148,31 @@ TEST(SketchImport, BadFilesAtTheirLine) {
               HasSubstr("t.svg:2:1: nbar applies only translate()"));
   EXPECT_THAT(error_of("<svg>\n<path d=\"M 0 0 L 10 0 L 10 10\"/>\n</svg>", "o.svg"), HasSubstr("o.svg:2:1: the outline is not closed"));
   EXPECT_THAT(error_of("<svg>\n<path d=\"M 0 0 L 10 0 L 10 10 z\">\n", "u.svg"), HasSubstr("still open"));
+}
+
+TEST(SketchImport, CrossingOutlinesAreRefusedAtTheirLine) {
+  // A plate, a larger-than-a-hole square crossing its right edge, and a small square inside the
+  // second only: the small one's smallest container is a "hole", which only crossing makes.
+  const std::string text =
+      "X, Y\nNew_A\n0, 0\n10, 0\n10, 10\n0, 10\n0, 0\n"
+      "New_B\n5, 1\n15, 1\n15, 9\n5, 9\n5, 1\n"
+      "New_C\n12, 4\n13, 4\n13, 5\n12, 5\n12, 4\n";
+  const Sketch sketch = read_sketch(text, "c.csv", SketchFormat::kCsv);
+  ASSERT_EQ(sketch.loops.size(), 3u);
+  try {
+    model_from_sketch(sketch, {"c.csv", "mm", 1.0, 5.0, "steel"});
+    ADD_FAILURE() << "crossing outlines were accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("c.csv:14:1: this outline crosses another (the one at line 8)"));
+  }
+  // A plate with nothing to say how it moves.
+  try {
+    model_from_sketch(read_sketch("X, Y\nNew_A\n0, 0\n10, 0\n10, 10\n0, 0\n", "e.csv", SketchFormat::kCsv),
+                      {"e.csv", "mm", 1.0, 5.0, "steel"});
+    ADD_FAILURE() << "a plate without pins was accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("e.csv:2:1: the outline here holds no pin hole"));
+  }
 }
 
 }  // namespace
