@@ -19,6 +19,13 @@ constexpr int kPositions = 8;
 // Some solutions of real tasks lie near the degenerate sets (x -> 0 while t -> infinity), with
 // Jacobians of condition 1e18 and more in these coordinates; Newton still converges to them.
 constexpr double kSingularCondition = 1e22;
+// Whole homotopies along bent arcs tried before monodromy at the task.
+constexpr int kBentArcs = 3;
+// Two arrivals are one orbit when their keys agree to this, relative. Solutions with pivots 1e6
+// spreads away come out accurate to about 1e-6 only, and a tolerance too tight counts one orbit
+// twice, which would make a short set look complete; one too loose can only merge two orbits,
+// which is reported as incomplete. Distinct orbits of random tasks differ by 1e-2 and more.
+constexpr double kSameKey = 1e-4;
 using Key = Eigen::Matrix<Complex, 6, 1>;
 
 Complex random_complex(std::mt19937_64& rng) {
@@ -117,7 +124,7 @@ std::vector<Arrival> track_all(const CVector& from, const CVector& to, const CVe
 
 bool same_key(const Key& a, const Key& b) {
   for (int k = 0; k < 6; ++k)
-    if (std::abs(a[k] - b[k]) > 1e-6 * (1.0 + std::max(std::abs(a[k]), std::abs(b[k])))) return false;
+    if (std::abs(a[k] - b[k]) > kSameKey * (1.0 + std::max(std::abs(a[k]), std::abs(b[k])))) return false;
   return true;
 }
 
@@ -253,7 +260,7 @@ CVector nine_point_parameters(const std::array<Eigen::Vector2d, 9>& points) {
 }
 
 bool nine_point_monodromy(const CVector& parameters, std::vector<CVector>& representatives,
-                          const NinePointOptions& options, int& paths, int& loops) {
+                          const NinePointOptions& options, int& paths, int& loops, int enough) {
   std::mt19937_64 rng(options.seed * 7919 + 17);
   const double scale = parameter_scale(parameters);
   constexpr int kNodes = 3;
@@ -272,11 +279,16 @@ bool nine_point_monodromy(const CVector& parameters, std::vector<CVector>& repre
   for (const auto& r : representatives) sets[0].add(r);
   const int max_batches = std::max(1, options.max_loops) * static_cast<int>(edges.size());
   for (int batch = 0; batch < max_batches; ++batch) {
-    // The edge with the most orbits waiting goes next.
+    if (enough > 0 && static_cast<int>(sets[0].representatives.size()) >= enough) break;
+    // The edge with the most orbits waiting goes next; when a count is enough, edges back to
+    // the task first, so that each loop there and back can add to it.
     Edge* edge = nullptr;
+    const auto better = [&](const Edge& e, const Edge& than) {
+      if (enough > 0 && (e.to == 0) != (than.to == 0)) return e.to == 0;
+      return sets[e.from].representatives.size() - e.sent > sets[than.from].representatives.size() - than.sent;
+    };
     for (auto& e : edges) {
-      const size_t waiting = sets[e.from].representatives.size() - e.sent;
-      if (waiting > 0 && (!edge || waiting > sets[edge->from].representatives.size() - edge->sent)) edge = &e;
+      if (sets[e.from].representatives.size() > e.sent && (!edge || better(e, *edge))) edge = &e;
     }
     if (!edge) break;
     const auto& source = sets[edge->from].representatives;
@@ -370,22 +382,24 @@ NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, c
     if (a.ok && found.add(a.affine)) condition.push_back(a.condition);
   result.method = "parameter homotopy from a stored generic instance (" + std::to_string(total) + " paths)";
 
-  // Still short: the whole homotopy again along a bent arc (another correspondence of the
-  // orbits, so its arrivals are only merged), then monodromy at the task.
+  // Still short: the whole homotopy again along bent arcs (other correspondences of the
+  // orbits, so their arrivals are only merged), then monodromy at the task until the count is
+  // reached. Some solutions of real tasks (moving pivots 1e5 to 1e9 spreads away) are reached
+  // along some arcs only; an arc costs one path per orbit, a monodromy loop two.
   std::mt19937_64 rng(options.seed);
-  if (static_cast<int>(found.representatives.size()) < total) {
+  for (int arc = 0; arc < kBentArcs && static_cast<int>(found.representatives.size()) < total; ++arc) {
     const auto bent = track_all(start.parameters, target, 0.5 * random_parameters(rng, parameter_scale(target)),
                                 start.representatives, options);
     result.paths += total;
     for (const auto& a : bent)
       if (a.ok && found.add(a.affine)) condition.push_back(a.condition);
-    result.method += ", again along a bent arc";
+    result.method += arc == 0 ? ", again along a bent arc" : ", along another";
   }
   bool closed = false;
   if (static_cast<int>(found.representatives.size()) < total) {
     std::vector<CVector> representatives = found.representatives;
     int paths = 0;
-    closed = nine_point_monodromy(target, representatives, options, paths, result.monodromy_loops);
+    closed = nine_point_monodromy(target, representatives, options, paths, result.monodromy_loops, total);
     result.paths += paths;
     for (size_t k = found.representatives.size(); k < representatives.size(); ++k)
       if (found.add(representatives[k])) condition.push_back(0.0);

@@ -46,9 +46,11 @@ NinePointStart move_nine_point_start(const NinePointStart& from, const CVector& 
                                      const NinePointOptions& options = {});
 
 // Monodromy at `parameters` from known representatives (grown in place); returns whether
-// the graph closed. `paths` and `loops` accumulate.
+// the graph closed. `paths` and `loops` accumulate. With `enough` > 0 it stops as soon as that
+// many orbits are known at `parameters`: at a task, the count of the complete stored instance
+// (the generic number of regular solutions) certifies the set, and closure adds nothing.
 bool nine_point_monodromy(const CVector& parameters, std::vector<CVector>& representatives,
-                          const NinePointOptions& options, int& paths, int& loops);
+                          const NinePointOptions& options, int& paths, int& loops, int enough = 0);
 
 // The instance kept in src/synthesis/data/nine_point_start.inc (nbar-nine-point-start).
 const NinePointStart& nine_point_start();
