@@ -21,11 +21,14 @@ constexpr int kPositions = 8;
 constexpr double kSingularCondition = 1e22;
 // Whole homotopies along bent arcs tried before monodromy at the task.
 constexpr int kBentArcs = 3;
-// Two arrivals are one orbit when their keys agree to this, relative. Solutions with pivots 1e6
-// spreads away come out accurate to about 1e-6 only, and a tolerance too tight counts one orbit
-// twice, which would make a short set look complete; one too loose can only merge two orbits,
-// which is reported as incomplete. Distinct orbits of random tasks differ by 1e-2 and more.
+// Two arrivals are one orbit when their keys agree to kSameKey, relative, or to kFarKey times
+// the distance of their farthest pivot (in spreads of the points). Nearly sliders have pivots
+// far away, known only to about 3e-12 times that distance (1e-6 at 1e6 spreads, 2e-2 at 6e9):
+// a tolerance too tight counts such an orbit twice, which could make a short set look
+// complete, while one too loose can only merge two orbits, which is reported as incomplete.
+// Distinct orbits of random tasks differ by 1e-2 and more.
 constexpr double kSameKey = 1e-4;
+constexpr double kFarKey = 1e-10;
 using Key = Eigen::Matrix<Complex, 6, 1>;
 
 Complex random_complex(std::mt19937_64& rng) {
@@ -122,24 +125,40 @@ std::vector<Arrival> track_all(const CVector& from, const CVector& to, const CVe
   return arrivals;
 }
 
-bool same_key(const Key& a, const Key& b) {
-  for (int k = 0; k < 6; ++k)
-    if (std::abs(a[k] - b[k]) > kSameKey * (1.0 + std::max(std::abs(a[k]), std::abs(b[k])))) return false;
+// An orbit's key with the distance of its farthest fixed pivot (from the key's symmetric
+// functions of the three), which sets how well the key is known.
+struct OrbitKey {
+  Key key;
+  double reach = 0.0;
+  explicit OrbitKey(const Key& k) : key(k) {
+    for (int side = 0; side < 2; ++side) {
+      reach = std::max({reach, std::abs(k[3 * side]), std::sqrt(std::abs(k[3 * side + 1])),
+                        std::cbrt(std::abs(k[3 * side + 2]))});
+    }
+  }
+};
+
+bool same_key(const OrbitKey& a, const OrbitKey& b) {
+  const double tolerance = std::max(kSameKey, kFarKey * std::max(a.reach, b.reach));
+  for (int k = 0; k < 6; ++k) {
+    const Complex u = a.key[k], v = b.key[k];
+    if (std::abs(u - v) > tolerance * (1.0 + std::max(std::abs(u), std::abs(v)))) return false;
+  }
   return true;
 }
 
 // The orbits known at one parameter node.
 struct OrbitSet {
   std::vector<CVector> representatives;
-  std::vector<Key> keys;
-  int find(const Key& key) const {
+  std::vector<OrbitKey> keys;
+  int find(const OrbitKey& key) const {
     for (size_t i = 0; i < keys.size(); ++i)
       if (same_key(keys[i], key)) return static_cast<int>(i);
     return -1;
   }
   bool add(const CVector& affine) {
-    const Key key = orbit_key(affine);
-    if (!key.allFinite() || find(key) >= 0) return false;
+    const OrbitKey key(orbit_key(affine));
+    if (!key.key.allFinite() || find(key) >= 0) return false;
     representatives.push_back(affine);
     keys.push_back(key);
     return true;
@@ -215,8 +234,8 @@ std::vector<size_t> suspect_paths(const std::vector<Arrival>& arrivals) {
   OrbitSet seen;
   std::vector<size_t> owner, suspects;
   for (size_t i = 0; i < arrivals.size(); ++i) {
-    const Key key = arrivals[i].ok ? orbit_key(arrivals[i].affine) : Key();
-    if (!arrivals[i].ok || !key.allFinite()) {
+    const OrbitKey key(arrivals[i].ok ? orbit_key(arrivals[i].affine) : Key());
+    if (!arrivals[i].ok || !key.key.allFinite()) {
       suspects.push_back(i);
       continue;
     }
@@ -381,6 +400,21 @@ NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, c
   for (const auto& a : arrivals)
     if (a.ok && found.add(a.affine)) condition.push_back(a.condition);
   result.method = "parameter homotopy from a stored generic instance (" + std::to_string(total) + " paths)";
+
+  // A path that still fails may end where its representative has a dyad far away; the other
+  // members of its orbit (relabelled dyads, Roberts cognates) end at the same orbit elsewhere.
+  if (static_cast<int>(found.representatives.size()) < total) {
+    std::vector<CVector> members;
+    for (size_t i = 0; i < arrivals.size(); ++i) {
+      if (arrivals[i].ok) continue;
+      const std::vector<CVector> orbit = nine_point_orbit(start.representatives[i], start.parameters);
+      members.insert(members.end(), orbit.begin() + 1, orbit.end());
+    }
+    for (const auto& a : track_all(start.parameters, target, straight, members, options))
+      if (a.ok && found.add(a.affine)) condition.push_back(a.condition);
+    result.paths += static_cast<int>(members.size());
+    result.method += ", the other members of failed paths' orbits";
+  }
 
   // Still short: the whole homotopy again along bent arcs (other correspondences of the
   // orbits, so their arrivals are only merged), then monodromy at the task until the count is
