@@ -367,23 +367,24 @@ NinePointStart move_nine_point_start(const NinePointStart& from, const CVector& 
   return moved;
 }
 
-NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, const NinePointOptions& options) {
-  check_points(points);
-  const CVector target = nine_point_parameters(points);
-  const NinePointStart& start = nine_point_start();
-  NinePointResult result;
-  std::atomic<int> done{0};
-  const int total = static_cast<int>(start.representatives.size());
-  const auto on_path = [&] {
-    const int d = ++done;
-    if (options.progress && (d % 16 == 0 || d == total)) options.progress("paths", d, total);
-  };
-  std::vector<Arrival> arrivals =
-      track_all(start.parameters, target, CVector::Zero(target.size()), start.representatives, options, on_path);
-  result.paths = total;
+namespace {
 
-  // Paths that failed, or that arrived at an orbit another path reached (one of them jumped),
-  // are tracked again on the same segment with smaller steps and a stricter corrector.
+// The orbits reached at the task, with the condition number of the arrival that first reached
+// each (0 for those monodromy found).
+struct Reached {
+  OrbitSet orbits;
+  std::vector<double> condition;
+  void merge(const std::vector<Arrival>& arrivals) {
+    for (const auto& a : arrivals)
+      if (a.ok && orbits.add(a.affine)) condition.push_back(a.condition);
+  }
+  int count() const { return static_cast<int>(orbits.representatives.size()); }
+};
+
+// Paths that failed, or that arrived at an orbit another path reached (one of them jumped),
+// are tracked again on the same segment with smaller steps and a stricter corrector.
+void retrack_suspects(const NinePointStart& start, const CVector& target, const NinePointOptions& options,
+                      std::vector<Arrival>& arrivals, NinePointResult& result) {
   const CVector straight = CVector::Zero(target.size());
   for (int round = 0; round < 2; ++round) {
     const std::vector<size_t> suspects = suspect_paths(arrivals);
@@ -395,72 +396,95 @@ NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, c
     result.paths += static_cast<int>(again.size());
     for (size_t k = 0; k < suspects.size(); ++k) arrivals[suspects[k]] = retracked[k];
   }
-  OrbitSet found;
-  std::vector<double> condition;
-  for (const auto& a : arrivals)
-    if (a.ok && found.add(a.affine)) condition.push_back(a.condition);
-  result.method = "parameter homotopy from a stored generic instance (" + std::to_string(total) + " paths)";
+}
 
-  // A path that still fails may end where its representative has a dyad far away; the other
-  // members of its orbit (relabelled dyads, Roberts cognates) end at the same orbit elsewhere.
-  if (static_cast<int>(found.representatives.size()) < total) {
-    std::vector<CVector> members;
-    for (size_t i = 0; i < arrivals.size(); ++i) {
-      if (arrivals[i].ok) continue;
-      const std::vector<CVector> orbit = nine_point_orbit(start.representatives[i], start.parameters);
-      members.insert(members.end(), orbit.begin() + 1, orbit.end());
-    }
-    for (const auto& a : track_all(start.parameters, target, straight, members, options))
-      if (a.ok && found.add(a.affine)) condition.push_back(a.condition);
-    result.paths += static_cast<int>(members.size());
-    result.method += ", the other members of failed paths' orbits";
+// A path that still fails may end where its representative has a dyad far away; the other
+// members of its orbit (relabelled dyads, Roberts cognates) end at the same orbit elsewhere.
+std::vector<CVector> other_members_of_failed(const NinePointStart& start, const std::vector<Arrival>& arrivals) {
+  std::vector<CVector> members;
+  for (size_t i = 0; i < arrivals.size(); ++i) {
+    if (arrivals[i].ok) continue;
+    const std::vector<CVector> orbit = nine_point_orbit(start.representatives[i], start.parameters);
+    members.insert(members.end(), orbit.begin() + 1, orbit.end());
   }
+  return members;
+}
 
-  // Still short: the whole homotopy again along bent arcs (other correspondences of the
-  // orbits, so their arrivals are only merged), then monodromy at the task until the count is
-  // reached. Some solutions of real tasks (moving pivots 1e5 to 1e9 spreads away) are reached
-  // along some arcs only; an arc costs one path per orbit, a monodromy loop two.
-  std::mt19937_64 rng(options.seed);
-  for (int arc = 0; arc < kBentArcs && static_cast<int>(found.representatives.size()) < total; ++arc) {
-    const auto bent = track_all(start.parameters, target, 0.5 * random_parameters(rng, parameter_scale(target)),
-                                start.representatives, options);
-    result.paths += total;
-    for (const auto& a : bent)
-      if (a.ok && found.add(a.affine)) condition.push_back(a.condition);
-    result.method += arc == 0 ? ", again along a bent arc" : ", along another";
-  }
-  bool closed = false;
-  if (static_cast<int>(found.representatives.size()) < total) {
-    std::vector<CVector> representatives = found.representatives;
-    int paths = 0;
-    closed = nine_point_monodromy(target, representatives, options, paths, result.monodromy_loops, total);
-    result.paths += paths;
-    for (size_t k = found.representatives.size(); k < representatives.size(); ++k)
-      if (found.add(representatives[k])) condition.push_back(0.0);
-    result.method += ", then monodromy";
-  }
-  result.orbits = static_cast<int>(found.representatives.size());
-  result.complete = result.orbits == total && total == kNinePointOrbits;
-  if (result.complete)
-    result.certificate = "complete: 1442 distinct orbits, as many as the stored instance has (closed under monodromy)";
-  else
-    result.certificate = "incomplete: " + std::to_string(result.orbits) + " of " + std::to_string(kNinePointOrbits) +
-                         " orbits" + (closed ? " (monodromy closed below the generic count: a degenerate task?)" : "");
-
+// Every real orbit as its three cognate four-bars in the task's frame.
+void add_linkages(const Reached& reached, const CVector& target, const std::array<Eigen::Vector2d, 9>& points,
+                  NinePointResult& result) {
   const Frame frame = task_frame(points);
   const ParameterizedSystem& f = nine_point_system();
-  for (size_t k = 0; k < found.representatives.size(); ++k) {
-    const CVector& s = found.representatives[k];
+  for (size_t k = 0; k < reached.orbits.representatives.size(); ++k) {
+    const CVector& s = reached.orbits.representatives[k];
     result.representatives.push_back(s);
     if (!f.is_real(s)) continue;
     NinePointLinkage linkage;
     const CVector first = roberts_cognate(s, target), second = roberts_cognate(swap_dyads(s), target);
     linkage.designs = {design_of(s, frame), design_of(first, frame), design_of(second, frame)};
     linkage.residual = relative_residual(s, target);
-    linkage.condition = condition[k];
+    linkage.condition = reached.condition[k];
     result.linkages.push_back(linkage);
   }
   result.real_orbits = static_cast<int>(result.linkages.size());
+}
+
+}  // namespace
+
+NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, const NinePointOptions& options) {
+  check_points(points);
+  const CVector target = nine_point_parameters(points);
+  const NinePointStart& start = nine_point_start();
+  const CVector straight = CVector::Zero(target.size());
+  NinePointResult result;
+  std::atomic<int> done{0};
+  const int total = static_cast<int>(start.representatives.size());
+  const auto on_path = [&] {
+    const int d = ++done;
+    if (options.progress && (d % 16 == 0 || d == total)) options.progress("paths", d, total);
+  };
+  std::vector<Arrival> arrivals = track_all(start.parameters, target, straight, start.representatives, options, on_path);
+  result.paths = total;
+  retrack_suspects(start, target, options, arrivals, result);
+  Reached reached;
+  reached.merge(arrivals);
+  result.method = "parameter homotopy from a stored generic instance (" + std::to_string(total) + " paths)";
+
+  if (reached.count() < total) {
+    const std::vector<CVector> members = other_members_of_failed(start, arrivals);
+    reached.merge(track_all(start.parameters, target, straight, members, options));
+    result.paths += static_cast<int>(members.size());
+    result.method += ", the other members of failed paths' orbits";
+  }
+  // Still short: the whole homotopy again along bent arcs (other correspondences of the
+  // orbits, so their arrivals are only merged), then monodromy at the task until the count is
+  // reached. Some solutions of real tasks (moving pivots 1e5 to 1e9 spreads away) are reached
+  // along some arcs only; an arc costs one path per orbit, a monodromy loop two.
+  std::mt19937_64 rng(options.seed);
+  for (int arc = 0; arc < kBentArcs && reached.count() < total; ++arc) {
+    reached.merge(track_all(start.parameters, target, 0.5 * random_parameters(rng, parameter_scale(target)),
+                            start.representatives, options));
+    result.paths += total;
+    result.method += arc == 0 ? ", again along a bent arc" : ", along another";
+  }
+  bool closed = false;
+  if (reached.count() < total) {
+    std::vector<CVector> representatives = reached.orbits.representatives;
+    int paths = 0;
+    closed = nine_point_monodromy(target, representatives, options, paths, result.monodromy_loops, total);
+    result.paths += paths;
+    for (size_t k = reached.orbits.representatives.size(); k < representatives.size(); ++k)
+      if (reached.orbits.add(representatives[k])) reached.condition.push_back(0.0);
+    result.method += ", then monodromy";
+  }
+  result.orbits = reached.count();
+  result.complete = result.orbits == total && total == kNinePointOrbits;
+  if (result.complete)
+    result.certificate = "complete: 1442 distinct orbits, as many as the stored instance has (closed under monodromy)";
+  else
+    result.certificate = "incomplete: " + std::to_string(result.orbits) + " of " + std::to_string(kNinePointOrbits) +
+                         " orbits" + (closed ? " (monodromy closed below the generic count: a degenerate task?)" : "");
+  add_linkages(reached, target, points, result);
   return result;
 }
 
