@@ -107,13 +107,13 @@ inline int analyse_model(const std::string& path, const Loaded& loaded, const An
   return kOk;
 }
 
-// "--step K is not a solved step (0 to N)" unless 0 <= step < samples.
 // The finite-element stress method, with --mesh-size given in the model's length unit.
 inline void use_finite_elements(AnalysisOptions& options, const Model& model, std::optional<double> mesh_size) {
   options.stress_method = StressMethod::fe;
   if (mesh_size) options.fe.mesh_size = *mesh_size * model.units.length_scale;
 }
 
+// "--step K is not a solved step (0 to N)" unless 0 <= step < samples.
 inline bool check_step(int step, const SweepResult& sweep) {
   if (step >= 0 && step < static_cast<int>(sweep.samples.size())) return true;
   std::cerr << "error: --step " << step << " is not a solved step (0 to " << sweep.samples.size() - 1 << ")\n";

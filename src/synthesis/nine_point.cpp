@@ -374,9 +374,12 @@ namespace {
 struct Reached {
   OrbitSet orbits;
   std::vector<double> condition;
+  void add(const CVector& affine, double arrival_condition) {
+    if (orbits.add(affine)) condition.push_back(arrival_condition);
+  }
   void merge(const std::vector<Arrival>& arrivals) {
     for (const auto& a : arrivals)
-      if (a.ok && orbits.add(a.affine)) condition.push_back(a.condition);
+      if (a.ok) add(a.affine, a.condition);
   }
   int count() const { return static_cast<int>(orbits.representatives.size()); }
 };
@@ -385,7 +388,7 @@ struct Reached {
 // are tracked again on the same segment with smaller steps and a stricter corrector.
 void retrack_suspects(const NinePointStart& start, const CVector& target, const NinePointOptions& options,
                       std::vector<Arrival>& arrivals, NinePointResult& result) {
-  const CVector straight = CVector::Zero(target.size());
+  const CVector straight = CVector::Zero(target.size());  // no bend: the same segment
   for (int round = 0; round < 2; ++round) {
     const std::vector<size_t> suspects = suspect_paths(arrivals);
     if (round == 0) result.failed_paths = static_cast<int>(suspects.size());
@@ -474,7 +477,7 @@ NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, c
     closed = nine_point_monodromy(target, representatives, options, paths, result.monodromy_loops, total);
     result.paths += paths;
     for (size_t k = reached.orbits.representatives.size(); k < representatives.size(); ++k)
-      if (reached.orbits.add(representatives[k])) reached.condition.push_back(0.0);
+      reached.add(representatives[k], 0.0);
     result.method += ", then monodromy";
   }
   result.orbits = reached.count();

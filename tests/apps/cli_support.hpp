@@ -47,4 +47,30 @@ inline CliRun run_shell(const std::string& command) {
 // Runs `nbar ARGS` through the shell (ARGS is quoted by the caller as needed).
 inline CliRun nbar(const std::string& args) { return run_shell(std::string(NBAR_CLI_PATH).append(" ").append(args)); }
 
+// A scratch directory for the files a test has nbar write, removed at the end of the test.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& prefix)
+      : dir_(std::filesystem::temp_directory_path() /
+             (prefix + "_" + std::to_string(::getpid()) + "_" + std::to_string(count_++))) {
+    std::filesystem::create_directories(dir_);
+  }
+  ~ScratchDir() { std::filesystem::remove_all(dir_); }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+ private:
+  static inline int count_ = 0;
+  std::filesystem::path dir_;
+};
+
+// The whole of a file ("" when it cannot be read).
+inline std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
 }  // namespace nbar::cli_test

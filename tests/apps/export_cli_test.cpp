@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -15,28 +14,7 @@
 namespace nbar::cli_test {
 namespace {
 
-namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-class TempDir {
- public:
-  TempDir() : dir_(fs::temp_directory_path() / ("nbar_export_" + std::to_string(::getpid()) + "_" + std::to_string(count_++))) {
-    fs::create_directories(dir_);
-  }
-  ~TempDir() { fs::remove_all(dir_); }
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-
- private:
-  static inline int count_ = 0;
-  fs::path dir_;
-};
-
-std::string read(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 // The second VERTEX of the file's first POLYLINE (the crank's outline), checked to start the
 // arc (bulge 1).
@@ -64,10 +42,10 @@ Eigen::Vector2d second_vertex(const std::string& dxf) {
 const std::string kExample = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-rounded-crank.yaml";
 
 TEST(ExportCli, WritesTheDxfAsDrawnAndInAPose) {
-  TempDir dir;
+  ScratchDir dir("nbar_export");
   const CliRun drawn = nbar("export " + kExample + " --dxf " + dir.file("drawn.dxf"));
   ASSERT_EQ(drawn.code, 0) << drawn.err;
-  const std::string text = read(dir.file("drawn.dxf"));
+  const std::string text = read_file(dir.file("drawn.dxf"));
   EXPECT_EQ(text.rfind("  0\nSECTION\n  2\nHEADER\n", 0), 0u);
   EXPECT_TRUE(text.ends_with("  0\nEOF\n"));
   for (const char* layer : {"\ncrank\n", "\ncoupler\n", "\nrocker\n"}) EXPECT_THAT(text, HasSubstr(layer));
@@ -78,14 +56,14 @@ TEST(ExportCli, WritesTheDxfAsDrawnAndInAPose) {
   ASSERT_EQ(turned.code, 0) << turned.err;
   // A quarter turn about O2 takes the crank's second vertex (80, -10) to (10, 80), to the
   // pose's precision; its bulge stays.
-  const Eigen::Vector2d v = second_vertex(read(dir.file("at90.dxf")));
+  const Eigen::Vector2d v = second_vertex(read_file(dir.file("at90.dxf")));
   EXPECT_NEAR(v.x(), 10, 1e-9);
   EXPECT_NEAR(v.y(), 80, 1e-9);
   EXPECT_EQ(second_vertex(text), Eigen::Vector2d(80, -10));
 }
 
 TEST(ExportCli, Errors) {
-  TempDir dir;
+  ScratchDir dir("nbar_export");
   const CliRun none = nbar("export " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml --dxf " +
                            dir.file("x.dxf"));
   EXPECT_EQ(none.code, 2);
@@ -100,11 +78,11 @@ TEST(ExportCli, Errors) {
 // skeleton, with the driver its last comment suggests, checks as a crank-rocker whose crank
 // plate is the 50 x 16 mm slot with half-round ends less two 4 mm pin holes.
 TEST(ImportCli, SketchBecomesAModelSkeleton) {
-  TempDir dir;
+  ScratchDir dir("nbar_export");
   const std::string sketch = std::string(NBAR_EXAMPLES_DIR) + "/sketches/fourbar-sketch.dxf";
   const CliRun run = nbar("import " + sketch + " -o " + dir.file("skeleton.yaml"));
   ASSERT_EQ(run.code, 0) << run.err;
-  std::string yaml = read(dir.file("skeleton.yaml"));
+  std::string yaml = read_file(dir.file("skeleton.yaml"));
   EXPECT_THAT(yaml, HasSubstr("ground: [P1, P4]\n"));
   EXPECT_THAT(yaml, HasSubstr("  coupler:\n    points: [P2, P3]"));
   yaml += "drivers: [{angle: crank, from: 0, to: 360, speed: 60 rpm}]\n";
