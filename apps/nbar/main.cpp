@@ -58,7 +58,7 @@ void print_column_error(const Loaded& loaded, const std::invalid_argument& e) {
 }
 
 // CSV is streamed: rows are written as the sweep solves them and none is kept, so memory does
-// not grow with the number of steps (TableStream runs the sweep twice for that). JSON and the
+// not grow with the number of steps (TableStream runs a long sweep twice for that). JSON and the
 // text table need every row at once (the text table sizes its columns over all rows).
 int solve_to_csv(const SolveArgs& args, const Loaded& loaded, const nbar::AnalysisOptions& options) {
   std::optional<nbar::TableStream> stream;

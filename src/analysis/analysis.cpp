@@ -239,6 +239,7 @@ void TableStream::run(Pass& pass) {
   sweep.steps = options_.steps;
   sweep.max_steps = options_.max_steps;
   sweep.order = order;
+  ++passes_;
   sweep_ = run_sweep(mech, sweep, options_.control, [&](const Sample& s) {
     kinematic.fill(s, row.data());
     if (dynamic) {
@@ -255,10 +256,20 @@ void TableStream::measure() {
   // over its columns; unitless columns keep a threshold of 0.
   const std::size_t n = all_units_.size();
   std::vector<double> column_max(n, 0.0);
+  const std::size_t kept_values = kept_rows_budget_ / sizeof(double);
+  kept_rows_.clear();
+  rows_kept_ = n > 0;
   Pass pass;
   pass.row = [&](const double* row) {
     for (std::size_t c = 0; c < n; ++c)
       if (std::isfinite(row[c])) column_max[c] = std::max(column_max[c], std::abs(row[c]));
+    if (!rows_kept_) return;
+    if (kept_rows_.size() + n > kept_values) {
+      rows_kept_ = false;
+      std::vector<double>().swap(kept_rows_);
+      return;
+    }
+    kept_rows_.insert(kept_rows_.end(), row, row + n);
   };
   run(pass);
   threshold_.assign(n, 0.0);
@@ -275,14 +286,20 @@ void TableStream::measure() {
 void TableStream::rows(const std::function<void(const double* row)>& sink) {
   if (!measured_) measure();
   std::vector<double> out(picked_.size());
-  Pass pass;
-  pass.row = [&](const double* row) {
+  auto hand_out = [&](const double* row) {
     for (std::size_t i = 0; i < picked_.size(); ++i) {
       const double v = row[picked_[i]];
       out[i] = std::abs(v) <= threshold_[picked_[i]] ? 0.0 : v;
     }
     sink(out.data());
   };
+  if (rows_kept_) {
+    const std::size_t n = all_units_.size();
+    for (std::size_t start = 0; start + n <= kept_rows_.size(); start += n) hand_out(kept_rows_.data() + start);
+    return;
+  }
+  Pass pass;
+  pass.row = hand_out;
   run(pass);
 }
 

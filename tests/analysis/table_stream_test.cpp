@@ -1,6 +1,7 @@
 // TableStream hands out result_table's rows one at a time without keeping the sweep: the same
 // columns and, bit for bit, the same numbers (noise made 0 included), with or without the
-// dynamics columns, whole or selected; and its CSV is write_csv's, byte for byte.
+// dynamics columns, whole or selected, from rows kept by its first pass or from a second pass;
+// and its CSV is write_csv's, byte for byte.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -54,14 +55,21 @@ TEST_P(TableStreamTest, RowsAreResultTableBitForBit) {
   const Analysis analysis = analyse(mech, options);
   const ResultTable table = result_table(analysis);
 
-  TableStream stream(mech, options);
-  EXPECT_EQ(stream.columns(), table.columns);
-  EXPECT_EQ(stream.units(), table.units);
-  EXPECT_TRUE(same_bits(streamed_rows(stream), table.rows));
-  EXPECT_EQ(stream.sweep().solved, analysis.sweep.samples.size());
-  EXPECT_TRUE(stream.sweep().samples.empty());  // nothing kept
-  EXPECT_EQ(stream.sweep().complete, analysis.sweep.complete);
-  EXPECT_EQ(stream.warnings().size(), analysis.warnings().size());
+  // The rows kept by the first pass (541 rows fit the default budget), none kept (budget 0),
+  // and a budget that runs out part way: one pass, then two.
+  for (const std::size_t budget : {std::size_t{4} << 20, std::size_t{0}, std::size_t{5000}}) {
+    SCOPED_TRACE("kept rows budget " + std::to_string(budget));
+    TableStream stream(mech, options);
+    stream.set_kept_rows_budget(budget);
+    EXPECT_EQ(stream.columns(), table.columns);
+    EXPECT_EQ(stream.units(), table.units);
+    EXPECT_TRUE(same_bits(streamed_rows(stream), table.rows));
+    EXPECT_EQ(stream.passes(), budget > 5000 ? 1 : 2);
+    EXPECT_EQ(stream.sweep().solved, analysis.sweep.samples.size());
+    EXPECT_TRUE(stream.sweep().samples.empty());  // no samples kept
+    EXPECT_EQ(stream.sweep().complete, analysis.sweep.complete);
+    EXPECT_EQ(stream.warnings().size(), analysis.warnings().size());
+  }
 
   std::ostringstream buffered, streamed;
   io::write_csv(buffered, table);

@@ -15,10 +15,12 @@ namespace nbar {
 
 // The rows of result_table(analyse(mechanism, options)), bit for bit, handed out one at a
 // time. The noise made exact 0 (zero_numerical_noise) is measured against the largest value of
-// each unit over the whole sweep, which is known only at its end, so the pipeline runs twice:
-// measure() runs it keeping nothing but those sizes (and raises every error analyse would, before
-// any row is out), then rows() runs it again and hands out each row as it is solved. Both passes
-// are the same deterministic computation, so they give the same numbers.
+// each unit over the whole sweep, which is known only at its end. measure() runs the pipeline
+// once, keeping those sizes (and raising every error analyse would, before any row is out) and
+// the rows themselves while they fit in kept_rows_budget() bytes; rows() then hands the kept
+// rows out. A sweep too long for the budget runs a second time in rows(), each row handed out
+// as it is solved, so memory stays bounded. Both passes are the same deterministic
+// computation, so they give the same numbers.
 class TableStream {
  public:
   // Throws Error(BadInput) for options out of range and for the stress stage (its peaks need
@@ -37,8 +39,16 @@ class TableStream {
 
   // The first pass. Throws Error as analyse does.
   void measure();
-  // The second pass: every row (columns().size() values) to `sink`, in sweep order.
+  // Every row (columns().size() values) to `sink`, in sweep order: the kept rows, or a second
+  // pass when the first could not keep them.
   void rows(const std::function<void(const double* row)>& sink);
+
+  // Bytes of rows the first pass may keep (default 4 MiB: about 12 000 rows of a four-bar's
+  // 43 columns); 0 always runs twice. Set before measure().
+  void set_kept_rows_budget(std::size_t bytes) { kept_rows_budget_ = bytes; }
+  std::size_t kept_rows_budget() const { return kept_rows_budget_; }
+  // How many times the pipeline ran (1 or 2 once rows() is done).
+  int passes() const { return passes_; }
 
   // Of the last pass: the sweep (complete, stop reason, warnings, solved; no samples kept) and
   // the warnings of every stage, as Analysis::warnings().
@@ -57,6 +67,10 @@ class TableStream {
   std::vector<std::size_t> picked_;       // columns kept, in the order asked
   std::vector<double> threshold_;         // per column of the whole table: noise below this is 0
   bool measured_ = false;
+  std::size_t kept_rows_budget_ = std::size_t{4} << 20;
+  std::vector<double> kept_rows_;  // the first pass's rows, every column, when they fit
+  bool rows_kept_ = false;
+  int passes_ = 0;
   SweepResult sweep_;
   std::optional<DynamicsStage> dynamics_stage_;  // its summary only (no samples)
 };
