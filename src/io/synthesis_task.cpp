@@ -57,7 +57,10 @@ std::string quoted_function(const std::string& text) {
 
 class TaskParser : yaml::Reader {
  public:
-  TaskParser(std::string text, std::string file) : Reader(std::move(text), file) { task_.file = std::move(file); }
+  TaskParser(std::string text, std::string file, bool reads_files)
+      : Reader(std::move(text), file), reads_files_(reads_files) {
+    task_.file = std::move(file);
+  }
 
   SynthesisTask parse() {
     const YAML::Node root = load(kTaskDocument);
@@ -118,6 +121,7 @@ class TaskParser : yaml::Reader {
 
  private:
   SynthesisTask task_;
+  bool reads_files_ = false;  // `curve: FILE` allowed (a task loaded from a file)
 
   // ---- keys and values (the generic readers are yaml::Reader's) ----
 
@@ -400,6 +404,11 @@ class TaskParser : yaml::Reader {
       }
     } else {
       task_.where = mark(*curve);
+      // A task given as text (the web server's, Python's parse_task) must not make its reader
+      // open files: on a server that would read the server's disk for any client.
+      if (!reads_files_)
+        fail(mark(*curve), "`curve` reads a CSV file, which only a task read from a file may do: give the targets "
+                           "here as `points: [[x, y], ...]`");
       const std::string name = text_value(*curve, "`curve`");
       if (name.empty()) fail(mark(*curve), "`curve` names a CSV file of the target points (x, y on each line)");
       task_.curve_file = resolve_beside_task(name);
@@ -589,7 +598,7 @@ class TaskParser : yaml::Reader {
 }  // namespace
 
 SynthesisTask parse_synthesis_task(const std::string& text, const std::string& file_name) {
-  return TaskParser(text, file_name).parse();
+  return TaskParser(text, file_name, false).parse();
 }
 
 SynthesisTask load_synthesis_task(const std::string& path) {
@@ -605,7 +614,7 @@ SynthesisTask load_synthesis_task(const std::string& path) {
   }
   std::ostringstream contents;
   contents << in.rdbuf();
-  return parse_synthesis_task(contents.str(), path);
+  return TaskParser(contents.str(), path, true).parse();
 }
 
 }  // namespace nbar::io

@@ -379,6 +379,18 @@ TEST(SynthesisTask, PathErrors) {
             "task.yaml:16:72: unknown key 'grashof' in `constraints` (allowed: pivots, crank, min_transmission, lengths)");
 }
 
+// A task parsed from text (a web client's, Python's task()) opens no file: `curve` is refused
+// at its value, whether or not the file exists; loaded from a file, the same task reads it.
+TEST(SynthesisTask, TaskFromTextReadsNoCurveFile) {
+  const std::string text = "task: path\ncurve: " + kDir + "path/d-shape.csv\n";
+  EXPECT_EQ(error_of(text), "task.yaml:2:8: `curve` reads a CSV file, which only a task read from a file may do: give "
+                            "the targets here as `points: [[x, y], ...]`");
+  EXPECT_EQ(error_of("task: path\ncurve: /nonexistent.csv\n"),
+            "task.yaml:2:8: `curve` reads a CSV file, which only a task read from a file may do: give the targets here "
+            "as `points: [[x, y], ...]`");
+  EXPECT_GE(nbar::io::load_synthesis_task(kDir + "path/d-shape.yaml").points.size(), 10u);
+}
+
 // The CSV's own mistakes are reported at its line and column.
 TEST(SynthesisTask, PathCurveFileErrors) {
   const fs::path dir = fs::temp_directory_path() / ("nbar_path_task_" + std::to_string(::getpid()));
