@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <regex>
 
 namespace nbar::web_test {
@@ -213,6 +214,29 @@ TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
   const ApiResponse object = post("/api/synth/function", {{"task", task}});
   ASSERT_EQ(object.status, 200) << object.body;
   EXPECT_EQ(Json::parse(object.body)["name"], "square");
+}
+
+TEST(WebApi, PathSynthesisIsNbarSynthPathAndOpensNoFile) {
+  const std::string file = "examples/synthesis/path/crank-rocker-measured.yaml";
+  const ApiResponse r = post("/api/synth/path", with_task(file, {{"top", 3}, {"threads", 1}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_TRUE(json_near(Json::parse(r.body), Json::parse(cli("synth path " + file + " --top 3 --threads 1 --format json").out)));
+  // A client's `curve:` names a file on the server: refused at its line and column, unread
+  // (the file exists and its second line would be quoted back if it were read).
+  const auto dir = temp_folder("path-curve");
+  const std::string secret = (dir / "secret.csv").string();
+  std::ofstream(secret) << "x,y\n1,do-not-show-this\n";
+  const ApiResponse curve = post("/api/synth/path", {{"task", "task: path\ncurve: " + secret + "\n"}});
+  EXPECT_EQ(curve.status, 422) << curve.body;
+  const Json error = error_of(curve);
+  EXPECT_EQ(error["line"], 2);
+  EXPECT_EQ(error["column"], 8);
+  EXPECT_EQ(error["message"], "`curve` reads a CSV file, which only a task read from a file may do: give the targets "
+                              "here as `points: [[x, y], ...]`");
+  EXPECT_EQ(curve.body.find("do-not-show-this"), std::string::npos);
+  // The same from another method's endpoint, which parses the task before checking its kind.
+  EXPECT_EQ(post("/api/synth/five-point", {{"task", "task: path\ncurve: " + secret + "\n"}}).body.find("do-not-show"),
+            std::string::npos);
 }
 
 TEST(WebApi, SynthesisModelsAreTheFilesOfSynthExport) {
@@ -482,7 +506,7 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
     EXPECT_EQ(text.body, repo_file(e["file"].get<std::string>()));
   }
   EXPECT_EQ(models, 26);  // every model file of examples/, fourbar-ansys-plates.yaml and fourbar-curved-links.yaml the newest
-  EXPECT_EQ(tasks, 6);  // nine-point-crank-rocker.yaml the newest
+  EXPECT_EQ(tasks, 7);  // path/crank-rocker-measured.yaml the newest
   EXPECT_EQ(templates, 6);
   // Each runs as it is; a template too, and its name never clashes with the example's.
   const ApiResponse five_bar = call("GET", "/api/examples/template-five-bar");

@@ -783,6 +783,9 @@ ApiResponse synth_function(Job& job, const std::string& body) {
 ApiResponse synth_nine_point(Job& job, const std::string& body) {
   return api_synth(job, body, synthesis::SynthesisKind::NinePoint);
 }
+ApiResponse synth_path(Job& job, const std::string& body) {
+  return api_synth(job, body, synthesis::SynthesisKind::Path);
+}
 
 const std::map<std::string, Endpoint, std::less<>>& post_endpoints() {
   static const std::map<std::string, Endpoint, std::less<>> endpoints = {
@@ -793,6 +796,7 @@ const std::map<std::string, Endpoint, std::less<>>& post_endpoints() {
       {"/api/synth/burmester", &synth_burmester},
       {"/api/synth/function", &synth_function},
       {"/api/synth/nine-point", &synth_nine_point},
+      {"/api/synth/path", &synth_path},
       {"/api/render", &api_render},
       {"/api/report", &api_report},
       {"/api/explain", &api_explain},

@@ -1,6 +1,7 @@
-// The synthesis panel: five-point path synthesis (points typed or tapped on the drawing),
-// Burmester motion generation from poses (a form, or poses tapped on the drawing) and function
-// generation (a form). Every task goes to the server's /api/synth/* with "models": true, so each
+// The synthesis panel: path synthesis through five points (both fixed pivots given), through nine
+// points (Alt's problem) and the best fit through ten or more (points typed in the task or tapped
+// on the drawing), Burmester motion generation from poses (a form, or poses tapped on the drawing)
+// and function generation (a form). Every task goes to the server's /api/synth/* with "models": true, so each
 // design comes with the model file the core writes for it (`nbar synth --export`'s): the browser
 // writes task text from the form, never a model. A design can be previewed animating through the
 // targets, and opened in the editor.
@@ -9,10 +10,17 @@ import { drawingSvg, poseDrawing, markScale } from './drawing.js';
 
 const $ = (s) => document.querySelector(s);
 const num = (v) => String(+(+v).toFixed(6));
-const methods = ['five-point', 'burmester', 'function'];
+const methods = ['five-point', 'nine-point', 'path', 'burmester', 'function'];
+// The methods whose task is the text area's (points tapped into it): how many taps make the
+// task, its hint, and the example it starts from (five-point's is loaded by main.js).
+const textMethods = {
+  'five-point': { taps: 5, hint: 'synthHint', tap: 'tapFive' },
+  'nine-point': { taps: 9, hint: 'nineHint', tap: 'tapNine', example: 'nine-point-crank-rocker' },
+  path: { taps: Infinity, hint: 'pathHint', tap: 'tapPath', example: 'crank-rocker-measured' },
+};
 
 let app = null;
-const synth = { method: 'five-point', tapping: null, taps: [], targets: [], preview: null };
+const synth = { method: 'five-point', tapping: null, taps: [], targets: [], preview: null, texts: {} };
 
 // ------------------------------------------------------------------------------ forms
 
@@ -56,6 +64,8 @@ function buildForms() {
   bar.className = 'row wrap';
   bar.innerHTML = `<label class="field inline"><span data-i18n="method">${t('method')}</span><select id="synth-method">
       <option value="five-point" data-i18n="mFive">${t('mFive')}</option>
+      <option value="nine-point" data-i18n="mNine">${t('mNine')}</option>
+      <option value="path" data-i18n="mPath">${t('mPath')}</option>
       <option value="burmester" data-i18n="mBurmester">${t('mBurmester')}</option>
       <option value="function" data-i18n="mFunction">${t('mFunction')}</option></select></label>
     <button id="five-tap" type="button" class="tap" data-i18n="tapFive">${t('tapFive')}</button>`;
@@ -77,20 +87,36 @@ function poses() {
   return [...$('#poses').children].map((tr) => ['.px', '.py', '.pa'].map((c) => tr.querySelector(c).value.trim()));
 }
 
+// Each text method keeps its own task text while another is shown.
 function showMethod(m) {
+  if (textMethods[synth.method]) synth.texts[synth.method] = $('#task').value;
   synth.method = m;
   stopTapping();
-  $('#task').hidden = m !== 'five-point';
+  const textual = textMethods[m];
+  $('#task').hidden = !textual;
+  $('#five-tap').hidden = !textual;
+  $('#synth-hint').hidden = !textual;
+  if (textual) {
+    for (const [el, key] of [[$('#five-tap'), textual.tap], [$('#synth-hint'), textual.hint]]) {
+      el.dataset.i18n = key;
+      el.textContent = t(key);
+    }
+    if (synth.texts[m] !== undefined) $('#task').value = synth.texts[m];
+    else if (textual.example) {
+      $('#task').value = '';
+      app.api(`/api/examples/${textual.example}`, undefined, 'text').then((txt) => {
+        if (synth.method === m && !$('#task').value) { $('#task').value = txt; drawMarks(); }
+      }).catch(() => {});
+    }
+  }
   setTimeout(drawMarks);
-  $('#five-tap').hidden = m !== 'five-point';
   $('#synth-burmester').hidden = m !== 'burmester';
   $('#synth-function').hidden = m !== 'function';
-  $('#synth-hint').hidden = m !== 'five-point';
 }
 
 // ------------------------------------------------------------------------------ task text
 
-// The five-point task's target points, read back from its text (for the preview's marks).
+// A text task's target points, read back from its text (for the preview's marks).
 function fivePointTargets(text) {
   const block = /^points:\s*(?:#.*)?\n((?:[ \t]*-[^\n]*\n?)+)/m.exec(text);
   if (!block) return [];
@@ -152,16 +178,28 @@ function stopTapping() {
 }
 
 function startTapping(kind) {
-  if (synth.tapping === kind) { stopTapping(); return; }
+  if (synth.tapping === kind) {
+    // A path takes as many points as tapped: pressing the button again ends the tapping.
+    const done = kind === 'five' && !Number.isFinite(textMethods[synth.method].taps) && synth.taps.length > 0;
+    if (done) setFivePointTargets(synth.taps);
+    stopTapping();
+    if (done) $('#synth-status').textContent = t('tapped');
+    return;
+  }
   if (!document.querySelector('#drawing svg')) { $('#synth-status').textContent = t('tapNeedsDrawing'); return; }
   stopTapping();
   synth.tapping = kind;
   $(kind === 'five' ? '#five-tap' : '#pose-tap').classList.add('on');
   $('#drawing').classList.add('tapping');
-  $('#synth-status').textContent = t(kind === 'five' ? 'tapFiveNow' : 'tapPosesNow', 0);
+  $('#synth-status').textContent = kind === 'five' ? tapStatus(0) : t('tapPosesNow', 0);
   if (kind === 'poses') $('#poses').replaceChildren();
   // On a phone the drawing is above the panel: bring it into view.
   $('#drawing').scrollIntoView({ block: 'nearest' });
+}
+
+function tapStatus(n) {
+  const need = textMethods[synth.method].taps;
+  return Number.isFinite(need) ? t('tapPointsNow', n, need) : t('tapPathNow', n);
 }
 
 function modelPoint(e) {
@@ -180,8 +218,8 @@ function onTap(e) {
   const p = [+x.toFixed(digits), +y.toFixed(digits)];
   if (synth.tapping === 'five') {
     synth.taps.push(p);
-    $('#synth-status').textContent = t('tapFiveNow', synth.taps.length);
-    if (synth.taps.length === 5) {
+    $('#synth-status').textContent = tapStatus(synth.taps.length);
+    if (synth.taps.length === textMethods[synth.method].taps) {
       setFivePointTargets(synth.taps);
       stopTapping();
       $('#synth-status').textContent = t('tapped');
@@ -195,13 +233,13 @@ function onTap(e) {
   drawMarks();
 }
 
-// The targets over the mechanism while the synthesis panel is open: the points being tapped, the
-// five-point task's points or the Burmester poses (with their angles).
+// The targets over the mechanism while the synthesis panel is open: the points being tapped, a
+// text task's points or the Burmester poses (with their angles).
 function markedTargets() {
   if (synth.tapping === 'five') return synth.taps;
   if (!document.querySelector('#panel-synthesis.active')) return [];
   if (synth.method === 'burmester') return poses().map(([x, y, a]) => [+x, +y, +a]).filter(([x, y]) => Number.isFinite(x) && Number.isFinite(y));
-  if (synth.method === 'five-point') return fivePointTargets($('#task').value);
+  if (textMethods[synth.method]) return fivePointTargets($('#task').value);
   return [];
 }
 
@@ -275,7 +313,7 @@ async function runSynthesis() {
     const res = await app.api(`/api/synth/${synth.method}`, { task: taskText(), top: 10, models: true });
     st.textContent = t('designsFound', res.designs.length, res.solutions);
     list.replaceChildren(...res.designs.map((d) => designItem(d, res)));
-    if (res.notes?.length) st.textContent += ` · ${res.notes.join(' ')}`;
+    if (res.notes?.length) st.textContent += ` · ${res.notes.join('; ')}`;
   } catch (e) {
     const i = e.info ?? {};
     st.textContent = (i.line ? t('errorAt', i.line, i.column ?? 1) : '') + e.message;

@@ -210,9 +210,58 @@ async function offline(page, ctx) {
   }
 }
 
+// The best fit from the example task (30 measured points of a crank-rocker's curve) finds that
+// crank-rocker; points tapped for it go into its own task text, kept apart from the five-point
+// one; the nine-point solve from its example finds designs too.
+async function ninePointAndPath(page, ctx) {
+  const { mobile, click } = ctx;
+  await click(page, mobile, '[data-tab="synthesis"]');
+  await page.selectOption('#synth-method', 'path');
+  await page.waitForFunction(() => /task: path/.test(document.querySelector('#task').value));
+  assert.equal(await page.locator('#five-tap').textContent(), 'Tap points');
+  assert.equal(await page.locator('#drawing .synth-marks .target').count(), 30, "the example's 30 points marked");
+  await click(page, mobile, '#synth-run');
+  await page.waitForSelector('[data-design="1"]:not([disabled])', { timeout: 60000 });
+  assert.match(await page.locator('#synth-status').textContent(), /^\d+ designs? \(\d+ solutions?\)/);
+  assert.match(await page.locator('.designs li').first().textContent(), /crank-rocker/);
+  await ctx.shot(page, `${ctx.tag}-m6-path-fit`);
+  // Twelve points tapped, then the button again: a path task of twelve points.
+  await click(page, mobile, '#five-tap');
+  if (mobile) {
+    await page.evaluate(() => window.scrollTo({ top: 0, left: 0, behavior: 'instant' }));
+    await page.waitForFunction(() => window.scrollY === 0);
+  } else {
+    await page.locator('#drawing').scrollIntoViewIfNeeded();
+  }
+  const box = await page.locator('#drawing svg').boundingBox();
+  for (let k = 0; k < 12; ++k) {
+    const a = (2 * Math.PI * k) / 12;
+    await tapAt(page, mobile, box.x + box.width * (0.5 + 0.3 * Math.cos(a)), box.y + box.height * (0.5 + 0.3 * Math.sin(a)));
+  }
+  assert.match(await page.locator('#synth-status').textContent(), /Tap point 13 /);
+  await click(page, mobile, '#five-tap');
+  const task = await page.locator('#task').inputValue();
+  assert.match(task, /^task: path/m);
+  assert.equal([...task.split('points:')[1].matchAll(/\[([-\d.]+), ([-\d.]+)\]/g)].length, 12, task);
+  assert.equal(await page.locator('#drawing .synth-marks .target').count(), 12);
+  await page.selectOption('#synth-method', 'five-point');
+  assert.match(await page.locator('#task').inputValue(), /^task: five-point/m, 'each method keeps its own task');
+  await page.selectOption('#synth-method', 'path');
+  assert.equal(await page.locator('#task').inputValue(), task);
+  await page.selectOption('#synth-method', 'nine-point');
+  await page.waitForFunction(() => /task: nine-point/.test(document.querySelector('#task').value));
+  assert.equal(await page.locator('#drawing .synth-marks .target').count(), 9);
+  await click(page, mobile, '#synth-run');
+  await page.waitForSelector('[data-design="1"]:not([disabled])', { timeout: 60000 });
+  assert.match(await page.locator('#synth-status').textContent(), /^\d+ designs? \(\d+ solutions?\)/);
+  await ctx.shot(page, `${ctx.tag}-m7-nine-point`);
+  await page.selectOption('#synth-method', 'five-point');
+}
+
 export async function run(page, ctx) {
   await fivePointByTapping(page, ctx);
   if (!ctx.mobile) await burmesterAndFunction(page, ctx);
+  await ninePointAndPath(page, ctx);
   await overlays(page, ctx);
   if (!ctx.mobile) await toggleStop(page, ctx);
   await explainPanel(page, ctx);
