@@ -12,9 +12,9 @@ const $ = (s) => document.querySelector(s);
 const num = (v) => String(+(+v).toFixed(6));
 const methods = ['five-point', 'nine-point', 'path', 'burmester', 'function'];
 // The methods whose task is the text area's (points tapped into it): how many taps make the
-// task, its hint, and the example it starts from (five-point's is loaded by main.js).
+// task, its hint, and the example it starts from (five-point's is first loaded by main.js).
 const textMethods = {
-  'five-point': { taps: 5, hint: 'synthHint', tap: 'tapFive' },
+  'five-point': { taps: 5, hint: 'synthHint', tap: 'tapFive', example: 'five-point-crank-rocker' },
   'nine-point': { taps: 9, hint: 'nineHint', tap: 'tapNine', example: 'nine-point-crank-rocker' },
   path: { taps: Infinity, hint: 'pathHint', tap: 'tapPath', example: 'crank-rocker-measured' },
 };
@@ -87,9 +87,10 @@ function poses() {
   return [...$('#poses').children].map((tr) => ['.px', '.py', '.pa'].map((c) => tr.querySelector(c).value.trim()));
 }
 
-// Each text method keeps its own task text while another is shown.
+// Each text method keeps its own task text while another is shown (an emptied one starts again
+// from its example).
 function showMethod(m) {
-  if (textMethods[synth.method]) synth.texts[synth.method] = $('#task').value;
+  if (textMethods[synth.method]) synth.texts[synth.method] = $('#task').value || undefined;
   synth.method = m;
   stopTapping();
   const textual = textMethods[m];
@@ -102,7 +103,7 @@ function showMethod(m) {
       el.textContent = t(key);
     }
     if (synth.texts[m] !== undefined) $('#task').value = synth.texts[m];
-    else if (textual.example) {
+    else if (m !== 'five-point' || !/^task: five-point/m.test($('#task').value)) {
       $('#task').value = '';
       app.api(`/api/examples/${textual.example}`, undefined, 'text').then((txt) => {
         if (synth.method === m && !$('#task').value) { $('#task').value = txt; drawMarks(); }
