@@ -237,6 +237,7 @@ TEST(WebApi, PathSynthesisIsNbarSynthPathAndOpensNoFile) {
   // The same from another method's endpoint, which parses the task before checking its kind.
   EXPECT_EQ(post("/api/synth/five-point", {{"task", "task: path\ncurve: " + secret + "\n"}}).body.find("do-not-show"),
             std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(WebApi, SynthesisModelsAreTheFilesOfSynthExport) {

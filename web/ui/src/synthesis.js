@@ -181,7 +181,7 @@ function stopTapping() {
 function startTapping(kind) {
   if (synth.tapping === kind) {
     // A path takes as many points as tapped: pressing the button again ends the tapping.
-    const done = kind === 'five' && !Number.isFinite(textMethods[synth.method].taps) && synth.taps.length > 0;
+    const done = kind === 'points' && !Number.isFinite(textMethods[synth.method].taps) && synth.taps.length > 0;
     if (done) setFivePointTargets(synth.taps);
     stopTapping();
     if (done) $('#synth-status').textContent = t('tapped');
@@ -190,9 +190,9 @@ function startTapping(kind) {
   if (!document.querySelector('#drawing svg')) { $('#synth-status').textContent = t('tapNeedsDrawing'); return; }
   stopTapping();
   synth.tapping = kind;
-  $(kind === 'five' ? '#five-tap' : '#pose-tap').classList.add('on');
+  $(kind === 'points' ? '#five-tap' : '#pose-tap').classList.add('on');
   $('#drawing').classList.add('tapping');
-  $('#synth-status').textContent = kind === 'five' ? tapStatus(0) : t('tapPosesNow', 0);
+  $('#synth-status').textContent = kind === 'points' ? tapStatus(0) : t('tapPosesNow', 0);
   if (kind === 'poses') $('#poses').replaceChildren();
   // On a phone the drawing is above the panel: bring it into view.
   $('#drawing').scrollIntoView({ block: 'nearest' });
@@ -217,7 +217,7 @@ function onTap(e) {
   const [x, y] = modelPoint(e);
   const digits = Math.max(0, Math.min(6, 2 - Math.floor(Math.log10(app.state.geometry?.scale || 1))));
   const p = [+x.toFixed(digits), +y.toFixed(digits)];
-  if (synth.tapping === 'five') {
+  if (synth.tapping === 'points') {
     synth.taps.push(p);
     $('#synth-status').textContent = tapStatus(synth.taps.length);
     if (synth.taps.length === textMethods[synth.method].taps) {
@@ -237,7 +237,7 @@ function onTap(e) {
 // The targets over the mechanism while the synthesis panel is open: the points being tapped, a
 // text task's points or the Burmester poses (with their angles).
 function markedTargets() {
-  if (synth.tapping === 'five') return synth.taps;
+  if (synth.tapping === 'points') return synth.taps;
   if (!document.querySelector('#panel-synthesis.active')) return [];
   if (synth.method === 'burmester') return poses().map(([x, y, a]) => [+x, +y, +a]).filter(([x, y]) => Number.isFinite(x) && Number.isFinite(y));
   if (textMethods[synth.method]) return fivePointTargets($('#task').value);
@@ -377,7 +377,7 @@ export function initSynthesis(context) {
   hint.id = 'synth-hint';
   translatePage();
   $('#synth-method').addEventListener('change', (e) => showMethod(e.target.value));
-  $('#five-tap').addEventListener('click', () => startTapping('five'));
+  $('#five-tap').addEventListener('click', () => startTapping('points'));
   $('#pose-tap').addEventListener('click', () => startTapping('poses'));
   $('#pose-add').addEventListener('click', () => { if ($('#poses').children.length < 5) addPose(); });
   $('#bm-fixed').addEventListener('change', (e) => { $('#bm-pivots').hidden = !e.target.checked; });
