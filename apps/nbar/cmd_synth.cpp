@@ -114,7 +114,8 @@ class OptionTask {
     }
   }
   bool empty() const { return lines_.empty(); }
-  SynthesisTask parse() const { return io::parse_synthesis_task(text_, kFile); }
+  // --curve-csv names the user's own file, read from the current directory.
+  SynthesisTask parse() const { return io::parse_synthesis_task(text_, kFile, io::CurveFiles::read); }
   // "--points: message", or the message when it concerns no single option.
   std::string explain(const Error& e) const {
     const int line = e.mark().line;

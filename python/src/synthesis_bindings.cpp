@@ -75,7 +75,11 @@ void bind_synthesis(py::module_& m) {
              io::write_burmester_curves(path, s.task, *s.outcome.curves);
            }, py::arg("path"));
 
-  m.def("parse_task", &io::parse_synthesis_task, py::arg("text"), py::arg("name") = "<task>");
+  // Python runs in the user's own process: a dict's `curve` names the user's file, read from the
+  // current directory.
+  m.def("parse_task", [](const std::string& text, const std::string& name) {
+          return io::parse_synthesis_task(text, name, io::CurveFiles::read);
+        }, py::arg("text"), py::arg("name") = "<task>");
   m.def("load_task", &io::load_synthesis_task, py::arg("path"));
   m.def("synthesize", &run, py::arg("task"), py::arg("threads") = 0, py::arg("seed") = 1,
         py::arg("timeout") = std::nullopt);

@@ -57,3 +57,13 @@ def test_bad_tasks_are_located():
     with pytest.raises(nbar.ModelError) as e:
         nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=POINTS[:4])
     assert e.value.line is not None
+
+
+def test_a_task_dicts_curve_is_the_users_file_read_from_the_current_directory(tmp_path, monkeypatch):
+    lines = ["x,y"] + [f"{np.cos(0.5 * k):.6f}, {np.sin(0.5 * k):.6f}" for k in range(11)] + ["2, oops"]
+    (tmp_path / "c.csv").write_text("\n".join(lines) + "\n")
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(nbar.ModelError) as e:
+        nbar.synth.task({"task": "path", "curve": "c.csv"})
+    assert (e.value.file, e.value.line, e.value.column) == ("c.csv", 13, 4)
+    assert "'oops' is not a finite number (y)" in str(e.value)

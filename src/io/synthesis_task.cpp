@@ -57,8 +57,8 @@ std::string quoted_function(const std::string& text) {
 
 class TaskParser : yaml::Reader {
  public:
-  TaskParser(std::string text, std::string file, bool reads_files)
-      : Reader(std::move(text), file), reads_files_(reads_files) {
+  TaskParser(std::string text, std::string file, CurveFiles curve_files)
+      : Reader(std::move(text), file), curve_files_(curve_files) {
     task_.file = std::move(file);
   }
 
@@ -121,7 +121,7 @@ class TaskParser : yaml::Reader {
 
  private:
   SynthesisTask task_;
-  bool reads_files_ = false;  // `curve: FILE` allowed (a task loaded from a file)
+  CurveFiles curve_files_;
 
   // ---- keys and values (the generic readers are yaml::Reader's) ----
 
@@ -406,7 +406,7 @@ class TaskParser : yaml::Reader {
       task_.where = mark(*curve);
       // A task given as text (the web server's, Python's parse_task) must not make its reader
       // open files: on a server that would read the server's disk for any client.
-      if (!reads_files_)
+      if (curve_files_ == CurveFiles::refused)
         fail(mark(*curve), "`curve` reads a CSV file, which only a task read from a file may do: give the targets "
                            "here as `points: [[x, y], ...]`");
       const std::string name = text_value(*curve, "`curve`");
@@ -597,8 +597,8 @@ class TaskParser : yaml::Reader {
 
 }  // namespace
 
-SynthesisTask parse_synthesis_task(const std::string& text, const std::string& file_name) {
-  return TaskParser(text, file_name, false).parse();
+SynthesisTask parse_synthesis_task(const std::string& text, const std::string& file_name, CurveFiles curve_files) {
+  return TaskParser(text, file_name, curve_files).parse();
 }
 
 SynthesisTask load_synthesis_task(const std::string& path) {
@@ -614,7 +614,7 @@ SynthesisTask load_synthesis_task(const std::string& path) {
   }
   std::ostringstream contents;
   contents << in.rdbuf();
-  return TaskParser(contents.str(), path, true).parse();
+  return parse_synthesis_task(contents.str(), path, CurveFiles::read);
 }
 
 }  // namespace nbar::io

@@ -278,6 +278,11 @@ TEST(SynthCli, BadPathTasksSayWhereTheProblemIs) {
   const CliRun csv = nbar("synth path " + dir.file("c.yaml", "task: path\ncurve: c.csv\n"));
   EXPECT_EQ(csv.code, 1);
   EXPECT_EQ(csv.err, "error: " + dir.path("c.csv") + ":4:3: 'oops' is not a finite number (y)\n");
+  // --curve-csv reads the user's file, from the current directory, and its mistakes are located.
+  const CliRun option = nbar("synth path --curve-csv " + dir.path("c.csv"));
+  EXPECT_EQ(option.code, 2);  // task options: bad usage
+  EXPECT_EQ(option.err, "error: " + dir.path("c.csv") + ":4:3: 'oops' is not a finite number (y)\n");
+  EXPECT_EQ(nbar("synth path --curve-csv " + kExamples + "path/d-shape.csv --top 1").code, 0);
   const CliRun few = nbar("synth path --points '[[0, 0], [1, 1], [2, 0]]'");
   EXPECT_EQ(few.code, 2);
   EXPECT_EQ(few.err,
