@@ -383,7 +383,8 @@ std::string with_design_models(const std::string& json, const synthesis::Synthes
 
 ApiResponse api_synth(Job& job, const std::string& request, synthesis::SynthesisKind kind) {
   const Body body(request, {"task", "all", "top", "seed", "threads", "models"});
-  const synthesis::SynthesisTask task = io::parse_synthesis_task(body.text("task", true), "task");
+  const synthesis::SynthesisTask task =
+      io::parse_synthesis_task(body.text("task", true), "task", io::CurveFiles::refused);  // opens no file
   if (task.kind != kind)
     bad_input("this is a " + io::to_string(task.kind) + " task: send it to /api/synth/" + io::to_string(task.kind));
   if (task.kind == synthesis::SynthesisKind::Burmester && task.poses.size() == 4 && task.curves.step > 0) {
