@@ -131,22 +131,33 @@ GrashofReport classify_grashof(double frame, double input, double coupler, doubl
   if (r.margin <= tolerance) {
     r.kind = GrashofClass::ChangePoint;
     r.margin = 0.0;  // equal within the tolerance: don't print rounding noise
+    // A shortest link turns fully relative to its neighbours. At a change point the shortest may
+    // be several equal links (a parallelogram's two cranks, a rhombus's four), and which of them
+    // compares smallest is rounding noise: every link within the tolerance of the shortest counts.
+    for (int i = 0; i < 4; ++i) {
+      if (len[i] > s + tolerance) continue;
+      if (i == 0 || i == 1) r.input_turns_fully = true;
+      if (i == 0 || i == 3) r.output_turns_fully = true;
+    }
+    return r;
   }
+  // Otherwise (s + l < p + q) the shortest link is one link: two equal shortest links would make
+  // l < q, and l is the longest.
   switch (shortest) {
     case 0:
-      if (r.kind != GrashofClass::ChangePoint) r.kind = GrashofClass::DoubleCrank;
+      r.kind = GrashofClass::DoubleCrank;
       r.input_turns_fully = r.output_turns_fully = true;
       break;
     case 1:
-      if (r.kind != GrashofClass::ChangePoint) r.kind = GrashofClass::CrankRocker;
+      r.kind = GrashofClass::CrankRocker;
       r.input_turns_fully = true;
       break;
     case 3:
-      if (r.kind != GrashofClass::ChangePoint) r.kind = GrashofClass::CrankRocker;
+      r.kind = GrashofClass::CrankRocker;
       r.output_turns_fully = true;
       break;
     default:
-      if (r.kind != GrashofClass::ChangePoint) r.kind = GrashofClass::DoubleRocker;
+      r.kind = GrashofClass::DoubleRocker;
       break;
   }
   return r;
