@@ -1,5 +1,7 @@
 #include "nbar/analysis/pose.hpp"
 
+#include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "nbar/kinematics/continuation.hpp"
@@ -24,6 +26,39 @@ std::string target_text(const Model& m, const SweepPath& path, double target) {
   return m.drivers[0].name + " = " + format_driver_value(m, 0, target);
 }
 
+// The pose is tracked from the sweep's start, so its work grows with the distance from there: as
+// far as a sweep may go (1000 turns of an angle driver), or 1000 sweeps' ranges or durations.
+void check_pose_value(const Model& m, const SweepPath& path, double value, double target) {
+  if (!std::isfinite(value)) {
+    std::ostringstream s;
+    s << "the pose's value must be a finite number, not " << value;
+    throw Error(ErrorKind::BadInput, s.str());
+  }
+  constexpr double kMaxTurns = 1000.0, kMaxRanges = 1000.0;
+  std::ostringstream s;
+  s.precision(3);
+  if (path.time_law) {
+    const double duration = m.sweep.duration;
+    if (!(std::abs(target) > kMaxRanges * duration)) return;
+    s << target_text(m, path, target) << " is " << std::abs(target) / duration
+      << " times the sweep's duration; a pose is limited to " << static_cast<int>(kMaxRanges) << " times it";
+  } else if (path.from.empty()) {
+    return;  // parameter_of says why
+  } else if (m.drivers[0].is_angular()) {
+    const double turns = std::abs(target - path.from[0]) / (2 * std::numbers::pi);
+    if (!(turns > kMaxTurns)) return;
+    s << target_text(m, path, target) << " is " << turns << " turns from the sweep's start; a pose is limited to "
+      << static_cast<int>(kMaxTurns) << " turns from it";
+  } else {
+    const double ranges = path.delta[0] != 0.0 ? std::abs((target - path.from[0]) / path.delta[0]) : 0.0;
+    if (!(ranges > kMaxRanges)) return;
+    s << target_text(m, path, target) << " is " << ranges << " times the sweep's range from its start; a pose is limited to "
+      << static_cast<int>(kMaxRanges) << " times";
+  }
+  s << " (the work grows with the distance): check the value and its units";
+  throw Error(ErrorKind::BadInput, s.str());
+}
+
 }  // namespace
 
 Sample pose_at(const Mechanism& mech, double value, int order, const RunControl& control) {
@@ -32,6 +67,7 @@ Sample pose_at(const Mechanism& mech, double value, int order, const RunControl&
   const SweepPath path = sweep_path(mech);
   const double target =
       path.time_law ? value : value * (m.drivers[0].is_angular() ? m.units.angle_scale : m.units.length_scale);
+  check_pose_value(m, path, value, target);
   const double end = path.parameter_of(target);
   control.checkpoint("pose", 0, 1);
 

@@ -1,5 +1,6 @@
 // One pose at a time: solve_at agrees with the sweep and with Norton's closed form, states can
 // be copied as snapshots, and a pose along the sweep is reached on the sweep's branch.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -101,6 +102,27 @@ TEST(PoseAt, ReachesTheValueOnTheSweepsBranch) {
   const Sample pose = pose_at(mech, at_90.driver_values[0] / degrees, 2);
   EXPECT_LT(largest(pose.taylor - at_90.taylor), 1e-11 * largest(at_90.taylor));
   EXPECT_NEAR(pose.time, at_90.time, 1e-12);
+}
+
+std::string pose_error(const Mechanism& mech, double value) {
+  try {
+    pose_at(mech, value);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+    return e.what();
+  }
+  return "no error";
+}
+
+// A value that is no number used to spin for ever (NaN) or to give the start pose (infinity); one
+// a million turns away was blamed on a toggle the crank-rocker does not have.
+TEST(PoseAt, RefusesValuesItCannotReach) {
+  const Mechanism mech(nbar_bench::four_bar_model());
+  EXPECT_THAT(pose_error(mech, std::nan("")), ::testing::HasSubstr("must be a finite number, not nan"));
+  EXPECT_THAT(pose_error(mech, INFINITY), ::testing::HasSubstr("must be a finite number, not inf"));
+  EXPECT_THAT(pose_error(mech, -INFINITY), ::testing::HasSubstr("not -inf"));
+  EXPECT_THAT(pose_error(mech, 1e9), ::testing::HasSubstr("turns from the sweep's start; a pose is limited to 1000"));
+  EXPECT_EQ(pose_error(mech, 360.0 * 999), "no error");
 }
 
 }  // namespace
