@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nbar/render/animation.hpp"
+#include "validators.hpp"
 
 namespace nbar::cli {
 
@@ -112,13 +113,13 @@ Command add_animate_command(CLI::App& app) {
                  "slider, or an MP4 video (with ffmpeg); the format is the output file's extension");
   sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
   sub->add_option("-o,--output", args->output, "FILE.gif, FILE.svg, FILE.html or FILE.mp4")->required();
-  sub->add_option("--fps", args->fps, "frames per second (default 24)")->check(CLI::Range(0.1, 120.0));
+  sub->add_option("--fps", args->fps, "frames per second (default 24)")->check(nbar::cli::in_range(0.1, 120.0));
   sub->add_option("--frames", args->frames,
                   "number of frames, evenly spaced over the sweep (default: every sample, at most 120)")
-      ->check(CLI::Range(1, 100000));
+      ->check(nbar::cli::in_range(1, 100000));
   sub->add_option("--steps", args->steps, "number of samples of the sweep, ends included (overrides the model's)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
+      ->check(nbar::cli::positive());
+  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
   sub->add_flag("--labels", args->labels, "write the name of every point");
   sub->add_option("--trace", args->traces, "draw the paths of these points, comma-separated, e.g. P,B")
       ->delimiter(',');
@@ -127,9 +128,9 @@ Command add_animate_command(CLI::App& app) {
                 "elements, one colour scale for the whole sweep), each link's peak marked");
   sub->add_option("--mesh-size", args->mesh_size,
                   "with --stress: element edge far from holes, in the model's length unit")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--width", args->width, "picture width in pixels (default 900)")->check(CLI::Range(64, 8192));
-  sub->add_option("--height", args->height, "picture height in pixels (default 640)")->check(CLI::Range(64, 8192));
+      ->check(nbar::cli::positive());
+  sub->add_option("--width", args->width, "picture width in pixels (default 900)")->check(nbar::cli::in_range(64, 8192));
+  sub->add_option("--height", args->height, "picture height in pixels (default 640)")->check(nbar::cli::in_range(64, 8192));
   sub->footer(
       "Every format shows the same frames on one view that fits the whole sweep. A sweep that ends\n"
       "where it began loops without repeating its first pose. GIF frames are not antialiased (a\n"

@@ -8,6 +8,7 @@
 #include "nbar/render/drawing.hpp"
 #include "nbar/render/pictures.hpp"
 #include "nbar/render/stress_map.hpp"
+#include "validators.hpp"
 
 namespace nbar::cli {
 
@@ -107,12 +108,12 @@ Command add_draw_command(CLI::App& app) {
   auto* step = sub->add_option("--step", args->step, "draw this sample of the sweep (default 0, the start, unless every point lies on one line there: then the most open pose)");
   sub->add_option("--at", args->at, "draw where the first driver has this value (model units; a time for time laws)")
       ->excludes(step);
-  sub->add_option("--steps", args->steps, "samples of the sweep (for --step and the traces)")->check(CLI::PositiveNumber);
-  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
+  sub->add_option("--steps", args->steps, "samples of the sweep (for --step and the traces)")->check(nbar::cli::positive());
+  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
   sub->add_flag("--labels", args->labels, "write point names");
   sub->add_option("--trace", args->traces, "points whose paths over the sweep are drawn, e.g. P,Q")->delimiter(',');
-  sub->add_option("--width", args->width, "pixels (default 900)")->check(CLI::Range(100, 10000));
-  sub->add_option("--height", args->height, "pixels (default 640)")->check(CLI::Range(100, 10000));
+  sub->add_option("--width", args->width, "pixels (default 900)")->check(nbar::cli::in_range(100, 10000));
+  sub->add_option("--height", args->height, "pixels (default 640)")->check(nbar::cli::in_range(100, 10000));
   sub->add_option("--title", args->title, "a title at the top left");
   sub->add_flag("--stress", args->stress,
                 "colour every link with a shape by its von Mises stress at the drawn step (finite elements, as "
@@ -120,7 +121,7 @@ Command add_draw_command(CLI::App& app) {
   sub->add_option("--mesh-size", args->mesh_size,
                   "with --stress: element edge far from holes, in the model's length unit (default: a twentieth of "
                   "each plate's size)")
-      ->check(CLI::PositiveNumber);
+      ->check(nbar::cli::positive());
   return {sub, [args] { return run_draw(*args); }};
 }
 

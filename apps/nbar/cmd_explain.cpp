@@ -8,6 +8,7 @@
 #include "nbar/io/json_text.hpp"
 #include "nbar/io/explain_writer.hpp"
 #include "nbar/render/pictures.hpp"
+#include "validators.hpp"
 
 namespace nbar::cli {
 
@@ -83,10 +84,10 @@ Command add_explain_command(CLI::App& app) {
                                                 "velocity and acceleration systems, the instant centres");
   sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
   sub->add_option("--step", args->step, "the sample of the sweep to explain (default 0, the start)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nbar::cli::non_negative());
   sub->add_option("--steps", args->steps, "samples of the sweep, ends included (overrides the model's sweep)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
+      ->check(nbar::cli::positive());
+  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
   sub->add_option("--format", args->format, "text (default), markdown (with LaTeX maths, for Jupyter), latex or json")
       ->check(CLI::IsMember({"text", "markdown", "latex", "json"}));
   sub->add_option("-o,--output", args->output, "write to FILE instead of standard output");

@@ -9,6 +9,7 @@
 #include "nbar/io/sketch.hpp"
 #include "nbar/io/sketch_model.hpp"
 #include "nbar/model/units.hpp"
+#include "validators.hpp"
 
 namespace nbar::cli {
 
@@ -82,7 +83,7 @@ Command add_import_command(CLI::App& app) {
                   "the model's length unit (mm, cm, m, in, ft; default: the sketch's own, else mm); a sketch that "
                   "states no unit is read in it");
   sub->add_option("--thickness", args->thickness, "every plate's thickness in the model's unit (default: 5 mm)")
-      ->check(CLI::PositiveNumber);
+      ->check(nbar::cli::positive());
   sub->add_option("--material", args->material, "every plate's material (default steel)");
   return {sub, [args] { return run_import(*args); }};
 }

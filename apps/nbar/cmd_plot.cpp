@@ -16,6 +16,7 @@
 #include "nbar/kinematics/table.hpp"
 #include "nbar/render/plot.hpp"
 #include "nbar/render/image_canvas.hpp"
+#include "validators.hpp"
 
 namespace nbar::cli {
 
@@ -150,11 +151,11 @@ Command add_plot_command(CLI::App& app) {
   sub->add_option("--x", args.x, "the column along the x axis (default: the first driver's, or t when a driver follows a time law)");
   sub->add_option("-o,--output", args.output, "the picture to write: FILE.svg or FILE.png")->required();
   sub->add_option("--steps", args.steps, "number of samples, ends included (overrides the model's sweep)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--max-steps", args.max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
+      ->check(nbar::cli::positive());
+  sub->add_option("--max-steps", args.max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
   sub->add_option("--order", args.order, "highest time derivative to solve, 0 to 5 (default: 2, or what the "
                                          "columns need)")
-      ->check(CLI::Range(0, 5));
+      ->check(nbar::cli::in_range(0, 5));
   sub->add_flag("--dynamics", args.dynamics,
                 "add the inverse-dynamics columns (joint forces, driver torques and forces, energies); "
                 "on by itself when a column asked for needs it");
@@ -162,8 +163,8 @@ Command add_plot_command(CLI::App& app) {
       ->expected(2)
       ->delimiter(',');
   sub->add_option("--title", args.title, "the title at the top (default: the model's name)");
-  sub->add_option("--width", args.width, "picture width in pixels (default 900)")->check(CLI::Range(200, 10000));
-  sub->add_option("--height", args.height, "picture height in pixels (default 520)")->check(CLI::Range(150, 10000));
+  sub->add_option("--width", args.width, "picture width in pixels (default 900)")->check(nbar::cli::in_range(200, 10000));
+  sub->add_option("--height", args.height, "picture height in pixels (default 520)")->check(nbar::cli::in_range(150, 10000));
   sub->footer(kPlotHelp);
   return {sub, [shared] { return run_plot(*shared); }};
 }

@@ -5,6 +5,7 @@
 #include "common.hpp"
 #include "nbar/analysis/summary.hpp"
 #include "nbar/render/report.hpp"
+#include "validators.hpp"
 
 namespace nbar::cli {
 
@@ -55,16 +56,16 @@ Command add_report_command(CLI::App& app) {
                                                "the model has masses, loads and shapes");
   sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
   sub->add_option("-o,--output", args->output, "FILE.html")->required();
-  sub->add_option("--steps", args->steps, "samples of the sweep (overrides the model's sweep)")->check(CLI::PositiveNumber);
-  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
-  sub->add_option("--frames", args->frames, "animation frames (default 72)")->check(CLI::Range(2, 1000));
+  sub->add_option("--steps", args->steps, "samples of the sweep (overrides the model's sweep)")->check(nbar::cli::positive());
+  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
+  sub->add_option("--frames", args->frames, "animation frames (default 72)")->check(nbar::cli::in_range(2, 1000));
   sub->add_option("--stress-method", args->method,
                   "the stresses' method, as `nbar stress --method`: beam (default) or fe (links coloured by their "
                   "finite-element von Mises stress)")
       ->check(CLI::IsMember({"beam", "fe"}));
   sub->add_option("--mesh-size", args->mesh_size, "with --stress-method fe: element edge far from holes, in the "
                                                   "model's length unit")
-      ->check(CLI::PositiveNumber);
+      ->check(nbar::cli::positive());
   return {sub, [args] { return run_report(*args); }};
 }
 

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nbar/web/server.hpp"
+#include "validators.hpp"
 
 extern char** environ;
 
@@ -75,25 +76,25 @@ int run_serve(const ServeArgs& args) {
 Command add_serve_command(CLI::App& app) {
   auto args = std::make_shared<ServeArgs>();
   CLI::App* sub = app.add_subcommand("serve", "Serve the web app and its JSON API (docs/web-api.md) on this machine");
-  sub->add_option("--port", args->port, "TCP port (default 8080; 0 for any free port)")->check(CLI::Range(0, 65535));
+  sub->add_option("--port", args->port, "TCP port (default 8080; 0 for any free port)")->check(nbar::cli::in_range(0, 65535));
   sub->add_option("--host", args->host,
                   "address to listen on (default 127.0.0.1, this machine only; 0.0.0.0 for a classroom)");
   sub->add_flag("--open", args->open, "open the page in a browser");
   sub->add_option("--max-jobs", args->max_jobs,
                   "heavy computations at once (synthesis, stresses, reports, animations, large sweeps; default 2)")
-      ->check(CLI::Range(1, 256));
+      ->check(nbar::cli::in_range(1, 256));
   sub->add_option("--light-jobs", args->light_jobs,
                   "light computations at once (checks, small solves, drawings; default one per core, at least 2)")
-      ->check(CLI::Range(1, 256));
+      ->check(nbar::cli::in_range(1, 256));
   sub->add_option("--queue-wait", args->queue_wait,
                   "seconds a computation may wait for its turn before it is answered 503 (default 10)")
-      ->check(CLI::Range(0.0, 600.0));
+      ->check(nbar::cli::in_range(0.0, 600.0));
   sub->add_option("--time-budget", args->time_budget, "seconds one request may compute before it is stopped (default 30)")
-      ->check(CLI::Range(0.01, 86400.0));
-  sub->add_option("--threads", args->threads, "connections served at once (default 256; each open connection holds one)")->check(CLI::Range(2, 1024));
+      ->check(nbar::cli::in_range(0.01, 86400.0));
+  sub->add_option("--threads", args->threads, "connections served at once (default 256; each open connection holds one)")->check(nbar::cli::in_range(2, 1024));
   sub->add_option("--keep-alive", args->keep_alive,
                   "seconds an idle connection keeps its thread (default 5; 0: closed after every answer)")
-      ->check(CLI::Range(0, 3600));
+      ->check(nbar::cli::in_range(0, 3600));
   return {sub, [args] { return run_serve(*args); }};
 }
 

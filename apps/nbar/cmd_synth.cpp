@@ -16,6 +16,7 @@
 #include "nbar/io/synthesis_writer.hpp"
 #include "nbar/io/yaml_support.hpp"
 #include "nbar/synthesis/run.hpp"
+#include "validators.hpp"
 
 namespace nbar::cli {
 
@@ -228,7 +229,7 @@ Command add_synth_command(CLI::App& app) {
   synth->add_option("--export", args.export_dir, "write every design listed as DIR/design-01.yaml, ... (model files)");
   synth->add_flag("--all", args.all, "also list defective designs and (five-point) complex solutions");
   synth->add_option("--top", args.top, "list (and export) at most N designs, best first; 0 for all (default 20)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nbar::cli::non_negative());
   synth->add_option("--threads", args.threads, "threads for path tracking (default: all)");
   synth->add_option("--seed", args.seed, "random seed of the homotopy and of path's random starts (default 1)");
   synth->add_option("--curves", args.curves,

@@ -22,6 +22,7 @@
 #include "nbar/io/summary_writer.hpp"
 #include "nbar/io/yaml_support.hpp"
 #include "nbar/version.hpp"
+#include "validators.hpp"
 
 namespace {
 
@@ -202,18 +203,18 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "json"}));
   // check runs no sweep of the model's size (its law and cylinder checks sample a bounded
   // number of poses), but it says whether the sweep would be refused, at this limit.
-  check->add_option("--max-steps", check_max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
+  check->add_option("--max-steps", check_max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
 
   SolveArgs solve_args;
   CLI::App* solve = app.add_subcommand("solve", "Sweep the drivers and write positions, velocities, accelerations "
                                                 "and higher derivatives of every point and body");
   solve->add_option("MODEL", solve_args.model, "model file (YAML or JSON)")->required();
   solve->add_option("--steps", solve_args.steps, "number of samples, ends included (overrides the model's sweep)")
-      ->check(CLI::PositiveNumber);
-  solve->add_option("--max-steps", solve_args.max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
+      ->check(nbar::cli::positive());
+  solve->add_option("--max-steps", solve_args.max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
   solve->add_option("--order", solve_args.order, "highest time derivative: 0 positions, 1 velocities, 2 "
                                                  "accelerations (default), 3 jerk, up to 5")
-      ->check(CLI::Range(0, 5));
+      ->check(nbar::cli::in_range(0, 5));
   solve->add_option("--format", solve_args.format, "csv (default), json, or table (aligned, for reading)")
       ->check(CLI::IsMember({"csv", "json", "table"}));
   solve->add_option("--columns", solve_args.columns,
@@ -230,18 +231,18 @@ int main(int argc, char** argv) {
                                                   "stress over the sweep, where and when, and the safety factor");
   stress->add_option("MODEL", stress_args.model, "model file (YAML or JSON)")->required();
   stress->add_option("--steps", stress_args.steps, "number of samples, ends included (overrides the model's sweep)")
-      ->check(CLI::PositiveNumber);
-  stress->add_option("--max-steps", stress_args.max_steps, kMaxStepsHelp)->check(CLI::PositiveNumber);
+      ->check(nbar::cli::positive());
+  stress->add_option("--max-steps", stress_args.max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
   stress->add_option("--method", stress_args.method,
                      "beam (default: quick, beam theory on cross-sections, for slender links between joints) or fe "
                      "(plane-stress finite elements: the peaks at pin holes, fillets and in plates)")
       ->check(CLI::IsMember({"beam", "fe"}));
   stress->add_option("--sections", stress_args.sections, "beam: cross-sections per link, at least (default 200)")
-      ->check(CLI::Range(10, 100000));
+      ->check(nbar::cli::in_range(10, 100000));
   stress->add_option("--mesh-size", stress_args.mesh_size,
                      "fe: element edge far from holes and corners, in the model's length unit (default: a twentieth "
                      "of each plate's size; finer around holes)")
-      ->check(CLI::PositiveNumber);
+      ->check(nbar::cli::positive());
   stress->add_option("--format", stress_args.format, "table (default), csv or json")
       ->check(CLI::IsMember({"table", "csv", "json"}));
   stress->add_option("-o,--output", stress_args.output, "write to FILE instead of standard output");

@@ -1,0 +1,60 @@
+// Number checks for the commands' options. CLI11's own print their limits with std::to_string
+// ("Value 0 not in range 0.000000 to 1797693...000000", from a range that starts above 0), let
+// NaN through, and call a word out of range: these say what is wrong with the value given.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <sstream>
+#include <string>
+
+namespace nbar::cli {
+
+// The whole text as a finite number, or nothing.
+inline std::optional<double> finite_number(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const double x = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(x)) return std::nullopt;
+  return x;
+}
+
+inline std::string number_text(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+// A finite number for which `accept` holds; otherwise "'abc' is not a number" or the rule.
+template <class Accept>
+CLI::Validator number_check(Accept accept, const std::string& rule, const std::string& description) {
+  return CLI::Validator(
+      [accept, rule](std::string& text) -> std::string {
+        const std::optional<double> x = finite_number(text);
+        if (!x) return "'" + text + "' is not a finite number";
+        if (!accept(*x)) return "must be " + rule + ", not " + text;
+        return "";
+      },
+      description);
+}
+
+inline CLI::Validator positive() {
+  return number_check([](double x) { return x > 0.0; }, "a positive number", "POSITIVE");
+}
+
+inline CLI::Validator non_negative() {
+  return number_check([](double x) { return x >= 0.0; }, "0 or more", "NONNEGATIVE");
+}
+
+inline CLI::Validator in_range(double low, double high) {
+  const std::string rule = "from " + number_text(low) + " to " + number_text(high);
+  return number_check([low, high](double x) { return x >= low && x <= high; }, rule,
+                      "[" + number_text(low) + " to " + number_text(high) + "]");
+}
+
+}  // namespace nbar::cli
