@@ -3,6 +3,7 @@
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -217,16 +218,26 @@ void Reader::check_text() const {
   if (text_.size() > kMaxFileBytes)
     fail(SourceMark{1, 1}, "the file is " + std::to_string(text_.size()) + " bytes long; nbar reads at most " +
                                std::to_string(kMaxFileBytes) + " bytes");
-  const std::optional<std::size_t> bad = first_invalid_utf8(text_);
-  if (!bad) return;
-  const std::size_t line_start = text_.rfind('\n', *bad == 0 ? 0 : *bad - 1);
+  // YAML text has no control characters but tab and line ends. A NUL also makes yaml-cpp guess
+  // UTF-16 or UTF-32, and then read the file as garbled text.
+  const auto control = std::find_if(text_.begin(), text_.end(), [](char ch) {
+    const auto c = static_cast<unsigned char>(ch);
+    return (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F;
+  });
+  const std::optional<std::size_t> invalid = first_invalid_utf8(text_);
+  const std::size_t at_control = static_cast<std::size_t>(control - text_.begin());
+  const bool is_control = control != text_.end() && (!invalid || at_control < *invalid);
+  if (!is_control && !invalid) return;
+  const std::size_t bad = is_control ? at_control : *invalid;
+  const std::size_t line_start = text_.rfind('\n', bad == 0 ? 0 : bad - 1);
   const std::size_t column_start = line_start == std::string::npos || text_[line_start] != '\n' ? 0 : line_start + 1;
-  const int line = 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + static_cast<long>(*bad), '\n'));
+  const int line = 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + static_cast<long>(bad), '\n'));
   static constexpr char kHex[] = "0123456789ABCDEF";
-  const unsigned char c = static_cast<unsigned char>(text_[*bad]);
-  fail(SourceMark{line, static_cast<int>(*bad - column_start) + 1},
-       std::string("the file is not valid UTF-8 text: byte 0x").append(1, kHex[c >> 4]).append(1, kHex[c & 15])
-           .append(" here is not a character; save the file as UTF-8"));
+  const unsigned char c = static_cast<unsigned char>(text_[bad]);
+  const std::string byte = std::string("byte 0x").append(1, kHex[c >> 4]).append(1, kHex[c & 15]);
+  fail(SourceMark{line, static_cast<int>(bad - column_start) + 1},
+       is_control ? "the file is not text: " + byte + " here is a control character (UTF-16 or a binary file?); save it as UTF-8"
+                  : "the file is not valid UTF-8 text: " + byte + " here is not a character; save the file as UTF-8");
 }
 
 YAML::Node Reader::load(const DocumentWording& wording) const {

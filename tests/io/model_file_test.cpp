@@ -373,6 +373,20 @@ TEST(ModelFileErrors, NotAModel) {
   EXPECT_TRUE(fails_at("points: {}\n", "1:1", "`points` is empty"));
 }
 
+// A NUL made yaml-cpp take the file for UTF-16 and quote it back as garbled text, or say
+// "unknown escape character" a line too late; UTF-16 without a byte-order mark was read as a model.
+TEST(ModelFileErrors, ControlCharactersAreNotText) {
+  using namespace std::string_literals;
+  EXPECT_TRUE(fails_at("name: x\nO4: [200, 0]\0\n"s, "2:13", "not text: byte 0x00 here is a control character"));
+  EXPECT_TRUE(fails_at("\0\x01\x02name: x\n"s, "1:1", "byte 0x00"));
+  EXPECT_TRUE(fails_at("n\0a\0m\0e\0:\0 \0x\0\n\0"s, "1:2", "(UTF-16 or a binary file?)"));
+  EXPECT_TRUE(fails_at("name: \x07\n", "1:7", "byte 0x07"));
+  EXPECT_TRUE(fails_at("name: x\x7f\n", "1:8", "byte 0x7F"));
+  // The first of a control character and a byte that is no UTF-8 is the one reported.
+  EXPECT_TRUE(fails_at("a: \xff\x01\n", "1:4", "not valid UTF-8"));
+  EXPECT_TRUE(fails_at("a: \x01\xff\n", "1:4", "control character"));
+}
+
 TEST(ModelFileErrors, UnknownKeys) {
   EXPECT_TRUE(fails_at(kFourBar + "lenghts: {crank: 8}\n", "11:1",
                        "unknown key 'lenghts' at the top level; did you mean 'lengths'?"));
