@@ -12,7 +12,7 @@ Everything is computed by nbar's C++ core; this package only translates.
 
 from . import synth
 from ._nbar import __version__
-from .errors import (AssemblyError, BadInputError, Cancelled, Error, LimitError, ModelError,
+from .errors import (AssemblyError, BadInputError, Cancelled, ColumnError, Error, LimitError, ModelError,
                      UndefinedLawError)
 from .explain import Explanation
 from .model import Model, StressResult, Summary, load, loads
@@ -23,6 +23,6 @@ from .results import Result, Table, Warning
 __all__ = [
     "Model", "load", "loads", "Summary", "Result", "Table", "Warning", "StressResult", "Explanation",
     "Drawing", "Animation", "Report", "plot", "synth",
-    "Error", "ModelError", "UndefinedLawError", "BadInputError", "AssemblyError", "LimitError", "Cancelled",
+    "Error", "ModelError", "UndefinedLawError", "BadInputError", "ColumnError", "AssemblyError", "LimitError", "Cancelled",
     "__version__",
 ]

@@ -35,8 +35,8 @@ class Table(Mapping):
         try:
             return self._data[name]
         except KeyError:
-            from .errors import BadInputError
-            raise BadInputError(f"no column '{name}'" + _did_you_mean(name, self.columns)) from None
+            from .errors import ColumnError
+            raise ColumnError(f"no column '{name}'" + _did_you_mean(name, self.columns)) from None
 
     def __iter__(self) -> Iterator[str]:
         return iter(self.columns)

@@ -75,8 +75,23 @@ def test_unknown_column_suggests_the_right_case(examples):
         m.solve(columns="C.X")
     assert "C.X" in str(e.value)
     r = m.solve(steps=3, columns="C.x")
-    with pytest.raises(nbar.BadInputError, match="did you mean 'C.x'"):
+    with pytest.raises(nbar.BadInputError, match="did you mean 'C.x'") as missing:
         r["C.X"]
+    assert missing.value.kind == "bad_input" and str(missing.value).startswith("no column 'C.X'")
+    # A result is a mapping: an unknown column is a KeyError too, so `in` and get() work.
+    assert isinstance(missing.value, KeyError) and isinstance(missing.value, nbar.ColumnError)
+    assert "C.X" not in r and "C.x" in r
+    assert r.get("C.X") is None and r.get("C.X", 7) == 7
+    assert r.get("C.x") is r["C.x"]
+
+
+def test_errors_raised_by_the_module_say_their_kind(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    with pytest.raises(nbar.BadInputError) as e:
+        m.draw().save("pose.bmp")
+    assert e.value.kind == "bad_input"
+    assert nbar.LimitError("x").kind == "stopped_at_limit" and nbar.ModelError("x").kind == "invalid_model"
+    assert nbar.Error("x").kind == "error"
 
 
 def test_bad_options_are_bad_input(examples):
@@ -96,6 +111,11 @@ def test_bad_options_are_bad_input(examples):
         m.draw(traces=["Z"])
     with pytest.raises(nbar.BadInputError, match="does not exist"):
         m.draw().save("/no/such/folder/pose.svg")
+    # A pose value that is no number used to spin for ever, out of reach of Ctrl-C.
+    with pytest.raises(nbar.BadInputError, match="must be a finite number, not nan"):
+        m.draw(at=float("nan"))
+    with pytest.raises(nbar.BadInputError, match="not inf"):
+        m.draw(at=float("inf"))
 
 
 def test_undefined_law_is_located():
