@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import html
 import json
+import numbers
 import os
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
@@ -141,6 +142,8 @@ def run(the_task, all: bool = False, top: int = 0, threads: int = 0, seed: int =
         timeout: Optional[float] = None) -> Designs:
     """Solves a task (from ``task()``, ``load()`` or a path): the designs, best first. With
     ``all``, defective and complex solutions too; ``top`` keeps the best few."""
+    if isinstance(top, bool) or not isinstance(top, numbers.Integral) or top < 0:
+        raise BadInputError(f"top must be a whole number, 0 (all) or more, not {top!r}")
     if isinstance(the_task, (str, os.PathLike)):
         the_task = load(the_task)
     elif isinstance(the_task, dict):
@@ -160,15 +163,34 @@ def _task_dict(kind: str, name: Optional[str], units, **keys) -> Dict[str, Any]:
     return d
 
 
-def _xy(p: Point) -> List[float]:
-    return [float(p[0]), float(p[1])]
+def _xy(p: Point) -> Any:
+    """A point as the task reader is to see it: its items as given (numbers as floats), so that a
+    point with three coordinates or a word for a number is reported by the reader at its place in
+    the task, not cut short or converted here."""
+    if isinstance(p, (str, bytes)) or not isinstance(p, Iterable):
+        return p
+    return [float(v) if isinstance(v, numbers.Real) and not isinstance(v, bool) else v for v in p]
+
+
+def _pair(pair: Any, what: str) -> Tuple[Any, Any]:
+    items = list(pair) if isinstance(pair, Iterable) and not isinstance(pair, (str, bytes)) else [pair]
+    if len(items) != 2:
+        raise BadInputError(f"{what} must be two points, not {len(items)} item{'s' if len(items) != 1 else ''}")
+    return items[0], items[1]
+
+
+def _pose(p: Any, index: int) -> Dict[str, Any]:
+    items = _xy(p)
+    if not isinstance(items, list) or len(items) != 3:
+        raise BadInputError(f"pose {index + 1} must be (x, y, angle), not {p!r}")
+    return {"point": items[:2], "angle": items[2]}
 
 
 def five_point(pivots: Tuple[Point, Point], points: Iterable[Point], units=None, name: Optional[str] = None,
                **run_options) -> Designs:
     """Every four-bar with fixed pivots ``pivots`` (input's, output's) whose coupler point passes
     through the five ``points`` in order (all 36 solutions by homotopy continuation)."""
-    a, b = pivots
+    a, b = _pair(pivots, "pivots (the input's and the output's)")
     d = _task_dict("five-point", name, units, pivots={"a": _xy(a), "b": _xy(b)}, points=[_xy(p) for p in points])
     return run(task(d, "<five_point>"), **run_options)
 
@@ -178,12 +200,14 @@ def burmester(poses: Iterable[Sequence[float]], fixed_pivots: Optional[Tuple[Poi
               samples: Optional[int] = None, units=None, name: Optional[str] = None, **run_options) -> Designs:
     """Four-bars whose coupler takes 3, 4 or 5 poses ``(x, y, angle)``. Three poses need the two
     ``fixed_pivots`` or ``moving_pivots`` you choose."""
-    pose_list = [{"point": [float(p[0]), float(p[1])], "angle": float(p[2])} for p in poses]
+    pose_list = [_pose(p, i) for i, p in enumerate(poses)]
     extra: Dict[str, Any] = {}
     if fixed_pivots is not None:
-        extra["fixed_pivots"] = {"a": _xy(fixed_pivots[0]), "b": _xy(fixed_pivots[1])}
+        a, b = _pair(fixed_pivots, "fixed_pivots")
+        extra["fixed_pivots"] = {"a": _xy(a), "b": _xy(b)}
     if moving_pivots is not None:
-        extra["moving_pivots"] = {"a": _xy(moving_pivots[0]), "b": _xy(moving_pivots[1])}
+        a, b = _pair(moving_pivots, "moving_pivots")
+        extra["moving_pivots"] = {"a": _xy(a), "b": _xy(b)}
     d = _task_dict("burmester", name, units, poses=pose_list, curves=curves, samples=samples, **extra)
     return run(task(d, "<burmester>"), **run_options)
 

@@ -59,6 +59,26 @@ def test_bad_tasks_are_located():
     assert e.value.line is not None
 
 
+def test_points_reach_the_task_reader_as_given():
+    # A third coordinate used to be dropped without a word, a word to fail in float().
+    with pytest.raises(nbar.ModelError, match="a point needs two numbers, like \\[x, y\\], not a list of 3") as e:
+        nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=[(1, 2, 3)] + POINTS[1:], units="mm")
+    assert e.value.file == "<five_point>" and e.value.line and e.value.column
+    with pytest.raises(nbar.ModelError, match="pivot b needs two numbers"):
+        nbar.synth.five_point(pivots=[(0, 0), (200, 0, 7)], points=POINTS, units="mm")
+    with pytest.raises(nbar.ModelError, match="a point must be a number, not 'a'"):
+        nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=[("a", 1)] + POINTS[1:], units="mm")
+    with pytest.raises(nbar.BadInputError, match="pivots .* must be two points, not 1 item"):
+        nbar.synth.five_point(pivots=[(0, 0)], points=POINTS)
+    with pytest.raises(nbar.BadInputError, match="pose 1 must be \\(x, y, angle\\)"):
+        nbar.synth.burmester([(0, 0), (1, 1, 3), (2, 2, 4)], fixed_pivots=[(0, 0), (200, 0)])
+    with pytest.raises(nbar.BadInputError, match="top must be a whole number"):
+        nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=POINTS, units="mm", top=-1)
+    # numpy numbers are numbers.
+    designs = nbar.synth.five_point(pivots=np.array([[0.0, 0.0], [200.0, 0.0]]), points=np.array(POINTS), units="mm")
+    assert designs.best.grashof == "crank-rocker"
+
+
 def test_a_task_dicts_curve_is_the_users_file_read_from_the_current_directory(tmp_path, monkeypatch):
     lines = ["x,y"] + [f"{np.cos(0.5 * k):.6f}, {np.sin(0.5 * k):.6f}" for k in range(11)] + ["2, oops"]
     (tmp_path / "c.csv").write_text("\n".join(lines) + "\n")

@@ -145,7 +145,8 @@ class TaskParser : yaml::Reader {
   std::array<double, 2> pair(const YAML::Node& node, SourceMark at, const std::string& what,
                              std::string_view example) const {
     if (!node.IsSequence() || node.size() != 2)
-      fail(at, what + " needs two numbers, like " + std::string(example) + ", not " + describe(node));
+      fail(at, what + " needs two numbers, like " + std::string(example) + ", not " +
+                   (node.IsSequence() ? "a list of " + std::to_string(node.size()) : describe(node)));
     return {number(node[0], mark(node[0]), what), number(node[1], mark(node[1]), what)};
   }
   Vector2d point(const YAML::Node& node, SourceMark at, const std::string& what) const {

@@ -207,7 +207,7 @@ TEST(SynthesisTask, FivePointErrors) {
   EXPECT_EQ(error_of(replaced(kFivePoint, "[1, 1.1]", "[1, .nan]")),
             "task.yaml:6:9: a point must be a finite number, not '.nan'");
   EXPECT_EQ(error_of(replaced(kFivePoint, "[1, 1.1]", "[1]")),
-            "task.yaml:6:5: a point needs two numbers, like [x, y], not a list");
+            "task.yaml:6:5: a point needs two numbers, like [x, y], not a list of 1");
   EXPECT_EQ(error_of(replaced(kFivePoint, "{a: [0, 0], ", "{")), "task.yaml:2:9: `pivots` needs `a`");
   EXPECT_EQ(error_of(replaced(kFivePoint, "pivots: {a: [0, 0], b: [1, 0]}\n", "")),
             "task.yaml:1:1: a five-point task needs `pivots`");
