@@ -33,6 +33,36 @@ TEST(WebErrors, BadJson) {
   expect_error(call("POST", "/api/check", "\"model\""), 400, "bad_json");
 }
 
+// A number past a double's range was a 500 (nlohmann's out_of_range, not a parse_error).
+TEST(WebErrors, ANumberPastADoublesRangeIsBadJson) {
+  for (const std::string path : {"/api/solve", "/api/render"}) {
+    SCOPED_TRACE(path);
+    const ApiResponse r = call("POST", path, "{\"model\": \"x\", \"steps\": 1e400}");
+    expect_error(r, 400, "bad_json");
+    EXPECT_NE(error_of(r)["message"].get<std::string>().find("1e400"), std::string::npos);
+  }
+}
+
+// A model sent as a JSON object is written out as indented text to be read: 100 000 levels of
+// nesting overflowed the writer's stack (the server died), 20 000 made 800 MB of indentation.
+TEST(WebErrors, AModelObjectNestedTooDeepOrTooWideIsRefusedBeforeItIsWrittenOut) {
+  const auto nested = [](int depth, const std::string& inner) {
+    return "{\"model\": {\"points\": " + std::string(depth, '[') + inner + std::string(depth, ']') + "}}";
+  };
+  const ApiResponse deep = call("POST", "/api/check", nested(100000, ""));
+  expect_error(deep, 400, "bad_input");
+  EXPECT_EQ(error_of(deep)["message"], "'model' nests deeper than 64 levels");
+  std::string zeros = "0";
+  for (int i = 0; i < 200000; ++i) zeros += ",0";
+  ServerConfig config = test_config();
+  config.limits.max_body_bytes = 1 << 20;
+  const ApiResponse wide = call("POST", "/api/check", nested(60, zeros), config);
+  expect_error(wide, 413, "limit_exceeded");
+  EXPECT_EQ(error_of(wide)["limit"], "model_bytes");
+  // Nested as deep as the limit, and small, it is read (and is no model).
+  expect_error(call("POST", "/api/check", nested(62, "")), 422, "invalid_model");
+}
+
 TEST(WebErrors, EveryComputingEndpointRefusesBadJsonBadYamlAndOversizedBodies) {
   ServerConfig config = test_config();
   config.limits.max_body_bytes = 4096;

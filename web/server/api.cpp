@@ -25,6 +25,7 @@
 #include "nbar/io/summary_writer.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/io/synthesis_writer.hpp"
+#include "nbar/io/yaml_support.hpp"
 #include "nbar/kinematics/sweep.hpp"
 #include "nbar/render/animation.hpp"
 #include "nbar/render/image_canvas.hpp"
@@ -58,6 +59,34 @@ std::pair<int, int> line_column(const std::string& text, std::size_t offset) {
   return {line, column};
 }
 
+// A model or task sent as a JSON object is read as the indented JSON text it makes. Its depth,
+// and a bound on that text's size, are checked before it is written: the writer recurses once a
+// level (a 200 kB body nested 100 000 deep overflowed the stack), and every level indents every
+// line below it (20 000 levels in 40 kB made 800 MB of text).
+void check_document_shape(const nlohmann::json& document, const char* key) {
+  constexpr int kMaxDepth = 64;
+  constexpr std::size_t kPerValue = 40;  // a number's digits, punctuation, a line end
+  std::vector<std::pair<const nlohmann::json*, int>> stack{{&document, 1}};
+  std::size_t bound = 0;
+  while (!stack.empty()) {
+    const auto [node, depth] = stack.back();
+    stack.pop_back();
+    if (depth > kMaxDepth) bad_input(fmt::format("'{}' nests deeper than {} levels", key, kMaxDepth));
+    bound += 2 * static_cast<std::size_t>(depth) + kPerValue;
+    if (node->is_string()) bound += 6 * node->get_ref<const std::string&>().size();  // \uXXXX at worst
+    if (node->is_object()) {
+      for (auto it = node->begin(); it != node->end(); ++it) {
+        bound += 6 * it.key().size();
+        stack.emplace_back(&*it, depth + 1);
+      }
+    } else if (node->is_array()) {
+      for (const nlohmann::json& child : *node) stack.emplace_back(&child, depth + 1);
+    }
+  }
+  check_limit("model_bytes", static_cast<double>(bound), static_cast<double>(io::yaml::kMaxFileBytes),
+              fmt::format("the size of '{}' written out as indented JSON (a bound, in bytes)", key));
+}
+
 // The request's JSON object, read option by option; every key must be one the endpoint knows.
 class Body {
  public:
@@ -68,6 +97,9 @@ class Body {
       const auto [line, column] = line_column(text, e.byte > 0 ? e.byte - 1 : 0);
       throw ApiError(ApiErrorKind::BadJson, std::string("the body is not valid JSON: ") + e.what(),
                      Json{{"line", line}, {"column", column}});
+    } catch (const nlohmann::json::exception& e) {
+      // A number beyond a double's range (1e400): the parser gives no place for it.
+      throw ApiError(ApiErrorKind::BadJson, std::string("the body is not valid JSON: ") + e.what());
     }
     if (!json_.is_object())
       throw ApiError(ApiErrorKind::BadJson, "the body must be a JSON object, e.g. {\"model\": \"...\"}");
@@ -87,7 +119,10 @@ class Body {
     if (!has(key)) bad_input(std::string("missing '") + key + "'");
     const nlohmann::json& v = json_[key];
     if (v.is_string()) return v.get<std::string>();
-    if (document && v.is_object()) return io::json_text(v, 2) + "\n";
+    if (document && v.is_object()) {
+      check_document_shape(v, key);
+      return io::json_text(v, 2) + "\n";
+    }
     bad_input(std::string("'") + key + "' must be " + (document ? "the text of a YAML or JSON document" : "a string"));
   }
   std::optional<std::string> optional_text(const char* key) const {
@@ -577,8 +612,8 @@ ApiResponse api_render(Job& job, const std::string& request) {
       if (!j["kind"].is_string()) bad_input("'kind' must be draw, animate, plot or plates");
       kind = j["kind"].get<std::string>();
     }
-  } catch (const nlohmann::json::parse_error&) {
-    // Body reports it, with its place.
+  } catch (const nlohmann::json::exception&) {
+    // Body reports it, with its place when there is one.
   }
   if (kind == "draw") return render_draw(job, request);
   if (kind == "animate") return render_animate(job, request);
