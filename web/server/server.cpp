@@ -88,6 +88,18 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   server.set_tcp_nodelay(true);
   server.set_read_timeout(10, 0);
   server.set_write_timeout(30, 0);
+  // httplib inflates a gzip or deflate body whole before its size is checked (1 MB of gzipped
+  // zeros became 1 GB in memory), and the API's bodies are small JSON: it takes them as sent. The
+  // check runs before the body is read; the connection closes, its unread body with it.
+  server.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+    const std::string encoding = req.get_header_value("Content-Encoding");
+    if (encoding.empty() || encoding == "identity") return httplib::Server::HandlerResponse::Unhandled;
+    send(error_response(415, "this server reads bodies as they are sent, without Content-Encoding (here '" +
+                                 encoding.substr(0, 40) + "')"),
+         res);
+    res.set_header("Connection", "close");
+    return httplib::Server::HandlerResponse::Handled;
+  });
   const ServerConfig* config = &impl_->config;
   const auto handler = [config](const httplib::Request& req, httplib::Response& res) {
     send(handle_api(ApiRequest{req.method, req.path, req.body}, *config), res);
