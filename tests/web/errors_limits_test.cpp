@@ -251,6 +251,10 @@ TEST(WebLimits, Steps) {
   expect_limit(post("/api/render", with_model("examples/machine-18.yaml", {{"kind", "plot"}, {"y", "crank"}, {"steps", 100001}})),
                "table_values");
   expect_limit(post("/api/report", with_model("examples/machine-18.yaml", {{"steps", 100001}})), "table_values");
+  // A scene holds every sample's positions (it answered 76 MB from a light slot).
+  expect_limit(post("/api/render", with_model("examples/machine-18.yaml",
+                                               {{"kind", "draw"}, {"format", "scene"}, {"steps", 100001}})),
+               "table_values");
   EXPECT_EQ(post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 100001}, {"columns", "crank"}})).status,
             200);
   // The order: 0 to 5, as the CLI's.

@@ -498,6 +498,8 @@ ApiResponse render_draw(Job& job, const std::string& request) {
   options.order = 0;
   const std::optional<long long> step = body.integer("step", 0, std::numeric_limits<int>::max());
   const std::optional<double> at = body.number("at");
+  // A scene carries every sample's positions: a table as large as a solve's of positions.
+  if (format == "scene") check_table_size(job, options);
   const Analysis analysis = run_analysis(job, options);
   const Mechanism& mech = *job.mechanism;
   std::vector<Eigen::Vector2d> points;
