@@ -1,4 +1,5 @@
 #include "nbar/io/synthesis_task.hpp"
+#include "nbar/synthesis/nine_point.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -268,6 +269,18 @@ class TaskParser : yaml::Reader {
     if (off <= 1e-9 * spread)
       fail(mark(points), "the nine points lie on one straight line, which is no four-bar's coupler curve: "
                          "move some off the line");
+    std::array<Vector2d, 9> nine;
+    std::copy(task_.points.begin(), task_.points.end(), nine.begin());
+    if (const auto circle = synthesis::common_circle(nine)) {
+      std::ostringstream s;
+      s.precision(6);
+      s << "the nine points lie on one circle (centre (" << circle->centre.x() << ", "
+        << circle->centre.y() << "), radius " << circle->radius
+        << " " << task_.units.length << "): a crank of that radius about its centre, whose moving pivot is the "
+        << "coupler point, passes through them with any second dyad, so there are infinitely many four-bars; "
+        << "move some off the circle";
+      fail(mark(points), s.str());
+    }
   }
 
   void parse_burmester(const Fields& top, const YAML::Node& root) {

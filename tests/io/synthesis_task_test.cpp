@@ -76,6 +76,13 @@ TEST(SynthesisTask, NinePointMistakes) {
   EXPECT_EQ(error_of(line), "task.yaml:3:3: the nine points lie on one straight line, which is no four-bar's coupler "
                             "curve: move some off the line");
   EXPECT_EQ(error_of(eight + "  - 3\n"), "task.yaml:11:5: a point needs two numbers, like [x, y], not '3'");
+  // On one circle (3-4-5 triangles' corners on the circle of radius 5 about (1, 2)).
+  const std::string circle = head + "  - [6, 2]\n  - [5, 5]\n  - [4, 6]\n  - [1, 7]\n  - [-2, 6]\n  - [-3, 5]\n"
+                                    "  - [-4, 2]\n  - [-3, -1]\n  - [1, -3]\n";
+  EXPECT_EQ(error_of(circle), "task.yaml:3:3: the nine points lie on one circle (centre (1, 2), radius 5 m): a crank of "
+                              "that radius about its centre, whose moving pivot is the coupler point, passes through "
+                              "them with any second dyad, so there are infinitely many four-bars; move some off the "
+                              "circle");
   EXPECT_EQ(error_of("task: nine-point\npivots: {a: [0, 0], b: [1, 0]}\n"),
             "task.yaml:2:1: unknown key 'pivots' in a nine-point task (allowed: task, name, description, units, points)");
 }

@@ -172,6 +172,31 @@ TEST(NinePoint, BadPointsAreRefused) {
   auto infinite = points;
   infinite[4].x() = std::nan("");
   EXPECT_THROW(solve_nine_point(infinite), std::invalid_argument);
+  // On one circle: a crank with the coupler point as its moving pivot, and any second dyad, is a
+  // solution (it took minutes and reported more orbits than there are).
+  std::array<Vector2d, 9> circle;
+  for (int k = 0; k < 9; ++k) circle[k] = Vector2d(50, 20) + 100 * Vector2d(std::cos(0.3 + 0.7 * k), std::sin(0.3 + 0.7 * k));
+  EXPECT_THROW(solve_nine_point(circle), std::invalid_argument);
+}
+
+TEST(NinePoint, CommonCircleIsFoundOnlyWhereThePointsAreOnOne) {
+  std::array<Vector2d, 9> circle;
+  for (int k = 0; k < 9; ++k)
+    circle[k] = Vector2d(-3e3, 7e3) + 2.5e3 * Vector2d(std::cos(0.1 + 0.4 * k), std::sin(0.1 + 0.4 * k));
+  const auto found = common_circle(circle);
+  ASSERT_TRUE(found);
+  EXPECT_LT((found->centre - Vector2d(-3e3, 7e3)).norm(), 1e-9 * 2.5e3);
+  EXPECT_NEAR(found->radius, 2.5e3, 1e-9 * 2.5e3);
+  auto off = circle;
+  off[4] *= 1.0 + 1e-6;  // a millionth off the circle is a task like any other
+  EXPECT_FALSE(common_circle(off));
+  std::array<Vector2d, 9> parabola, line;
+  for (int k = 0; k < 9; ++k) {
+    parabola[k] = {k, k * k};
+    line[k] = {k, 2 * k + 1};
+  }
+  EXPECT_FALSE(common_circle(parabola));
+  EXPECT_FALSE(common_circle(line));
 }
 
 }  // namespace

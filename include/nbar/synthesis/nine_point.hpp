@@ -21,6 +21,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,8 +72,17 @@ struct NinePointResult {
   std::vector<CVector> representatives;
 };
 
-// Throws std::invalid_argument for non-finite, repeated (within 1e-9 of the spread) or
-// collinear points (a line is no coupler curve).
+// The circle through all nine points when they lie on one, within 1e-9 of their spread. Such a
+// task has infinitely many solutions: a crank of that radius about its centre, whose moving
+// pivot is the coupler point, with any second dyad.
+struct NinePointCircle {
+  Eigen::Vector2d centre;
+  double radius = 0;
+};
+std::optional<NinePointCircle> common_circle(const std::array<Eigen::Vector2d, 9>& points);
+
+// Throws std::invalid_argument for non-finite, repeated (within 1e-9 of the spread), collinear
+// (a line is no coupler curve) or concyclic points (infinitely many four-bars).
 NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points,
                                  const NinePointOptions& options = {});
 
