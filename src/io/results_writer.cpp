@@ -24,12 +24,21 @@ namespace {
 constexpr std::size_t kNumberRoom = 32;
 constexpr std::size_t kCsvBlock = 1 << 20;
 
+// A name as one CSV field (RFC 4180): names may hold commas and quotes ("a,b" is a valid point
+// name), which would otherwise split the header into more fields than the rows have.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) (quoted += c) += c == '"' ? "\"" : "";
+  return quoted + '"';
+}
+
 }  // namespace
 
 CsvWriter::CsvWriter(std::ostream& out, const std::vector<std::string>& columns)
     : out_(out), columns_(columns.size()), buffer_(kCsvBlock + kNumberRoom * (columns.size() + 1)) {
   std::string header;
-  for (std::size_t c = 0; c < columns.size(); ++c) (header += (c ? "," : "")) += columns[c];
+  for (std::size_t c = 0; c < columns.size(); ++c) (header += (c ? "," : "")) += csv_field(columns[c]);
   header += '\n';
   out_.write(header.data(), static_cast<std::streamsize>(header.size()));
 }
@@ -279,7 +288,7 @@ void write_stress_report(std::ostream& out, const std::string& format, const Ana
   }
   if (format == "csv") {
     for (const auto& row : cells) {
-      for (std::size_t c = 0; c < row.size(); ++c) out << (c ? "," : "") << row[c];
+      for (std::size_t c = 0; c < row.size(); ++c) out << (c ? "," : "") << csv_field(row[c]);
       out << '\n';
     }
     return;

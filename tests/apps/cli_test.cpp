@@ -110,6 +110,49 @@ TEST(Cli, CsvHeaderAndValuesOfTheCrankRocker) {
   EXPECT_EQ(count_lines(r.out), 6);
 }
 
+// Fields of a CSV line (RFC 4180: quoted fields, doubled quotes).
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      fields.back() += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+// A point named "a,b" (a valid name) made a header of more fields than the rows had.
+TEST(Cli, CsvHeaderQuotesNamesWithCommasAndQuotes) {
+  const std::string text = R"(units: {length: mm, angle: deg}
+points: {O2: [0, 0], O4: [200, 0], "a,b": [0, 80], 'q"t': [160, 150]}
+ground: [O2, O4]
+bodies: {crank: [O2, "a,b"], coupler: ["a,b", 'q"t'], rocker: [O4, 'q"t']}
+drivers: [{angle: crank, from: 90, to: 120}]
+sweep: {steps: 3}
+)";
+  const TempModel model(text);
+  const CliRun r = nbar("solve " + model.path());
+  ASSERT_EQ(r.code, 0) << r.err << text;
+  std::istringstream lines(r.out);
+  std::string header, row;
+  std::getline(lines, header);
+  std::getline(lines, row);
+  const auto names = csv_fields(header);
+  EXPECT_EQ(names.size(), csv_fields(row).size()) << header;
+  EXPECT_NE(std::find(names.begin(), names.end(), "a,b.x"), names.end()) << header;
+  EXPECT_NE(std::find(names.begin(), names.end(), "q\"t.y"), names.end()) << header;
+  EXPECT_THAT(header, HasSubstr("\"a,b.x\",\"a,b.y\""));
+}
+
 TEST(Cli, OutputFileAndColumnSelection) {
   TempModel dir("");
   const std::string out = dir.dir() + "/out.csv";
