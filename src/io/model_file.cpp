@@ -198,7 +198,10 @@ class Parser : yaml::Reader {
 
   int whole_number(const Entry& e, std::string_view what) const {
     const double v = number(e, what);
-    if (v != std::floor(v) || std::abs(v) > 1e9) fail(mark(e), std::string(what) + " must be a whole number");
+    if (v != std::floor(v)) fail(mark(e), std::string(what) + " must be a whole number");
+    // Limits of their own (a sweep's samples, say) are checked where the value is used; past 1e9
+    // it is no count a model means.
+    if (std::abs(v) > 1e9) fail(mark(e), std::string(what) + " must be a whole number of at most a billion");
     return static_cast<int>(v);
   }
 

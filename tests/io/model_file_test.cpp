@@ -617,6 +617,8 @@ TEST(ModelFileErrors, Sweep) {
   EXPECT_TRUE(fails_at(head + "sweep: {steps: 0}\n", "13:16", "the sweep needs at least 1 step"));
   EXPECT_EQ(parse_model(head + "sweep: {steps: 1}\n").model.sweep.steps, 1);
   EXPECT_TRUE(fails_at(head + "sweep: {steps: 2.5}\n", "13:16", "`steps` must be a whole number"));
+  // 1e10 is whole: what is wrong is its size.
+  EXPECT_TRUE(fails_at(head + "sweep: {steps: 1e10}\n", "13:16", "`steps` must be a whole number of at most a billion"));
   EXPECT_TRUE(fails_at(head + "sweep: {steps: many}\n", "13:16", "`steps` must be a number, not 'many'"));
   EXPECT_TRUE(
       fails_at(head + "sweep: {steps: 10, step: 0.1}\n", "13:20", "give the sweep either `steps` or `step`, not both"));
