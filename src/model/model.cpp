@@ -72,6 +72,7 @@ class Validator {
  private:
   const Model& m_;
   double tolerance_ = 0.0;
+  double size_ = 0.0;  // the drawing's bounding-box diagonal (m)
   std::vector<int> slider_of_body_;  // slider index per body, -1 when none
 
   [[noreturn]] static void fail(EntityRef where, const std::string& message) { throw ModelError(where, message); }
@@ -117,8 +118,16 @@ class Validator {
       lo = lo.cwiseMin(p.position);
       hi = hi.cwiseMax(p.position);
     }
-    const double size = (hi - lo).norm();
-    tolerance_ = std::isfinite(size) ? 1e-9 * size : 0.0;
+    size_ = (hi - lo).norm();
+    tolerance_ = std::isfinite(size_) ? 1e-9 * size_ : 0.0;
+  }
+
+  // A length in the model's unit, for messages.
+  std::string length_text(double metres) const {
+    std::ostringstream s;
+    s.precision(6);
+    s << metres / m_.units.length_scale << " " << m_.units.length;
+    return s.str();
   }
   bool coincide(int a, int b) const { return (m_.points[a].position - m_.points[b].position).norm() <= tolerance_; }
 
@@ -130,6 +139,11 @@ class Validator {
       if (p.name.empty()) fail(where, "point #" + std::to_string(i + 1) + " has no name");
       if (!seen.insert(p.name).second) fail(where, "two points are named '" + p.name + "'");
       if (!p.position.allFinite()) fail(where, "point '" + p.name + "' has a coordinate that is not a finite number");
+      // Past this, distances overflow or every other point looks coincident.
+      constexpr double kMaxCoordinate = 1e100;
+      if (!(p.position.cwiseAbs().maxCoeff() / m_.units.length_scale <= kMaxCoordinate))
+        fail(where, "point '" + p.name + "' has a coordinate beyond 1e100 " + m_.units.length +
+                        ": check the number and the length unit");
     }
   }
 
@@ -148,8 +162,14 @@ class Validator {
         if (!listed.insert(p).second) fail(where, name + " lists point " + point_name(p) + " twice");
       }
       if (b.points.size() >= 2 && coincide(b.points[0], b.points[1])) {
-        fail(where, name + " has zero length: points " + m_.points[b.points[0]].name + " and " +
-                        m_.points[b.points[1]].name + " coincide");
+        const double apart = (m_.points[b.points[0]].position - m_.points[b.points[1]].position).norm();
+        if (apart == 0.0)
+          fail(where, name + " has zero length: points " + m_.points[b.points[0]].name + " and " +
+                          m_.points[b.points[1]].name + " coincide");
+        // Apart, but by less than the drawing's resolution: one far point makes the others so.
+        fail(where, name + " is " + length_text(apart) + " long, less than a billionth of the drawing's size (" +
+                        length_text(size_) + "), so its points " + m_.points[b.points[0]].name + " and " +
+                        m_.points[b.points[1]].name + " count as coinciding: check the coordinates far from the others");
       }
       const bool all_ground = std::all_of(b.points.begin(), b.points.end(), [&](int p) { return m_.points[p].ground; });
       if (all_ground) {
@@ -162,6 +182,12 @@ class Validator {
         }
         if (!std::isfinite(*b.length) || *b.length <= 0.0) {
           fail(where, "the length of " + name + " must be a positive number");
+        }
+        // The drawing is the assembly's first guess and the scale of every tolerance: a length a
+        // million times the drawing is a unit mistake, not a linkage nbar can assemble.
+        if (*b.length > 1e6 * size_) {
+          fail(where, "the length of " + name + ", " + length_text(*b.length) + ", is more than a million times the "
+                          "drawing's size (" + length_text(size_) + "): check the number and the length unit");
         }
       }
     }

@@ -373,6 +373,23 @@ TEST(ModelFileErrors, NotAModel) {
   EXPECT_TRUE(fails_at("points: {}\n", "1:1", "`points` is empty"));
 }
 
+// Coordinates and lengths past what the drawing can resolve: a far point made a 150 mm link
+// "zero length", 1e308 and a 1e12 mm length were reported as a wrong number of freedoms at 1:1.
+TEST(ModelFileErrors, SizesTheDrawingCannotResolve) {
+  const auto model = [](const std::string& a, const std::string& extra = "") {
+    return "units: {length: mm, angle: deg}\npoints: {O2: [0, 0], O4: [200, 0], A: " + a +
+           ", B: [160, 150]}\nground: [O2, O4]\nbodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n"
+           "drivers: [{angle: crank, from: 0, to: 360}]\n" + extra;
+  };
+  EXPECT_TRUE(fails_at(model("[1e15, 0]"), "4:43",
+                       "body 'rocker' is 155.242 mm long, less than a billionth of the drawing's size (1e+15 mm), so "
+                       "its points O4 and B count as coinciding"));
+  EXPECT_TRUE(fails_at(model("[1e308, 0]"), "2:36", "point 'A' has a coordinate beyond 1e100 mm"));
+  EXPECT_TRUE(fails_at(model("[0, 80]", "lengths: {crank: 1e12}\n"), "4:10",
+                       "the length of body 'crank', 1e+12 mm, is more than a million times the drawing's size (250 mm)"));
+  EXPECT_NO_THROW(parse_model(model("[0, 80]", "lengths: {crank: 1e3}\n"), "m.yaml"));
+}
+
 // A NUL made yaml-cpp take the file for UTF-16 and quote it back as garbled text, or say
 // "unknown escape character" a line too late; UTF-16 without a byte-order mark was read as a model.
 TEST(ModelFileErrors, ControlCharactersAreNotText) {
