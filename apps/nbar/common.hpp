@@ -82,13 +82,10 @@ inline void print_warnings(const std::vector<Warning>& warnings) {
 }
 
 // The exit code of a sweep that stopped early (its rows are written), or 0.
-// A sweep that stopped is reported at the sweep's settings, or at the first driver when the
-// model has no `sweep:`: what asked for the motion that could not be followed.
 inline int finish(const Loaded& loaded, const SweepResult& sweep) {
   if (!sweep.complete) {
     const nbar::io::SourceMap& source = loaded.file.source;
-    const SourceMark at = source.sweep.line > 0 ? source.sweep : source.find({EntityRef::Kind::Driver, 0});
-    std::cerr << "error: " << compose_location(source.file, at, sweep.stop_reason) << " ("
+    std::cerr << "error: " << compose_location(source.file, source.sweep_stop(), sweep.stop_reason) << " ("
               << sweep.solved << " rows written)\n";
     return kStoppedEarly;
   }

@@ -205,8 +205,10 @@ class Model:
         result = Result(analysis, *analysis.table(patterns))
         result.default_x = self._c.default_abscissa
         if not result.complete and not partial:
+            line, column = self._c.sweep_stop_place or (None, None)
             raise LimitError(f"{result.stop_reason} ({result.rows} rows solved; solve(..., partial=True) returns "
-                             f"them)", kind="stopped_at_limit", file=self._c.file, result=result)
+                             f"them)", kind="stopped_at_limit", file=self._c.file, line=line, column=column,
+                             result=result)
         return result
 
     def dynamics(self, steps: Optional[int] = None, columns: Columns = None, **options) -> Result:

@@ -163,6 +163,11 @@ void bind_model(py::module_& m) {
   py::class_<PyModel, std::shared_ptr<PyModel>>(m, "CompiledModel", "A model file, parsed, validated and compiled")
       .def_property_readonly("name", [](const PyModel& p) { return p.file.model.name; })
       .def_property_readonly("file", [](const PyModel& p) { return p.file.source.file; })
+      .def_property_readonly("sweep_stop_place",
+                             [](const PyModel& p) {
+                               const SourceMark at = p.file.source.sweep_stop();
+                               return at.line > 0 ? py::object(py::make_tuple(at.line, at.column)) : py::object(py::none());
+                             })
       .def_property_readonly("length_unit", [](const PyModel& p) { return p.file.model.units.length; })
       .def_property_readonly("angle_unit", [](const PyModel& p) { return p.file.model.units.angle; })
       .def_property_readonly("points", [](const PyModel& p) { return point_list(p.file.model); })

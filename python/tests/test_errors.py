@@ -65,6 +65,10 @@ def test_toggle_stop_raises_with_the_rows_so_far(examples):
     partial = e.value.result
     assert not partial.complete and 0 < partial.rows < 361
     assert partial.stop_reason in str(e.value)
+    # Where the CLI says it: at the model's `sweep:` (or its first driver).
+    sweep_line = 1 + text[:text.index("sweep:")].count("\n")
+    assert (e.value.line, e.value.column) == (sweep_line, 1)
+    assert str(e.value).startswith(f"long-crank.yaml:{sweep_line}:1: ")
     again = m.solve(steps=361, partial=True)
     assert again.rows == partial.rows and again.stop_reason == partial.stop_reason
 

@@ -27,6 +27,10 @@
 
 namespace nbar::io {
 
+SourceMark SourceMap::sweep_stop() const {
+  return sweep.line > 0 ? sweep : find({EntityRef::Kind::Driver, 0});
+}
+
 SourceMark SourceMap::find(const EntityRef& ref) const {
   const auto law_mark = [&](const std::vector<std::array<SourceMark, 2>>& laws) {
     if (ref.law < 0 || ref.law > 1 || ref.index < 0 || ref.index >= static_cast<int>(laws.size())) return SourceMark{};

@@ -26,6 +26,9 @@ struct SourceMap {
   std::vector<std::array<SourceMark, 2>> driver_laws, point_load_laws, torque_laws;
 
   SourceMark find(const EntityRef& ref) const;
+  // Where a sweep that stopped early is reported: at the sweep's settings, or at the first
+  // driver when the model has no `sweep:`: what asked for the motion that could not be followed.
+  SourceMark sweep_stop() const;
 };
 
 // An error located in a source file (kind InvalidModel unless said otherwise).
