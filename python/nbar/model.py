@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import html
 import json
+import numbers
 import os
 from types import SimpleNamespace
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
@@ -23,6 +24,16 @@ def _patterns(columns: Columns) -> Optional[List[str]]:
     if not patterns:
         raise BadInputError("columns is empty: give names or globs, or None for every column")
     return patterns
+
+
+def _whole(name: str, value: Any) -> Optional[int]:
+    """A count as an int: 10.0 and numpy's integers are counts too; 2.5 or "10" is the caller's
+    mistake, said as nbar says others (pybind's own TypeError lists the binding's overloads)."""
+    if value is None:
+        return None
+    if isinstance(value, numbers.Real) and not isinstance(value, bool) and float(value).is_integer():
+        return int(value)
+    raise BadInputError(f"{name} must be a whole number, not {value!r}")
 
 
 class Summary:
@@ -179,6 +190,8 @@ class Model:
         A sweep of more than ``max_steps`` samples (default 10 000 000, as ``--max-steps``) is an error.
         ``method`` is the stresses' (``"beam"`` or ``"fe"``), ``mesh_size`` the finite elements' edge
         far from holes, in the model's length unit."""
+        steps, order, sections, max_steps = (_whole(name, value) for name, value in (
+            ("steps", steps), ("order", order), ("sections", sections), ("max_steps", max_steps)))
         return _nbar.analyse(self._c, steps=steps, order=order, dynamics=dynamics, stress=stress, sections=sections,
                              timeout=timeout, max_steps=max_steps, method=method, mesh_size=mesh_size)
 

@@ -103,6 +103,9 @@ def test_bad_options_are_bad_input(examples):
     with pytest.raises(nbar.BadInputError) as e:
         m.solve(steps=0)
     assert e.value.file is None and str(e.value) == e.value.message  # about the call, not the file
+    with pytest.raises(nbar.BadInputError, match="steps must be a whole number, not 2.5"):
+        m.solve(steps=2.5)
+    assert m.solve(steps=5.0, columns="crank").rows == 5  # a whole float is a count
     with pytest.raises(nbar.BadInputError, match="columns is empty"):
         m.solve(columns=[])
     with pytest.raises(nbar.BadInputError, match="^step 999 is not a step"):
