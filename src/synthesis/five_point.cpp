@@ -458,6 +458,7 @@ FivePointResult solve_five_point(const FivePointTask& task, const SolverOptions&
   const SolveResult fallback = solve_linear_product(f, five_point_groups(), options);
   result.used_fallback = true;
   result.paths += static_cast<int>(fallback.endpoints.size());
+  result.failed_paths += fallback.count(EndpointKind::Failed);  // the note counts both runs' paths
   result.retracked_paths += fallback.retracked;
   result.method = "linear-product homotopy (" + std::to_string(fallback.endpoints.size()) + " paths: " +
                   std::to_string(fallback.count(EndpointKind::Finite)) + " finite, " +

@@ -206,6 +206,11 @@ TEST(FivePointTest, CollinearPointsAreDegenerateAndSaySo) {
   EXPECT_TRUE(r.used_fallback);
   EXPECT_LT(r.solutions.size(), 36u);
   EXPECT_NE(r.method.find("linear-product"), std::string::npos);
+  // The failed paths of both runs are counted (the note said "4 of 132" where the fallback's
+  // own header said 49 of its 96 had failed).
+  const auto fallback_failed = std::stoi(r.method.substr(r.method.find(" at infinity, ") + 14));
+  EXPECT_GE(r.failed_paths, fallback_failed);
+  EXPECT_EQ(r.paths, 36 + 96);
   for (const auto& s : r.solutions) {
     EXPECT_TRUE(std::isfinite(s.residual));
     for (int k = 0; k < 2; ++k) EXPECT_TRUE(std::isfinite(std::abs(s.moving_a[k])) && std::isfinite(std::abs(s.moving_b[k])));
