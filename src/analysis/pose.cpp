@@ -34,7 +34,7 @@ void check_pose_value(const Model& m, const SweepPath& path, double value, doubl
     s << "the pose's value must be a finite number, not " << value;
     throw Error(ErrorKind::BadInput, s.str());
   }
-  constexpr double kMaxTurns = 1000.0, kMaxRanges = 1000.0;
+  constexpr double kMaxTurns = kMaxDriverTurns, kMaxRanges = 1000.0;
   std::ostringstream s;
   s.precision(3);
   if (path.time_law) {

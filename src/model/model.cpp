@@ -403,7 +403,7 @@ class Validator {
   // angle driver may turn at most kMaxTurns times, a distance or slide at most kMaxSizes
   // times the mechanism's size.
   void check_travel(const Driver& d, bool time_sweep, double size, EntityRef where, const std::string& name) const {
-    constexpr double kMaxTurns = 1000.0, kMaxSizes = 1000.0;
+    constexpr double kMaxTurns = kMaxDriverTurns, kMaxSizes = 1000.0;
     double travel = 0.0;
     std::string_view inputs = "`from`, `to`, the speed";
     if (d.law) {

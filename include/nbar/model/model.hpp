@@ -73,6 +73,10 @@ enum class DriverKind {
   Slide,     // position of slider `slider`'s point along its guide, from the guide's first point
 };
 
+// The most an angle driver may turn over a sweep (the model's check) or to reach a pose (pose_at):
+// the work of following the motion grows with the travel.
+inline constexpr double kMaxDriverTurns = 1000.0;
+
 // How a driver moves. Either a from/to sweep sampled at evenly spaced values (with the
 // derivatives of the driver moving at `speed` with `accel` at every sample), or a law in time.
 struct Driver {
