@@ -39,7 +39,7 @@ class LinearSolver {
   Method method() const { return method_; }
   // Returns false when the matrix is singular to working precision.
   bool factorize(const std::vector<double>& jacobian_values);
-  // x = J^-1 b (least squares for overdetermined systems).
+  // x = J^-1 b (least squares for overdetermined systems); b and x must be different vectors.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   // Sign of det(J) for square systems: constant along a regular branch. 0 when not available.
   int determinant_sign() const { return det_sign_; }
