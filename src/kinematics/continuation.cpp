@@ -17,6 +17,18 @@ constexpr double kMaxCorrectionRatio = 0.1;
 // Below this fraction of the interval a sign change of det(Phi_q) is taken as a genuine
 // crossing of a singular position rather than a jump.
 constexpr double kCrossingStep = 1e-4;
+constexpr double kContinuedCorrection = 1e-6;
+// Below this reciprocal condition an end point is too near a singular position for its own
+// Jacobian to give its series: they would carry about 1/rcond times the rounding error, and
+// the next prediction would start off towards either of the branches that cross there.
+constexpr double kCoastRcond = 1e-8;
+// The series re-centred onto a singular end point: as many terms as a Series holds.
+constexpr int kCoastSeriesTerms = Series::kCapacity;
+// Positions, velocities and accelerations there are checked, to 1e-6 (the sweep reports how
+// well they are known); higher derivatives, whose rounding grows as a power of the distance
+// from the singular position, are not.
+constexpr int kCoastCheckedTerms = 3;
+constexpr double kCoastMaxError = 1e-6;
 
 void predict(const Eigen::MatrixXd& series, double h, Eigen::VectorXd& q) {
   q = series.col(series.cols() - 1);
@@ -47,6 +59,110 @@ bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, 
   return false;
 }
 
+// Re-centres a Taylor polynomial (coefficients in columns) from p to p + d: synthetic division.
+void shift_series(Eigen::MatrixXd& c, double d) {
+  const Eigen::Index terms = c.cols();
+  for (Eigen::Index i = 0; i + 1 < terms; ++i)
+    for (Eigen::Index k = terms - 2; k >= i; --k) c.col(k) += d * c.col(k + 1);
+}
+
+double binomial(int n, int k) {
+  double b = 1.0;
+  for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
+  return b;
+}
+
+// How far the series at a point, re-centred by d, may be off in their first `checked`
+// coefficients, relative to each: the last term's share of it. That share is truncation far
+// from the singular position and rounding near it (the k-th coefficient computed at a distance
+// d from a singular Jacobian carries about 1e-16 / d^k), so it bounds both.
+double shift_error(const Eigen::MatrixXd& series, const Eigen::MatrixXd& shifted, double d, int checked) {
+  const int last = static_cast<int>(series.cols()) - 1;
+  const double tail = series.col(last).lpNorm<Eigen::Infinity>();
+  double worst = 0.0;
+  for (int j = 0; j < checked && j < last; ++j) {
+    const double share = binomial(last, j) * std::pow(std::abs(d), last - j) * tail;
+    const double size = shifted.col(j).lpNorm<Eigen::Infinity>();
+    worst = std::max(worst, size > 0.0 ? share / size : (share > 0.0 ? HUGE_VAL : 0.0));
+  }
+  return std::isfinite(worst) ? worst : HUGE_VAL;
+}
+
+// Back at the start of the track: q_track_start at p_start, factorised, its series computed.
+bool restart(const Mechanism& mech, State& state, const DriverPath& path, double p_start, int terms) {
+  state.q = state.q_track_start;
+  state.parameter = p_start;
+  path(p_start, terms, state.driver_values);
+  set_drivers(mech, state, state.driver_values);
+  if (!factorize_jacobian(mech, state) || state.solver().reciprocal_condition() < kCoastRcond) return false;
+  compute_series(mech, state, terms);
+  return true;
+}
+
+// The series at p_end from those at a regular point p_end - distance (before it, or beyond it
+// when distance < 0), tracked to from the start. Positions at p_end are polished with that
+// point's factorisation. Returns the estimated relative error, or infinity when the point
+// cannot be reached or p_end turns out to be regular after all.
+double series_from(const Mechanism& mech, State& state, const DriverPath& path, double p_start, double p_end,
+                   double distance, const TrackOptions& options) {
+  TrackOptions plain = options;
+  plain.coast_terms = 0;
+  const double p_b = p_end - distance;
+  try {
+    if (!restart(mech, state, path, p_start, options.terms)) return HUGE_VAL;
+    const TrackReport reach = track(mech, state, path, p_b, plain);
+    // Before p_end the way there must stay on one side of the singular position.
+    if (!reach.reached || (distance > 0.0 && reach.passed_singularity)) return HUGE_VAL;
+    if (state.solver().reciprocal_condition() < kCoastRcond) return HUGE_VAL;
+    path(p_b, kCoastSeriesTerms, state.driver_values);
+  } catch (const Error&) {  // beyond the end of the sweep a law may be undefined
+    return HUGE_VAL;
+  }
+  set_drivers(mech, state, state.driver_values);
+  compute_series(mech, state, kCoastSeriesTerms);
+  Eigen::MatrixXd shifted = state.series;
+  shift_series(shifted, distance);
+  const double error = shift_error(state.series, shifted, distance, std::min(options.coast_terms, kCoastCheckedTerms));
+  if (!(error <= kCoastMaxError)) return HUGE_VAL;
+  const Eigen::VectorXd q_b = state.q;
+  path(p_end, kCoastSeriesTerms, state.driver_values);
+  set_drivers(mech, state, state.driver_values);
+  state.q = shifted.col(0);
+  double residual = 0.0;
+  if (!correct(mech, state, q_b, shifted.col(0), residual)) return HUGE_VAL;
+  const bool singular = !factorize_jacobian(mech, state, state.spare_solver()) ||
+                        state.spare_solver().reciprocal_condition() < kCoastRcond;
+  if (!singular) return HUGE_VAL;
+  state.series = std::move(shifted);
+  state.series.col(0) = state.q;
+  state.parameter = p_end;
+  state.residual = residual;
+  return error;
+}
+
+// p_end lies on a singular position, or may (the path was about to be given up there): the
+// series at p_end are taken from a regular point near it on the branch followed, re-centred at
+// p_end, and the solver keeps that point's factorisation. Near the singular position rounding
+// spoils the series, far from it truncation does: the point is tried half a step before p_end,
+// then alternately further beyond it (fine sweeps) and nearer before it (coarse ones). On entry
+// state.q_track_start solved the constraints at p_start. False, with state back at the start,
+// when p_end is not singular or no point gives its series.
+bool coast_to_singular_end(const Mechanism& mech, State& state, const DriverPath& path, double p_start,
+                           double p_end, const TrackOptions& options, double* accuracy) {
+  const double half_step = 0.5 * (p_end - p_start);
+  const double distances[] = {half_step,         -half_step,         0.25 * half_step, -4.0 * half_step,
+                              0.0625 * half_step, -16.0 * half_step, 0.015625 * half_step, -64.0 * half_step};
+  for (double distance : distances) {
+    const double error = series_from(mech, state, path, p_start, p_end, distance, options);
+    if (error <= kCoastMaxError) {
+      *accuracy = error;
+      return true;
+    }
+  }
+  restart(mech, state, path, p_start, options.terms);
+  return false;
+}
+
 }  // namespace
 
 TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, double p_end,
@@ -59,30 +175,55 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
   Eigen::VectorXd& q_old = state.q_accepted;
   Eigen::VectorXd& q_pred = state.q_predicted;
   q_old = state.q;
+  const double p_start = state.parameter;
+  if (options.coast_terms > 0) state.q_track_start = state.q;
   int sign_old = state.solver().determinant_sign();
   // The residual at the last accepted point, as correct() found it there (with the drivers
   // where they are now): computing it again at the end would give the same number.
   double residual = 0.0;
   bool residual_known = false;
+  bool coast_tried = false;
 
   while (true) {
     const double remaining = p_end - state.parameter;
     if (std::abs(remaining) <= 1e-13 * std::max(std::abs(span), std::abs(p_end))) break;
     if (std::abs(h) > std::abs(remaining)) h = remaining;
 
+    const bool final_step = h == remaining;
     predict(state.series, h, q_pred);
     path(state.parameter + h, options.terms, values);
     set_drivers(mech, state, values);
     state.q = q_pred;
     double trial_residual = 0.0;
-    bool ok = correct(mech, state, q_old, q_pred, trial_residual) &&
-              factorize_jacobian(mech, state, state.spare_solver());
+    const bool converged = correct(mech, state, q_old, q_pred, trial_residual);
+    bool ok = converged && factorize_jacobian(mech, state, state.spare_solver());
+    if (converged && final_step && options.coast_terms > 0 && !coast_tried &&
+        (!ok || state.spare_solver().reciprocal_condition() < kCoastRcond)) {
+      coast_tried = true;
+      if (coast_to_singular_end(mech, state, path, p_start, p_end, options, &report.singular_end_accuracy)) {
+        report.singular_end = true;
+        ++report.steps;
+        residual_known = false;
+        break;
+      }
+      // Still at an accepted point, perhaps nearer p_end: on as usual from there.
+      q_old = state.q;
+      sign_old = state.solver().determinant_sign();
+      residual_known = false;
+      h = p_end - state.parameter;
+      continue;
+    }
     bool crossing = false;
     if (ok) {
       const int sign_new = state.spare_solver().determinant_sign();
       if (sign_old != 0 && sign_new != 0 && sign_new != sign_old) {
         crossing = true;
-        if (std::abs(h) > kCrossingStep * std::abs(span)) ok = false;
+        // A step that Newton hardly had to correct stayed on the branch the series continue,
+        // however long: the branches through a change point part linearly, the series' error
+        // is of the order of h^terms.
+        const double motion = (q_pred - q_old).lpNorm<Eigen::Infinity>();
+        const bool continued = (state.q - q_pred).lpNorm<Eigen::Infinity>() <= kContinuedCorrection * motion;
+        if (std::abs(h) > kCrossingStep * std::abs(span) && !continued) ok = false;
       }
     }
     if (ok) {
@@ -106,6 +247,22 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
     path(state.parameter, options.terms, values);
     set_drivers(mech, state, values);
     h *= 0.5;
+    if (std::abs(h) < h_min && options.coast_terms > 0 && !coast_tried) {
+      // Given up short of p_end: perhaps p_end is a change point, where Newton converges too
+      // slowly to be trusted.
+      coast_tried = true;
+      if (coast_to_singular_end(mech, state, path, p_start, p_end, options, &report.singular_end_accuracy)) {
+        report.singular_end = true;
+        ++report.steps;
+        residual_known = false;
+        break;
+      }
+      q_old = state.q;
+      sign_old = state.solver().determinant_sign();
+      residual_known = false;
+      h = p_end - state.parameter;
+      continue;
+    }
     if (std::abs(h) < h_min) {
       report.limit_parameter = state.parameter;
       report.reciprocal_condition = state.solver().reciprocal_condition();

@@ -321,6 +321,51 @@ void check_finite(const Mechanism& mech, const Sample& s, const std::vector<Driv
               EntityRef{EntityRef::Kind::Driver, d});
 }
 
+// A from/to sweep whose parameter is the fraction of the sweep (drivers with an acceleration)
+// still moves every driver along its range in time, as s(t) = speed t + accel t^2 / 2 over the
+// range, when their speeds and accelerations are in proportion to their ranges.
+struct FractionRate {
+  double speed = 0.0;  // d(fraction)/dt
+  double accel = 0.0;  // d2(fraction)/dt2
+};
+
+std::optional<FractionRate> fraction_rate(const SweepPath& plan) {
+  if (plan.time_law || plan.delta.empty() || plan.delta[0] == 0.0) return std::nullopt;
+  const double d0 = plan.delta[0];
+  for (std::size_t d = 1; d < plan.delta.size(); ++d) {
+    const double scale = 1e-12 * std::abs(d0) * (std::abs(plan.speed[0]) + std::abs(plan.accel[0]));
+    if (std::abs(plan.speed[d] * d0 - plan.speed[0] * plan.delta[d]) > scale + 1e-300 ||
+        std::abs(plan.accel[d] * d0 - plan.accel[0] * plan.delta[d]) > scale + 1e-300)
+      return std::nullopt;
+  }
+  return FractionRate{plan.speed[0] / d0, plan.accel[0] / d0};
+}
+
+// The Taylor series in time from those in the sweep fraction: q(t) = Q(s(t)), s(t) as above.
+void series_in_time(const Eigen::MatrixXd& in_fraction, const FractionRate& rate, int terms, Eigen::MatrixXd& out) {
+  out.setZero(in_fraction.rows(), terms);
+  std::vector<double> power(terms, 0.0), next(terms);
+  power[0] = 1.0;  // s(t)^k, k = 0
+  for (Eigen::Index k = 0; k < in_fraction.cols(); ++k) {
+    for (int j = 0; j < terms; ++j) out.col(j) += power[j] * in_fraction.col(k);
+    std::fill(next.begin(), next.end(), 0.0);
+    for (int j = 0; j < terms; ++j) {
+      if (j + 1 < terms) next[j + 1] += rate.speed * power[j];
+      if (j + 2 < terms) next[j + 2] += 0.5 * rate.accel * power[j];
+    }
+    power.swap(next);
+  }
+}
+
+// How well a sample on a singular position is known, for its warning.
+std::string coasted_accuracy(double relative_error, int terms) {
+  std::ostringstream s;
+  s.precision(1);
+  s << "positions, velocities and accelerations there to about " << std::max(relative_error, 1e-15) << " relative";
+  if (terms > 3) s << "; higher derivatives there are only estimates";
+  return s.str();
+}
+
 // Checking the control costs a clock read: every few samples is often enough.
 constexpr std::size_t kControlInterval = 16;
 
@@ -344,6 +389,8 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
   const int terms_out = options.order + 1;
   TrackOptions track_options;
   track_options.terms = plan.parameter_is_time ? std::max(4, terms_out) : 4;
+  const std::optional<FractionRate> rate = plan.parameter_is_time ? std::nullopt : fraction_rate(plan);
+  if (plan.parameter_is_time || rate) track_options.coast_terms = terms_out;
 
   std::vector<Series> values;
   plan.drivers(plan.sample_parameter(0), 1, values);
@@ -361,6 +408,7 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
   std::vector<DriverState> drivers_in_time(nd);
   std::vector<double> now(nd);
   Sample streamed;  // a sink's sample, reused: its buffers are allocated once
+  bool on_singular_position = false;  // the sample being recorded, as the tracker found it
   auto record = [&](int i) {
     Sample& s = sink ? streamed : result.samples.emplace_back();
     if (plan.parameter_is_time) {
@@ -370,6 +418,15 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
       s.driver_values.resize(nd);
       for (int d = 0; d < nd; ++d) s.driver_values[d] = state.drivers[d].value.value();
       s.taylor = state.series.leftCols(terms_out);
+      s.residual = state.residual;
+    } else if (on_singular_position) {
+      // The Jacobian there cannot give the series in time; the tracker's series in the sweep
+      // fraction, re-centred from a regular point before it, can.
+      s.step = i;
+      s.time = plan.sample_time(i);
+      s.driver_values.resize(nd);
+      for (int d = 0; d < nd; ++d) s.driver_values[d] = state.drivers[d].value.value();
+      series_in_time(state.series, *rate, terms_out, s.taylor);
       s.residual = state.residual;
     } else {
       for (int d = 0; d < nd; ++d) now[d] = state.drivers[d].value.value();
@@ -396,7 +453,21 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
         return result;
       }
       const TrackReport tr = track(mech, state, plan.drivers, p, track_options);
-      if (tr.passed_singularity) {
+      // Leaving a sample that lies on a change point crosses it again: said once, at the sample.
+      const bool leaving_singular_sample = on_singular_position && tr.passed_singularity &&
+                                           std::abs(tr.singular_parameter - plan.sample_parameter(i - 1)) <=
+                                               0.5 * std::abs(p - plan.sample_parameter(i - 1));
+      on_singular_position = tr.reached && tr.singular_end;
+      if (on_singular_position) {
+        plan.drivers(p, 1, values);
+        result.warnings.push_back({"change_point_at_sample", static_cast<int>(i),
+                                   "step " + std::to_string(i) + " lies on a singular (change-point) position at " +
+                                       values_text(m, values) +
+                                       ", where the constraints do not fix the velocities: they are those of the "
+                                       "branch the sweep came along, which it follows on (" +
+                                       coasted_accuracy(tr.singular_end_accuracy, terms_out) + ")"});
+      }
+      if (tr.passed_singularity && !leaving_singular_sample) {
         plan.drivers(tr.singular_parameter, 1, values);
         result.warnings.push_back({"change_point_passed", static_cast<int>(i),
                                    "passed a singular (change-point) position " + where() + " near " +

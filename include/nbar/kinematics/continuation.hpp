@@ -19,6 +19,11 @@ using DriverPath = std::function<void(double p, int terms, std::vector<Series>& 
 struct TrackOptions {
   int terms = 4;            // coefficients of the predictor series (order + 1)
   double min_step = 1e-7;   // relative to the interval, below which the path is given up
+  // When p_end lies on a singular position (a change point, where branches cross), take the
+  // series there from a regular point just before it instead of from its singular Jacobian,
+  // accurate in their first `coast_terms` coefficients; 0: never (the end is then accepted as
+  // it comes, or the path given up).
+  int coast_terms = 0;
 };
 
 struct TrackReport {
@@ -26,6 +31,11 @@ struct TrackReport {
   int steps = 0;
   bool passed_singularity = false;  // det(Phi_q) changed sign: a change point was crossed
   double singular_parameter = 0.0;
+  // p_end lies on a singular position: state.series there were re-centred from a regular point
+  // before it on the branch followed, and state.solver() holds that point's factorisation, so
+  // that the next step continues the same branch through the singular position.
+  bool singular_end = false;
+  double singular_end_accuracy = 0.0;  // an estimate of their relative error in q, q', q''
   double limit_parameter = 0.0;     // where the path was given up
   double reciprocal_condition = 0.0;
   std::string reason;

@@ -34,7 +34,7 @@ struct State {
   void swap_solvers() { current_ = 1 - current_; }
 
   // Scratch space reused across steps: no allocation in the hot loop.
-  Eigen::VectorXd phi, dq, rhs, column, q_accepted, q_predicted;
+  Eigen::VectorXd phi, dq, rhs, column, q_accepted, q_predicted, q_track_start;
   std::vector<double> jacobian;
   std::vector<Series> driver_values;
 
