@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -10,6 +12,8 @@
 #include <numbers>
 #include <optional>
 #include <string_view>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "sketch_strokes.hpp"
@@ -177,6 +181,30 @@ class SketchBuilder {
     set.strokes.push_back({std::move(segments), closed, e.line, layer_});
   }
 
+  // The sign of the entity's OCS x axis in the drawing's x. Points of an entity drawn in its
+  // own coordinate system (the arbitrary-axis rule) with the extrusion (0, 0, -1), as SolidWorks
+  // and mirrored AutoCAD geometry write, have x reversed (OCS x = -WCS x, y = WCS y); read as
+  // they stand the part comes in mirrored. Any other extrusion tilts the entity out of the plane.
+  double ocs_x_sign(const Entity& e) const {
+    Eigen::Vector3d n(get_or(e, 210, 0.0), get_or(e, 220, 0.0), get_or(e, 230, 1.0));
+    int line = e.line;
+    for (const Pair& p : e.pairs)
+      if (p.code == 210 || p.code == 220 || p.code == 230) {
+        line = p.line;
+        break;
+      }
+    const double length = n.norm();
+    if (length > 0 && std::isfinite(length)) n /= length;
+    constexpr double kPlane = 1e-9;
+    if (!(length > 0) || std::abs(n.x()) > kPlane || std::abs(n.y()) > kPlane) {
+      reader_.fail(line, fmt::format("this {}'s extrusion direction (groups 210, 220, 230) ({:.6g}, {:.6g}, {:.6g}) "
+                                     "puts it out of the drawing plane: nbar reads 2-D drawings, whose extrusion is "
+                                     "(0, 0, 1) or (0, 0, -1)",
+                                     e.type, get_or(e, 210, 0.0), get_or(e, 220, 0.0), get_or(e, 230, 1.0)));
+    }
+    return n.z() < 0 ? -1.0 : 1.0;
+  }
+
   void line(const Entity& e) {
     const Vector2d a(get(e, 10), get(e, 20)), b(get(e, 11), get(e, 21));
     if (a == b) return;  // a zero-length line joins nothing
@@ -184,11 +212,14 @@ class SketchBuilder {
   }
 
   void arc(const Entity& e) {
-    const Vector2d c(get(e, 10), get(e, 20));
+    const double mirror = ocs_x_sign(e);
+    const Vector2d c(mirror * get(e, 10), get(e, 20));
     const double r = get(e, 40);
     if (!(r > 0)) reader_.fail(e.line, "ARC with a radius that is not positive");
     const double deg = std::numbers::pi / 180;
-    const double from = get(e, 50), to = get(e, 51);
+    double from = get(e, 50), to = get(e, 51);
+    // Mirrored in x, the counterclockwise OCS arc from a1 to a2 is the WCS one from 180 - a2 to 180 - a1.
+    if (mirror < 0) std::tie(from, to) = std::pair(180 - to, 180 - from);
     double sweep = std::fmod(to - from, 360.0);
     if (sweep <= 0) sweep += 360;  // counterclockwise from start to end
     const Vector2d a = c + r * Vector2d(std::cos(from * deg), std::sin(from * deg));
@@ -199,12 +230,15 @@ class SketchBuilder {
   void circle(const Entity& e) {
     const double r = get(e, 40);
     if (!(r > 0)) reader_.fail(e.line, "CIRCLE with a radius that is not positive");
-    set.circles.push_back({{{get(e, 10), get(e, 20)}, r}, e.line, layer_});
+    set.circles.push_back({{{ocs_x_sign(e) * get(e, 10), get(e, 20)}, r}, e.line, layer_});
   }
 
-  // Vertices each with the bulge of the edge it starts, as polylines store them.
-  void add_polyline(const Entity& e, const std::vector<Vector2d>& v, const std::vector<double>& bulges, bool closed) {
+  // Vertices each with the bulge of the edge it starts, as polylines store them, in the
+  // entity's OCS: mirrored in x (ocs_x_sign), an arc turns the other way.
+  void add_polyline(const Entity& e, std::vector<Vector2d> v, std::vector<double> bulges, bool closed, double mirror) {
     if (v.size() < 2) reader_.fail(e.line, e.type + " with fewer than 2 vertices");
+    for (Vector2d& p : v) p.x() *= mirror;
+    for (double& b : bulges) b *= mirror;
     std::vector<Segment> segments;
     for (std::size_t i = 0; i + 1 < v.size(); ++i) {
       if (v[i] != v[i + 1]) segments.push_back({v[i], v[i + 1], bulges[i]});
@@ -227,7 +261,7 @@ class SketchBuilder {
       if (p.code == 20 && !v.empty()) v.back().y() = reader_.number(p);
       if (p.code == 42 && !v.empty()) bulges.back() = reader_.number(p);
     }
-    add_polyline(e, v, bulges, (flags & 1) != 0);
+    add_polyline(e, std::move(v), std::move(bulges), (flags & 1) != 0, ocs_x_sign(e));
   }
 
   void polyline() {
@@ -240,7 +274,9 @@ class SketchBuilder {
       bulges.push_back(get_or(vertex, 42, 0.0));
     }
     layer_ = layer_of(e);
-    add_polyline(e, v, bulges, (flags & 1) != 0);
+    // A 3-D polyline (8), mesh (16) or polyface (64) has its vertices in the WCS; a 2-D one in its OCS.
+    const double mirror = (flags & (8 | 16 | 64)) != 0 ? 1.0 : ocs_x_sign(e);
+    add_polyline(e, std::move(v), std::move(bulges), (flags & 1) != 0, mirror);
     polyline_.reset();
   }
 
@@ -283,7 +319,9 @@ class SketchBuilder {
     const double from = get_or(e, 41, 0.0);
     double to = get_or(e, 42, 2 * std::numbers::pi);
     while (to <= from) to += 2 * std::numbers::pi;
-    const Vector2d minor = ratio * Vector2d(-major.y(), major.x());
+    // The centre and major axis are in the WCS, but the minor axis is the extrusion x the major:
+    // with the extrusion (0, 0, -1) the ellipse runs the other way round.
+    const Vector2d minor = ocs_x_sign(e) * ratio * Vector2d(-major.y(), major.x());
     const auto point = [c, major, minor](double t) { return Vector2d(c + std::cos(t) * major + std::sin(t) * minor); };
     const bool whole = to - from >= 2 * std::numbers::pi - 1e-12;
     if (whole) to = from + 2 * std::numbers::pi;

@@ -95,6 +95,99 @@ TEST(DxfReader, BadFilesAtTheirLine) {
   EXPECT_THAT(message(dxf({{0, "SECTION"}, {2, "ENTITIES"}, {0, "ENDSEC"}, {0, "EOF"}})), HasSubstr("no closed outline"));
 }
 
+// The entities between an ENTITIES section's head and the file's end.
+std::string entities(const std::string& body) {
+  return dxf({{0, "SECTION"}, {2, "ENTITIES"}}) + body + dxf({{0, "ENDSEC"}, {0, "EOF"}});
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    read_dxf_plate(text, "bad.dxf", 1e-3);
+  } catch (const ModelFileError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// Entities drawn in their own coordinate system with the extrusion (0, 0, -1), as SolidWorks
+// writes them: OCS x is -x of the drawing, so each is drawn here at negated x and must come
+// back where the plain drawing has it, not mirrored.
+TEST(DxfReader, ExtrusionDownwardsMirrorsTheOcs) {
+  // An L: 60 x 20 along x and 20 x 40 above its left end; area 2000, centroid
+  // ((1200 * 30 + 800 * 10) / 2000, the same in y) = (22, 22).
+  const std::string l_shape =
+      dxf({{0, "LWPOLYLINE"}, {8, "0"}, {90, "6"}, {70, "1"}, {210, "0"}, {220, "0"}, {230, "-1"},
+           {10, "0"}, {20, "0"}, {10, "-60"}, {20, "0"}, {10, "-60"}, {20, "20"}, {10, "-20"}, {20, "20"},
+           {10, "-20"}, {20, "60"}, {10, "0"}, {20, "60"}});
+  const AreaProperties l = area_properties(read_dxf_plate(entities(l_shape), "l.dxf", 1e-3));
+  EXPECT_NEAR(l.area, 2000, 1e-9);
+  EXPECT_NEAR(l.centroid.x(), 22, 1e-12);
+  EXPECT_NEAR(l.centroid.y(), 22, 1e-12);
+  // The same L as an R12 POLYLINE, its bulge on the top edge: a half disc of radius 10 bulging
+  // up over x 0..20 (OCS x 0..-20, drawn clockwise there, so its bulge is -1).
+  const std::string r12 =
+      dxf({{0, "POLYLINE"}, {8, "0"}, {66, "1"}, {70, "1"}, {210, "0"}, {220, "0"}, {230, "-1"},
+           {0, "VERTEX"}, {10, "0"}, {20, "0"}, {0, "VERTEX"}, {10, "-60"}, {20, "0"},
+           {0, "VERTEX"}, {10, "-60"}, {20, "20"}, {0, "VERTEX"}, {10, "-20"}, {20, "20"},
+           {0, "VERTEX"}, {10, "-20"}, {20, "60"}, {42, "-1"}, {0, "VERTEX"}, {10, "0"}, {20, "60"}, {0, "SEQEND"}});
+  const AreaProperties p = area_properties(read_dxf_plate(entities(r12), "p.dxf", 1e-3));
+  const double half_disc = kPi * 100 / 2;
+  EXPECT_NEAR(p.area, 2000 + half_disc, 1e-9);
+  EXPECT_NEAR(p.centroid.x(), (2000 * 22 + half_disc * 10) / (2000 + half_disc), 1e-12);
+  EXPECT_NEAR(p.centroid.y(), (2000 * 22 + half_disc * (60 + 40 / (3 * kPi))) / (2000 + half_disc), 1e-12);
+
+  // A 100 x 40 plate about the origin with a hole of radius 10 at (30, 0): centroid
+  // x = -(100 pi * 30) / (4000 - 100 pi) = -2.557.
+  const std::string plate_with_hole =
+      dxf({{0, "LWPOLYLINE"}, {8, "0"}, {90, "4"}, {70, "1"}, {10, "-50"}, {20, "-20"}, {10, "50"}, {20, "-20"},
+           {10, "50"}, {20, "20"}, {10, "-50"}, {20, "20"},
+           {0, "CIRCLE"}, {8, "0"}, {10, "-30"}, {20, "0"}, {40, "10"}, {210, "0"}, {220, "0"}, {230, "-1"}});
+  const AreaProperties c = area_properties(read_dxf_plate(entities(plate_with_hole), "c.dxf", 1e-3));
+  EXPECT_NEAR(c.centroid.x(), -100 * kPi * 30 / (4000 - 100 * kPi), 1e-12);
+  EXPECT_NEAR(c.centroid.x(), -2.557, 1e-3);
+
+  // The slot of kSlotLinesArcs with its right end an OCS arc: centre (-80, 0) and 90 to 270
+  // degrees there are (80, 0) and -90 to 90 degrees here.
+  const std::string slot =
+      dxf({{0, "LINE"}, {10, "0"}, {20, "-10"}, {11, "80"}, {21, "-10"},
+           {0, "ARC"}, {10, "-80"}, {20, "0"}, {40, "10"}, {50, "90"}, {51, "270"}, {210, "0"}, {220, "0"}, {230, "-1"},
+           {0, "LINE"}, {10, "80"}, {20, "10"}, {11, "0"}, {21, "10"},
+           {0, "ARC"}, {10, "0"}, {20, "0"}, {40, "10"}, {50, "90"}, {51, "270"},
+           {0, "CIRCLE"}, {10, "80"}, {20, "0"}, {40, "5"}});
+  const AreaProperties a = area_properties(read_dxf_plate(entities(slot), "a.dxf", 1e-3));
+  EXPECT_NEAR(a.area, slot_area(), 1e-9);
+  EXPECT_NEAR(a.centroid.x(), (1600 * 40 + kPi * 100 * 40 - kPi * 25 * 80) / slot_area(), 1e-9);
+
+  // The lower half of the ellipse with semi-axes 50 and 25 closed by its diameter: the major
+  // axis (-50, 0) is in the drawing's coordinates, the minor is the extrusion x the major,
+  // (0, 25), so the parameters pi..2 pi run below the axis: centroid y = -4 * 25 / (3 pi) = -10.61.
+  const std::string half_ellipse =
+      dxf({{0, "ELLIPSE"}, {10, "0"}, {20, "0"}, {11, "-50"}, {21, "0"}, {210, "0"}, {220, "0"}, {230, "-1"},
+           {40, "0.5"}, {41, "3.141592653589793"}, {42, "6.283185307179586"},
+           {0, "LINE"}, {10, "-50"}, {20, "0"}, {11, "50"}, {21, "0"}});
+  const AreaProperties e = area_properties(read_dxf_plate(entities(half_ellipse), "e.dxf", 1e-3));
+  EXPECT_NEAR(e.area, kPi * 50 * 25 / 2, 1e-3 * e.area);  // polygonised within 1e-4 of the size
+  EXPECT_NEAR(e.centroid.y(), -4 * 25 / (3 * kPi), 1e-2);
+  EXPECT_NEAR(e.centroid.x(), 0, 1e-9);
+}
+
+TEST(DxfReader, ExtrusionOutOfThePlaneIsAnError) {
+  // Tilted about y: the circle is an ellipse in the plane, which nbar will not guess.
+  EXPECT_THAT(error_of(entities(dxf({{0, "CIRCLE"}, {10, "0"}, {20, "0"}, {40, "10"},
+                                     {210, "0.6"}, {220, "0"}, {230, "0.8"}}))),
+              HasSubstr("bad.dxf:13:1: this CIRCLE's extrusion direction (groups 210, 220, 230) (0.6, 0, 0.8) puts "
+                        "it out of the drawing plane"));
+  // Within rounding of (0, 0, -1), unnormalised, is (0, 0, -1).
+  const std::string round_hole =
+      dxf({{0, "LWPOLYLINE"}, {90, "4"}, {70, "1"}, {10, "0"}, {20, "0"}, {10, "10"}, {20, "0"},
+           {10, "10"}, {20, "10"}, {10, "0"}, {20, "10"},
+           {0, "CIRCLE"}, {10, "-3"}, {20, "5"}, {40, "1"}, {210, "1e-17"}, {220, "0"}, {230, "-2"}});
+  EXPECT_EQ(read_dxf_plate(entities(round_hole), "r.dxf", 1e-3).circle_holes.at(0).centre.x(), 3);
+  EXPECT_THAT(error_of(entities(dxf({{0, "CIRCLE"}, {10, "0"}, {20, "0"}, {40, "10"},
+                                     {210, "0"}, {220, "0"}, {230, "0"}}))),
+              HasSubstr("bad.dxf:13:1: this CIRCLE's extrusion direction"));
+}
+
 class TempDir {
  public:
   TempDir() : dir_(std::filesystem::temp_directory_path() / ("nbar_dxf_" + std::to_string(::getpid()))) {
