@@ -105,14 +105,32 @@ using sketch_detail::StrokeSet;
 // becomes one no code means.
 int whole(double v) { return std::abs(v) < 1e9 ? static_cast<int>(v) : -1; }
 
-// DXF $INSUNITS codes nbar knows, in metres.
+// The metres in a unit of the DXF $INSUNITS codes: 0 is unitless (the model's unit), codes past
+// 21 are no unit.
 std::optional<double> insunits_metres(int code) {
+  constexpr double kInch = 0.0254;
   switch (code) {
-    case 1: return 0.0254;
-    case 2: return 0.3048;
+    case 1: return kInch;
+    case 2: return 12 * kInch;
+    case 3: return 63360 * kInch;  // mile
     case 4: return 1e-3;
     case 5: return 1e-2;
     case 6: return 1.0;
+    case 7: return 1e3;
+    case 8: return 1e-6 * kInch;  // microinch
+    case 9: return 1e-3 * kInch;  // mil
+    case 10: return 36 * kInch;   // yard
+    case 11: return 1e-10;        // angstrom
+    case 12: return 1e-9;
+    case 13: return 1e-6;
+    case 14: return 1e-1;
+    case 15: return 1e1;
+    case 16: return 1e2;
+    case 17: return 1e9;
+    case 18: return 1.495978707e11;      // astronomical unit (IAU 2012)
+    case 19: return 9.4607304725808e15;  // light year (Julian)
+    case 20: return 3.0856775814913673e16;  // parsec
+    case 21: return 1200.0 / 3937.0;     // US survey foot
     default: return std::nullopt;
   }
 }
@@ -383,7 +401,13 @@ StrokeSet read_dxf_strokes(const std::string& text, const std::string& file_name
       break;
     }
     if (section == "HEADER" && p.code == 9 && p.value == "$INSUNITS" && i + 1 < pairs.size()) {
-      builder.set.metres_per_unit = insunits_metres(whole(reader.number(pairs[i + 1])));
+      const int code = whole(reader.number(pairs[i + 1]));
+      if (code < 0 || code > 21) {
+        reader.fail(pairs[i + 1].line + 1, fmt::format("$INSUNITS {} is no DXF unit (0 unitless, 1 inches to 21 US "
+                                                       "survey feet)",
+                                                       pairs[i + 1].value));
+      }
+      builder.set.metres_per_unit = insunits_metres(code);
       continue;
     }
     if (section != "ENTITIES") continue;

@@ -4,6 +4,7 @@
 #include "nbar/io/dxf_reader.hpp"
 #include "nbar/io/dxf_writer.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/io/sketch.hpp"
 #include "nbar/model/diagnostics.hpp"
 
 #include <gmock/gmock.h>
@@ -15,6 +16,8 @@
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace nbar::io {
 namespace {
@@ -186,6 +189,36 @@ TEST(DxfReader, ExtrusionOutOfThePlaneIsAnError) {
   EXPECT_THAT(error_of(entities(dxf({{0, "CIRCLE"}, {10, "0"}, {20, "0"}, {40, "10"},
                                      {210, "0"}, {220, "0"}, {230, "0"}}))),
               HasSubstr("bad.dxf:13:1: this CIRCLE's extrusion direction"));
+}
+
+// A rounded 1 x 0.5 rectangle (corner radius 0.1) with holes of radius 0.05 and 0.08, in the
+// unit $INSUNITS `code` states.
+std::string rounded_plate(const std::string& code) {
+  return dxf({{0, "SECTION"}, {2, "HEADER"}, {9, "$INSUNITS"}, {70, code}, {0, "ENDSEC"}}) +
+         entities(dxf({{0, "LWPOLYLINE"}, {90, "8"}, {70, "1"},
+                       {10, "0.1"}, {20, "0"}, {10, "0.9"}, {20, "0"}, {42, "0.41421356237309503"},
+                       {10, "1"}, {20, "0.1"}, {10, "1"}, {20, "0.4"}, {42, "0.41421356237309503"},
+                       {10, "0.9"}, {20, "0.5"}, {10, "0.1"}, {20, "0.5"}, {42, "0.41421356237309503"},
+                       {10, "0"}, {20, "0.4"}, {10, "0"}, {20, "0.1"}, {42, "0.41421356237309503"},
+                       {0, "CIRCLE"}, {10, "0.2"}, {20, "0.25"}, {40, "0.05"},
+                       {0, "CIRCLE"}, {10, "0.75"}, {20, "0.3"}, {40, "0.08"}}));
+}
+
+TEST(DxfReader, EveryInsunitsCode) {
+  // In decimetres read into mm: 100 x 50 less the four corners' (4 - pi) 10^2 and the holes
+  // pi (5^2 + 8^2): 4634.56 mm^2.
+  const double area_mm2 = 5000 - (4 - kPi) * 100 - kPi * (25 + 64);
+  EXPECT_NEAR(area_properties(read_dxf_plate(rounded_plate("14"), "dm.dxf", 1e-3)).area, area_mm2, 1e-9);
+  EXPECT_NEAR(area_mm2, 4634.56, 5e-3);
+  const std::vector<std::pair<std::string, double>> metres = {
+      {"3", 1609.344}, {"7", 1000}, {"8", 2.54e-8}, {"9", 2.54e-5}, {"10", 0.9144}, {"11", 1e-10},
+      {"12", 1e-9}, {"13", 1e-6}, {"14", 0.1}, {"15", 10}, {"16", 100}, {"17", 1e9}, {"18", 149597870700},
+      {"19", 9460730472580800}, {"20", 3.0856775814913673e16}, {"21", 1200.0 / 3937}};
+  for (const auto& [code, m] : metres) {
+    EXPECT_DOUBLE_EQ(*read_sketch(rounded_plate(code), "u.dxf", SketchFormat::kDxf).metres_per_unit, m) << code;
+  }
+  EXPECT_FALSE(read_sketch(rounded_plate("0"), "u.dxf", SketchFormat::kDxf).metres_per_unit);
+  EXPECT_THAT(error_of(rounded_plate("22")), HasSubstr("bad.dxf:8:1: $INSUNITS 22 is no DXF unit"));
 }
 
 class TempDir {
