@@ -358,6 +358,13 @@ bool same_layer(std::string_view a, std::string_view b) {
          });
 }
 
+// Paper space (group 67 = 1) holds the sheet's frame, title block and viewports onto the model,
+// not the part; a VIEWPORT is a window onto model space wherever it is.
+bool in_model_space(const Entity& e) {
+  if (e.type == "VIEWPORT") return false;
+  return std::none_of(e.pairs.begin(), e.pairs.end(), [](const Pair& p) { return p.code == 67 && p.value == "1"; });
+}
+
 bool on_layer(const Entity& e, const std::string& layer) {
   if (layer.empty()) return true;
   for (const Pair& p : e.pairs)
@@ -383,8 +390,9 @@ StrokeSet read_dxf_strokes(const std::string& text, const std::string& file_name
     if (p.code == 0 && current) {
       // A polyline's VERTEXes and SEQEND follow its layer.
       const bool part = current->type == "VERTEX" || current->type == "SEQEND";
-      if (part ? polyline_kept : on_layer(*current, layer)) builder.add(*current);
-      if (current->type == "POLYLINE") polyline_kept = on_layer(*current, layer);
+      const bool kept = in_model_space(*current) && on_layer(*current, layer);
+      if (part ? polyline_kept : kept) builder.add(*current);
+      if (current->type == "POLYLINE") polyline_kept = kept;
       current.reset();
     }
     if (p.code == 0 && p.value == "SECTION") {

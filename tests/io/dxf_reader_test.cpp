@@ -221,6 +221,32 @@ TEST(DxfReader, EveryInsunitsCode) {
   EXPECT_THAT(error_of(rounded_plate("22")), HasSubstr("bad.dxf:8:1: $INSUNITS 22 is no DXF unit"));
 }
 
+TEST(DxfReader, PaperSpaceAndViewportsAreLeftOut) {
+  // A 100 x 40 plate with two pin holes in model space; a sheet's frame, a title block and a
+  // viewport onto the model in paper space.
+  const std::string model_space =
+      dxf({{0, "LWPOLYLINE"}, {8, "0"}, {90, "4"}, {70, "1"}, {10, "0"}, {20, "0"}, {10, "100"}, {20, "0"},
+           {10, "100"}, {20, "40"}, {10, "0"}, {20, "40"},
+           {0, "CIRCLE"}, {10, "20"}, {20, "20"}, {40, "5"}, {0, "CIRCLE"}, {10, "80"}, {20, "20"}, {40, "5"}});
+  const std::string paper_space =
+      dxf({{0, "VIEWPORT"}, {67, "1"}, {8, "0"}, {10, "148.5"}, {20, "105"}, {40, "297"}, {41, "210"}, {69, "1"},
+           {0, "VIEWPORT"}, {8, "0"}, {10, "148.5"}, {20, "105"}, {40, "297"}, {41, "210"}, {69, "2"},
+           {0, "LINE"}, {67, "1"}, {10, "0"}, {20, "0"}, {11, "420"}, {21, "0"},
+           {0, "LINE"}, {67, "1"}, {10, "420"}, {20, "0"}, {11, "420"}, {21, "297"},
+           {0, "LINE"}, {67, "1"}, {10, "420"}, {20, "297"}, {11, "0"}, {21, "297"},
+           {0, "LINE"}, {67, "1"}, {10, "0"}, {20, "297"}, {11, "0"}, {21, "0"},
+           {0, "LWPOLYLINE"}, {67, "1"}, {90, "4"}, {70, "1"}, {10, "300"}, {20, "100"}, {10, "350"}, {20, "100"},
+           {10, "350"}, {20, "120"}, {10, "300"}, {20, "120"},
+           {0, "POLYLINE"}, {67, "1"}, {66, "1"}, {70, "1"}, {0, "VERTEX"}, {67, "1"}, {10, "300"}, {20, "200"},
+           {0, "VERTEX"}, {67, "1"}, {10, "310"}, {20, "200"}, {0, "VERTEX"}, {67, "1"}, {10, "310"}, {20, "210"},
+           {0, "SEQEND"}, {67, "1"}});
+  const Region r = read_dxf_plate(entities(paper_space + model_space), "sheet.dxf", 1e-3);
+  EXPECT_TRUE(r.polygon_holes.empty());
+  EXPECT_EQ(r.circle_holes.size(), 2u);
+  EXPECT_NEAR(area_properties(r).area, 4000 - 2 * kPi * 25, 1e-9);
+  EXPECT_NEAR(area_properties(r).centroid.x(), 50, 1e-12);
+}
+
 class TempDir {
  public:
   TempDir() : dir_(std::filesystem::temp_directory_path() / ("nbar_dxf_" + std::to_string(::getpid()))) {
