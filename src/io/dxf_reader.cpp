@@ -41,7 +41,13 @@ std::string_view trimmed(std::string_view s) {
 
 class Reader {
  public:
-  Reader(const std::string& text, const std::string& file) : file_(file) { split(text); }
+  Reader(const std::string& text, const std::string& file) : file_(file) {
+    constexpr std::string_view kBinary = "AutoCAD Binary DXF";
+    if (text.starts_with(kBinary)) fail(1, "binary DXF is not supported: save the drawing as ASCII DXF");
+    // Windows editors may start a UTF-8 file with a byte-order mark, which is no part of the first group code.
+    constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+    split(text.starts_with(kByteOrderMark) ? text.substr(kByteOrderMark.size()) : text);
+  }
 
   [[noreturn]] void fail(int line, const std::string& message) const {
     throw ModelFileError(file_, SourceMark{line, 1}, message);
@@ -241,6 +247,13 @@ class SketchBuilder {
     double sweep = std::fmod(to - from, 360.0);
     if (sweep <= 0) sweep += 360;  // counterclockwise from start to end
     const Vector2d a = c + r * Vector2d(std::cos(from * deg), std::sin(from * deg));
+    if (sweep >= 360 - 1e-9) {
+      // Round from its start back to it (0 to 360): a loop of its own, as two half circles,
+      // since one edge from a point to itself has no chord to bulge from.
+      const Vector2d opposite = 2 * c - a;
+      add_stroke(e, {{a, opposite, 1.0}, {opposite, a, 1.0}}, true);
+      return;
+    }
     const Vector2d b = c + r * Vector2d(std::cos(to * deg), std::sin(to * deg));
     add_stroke(e, {{a, b, std::tan(sweep * deg / 4)}}, false);
   }

@@ -247,6 +247,28 @@ TEST(DxfReader, PaperSpaceAndViewportsAreLeftOut) {
   EXPECT_NEAR(area_properties(r).centroid.x(), 50, 1e-12);
 }
 
+TEST(DxfReader, ByteOrderMarkBinaryDxfAndAWholeArc) {
+  // A disc of radius 10 about (50, 0) drawn as an ARC from 0 to 360 degrees, with a pin hole of
+  // radius 3: pi (100 - 9).
+  const std::string disc = entities(dxf({{0, "ARC"}, {10, "50"}, {20, "0"}, {40, "10"}, {50, "0"}, {51, "360"},
+                                         {0, "CIRCLE"}, {10, "50"}, {20, "0"}, {40, "3"}}));
+  const Region r = read_dxf_plate("\xEF\xBB\xBF" + disc, "bom.dxf", 1e-3);
+  EXPECT_NEAR(area_properties(r).area, kPi * 91, 1e-9);
+  EXPECT_NEAR(area_properties(r).centroid.x(), 50, 1e-12);
+  EXPECT_EQ(r.circle_holes.size(), 1u);
+  // The same arc inside a square is a round hole (exact, as bulges), and reversed (360 to 0) too.
+  for (const std::string& angles : {std::string("0\n51\n360"), std::string("360\n51\n0")}) {
+    const std::string arc_hole = "0\nARC\n10\n50\n20\n0\n40\n10\n50\n" + angles + "\n";
+    const Region square = read_dxf_plate(
+        entities(dxf({{0, "LWPOLYLINE"}, {90, "4"}, {70, "1"}, {10, "30"}, {20, "-20"}, {10, "70"}, {20, "-20"},
+                      {10, "70"}, {20, "20"}, {10, "30"}, {20, "20"}}) + arc_hole),
+        "hole.dxf", 1e-3);
+    EXPECT_NEAR(area_properties(square).area, 1600 - kPi * 100, 1e-9) << angles;
+  }
+  EXPECT_THAT(error_of(std::string("AutoCAD Binary DXF\r\n\x1a") + '\0' + "SECTION"),
+              HasSubstr("bad.dxf:1:1: binary DXF is not supported: save the drawing as ASCII DXF"));
+}
+
 class TempDir {
  public:
   TempDir() : dir_(std::filesystem::temp_directory_path() / ("nbar_dxf_" + std::to_string(::getpid()))) {
