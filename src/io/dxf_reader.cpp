@@ -301,6 +301,9 @@ class SketchBuilder {
     std::vector<Vector2d> v;
     std::vector<double> bulges;
     for (const Entity& vertex : vertices_) {
+      // A spline-fit polyline (flag 4) keeps the frame it was fitted to as vertices flagged 16
+      // after the fitted ones; the outline is the fitted curve alone.
+      if ((whole(get_or(vertex, 70, 0)) & 16) != 0) continue;
       v.emplace_back(get(vertex, 10), get(vertex, 20));
       bulges.push_back(get_or(vertex, 42, 0.0));
     }

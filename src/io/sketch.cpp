@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 
@@ -142,6 +143,42 @@ SketchLoop polygonised_loop(const Chained& c, double tolerance, const std::strin
   return loop;
 }
 
+double cross(const Vector2d& u, const Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+// Where the closed segments ab and cd meet, if they do: the crossing, or where they overlap.
+std::optional<Vector2d> meeting_point(const Vector2d& a, const Vector2d& b, const Vector2d& c, const Vector2d& d) {
+  const Vector2d u = b - a, v = d - c;
+  const double denominator = cross(u, v);
+  if (denominator != 0) {
+    const double t = cross(c - a, v) / denominator, s = cross(c - a, u) / denominator;
+    if (t < 0 || t > 1 || s < 0 || s > 1) return std::nullopt;
+    return Vector2d(a + t * u);
+  }
+  if (cross(c - a, u) != 0) return std::nullopt;  // parallel, apart
+  const auto on = [](const Vector2d& p, const Vector2d& from, const Vector2d& to) {
+    return (p - from).dot(to - from) >= 0 && (p - to).dot(from - to) >= 0;
+  };
+  for (const Vector2d& p : {c, d}) {
+    if (on(p, a, b)) return p;
+  }
+  if (on(a, c, d)) return a;
+  return std::nullopt;
+}
+
+// The first point where two edges of the loop, arcs cut into chords, that are not neighbours
+// meet: where it crosses itself.
+std::optional<Vector2d> crossing_of(const Region& r) {
+  const std::vector<Vector2d> p = straight_edged(r).outline;
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;
+      if (auto at = meeting_point(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n])) return at;
+    }
+  }
+  return std::nullopt;
+}
+
 // A loop that crosses itself (or is otherwise no outline) is reported at its entities' lines.
 void check_loop(const SketchLoop& loop, const std::string& file) {
   Region r;
@@ -157,8 +194,13 @@ void check_loop(const SketchLoop& loop, const std::string& file) {
     if (edges.size() == 2 && message.find(" meets ") != std::string::npos) {
       const std::size_t i = edges[0].from, k = edges[1].from;
       if (i < loop.lines.size() && k < loop.lines.size()) {
-        fail_at(file, loop.lines[i], "the outline crosses itself: the entity here meets the one at line " +
-                                         std::to_string(loop.lines[k]));
+        const std::optional<Vector2d> at = crossing_of(r);
+        const std::string where = at ? fmt::format(" at ({:.6g}, {:.6g})", at->x(), at->y()) : std::string();
+        // One entity (a polyline) may draw the whole loop: then naming its own line again says nothing.
+        const std::string which = loop.lines[i] == loop.lines[k]
+                                      ? std::string(", within the entity here")
+                                      : ": the entity here meets the one at line " + std::to_string(loop.lines[k]);
+        fail_at(file, loop.lines[i], "the outline crosses itself" + where + which);
       }
     }
     fail_at(file, loop.lines.empty() ? 1 : loop.lines.front(), "the loop starting here is not an outline: " + message);

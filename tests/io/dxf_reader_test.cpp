@@ -269,6 +269,34 @@ TEST(DxfReader, ByteOrderMarkBinaryDxfAndAWholeArc) {
               HasSubstr("bad.dxf:1:1: binary DXF is not supported: save the drawing as ASCII DXF"));
 }
 
+TEST(DxfReader, SplineFitPolylineLeavesItsFrameOut) {
+  // An R12 spline-fit POLYLINE (flag 4): the fitted vertices (flag 8) make an octagon, then the
+  // frame's control points (flag 16) a 100 x 50 rectangle about it. The octagon: the rectangle
+  // 80 x 40 from (10, 5), triangles of base 80 and height 3 below and above, of base 40 and
+  // height 7 left and right: 3200 + 2 * 120 + 2 * 140 = 3720.
+  std::string polyline = dxf({{0, "POLYLINE"}, {66, "1"}, {70, "5"}, {75, "6"}});
+  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{10, 5}, {50, 2}, {90, 5}, {97, 25}, {90, 45}, {50, 48},
+                                                              {10, 45}, {3, 25}}) {
+    polyline += dxf({{0, "VERTEX"}, {10, std::to_string(x)}, {20, std::to_string(y)}, {70, "8"}});
+  }
+  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{0, 0}, {100, 0}, {100, 50}, {0, 50}}) {
+    polyline += dxf({{0, "VERTEX"}, {10, std::to_string(x)}, {20, std::to_string(y)}, {70, "16"}});
+  }
+  polyline += dxf({{0, "SEQEND"}});
+  const Region r = read_dxf_plate(entities(polyline), "fit.dxf", 1e-3);
+  EXPECT_EQ(r.outline.size(), 8u);
+  EXPECT_NEAR(area_properties(r).area, 3720, 1e-9);
+  EXPECT_NEAR(area_properties(r).centroid.x(), 50, 1e-12);
+}
+
+TEST(DxfReader, ABowTiePolylineCrossesItselfAtAPoint) {
+  // One closed LWPOLYLINE (line 5) drawn (0, 0), (100, 40), (100, 0), (0, 40): its diagonals
+  // cross at (50, 20).
+  EXPECT_THAT(error_of(entities(dxf({{0, "LWPOLYLINE"}, {90, "4"}, {70, "1"}, {10, "0"}, {20, "0"}, {10, "100"},
+                                     {20, "40"}, {10, "100"}, {20, "0"}, {10, "0"}, {20, "40"}}))),
+              HasSubstr("bad.dxf:5:1: the outline crosses itself at (50, 20), within the entity here"));
+}
+
 class TempDir {
  public:
   TempDir() : dir_(std::filesystem::temp_directory_path() / ("nbar_dxf_" + std::to_string(::getpid()))) {

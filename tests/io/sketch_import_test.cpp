@@ -138,10 +138,10 @@ TEST(SketchImport, BadFilesAtTheirLine) {
   // An open loop: the last LINE stops short of the start.
   EXPECT_THAT(error_of("X, Y\nNew_Line\n0, 0\n10, 0\nNew_Line\n10, 0\n10, 10\nNew_Line\n10, 10\n0, 1\n", "o.csv"),
               HasSubstr("o.csv:8:1: the outline is not closed"));
-  // A bow tie: the outline crosses itself, between the entities at lines 2 and 8.
+  // A bow tie: the outline crosses itself at (5, 5), between the entities at lines 2 and 8.
   EXPECT_THAT(error_of("X, Y\nNew_A\n0, 0\n10, 10\nNew_B\n10, 10\n10, 0\nNew_C\n10, 0\n0, 10\nNew_D\n0, 10\n0, 0\n",
                        "x.csv"),
-              HasSubstr("x.csv:2:1: the outline crosses itself: the entity here meets the one at line 8"));
+              HasSubstr("x.csv:2:1: the outline crosses itself at (5, 5): the entity here meets the one at line 8"));
   EXPECT_THAT(error_of("<svg><path d=\"M 0 0 L 10 0 L 10 10 X\"/></svg>", "p.svg"),
               HasSubstr("p.svg:1:1: path data: unknown command 'X'"));
   EXPECT_THAT(error_of("<svg>\n<g transform=\"rotate(30)\">\n</g></svg>", "t.svg"),
