@@ -40,6 +40,37 @@ bool inside(const std::vector<Vector2d>& polygon, const Vector2d& p) {
   return in;
 }
 
+double orient(const Vector2d& a, const Vector2d& b, const Vector2d& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+// Whether the closed segments ab and cd have a point in common (crossing or touching).
+bool segments_meet(const Vector2d& a, const Vector2d& b, const Vector2d& c, const Vector2d& d) {
+  const double d1 = orient(c, d, a), d2 = orient(c, d, b), d3 = orient(a, b, c), d4 = orient(a, b, d);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
+  const auto on = [](const Vector2d& p, const Vector2d& q, const Vector2d& r) {  // r on pq, given collinear
+    return std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) && std::min(p.y(), q.y()) <= r.y() &&
+           r.y() <= std::max(p.y(), q.y());
+  };
+  return (d1 == 0 && on(c, d, a)) || (d2 == 0 && on(c, d, b)) || (d3 == 0 && on(a, b, c)) || (d4 == 0 && on(a, b, d));
+}
+
+bool edges_meet(const std::vector<Vector2d>& p, const std::vector<Vector2d>& q) {
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = 0; j < q.size(); ++j) {
+      if (segments_meet(p[i], p[(i + 1) % p.size()], q[j], q[(j + 1) % q.size()])) return true;
+    }
+  }
+  return false;
+}
+
+// Whether `inner` lies wholly inside `outer`: a vertex inside is not enough, as two links
+// drawn overlapping at their joint each have vertices inside the other.
+bool wholly_inside(const std::vector<Vector2d>& inner, const std::vector<Vector2d>& outer) {
+  return std::all_of(inner.begin(), inner.end(), [&](const Vector2d& v) { return inside(outer, v); }) &&
+         !edges_meet(inner, outer);
+}
+
 double tidy(double v) {
   const double t = std::round(v * 1e9) / 1e9;
   return t == 0.0 ? 0.0 : t;
@@ -85,12 +116,29 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
       hi = hi.cwiseMax(v);
     }
   }
-  // Each loop's parent: the smallest loop that contains it.
+  // Each loop's containers, wholly around it; they must nest in turn, or the outline lies in
+  // two that cross and could be a hole of either.
+  std::vector<std::vector<bool>> contains(n, std::vector<bool>(n, false));
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t i = 0; i < n; ++i) {
+      contains[j][i] = i != j && areas[j] > areas[i] && wholly_inside(polygons[i], polygons[j]);
+    }
+  }
+  const auto crossing = [&](std::size_t i, std::size_t a, std::size_t b) {
+    return Error(ErrorKind::InvalidModel,
+                 fmt::format("this outline lies inside two outlines that cross (at lines {} and {}); outlines must "
+                             "nest, a plate holding holes, or stand apart",
+                             sketch.loops[std::min(a, b)].lines.front(), sketch.loops[std::max(a, b)].lines.front()),
+                 {}, options.source_name, {sketch.loops[i].lines.front(), 1});
+  };
   std::vector<int> parent(n, -1);
   std::vector<int> depth(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
-      if (i == j || !(areas[j] > areas[i]) || !inside(polygons[j], polygons[i].front())) continue;
+      if (!contains[j][i]) continue;
+      for (std::size_t k = 0; k < j; ++k) {
+        if (contains[k][i] && !contains[j][k] && !contains[k][j]) throw crossing(i, k, j);
+      }
       ++depth[i];
       if (parent[i] < 0 || areas[j] < areas[static_cast<std::size_t>(parent[i])]) parent[i] = static_cast<int>(j);
     }
@@ -102,16 +150,17 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     body_of_loop[i] = bodies.size();
     bodies.push_back({i, "", {}, {}, {}});
   }
+  // Containers that nest alternate plate, hole, plate: an odd depth's smallest container is a
+  // plate, unless rounding made containment disagree with itself.
   for (std::size_t i = 0; i < n; ++i) {
     if (depth[i] % 2 == 0) continue;
-    // Nested outlines alternate plate, hole, plate; a hole whose smallest container is itself a
-    // hole can only come from outlines that cross.
-    const auto body = body_of_loop.find(static_cast<std::size_t>(parent[i]));
+    const auto p = static_cast<std::size_t>(parent[i]);
+    const auto body = body_of_loop.find(p);
     if (body == body_of_loop.end()) {
       throw Error(ErrorKind::InvalidModel,
-                  fmt::format("this outline crosses another (the one at line {}); outlines must nest, a plate "
-                              "holding holes, or stand apart",
-                              sketch.loops[static_cast<std::size_t>(parent[i])].lines.front()),
+                  fmt::format("this outline lies in the hole at line {}, which only outlines that cross make; "
+                              "outlines must nest, a plate holding holes, or stand apart",
+                              sketch.loops[p].lines.front()),
                   {}, options.source_name, {sketch.loops[i].lines.front(), 1});
     }
     bodies[body->second].holes.push_back(i);

@@ -151,19 +151,18 @@ TEST(SketchImport, BadFilesAtTheirLine) {
 }
 
 TEST(SketchImport, CrossingOutlinesAreRefusedAtTheirLine) {
-  // A plate, a larger-than-a-hole square crossing its right edge, and a small square inside the
-  // second only: the small one's smallest container is a "hole", which only crossing makes.
+  // Two plates that cross, and a small square inside both: it could be a hole of either.
   const std::string text =
       "X, Y\nNew_A\n0, 0\n10, 0\n10, 10\n0, 10\n0, 0\n"
       "New_B\n5, 1\n15, 1\n15, 9\n5, 9\n5, 1\n"
-      "New_C\n12, 4\n13, 4\n13, 5\n12, 5\n12, 4\n";
+      "New_C\n6, 4\n7, 4\n7, 5\n6, 5\n6, 4\n";
   const Sketch sketch = read_sketch(text, "c.csv", SketchFormat::kCsv);
   ASSERT_EQ(sketch.loops.size(), 3u);
   try {
     model_from_sketch(sketch, {"c.csv", "mm", 1.0, 5.0, "steel"});
     ADD_FAILURE() << "crossing outlines were accepted";
   } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("c.csv:14:1: this outline crosses another (the one at line 8)"));
+    EXPECT_THAT(e.what(), HasSubstr("c.csv:14:1: this outline lies inside two outlines that cross (at lines 2 and 8)"));
   }
   // A plate with nothing to say how it moves.
   try {
@@ -173,6 +172,39 @@ TEST(SketchImport, CrossingOutlinesAreRefusedAtTheirLine) {
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("e.csv:2:1: the outline here holds no pin hole"));
   }
+}
+
+// Two slotted links that overlap at their joint (100, 0): a along x, b up from the joint. Only
+// wholly inside another is an outline a hole, whichever vertex either starts at.
+TEST(SketchImport, LinksOverlappingAtAJointAreNoHoles) {
+  const std::string a = "0\nLWPOLYLINE\n8\na\n90\n4\n70\n1\n10\n0\n20\n-10\n10\n100\n20\n-10\n42\n1\n"
+                        "10\n100\n20\n10\n10\n0\n20\n10\n42\n1\n"
+                        "0\nCIRCLE\n8\na\n10\n0\n20\n0\n40\n4\n0\nCIRCLE\n8\na\n10\n100\n20\n0\n40\n4\n";
+  const std::string pins = "0\nCIRCLE\n8\nb\n10\n100\n20\n60\n40\n4\n0\nCIRCLE\n8\nb\n10\n100\n20\n0\n40\n4\n";
+  // b starting at the joint's side (92, 0), inside a; and starting at (108, 60), outside it.
+  const std::string b_inside = "0\nLWPOLYLINE\n8\nb\n90\n4\n70\n1\n10\n92\n20\n0\n42\n1\n10\n108\n20\n0\n"
+                               "10\n108\n20\n60\n42\n1\n10\n92\n20\n60\n";
+  const std::string b_outside = "0\nLWPOLYLINE\n8\nb\n90\n4\n70\n1\n10\n108\n20\n60\n42\n1\n10\n92\n20\n60\n"
+                                "10\n92\n20\n0\n42\n1\n10\n108\n20\n0\n";
+  for (const std::string& b : {b_inside, b_outside}) {
+    const std::string text = "0\nSECTION\n2\nENTITIES\n" + a + b + pins + "0\nENDSEC\n0\nEOF\n";
+    const std::string model = model_from_sketch(read_sketch(text, "i.dxf", SketchFormat::kDxf), {"i.dxf", "mm", 1.0, 5.0, "steel"});
+    EXPECT_THAT(model, HasSubstr("2 links, 1 joint between links")) << b;
+    EXPECT_THAT(model, HasSubstr("\n  a:\n    points: [P1, P2]")) << b;
+    EXPECT_THAT(model, HasSubstr("\n  b:\n    points: [P2, P3]")) << b;
+    EXPECT_THAT(model, ::testing::Not(HasSubstr("polygon:"))) << b;
+    // Each plate is whole: a's slot less its two pins, pi 100 + 2000 - 2 pi 16 mm^2 (the model holds m^2).
+    const Model m = parse_model(model + "drivers: [{angle: a, from: 0, to: 360}]\n", "i.yaml").model;
+    EXPECT_NEAR(area_properties(*m.bodies[0].shape).area * 1e6, kPi * 100 + 2000 - 2 * kPi * 16, 1e-9) << b;
+  }
+  // A square wholly inside stays a hole: 20 x 20 less 4 x 4 about (10, 10), with a pin at (5, 5).
+  const std::string holed = model_from_sketch(
+      read_sketch("X, Y\nNew_A\n0, 0\n20, 0\n20, 20\n0, 20\n0, 0\nNew_H\n12, 8\n12, 12\n8, 12\n8, 8\n12, 8\n"
+                  "Point\n5, 5\n",
+                  "h.csv", SketchFormat::kCsv),
+      {"h.csv", "mm", 1.0, 5.0, "steel"});
+  EXPECT_THAT(holed, HasSubstr("1 link,"));
+  EXPECT_THAT(holed, HasSubstr("        - polygon:\n"));
 }
 
 }  // namespace
