@@ -7,6 +7,8 @@
 #include <limits>
 #include <set>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/model/diagnostics.hpp"
@@ -174,6 +176,28 @@ std::string svg_ring(const std::vector<Eigen::Vector2d>& vertices, const std::ve
   return d + " Z";
 }
 
+// The bodies with a plate and each one's DXF layer, which is also its SVG group's id, so that
+// `layer:` picks the same plate from either file. Layer names are case-insensitive in DXF (and
+// `layer:` matches without case): two bodies that differ only in case or in replaced
+// characters get a numbered suffix.
+std::vector<std::pair<int, std::string>> plate_layers(const Model& m) {
+  std::vector<std::pair<int, std::string>> plates;
+  std::set<std::string> taken;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    if (!m.bodies[b].shape) continue;
+    std::string layer = dxf_layer_name(m.bodies[b].name), key;
+    for (int n = 2;; ++n) {
+      key.clear();
+      for (char c : layer) key += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      if (taken.insert(key).second) break;
+      layer = dxf_layer_name(m.bodies[b].name) + "_" + std::to_string(n);
+    }
+    plates.emplace_back(static_cast<int>(b), layer);
+  }
+  if (plates.empty()) throw Error(ErrorKind::BadInput, "no body has a `shape` or a `bar`: there is nothing to cut");
+  return plates;
+}
+
 }  // namespace
 
 std::string cutting_svg(const Mechanism& mechanism, const std::vector<Eigen::Vector2d>& points) {
@@ -181,18 +205,14 @@ std::string cutting_svg(const Mechanism& mechanism, const std::vector<Eigen::Vec
   const double unit = m.units.length_scale;
   std::string groups;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  std::set<std::string> taken;
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    if (!m.bodies[b].shape) continue;
-    const Region& r = *m.bodies[b].shape;
-    const Placement place = placement(m, static_cast<int>(b), points);
+  for (const auto& [b, id] : plate_layers(m)) {
+    const Region& r = *m.bodies[static_cast<std::size_t>(b)].shape;
+    const Placement place = placement(m, b, points);
     for (const Eigen::Vector2d& v : straight_edged(r).outline) {
       const Eigen::Vector2d p = place(v) / unit;
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-    std::string id = dxf_layer_name(m.bodies[b].name);
-    for (int k = 2; !taken.insert(id).second; ++k) id = dxf_layer_name(m.bodies[b].name) + "_" + std::to_string(k);
     std::string d = svg_ring(r.outline, r.outline_bulges, place, unit);
     for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
       const std::vector<double> none;
@@ -208,7 +228,6 @@ std::string cutting_svg(const Mechanism& mechanism, const std::vector<Eigen::Vec
     }
     groups += "  </g>\n";
   }
-  if (groups.empty()) throw Error(ErrorKind::BadInput, "no body has a `shape` or a `bar`: there is nothing to cut");
   const Eigen::Vector2d size = hi - lo;
   const double margin = 0.02 * std::max(size.x(), size.y());
   const double x0 = lo.x() - margin, y0 = -hi.y() - margin;
@@ -236,33 +255,16 @@ std::string dxf_layer_name(const std::string& body_name) {
 
 std::string cutting_dxf(const Mechanism& mechanism, const std::vector<Eigen::Vector2d>& points) {
   const Model& m = mechanism.model();
-  std::vector<int> plates;
+  const std::vector<std::pair<int, std::string>> plates = plate_layers(m);
   std::vector<std::string> layers;
-  std::set<std::string> taken;
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    if (!m.bodies[b].shape) continue;
-    plates.push_back(static_cast<int>(b));
-    // Layer names are case-insensitive in DXF: two bodies that differ only in case or in
-    // replaced characters get a numbered suffix.
-    std::string layer = dxf_layer_name(m.bodies[b].name), key;
-    for (int n = 2;; ++n) {
-      key.clear();
-      for (char c : layer) key += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-      if (taken.insert(key).second) break;
-      layer = dxf_layer_name(m.bodies[b].name) + "_" + std::to_string(n);
-    }
-    layers.push_back(layer);
-  }
-  if (plates.empty()) {
-    throw Error(ErrorKind::BadInput, "no body has a `shape` or a `bar`: there is nothing to cut");
-  }
+  for (const auto& plate : plates) layers.push_back(plate.second);
   DxfOut dxf;
   header(dxf, m);
   tables(dxf, layers);
   dxf.pair(0, "SECTION");
   dxf.pair(2, "ENTITIES");
-  for (std::size_t i = 0; i < plates.size(); ++i) {
-    plate(dxf, layers[i], *m.bodies[plates[i]].shape, placement(m, plates[i], points), m.units.length_scale);
+  for (const auto& [b, layer] : plates) {
+    plate(dxf, layer, *m.bodies[static_cast<std::size_t>(b)].shape, placement(m, b, points), m.units.length_scale);
   }
   dxf.pair(0, "ENDSEC");
   dxf.pair(0, "EOF");

@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "sketch_strokes.hpp"
@@ -495,6 +496,7 @@ StrokeSet read_svg_strokes(const std::string& text, const std::string& file, con
     std::string group;  // the id of the innermost group with one
   };
   std::vector<Open> stack;
+  std::optional<std::pair<std::string, int>> matched;  // the group `layer` names, and its line
   bool saw_svg = false;
   while (std::optional<Element> e = scanner.next()) {
     if (e->closing) {
@@ -515,7 +517,15 @@ StrokeSet read_svg_strokes(const std::string& text, const std::string& file, con
     if (e->name == "g" && !layer.empty()) {
       for (const char* key : {"id", "inkscape:label"}) {
         const auto it = e->attributes.find(key);
-        if (it != e->attributes.end() && same_name(it->second, layer)) here.in_layer = true;
+        if (it == e->attributes.end() || !same_name(it->second, layer) || here.in_layer) continue;
+        // Compared without case, 'Crank' and 'crank' both match: reading both would merge two plates.
+        if (matched) {
+          fail_at(file, e->line, fmt::format("the groups '{}' (line {}) and '{}' (here) both match the layer '{}' "
+                                             "(compared without case): rename one",
+                                             matched->first, matched->second, it->second, layer));
+        }
+        matched = std::pair(it->second, e->line);
+        here.in_layer = true;
       }
     }
     if (e->name == "g") {

@@ -399,5 +399,41 @@ TEST(DxfReader, RoundTripThroughTheSvg) {
   EXPECT_NEAR(area_properties(*load_model_file(metres).model.bodies[0].shape).area, a.area, 1e-15);
 }
 
+// Bodies whose layer names differ only in case once their characters are replaced: the SVG's
+// group ids are the DXF layers, so `layer:` picks the same plate from either file.
+TEST(DxfReader, SvgGroupIdsAreTheDxfLayers) {
+  const Model m = parse_model(
+                      "units: {length: mm}\npoints: {O: [0, 0], A: [80, 0], C: [0, 80], B: [50, 80]}\nground: [O, C]\n"
+                      "bodies:\n"
+                      "  crank arm: {points: [O, A], thickness: 5, material: steel, bar: {width: 20, hole: 5}}\n"
+                      "  Crank/arm: {points: [C, B], thickness: 5, material: steel, bar: {width: 10, hole: 2}}\n"
+                      "drivers: [{angle: crank arm, from: 0, to: 360}, {angle: Crank/arm, from: 0, to: 360}]\n",
+                      "two.yaml")
+                      .model;
+  const Mechanism mech(m);
+  std::vector<Eigen::Vector2d> points;
+  for (const Point& p : m.points) points.push_back(p.position);
+  const std::string svg = cutting_svg(mech, points);
+  EXPECT_THAT(svg, HasSubstr("<g id=\"crank_arm\">"));
+  EXPECT_THAT(svg, HasSubstr("<g id=\"Crank_arm_2\">"));
+  const auto area_of = [&](const std::string& layer) {
+    return area_properties(plate_from_sketch(read_sketch(svg, "two.svg", SketchFormat::kSvg, layer), 1.0)).area;
+  };
+  // A bar w wide over L with margins w/2 and two holes r: w (L + w) - 2 pi r^2.
+  EXPECT_NEAR(area_of("Crank_arm_2"), 10 * 60 - 2 * kPi * 4, 1e-9);
+  EXPECT_NEAR(area_of("crank_arm"), 20 * 100 - 2 * kPi * 25, 1e-9);
+  EXPECT_NEAR(area_of("CRANK_ARM"), 20 * 100 - 2 * kPi * 25, 1e-9);
+  // A drawing of someone else's whose groups differ only in case: `layer` cannot tell them apart.
+  try {
+    read_sketch("<svg>\n<g id=\"Crank\"><rect width=\"10\" height=\"5\"/></g>\n"
+                "<g id=\"crank\"><rect width=\"20\" height=\"5\"/></g>\n</svg>\n",
+                "case.svg", SketchFormat::kSvg, "crank");
+    ADD_FAILURE() << "two groups were read as one layer";
+  } catch (const ModelFileError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("case.svg:3:1: the groups 'Crank' (line 2) and 'crank' (here) both match the "
+                                    "layer 'crank' (compared without case): rename one"));
+  }
+}
+
 }  // namespace
 }  // namespace nbar::io
