@@ -141,6 +141,16 @@ std::optional<double> insunits_metres(int code) {
   }
 }
 
+// Notes on the drawing (text, dimensions, hatching, attributes) draw no part of it: a sketch is
+// commonly annotated on the layers of its parts, so they are left out rather than refused.
+bool annotation(std::string_view type) {
+  for (std::string_view note : {"TEXT", "MTEXT", "DIMENSION", "ARC_DIMENSION", "LARGE_RADIAL_DIMENSION", "LEADER",
+                                "MLEADER", "MULTILEADER", "TOLERANCE", "HATCH", "ATTDEF", "ATTRIB"}) {
+    if (type == note) return true;
+  }
+  return false;
+}
+
 class SketchBuilder {
  public:
   explicit SketchBuilder(const Reader& reader) : reader_(reader) {}
@@ -153,6 +163,10 @@ class SketchBuilder {
     if (e.type == "LWPOLYLINE") return lwpolyline(e);
     if (e.type == "SPLINE") return spline(e);
     if (e.type == "ELLIPSE") return ellipse(e);
+    if (annotation(e.type)) {
+      set.annotations.push_back(e.type);
+      return;
+    }
     if (e.type == "POINT") {
       set.points.push_back({{get(e, 10), get(e, 20)}, e.line});
       return;
@@ -173,7 +187,7 @@ class SketchBuilder {
       return;
     }
     reader_.fail(e.line, "nbar reads LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, SPLINE, ELLIPSE and POINT entities, not " +
-                             e.type + " (put it on another layer and give `layer`)");
+                             e.type + ": explode it into those or delete it (a shape's `layer` reads one layer only)");
   }
 
   void finish() const {

@@ -229,6 +229,7 @@ Sketch finish_sketch(StrokeSet set, const std::string& file, int last_line, cons
   sketch.circles = std::move(set.circles);
   sketch.points = std::move(set.points);
   sketch.metres_per_unit = set.metres_per_unit;
+  sketch.annotations = std::move(set.annotations);
   const double tolerance = size > 0 ? kRelativeCurveTolerance * size : 1.0;
   for (const Chained& c : chain(set.strokes, 1e-6 * size, file)) {
     sketch.loops.push_back(polygonised_loop(c, tolerance, file));

@@ -93,6 +93,17 @@ bool is_name(const std::string& s) {
   return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
 }
 
+// A comment line counting the annotations the sketch left out by kind ("2 TEXT, 1 DIMENSION"),
+// so that the user knows they were seen and not read; nothing when there were none.
+std::string annotation_note(const std::vector<std::string>& annotations) {
+  if (annotations.empty()) return {};
+  std::map<std::string, int> count;
+  for (const std::string& a : annotations) ++count[a];
+  std::string list;
+  for (const auto& [kind, n] : count) list += fmt::format("{}{} {}", list.empty() ? "" : ", ", n, kind);
+  return "# Left out of the sketch, as notes that draw no link: " + list + ".\n";
+}
+
 struct Body {
   std::size_t loop;
   std::string name;
@@ -233,6 +244,7 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
   for (char& c : name) {
     if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) c = '_';
   }
+  out += annotation_note(sketch.annotations);
   out += fmt::format("name: \"{}\"\nunits: {{length: {}, angle: deg}}\npoints:\n", name, options.length_unit);
   for (std::size_t j = 0; j < joints.size(); ++j) {
     if (bodies_at[j] == 0) continue;  // a circle outside every outline

@@ -38,6 +38,7 @@ struct StrokeSet {
   std::vector<SketchCircle> circles;
   std::vector<SketchPoint> points;
   std::optional<double> metres_per_unit;
+  std::vector<std::string> annotations;
 };
 
 // Chains the strokes into loops, polygonises their curves, checks that no loop crosses

@@ -250,9 +250,14 @@ class SvgBuilder {
       set.strokes.push_back(std::move(s));
       return;
     }
-    if (e.name == "use" || e.name == "text" || e.name == "image") {
+    if (e.name == "text") {  // a note, no part of the drawing
+      set.annotations.push_back("<text>");
+      return;
+    }
+    if (e.name == "use" || e.name == "image") {
       fail_at(file_, line_, "nbar reads paths, lines, polylines, polygons, rects, circles and ellipses, not <" + e.name +
-                                "> (put it in another group and give `layer`)");
+                                ">: convert it to paths (Inkscape: Edit > Clone > Unlink Clone, or trace the image) or "
+                                "delete it (a shape's `layer` reads one group only)");
     }
   }
 

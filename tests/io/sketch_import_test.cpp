@@ -53,8 +53,10 @@ TEST(SketchImport, LibreCadR12LinesArcsCirclesOnALayer) {
   EXPECT_NEAR(a.area, (1600 + 100 * kPi - 50 * kPi) * 1e-2, 1e-12);
   EXPECT_NEAR(a.centroid.x(), 4.0, 1e-14);
   EXPECT_EQ(r.circle_holes.size(), 2u);
-  // Without the layer, the note's TEXT is an entity nbar does not read, at its line.
-  EXPECT_THAT(error_of(fixture("librecad-r12-slot.dxf"), "s.dxf"), HasSubstr("s.dxf:207:1: nbar reads LINE"));
+  // Without the layer, the note's TEXT is left out: the same plate.
+  const Sketch all = read_sketch(fixture("librecad-r12-slot.dxf"), "s.dxf", SketchFormat::kDxf);
+  EXPECT_THAT(all.annotations, ::testing::ElementsAre("TEXT"));
+  EXPECT_NEAR(area_properties(plate_from_sketch(all, 1e-1)).area, a.area, 1e-12);
 }
 
 TEST(SketchImport, AutoCadR2000LwpolylineEllipseAndSpline) {
@@ -90,9 +92,11 @@ TEST(SketchImport, InkscapeSvgPathsArcsBeziersAndUnits) {
   // y turned up: the slot's centre line y = 25 in the SVG is y = -25.
   EXPECT_NEAR(r.circle_holes[0].centre.y(), -25, 1e-12);
   EXPECT_FALSE(r.outline_bulges.empty());
-  // The unused path in <defs> and the note's <text> in another group are not read; without
-  // the layer the <text> is an error at its line.
-  EXPECT_THAT(error_of(fixture("inkscape-slot.svg"), "s.svg"), HasSubstr("s.svg:37:1: nbar reads paths"));
+  // The unused path in <defs> is not read, nor the note's <text> in another group; without
+  // the layer the <text> is left out as a note.
+  const Sketch all = read_sketch(fixture("inkscape-slot.svg"), "s.svg", SketchFormat::kSvg);
+  EXPECT_THAT(all.annotations, ::testing::ElementsAre("<text>"));
+  EXPECT_NEAR(area_properties(plate_from_sketch(all, 1.0)).area, a.area, 1e-12);
 }
 
 // Each kind of SVG curve against its closed form (unitless: read in the model's unit).
@@ -205,6 +209,32 @@ TEST(SketchImport, LinksOverlappingAtAJointAreNoHoles) {
       {"h.csv", "mm", 1.0, 5.0, "steel"});
   EXPECT_THAT(holed, HasSubstr("1 link,"));
   EXPECT_THAT(holed, HasSubstr("        - polygon:\n"));
+}
+
+// Notes on a part's own layer, as sketches carry them: left out, and counted in the skeleton.
+TEST(SketchImport, AnnotationsAreLeftOutWithANote) {
+  const std::string text =
+      "0\nSECTION\n2\nENTITIES\n"
+      "0\nLWPOLYLINE\n8\nplate\n90\n4\n70\n1\n10\n0\n20\n0\n10\n100\n20\n0\n10\n100\n20\n40\n10\n0\n20\n40\n"
+      "0\nCIRCLE\n8\nplate\n10\n20\n20\n20\n40\n5\n"
+      "0\nTEXT\n8\nplate\n10\n0\n20\n0\n40\n2.5\n1\nhello\n"
+      "0\nMTEXT\n8\nplate\n10\n0\n20\n50\n40\n2.5\n1\nsteel 5 mm\n"
+      "0\nDIMENSION\n8\nplate\n10\n0\n20\n-10\n70\n0\n"
+      "0\nTEXT\n8\nplate\n10\n50\n20\n0\n40\n2.5\n1\nA\n"
+      "0\nENDSEC\n0\nEOF\n";
+  const Sketch sketch = read_sketch(text, "notes.dxf", SketchFormat::kDxf);
+  EXPECT_NEAR(area_properties(plate_from_sketch(sketch, 1.0)).area, 4000 - kPi * 25, 1e-9);
+  EXPECT_THAT(model_from_sketch(sketch, {"notes.dxf", "mm", 1.0, 5.0, "steel"}),
+              HasSubstr("# Left out of the sketch, as notes that draw no link: 1 DIMENSION, 1 MTEXT, 2 TEXT.\n"));
+  const Sketch svg = read_sketch("<svg>\n<rect width=\"10\" height=\"5\"/><circle cx=\"2\" cy=\"2\" r=\"1\"/>\n"
+                                 "<text x=\"0\" y=\"0\">crank<tspan>arm</tspan></text>\n</svg>\n",
+                                 "notes.svg", SketchFormat::kSvg);
+  EXPECT_NEAR(area_properties(plate_from_sketch(svg, 1.0)).area, 50 - kPi, 1e-9);
+  EXPECT_THAT(svg.annotations, ::testing::ElementsAre("<text>"));
+  // A block is geometry nbar does not read: an error that says what to do in either use.
+  EXPECT_THAT(error_of("0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nPLATE\n0\nENDSEC\n0\nEOF\n", "b.dxf"),
+              HasSubstr("b.dxf:5:1: nbar reads LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, SPLINE, ELLIPSE and POINT "
+                        "entities, not INSERT: explode it into those or delete it"));
 }
 
 }  // namespace

@@ -37,11 +37,14 @@ struct SketchPoint {
 };
 
 // Everything in the file's own unit; `metres_per_unit` when the file states its unit.
+// `annotations`: the kind of each note left out (DXF TEXT, DIMENSION..., SVG <text>), which
+// draw no part, so that a reader can say what it did not read.
 struct Sketch {
   std::vector<SketchLoop> loops;
   std::vector<SketchCircle> circles;
   std::vector<SketchPoint> points;
   std::optional<double> metres_per_unit;
+  std::vector<std::string> annotations;
 };
 
 enum class SketchFormat { kDxf, kSvg, kCsv };
