@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -67,6 +69,12 @@ bool edges_meet(const std::vector<Vector2d>& p, const std::vector<Vector2d>& q) 
 // Whether `inner` lies wholly inside `outer`: a vertex inside is not enough, as two links
 // drawn overlapping at their joint each have vertices inside the other.
 bool wholly_inside(const std::vector<Vector2d>& inner, const std::vector<Vector2d>& outer) {
+  const auto box = [](const std::vector<Vector2d>& p) {
+    Eigen::AlignedBox2d b;
+    for (const Vector2d& v : p) b.extend(v);
+    return b;
+  };
+  if (!box(outer).contains(box(inner))) return false;  // the common case, without the edge pairs
   return std::all_of(inner.begin(), inner.end(), [&](const Vector2d& v) { return inside(outer, v); }) &&
          !edges_meet(inner, outer);
 }
