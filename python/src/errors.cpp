@@ -70,7 +70,11 @@ void register_error_translation(py::module_&) {
 Error located(const PyModel& model, const Error& error) {
   // Bad input is about the call's arguments, a cancellation about time: neither has a place in the file.
   if (!error.file().empty() || error.kind() == ErrorKind::BadInput || error.kind() == ErrorKind::Cancelled) return error;
-  const SourceMark mark = model.file.source.find(error.where());
+  // A stop at a limit about no entity in particular (draw(at=...), explain(step=...)) is placed
+  // where solve() and the command line place a stopped sweep: the sweep's or first driver's line.
+  const bool sweep_stop = error.kind() == ErrorKind::StoppedAtLimit && error.where().kind == EntityRef::Kind::Model;
+  const SourceMark mark = sweep_stop && model.file.source.sweep_stop().line > 0 ? model.file.source.sweep_stop()
+                                                                               : model.file.source.find(error.where());
   return Error(error.kind(), error.message(), error.where(), model.file.source.file, mark);
 }
 

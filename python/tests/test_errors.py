@@ -169,3 +169,25 @@ def test_max_steps_bounds_the_sweep_as_the_cli_does():
     with pytest.raises(nbar.BadInputError, match="more than the limit of 10"):
         model.analyse(steps=20, max_steps=10)
     assert model.solve(steps=20, max_steps=20).rows == 20
+
+
+DOUBLE_ROCKER = """units: {length: mm, angle: deg}
+points: {O2: [0, 0], O4: [200, 0], A: [0, 80], B: [150, 150]}
+ground: [O2, O4]
+bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
+drivers:
+  - {angle: crank, from: 0, to: 360, speed: 120 rpm}
+lengths: {crank: 120, coupler: 100, rocker: 150}
+"""
+
+
+def test_every_stop_at_a_limit_is_placed_at_the_driver_as_solve_places_it():
+    m = nbar.loads(DOUBLE_ROCKER, "dr.yaml")
+    places = []
+    for run in (lambda: m.solve(steps=361), lambda: m.draw(at=150), lambda: m.explain(step=200)):
+        with pytest.raises(nbar.LimitError) as e:
+            run()
+        places.append((e.value.line, e.value.column))
+    assert places == [(6, 5)] * 3  # the driver's line, not the model's first line
+    with pytest.raises(nbar.LimitError, match=r"^dr\.yaml:6:5: cannot reach crank = 150 deg: it stops at crank = 99\.7"):
+        m.draw(at=150)
