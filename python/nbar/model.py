@@ -58,6 +58,15 @@ class Summary:
         from .results import Warning
         self.warnings = [Warning(*w) for w in data["warnings"]]
         self.text: str = data["text"]
+        if self.assembly_error:
+            # The reason the start cannot be assembled, which `nbar check` prints on its standard
+            # error after the summary: under the summary's "FAILED" line, or as a line of its own.
+            failed = "Assembly at the start: FAILED\n"
+            reason = "\n".join("  " + line for line in self.assembly_error.splitlines()) + "\n"
+            if failed in self.text:
+                self.text = self.text.replace(failed, failed + reason, 1)
+            else:
+                self.text += "Assembly at the start: not assembled\n" + reason
 
     def __str__(self) -> str:
         return self.text

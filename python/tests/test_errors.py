@@ -171,6 +171,21 @@ def test_max_steps_bounds_the_sweep_as_the_cli_does():
     assert model.solve(steps=20, max_steps=20).rows == 20
 
 
+def test_check_prints_why_the_start_cannot_be_assembled():
+    text = """points: {O2: [0, 0], O4: [200, 0], A: [40, 0], B: [120, 40]}
+ground: [O2, O4]
+bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
+lengths: {crank: 40, coupler: 50, rocker: 50}
+drivers: [{angle: crank, from: 0, to: 360}]
+"""
+    s = nbar.loads(text, "short.yaml").check()
+    assert s.assembly is None and "crank 40 + coupler 50 + rocker 50 < frame 200 m:" in s.assembly_error
+    failed = str(s).index("Assembly at the start: FAILED\n")
+    # The reason is printed right under the FAILED line, with its place in the file.
+    assert str(s)[failed:].splitlines()[1] == "  " + s.assembly_error
+    assert s.assembly_error.startswith("short.yaml:")
+
+
 DOUBLE_ROCKER = """units: {length: mm, angle: deg}
 points: {O2: [0, 0], O4: [200, 0], A: [0, 80], B: [150, 150]}
 ground: [O2, O4]
