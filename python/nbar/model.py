@@ -101,6 +101,10 @@ class StressResult:
         self.json: str = analysis.stress_report("json")
         data = json.loads(self.json)
         self.links: List[Dict[str, Any]] = data.get("links", data.get("bodies", []))
+        for link in self.links:  # counts are ints, so that r["crank"][link["step"]] indexes
+            for key in ("step", "nodes", "elements"):
+                if isinstance(link.get(key), float) and link[key].is_integer():
+                    link[key] = int(link[key])
         self.data: Dict[str, Any] = data
 
     def profile(self, body: str, step: int = 0) -> Table:

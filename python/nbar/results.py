@@ -27,6 +27,8 @@ class Table(Mapping):
     def __init__(self, names: List[str], units: List[str], arrays: List[np.ndarray]):
         self.columns: List[str] = list(names)
         self.units: Dict[str, str] = dict(zip(names, units))
+        # Step numbers are counts: an integer column, so that r["crank"][r["step"][k]] indexes.
+        arrays = [a.astype(np.int64) if n == "step" and a.dtype.kind == "f" else a for n, a in zip(names, arrays)]
         self._data: Dict[str, np.ndarray] = dict(zip(names, arrays))
         for a in arrays:
             a.flags.writeable = False

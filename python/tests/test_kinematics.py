@@ -158,3 +158,14 @@ def test_explanation_is_the_solvers_own_numbers(examples):
     assert [q["kind"] for q in e.equations].count("distance") == 3 and len(e.equations) == 6
     assert "\\Phi" in e.markdown and "Newton" in e.text and e.draw().svg.count("I") > 0
     assert len(e.centres) == 6
+
+
+def test_step_numbers_are_integers(examples):
+    r = nbar.load(examples / "fourbar-crank-rocker.yaml").solve(steps=361)
+    assert r["step"].dtype == np.int64 and r["step"][-1] == 360
+    assert r["crank"][r["step"][90]] == r["crank"][90]
+    st = nbar.load(examples / "fourbar-steel-bars.yaml").stress()
+    step = st.links[0]["step"]
+    assert type(step) is int and step == 354
+    r = nbar.load(examples / "fourbar-steel-bars.yaml").solve()
+    assert r["crank"][step] == pytest.approx(354.0)
