@@ -36,6 +36,48 @@ def _whole(name: str, value: Any) -> Optional[int]:
     raise BadInputError(f"{name} must be a whole number, not {value!r}")
 
 
+def _real(name: str, value: Any) -> Optional[float]:
+    """A number as a float (ints and numpy's scalars too); "90" is the caller's mistake, said as
+    nbar says others rather than as pybind's TypeError listing the binding's overloads."""
+    if value is None:
+        return None
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        return float(value)
+    raise BadInputError(f"{name} must be a number, not {value!r}")
+
+
+def _names(name: str, value: Any) -> List[str]:
+    """Point names: one string is one name (or names separated by commas, as the command line's
+    --trace), else an iterable of strings."""
+    if value is None:
+        return []
+    if isinstance(value, str):
+        return [n.strip() for n in value.split(",") if n.strip()]
+    names = list(value)
+    for n in names:
+        if not isinstance(n, str):
+            raise BadInputError(f"{name} must be point names (strings), not {n!r}")
+    return names
+
+
+def _json_value(value: Any) -> Any:
+    """numpy's arrays and scalars as the lists and numbers json writes (json.dumps' default=)."""
+    import numpy as np
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")
+
+
+def _stopped(model, stop_reason: Optional[str], what: str, result: Any) -> "LimitError":
+    """The LimitError solve() raises for a sweep that stopped at a limit, for another product of
+    that sweep (an animation, a report): at the same place, with the part made as ``e.result``."""
+    line, column = model.sweep_stop_place or (None, None)
+    return LimitError(f"{stop_reason} ({what}; partial=True returns it)", kind="stopped_at_limit", file=model.file,
+                      line=line, column=column, result=result)
+
+
 class Summary:
     """What ``nbar check`` says: degrees of freedom counted two ways, redundant constraints,
     drivers, bodies with their mass properties, the assembly at the start and every four-bar
@@ -142,7 +184,7 @@ class Model:
         """A model from a dict with a model file's keys. Errors name the line and column of the
         dict written as indented JSON (``e.text`` holds that text)."""
         try:
-            text = json.dumps(data, indent=2, allow_nan=False)
+            text = json.dumps(data, indent=2, allow_nan=False, default=_json_value)
         except (TypeError, ValueError) as e:
             raise BadInputError(f"{name}: the model must hold only numbers, strings, lists and dicts: {e}") from None
         try:
@@ -205,6 +247,7 @@ class Model:
         far from holes, in the model's length unit."""
         steps, order, sections, max_steps = (_whole(name, value) for name, value in (
             ("steps", steps), ("order", order), ("sections", sections), ("max_steps", max_steps)))
+        timeout, mesh_size = _real("timeout", timeout), _real("mesh_size", mesh_size)
         return _nbar.analyse(self._c, steps=steps, order=order, dynamics=dynamics, stress=stress, sections=sections,
                              timeout=timeout, max_steps=max_steps, method=method, mesh_size=mesh_size)
 
@@ -253,25 +296,46 @@ class Model:
 
     # --- pictures ------------------------------------------------------------------------------
     def draw(self, step: Optional[int] = None, at: Optional[float] = None, labels: bool = True,
-             traces: Iterable[str] = (), width: int = 900, height: int = 640, title: str = "",
+             traces: Union[str, Iterable[str]] = (), width: int = 900, height: int = 640, title: str = "",
              steps: Optional[int] = None) -> Drawing:
         """The mechanism at sample ``step`` of the sweep, or where the first driver is ``at``
-        (model units), with the paths of ``traces``."""
-        return Drawing(self.analyse(steps=steps, order=0), step=step, at=at, labels=labels, traces=list(traces),
-                       width=width, height=height, title=title)
+        (model units), with the paths of ``traces`` (a name, or a list of names). As ``nbar draw``,
+        it draws any solved step of a sweep that stopped at a limit."""
+        step, width, height = _whole("step", step), _whole("width", width), _whole("height", height)
+        return Drawing(self.analyse(steps=steps, order=0), step=step, at=_real("at", at), labels=labels,
+                       traces=_names("traces", traces), width=width, height=height, title=title)
 
-    def animate(self, frames: int = 0, fps: float = 24.0, labels: bool = False, traces: Iterable[str] = (),
-                width: int = 900, height: int = 640, title: str = "", steps: Optional[int] = None) -> Animation:
-        """The sweep as an animation: HTML in Jupyter; ``.save()`` as .html, .svg, .gif or .mp4."""
-        return Animation(self.analyse(steps=steps, order=0), frames=frames, fps=fps, labels=labels,
-                         traces=list(traces), width=width, height=height, title=title)
+    def animate(self, frames: int = 0, fps: float = 24.0, labels: bool = False,
+                traces: Union[str, Iterable[str]] = (), width: int = 900, height: int = 640, title: str = "",
+                steps: Optional[int] = None, partial: bool = False) -> Animation:
+        """The sweep as an animation: HTML in Jupyter; ``.save()`` as .html, .svg, .gif or .mp4.
+
+        A sweep that stops at a toggle raises ``nbar.LimitError`` as ``solve()`` does (and
+        ``nbar animate`` exits 4); its ``.result`` is the animation of the part solved, which
+        ``partial=True`` returns instead."""
+        frames, width, height = _whole("frames", frames), _whole("width", width), _whole("height", height)
+        analysis = self.analyse(steps=steps, order=0)
+        animation = Animation(analysis, frames=frames, fps=_real("fps", fps), labels=labels,
+                              traces=_names("traces", traces), width=width, height=height, title=title)
+        if not analysis.complete and not partial:
+            raise _stopped(self._c, analysis.stop_reason, f"an animation of the {analysis.samples} steps solved",
+                           animation)
+        return animation
 
     def report(self, path: Union[None, str, os.PathLike] = None, frames: int = 72,
-               timeout: Optional[float] = None) -> Report:
-        """The one-file HTML report of ``nbar report``; written to ``path`` when given."""
-        report = Report(_nbar.report(self._c, frames=frames, timeout=timeout))
+               timeout: Optional[float] = None, partial: bool = False) -> Report:
+        """The one-file HTML report of ``nbar report``; written to ``path`` when given.
+
+        A sweep that stops at a toggle raises ``nbar.LimitError`` (``nbar report`` exits 4), after
+        writing ``path`` as the command line does; ``e.result`` is the report of the part solved,
+        which ``partial=True`` returns instead."""
+        page, complete, stop_reason = _nbar.report(self._c, frames=_whole("frames", frames),
+                                                   timeout=_real("timeout", timeout))
+        report = Report(page)
         if path is not None:
             _write(path, report.html)
+        if not complete and not partial:
+            raise _stopped(self._c, stop_reason, "a report of the steps solved", report)
         return report
 
     def explain(self, step: int = 0, steps: Optional[int] = None):
@@ -279,7 +343,7 @@ class Model:
         Newton–Raphson iteration, the velocity and acceleration systems and the instant centres.
         Renders as Markdown with LaTeX in Jupyter; ``print()`` it for plain text."""
         from .explain import Explanation
-        return Explanation(_nbar.explain(self._c, step=step, steps=steps))
+        return Explanation(_nbar.explain(self._c, step=_whole("step", 0 if step is None else step), steps=_whole("steps", steps)))
 
 
 def load(path: Union[str, os.PathLike]) -> Model:

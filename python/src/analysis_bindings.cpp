@@ -157,7 +157,9 @@ py::object animate(const PyAnalysis& a, const std::string& format, int frames, d
   throw Error(ErrorKind::BadInput, "an animation's format is html, svg, gif or mp4, not '" + format + "'");
 }
 
-std::string report(std::shared_ptr<PyModel> model, int frames, std::optional<double> timeout) {
+// The page, whether the sweep reached its end, and why not (the report of a stopped sweep is
+// written all the same, as `nbar report` writes it before exiting 4).
+py::tuple report(std::shared_ptr<PyModel> model, int frames, std::optional<double> timeout) {
   const ModelSummary summary = summarize(*model->mechanism);
   AnalysisOptions options = render::report_analysis_options(summary);
   Analysis analysis;
@@ -171,7 +173,9 @@ std::string report(std::shared_ptr<PyModel> model, int frames, std::optional<dou
   render::ReportOptions report;
   report.source = model->file.source.file;
   report.frames = frames;
-  return render::html_report(analysis, summary, report);
+  const std::string page = render::html_report(analysis, summary, report);
+  return py::make_tuple(page, analysis.complete(),
+                        analysis.complete() ? py::object(py::none()) : py::object(py::str(analysis.sweep.stop_reason)));
 }
 
 std::string stress_report(const PyAnalysis& a, const std::string& format) {

@@ -206,3 +206,21 @@ def test_every_stop_at_a_limit_is_placed_at_the_driver_as_solve_places_it():
     assert places == [(6, 5)] * 3  # the driver's line, not the model's first line
     with pytest.raises(nbar.LimitError, match=r"^dr\.yaml:6:5: cannot reach crank = 150 deg: it stops at crank = 99\.7"):
         m.draw(at=150)
+
+
+def test_arguments_of_the_wrong_type_are_bad_input_not_type_errors(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    for run, message in [(lambda: m.draw(at="90"), "at must be a number, not '90'"),
+                         (lambda: m.draw(width="600"), "width must be a whole number, not '600'"),
+                         (lambda: m.draw(step="3"), "step must be a whole number, not '3'"),
+                         (lambda: m.animate(fps="24"), "fps must be a number, not '24'"),
+                         (lambda: m.animate(frames=2.5), "frames must be a whole number, not 2.5"),
+                         (lambda: m.solve(timeout="1"), "timeout must be a number, not '1'"),
+                         (lambda: m.explain(step="30"), "step must be a whole number, not '30'"),
+                         (lambda: m.draw(traces=[3]), "traces must be point names (strings), not 3")]:
+        with pytest.raises(nbar.BadInputError) as e:
+            run()
+        assert e.value.message == message and e.value.kind == "bad_input"
+    # numpy's numbers are numbers.
+    import numpy as np
+    assert m.draw(at=np.float64(90), width=np.int64(400)).svg.startswith("<?xml")

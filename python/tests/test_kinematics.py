@@ -169,3 +169,20 @@ def test_step_numbers_are_integers(examples):
     assert type(step) is int and step == 354
     r = nbar.load(examples / "fourbar-steel-bars.yaml").solve()
     assert r["crank"][step] == pytest.approx(354.0)
+
+
+def test_from_dict_takes_numpy_values():
+    L1, L2, L3, d = np.float64(80), np.int64(180), np.float32(150), 200
+    A = np.array([L1, 0.0])
+    m = nbar.Model.from_dict({
+        "units": {"length": "mm", "angle": "deg"},
+        "points": {"O2": [0, 0], "O4": [d, 0], "A": A, "B": np.array([181.25, 148.823511])},
+        "ground": ["O2", "O4"],
+        "bodies": {"crank": ["O2", "A"], "coupler": ["A", "B"], "rocker": ["O4", "B"]},
+        "lengths": {"crank": L1, "coupler": L2, "rocker": L3},
+        "drivers": [{"angle": "crank", "from": np.int64(0), "to": 360, "speed": "60 rpm"}],
+    })
+    assert m.points["A"] == (80.0, 0.0)
+    assert m.check().loops[0].lengths == pytest.approx((200, 80, 180, 150))
+    with pytest.raises(nbar.BadInputError):  # NaN in an array is still refused
+        nbar.Model.from_dict({"points": {"O": np.array([0.0, np.nan])}})

@@ -57,3 +57,38 @@ def test_time_law_models_plot_against_time(examples):
     matplotlib.use("Agg")
     r = nbar.load(examples / "fourbar-oscillating.yaml").solve(steps=41)
     assert nbar.plot(r, "output.omega").get_xlabel() == "t [s]"
+
+
+def test_traces_may_be_one_name(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    assert m.draw(traces="P").svg == m.draw(traces=["P"]).svg != m.draw().svg
+    assert m.draw(traces="P, O4").svg == m.draw(traces=["P", "O4"]).svg
+
+
+DOUBLE_ROCKER = """units: {length: mm, angle: deg}
+points: {O2: [0, 0], O4: [200, 0], A: [0, 80], B: [150, 150]}
+ground: [O2, O4]
+bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
+drivers:
+  - {angle: crank, from: 0, to: 360, speed: 120 rpm}
+lengths: {crank: 120, coupler: 100, rocker: 150}
+"""
+
+
+def test_animation_and_report_of_a_sweep_stopped_at_a_toggle_raise_as_solve_does(tmp_path):
+    m = nbar.loads(DOUBLE_ROCKER, "dr.yaml")
+    with pytest.raises(nbar.LimitError) as solved:
+        m.solve()
+    with pytest.raises(nbar.LimitError) as e:
+        m.animate()
+    assert e.value.line == solved.value.line == 6 and e.value.column == 5
+    assert solved.value.result.stop_reason in e.value.message and "at crank = 99.7151 deg" in e.value.message
+    assert isinstance(e.value.result, nbar.Animation)  # the part solved, as nbar animate writes it
+    assert m.animate(partial=True).html == e.value.result.html
+    path = tmp_path / "dr.html"
+    with pytest.raises(nbar.LimitError) as e:
+        m.report(path)
+    assert path.exists() and isinstance(e.value.result, nbar.Report) and (e.value.line, e.value.column) == (6, 5)
+    assert m.report(partial=True).html == e.value.result.html
+    # A pose of the part solved is drawn, as `nbar draw` draws it.
+    assert m.draw(step=50).svg.startswith("<?xml")
