@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Optional, Sequence, Union
+from typing import List, Optional, Sequence, Union
 
 from .results import Table
 
@@ -18,28 +18,74 @@ def default_x(result: Table) -> str:
     raise BadInputError("these columns have neither the driver nor t to plot against: pass x=")
 
 
+def columns(result: Table, y: Union[str, Sequence[str]]) -> List[str]:
+    """The columns of ``result`` that names or globs ``y`` pick ("P.*", or "rocker.angle,rocker.omega"),
+    as ``nbar plot --y`` and ``solve(columns=...)`` pick them."""
+    from . import _nbar
+    from .errors import BadInputError, ColumnError
+    patterns = [c.strip() for c in y.split(",") if c.strip()] if isinstance(y, str) else list(y)
+    if not patterns or not all(isinstance(p, str) for p in patterns):
+        raise BadInputError(f"y must be column names or globs, not {y!r}")
+    picked, message = _nbar.pick_columns(result.columns, patterns)
+    if message:
+        raise ColumnError(message)
+    return [result.columns[i] for i in picked]
+
+
+def _with_unit(name: str, unit: str) -> str:
+    return f"{name} [{unit}]".strip() if unit else name
+
+
 def plot(result: Table, y: Union[str, Sequence[str]], x: Optional[str] = None, ax=None, **line_options):
-    """Plots columns ``y`` of ``result`` against ``x`` (default: the first driver, or t) on
-    ``ax`` (default: a new figure), with units on the axes. Positions against positions get
-    equal axis scales, so a coupler curve keeps its shape. Returns the axes."""
+    """Plots columns ``y`` of ``result`` (names or globs, as ``nbar plot --y``) against ``x``
+    (default: the first driver, or t) on ``ax`` (default: a new figure), with units on the axes.
+
+    As ``nbar plot`` draws them: columns in two units go on two y axes, the second unit's on the
+    right (``ax.right_ax``), each axis labelled with its unit; several columns in one unit share
+    an axis labelled by the unit, with a legend naming them. Positions against positions get
+    equal axis scales, so a coupler curve keeps its shape. Returns the (left) axes."""
     import matplotlib.pyplot as plt
 
-    ys = [y] if isinstance(y, str) else list(y)
+    ys = columns(result, y)
     if x is None:
         x = default_x(result)
+    xs = result[x]
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.0), layout="constrained")
-    for name in ys:
-        ax.plot(result[x], result[name], label=name, **line_options)
-    ax.set_xlabel(f"{x} [{result.units.get(x, '')}]" if result.units.get(x) else x)
-    units = {result.units.get(n, "") for n in ys}
-    if len(units) == 1:
-        unit = units.pop()
-        ax.set_ylabel(f"{', '.join(ys)} [{unit}]" if unit else ", ".join(ys))
-    length_units = {result.units.get(x, "")} | {result.units.get(n, "") for n in ys}
-    if len(length_units) == 1 and all(n.endswith((".x", ".y")) for n in ys + [x]):
+    unit_of = {n: result.units.get(n, "") for n in ys}
+    units = list(dict.fromkeys(unit_of.values()))
+    path = all(n.endswith((".x", ".y")) for n in ys + [x]) and {result.units.get(x, "")} == set(units)
+    two_axes = len(units) == 2 and not path
+    axes = {units[0]: ax}
+    if two_axes:
+        axes[units[1]] = ax.twinx()
+        ax.right_ax = axes[units[1]]
+    lines = []
+    for k, name in enumerate(ys):
+        target = axes.get(unit_of[name], ax)
+        options = dict(line_options)
+        if two_axes and "color" not in options and "c" not in options:
+            options["color"] = f"C{k}"  # one colour cycle over both axes
+        label = _with_unit(name, unit_of[name]) if len(units) > 1 else name
+        if two_axes and target is not ax:
+            label += " (right)"
+        lines += target.plot(xs, result[name], label=label, **options)
+    ax.set_xlabel(_with_unit(x, result.units.get(x, "")))
+    if two_axes:
+        for unit, axis in axes.items():
+            on_it = [n for n in ys if unit_of[n] == unit]
+            axis.set_ylabel(_with_unit(on_it[0], unit) if len(on_it) == 1 else _with_unit("", unit))
+    elif len(ys) == 1:
+        ax.set_ylabel(_with_unit(ys[0], units[0]))
+    else:
+        # The units, not the names (which the legend gives): a label of many names would not fit.
+        ax.set_ylabel(", ".join(_with_unit("", u) for u in units if u))
+    if path:
         ax.set_aspect("equal", adjustable="datalim")
-    if len(ys) > 1:
-        ax.legend()
+    if two_axes:  # above the plot: inside, it would hide one axes' lines whichever it is drawn on
+        ax.legend(handles=lines, labels=[line.get_label() for line in lines], loc="lower left",
+                  bbox_to_anchor=(0.0, 1.0), ncol=min(len(lines), 2), frameon=False)
+    elif len(ys) > 1:
+        ax.legend(handles=lines, labels=[line.get_label() for line in lines])
     ax.grid(True, alpha=0.3)
     return ax

@@ -8,6 +8,7 @@
 #include "nbar/analysis/summary.hpp"
 #include "nbar/io/model_export.hpp"
 #include "nbar/io/summary_writer.hpp"
+#include "nbar/kinematics/table.hpp"
 
 namespace nbar::python {
 
@@ -183,6 +184,17 @@ void bind_model(py::module_& m) {
       .def("catalogue", &catalogue, py::arg("max_order") = 5, py::arg("dynamics") = true)
       .def("needs", &needs, py::arg("patterns"), py::arg("order") = std::nullopt, py::arg("dynamics") = false)
       .def("yaml", [](const PyModel& p) { return io::model_yaml(p.file.model); });
+
+  // Which of `columns` the names or globs `patterns` pick, in the order `solve --columns` and
+  // `plot --y` use: (indices, "") or ([], the message naming a pattern that matches nothing).
+  m.def("pick_columns", [](const std::vector<std::string>& columns, const std::vector<std::string>& patterns) {
+          try {
+            return py::make_tuple(pick_columns(columns, patterns), std::string());
+          } catch (const std::invalid_argument& e) {
+            return py::make_tuple(std::vector<std::size_t>{}, std::string(e.what()));
+          }
+        },
+        py::arg("columns"), py::arg("patterns"));
 
   m.def("load", [](const std::string& path) { return std::make_shared<PyModel>(compile_model(io::load_model_file(path))); },
         py::arg("path"));

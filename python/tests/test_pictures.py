@@ -92,3 +92,31 @@ def test_animation_and_report_of_a_sweep_stopped_at_a_toggle_raise_as_solve_does
     assert m.report(partial=True).html == e.value.result.html
     # A pose of the part solved is drawn, as `nbar draw` draws it.
     assert m.draw(step=50).svg.startswith("<?xml")
+
+
+def test_plot_puts_two_units_on_two_labelled_axes(examples):
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    r = nbar.load(examples / "fourbar-crank-rocker.yaml").solve()
+    ax = nbar.plot(r, ["rocker.angle", "rocker.omega"])
+    assert (ax.get_ylabel(), ax.right_ax.get_ylabel()) == ("rocker.angle [deg]", "rocker.omega [deg/s]")
+    assert list(ax.lines[0].get_ydata()) == list(r["rocker.angle"])
+    assert list(ax.right_ax.lines[0].get_ydata()) == list(r["rocker.omega"])
+    assert ax.right_ax.get_ylim()[0] < -400 and ax.get_ylim()[1] < 160  # each axis spans its own column
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["rocker.angle [deg]",
+                                                                   "rocker.omega [deg/s] (right)"]
+
+
+def test_plot_of_many_columns_is_labelled_by_unit_and_takes_globs(examples):
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    d = nbar.load(examples / "fourbar-steel-bars.yaml").dynamics()
+    ax = nbar.plot(d, "*.Fx")
+    names = [c for c in d.columns if c.endswith(".Fx")]
+    assert len(names) == 4 and ax.get_ylabel() == "[N]"
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == names
+    r = nbar.load(examples / "fourbar-crank-rocker.yaml").solve()
+    ax = nbar.plot(r, "P.*")
+    assert [line.get_label() for line in ax.lines] == [f"{c} [{r.units[c]}]" for c in r.columns if c.startswith("P.")]
+    with pytest.raises(nbar.ColumnError, match="no column matches 'Q.*'"):
+        nbar.plot(r, "Q.*")
