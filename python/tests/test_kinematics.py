@@ -186,3 +186,15 @@ def test_from_dict_takes_numpy_values():
     assert m.check().loops[0].lengths == pytest.approx((200, 80, 180, 150))
     with pytest.raises(nbar.BadInputError):  # NaN in an array is still refused
         nbar.Model.from_dict({"points": {"O": np.array([0.0, np.nan])}})
+
+
+def test_explain_says_why_a_step_needs_no_iteration(examples):
+    e = nbar.load(examples / "slider-crank-offset.yaml").explain(step=0)
+    assert len(e.newton) == 1 and e.converged  # the drawn pose is the solution
+    assert ("Converged after 0 iterations; at the solution max |Phi| = 1.93e-14 mm. There is nothing to iterate: the "
+            "drawn pose already meets every constraint to within the tolerance, so it is the solution. A later step "
+            "starts from the pose of the step before it and shows the iterations.") in " ".join(e.text.split())
+    later = nbar.load(examples / "fourbar-crank-rocker.yaml").explain(step=30)
+    assert len(later.newton) - 1 == 3 and "Converged after 3 iterations;" in later.text
+    assert "nothing to iterate" not in later.text
+    assert "Converged after 1 iteration;" in nbar.load(examples / "fourbar-crank-rocker.yaml").explain(step=0).text

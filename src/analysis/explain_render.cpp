@@ -335,8 +335,15 @@ class Renderer {
       display("", latex + "\\end{array}");
     }
     std::ostringstream e;
-    e << (ex_.converged ? "Converged" : "Did not converge") << " after " << (ex_.newton.empty() ? 0 : ex_.newton.size() - 1)
-      << " iterations; at the solution max |Phi| = " << number(ex_.residual, 3) << " " << m_.units.length << ".";
+    const std::size_t iterations = ex_.newton.empty() ? 0 : ex_.newton.size() - 1;
+    e << (ex_.converged ? "Converged" : "Did not converge") << " after " << iterations
+      << (iterations == 1 ? " iteration" : " iterations") << "; at the solution max |Phi| = " << number(ex_.residual, 3)
+      << " " << m_.units.length << ".";
+    if (ex_.converged && iterations == 0) {
+      e << " There is nothing to iterate: " << ex_.start
+        << " already meets every constraint to within the tolerance, so it is the solution.";
+      if (ex_.step == 0) e << " A later step starts from the pose of the step before it and shows the iterations.";
+    }
     if (ex_.converged && ex_.matches_sweep)
       e << " The solution is the sweep's sample " << ex_.step << " (they differ by " << number(ex_.sweep_difference, 3)
         << " " << m_.units.length << ").";
