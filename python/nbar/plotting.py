@@ -64,11 +64,14 @@ def plot(result: Table, y: Union[str, Sequence[str]], x: Optional[str] = None, a
     for k, name in enumerate(ys):
         target = axes.get(unit_of[name], ax)
         options = dict(line_options)
+        given = options.pop("label", None)  # label= names the line of one column
         if two_axes and "color" not in options and "c" not in options:
             options["color"] = f"C{k}"  # one colour cycle over both axes
         label = _with_unit(name, unit_of[name]) if len(units) > 1 else name
         if two_axes and target is not ax:
             label += " (right)"
+        if given is not None and len(ys) == 1:
+            label = given
         lines += target.plot(xs, result[name], label=label, **options)
     ax.set_xlabel(_with_unit(x, result.units.get(x, "")))
     if two_axes:

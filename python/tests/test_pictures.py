@@ -120,3 +120,11 @@ def test_plot_of_many_columns_is_labelled_by_unit_and_takes_globs(examples):
     assert [line.get_label() for line in ax.lines] == [f"{c} [{r.units[c]}]" for c in r.columns if c.startswith("P.")]
     with pytest.raises(nbar.ColumnError, match="no column matches 'Q.*'"):
         nbar.plot(r, "Q.*")
+
+
+def test_plot_takes_a_label_for_one_column(examples):
+    pytest.importorskip("matplotlib").use("Agg")
+    r = nbar.load(examples / "fourbar-crank-rocker.yaml").solve(steps=37)
+    ax = nbar.plot(r, "P.y", x="P.x", label="P: the coupler curve")
+    nbar.plot(r, "B.y", x="B.x", ax=ax, label="B")
+    assert [line.get_label() for line in ax.lines] == ["P: the coupler curve", "B"]
