@@ -287,12 +287,20 @@ class Model:
 
     def stress(self, steps: Optional[int] = None, sections: int = 200, timeout: Optional[float] = None,
                max_steps: Optional[int] = None, method: str = "beam",
-               mesh_size: Optional[float] = None) -> StressResult:
+               mesh_size: Optional[float] = None, partial: bool = False) -> StressResult:
         """Stresses in every link with a shape (``nbar stress``): ``method="beam"`` (beam theory on
         cross-sections) or ``"fe"`` (plane-stress finite elements, ``nbar stress --method fe``;
-        ``mesh_size`` in the model's length unit)."""
-        return StressResult(self.analyse(steps=steps, stress=True, sections=sections, timeout=timeout,
-                                         max_steps=max_steps, method=method, mesh_size=mesh_size))
+        ``mesh_size`` in the model's length unit).
+
+        A sweep that stops at a toggle raises ``nbar.LimitError`` as ``solve()`` does (``nbar
+        stress`` exits 4): its ``.result`` holds the peaks over the steps solved, which
+        ``partial=True`` returns instead."""
+        analysis = self.analyse(steps=steps, stress=True, sections=sections, timeout=timeout, max_steps=max_steps,
+                                method=method, mesh_size=mesh_size)
+        result = StressResult(analysis)
+        if not analysis.complete and not partial:
+            raise _stopped(self._c, analysis.stop_reason, f"the peaks over the {analysis.samples} steps solved", result)
+        return result
 
     # --- pictures ------------------------------------------------------------------------------
     def draw(self, step: Optional[int] = None, at: Optional[float] = None, labels: bool = True,

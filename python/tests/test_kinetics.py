@@ -52,3 +52,16 @@ def test_fe_stress_peaks_equal_the_cli(examples, cli):
 def test_stress_on_a_model_without_shapes_is_a_model_error(examples):
     with pytest.raises(nbar.ModelError):
         nbar.load(examples / "fourbar-crank-rocker.yaml").stress()
+
+
+def test_stresses_of_a_sweep_stopped_at_a_toggle_raise_as_solve_does(examples):
+    text = (examples / "fourbar-steel-bars.yaml").read_text().replace("ground: [O2, O4]",
+                                                                     "ground: [O2, O4]\nlengths: {crank: 130}")
+    m = nbar.loads(text, "long-crank.yaml")
+    with pytest.raises(nbar.LimitError) as e:
+        m.stress()
+    assert (e.value.line, e.value.column) == (37, 1)  # where solve() and `nbar stress` place it
+    assert "at crank = 179.994 deg" in e.value.message and "the peaks over the 180 steps solved" in e.value.message
+    peaks = e.value.result
+    assert isinstance(peaks, nbar.StressResult) and all(link["step"] < 180 for link in peaks.links)
+    assert m.stress(partial=True).links == peaks.links
