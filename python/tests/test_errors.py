@@ -133,6 +133,28 @@ def test_undefined_law_is_located():
     assert e.value.file == "law.yaml"
 
 
+def test_a_law_undefined_inside_the_sweep_is_found_before_solving(examples):
+    # 30/(t - 1) is fine at t = 0 and has no value at t = 1: solve() used to run up to it and
+    # stop there as if at a toggle (LimitError, placed at `sweep:`).
+    text = open(os.path.join(examples, "fourbar-crank-rocker.yaml")).read()
+    text = text.replace("{angle: crank, from: 0, to: 360, speed: 120 rpm}",
+                        "{angle: crank, law: \"30/(t-1)\"}")
+    text = text.replace("sweep: {steps: 361}", "sweep: {duration: 2, steps: 21}")
+    model = nbar.loads(text, "law.yaml")
+    with pytest.raises(nbar.UndefinedLawError, match=r"law '30/\(t-1\)' is undefined at t = 1") as e:
+        model.solve()
+    line = next(i for i, row in enumerate(text.splitlines(), 1) if "30/(t-1)" in row)
+    assert (e.value.line, e.value.kind) == (line, "undefined_law")
+
+
+def test_solve_carries_the_warnings_check_gives_before_the_sweep(examples):
+    # Degrees written with `angle: rad`: 360 rad is 57.3 turns, which check() has always said.
+    text = open(os.path.join(examples, "fourbar-crank-rocker.yaml")).read().replace("angle: deg", "angle: rad")
+    result = nbar.loads(text, "rad.yaml").solve(steps=50)
+    turns = [w for w in result.warnings if w.code == "many_turns"]
+    assert len(turns) == 1 and "57.3 times" in turns[0].message
+
+
 def test_from_dict_rejects_what_json_cannot_hold():
     with pytest.raises(nbar.BadInputError):
         nbar.Model.from_dict({"points": {"O": [0, float("nan")]}})

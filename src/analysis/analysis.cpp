@@ -1,4 +1,5 @@
 #include "nbar/analysis/analysis.hpp"
+#include "nbar/analysis/summary.hpp"
 #include "nbar/analysis/table_stream.hpp"
 
 #include <cmath>
@@ -29,7 +30,10 @@ SweepResult run_sweep_stage(const Mechanism& mech, const AnalysisOptions& option
   sweep.steps = options.steps;
   sweep.max_steps = options.max_steps;
   sweep.order = options.dynamics || options.stress ? std::max(options.order, 2) : options.order;
-  return run_sweep(mech, sweep, options.control);
+  std::vector<Warning> before = check_before_sweep(mech);
+  SweepResult result = run_sweep(mech, sweep, options.control);
+  result.warnings.insert(result.warnings.begin(), before.begin(), before.end());
+  return result;
 }
 
 // One sample's inverse dynamics, checked and counted into the stage's summary.
@@ -240,6 +244,7 @@ void TableStream::run(Pass& pass) {
   sweep.max_steps = options_.max_steps;
   sweep.order = order;
   ++passes_;
+  std::vector<Warning> before = check_before_sweep(mech);
   sweep_ = run_sweep(mech, sweep, options_.control, [&](const Sample& s) {
     kinematic.fill(s, row.data());
     if (dynamic) {
@@ -248,6 +253,7 @@ void TableStream::run(Pass& pass) {
     }
     pass.row(row.data());
   });
+  sweep_.warnings.insert(sweep_.warnings.begin(), before.begin(), before.end());
   if (dynamics_stage_) add_dynamics_warnings(*dynamics_stage_, mech.model());
 }
 

@@ -243,6 +243,14 @@ void summarize_start(const Mechanism& mech, int max_steps, ModelSummary& out) {
 
 }  // namespace
 
+std::vector<Warning> check_before_sweep(const Mechanism& mech) {
+  ModelSummary s;
+  warn_about_many_turns(mech.model(), s);
+  check_laws_over_sweep(mech, s);
+  if (s.law_error) throw *s.law_error;
+  return s.warnings;
+}
+
 ModelSummary summarize(const Mechanism& mech, int max_steps) {
   const Model& m = mech.model();
   ModelSummary s;

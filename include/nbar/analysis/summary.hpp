@@ -104,6 +104,11 @@ struct ModelSummary {
   std::vector<Warning> warnings;
 };
 
+// What every command that solves checks before its sweep runs, from the model's numbers alone:
+// returns the warnings that need no solving ("many_turns"), and throws the error of a law that
+// has no value at a time the sweep reaches (UndefinedLaw, at the law's driver, force or torque).
+std::vector<Warning> check_before_sweep(const Mechanism& mechanism);
+
 // Never throws for a compiled mechanism: an assembly failure is kept in assembly_error (also a
 // model sweep of more than `max_steps` samples, as every command that sweeps refuses it).
 ModelSummary summarize(const Mechanism& mechanism, int max_steps = kDefaultMaxSweepSamples);
