@@ -23,6 +23,8 @@
 //   chain per loop per step / four-bar step, N = 10, 100, 1000: before 2.1, 1.7, 1.9 (1.24,
 //   1.02, 1.19 us per loop); after 2.4, 1.9, 2.3 (1.19, 0.99, 1.13 us: the four-bar step got
 //   faster than the chains' sparse LU); linear in N
+// Same machine, load 3-4 (2026-11-25, later): the small LU without vectorised spills,
+//   engine step / closed form 3.7 (0.43 / 0.12 us); chains 2.7, 2.2, 2.0 (1.17, 0.94, 0.89 us)
 //
 // Run: kinematics_bench --benchmark_min_time=0.2
 //      kinematics_bench --benchmark_filter='Over' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
