@@ -91,7 +91,8 @@ class Summary:
         self.drivers: List[str] = data["drivers"]
         self.joints: List[str] = data["joints"]
         self.bodies = [SimpleNamespace(**b) for b in data["bodies"]]
-        self.loops = [SimpleNamespace(**loop) for loop in data["loops"]]
+        self.loops = [SimpleNamespace(**{**loop, "rocker": SimpleNamespace(**loop["rocker"]) if loop["rocker"] else None})
+                      for loop in data["loops"]]
         self.slider_cranks = [SimpleNamespace(**f) for f in data["slider_cranks"]]
         self.quick_returns = [SimpleNamespace(**f) for f in data["quick_returns"]]
         self.assembly = SimpleNamespace(**data["assembly"]) if data["assembly"] else None
@@ -124,6 +125,7 @@ class Summary:
         for loop in self.loops:
             rows.append((loop.name, f"{loop.grashof}, {loop.branch} branch, transmission angle "
                                     f"{loop.transmission_angle:.4g}"))
+        rows += [("rocker", loop.rocker.description) for loop in self.loops if loop.rocker]
         rows += [("slider-crank", f.description) for f in self.slider_cranks]
         rows += [("quick-return", f.description) for f in self.quick_returns]
         if self.assembly_error:

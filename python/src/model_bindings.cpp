@@ -60,6 +60,21 @@ py::list loop_list(const Mechanism& mech, const ModelSummary& s) {
                        ? py::object(py::make_tuple(*l.toggle_from / u.angle_scale, *l.toggle_to / u.angle_scale))
                        : py::object(py::none());
     d["description"] = l.description;
+    if (l.rocker) {
+      py::dict r;
+      r["swing"] = l.rocker->swing / u.angle_scale;
+      r["rocker_stretched"] = l.rocker->rocker_stretched / u.angle_scale;
+      r["rocker_folded"] = l.rocker->rocker_folded / u.angle_scale;
+      r["crank_stretched"] = l.rocker->crank_stretched / u.angle_scale;
+      r["crank_folded"] = l.rocker->crank_folded / u.angle_scale;
+      r["turn_to_stretched"] = l.rocker->turn_to_stretched / u.angle_scale;
+      r["turn_to_folded"] = l.rocker->turn_to_folded / u.angle_scale;
+      r["time_ratio"] = l.rocker->time_ratio;
+      r["description"] = l.rocker->description;
+      d["rocker"] = r;
+    } else {
+      d["rocker"] = py::none();
+    }
     loops.append(d);
   }
   return loops;

@@ -198,3 +198,16 @@ def test_explain_says_why_a_step_needs_no_iteration(examples):
     assert len(later.newton) - 1 == 3 and "Converged after 3 iterations;" in later.text
     assert "nothing to iterate" not in later.text
     assert "Converged after 1 iteration;" in nbar.load(examples / "fourbar-crank-rocker.yaml").explain(step=0).text
+
+
+def test_check_gives_a_crank_rockers_swing_and_time_ratio(examples):
+    # Law of cosines on the example (frame 200, crank 80, coupler 180, rocker 150 mm): the
+    # crank lies along O2-B at acos((r^2 + d^2 - c^2) / (2 r d)), r = 260 stretched, 100 folded.
+    loop = nbar.load(f"{examples}/fourbar-crank-rocker.yaml").check().loops[0]
+    stretched = math.degrees(math.acos((260**2 + 200**2 - 150**2) / (2 * 260 * 200)))
+    folded = 180 + math.degrees(math.acos((100**2 + 200**2 - 150**2) / (2 * 100 * 200)))
+    assert loop.rocker.crank_stretched == pytest.approx(stretched, abs=1e-6)
+    assert loop.rocker.crank_folded == pytest.approx(folded, abs=1e-6)
+    turn = stretched + 360 - folded
+    assert loop.rocker.time_ratio == pytest.approx((360 - turn) / turn, rel=1e-8)
+    assert loop.rocker.swing == pytest.approx(65.921, abs=1e-3)

@@ -236,6 +236,7 @@ void summarize_start(const Mechanism& mech, int max_steps, ModelSummary& out) {
     l.branch = branch_name(branch_sign(loop, points));
     l.transmission_angle = transmission_angle(loop, points);
     add_input_toggles(mech, points, l);
+    add_rocker_swing(mech, points, l);
     out.loops.push_back(std::move(l));
   }
   warn_about_input_limits(mech, points, out);

@@ -7,10 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <vector>
 #include <utility>
 
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/loop_closure.hpp"
+#include "nbar/kinematics/loops.hpp"
 
 namespace nbar {
 
@@ -181,7 +184,70 @@ void add_quick_return(const Model& m, int pin, std::array<int, 2> along, int blo
   }
 }
 
+// Where the coupler pin b lies when the crank (length a, about o2) and the coupler (length
+// b_len) are in line, stretched (sign +1) or folded (-1), with the output (length c about o4) on
+// the loop's branch `branch`: {crank pin, coupler pin}, or nothing when the loop cannot get there.
+std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> in_line(const FourBarLoop& loop,
+                                                                   std::vector<Eigen::Vector2d> p, double a,
+                                                                   double b_len, double c, double sign, int branch) {
+  const Eigen::Vector2d o2 = p[loop.o2], o4 = p[loop.o4];
+  const double r = b_len + sign * a, d = (o4 - o2).norm();
+  if (!(r > 0.0) || !(d > 0.0)) return std::nullopt;
+  const double along = (r * r - c * c + d * d) / (2 * d), across2 = r * r - along * along;
+  if (across2 < 0.0) return std::nullopt;
+  const Eigen::Vector2d u = (o4 - o2) / d, n(-u.y(), u.x());
+  for (double side : {1.0, -1.0}) {
+    const Eigen::Vector2d pin = o2 + along * u + side * std::sqrt(across2) * n;
+    p[loop.b] = pin;
+    p[loop.a] = o2 + sign * a * (pin - o2) / r;
+    if (branch_sign(loop, p) == branch) return std::make_pair(p[loop.a], pin);
+  }
+  return std::nullopt;
+}
+
 }  // namespace
+
+void add_rocker_swing(const Mechanism& mech, const std::vector<Eigen::Vector2d>& p, LoopSummary& l) {
+  const Model& m = mech.model();
+  const FourBarLoop& loop = l.loop;
+  const GrashofReport& g = l.grashof;
+  if (loop.frame >= 0 || !g.input_turns_fully || g.output_turns_fully) return;
+  const Body& output = m.bodies[loop.output];
+  if (m.bodies[loop.input].points.size() < 2 || output.points.size() < 2) return;
+  const int branch = branch_sign(loop, p);
+  const auto stretched = in_line(loop, p, g.input, g.coupler, g.output, 1.0, branch);
+  const auto folded = in_line(loop, p, g.input, g.coupler, g.output, -1.0, branch);
+  if (!stretched || !folded) return;
+  const CrankMeasure crank = crank_measure(m, loop.input, loop.o2, loop.a);
+  // An input moved by the rest of a machine may swing instead of turning: its rocker's limits
+  // would not be the motion's. Only a crank turned by its own driver has them.
+  if (crank.driver < 0) return;
+  // The rocker's angle as its column has it, on the start's side of the turn.
+  const double rocker_now = angle_of(p[output.points[1]] - p[output.points[0]]);
+  const double offset = rocker_now - angle_of(p[loop.b] - p[loop.o4]);
+  const auto rocker_angle = [&](const Eigen::Vector2d& pin) {
+    return rocker_now + std::remainder(angle_of(pin - p[loop.o4]) + offset - rocker_now, kTurn);
+  };
+  RockerSwing r;
+  r.crank_stretched = input_angle(crank, angle_of(stretched->first - p[loop.o2]));
+  r.crank_folded = input_angle(crank, angle_of(folded->first - p[loop.o2]));
+  r.rocker_stretched = rocker_angle(stretched->second);
+  r.rocker_folded = rocker_angle(folded->second);
+  r.swing = std::abs(r.rocker_stretched - r.rocker_folded);
+  r.turn_to_stretched = turn_between(crank, r.crank_folded, r.crank_stretched);
+  r.turn_to_folded = kTurn - r.turn_to_stretched;
+  r.time_ratio = std::max(r.turn_to_stretched, r.turn_to_folded) / std::min(r.turn_to_stretched, r.turn_to_folded);
+  const double unit = m.units.angle_scale;
+  r.description = fmt::format(
+      "the rocker {} swings {:.6g} {}, between {:.6g} {} (crank and coupler stretched in line, {} at {}) and "
+      "{:.6g} {} (folded, at {}); the crank turns {:.6g} {} from folded to stretched and {:.6g} {} back: time "
+      "ratio {:.4g}",
+      output.name, r.swing / unit, m.units.angle, r.rocker_stretched / unit, m.units.angle,
+      m.drivers[crank.driver].name, angle_text(m, crank, r.crank_stretched), r.rocker_folded / unit, m.units.angle,
+      angle_text(m, crank, r.crank_folded), r.turn_to_stretched / unit, m.units.angle, r.turn_to_folded / unit,
+      m.units.angle, r.time_ratio);
+  l.rocker = std::move(r);
+}
 
 void summarize_crank_mechanisms(const Model& m, ModelSummary& out) {
   for (const Slider& s : m.sliders) {

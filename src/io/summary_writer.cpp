@@ -104,6 +104,7 @@ void write_start(std::ostream& out, const Model& m, const ModelSummary& s) {
       out << fmt::format("    the input turns only between its toggle positions, {:.6g} {} and {:.6g} {}\n",
                          *l.toggle_from / m.units.angle_scale, m.units.angle, *l.toggle_to / m.units.angle_scale,
                          m.units.angle);
+    if (l.rocker) out << "    " << l.rocker->description << '\n';
   }
 }
 
@@ -143,6 +144,20 @@ Json bodies_json(const Model& m, const ModelSummary& s) {
   return bodies;
 }
 
+Json rocker_json(const Model& m, const std::optional<RockerSwing>& r) {
+  if (!r) return nullptr;
+  const double angle = m.units.angle_scale;
+  return Json{{"swing", r->swing / angle},
+              {"rocker_stretched", r->rocker_stretched / angle},
+              {"rocker_folded", r->rocker_folded / angle},
+              {"crank_stretched", r->crank_stretched / angle},
+              {"crank_folded", r->crank_folded / angle},
+              {"turn_to_stretched", r->turn_to_stretched / angle},
+              {"turn_to_folded", r->turn_to_folded / angle},
+              {"time_ratio", r->time_ratio},
+              {"description", r->description}};
+}
+
 Json loops_json(const Model& m, const ModelSummary& s) {
   const double unit = m.units.length_scale;
   const auto name = [&](int body) { return body < 0 ? std::string("ground") : m.bodies[body].name; };
@@ -166,7 +181,8 @@ Json loops_json(const Model& m, const ModelSummary& s) {
                      {"transmission_angle", l.transmission_angle / m.units.angle_scale},
                      {"toggles", l.toggle_from && l.toggle_to
                                      ? Json::array({*l.toggle_from / m.units.angle_scale, *l.toggle_to / m.units.angle_scale})
-                                     : Json(nullptr)}});
+                                     : Json(nullptr)},
+                     {"rocker", rocker_json(m, l.rocker)}});
   }
   return loops;
 }

@@ -12,6 +12,7 @@
 #include "nbar/analysis/summary.hpp"
 #include "nbar/dynamics/dynamics_table.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/kinematics/sweep.hpp"
 #include "nbar/render/report.hpp"
 
 namespace nbar {
@@ -279,6 +280,58 @@ TEST(Summary, SliderCrankStrokeDeadCentresAndTimeRatio) {
   ASSERT_EQ(centred.slider_cranks.size(), 1u);
   EXPECT_NEAR(centred.slider_cranks[0].stroke, 2 * centred.slider_cranks[0].crank_length, 1e-12);
   EXPECT_NEAR(centred.slider_cranks[0].time_ratio, 1.0, 1e-12);
+}
+
+// A crank-rocker's limits (Norton): the crank and the coupler in line, |O2 B| = b + a stretched
+// and b - a folded, so the crank angle is acos((r^2 + d^2 - c^2) / (2 r d)) from the frame (plus
+// 180 deg folded) and B lies at r along it; the time ratio is the longer crank turn between the
+// two over the shorter. The example: frame 200 along +x, crank 80, coupler 180, rocker 150 mm.
+TEST(Summary, CrankRockerSwingAndTimeRatio) {
+  const ModelSummary s = summarize(*example("fourbar-crank-rocker.yaml"));
+  ASSERT_EQ(s.loops.size(), 1u);
+  ASSERT_TRUE(s.loops[0].rocker);
+  const RockerSwing& r = *s.loops[0].rocker;
+  // The drawing's lengths (B is drawn to 6 decimals of mm: 80, 180, 150, 200 to about 1e-6).
+  const GrashofReport& g = s.loops[0].grashof;
+  const double a = g.input, b = g.coupler, c = g.output, d = g.frame, pi = std::numbers::pi;
+  EXPECT_NEAR(a + b + c + d, 0.61, 1e-8);
+  const auto crank_at = [&](double reach) { return std::acos((reach * reach + d * d - c * c) / (2 * reach * d)); };
+  const auto rocker_at = [&](double reach, double direction) {
+    return std::atan2(reach * std::sin(direction), reach * std::cos(direction) - d);
+  };
+  const double stretched = crank_at(b + a), folded = crank_at(b - a) + pi;
+  EXPECT_NEAR(r.crank_stretched, stretched, 1e-12);
+  EXPECT_NEAR(r.crank_folded, folded, 1e-12);
+  EXPECT_NEAR(r.rocker_stretched, rocker_at(b + a, stretched), 1e-12);
+  EXPECT_NEAR(r.rocker_folded, rocker_at(b - a, folded - pi), 1e-12);
+  EXPECT_NEAR(r.turn_to_stretched, stretched + 2 * pi - folded, 1e-12);
+  EXPECT_NEAR(r.time_ratio, (2 * pi - r.turn_to_stretched) / r.turn_to_stretched, 1e-12);
+  EXPECT_NE(r.description.find("swings 65.921 deg"), std::string::npos) << r.description;
+}
+
+// The limits are the extremes of the rocker's angle over a fine sweep of the machine's crank;
+// a loop whose input is moved by the rest of the machine (it may only swing) has none.
+TEST(Summary, CrankRockerLimitsAreTheSweepsExtremes) {
+  const auto mech = example("machine-18.yaml");
+  const ModelSummary s = summarize(*mech);
+  const SweepResult sweep = run_sweep(*mech, {.steps = 36001, .order = 0});
+  ASSERT_TRUE(sweep.complete) << sweep.stop_reason;
+  int checked = 0;
+  for (const LoopSummary& l : s.loops) {
+    if (!l.rocker) continue;
+    double low = 1e9, high = -1e9;
+    const double middle = 0.5 * (l.rocker->rocker_stretched + l.rocker->rocker_folded);
+    for (const Sample& sample : sweep.samples) {
+      const double angle =
+          middle + std::remainder(body_angle_motion(*mech, sample, l.loop.output)[0] - middle, 2 * std::numbers::pi);
+      low = std::min(low, angle);
+      high = std::max(high, angle);
+    }
+    EXPECT_NEAR(std::min(l.rocker->rocker_stretched, l.rocker->rocker_folded), low, 1e-7) << l.loop.name;
+    EXPECT_NEAR(std::max(l.rocker->rocker_stretched, l.rocker->rocker_folded), high, 1e-7) << l.loop.name;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 1) << "rocker1's loop has a driven crank; rocker4's input, rocker3, is moved by the machine";
 }
 
 // The crank-shaper's own description: forward 227.2 deg, return 132.8 deg of crank turn. Closed

@@ -23,6 +23,20 @@ struct BodySummary {
   std::string mass_source;  // "given", the material's name, "shape, no material" or "none"
 };
 
+// A crank-rocker on the ground whose crank has its own angle driver (the input turns fully,
+// the output only rocks): the rocker's
+// limits, where the crank and the coupler lie in line, stretched and folded, and the time ratio
+// of its two strokes at a constant crank speed.
+struct RockerSwing {
+  double crank_stretched = 0, crank_folded = 0;    // rad, the crank's input angle (as slider-cranks')
+  double rocker_stretched = 0, rocker_folded = 0;  // rad, the output's angle (its first point to its second)
+  double swing = 0;                                // rad, |rocker_stretched - rocker_folded|
+  // Crank turn (rad, in its sense of rotation) from the folded to the stretched limit and back;
+  // time_ratio = the longer over the shorter.
+  double turn_to_stretched = 0, turn_to_folded = 0, time_ratio = 1;
+  std::string description;
+};
+
 struct LoopSummary {
   FourBarLoop loop;
   GrashofReport grashof;
@@ -33,6 +47,7 @@ struct LoopSummary {
   // toggle positions, rad, on the start's part of the range, in the input's measure (its
   // driver's, or the direction of the input from its first point to its second, from +x).
   std::optional<double> toggle_from, toggle_to;
+  std::optional<RockerSwing> rocker;  // a crank-rocker on the ground, its crank driven
 };
 
 // A slider-crank: a crank on a ground pivot, a rod, and a block sliding on a fixed guide.
