@@ -171,6 +171,80 @@ SourceMark stray_closing_bracket(std::string_view text, char& bracket) {
   return found;
 }
 
+bool before(SourceMark a, SourceMark b) { return a.line < b.line || (a.line == b.line && a.column < b.column); }
+
+// The innermost [ or { before `at` (where yaml-cpp gave up) that no ']' or '}' of the whole text
+// closes, or no mark. yaml-cpp says "end of sequence flow not found" where it next looked for the
+// ']' (the line after the mistake, or further): the student's mistake is the bracket left open.
+// When every bracket is closed somewhere (a comma missing: "[0, 0] [1, 1]"), yaml-cpp's mark is
+// the right place and stays.
+SourceMark unclosed_flow_bracket(std::string_view text, SourceMark at, char& bracket) {
+  std::vector<std::pair<char, SourceMark>> open;
+  for_each_flow_bracket(text, [&](char c, SourceMark where) {
+    if (opens(c)) open.emplace_back(c, where);
+    else if (!open.empty()) open.pop_back();
+    return true;
+  });
+  while (!open.empty() && !before(open.back().second, at)) open.pop_back();
+  if (open.empty()) return {};
+  bracket = open.back().first;
+  return open.back().second;
+}
+
+// The last quote of `text` before `at` that opens a quoted scalar and is not closed on its own
+// line, when that scalar ends on `at`'s line or its line before (or not at all): an unclosed
+// quote makes yaml-cpp read on into the next lines and fail there. Quoted scalars may span lines
+// in YAML, so this only places an error the parser has already found.
+SourceMark unclosed_quote(std::string_view text, SourceMark at, char& quote) {
+  SourceMark opened;   // where the quote still open began
+  SourceMark found;    // the last scalar that spanned lines and ended near `at`, or is still open
+  char in = 0;
+  int line = 1;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const SourceMark here{line, static_cast<int>(i - line_start) + 1};
+    if (!before(here, at)) break;
+    const char c = text[i];
+    if (c == '\n') { ++line; line_start = i + 1; continue; }
+    if (in) {
+      if (in == '"' && c == '\\') { ++i; continue; }
+      if (in == '\'' && c == '\'' && i + 1 < text.size() && text[i + 1] == '\'') { ++i; continue; }
+      if (c != in) continue;
+      in = 0;
+      if (opened.line < line && line >= at.line - 1) { found = opened; quote = c; }
+      continue;
+    }
+    const char prev = i == line_start ? ' ' : text[i - 1];
+    if (c == '#' && (prev == ' ' || prev == '\t')) {  // a comment: to the line's end
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+      continue;
+    }
+    const bool starts_scalar = prev == ' ' || prev == '\t' || prev == '[' || prev == '{' || prev == ',' || prev == ':';
+    if ((c == '"' || c == '\'') && starts_scalar) { in = c; opened = here; }
+  }
+  if (in && opened.line < at.line) { found = opened; quote = in; }
+  return found;
+}
+
+// Where a YAML syntax error really is, when yaml-cpp's mark lies after it: at the bracket or
+// quote left open. Leaves `at` and `message` as they are otherwise.
+void place_unclosed(std::string_view text, SourceMark& at, std::string& message) {
+  if (at.line <= 0) return;
+  char c = ' ';
+  if (message.find("flow not found") != std::string::npos) {
+    const SourceMark open = unclosed_flow_bracket(text, at, c);
+    if (open.line <= 0) return;
+    at = open;
+    message = std::string("this '") + c + "' is never closed by a '" + (c == '[' ? ']' : '}') + "' (" + message + ")";
+    return;
+  }
+  const SourceMark quote = unclosed_quote(text, at, c);
+  if (quote.line <= 0) return;
+  message = std::string("this ") + c + " is not closed on its line (the reader found \"" + message + "\" on line " +
+            std::to_string(at.line) + ")";
+  at = quote;
+}
+
 // Counts a text's documents without building them, and keeps where the second starts: at its
 // first node, or at its marker when it has none.
 class DocumentCounter : public YAML::EventHandler {
@@ -289,7 +363,10 @@ YAML::Node Reader::load(const DocumentWording& wording) const {
                                                            "indentation; indent with spaces");
       start = end + 1;
     }
-    fail(at, std::string("invalid YAML: ").append(e.msg));
+    SourceMark where = at;
+    std::string message = e.msg;
+    place_unclosed(text_, where, message);
+    fail(where, "invalid YAML: " + message);
   }
   if (documents.empty() || (documents.size() == 1 && documents[0].IsNull())) {
     fail(SourceMark{1, 1}, std::string(wording.empty));

@@ -349,13 +349,19 @@ TEST(ModelFileErrors, ErrorFormat) {
 }
 
 TEST(ModelFileErrors, MalformedYaml) {
-  EXPECT_TRUE(fails_at("points:\n  O: [0, 0\n  A: [1, 0]\n", "3:4", "invalid YAML: end of sequence flow not found"));
+  // An unclosed bracket or quote: at the opener, not where yaml-cpp next looked (the next line).
+  EXPECT_TRUE(fails_at("points:\n  O: [0, 0\n  A: [1, 0]\n", "2:6",
+                       "invalid YAML: this '[' is never closed by a ']' (end of sequence flow not found)"));
+  EXPECT_TRUE(fails_at("units: {length: mm\npoints:\n  O: [0, 0]\n", "1:8",
+                       "invalid YAML: this '{' is never closed by a '}' (end of map flow not found)"));
+  EXPECT_TRUE(fails_at("name: \"four-bar\ndescription: \"x\"\npoints:\n  O: [0, 0]\n", "1:7",
+                       "invalid YAML: this \" is not closed on its line"));
   EXPECT_TRUE(fails_at("points:\n\tO: [0, 0]\n", "2:1",
                        "invalid YAML: tab characters are not allowed in YAML indentation; indent with spaces"));
   EXPECT_TRUE(fails_at("name: t\npoints:\n  O2: [0, 0]\n \tA: [1, 0]\n", "4:2",
                        "tab characters are not allowed in YAML indentation"));
   // A tab after the indentation, where YAML allows it, is no error by itself.
-  EXPECT_TRUE(fails_at("name:\tt\npoints:\n  O: [0, 0\n", "4:1", "invalid YAML: end of sequence flow not found"));
+  EXPECT_TRUE(fails_at("name:\tt\npoints:\n  O: [0, 0\n", "3:6", "invalid YAML: this '[' is never closed"));
   EXPECT_TRUE(fails_at("points:\n  O: [0, 0]\n A: [1, 0]\n", "3:2", "invalid YAML: end of map not found"));
   EXPECT_TRUE(fails_at(R"({"points": {"A": [0, 0] "B": [1, 1]}})", "1:25", "invalid YAML: end of map flow not found"));
 }

@@ -168,7 +168,7 @@ TEST(SynthesisTask, TheDocumentationsExamplesParse) {
 
 TEST(SynthesisTask, DocumentErrors) {
   EXPECT_THAT(error_of(""), HasSubstr("task.yaml:1:1: the file holds no task"));
-  EXPECT_THAT(error_of("task: [five-point\n"), HasSubstr("task.yaml:2:1: invalid YAML"));
+  EXPECT_THAT(error_of("task: [five-point\n"), HasSubstr("task.yaml:1:7: invalid YAML: this '[' is never closed"));
   EXPECT_EQ(error_of("- task: five-point\n"),
             "task.yaml:1:1: a task file is a mapping of keys (task:, ...), not a list");
   EXPECT_EQ(error_of("name: x\n"),
