@@ -81,9 +81,10 @@ std::string xml_escape(const std::string& text) {
   return out;
 }
 
-View::View(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int width, int height, double margin_px) {
+View::View(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int width, int height, double margin_x_px,
+           double margin_y_px) {
   const Eigen::Vector2d size = (hi - lo).cwiseMax(Eigen::Vector2d::Constant(1e-12));
-  const double w = std::max(1.0, width - 2 * margin_px), h = std::max(1.0, height - 2 * margin_px);
+  const double w = std::max(1.0, width - 2 * margin_x_px), h = std::max(1.0, height - 2 * margin_y_px);
   scale_ = std::min(w / size.x(), h / size.y());
   world_centre_ = 0.5 * (lo + hi);
   pixel_centre_ = {0.5 * width, 0.5 * height};

@@ -395,7 +395,13 @@ View fit_view(const Mechanism& mech, const SweepResult& sweep, const DrawOptions
   const double room = 30.0;
   // A stress legend takes the right edge: the mechanism is centred in what is left.
   const int legend = options.stress_maps.empty() ? 0 : kStressLegendWidth;
-  return View(lo, hi, options.width - legend, options.height, options.margin + room);
+  // The margin is fixed in pixels, for labels and pivots of a fixed size; on a short or narrow
+  // picture (a phone turned sideways: 808 x 176) two of them would leave the mechanism a quarter
+  // of the height, so neither takes more than 22% of its side (which leaves sides of 300 px and
+  // more, and so every picture drawn before, as they were).
+  const double margin = options.margin + room;
+  const int width = options.width - legend;
+  return View(lo, hi, width, options.height, std::min(margin, 0.22 * width), std::min(margin, 0.22 * options.height));
 }
 
 int default_drawn_step(const Mechanism& mech, const SweepResult& sweep) {

@@ -359,6 +359,25 @@ TEST(DrawingGeometry, TheViewFitsTheMovingPartsNotFarGuideEnds) {
   for (const Drawn* t : pic.canvas.in("labels", Drawn::Text)) EXPECT_NE(t->text, "G1");
 }
 
+// A phone turned sideways (the web app's drawing at 808 x 176): fixed margins of 66 px at the
+// top and bottom left the sweep 44 px of height, a quarter of the picture.
+TEST(DrawingGeometry, AShortWidePictureGivesTheMechanismMostOfItsHeight) {
+  const Example e("fourbar-crank-rocker.yaml");
+  DrawOptions options;
+  options.width = 808;
+  options.height = 176;
+  const View view = fit_view(e.mech, e.sweep, options);
+  double top = INFINITY, bottom = -INFINITY;
+  for (const Sample& s : e.sweep.samples)
+    for (const Eigen::Vector2d& p : sample_points(e.mech, s)) {
+      const Eigen::Vector2d q = view.to_pixels(p);
+      EXPECT_GE(q.y(), 0.15 * options.height);
+      EXPECT_LE(q.y(), 0.85 * options.height);
+      top = std::min(top, q.y()), bottom = std::max(bottom, q.y());
+    }
+  EXPECT_GT(bottom - top, 0.5 * options.height);
+}
+
 TEST(DrawingGeometry, AFlatStartIsNotTheDefaultDrawnPose) {
   // The compressor starts at top dead centre, every point on the line of stroke: the pose
   // drawn is the widest one, with the crank near square to the line of stroke.

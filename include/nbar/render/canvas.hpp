@@ -68,7 +68,11 @@ class Canvas {
 // box with a margin.
 class View {
  public:
-  View(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int width, int height, double margin_px);
+  View(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int width, int height, double margin_px)
+      : View(lo, hi, width, height, margin_px, margin_px) {}
+  // With margins of their own at the sides (x) and at the top and bottom (y).
+  View(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int width, int height, double margin_x_px,
+       double margin_y_px);
   Eigen::Vector2d to_pixels(const Eigen::Vector2d& world) const;
   Eigen::Vector2d to_world(const Eigen::Vector2d& pixels) const;
   double pixels_per_metre() const { return scale_; }
