@@ -1,11 +1,15 @@
 // nbar serve: the web app's server (web/server): the JSON API over the library and the
 // embedded static files, on 127.0.0.1 unless --host says otherwise. docs/web-api.md.
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <netinet/in.h>
 #include <spawn.h>
 #include <sys/wait.h>
 
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "common.hpp"
@@ -43,6 +47,49 @@ void open_browser(const std::string& url) {
   ::waitpid(pid, &status, 0);
 }
 
+// The addresses other machines reach this one at (its network interfaces, loopback left out):
+// a server on 0.0.0.0 is listening on all of them, and "localhost" means nothing to a student's
+// phone. IPv6 ones only when listening on "::"; link-local IPv6 ones need a zone and are left out.
+std::vector<std::string> reachable_addresses(bool ipv6) {
+  std::vector<std::string> out;
+  ifaddrs* list = nullptr;
+  if (::getifaddrs(&list) != 0) return out;
+  for (const ifaddrs* a = list; a; a = a->ifa_next) {
+    if (!a->ifa_addr) continue;
+    char text[INET6_ADDRSTRLEN] = {};
+    if (a->ifa_addr->sa_family == AF_INET) {
+      const auto* in = reinterpret_cast<const sockaddr_in*>(a->ifa_addr);
+      if ((ntohl(in->sin_addr.s_addr) >> 24) == 127) continue;
+      if (::inet_ntop(AF_INET, &in->sin_addr, text, sizeof text)) out.emplace_back(text);
+    } else if (ipv6 && a->ifa_addr->sa_family == AF_INET6) {
+      const auto* in6 = reinterpret_cast<const sockaddr_in6*>(a->ifa_addr);
+      if (IN6_IS_ADDR_LOOPBACK(&in6->sin6_addr) || IN6_IS_ADDR_LINKLOCAL(&in6->sin6_addr)) continue;
+      if (::inet_ntop(AF_INET6, &in6->sin6_addr, text, sizeof text)) out.push_back(std::string("[") + text + "]");
+    }
+  }
+  ::freeifaddrs(list);
+  return out;
+}
+
+// What to tell the teacher when other machines can reach the server: the addresses to give out.
+void print_reachable(const std::string& host, int port) {
+  const bool any = host == "0.0.0.0" || host == "::";
+  const std::string where = any ? "" : (host.find(':') != std::string::npos ? "[" + host + "]" : host);
+  std::cerr << "note: listening on " << host << ": other machines can reach this server";
+  if (!any) {
+    std::cerr << " at http://" << where << ":" << port << "/\n";
+    return;
+  }
+  const std::vector<std::string> addresses = reachable_addresses(host == "::");
+  if (addresses.empty()) {
+    std::cerr << " at http://THIS-MACHINE:" << port << "/ (this machine's IP address or host name; no network "
+                 "address found now)\n";
+    return;
+  }
+  std::cerr << "; give students one of:\n";
+  for (const std::string& a : addresses) std::cerr << "  http://" << a << ":" << port << "/\n";
+}
+
 int run_serve(const ServeArgs& args) {
   web::ServeOptions options;
   options.host = args.host;
@@ -65,7 +112,7 @@ int run_serve(const ServeArgs& args) {
                           ":" + std::to_string(server.bound_port()) + "/";
   std::cerr << "nbar serve: " << url << " (the API is under " << url << "api/; Ctrl-C stops)\n";
   if (args.host != "127.0.0.1" && args.host != "localhost" && args.host != "::1")
-    std::cerr << "note: listening on " << args.host << ": other machines can reach this server\n";
+    print_reachable(args.host, server.bound_port());
   if (args.open) open_browser(url);
   server.listen();
   return kOk;

@@ -527,6 +527,9 @@ TEST(WebApi, HealthAndStaticPages) {
   const Json h = Json::parse(health.body);
   EXPECT_EQ(h["status"], "ok");
   EXPECT_EQ(h["limits"]["max_steps"], 100001);
+  // Whole limits held as doubles are written as integers (5000000, not 5000000.0).
+  EXPECT_TRUE(h["limits"]["max_table_values"].is_number_integer()) << health.body;
+  EXPECT_TRUE(h["limits"]["max_curve_samples"].is_number_integer()) << health.body;
   const ApiResponse index = call("GET", "/");
   ASSERT_EQ(index.status, 200);
   EXPECT_EQ(index.content_type, "text/html; charset=utf-8");

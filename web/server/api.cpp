@@ -131,11 +131,13 @@ class Body {
   }
   // An integer in [lo, hi] (the CLI's range); larger values than `limit` are over the server's
   // limit (413), other values outside the range are bad input (400).
-  std::optional<long long> integer(const char* key, long long lo, long long hi) const {
+  // `shown_hi`, when given, is the top of the range the message names: the server's limit
+  // (checked after, with its own answer) when it is lower than what the option could ever be.
+  std::optional<long long> integer(const char* key, long long lo, long long hi, long long shown_hi = -1) const {
     if (!has(key)) return std::nullopt;
     const nlohmann::json& v = json_[key];
     const auto out_of_range = [&](const std::string& shown) {
-      bad_input(fmt::format("'{}' must be from {} to {}; it is {}", key, lo, hi, shown));
+      bad_input(fmt::format("'{}' must be from {} to {}; it is {}", key, lo, shown_hi >= lo ? shown_hi : hi, shown));
     };
     if (v.is_number_unsigned()) {
       const unsigned long long u = v.get<unsigned long long>();
@@ -384,7 +386,7 @@ ApiResponse api_stress(Job& job, const std::string& request) {
   } else if (body.has("mesh_size")) {
     bad_input("'mesh_size' is the finite elements': give \"method\": \"fe\" too");
   }
-  const long long sections = body.integer("sections", 10, 100000).value_or(200);
+  const long long sections = body.integer("sections", 10, 100000, job.limits.max_sections).value_or(200);
   check_limit("sections", static_cast<double>(sections), job.limits.max_sections, "the number of sections per link");
   options.sections = static_cast<int>(sections);
   const std::optional<std::string> profile = body.optional_text("section_profile");
@@ -425,7 +427,7 @@ ApiResponse api_synth(Job& job, const std::string& request, synthesis::Synthesis
   if (task.kind == synthesis::SynthesisKind::Burmester && task.poses.size() == 4 && task.curves.step > 0) {
     if (task.curves.radius <= 0)
       throw ApiError(ApiErrorKind::LimitExceeded, "curves: this server needs `radius` when `step` is given",
-                     Json{{"limit", "curve_samples"}, {"max", job.limits.max_curve_samples}});
+                     Json{{"limit", "curve_samples"}, {"max", json_number(job.limits.max_curve_samples)}});
     check_limit("curve_samples", task.curves.radius / task.curves.step, job.limits.max_curve_samples,
                 "curves: radius / step");
   }
@@ -760,22 +762,22 @@ ApiResponse api_health(const ServerConfig& config) {
                  {"max_bodies", l.max_bodies},
                  {"max_steps", l.max_steps},
                  {"max_order", 5},
-                 {"max_table_values", l.max_table_values},
+                 {"max_table_values", json_number(l.max_table_values)},
                  {"max_sections", l.max_sections},
                  {"max_fe_nodes", l.max_fe_nodes},
                  {"max_explain_points", l.max_explain_points},
                  {"max_explain_bodies", l.max_explain_bodies},
                  {"max_frames", l.max_frames},
                  {"max_pixels", l.max_pixels},
-                 {"max_animation_pixels", l.max_animation_pixels},
+                 {"max_animation_pixels", json_number(l.max_animation_pixels)},
                  {"max_synthesis_top", l.max_synthesis_top},
                  {"max_synthesis_threads", l.max_synthesis_threads},
-                 {"max_curve_samples", l.max_curve_samples},
-                 {"time_budget_seconds", l.time_budget_seconds},
+                 {"max_curve_samples", json_number(l.max_curve_samples)},
+                 {"time_budget_seconds", json_number(l.time_budget_seconds)},
                  {"max_jobs", config.jobs->total()},
                  {"max_light_jobs", config.light_jobs->total()},
                  {"light_table_values", config.light_table_values},
-                 {"queue_wait_seconds", config.queue_wait_seconds}};
+                 {"queue_wait_seconds", json_number(config.queue_wait_seconds)}};
   Json j = {{"status", "ok"},
             {"version", kVersion},
             {"jobs", {{"running", config.jobs->in_use()}, {"waiting", config.jobs->waiting()}, {"max", config.jobs->total()}}},

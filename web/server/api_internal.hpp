@@ -59,6 +59,10 @@ ApiResponse error_answer(ApiErrorKind kind, const std::string& message, const Js
 // model entity) and the entity, named when `model` is known.
 ApiResponse error_answer(const Error& error, const Model* model = nullptr, const io::SourceMap* source = nullptr);
 
+// A number for a JSON answer: an integer when it is whole (2000, not 2000.0), so that a limit
+// reads as the count it is; otherwise the double.
+Json json_number(double v);
+
 // 413 limit_exceeded unless value <= max: "`what` is <value>; this server allows at most <max>".
 void check_limit(const char* limit, double value, double max, const std::string& what);
 

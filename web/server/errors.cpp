@@ -1,6 +1,8 @@
 // Errors as JSON, and the one mapping of kinds of error to HTTP statuses.
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "api_internal.hpp"
 #include "nbar/io/json_text.hpp"
 
@@ -117,11 +119,18 @@ ApiResponse error_answer(const Error& error, const Model* model, const io::Sourc
   return error_answer(kind, message, details);
 }
 
+Json json_number(double v) {
+  // Beyond 2^53 a double no longer holds every integer: those stay doubles.
+  constexpr double kExact = 9007199254740992.0;
+  if (std::isfinite(v) && std::floor(v) == v && std::abs(v) <= kExact) return static_cast<long long>(v);
+  return v;
+}
+
 void check_limit(const char* limit, double value, double max, const std::string& what) {
   if (value <= max) return;
   throw ApiError(ApiErrorKind::LimitExceeded,
                  fmt::format("{} is {}; this server allows at most {}", what, value, max),
-                 Json{{"limit", limit}, {"max", max}, {"value", value}});
+                 Json{{"limit", limit}, {"max", json_number(max)}, {"value", json_number(value)}});
 }
 
 }  // namespace nbar::web
