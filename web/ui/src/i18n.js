@@ -33,6 +33,8 @@ const strings = {
     deleteBody: 'Delete this body', material: 'Material', mass: 'Mass (kg)', inertia: 'Inertia (kg m²)',
     fixYamlFirst: 'The YAML cannot be read: fix it in the editor first.',
     modelHint: 'Edit a number and press Enter; tap a body in the drawing (or its name) to edit its properties.',
+    retry: 'Retry', notUpdated: (why) => `Not updated: ${why}`,
+    copyLink: 'Copy this link:', copyByHand: 'The link could not be copied here: copy it from the box under the header.',
   },
   es: {
     noModel: 'Sin modelo', share: 'Compartir', shareTitle: 'Copiar un enlace con este modelo',
@@ -66,6 +68,8 @@ const strings = {
     deleteBody: 'Eliminar este cuerpo', material: 'Material', mass: 'Masa (kg)', inertia: 'Inercia (kg m²)',
     fixYamlFirst: 'El YAML no se puede leer: corríjalo antes en el editor.',
     modelHint: 'Edite un número y pulse Intro; toque un cuerpo en el dibujo (o su nombre) para editar sus propiedades.',
+    retry: 'Reintentar', notUpdated: (why) => `Sin actualizar: ${why}`,
+    copyLink: 'Copie este enlace:', copyByHand: 'Aquí no se pudo copiar el enlace: cópielo del recuadro bajo la cabecera.',
   },
 };
 
@@ -84,6 +88,8 @@ export function setLang(l) {
   lang = strings[l] ? l : 'en';
   try { localStorage.setItem('nbar.lang', lang); } catch { /* private mode */ }
   translatePage();
+  // What is written from data (the overlays' legend, the synthesis status) is written again.
+  document.dispatchEvent(new Event('nbar:lang'));
 }
 export function t(key, ...args) {
   const s = strings[lang][key] ?? strings.en[key] ?? key;

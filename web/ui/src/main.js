@@ -40,6 +40,7 @@ async function api(path, body, as = 'json') {
     try { info = (await r.json()).error; } catch { info = { message: `${r.status} ${r.statusText}` }; }
     const e = new Error(info.message);
     e.info = info;
+    e.status = r.status;
     throw e;
   }
   if (as === 'json') return r.json();
@@ -47,10 +48,38 @@ async function api(path, body, as = 'json') {
   return r.blob();
 }
 
-function status(text, bad = false) {
+// The status line: in the header on a desktop, a row of its own under the header on a phone
+// (styles.css), so that what happens is said wherever the page is scrolled. `working` shows the
+// busy mark until the next status; the whole text is in the title when it is cut short.
+function status(text, bad = false, working = false) {
   const el = $('#status');
   el.textContent = text;
+  el.title = text;
   el.classList.toggle('bad', bad);
+  el.classList.toggle('working', working);
+}
+
+// A busy server (429, 503) or no answer at all: worth trying again as it is. Anything else is
+// the model's or the request's fault, and the same request would fail the same way.
+function retryable(e) { return e.status === 429 || e.status === 503 || e.status === undefined; }
+
+// After a failed analysis the drawing, plot and table still show the last model that worked:
+// they are dimmed and labelled "not updated" with the reason (and Retry when the server was
+// busy), on the stage and in the status line, so no one takes them for the text's.
+function showStale(e) {
+  const box = $('#stale');
+  if (!e || !state.solve) {
+    box.hidden = true;
+    document.body.classList.remove('results-stale');
+    $('#retry').hidden = true;
+    return;
+  }
+  const again = retryable(e);
+  box.querySelector('span').textContent = t('notUpdated', e.message);
+  box.querySelector('button').hidden = !again;
+  $('#retry').hidden = !again;
+  box.hidden = false;
+  document.body.classList.add('results-stale');
 }
 
 function setTitle(name) {
@@ -124,7 +153,7 @@ async function analyse() {
   const text = editor.state.doc.toString();
   state.text = text;
   if (!text.trim()) { showProblem(null); return; }
-  status(t('analysing'));
+  status(t('analysing'), false, true);
   document.body.dataset.busy = '1';
   try {
     const check = await api('/api/check', { model: text });
@@ -141,6 +170,7 @@ async function analyse() {
     state.solveText = solveText;
     state.lastOk = text;
     showProblem(null);
+    showStale(null);
     setTitle(solve.model || check.name);
     const why = solve.complete ? '' : ` · ${t('incomplete', solve.stop_reason ?? '')}`;
     status(`${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why}`, !solve.complete);
@@ -150,7 +180,9 @@ async function analyse() {
   } catch (e) {
     if (seq !== state.seq) return;
     showProblem(e.info ?? { message: e.message });
-    status(t('failed'), true);
+    const where = e.info?.line ? t('errorAt', e.info.line, e.info.column ?? 1) : '';
+    status(`${t('failed')}: ${where}${e.message}`, true);
+    showStale(e);
     document.dispatchEvent(new CustomEvent('nbar:analysed', { detail: { error: e.info ?? { message: e.message } } }));
   } finally {
     // The text on screen is analysed and drawn (tests wait for this rather than for a title,
@@ -443,7 +475,7 @@ async function loadGallery() {
 }
 
 async function openExample(name) {
-  status(t('loading'));
+  status(t('loading'), false, true);
   const text = await api(`/api/examples/${encodeURIComponent(name)}`, undefined, 'text');
   for (const b of document.querySelectorAll('[data-example]')) b.classList.toggle('current', b.dataset.example === name);
   state.current = name;
@@ -529,7 +561,7 @@ async function download(kind) {
   const model = editor.state.doc.toString();
   const name = slug();
   try {
-    status(t('loading'));
+    status(t('loading'), false, true);
     if (kind === 'csv') {
       const s = state.solve;
       if (!s) return;
@@ -560,6 +592,44 @@ async function download(kind) {
 
 // ------------------------------------------------------------------------------ sharing
 
+// Copies `text`: the Clipboard API where the page may use it (https or localhost), else a
+// selected text field and execCommand('copy') (a page on http from another machine has no
+// navigator.clipboard). True only when a copy was made.
+async function copyText(text) {
+  if (navigator.clipboard?.writeText) {
+    try { await navigator.clipboard.writeText(text); return true; } catch { /* refused: the fallback */ }
+  }
+  const ta = document.createElement('textarea');
+  ta.value = text;
+  ta.setAttribute('readonly', '');
+  ta.style.cssText = 'position:fixed;top:0;left:0;opacity:0;';
+  document.body.append(ta);
+  ta.select();
+  ta.setSelectionRange(0, text.length);
+  let ok = false;
+  try { ok = document.execCommand('copy'); } catch { ok = false; }
+  ta.remove();
+  return ok;
+}
+
+// Share: the link holding the model, copied; when it cannot be, shown selected under the header
+// to copy by hand (never "Link copied" for a copy that did not happen).
+async function share() {
+  await updateHash(editor.state.doc.toString());
+  const box = $('#share-box');
+  if (await copyText(location.href)) {
+    box.hidden = true;
+    status(t('copied'));
+    return;
+  }
+  const field = box.querySelector('input');
+  field.value = location.href;
+  box.hidden = false;
+  field.focus();
+  field.select();
+  status(t('copyByHand'), true);
+}
+
 async function updateHash(text) {
   try {
     history.replaceState(null, '', `#m=${await encodeModel(text)}`);
@@ -567,6 +637,15 @@ async function updateHash(text) {
 }
 
 // ------------------------------------------------------------------------------ start
+
+// The sticky header's height as --header-h: what scrolls into view goes below it (its status
+// row on a phone makes it taller, and changes with the text).
+function trackHeaderHeight() {
+  const header = $('header.top');
+  const set = () => document.documentElement.style.setProperty('--header-h', `${Math.ceil(header.getBoundingClientRect().height)}px`);
+  new ResizeObserver(set).observe(header);
+  set();
+}
 
 async function start() {
   $('#lang').value = getLang();
@@ -585,11 +664,10 @@ async function start() {
   $('#table').addEventListener('click', (e) => { const tr = e.target.closest('tr[data-i]'); if (tr) { play(false); setFrame(+tr.dataset.i); } });
   const app = { state, api, setText, analyse, showTab, esc, fmt, status, play, setFrame, unitOf, col, model: () => editor.state.doc.toString() };
   initSynthesis(app); initOverlays(app); initExplain(app); initOffline(app);
-  $('#share').addEventListener('click', async () => {
-    await updateHash(editor.state.doc.toString());
-    try { await navigator.clipboard.writeText(location.href); } catch { /* http: no clipboard */ }
-    status(t('copied'));
-  });
+  $('#share').addEventListener('click', share);
+  $('#share-box button').addEventListener('click', () => { $('#share-box').hidden = true; });
+  for (const b of [$('#retry'), $('#stale button')]) b.addEventListener('click', () => { clearTimeout(timer); analyse(); });
+  trackHeaderHeight();
   new ResizeObserver(resizePlot).observe($('#plot'));
   new ResizeObserver(onDrawingResized).observe($('#drawing'));
   initFiles();
