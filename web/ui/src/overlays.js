@@ -55,26 +55,34 @@ function chips() {
 // ------------------------------------------------------------------------------ data from the server
 
 // The dynamics solve (joint forces) and the stresses are asked for only when their box is on,
-// once per model text.
-async function fetchIfNeeded() {
+// once per model text. Only answers are kept: an error ("the server is busy") is shown until the
+// next try, which ticking the box again makes at once and moving through the sweep makes at
+// most every `retryAfterMs` (a slider sends many frames; a busy server needs no more load).
+const retryAfterMs = 3000;
+function fetchIfNeeded({ eager = true } = {}) {
   const model = app.state.lastOk;
   if (ov.model !== model) { ov.model = model; ov.forces = null; ov.stress = null; }
-  const jobs = [];
-  if (ov.on.has('forces') && !ov.forces && !ov.busy.forces) {
-    ov.busy.forces = true;
-    jobs.push(app.api('/api/solve', { model, dynamics: true, order: 2, columns: ['*.Fx', '*.Fy'] })
-      .then((r) => { ov.forces = { ok: r }; }, (e) => { ov.forces = { error: e.message }; })
-      .finally(() => { ov.busy.forces = false; }));
-  }
-  if (ov.on.has('stress') && !ov.stress && !ov.busy.stress) {
-    ov.busy.stress = true;
-    jobs.push(app.api('/api/stress', { model })
-      .then((r) => { ov.stress = { ok: r }; }, (e) => { ov.stress = { error: e.message }; })
-      .finally(() => { ov.busy.stress = false; }));
-  }
-  if (!jobs.length) return;
-  await Promise.all(jobs);
-  if (ov.model === app.state.lastOk) { drawFrame(); legend(); }
+  const jobs = [
+    fetchOne('forces', () => app.api('/api/solve', { model, dynamics: true, order: 2, columns: ['*.Fx', '*.Fy'] }), eager),
+    fetchOne('stress', () => app.api('/api/stress', { model }), eager),
+  ].filter(Boolean);
+  if (!jobs.length) return undefined;
+  return Promise.all(jobs).then(() => { if (ov.model === app.state.lastOk) { drawFrame(); legend(); } });
+}
+
+// One overlay's request, unless its box is off, it has its answer, one is under way, or (not
+// `eager`) its last error is too recent to try again.
+function fetchOne(kind, request, eager) {
+  const held = ov[kind];
+  if (!ov.on.has(kind) || held?.ok || ov.busy[kind]) return null;
+  if (held?.error && !eager && Date.now() - held.at < retryAfterMs) return null;
+  const model = ov.model;
+  ov.busy[kind] = true;
+  if (held?.error) { held.retrying = true; legend(); }
+  return request()
+    .then((r) => { if (ov.model === model) ov[kind] = { ok: r }; },
+      (e) => { if (ov.model === model) ov[kind] = { error: e.message, at: Date.now() }; })
+    .finally(() => { ov.busy[kind] = false; });
 }
 
 // ------------------------------------------------------------------------------ scales
@@ -251,7 +259,7 @@ function legend() {
   for (const k of ['velocity', 'acceleration', 'forces']) {
     if (!ov.on.has(k)) continue;
     const sc = scales[k];
-    if (k === 'forces' && ov.forces?.error) { parts.push(`<span class="bad">${t('ov_forces')}: ${app.esc(ov.forces.error)}</span>`); continue; }
+    if (k === 'forces' && ov.forces?.error) { parts.push(failed('forces', ov.forces)); continue; }
     if (sc?.zero) { parts.push(`<span>${t(`ov_${k}`)}: ${t('allZero')}</span>`); continue; }
     if (!sc) { parts.push(`<span>${t(`ov_${k}`)}: ${t(k === 'forces' && !ov.forces ? 'loading' : 'noVectors')}</span>`); continue; }
     // The legend's bar is drawn at the same scale as the arrows, in the drawing's pixels.
@@ -262,7 +270,7 @@ function legend() {
       + ` = ${app.fmt(sc.legendValue)} ${app.esc(sc.unit ?? '')} <small>(${t('maxIs')} ${app.fmt(sc.max)})</small></span>`);
   }
   if (ov.on.has('stress')) {
-    if (ov.stress?.error) parts.push(`<span class="bad">${t('ov_stress')}: ${app.esc(ov.stress.error)}</span>`);
+    if (ov.stress?.error) parts.push(failed('stress', ov.stress));
     else if (!ov.stress) parts.push(`<span>${t('ov_stress')}: ${t('loading')}</span>`);
     else {
       const links = ov.stress.ok.links;
@@ -271,6 +279,12 @@ function legend() {
     }
   }
   $('#ov-legend').innerHTML = parts.join('');
+}
+
+// An overlay whose last request failed: the reason, and that it is being tried again.
+function failed(kind, held) {
+  const again = held.retrying ? ` <small>(${t('retrying')})</small>` : '';
+  return `<span class="bad" data-failed="${kind}">${t(`ov_${kind}`)}: ${app.esc(held.error)}${again}</span>`;
 }
 
 function pixelsPerUnit() {
@@ -350,7 +364,10 @@ export function initOverlays(context) {
   app = context;
   buildControls();
   document.addEventListener('nbar:solved', () => { chips(); warnings(); refresh(); });
-  document.addEventListener('nbar:frame', drawFrame);
+  // Moving through the sweep draws the pose, and tries a failed overlay again (not too often).
+  document.addEventListener('nbar:frame', () => { drawFrame(); fetchIfNeeded({ eager: false }); });
+  // The legend, the loops' line and the warnings are written in the language chosen.
+  document.addEventListener('nbar:lang', () => { if (app.state.solve) { warnings(); drawFrame(); legend(); } });
   // The drawing drawn again for a new size: the traces go back on it.
   document.addEventListener('nbar:drawn', drawTraces);
   document.querySelector('#drawing').addEventListener('click', (e) => {

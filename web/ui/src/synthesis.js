@@ -144,20 +144,70 @@ function burmesterTask() {
   return `${lines.join('\n')}\n`;
 }
 
+// The function form's task text. Where each field's value lands in it is kept in synth.fields
+// ({id, line, column, quoted}), so that an error the server places in this text, which the
+// student never sees, is said at the field and the column within it.
 function functionTask() {
   const v = (id) => $(`#${id}`).value.trim();
   synth.targets = [];
-  return `task: function
-name: ${JSON.stringify(`y = ${v('fn-expr')}`)}
-units: {length: ${lengthUnit()}, angle: deg}
-function: ${JSON.stringify(v('fn-expr'))}
-x: [${v('fn-x0')}, ${v('fn-x1')}]
-input_range: [${v('fn-in0')}, ${v('fn-in1')}]
-output_range: [${v('fn-out0')}, ${v('fn-out1')}]
-points: ${v('fn-points')}
-spacing: ${$('#fn-spacing').value}
-frame: ${v('fn-frame')}
-`;
+  synth.fields = [];
+  const lines = [];
+  // A line of `parts`: literal text, or [field id] whose value is written there.
+  const line = (...parts) => {
+    let text = '';
+    for (const part of parts) {
+      if (typeof part === 'string') { text += part; continue; }
+      const [id, quoted] = part;
+      const value = quoted ? JSON.stringify(v(id)) : v(id);
+      synth.fields.push({ id, line: lines.length + 1, column: text.length + 1 + (quoted ? 1 : 0), length: value.length, quoted });
+      text += value;
+    }
+    lines.push(text);
+  };
+  line('task: function');
+  line(`name: ${JSON.stringify(`y = ${v('fn-expr')}`)}`);
+  line(`units: {length: ${lengthUnit()}, angle: deg}`);
+  line('function: ', ['fn-expr', true]);
+  line('x: [', ['fn-x0'], ', ', ['fn-x1'], ']');
+  line('input_range: [', ['fn-in0'], ', ', ['fn-in1'], ']');
+  line('output_range: [', ['fn-out0'], ', ', ['fn-out1'], ']');
+  line('points: ', ['fn-points']);
+  line(`spacing: ${$('#fn-spacing').value}`);
+  line('frame: ', ['fn-frame']);
+  return `${lines.join('\n')}\n`;
+}
+
+// The form field an error of the function task's text is about, and the column within the
+// field's value (1 at its first character), or null for an error of no field.
+function functionField(info) {
+  if (synth.method !== 'function' || !info?.line) return null;
+  const col = info.column ?? 1;
+  const onLine = (synth.fields ?? []).filter((f) => f.line === info.line);
+  // The last field starting at or before the column (a closing quote or bracket counts as its end).
+  const f = onLine.filter((x) => x.column <= col + (x.quoted ? 1 : 0)).at(-1) ?? onLine[0];
+  if (!f) return null;
+  const inValue = Math.min(Math.max(col - f.column + 1, 1), $(`#${f.id}`).value.trim().length + 1);
+  return { id: f.id, column: inValue };
+}
+
+// Says a synthesis error: at a form field (marked, with the caret put at the column) when it is
+// about one, else at the task text's line and column.
+function showSynthError(e) {
+  const i = e.info ?? {};
+  for (const x of document.querySelectorAll('#synth-function input.bad')) x.classList.remove('bad');
+  const at = functionField(i);
+  if (!at) {
+    $('#synth-status').textContent = (i.line ? t('errorAt', i.line, i.column ?? 1) : '') + e.message;
+    return;
+  }
+  const input = $(`#${at.id}`);
+  const label = input.closest('label')?.querySelector('span')?.textContent ?? at.id;
+  const where = at.id === 'fn-expr' ? t('fnFieldError', at.column) : `${label}: `;
+  $('#synth-status').textContent = where + e.message;
+  input.classList.add('bad');
+  input.focus();
+  const start = input.value.length - input.value.trimStart().length + at.column - 1;
+  try { input.setSelectionRange(start, start); } catch { /* not a text field */ }
 }
 
 function taskText() {
@@ -180,11 +230,13 @@ function stopTapping() {
 
 function startTapping(kind) {
   if (synth.tapping === kind) {
-    // A path takes as many points as tapped: pressing the button again ends the tapping.
+    // A path takes as many points as tapped: pressing the button again ends the tapping. Any
+    // other tapping ends with what was taken; the status says so rather than asking for more.
     const done = kind === 'points' && !Number.isFinite(textMethods[synth.method].taps) && synth.taps.length > 0;
     if (done) setFivePointTargets(synth.taps);
+    const taken = kind === 'poses' ? $('#poses').children.length : synth.taps.length;
     stopTapping();
-    if (done) $('#synth-status').textContent = t('tapped');
+    $('#synth-status').textContent = done || (kind === 'poses' && taken >= 3) ? t('tapped') : t('tapStopped', taken);
     return;
   }
   if (!document.querySelector('#drawing svg')) { $('#synth-status').textContent = t('tapNeedsDrawing'); return; }
@@ -308,6 +360,7 @@ async function runSynthesis() {
   stopTapping();
   stopPreview();
   list.replaceChildren();
+  for (const x of document.querySelectorAll('#synth-function input.bad')) x.classList.remove('bad');
   st.textContent = t('running');
   $('#synth-run').disabled = true;
   try {
@@ -316,8 +369,7 @@ async function runSynthesis() {
     list.replaceChildren(...res.designs.map((d) => designItem(d, res)));
     if (res.notes?.length) st.textContent += ` · ${res.notes.join('; ')}`;
   } catch (e) {
-    const i = e.info ?? {};
-    st.textContent = (i.line ? t('errorAt', i.line, i.column ?? 1) : '') + e.message;
+    showSynthError(e);
   } finally {
     $('#synth-run').disabled = false;
   }

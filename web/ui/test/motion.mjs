@@ -91,6 +91,15 @@ async function burmesterAndFunction(page, ctx) {
   await page.waitForSelector('[data-design="1"]:not([disabled])', { timeout: 60000 });
   assert.match(await page.locator('#synth-status').textContent(), /designs? \(\d+ solutions?\)/);
   await ctx.shot(page, `${ctx.tag}-m3-function`);
+  // An error in f(x) is said at the field and its column, not at the generated task text's
+  // line 4 the student never sees.
+  await page.locator('#fn-expr').fill('log(x');
+  await click(page, mobile, '#synth-run');
+  await page.waitForFunction(() => !/Running/.test(document.querySelector('#synth-status').textContent));
+  assert.match(await page.locator('#synth-status').textContent(), /^f\(x\), column 6: in the function 'log\(x': expected '\)'$/);
+  assert.equal(await page.locator('#fn-expr.bad').count(), 1, 'the f(x) field is marked');
+  assert.equal(await page.locator('#fn-expr').evaluate((e) => e.selectionStart), 5, 'the caret at the column');
+  await page.locator('#fn-expr').fill('x^2');
   // Poses tapped on the drawing fill the table (their angles are typed).
   await page.selectOption('#synth-method', 'burmester');
   await click(page, mobile, '#pose-tap');
@@ -102,6 +111,8 @@ async function burmesterAndFunction(page, ctx) {
   const xs = await page.locator('#poses .px').evaluateAll((els) => els.map((e) => +e.value));
   assert.ok(xs[0] < xs[1] && xs[1] < xs[2], `tapped left to right: ${xs}`);
   await click(page, mobile, '#pose-tap');
+  // Pressing the button again ends the tapping: the status no longer asks for a fourth pose.
+  assert.equal(await page.locator('#synth-status').textContent(), 'Points written into the task: press Run.');
   assert.equal(await page.locator('#drawing .synth-marks .target').count(), 3, 'the poses stay marked while the panel is open');
   await click(page, mobile, '[data-tab="gallery"]');
   assert.equal(await page.locator('#drawing .synth-marks').count(), 0, 'and go with it');
