@@ -13,6 +13,11 @@ let selected = null;
 let lastError = null;
 let lastRefusal = null;  // a structured edit refused (a rename that cannot be done safely)
 let lastRefusalAt = null;
+// The field last written from the tables (its data-path), until an analysis succeeds: an error
+// the server places at no field (a length that does not assemble) is marked there, and the
+// marked field is brought into view below the sticky header.
+let lastEdited = null;
+let reveal = false;
 
 const esc = (s) => String(s ?? '').replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
 const isObj = (v) => v && typeof v === 'object' && !Array.isArray(v);
@@ -46,6 +51,8 @@ function field(path, value, kind = 'num', label = '') {
 }
 
 function commit(input) {
+  lastEdited = input.dataset.path;
+  reveal = true;
   const path = JSON.parse(input.dataset.path);
   const value = parseField(input.dataset.kind, input.value);
   applyEdit((text) => (value === undefined ? deleteIn(text, path) : setIn(text, path, value)));
@@ -252,14 +259,35 @@ function markError() {
     const near = lastRefusalAt && document.querySelector(`#model-tables ${lastRefusalAt}`);
     near?.closest('tr')?.insertAdjacentHTML('afterend', `<tr class="refusal"><td colspan="9"><small class="cell-error" role="alert">${esc(lastRefusal)}</small></td></tr>`);
   }
-  if (!lastError?.line) return;
+  if (!lastError) return;
+  const best = errorField();
+  const edited = lastEdited && document.querySelector(`#model-tables .cell[data-path="${CSS.escape(lastEdited)}"]`);
+  const cell = best ?? edited;
+  if (cell) {
+    cell.classList.add('bad');
+    cell.title = lastError.message;
+    // The message beside the field too: on a phone the panel's top may be scrolled away.
+    cell.insertAdjacentHTML('afterend', `<small class="cell-error" role="alert">${esc(lastError.message)}</small>`);
+  }
+  // Once, after an edit from the tables: the field (or the note) scrolled into view under the
+  // header (scroll-margin-top in style.css), not while the student types in the editor.
+  // The field in the middle, so that its message below it shows too.
+  if (reveal && document.querySelector('#panel-model.active')) {
+    if (cell) cell.scrollIntoView({ block: 'center' }); else note.scrollIntoView({ block: 'nearest' });
+  }
+  reveal = false;
+}
+
+// The table field holding the place the server's error points at (its line and column).
+function errorField() {
+  if (!lastError?.line) return null;
   const text = modelText();
   const lines = text.split('\n');
   let at = 0;
   for (let i = 0; i < Math.min(lastError.line - 1, lines.length); i++) at += lines[i].length + 1;
   at += Math.max((lastError.column ?? 1) - 1, 0);
   let doc;
-  try { doc = parseModel(text); } catch { return; }
+  try { doc = parseModel(text); } catch { return null; }
   let best = null;
   for (const input of document.querySelectorAll('#model-tables .cell[data-path]')) {
     const node = doc.getIn(JSON.parse(input.dataset.path), true);
@@ -267,12 +295,7 @@ function markError() {
       best = { input, size: node.range[1] - node.range[0] };
     }
   }
-  if (best) {
-    best.input.classList.add('bad');
-    best.input.title = lastError.message;
-    // The message beside the field too: on a phone the panel's top may be scrolled away.
-    best.input.insertAdjacentHTML('afterend', `<small class="cell-error">${esc(lastError.message)}</small>`);
-  }
+  return best?.input ?? null;
 }
 
 // ------------------------------------------------------------------------------ adding, renaming
@@ -388,7 +411,13 @@ export function initTables() {
       applyEdit((text) => deleteIn(deleteIn(text, ['lengths', name]), ['bodies', name]));
     }
   });
-  document.addEventListener('nbar:analysed', (e) => { lastError = e.detail?.error ?? null; lastRefusal = null; renderTables(); });
-  document.addEventListener('nbar:opened', () => { selected = null; lastError = null; lastRefusal = null; });
+  document.addEventListener('nbar:analysed', (e) => {
+    lastError = e.detail?.error ?? null;
+    if (!lastError) lastEdited = null;
+    lastRefusal = null;
+    renderTables();
+    reveal = false;
+  });
+  document.addEventListener('nbar:opened', () => { selected = null; lastError = null; lastRefusal = null; lastEdited = null; reveal = false; });
   $('#lang')?.addEventListener('change', () => renderTables());
 }
