@@ -2,7 +2,7 @@
 // Chromium (never a downloaded one) through playwright-core at a desktop and a phone viewport,
 // and saves screenshots. Exit 77 (ctest's SKIP_RETURN_CODE) when playwright-core, Chromium or
 // the built web app is missing.
-//   node web/ui/test/browser.mjs --nbar build/apps/nbar/nbar --out build/web-screenshots [--only draw]
+//   node web/ui/test/browser.mjs --nbar build/apps/nbar/nbar --out build/web-screenshots [--only draw|review]
 import { spawnSync } from 'node:child_process';
 import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -12,11 +12,15 @@ import { run as runEditing } from './edit.mjs';
 import * as motion from './motion.mjs';
 import * as files from './files.mjs';
 import * as draw from './draw.mjs';
+import * as review from './review.mjs';
 
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const out = arg('--out', 'build/web-screenshots');
-// `--only draw`: only the comparison of the drawing with nbar draw's, at both viewports.
-const onlyDraw = arg('--only', '') === 'draw';
+// `--only draw`: only the comparison of the drawing with nbar draw's, at both viewports;
+// `--only review`: only review.mjs's checks (status, share, stale results, retries), at both.
+const only = arg('--only', '');
+const onlyDraw = only === 'draw';
+const onlyReview = only === 'review';
 
 const browser = await launchChromium();
 mkdirSync(out, { recursive: true });
@@ -29,9 +33,9 @@ if (!index.includes('app.js')) { console.log('SKIP: this nbar carries the placeh
 const errors = [];
 let failed = false;
 
-async function open(name, viewport, mobile) {
+async function open(name, viewport, mobile, options = {}) {
   const context = await browser.newContext({
-    viewport, hasTouch: mobile, isMobile: mobile, deviceScaleFactor: mobile ? 2 : 1, acceptDownloads: true, locale: 'en-US',
+    viewport, hasTouch: mobile, isMobile: mobile, deviceScaleFactor: mobile ? 2 : 1, acceptDownloads: true, locale: 'en-US', ...options,
   });
   const page = await context.newPage();
   page.on('pageerror', (e) => errors.push(`${name}: ${e.message}`));
@@ -108,6 +112,14 @@ async function synthesis(page, mobile, tag) {
   await page.waitForSelector('#drawing svg .body');
   assert.match(await page.locator('#status').textContent(), /1 DOF · 361 samples$/);
   await shot(page, `${tag}-6-design`);
+}
+
+// review.mjs's checks in a page of their own at a viewport, without the service worker: the
+// requests it makes for the page would pass by the test's page.route() (a busy server faked).
+async function reviewAt(tag, viewport, mobile) {
+  const { context, page } = await open(tag, viewport, mobile, { serviceWorkers: 'block' });
+  await review.run(page, { mobile, tag, shot, click, openExample, retype });
+  await context.close();
 }
 
 async function desktop() {
@@ -247,8 +259,15 @@ async function phone() {
 }
 
 try {
-  await desktop();
-  await phone();
+  if (onlyReview) {
+    await reviewAt('desktop', { width: 1280, height: 800 }, false);
+    await reviewAt('phone', { width: 390, height: 844 }, true);
+  } else {
+    await desktop();
+    await reviewAt('desktop', { width: 1280, height: 800 }, false);
+    await phone();
+    await reviewAt('phone', { width: 390, height: 844 }, true);
+  }
   assert.deepEqual(errors, [], 'no errors in the page');
   console.log(`OK: screenshots in ${out}`);
 } catch (e) {
