@@ -350,6 +350,35 @@ bool circle_clear_of_edges(const Circle& c, const Polygon& poly) {
   return true;
 }
 
+// The first pair (i, j), j > i + 1, of edges of a closed polygon that are not neighbours and
+// meet, in the order (i, then j); {n, n} when none do. Edges are swept in the order of their
+// leftmost x, each tested only against the edges whose x range it overlaps.
+std::pair<std::size_t, std::size_t> first_meeting_edges(const Polygon& poly) {
+  const std::size_t n = poly.size();
+  const auto low = [&](std::size_t e) { return std::min(poly[e].x(), poly[(e + 1) % n].x()); };
+  const auto high = [&](std::size_t e) { return std::max(poly[e].x(), poly[(e + 1) % n].x()); };
+  std::vector<std::size_t> order(n);
+  for (std::size_t e = 0; e < n; ++e) order[e] = e;
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return low(p) < low(q); });
+  std::pair<std::size_t, std::size_t> first{n, n};
+  std::vector<std::size_t> active;
+  for (std::size_t e : order) {
+    const double x = low(e);
+    std::erase_if(active, [&](std::size_t f) { return high(f) < x; });
+    const double y0 = std::min(poly[e].y(), poly[(e + 1) % n].y()), y1 = std::max(poly[e].y(), poly[(e + 1) % n].y());
+    for (std::size_t f : active) {
+      const std::size_t i = std::min(e, f), j = std::max(e, f);
+      if (j < i + 2 || (i == 0 && j == n - 1)) continue;  // neighbours share a vertex
+      if (std::make_pair(i, j) >= first) continue;
+      if (std::max(poly[f].y(), poly[(f + 1) % n].y()) < y0 || std::min(poly[f].y(), poly[(f + 1) % n].y()) > y1)
+        continue;
+      if (segments_meet(poly[i], poly[(i + 1) % n], poly[j], poly[(j + 1) % n])) first = {i, j};
+    }
+    active.push_back(e);
+  }
+  return first;
+}
+
 // `source` (optional) maps the vertices of a polygonised ring back to the ring's own, so that
 // messages name the vertices and edges the user wrote.
 void check_polygon(const Polygon& poly, const std::string& what, const std::vector<std::size_t>* source = nullptr,
@@ -384,25 +413,28 @@ void check_polygon(const Polygon& poly, const std::string& what, const std::vect
   if (spread <= 64 * std::numeric_limits<double>::epsilon() * span2) {
     fail(what + " has zero area: its vertices are all on one line");
   }
-  for (std::size_t i = 0; i < n; ++i) {
+  // The first fault in the order of a scan of edge i, then of the pairs (i, j > i + 1), as the
+  // messages always named them; the pairs that can meet are found by a sweep over x, so that an
+  // outline of 60 000 edges is not 1.8e9 tests.
+  std::size_t doubles_back = n;
+  for (std::size_t i = 0; i < n && doubles_back == n; ++i) {
     const Vector2d& a = poly[i];
     const Vector2d& b = poly[(i + 1) % n];
     // The next edge shares b; it only meets this one elsewhere by doubling back along it.
     const Vector2d& c = poly[(i + 2) % n];
-    if (orient(a, b, c) == 0 && (b - a).dot(c - b) < 0) {
-      std::ostringstream os;
-      os << what << " doubles back on itself at vertex " << src((i + 1) % n) << ' ' << point_text(b);
-      fail(os.str());
-    }
-    for (std::size_t j = i + 2; j < n; ++j) {
-      if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
-      if (segments_meet(a, b, poly[j], poly[(j + 1) % n])) {
-        std::ostringstream os;
-        os << what << " intersects itself: edge " << src(i) << "-" << next(i) << " meets edge " << src(j) << "-"
-           << next(j);
-        fail(os.str());
-      }
-    }
+    if (orient(a, b, c) == 0 && (b - a).dot(c - b) < 0) doubles_back = i;
+  }
+  const auto [i, j] = first_meeting_edges(poly);
+  if (doubles_back < n && (i == n || doubles_back <= i)) {
+    std::ostringstream os;
+    os << what << " doubles back on itself at vertex " << src((doubles_back + 1) % n) << ' '
+       << point_text(poly[(doubles_back + 1) % n]);
+    fail(os.str());
+  }
+  if (i < n) {
+    std::ostringstream os;
+    os << what << " intersects itself: edge " << src(i) << "-" << next(i) << " meets edge " << src(j) << "-" << next(j);
+    fail(os.str());
   }
   // A simple polygon that is not flat has area; this only catches what rounding let through.
   if (signed_area(poly) == 0) fail(what + " has zero area");

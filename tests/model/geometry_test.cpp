@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -396,6 +397,40 @@ std::string region_error(const Region& r) {
     return e.what();
   }
   return "valid";
+}
+
+// The first self-intersection named, over random polygons (many of them crossing themselves),
+// is the first pair (i, j > i + 1) of non-adjacent edges that meet, as a scan of every pair
+// finds it: the sweep over x that finds it must name the same edges.
+TEST(GeometryValidation, SelfIntersectionNamesTheFirstCrossingPairOfAScan) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(0.0, 10.0);
+  const auto orient = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  };
+  // Random coordinates put no three points on one line: strict crossings only.
+  const auto cross = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                         const Eigen::Vector2d& d) {
+    return orient(a, b, c) * orient(a, b, d) < 0 && orient(c, d, a) * orient(c, d, b) < 0;
+  };
+  int crossing = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::size_t n = 4 + trial % 40;
+    Polygon poly(n);
+    for (auto& p : poly) p = {coordinate(random), coordinate(random)};
+    std::string expected = "valid";
+    for (std::size_t i = 0; i < n && expected == "valid"; ++i)
+      for (std::size_t j = i + 2; j < n && expected == "valid"; ++j) {
+        if (i == 0 && j == n - 1) continue;
+        if (cross(poly[i], poly[(i + 1) % n], poly[j], poly[(j + 1) % n]))
+          expected = "the outline intersects itself: edge " + std::to_string(i) + "-" + std::to_string((i + 1) % n) +
+                     " meets edge " + std::to_string(j) + "-" + std::to_string((j + 1) % n);
+      }
+    if (expected == "valid") continue;
+    ++crossing;
+    EXPECT_THAT(region_error(plate(poly)), HasSubstr(expected)) << "trial " << trial;
+  }
+  EXPECT_GT(crossing, 200);
 }
 
 TEST(CheckRegion, AcceptsValidPlates) {
