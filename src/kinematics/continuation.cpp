@@ -183,6 +183,21 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
   double residual = 0.0;
   bool residual_known = false;
   bool coast_tried = false;
+  // Once per track: true when p_end was reached on a singular position; else state is at an
+  // accepted point, perhaps nearer p_end, to go on from as usual.
+  const auto coast = [&] {
+    coast_tried = true;
+    residual_known = false;
+    if (coast_to_singular_end(mech, state, path, p_start, p_end, options, &report.singular_end_accuracy)) {
+      report.singular_end = true;
+      ++report.steps;
+      return true;
+    }
+    q_old = state.q;
+    sign_old = state.solver().determinant_sign();
+    h = p_end - state.parameter;
+    return false;
+  };
 
   while (true) {
     const double remaining = p_end - state.parameter;
@@ -199,18 +214,7 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
     bool ok = converged && factorize_jacobian(mech, state, state.spare_solver());
     if (converged && final_step && options.coast_terms > 0 && !coast_tried &&
         (!ok || state.spare_solver().reciprocal_condition() < kCoastRcond)) {
-      coast_tried = true;
-      if (coast_to_singular_end(mech, state, path, p_start, p_end, options, &report.singular_end_accuracy)) {
-        report.singular_end = true;
-        ++report.steps;
-        residual_known = false;
-        break;
-      }
-      // Still at an accepted point, perhaps nearer p_end: on as usual from there.
-      q_old = state.q;
-      sign_old = state.solver().determinant_sign();
-      residual_known = false;
-      h = p_end - state.parameter;
+      if (coast()) break;
       continue;
     }
     bool crossing = false;
@@ -250,17 +254,7 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
     if (std::abs(h) < h_min && options.coast_terms > 0 && !coast_tried) {
       // Given up short of p_end: perhaps p_end is a change point, where Newton converges too
       // slowly to be trusted.
-      coast_tried = true;
-      if (coast_to_singular_end(mech, state, path, p_start, p_end, options, &report.singular_end_accuracy)) {
-        report.singular_end = true;
-        ++report.steps;
-        residual_known = false;
-        break;
-      }
-      q_old = state.q;
-      sign_old = state.solver().determinant_sign();
-      residual_known = false;
-      h = p_end - state.parameter;
+      if (coast()) break;
       continue;
     }
     if (std::abs(h) < h_min) {
