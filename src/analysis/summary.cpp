@@ -1,5 +1,6 @@
 #include "nbar/analysis/summary.hpp"
 #include "nbar/analysis/summary_facts.hpp"
+#include "nbar/model/geometry.hpp"
 
 #include <fmt/format.h>
 
@@ -145,6 +146,32 @@ void warn_about_many_turns(const Model& m, ModelSummary& out) {
   }
 }
 
+// A plate whose body's points lie off it was most likely drawn elsewhere or in the part's own
+// frame (a DXF part file): its mass, centre of mass and stresses would belong to another place.
+void warn_about_points_off_plates(const Model& m, std::vector<Warning>& out) {
+  for (const Body& b : m.bodies) {
+    if (!b.shape || b.shape->outline.size() < 3) continue;
+    const Region straight = straight_edged(*b.shape);  // arcs bulge past their vertices
+    Eigen::Vector2d low = straight.outline[0], high = low;
+    for (const Eigen::Vector2d& v : straight.outline) {
+      low = low.cwiseMin(v);
+      high = high.cwiseMax(v);
+    }
+    const double size = (high - low).norm();
+    for (int p : b.points) {
+      const double off = distance_outside_outline(*b.shape, m.points[p].position);
+      if (!(off > 1e-3 * size)) continue;
+      const double unit = m.units.length_scale;
+      out.push_back({"point_off_plate", -1,
+                     fmt::format("point {} of body {} lies {:.6g} {} outside its plate, which spans x from {:.6g} to "
+                                 "{:.6g} and y from {:.6g} to {:.6g} {}: is the plate drawn in another place or frame "
+                                 "than the body?",
+                                 m.points[p].name, b.name, off / unit, m.units.length, low.x() / unit, high.x() / unit,
+                                 low.y() / unit, high.y() / unit, m.units.length)});
+    }
+  }
+}
+
 // The input angles of the toggle positions of a loop on the ground whose input cannot turn
 // fully, in the measure of the input's angle driver when it has one (from +x), else of the
 // input's direction from its first point to its second.
@@ -247,6 +274,7 @@ void summarize_start(const Mechanism& mech, int max_steps, ModelSummary& out) {
 std::vector<Warning> check_before_sweep(const Mechanism& mech) {
   ModelSummary s;
   warn_about_many_turns(mech.model(), s);
+  warn_about_points_off_plates(mech.model(), s.warnings);
   check_laws_over_sweep(mech, s);
   if (s.law_error) throw *s.law_error;
   return s.warnings;
@@ -269,6 +297,7 @@ ModelSummary summarize(const Mechanism& mech, int max_steps) {
   for (int r : s.mobility.redundant) s.redundant.push_back(mech.rows()[r].label);
   for (std::size_t d = 0; d < m.drivers.size(); ++d) s.drivers.push_back(describe_driver(m, static_cast<int>(d)));
   warn_about_many_turns(m, s);
+  warn_about_points_off_plates(m, s.warnings);
   summarize_crank_mechanisms(m, s);
   summarize_start(mech, max_steps, s);
   if (s.assembly)

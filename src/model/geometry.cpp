@@ -735,4 +735,14 @@ std::vector<EdgeMention> edge_mentions(const std::string& message) {
   return out;
 }
 
+double distance_outside_outline(const Region& r, const Vector2d& x) {
+  const Region straight = straight_edged(r);
+  const Polygon& outline = straight.outline;
+  const std::size_t n = outline.size();
+  if (n < 3 || strictly_inside(outline, x)) return 0.0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) nearest = std::min(nearest, distance_to_segment(x, outline[i], outline[(i + 1) % n]));
+  return nearest;
+}
+
 }  // namespace nbar

@@ -252,6 +252,42 @@ TEST(Summary, WarnsOfManyTurnsAndNamesTheUnit) {
   EXPECT_TRUE(summarize(*long_crank("rad", "2")).warnings.empty());
 }
 
+// A plate drawn where its body is not (a DXF part in its own frame, here turned 90 degrees)
+// is said with how far the point is off it; pins in holes, on the edge or inside are not.
+std::shared_ptr<const Mechanism> crank_with_plate(const std::string& outline) {
+  return std::make_shared<const Mechanism>(
+      io::parse_model("units: {length: mm, angle: deg}\n"
+                      "points: {O: [0, 0], A: [80, 0]}\n"
+                      "ground: [O]\n"
+                      "bodies:\n"
+                      "  crank:\n"
+                      "    points: [O, A]\n"
+                      "    shape: {outline: " + outline + ", holes: [{at: O, radius: 4}]}\n"
+                      "    thickness: 5\n"
+                      "    material: steel\n"
+                      "drivers: [{angle: crank, from: 0, to: 360}]\n")
+          .model);
+}
+
+TEST(Summary, WarnsOfABodysPointOffItsPlate) {
+  // A slot 80 mm long drawn along y: A at (80, 0) is 70 mm from its right side, x = 10.
+  const auto turned = crank_with_plate("[[-10, 0, {bulge: 1}], [10, 0], [10, 80, {bulge: 1}], [-10, 80]]");
+  const ModelSummary s = summarize(*turned);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].code, "point_off_plate");
+  EXPECT_NE(s.warnings[0].message.find("point A of body crank lies 70 mm outside its plate, which spans x from -10 to "
+                                       "10 and y from -10 to 90 mm"),
+            std::string::npos)
+      << s.warnings[0].message;
+  // Every command that sweeps says it too.
+  const std::vector<Warning> before = check_before_sweep(*turned);
+  ASSERT_EQ(before.size(), 1u);
+  EXPECT_EQ(before[0].code, "point_off_plate");
+  // A pin on the plate's edge, or inside it, is where it should be.
+  EXPECT_TRUE(summarize(*crank_with_plate("[[-10, -10], [80, -10], [80, 10], [-10, 10]]")).warnings.empty());
+  EXPECT_TRUE(summarize(*crank_with_plate("[[-10, -10], [90, -10], [90, 10], [-10, 10]]")).warnings.empty());
+}
+
 // Stroke, dead centres and time ratio of an offset slider-crank against the closed forms
 // (Norton): stroke = sqrt((l+r)^2 - e^2) - sqrt((l-r)^2 - e^2); the crank lies along the rod at
 // asin(e/(l+r)) (outer) and pi + asin(e/(l-r)) (inner), measured from the guide's direction.

@@ -89,6 +89,10 @@ AreaProperties area_properties(const Region& r);
 // is zero or p, n are not finite.
 AreaProperties clipped_area_properties(const Region& r, const Eigen::Vector2d& p, const Eigen::Vector2d& n);
 
+// How far x lies outside r's outline (straight_edged): 0 inside it or on it. Holes do not count:
+// a pin sits in its hole.
+double distance_outside_outline(const Region& r, const Eigen::Vector2d& x);
+
 // Throws std::invalid_argument with a readable message when r is not a valid plate: fewer than 3
 // vertices, non-finite values, zero area, repeated consecutive vertices, self-intersecting
 // outline or hole, a hole not strictly inside the outline (touching counts as outside), holes
