@@ -1334,7 +1334,7 @@ class Parser : yaml::Reader {
       if (!stated) fail(mark(*units), "the unit of the file read is one of mm, cm, m, in, ft");
     }
     const Sketch sketch = read_sketch(contents.str(), path.string(), *format, layer);
-    return plate_from_sketch(sketch, sketch_scale(sketch, stated, model_.units.length_scale));
+    return checked_plate_from_sketch(sketch, sketch_scale(sketch, stated, model_.units.length_scale), path.string());
   }
 
   Region parse_bar(const Entry& e, const Body& body, const std::string& name) const {

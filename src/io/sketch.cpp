@@ -433,4 +433,58 @@ Region plate_from_sketch(const Sketch& sketch, double scale) {
   return r;
 }
 
+namespace {
+
+// "polygon hole 3" or "circle hole 3 (centre (x, y), radius r)", as check_region names them, with
+// where its loop or circle starts in the drawing: {begin, end, line} of the first mention.
+struct HoleMention {
+  std::size_t begin = std::string::npos, end = 0;
+  int line = 0;
+};
+
+HoleMention first_hole(const std::string& message, const Sketch& sketch, std::size_t outer) {
+  HoleMention first;
+  for (const std::string kind : {"polygon hole ", "circle hole "}) {
+    const std::size_t at = message.find(kind);
+    if (at == std::string::npos || at > first.begin) continue;
+    std::size_t end = at + kind.size(), index = 0;
+    if (end >= message.size() || !std::isdigit(static_cast<unsigned char>(message[end]))) continue;
+    while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end])))
+      index = index * 10 + static_cast<std::size_t>(message[end++] - '0');
+    int line = 0;
+    if (kind == "polygon hole ") {
+      const std::size_t loop = index < outer ? index : index + 1;  // the outline is not a hole
+      if (loop < sketch.loops.size() && !sketch.loops[loop].lines.empty()) line = sketch.loops[loop].lines.front();
+    } else if (index < sketch.circles.size()) {
+      line = sketch.circles[index].line;
+    }
+    if (line > 0) first = {at, end, line};
+  }
+  return first;
+}
+
+}  // namespace
+
+Region checked_plate_from_sketch(const Sketch& sketch, double scale, const std::string& file) {
+  Region r = plate_from_sketch(sketch, scale);
+  try {
+    check_region(r);
+  } catch (const std::invalid_argument& error) {
+    std::size_t outer = 0;
+    for (std::size_t i = 1; i < sketch.loops.size(); ++i)
+      if (sketch.loops[i].area() > sketch.loops[outer].area()) outer = i;
+    std::string message = error.what();
+    const HoleMention hole = first_hole(message, sketch, outer);
+    if (hole.begin == std::string::npos) throw;  // about the outline alone: said where the model imports it
+    message.replace(hole.begin, hole.end - hole.begin, "the hole drawn here");
+    // A second hole the message names ("... and polygon hole 1 overlap"), by its line too.
+    if (const HoleMention other = first_hole(message, sketch, outer); other.begin != std::string::npos)
+      message.replace(other.begin, other.end - other.begin, "the one at line " + std::to_string(other.line));
+    const int outline_line = sketch.loops[outer].lines.empty() ? 0 : sketch.loops[outer].lines.front();
+    if (outline_line > 0) message += " (the outline starts at line " + std::to_string(outline_line) + ")";
+    sketch_detail::fail_at(file, hole.line, message);
+  }
+  return r;
+}
+
 }  // namespace nbar::io

@@ -154,6 +154,30 @@ TEST(SketchImport, BadFilesAtTheirLine) {
   EXPECT_THAT(error_of("<svg>\n<path d=\"M 0 0 L 10 0 L 10 10 z\">\n", "u.svg"), HasSubstr("still open"));
 }
 
+// A plate's holes that meet the outline or each other, or lie outside it, are errors at the
+// line where the hole is drawn, naming the outline's line (they were errors at the model's
+// `import:` line, naming "polygon hole 0", a number the drawing does not show).
+TEST(SketchImport, PlateHoleErrorsAtTheirLine) {
+  const auto error = [](const std::string& text) {
+    try {
+      checked_plate_from_sketch(read_sketch(text, "h.csv", SketchFormat::kCsv), 1.0, "h.csv");
+    } catch (const ModelFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string outline = "X, Y\nNew_Plate\n0, 0\n100, 0\n100, 50\n0, 50\n0, 0\n";  // lines 2 to 7
+  // A square hole touching the outline's bottom edge, drawn from line 8.
+  EXPECT_THAT(error(outline + "New_Hole\n10, 0\n20, 0\n20, 10\n10, 10\n10, 0\n"),
+              HasSubstr("h.csv:8:1: the hole drawn here meets the outline (the outline starts at line 2)"));
+  // Two holes that overlap: the second is named by its line.
+  EXPECT_THAT(error(outline + "New_A\n10, 10\n30, 10\n30, 30\n10, 30\n10, 10\n" +
+                    "New_B\n20, 20\n40, 20\n40, 40\n20, 40\n20, 20\n"),
+              HasSubstr("h.csv:8:1: the hole drawn here and the one at line 14 overlap (the outline starts at line 2)"));
+  // A plate with a hole well inside it is a plate.
+  EXPECT_EQ(error(outline + "New_Hole\n10, 10\n20, 10\n20, 20\n10, 20\n10, 10\n"), "no error");
+}
+
 TEST(SketchImport, CrossingOutlinesAreRefusedAtTheirLine) {
   // Two plates that cross, and a small square inside both: it could be a hole of either.
   const std::string text =

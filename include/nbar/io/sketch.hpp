@@ -66,6 +66,9 @@ Sketch read_sketch(const std::string& text, const std::string& file_name, Sketch
 // largest area is the outline, the other loops polygon holes, the circles round (pin) holes.
 // Not checked (check_region).
 Region plate_from_sketch(const Sketch& sketch, double scale);
+// The same, checked as a plate (check_region): a hole that meets the outline or another hole,
+// or lies outside the outline, is an error at the line of `file` where that hole is drawn.
+Region checked_plate_from_sketch(const Sketch& sketch, double scale, const std::string& file);
 
 // The scale from a sketch's unit to the model's: `stated_metres_per_unit` when given, else the
 // file's own, else 1 (the file is taken in the model's unit).
