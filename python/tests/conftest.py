@@ -4,6 +4,8 @@ import sys
 
 import pytest
 
+import nbar
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 
@@ -11,6 +13,23 @@ EXAMPLES = ROOT / "examples"
 @pytest.fixture
 def examples():
     return EXAMPLES
+
+
+# A non-Grashof four-bar swept round: every sweep of it stops at its toggle, crank = 99.7151 deg,
+# and a stop is placed at its driver, dr.yaml:6:5.
+TOGGLE_STOP = """units: {length: mm, angle: deg}
+points: {O2: [0, 0], O4: [200, 0], A: [0, 80], B: [150, 150]}
+ground: [O2, O4]
+bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
+drivers:
+  - {angle: crank, from: 0, to: 360, speed: 120 rpm}
+lengths: {crank: 120, coupler: 100, rocker: 150}
+"""
+
+
+@pytest.fixture
+def toggle_stop():
+    return nbar.loads(TOGGLE_STOP, "dr.yaml")
 
 
 @pytest.fixture

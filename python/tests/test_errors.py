@@ -208,18 +208,8 @@ drivers: [{angle: crank, from: 0, to: 360}]
     assert s.assembly_error.startswith("short.yaml:")
 
 
-DOUBLE_ROCKER = """units: {length: mm, angle: deg}
-points: {O2: [0, 0], O4: [200, 0], A: [0, 80], B: [150, 150]}
-ground: [O2, O4]
-bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
-drivers:
-  - {angle: crank, from: 0, to: 360, speed: 120 rpm}
-lengths: {crank: 120, coupler: 100, rocker: 150}
-"""
-
-
-def test_every_stop_at_a_limit_is_placed_at_the_driver_as_solve_places_it():
-    m = nbar.loads(DOUBLE_ROCKER, "dr.yaml")
+def test_every_stop_at_a_limit_is_placed_at_the_driver_as_solve_places_it(toggle_stop):
+    m = toggle_stop
     places = []
     for run in (lambda: m.solve(steps=361), lambda: m.draw(at=150), lambda: m.explain(step=200)):
         with pytest.raises(nbar.LimitError) as e:

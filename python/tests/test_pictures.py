@@ -65,18 +65,8 @@ def test_traces_may_be_one_name(examples):
     assert m.draw(traces="P, O4").svg == m.draw(traces=["P", "O4"]).svg
 
 
-DOUBLE_ROCKER = """units: {length: mm, angle: deg}
-points: {O2: [0, 0], O4: [200, 0], A: [0, 80], B: [150, 150]}
-ground: [O2, O4]
-bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
-drivers:
-  - {angle: crank, from: 0, to: 360, speed: 120 rpm}
-lengths: {crank: 120, coupler: 100, rocker: 150}
-"""
-
-
-def test_animation_and_report_of_a_sweep_stopped_at_a_toggle_raise_as_solve_does(tmp_path):
-    m = nbar.loads(DOUBLE_ROCKER, "dr.yaml")
+def test_animation_and_report_of_a_sweep_stopped_at_a_toggle_raise_as_solve_does(tmp_path, toggle_stop):
+    m = toggle_stop
     with pytest.raises(nbar.LimitError) as solved:
         m.solve()
     with pytest.raises(nbar.LimitError) as e:
