@@ -411,22 +411,17 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
   bool on_singular_position = false;  // the sample being recorded, as the tracker found it
   auto record = [&](int i) {
     Sample& s = sink ? streamed : result.samples.emplace_back();
-    if (plan.parameter_is_time) {
-      // The tracker's series is already in time.
+    if (plan.parameter_is_time || on_singular_position) {
+      // The tracker's series: already in time, or (on a singular position, whose Jacobian
+      // cannot give them in time) in the sweep fraction, re-centred from a regular point beside it.
       s.step = i;
       s.time = plan.sample_time(i);
       s.driver_values.resize(nd);
       for (int d = 0; d < nd; ++d) s.driver_values[d] = state.drivers[d].value.value();
-      s.taylor = state.series.leftCols(terms_out);
-      s.residual = state.residual;
-    } else if (on_singular_position) {
-      // The Jacobian there cannot give the series in time; the tracker's series in the sweep
-      // fraction, re-centred from a regular point before it, can.
-      s.step = i;
-      s.time = plan.sample_time(i);
-      s.driver_values.resize(nd);
-      for (int d = 0; d < nd; ++d) s.driver_values[d] = state.drivers[d].value.value();
-      series_in_time(state.series, *rate, terms_out, s.taylor);
+      if (plan.parameter_is_time)
+        s.taylor = state.series.leftCols(terms_out);
+      else
+        series_in_time(state.series, *rate, terms_out, s.taylor);
       s.residual = state.residual;
     } else {
       for (int d = 0; d < nd; ++d) now[d] = state.drivers[d].value.value();
