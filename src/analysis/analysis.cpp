@@ -244,7 +244,7 @@ void TableStream::run(Pass& pass) {
   sweep.max_steps = options_.max_steps;
   sweep.order = order;
   ++passes_;
-  std::vector<Warning> before = check_before_sweep(mech);
+  if (!before_sweep_) before_sweep_ = check_before_sweep(mech);
   sweep_ = run_sweep(mech, sweep, options_.control, [&](const Sample& s) {
     kinematic.fill(s, row.data());
     if (dynamic) {
@@ -253,7 +253,7 @@ void TableStream::run(Pass& pass) {
     }
     pass.row(row.data());
   });
-  sweep_.warnings.insert(sweep_.warnings.begin(), before.begin(), before.end());
+  sweep_.warnings.insert(sweep_.warnings.begin(), before_sweep_->begin(), before_sweep_->end());
   if (dynamics_stage_) add_dynamics_warnings(*dynamics_stage_, mech.model());
 }
 

@@ -71,6 +71,9 @@ class TableStream {
   std::vector<double> kept_rows_;  // the first pass's rows, every column, when they fit
   bool rows_kept_ = false;
   int passes_ = 0;
+  // check_before_sweep's warnings, found on the first pass (a law undefined in the sweep is
+  // refused there); every pass's sweep carries them.
+  std::optional<std::vector<Warning>> before_sweep_;
   SweepResult sweep_;
   std::optional<DynamicsStage> dynamics_stage_;  // its summary only (no samples)
 };
