@@ -42,30 +42,6 @@ bool inside(const std::vector<Vector2d>& polygon, const Vector2d& p) {
   return in;
 }
 
-double orient(const Vector2d& a, const Vector2d& b, const Vector2d& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-}
-
-// Whether the closed segments ab and cd have a point in common (crossing or touching).
-bool segments_meet(const Vector2d& a, const Vector2d& b, const Vector2d& c, const Vector2d& d) {
-  const double d1 = orient(c, d, a), d2 = orient(c, d, b), d3 = orient(a, b, c), d4 = orient(a, b, d);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
-  const auto on = [](const Vector2d& p, const Vector2d& q, const Vector2d& r) {  // r on pq, given collinear
-    return std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) && std::min(p.y(), q.y()) <= r.y() &&
-           r.y() <= std::max(p.y(), q.y());
-  };
-  return (d1 == 0 && on(c, d, a)) || (d2 == 0 && on(c, d, b)) || (d3 == 0 && on(a, b, c)) || (d4 == 0 && on(a, b, d));
-}
-
-bool edges_meet(const std::vector<Vector2d>& p, const std::vector<Vector2d>& q) {
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    for (std::size_t j = 0; j < q.size(); ++j) {
-      if (segments_meet(p[i], p[(i + 1) % p.size()], q[j], q[(j + 1) % q.size()])) return true;
-    }
-  }
-  return false;
-}
-
 // Whether `inner` lies wholly inside `outer`: a vertex inside is not enough, as two links
 // drawn overlapping at their joint each have vertices inside the other.
 bool wholly_inside(const std::vector<Vector2d>& inner, const std::vector<Vector2d>& outer) {
@@ -76,7 +52,7 @@ bool wholly_inside(const std::vector<Vector2d>& inner, const std::vector<Vector2
   };
   if (!box(outer).contains(box(inner))) return false;  // the common case, without the edge pairs
   return std::all_of(inner.begin(), inner.end(), [&](const Vector2d& v) { return inside(outer, v); }) &&
-         !edges_meet(inner, outer);
+         !polygons_meet(inner, outer);
 }
 
 double tidy(double v) {

@@ -333,14 +333,6 @@ bool strictly_inside(const Polygon& poly, const Vector2d& x) {
   return inside;
 }
 
-bool polygons_meet(const Polygon& p, const Polygon& q) {
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    for (std::size_t j = 0; j < q.size(); ++j) {
-      if (segments_meet(p[i], p[(i + 1) % p.size()], q[j], q[(j + 1) % q.size()])) return true;
-    }
-  }
-  return false;
-}
 
 // The circle's closed disc comes no nearer than its radius to any edge.
 bool circle_clear_of_edges(const Circle& c, const Polygon& poly) {
@@ -733,6 +725,15 @@ std::vector<EdgeMention> edge_mentions(const std::string& message) {
     out.push_back(m);
   }
   return out;
+}
+
+bool polygons_meet(const std::vector<Vector2d>& p, const std::vector<Vector2d>& q) {
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = 0; j < q.size(); ++j) {
+      if (segments_meet(p[i], p[(i + 1) % p.size()], q[j], q[(j + 1) % q.size()])) return true;
+    }
+  }
+  return false;
 }
 
 double distance_outside_outline(const Region& r, const Vector2d& x) {

@@ -89,6 +89,9 @@ AreaProperties area_properties(const Region& r);
 // is zero or p, n are not finite.
 AreaProperties clipped_area_properties(const Region& r, const Eigen::Vector2d& p, const Eigen::Vector2d& n);
 
+// Whether an edge of the closed polygon p and one of q share a point (crossing or touching).
+bool polygons_meet(const std::vector<Eigen::Vector2d>& p, const std::vector<Eigen::Vector2d>& q);
+
 // How far x lies outside r's outline (straight_edged): 0 inside it or on it. Holes do not count:
 // a pin sits in its hole.
 double distance_outside_outline(const Region& r, const Eigen::Vector2d& x);
