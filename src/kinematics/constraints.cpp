@@ -6,99 +6,86 @@ namespace nbar {
 
 namespace {
 
-// A 2-vector over doubles (positions) or Series (Taylor coefficients); one template serves both.
-template <class V>
-struct Vec {
-  V x, y;
+struct Xy {
+  double x, y;
 };
-template <class V>
-Vec<V> operator-(const Vec<V>& a, const Vec<V>& b) {
-  return {a.x - b.x, a.y - b.y};
-}
-template <class V>
-V cross(const Vec<V>& a, const Vec<V>& b) {
-  return a.x * b.y - a.y * b.x;
-}
-template <class V>
-V dot(const Vec<V>& a, const Vec<V>& b) {
-  return a.x * b.x + a.y * b.y;
+Xy operator-(Xy a, Xy b) { return {a.x - b.x, a.y - b.y}; }
+Xy operator+(Xy a, Xy b) { return {a.x + b.x, a.y + b.y}; }
+double cross(Xy a, Xy b) { return a.x * b.y - a.y * b.x; }
+double dot(Xy a, Xy b) { return a.x * b.x + a.y * b.y; }
+// w turned by the angle whose cosine and sine are c, s.
+Xy rotate(Xy w, double c, double s) { return {c * w.x - s * w.y, s * w.x + c * w.y}; }
+// d(a x b)/da = (b.y, -b.x).
+Xy perp(Xy b) { return {b.y, -b.x}; }
+
+// A point's coordinates: a column of q, or fixed ones (CompiledRow::at).
+struct Points {
+  const double* q;
+  const double* fixed;
+  Xy operator()(int at) const {
+    const double* p = at >= 0 ? q + at : fixed + ~at;
+    return {p[0], p[1]};
+  }
+};
+
+struct DriverValues {
+  double value = 0.0, cos = 1.0, sin = 0.0;
+};
+DriverValues driver_values(const CompiledRow& c, const std::vector<DriverState>& drivers) {
+  if (c.driver < 0) return {};
+  const DriverState& d = drivers[static_cast<std::size_t>(c.driver)];
+  return {d.value.value(), d.cos.value(), d.sin.value()};
 }
 
-// Rotates w by the angle whose cosine and sine are c, s.
-template <class V, class C>
-Vec<V> rotate(const Vec<V>& w, const C& c, const C& s) {
-  return {c * w.x - s * w.y, s * w.x + c * w.y};
-}
-
-// The residual of one row. `point(i)` gives a point's position, `drv` the driver's state.
-template <class V, class PointFn, class DriverFn>
-V residual(const Constraint& c, PointFn&& point, DriverFn&& drv) {
+double residual(const CompiledRow& c, const Points& r, const DriverValues& d) {
+  const auto& at = c.at;
   switch (c.type) {
     case ConstraintType::Distance: {
-      const Vec<V> u = point(c.p[1]) - point(c.p[0]);
+      const Xy u = r(at[1]) - r(at[0]);
       return (dot(u, u) - c.a * c.a) * c.scale;
     }
-    case ConstraintType::RigidX:
+    case ConstraintType::RigidX: {
+      const Xy ri = r(at[0]), u = r(at[1]) - ri;
+      return r(at[2]).x - ri.x - c.a * u.x + c.b * u.y;
+    }
     case ConstraintType::RigidY: {
-      const Vec<V> ri = point(c.p[0]);
-      const Vec<V> u = point(c.p[1]) - ri;
-      const Vec<V> rk = point(c.p[2]);
-      if (c.type == ConstraintType::RigidX) return rk.x - ri.x - c.a * u.x + c.b * u.y;
-      return rk.y - ri.y - c.a * u.y - c.b * u.x;
+      const Xy ri = r(at[0]), u = r(at[1]) - ri;
+      return r(at[2]).y - ri.y - c.a * u.y - c.b * u.x;
     }
     case ConstraintType::PointOnLine: {
-      const Vec<V> ri = point(c.p[0]);
-      return cross(point(c.p[2]) - ri, point(c.p[1]) - ri) * c.scale;
+      const Xy ri = r(at[0]);
+      return cross(r(at[2]) - ri, r(at[1]) - ri) * c.scale;
     }
-    case ConstraintType::Orientation: {
-      const Vec<V> v = point(c.p[1]) - point(c.p[0]);
-      const Vec<V> w = point(c.p[3]) - point(c.p[2]);
-      return cross(v, rotate(w, c.a, c.b)) * c.scale;
-    }
+    case ConstraintType::Orientation:
+      return cross(r(at[1]) - r(at[0]), rotate(r(at[3]) - r(at[2]), c.a, c.b)) * c.scale;
     case ConstraintType::DriveAngle: {
-      const auto& d = drv(c.driver);
-      const Vec<V> u = point(c.p[1]) - point(c.p[0]);
+      const Xy u = r(at[1]) - r(at[0]);
       return (u.x * d.sin - u.y * d.cos) * c.scale;
     }
-    case ConstraintType::DriveRelativeAngle: {
-      const auto& d = drv(c.driver);
-      const Vec<V> u = point(c.p[1]) - point(c.p[0]);
-      const Vec<V> w = point(c.p[3]) - point(c.p[2]);
-      return cross(u, rotate(w, d.cos, d.sin)) * c.scale;
-    }
+    case ConstraintType::DriveRelativeAngle:
+      return cross(r(at[1]) - r(at[0]), rotate(r(at[3]) - r(at[2]), d.cos, d.sin)) * c.scale;
     case ConstraintType::DriveDistance: {
-      const auto& d = drv(c.driver);
-      const Vec<V> u = point(c.p[1]) - point(c.p[0]);
+      const Xy u = r(at[1]) - r(at[0]);
       return (dot(u, u) - d.value * d.value) * c.scale;
     }
     case ConstraintType::DriveSlide: {
-      const auto& d = drv(c.driver);
-      const Vec<V> ri = point(c.p[0]);
-      return dot(point(c.p[2]) - ri, point(c.p[1]) - ri) * (1.0 / c.a) - d.value;
+      const Xy ri = r(at[0]);
+      return dot(r(at[2]) - ri, r(at[1]) - ri) * (1.0 / c.a) - d.value;
     }
   }
-  return V{};
+  return 0.0;
 }
 
-struct DriverDoubles {
-  double value, cos, sin;
-};
-
 // Gradient of one row with respect to its (up to four) points.
-std::array<Eigen::Vector2d, 4> gradient(const Constraint& c, const Mechanism& mech, const Eigen::VectorXd& q,
-                                        const DriverDoubles& d) {
-  std::array<Eigen::Vector2d, 4> g{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(),
-                                   Eigen::Vector2d::Zero()};
-  auto r = [&](int slot) { return mech.point_position(c.p[slot], q); };
-  auto perp_grad = [](const Eigen::Vector2d& other) {  // d(a x b)/da = (b.y, -b.x)
-    return Eigen::Vector2d(other.y(), -other.x());
-  };
+std::array<Xy, 4> gradient(const CompiledRow& c, const Points& r, const DriverValues& d) {
+  std::array<Xy, 4> g{};
+  const auto& at = c.at;
   switch (c.type) {
     case ConstraintType::Distance:
     case ConstraintType::DriveDistance: {
-      const Eigen::Vector2d u = r(1) - r(0);
-      g[1] = 2.0 * c.scale * u;
-      g[0] = -g[1];
+      const Xy u = r(at[1]) - r(at[0]);
+      g[1] = {2.0 * c.scale * u.x, 2.0 * c.scale * u.y};
+      g[0] = {-g[1].x, -g[1].y};
       break;
     }
     case ConstraintType::RigidX:
@@ -112,46 +99,116 @@ std::array<Eigen::Vector2d, 4> gradient(const Constraint& c, const Mechanism& me
       g[0] = {c.b, c.a - 1.0};
       break;
     case ConstraintType::PointOnLine: {
-      const Eigen::Vector2d e = r(2) - r(0), w = r(1) - r(0);
-      g[2] = c.scale * perp_grad(w);   // d/de of e x w
-      g[1] = -c.scale * perp_grad(e);  // d/dw of e x w = -(e.y, -e.x)
-      g[0] = -g[2] - g[1];
+      const Xy ri = r(at[0]), e = r(at[2]) - ri, w = r(at[1]) - ri;
+      const Xy de = perp(w), dw = perp(e);  // d/de of e x w, and minus d/dw
+      g[2] = {c.scale * de.x, c.scale * de.y};
+      g[1] = {-c.scale * dw.x, -c.scale * dw.y};
+      g[0] = {-g[2].x - g[1].x, -g[2].y - g[1].y};
       break;
     }
     case ConstraintType::Orientation:
     case ConstraintType::DriveRelativeAngle: {
-      const double cs = c.type == ConstraintType::Orientation ? c.a : d.cos;
-      const double sn = c.type == ConstraintType::Orientation ? c.b : d.sin;
-      const Eigen::Vector2d v = r(1) - r(0), w = r(3) - r(2);
-      const Eigen::Vector2d z(cs * w.x() - sn * w.y(), sn * w.x() + cs * w.y());
-      const Eigen::Vector2d dv = c.scale * perp_grad(z);
-      const Eigen::Vector2d dz = -c.scale * perp_grad(v);
-      const Eigen::Vector2d dw(cs * dz.x() + sn * dz.y(), -sn * dz.x() + cs * dz.y());  // R^T dz
-      g[1] = dv;
-      g[0] = -dv;
+      const bool fixed = c.type == ConstraintType::Orientation;
+      const double cs = fixed ? c.a : d.cos, sn = fixed ? c.b : d.sin;
+      const Xy v = r(at[1]) - r(at[0]), z = rotate(r(at[3]) - r(at[2]), cs, sn);
+      const Xy dv = perp(z), pv = perp(v);
+      const Xy dz = {-c.scale * pv.x, -c.scale * pv.y};
+      const Xy dw = {cs * dz.x + sn * dz.y, -sn * dz.x + cs * dz.y};  // R^T dz
+      g[1] = {c.scale * dv.x, c.scale * dv.y};
+      g[0] = {-g[1].x, -g[1].y};
       g[3] = dw;
-      g[2] = -dw;
+      g[2] = {-dw.x, -dw.y};
       break;
     }
     case ConstraintType::DriveAngle:
-      g[1] = c.scale * Eigen::Vector2d(d.sin, -d.cos);
-      g[0] = -g[1];
+      g[1] = {c.scale * d.sin, -c.scale * d.cos};
+      g[0] = {-g[1].x, -g[1].y};
       break;
     case ConstraintType::DriveSlide: {
-      const Eigen::Vector2d e = r(2) - r(0), w = r(1) - r(0);
-      g[2] = w / c.a;
-      g[1] = e / c.a;
-      g[0] = -g[2] - g[1];
+      const Xy ri = r(at[0]), e = r(at[2]) - ri, w = r(at[1]) - ri;
+      g[2] = {w.x / c.a, w.y / c.a};
+      g[1] = {e.x / c.a, e.y / c.a};
+      g[0] = {-g[2].x - g[1].x, -g[2].y - g[1].y};
       break;
     }
   }
   return g;
 }
 
+// Coefficient j of a point's Taylor series, with coefficients k and beyond taken as zero: from
+// the columns of q's series, or the fixed coordinates (their own at j = 0, zero after).
+struct Coefficients {
+  const double* series;  // column-major, n rows
+  Eigen::Index n;
+  const double* fixed;
+  int k;
+  Xy operator()(int at, int j) const {
+    if (j >= k) return {0.0, 0.0};
+    if (at >= 0) {
+      const double* p = series + j * n + at;
+      return {p[0], p[1]};
+    }
+    if (j > 0) return {0.0, 0.0};
+    const double* p = fixed + ~at;
+    return {p[0], p[1]};
+  }
+  Xy difference(int from, int to, int j) const { return (*this)(to, j) - (*this)(from, j); }
+};
+
+double term(const Series& s, int j) { return j < s.terms() ? s[j] : 0.0; }
+
+// Coefficient k of one row with q's coefficient k taken as zero: every row is at most bilinear
+// in q, so a short convolution of lower coefficients.
+double remainder(const CompiledRow& c, const Coefficients& q, int k, const std::vector<DriverState>& drivers) {
+  const auto& at = c.at;
+  double v = 0.0;
+  switch (c.type) {
+    case ConstraintType::Distance:
+    case ConstraintType::DriveDistance:
+      for (int j = 1; j < k; ++j) v += dot(q.difference(at[0], at[1], j), q.difference(at[0], at[1], k - j));
+      if (c.type == ConstraintType::DriveDistance) {
+        const Series& s = drivers[static_cast<std::size_t>(c.driver)].value;
+        for (int j = 0; j <= k; ++j) v -= term(s, j) * term(s, k - j);
+      }
+      return v * c.scale;
+    case ConstraintType::RigidX:
+    case ConstraintType::RigidY:
+      return 0.0;  // linear in q: coefficient k depends on q_k alone
+    case ConstraintType::PointOnLine:
+      for (int j = 1; j < k; ++j) v += cross(q.difference(at[0], at[2], j), q.difference(at[0], at[1], k - j));
+      return v * c.scale;
+    case ConstraintType::Orientation:
+      for (int j = 1; j < k; ++j)
+        v += cross(q.difference(at[0], at[1], j), rotate(q.difference(at[2], at[3], k - j), c.a, c.b));
+      return v * c.scale;
+    case ConstraintType::DriveAngle: {
+      const DriverState& d = drivers[static_cast<std::size_t>(c.driver)];
+      for (int j = 0; j < k; ++j) {
+        const Xy u = q.difference(at[0], at[1], j);
+        v += u.x * term(d.sin, k - j) - u.y * term(d.cos, k - j);
+      }
+      return v * c.scale;
+    }
+    case ConstraintType::DriveRelativeAngle: {
+      // u x z with z = R(theta) w: both factors carry coefficients of q and of the driver.
+      const DriverState& d = drivers[static_cast<std::size_t>(c.driver)];
+      for (int j = 0; j < k; ++j) {
+        Xy z{0.0, 0.0};
+        for (int l = 0; l <= k - j; ++l) z = z + rotate(q.difference(at[2], at[3], k - j - l), term(d.cos, l), term(d.sin, l));
+        v += cross(q.difference(at[0], at[1], j), z);
+      }
+      return v * c.scale;
+    }
+    case ConstraintType::DriveSlide:
+      for (int j = 1; j < k; ++j) v += dot(q.difference(at[0], at[2], j), q.difference(at[0], at[1], k - j));
+      return v / c.a - term(drivers[static_cast<std::size_t>(c.driver)].value, k);
+  }
+  return 0.0;
+}
+
 }  // namespace
 
-DriverState make_driver_state(const Series& value, bool angular) {
-  DriverState s;
+void set_driver_state(DriverState& s, const Series& value, bool angular) {
   s.value = value;
   if (angular) {
     sincos(value, s.sin, s.cos);
@@ -159,120 +216,45 @@ DriverState make_driver_state(const Series& value, bool angular) {
     s.sin = Series(value.terms());
     s.cos = Series(value.terms());
   }
+}
+
+DriverState make_driver_state(const Series& value, bool angular) {
+  DriverState s;
+  set_driver_state(s, value, angular);
   return s;
 }
 
 void evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
                         Eigen::VectorXd& phi) {
-  phi.resize(mech.row_count());
-  auto point = [&](int i) {
-    const Eigen::Vector2d r = mech.point_position(i, q);
-    return Vec<double>{r.x(), r.y()};
-  };
-  auto drv = [&](int i) {
-    return DriverDoubles{drivers[i].value.value(), drivers[i].cos.value(), drivers[i].sin.value()};
-  };
-  const auto& rows = mech.rows();
-  for (int i = 0; i < mech.row_count(); ++i) phi[i] = residual<double>(rows[i], point, drv);
+  const auto& rows = mech.compiled_rows();
+  phi.resize(static_cast<Eigen::Index>(rows.size()));
+  const Points points{q.data(), mech.fixed_coordinates().data()};
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    phi[static_cast<Eigen::Index>(i)] = residual(rows[i], points, driver_values(rows[i], drivers));
 }
 
 void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
                        std::vector<double>& values) {
-  values.assign(mech.jacobian_pattern().size(), 0.0);
-  const auto& rows = mech.rows();
-  for (int i = 0; i < mech.row_count(); ++i) {
-    const Constraint& c = rows[i];
-    DriverDoubles d{0.0, 1.0, 0.0};
-    if (c.is_driver()) {
-      const DriverState& s = drivers[c.driver];
-      d = {s.value.value(), s.cos.value(), s.sin.value()};
-    }
-    const auto g = gradient(c, mech, q, d);
+  // Every pattern entry belongs to one (row, point) slot, so each is written once.
+  values.resize(mech.jacobian_pattern().size());
+  const Points points{q.data(), mech.fixed_coordinates().data()};
+  for (const CompiledRow& c : mech.compiled_rows()) {
+    const std::array<Xy, 4> g = gradient(c, points, driver_values(c, drivers));
     for (int slot = 0; slot < 4; ++slot) {
-      const int e = mech.entry_index(i, slot);
+      const int e = c.entry[static_cast<std::size_t>(slot)];
       if (e < 0) continue;
-      values[e] += g[slot].x();
-      values[e + 1] += g[slot].y();
+      values[static_cast<std::size_t>(e)] = g[static_cast<std::size_t>(slot)].x;
+      values[static_cast<std::size_t>(e) + 1] = g[static_cast<std::size_t>(slot)].y;
     }
   }
 }
 
 void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int k,
                                const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs) {
-  // Only coefficient k of each row is needed, and every row is at most bilinear in q, so it is
-  // a short convolution of lower coefficients (q's coefficient k counts as zero). Written out
-  // per row rather than through Series arithmetic: this runs every step, for every order.
-  rhs.resize(mech.row_count());
-  const auto& points = mech.model().points;
-  auto coefficient = [&](int point, int j) -> Eigen::Vector2d {
-    const int col = mech.column_of(point);
-    if (col < 0) return j == 0 ? points[point].position : Eigen::Vector2d::Zero();
-    if (j >= k) return Eigen::Vector2d::Zero();
-    return {coefficients(col, j), coefficients(col + 1, j)};
-  };
-  auto diff = [&](int from, int to, int j) -> Eigen::Vector2d { return coefficient(to, j) - coefficient(from, j); };
-  auto term = [](const Series& s, int j) { return j < s.terms() ? s[j] : 0.0; };
-  auto cross2 = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
-  const auto& rows = mech.rows();
-  for (int r = 0; r < mech.row_count(); ++r) {
-    const Constraint& c = rows[r];
-    const auto& p = c.p;
-    double v = 0.0;
-    switch (c.type) {
-      case ConstraintType::Distance:
-      case ConstraintType::DriveDistance:
-        for (int j = 1; j < k; ++j) v += diff(p[0], p[1], j).dot(diff(p[0], p[1], k - j));
-        if (c.type == ConstraintType::DriveDistance) {
-          const Series& s = drivers[c.driver].value;
-          for (int j = 0; j <= k; ++j) v -= term(s, j) * term(s, k - j);
-        }
-        v *= c.scale;
-        break;
-      case ConstraintType::RigidX:
-      case ConstraintType::RigidY:
-        break;  // linear in q: coefficient k depends on q_k alone
-      case ConstraintType::PointOnLine:
-        for (int j = 1; j < k; ++j) v += cross2(diff(p[0], p[2], j), diff(p[0], p[1], k - j));
-        v *= c.scale;
-        break;
-      case ConstraintType::Orientation:
-        for (int j = 1; j < k; ++j) {
-          const Eigen::Vector2d w = diff(p[2], p[3], k - j);
-          v += cross2(diff(p[0], p[1], j), Eigen::Vector2d(c.a * w.x() - c.b * w.y(), c.b * w.x() + c.a * w.y()));
-        }
-        v *= c.scale;
-        break;
-      case ConstraintType::DriveAngle: {
-        const DriverState& d = drivers[c.driver];
-        for (int j = 0; j < k; ++j) {
-          const Eigen::Vector2d u = diff(p[0], p[1], j);
-          v += u.x() * term(d.sin, k - j) - u.y() * term(d.cos, k - j);
-        }
-        v *= c.scale;
-        break;
-      }
-      case ConstraintType::DriveRelativeAngle: {
-        // u x z with z = R(theta) w: both factors carry coefficients of q and of the driver.
-        const DriverState& d = drivers[c.driver];
-        for (int j = 0; j < k; ++j) {
-          Eigen::Vector2d z = Eigen::Vector2d::Zero();
-          for (int l = 0; l <= k - j; ++l) {
-            const Eigen::Vector2d w = diff(p[2], p[3], k - j - l);
-            const double cs = term(d.cos, l), sn = term(d.sin, l);
-            z += Eigen::Vector2d(cs * w.x() - sn * w.y(), sn * w.x() + cs * w.y());
-          }
-          v += cross2(diff(p[0], p[1], j), z);
-        }
-        v *= c.scale;
-        break;
-      }
-      case ConstraintType::DriveSlide:
-        for (int j = 1; j < k; ++j) v += diff(p[0], p[2], j).dot(diff(p[0], p[1], k - j));
-        v = v / c.a - term(drivers[c.driver].value, k);
-        break;
-    }
-    rhs[r] = v;
-  }
+  const auto& rows = mech.compiled_rows();
+  rhs.resize(static_cast<Eigen::Index>(rows.size()));
+  const Coefficients q{coefficients.data(), coefficients.rows(), mech.fixed_coordinates().data(), k};
+  for (std::size_t r = 0; r < rows.size(); ++r) rhs[static_cast<Eigen::Index>(r)] = remainder(rows[r], q, k, drivers);
 }
 
 }  // namespace nbar

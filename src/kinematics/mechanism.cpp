@@ -217,12 +217,27 @@ void Mechanism::build_rows() {
 }
 
 void Mechanism::build_pattern() {
+  fixed_xy_.assign(2 * model_.points.size(), 0.0);
+  for (std::size_t i = 0; i < model_.points.size(); ++i) {
+    fixed_xy_[2 * i] = model_.points[i].position.x();
+    fixed_xy_[2 * i + 1] = model_.points[i].position.y();
+  }
   entry_.assign(rows_.size(), {-1, -1, -1, -1});
+  compiled_.assign(rows_.size(), CompiledRow{});
   for (std::size_t r = 0; r < rows_.size(); ++r) {
+    const Constraint& c = rows_[r];
+    CompiledRow& k = compiled_[r];
+    k.type = c.type;
+    k.driver = c.driver;
+    k.a = c.a;
+    k.b = c.b;
+    k.scale = c.scale;
     for (int slot = 0; slot < 4; ++slot) {
-      const int p = rows_[r].p[slot];
-      if (p < 0 || column_[p] < 0) continue;
-      entry_[r][slot] = static_cast<int>(pattern_.size());
+      const int p = c.p[slot];
+      if (p < 0) continue;
+      k.at[slot] = column_[p] >= 0 ? column_[p] : ~(2 * p);
+      if (column_[p] < 0) continue;
+      entry_[r][slot] = k.entry[slot] = static_cast<int>(pattern_.size());
       pattern_.push_back({static_cast<int>(r), column_[p]});
       pattern_.push_back({static_cast<int>(r), column_[p] + 1});
     }

@@ -38,11 +38,25 @@ struct Constraint {
   bool is_driver() const { return driver >= 0; }
 };
 
+// A row as the evaluation loops read it (Mechanism::compiled_rows()): the constants, and for each
+// of its points where its coordinates are: a column of q (>= 0), or ~i for the fixed coordinates
+// at Mechanism::fixed_coordinates()[i] (unused slots: ~0 too, never read); and where the row's
+// Jacobian entries for each point start in the pattern (-1 for fixed points and unused slots).
+struct CompiledRow {
+  ConstraintType type = ConstraintType::Distance;
+  int driver = -1;
+  double a = 0.0, b = 0.0, scale = 1.0;
+  std::array<int, 4> at{~0, ~0, ~0, ~0};
+  std::array<int, 4> entry{-1, -1, -1, -1};
+};
+
 // A driver's value along the path as a Taylor series, with its sine and cosine for angles.
 struct DriverState {
   Series value, cos, sin;
 };
 DriverState make_driver_state(const Series& value, bool angular);
+// The same, in place.
+void set_driver_state(DriverState& state, const Series& value, bool angular);
 
 class Mechanism;
 

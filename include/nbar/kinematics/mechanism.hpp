@@ -69,6 +69,10 @@ class Mechanism {
   Eigen::Vector2d point_position(int point, const Eigen::VectorXd& q) const;
 
   const std::vector<JacobianEntry>& jacobian_pattern() const { return pattern_; }
+  // The rows as the evaluation loops read them, and the coordinates of the points fixed to the
+  // frame (x, y of every point, in the model's order) that CompiledRow::at points into.
+  const std::vector<CompiledRow>& compiled_rows() const { return compiled_; }
+  const std::vector<double>& fixed_coordinates() const { return fixed_xy_; }
   // Index of the first pattern entry of `row` for its point slot `slot` (x, then y at +1);
   // -1 when that point is fixed.
   int entry_index(int row, int slot) const { return entry_[row][slot]; }
@@ -93,6 +97,8 @@ class Mechanism {
   std::vector<Constraint> rows_;
   std::vector<JacobianEntry> pattern_;
   std::vector<std::array<int, 4>> entry_;
+  std::vector<CompiledRow> compiled_;
+  std::vector<double> fixed_xy_;
   Eigen::VectorXd q_drawn_;
   std::vector<double> driver_drawn_;
   MobilityReport mobility_;
