@@ -68,10 +68,10 @@ struct Tracker {
     }
     // One turn of the first driver in kStepsPerTurn steps; the others move in proportion.
     step_time = (*m.drivers[0].to - *m.drivers[0].from) / m.drivers[0].speed / kStepsPerTurn;
-    options.terms = std::max(4, kOrder + 1);
+    options.terms = std::max(3, kOrder + 1);
     path = [f = from, v = speed](double t, int terms, std::vector<nbar::Series>& out) {
       out.resize(f.size());
-      for (std::size_t d = 0; d < f.size(); ++d) out[d] = f[d] + v[d] * nbar::Series::variable(terms, t);
+      for (std::size_t d = 0; d < f.size(); ++d) out[d] = nbar::Series::line(terms, f[d], v[d], t);
     };
     nbar::assemble(mech, state, from);
     state.parameter = 0.0;

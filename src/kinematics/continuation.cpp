@@ -11,6 +11,14 @@ namespace nbar {
 namespace {
 
 constexpr int kMaxCorrections = 8;
+// Above this reciprocal condition the corrections stop at the tolerance; below, at a residual
+// smaller by the square of the ratio, down to kTightestTarget times the tolerance.
+constexpr double kRegularRcond = 0.1;
+constexpr double kTightestTarget = 1e-3;
+// The corrections of a regular step go on to this fraction of the tolerance (one more correction
+// costs little next to the step, and the pose is then known well below the tolerance); a
+// correction that no longer contracts stops them at the tolerance.
+constexpr double kRegularTarget = 0.1;
 // A correction larger than this fraction of the predicted motion looks like a jump to
 // another branch: the step is retried shorter.
 constexpr double kMaxCorrectionRatio = 0.1;
@@ -21,7 +29,7 @@ constexpr double kContinuedCorrection = 1e-6;
 // Below this reciprocal condition an end point is too near a singular position for its own
 // Jacobian to give its series: they would carry about 1/rcond times the rounding error, and
 // the next prediction would start off towards either of the branches that cross there.
-constexpr double kCoastRcond = 1e-8;
+constexpr double kCoastRcond = 1e-5;
 // The series re-centred onto a singular end point: as many terms as a Series holds.
 constexpr int kCoastSeriesTerms = Series::kCapacity;
 // Positions, velocities and accelerations there are checked, to 1e-6 (the sweep reports how
@@ -29,34 +37,95 @@ constexpr int kCoastSeriesTerms = Series::kCapacity;
 // from the singular position, are not.
 constexpr int kCoastCheckedTerms = 3;
 constexpr double kCoastMaxError = 1e-6;
+// Below this reciprocal condition at the current point the predictor does not use the past one.
+constexpr double kHistoryRcond = 1e-4;
+// Without the past point, the predictor is the current point's series with this many terms.
+constexpr int kTaylorPredictorTerms = 4;
+// A step whose end is this much worse conditioned than its start, and singular, landed on a
+// singular position; it is retried this much shorter.
+constexpr double kSuddenRcondDrop = 1e-2;
+constexpr double kOffSingularShrink = 0.7;
 
 void predict(const Eigen::MatrixXd& series, double h, Eigen::VectorXd& q) {
   q = series.col(series.cols() - 1);
   for (Eigen::Index k = series.cols() - 2; k >= 0; --k) q = series.col(k) + h * q;
 }
 
+// max(largest, |x|), NaN if either is: the loops below run every step on a few coordinates,
+// where Eigen's expression set-up costs more than the arithmetic.
+void grow(double& largest, double x) {
+  const double size = std::abs(x);
+  if (!(size <= largest)) largest = size;
+}
+
+double largest_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < a.size(); ++i) grow(largest, a[i] - b[i]);
+  return largest;
+}
+
+// How far below the tolerance the residual is driven near a singular position: the pose is off
+// by about residual / sigma_min there, and its velocities and accelerations by that over sigma_min
+// and sigma_min^2 (sigma_min relative: about the reciprocal condition). A regular Jacobian keeps
+// the tolerance; one nearer singular, by the square of its condition against kRegularRcond, down
+// to kTightestTarget.
+double residual_target(double tol, double rcond) {
+  const double ratio = std::min(1.0, rcond / kRegularRcond);
+  return tol * kRegularTarget * std::max(kTightestTarget, ratio * ratio);
+}
+
 // Simplified Newton with the factorisation of the last accepted point; it never destroys
 // that factorisation, so a failed step can be retried shorter. On success `residual` is the
-// largest |Phi| at the point found.
+// largest |Phi| at the point found (state.phi holds its rows). The predicted point is corrected at
+// least once even when it already meets the tolerance, and on to a residual below it
+// (residual_target); a correction that no longer contracts ends it there if the tolerance is met,
+// with `short_of_target` set: the caller finishes with the point's own Jacobian (polish).
 bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, const Eigen::VectorXd& q_pred,
-             double& residual) {
+             double& residual, bool& short_of_target) {
   const double tol = mech.tolerance();
-  const double motion = (q_pred - q_old).lpNorm<Eigen::Infinity>();
+  const double target = residual_target(tol, state.solver().reciprocal_condition());
+  const double motion = largest_difference(q_pred, q_old);
   const double allowed = std::max(kMaxCorrectionRatio * motion, 100.0 * tol);
   double previous = std::numeric_limits<double>::infinity();
+  const Eigen::Index n = state.q.size();
+  short_of_target = false;
+  const auto stop_within_tolerance = [&](int it) {
+    short_of_target = it > 0 && residual <= tol;
+    return short_of_target;
+  };
   for (int it = 0; it <= kMaxCorrections; ++it) {
     residual = max_residual(mech, state);
-    if (residual <= tol) return true;
-    if (it == kMaxCorrections) return false;
-    state.rhs = -state.phi;
-    state.solver().solve(state.rhs, state.dq);
-    const double size = state.dq.lpNorm<Eigen::Infinity>();
-    if (!std::isfinite(size) || size > 0.5 * previous) return false;
+    if (it > 0 && residual <= target) return true;
+    if (it == kMaxCorrections) return stop_within_tolerance(it);
+    // Phi_q dq = -Phi: solved for -dq, which is subtracted.
+    state.dq.resize(n);
+    state.solver().solve(state.phi.data(), state.dq.data());
+    double size = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) grow(size, state.dq[i]);
+    if (!std::isfinite(size) || size > 0.5 * previous) return stop_within_tolerance(it);
     previous = size;
-    state.q += state.dq;
-    if ((state.q - q_pred).lpNorm<Eigen::Infinity>() > allowed) return false;
+    double moved = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      state.q[i] -= state.dq[i];
+      grow(moved, state.q[i] - q_pred[i]);
+    }
+    // Written so that a NaN fails it.
+    if (!(moved <= allowed)) return false;
   }
   return false;
+}
+
+// A point the simplified Newton left short of its residual target, with `solver` factorised at it
+// and state.phi its residuals: one Newton correction with that Jacobian, then the Jacobian
+// factorised again at the corrected point, so that the series come from the point they are for.
+// Returns false when that Jacobian is singular.
+bool polish(const Mechanism& mech, State& state, LinearSolver& solver, double& residual) {
+  const Eigen::Index n = state.q.size();
+  state.dq.resize(n);
+  solver.solve(state.phi.data(), state.dq.data());
+  for (Eigen::Index i = 0; i < n; ++i) state.q[i] -= state.dq[i];
+  residual = max_residual(mech, state);
+  return factorize_jacobian(mech, state, solver);
 }
 
 // Re-centres a Taylor polynomial (coefficients in columns) from p to p + d: synthetic division.
@@ -129,7 +198,8 @@ double series_from(const Mechanism& mech, State& state, const DriverPath& path, 
   set_drivers(mech, state, state.driver_values);
   state.q = shifted.col(0);
   double residual = 0.0;
-  if (!correct(mech, state, q_b, shifted.col(0), residual)) return HUGE_VAL;
+  bool short_of_target = false;
+  if (!correct(mech, state, q_b, shifted.col(0), residual, short_of_target)) return HUGE_VAL;
   const bool singular = !factorize_jacobian(mech, state, state.spare_solver()) ||
                         state.spare_solver().reciprocal_condition() < kCoastRcond;
   if (!singular) return HUGE_VAL;
@@ -205,13 +275,29 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
     if (std::abs(h) > std::abs(remaining)) h = remaining;
 
     const bool final_step = h == remaining;
-    predict(state.series, h, q_pred);
+    // Near a singular position the series carry about 1/rcond times the rounding error, which
+    // an extrapolation through the past point would multiply further: there, and where there is
+    // no past point, the current point's series alone predict, with at least four terms.
+    const bool regular = state.solver().reciprocal_condition() >= kHistoryRcond;
+    if (!regular || !state.history.predict(state.parameter, state.series, h, q_pred)) {
+      if (state.series.cols() < kTaylorPredictorTerms) {
+        path(state.parameter, kTaylorPredictorTerms, values);
+        set_drivers(mech, state, values);
+        compute_series(mech, state, kTaylorPredictorTerms);
+      }
+      predict(state.series, h, q_pred);
+    }
     path(state.parameter + h, options.terms, values);
     set_drivers(mech, state, values);
     state.q = q_pred;
     double trial_residual = 0.0;
-    const bool converged = correct(mech, state, q_old, q_pred, trial_residual);
+    bool short_of_target = false;
+    const bool converged = correct(mech, state, q_old, q_pred, trial_residual, short_of_target);
     bool ok = converged && factorize_jacobian(mech, state, state.spare_solver());
+    // Near a singular position the point's own Jacobian would amplify the correction instead: the
+    // point stays as the tolerance left it.
+    if (ok && short_of_target && state.spare_solver().reciprocal_condition() >= kRegularRcond)
+      ok = polish(mech, state, state.spare_solver(), trial_residual);
     if (converged && final_step && options.coast_terms > 0 && !coast_tried &&
         (!ok || state.spare_solver().reciprocal_condition() < kCoastRcond)) {
       if (coast()) break;
@@ -230,10 +316,20 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
         if (std::abs(h) > kCrossingStep * std::abs(span) && !continued) ok = false;
       }
     }
+    // A step that lands on a singular position (its condition far below the last point's) is no
+    // place to stop between samples: the series there would carry 1/rcond times the rounding
+    // error into the next prediction. It is retried shorter, by a factor that does not land on
+    // the same place again (halving can: a quarter step of a sweep may be a change point).
+    const double rcond_new = ok ? state.spare_solver().reciprocal_condition() : 1.0;
+    const bool onto_singular = ok && !final_step && rcond_new < kCoastRcond &&
+                               rcond_new < kSuddenRcondDrop * state.solver().reciprocal_condition();
+    if (onto_singular) ok = false;
     if (ok) {
+      state.history.push(state.parameter, state.series);
       state.parameter += h;
       state.swap_solvers();
       compute_series(mech, state, options.terms);
+      state.history.mark_current(state.parameter, state.series);
       sign_old = state.solver().determinant_sign();
       q_old = state.q;
       residual = trial_residual;
@@ -250,7 +346,7 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
     state.q = q_old;
     path(state.parameter, options.terms, values);
     set_drivers(mech, state, values);
-    h *= 0.5;
+    h *= onto_singular ? kOffSingularShrink : 0.5;
     if (std::abs(h) < h_min && options.coast_terms > 0 && !coast_tried) {
       // Given up short of p_end: perhaps p_end is a change point, where Newton converges too
       // slowly to be trusted.

@@ -18,7 +18,7 @@ State::State(const Mechanism& mech) : solvers_{LinearSolver(mech), LinearSolver(
 
 void set_drivers(const Mechanism& mech, State& state, const std::vector<Series>& values) {
   const auto& drivers = mech.model().drivers;
-  for (std::size_t d = 0; d < drivers.size(); ++d) state.drivers[d] = make_driver_state(values[d], drivers[d].is_angular());
+  for (std::size_t d = 0; d < drivers.size(); ++d) set_driver_state(state.drivers[d], values[d], drivers[d].is_angular());
 }
 
 bool factorize_jacobian(const Mechanism& mech, State& state, LinearSolver& solver) {
@@ -104,10 +104,11 @@ void compute_series(const Mechanism& mech, State& state, const std::vector<Drive
   out.resize(n, terms);
   out.col(0) = state.q;
   for (int k = 1; k < terms; ++k) {
+    // Phi_q q_k = -R_k, solved for -q_k and turned round (exactly) in place.
     evaluate_series_remainder(mech, out, k, drivers, state.rhs);
-    state.rhs = -state.rhs;
-    state.solver().solve(state.rhs, state.column);
-    out.col(k) = state.column;
+    double* column = out.col(k).data();
+    state.solver().solve(state.rhs.data(), column);
+    for (int i = 0; i < n; ++i) column[i] = -column[i];
   }
 }
 

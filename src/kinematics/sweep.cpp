@@ -45,12 +45,12 @@ SweepPath plan_from_to(const Mechanism& mech, int samples, SweepPath plan, bool 
   if (proportional) {
     plan.drivers = [from = plan.from, speed = plan.speed](double t, int terms, std::vector<Series>& out) {
       out.resize(from.size());
-      for (std::size_t d = 0; d < from.size(); ++d) out[d] = from[d] + speed[d] * Series::variable(terms, t);
+      for (std::size_t d = 0; d < from.size(); ++d) out[d] = Series::line(terms, from[d], speed[d], t);
     };
   } else {
     plan.drivers = [from = plan.from, delta](double f, int terms, std::vector<Series>& out) {
       out.resize(from.size());
-      for (std::size_t d = 0; d < from.size(); ++d) out[d] = from[d] + delta[d] * Series::variable(terms, f);
+      for (std::size_t d = 0; d < from.size(); ++d) out[d] = Series::line(terms, from[d], delta[d], f);
     };
   }
   return plan;
@@ -388,7 +388,7 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
   result.order = options.order;
   const int terms_out = options.order + 1;
   TrackOptions track_options;
-  track_options.terms = plan.parameter_is_time ? std::max(4, terms_out) : 4;
+  track_options.terms = std::max(3, terms_out);
   const std::optional<FractionRate> rate = plan.parameter_is_time ? std::nullopt : fraction_rate(plan);
   if (plan.parameter_is_time || rate) track_options.coast_terms = terms_out;
 

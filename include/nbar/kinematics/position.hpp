@@ -12,6 +12,7 @@
 
 #include "nbar/kinematics/linear_solver.hpp"
 #include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/path_history.hpp"
 
 namespace nbar {
 
@@ -37,6 +38,8 @@ struct State {
   Eigen::VectorXd phi, dq, rhs, column, q_accepted, q_predicted, q_track_start;
   std::vector<double> jacobian;
   std::vector<Series> driver_values;
+  // The points track() accepted last, for its predictor.
+  PathHistory history;
 
  private:
   std::array<LinearSolver, 2> solvers_;

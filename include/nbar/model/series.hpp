@@ -25,6 +25,13 @@ class Series {
     if (terms > 1) v.c_[1] = 1.0;
     return v;
   }
+  // The series of a + b (s0 + s), the same numbers as a + b * variable(terms, s0) without the
+  // temporaries.
+  static Series line(int terms, double a, double b, double s0) {
+    Series v(terms, a + b * s0);
+    if (terms > 1) v.c_[1] = b;
+    return v;
+  }
 
   int terms() const { return n_; }
   double& operator[](int k) { return c_[k]; }

@@ -1,0 +1,47 @@
+// The series of q at the last point a track accepted before the current one, for a predictor
+// that reaches further than the current point's own series: the polynomial that matches the
+// Taylor coefficients at both points (Hermite interpolation), evaluated one step on. With three
+// coefficients at each point it is of degree 5, so its error falls as h^6 where the current
+// series alone errs as h^3: on a sweep of one-degree steps one Newton correction then meets the
+// solver's tolerance, where two or three were needed. More points do worse, not better: the
+// coefficients are known only to the solver's tolerance, and an extrapolation through more points
+// multiplies their errors more.
+#pragma once
+
+#include <Eigen/Core>
+
+
+namespace nbar {
+
+class PathHistory {
+ public:
+  // Forgets the past point.
+  void clear() { has_past_ = false; }
+  // Before the step from `parameter` is accepted: remember that point's series.
+  void push(double parameter, const Eigen::MatrixXd& series);
+  // After it is accepted: the point it reached, which the next prediction must start from.
+  void mark_current(double parameter, const Eigen::MatrixXd& series);
+  // q at parameter + h, from `series` at `parameter` and the past point's series, when the history
+  // continues from that point and the step reaches at most twice as far as the last; false
+  // otherwise (the caller then predicts from `series` alone).
+  bool predict(double parameter, const Eigen::MatrixXd& series, double h, Eigen::VectorXd& q);
+
+ private:
+  bool continues_from(double parameter, const Eigen::MatrixXd& series) const;
+  void update_weights(double reach, int terms);
+
+  Eigen::MatrixXd past_;
+  double past_parameter_ = 0.0;
+  bool has_past_ = false;
+  // What the current point looked like when the last step reached it.
+  double current_parameter_ = 0.0;
+  Eigen::VectorXd current_q_, current_rate_;
+  // Weights of the current point's and the past point's coefficients (in that order), for
+  // offsets scaled so that the past point lies at -1 and the target at `weight_reach_`.
+  Eigen::MatrixXd inverse_transpose_;  // M^-T for weight_terms_ terms
+  double weight_[16] = {};             // 2 x terms; terms <= Series::kCapacity
+  double weight_reach_ = 0.0;          // the reach they are for
+  int weight_terms_ = 0;
+};
+
+}  // namespace nbar

@@ -1,0 +1,103 @@
+#include "nbar/kinematics/path_history.hpp"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+
+#include "nbar/model/series.hpp"
+
+namespace nbar {
+
+namespace {
+
+// The predictor reaches at most this many times the last step beyond the current point: further
+// out a polynomial through the past point is no better a guess than the current series.
+constexpr double kMaxReach = 2.0;
+
+double binomial(int n, int k) {
+  double b = 1.0;
+  for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
+  return b;
+}
+
+}  // namespace
+
+void PathHistory::push(double parameter, const Eigen::MatrixXd& series) {
+  past_ = series;  // the same size every step: no allocation once sized
+  past_parameter_ = parameter;
+  has_past_ = true;
+}
+
+void PathHistory::mark_current(double parameter, const Eigen::MatrixXd& series) {
+  current_parameter_ = parameter;
+  current_q_ = series.col(0);
+  if (series.cols() > 1) current_rate_ = series.col(1);
+}
+
+// The state must be the point the last accepted step reached, with the same path through it (its
+// rate along the path), bit for bit: anything else (a restart, a pose solved on its own, another
+// path through the same pose) has no usable past.
+bool PathHistory::continues_from(double parameter, const Eigen::MatrixXd& series) const {
+  if (!has_past_ || parameter != current_parameter_ || series.cols() < 2 || past_.cols() < series.cols()) return false;
+  const Eigen::Index n = series.rows();
+  if (current_q_.size() != n || current_rate_.size() != n) return false;
+  return std::equal(series.data(), series.data() + n, current_q_.data()) &&
+         std::equal(series.data() + n, series.data() + 2 * n, current_rate_.data());
+}
+
+// With the past point at -1, the current one at 0 and the target at r, the polynomial's
+// coefficients a solve M a = c from the points' Taylor coefficients c (row (point, k):
+// sum_j a_j C(j, k) z^(j - k)), and its value at r is v . a with v_j = r^j: the weights are
+// M^-T v. M depends only on the number of terms, so its inverse is kept; a step then costs one
+// small product.
+void PathHistory::update_weights(double reach, int terms) {
+  const int n = 2 * terms;
+  if (terms == weight_terms_ && reach == weight_reach_) return;
+  if (terms != weight_terms_) {
+    weight_terms_ = terms;
+    const double node[2] = {0.0, -1.0};
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < 2; ++i)
+      for (int k = 0; k < terms; ++k)
+        for (int j = k; j < n; ++j) m(i * terms + k, j) = binomial(j, k) * std::pow(node[i], j - k);
+    inverse_transpose_ = m.transpose().partialPivLu().inverse();
+  }
+  double power[2 * Series::kCapacity];
+  double p = 1.0;
+  for (int j = 0; j < n; ++j, p *= reach) power[j] = p;
+  for (int i = 0; i < n; ++i) {
+    double w = 0.0;
+    for (int j = 0; j < n; ++j) w += inverse_transpose_(i, j) * power[j];
+    weight_[i] = w;
+  }
+  weight_reach_ = reach;
+}
+
+bool PathHistory::predict(double parameter, const Eigen::MatrixXd& series, double h, Eigen::VectorXd& q) {
+  if (!continues_from(parameter, series)) return false;
+  const double back = parameter - past_parameter_;  // the last step, signed as h is
+  if (!(back * h > 0.0 && std::abs(h) <= kMaxReach * std::abs(back))) return false;
+  const int terms = static_cast<int>(series.cols());
+  update_weights(h / back, terms);
+  // Coefficient k in the scaled variable is coefficient k in the parameter times back^k.
+  double now[Series::kCapacity], before[Series::kCapacity];
+  double power = 1.0;
+  for (int k = 0; k < terms; ++k, power *= back) {
+    now[k] = weight_[k] * power;
+    before[k] = weight_[terms + k] * power;
+  }
+  const Eigen::Index n = series.rows();
+  q.resize(n);
+  const double* a = series.data();
+  const double* b = past_.data();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double sum = 0.0;
+    for (int k = 0; k < terms; ++k) sum += now[k] * a[k * n + i] + before[k] * b[k * n + i];
+    q[i] = sum;
+  }
+  return true;
+}
+
+
+}  // namespace nbar

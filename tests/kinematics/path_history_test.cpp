@@ -1,0 +1,70 @@
+// The predictor from two points' series: exact on polynomials of degree 5 (the Hermite
+// interpolant's), of error h^6 on others, and used only while the state is the point the last
+// step reached.
+#include "nbar/kinematics/path_history.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace nbar {
+namespace {
+
+// Taylor coefficients 0..2 at s of q(s) = (p(s), sin(s)) with p a polynomial of degree 5.
+Eigen::MatrixXd series_at(double s) {
+  const double c[6] = {0.3, -1.2, 0.7, 2.0, -0.4, 0.15};
+  Eigen::MatrixXd m(2, 3);
+  double p = 0.0, dp = 0.0, d2p = 0.0;
+  for (int j = 5; j >= 0; --j) {
+    d2p = d2p * s + 2.0 * dp;
+    dp = dp * s + p;
+    p = p * s + c[j];
+  }
+  m << p, dp, d2p / 2.0, std::sin(s), std::cos(s), -std::sin(s) / 2.0;
+  return m;
+}
+
+TEST(PathHistory, PredictsFromTheLastTwoPointsSeries) {
+  for (const double step : {0.3, 0.1, 0.03}) {
+    for (const double reach : {0.5, 1.0, 1.9}) {
+      PathHistory history;
+      const double s0 = 1.0 - step, s1 = 1.0, h = reach * step;
+      history.push(s0, series_at(s0));
+      history.mark_current(s1, series_at(s1));
+      Eigen::VectorXd q;
+      ASSERT_TRUE(history.predict(s1, series_at(s1), h, q));
+      const Eigen::MatrixXd truth = series_at(s1 + h);
+      // Degree 5: exact but for rounding.
+      EXPECT_NEAR(q[0], truth(0, 0), 1e-13 * std::abs(truth(0, 0))) << "step " << step << ", reach " << reach;
+      // sin: the error falls as the sixth power of the step, far below the current series' alone
+      // (third power).
+      const double taylor = series_at(s1)(1, 0) + h * series_at(s1)(1, 1) + h * h * series_at(s1)(1, 2);
+      const double error = std::abs(q[1] - truth(1, 0));
+      EXPECT_LT(error, 0.02 * std::pow(h, 6) * std::pow(1.0 + 1.0 / reach, 3) + 1e-15);
+      EXPECT_LT(error, 0.1 * std::abs(taylor - truth(1, 0)));
+    }
+  }
+}
+
+TEST(PathHistory, IsUsedOnlyFromThePointTheLastStepReached) {
+  PathHistory history;
+  Eigen::VectorXd q;
+  EXPECT_FALSE(history.predict(1.0, series_at(1.0), 0.1, q));  // no past point
+  history.push(0.9, series_at(0.9));
+  history.mark_current(1.0, series_at(1.0));
+  EXPECT_TRUE(history.predict(1.0, series_at(1.0), 0.1, q));
+  EXPECT_FALSE(history.predict(1.05, series_at(1.0), 0.1, q));  // another parameter
+  Eigen::MatrixXd moved = series_at(1.0);
+  moved(0, 0) += 1e-15;
+  EXPECT_FALSE(history.predict(1.0, moved, 0.1, q));  // another pose
+  Eigen::MatrixXd other_path = series_at(1.0);
+  other_path(1, 1) *= 2.0;
+  EXPECT_FALSE(history.predict(1.0, other_path, 0.1, q));  // the same pose on another path
+  EXPECT_FALSE(history.predict(1.0, series_at(1.0), -0.1, q));  // backwards, towards the past point
+  EXPECT_FALSE(history.predict(1.0, series_at(1.0), 0.25, q));  // more than twice the last step
+  history.clear();
+  EXPECT_FALSE(history.predict(1.0, series_at(1.0), 0.1, q));
+}
+
+}  // namespace
+}  // namespace nbar
