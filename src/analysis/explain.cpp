@@ -271,7 +271,10 @@ std::vector<InstantCentre> instant_centres(const Mechanism& mech, const Eigen::V
           c.indeterminate = true;
         } else {
           c.at_infinity = true;
+          // One of the two opposite directions, x positive; y positive when x is zero but for
+          // rounding (a vertical direction must not turn over with the last bit of x).
           Eigen::Vector2d d = perp(dv).normalized();
+          if (std::abs(d.x()) <= 1e-9) d.x() = 0.0;
           if (d.x() < 0 || (d.x() == 0 && d.y() < 0)) d = -d;
           c.direction = d;
         }

@@ -68,12 +68,17 @@ std::vector<int> links_at(const Model& m, int point) {
   return links;
 }
 
-// Convex hull (monotone chain), for bodies of three or more points without a shape.
+// Convex hull (monotone chain), for bodies of three or more points without a shape. A point within
+// rounding of the line through its neighbours (a body's points drawn in line) is left out, so that
+// the outline does not depend on the last bits of a solved pose.
 std::vector<Eigen::Vector2d> hull(std::vector<Eigen::Vector2d> p) {
   std::sort(p.begin(), p.end(), [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   if (p.size() < 3) return p;
-  auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  double extent = 0.0;
+  for (const auto& q : p) extent = std::max(extent, (q - p.front()).lpNorm<Eigen::Infinity>());
+  const double flat = 1e-9 * extent * extent;
+  auto turn = [flat](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x() - flat;
   };
   std::vector<Eigen::Vector2d> h(2 * p.size());
   std::size_t k = 0;
@@ -425,11 +430,13 @@ int default_drawn_step(const Mechanism& mech, const SweepResult& sweep) {
   if (sweep.samples.empty()) return 0;
   const auto [area, size] = spread(sweep.samples[0]);
   if (area > 0.01 * size) return 0;
+  // The first of the widest: samples whose areas differ only by rounding (mirror images of each
+  // other in a symmetric mechanism) count as equal, so that the choice does not turn on last bits.
   int best = 0;
   double widest = area;
   for (std::size_t k = 1; k < sweep.samples.size(); ++k) {
     const double a = spread(sweep.samples[k]).first;
-    if (a > widest) widest = a, best = static_cast<int>(k);
+    if (a > widest * (1 + 1e-9) + 1e-12 * size) widest = a, best = static_cast<int>(k);
   }
   return best;
 }
