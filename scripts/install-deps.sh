@@ -17,6 +17,7 @@ packages=(
   # by nbclient on an ipykernel, sympy's derivatives as a reference
   pybind11-dev python3-dev python3-numpy python3-matplotlib
   python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-sympy
+  python3-pandas  # docs/python.md's example of Result.to_pandas(), run by the tests
 )
 # The web app is bundled by npm packages (web/ui) during the build: Node and npm, unless a Node
 # is already installed (from Debian or elsewhere).
