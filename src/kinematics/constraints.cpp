@@ -224,37 +224,112 @@ DriverState make_driver_state(const Series& value, bool angular) {
   return s;
 }
 
+// The rows of one type run together (Mechanism::compiled_rows() is grouped so): the two commonest,
+// a body's length and a crank's angle, in loops of their own with nothing to dispatch; the others
+// through the general functions above.
+template <class Group>
+void for_each_group(const Mechanism& mech, Group&& group) {
+  const CompiledRow* rows = mech.compiled_rows().data();
+  for (const RowGroup& g : mech.row_groups()) group(g.type, rows + g.first, rows + g.last);
+}
+
 void evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
                         Eigen::VectorXd& phi) {
   const auto& rows = mech.compiled_rows();
   phi.resize(static_cast<Eigen::Index>(rows.size()));
-  const Points points{q.data(), mech.fixed_coordinates().data()};
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    phi[static_cast<Eigen::Index>(i)] = residual(rows[i], points, driver_values(rows[i], drivers));
+  double* out = phi.data();
+  const Points r{q.data(), mech.fixed_coordinates().data()};
+  for_each_group(mech, [&](ConstraintType type, const CompiledRow* first, const CompiledRow* last) {
+    switch (type) {
+      case ConstraintType::Distance:
+        for (const CompiledRow* c = first; c != last; ++c) {
+          const Xy u = r(c->at[1]) - r(c->at[0]);
+          out[c->row] = (dot(u, u) - c->a * c->a) * c->scale;
+        }
+        return;
+      case ConstraintType::DriveAngle:
+        for (const CompiledRow* c = first; c != last; ++c) {
+          const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
+          const Xy u = r(c->at[1]) - r(c->at[0]);
+          out[c->row] = (u.x * d.sin.value() - u.y * d.cos.value()) * c->scale;
+        }
+        return;
+      default:
+        for (const CompiledRow* c = first; c != last; ++c) out[c->row] = residual(*c, r, driver_values(*c, drivers));
+    }
+  });
 }
 
 void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
                        std::vector<double>& values) {
   // Every pattern entry belongs to one (row, point) slot, so each is written once.
   values.resize(mech.jacobian_pattern().size());
-  const Points points{q.data(), mech.fixed_coordinates().data()};
-  for (const CompiledRow& c : mech.compiled_rows()) {
-    const std::array<Xy, 4> g = gradient(c, points, driver_values(c, drivers));
-    for (int slot = 0; slot < 4; ++slot) {
-      const int e = c.entry[static_cast<std::size_t>(slot)];
-      if (e < 0) continue;
-      values[static_cast<std::size_t>(e)] = g[static_cast<std::size_t>(slot)].x;
-      values[static_cast<std::size_t>(e) + 1] = g[static_cast<std::size_t>(slot)].y;
+  double* out = values.data();
+  const Points r{q.data(), mech.fixed_coordinates().data()};
+  // A row whose gradient is g at its first point and -g at its second.
+  const auto put_pair = [out](const CompiledRow& c, Xy g) {
+    if (c.entry[0] >= 0) {
+      out[c.entry[0]] = -g.x;
+      out[c.entry[0] + 1] = -g.y;
     }
-  }
+    if (c.entry[1] >= 0) {
+      out[c.entry[1]] = g.x;
+      out[c.entry[1] + 1] = g.y;
+    }
+  };
+  for_each_group(mech, [&](ConstraintType type, const CompiledRow* first, const CompiledRow* last) {
+    switch (type) {
+      case ConstraintType::Distance:
+        for (const CompiledRow* c = first; c != last; ++c) {
+          const Xy u = r(c->at[1]) - r(c->at[0]);
+          const double f = 2.0 * c->scale;
+          put_pair(*c, {f * u.x, f * u.y});
+        }
+        return;
+      case ConstraintType::DriveAngle:
+        for (const CompiledRow* c = first; c != last; ++c) {
+          const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
+          put_pair(*c, {c->scale * d.sin.value(), -c->scale * d.cos.value()});
+        }
+        return;
+      default:
+        for (const CompiledRow* c = first; c != last; ++c) {
+          const std::array<Xy, 4> g = gradient(*c, r, driver_values(*c, drivers));
+          for (std::size_t slot = 0; slot < 4; ++slot) {
+            const int e = c->entry[slot];
+            if (e < 0) continue;
+            out[e] = g[slot].x;
+            out[e + 1] = g[slot].y;
+          }
+        }
+    }
+  });
 }
 
 void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int k,
                                const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs) {
   const auto& rows = mech.compiled_rows();
   rhs.resize(static_cast<Eigen::Index>(rows.size()));
+  double* out = rhs.data();
   const Coefficients q{coefficients.data(), coefficients.rows(), mech.fixed_coordinates().data(), k};
-  for (std::size_t r = 0; r < rows.size(); ++r) rhs[static_cast<Eigen::Index>(r)] = remainder(rows[r], q, k, drivers);
+  for_each_group(mech, [&](ConstraintType type, const CompiledRow* first, const CompiledRow* last) {
+    switch (type) {
+      case ConstraintType::Distance:
+        // The first coefficient is linear in q_1 alone; the k-th, sum over j of u_j . u_(k-j).
+        for (const CompiledRow* c = first; c != last; ++c) {
+          double v = 0.0;
+          for (int j = 1; j < k; ++j) v += dot(q.difference(c->at[0], c->at[1], j), q.difference(c->at[0], c->at[1], k - j));
+          out[c->row] = v * c->scale;
+        }
+        return;
+      case ConstraintType::RigidX:
+      case ConstraintType::RigidY:
+        for (const CompiledRow* c = first; c != last; ++c) out[c->row] = 0.0;  // linear in q
+        return;
+      default:
+        for (const CompiledRow* c = first; c != last; ++c) out[c->row] = remainder(*c, q, k, drivers);
+    }
+  });
 }
 
 }  // namespace nbar

@@ -228,6 +228,7 @@ void Mechanism::build_pattern() {
     const Constraint& c = rows_[r];
     CompiledRow& k = compiled_[r];
     k.type = c.type;
+    k.row = static_cast<int>(r);
     k.driver = c.driver;
     k.a = c.a;
     k.b = c.b;
@@ -241,6 +242,14 @@ void Mechanism::build_pattern() {
       pattern_.push_back({static_cast<int>(r), column_[p]});
       pattern_.push_back({static_cast<int>(r), column_[p] + 1});
     }
+  }
+  std::stable_sort(compiled_.begin(), compiled_.end(),
+                   [](const CompiledRow& a, const CompiledRow& b) { return a.type < b.type; });
+  groups_.clear();
+  for (std::size_t r = 0; r < compiled_.size(); ++r) {
+    if (groups_.empty() || groups_.back().type != compiled_[r].type)
+      groups_.push_back({compiled_[r].type, static_cast<int>(r), static_cast<int>(r)});
+    groups_.back().last = static_cast<int>(r) + 1;
   }
 }
 

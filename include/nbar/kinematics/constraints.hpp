@@ -38,16 +38,24 @@ struct Constraint {
   bool is_driver() const { return driver >= 0; }
 };
 
-// A row as the evaluation loops read it (Mechanism::compiled_rows()): the constants, and for each
+// A row as the evaluation loops read it (Mechanism::compiled_rows(), grouped by type so that each
+// loop runs over rows of one type): the constants, and for each
 // of its points where its coordinates are: a column of q (>= 0), or ~i for the fixed coordinates
 // at Mechanism::fixed_coordinates()[i] (unused slots: ~0 too, never read); and where the row's
 // Jacobian entries for each point start in the pattern (-1 for fixed points and unused slots).
 struct CompiledRow {
   ConstraintType type = ConstraintType::Distance;
+  int row = 0;  // its place in Mechanism::rows() and in the residual vector
   int driver = -1;
   double a = 0.0, b = 0.0, scale = 1.0;
   std::array<int, 4> at{~0, ~0, ~0, ~0};
   std::array<int, 4> entry{-1, -1, -1, -1};
+};
+
+// A run of compiled rows of one type: compiled_rows()[first, last).
+struct RowGroup {
+  ConstraintType type = ConstraintType::Distance;
+  int first = 0, last = 0;
 };
 
 // A driver's value along the path as a Taylor series, with its sine and cosine for angles.

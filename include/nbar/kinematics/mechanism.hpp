@@ -72,6 +72,7 @@ class Mechanism {
   // The rows as the evaluation loops read them, and the coordinates of the points fixed to the
   // frame (x, y of every point, in the model's order) that CompiledRow::at points into.
   const std::vector<CompiledRow>& compiled_rows() const { return compiled_; }
+  const std::vector<RowGroup>& row_groups() const { return groups_; }
   const std::vector<double>& fixed_coordinates() const { return fixed_xy_; }
   // Index of the first pattern entry of `row` for its point slot `slot` (x, then y at +1);
   // -1 when that point is fixed.
@@ -98,6 +99,7 @@ class Mechanism {
   std::vector<JacobianEntry> pattern_;
   std::vector<std::array<int, 4>> entry_;
   std::vector<CompiledRow> compiled_;
+  std::vector<RowGroup> groups_;
   std::vector<double> fixed_xy_;
   Eigen::VectorXd q_drawn_;
   std::vector<double> driver_drawn_;
