@@ -71,7 +71,7 @@ struct Tracker {
     options.terms = std::max(3, kOrder + 1);
     path = [f = from, v = speed](double t, int terms, std::vector<nbar::Series>& out) {
       out.resize(f.size());
-      for (std::size_t d = 0; d < f.size(); ++d) out[d] = nbar::Series::line(terms, f[d], v[d], t);
+      for (std::size_t d = 0; d < f.size(); ++d) out[d].set_line(terms, f[d], v[d], t);
     };
     nbar::assemble(mech, state, from);
     state.parameter = 0.0;

@@ -14,6 +14,7 @@ namespace {
 // The predictor reaches at most this many times the last step beyond the current point: further
 // out a polynomial through the past point is no better a guess than the current series.
 constexpr double kMaxReach = 2.0;
+constexpr double kSameReach = 1e-12;
 
 double binomial(int n, int k) {
   double b = 1.0;
@@ -24,15 +25,20 @@ double binomial(int n, int k) {
 }  // namespace
 
 void PathHistory::push(double parameter, const Eigen::MatrixXd& series) {
-  past_ = series;  // the same size every step: no allocation once sized
+  // The same size every step: no allocation once sized.
+  if (past_.rows() != series.rows() || past_.cols() != series.cols()) past_.resize(series.rows(), series.cols());
+  std::copy_n(series.data(), series.size(), past_.data());
   past_parameter_ = parameter;
   has_past_ = true;
 }
 
 void PathHistory::mark_current(double parameter, const Eigen::MatrixXd& series) {
   current_parameter_ = parameter;
-  current_q_ = series.col(0);
-  if (series.cols() > 1) current_rate_ = series.col(1);
+  const Eigen::Index n = series.rows();
+  current_q_.resize(n);
+  std::copy_n(series.data(), n, current_q_.data());
+  current_rate_.resize(series.cols() > 1 ? n : 0);
+  if (series.cols() > 1) std::copy_n(series.data() + n, n, current_rate_.data());
 }
 
 // The state must be the point the last accepted step reached, with the same path through it (its
@@ -53,7 +59,9 @@ bool PathHistory::continues_from(double parameter, const Eigen::MatrixXd& series
 // small product.
 void PathHistory::update_weights(double reach, int terms) {
   const int n = 2 * terms;
-  if (terms == weight_terms_ && reach == weight_reach_) return;
+  // Steps of a uniform sweep differ in their last bits (t_k = k dt): a reach within 1e-12 of the
+  // last keeps its weights, which moves the prediction by as little relative to the step.
+  if (terms == weight_terms_ && std::abs(reach - weight_reach_) <= kSameReach * std::abs(reach)) return;
   if (terms != weight_terms_) {
     weight_terms_ = terms;
     const double node[2] = {0.0, -1.0};
@@ -63,14 +71,12 @@ void PathHistory::update_weights(double reach, int terms) {
         for (int j = k; j < n; ++j) m(i * terms + k, j) = binomial(j, k) * std::pow(node[i], j - k);
     inverse_transpose_ = m.transpose().partialPivLu().inverse();
   }
-  double power[2 * Series::kCapacity];
-  double p = 1.0;
-  for (int j = 0; j < n; ++j, p *= reach) power[j] = p;
-  for (int i = 0; i < n; ++i) {
-    double w = 0.0;
-    for (int j = 0; j < n; ++j) w += inverse_transpose_(i, j) * power[j];
-    weight_[i] = w;
-  }
+  // w = M^-T v, column by column of M^-T (stored column-major): n multiply-adds of a column.
+  const double* m = inverse_transpose_.data();
+  for (int i = 0; i < n; ++i) weight_[i] = m[i];
+  double p = reach;
+  for (int j = 1; j < n; ++j, p *= reach)
+    for (int i = 0; i < n; ++i) weight_[i] += m[j * n + i] * p;
   weight_reach_ = reach;
 }
 

@@ -289,40 +289,40 @@ void SparseLU::compile(const std::vector<std::vector<int>>& u_rows, const std::v
 }
 
 bool SparseLU::replay(const Elimination& e, const double* values, bool check) {
-  value_.assign(e.values, 0.0);
+  if (value_.size() != e.values) value_.resize(e.values);
   inverse_pivot_.resize(static_cast<std::size_t>(n_));
   double* v = value_.data();
-  for (std::size_t i = 0; i < e.entry_slot.size(); ++i) v[e.entry_slot[i]] += values[i];
+  std::fill_n(v, e.values, 0.0);
+  const int* entry_slot = e.entry_slot.data();
+  for (std::size_t i = 0; i < e.entry_slot.size(); ++i) v[entry_slot[i]] += values[i];
   const Update* update = e.update.data();
+  const int* update_start = e.update_start.data();
+  const int* l_start = e.l_start.data();
   const int* l_slot = e.l_slot.data();
-  for (int k = 0; k < n_; ++k) {
-    for (int u = e.update_start[static_cast<std::size_t>(k)]; u < e.update_start[static_cast<std::size_t>(k) + 1]; ++u)
-      v[update[u].target] -= v[update[u].l] * v[update[u].u];
-    const double pivot = v[e.diagonal[static_cast<std::size_t>(k)]];
-    const int first = e.l_start[static_cast<std::size_t>(k)], last = e.l_start[static_cast<std::size_t>(k) + 1];
-    double biggest = 0.0;
-    for (int i = first; i < last; ++i) biggest = std::max(biggest, std::abs(v[l_slot[i]]));
-    // Written so that a NaN fails it.
-    if (!(std::abs(pivot) >= (check ? kPivotThreshold * biggest : 0.0)) || pivot == 0.0) return false;
-    const double inverse = 1.0 / pivot;
-    inverse_pivot_[static_cast<std::size_t>(k)] = inverse;
-    for (int i = first; i < last; ++i) v[l_slot[i]] *= inverse;
-  }
-  finish_pivots(e);
-  return true;
-}
-
-void SparseLU::finish_pivots(const Elimination& e) {
+  const int* diagonal = e.diagonal.data();
+  const double threshold = check ? kPivotThreshold : 0.0;
   int sign = e.permutation_sign;
   double smallest = HUGE_VAL, largest = 0.0;
   for (int k = 0; k < n_; ++k) {
-    const double d = value_[static_cast<std::size_t>(e.diagonal[static_cast<std::size_t>(k)])];
-    if (d < 0.0) sign = -sign;
-    smallest = std::min(smallest, std::abs(d));
-    largest = std::max(largest, std::abs(d));
+    for (int u = update_start[k]; u < update_start[k + 1]; ++u) v[update[u].target] -= v[update[u].l] * v[update[u].u];
+    const double pivot = v[diagonal[k]];
+    double biggest = 0.0;
+    for (int i = l_start[k]; i < l_start[k + 1]; ++i) {
+      const double size = std::abs(v[l_slot[i]]);
+      if (!(size <= biggest)) biggest = size;  // NaN too
+    }
+    // Written so that a NaN fails it.
+    if (!(std::abs(pivot) >= threshold * biggest) || pivot == 0.0) return false;
+    const double inverse = 1.0 / pivot;
+    inverse_pivot_[static_cast<std::size_t>(k)] = inverse;
+    for (int i = l_start[k]; i < l_start[k + 1]; ++i) v[l_slot[i]] *= inverse;
+    if (pivot < 0.0) sign = -sign;
+    smallest = std::min(smallest, std::abs(pivot));
+    largest = std::max(largest, std::abs(pivot));
   }
   det_sign_ = sign;
   pivot_ratio_ = largest > 0.0 ? smallest / largest : 0.0;
+  return true;
 }
 
 void SparseLU::solve(const double* b, double* x) const {

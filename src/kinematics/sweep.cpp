@@ -45,12 +45,12 @@ SweepPath plan_from_to(const Mechanism& mech, int samples, SweepPath plan, bool 
   if (proportional) {
     plan.drivers = [from = plan.from, speed = plan.speed](double t, int terms, std::vector<Series>& out) {
       out.resize(from.size());
-      for (std::size_t d = 0; d < from.size(); ++d) out[d] = Series::line(terms, from[d], speed[d], t);
+      for (std::size_t d = 0; d < from.size(); ++d) out[d].set_line(terms, from[d], speed[d], t);
     };
   } else {
     plan.drivers = [from = plan.from, delta](double f, int terms, std::vector<Series>& out) {
       out.resize(from.size());
-      for (std::size_t d = 0; d < from.size(); ++d) out[d] = Series::line(terms, from[d], delta[d], f);
+      for (std::size_t d = 0; d < from.size(); ++d) out[d].set_line(terms, from[d], delta[d], f);
     };
   }
   return plan;

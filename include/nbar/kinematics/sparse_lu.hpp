@@ -81,7 +81,6 @@ class SparseLU {
   void compile(const std::vector<std::vector<int>>& u_rows, const std::vector<std::vector<int>>& l_rows,
                Elimination& e) const;
   bool replay(const Elimination& e, const double* values, bool check);
-  void finish_pivots(const Elimination& e);
   const Elimination& current() const { return kept_[static_cast<std::size_t>(current_)]; }
 
   int n_ = 0;

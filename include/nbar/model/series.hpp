@@ -25,12 +25,15 @@ class Series {
     if (terms > 1) v.c_[1] = 1.0;
     return v;
   }
-  // The series of a + b (s0 + s), the same numbers as a + b * variable(terms, s0) without the
-  // temporaries.
-  static Series line(int terms, double a, double b, double s0) {
-    Series v(terms, a + b * s0);
-    if (terms > 1) v.c_[1] = b;
-    return v;
+  // Makes this the series of a + b (s0 + s), the same numbers as a + b * variable(terms, s0),
+  // in place: no temporary, whose copy would read back as vectors what was just stored as
+  // scalars (a store-forwarding stall on every step of a sweep).
+  void set_line(int terms, double a, double b, double s0) {
+    assert(terms >= 1 && terms <= kCapacity);
+    n_ = terms;
+    c_.fill(0.0);
+    c_[0] = a + b * s0;
+    if (terms > 1) c_[1] = b;
   }
 
   int terms() const { return n_; }
