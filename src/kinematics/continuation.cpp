@@ -294,9 +294,9 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
     bool short_of_target = false;
     const bool converged = correct(mech, state, q_old, q_pred, trial_residual, short_of_target);
     bool ok = converged && factorize_jacobian(mech, state, state.spare_solver());
-    // Near a singular position the point's own Jacobian would amplify the correction instead: the
-    // point stays as the tolerance left it.
-    if (ok && short_of_target && state.spare_solver().reciprocal_condition() >= kRegularRcond)
+    // On a singular position the point's own Jacobian would amplify the correction instead: the
+    // point stays as the tolerance left it (a sample there takes its series from beside it).
+    if (ok && short_of_target && state.spare_solver().reciprocal_condition() >= kHistoryRcond)
       ok = polish(mech, state, state.spare_solver(), trial_residual);
     if (converged && final_step && options.coast_terms > 0 && !coast_tried &&
         (!ok || state.spare_solver().reciprocal_condition() < kCoastRcond)) {
