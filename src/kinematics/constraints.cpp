@@ -326,6 +326,18 @@ void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coe
       case ConstraintType::RigidY:
         for (const CompiledRow* c = first; c != last; ++c) out[c->row] = 0.0;  // linear in q
         return;
+      case ConstraintType::DriveAngle:
+        // (u x (cos, sin)) coefficient k: sum over j < k of u_j against the driver's k - j.
+        for (const CompiledRow* c = first; c != last; ++c) {
+          const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
+          double v = 0.0;
+          for (int j = 0; j < k; ++j) {
+            const Xy u = q.difference(c->at[0], c->at[1], j);
+            v += u.x * term(d.sin, k - j) - u.y * term(d.cos, k - j);
+          }
+          out[c->row] = v * c->scale;
+        }
+        return;
       default:
         for (const CompiledRow* c = first; c != last; ++c) out[c->row] = remainder(*c, q, k, drivers);
     }

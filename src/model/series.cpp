@@ -48,10 +48,13 @@ Series riccati(const Series& x, double y0, double square_sign) {
 }
 
 // Shared by sin/cos (sign = -1) and sinh/cosh (sign = +1): s' = c x', c' = sign * s x'.
+// In place (a driver's sine and cosine, every step of a sweep): a temporary copied in would read
+// back as vectors what was just stored as scalars. Division by k = 1 or 2 is a multiplication,
+// the same number exactly, off the critical path of the first terms.
 void coupled(const Series& x, double s0, double c0, double sign, Series& s, Series& c) {
   const int n = x.terms();
-  s = Series(n, s0);
-  c = Series(n, c0);
+  s.reset(n, s0);
+  c.reset(n, c0);
   for (int k = 1; k < n; ++k) {
     double ss = 0.0;
     double cc = 0.0;
@@ -59,8 +62,14 @@ void coupled(const Series& x, double s0, double c0, double sign, Series& s, Seri
       ss += j * x[j] * c[k - j];
       cc += j * x[j] * s[k - j];
     }
-    s[k] = ss / k;
-    c[k] = sign * cc / k;
+    if (k <= 2) {
+      const double inverse = k == 1 ? 1.0 : 0.5;
+      s[k] = ss * inverse;
+      c[k] = sign * cc * inverse;
+    } else {
+      s[k] = ss / k;
+      c[k] = sign * cc / k;
+    }
   }
 }
 

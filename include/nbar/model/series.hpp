@@ -25,6 +25,13 @@ class Series {
     if (terms > 1) v.c_[1] = 1.0;
     return v;
   }
+  // Makes this the constant series `constant` with `terms` terms, in place.
+  void reset(int terms, double constant) {
+    assert(terms >= 1 && terms <= kCapacity);
+    n_ = terms;
+    c_.fill(0.0);
+    c_[0] = constant;
+  }
   // Makes this the series of a + b (s0 + s), the same numbers as a + b * variable(terms, s0),
   // in place: no temporary, whose copy would read back as vectors what was just stored as
   // scalars (a store-forwarding stall on every step of a sweep).
