@@ -209,7 +209,10 @@ double remainder(const CompiledRow& c, const Coefficients& q, int k, const std::
 }  // namespace
 
 void set_driver_state(DriverState& s, const Series& value, bool angular) {
-  s.value = value;
+  // Term by term: the path has just stored them as scalars, and a copy of the whole series would
+  // read them back as vectors (a store-forwarding stall every step of a sweep).
+  s.value.reset(value.terms(), value[0]);
+  for (int k = 1; k < value.terms(); ++k) s.value[k] = value[k];
   if (angular) {
     sincos(value, s.sin, s.cos);
   } else {
