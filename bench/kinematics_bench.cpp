@@ -3,9 +3,8 @@
 // assembling a large chain.
 //
 // The per-step benchmarks drive nbar::track() themselves, the way run_sweep() does for a
-// proportional from/to sweep (the tracking parameter is the time, the predictor series holds
-// max(4, order + 1) terms, and after track() state.series already holds the Taylor
-// coefficients of q in time). Mechanism construction and assembly happen in the setup, outside
+// proportional from/to sweep (the tracking parameter is the time, the series hold max(3, order +
+// 1) terms, and after track() state.series already holds the Taylor coefficients of q in time). Mechanism construction and assembly happen in the setup, outside
 // the timed region; every benchmark iteration is one full input revolution in 360 steps of 1
 // degree, continuing from where the previous iteration stopped, so no reset is needed.
 // Counters: per_step (and per_step_per_loop for chains), CPU seconds per sample, printed with an
@@ -25,9 +24,18 @@
 //   faster than the chains' sparse LU); linear in N
 // Same machine, load 3-4 (2026-11-25, later): the small LU without vectorised spills,
 //   engine step / closed form 3.7 (0.43 / 0.12 us); chains 2.7, 2.2, 2.0 (1.17, 0.94, 0.89 us)
+// 2026-11-27, after the sparse LU with kept pivots, the Hermite predictor and the step's
+// overheads (commits f061d8a..edd4cec): 10 rounds of this program alternating with the one built
+// before them (bench/kinematics_rounds.py --baseline OLD); the host's other load made two
+// regimes, quiet and busy:
+//   engine step / closed form: median 2.09 (1.78 quiet to 2.67 busy; 0.38 / 0.19 us at the
+//   median), the program before in the same rounds 3.80 (3.74 to 4.48; 0.66 / 0.18 us)
+//   chain per loop / four-bar step, N = 10, 100, 1000: medians 0.88, 0.81, 0.84 (0.30, 0.29,
+//   0.29 us per loop), before 2.71, 2.17, 1.98 (1.89, 1.55, 1.57 us)
 //
 // Run: kinematics_bench --benchmark_min_time=0.2
 //      kinematics_bench --benchmark_filter='Over' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//      /usr/bin/python3 bench/kinematics_rounds.py --rounds 10 [--baseline OLD/kinematics_bench]
 
 #include <benchmark/benchmark.h>
 
