@@ -269,8 +269,8 @@ void BM_ChainOfFourBars(benchmark::State& st) {
   Tracker tracker(model);
   run_turns(st, tracker, loops);
 }
-// 15 and 16 loops (60 and 64 coordinates) straddle LinearSolver::kDenseLimit, the switch from
-// dense to sparse LU.
+// 15 and 16 loops (60 and 64 coordinates) straddle LinearSolver::kDenseConditionLimit, above
+// which a near-singular Jacobian's condition is Hager's estimate rather than a dense LU's.
 BENCHMARK(BM_ChainOfFourBars)->Arg(1)->Arg(10)->Arg(15)->Arg(16)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 
 // A chain's cost per loop against the single four-bar's step, interleaved as above: per

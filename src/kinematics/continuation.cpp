@@ -11,13 +11,14 @@ namespace nbar {
 namespace {
 
 constexpr int kMaxCorrections = 8;
-// Above this reciprocal condition the corrections stop at the tolerance; below, at a residual
-// smaller by the square of the ratio, down to kTightestTarget times the tolerance.
+// The corrections of a regular step go on to kRegularTarget of the tolerance (one more
+// correction costs little next to the step, and the pose is then known well below the
+// tolerance); below kRegularRcond, to a residual smaller still by the square of the condition's
+// ratio to it, down to kTightestTarget of that (1e-4 of the tolerance in all, about the residual's
+// own rounding: near a singular position they go on until they stop contracting). A correction
+// that no longer contracts ends them if the tolerance is met.
 constexpr double kRegularRcond = 0.1;
 constexpr double kTightestTarget = 1e-3;
-// The corrections of a regular step go on to this fraction of the tolerance (one more correction
-// costs little next to the step, and the pose is then known well below the tolerance); a
-// correction that no longer contracts stops them at the tolerance.
 constexpr double kRegularTarget = 0.1;
 // A correction larger than this fraction of the predicted motion looks like a jump to
 // another branch: the step is retried shorter.
@@ -26,10 +27,14 @@ constexpr double kMaxCorrectionRatio = 0.1;
 // crossing of a singular position rather than a jump.
 constexpr double kCrossingStep = 1e-4;
 constexpr double kContinuedCorrection = 1e-6;
-// Below this reciprocal condition an end point is too near a singular position for its own
-// Jacobian to give its series: they would carry about 1/rcond times the rounding error, and
-// the next prediction would start off towards either of the branches that cross there.
-constexpr double kCoastRcond = 1e-5;
+// Below this reciprocal condition a point is too near a singular position for its own Jacobian
+// to give its series: they would carry about 1/rcond times the rounding error, and the next
+// prediction would start off towards either of the branches that cross there.
+constexpr double kCoastRcond = 1e-8;
+// Below this reciprocal condition an end point lies on a singular position: a pose converged to
+// the tolerance lies about sqrt(tolerance) from the singular one, where the condition is about
+// 1e-6; its series come from a regular point beside it (coast_to_singular_end).
+constexpr double kSingularEndRcond = 1e-5;
 // The series re-centred onto a singular end point: as many terms as a Series holds.
 constexpr int kCoastSeriesTerms = Series::kCapacity;
 // Positions, velocities and accelerations there are checked, to 1e-6 (the sweep reports how
@@ -55,7 +60,7 @@ void predict(const Eigen::MatrixXd& series, double h, Eigen::VectorXd& q) {
 // where Eigen's expression set-up costs more than the arithmetic.
 void grow(double& largest, double x) {
   const double size = std::abs(x);
-  if (!(size <= largest)) largest = size;
+  if (!(size <= largest) && !std::isnan(largest)) largest = size;
 }
 
 double largest_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
@@ -64,11 +69,10 @@ double largest_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return largest;
 }
 
-// How far below the tolerance the residual is driven near a singular position: the pose is off
-// by about residual / sigma_min there, and its velocities and accelerations by that over sigma_min
-// and sigma_min^2 (sigma_min relative: about the reciprocal condition). A regular Jacobian keeps
-// the tolerance; one nearer singular, by the square of its condition against kRegularRcond, down
-// to kTightestTarget.
+// How far below the tolerance the residual is driven: the pose is off by about residual /
+// sigma_min, and its velocities and accelerations by that over sigma_min and sigma_min^2
+// (sigma_min relative: about the reciprocal condition), so nearer a singular position, further
+// (the constants above).
 double residual_target(double tol, double rcond) {
   const double ratio = std::min(1.0, rcond / kRegularRcond);
   return tol * kRegularTarget * std::max(kTightestTarget, ratio * ratio);
@@ -163,9 +167,10 @@ bool restart(const Mechanism& mech, State& state, const DriverPath& path, double
   state.parameter = p_start;
   path(p_start, terms, state.driver_values);
   set_drivers(mech, state, state.driver_values);
-  if (!factorize_jacobian(mech, state) || state.solver().reciprocal_condition() < kCoastRcond) return false;
+  if (!factorize_jacobian(mech, state)) return false;
+  // The series whatever the condition, so that a failed restart still leaves the start's own.
   compute_series(mech, state, terms);
-  return true;
+  return state.solver().reciprocal_condition() >= kCoastRcond;
 }
 
 // The series at p_end from those at a regular point p_end - distance (before it, or beyond it
@@ -201,7 +206,7 @@ double series_from(const Mechanism& mech, State& state, const DriverPath& path, 
   bool short_of_target = false;
   if (!correct(mech, state, q_b, shifted.col(0), residual, short_of_target)) return HUGE_VAL;
   const bool singular = !factorize_jacobian(mech, state, state.spare_solver()) ||
-                        state.spare_solver().reciprocal_condition() < kCoastRcond;
+                        state.spare_solver().reciprocal_condition() < kSingularEndRcond;
   if (!singular) return HUGE_VAL;
   state.series = std::move(shifted);
   state.series.col(0) = state.q;
@@ -297,9 +302,9 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
     // On a singular position the point's own Jacobian would amplify the correction instead: the
     // point stays as the tolerance left it (a sample there takes its series from beside it).
     if (ok && short_of_target && state.spare_solver().reciprocal_condition() >= kHistoryRcond)
-      ok = polish(mech, state, state.spare_solver(), trial_residual);
+      ok = polish(mech, state, state.spare_solver(), trial_residual) && trial_residual <= mech.tolerance();
     if (converged && final_step && options.coast_terms > 0 && !coast_tried &&
-        (!ok || state.spare_solver().reciprocal_condition() < kCoastRcond)) {
+        (!ok || state.spare_solver().reciprocal_condition() < kSingularEndRcond)) {
       if (coast()) break;
       continue;
     }
@@ -321,7 +326,7 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
     // error into the next prediction. It is retried shorter, by a factor that does not land on
     // the same place again (halving can: a quarter step of a sweep may be a change point).
     const double rcond_new = ok ? state.spare_solver().reciprocal_condition() : 1.0;
-    const bool onto_singular = ok && !final_step && rcond_new < kCoastRcond &&
+    const bool onto_singular = ok && !final_step && rcond_new < kSingularEndRcond &&
                                rcond_new < kSuddenRcondDrop * state.solver().reciprocal_condition();
     if (onto_singular) ok = false;
     if (ok) {

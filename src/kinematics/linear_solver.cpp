@@ -11,8 +11,9 @@ namespace {
 // where the mechanism locks or changes branch.
 constexpr double kSingularRcond = 1e-13;
 // Pivots within this ratio of each other say the matrix is regular: the ratio serves as its
-// reciprocal condition. Beyond it the condition is estimated properly.
-constexpr double kRegularPivotRatio = 1e-6;
+// reciprocal condition. Beyond it the condition is estimated properly, so that every threshold
+// the continuation compares it with near a singular position (1e-4 and below) meets an estimate.
+constexpr double kRegularPivotRatio = 1e-3;
 }  // namespace
 
 LinearSolver::LinearSolver(const Mechanism& mech)

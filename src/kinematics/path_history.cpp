@@ -85,6 +85,7 @@ bool PathHistory::predict(double parameter, const Eigen::MatrixXd& series, doubl
   const double back = parameter - past_parameter_;  // the last step, signed as h is
   if (!(back * h > 0.0 && std::abs(h) <= kMaxReach * std::abs(back))) return false;
   const int terms = static_cast<int>(series.cols());
+  if (terms > Series::kCapacity) return false;  // the weights' storage holds 2 x kCapacity
   update_weights(h / back, terms);
   // Coefficient k in the scaled variable is coefficient k in the parameter times back^k.
   double now[Series::kCapacity], before[Series::kCapacity];

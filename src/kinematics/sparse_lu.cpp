@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace nbar {
@@ -78,6 +79,10 @@ bool SparseLU::factorize(const double* values) {
     pivot_ratio_ = 1.0;
     return true;
   }
+  // A number that is not finite anywhere in the matrix makes it unusable, whether or not the
+  // elimination would carry it into a pivot.
+  for (std::size_t e = 0; e < entries_.size(); ++e)
+    if (!std::isfinite(values[e])) return fail();
   for (std::size_t i = 0; i < kept_.size(); ++i) {
     if (!replay(kept_[i], values, true)) continue;
     // Most recently used first: the next step most likely needs this one again.
@@ -86,18 +91,20 @@ bool SparseLU::factorize(const double* values) {
     return true;
   }
   Elimination chosen;
-  if (!analyse(values, chosen)) {
-    det_sign_ = 0;
-    pivot_ratio_ = 0.0;
-    current_ = -1;
-    return false;
-  }
+  if (!analyse(values, chosen)) return fail();
   if (static_cast<int>(kept_.size()) == kKeptEliminations) kept_.pop_back();
   kept_.insert(kept_.begin(), std::move(chosen));
   current_ = 0;
   // The replay of the elimination just chosen: the pivots are the largest of their columns, so
-  // only an exact zero can stop it.
-  return replay(kept_.front(), values, false);
+  // only a pivot that rounds to exactly zero can stop it.
+  return replay(kept_.front(), values, false) || fail();
+}
+
+bool SparseLU::fail() {
+  det_sign_ = 0;
+  pivot_ratio_ = 0.0;
+  current_ = -1;
+  return false;
 }
 
 int SparseLU::factor_nonzeros() const {
@@ -233,7 +240,7 @@ void SparseLU::compile(const std::vector<std::vector<int>>& u_rows, const std::v
   e.u_row.clear();
   e.l_slot.clear();
   e.l_row.clear();
-  // slot_in[k][position] while compiling: where each entry of a column lives.
+  // column[k]: (position, slot) of each entry of column k while compiling.
   std::vector<std::vector<std::pair<int, int>>> column(n);
   for (std::size_t k = 0; k < n; ++k) {
     e.u_start[k] = static_cast<int>(e.u_slot.size());
@@ -309,7 +316,7 @@ bool SparseLU::replay(const Elimination& e, const double* values, bool check) {
     double biggest = 0.0;
     for (int i = l_start[k]; i < l_start[k + 1]; ++i) {
       const double size = std::abs(v[l_slot[i]]);
-      if (!(size <= biggest)) biggest = size;  // NaN too
+      if (!(size <= biggest) && !std::isnan(biggest)) biggest = size;  // a NaN stays
     }
     // Written so that a NaN fails it.
     if (!(std::abs(pivot) >= threshold * biggest) || pivot == 0.0) return false;
@@ -326,6 +333,11 @@ bool SparseLU::replay(const Elimination& e, const double* values, bool check) {
 }
 
 void SparseLU::solve(const double* b, double* x) const {
+  if (n_ == 0) return;
+  if (current_ < 0) {  // no factorisation: no numbers
+    for (int k = 0; k < n_; ++k) x[k] = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
   const Elimination& e = current();
   if (n_ <= kDenseSolveLimit) {
     const double* lu = value_.data();
@@ -363,6 +375,11 @@ void SparseLU::solve(const double* b, double* x) const {
 
 // A = P^T L U Q^T, so A^T y = c is U^T L^T (P y) = Q^T c: U^T forward, L^T backward.
 void SparseLU::solve_transposed(const double* b, double* x) const {
+  if (n_ == 0) return;
+  if (current_ < 0) {
+    for (int k = 0; k < n_; ++k) x[k] = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
   const Elimination& e = current();
   double* w = work_.data();
   const double* v = value_.data();

@@ -94,36 +94,90 @@ TEST(SparseLU, AgreesWithDenseLUOnRandomSparseMatrices) {
 
 // A block-diagonal matrix of 2 x 2 rotations turning with a parameter, plus a fixed sparse
 // coupling below the blocks: the largest entry of each column moves from row to row as the
-// blocks turn, as a crank's x and y components take turns to lead.
-Problem turning_problem(double angle) {
+// blocks turn, as a crank's x and y components take turns to lead. 3 blocks (6 x 6, the dense
+// path) or more (the sparse one, with more pivot patterns than the four kept eliminations).
+Problem turning_problem(double angle, int blocks = 3) {
   Problem p;
-  p.n = 6;
-  for (int b = 0; b < 3; ++b) {
+  p.n = 2 * blocks;
+  for (int b = 0; b < blocks; ++b) {
     const double t = angle * (1 + b) + b;
     const int o = 2 * b;
     p.entries.insert(p.entries.end(), {{o, o}, {o, o + 1}, {o + 1, o}, {o + 1, o + 1}});
     p.values.insert(p.values.end(), {std::cos(t), -std::sin(t), std::sin(t), std::cos(t)});
   }
-  p.entries.insert(p.entries.end(), {{2, 0}, {4, 1}, {5, 3}});
-  p.values.insert(p.values.end(), {0.3, -0.2, 0.25});
+  for (int b = 1; b < blocks; ++b) {
+    p.entries.insert(p.entries.end(), {{2 * b, 2 * b - 2}, {2 * b + 1, 2 * b - 1}});
+    p.values.insert(p.values.end(), {0.3, -0.2});
+  }
   return p;
 }
 
 TEST(SparseLU, KeepsItsPivotsAlongASweepAndChoosesAgainWhenTheyFail) {
-  SparseLU lu;
-  Problem p = turning_problem(0.0);
-  lu.set_pattern(p.n, p.entries);
-  const int steps = 720;
-  for (int i = 0; i <= steps; ++i) {
-    p = turning_problem(2 * std::numbers::pi * i / steps);
-    ASSERT_TRUE(lu.factorize(p.values.data())) << "step " << i;
-    SCOPED_TRACE("step " + std::to_string(i));
+  for (const int blocks : {3, 7}) {
+    SparseLU lu;
+    Problem p = turning_problem(0.0, blocks);
+    lu.set_pattern(p.n, p.entries);
+    const int steps = 720;
+    for (int i = 0; i <= steps; ++i) {
+      p = turning_problem(2 * std::numbers::pi * i / steps, blocks);
+      ASSERT_TRUE(lu.factorize(p.values.data())) << "step " << i;
+      SCOPED_TRACE(std::to_string(blocks) + " blocks, step " + std::to_string(i));
+      expect_agrees_with_dense(lu, p);
+    }
+    // Chosen again only where a kept pivot fell below the threshold and no kept elimination
+    // would do: now and then, not every step, and more than once.
+    EXPECT_GT(lu.analyses(), 1) << blocks << " blocks";
+    EXPECT_LT(lu.analyses(), 30 * blocks) << blocks << " blocks";
+  }
+}
+
+TEST(SparseLU, AFailedFactorisationLeavesNoNumbersBehind) {
+  for (const int blocks : {3, 7}) {  // dense and sparse paths
+    Problem p = turning_problem(0.4, blocks);
+    SparseLU lu;
+    lu.set_pattern(p.n, p.entries);
+    ASSERT_TRUE(lu.factorize(p.values.data()));
+    EXPECT_NE(lu.determinant_sign(), 0);
+    // A NaN or an infinity in one entry, wherever the elimination would carry it: refused, and
+    // the solves say so.
+    for (const double bad : {std::nan(""), HUGE_VAL}) {
+      Problem q = p;
+      q.values[1] = bad;
+      EXPECT_FALSE(lu.factorize(q.values.data())) << bad;
+      EXPECT_EQ(lu.determinant_sign(), 0);
+      EXPECT_EQ(lu.pivot_ratio(), 0.0);
+      std::vector<double> b(static_cast<std::size_t>(p.n), 1.0), x(static_cast<std::size_t>(p.n), 0.0);
+      lu.solve(b.data(), x.data());
+      for (double v : x) EXPECT_TRUE(std::isnan(v));
+      lu.solve_transposed(b.data(), x.data());
+      for (double v : x) EXPECT_TRUE(std::isnan(v));
+    }
+    // And it recovers at the next good matrix.
+    ASSERT_TRUE(lu.factorize(p.values.data()));
     expect_agrees_with_dense(lu, p);
   }
-  // Chosen again only where a kept pivot fell below the threshold and no kept elimination
-  // would do: a few times a turn, not every step, and more than once.
-  EXPECT_GT(lu.analyses(), 1);
-  EXPECT_LT(lu.analyses(), 40);
+  SparseLU empty;
+  empty.set_pattern(0, {});
+  EXPECT_TRUE(empty.factorize(nullptr));
+  EXPECT_EQ(empty.determinant_sign(), 1);
+  empty.solve(nullptr, nullptr);
+}
+
+TEST(SparseLU, SolvesInPlaceBothWays) {
+  for (const int blocks : {3, 7}) {
+    const Problem p = turning_problem(1.1, blocks);
+    SparseLU lu;
+    lu.set_pattern(p.n, p.entries);
+    ASSERT_TRUE(lu.factorize(p.values.data()));
+    const Eigen::MatrixXd a = p.dense();
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.n, 2.0, -1.0);
+    Eigen::VectorXd x = b;
+    lu.solve(x.data(), x.data());
+    EXPECT_LT(relative_residual(a, x, b), 1e-14);
+    x = b;
+    lu.solve_transposed(x.data(), x.data());
+    EXPECT_LT(relative_residual(a.transpose(), x, b), 1e-14);
+  }
 }
 
 TEST(SparseLU, RefusesSingularAndNonFiniteMatrices) {

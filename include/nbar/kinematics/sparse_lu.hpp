@@ -37,7 +37,8 @@ class SparseLU {
   void set_pattern(int n, const std::vector<Entry>& entries);
 
   // Factorises the matrix whose entries, in the pattern's order, are `values`. False when it is
-  // singular: a column with no nonzero pivot left.
+  // singular (a column with no nonzero pivot left) or holds a number that is not finite; solves
+  // then give NaN.
   bool factorize(const double* values);
 
   // x = A^-1 b, and x = A^-T b. b and x may be the same array.
@@ -52,7 +53,8 @@ class SparseLU {
   // Hager and Higham's estimate of 1 / (|A|_1 |A^-1|_1), from a few solves with the factors.
   double reciprocal_condition_estimate(const double* values) const;
 
-  // How many times the pivots were chosen (1 + the replays refused by the threshold).
+  // How many times the pivots were chosen afresh (every kept elimination refused by the
+  // threshold, or none kept yet), singular attempts included.
   long analyses() const { return analyses_; }
   // Nonzeros of L and U, the diagonal included.
   int factor_nonzeros() const;
@@ -81,6 +83,7 @@ class SparseLU {
   void compile(const std::vector<std::vector<int>>& u_rows, const std::vector<std::vector<int>>& l_rows,
                Elimination& e) const;
   bool replay(const Elimination& e, const double* values, bool check);
+  bool fail();  // the state of a failed factorisation; returns false
   const Elimination& current() const { return kept_[static_cast<std::size_t>(current_)]; }
 
   int n_ = 0;
