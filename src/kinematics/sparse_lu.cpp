@@ -44,10 +44,11 @@ std::vector<int> fill_reducing_order(int n, const std::vector<SparseLU::Entry>& 
 }
 
 // Forward and back substitution with L and U dense and the size known at compile time, so that the
-// right-hand side stays in registers. Not vectorised: pairs of scalar results stored and then loaded
-// as one vector stall the store forwarding, which costs more than the arithmetic at this size.
+// right-hand side stays in registers. Not vectorised (this file is compiled with
+// -fno-tree-vectorize, src/CMakeLists.txt): pairs of scalar results stored and then loaded as one
+// vector stall the store forwarding, which costs more than the arithmetic at this size.
 template <int N>
-__attribute__((optimize("no-tree-vectorize"))) void dense_solve(const double* lu, const double* inverse_pivot, const int* pivot_row, const int* column_order,
+void dense_solve(const double* lu, const double* inverse_pivot, const int* pivot_row, const int* column_order,
                  const double* b, double* x) {
   double w[N];
   for (int i = 0; i < N; ++i) w[i] = b[pivot_row[i]];
