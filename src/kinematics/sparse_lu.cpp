@@ -333,12 +333,16 @@ bool SparseLU::replay(const Elimination& e, const double* values, bool check) {
   return true;
 }
 
+// No factors to solve with (none yet, the last factorisation failed, or an empty system): x is
+// all NaN, and the solves return at once.
+bool SparseLU::unfactorised(double* x) const {
+  if (current_ >= 0) return false;
+  std::fill(x, x + n_, std::numeric_limits<double>::quiet_NaN());
+  return true;
+}
+
 void SparseLU::solve(const double* b, double* x) const {
-  if (n_ == 0) return;
-  if (current_ < 0) {  // no factorisation: no numbers
-    for (int k = 0; k < n_; ++k) x[k] = std::numeric_limits<double>::quiet_NaN();
-    return;
-  }
+  if (unfactorised(x)) return;
   const Elimination& e = current();
   if (n_ <= kDenseSolveLimit) {
     const double* lu = value_.data();
@@ -376,11 +380,7 @@ void SparseLU::solve(const double* b, double* x) const {
 
 // A = P^T L U Q^T, so A^T y = c is U^T L^T (P y) = Q^T c: U^T forward, L^T backward.
 void SparseLU::solve_transposed(const double* b, double* x) const {
-  if (n_ == 0) return;
-  if (current_ < 0) {
-    for (int k = 0; k < n_; ++k) x[k] = std::numeric_limits<double>::quiet_NaN();
-    return;
-  }
+  if (unfactorised(x)) return;
   const Elimination& e = current();
   double* w = work_.data();
   const double* v = value_.data();

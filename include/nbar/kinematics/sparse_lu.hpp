@@ -84,6 +84,7 @@ class SparseLU {
                Elimination& e) const;
   bool replay(const Elimination& e, const double* values, bool check);
   bool fail();  // the state of a failed factorisation; returns false
+  bool unfactorised(double* x) const;
   const Elimination& current() const { return kept_[static_cast<std::size_t>(current_)]; }
 
   int n_ = 0;
