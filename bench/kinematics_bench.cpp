@@ -4,9 +4,10 @@
 //
 // The per-step benchmarks drive nbar::track() themselves, the way run_sweep() does for a
 // proportional from/to sweep (the tracking parameter is the time, the series hold max(3, order +
-// 1) terms, and after track() state.series already holds the Taylor coefficients of q in time). Mechanism construction and assembly happen in the setup, outside
-// the timed region; every benchmark iteration is one full input revolution in 360 steps of 1
-// degree, continuing from where the previous iteration stopped, so no reset is needed.
+// 1) terms, and after track() state.series already holds the Taylor coefficients of q in time).
+// Mechanism construction and assembly happen in the setup, outside the timed region; every
+// benchmark iteration is one full input revolution in 360 steps of 1 degree, continuing from
+// where the previous iteration stopped, so no reset is needed.
 // Counters: per_step (and per_step_per_loop for chains), CPU seconds per sample, printed with an
 // SI prefix (803n = 803 ns); track_substeps_per_step, the accepted continuation steps per sample
 // (1 when no step had to be shortened).
@@ -32,6 +33,9 @@
 //   median), the program before in the same rounds 3.80 (3.74 to 4.48; 0.66 / 0.18 us)
 //   chain per loop / four-bar step, N = 10, 100, 1000: medians 0.88, 0.81, 0.84 (0.30, 0.29,
 //   0.29 us per loop), before 2.71, 2.17, 1.98 (1.89, 1.55, 1.57 us)
+// Those rounds ran on 6d9c3df; the review fixes after it (59581e4) cost
+//   3.4% more instructions a four-bar step (3 776 -> 3 905, callgrind over 3 600 steps), 2.7 points of
+//   it SparseLU::factorize's scan for numbers that are not finite.
 //
 // Run: kinematics_bench --benchmark_min_time=0.2
 //      kinematics_bench --benchmark_filter='Over' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
