@@ -153,6 +153,13 @@ struct Coefficients {
     return {p[0], p[1]};
   }
   Xy difference(int from, int to, int j) const { return (*this)(to, j) - (*this)(from, j); }
+  // The same for 0 < j < k, where a fixed point's coefficient is zero.
+  Xy rate(int at, int j) const {
+    if (at < 0) return {0.0, 0.0};
+    const double* p = series + j * n + at;
+    return {p[0], p[1]};
+  }
+  Xy rate_difference(int from, int to, int j) const { return rate(to, j) - rate(from, j); }
 };
 
 double term(const Series& s, int j) { return j < s.terms() ? s[j] : 0.0; }
@@ -320,8 +327,9 @@ void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coe
       case ConstraintType::Distance:
         // The first coefficient is linear in q_1 alone; the k-th, sum over j of u_j . u_(k-j).
         for (const CompiledRow* c = first; c != last; ++c) {
+          const int from = c->at[0], to = c->at[1];
           double v = 0.0;
-          for (int j = 1; j < k; ++j) v += dot(q.difference(c->at[0], c->at[1], j), q.difference(c->at[0], c->at[1], k - j));
+          for (int j = 1; j < k; ++j) v += dot(q.rate_difference(from, to, j), q.rate_difference(from, to, k - j));
           out[c->row] = v * c->scale;
         }
         return;
@@ -333,9 +341,12 @@ void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coe
         // (u x (cos, sin)) coefficient k: sum over j < k of u_j against the driver's k - j.
         for (const CompiledRow* c = first; c != last; ++c) {
           const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
-          double v = 0.0;
-          for (int j = 0; j < k; ++j) {
-            const Xy u = q.difference(c->at[0], c->at[1], j);
+          const int from = c->at[0], to = c->at[1];
+          const Xy u0 = q(to, 0) - q(from, 0);
+          double v = 0.0;  // added to, not started from, the first term: a -0 product stays +0
+          v += u0.x * term(d.sin, k) - u0.y * term(d.cos, k);
+          for (int j = 1; j < k; ++j) {
+            const Xy u = q.rate_difference(from, to, j);
             v += u.x * term(d.sin, k - j) - u.y * term(d.cos, k - j);
           }
           out[c->row] = v * c->scale;

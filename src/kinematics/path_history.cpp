@@ -22,6 +22,23 @@ double binomial(int n, int k) {
   return b;
 }
 
+// q = sum over k of now[k] a_k + before[k] b_k, coordinate by coordinate, with Terms coefficients
+// (0: as many as a has).
+template <int Terms>
+void weigh(const double* now, const double* before, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+           Eigen::VectorXd& q) {
+  const Eigen::Index n = a.rows();
+  const int terms = Terms > 0 ? Terms : static_cast<int>(a.cols());
+  const double* x = a.data();
+  const double* y = b.data();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double sum = 0.0;
+#pragma GCC unroll 4
+    for (int k = 0; k < terms; ++k) sum += now[k] * x[k * n + i] + before[k] * y[k * n + i];
+    q[i] = sum;
+  }
+}
+
 }  // namespace
 
 void PathHistory::push(double parameter, const Eigen::MatrixXd& series) {
@@ -94,14 +111,11 @@ bool PathHistory::predict(double parameter, const Eigen::MatrixXd& series, doubl
     now[k] = weight_[k] * power;
     before[k] = weight_[terms + k] * power;
   }
-  const Eigen::Index n = series.rows();
-  q.resize(n);
-  const double* a = series.data();
-  const double* b = past_.data();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    double sum = 0.0;
-    for (int k = 0; k < terms; ++k) sum += now[k] * a[k * n + i] + before[k] * b[k * n + i];
-    q[i] = sum;
+  q.resize(series.rows());
+  switch (terms) {  // the common sizes unrolled (a sweep of order 2 or 3)
+    case 3: weigh<3>(now, before, series, past_, q); break;
+    case 4: weigh<4>(now, before, series, past_, q); break;
+    default: weigh<0>(now, before, series, past_, q); break;
   }
   return true;
 }

@@ -138,19 +138,21 @@ TEST(SparseLU, AFailedFactorisationLeavesNoNumbersBehind) {
     lu.set_pattern(p.n, p.entries);
     ASSERT_TRUE(lu.factorize(p.values.data()));
     EXPECT_NE(lu.determinant_sign(), 0);
-    // A NaN or an infinity in one entry, wherever the elimination would carry it: refused, and
-    // the solves say so.
-    for (const double bad : {std::nan(""), HUGE_VAL}) {
-      Problem q = p;
-      q.values[1] = bad;
-      EXPECT_FALSE(lu.factorize(q.values.data())) << bad;
-      EXPECT_EQ(lu.determinant_sign(), 0);
-      EXPECT_EQ(lu.pivot_ratio(), 0.0);
-      std::vector<double> b(static_cast<std::size_t>(p.n), 1.0), x(static_cast<std::size_t>(p.n), 0.0);
-      lu.solve(b.data(), x.data());
-      for (double v : x) EXPECT_TRUE(std::isnan(v));
-      lu.solve_transposed(b.data(), x.data());
-      for (double v : x) EXPECT_TRUE(std::isnan(v));
+    // A NaN or an infinity in any one entry, wherever the elimination would carry it (into L, U or
+    // a pivot): refused, and the solves say so.
+    for (std::size_t at = 0; at < p.values.size(); ++at) {
+      for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+        Problem q = p;
+        q.values[at] = bad;
+        EXPECT_FALSE(lu.factorize(q.values.data())) << bad << " at entry " << at << ", " << blocks << " blocks";
+        EXPECT_EQ(lu.determinant_sign(), 0);
+        EXPECT_EQ(lu.pivot_ratio(), 0.0);
+        std::vector<double> b(static_cast<std::size_t>(p.n), 1.0), x(static_cast<std::size_t>(p.n), 0.0);
+        lu.solve(b.data(), x.data());
+        for (double v : x) EXPECT_TRUE(std::isnan(v));
+        lu.solve_transposed(b.data(), x.data());
+        for (double v : x) EXPECT_TRUE(std::isnan(v));
+      }
     }
     // And it recovers at the next good matrix.
     ASSERT_TRUE(lu.factorize(p.values.data()));
