@@ -81,10 +81,9 @@ bool SparseLU::factorize(const double* values) {
     return true;
   }
   // A number that is not finite anywhere in the matrix makes it unusable, whether or not the
-  // elimination would carry it into a pivot. The dense replay finds one itself (it stays in the
-  // factors); the sparse replay and the analysis need the entries scanned first.
-  const bool dense = n_ <= kDenseSolveLimit;
-  if (!dense && !all_finite(values)) return fail();
+  // elimination would carry it into a pivot.
+  for (std::size_t e = 0; e < entries_.size(); ++e)
+    if (!std::isfinite(values[e])) return fail();
   for (std::size_t i = 0; i < kept_.size(); ++i) {
     if (!replay(kept_[i], values, true)) continue;
     // Most recently used first: the next step most likely needs this one again.
@@ -92,7 +91,6 @@ bool SparseLU::factorize(const double* values) {
     current_ = 0;
     return true;
   }
-  if (dense && !all_finite(values)) return fail();
   Elimination chosen;
   if (!analyse(values, chosen)) return fail();
   if (static_cast<int>(kept_.size()) == kKeptEliminations) kept_.pop_back();
@@ -101,12 +99,6 @@ bool SparseLU::factorize(const double* values) {
   // The replay of the elimination just chosen: the pivots are the largest of their columns, so
   // only a pivot that rounds to exactly zero can stop it.
   return replay(kept_.front(), values, false) || fail();
-}
-
-bool SparseLU::all_finite(const double* values) const {
-  for (std::size_t e = 0; e < entries_.size(); ++e)
-    if (!std::isfinite(values[e])) return false;
-  return true;
 }
 
 bool SparseLU::fail() {
@@ -304,82 +296,9 @@ void SparseLU::compile(const std::vector<std::vector<int>>& u_rows, const std::v
   e.permutation_sign = permutation_sign(e.pivot_row) * permutation_sign(column_order_);
 }
 
-// The left-looking elimination on the whole N x N array (column-major, in pivot positions), the size
-// known at compile time so that it unrolls: column k takes, for each j < k in turn, L(:, j) times
-// U(j, k). Each entry receives its updates in the order the compiled list gives them (j ascending),
-// and the zeros outside the pattern of L and U only add products that are zero, so the factors
-// are the list's to the last bit; without its index loads. Each pivot is checked against the
-// largest entry below it (a NaN there stays the largest and fails the check).
-template <int N>
-bool SparseLU::dense_replay(const Elimination& e, const double* values, double* v, double threshold,
-                            double* inverse_pivot, PivotSummary& s) {
-  std::fill_n(v, N * N, 0.0);
-  const int* entry_slot = e.entry_slot.data();
-  const std::size_t entries = e.entry_slot.size();
-#pragma GCC unroll 2
-  for (std::size_t i = 0; i < entries; ++i) v[entry_slot[i]] += values[i];
-  // A number that is not finite in the input leaves one in its own slot whatever the elimination
-  // does to it; those below the diagonal fail the pivot checks, the pivots and U's are gathered
-  // here (0 times one of them is NaN).
-  double not_finite = 0.0;
-#pragma GCC unroll 8
-  for (int k = 0; k < N; ++k) {
-    double* column = v + k * N;
-#pragma GCC unroll 8
-    for (int j = 0; j < k; ++j) {
-      const double u = column[j];
-      not_finite += 0.0 * u;
-      const double* l = v + j * N;
-#pragma GCC unroll 8
-      for (int i = j + 1; i < N; ++i) column[i] -= l[i] * u;
-    }
-    const double pivot = column[k];
-    double biggest = 0.0;
-#pragma GCC unroll 8
-    for (int i = k + 1; i < N; ++i) {
-      const double size = std::abs(column[i]);
-      if (!(size <= biggest) && !std::isnan(biggest)) biggest = size;
-    }
-    // Written so that a NaN fails it.
-    if (!(std::abs(pivot) >= threshold * biggest) || pivot == 0.0) return false;
-    not_finite += 0.0 * pivot;
-    const double inverse = 1.0 / pivot;
-    inverse_pivot[k] = inverse;
-#pragma GCC unroll 8
-    for (int i = k + 1; i < N; ++i) column[i] *= inverse;
-    s.add(pivot);
-  }
-  return not_finite == 0.0;
-}
-
 bool SparseLU::replay(const Elimination& e, const double* values, bool check) {
   if (value_.size() != e.values) value_.resize(e.values);
   inverse_pivot_.resize(static_cast<std::size_t>(n_));
-  double* v = value_.data();
-  const double threshold = check ? kPivotThreshold : 0.0;
-  double* inverse = inverse_pivot_.data();
-  PivotSummary s;
-  s.sign = e.permutation_sign;
-  bool ok = true;
-  switch (n_ <= kDenseSolveLimit ? n_ : 0) {
-    case 1: ok = dense_replay<1>(e, values, v, threshold, inverse, s); break;
-    case 2: ok = dense_replay<2>(e, values, v, threshold, inverse, s); break;
-    case 3: ok = dense_replay<3>(e, values, v, threshold, inverse, s); break;
-    case 4: ok = dense_replay<4>(e, values, v, threshold, inverse, s); break;
-    case 5: ok = dense_replay<5>(e, values, v, threshold, inverse, s); break;
-    case 6: ok = dense_replay<6>(e, values, v, threshold, inverse, s); break;
-    case 7: ok = dense_replay<7>(e, values, v, threshold, inverse, s); break;
-    case 8: ok = dense_replay<8>(e, values, v, threshold, inverse, s); break;
-    default: ok = sparse_replay(e, values, threshold, s); break;
-  }
-  if (!ok) return false;
-  det_sign_ = s.sign;
-  pivot_ratio_ = s.largest > 0.0 ? s.smallest / s.largest : 0.0;
-  return true;
-}
-
-// The compiled list of multiply-adds, column by column, for the systems above the dense limit.
-bool SparseLU::sparse_replay(const Elimination& e, const double* values, double threshold, PivotSummary& s) {
   double* v = value_.data();
   std::fill_n(v, e.values, 0.0);
   const int* entry_slot = e.entry_slot.data();
@@ -389,6 +308,9 @@ bool SparseLU::sparse_replay(const Elimination& e, const double* values, double 
   const int* l_start = e.l_start.data();
   const int* l_slot = e.l_slot.data();
   const int* diagonal = e.diagonal.data();
+  const double threshold = check ? kPivotThreshold : 0.0;
+  int sign = e.permutation_sign;
+  double smallest = HUGE_VAL, largest = 0.0;
   for (int k = 0; k < n_; ++k) {
     for (int u = update_start[k]; u < update_start[k + 1]; ++u) v[update[u].target] -= v[update[u].l] * v[update[u].u];
     const double pivot = v[diagonal[k]];
@@ -402,8 +324,12 @@ bool SparseLU::sparse_replay(const Elimination& e, const double* values, double 
     const double inverse = 1.0 / pivot;
     inverse_pivot_[static_cast<std::size_t>(k)] = inverse;
     for (int i = l_start[k]; i < l_start[k + 1]; ++i) v[l_slot[i]] *= inverse;
-    s.add(pivot);
+    if (pivot < 0.0) sign = -sign;
+    smallest = std::min(smallest, std::abs(pivot));
+    largest = std::max(largest, std::abs(pivot));
   }
+  det_sign_ = sign;
+  pivot_ratio_ = largest > 0.0 ? smallest / largest : 0.0;
   return true;
 }
 

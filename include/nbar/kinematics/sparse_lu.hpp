@@ -14,9 +14,6 @@
 // the last few eliminations are kept and tried before a new one is chosen.
 #pragma once
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
 #include <vector>
 
 namespace nbar {
@@ -85,22 +82,7 @@ class SparseLU {
   bool analyse(const double* values, Elimination& e);
   void compile(const std::vector<std::vector<int>>& u_rows, const std::vector<std::vector<int>>& l_rows,
                Elimination& e) const;
-  // What a replay found at its pivots.
-  struct PivotSummary {
-    int sign = 1;
-    double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
-    void add(double pivot) {
-      if (pivot < 0.0) sign = -sign;
-      smallest = std::min(smallest, std::abs(pivot));
-      largest = std::max(largest, std::abs(pivot));
-    }
-  };
   bool replay(const Elimination& e, const double* values, bool check);
-  template <int N>
-  static bool dense_replay(const Elimination& e, const double* values, double* v, double threshold,
-                           double* inverse_pivot, PivotSummary& s);
-  bool sparse_replay(const Elimination& e, const double* values, double threshold, PivotSummary& s);
-  bool all_finite(const double* values) const;
   bool fail();  // the state of a failed factorisation; returns false
   bool unfactorised(double* x) const;
   const Elimination& current() const { return kept_[static_cast<std::size_t>(current_)]; }
