@@ -36,6 +36,9 @@
 // Those rounds ran on 6d9c3df; the review fixes after it (59581e4) cost
 //   3.4% more instructions a four-bar step (3 776 -> 3 905, callgrind over 3 600 steps), 2.7 points of
 //   it SparseLU::factorize's scan for numbers that are not finite.
+// Later on 2026-11-27, 5801714 against 78ceca3, 10 rounds on a busier host: engine step / closed
+//   form median 2.58 (1.96 to 2.78) against 2.53 (2.01 to 2.83); 3 814 instructions a step
+//   against 3 884 (callgrind): differences below what this host's load lets a timing show.
 //
 // Run: kinematics_bench --benchmark_min_time=0.2
 //      kinematics_bench --benchmark_filter='Over' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
