@@ -44,7 +44,7 @@ def main():
         print(f"round {r + 1} of {args.rounds}", file=sys.stderr)
     for (name, tag), rounds in sorted(seen.items()):
         ratio = sorted(c["ratio"] for c in rounds)
-        engine_key = "engine_step_us" if "engine_step_us" in rounds[0] else "per_loop_step_us"
+        engine_key = next(k for k in ("engine_step_us", "straight_step_us", "per_loop_step_us") if k in rounds[0])
         engine = sorted(c[engine_key] for c in rounds)
         print(f"{name:36s} {tag:8s} ratio min {ratio[0]:.2f} median {statistics.median(ratio):.2f} "
               f"max {ratio[-1]:.2f}; {engine_key} median {statistics.median(engine):.3f} min {engine[0]:.3f}")
