@@ -40,8 +40,8 @@
 //   form median 2.58 (1.96 to 2.78) against 2.53 (2.01 to 2.83); 3 814 instructions a step
 //   against 3 884 (callgrind): differences below what this host's load lets a timing show.
 //   Sampled in time (perf -e cpu-clock, 400 000 steps), the solves take 14-19% of a step against
-//   7% of its instructions: their substitutions are chains of dependent multiply-subtracts, as is
-//   the sine and cosine of the crank (6-8%), so cutting instructions elsewhere shows little.
+//   7% of its instructions: their substitutions are chains of dependent multiply-subtracts (as is
+//   the crank's sine and cosine, 6-8%), which the straight step below has as well.
 // BM_StraightFourBarStepOverClosedForm times the same algorithm written straight for this one
 //   four-bar (straight_four_bar.hpp): 0.96 to 1.31 in three runs where the engine's ratio was 1.93
 //   to 2.33. What stands between the engine and the target is its generality, not its algorithm.
