@@ -17,7 +17,7 @@ namespace nbar_bench {
 class StraightFourBar {
  public:
   static constexpr int kN = 4;  // A.x, A.y, B.x, B.y
-  // A crank a about the origin turning at omega, coupler b, output c about (d, 0); `start` and
+  // A crank a about the origin at angle omega t, coupler b, output c about (d, 0); `start` and
   // `before` are the series in time (q, dq/dt, d2q/dt2 / 2) at t = 0 and t = -step.
   StraightFourBar(double a, double b, double c, double d, double omega, double step,
                   const double start[3][kN], const double before[3][kN])
