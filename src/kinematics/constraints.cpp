@@ -144,16 +144,12 @@ struct Coefficients {
   int k;
   Xy operator()(int at, int j) const {
     if (j >= k) return {0.0, 0.0};
-    if (at >= 0) {
-      const double* p = series + j * n + at;
-      return {p[0], p[1]};
-    }
-    if (j > 0) return {0.0, 0.0};
-    const double* p = fixed + ~at;
+    if (j > 0) return rate(at, j);
+    const double* p = at >= 0 ? series + at : fixed + ~at;
     return {p[0], p[1]};
   }
   Xy difference(int from, int to, int j) const { return (*this)(to, j) - (*this)(from, j); }
-  // The same for 0 < j < k, where a fixed point's coefficient is zero.
+  // Coefficient j for 0 < j < k, where a fixed point's is zero: what the loops over j >= 1 read.
   Xy rate(int at, int j) const {
     if (at < 0) return {0.0, 0.0};
     const double* p = series + j * n + at;
