@@ -14,7 +14,12 @@ namespace {
 // The predictor reaches at most this many times the last step beyond the current point: further
 // out a polynomial through the past point is no better a guess than the current series.
 constexpr double kMaxReach = 2.0;
-constexpr double kSameReach = 1e-12;
+// Steps of a uniform sweep differ in their last bits (t_k = k dt, so h / h_prev is off by about
+// k x 2.2e-16 at step k): a reach within this fraction of the one the weights are for keeps them.
+// The prediction then moves by about as little of the step's motion (1e-9 of a degree's step is
+// far below the tolerance, and the correction removes it); at 1e-12 a sweep past about 4 500
+// steps recomputed them at every step (4% of its instructions).
+constexpr double kSameReach = 1e-9;
 
 double binomial(int n, int k) {
   double b = 1.0;
@@ -76,8 +81,6 @@ bool PathHistory::continues_from(double parameter, const Eigen::MatrixXd& series
 // small product.
 void PathHistory::update_weights(double reach, int terms) {
   const int n = 2 * terms;
-  // Steps of a uniform sweep differ in their last bits (t_k = k dt): a reach within 1e-12 of the
-  // last keeps its weights, which moves the prediction by as little relative to the step.
   if (terms == weight_terms_ && std::abs(reach - weight_reach_) <= kSameReach * std::abs(reach)) return;
   if (terms != weight_terms_) {
     weight_terms_ = terms;
