@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nbar/io/file_text.hpp"
 #include "nbar/io/sketch.hpp"
 #include "nbar/io/sketch_model.hpp"
 #include "nbar/model/units.hpp"
@@ -39,15 +40,14 @@ int run_import(const ImportArgs& args) {
     std::cerr << "error: --units is one of mm, cm, m, in, ft, not '" << args.units << "'\n";
     return kBadUsage;
   }
-  std::ifstream in(args.sketch, std::ios::binary);
-  if (!in) {
-    std::cerr << "error: cannot read " << args.sketch << '\n';
+  const io::FileText file = io::read_file_text(args.sketch);
+  if (file.error || file.too_long) {
+    std::cerr << "error: cannot read " << args.sketch << ": "
+              << (file.error ? file.error.message() : io::too_long_message()) << '\n';
     return kBadUsage;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
   try {
-    const io::Sketch sketch = io::read_sketch(text.str(), args.sketch, *format);
+    const io::Sketch sketch = io::read_sketch(file.text, args.sketch, *format);
     io::SketchModelOptions options;
     options.source_name = args.sketch;
     // The model's unit: --units, else the sketch's own, else mm; a sketch without a unit is

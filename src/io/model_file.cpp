@@ -1321,19 +1321,15 @@ class Parser : yaml::Reader {
     if (path.is_relative()) path = *import_dir_ / path;
     const std::optional<SketchFormat> format = sketch_format(path.string());
     if (!format) fail(mark(e), "`import` reads DXF (.dxf), SVG (.svg) or sketch CSV (.csv) drawings, not '" + name + "'");
-    std::error_code status_error;
-    std::ifstream in(path, std::ios::binary);
-    if (!in || std::filesystem::is_directory(path, status_error)) {
-      fail(mark(e), "cannot read " + path.string());
-    }
-    std::ostringstream contents;
-    contents << in.rdbuf();
+    const FileText file = read_file_text(path);
+    if (file.error) fail(mark(e), "cannot read " + path.string() + ": " + file.error.message());
+    if (file.too_long) fail(mark(e), "cannot read " + path.string() + ": " + too_long_message());
     std::optional<double> stated;
     if (units) {
       stated = length_unit_scale(text_value(*units, "`units`"));
       if (!stated) fail(mark(*units), "the unit of the file read is one of mm, cm, m, in, ft");
     }
-    const Sketch sketch = read_sketch(contents.str(), path.string(), *format, layer);
+    const Sketch sketch = read_sketch(file.text, path.string(), *format, layer);
     return checked_plate_from_sketch(sketch, sketch_scale(sketch, stated, model_.units.length_scale), path.string());
   }
 
@@ -1557,23 +1553,10 @@ LoadedModel parse_model(const std::string& text, const std::string& file_name) {
 }
 
 LoadedModel load_model_file(const std::string& path) {
-  // A directory opens without error on Linux and then reads as empty, which would be
-  // reported as an empty model.
-  std::error_code status_error;
-  if (std::filesystem::is_directory(path, status_error)) {
-    throw ModelFileError(path, SourceMark{},
-                         "cannot read: " + std::make_error_code(std::errc::is_a_directory).message());
-  }
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const std::error_code error(errno != 0 ? errno : EIO, std::generic_category());
-    throw ModelFileError(path, SourceMark{}, "cannot read: " + error.message());
-  }
-  std::ostringstream contents;
-  contents << in.rdbuf();
-  if (in.bad()) throw ModelFileError(path, SourceMark{}, "cannot read: input error");
-  Parser parser(contents.str(), path);
+  const FileText file = read_file_text(path);
+  if (file.error) throw ModelFileError(path, SourceMark{}, "cannot read: " + file.error.message());
+  if (file.too_long) throw ModelFileError(path, SourceMark{1, 1}, too_long_message());
+  Parser parser(file.text, path);
   parser.allow_imports(std::filesystem::path(path).parent_path());
   return parser.parse();
 }

@@ -491,14 +491,11 @@ class TaskParser : yaml::Reader {
   // x, y on each line (comma, semicolon, tab or spaces between them); blank lines and lines
   // starting with # are skipped, and a first line of words (a header) too.
   void read_curve_csv(const std::string& path, SourceMark from, std::vector<SourceMark>& marks) {
-    std::error_code status;
-    if (std::filesystem::is_directory(path, status)) fail(from, "`curve`: " + path + " is a folder, not a CSV file");
-    errno = 0;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      const std::error_code error(errno != 0 ? errno : ENOENT, std::generic_category());
-      fail(from, "`curve`: cannot read " + path + ": " + error.message());
-    }
+    const FileText file = read_file_text(path);
+    if (file.error == std::errc::is_a_directory) fail(from, "`curve`: " + path + " is a folder, not a CSV file");
+    if (file.error) fail(from, "`curve`: cannot read " + path + ": " + file.error.message());
+    if (file.too_long) fail(from, "`curve`: cannot read " + path + ": " + too_long_message());
+    std::istringstream in(file.text);
     std::string line;
     int number_of_line = 0;
     bool first_data = true;
@@ -616,19 +613,10 @@ SynthesisTask parse_synthesis_task(const std::string& text, const std::string& f
 }
 
 SynthesisTask load_synthesis_task(const std::string& path) {
-  std::error_code status;
-  if (std::filesystem::is_directory(path, status))
-    throw ModelFileError(path, SourceMark{},
-                         std::string("cannot read: ") + std::make_error_code(std::errc::is_a_directory).message());
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const std::error_code error(errno != 0 ? errno : EIO, std::generic_category());
-    throw ModelFileError(path, SourceMark{}, std::string("cannot read: ") + error.message());
-  }
-  std::ostringstream contents;
-  contents << in.rdbuf();
-  return parse_synthesis_task(contents.str(), path, CurveFiles::read);
+  const FileText file = read_file_text(path);
+  if (file.error) throw ModelFileError(path, SourceMark{}, "cannot read: " + file.error.message());
+  if (file.too_long) throw ModelFileError(path, SourceMark{1, 1}, too_long_message());
+  return parse_synthesis_task(file.text, path, CurveFiles::read);
 }
 
 }  // namespace nbar::io

@@ -1,5 +1,6 @@
 // The project headers come first: <signal.h>, which gtest pulls in, defines a macro
 // named value_si that would break units.hpp's Quantity::value_si.
+#include "nbar/io/file_text.hpp"
 #include "nbar/io/model_file.hpp"
 #include "io/model_file_support.hpp"
 
@@ -83,7 +84,7 @@ const std::string kSlottedLever =
     "  O: [0, 0]\n"      // 2
     "  A: [10, 0]\n"     // 3
     "  Q: [0, -30]\n"    // 4
-    "  E: [0, 30]\n"     // 5
+    "  E: [20, 30]\n"    // 5  (A on the line Q-E)
     "ground: [O, Q]\n"   // 6
     "bodies:\n"          // 7
     "  crank: [O, A]\n"  // 8
@@ -730,6 +731,27 @@ TEST_F(ModelFileOnDisk, Directory) {
   } catch (const ModelFileError& e) {
     EXPECT_EQ(std::string(e.what()), dir_.string() + ": cannot read: Is a directory");
   }
+}
+
+// A device or a pipe has no size to check before reading and no end: the reader stops one byte
+// past the limit (it read /dev/zero until the kernel killed it at 22 GB).
+TEST_F(ModelFileOnDisk, AnEndlessFileIsReadOnlyToTheLimit) {
+  try {
+    load_model_file("/dev/zero");
+    FAIL() << "expected an error";
+  } catch (const ModelFileError& e) {
+    EXPECT_EQ(std::string(e.what()), "/dev/zero:1:1: the file has more than 16777216 bytes; nbar reads at most 16777216");
+  }
+  const FileText zeros = read_file_text("/dev/zero", 100'000);
+  EXPECT_TRUE(zeros.too_long);
+  EXPECT_EQ(zeros.text.size(), 100'000u);
+  const std::string path = write("four-bar.yaml", kExample);
+  const FileText whole = read_file_text(path, std::string(kExample).size());
+  EXPECT_FALSE(whole.too_long);
+  EXPECT_FALSE(whole.error);
+  EXPECT_EQ(whole.text, kExample);
+  EXPECT_TRUE(read_file_text(path, std::string(kExample).size() - 1).too_long);
+  EXPECT_EQ(read_file_text(dir_).error, std::errc::is_a_directory);
 }
 
 TEST(ModelFileLocate, LocatesLaterErrors) {

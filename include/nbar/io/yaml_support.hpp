@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "nbar/io/file_text.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/model/units.hpp"
 
@@ -63,7 +64,7 @@ int edit_distance(std::string_view a, std::string_view b, int cutoff = std::nume
 // any suggestion compares them.
 inline constexpr std::size_t kMaxNameLength = 256;
 // The largest model or task file the readers take.
-inline constexpr std::size_t kMaxFileBytes = 16u << 20;
+inline constexpr std::size_t kMaxFileBytes = kMaxInputFileBytes;
 
 // The offset of the first byte that does not begin a well-formed UTF-8 character (overlong
 // forms, surrogates and code points past U+10FFFF are not), or nothing for valid text.
