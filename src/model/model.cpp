@@ -224,6 +224,22 @@ class Validator {
     }
   }
 
+  // The drawn pose is the start of the assembly, and the branch it picks: a sliding point drawn
+  // off its guide would be moved onto it there silently, perhaps far. Off by more than rounding
+  // (kOffGuide of the drawing's size), it is the model's mistake.
+  void check_on_guide(EntityRef where, const std::string& name, int point, const std::array<int, 2>& along) const {
+    constexpr double kOffGuide = 1e-3;
+    const Eigen::Vector2d a = m_.points[along[0]].position, b = m_.points[along[1]].position;
+    const Eigen::Vector2d p = m_.points[point].position;
+    const Eigen::Vector2d u = (b - a).normalized();
+    const double off = std::abs(u.x() * (p - a).y() - u.y() * (p - a).x());
+    if (off > kOffGuide * size_) {
+      fail(where, name + ": point " + point_name(point) + " is drawn " + length_text(off) + " off the line through " +
+                      point_name(along[0]) + " and " + point_name(along[1]) +
+                      " that it slides along; draw it on that line (the drawn pose is where the assembly starts)");
+    }
+  }
+
   void check_sliders() {
     slider_of_body_.assign(m_.bodies.size(), -1);
     for (std::size_t i = 0; i < m_.sliders.size(); ++i) {
@@ -251,6 +267,7 @@ class Validator {
         fail(where, "the guide points of a slider must belong to one other body or to ground: " +
                         point_name(s.along[0]) + " and " + point_name(s.along[1]) + " of " + name + " do not");
       }
+      check_on_guide(where, name, s.point, s.along);
     }
   }
 
@@ -307,6 +324,7 @@ class Validator {
                           ", which also carries the guide, so it cannot slide");
         }
       }
+      check_on_guide(where, name, s.point, s.along);
     }
   }
 

@@ -70,7 +70,7 @@ Model slotted_lever() {
   const int o = add_point(m, "O", 0, 0, true);
   const int a = add_point(m, "A", 0.1, 0);
   const int q = add_point(m, "Q", 0, -0.3, true);
-  const int e = add_point(m, "E", 0, 0.3);
+  const int e = add_point(m, "E", 0.2, 0.3);  // A drawn on the slot's line Q-E
   const int crank = add_body(m, "crank", {o, a});
   add_body(m, "lever", {q, e});
   m.slots.push_back(Slot{a, {q, e}});
@@ -97,8 +97,8 @@ TEST(Validate, AcceptsValidModels) {
 
 TEST(Validate, AcceptsSliderGuidedByAnotherBody) {
   Model m = slider_crank();
-  // The guide becomes the crank itself: O and a new point G on it.
-  const int g = add_point(m, "G", 0.2, 0.2);
+  // The guide becomes the crank itself: O and a new point G on it, in line with C.
+  const int g = add_point(m, "G", 0.2, 0.0);
   m.bodies[0].points.push_back(g);
   m.sliders[0].along = {0, g};
   EXPECT_NO_THROW(validate(m));
@@ -219,6 +219,20 @@ TEST(Validate, BodyLength) {
   m = four_bar();
   m.bodies[1].length = 0.1;
   expect_error(m, Kind::Body, 1, "body 'coupler' has 3 points: an exact length applies only to a body with two points");
+}
+
+// The drawn pose starts the assembly: a sliding point drawn off its guide would be moved onto it
+// silently (by 226 mm in a reviewer's slider-crank). Rounding of the drawing passes.
+TEST(Validate, SlidingPointDrawnOffItsGuide) {
+  Model m = slider_crank();  // guide O-X along y = 0, drawing 1.118 m across
+  m.points[3].position.y() = 0.002;
+  expect_error(m, Kind::Slider, 0, "point 'C' is drawn 0.002 m off the line through 'O' and 'X'");
+  m.points[3].position.y() = 1e-4;  // 0.01% of the drawing: rounding, left to the assembly
+  EXPECT_NO_THROW(validate(m));
+
+  Model slot = slotted_lever();
+  slot.points[1].position = {0.1, 0.1};  // 0.1 m above the slot's line, whose slope is 3: 0.1 / sqrt(10) across it
+  expect_error(slot, Kind::Slot, 0, "point 'A' is drawn 0.0316228 m off the line through 'Q' and 'E'");
 }
 
 TEST(Validate, SinglePointBodyNeedsSlider) {
