@@ -80,6 +80,19 @@ std::string md_escape(const std::string& s) {
   return out;
 }
 
+// A name or label as literal Markdown text: nothing in it starts emphasis, code, maths, a link, an
+// HTML tag or a table cell (the characters CommonMark lets a backslash escape).
+std::string md_literal(const std::string& s) {
+  std::string out;
+  for (char ch : s) {
+    if (ch == '\\' || ch == '`' || ch == '*' || ch == '_' || ch == '|' || ch == '$' || ch == '<' || ch == '[' ||
+        ch == ']')
+      out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
 class Renderer {
  public:
   Renderer(const Explanation& ex, ExplainFormat f) : ex_(ex), f_(f), m_(ex.mechanism->model()) {
@@ -117,6 +130,8 @@ class Renderer {
   std::string cell(double v) const { return text() ? number(v) : "$" + latex_number(v) + "$"; }
   std::string cell3(double v) const { return text() ? number(v, 3) : "$" + latex_number(v, 3) + "$"; }
   std::string sym(std::size_t c) const { return text() ? sym_[c] : tsym_[c]; }
+  // Words that hold the model's names (labels, its title) as literal text of the format.
+  std::string words(const std::string& t) const { return text() ? t : tex() ? tex_escape(t) : md_literal(t); }
 
   // A heading; `words` and `maths` (LaTeX) replace the plain text's tail in Markdown and LaTeX.
   void heading(const std::string& t, const std::string& words = {}, const std::string& maths = {}) {
@@ -186,9 +201,9 @@ class Renderer {
     if (text())
       out_ << t.str() << "\n" << std::string(t.str().size(), '=') << "\n";
     else if (md())
-      out_ << "## " << t.str() << "\n";
+      out_ << "## " << words(t.str()) << "\n";
     else
-      out_ << "% Needs \\usepackage{amsmath}.\n\\section*{" << tex_escape(t.str()) << "}\n";
+      out_ << "% Needs \\usepackage{amsmath}.\n\\section*{" << words(t.str()) << "}\n";
     std::string units = "Lengths in " + m_.units.length + ", angles in " + m_.units.angle +
                         ", time in s. Every equation below is a row the solver itself solves, written with the "
                         "model's names and numbers.";
@@ -256,13 +271,15 @@ class Renderer {
     if (md()) out_ << "\n";
     for (std::size_t r = 0; r < ex_.equations.size(); ++r) {
       const EquationRow& e = ex_.equations[r];
-      const std::string head = std::to_string(r + 1) + ". " + e.label + " [" + e.kind + "], scale " + number(e.scale);
+      // The kind (point_on_line) is a word of nbar's, not a name: Markdown reads its _ as letters.
+      const std::string kind = tex() ? tex_escape(e.kind) : e.kind;
+      const std::string head = std::to_string(r + 1) + ". " + words(e.label) + " [" + kind + "], scale " + number(e.scale);
       if (text()) {
         out_ << "  " << head << "\n      " << e.text << "\n";
       } else if (md()) {
         out_ << "**" << head << "**\n$$" << e.latex << "$$\n\n";
       } else {
-        out_ << "\\noindent " << tex_escape(head) << "\n\\[ " << e.latex << " \\]\n";
+        out_ << "\\noindent " << head << "\n\\[ " << e.latex << " \\]\n";
       }
     }
   }
@@ -414,7 +431,7 @@ class Renderer {
     const std::string rhs_name = acceleration ? "right-hand side" : "-Phi_t";
     std::vector<std::vector<std::string>> rhs_rows;
     for (Eigen::Index r = 0; r < s.rhs.size(); ++r)
-      rhs_rows.push_back({std::to_string(r + 1) + " " + ex_.equations[r].label, cell(clean(s.rhs[r], tol))});
+      rhs_rows.push_back({std::to_string(r + 1) + " " + words(ex_.equations[r].label), cell(clean(s.rhs[r], tol))});
     std::vector<std::vector<std::string>> sol_rows;
     for (Eigen::Index c = 0; c < s.solution.size(); ++c)
       sol_rows.push_back({text() ? sym_[c] : "$" + tsym_[c] + "$", cell(clean(s.solution[c], tol))});

@@ -7,6 +7,9 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <map>
 #include <memory>
 #include <regex>
@@ -541,6 +544,30 @@ TEST(Explain, TextSaysWhatTheCourseNotebooksWouldAsk) {
   const std::string tex = render_explanation(ex, ExplainFormat::Latex);
   EXPECT_NE(tex.find("\\begin{bmatrix}"), std::string::npos);
   EXPECT_EQ(tex.find("$$"), std::string::npos);
+}
+
+// Names are the user's: in LaTeX and Markdown they are literal text wherever they appear (the rows
+// of the velocity table wrote "O_2" raw, which LaTeX cannot typeset).
+TEST(Explain, NamesAreEscapedInEveryLatexAndMarkdownLine) {
+  const std::string path = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml";
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text = std::regex_replace(text, std::regex("\\bO2\\b"), "O_2");
+  const auto mech = std::make_shared<const Mechanism>(io::parse_model(text, "renamed.yaml").model);
+  const Explanation ex = explain(mech, ExplainOptions{30, std::nullopt, 50, {}, kDefaultMaxSweepSamples});
+  const std::string tex = render_explanation(ex, ExplainFormat::Latex);
+  const std::string md = render_explanation(ex, ExplainFormat::Markdown);
+  EXPECT_NE(tex.find("1 length of crank (O\\_2-A) & $0$"), std::string::npos);
+  EXPECT_NE(md.find("| 1 length of crank (O\\_2-A) | $0$ |"), std::string::npos);
+  for (const std::string& doc : {tex, md}) {
+    std::istringstream lines(doc);
+    std::string line;
+    while (std::getline(lines, line)) {
+      // Outside maths (where the name is a subscript, O_{2}... written by latex_name) no bare "O_2".
+      EXPECT_EQ(line.find(" O_2"), std::string::npos) << line;
+      EXPECT_EQ(line.find("(O_2"), std::string::npos) << line;
+    }
+  }
 }
 
 void expect_no_null(const nlohmann::json& j, const std::string& where) {
