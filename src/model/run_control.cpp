@@ -9,7 +9,16 @@ void CancelToken::cancel() const { shared_->flag.store(true, std::memory_order_r
 void CancelToken::set_deadline(Clock::time_point deadline) { shared_->deadline = deadline; }
 
 void CancelToken::set_time_budget(std::chrono::duration<double> budget) {
-  set_deadline(Clock::now() + std::chrono::duration_cast<Clock::duration>(budget));
+  // A budget the clock cannot count to (an infinite one, or 1e12 s: the clock's nanoseconds
+  // overflow past about 292 years) is no deadline at all; converted, it would wrap into the past
+  // and stop the run at once. Half the room left keeps the conversion's rounding clear of it.
+  const Clock::time_point now = Clock::now();
+  const std::chrono::duration<double> room = Clock::time_point::max() - now;
+  if (!(budget < 0.5 * room)) {
+    shared_->deadline.reset();
+    return;
+  }
+  set_deadline(now + std::chrono::duration_cast<Clock::duration>(budget));
 }
 
 bool CancelToken::deadline_passed() const { return shared_->deadline && Clock::now() >= *shared_->deadline; }
