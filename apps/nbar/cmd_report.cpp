@@ -58,7 +58,7 @@ Command add_report_command(CLI::App& app) {
   sub->add_option("-o,--output", args->output, "FILE.html")->required();
   sub->add_option("--steps", args->steps, "samples of the sweep (overrides the model's sweep)")->check(nbar::cli::positive());
   sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
-  sub->add_option("--frames", args->frames, "animation frames (default 72)")->check(nbar::cli::in_range(2, 1000));
+  sub->add_option("--frames", args->frames, "animation frames (default 72)")->check(nbar::cli::in_range(nbar::render::kMinReportFrames, nbar::render::kMaxReportFrames));
   sub->add_option("--stress-method", args->method,
                   "the stresses' method, as `nbar stress --method`: beam (default) or fe (links coloured by their "
                   "finite-element von Mises stress)")

@@ -238,7 +238,7 @@ int main(int argc, char** argv) {
                      "(plane-stress finite elements: the peaks at pin holes, fillets and in plates)")
       ->check(CLI::IsMember({"beam", "fe"}));
   stress->add_option("--sections", stress_args.sections, "beam: cross-sections per link, at least (default 200)")
-      ->check(nbar::cli::in_range(10, 100000));
+      ->check(nbar::cli::in_range(nbar::kMinSectionsPerLink, nbar::kMaxSectionsPerLink));
   stress->add_option("--mesh-size", stress_args.mesh_size,
                      "fe: element edge far from holes and corners, in the model's length unit (default: a twentieth "
                      "of each plate's size; finer around holes)")

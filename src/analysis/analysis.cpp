@@ -16,11 +16,13 @@ namespace nbar {
 namespace {
 
 void check_options(const AnalysisOptions& options) {
-  if (options.order < 0 || options.order > 5)
-    throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
+  check_derivative_order(options.order);
   if (options.steps && *options.steps < 1) throw Error(ErrorKind::BadInput, "a sweep needs at least one step");
-  if (options.stress && options.sections < 10)
-    throw Error(ErrorKind::BadInput, "stresses need at least 10 sections per link");
+  if (options.max_steps < 1) throw Error(ErrorKind::BadInput, "the limit on a sweep's steps must be at least 1");
+  if (options.stress && (options.sections < kMinSectionsPerLink || options.sections > kMaxSectionsPerLink))
+    throw Error(ErrorKind::BadInput, "stresses need " + std::to_string(kMinSectionsPerLink) + " to " +
+                                         std::to_string(kMaxSectionsPerLink) + " sections per link, not " +
+                                         std::to_string(options.sections));
   if (options.stress && (!std::isfinite(options.fe.mesh_size) || options.fe.mesh_size < 0.0))
     throw Error(ErrorKind::BadInput, "the mesh size must be a positive length (or 0 for the default)");
 }

@@ -49,6 +49,7 @@ std::string join(const std::vector<std::string>& items) {
 }  // namespace
 
 std::vector<ColumnInfo> column_catalogue(const Mechanism& mech, int max_order, bool with_dynamics) {
+  check_derivative_order(max_order);
   std::vector<ColumnInfo> out = kinematic_columns(mech, max_order);
   if (with_dynamics) {
     const std::vector<ColumnInfo> dynamic = dynamic_columns(mech);
@@ -71,7 +72,8 @@ std::string default_abscissa(const Model& model) {
 
 ColumnNeeds column_needs(const Mechanism& mech, const std::vector<std::string>& patterns, std::optional<int> order,
                          bool dynamics) {
-  const std::vector<std::string> all_kinematic = column_names(kinematic_columns(mech, 5));
+  if (order) check_derivative_order(*order);
+  const std::vector<std::string> all_kinematic = column_names(kinematic_columns(mech, kMaxDerivativeOrder));
   const std::vector<std::string> dynamic = column_names(dynamic_columns(mech));
   ColumnNeeds needs;
   needs.dynamics = dynamics;
@@ -84,7 +86,7 @@ ColumnNeeds column_needs(const Mechanism& mech, const std::vector<std::string>& 
   }
   needs.order = order.value_or(2);
   if (!order) {
-    for (int k = 2; k <= 5; ++k) {
+    for (int k = 2; k <= kMaxDerivativeOrder; ++k) {
       const std::vector<std::string> names = column_names(kinematic_columns(mech, k));
       if (std::all_of(kinematic_patterns.begin(), kinematic_patterns.end(),
                       [&](const std::string& p) { return any_matches(names, p); })) {

@@ -371,14 +371,20 @@ constexpr std::size_t kControlInterval = 16;
 
 }  // namespace
 
+void check_derivative_order(int order) {
+  if (order < 0 || order > kMaxDerivativeOrder)
+    throw Error(ErrorKind::BadInput,
+                "the derivative order must be between 0 and " + std::to_string(kMaxDerivativeOrder) + ", not " +
+                    std::to_string(order));
+}
+
 SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control) {
   return run_sweep(mech, options, control, nullptr);
 }
 
 SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control,
                       const SampleSink& sink) {
-  if (options.order < 0 || options.order > 5)
-    throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
+  check_derivative_order(options.order);
   const Model& m = mech.model();
   const int nd = static_cast<int>(m.drivers.size());
   const SweepPath plan = sweep_path(mech, options.steps, options.max_steps, false);
@@ -509,7 +515,7 @@ Sample solve_at(const Mechanism& mech, State& state, const std::vector<double>& 
   if (driver_values.size() != m.drivers.size())
     throw Error(ErrorKind::BadInput, "expected " + std::to_string(m.drivers.size()) + " driver values, got " +
                                          std::to_string(driver_values.size()));
-  if (order < 0 || order > 5) throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
+  check_derivative_order(order);
   std::vector<double> speed, accel;
   for (const Driver& d : m.drivers) {
     speed.push_back(d.speed);
@@ -525,7 +531,7 @@ Sample solve_at(const Mechanism& mech, State& state, const std::vector<double>& 
 }
 
 Sample solve_at_time(const Mechanism& mech, State& state, double t, int order) {
-  if (order < 0 || order > 5) throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and 5");
+  check_derivative_order(order);
   // Drivers without a law move from their start at their speed and acceleration.
   const SweepPath plan = sweep_path(mech, 2);
   const int terms = order + 1;

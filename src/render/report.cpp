@@ -352,6 +352,9 @@ AnalysisOptions report_analysis_options(const ModelSummary& summary) {
 }
 
 std::string html_report(const Analysis& analysis, const ModelSummary& summary, const ReportOptions& options) {
+  if (options.frames < kMinReportFrames || options.frames > kMaxReportFrames)
+    throw Error(ErrorKind::BadInput, fmt::format("a report's animation has {} to {} frames, not {}", kMinReportFrames,
+                                                 kMaxReportFrames, options.frames));
   const Model& m = analysis.model();
   const ResultTable table = result_table(analysis);
   Axis x;

@@ -171,6 +171,40 @@ TEST(Analysis, ErrorsHaveKinds) {
   EXPECT_EQ(kind_of([&] { section_profile_table(analysis, analysis.stress->peaks[0].body, 5); }), ErrorKind::BadInput);
 }
 
+// Every entry point that takes a derivative order refuses one past 5: the column catalogue built
+// its tables from it and crashed at 6 (Python's Model.columns(order=6)).
+TEST(Analysis, OrdersAndSectionsOutOfRangeAreBadInput) {
+  const auto mech = example("fourbar-crank-rocker.yaml");
+  EXPECT_EQ(kind_of([&] { column_catalogue(*mech, 6); }), ErrorKind::BadInput);
+  EXPECT_EQ(kind_of([&] { column_catalogue(*mech, -1); }), ErrorKind::BadInput);
+  EXPECT_EQ(kind_of([&] { column_needs(*mech, {"P.x"}, 6, false); }), ErrorKind::BadInput);
+  EXPECT_GT(column_catalogue(*mech, kMaxDerivativeOrder).size(), column_catalogue(*mech, 2).size());
+
+  const auto steel = example("fourbar-steel-bars.yaml");
+  AnalysisOptions too_fine = with_stress(5);
+  too_fine.sections = kMaxSectionsPerLink + 1;
+  EXPECT_EQ(kind_of([&] { analyse(steel, too_fine); }), ErrorKind::BadInput);
+  AnalysisOptions no_steps;
+  no_steps.max_steps = 0;
+  EXPECT_EQ(kind_of([&] { analyse(mech, no_steps); }), ErrorKind::BadInput);
+}
+
+// A budget past what the clock counts (infinite, or 1e12 s) is none: converted, it wrapped into
+// the past and cancelled every run at once.
+TEST(Analysis, AnEndlessTimeBudgetNeverCancels) {
+  for (const double seconds : {HUGE_VAL, 1e300, 1e12, 1e10}) {
+    CancelToken token;
+    token.set_time_budget(std::chrono::duration<double>(seconds));
+    EXPECT_FALSE(token.cancelled()) << seconds;
+  }
+  CancelToken spent;
+  spent.set_time_budget(std::chrono::duration<double>(-1.0));
+  EXPECT_TRUE(spent.cancelled());
+  AnalysisOptions options;
+  options.control.token.set_time_budget(std::chrono::duration<double>(HUGE_VAL));
+  EXPECT_TRUE(analyse(example("fourbar-crank-rocker.yaml"), options).complete());
+}
+
 TEST(Analysis, CancelledByTokenOrProgress) {
   const auto mech = example("fourbar-steel-bars.yaml");
   AnalysisOptions options = with_stress(200);

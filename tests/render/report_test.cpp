@@ -59,6 +59,25 @@ TEST(Report, KinematicsOnlyModel) {
   EXPECT_THAT(html, Not(HasSubstr("nan")));
 }
 
+TEST(Report, FramesOutOfRangeAreBadInput) {
+  const io::LoadedModel file = io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml");
+  const auto mech = std::make_shared<const Mechanism>(file.model);
+  AnalysisOptions o;
+  o.steps = 5;
+  const Analysis analysis = analyse(mech, o);
+  for (const int frames : {-3, 0, 1, kMaxReportFrames + 1}) {
+    ReportOptions options;
+    options.frames = frames;
+    try {
+      html_report(analysis, summarize(*mech), options);
+      ADD_FAILURE() << frames << " frames were taken";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::BadInput) << e.what();
+      EXPECT_THAT(e.what(), HasSubstr("2 to 1000 frames, not " + std::to_string(frames)));
+    }
+  }
+}
+
 TEST(Report, KineticsAndStressesWhenTheModelHasThem) {
   const std::string html = report_of("fourbar-steel-bars.yaml", 37);
   for (const char* id : {"summary", "motion", "kinematics", "forces", "stresses"})

@@ -386,7 +386,7 @@ ApiResponse api_stress(Job& job, const std::string& request) {
   } else if (body.has("mesh_size")) {
     bad_input("'mesh_size' is the finite elements': give \"method\": \"fe\" too");
   }
-  const long long sections = body.integer("sections", 10, 100000, job.limits.max_sections).value_or(200);
+  const long long sections = body.integer("sections", kMinSectionsPerLink, kMaxSectionsPerLink, job.limits.max_sections).value_or(200);
   check_limit("sections", static_cast<double>(sections), job.limits.max_sections, "the number of sections per link");
   options.sections = static_cast<int>(sections);
   const std::optional<std::string> profile = body.optional_text("section_profile");
@@ -629,7 +629,7 @@ ApiResponse api_render(Job& job, const std::string& request) {
 ApiResponse api_report(Job& job, const std::string& request) {
   const Body body(request, {"model", "steps", "frames"});
   load_model(job, body.text("model", true));
-  const long long frames = body.integer("frames", 2, 1000).value_or(72);
+  const long long frames = body.integer("frames", render::kMinReportFrames, render::kMaxReportFrames).value_or(72);
   check_limit("frames", static_cast<double>(frames), job.limits.max_frames, "the number of frames");
   const ModelSummary summary = summarize(*job.mechanism);
   AnalysisOptions options = render::report_analysis_options(summary);

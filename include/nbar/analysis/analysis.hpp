@@ -26,13 +26,18 @@ namespace nbar {
 // fillets and in plates).
 enum class StressMethod { beam, fe };
 
+// Cross-sections per link for the beam stresses: fewer miss the peaks, more only cost time and
+// memory (the command line, the web server and Python take the same range).
+inline constexpr int kMinSectionsPerLink = 10;
+inline constexpr int kMaxSectionsPerLink = 100'000;
+
 struct AnalysisOptions {
   std::optional<int> steps;  // samples of the sweep, ends included; unset: the model's
   int order = 2;             // highest time derivative, 0 to 5; raised to 2 for dynamics and stress
   bool dynamics = false;     // joint forces, driver efforts, energies at every sample
   bool stress = false;       // the largest von Mises stress of every link with a shape (implies dynamics)
   StressMethod stress_method = StressMethod::beam;
-  int sections = 200;        // stress, beam: cross-sections per link, at least
+  int sections = 200;        // stress, beam: cross-sections per link, at least (10 to 100 000)
   FeOptions fe;              // stress, fe: mesh size and threads
   int max_steps = kDefaultMaxSweepSamples;  // a larger sweep (the model's or `steps`) is an error
   RunControl control;        // cancellation, deadline and progress for every stage

@@ -19,6 +19,12 @@ namespace nbar {
 // command line): every sample is kept, so the limit bounds the memory and the time of a run.
 inline constexpr int kDefaultMaxSweepSamples = 10'000'000;
 
+// The highest time derivative a sweep computes (jerk and two beyond).
+inline constexpr int kMaxDerivativeOrder = 5;
+// Throws Error(ErrorKind::BadInput) unless 0 <= order <= kMaxDerivativeOrder: every entry point
+// that takes an order asks this first.
+void check_derivative_order(int order);
+
 struct SweepOptions {
   std::optional<int> steps;  // overrides the model's sweep: number of samples, ends included
   int order = 2;             // highest time derivative (0 = positions only), at most 5

@@ -14,16 +14,22 @@
 
 namespace nbar::render {
 
+// The report's animation has this many frames at least and at most (the command line, the web
+// server and Python take the same range).
+inline constexpr int kMinReportFrames = 2;
+inline constexpr int kMaxReportFrames = 1000;
+
 struct ReportOptions {
   std::string source;  // the model file's name, for the header
-  int frames = 72;     // animation frames
+  int frames = 72;     // animation frames, kMinReportFrames to kMaxReportFrames
   // Checked between the report's sections (stage "report") and its animation's frames
   // ("frames"): Error(ErrorKind::Cancelled) when it says stop.
   RunControl control;
 };
 
 // The analysis's sweep should have order 3 (jerk is plotted; lower orders plot less). Forces
-// are shown when it has the dynamics stage, stresses when it has the stress stage.
+// are shown when it has the dynamics stage, stresses when it has the stress stage. Frames out of
+// range are Error(ErrorKind::BadInput).
 std::string html_report(const Analysis& analysis, const ModelSummary& summary, const ReportOptions& options);
 
 // The stages a report of this model shows: order 3, dynamics when the model has masses or
