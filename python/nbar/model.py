@@ -4,15 +4,15 @@ from __future__ import annotations
 
 import html
 import json
-import numbers
 import os
 from types import SimpleNamespace
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _nbar
+from ._args import flag as _flag, json_value as _json_value, real as _real, text as _text, whole as _whole
 from .errors import BadInputError, LimitError
 from .pictures import Animation, Drawing, Report, _write
-from .results import Result, Table
+from .results import Result, Table, _no_column
 
 Columns = Union[None, str, Sequence[str]]
 
@@ -21,29 +21,11 @@ def _patterns(columns: Columns) -> Optional[List[str]]:
     if columns is None:
         return None
     patterns = [c.strip() for c in columns.split(",") if c.strip()] if isinstance(columns, str) else list(columns)
+    if not all(isinstance(p, str) for p in patterns):
+        raise BadInputError(f"columns must be names or globs (strings), not {columns!r}")
     if not patterns:
         raise BadInputError("columns is empty: give names or globs, or None for every column")
     return patterns
-
-
-def _whole(name: str, value: Any) -> Optional[int]:
-    """A count as an int: 10.0 and numpy's integers are counts too; 2.5 or "10" is the caller's
-    mistake, said as nbar says others (pybind's own TypeError lists the binding's overloads)."""
-    if value is None:
-        return None
-    if isinstance(value, numbers.Real) and not isinstance(value, bool) and float(value).is_integer():
-        return int(value)
-    raise BadInputError(f"{name} must be a whole number, not {value!r}")
-
-
-def _real(name: str, value: Any) -> Optional[float]:
-    """A number as a float (ints and numpy's scalars too); "90" is the caller's mistake, said as
-    nbar says others rather than as pybind's TypeError listing the binding's overloads."""
-    if value is None:
-        return None
-    if isinstance(value, numbers.Real) and not isinstance(value, bool):
-        return float(value)
-    raise BadInputError(f"{name} must be a number, not {value!r}")
 
 
 def _names(name: str, value: Any) -> List[str]:
@@ -58,16 +40,6 @@ def _names(name: str, value: Any) -> List[str]:
         if not isinstance(n, str):
             raise BadInputError(f"{name} must be point names (strings), not {n!r}")
     return names
-
-
-def _json_value(value: Any) -> Any:
-    """numpy's arrays and scalars as the lists and numbers json writes (json.dumps' default=)."""
-    import numpy as np
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, np.generic):
-        return value.item()
-    raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")
 
 
 def _stopped(model, stop_reason: Optional[str], what: str, result: Any) -> "LimitError":
@@ -185,8 +157,11 @@ class Model:
     def from_dict(cls, data: Dict[str, Any], name: str = "<dict>") -> "Model":
         """A model from a dict with a model file's keys. Errors name the line and column of the
         dict written as indented JSON (``e.text`` holds that text)."""
+        name = _text("name", name)
         try:
-            text = json.dumps(data, indent=2, allow_nan=False, default=_json_value)
+            # NaN and infinities are written (as NaN, Infinity), for the reader to refuse at their line
+            # and column like any other value that is no length.
+            text = json.dumps(data, indent=2, default=_json_value)
         except (TypeError, ValueError) as e:
             raise BadInputError(f"{name}: the model must hold only numbers, strings, lists and dicts: {e}") from None
         try:
@@ -224,7 +199,7 @@ class Model:
 
     def columns(self, order: int = 2, dynamics: bool = False) -> List[str]:
         """The names of the columns ``solve`` can give (with ``dynamics``, the force columns too)."""
-        return [c[0] for c in self._c.catalogue(order, dynamics)]
+        return [c[0] for c in self._c.catalogue(_whole("order", order), _flag("dynamics", dynamics))]
 
     def to_yaml(self) -> str:
         """The kinematic model as a model file."""
@@ -247,11 +222,12 @@ class Model:
         A sweep of more than ``max_steps`` samples (default 10 000 000, as ``--max-steps``) is an error.
         ``method`` is the stresses' (``"beam"`` or ``"fe"``), ``mesh_size`` the finite elements' edge
         far from holes, in the model's length unit."""
-        steps, order, sections, max_steps = (_whole(name, value) for name, value in (
-            ("steps", steps), ("order", order), ("sections", sections), ("max_steps", max_steps)))
+        steps, order, sections = _whole("steps", steps), _whole("order", order), _whole("sections", sections)
+        max_steps = _whole("max_steps", max_steps, minimum=1)
         timeout, mesh_size = _real("timeout", timeout), _real("mesh_size", mesh_size)
-        return _nbar.analyse(self._c, steps=steps, order=order, dynamics=dynamics, stress=stress, sections=sections,
-                             timeout=timeout, max_steps=max_steps, method=method, mesh_size=mesh_size)
+        return _nbar.analyse(self._c, steps=steps, order=order, dynamics=_flag("dynamics", dynamics),
+                             stress=_flag("stress", stress), sections=sections, timeout=timeout, max_steps=max_steps,
+                             method=_text("method", method), mesh_size=mesh_size)
 
     def solve(self, steps: Optional[int] = None, order: Optional[int] = None, columns: Columns = None,
               dynamics: bool = False, partial: bool = False, timeout: Optional[float] = None,
@@ -266,10 +242,11 @@ class Model:
         (default 10 000 000, as ``nbar solve --max-steps``) is an error.
         """
         patterns = _patterns(columns)
+        order, dynamics = _whole("order", order), _flag("dynamics", dynamics)
         if patterns:
             needs = self._c.needs(patterns, order, dynamics)
             if needs["unmatched"] >= 0:
-                raise BadInputError(needs["message"])
+                raise _no_column(patterns[needs["unmatched"]], self.columns(order=5, dynamics=True))
             order, dynamics = needs["order"], needs["dynamics"]
         analysis = self.analyse(steps=steps, order=2 if order is None else order, dynamics=dynamics, timeout=timeout,
                                 max_steps=max_steps)
@@ -312,8 +289,8 @@ class Model:
         (model units), with the paths of ``traces`` (a name, or a list of names). As ``nbar draw``,
         it draws any solved step of a sweep that stopped at a limit."""
         step, width, height = _whole("step", step), _whole("width", width), _whole("height", height)
-        return Drawing(self.analyse(steps=steps, order=0), step=step, at=_real("at", at), labels=labels,
-                       traces=_names("traces", traces), width=width, height=height, title=title)
+        return Drawing(self.analyse(steps=steps, order=0), step=step, at=_real("at", at), labels=_flag("labels", labels),
+                       traces=_names("traces", traces), width=width, height=height, title=_text("title", title))
 
     def animate(self, frames: int = 0, fps: float = 24.0, labels: bool = False,
                 traces: Union[str, Iterable[str]] = (), width: int = 900, height: int = 640, title: str = "",
@@ -325,8 +302,8 @@ class Model:
         ``partial=True`` returns instead."""
         frames, width, height = _whole("frames", frames), _whole("width", width), _whole("height", height)
         analysis = self.analyse(steps=steps, order=0)
-        animation = Animation(analysis, frames=frames, fps=_real("fps", fps), labels=labels,
-                              traces=_names("traces", traces), width=width, height=height, title=title)
+        animation = Animation(analysis, frames=frames, fps=_real("fps", fps), labels=_flag("labels", labels),
+                              traces=_names("traces", traces), width=width, height=height, title=_text("title", title))
         if not analysis.complete and not partial:
             raise _stopped(self._c, analysis.stop_reason, f"an animation of the {analysis.samples} steps solved",
                            animation)
@@ -363,4 +340,4 @@ def load(path: Union[str, os.PathLike]) -> Model:
 
 def loads(text: str, name: str = "<string>") -> Model:
     """A model from YAML or JSON text; ``name`` stands for the file in messages."""
-    return Model(_nbar.loads(text, name))
+    return Model(_nbar.loads(_text("text", text), _text("name", name)))

@@ -22,13 +22,15 @@ def columns(result: Table, y: Union[str, Sequence[str]]) -> List[str]:
     """The columns of ``result`` that names or globs ``y`` pick ("P.*", or "rocker.angle,rocker.omega"),
     as ``nbar plot --y`` and ``solve(columns=...)`` pick them."""
     from . import _nbar
-    from .errors import BadInputError, ColumnError
+    from .errors import BadInputError
+    from .results import _no_column
     patterns = [c.strip() for c in y.split(",") if c.strip()] if isinstance(y, str) else list(y)
     if not patterns or not all(isinstance(p, str) for p in patterns):
         raise BadInputError(f"y must be column names or globs, not {y!r}")
     picked, message = _nbar.pick_columns(result.columns, patterns)
     if message:
-        raise ColumnError(message)
+        unmatched = next(p for p in patterns if _nbar.pick_columns(result.columns, [p])[1])
+        raise _no_column(unmatched, result.columns)
     return [result.columns[i] for i in picked]
 
 

@@ -34,10 +34,12 @@ class Table(Mapping):
             a.flags.writeable = False
 
     def __getitem__(self, name: str) -> np.ndarray:
+        from .errors import ColumnError
+        if not isinstance(name, str):  # a KeyError still, so that `0 in t` is False as on any mapping
+            raise ColumnError(f"columns are named by strings, not {name!r}")
         try:
             return self._data[name]
         except KeyError:
-            from .errors import ColumnError
             raise ColumnError(f"no column '{name}'" + _did_you_mean(name, self.columns)) from None
 
     def __iter__(self) -> Iterator[str]:
@@ -104,6 +106,12 @@ class Result(Table):
         notes = "".join(f"<li>{html.escape(w.message)}</li>" for w in self.warnings)
         return (f"<p>{self.rows} samples, {head}; largest residual {self.max_residual:.3g}</p>"
                 + (f"<ul>{notes}</ul>" if notes else "") + super()._repr_html_())
+
+
+def _no_column(pattern: str, names: List[str]):
+    """The ColumnError for a name or glob that picks no column: with the names it is closest to."""
+    from .errors import ColumnError
+    return ColumnError(f"no column matches '{pattern}'" + _did_you_mean(pattern, names))
 
 
 def _did_you_mean(name: str, names: List[str]) -> str:

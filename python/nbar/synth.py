@@ -17,6 +17,7 @@ import os
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _nbar
+from ._args import flag, json_value, real, whole
 from .errors import BadInputError
 
 Point = Sequence[float]
@@ -127,7 +128,7 @@ def _units(units: Union[None, str, Dict[str, str]]) -> Optional[Dict[str, str]]:
 def task(data: Dict[str, Any], name: str = "<task>"):
     """A task from a dict with a task file's keys (``task: five-point``, ``points``...)."""
     try:
-        text = json.dumps(data, indent=2, allow_nan=False)
+        text = json.dumps(data, indent=2, default=json_value)  # NaN written, refused at its line
     except (TypeError, ValueError) as e:
         raise BadInputError(f"{name}: the task must hold only numbers, strings, lists and dicts: {e}") from None
     return _nbar.parse_task(text, name)
@@ -148,7 +149,9 @@ def run(the_task, all: bool = False, top: int = 0, threads: int = 0, seed: int =
         the_task = load(the_task)
     elif isinstance(the_task, dict):
         the_task = task(the_task)
-    return Designs(_nbar.synthesize(the_task, threads=threads, seed=seed, timeout=timeout), all=all, top=top)
+    return Designs(_nbar.synthesize(the_task, threads=whole("threads", threads, minimum=0),
+                                    seed=whole("seed", seed, minimum=0), timeout=real("timeout", timeout)),
+                   all=flag("all", all), top=top)
 
 
 _DEFAULT_NAMES = {"five-point": "Five-point synthesis", "burmester": "Burmester synthesis",

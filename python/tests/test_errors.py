@@ -157,7 +157,12 @@ def test_solve_carries_the_warnings_check_gives_before_the_sweep(examples):
 
 def test_from_dict_rejects_what_json_cannot_hold():
     with pytest.raises(nbar.BadInputError):
+        nbar.Model.from_dict({"points": {"O": [0, object()]}})
+    # A NaN (np.arccos of 1.2, say) is refused at its line and column, as in a model file.
+    with pytest.raises(nbar.ModelError) as nan:
         nbar.Model.from_dict({"points": {"O": [0, float("nan")]}})
+    assert "must be a finite number, not 'NaN'" in nan.value.message
+    assert nan.value.text.splitlines()[nan.value.line - 1].strip().startswith("NaN")
     with pytest.raises(nbar.ModelError) as e:
         nbar.Model.from_dict({"points": {"O": [0, 0]}, "ground": ["O"], "bodies": {"crank": ["O", "B"]}})
     assert "B" in e.value.message and e.value.line and "\"crank\"" in e.value.text
@@ -236,3 +241,55 @@ def test_arguments_of_the_wrong_type_are_bad_input_not_type_errors(examples):
     # numpy's numbers are numbers.
     import numpy as np
     assert m.draw(at=np.float64(90), width=np.int64(400)).svg.startswith("<?xml")
+
+
+def test_orders_past_five_are_bad_input_not_a_crash(examples):
+    # Model.columns(order=6) and solve(columns=..., order=6) ended the interpreter (SIGSEGV).
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    for run in (lambda: m.columns(order=6), lambda: m.solve(order=6, columns="P.x"),
+                lambda: m.dynamics(columns="crank.*", order=9), lambda: m.solve(order=-1, columns="P.x")):
+        with pytest.raises(nbar.BadInputError, match="the derivative order must be between 0 and 5"):
+            run()
+    assert "P.jerk.x" in m.columns(order=5) or any(c.startswith("P.") for c in m.columns(order=5))
+
+
+def test_an_endless_timeout_is_no_limit(examples):
+    # inf and 1e12 s overflowed the clock into the past and cancelled at once.
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    for timeout in (float("inf"), 1e300, 1e12):
+        assert m.solve(steps=5, timeout=timeout).rows == 5
+
+
+def test_counts_and_flags_of_the_wrong_kind_are_bad_input(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    for run, message in [(lambda: m.solve(steps=2**31), "steps must be a whole number from"),
+                         (lambda: m.solve(max_steps=0), "max_steps must be a whole number from 1"),
+                         (lambda: m.solve(order="2", columns="P.x"), "order must be a whole number, not '2'"),
+                         (lambda: m.solve(columns=[1, 2]), "columns must be names or globs"),
+                         (lambda: m.solve(dynamics="yes"), "dynamics must be True or False"),
+                         (lambda: m.draw(labels="no"), "labels must be True or False"),
+                         (lambda: m.draw(title=None), "title must be a string"),
+                         (lambda: m.stress(sections=10**8), "stresses need 10 to 100000 sections per link"),
+                         (lambda: m.report(frames=1), "a report's animation has 2 to 1000 frames, not 1"),
+                         (lambda: nbar.loads(None), "text must be a string"),
+                         (lambda: nbar.Model.from_dict({}, name=None), "name must be a string")]:
+        with pytest.raises(nbar.BadInputError) as e:
+            run()
+        assert message in e.value.message, e.value.message
+
+
+def test_a_column_key_that_is_no_string_is_missing_not_a_crash(examples):
+    r = nbar.load(examples / "fourbar-crank-rocker.yaml").solve(steps=3)
+    assert 0 not in r and r.get(0) is None and r.get(None, 7) == 7
+    with pytest.raises(nbar.ColumnError, match="columns are named by strings, not 0"):
+        r[0]
+
+
+def test_an_unknown_column_asked_of_solve_or_plot_is_a_column_error_with_a_suggestion(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    with pytest.raises(nbar.ColumnError) as e:
+        m.solve(columns="rocker.omeg")
+    assert isinstance(e.value, KeyError) and "did you mean 'rocker.omega'" in e.value.message
+    assert len(e.value.message) < 200
+    with pytest.raises(nbar.ColumnError, match="did you mean 'rocker.omega'"):
+        nbar.plotting.columns(m.solve(steps=3), "rocker.omeg")

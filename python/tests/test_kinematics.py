@@ -184,8 +184,8 @@ def test_from_dict_takes_numpy_values():
     })
     assert m.points["A"] == (80.0, 0.0)
     assert m.check().loops[0].lengths == pytest.approx((200, 80, 180, 150))
-    with pytest.raises(nbar.BadInputError):  # NaN in an array is still refused
-        nbar.Model.from_dict({"points": {"O": np.array([0.0, np.nan])}})
+    with pytest.raises(nbar.ModelError, match="<dict>:5:7: y must be a finite number, not 'NaN'"):
+        nbar.Model.from_dict({"points": {"O": np.array([0.0, np.nan])}})  # NaN in an array: refused where it is
 
 
 def test_explain_says_why_a_step_needs_no_iteration(examples):

@@ -77,6 +77,15 @@ def test_points_reach_the_task_reader_as_given():
     # numpy numbers are numbers.
     designs = nbar.synth.five_point(pivots=np.array([[0.0, 0.0], [200.0, 0.0]]), points=np.array(POINTS), units="mm")
     assert designs.best.grashof == "crank-rocker"
+    # numpy's scalars too (they made json.dumps fail), and threads, seed, timeout are checked here.
+    function = nbar.synth.function("log10(x)", x=(1, 2), input_range=(90, 150), output_range=(60, 120),
+                                   points=np.int64(3))
+    assert function.best is not None
+    for options, message in [({"threads": -1}, "threads must be a whole number from 0"),
+                             ({"seed": -1}, "seed must be a whole number from 0"),
+                             ({"timeout": "5"}, "timeout must be a number, not '5'")]:
+        with pytest.raises(nbar.BadInputError, match=message):
+            nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=POINTS, units="mm", **options)
 
 
 def test_a_task_dicts_curve_is_the_users_file_read_from_the_current_directory(tmp_path, monkeypatch):
