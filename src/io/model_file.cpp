@@ -413,7 +413,8 @@ class Parser : yaml::Reader {
     const std::string unit = d.is_angular() ? model_.units.angle : model_.units.length;
     if (const Entry* from = f.find("from")) d.from = scale * number(*from, "`from` (" + unit + ")");
     if (const Entry* to = f.find("to")) d.to = scale * number(*to, "`to` (" + unit + ")");
-    d.speed = scale;
+    // Without a speed, one driver unit a second towards `to`: time runs forward either way.
+    d.speed = d.from && d.to && *d.to < *d.from ? -scale : scale;
     if (const Entry* speed = f.find("speed")) d.speed = rate(*speed, 1, d, scale);
     if (const Entry* accel = f.find("accel")) d.accel = rate(*accel, 2, d, scale);
     std::array<SourceMark, 2> law_marks{};

@@ -122,6 +122,17 @@ class Validator {
     tolerance_ = std::isfinite(size_) ? 1e-9 * size_ : 0.0;
   }
 
+  // A driver's value in the model's unit, for messages.
+  std::string value_text(const Driver& d, double si) const {
+    std::ostringstream s;
+    s.precision(6);
+    if (d.is_angular())
+      s << si / m_.units.angle_scale << " " << m_.units.angle;
+    else
+      s << si / m_.units.length_scale << " " << m_.units.length;
+    return s.str();
+  }
+
   // A length in the model's unit, for messages.
   std::string length_text(double metres) const {
     std::ostringstream s;
@@ -345,6 +356,10 @@ class Validator {
       if (d.name.empty()) fail(where, "driver #" + std::to_string(i + 1) + " has no name");
       if (!seen.insert(d.name).second) fail(where, "two drivers are named '" + d.name + "': give one a `name:`");
       const std::string name = "driver '" + d.name + "'";
+      // A driver's name is its column in the results: 'rocker.angle' made two columns of that name.
+      if (d.name == "step" || d.name == "t" || d.name.find('.') != std::string::npos)
+        fail(where, name + ": a driver's name is its column in the results, so it cannot be 'step' or 't' or hold "
+                           "a '.' (which joins a name to its quantity, as in rocker.angle): give it another `name:`");
       switch (d.kind) {
         case DriverKind::Angle:
           if (!valid_body(d.body)) {
@@ -402,6 +417,12 @@ class Validator {
                            "m/s); give a real speed, or leave `speed` out");
       if (d.from && d.to && !std::isfinite((*d.to - *d.from) / d.speed))
         fail(where, name + ": its travel over its speed is not a finite time");
+      // The time a sample is at is its travel over the speed: against each other they gave t < 0,
+      // a crank going from 360 to 0 at +120 rpm with omega +720 deg/s.
+      if (d.from && d.to && (*d.to - *d.from) * d.speed < 0.0)
+        fail(where, name + " goes from " + value_text(d, *d.from) + " to " + value_text(d, *d.to) +
+                        " against the sign of its speed, so time would run backwards: make the speed " +
+                        (d.speed > 0.0 ? "negative" : "positive") + " (or swap `from` and `to`)");
       check_travel(d, time_sweep, size, where, name);
       if (d.law && (d.from || d.to)) {
         fail(where, name + " follows a law, so it takes no `from` or `to`");

@@ -62,6 +62,8 @@ std::vector<Eigen::Vector2d> coupler_points_at(const std::string& model_file, co
   for (double angle : angles_deg) {
     nbar::Model m = loaded.model;
     m.drivers[0].to = angle * std::numbers::pi / 180;
+    // Time runs forward: towards an angle below the start, the crank turns backwards.
+    m.drivers[0].speed = std::copysign(m.drivers[0].speed, *m.drivers[0].to - m.drivers[0].from.value_or(0.0));
     m.sweep.steps = 90;
     const nbar::Mechanism mech(m);
     const nbar::SweepResult sweep = nbar::run_sweep(mech, {.steps = std::nullopt, .order = 0});

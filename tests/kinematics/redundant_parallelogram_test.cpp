@@ -33,7 +33,9 @@ Parallelogram parallelogram(double omega, double alpha) {
   add_body(m, "crank3", {o3, a3});
   p.coupler = add_body(m, "coupler", {a1, a2, a3});
   p.coupler_points = {a1, a2, a3};
-  m.drivers.push_back(angle_driver("crank1", p.crank1, kPi / 2, kPi / 2 + 2 * kPi, omega, alpha));
+  // A full turn in the sense of omega: time runs forward from `from`.
+  const double start = kPi / 2, end = kPi / 2 + 2 * kPi;
+  m.drivers.push_back(angle_driver("crank1", p.crank1, omega > 0 ? start : end, omega > 0 ? end : start, omega, alpha));
   m.sweep.steps = 361;
   return p;
 }

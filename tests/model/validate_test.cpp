@@ -235,6 +235,30 @@ TEST(Validate, SlidingPointDrawnOffItsGuide) {
   expect_error(slot, Kind::Slot, 0, "point 'A' is drawn 0.0316228 m off the line through 'Q' and 'E'");
 }
 
+// A driver's name is a column of the results: these gave two columns of one name, or one
+// indistinguishable from a point's, a body's or time.
+TEST(Validate, DriverNamesCannotBeOtherColumns) {
+  for (const char* taken : {"rocker.angle", "A.x", "t", "step", "crank."}) {
+    Model m = four_bar();
+    m.drivers[0].name = taken;
+    expect_error(m, Kind::Driver, 0, "a driver's name is its column in the results");
+  }
+  Model m = four_bar();
+  m.drivers[0].name = "theta_2";
+  EXPECT_NO_THROW(validate(m));
+}
+
+// From 360 to 0 at +120 rpm gave t from 0 down to -0.5 s and omega +720 deg/s.
+TEST(Validate, ASpeedAgainstTheTravelIsAnError) {
+  Model m = four_bar();
+  m.drivers[0].from = 2 * std::acos(-1.0);
+  m.drivers[0].to = 0.0;
+  m.drivers[0].speed = 4 * std::acos(-1.0);
+  expect_error(m, Kind::Driver, 0, "goes from 360 deg to 0 deg against the sign of its speed");
+  m.drivers[0].speed = -m.drivers[0].speed;
+  EXPECT_NO_THROW(validate(m));
+}
+
 TEST(Validate, SinglePointBodyNeedsSlider) {
   Model m = slider_crank();
   m.sliders.clear();
