@@ -295,6 +295,8 @@ class InverseDynamics::Assembly {
       if (w_.lu.rcond() > 1e-12) {
         w_.unknowns = w_.lu.solve(w_.rhs);
         solved = true;
+      } else {
+        solved = equilibrated_solve();
       }
     }
     if (!solved) {
@@ -304,6 +306,28 @@ class InverseDynamics::Assembly {
       out_.unique = w_.least_squares.rank() == id_.unknowns_;
     }
     out_.residual = id_.equations_ > 0 ? (A * w_.unknowns - w_.rhs).lpNorm<Eigen::Infinity>() : 0.0;
+  }
+
+  // The moment rows hold lengths where the force rows hold ones, so at an extreme size (a
+  // drawing of picometres, or of thousands of kilometres) a regular system looks singular to the
+  // condition of A itself, and the least squares then dropped the moment rows as noise (a crank's
+  // torque came out at 25% of weight x size). Rows and columns scaled to a largest entry of 1,
+  // the system is judged by its own condition. Only tried where the plain LU gave up, so that every
+  // other system is solved exactly as before.
+  bool equilibrated_solve() {
+    const Eigen::MatrixXd& A = w_.matrix;
+    const Eigen::VectorXd row_size = A.rowwise().lpNorm<Eigen::Infinity>();
+    if (!(row_size.minCoeff() > 0.0) || !row_size.allFinite()) return false;
+    const Eigen::VectorXd row_scale = row_size.cwiseInverse();
+    Eigen::MatrixXd scaled = row_scale.asDiagonal() * A;
+    const Eigen::VectorXd column_size = scaled.colwise().lpNorm<Eigen::Infinity>().transpose();
+    if (!(column_size.minCoeff() > 0.0)) return false;
+    const Eigen::VectorXd column_scale = column_size.cwiseInverse();
+    scaled = scaled * column_scale.asDiagonal();
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(scaled);
+    if (!(lu.rcond() > 1e-12)) return false;
+    w_.unknowns = column_scale.asDiagonal() * lu.solve(row_scale.asDiagonal() * w_.rhs);
+    return w_.unknowns.allFinite();
   }
 
   // Sparse LU of the assembled equations; false when it finds them singular (redundant

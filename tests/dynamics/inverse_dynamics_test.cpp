@@ -335,6 +335,45 @@ TEST(InverseDynamics, SliderNormalForceOfAStaticCentredSliderCrank) {
   EXPECT_NEAR(res.driver_effort[0], -(-F) * piston_speed, 1e-9 * F * r);
 }
 
+// A four-bar drawn at picometres and at ten thousand kilometres, with 1 kg at the crank's pivot:
+// the ground carries its weight and the driver no torque, at every size. The moment rows hold
+// lengths where the force rows hold ones, so at these sizes the plain LU's condition looked
+// singular; the least squares dropped the moment rows and gave O2 7.355 N, O4 2.452 N and a
+// torque of 25% of weight x size, with a warning of redundant constraints there are none of.
+TEST(InverseDynamics, AWeightAtThePivotIsCarriedThereAtEverySize) {
+  for (const double size : {1e-12, 1e-9, 1.0, 1e7, 1e10}) {
+    SCOPED_TRACE(size);
+    Model m;
+    const int o2 = add_point(m, "O2", {0, 0}, true), o4 = add_point(m, "O4", {0.2 * size, 0}, true);
+    const int a = add_point(m, "A", {0.08 * size, 0}), b = add_point(m, "B", {0.18125 * size, 0.148823511 * size});
+    const int crank = add_body(m, "crank", {o2, a});
+    add_body(m, "coupler", {a, b});
+    add_body(m, "rocker", {o4, b});
+    m.bodies[crank].inertia = GivenInertia{1.0, {0, 0}, 0.0};
+    m.gravity = {0, -9.80665};
+    m.drivers.push_back(angle_driver("crank", crank, 0.0, 2 * kPi, 4 * kPi));
+    m.sweep.steps = 5;
+    AnalysisOptions options;
+    options.dynamics = true;
+    const Analysis analysis = analyse(std::make_shared<const Mechanism>(m), options);
+    ASSERT_TRUE(analysis.sweep.complete) << analysis.sweep.stop_reason;
+    EXPECT_TRUE(analysis.dynamics->unique);
+    EXPECT_TRUE(analysis.dynamics->warnings.empty());
+    std::size_t on_crank = 0, on_rocker = 0;  // the ground's forces on them, at O2 and O4
+    for (const JointForceColumn& c : joint_force_columns(*analysis.dynamics->solver)) {
+      if (c.name == "O2.ground>crank") on_crank = c.joint_link;
+      if (c.name == "O4.ground>rocker") on_rocker = c.joint_link;
+    }
+    ASSERT_NE(on_crank, on_rocker);
+    for (const DynamicsResult& r : analysis.dynamics->samples) {
+      EXPECT_LE(std::abs(r.driver_effort[0]), 1e-12 * 9.80665 * size);
+      EXPECT_NEAR(r.pin_forces[on_crank].y(), 9.80665, 1e-9);
+      EXPECT_NEAR(r.pin_forces[on_crank].x(), 0.0, 1e-9);
+      EXPECT_NEAR(r.pin_forces[on_rocker].norm(), 0.0, 1e-9);
+    }
+  }
+}
+
 TEST(InverseDynamics, RedundantParallelogramGivesTheMinimumNormForcesAndSaysSo) {
   Model m;
   const int o1 = add_point(m, "O1", {0, 0}, true), o2 = add_point(m, "O2", {0.2, 0}, true),
