@@ -9,6 +9,7 @@
 #include "nbar/io/file_text.hpp"
 #include "nbar/io/sketch.hpp"
 #include "nbar/io/sketch_model.hpp"
+#include "nbar/model/materials.hpp"
 #include "nbar/model/units.hpp"
 #include "validators.hpp"
 
@@ -59,6 +60,11 @@ int run_import(const ImportArgs& args) {
     // 5 mm unless given, in the model's unit.
     options.thickness = args.thickness ? *args.thickness : 5e-3 / *length_unit_scale(options.length_unit);
     options.material = args.material;
+    // A material of the user's own is allowed (defined under `materials:` later), but say so: the
+    // model written names a material it does not define, and `nbar check` refuses it until then.
+    if (!builtin_material(args.material))
+      std::cerr << "warning: '" << args.material << "' is not a built-in material ("
+                << join(builtin_material_names()) << "): define it under `materials:` in the model written\n";
     const std::string yaml = io::model_from_sketch(sketch, options);
     if (args.output.empty()) {
       std::cout << yaml;

@@ -53,9 +53,15 @@ struct SolveArgs {
   bool dynamics = false;
 };
 
-void print_column_error(const Loaded& loaded, const std::invalid_argument& e) {
+void print_column_error(const Loaded& loaded, const SolveArgs& args, const std::invalid_argument& e) {
+  // A force or torque column asked for without --dynamics: say so rather than list the others.
+  if (!args.dynamics && nbar::column_needs(*loaded.mechanism, args.columns, args.order, false).dynamics) {
+    std::cerr << "error: --columns: " << e.what() << ": the force and torque columns come from the inverse dynamics, "
+              << "add --dynamics\n";
+    return;
+  }
   std::cerr << "error: --columns: " << e.what() << "; the columns are: "
-            << join(nbar::column_names(nbar::column_catalogue(*loaded.mechanism, 2, false))) << '\n';
+            << join(nbar::column_names(nbar::column_catalogue(*loaded.mechanism, args.order, args.dynamics))) << '\n';
 }
 
 // CSV is streamed: rows are written as the sweep solves them and none is kept, so memory does
@@ -73,7 +79,7 @@ int solve_to_csv(const SolveArgs& args, const Loaded& loaded, const nbar::Analys
     try {
       stream->select(args.columns);
     } catch (const std::invalid_argument& e) {
-      print_column_error(loaded, e);
+      print_column_error(loaded, args, e);
       return kBadUsage;
     }
   }
@@ -109,7 +115,7 @@ int run_solve(const SolveArgs& args) {
     try {
       table = nbar::select_columns(table, args.columns);
     } catch (const std::invalid_argument& e) {
-      print_column_error(loaded, e);
+      print_column_error(loaded, args, e);
       return kBadUsage;
     }
   }

@@ -165,6 +165,14 @@ TEST(Cli, OutputFileAndColumnSelection) {
   const CliRun bad = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --columns nosuch");
   EXPECT_EQ(bad.code, 2);
   EXPECT_THAT(bad.err, HasSubstr("no column matches 'nosuch'"));
+  // A force column without --dynamics: the hint, not a list of the kinematic columns.
+  for (const char* format : {"csv", "table"}) {
+    const CliRun force = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-steel-bars.yaml --steps 3 --format " +
+                              format + " --columns crank.torque");
+    EXPECT_EQ(force.code, 2);
+    EXPECT_THAT(force.err, HasSubstr("no column matches 'crank.torque': the force and torque columns come from the "
+                                     "inverse dynamics, add --dynamics"));
+  }
 }
 
 TEST(Cli, TableFormatHasUnits) {

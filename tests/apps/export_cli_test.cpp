@@ -103,6 +103,14 @@ TEST(ImportCli, SketchBecomesAModelSkeleton) {
   EXPECT_EQ(open.code, 1);
   EXPECT_THAT(open.err, HasSubstr("open.csv:5:1: the outline is not closed"));
   EXPECT_EQ(nbar("import " + dir.file("skeleton.yaml")).code, 2);
+
+  // A material of the user's own is written as asked, with a warning that the model must define it.
+  EXPECT_EQ(run.err, "");
+  const CliRun own = nbar("import " + sketch + " --material unobtainium");
+  EXPECT_EQ(own.code, 0) << own.err;
+  EXPECT_THAT(own.out, HasSubstr("material: unobtainium"));
+  EXPECT_THAT(own.err, HasSubstr("warning: 'unobtainium' is not a built-in material (steel, "));
+  EXPECT_THAT(own.err, HasSubstr("define it under `materials:` in the model written"));
 }
 
 }  // namespace
