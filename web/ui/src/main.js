@@ -297,7 +297,9 @@ function setFrame(i) {
 // ------------------------------------------------------------------------------ dragging
 
 // A point dragged in the drawing moves it in the model: its `NAME: [x, y]` line is rewritten and
-// the model analysed again. Points are written at the start pose, so dragging shows sample 0.
+// the model analysed again. Points are written at the start pose, so dragging shows sample 0,
+// and the point moves from where it is there by as much as the finger moves: grabbed at a later
+// sample, the finger's own place would have written that sample's pose into the model.
 // While the finger moves, the server draws the edited model's scene (one request at a time, the
 // latest position next), shown at sample 0 in the same view: it re-assembles live.
 let drag = null;
@@ -311,14 +313,17 @@ function startDrag(e) {
   if (!c || !state.solve) return;
   e.preventDefault();
   play(false);
+  const press = svgPoint(e);
+  const start = pointAt(state.solve, 0, c.dataset.point) ?? press;
   if (state.frame !== 0) setFrame(0);
-  drag = { name: c.dataset.point, id: e.pointerId, moved: false };
+  drag = { name: c.dataset.point, id: e.pointerId, moved: false, dx: start.x - press.x, dy: start.y - press.y };
   $('#drawing svg').setPointerCapture(e.pointerId);
 }
 function moveDrag(e) {
   if (!drag || e.pointerId !== drag.id) return;
   // With snap on, the preview sits on the grid where the point will be written.
-  const raw = svgPoint(e);
+  const finger = svgPoint(e);
+  const raw = { x: finger.x + drag.dx, y: finger.y + drag.dy };
   const snapped = snapPoint(raw.x, raw.y);
   const p = snapped ? { x: snapped[0], y: snapped[1] } : raw;
   drag.moved = true;
@@ -336,6 +341,11 @@ function endDrag(e) {
     if (d.scene) showDrawing();
     else setFrame(0);
   }
+}
+// Point `name` at sample `row` of a solve, in model units, or null when the solve lacks it.
+function pointAt(solve, row, name) {
+  const x = solve.columns.indexOf(`${name}.x`), y = solve.columns.indexOf(`${name}.y`);
+  return x >= 0 && y >= 0 && solve.rows[row] ? { x: solve.rows[row][x], y: solve.rows[row][y] } : null;
 }
 function draggedValue(d) {
   const digits = Math.max(0, Math.min(6, 2 - Math.floor(Math.log10(state.geometry.scale || 1))));

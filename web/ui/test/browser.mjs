@@ -176,10 +176,13 @@ async function desktop() {
   await other.close();
 
   // A point dragged in the drawing moves in the model and the numbers follow.
-  await page.locator('#scrub').fill('90');
-  await page.locator('#drawing circle.pt[data-point="P"]').hover();  // the drag goes back to sample 0
-  await page.mouse.down();
+  await page.locator('#scrub').fill('180');
+  // P is grabbed where it is at sample 180; the drag goes back to sample 0.
   const p = await page.locator('#drawing circle.pt[data-point="P"]').boundingBox();
+  // Model units per pixel of the view the drag happens in (the new model's view may differ).
+  const perPixel = await page.evaluate(() => 1 / document.querySelector('#drawing svg').getScreenCTM().a);
+  await page.mouse.move(p.x + p.width / 2, p.y + p.height / 2);
+  await page.mouse.down();
   const coupler = () => page.locator('#drawing g[data-link="coupler"] > .body').getAttribute('points');
   const couplerBefore = await coupler();
   await page.mouse.move(p.x + p.width / 2 + 40, p.y + p.height / 2 + 20, { steps: 5 });
@@ -192,6 +195,11 @@ async function desktop() {
   const moved = await page.locator('.cm-line', { hasText: '# coupler point' }).textContent();
   assert.match(moved, /^ {2}P: {2}\[\d+\.?\d*, \d+\.?\d*\]/);
   assert.doesNotMatch(moved, /77\.81169/);
+  // Grabbed at sample 180, P moved from its place at sample 0 (77.81169, 150) by the finger's
+  // 40 px right and 20 px down: not to where the finger was at sample 180.
+  const [px, py] = moved.match(/\[([-\d.]+), ([-\d.]+)\]/).slice(1).map(Number);
+  assert.ok(Math.abs(px - (77.81169 + 40 * perPixel)) < 2 * perPixel, `P.x ${px}, ${perPixel} mm/px`);
+  assert.ok(Math.abs(py - (150 - 20 * perPixel)) < 2 * perPixel, `P.y ${py}, ${perPixel} mm/px`);
   assert.equal(await page.locator('#problems').textContent(), 'No errors.');
   await shot(page, 'desktop-4b-dragged');
 
