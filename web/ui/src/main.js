@@ -152,7 +152,8 @@ async function analyse() {
   const seq = ++state.seq;
   const text = editor.state.doc.toString();
   state.text = text;
-  if (!text.trim()) { showProblem(null); return; }
+  // An empty document is analysed too: the server says it holds no model, at line 1, and the
+  // results on screen are marked as not the text's (they were kept and called current).
   status(t('analysing'), false, true);
   document.body.dataset.busy = '1';
   try {

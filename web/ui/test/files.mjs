@@ -53,6 +53,18 @@ export async function run(page, ctx) {
   await settled(page);
   assert.equal(await statusText(page), '1 DOF · 181 samples');
   assert.equal(await yamlText(page), mine);
+  // An emptied editor is no model: the server says so at line 1, and the results still on screen
+  // are marked as not the text's (they stayed, called current, and the CSV was the old model's).
+  await press('[data-tab="editor"]');
+  await press('#editor .cm-content');
+  await page.keyboard.press('Control+a');
+  await page.keyboard.press('Delete');
+  await page.waitForFunction(() => /holds no model/.test(document.querySelector('#problems').textContent));
+  assert.ok(await page.evaluate(() => document.body.classList.contains('results-stale')), 'stale results are marked');
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction(() => !document.body.classList.contains('results-stale'));
+  await settled(page);
+  assert.equal(await yamlText(page), mine);
   // Files that are no model: refused, with the reason, and the model on screen stays.
   const refused = async (file, pattern) => {
     await page.setInputFiles('#open-file', file);
