@@ -122,14 +122,12 @@ class Validator {
     tolerance_ = std::isfinite(size_) ? 1e-9 * size_ : 0.0;
   }
 
-  // A driver's value in the model's unit, for messages.
+  // A driver's value in the model's unit, for messages: a length as length_text writes it.
   std::string value_text(const Driver& d, double si) const {
+    if (!d.is_angular()) return length_text(si);
     std::ostringstream s;
     s.precision(6);
-    if (d.is_angular())
-      s << si / m_.units.angle_scale << " " << m_.units.angle;
-    else
-      s << si / m_.units.length_scale << " " << m_.units.length;
+    s << si / m_.units.angle_scale << " " << m_.units.angle;
     return s.str();
   }
 
