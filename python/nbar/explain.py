@@ -12,7 +12,15 @@ class Explanation:
         self._native = native
 
     def __getattr__(self, name):
+        # Only what the native explanation has: copy and pickle look for special names on an
+        # instance whose _native is not set yet, which would otherwise look for _native forever.
+        if name.startswith("__") or name == "_native":
+            raise AttributeError(name)
         return getattr(self._native, name)
+
+    def __deepcopy__(self, memo) -> "Explanation":
+        # The native explanation never changes once made: a copy may share it.
+        return Explanation(self._native)
 
     @property
     def text(self) -> str:

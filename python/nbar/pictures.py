@@ -41,9 +41,10 @@ class Drawing:
 
     def save(self, path: Union[str, os.PathLike]) -> None:
         name = os.fspath(path)
-        if name.endswith(".png"):
+        ext = name.rsplit(".", 1)[-1].lower()
+        if ext == "png":
             _write(path, self.png())
-        elif name.endswith(".svg"):
+        elif ext == "svg":
             _write(path, self.svg)
         else:
             from .errors import BadInputError

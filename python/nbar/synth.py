@@ -122,6 +122,9 @@ def _units(units: Union[None, str, Dict[str, str]]) -> Optional[Dict[str, str]]:
         return None
     if isinstance(units, str):
         return {"length": units, "angle": "deg"}
+    if not isinstance(units, dict):
+        raise BadInputError(f"units must be a length unit such as \"mm\", or a dict such as "
+                            f"{{\"length\": \"mm\", \"angle\": \"deg\"}}, not {units!r}")
     return dict(units)
 
 

@@ -5,6 +5,8 @@
 #include <atomic>
 #include <csignal>
 #include <exception>
+#include <string>
+#include <utility>
 
 #include "bindings.hpp"
 #include "nbar/kinematics/continuation.hpp"
@@ -25,6 +27,17 @@ const char* error_class(ErrorKind kind) {
   return "Error";
 }
 
+// The core's messages name the command line's options where one raises a limit; in Python the
+// same limit is an argument.
+std::string in_python_words(std::string message) {
+  static const std::pair<const char*, const char*> kOptionArguments[] = {{"--max-steps", "max_steps="}};
+  for (const auto& [option, argument] : kOptionArguments) {
+    const std::string from = option;
+    for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at))
+      message.replace(at, from.size(), argument);
+  }
+  return message;
+}
 
 void raise(const Error& e) {
   py::object errors = py::module_::import("nbar.errors");
@@ -35,7 +48,7 @@ void raise(const Error& e) {
   py::object entity = py::none();
   if (e.where().kind != EntityRef::Kind::Model && e.where().index >= 0)
     entity = py::make_tuple(to_string(e.where().kind), e.where().index);
-  py::object instance = cls(e.message(), py::arg("kind") = to_string(e.kind()), py::arg("file") = file,
+  py::object instance = cls(in_python_words(e.message()), py::arg("kind") = to_string(e.kind()), py::arg("file") = file,
                             py::arg("line") = line, py::arg("column") = column, py::arg("entity") = entity);
   PyErr_SetObject(cls.ptr(), instance.ptr());
 }

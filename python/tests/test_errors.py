@@ -196,6 +196,11 @@ def test_max_steps_bounds_the_sweep_as_the_cli_does():
     with pytest.raises(nbar.BadInputError, match="more than the limit of 10"):
         model.analyse(steps=20, max_steps=10)
     assert model.solve(steps=20, max_steps=20).rows == 20
+    # The hint names Python's argument, not the command line's option.
+    many = nbar.loads(BASE + "drivers: [{angle: crank, from: 0, to: 90}]\nsweep: {steps: 50}\n", "m.yaml")
+    with pytest.raises(nbar.ModelError) as e:
+        many.solve(max_steps=10)
+    assert "raise the limit with max_steps=" in e.value.message and "--max-steps" not in e.value.message
 
 
 def test_check_prints_why_the_start_cannot_be_assembled():
@@ -271,6 +276,10 @@ def test_counts_and_flags_of_the_wrong_kind_are_bad_input(examples):
                          (lambda: m.draw(title=None), "title must be a string"),
                          (lambda: m.stress(sections=10**8), "stresses need 10 to 100000 sections per link"),
                          (lambda: m.report(frames=1), "a report's animation has 2 to 1000 frames, not 1"),
+                         (lambda: m.draw(traces=5), "traces must be a point name or a list of point names, not 5"),
+                         (lambda: m.draw(step=5, at=90), "draw takes step or at, not both"),
+                         (lambda: nbar.synth.five_point(pivots=[(0, 0), (1, 0)], points=[(0, 1)] * 5, units=5),
+                          "units must be a length unit"),
                          (lambda: nbar.loads(None), "text must be a string"),
                          (lambda: nbar.Model.from_dict({}, name=None), "name must be a string")]:
         with pytest.raises(nbar.BadInputError) as e:
@@ -293,3 +302,16 @@ def test_an_unknown_column_asked_of_solve_or_plot_is_a_column_error_with_a_sugge
     assert len(e.value.message) < 200
     with pytest.raises(nbar.ColumnError, match="did you mean 'rocker.omega'"):
         nbar.plotting.columns(m.solve(steps=3), "rocker.omeg")
+
+
+def test_an_explanation_copies_and_a_drawing_saves_under_an_upper_case_extension(examples, tmp_path):
+    import copy
+    explanation = nbar.load(examples / "fourbar-crank-rocker.yaml").explain(step=3)
+    # copy looked up special names on an instance without _native and recursed without end.
+    assert copy.copy(explanation).text == explanation.text
+    assert copy.deepcopy(explanation).text == explanation.text
+    drawing = explanation.draw()
+    drawing.save(tmp_path / "centres.PNG")
+    assert (tmp_path / "centres.PNG").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with pytest.raises(nbar.BadInputError, match="a drawing is saved as .svg or .png"):
+        drawing.save(tmp_path / "centres.jpg")
