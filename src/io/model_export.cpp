@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -15,8 +16,17 @@ namespace nbar::io {
 
 namespace {
 
-// The shortest text that reads back as the same double.
-std::string number(double v) { return fmt::format("{}", v); }
+// A value in the model's units: to 15 significant digits when they read back within two units
+// in the last place, else the shortest text that reads back exactly. A user's 720 deg/s, kept
+// in rad/s, comes back as 719.9999999999999, the conversion's rounding and not a number anyone
+// wrote; a computed coordinate (a synthesised design's) keeps all its digits.
+std::string number(double v) {
+  const std::string rounded = fmt::format("{:.15g}", v);
+  double back = 0.0;
+  std::from_chars(rounded.data(), rounded.data() + rounded.size(), back);
+  const double ulp = std::nextafter(std::abs(v), HUGE_VAL) - std::abs(v);
+  return std::abs(back - v) <= 2.0 * ulp ? rounded : fmt::format("{}", v);
+}
 
 // Names are written plain when YAML cannot read them as anything else, otherwise quoted.
 std::string quoted(const std::string& text) {

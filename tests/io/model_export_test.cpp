@@ -164,3 +164,20 @@ TEST(ModelExport, AnExportedDesignSolvesThroughItsTargets) {
 }
 
 }  // namespace
+
+TEST(ModelExport, AUnitConversionsRoundingIsNotWrittenBack) {
+  // 120 rpm is 720 deg/s; kept in rad/s it divides back to 719.9999999999999.
+  const std::string text =
+      "points: {O: [0, 0], A: [10, 0], B: [30, 20], C: [40, 0]}\nground: [O, C]\n"
+      "bodies: {crank: [O, A], coupler: [A, B], rocker: [B, C]}\n"
+      "drivers: [{angle: crank, from: 0, to: 360, speed: 120 rpm}]\n";
+  const nbar::Model m = nbar::io::parse_model(text, "rpm.yaml").model;
+  ASSERT_NE(m.drivers[0].speed / m.units.angle_scale, 720.0);  // else this test shows nothing
+  const std::string out = nbar::io::model_yaml(m);
+  EXPECT_NE(out.find("speed: 720}"), std::string::npos) << out;
+  // A number with all 17 digits of its own keeps them.
+  nbar::Model digits = m;
+  digits.points[1].position.x() = 10.123456789012345 * m.units.length_scale;
+  const nbar::Model back = nbar::io::parse_model(nbar::io::model_yaml(digits), "back.yaml").model;
+  expect_close(back.points[1].position.x(), digits.points[1].position.x());
+}
