@@ -521,6 +521,33 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
   EXPECT_EQ(post("/api/synth/function", log10).status, 200);
 }
 
+// An example's comment that says a point is drawn above or below the ground line (y = 0) says
+// where the server draws it at the sweep's start (fourbar-double-rocker.yaml said "B above the
+// ground line" of a B at y = -23).
+TEST(WebApi, ExampleCommentsPutPointsOnTheSideOfTheGroundLineTheyAreDrawn) {
+  const Json list = Json::parse(call("GET", "/api/examples").body)["examples"];
+  const std::regex claim(R"(#[^\n]*\b([A-Za-z]\w*) (above|below) the ground line)");
+  int claims = 0;
+  for (const Json& e : list) {
+    if (e["kind"] != "model") continue;
+    const std::string text = call("GET", "/api/examples/" + e["name"].get<std::string>()).body;
+    for (auto m = std::sregex_iterator(text.begin(), text.end(), claim); m != std::sregex_iterator(); ++m) {
+      const std::string point = (*m)[1], side = (*m)[2];
+      SCOPED_TRACE(e["name"].get<std::string>() + ": " + point + " " + side);
+      const ApiResponse r = post("/api/solve", Json{{"model", text}, {"steps", 1}, {"columns", point + ".y"}});
+      ASSERT_EQ(r.status, 200) << r.body;
+      const Json solve = Json::parse(r.body);
+      const Json& columns = solve["columns"];
+      const auto at = std::find(columns.begin(), columns.end(), point + ".y");
+      ASSERT_NE(at, columns.end()) << r.body;
+      const double y = solve["rows"][0][static_cast<std::size_t>(at - columns.begin())].get<double>();
+      EXPECT_EQ(y > 0 ? "above" : "below", side) << point << ".y = " << y;
+      ++claims;
+    }
+  }
+  EXPECT_GE(claims, 1);
+}
+
 TEST(WebApi, HealthAndStaticPages) {
   const ApiResponse health = call("GET", "/api/health");
   ASSERT_EQ(health.status, 200);
