@@ -481,10 +481,10 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
         return result;
       }
     } catch (const Error& e) {
+      // A law with no value where the sweep goes is the model's error, as at a sample (exit 1 on
+      // the command line), placed at the law's text: not a limit position of the linkage.
       if (e.kind() != ErrorKind::UndefinedLaw) throw;
-      result.complete = false;
-      result.stop_reason = "sweep stopped " + where() + ": " + e.what();
-      return result;
+      throw Error(e.kind(), e.message() + ", which the sweep passes " + where(), e.where(), e.file(), e.mark());
     }
     record(static_cast<int>(i));
     branches.check(state.q, static_cast<int>(i), where, result);

@@ -65,9 +65,9 @@ struct SweepResult {
 using SampleSink = std::function<void(const Sample&)>;
 
 // Runs the whole sweep. Throws Error: CannotAssemble (an AssemblyError) when the start cannot be
-// assembled, BadInput for bad options, UndefinedLaw for a driver law undefined at the start,
-// Cancelled when `control` says so (checked between samples). A sweep that cannot go on stops
-// early and says why (complete is false).
+// assembled, BadInput for bad options, UndefinedLaw (at the driver) for a driver law undefined
+// where the sweep goes, Cancelled when `control` says so (checked between samples). A sweep
+// that cannot go on stops early and says why (complete is false).
 SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options = {}, const RunControl& control = {});
 // The same with every sample handed to `sink` instead of kept (result.samples stays empty).
 SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control,
