@@ -112,7 +112,8 @@ Command add_animate_command(CLI::App& app) {
       "animate", "Animate the sweep: an animated GIF, an animated SVG, a web page with play, pause and a "
                  "slider, or an MP4 video (with ffmpeg); the format is the output file's extension");
   sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
-  sub->add_option("-o,--output", args->output, "FILE.gif, FILE.svg, FILE.html or FILE.mp4")->required();
+  sub->add_option("-o,--output", args->output, "FILE.gif, FILE.svg, FILE.html or FILE.mp4")
+      ->check(nbar::cli::output_file())->required();
   sub->add_option("--fps", args->fps, "frames per second (default 24)")->check(nbar::cli::in_range(0.1, 120.0));
   sub->add_option("--frames", args->frames,
                   "number of frames, evenly spaced over the sweep (default: every sample, at most 120)")

@@ -104,7 +104,8 @@ Command add_draw_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("draw", "Draw the mechanism in one pose (SVG or PNG): bodies, joints, ground "
                                              "pivots, sliders, slots, labels, paths of chosen points, scale bar");
   sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
-  sub->add_option("-o,--output", args->output, "FILE.svg or FILE.png")->required();
+  sub->add_option("-o,--output", args->output, "FILE.svg or FILE.png")
+      ->check(nbar::cli::output_file())->required();
   auto* step = sub->add_option("--step", args->step, "draw this sample of the sweep (default 0, the start, unless every point lies on one line there: then the most open pose)");
   sub->add_option("--at", args->at, "draw where the first driver has this value (model units; a time for time laws)")
       ->excludes(step);

@@ -90,7 +90,8 @@ Command add_explain_command(CLI::App& app) {
   sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
   sub->add_option("--format", args->format, "text (default), markdown (with LaTeX maths, for Jupyter), latex or json")
       ->check(CLI::IsMember({"text", "markdown", "latex", "json"}));
-  sub->add_option("-o,--output", args->output, "write to FILE instead of standard output");
+  sub->add_option("-o,--output", args->output, "write to FILE instead of standard output")
+      ->check(nbar::cli::output_file());
   sub->add_option("--draw", args->draw, "also draw the pose with its instant centres marked: FILE.svg or FILE.png");
   return {sub, [args] { return run_explain(*args); }};
 }

@@ -84,7 +84,8 @@ Command add_import_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("import", "A model skeleton from a sketch of several links (DXF, SVG or sketch "
                                                "CSV): outlines become bodies, coinciding pin holes joints");
   sub->add_option("SKETCH", args->sketch, "FILE.dxf, FILE.svg or FILE.csv")->required();
-  sub->add_option("-o,--output", args->output, "the model file to write (default: standard output)");
+  sub->add_option("-o,--output", args->output, "the model file to write (default: standard output)")
+      ->check(nbar::cli::output_file());
   sub->add_option("--units", args->units,
                   "the model's length unit (mm, cm, m, in, ft; default: the sketch's own, else mm); a sketch that "
                   "states no unit is read in it");

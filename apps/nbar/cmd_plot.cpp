@@ -149,7 +149,8 @@ Command add_plot_command(CLI::App& app) {
       ->required()
       ->delimiter(',');
   sub->add_option("--x", args.x, "the column along the x axis (default: the first driver's, or t when a driver follows a time law)");
-  sub->add_option("-o,--output", args.output, "the picture to write: FILE.svg or FILE.png")->required();
+  sub->add_option("-o,--output", args.output, "the picture to write: FILE.svg or FILE.png")
+      ->check(nbar::cli::output_file())->required();
   sub->add_option("--steps", args.steps, "number of samples, ends included (overrides the model's sweep)")
       ->check(nbar::cli::positive());
   sub->add_option("--max-steps", args.max_steps, kMaxStepsHelp)->check(nbar::cli::positive());

@@ -55,7 +55,7 @@ Command add_report_command(CLI::App& app) {
                                                "angle/velocity/acceleration/jerk plots, and forces and stresses when "
                                                "the model has masses, loads and shapes");
   sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
-  sub->add_option("-o,--output", args->output, "FILE.html")->required();
+  sub->add_option("-o,--output", args->output, "FILE.html")->check(nbar::cli::output_file())->required();
   sub->add_option("--steps", args->steps, "samples of the sweep (overrides the model's sweep)")->check(nbar::cli::positive());
   sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
   sub->add_option("--frames", args->frames, "animation frames (default 72)")->check(nbar::cli::in_range(nbar::render::kMinReportFrames, nbar::render::kMaxReportFrames));

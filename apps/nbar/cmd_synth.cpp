@@ -225,7 +225,8 @@ Command add_synth_command(CLI::App& app) {
       ->check(CLI::IsMember({"five-point", "nine-point", "burmester", "function", "path"}));
   synth->add_option("FILE", args.file, "task file (YAML; see docs/synthesis.md), or the task options below");
   synth->add_option("--format", args.format, "table (default) or json")->check(CLI::IsMember({"table", "json"}));
-  synth->add_option("-o,--output", args.output, "write the table or JSON to FILE instead of standard output");
+  synth->add_option("-o,--output", args.output, "write the table or JSON to FILE instead of standard output")
+      ->check(nbar::cli::output_file());
   synth->add_option("--export", args.export_dir, "write every design listed as DIR/design-01.yaml, ... (model files)");
   synth->add_flag("--all", args.all, "also list defective designs and (five-point) complex solutions");
   synth->add_option("--top", args.top, "list (and export) at most N designs, best first; 0 for all (default 20)")

@@ -226,7 +226,8 @@ int main(int argc, char** argv) {
   solve->add_option("--columns", solve_args.columns,
                     "only these columns, comma-separated names or globs, e.g. 'crank,rocker.*,B.v*'")
       ->delimiter(',');
-  solve->add_option("-o,--output", solve_args.output, "write to FILE instead of standard output");
+  solve->add_option("-o,--output", solve_args.output, "write to FILE instead of standard output")
+      ->check(nbar::cli::output_file());
 
   solve->add_flag("--dynamics", solve_args.dynamics,
                   "add inverse dynamics: the force at every joint, every driver's torque or force, energies "
@@ -251,7 +252,8 @@ int main(int argc, char** argv) {
       ->check(nbar::cli::positive());
   stress->add_option("--format", stress_args.format, "table (default), csv or json")
       ->check(CLI::IsMember({"table", "csv", "json"}));
-  stress->add_option("-o,--output", stress_args.output, "write to FILE instead of standard output");
+  stress->add_option("-o,--output", stress_args.output, "write to FILE instead of standard output")
+      ->check(nbar::cli::output_file());
   CLI::Option* profile = stress->add_option("--section-profile", stress_args.profile_body,
                                             "instead, every section of BODY at one step: N, V, M, sigma, tau, von Mises");
   stress->add_option("--step", stress_args.profile_step, "the step for --section-profile (default 0)")->needs(profile);

@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include "nbar/model/file_errors.hpp"
+
 namespace nbar::cli {
 
 // The whole text as a finite number, or nothing.
@@ -55,6 +57,11 @@ inline CLI::Validator in_range(double low, double high) {
   const std::string rule = "from " + number_text(low) + " to " + number_text(high);
   return number_check([low, high](double x) { return x >= low && x <= high; }, rule,
                       "[" + number_text(low) + " to " + number_text(high) + "]");
+}
+
+// An output file whose folder exists, checked before the command computes anything.
+inline CLI::Validator output_file() {
+  return CLI::Validator([](std::string& path) { return output_path_problem(path); }, "FILE");
 }
 
 }  // namespace nbar::cli

@@ -50,18 +50,23 @@ Error::Error(ErrorKind kind, const std::string& message, EntityRef where, const 
       file_(file),
       mark_(mark) {}
 
-std::string cannot_write_message(const std::string& path) {
-  const int error = errno;
+std::string output_path_problem(const std::string& path) {
   namespace fs = std::filesystem;
-  std::string message = "cannot write " + path;
+  const std::string message = "cannot write " + path;
   const fs::path folder = fs::path(path).parent_path();
   std::error_code ec;
   if (!folder.empty() && !fs::exists(folder, ec)) return message + ": the folder '" + folder.string() + "' does not exist";
   if (!folder.empty() && !fs::is_directory(folder, ec))
     return message + ": '" + folder.string() + "' is a file, not a folder";
   if (fs::is_directory(path, ec)) return message + ": it is a folder";
-  if (error != 0) return message + ": " + std::strerror(error);
-  return message;
+  return "";
+}
+
+std::string cannot_write_message(const std::string& path) {
+  const int error = errno;
+  if (std::string problem = output_path_problem(path); !problem.empty()) return problem;
+  if (error != 0) return "cannot write " + path + ": " + std::strerror(error);
+  return "cannot write " + path;
 }
 
 }  // namespace nbar

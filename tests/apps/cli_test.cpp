@@ -366,6 +366,30 @@ TEST(Cli, WritingIntoAMissingFolderSaysTheFolderIsMissing) {
   EXPECT_THAT(draw.err, HasSubstr("the folder '" + missing + "' does not exist"));
 }
 
+TEST(Cli, AnOutputThatCannotBeWrittenIsRefusedBeforeAnythingIsComputed) {
+  // The input does not exist either: the output's folder is said first, before the input is
+  // read (animate used to compute the whole animation, then refuse the file).
+  TempModel dir("");
+  const std::string missing = dir.dir() + "/no-such-folder";
+  const std::string input = dir.dir() + "/no-such-model.yaml";
+  for (const std::string& command :
+       {"animate " + input + " -o " + missing + "/a.gif", "draw " + input + " -o " + missing + "/a.svg",
+        "report " + input + " -o " + missing + "/a.html", "plot " + input + " --y crank -o " + missing + "/a.svg",
+        "solve " + input + " -o " + missing + "/a.csv", "stress " + input + " -o " + missing + "/a.csv",
+        "explain " + input + " -o " + missing + "/a.txt", "import " + dir.dir() + "/no.dxf -o " + missing + "/a.yaml",
+        "synth five-point " + input + " -o " + missing + "/a.txt"}) {
+    SCOPED_TRACE(command);
+    const CliRun run = nbar(command);
+    EXPECT_EQ(run.code, 2);
+    EXPECT_THAT(run.err, HasSubstr("cannot write " + missing + "/a."));
+    EXPECT_THAT(run.err, HasSubstr("the folder '" + missing + "' does not exist"));
+    EXPECT_THAT(run.err, testing::Not(HasSubstr("no-such-model")));
+  }
+  const CliRun into_a_file = nbar("draw " + input + " -o " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml/a.svg");
+  EXPECT_EQ(into_a_file.code, 2);
+  EXPECT_THAT(into_a_file.err, HasSubstr("fourbar-crank-rocker.yaml' is a file, not a folder"));
+}
+
 TEST(Cli, WideTablesAreWrappedIntoColumnGroups) {
   ::setenv("COLUMNS", "80", 1);
   const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --steps 3 --format table");
