@@ -400,6 +400,8 @@ void check_polygon(const Polygon& poly, const std::string& what, const std::vect
     if ((poly[i] - poly[0]).squaredNorm() > (poly[far] - poly[0]).squaredNorm()) far = i;
   }
   const double span2 = (poly[far] - poly[0]).squaredNorm();
+  // Else an overflowing span would make every outline look flat below.
+  if (!std::isfinite(span2)) fail(what + " is too large to compute with (its area overflows): check its sizes");
   double spread = 0;
   for (std::size_t i = 0; i < n; ++i) spread = std::max(spread, std::abs(orient(poly[0], poly[far], poly[i])));
   if (spread <= 64 * std::numeric_limits<double>::epsilon() * span2) {

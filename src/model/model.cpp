@@ -569,10 +569,13 @@ class Validator {
     const AreaProperties a = area_properties(*b.shape);
     const double per_area = b.material->density * b.thickness;
     const double mass = per_area * a.area;
-    if (!std::isfinite(mass) || !std::isfinite(per_area * a.polar()) || !std::isfinite(mass * m_.gravity.norm()))
+    if (!std::isfinite(mass) || !std::isfinite(per_area * a.polar()))
       fail(where, "the mass of " + name +
                       " (density x thickness x area) is too large to compute with: check its `thickness` and its "
                       "material's density");
+    // A mass that is a number, with a gravity so large that the weight is not: gravity's fault.
+    if (!std::isfinite(mass * m_.gravity.norm()))
+      fail(where, "the weight of " + name + " (its mass times gravity) is too large to compute with: check `gravity`");
   }
 
   // A law that was never parsed has no text.

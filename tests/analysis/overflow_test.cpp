@@ -6,8 +6,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 
 namespace nbar {
@@ -59,6 +61,21 @@ TEST(Overflow, AMassThatOverflowsIsRejectedAtTheBody) {
     EXPECT_EQ(e.mark().column, 3) << body;
     EXPECT_THAT(e.message(), HasSubstr("too large to compute with")) << body;
   }
+}
+
+TEST(Overflow, AnOverflowBlamesTheInputThatCausedIt) {
+  const std::string drivers = "drivers: [{angle: crank, from: 0, to: 90}]\n";
+  const std::string bar = "{points: [O, A], bar: {width: 0.1}, thickness: 0.01, material: steel}";
+  // Gravity of 1e308 overflows the weight of a 0.8 kg bar: gravity is to blame, not the thickness.
+  const Error heavy = error_of([&] { compile(kBase + "gravity: [0, -1e308]\nbodies:\n  crank: " + bar + "\n" + drivers); });
+  EXPECT_THAT(heavy.message(), HasSubstr("(its mass times gravity) is too large to compute with: check `gravity`"));
+  EXPECT_THAT(heavy.message(), testing::Not(HasSubstr("thickness")));
+  // A bar 1e300 wide: its outline is too large, not flat.
+  const Error wide = error_of([&] {
+    compile(kBase + "bodies:\n  crank: {points: [O, A], bar: {width: 1e300}, thickness: 0.01, material: steel}\n" + drivers);
+  });
+  EXPECT_THAT(wide.message(), HasSubstr("is too large to compute with (its area overflows)"));
+  EXPECT_THAT(wide.message(), testing::Not(HasSubstr("zero area")));
 }
 
 TEST(Overflow, AHugeForceIsAnErrorAtTheForceWhenStressesOverflow) {
@@ -142,6 +159,29 @@ TEST(LawLocation, AForcesUndefinedFyIsReportedAtItsText) {
   EXPECT_EQ(at.mark().line, 5);
   EXPECT_EQ(at.mark().column, 45);  // the quote before log(t-1), not the force's mapping at column 9
   EXPECT_THAT(e.message(), HasSubstr("law 'log(t-1)' is undefined at t = "));
+}
+
+TEST(LawLocation, ALawUndefinedWhereTheSweepGoesBetweenSamplesIsAnErrorAtTheLaw) {
+  // The wiper's law, defined at every sample of a quarter-second sweep but not for t in (0.3,
+  // 0.45): the big first steps are shortened, and the tracker asks for the law at t = 0.375.
+  std::ifstream file(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-oscillating.yaml");
+  std::stringstream text;
+  text << file.rdbuf();
+  std::string model = text.str();
+  const std::string law = "30*sin(2*pi*t)\"", step = "step: 0.01";
+  ASSERT_NE(model.find(law), std::string::npos);
+  ASSERT_NE(model.find(step), std::string::npos);
+  model.replace(model.find(law), law.size(), "30*sin(2*pi*t) + 0*sqrt((t-0.3)*(t-0.45))\"");
+  model.replace(model.find(step), step.size(), "step: 0.25");
+  const io::LoadedModel loaded = io::parse_model(model, "wiper.yaml");
+  const Error e = error_of([&] { analyse(std::make_shared<const Mechanism>(loaded.model), AnalysisOptions{}); });
+  // Not a stop at a limit position located at the sweep, as before.
+  EXPECT_EQ(e.kind(), ErrorKind::UndefinedLaw);
+  EXPECT_EQ(e.where().kind, EntityRef::Kind::Driver);
+  EXPECT_THAT(e.message(), HasSubstr("is undefined at t = 0.375, which the sweep passes between steps 1 and 2"));
+  const Error at = io::located(loaded.source, e);
+  EXPECT_EQ(at.mark().line, 21);
+  EXPECT_EQ(at.mark().column, 25);
 }
 
 }  // namespace
