@@ -451,8 +451,9 @@ ApiResponse api_synth(Job& job, const std::string& request, synthesis::Synthesis
 
 render::DrawOptions draw_options(const Job& job, const Body& body, int min_size, int width, int height) {
   render::DrawOptions draw;
-  draw.width = static_cast<int>(body.integer("width", min_size, 10000).value_or(width));
-  draw.height = static_cast<int>(body.integer("height", min_size, 10000).value_or(height));
+  // The range named in a message is this server's (max_pixels), the limit checked below.
+  draw.width = static_cast<int>(body.integer("width", min_size, 10000, job.limits.max_pixels).value_or(width));
+  draw.height = static_cast<int>(body.integer("height", min_size, 10000, job.limits.max_pixels).value_or(height));
   check_limit("pixels", draw.width, job.limits.max_pixels, "width");
   check_limit("pixels", draw.height, job.limits.max_pixels, "height");
   draw.labels = body.flag("labels");
@@ -564,8 +565,8 @@ ApiResponse render_plot(Job& job, const std::string& request) {
     bad_input("'y_range' must be [LO, HI], finite numbers with LO < HI");
   std::optional<int> order;
   if (auto o = body.integer("order", 0, 5)) order = static_cast<int>(*o);
-  const int width = static_cast<int>(body.integer("width", 200, 10000).value_or(900));
-  const int height = static_cast<int>(body.integer("height", 150, 10000).value_or(520));
+  const int width = static_cast<int>(body.integer("width", 200, 10000, job.limits.max_pixels).value_or(900));
+  const int height = static_cast<int>(body.integer("height", 150, 10000, job.limits.max_pixels).value_or(520));
   check_limit("pixels", width, job.limits.max_pixels, "width");
   check_limit("pixels", height, job.limits.max_pixels, "height");
 
