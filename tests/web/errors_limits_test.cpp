@@ -122,6 +122,31 @@ TEST(WebErrors, BadOptions) {
   expect_error(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"step", 3}})), 400, "bad_input");
 }
 
+// nlohmann's parser kept the last of a key given twice, silently: {"steps": 5, "steps": 500}
+// solved 500 steps. The first key given twice is a 400 naming it, wherever it is.
+TEST(WebErrors, AKeyGivenTwiceIsBadJsonNamingIt) {
+  const std::string model = Json(repo_file("examples/five-bar.yaml")).dump();
+  const ApiResponse twice = call("POST", "/api/solve", "{\"model\": " + model + ", \"steps\": 5, \"steps\": 500}");
+  expect_error(twice, 400, "bad_json");
+  EXPECT_EQ(error_of(twice)["message"], "the body gives 'steps' twice; give each option once");
+  EXPECT_EQ(error_of(twice)["key"], "steps");
+  // The kind of a render, which is read before the rest.
+  const ApiResponse kind = call("POST", "/api/render", "{\"kind\": \"draw\", \"model\": " + model + ", \"kind\": \"plot\"}");
+  expect_error(kind, 400, "bad_json");
+  EXPECT_EQ(error_of(kind)["key"], "kind");
+  // Inside a model sent as a JSON object, with where it is.
+  const std::string points = R"({"model": {"points": {"A": [0, 0], "B": [1, 0], "A": [2, 2]}}})";
+  const ApiResponse nested = call("POST", "/api/check", points);
+  expect_error(nested, 400, "bad_json");
+  EXPECT_EQ(error_of(nested)["message"], "the body gives the key 'A' twice in 'model.points'");
+  const std::string listed = R"({"model": {"drivers": [{"angle": "crank"}, {"angle": "a", "angle": "b"}]}})";
+  EXPECT_EQ(error_of(call("POST", "/api/check", listed))["message"],
+            "the body gives the key 'angle' twice in 'model.drivers[]'");
+  // The same key in different objects is no duplicate.
+  const std::string apart = R"({"model": {"name": "x", "points": {"name": [0, 0]}, "sweep": {"steps": 3}}, "steps": 3})";
+  expect_error(call("POST", "/api/solve", apart), 422, "invalid_model");
+}
+
 TEST(WebErrors, YamlErrorsHaveTheirLineAndColumn) {
   const std::string model = "name: broken\npoints:\n  A: [0, 0\n  B: [1, 1]\n";
   const ApiResponse r = post("/api/check", {{"model", model}});

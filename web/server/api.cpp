@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 #include <thread>
+#include <unordered_set>
 
 #include "api_internal.hpp"
 #include "nbar/io/json_text.hpp"
@@ -87,12 +88,55 @@ void check_document_shape(const nlohmann::json& document, const char* key) {
               fmt::format("the size of '{}' written out as indented JSON (a bound, in bytes)", key));
 }
 
+// The request's JSON, with every object's keys told apart: nlohmann keeps the last of a key given
+// twice ({"steps": 5, "steps": 500}), silently. The parser's events are followed with a set of
+// the keys seen in each open object (only while parsing); the first key given twice is a 400
+// naming it and where it is ("model.points"), before anything else is read.
+nlohmann::json parse_request(const std::string& text) {
+  struct Open {
+    std::unordered_set<std::string> keys;
+    std::string name;  // this object's own key in its parent, "[]" inside a list
+  };
+  std::vector<Open> open;
+  std::string key;  // the last key read: the name of an object that starts next
+  return nlohmann::json::parse(text, [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start:
+        open.push_back({{}, open.empty() ? std::string() : key});
+        key = "[]";  // a list's items have no key of their own
+        break;
+      case Event::object_end:
+      case Event::array_end:
+        if (!open.empty()) open.pop_back();
+        key = "[]";
+        break;
+      case Event::key:
+        key = parsed.get<std::string>();
+        if (!open.empty() && !open.back().keys.insert(key).second) {
+          std::string where;
+          for (const Open& o : open)
+            if (!o.name.empty()) where += (where.empty() || o.name == "[]" ? "" : ".") + o.name;
+          throw ApiError(ApiErrorKind::BadJson,
+                         where.empty() ? fmt::format("the body gives '{}' twice; give each option once", key)
+                                       : fmt::format("the body gives the key '{}' twice in '{}'", key, where),
+                         Json{{"key", key}});
+        }
+        break;
+      case Event::value:
+        break;
+    }
+    return true;
+  });
+}
+
 // The request's JSON object, read option by option; every key must be one the endpoint knows.
 class Body {
  public:
   Body(const std::string& text, std::vector<std::string> allowed) {
     try {
-      json_ = nlohmann::json::parse(text);
+      json_ = parse_request(text);
     } catch (const nlohmann::json::parse_error& e) {
       const auto [line, column] = line_column(text, e.byte > 0 ? e.byte - 1 : 0);
       throw ApiError(ApiErrorKind::BadJson, std::string("the body is not valid JSON: ") + e.what(),
@@ -612,7 +656,7 @@ ApiResponse api_render(Job& job, const std::string& request) {
   // The kind decides which options are known; read it first, leniently.
   std::string kind = "draw";
   try {
-    const nlohmann::json j = nlohmann::json::parse(request);
+    const nlohmann::json j = parse_request(request);
     if (j.is_object() && j.contains("kind")) {
       if (!j["kind"].is_string()) bad_input("'kind' must be draw, animate, plot or plates");
       kind = j["kind"].get<std::string>();
