@@ -301,6 +301,22 @@ TEST(WebLimits, SectionsFramesAndPixels) {
   expect_limit(post("/api/report", with_model("examples/fourbar-crank-rocker.yaml", {{"frames", 900}})), "frames");
   expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 5000}})),
                "pixels");
+  // The range a width or height is refused with is the limit's, not 10000.
+  const auto message = [](const ApiResponse& r) { return error_of(r)["message"].get<std::string>(); };
+  EXPECT_EQ(message(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 20000}}))),
+            "'width' must be from 100 to 2048; it is 20000");
+  EXPECT_EQ(message(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "animate"}, {"height", 10}}))),
+            "'height' must be from 64 to 2048; it is 10");
+  EXPECT_EQ(message(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
+                                                   {{"kind", "plot"}, {"y", "P.y"}, {"width", 50}}))),
+            "'width' must be from 200 to 2048; it is 50");
+  ServerConfig small = test_config();
+  small.limits.max_pixels = 1000;
+  const ApiResponse narrow =
+      post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 50}}), small);
+  EXPECT_EQ(message(narrow), "'width' must be from 100 to 1000; it is 50");
+  expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 1200}}), small),
+               "pixels");
   expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "plot"}, {"y", "P.y"},
                                                                                      {"height", 3000}})),
                "pixels");
@@ -346,22 +362,6 @@ TEST(WebLimits, TimeBudgetCancelsAHugeSweep) {
   expect_error(r, 504, "time_budget_exceeded");
   EXPECT_LT(seconds, 3.0);
   std::cout << "[ web      ] a 100001-step sweep of machine-18 with a 0.2 s budget answered 504 after " << seconds << " s\n";
-  // The range a width or height is refused with is the limit's, not 10000.
-  const auto message = [](const ApiResponse& r) { return error_of(r)["message"].get<std::string>(); };
-  EXPECT_EQ(message(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 20000}}))),
-            "'width' must be from 100 to 2048; it is 20000");
-  EXPECT_EQ(message(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "animate"}, {"height", 10}}))),
-            "'height' must be from 64 to 2048; it is 10");
-  EXPECT_EQ(message(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
-                                                   {{"kind", "plot"}, {"y", "P.y"}, {"width", 50}}))),
-            "'width' must be from 200 to 2048; it is 50");
-  ServerConfig small = test_config();
-  small.limits.max_pixels = 1000;
-  const ApiResponse narrow =
-      post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 50}}), small);
-  EXPECT_EQ(message(narrow), "'width' must be from 100 to 1000; it is 50");
-  expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 1200}}), small),
-               "pixels");
   // Synthesis too.
   config.limits.time_budget_seconds = 1e-6;
   expect_error(post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml"), config), 504,
