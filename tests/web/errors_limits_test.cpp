@@ -263,13 +263,33 @@ TEST(WebLimits, Steps) {
   // The model's own sweep counts too, from/to and time laws.
   std::string many = repo_file("examples/fourbar-crank-rocker.yaml");
   many.replace(many.find("sweep: {steps: 361}"), 19, "sweep: {steps: 200000}");
-  expect_limit(post("/api/solve", {{"model", many}}), "steps");
+  // The model's own sweep is said where its text sets the number of samples, as the model's
+  // other errors are, so that the editor underlines it: its `steps`' value (line 22, column 16).
+  const auto expect_at = [](const ApiResponse& r, int line, int column) {
+    const Json e = error_of(r);
+    EXPECT_EQ(e.value("file", ""), "model") << r.body;
+    EXPECT_EQ(e.value("line", 0), line) << r.body;
+    EXPECT_EQ(e.value("column", 0), column) << r.body;
+  };
+  const ApiResponse own = post("/api/solve", {{"model", many}});
+  expect_limit(own, "steps");
+  expect_at(own, 22, 16);
+  // Written over two lines, or as JSON.
+  std::string block = many;
+  block.replace(block.find("sweep: {steps: 200000}"), 22, "sweep:\n  steps: 200000");
+  expect_at(post("/api/explain", {{"model", block}}), 23, 10);
   std::string law = repo_file("examples/fourbar-oscillating.yaml");
   const auto at = law.find("\nsweep:");
   ASSERT_NE(at, std::string::npos);
   law = law.substr(0, at) + "\nsweep: {duration: 1e12, step: 1e-6}\n";
-  expect_limit(post("/api/solve", {{"model", law}}), "steps");
+  const ApiResponse timed = post("/api/solve", {{"model", law}});
+  expect_limit(timed, "steps");
+  const int law_line = 1 + static_cast<int>(std::count(law.begin(), law.begin() + static_cast<long>(at) + 1, '\n'));
+  expect_at(timed, law_line, 31);  // a sweep in time: its `step`
   expect_limit(post("/api/render", {{"model", law}, {"kind", "draw"}}), "steps");
+  // The option `steps` is the request's, not the model's: no place in the model.
+  const ApiResponse option = post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 100002}}));
+  EXPECT_FALSE(error_of(option).contains("line")) << option.body;
   // The table: samples x columns (machine-18 has hundreds of columns).
   const ApiResponse table = post("/api/solve", with_model("examples/machine-18.yaml", {{"steps", 100001}}));
   expect_limit(table, "table_values");

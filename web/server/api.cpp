@@ -270,6 +270,7 @@ struct Job {
   const Limits& limits;
   RunControl control;
   std::optional<io::LoadedModel> file;
+  std::string text;  // the model's text, as parsed
   std::shared_ptr<const Mechanism> mechanism;
   JobSlots::Slot slot;
 
@@ -305,6 +306,7 @@ constexpr const char* kModelFile = "model";  // the model's name in messages
 // Parses, checks the size limits and compiles the model; errors are located in its text.
 void load_model(Job& job, const std::string& text) {
   job.file = io::parse_model(text, kModelFile);
+  job.text = text;
   const Model& m = job.file->model;
   check_limit("points", static_cast<double>(m.points.size()), job.limits.max_points, "the number of points");
   check_limit("bodies", static_cast<double>(m.bodies.size()), job.limits.max_bodies, "the number of bodies");
@@ -315,12 +317,48 @@ void load_model(Job& job, const std::string& text) {
   }
 }
 
-// The steps option (a positive number, as the CLI's) and the sweep's size against the limit.
+// Where the model's text sets its sweep's number of samples: the value of `sweep: {steps}`, or
+// for a sweep in time its `step` (else `duration`); the `sweep:` key when none is written there.
+// The source map marks the sweep at its key only, so the text is read again (an error's path:
+// the text was parsed once already, and is within the body's limit).
+SourceMark sweep_size_mark(const Job& job) {
+  const io::SourceMap& source = job.file->source;
+  const SourceMark fallback = source.sweep.line > 0 ? source.sweep : source.model;
+  try {
+    const YAML::Node sweep = YAML::Load(job.text)["sweep"];
+    if (!sweep.IsMap()) return fallback;
+    const bool in_time = job.mechanism->model().has_time_law();
+    for (const char* key : {"steps", "step", "duration"}) {
+      if (!in_time && std::string_view(key) != "steps") continue;
+      const YAML::Node value = sweep[key];
+      if (value && !value.IsNull()) return io::yaml::mark(value);
+    }
+  } catch (const YAML::Exception&) {
+    // The model parser read this text; a second reading that fails keeps the sweep's key.
+  }
+  return fallback;
+}
+
+// The steps option (a positive number, as the CLI's) and the sweep's size against the limit. A
+// sweep over it by the model's own `sweep:` is said at that place in the model's text, as the
+// model's other errors are, so that an editor underlines it.
 std::optional<int> sweep_steps(const Job& job, const Body& body) {
   std::optional<int> steps;
   if (auto s = body.integer("steps", 1, std::numeric_limits<int>::max())) steps = static_cast<int>(*s);
-  check_limit("steps", sweep_sample_count(job.mechanism->model(), steps), job.limits.max_steps,
-              "the number of samples of the sweep");
+  try {
+    check_limit("steps", sweep_sample_count(job.mechanism->model(), steps), job.limits.max_steps,
+                "the number of samples of the sweep");
+  } catch (const ApiError& e) {
+    if (steps) throw;
+    Json details = e.details();
+    const SourceMark at = sweep_size_mark(job);
+    details["file"] = kModelFile;
+    if (at.line > 0) {
+      details["line"] = at.line;
+      details["column"] = at.column;
+    }
+    throw ApiError(e.kind(), e.what(), details);
+  }
   return steps;
 }
 
