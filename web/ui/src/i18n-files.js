@@ -1,5 +1,5 @@
 // The strings of the files (New from a template, Open, drop, JSON download) and of the Model
-// tab's adding, renaming and deleting, in English and Spanish (added to i18n.js's lists).
+// tab's adding, renaming, deleting and refused numbers, in English and Spanish (added to i18n.js's lists).
 import { addStrings } from './i18n.js';
 
 addStrings({
@@ -12,6 +12,7 @@ addStrings({
     nameOf: (p) => `Name of point ${p} (type a new name to rename it everywhere)`,
     deletePoint: (p) => `Delete point ${p}`, deleteRow: 'Delete this row', body: 'Body',
     addSlider: 'Add a slider', addDriver: 'Add a driver', addForce: 'Add a force', addTorque: 'Add a torque',
+    numberOutOfRange: (v) => `${v} is beyond the range of a number (at most about 1.8e308 either way); the model is unchanged`,
   },
   es: {
     newModel: 'Nuevo', openFile: 'Abrir…', dropHint: 'o suelte aquí un archivo .yaml o .json', dlJson: 'Cálculo (JSON)',
@@ -22,5 +23,6 @@ addStrings({
     nameOf: (p) => `Nombre del punto ${p} (escriba otro nombre para renombrarlo en todo el modelo)`,
     deletePoint: (p) => `Eliminar el punto ${p}`, deleteRow: 'Eliminar esta fila', body: 'Cuerpo',
     addSlider: 'Añadir una deslizadera', addDriver: 'Añadir un accionamiento', addForce: 'Añadir una fuerza', addTorque: 'Añadir un par',
+    numberOutOfRange: (v) => `${v} está fuera del rango de los números (como mucho unos 1,8e308 en valor absoluto); el modelo no cambia`,
   },
 });

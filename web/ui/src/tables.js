@@ -50,12 +50,45 @@ function field(path, value, kind = 'num', label = '') {
   return `<input class="cell" ${attrs}${mode} value="${esc(showValue(value))}" spellcheck="false" autocomplete="off">`;
 }
 
+// A number typed past a double's range (1e400) reads as Infinity, which would be written into
+// the YAML as such: the typed text, when it holds one, else null.
+function overflowing(value, typed) {
+  const bad = (v) => (typeof v === 'number' && !Number.isFinite(v)) || (Array.isArray(v) && v.some(bad));
+  return bad(value) ? typed.trim() : null;
+}
+
+// Refuses a field's value without touching the YAML: the message beside the field (and above the
+// tables), the field marked and left holding what was typed, so that it can be corrected.
+function refuseField(input, message) {
+  const typed = input.value;
+  const sel = input.dataset.path ? `.cell[data-path="${CSS.escape(input.dataset.path)}"]`
+    : input.dataset.bodyProp ? `.cell[data-body-prop="${input.dataset.bodyProp}"]` : `.cell[data-bar-prop="${input.dataset.barProp}"]`;
+  lastRefusal = t('editFailed', message);
+  lastRefusalAt = sel;
+  editContext().status(lastRefusal, true);
+  renderTables();
+  const cell = document.querySelector(`#model-tables ${sel}`);
+  if (!cell) return;
+  cell.value = typed;
+  cell.classList.add('bad');
+  cell.title = message;
+}
+
+// A field edited to a value that changes nothing takes back a refusal shown for it.
+function clearRefusal() {
+  if (!lastRefusal) return;
+  lastRefusal = null;
+  renderTables();
+}
+
 function commit(input) {
-  lastEdited = input.dataset.path;
-  reveal = true;
   const path = JSON.parse(input.dataset.path);
   const value = parseField(input.dataset.kind, input.value);
-  applyEdit((text) => (value === undefined ? deleteIn(text, path) : setIn(text, path, value)));
+  const huge = overflowing(value, input.value);
+  if (huge !== null) { refuseField(input, t('numberOutOfRange', huge)); return; }
+  lastEdited = input.dataset.path;
+  reveal = true;
+  if (!applyEdit((text) => (value === undefined ? deleteIn(text, path) : setIn(text, path, value)))) clearRefusal();
 }
 
 // ------------------------------------------------------------------------------ sections
@@ -208,6 +241,10 @@ function bodyPanel(m) {
 }
 
 function commitBody(input) {
+  if (input.dataset.bodyProp || input.dataset.barProp) {
+    const huge = overflowing(parseField(input.dataset.kind || 'num', input.value), input.value);
+    if (huge !== null) { refuseField(input, t('numberOutOfRange', huge)); return; }
+  }
   if (input.dataset.bodyProp) {
     setBodyProperty(selected, input.dataset.bodyProp, parseField(input.dataset.kind || 'num', input.value));
   } else if (input.dataset.barProp) {
@@ -253,11 +290,14 @@ function markError() {
   for (const x of document.querySelectorAll('#model-tables .cell-error')) x.remove();
   const note = $('#model-problem');
   if (!note) return;
-  note.textContent = lastError ? `${lastError.line ? t('errorAt', lastError.line, lastError.column ?? 1) : ''}${lastError.message}` : (lastRefusal ?? '');
+  // A refusal is what the student did last: it is said, before the error of the text on screen.
+  note.textContent = lastRefusal ?? (lastError ? `${lastError.line ? t('errorAt', lastError.line, lastError.column ?? 1) : ''}${lastError.message}` : '');
   note.hidden = !lastError && !lastRefusal;
-  if (lastRefusal && !lastError) {
+  if (lastRefusal) {
     const near = lastRefusalAt && document.querySelector(`#model-tables ${lastRefusalAt}`);
-    near?.closest('tr')?.insertAdjacentHTML('afterend', `<tr class="refusal"><td colspan="9"><small class="cell-error" role="alert">${esc(lastRefusal)}</small></td></tr>`);
+    const row = near?.closest('tr');
+    if (row) row.insertAdjacentHTML('afterend', `<tr class="refusal"><td colspan="9"><small class="cell-error" role="alert">${esc(lastRefusal)}</small></td></tr>`);
+    else near?.insertAdjacentHTML('afterend', `<small class="cell-error" role="alert">${esc(lastRefusal)}</small>`);
   }
   if (!lastError) return;
   const best = errorField();

@@ -54,6 +54,24 @@ export async function run(page, ctx) {
   const before = await yamlText(page);
   assert.equal(before, text);
 
+  // 2b. A number past a double's range (it wrote `Infinity` into the YAML): refused at its field,
+  // which keeps what was typed, and the YAML is left as it was; a good value then takes it back.
+  await page.locator(field(['points', 'B', 1])).fill('1e400');
+  await page.locator(field(['points', 'B', 1])).press('Enter');
+  await page.waitForSelector(`${field(['points', 'B', 1])}.bad`);
+  const refusal = 'Cannot edit: 1e400 is beyond the range of a number (at most about 1.8e308 either way); the model is unchanged';
+  assert.equal(await page.locator('#model-tables .cell-error').textContent(), refusal);
+  assert.equal(await page.locator('#model-problem').textContent(), refusal);
+  assert.equal(await page.locator(field(['points', 'B', 1])).inputValue(), '1e400');
+  assert.equal(await yamlText(page), before, 'the YAML is unchanged');
+  assert.doesNotMatch(await yamlText(page), /Infinity|\.inf/i);
+  await shot('8b-number-refused');
+  const by = await page.evaluate(() => document.querySelector('#editor .cm-content').textContent.match(/B: {2}\[[^,]+, ([^\]]+)\]/)[1]);
+  await page.locator(field(['points', 'B', 1])).fill(by);
+  await page.locator(field(['points', 'B', 1])).press('Enter');
+  await page.waitForFunction(() => !document.querySelector('#model-tables .cell.bad') && !document.querySelector('#model-tables .cell-error'));
+  assert.equal(await yamlText(page), before);
+
   // 3. A point placed by tapping, then two links from it to A and to B: a rigid triangle on the
   // coupler, so the linkage keeps one degree of freedom.
   // With grid snap on, the point lands on a grid line crossing.
