@@ -52,11 +52,33 @@ function render(ex) {
   return parts.join('');
 }
 
+// The step field's sample, within the sweep: a step past either end is shown at that end, and
+// the note under the field says so (it was clamped silently); a field that holds no whole number
+// is an error at the field, and nothing is asked.
+function stepAsked(last) {
+  const input = $('#explain-step');
+  const note = $('#explain-note');
+  const typed = input.value.trim();
+  const say = (text, bad = false) => {
+    note.textContent = text;
+    note.hidden = !text;
+    note.classList.toggle('bad', bad);
+    input.classList.toggle('bad', bad);
+  };
+  const asked = typed === '' ? 0 : Number(typed);
+  if (input.validity?.badInput || !Number.isInteger(asked)) { say(t('exStepNotWhole', typed, last), true); return null; }
+  const step = Math.max(0, Math.min(asked, last));
+  say(asked > last ? t('exStepPast', asked, last) : asked < 0 ? t('exStepBefore', asked) : '');
+  if (step !== asked) input.value = String(step);
+  return step;
+}
+
 async function explainNow() {
   const out = $('#explain-out');
   const { state } = app;
   if (!state.solve || !state.lastOk) { out.textContent = t('nothing'); return; }
-  const step = Math.max(0, Math.min(+$('#explain-step').value || 0, state.solve.rows.length - 1));
+  const step = stepAsked(state.solve.rows.length - 1);
+  if (step === null) return;
   out.textContent = t('loading');
   try {
     const ex = await app.api('/api/explain', { model: state.lastOk, step });
@@ -71,7 +93,11 @@ export function initExplain(context) {
   app = context;
   $('#explain-run').addEventListener('click', explainNow);
   // The step follows the pose shown until the panel is asked.
-  document.addEventListener('nbar:frame', () => { $('#explain-step').value = String(app.state.frame); });
+  document.addEventListener('nbar:frame', () => {
+    $('#explain-step').value = String(app.state.frame);
+    $('#explain-step').classList.remove('bad');
+    $('#explain-note').hidden = true;
+  });
   const tab = document.querySelector('[data-tab="explain"]');
   tab.addEventListener('click', () => { if (!$('#explain-out').dataset.step) explainNow(); });
   // A new model: the explanation shown is of the old one.

@@ -190,7 +190,27 @@ async function explainPanel(page, ctx) {
   assert.equal(await page.locator('#explain-out table.jac tbody tr').nth(1).locator('td').first().textContent(), fmt(ex.jacobian[1][0]));
   assert.equal(await page.locator('#explain-out table.newton tbody tr').count(), ex.newton.iterations.length);
   assert.match(await page.locator('#explain-out .eqs').textContent(), /xA2 \+ yA2 − 802 = 0|xA2 \+ yA2 - 802 = 0/);
+  assert.ok(await page.locator('#explain-note').isHidden(), 'no note for a step within the sweep');
   await ctx.shot(page, `${ctx.tag}-m6-explain`);
+  // A step past the sweep's end is shown at the end, and the note says so (it was clamped
+  // silently); one that is no whole number is refused at the field.
+  await page.locator('#explain-step').fill('999');
+  await click(page, mobile, '#explain-run');
+  await page.waitForFunction(() => document.querySelector('#explain-out').dataset.step === '360' && document.querySelector('#explain-out table.jac'));
+  assert.equal(await page.locator('#explain-note').textContent(), 'Step 999 is past the last step, 360: showing step 360.');
+  assert.ok(await page.locator('#explain-note').isVisible());
+  assert.equal(await page.locator('#explain-step').inputValue(), '360');
+  await ctx.shot(page, `${ctx.tag}-m6b-explain-past-end`);
+  await page.locator('#explain-step').fill('2.5');
+  await click(page, mobile, '#explain-run');
+  assert.equal(await page.locator('#explain-note').textContent(), 'The step must be a whole number from 0 to 360 (not 2.5).');
+  assert.ok(await page.locator('#explain-step.bad').count() === 1);
+  assert.equal(await page.locator('#explain-out').getAttribute('data-step'), '360', 'nothing else was asked');
+  await page.locator('#explain-step').fill('12');
+  await click(page, mobile, '#explain-run');
+  await page.waitForFunction(() => document.querySelector('#explain-out').dataset.step === '12');
+  assert.ok(await page.locator('#explain-note').isHidden());
+  assert.equal(await page.locator('#explain-step.bad').count(), 0);
 }
 
 // The page reloaded without a network: the service worker serves the app and the last answers;
