@@ -20,7 +20,7 @@ const textMethods = {
 };
 
 let app = null;
-const synth = { method: 'five-point', tapping: null, taps: [], targets: [], preview: null, texts: {} };
+const synth = { method: 'five-point', tapping: null, taps: [], targets: [], preview: null, texts: {}, run: 0 };
 
 // ------------------------------------------------------------------------------ forms
 
@@ -91,6 +91,14 @@ function poses() {
 // from its example).
 function showMethod(m) {
   if (textMethods[synth.method]) synth.texts[synth.method] = $('#task').value || undefined;
+  // The designs listed are the last method's answer: they go with it (and a run still under
+  // way for it is not listed when it answers).
+  if (m !== synth.method) {
+    stopPreview();
+    $('#designs').replaceChildren();
+    $('#synth-status').textContent = '';
+    synth.run += 1;
+  }
   synth.method = m;
   stopTapping();
   const textual = textMethods[m];
@@ -363,13 +371,15 @@ async function runSynthesis() {
   for (const x of document.querySelectorAll('#synth-function input.bad')) x.classList.remove('bad');
   st.textContent = t('running');
   $('#synth-run').disabled = true;
+  const run = ++synth.run;
   try {
     const res = await app.api(`/api/synth/${synth.method}`, { task: taskText(), top: 10, models: true });
+    if (run !== synth.run) return;  // the method changed meanwhile
     st.textContent = t('designsFound', res.designs.length, res.solutions);
     list.replaceChildren(...res.designs.map((d) => designItem(d, res)));
     if (res.notes?.length) st.textContent += ` · ${res.notes.join('; ')}`;
   } catch (e) {
-    showSynthError(e);
+    if (run === synth.run) showSynthError(e);
   } finally {
     $('#synth-run').disabled = false;
   }

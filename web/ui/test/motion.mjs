@@ -86,6 +86,9 @@ async function burmesterAndFunction(page, ctx) {
   assert.match(await page.locator('.designs li').first().textContent(), /crank-rocker/);
   await ctx.shot(page, `${ctx.tag}-m2-burmester`);
   await page.selectOption('#synth-method', 'function');
+  // Burmester's designs go with its method: they stayed listed under the function form.
+  assert.equal(await page.locator('#designs li').count(), 0, "the other method's designs are cleared");
+  assert.equal(await page.locator('#synth-status').textContent(), '');
   await page.locator('#fn-expr').fill('x^2');
   await click(page, mobile, '#synth-run');
   await page.waitForSelector('[data-design="1"]:not([disabled])', { timeout: 60000 });
@@ -277,6 +280,9 @@ async function ninePointAndPath(page, ctx) {
   assert.equal([...task.split('points:')[1].matchAll(/\[([-\d.]+), ([-\d.]+)\]/g)].length, 12, task);
   assert.equal(await page.locator('#drawing .synth-marks .target').count(), 12);
   await page.selectOption('#synth-method', 'five-point');
+  // The path fit's designs went with its method (they stayed listed under another).
+  assert.equal(await page.locator('#designs li').count(), 0, "the other method's designs are cleared");
+  assert.equal(await page.locator('#synth-status').textContent(), '');
   assert.match(await page.locator('#task').inputValue(), /^task: five-point/m, 'each method keeps its own task');
   await page.selectOption('#synth-method', 'path');
   assert.equal(await page.locator('#task').inputValue(), task);
