@@ -94,6 +94,28 @@ function showTab(name) {
   for (const b of document.querySelectorAll('[data-tab]')) b.setAttribute('aria-selected', String(b.dataset.tab === name));
   for (const p of document.querySelectorAll('.panel')) p.classList.toggle('active', p.id === `panel-${name}`);
   if (name === 'editor') editor.requestMeasure();
+  // On a phone the tab bar scrolls sideways: the tab shown is brought into it (not the page).
+  const tab = document.querySelector(`[data-tab="${name}"]`);
+  const bar = tab?.parentElement;
+  if (bar && bar.scrollWidth > bar.clientWidth) {
+    const b = tab.getBoundingClientRect(); const r = bar.getBoundingClientRect();
+    if (b.left < r.left || b.right > r.right) bar.scrollLeft += b.left - r.left - (r.width - b.width) / 2;
+  }
+}
+
+// A tab bar wider than its box scrolls sideways, which a phone shows no scroll bar for: the side
+// where more tabs are hidden fades out (style.css, .more-left and .more-right), so the cut tab
+// reads as "more this way".
+function trackTabOverflow(bar) {
+  const update = () => {
+    const more = bar.scrollWidth - bar.clientWidth;
+    bar.classList.toggle('more-left', more > 1 && bar.scrollLeft > 1);
+    bar.classList.toggle('more-right', more > 1 && bar.scrollLeft < more - 1);
+  };
+  bar.addEventListener('scroll', update, { passive: true });
+  new ResizeObserver(update).observe(bar);
+  document.addEventListener('nbar:lang', update);
+  update();
 }
 function showResultTab(name) {
   for (const b of document.querySelectorAll('[data-rtab]')) b.setAttribute('aria-selected', String(b.dataset.rtab === name));
@@ -679,6 +701,7 @@ async function start() {
   $('#share-box button').addEventListener('click', () => { $('#share-box').hidden = true; });
   for (const b of [$('#retry'), $('#stale button')]) b.addEventListener('click', () => { clearTimeout(timer); analyse(); });
   trackHeaderHeight();
+  trackTabOverflow($('.side .tabs'));
   new ResizeObserver(resizePlot).observe($('#plot'));
   new ResizeObserver(onDrawingResized).observe($('#drawing'));
   initFiles();

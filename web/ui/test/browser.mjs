@@ -98,6 +98,50 @@ async function errorInEditor(page, mobile, tag) {
   assert.equal(await page.locator('.cm-lintRange-error').count(), 0);
 }
 
+// On a phone a stop's warning is read whole (it was cut at a few lines, in a box that scrolled
+// with no sign of it), and the tab bar shows it scrolls sideways: its cut side fades out.
+async function phoneFits(page) {
+  await openExample(page, true, 'fourbar-crank-rocker');
+  await click(page, true, '[data-tab="editor"]');
+  await retype(page, true, 'lengths: {crank: 80', '80', '140');
+  await page.waitForSelector('#warnings li.stop');
+  await page.waitForFunction(() => !document.body.dataset.busy);
+  await page.locator('#warnings').scrollIntoViewIfNeeded();
+  const box = await page.evaluate(() => {
+    const w = document.querySelector('#warnings');
+    const r = w.getBoundingClientRect();
+    return { left: r.left, right: r.right, height: r.height, scroll: w.scrollHeight, client: w.clientHeight, vw: innerWidth, vh: innerHeight };
+  });
+  assert.ok(box.left >= 0 && box.right <= box.vw, `the warnings within the screen's width: ${box.left} to ${box.right} of ${box.vw}`);
+  assert.ok(box.scroll <= box.client + 1, `the stop's message shown whole: ${box.scroll} px of it in ${box.client} px`);
+  assert.ok(box.height <= box.vh / 2, `the warnings take at most half the screen: ${box.height} px`);
+  await shot(page, 'phone-2a-warnings');
+  const bar = page.locator('.side .tabs');
+  const classes = () => bar.evaluate((b) => [...b.classList].filter((c) => c.startsWith('more-')).join(' '));
+  await bar.scrollIntoViewIfNeeded();
+  await bar.evaluate((b) => { b.scrollLeft = 0; });
+  await page.waitForFunction(() => document.querySelector('.side .tabs').scrollLeft === 0);
+  assert.ok(await bar.evaluate((b) => b.scrollWidth > b.clientWidth), 'the tabs are wider than the phone');
+  await page.waitForFunction(() => document.querySelector('.side .tabs').classList.contains('more-right'));
+  assert.equal(await classes(), 'more-right');
+  assert.notEqual(await bar.evaluate((b) => getComputedStyle(b).maskImage || getComputedStyle(b).webkitMaskImage), 'none', 'the cut side fades');
+  await shot(page, 'phone-2b-tabs');
+  await bar.evaluate((b) => { b.scrollLeft = b.scrollWidth; });
+  await page.waitForFunction(() => document.querySelector('.side .tabs').classList.contains('more-left'));
+  assert.equal(await classes(), 'more-left');
+  // A tab chosen (here without the test's own scrolling to it) is brought into the bar's view.
+  await page.locator('[data-tab="gallery"]').dispatchEvent('click');
+  const seen = await page.evaluate(() => {
+    const b = document.querySelector('[data-tab="gallery"]').getBoundingClientRect();
+    const r = document.querySelector('.side .tabs').getBoundingClientRect();
+    return b.left >= r.left - 1 && b.right <= r.right + 1;
+  });
+  assert.ok(seen, 'the tab shown is in view');
+  await click(page, true, '[data-tab="editor"]');
+  await retype(page, true, 'lengths: {crank: 140', '140', '80');
+  await page.waitForFunction(() => !document.querySelector('#warnings li') && !document.body.dataset.busy);
+}
+
 async function synthesis(page, mobile, tag) {
   await click(page, mobile, '[data-tab="synthesis"]');
   assert.match(await page.locator('#task').inputValue(), /task: five-point/);
@@ -125,6 +169,7 @@ async function reviewAt(tag, viewport, mobile) {
 async function desktop() {
   const { context, page } = await open('desktop', { width: 1280, height: 800 }, false);
   assert.ok(await page.locator('[data-example]').count() >= 10, 'the gallery lists the examples');
+  assert.equal(await page.locator('.side .tabs.more-left, .side .tabs.more-right').count(), 0, 'the tabs fit: no fade');
   await shot(page, 'desktop-1-gallery');
   await draw.run(page, { mobile: false, tag: 'desktop', base, out, shot, click, openExample });
   if (onlyDraw) { await context.close(); return; }
@@ -258,6 +303,7 @@ async function phone() {
   await page.locator('#play').tap();
   assert.ok(+(await page.locator('#scrub').inputValue()) > 0);
   await shot(page, 'phone-2-model', true);
+  await phoneFits(page);
   await errorInEditor(page, true, 'phone');
   await synthesis(page, true, 'phone');
   await runEditing(page, { base, out, viewport: 'phone', mobile: true });
