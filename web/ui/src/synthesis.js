@@ -313,18 +313,48 @@ function drawMarks() {
   const s = app.state.geometry?.scale ?? 1;
   const g = document.createElementNS('http://www.w3.org/2000/svg', 'g');
   g.setAttribute('class', 'synth-marks');
-  g.innerHTML = pts.map(([x, y, a], i) => targetMark(x, y, s, i + 1, a)).join('');
+  // Taps in progress are all numbered: the count is what the student follows.
+  g.innerHTML = synth.tapping === 'points' ? pts.map(([x, y], i) => targetMark(x, y, s, i + 1)).join('') : targetMarks(pts, s);
   svg.append(g);
 }
 
-// A target point, or a pose: the point and a tick along the coupler's angle.
+// The numbers of a list of targets: of a few, each; of many (a path fit's 30 measured points,
+// at a preview's size), the first, the last and every k-th, about six. A number that would
+// cover one already placed (points close together, a closed path's last beside its first) is
+// left out, so that the numbers never pile on one another. The set of the indices numbered.
+function numbered(pts, s) {
+  const n = pts.length;
+  const k = Math.ceil(n / 6);
+  const order = n <= 9 ? pts.map((_, i) => i)
+    : [0, n - 1, ...pts.map((_, i) => i).filter((i) => (i + 1) % k === 0 && i !== n - 1)];
+  const size = 3.2 * s;  // targetMark's font size, and where its text is drawn
+  const placed = [];
+  const shown = new Set();
+  for (const i of order) {
+    const X = +pts[i][0] + 2 * s; const Y = -pts[i][1] + 4.5 * s;
+    // The text's box, a little generous: digits about 0.6 em wide, ascent and descent.
+    const box = [X - 0.1 * size, Y - 1.0 * size, X + (0.62 * String(i + 1).length + 0.1) * size, Y + 0.3 * size];
+    if (placed.some((b) => box[0] < b[2] && b[0] < box[2] && box[1] < b[3] && b[1] < box[3])) continue;
+    placed.push(box);
+    shown.add(i);
+  }
+  return shown;
+}
+
+// The marks of a list of targets ([x, y] points or [x, y, angle] poses) at scale s.
+function targetMarks(pts, s) {
+  const shown = numbered(pts, s);
+  return pts.map(([x, y, a], i) => targetMark(x, y, s, shown.has(i) ? i + 1 : '', a)).join('');
+}
+
+// A target point, or a pose: the point and a tick along the coupler's angle; its number, if any.
 function targetMark(x, y, s, label, angle = undefined) {
   const X = +x; const Y = -y;
   const r = (angle ?? 0) * Math.PI / 180;
   const tick = Number.isFinite(angle) ? `<path d="M${X},${Y}l${+(7 * s * Math.cos(r)).toFixed(4)},${+(-7 * s * Math.sin(r)).toFixed(4)}" stroke="#d92d20" stroke-width="2.5" vector-effect="non-scaling-stroke"/>` : '';
   return `<g class="target">${tick}<circle cx="${X}" cy="${Y}" r="${1.6 * s}" fill="none" stroke="#d92d20" stroke-width="2" vector-effect="non-scaling-stroke"/>`
     + `<path d="M${X - 2.6 * s},${Y}h${5.2 * s}M${X},${Y - 2.6 * s}v${5.2 * s}" stroke="#d92d20" stroke-width="1.5" vector-effect="non-scaling-stroke"/>`
-    + `<text x="${X + 2 * s}" y="${Y + 4.5 * s}" font-size="${3.2 * s}" fill="#d92d20" font-family="system-ui, sans-serif">${label}</text></g>`;
+    + (label === '' ? '' : `<text x="${X + 2 * s}" y="${Y + 4.5 * s}" font-size="${3.2 * s}" fill="#d92d20" font-family="system-ui, sans-serif">${label}</text>`) + '</g>';
 }
 
 // ------------------------------------------------------------------------------ designs
@@ -410,7 +440,8 @@ async function preview(d, li) {
     el.innerHTML = drawingSvg(scene);
     const svg = el.querySelector('svg');
     const marks = document.createElementNS('http://www.w3.org/2000/svg', 'g');
-    marks.innerHTML = synth.targets.map(([x, y, a], i) => targetMark(x, y, markScale(scene), i + 1, a)).join('');
+    marks.setAttribute('class', 'synth-marks');
+    marks.innerHTML = targetMarks(synth.targets, markScale(scene));
     svg.append(marks);
     const n = scene.steps.length;
     const p = { el, li, raf: 0, start: 0 };

@@ -257,9 +257,37 @@ async function ninePointAndPath(page, ctx) {
   assert.equal(await page.locator('#drawing .synth-marks .target').count(), 30, "the example's 30 points marked");
   await click(page, mobile, '#synth-run');
   await page.waitForSelector('[data-design="1"]:not([disabled])', { timeout: 60000 });
-  assert.match(await page.locator('#synth-status').textContent(), /^\d+ designs? \(\d+ solutions?\)/);
+  // "1 design (1 solution)": each count agrees with its noun (it said "1 solutions").
+  const found = await page.locator('#synth-status').textContent();
+  const [, designs, solutions] = /^(\d+) designs? \((\d+) solutions?\)/.exec(found) ?? [];
+  assert.ok(designs, found);
+  assert.ok(found.startsWith(`${designs} design${designs === '1' ? '' : 's'} (${solutions} solution${solutions === '1' ? '' : 's'})`), found);
   assert.match(await page.locator('.designs li').first().textContent(), /crank-rocker/);
   await ctx.shot(page, `${ctx.tag}-m6-path-fit`);
+  // The preview marks the 30 targets but numbers only a few of them, none over another (the 30
+  // numbers piled up on one another).
+  await click(page, mobile, '[data-preview="1"]');
+  await page.waitForSelector('#designs li.previewing .pv svg .target');
+  await page.locator('#designs li.previewing .pv').scrollIntoViewIfNeeded();
+  const labels = await page.evaluate(() => {
+    const targets = document.querySelectorAll('#designs li.previewing .pv svg .target');
+    const texts = [...document.querySelectorAll('#designs li.previewing .pv svg .target text')];
+    const boxes = texts.map((x) => x.getBoundingClientRect());
+    let overlaps = 0;
+    for (let i = 0; i < boxes.length; i++) {
+      for (let j = i + 1; j < boxes.length; j++) {
+        const [a, b] = [boxes[i], boxes[j]];
+        if (a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom) overlaps++;
+      }
+    }
+    return { targets: targets.length, numbers: texts.map((x) => x.textContent), overlaps };
+  });
+  assert.equal(labels.targets, 30);
+  assert.ok(labels.numbers.length >= 3 && labels.numbers.length <= 8, `numbered: ${labels.numbers}`);
+  assert.equal(labels.numbers[0], '1');
+  assert.equal(labels.overlaps, 0, `overlapping numbers: ${labels.numbers}`);
+  await ctx.shot(page, `${ctx.tag}-m6a-path-preview`);
+  await click(page, mobile, '[data-preview="1"]');
   // Twelve points tapped, then the button again: a path task of twelve points.
   await click(page, mobile, '#five-tap');
   if (mobile) {
