@@ -61,7 +61,8 @@ inline CLI::Validator in_range(double low, double high) {
 
 // An output file whose folder exists, checked before the command computes anything.
 inline CLI::Validator output_file() {
-  return CLI::Validator([](std::string& path) { return output_path_problem(path); }, "FILE");
+  // No description: the help keeps showing the option as TEXT.
+  return CLI::Validator([](std::string& path) { return output_path_problem(path); }, "");
 }
 
 }  // namespace nbar::cli
