@@ -70,7 +70,7 @@ int run_explain(const ExplainArgs& args) {
     out << render_explanation(ex, args.format == "markdown" ? ExplainFormat::Markdown
                                   : args.format == "latex"  ? ExplainFormat::Latex
                                                             : ExplainFormat::Text);
-  out.flush();
+  if (!output.finish()) return kBadUsage;
   if (!args.draw.empty()) return draw_centres(args, ex);
   return kOk;
 }

@@ -116,11 +116,7 @@ int run_plot(const PlotArgs& args) {
     Output output;
     if (!output.open(args.output)) return kBadUsage;
     output.stream() << canvas.document();
-    output.stream().flush();
-    if (!output.stream()) {
-      std::cerr << "error: " << cannot_write_message(args.output) << '\n';
-      return kBadUsage;
-    }
+    if (!output.finish()) return kBadUsage;
   } else {
     render::ImageCanvas canvas(spec.width, spec.height);
     render::draw_plot(canvas, spec);

@@ -39,7 +39,8 @@ int run_report(const ReportArgs& args) {
   report.frames = args.frames;
   const std::string html = render::html_report(analysis, summary, report);
   std::ofstream out(args.output);
-  if (!(out << html)) {
+  if (out << html) out.close();  // a full disk fails here, after the page was taken
+  if (!out) {
     std::cerr << "error: " << cannot_write_message(args.output) << '\n';
     return kBadUsage;
   }

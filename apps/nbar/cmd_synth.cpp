@@ -198,7 +198,7 @@ int run_synth(const SynthArgs& args) {
       output.stream() << io::synthesis_json(task, outcome, listing);
     else
       io::write_synthesis_table(output.stream(), task, outcome, listing);
-    output.stream().flush();
+    if (!output.finish()) return kBadUsage;
   } catch (const Error& e) {
     progress.clear();
     if (e.kind() == ErrorKind::InvalidModel) {  // the solvers' complaints about the task itself

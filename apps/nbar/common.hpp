@@ -120,7 +120,9 @@ inline bool check_step(int step, const SweepResult& sweep) {
 // Writes a picture's or a document's bytes to `path`; false, after saying why, when it cannot.
 inline bool write_file(const std::string& path, const char* data, std::size_t size) {
   std::ofstream out(path, std::ios::binary);
-  if (out.write(data, static_cast<std::streamsize>(size))) return true;
+  // Closed before it is judged: a full disk fails the flush, after write() has taken the bytes.
+  if (out.write(data, static_cast<std::streamsize>(size))) out.close();
+  if (out) return true;
   std::cerr << "error: " << cannot_write_message(path) << '\n';
   return false;
 }
@@ -142,6 +144,7 @@ class Output {
  public:
   // False, with a message, when the file cannot be written.
   bool open(const std::string& path) {
+    path_ = path;
     if (path.empty()) return true;
     file_.open(path);
     if (!file_) std::cerr << "error: " << cannot_write_message(path) << '\n';
@@ -149,7 +152,21 @@ class Output {
   }
   std::ostream& stream() { return file_.is_open() ? file_ : std::cout; }
 
+  // Flushes (and closes the file): false, with a message, when what was written did not all get
+  // there (a full disk, a closed pipe), which the writes themselves need not show.
+  bool finish() {
+    stream().flush();
+    if (file_.is_open()) file_.close();  // a failed close sets the file's failbit
+    if (path_.empty() ? static_cast<bool>(std::cout) : static_cast<bool>(file_)) return true;
+    std::cerr << "error: " << (path_.empty() ? "cannot write to standard output" + reason() : cannot_write_message(path_))
+              << '\n';
+    return false;
+  }
+
  private:
+  static std::string reason() { return errno != 0 ? std::string(": ") + std::strerror(errno) : std::string(); }
+
+  std::string path_;
   std::ofstream file_;
 };
 

@@ -94,7 +94,7 @@ int solve_to_csv(const SolveArgs& args, const Loaded& loaded, const nbar::Analys
       return fail(args.model, nbar::io::located(loaded.file.source, e));
     }
   }
-  out.flush();
+  if (!output.finish()) return kBadUsage;
   print_warnings(stream->warnings());
   return finish(loaded, stream->sweep());
 }
@@ -125,7 +125,7 @@ int run_solve(const SolveArgs& args) {
   std::ostream& out = output.stream();
   nbar::io::write_table(out, args.format, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr,
                         terminal_width());
-  out.flush();
+  if (!output.finish()) return kBadUsage;
   print_warnings(analysis.warnings());
   return finish(loaded, analysis.sweep);
 }
@@ -182,7 +182,7 @@ int run_stress(const StressArgs& args) {
   } else {
     nbar::io::write_stress_report(out, args.format, analysis);
   }
-  out.flush();
+  if (!output.finish()) return kBadUsage;
   return finish(loaded, analysis.sweep);
 }
 

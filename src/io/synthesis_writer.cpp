@@ -174,6 +174,7 @@ void export_designs(const SynthesisTask& task, const Outcome& out, const Synthes
     const fs::path path = fs::path(args.export_dir) / design_file_name(rank);
     std::ofstream file(path);
     file << design_model_yaml(task, out, i, rank);
+    if (file) file.close();  // a full disk fails here, after the text was taken
     if (!file) throw Error(ErrorKind::BadInput, cannot_write_message(path.string()));
   }
 }

@@ -71,6 +71,7 @@ std::string js_string(const std::string& text) {
 void write_text_file(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   if (out) out << text;
+  if (out) out.close();  // a full disk fails here, after the text was taken
   if (!out) throw std::runtime_error(cannot_write_message(path));
 }
 

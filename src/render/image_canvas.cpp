@@ -218,6 +218,7 @@ void ImageCanvas::write_png(const std::string& path) const {
   const std::vector<std::uint8_t> bytes = png_bytes();
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (out) out.close();  // a full disk fails here, after the bytes were taken
   if (!out) throw std::runtime_error(cannot_write_message(path));
 }
 

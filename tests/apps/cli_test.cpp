@@ -366,6 +366,23 @@ TEST(Cli, WritingIntoAMissingFolderSaysTheFolderIsMissing) {
   EXPECT_THAT(draw.err, HasSubstr("the folder '" + missing + "' does not exist"));
 }
 
+TEST(Cli, AFullDiskIsAnErrorNotALostOutput) {
+  // /dev/full takes the open and every write, and fails the flush: the outputs said exit 0.
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
+  const std::string examples = NBAR_EXAMPLES_DIR;
+  for (const std::string& command :
+       {"solve " + examples + "/fourbar-crank-rocker.yaml -o /dev/full",
+        "solve " + examples + "/fourbar-crank-rocker.yaml --format json > /dev/full",
+        "stress " + examples + "/fourbar-steel-bars.yaml --steps 3 -o /dev/full",
+        "explain " + examples + "/fourbar-crank-rocker.yaml > /dev/full",
+        "synth five-point " + examples + "/synthesis/five-point-crank-rocker.yaml -o /dev/full"}) {
+    SCOPED_TRACE(command);
+    const CliRun run = nbar(command);
+    EXPECT_EQ(run.code, 2);
+    EXPECT_THAT(run.err, HasSubstr("No space left on device"));
+  }
+}
+
 TEST(Cli, AnOutputThatCannotBeWrittenIsRefusedBeforeAnythingIsComputed) {
   // The input does not exist either: the output's folder is said first, before the input is
   // read (animate used to compute the whole animation, then refuse the file).
