@@ -231,6 +231,39 @@ Sizing sizing_of(const Boundary& b, const MeshOptions& o, double size) {
   return s;
 }
 
+// A mesh of V corners has at least 2V - 3 edges, so 3V - 3 nodes with its mid-side ones: past
+// this many corners it cannot fit in max_nodes.
+std::size_t corner_budget(const MeshOptions& o) { return static_cast<std::size_t>(o.max_nodes) / 3 + 2; }
+
+// The area a ring encloses, from its curves sampled as for bounding_diagonal.
+double ring_area(const Boundary& b, const Ring& ring) {
+  std::vector<Vector2d> x;
+  for (const Piece& p : ring.pieces)
+    for (int k = 0; k < 16; ++k) x.push_back(b.curves[p.curve].at(p.param(k / 16.0)));
+  double twice = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Vector2d& a = x[i];
+    const Vector2d& c = x[(i + 1) % x.size()];
+    twice += a.x() * c.y() - a.y() * c.x();
+  }
+  return std::abs(twice) / 2;
+}
+
+// Before any refinement: a region of area A meshed with edges no longer than `size` has at least
+// about A / (sqrt(3)/2 size^2) corners (equilateral triangles of that edge). A size that needs
+// several times the budget fails at once instead of refining for minutes until the budget stops it.
+void check_interior_budget(const Boundary& b, double size, const MeshOptions& o) {
+  double area = ring_area(b, b.rings.front());
+  for (std::size_t r = 1; r < b.rings.size(); ++r) area -= ring_area(b, b.rings[r]);
+  const double corners = area / (std::sqrt(3.0) / 2 * size * size);
+  if (corners > 2.0 * static_cast<double>(corner_budget(o))) {
+    std::ostringstream os;
+    os << "the mesh would have about " << std::llround(std::min(corners * 4, 1e18)) << " nodes, more than max_nodes = "
+       << o.max_nodes << "; use a larger element size";
+    fail(os.str());
+  }
+}
+
 // Where a piece's boundary vertices go: parameters u in [0, 1), the first at 0.
 std::vector<double> piece_stations(const Curve& c, const Piece& p, const Sizing& h, double h_min, const MeshOptions& o) {
   const double length = c.length();
@@ -243,7 +276,7 @@ std::vector<double> piece_stations(const Curve& c, const Piece& p, const Sizing&
     cumulative[k + 1] = cumulative[k] + length / samples / h(c.at(p.param(u)));
   }
   const double total = cumulative.back();
-  if (!(total < o.max_nodes)) {
+  if (!(total < static_cast<double>(corner_budget(o)))) {
     fail("the boundary alone needs more than max_nodes = " + std::to_string(o.max_nodes) +
          " nodes; use a larger element size or fewer segments per hole");
   }
@@ -281,7 +314,7 @@ detail::RefinementInput refinement_input(const Boundary& b, const Sizing& h, con
     for (const Piece& p : b.rings[r].pieces) {
       stations[r].push_back(piece_stations(b.curves[p.curve], p, h, h_min, o));
       count += stations[r].back().size();
-      if (count > static_cast<std::size_t>(o.max_nodes)) {
+      if (count > corner_budget(o)) {
         fail("the boundary alone needs more than max_nodes = " + std::to_string(o.max_nodes) +
              " nodes; use a larger element size or fewer segments per hole");
       }
@@ -314,9 +347,7 @@ detail::RefinementInput refinement_input(const Boundary& b, const Sizing& h, con
   in.size_at = [&h](const Vector2d& x) { return h(x); };
   in.min_angle_deg = kMinAngleDeg;
   in.min_length = shortest / 1024;
-  // A mesh of V corners has at least 2V − 3 edges, so 3V − 3 nodes with its mid-side ones: past
-  // this many corners it cannot fit in max_nodes, and refinement stops early.
-  in.max_vertices = o.max_nodes / 3 + 2;
+  in.max_vertices = static_cast<int>(corner_budget(o));  // refinement stops early past it
   return in;
 }
 
@@ -418,6 +449,7 @@ TriMesh mesh_region(const Region& r, const MeshOptions& options) {
   check_region(r);
   const Boundary b = boundary_of(r);
   const double size = options.size > 0 ? options.size : bounding_diagonal(b, b.rings.front()) / 20;
+  check_interior_budget(b, size, options);
   const Sizing h = sizing_of(b, options, size);
   const detail::RefinementInput in = refinement_input(b, h, options);
   detail::RefinedMesh refined;

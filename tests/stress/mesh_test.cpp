@@ -375,6 +375,11 @@ TEST(Mesh, MaxNodesIsHonoured) {
   o = {};
   o.size = 1e-9;
   EXPECT_THAT([&] { mesh_region(r, o); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("max_nodes")));
+  // A size whose boundary fits (34 000 stations) but whose interior needs about 7e7 corners fails
+  // before refining, from the area (it refined for minutes until the budget stopped it).
+  o.size = 1e-4;
+  EXPECT_THAT([&] { mesh_region(r, o); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("the mesh would have about")));
 }
 
 TEST(Mesh, BadInputIsRefusedWithAReason) {
