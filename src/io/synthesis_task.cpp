@@ -140,7 +140,15 @@ class TaskParser : yaml::Reader {
     return static_cast<int>(v);
   }
   double angle(const YAML::Node& node, SourceMark at, const std::string& what) const {
-    return number(node, at, what + " (" + task_.units.angle + ")") * task_.units.angle_scale;
+    return within_turns(number(node, at, what + " (" + task_.units.angle + ")") * task_.units.angle_scale, at, what);
+  }
+  // An angle (SI) of at most a million turns: in radians a larger one keeps no digits of where it
+  // points (1e308 deg is 296 deg round, and its radians say nothing of that).
+  double within_turns(double radians, SourceMark at, const std::string& what) const {
+    constexpr double kMaxTurns = 1e6;
+    if (!(std::abs(radians) <= kMaxTurns * 2 * std::numbers::pi))
+      fail(at, what + " is beyond a million turns: give it within a turn or a few");
+    return radians;
   }
   // [a, b]
   std::array<double, 2> pair(const YAML::Node& node, SourceMark at, const std::string& what,
@@ -359,7 +367,9 @@ class TaskParser : yaml::Reader {
     const auto angles = [&](const Entry& e) {
       const auto [from, to] = pair(e.value, mark(e), "`" + e.key + "` (" + task_.units.angle + ")", "[45, 105]");
       if (from == to) fail(mark(e), "`" + e.key + "` is empty: give the angles at the start and the end of the range");
-      return std::array<double, 2>{from * task_.units.angle_scale, to * task_.units.angle_scale};
+      const std::string what = "`" + e.key + "`";
+      return std::array<double, 2>{within_turns(from * task_.units.angle_scale, mark(e), what),
+                                   within_turns(to * task_.units.angle_scale, mark(e), what)};
     };
     const auto in = angles(required(top, root, "input_range", "a function task"));
     const auto out = angles(required(top, root, "output_range", "a function task"));

@@ -444,3 +444,29 @@ TEST(SynthesisTask, UnreadableFile) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(SynthesisTask, AnglesBeyondAMillionTurnsAreRefusedAtTheirPlace) {
+  // 1e308 deg is 296 deg round, but in radians it keeps no digit of that: Burmester designed a
+  // coupler turning 104 deg to it and called the design exact.
+  const std::string burmester = R"(task: burmester
+poses:
+  - {point: [0, 0], angle: 0}
+  - {point: [1, 0], angle: 10}
+  - {point: [2, 1], angle: 1e308}
+fixed_pivots: {a: [0, 5], b: [3, 5]}
+)";
+  EXPECT_THAT(error_of(burmester), HasSubstr("task.yaml:5:"));
+  EXPECT_THAT(error_of(burmester), HasSubstr("the pose's angle is beyond a million turns"));
+  EXPECT_EQ(error_of(replaced(burmester, "1e308", "360000000")), "");  // a million turns exactly
+  const std::string function = R"yaml(task: function
+function: "log10(x)"
+x: [1, 2]
+input_range: [0, 1e308]
+output_range: [0, 60]
+)yaml";
+  EXPECT_THAT(error_of(function), HasSubstr("task.yaml:4:14: `input_range` is beyond a million turns"));
+}
+
+}  // namespace
