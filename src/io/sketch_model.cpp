@@ -88,6 +88,17 @@ std::string annotation_note(const std::vector<std::string>& annotations) {
   return "# Left out of the sketch, as notes that draw no link: " + list + ".\n";
 }
 
+// The nearest a polygon's edges come to p.
+double distance_to_edges(const std::vector<Vector2d>& polygon, const Vector2d& p) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vector2d edge = polygon[i] - polygon[j];
+    const double along = std::clamp((p - polygon[j]).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+    nearest = std::min(nearest, (p - (polygon[j] + along * edge)).norm());
+  }
+  return nearest;
+}
+
 struct Body {
   std::size_t loop;
   std::string name;
@@ -175,20 +186,22 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
   struct Joint {
     Vector2d at;
     double radius = 0;  // 0: a marked point, no hole
+    int line = 0;       // the circle's (the smallest, where several are drawn at one place)
   };
   std::vector<Joint> joints;
   for (const SketchCircle& c : sketch.circles) {
     auto it = std::find_if(joints.begin(), joints.end(),
                            [&](const Joint& j) { return (j.at - c.circle.centre).norm() <= same; });
     if (it == joints.end()) {
-      joints.push_back({c.circle.centre, c.circle.radius});
-    } else {
-      it->radius = std::min(it->radius, c.circle.radius);
+      joints.push_back({c.circle.centre, c.circle.radius, c.line});
+    } else if (c.circle.radius < it->radius) {
+      it->radius = c.circle.radius;
+      it->line = c.line;
     }
   }
   for (const SketchPoint& p : sketch.points) {
     const bool known = std::any_of(joints.begin(), joints.end(), [&](const Joint& j) { return (j.at - p.at).norm() <= same; });
-    if (!known) joints.push_back({p.at, 0.0});
+    if (!known) joints.push_back({p.at, 0.0, p.line});
   }
   // A point belongs to every body whose plate holds it: inside the outline, outside its holes
   // (a pin hole's own circle aside).
@@ -210,6 +223,30 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     }
   }
   if (bodies.empty()) throw Error(ErrorKind::InvalidModel, "the sketch has no outline", {}, options.source_name);
+  // A pin hole must stand clear of its plate's outline, its other holes and the other pin holes,
+  // as the model reader will ask of the model written: said here, at the circle's line.
+  for (const Body& b : bodies) {
+    for (auto hole = b.pin_holes.begin(); hole != b.pin_holes.end(); ++hole) {
+      const Joint& j = joints[hole->first];
+      const auto refuse = [&](const std::string& what, int line) {
+        throw Error(ErrorKind::InvalidModel,
+                    fmt::format("this pin hole (centre ({:.6g}, {:.6g}), radius {:.6g}) {} at line {}: a plate "
+                                "must hold its holes apart and inside its outline",
+                                j.at.x(), j.at.y(), hole->second, what, line),
+                    {}, options.source_name, {j.line, 1});
+      };
+      if (distance_to_edges(polygons[b.loop], j.at) <= hole->second)
+        refuse("meets the outline drawn", sketch.loops[b.loop].lines.front());
+      for (std::size_t h : b.holes) {
+        if (inside(polygons[h], j.at) || distance_to_edges(polygons[h], j.at) <= hole->second)
+          refuse("meets the hole drawn", sketch.loops[h].lines.front());
+      }
+      for (auto other = b.pin_holes.begin(); other != hole; ++other) {
+        const Joint& k = joints[other->first];
+        if ((k.at - j.at).norm() <= hole->second + other->second) refuse("overlaps the pin hole drawn", k.line);
+      }
+    }
+  }
 
   std::string ground, joints_list;
   int joint_count = 0;

@@ -12,6 +12,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -259,6 +261,28 @@ TEST(SketchImport, AnnotationsAreLeftOutWithANote) {
   EXPECT_THAT(error_of("0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nPLATE\n0\nENDSEC\n0\nEOF\n", "b.dxf"),
               HasSubstr("b.dxf:5:1: nbar reads LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, SPLINE, ELLIPSE and POINT "
                         "entities, not INSERT: explode it into those or delete it"));
+}
+
+// Pin holes that overlap, or meet their plate's outline, were written into a model that `nbar
+// check` then refused at a line of that model: they are refused here, at the circle's line.
+TEST(SketchImport, PinHolesThatMeetAreRefusedAtTheCirclesLine) {
+  const std::string plate = "0\nLWPOLYLINE\n8\np\n90\n4\n70\n1\n10\n0\n20\n0\n10\n100\n20\n0\n10\n100\n20\n20\n10\n0\n20\n20\n";
+  const auto circle = [](int x, int r) { return fmt::format("0\nCIRCLE\n8\np\n10\n{}\n20\n10\n40\n{}\n", x, r); };
+  const auto error = [&](const std::string& entities) {
+    try {
+      model_from_sketch(read_sketch("0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n", "p.dxf", SketchFormat::kDxf),
+                        {"p.dxf", "mm", 1.0, 5.0, "steel"});
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // The plate is lines 5-28, the first circle 29-38, the second from 39.
+  EXPECT_THAT(error(plate + circle(10, 4) + circle(12, 4)),
+              HasSubstr("p.dxf:39:1: this pin hole (centre (12, 10), radius 4) overlaps the pin hole drawn at line 29"));
+  EXPECT_THAT(error(plate + circle(10, 4) + circle(90, 15)),
+              HasSubstr("p.dxf:39:1: this pin hole (centre (90, 10), radius 15) meets the outline drawn at line 5"));
+  EXPECT_EQ(error(plate + circle(10, 4) + circle(90, 4)), "no error");
 }
 
 }  // namespace
