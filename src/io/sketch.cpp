@@ -287,7 +287,7 @@ bool to_number(std::string_view text, double& value) {
 // least-squares circle x² + y² + D x + E y + F = 0 (Kåsa's fit), about the points' mean for
 // conditioning; nothing when a point strays from it by more than 1e-3 of the radius.
 std::optional<Circle> fitted_circle(const std::vector<Vector2d>& points) {
-  if (points.size() < 8) return std::nullopt;
+  if (points.size() < 3) return std::nullopt;
   Vector2d mean = Vector2d::Zero();
   for (const Vector2d& p : points) mean += p;
   mean /= static_cast<double>(points.size());
@@ -357,6 +357,9 @@ StrokeSet read_csv_strokes(const std::string& text, const std::string& file, int
     for (char& c : lowered) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (lowered.find("circle") != std::string::npos) {
       const std::optional<Circle> c = fitted_circle(e.points);
+      if (e.points.size() < 3)
+        fail_at(file, e.line, "the circle '" + e.name + "' has " + std::to_string(e.points.size()) +
+                                  " point" + (e.points.size() == 1 ? "" : "s") + "; a circle needs at least 3");
       if (!c) fail_at(file, e.line, "the points of the circle '" + e.name + "' do not lie on a circle");
       set.circles.push_back({*c, e.line, e.name});
       continue;

@@ -138,6 +138,18 @@ TEST(SketchImport, ThesisSketchCsv) {
   EXPECT_NEAR(area_properties(r).area, 2000 - kPi * 16, 1e-3);
   EXPECT_THAT(error_of("X, Y\nNew_Line\n0, 0\n1, zero\n", "b.csv"), HasSubstr("b.csv:4:1: a sketch CSV line is 'x, y'"));
   EXPECT_THAT(error_of("X, Y\n0, 0\n", "b.csv"), HasSubstr("b.csv:2:1: coordinates before the first 'New <name>'"));
+  // A circle from three or four points on it (eight were needed; fewer said they were off a circle).
+  for (const char* points : {"14, 10\n10, 14\n6, 10\n10, 6\n", "14, 10\n10, 14\n6, 10\n"}) {
+    const Sketch few = read_sketch(std::string("X, Y\nNew_Circle\n") + points + "New_Line\n0, 0\n20, 0\n20, 20\n0, 20\n0, 0\n",
+                                   "c.csv", SketchFormat::kCsv);
+    ASSERT_EQ(few.circles.size(), 1u) << points;
+    EXPECT_NEAR(few.circles[0].circle.radius, 4, 1e-12);
+    EXPECT_NEAR((few.circles[0].circle.centre - Eigen::Vector2d(10, 10)).norm(), 0, 1e-12);
+  }
+  EXPECT_THAT(error_of("X, Y\nNew_Circle\n14, 10\n10, 14\n", "c.csv"),
+              HasSubstr("c.csv:2:1: the circle '_Circle' has 2 points; a circle needs at least 3"));
+  EXPECT_THAT(error_of("X, Y\nNew_Circle\n0, 0\n1, 0\n2, 0\n", "c.csv"),
+              HasSubstr("c.csv:2:1: the points of the circle '_Circle' do not lie on a circle"));
 }
 
 TEST(SketchImport, BadFilesAtTheirLine) {
