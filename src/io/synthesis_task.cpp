@@ -384,7 +384,12 @@ class TaskParser : yaml::Reader {
         fail(mark(*s), "unknown spacing '" + spacing + "' (use chebyshev or even)");
       task_.chebyshev = spacing == "chebyshev";
     }
-    if (const Entry* fr = top.find("frame")) task_.frame = non_negative(*fr, "the frame length", true);
+    if (const Entry* fr = top.find("frame")) {
+      task_.frame = non_negative(*fr, "the frame length", true);
+      // As coordinates are held to 1e100: the link lengths are squared and multiplied.
+      if (!(task_.frame >= 1e-100 && task_.frame <= 1e100))
+        fail(mark(*fr), "the frame length must be from 1e-100 to 1e100: use another length unit");
+    }
     // The function must be defined over the whole range, and not equal at its ends (the
     // output's range maps f(x_start)..f(x_end)).
     double y0 = 0.0, y1 = 0.0;

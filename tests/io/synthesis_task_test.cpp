@@ -467,6 +467,12 @@ input_range: [0, 1e308]
 output_range: [0, 60]
 )yaml";
   EXPECT_THAT(error_of(function), HasSubstr("task.yaml:4:14: `input_range` is beyond a million turns"));
+  // A frame of 1e308 gave "the coupler length squared comes out as -nan"; 1e-160 a design of
+  // other proportions, silently.
+  const std::string framed = replaced(function, "input_range: [0, 1e308]", "input_range: [0, 90]\nframe: 1e308");
+  EXPECT_THAT(error_of(framed), HasSubstr("task.yaml:5:8: the frame length must be from 1e-100 to 1e100"));
+  EXPECT_THAT(error_of(replaced(framed, "1e308", "1e-160")), HasSubstr("the frame length must be from 1e-100 to 1e100"));
+  EXPECT_EQ(error_of(replaced(framed, "1e308", "1e20")), "");
 }
 
 }  // namespace
