@@ -39,6 +39,18 @@ std::string_view trimmed(std::string_view s) {
   return s;
 }
 
+// A piece of the file quoted in a message: at most 40 characters, bytes that are not printable
+// ASCII as \xNN, so that a binary file's garbage does not go to the terminal as it is.
+std::string shown(std::string_view text) {
+  constexpr std::size_t kMost = 40;
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < kMost; ++i) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    out += byte >= 0x20 && byte < 0x7f ? std::string(1, text[i]) : fmt::format("\\x{:02x}", byte);
+  }
+  return text.size() > kMost ? out + "..." : out;
+}
+
 class Reader {
  public:
   Reader(const std::string& text, const std::string& file) : file_(file) {
@@ -62,7 +74,7 @@ class Reader {
       int value = 0;
       const auto [end, ec] = std::from_chars(code.data(), code.data() + code.size(), value);
       if (ec != std::errc() || end != code.data() + code.size()) {
-        fail(line, "a DXF group code (an integer) was expected here, not '" + std::string(code) +
+        fail(line, "a DXF group code (an integer) was expected here, not '" + shown(code) +
                        "': the group-code/value pairs are broken");
       }
       if (i + 1 >= lines_.size()) fail(line, "group code " + std::to_string(value) + " has no value after it");
@@ -76,7 +88,7 @@ class Reader {
     const std::string_view text = p.value;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-      fail(p.line + 1, "group " + std::to_string(p.code) + " needs a finite number, not '" + p.value + "'");
+      fail(p.line + 1, "group " + std::to_string(p.code) + " needs a finite number, not '" + shown(p.value) + "'");
     }
     return value;
   }

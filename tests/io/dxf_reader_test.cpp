@@ -112,6 +112,18 @@ std::string error_of(const std::string& text) {
   return "no error";
 }
 
+TEST(DxfReader, BinaryGarbageIsQuotedShortAndEscaped) {
+  // A file of random bytes: its first "group code" went into the message as it was, 200 bytes
+  // of binary to the terminal.
+  std::string garbage = "\xa8]";
+  for (int i = 0; i < 300; ++i) garbage += static_cast<char>((i * 37 + 11) % 256 == 10 ? 1 : (i * 37 + 11) % 256);
+  const std::string message = error_of(garbage + "\n0\n");
+  EXPECT_THAT(message, HasSubstr("bad.dxf:1:1: a DXF group code (an integer) was expected here, not '\\xa8]"));
+  EXPECT_THAT(message, HasSubstr("...': the group-code/value pairs are broken"));
+  EXPECT_LT(message.size(), 300u);
+  for (const char c : message) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << static_cast<int>(static_cast<unsigned char>(c));
+}
+
 // Entities drawn in their own coordinate system with the extrusion (0, 0, -1), as SolidWorks
 // writes them: OCS x is -x of the drawing, so each is drawn here at negated x and must come
 // back where the plain drawing has it, not mirrored.
