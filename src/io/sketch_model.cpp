@@ -266,6 +266,12 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) c = '_';
   }
   out += annotation_note(sketch.annotations);
+  // Circles and points on no link are left out, and the reader told so, not left to find it.
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    if (bodies_at[j] == 0)
+      out += fmt::format("# Left out: the {} at line {} ({}, {}) lies on no link.\n", joints[j].radius > 0 ? "circle" : "point",
+                         joints[j].line, tidy(joints[j].at.x()), tidy(joints[j].at.y()));
+  }
   out += fmt::format("name: \"{}\"\nunits: {{length: {}, angle: deg}}\npoints:\n", name, options.length_unit);
   for (std::size_t j = 0; j < joints.size(); ++j) {
     if (bodies_at[j] == 0) continue;  // a circle outside every outline

@@ -295,6 +295,12 @@ TEST(SketchImport, PinHolesThatMeetAreRefusedAtTheCirclesLine) {
   EXPECT_THAT(error(plate + circle(10, 4) + circle(90, 15)),
               HasSubstr("p.dxf:39:1: this pin hole (centre (90, 10), radius 15) meets the outline drawn at line 5"));
   EXPECT_EQ(error(plate + circle(10, 4) + circle(90, 4)), "no error");
+  // A circle on no plate is left out with a note (it was dropped without a word).
+  const std::string stray = model_from_sketch(
+      read_sketch("0\nSECTION\n2\nENTITIES\n" + plate + circle(10, 4) + circle(500, 3) + "0\nENDSEC\n0\nEOF\n", "p.dxf",
+                  SketchFormat::kDxf),
+      {"p.dxf", "mm", 1.0, 5.0, "steel"});
+  EXPECT_THAT(stray, HasSubstr("# Left out: the circle at line 39 (500, 10) lies on no link.\n"));
 }
 
 }  // namespace
