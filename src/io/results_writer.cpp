@@ -266,7 +266,14 @@ void write_stress_report(std::ostream& out, const std::string& format, const Ana
       b["body"] = names[i];
       for (std::size_t c = 0; c < t.columns.size(); ++c) {
         const double v = t.rows[i][c];
-        if (std::isfinite(v)) b[t.columns[c]] = v; else b[t.columns[c]] = nullptr;
+        // Counts are whole numbers in JSON ("step": 12, not 12.0).
+        const bool count = t.columns[c] == "step" || t.columns[c] == "nodes" || t.columns[c] == "elements";
+        if (!std::isfinite(v))
+          b[t.columns[c]] = nullptr;
+        else if (count && v == std::floor(v) && std::abs(v) < 9e15)
+          b[t.columns[c]] = static_cast<long long>(v);
+        else
+          b[t.columns[c]] = v;
       }
       bodies.push_back(b);
     }
