@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <optional>
 #include <unistd.h>
 
 #include <mutex>
@@ -35,6 +37,7 @@ struct TaskOption {
 
 struct SynthArgs {
   std::string kind, file, format = "table", output, export_dir, curves;
+  std::optional<double> timeout;
   std::vector<TaskOption> task_options{
       {"name", "--name", "the task's title (names the exported models)", {}},
       {"units", "--units", "e.g. '{length: mm, angle: deg}'", {}},
@@ -178,6 +181,7 @@ int run_synth(const SynthArgs& args) {
   synthesis::SynthesisRunOptions run;
   run.threads = args.threads;
   run.seed = args.seed;
+  if (args.timeout) run.control.token.set_time_budget(std::chrono::duration<double>(*args.timeout));
   run.control.on_progress = [&progress](const nbar::Progress& p) {
     progress.update(static_cast<int>(p.done), static_cast<int>(p.total), p.stage);
     return true;
@@ -232,6 +236,10 @@ Command add_synth_command(CLI::App& app) {
   synth->add_option("--top", args.top, "list (and export) at most N designs, best first; 0 for all (default 20)")
       ->check(nbar::cli::non_negative());
   synth->add_option("--threads", args.threads, "threads for path tracking (default: all)");
+  synth->add_option("--timeout", args.timeout,
+                    "give up after SECONDS, exit 5 (a nine-point task on a conic or with five points on a line can "
+                    "take minutes)")
+      ->check(nbar::cli::positive());
   synth->add_option("--seed", args.seed, "random seed of the homotopy and of path's random starts (default 1)");
   synth->add_option("--curves", args.curves,
                     "burmester, 4 poses: write the centre- and circle-point curves to FILE (.csv, .json or .svg)");

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -382,6 +383,26 @@ TEST(SynthCli, BadUsage) {
   const CliRun export_to_file = nbar("synth five-point " + task + " --export " + dir.file("not-a-dir", "x"));
   EXPECT_EQ(export_to_file.code, 2);
   EXPECT_THAT(export_to_file.err, HasSubstr("--export"));
+}
+
+}  // namespace
+
+namespace {
+
+TEST(SynthCli, ATimeoutStopsANinePointTaskOnAConic) {
+  // Nine points on an ellipse: the solver takes minutes (every design degenerates), and the
+  // command had no bound but Ctrl-C. --timeout gives up with exit 5.
+  TempDir dir;
+  const std::string task = dir.file("ellipse.yaml",
+                                    "task: nine-point\npoints:\n  - [2, 0]\n  - [1.5321, 0.6428]\n  - [0.3473, 0.9848]\n"
+                                    "  - [-1, 0.866]\n  - [-1.8794, 0.342]\n  - [-1.8794, -0.342]\n  - [-1, -0.866]\n"
+                                    "  - [0.3473, -0.9848]\n  - [1.5321, -0.6428]\n");
+  const auto start = std::chrono::steady_clock::now();
+  const CliRun run = nbar("synth nine-point " + task + " --timeout 0.5");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
+  EXPECT_EQ(run.code, 5);
+  EXPECT_THAT(run.err, HasSubstr("the time budget ran out"));
+  EXPECT_NE(nbar("synth nine-point " + task + " --timeout 0").code, 0);
 }
 
 }  // namespace
