@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 1 invalid model, 2 bad usage, 3 cannot assemble at the start,\n"
-      "            4 sweep stopped early (the rows solved so far are written).\n"
+      "            4 sweep stopped early (the rows solved so far are written), 5 stopped by synth --timeout.\n"
       "Limits: a sweep has at most 10000000 samples (--max-steps of every command that sweeps), model files at most\n"
       "        16 MB, names at most 256 characters, models at most 20000 moving points.\n"
       "Model files: see docs/model-format.md.");
