@@ -88,17 +88,6 @@ std::string annotation_note(const std::vector<std::string>& annotations) {
   return "# Left out of the sketch, as notes that draw no link: " + list + ".\n";
 }
 
-// The nearest a polygon's edges come to p.
-double distance_to_edges(const std::vector<Vector2d>& polygon, const Vector2d& p) {
-  double nearest = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vector2d edge = polygon[i] - polygon[j];
-    const double along = std::clamp((p - polygon[j]).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
-    nearest = std::min(nearest, (p - (polygon[j] + along * edge)).norm());
-  }
-  return nearest;
-}
-
 struct Body {
   std::size_t loop;
   std::string name;
@@ -235,10 +224,11 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
                                 j.at.x(), j.at.y(), hole->second, what, line),
                     {}, options.source_name, {j.line, 1});
       };
-      if (distance_to_edges(polygons[b.loop], j.at) <= hole->second)
+      const Circle disc{j.at, hole->second};
+      if (!circle_clear_of_edges(disc, polygons[b.loop]))
         refuse("meets the outline drawn", sketch.loops[b.loop].lines.front());
       for (std::size_t h : b.holes) {
-        if (inside(polygons[h], j.at) || distance_to_edges(polygons[h], j.at) <= hole->second)
+        if (inside(polygons[h], j.at) || !circle_clear_of_edges(disc, polygons[h]))
           refuse("meets the hole drawn", sketch.loops[h].lines.front());
       }
       for (auto other = b.pin_holes.begin(); other != hole; ++other) {

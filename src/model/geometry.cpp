@@ -334,14 +334,6 @@ bool strictly_inside(const Polygon& poly, const Vector2d& x) {
 }
 
 
-// The circle's closed disc comes no nearer than its radius to any edge.
-bool circle_clear_of_edges(const Circle& c, const Polygon& poly) {
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    if (distance_to_segment(c.centre, poly[i], poly[(i + 1) % poly.size()]) <= c.radius) return false;
-  }
-  return true;
-}
-
 // The first pair (i, j), j > i + 1, of edges of a closed polygon that are not neighbours and
 // meet, in the order (i, then j); {n, n} when none do. Edges are swept in the order of their
 // leftmost x, each tested only against the edges whose x range it overlaps.
@@ -480,6 +472,13 @@ std::string circle_name(std::size_t i, const Circle& c) {
 std::string polygon_name(std::size_t i) { return "polygon hole " + std::to_string(i); }
 
 }  // namespace
+
+bool circle_clear_of_edges(const Circle& c, const std::vector<Vector2d>& poly) {
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    if (distance_to_segment(c.centre, poly[i], poly[(i + 1) % poly.size()]) <= c.radius) return false;
+  }
+  return true;
+}
 
 AreaProperties area_properties(const Region& r) {
   if (r.outline.empty()) return {};

@@ -92,6 +92,10 @@ AreaProperties clipped_area_properties(const Region& r, const Eigen::Vector2d& p
 // Whether an edge of the closed polygon p and one of q share a point (crossing or touching).
 bool polygons_meet(const std::vector<Eigen::Vector2d>& p, const std::vector<Eigen::Vector2d>& q);
 
+// Whether the circle's closed disc comes no nearer than its radius to every edge of the closed
+// polygon.
+bool circle_clear_of_edges(const Circle& c, const std::vector<Eigen::Vector2d>& polygon);
+
 // How far x lies outside r's outline (straight_edged): 0 inside it or on it. Holes do not count:
 // a pin sits in its hole.
 double distance_outside_outline(const Region& r, const Eigen::Vector2d& x);
