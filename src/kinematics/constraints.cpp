@@ -2,6 +2,9 @@
 
 #include "nbar/kinematics/mechanism.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace nbar {
 
 namespace {
@@ -239,31 +242,42 @@ void for_each_group(const Mechanism& mech, Group&& group) {
   for (const RowGroup& g : mech.row_groups()) group(g.type, rows + g.first, rows + g.last);
 }
 
-void evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
-                        Eigen::VectorXd& phi) {
+double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
+                          Eigen::VectorXd& phi) {
   const auto& rows = mech.compiled_rows();
-  phi.resize(static_cast<Eigen::Index>(rows.size()));
+  if (phi.size() != static_cast<Eigen::Index>(rows.size())) phi.resize(static_cast<Eigen::Index>(rows.size()));
   double* out = phi.data();
   const Points r{q.data(), mech.fixed_coordinates().data()};
+  // The largest |row| found on the way (a second pass over the rows cost a tenth of a four-bar
+  // step); a NaN anywhere is kept aside and makes it infinite.
+  double largest = 0.0;
+  bool nan = false;
+  const auto put = [&](int row, double value) {
+    out[row] = value;
+    const double size = std::abs(value);
+    largest = size > largest ? size : largest;
+    nan |= std::isnan(value);
+  };
   for_each_group(mech, [&](ConstraintType type, const CompiledRow* first, const CompiledRow* last) {
     switch (type) {
       case ConstraintType::Distance:
         for (const CompiledRow* c = first; c != last; ++c) {
           const Xy u = r(c->at[1]) - r(c->at[0]);
-          out[c->row] = (dot(u, u) - c->a * c->a) * c->scale;
+          put(c->row, (dot(u, u) - c->a * c->a) * c->scale);
         }
         return;
       case ConstraintType::DriveAngle:
         for (const CompiledRow* c = first; c != last; ++c) {
           const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
           const Xy u = r(c->at[1]) - r(c->at[0]);
-          out[c->row] = (u.x * d.sin.value() - u.y * d.cos.value()) * c->scale;
+          put(c->row, (u.x * d.sin.value() - u.y * d.cos.value()) * c->scale);
         }
         return;
       default:
-        for (const CompiledRow* c = first; c != last; ++c) out[c->row] = residual(*c, r, driver_values(*c, drivers));
+        for (const CompiledRow* c = first; c != last; ++c) put(c->row, residual(*c, r, driver_values(*c, drivers)));
     }
   });
+  return nan ? std::numeric_limits<double>::infinity() : largest;
 }
 
 void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
@@ -321,7 +335,12 @@ void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coe
   for_each_group(mech, [&](ConstraintType type, const CompiledRow* first, const CompiledRow* last) {
     switch (type) {
       case ConstraintType::Distance:
-        // The first coefficient is linear in q_1 alone; the k-th, sum over j of u_j . u_(k-j).
+        // The first coefficient is linear in q_1 alone (no sum: 0 * scale, which is +0, every scale
+        // being positive); the k-th, sum over j of u_j . u_(k-j).
+        if (k == 1) {
+          for (const CompiledRow* c = first; c != last; ++c) out[c->row] = 0.0;
+          return;
+        }
         for (const CompiledRow* c = first; c != last; ++c) {
           const int from = c->at[0], to = c->at[1];
           double v = 0.0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "nbar/model/series.hpp"
 
@@ -70,8 +71,10 @@ bool PathHistory::continues_from(double parameter, const Eigen::MatrixXd& series
   if (!has_past_ || parameter != current_parameter_ || series.cols() < 2 || past_.cols() < series.cols()) return false;
   const Eigen::Index n = series.rows();
   if (current_q_.size() != n || current_rate_.size() != n) return false;
-  return std::equal(series.data(), series.data() + n, current_q_.data()) &&
-         std::equal(series.data() + n, series.data() + 2 * n, current_rate_.data());
+  // Compared as bits (what was copied is what must still be there), two columns at once.
+  const auto bytes = static_cast<std::size_t>(n) * sizeof(double);
+  return std::memcmp(series.data(), current_q_.data(), bytes) == 0 &&
+         std::memcmp(series.data() + n, current_rate_.data(), bytes) == 0;
 }
 
 // With the past point at -1, the current one at 0 and the target at r, the polynomial's
@@ -114,7 +117,7 @@ bool PathHistory::predict(double parameter, const Eigen::MatrixXd& series, doubl
     now[k] = weight_[k] * power;
     before[k] = weight_[terms + k] * power;
   }
-  q.resize(series.rows());
+  if (q.size() != series.rows()) q.resize(series.rows());
   switch (terms) {  // the common sizes unrolled (a sweep of order 2 or 3)
     case 3: weigh<3>(now, before, series, past_, q); break;
     case 4: weigh<4>(now, before, series, past_, q); break;

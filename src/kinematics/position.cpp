@@ -31,12 +31,21 @@ bool factorize_jacobian(const Mechanism& mech, State& state) {
 }
 
 double max_residual(const Mechanism& mech, State& state, int* worst_row) {
-  evaluate_residuals(mech, state.q, state.drivers, state.phi);
-  if (state.phi.size() == 0) return 0.0;
-  Eigen::Index row = 0;
-  const double r = state.phi.cwiseAbs().maxCoeff(&row);
-  if (worst_row) *worst_row = static_cast<int>(row);
-  return std::isfinite(r) ? r : std::numeric_limits<double>::infinity();
+  const double largest = evaluate_residuals(mech, state.q, state.drivers, state.phi);
+  if (worst_row && state.phi.size() > 0) {
+    // The first row of the largest size, or the first NaN.
+    const double* phi = state.phi.data();
+    Eigen::Index worst = 0;
+    for (Eigen::Index i = 0; i < state.phi.size(); ++i) {
+      if (std::isnan(phi[i])) {
+        worst = i;
+        break;
+      }
+      if (std::abs(phi[i]) > std::abs(phi[worst])) worst = i;
+    }
+    *worst_row = static_cast<int>(worst);
+  }
+  return largest;
 }
 
 NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterations, NewtonTrace* trace) {
@@ -101,8 +110,8 @@ NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterati
 void compute_series(const Mechanism& mech, State& state, const std::vector<DriverState>& drivers, int terms,
                     Eigen::MatrixXd& out) {
   const int n = mech.coordinate_count();
-  out.resize(n, terms);
-  out.col(0) = state.q;
+  if (out.rows() != n || out.cols() != terms) out.resize(n, terms);
+  std::copy_n(state.q.data(), n, out.data());
   for (int k = 1; k < terms; ++k) {
     // Phi_q q_k = -R_k, solved for -q_k and turned round (exactly) in place.
     evaluate_series_remainder(mech, out, k, drivers, state.rhs);

@@ -81,16 +81,19 @@ bool SparseLU::factorize(const double* values) {
     return true;
   }
   // A number that is not finite anywhere in the matrix makes it unusable, whether or not the
-  // elimination would carry it into a pivot.
-  for (std::size_t e = 0; e < entries_.size(); ++e)
-    if (!std::isfinite(values[e])) return fail();
+  // elimination would carry it into a pivot: the replay finds one as it reads the values in, and
+  // the analysis scans for one first.
   for (std::size_t i = 0; i < kept_.size(); ++i) {
-    if (!replay(kept_[i], values, true)) continue;
+    const Replay replayed = replay(kept_[i], values, true);
+    if (replayed == Replay::NotFinite) return fail();
+    if (replayed == Replay::Refused) continue;
     // Most recently used first: the next step most likely needs this one again.
     std::rotate(kept_.begin(), kept_.begin() + static_cast<std::ptrdiff_t>(i), kept_.begin() + static_cast<std::ptrdiff_t>(i) + 1);
     current_ = 0;
     return true;
   }
+  for (std::size_t e = 0; e < entries_.size(); ++e)
+    if (!std::isfinite(values[e])) return fail();
   Elimination chosen;
   if (!analyse(values, chosen)) return fail();
   if (static_cast<int>(kept_.size()) == kKeptEliminations) kept_.pop_back();
@@ -98,7 +101,7 @@ bool SparseLU::factorize(const double* values) {
   current_ = 0;
   // The replay of the elimination just chosen: the pivots are the largest of their columns, so
   // only a pivot that rounds to exactly zero can stop it.
-  return replay(kept_.front(), values, false) || fail();
+  return replay(kept_.front(), values, false) == Replay::Done || fail();
 }
 
 bool SparseLU::fail() {
@@ -296,13 +299,19 @@ void SparseLU::compile(const std::vector<std::vector<int>>& u_rows, const std::v
   e.permutation_sign = permutation_sign(e.pivot_row) * permutation_sign(column_order_);
 }
 
-bool SparseLU::replay(const Elimination& e, const double* values, bool check) {
+SparseLU::Replay SparseLU::replay(const Elimination& e, const double* values, bool check) {
   if (value_.size() != e.values) value_.resize(e.values);
   inverse_pivot_.resize(static_cast<std::size_t>(n_));
   double* v = value_.data();
   std::fill_n(v, e.values, 0.0);
   const int* entry_slot = e.entry_slot.data();
-  for (std::size_t i = 0; i < e.entry_slot.size(); ++i) v[entry_slot[i]] += values[i];
+  // probe is NaN when any value is infinite or NaN (0 times it is NaN), and 0 otherwise.
+  double probe = 0.0;
+  for (std::size_t i = 0; i < e.entry_slot.size(); ++i) {
+    v[entry_slot[i]] += values[i];
+    probe += 0.0 * values[i];
+  }
+  if (probe != 0.0) return Replay::NotFinite;
   const Update* update = e.update.data();
   const int* update_start = e.update_start.data();
   const int* l_start = e.l_start.data();
@@ -320,7 +329,7 @@ bool SparseLU::replay(const Elimination& e, const double* values, bool check) {
       if (!(size <= biggest) && !std::isnan(biggest)) biggest = size;  // a NaN stays
     }
     // Written so that a NaN fails it.
-    if (!(std::abs(pivot) >= threshold * biggest) || pivot == 0.0) return false;
+    if (!(std::abs(pivot) >= threshold * biggest) || pivot == 0.0) return Replay::Refused;
     const double inverse = 1.0 / pivot;
     inverse_pivot_[static_cast<std::size_t>(k)] = inverse;
     for (int i = l_start[k]; i < l_start[k + 1]; ++i) v[l_slot[i]] *= inverse;
@@ -330,7 +339,7 @@ bool SparseLU::replay(const Elimination& e, const double* values, bool check) {
   }
   det_sign_ = sign;
   pivot_ratio_ = largest > 0.0 ? smallest / largest : 0.0;
-  return true;
+  return Replay::Done;
 }
 
 // No factors to solve with (none yet, the last factorisation failed, or an empty system): x is
@@ -342,7 +351,7 @@ bool SparseLU::unfactorised(double* x) const {
 }
 
 void SparseLU::solve(const double* b, double* x) const {
-  if (unfactorised(x)) return;
+  if (current_ < 0 && unfactorised(x)) return;
   const Elimination& e = current();
   if (n_ <= kDenseSolveLimit) {
     const double* lu = value_.data();

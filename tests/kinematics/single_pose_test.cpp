@@ -125,5 +125,29 @@ TEST(PoseAt, RefusesValuesItCannotReach) {
   EXPECT_EQ(pose_error(mech, 360.0 * 999), "no error");
 }
 
+// The residual is the largest |row|, and a NaN in any row makes it infinite: a pose where one
+// constraint cannot be evaluated is never taken as solved. (Its rows are evaluated in an order of
+// their own: a NaN after the first row once went unseen.)
+TEST(MaxResidual, IsInfiniteWhenAnyRowIsNaN) {
+  const Mechanism mech(nbar_bench::four_bar_model());
+  State state(mech);
+  int worst = -1;
+  const double drawn = max_residual(mech, state, &worst);
+  ASSERT_TRUE(std::isfinite(drawn));
+  for (Eigen::Index i = 0; i < state.q.size(); ++i) {
+    State broken(mech);
+    broken.q[i] = std::nan("");
+    worst = -1;
+    EXPECT_EQ(max_residual(mech, broken, &worst), HUGE_VAL) << "coordinate " << i;
+    ASSERT_GE(worst, 0);
+    EXPECT_TRUE(std::isnan(broken.phi[worst])) << "coordinate " << i;
+  }
+  // Without a NaN: the largest |row|, and the first row of that size.
+  state.q[0] += 1e-3;
+  const double r = max_residual(mech, state, &worst);
+  EXPECT_EQ(r, state.phi.cwiseAbs().maxCoeff());
+  EXPECT_EQ(std::abs(state.phi[worst]), r);
+}
+
 }  // namespace
 }  // namespace nbar::ktest

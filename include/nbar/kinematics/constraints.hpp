@@ -68,8 +68,9 @@ void set_driver_state(DriverState& state, const Series& value, bool angular);
 
 class Mechanism;
 
-// Residuals of every row at q (length units).
-void evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q,
+// Residuals of every row at q (length units). Returns the largest |residual|, infinite when one
+// is NaN.
+double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q,
                         const std::vector<DriverState>& drivers, Eigen::VectorXd& phi);
 // Jacobian values in the order of Mechanism::jacobian_pattern() (entries may repeat a
 // (row, col) pair; they add up).

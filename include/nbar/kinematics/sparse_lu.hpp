@@ -82,7 +82,10 @@ class SparseLU {
   bool analyse(const double* values, Elimination& e);
   void compile(const std::vector<std::vector<int>>& u_rows, const std::vector<std::vector<int>>& l_rows,
                Elimination& e) const;
-  bool replay(const Elimination& e, const double* values, bool check);
+  // Done; Refused when a pivot fails the threshold (or is zero); NotFinite when a value is not a
+  // finite number (then no factors).
+  enum class Replay { Done, Refused, NotFinite };
+  Replay replay(const Elimination& e, const double* values, bool check);
   bool fail();  // the state of a failed factorisation; returns false
   bool unfactorised(double* x) const;
   const Elimination& current() const { return kept_[static_cast<std::size_t>(current_)]; }
