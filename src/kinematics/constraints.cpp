@@ -326,10 +326,16 @@ void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const st
   });
 }
 
-void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int k,
-                               const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs) {
+namespace {
+
+// evaluate_series_remainder for coefficient K known when compiled (the sums over j unroll), or
+// with K = 0 for `runtime_k`.
+template <int K>
+void remainder_of_order(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int runtime_k,
+                        const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs) {
+  const int k = K > 0 ? K : runtime_k;
   const auto& rows = mech.compiled_rows();
-  rhs.resize(static_cast<Eigen::Index>(rows.size()));
+  if (rhs.size() != static_cast<Eigen::Index>(rows.size())) rhs.resize(static_cast<Eigen::Index>(rows.size()));
   double* out = rhs.data();
   const Coefficients q{coefficients.data(), coefficients.rows(), mech.fixed_coordinates().data(), k};
   for_each_group(mech, [&](ConstraintType type, const CompiledRow* first, const CompiledRow* last) {
@@ -371,6 +377,18 @@ void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coe
         for (const CompiledRow* c = first; c != last; ++c) out[c->row] = remainder(*c, q, k, drivers);
     }
   });
+}
+
+}  // namespace
+
+void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int k,
+                               const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs) {
+  switch (k) {  // a sweep's velocities, accelerations and jerks
+    case 1: return remainder_of_order<1>(mech, coefficients, k, drivers, rhs);
+    case 2: return remainder_of_order<2>(mech, coefficients, k, drivers, rhs);
+    case 3: return remainder_of_order<3>(mech, coefficients, k, drivers, rhs);
+    default: return remainder_of_order<0>(mech, coefficients, k, drivers, rhs);
+  }
 }
 
 }  // namespace nbar

@@ -63,9 +63,42 @@ void grow(double& largest, double x) {
   if (!(size <= largest) && !std::isnan(largest)) largest = size;
 }
 
+// A step's work on the coordinates, for N of them known when compiled (track() takes a square
+// system of 2 to 8 coordinates so, and its loops over them unroll: a seventh fewer instructions a
+// four-bar step) or, with N = 0, as many as the vectors hold. The arithmetic is the same either way.
+template <int N>
+Eigen::Index coordinates(const Eigen::VectorXd& q) {
+  if constexpr (N > 0) {
+    return N;
+  } else {
+    return q.size();
+  }
+}
+
+template <int N>
+void copy_coordinates(const Eigen::VectorXd& from, Eigen::VectorXd& to) {
+  if constexpr (N > 0) {
+    if (to.size() != N) to.resize(N);
+    std::copy_n(from.data(), N, to.data());
+  } else {
+    to = from;
+  }
+}
+
+// x = J^-1 b with a solver's factors.
+template <int N>
+void solve_with(LinearSolver& solver, const double* b, double* x) {
+  if constexpr (N > 0) {
+    solver.solve_dense<N>(b, x);
+  } else {
+    solver.solve(b, x);
+  }
+}
+
+template <int N>
 double largest_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   double largest = 0.0;
-  for (Eigen::Index i = 0; i < a.size(); ++i) grow(largest, a[i] - b[i]);
+  for (Eigen::Index i = 0; i < coordinates<N>(a); ++i) grow(largest, a[i] - b[i]);
   return largest;
 }
 
@@ -84,14 +117,15 @@ double residual_target(double tol, double rcond) {
 // least once even when it already meets the tolerance, and on to a residual below it
 // (residual_target); a correction that no longer contracts ends it there if the tolerance is met,
 // with `short_of_target` set: the caller finishes with the point's own Jacobian (polish).
+template <int N>
 bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, const Eigen::VectorXd& q_pred,
              double& residual, bool& short_of_target) {
   const double tol = mech.tolerance();
   const double target = residual_target(tol, state.solver().reciprocal_condition());
-  const double motion = largest_difference(q_pred, q_old);
+  const double motion = largest_difference<N>(q_pred, q_old);
   const double allowed = std::max(kMaxCorrectionRatio * motion, 100.0 * tol);
   double previous = std::numeric_limits<double>::infinity();
-  const Eigen::Index n = state.q.size();
+  const Eigen::Index n = coordinates<N>(state.q);
   short_of_target = false;
   const auto stop_within_tolerance = [&](int it) {
     short_of_target = it > 0 && residual <= tol;
@@ -102,8 +136,8 @@ bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, 
     if (it > 0 && residual <= target) return true;
     if (it == kMaxCorrections) return stop_within_tolerance(it);
     // Phi_q dq = -Phi: solved for -dq, which is subtracted.
-    state.dq.resize(n);
-    state.solver().solve(state.phi.data(), state.dq.data());
+    if (state.dq.size() != n) state.dq.resize(n);
+    solve_with<N>(state.solver(), state.phi.data(), state.dq.data());
     double size = 0.0;
     for (Eigen::Index i = 0; i < n; ++i) grow(size, state.dq[i]);
     if (!std::isfinite(size) || size > 0.5 * previous) return stop_within_tolerance(it);
@@ -204,7 +238,7 @@ double series_from(const Mechanism& mech, State& state, const DriverPath& path, 
   state.q = shifted.col(0);
   double residual = 0.0;
   bool short_of_target = false;
-  if (!correct(mech, state, q_b, shifted.col(0), residual, short_of_target)) return HUGE_VAL;
+  if (!correct<0>(mech, state, q_b, shifted.col(0), residual, short_of_target)) return HUGE_VAL;
   const bool singular = !factorize_jacobian(mech, state, state.spare_solver()) ||
                         state.spare_solver().reciprocal_condition() < kSingularEndRcond;
   if (!singular) return HUGE_VAL;
@@ -240,8 +274,12 @@ bool coast_to_singular_end(const Mechanism& mech, State& state, const DriverPath
 
 }  // namespace
 
-TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, double p_end,
-                  const TrackOptions& options) {
+namespace {
+
+// track(), for N coordinates (0: any number).
+template <int N>
+TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& path, double p_end,
+                        const TrackOptions& options) {
   TrackReport report;
   const double span = p_end - state.parameter;
   const double h_min = std::abs(span) * options.min_step;
@@ -249,7 +287,7 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
   std::vector<Series>& values = state.driver_values;
   Eigen::VectorXd& q_old = state.q_accepted;
   Eigen::VectorXd& q_pred = state.q_predicted;
-  q_old = state.q;
+  copy_coordinates<N>(state.q, q_old);
   const double p_start = state.parameter;
   if (options.coast_terms > 0) state.q_track_start = state.q;
   int sign_old = state.solver().determinant_sign();
@@ -294,10 +332,10 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
     }
     path(state.parameter + h, options.terms, values);
     set_drivers(mech, state, values);
-    state.q = q_pred;
+    copy_coordinates<N>(q_pred, state.q);
     double trial_residual = 0.0;
     bool short_of_target = false;
-    const bool converged = correct(mech, state, q_old, q_pred, trial_residual, short_of_target);
+    const bool converged = correct<N>(mech, state, q_old, q_pred, trial_residual, short_of_target);
     bool ok = converged && factorize_jacobian(mech, state, state.spare_solver());
     // On a singular position the point's own Jacobian would amplify the correction instead: the
     // point stays as the tolerance left it (a sample there takes its series from beside it).
@@ -336,7 +374,7 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
       compute_series(mech, state, options.terms);
       state.history.mark_current(state.parameter, state.series);
       sign_old = state.solver().determinant_sign();
-      q_old = state.q;
+      copy_coordinates<N>(state.q, q_old);
       residual = trial_residual;
       residual_known = true;
       ++report.steps;
@@ -348,7 +386,7 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
       continue;
     }
     // Reject: back to the last accepted point, shorter step.
-    state.q = q_old;
+    copy_coordinates<N>(q_old, state.q);
     path(state.parameter, options.terms, values);
     set_drivers(mech, state, values);
     h *= onto_singular ? kOffSingularShrink : 0.5;
@@ -374,6 +412,22 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
   state.residual = residual_known ? residual : max_residual(mech, state);
   report.reached = true;
   return report;
+}
+
+}  // namespace
+
+TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, double p_end,
+                  const TrackOptions& options) {
+  if (state.solver().method() == LinearSolver::Method::LU) {
+    switch (mech.coordinate_count()) {  // points have two coordinates each
+      case 2: return track_sized<2>(mech, state, path, p_end, options);
+      case 4: return track_sized<4>(mech, state, path, p_end, options);
+      case 6: return track_sized<6>(mech, state, path, p_end, options);
+      case 8: return track_sized<8>(mech, state, path, p_end, options);
+      default: break;
+    }
+  }
+  return track_sized<0>(mech, state, path, p_end, options);
 }
 
 namespace {

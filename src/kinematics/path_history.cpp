@@ -29,11 +29,11 @@ double binomial(int n, int k) {
 }
 
 // q = sum over k of now[k] a_k + before[k] b_k, coordinate by coordinate, with Terms coefficients
-// (0: as many as a has).
-template <int Terms>
+// (0: as many as a has) of N coordinates (0: as many as a has).
+template <int Terms, int N>
 void weigh(const double* now, const double* before, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
            Eigen::VectorXd& q) {
-  const Eigen::Index n = a.rows();
+  const Eigen::Index n = N > 0 ? N : a.rows();
   const int terms = Terms > 0 ? Terms : static_cast<int>(a.cols());
   const double* x = a.data();
   const double* y = b.data();
@@ -42,6 +42,19 @@ void weigh(const double* now, const double* before, const Eigen::MatrixXd& a, co
 #pragma GCC unroll 4
     for (int k = 0; k < terms; ++k) sum += now[k] * x[k * n + i] + before[k] * y[k * n + i];
     q[i] = sum;
+  }
+}
+
+// The common sizes unrolled: a sweep of order 2 or 3, a mechanism of 1 to 4 moving points.
+template <int Terms>
+void weigh(const double* now, const double* before, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+           Eigen::VectorXd& q) {
+  switch (a.rows()) {
+    case 2: return weigh<Terms, 2>(now, before, a, b, q);
+    case 4: return weigh<Terms, 4>(now, before, a, b, q);
+    case 6: return weigh<Terms, 6>(now, before, a, b, q);
+    case 8: return weigh<Terms, 8>(now, before, a, b, q);
+    default: return weigh<Terms, 0>(now, before, a, b, q);
   }
 }
 

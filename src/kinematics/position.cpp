@@ -107,18 +107,43 @@ NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterati
   return report;
 }
 
-void compute_series(const Mechanism& mech, State& state, const std::vector<DriverState>& drivers, int terms,
-                    Eigen::MatrixXd& out) {
-  const int n = mech.coordinate_count();
+namespace {
+
+// compute_series for N coordinates known when compiled (a square system of 2 to 8; its loops
+// unroll), or with N = 0 any number.
+template <int N>
+void series_sized(const Mechanism& mech, State& state, const std::vector<DriverState>& drivers, int terms,
+                  Eigen::MatrixXd& out) {
+  const int n = N > 0 ? N : mech.coordinate_count();
   if (out.rows() != n || out.cols() != terms) out.resize(n, terms);
   std::copy_n(state.q.data(), n, out.data());
   for (int k = 1; k < terms; ++k) {
     // Phi_q q_k = -R_k, solved for -q_k and turned round (exactly) in place.
     evaluate_series_remainder(mech, out, k, drivers, state.rhs);
     double* column = out.col(k).data();
-    state.solver().solve(state.rhs.data(), column);
+    if constexpr (N > 0) {
+      state.solver().solve_dense<N>(state.rhs.data(), column);
+    } else {
+      state.solver().solve(state.rhs.data(), column);
+    }
     for (int i = 0; i < n; ++i) column[i] = -column[i];
   }
+}
+
+}  // namespace
+
+void compute_series(const Mechanism& mech, State& state, const std::vector<DriverState>& drivers, int terms,
+                    Eigen::MatrixXd& out) {
+  if (state.solver().method() == LinearSolver::Method::LU) {
+    switch (mech.coordinate_count()) {
+      case 2: return series_sized<2>(mech, state, drivers, terms, out);
+      case 4: return series_sized<4>(mech, state, drivers, terms, out);
+      case 6: return series_sized<6>(mech, state, drivers, terms, out);
+      case 8: return series_sized<8>(mech, state, drivers, terms, out);
+      default: break;
+    }
+  }
+  series_sized<0>(mech, state, drivers, terms, out);
 }
 
 void compute_series(const Mechanism& mech, State& state, int terms) {

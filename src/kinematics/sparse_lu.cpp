@@ -387,6 +387,20 @@ void SparseLU::solve(const double* b, double* x) const {
   for (int k = 0; k < n_; ++k) x[column_order_[static_cast<std::size_t>(k)]] = w[k];
 }
 
+template <int N>
+void SparseLU::solve_dense(const double* b, double* x) const {
+  if (current_ < 0 && unfactorised(x)) return;
+  dense_solve<N>(value_.data(), inverse_pivot_.data(), current().pivot_row.data(), column_order_.data(), b, x);
+}
+template void SparseLU::solve_dense<1>(const double*, double*) const;
+template void SparseLU::solve_dense<2>(const double*, double*) const;
+template void SparseLU::solve_dense<3>(const double*, double*) const;
+template void SparseLU::solve_dense<4>(const double*, double*) const;
+template void SparseLU::solve_dense<5>(const double*, double*) const;
+template void SparseLU::solve_dense<6>(const double*, double*) const;
+template void SparseLU::solve_dense<7>(const double*, double*) const;
+template void SparseLU::solve_dense<8>(const double*, double*) const;
+
 // A = P^T L U Q^T, so A^T y = c is U^T L^T (P y) = Q^T c: U^T forward, L^T backward.
 void SparseLU::solve_transposed(const double* b, double* x) const {
   if (unfactorised(x)) return;

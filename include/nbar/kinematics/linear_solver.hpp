@@ -33,6 +33,12 @@ class LinearSolver {
   // The same with b (row_count() values) and x (coordinate_count() values) as arrays, which may
   // be the same for square systems.
   void solve(const double* b, double* x);
+  // The same for a square system of N coordinates (N: coordinate_count(), at most
+  // SparseLU::kDenseSolveLimit), without the dispatch on the method and the size.
+  template <int N>
+  void solve_dense(const double* b, double* x) const {
+    lu_.solve_dense<N>(b, x);
+  }
   // Sign of det(J) for square systems: constant along a regular branch. 0 when not available.
   int determinant_sign() const { return det_sign_; }
   // Estimate of 1/cond(J).

@@ -44,6 +44,9 @@ class SparseLU {
   // x = A^-1 b, and x = A^-T b. b and x may be the same array.
   void solve(const double* b, double* x) const;
   void solve_transposed(const double* b, double* x) const;
+  // solve() for N = size() <= kDenseSolveLimit known when compiled (instantiated for 1 to 8).
+  template <int N>
+  void solve_dense(const double* b, double* x) const;
 
   int size() const { return n_; }
   // The sign of det(A) (0 when the last factorisation failed).
