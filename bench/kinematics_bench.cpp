@@ -45,6 +45,13 @@
 // BM_StraightFourBarStepOverClosedForm times the same algorithm written straight for this one
 //   four-bar (straight_four_bar.hpp): 0.96 to 1.31 in three runs where the engine's ratio was 1.93
 //   to 2.33. What stands between the engine and the target is its generality, not its algorithm.
+// 2026-11-28, 5fc1462 + 27d9e97 against af90d1f, 8 rounds: engine step / closed form median 1.88
+//   (1.73 to 2.44; 0.32 / 0.17 us) against 1.96 (1.88 to 2.76); on a busier stretch 2.61 against
+//   2.83. Callgrind, a four-bar step: 3 940 -> 3 360 instructions, every number bit for bit the same
+//   (the step sized when compiled for 2 to 8 coordinates). The straight step executes 1 083. The
+//   engine runs near 4 instructions a cycle: when another tenant shares its core it slows about
+//   twofold, where the latency-bound straight step and closed form slow far less, so the ratio on a
+//   busy host follows the instruction count (2x there needs about 2 900).
 //
 // Run: kinematics_bench --benchmark_min_time=0.2
 //      kinematics_bench --benchmark_filter='Over' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
