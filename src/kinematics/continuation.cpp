@@ -132,7 +132,7 @@ bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, 
     return short_of_target;
   };
   for (int it = 0; it <= kMaxCorrections; ++it) {
-    residual = max_residual(mech, state);
+    residual = evaluate_residuals(mech, state.q, state.drivers, state.phi);  // max_residual without the call
     if (it > 0 && residual <= target) return true;
     if (it == kMaxCorrections) return stop_within_tolerance(it);
     // Phi_q dq = -Phi: solved for -dq, which is subtracted.
