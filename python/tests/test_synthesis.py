@@ -61,12 +61,12 @@ def test_bad_tasks_are_located():
 
 def test_points_reach_the_task_reader_as_given():
     # A third coordinate used to be dropped without a word, a word to fail in float().
-    with pytest.raises(nbar.ModelError, match="a point needs two numbers, like \\[x, y\\], not a list of 3") as e:
+    with pytest.raises(nbar.ModelError, match="point 1 needs two numbers, like \\[x, y\\], not a list of 3") as e:
         nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=[(1, 2, 3)] + POINTS[1:], units="mm")
     assert e.value.file == "<five_point>" and e.value.line and e.value.column
     with pytest.raises(nbar.ModelError, match="pivot b needs two numbers"):
         nbar.synth.five_point(pivots=[(0, 0), (200, 0, 7)], points=POINTS, units="mm")
-    with pytest.raises(nbar.ModelError, match="a point must be a number, not 'a'"):
+    with pytest.raises(nbar.ModelError, match="point 1 must be a number, not 'a'"):
         nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=[("a", 1)] + POINTS[1:], units="mm")
     with pytest.raises(nbar.BadInputError, match="pivots .* must be two points, not 1 item"):
         nbar.synth.five_point(pivots=[(0, 0)], points=POINTS)

@@ -226,7 +226,8 @@ class TaskParser : yaml::Reader {
     if (items.size() != 5)
       fail(mark(points), std::string("a five-point task needs exactly 5 points for the coupler point, not ") +
                              std::to_string(items.size()));
-    for (const YAML::Node& item : items) task_.points.push_back(point(item, mark(item), "a point"));
+    for (const YAML::Node& item : items)
+      task_.points.push_back(point(item, mark(item), "point " + std::to_string(task_.points.size() + 1)));
     const double size = std::max({1.0, (a - b).norm()});
     for (std::size_t i = 0; i < items.size(); ++i)
       for (std::size_t j = 0; j < i; ++j)
@@ -246,7 +247,7 @@ class TaskParser : yaml::Reader {
                              std::to_string(items.size()));
     constexpr double kMaxCoordinate = 1e100;
     for (const YAML::Node& item : items) {
-      task_.points.push_back(point(item, mark(item), "a point"));
+      task_.points.push_back(point(item, mark(item), "point " + std::to_string(task_.points.size() + 1)));
       if (!(task_.points.back().cwiseAbs().maxCoeff() <= kMaxCoordinate))
         fail(item, "point " + std::to_string(task_.points.size()) + " has a coordinate beyond 1e100: use a larger length unit");
     }
@@ -341,7 +342,20 @@ class TaskParser : yaml::Reader {
     }
     if (curves) {
       const Fields f = mapping(*curves, keys_under(*curves, {"radius", "step"}), "{radius: 5, step: 0.01}");
-      if (const Entry* r = f.find("radius")) task_.curves.radius = non_negative(*r, "the radius", true);
+      if (const Entry* r = f.find("radius")) {
+        task_.curves.radius = non_negative(*r, "the radius", true);
+        const double widest = synthesis::largest_window_radius(task_.poses);
+        if (task_.curves.radius > widest) {
+          std::ostringstream s;
+          s.precision(6);
+          s << "the radius " << task_.curves.radius << " " << task_.units.length << " is more than 10^6 times the "
+            << "size of the poses (" << widest / synthesis::kMaxWindowRadius << " " << task_.units.length
+            << ", the RMS distance of their points from the centroid): no curve can be traced in so wide a "
+            << "window; give at most " << widest << " " << task_.units.length
+            << ", or leave `radius` out for 1.5 times the farthest pose or pole";
+          fail(mark(*r), s.str());
+        }
+      }
       if (const Entry* s = f.find("step")) task_.curves.step = non_negative(*s, "the step", true);
     }
     if (samples) task_.samples = whole(*samples, "`samples`", 2, 200);
@@ -428,7 +442,7 @@ class TaskParser : yaml::Reader {
       task_.where = mark(*points);
       const std::vector<YAML::Node> items = list(*points, "[[x, y], ...]");
       for (const YAML::Node& item : items) {
-        task_.points.push_back(point(item, mark(item), "a point"));
+        task_.points.push_back(point(item, mark(item), "point " + std::to_string(task_.points.size() + 1)));
         marks.push_back(mark(item));
       }
     } else {

@@ -675,6 +675,10 @@ FourBarDesign three_position_design(const std::array<BodyPose, 3>& poses, PivotC
   return design_from_pairs(in, out, poses[0].point);
 }
 
+double largest_window_radius(std::span<const BodyPose> poses) {
+  return kMaxWindowRadius * LocalFrame(poses).scale;
+}
+
 BurmesterCurves four_position_curves(const std::array<BodyPose, 4>& poses, const CurveOptions& options) {
   check_poses(poses);
   if (!std::isfinite(options.radius) || options.radius < 0) fail("the window radius must be finite and not negative");
@@ -683,6 +687,9 @@ BurmesterCurves four_position_curves(const std::array<BodyPose, 4>& poses, const
   const std::vector<Displacement> disp = displacements(frame);
   check_motion(disp);
 
+  if (options.radius > kMaxWindowRadius * frame.scale)
+    fail("the window radius ", options.radius, " is more than 10^6 times the size of the poses (", frame.scale,
+         ", the RMS distance of the reference points from their centroid): the curves cannot be traced in it");
   const double radius = options.radius > 0 ? options.radius / frame.scale : default_radius(frame);
   const double step = options.step > 0 ? options.step / frame.scale : radius / 300;
   if (step > radius / 4) fail("the sampling step must be below a quarter of the window radius");

@@ -206,6 +206,13 @@ Outcome burmester(const SynthesisTask& task, const SynthesisRunOptions& run) {
     out.curves = curves;
     const auto dyads = spread_dyads(curves, task.samples);
     out.method = fmt::format("four positions: {} dyads along the centre-point curve, every ordered pair", dyads.size());
+    if (dyads.empty())
+      out.notes.push_back(fmt::format(
+          "no part of the centre-point curve was traced within the window (radius {:.6g} {} about ({:.6g}, {:.6g})){}",
+          curves.window_radius, task.units.length, curves.window_centre.x(), curves.window_centre.y(),
+          task.curves.radius > 0 ? "; the curve passes through the poles of the poses: leave `curves: {radius}` out "
+                                   "for a window that holds them"
+                                 : ""));
     for (std::size_t i = 0; i < dyads.size(); ++i)
       for (std::size_t j = 0; j < dyads.size(); ++j)
         if (i != j) add_pair(dyads[i], dyads[j]);

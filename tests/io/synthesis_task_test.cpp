@@ -75,7 +75,7 @@ TEST(SynthesisTask, NinePointMistakes) {
   for (int i = 0; i < 9; ++i) line += "  - [" + std::to_string(i) + ", " + std::to_string(2 * i + 1) + "]\n";
   EXPECT_EQ(error_of(line), "task.yaml:3:3: the nine points lie on one straight line, which is no four-bar's coupler "
                             "curve: move some off the line");
-  EXPECT_EQ(error_of(eight + "  - 3\n"), "task.yaml:11:5: a point needs two numbers, like [x, y], not '3'");
+  EXPECT_EQ(error_of(eight + "  - 3\n"), "task.yaml:11:5: point 9 needs two numbers, like [x, y], not '3'");
   // On one circle (3-4-5 triangles' corners on the circle of radius 5 about (1, 2)).
   const std::string circle = head + "  - [6, 2]\n  - [5, 5]\n  - [4, 6]\n  - [1, 7]\n  - [-2, 6]\n  - [-3, 5]\n"
                                     "  - [-4, 2]\n  - [-3, -1]\n  - [1, -3]\n";
@@ -210,11 +210,11 @@ TEST(SynthesisTask, FivePointErrors) {
   EXPECT_EQ(error_of(replaced(kFivePoint, "[1.2, 0.6]", "[0.5, 1.2]")),
             "task.yaml:7:5: points 2 and 4 coincide: the five points must be distinct");
   EXPECT_EQ(error_of(replaced(kFivePoint, "[1, 1.1]", "[1, abc]")),
-            "task.yaml:6:9: a point must be a number, not 'abc'");
+            "task.yaml:6:9: point 3 must be a number, not 'abc'");
   EXPECT_EQ(error_of(replaced(kFivePoint, "[1, 1.1]", "[1, .nan]")),
-            "task.yaml:6:9: a point must be a finite number, not '.nan'");
+            "task.yaml:6:9: point 3 must be a finite number, not '.nan'");
   EXPECT_EQ(error_of(replaced(kFivePoint, "[1, 1.1]", "[1]")),
-            "task.yaml:6:5: a point needs two numbers, like [x, y], not a list of 1");
+            "task.yaml:6:5: point 3 needs two numbers, like [x, y], not a list of 1");
   EXPECT_EQ(error_of(replaced(kFivePoint, "{a: [0, 0], ", "{")), "task.yaml:2:9: `pivots` needs `a`");
   EXPECT_EQ(error_of(replaced(kFivePoint, "pivots: {a: [0, 0], b: [1, 0]}\n", "")),
             "task.yaml:1:1: a five-point task needs `pivots`");
@@ -252,6 +252,12 @@ TEST(SynthesisTask, BurmesterErrors) {
   const std::string four = replaced(five, "  - {point: [2, 4], angle: 120}\n", "");
   EXPECT_EQ(error_of(four + "samples: 1\n"), "task.yaml:7:10: `samples` must be a whole number from 2 to 200");
   EXPECT_EQ(error_of(four + "curves: {radius: -1}\n"), "task.yaml:7:18: the radius must be positive");
+  // Poses 1.65831 m (RMS) from their centroid: a radius of 1e300 m leaves no curve to trace.
+  EXPECT_EQ(error_of(four + "curves: {radius: 1e300}\n"),
+            "task.yaml:7:18: the radius 1e+300 m is more than 10^6 times the size of the poses (1.65831 m, the RMS "
+            "distance of their points from the centroid): no curve can be traced in so wide a window; give at most "
+            "1.65831e+06 m, or leave `radius` out for 1.5 times the farthest pose or pole");
+  EXPECT_EQ(error_of(four + "curves: {radius: 1.6e6}\n"), "");
 }
 
 const std::string kFunction = R"yaml(task: function
@@ -367,7 +373,7 @@ TEST(SynthesisTask, PathErrors) {
   for (int k = 0; k < 12; ++k) line += "  - [" + std::to_string(k) + ", " + std::to_string(3 * k - 1) + "]\n";
   EXPECT_EQ(error_of(line), "task.yaml:3:3: the target points lie on one straight line: a path task fits a "
                             "four-bar's coupler curve to points spread over a curve");
-  EXPECT_EQ(error_of(replaced(kPath, "[0, 20]", "[0, x]")), "task.yaml:7:9: a point must be a number, not 'x'");
+  EXPECT_EQ(error_of(replaced(kPath, "[0, 20]", "[0, x]")), "task.yaml:7:9: point 4 must be a number, not 'x'");
   EXPECT_EQ(error_of(replaced(kPath, "units:", "curve: c.csv\nunits:")),
             "task.yaml:2:1: give the targets as `points` or as a `curve` file, not both");
   EXPECT_EQ(error_of("task: path\n"),

@@ -289,6 +289,11 @@ TEST(BurmesterFourPositions, DegenerateMotionsAreRefused) {
   bad.step = 0;
   bad.radius = std::numeric_limits<double>::quiet_NaN();
   expect_error(poses, bad, "radius");
+  // So wide a window that the curves' equation overflows: nothing would be traced.
+  bad.radius = 1e300;
+  expect_error(poses, bad, "the window radius 1e+300 is more than 10^6 times the size of the poses");
+  bad.radius = 0.99 * largest_window_radius(poses);
+  EXPECT_NO_THROW(four_position_curves(poses, bad));
   auto same = poses;
   same[3] = same[1];
   expect_error(same, {}, "positions 2 and 4 coincide");

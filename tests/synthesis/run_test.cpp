@@ -119,5 +119,20 @@ TEST(RunSynthesis, TaskDataTheSolverRejectsIsAnInvalidModelAtTheTask) {
   }
 }
 
+// A window the centre-point curve does not cross yields no dyads, and a note says why rather
+// than an unexplained "0 solutions".
+TEST(RunSynthesis, FourPosesWithNoCurveInTheWindowSayWhy) {
+  SynthesisTask task = io::load_synthesis_task(std::string(NBAR_EXAMPLES_DIR) +
+                                               "/synthesis/burmester-four-positions.yaml");
+  task.curves.radius = 1;  // mm, about the poses' centroid, where the curve does not pass
+  const SynthesisOutcome outcome = run_synthesis(task);
+  EXPECT_TRUE(outcome.rows.empty());
+  ASSERT_EQ(outcome.notes.size(), 1u);
+  EXPECT_EQ(outcome.notes[0].rfind("no part of the centre-point curve was traced within the window (radius 1 mm", 0),
+            0u)
+      << outcome.notes[0];
+  EXPECT_NE(outcome.notes[0].find("leave `curves: {radius}` out"), std::string::npos) << outcome.notes[0];
+}
+
 }  // namespace
 }  // namespace nbar::synthesis

@@ -67,6 +67,13 @@ struct CurveOptions {
   double step = 0;    // distance between samples; 0: radius / 300
 };
 
+// The widest window four_position_curves accepts: 10^6 times the poses' size (the RMS
+// distance of their reference points from the centroid; 1 when the points coincide). A wider
+// window spaces the samples too far apart to follow the curves near the poses, and far enough
+// out the curves' equation overflows, so that nothing at all is traced.
+inline constexpr double kMaxWindowRadius = 1e6;
+double largest_window_radius(std::span<const BodyPose> poses);
+
 struct BurmesterCurves {
   // Polylines, each sample a dyad valid for all four positions. centre_curve is traced along
   // the centre points (samples evenly spaced in `centre`), circle_curve along the circle
