@@ -107,31 +107,45 @@ class OptionTask {
     for (const TaskOption& o : args.task_options) {
       if (o.value.empty()) continue;
       std::string value = o.value;
+      // Where the option's own text starts on its line (1-based), or 0 when it was quoted
+      // (its characters shift where it holds quotes or backslashes).
+      int first = static_cast<int>(std::string(o.key).size()) + 3;
       // Text that is not UTF-8 is left as it is: the task reader reports it at this option's line.
       if ((std::string(o.key) == "function" || std::string(o.key) == "name") && !io::yaml::first_invalid_utf8(value)) {
         value = nlohmann::json(value).dump();  // a quoted YAML string
+        first = 0;
       } else if (value.find(',') != std::string::npos && value.front() != '[' && value.front() != '{') {
         value = "[" + value + "]";  // 1,2 for [1, 2]
+        ++first;
       }
-      lines_.push_back(&o);
+      lines_.push_back({&o, first});
       text_ += std::string(o.key) + ": " + value + "\n";
     }
   }
   bool empty() const { return lines_.empty(); }
   // --curve-csv names the user's own file, read from the current directory.
   SynthesisTask parse() const { return io::parse_synthesis_task(text_, kFile, io::CurveFiles::read); }
-  // "--points: message", or the message when it concerns no single option.
+  // "--points: message", "--points at character 9: message" when the problem is inside the
+  // option's text (as a file's line:column), or the message when it concerns no single option.
   std::string explain(const Error& e) const {
     const int line = e.mark().line;
     if (e.file() != kFile) return e.what();
     if (line < 2 || line - 2 >= static_cast<int>(lines_.size())) return "task options: " + e.message();
-    return std::string(lines_[line - 2]->flag) + ": " + e.message();
+    const Line& l = lines_[line - 2];
+    const int character = l.first > 0 ? e.mark().column - l.first + 1 : 0;
+    if (character > 1 && character <= static_cast<int>(l.option->value.size()))
+      return std::string(l.option->flag) + " at character " + std::to_string(character) + ": " + e.message();
+    return std::string(l.option->flag) + ": " + e.message();
   }
 
  private:
   static constexpr const char* kFile = "<options>";
+  struct Line {
+    const TaskOption* option;
+    int first;  // the column of the option's first character, 0 when unknown
+  };
   std::string text_;
-  std::vector<const TaskOption*> lines_;
+  std::vector<Line> lines_;
 };
 
 // An option's value becomes one line of the task text: a line break (or another control

@@ -356,6 +356,23 @@ TEST(SynthCli, TaskOptionsInsteadOfAFile) {
   EXPECT_THAT(both.err, HasSubstr("give a task file or task options"));
 }
 
+// A task option is read as YAML like a task file, and its errors are located like a file's:
+// at the character of the option's text (a file's line:column), not only at the option.
+TEST(SynthCli, MalformedYamlInAnOptionSaysWhere) {
+  const CliRun unclosed = nbar("synth path --points '[[0, 1], [1, 2], [2, 3'");
+  EXPECT_EQ(unclosed.code, 2);
+  EXPECT_EQ(unclosed.err,
+            "error: --points at character 18: invalid YAML: this '[' is never closed by a ']' (end of sequence flow "
+            "not found)\n");
+  const CliRun word = nbar("synth five-point --pivots '{a: [0, 0], b: [1, 0]}' --points '[[0, 1], [1, abc], [2, 1.5], [3, 1], [4, 0.5]]'");
+  EXPECT_EQ(word.code, 2);
+  EXPECT_EQ(word.err, "error: --points at character 14: point 2 must be a number, not 'abc'\n");
+  // 1,2 is read as [1, 2]: the character is still the option's own.
+  const CliRun range = nbar("synth function --function 'log10(x)' --x 1,abc --input-range 90,150 --output-range 60,120");
+  EXPECT_EQ(range.code, 2);
+  EXPECT_THAT(range.err, StartsWith("error: --x at character 3: "));
+}
+
 // Issue 16, item 15: an option's value becomes one line of the task; a line break in it must
 // not add a key of its own (here a second `points`, which would have replaced the first).
 TEST(SynthCli, AnOptionWithALineBreakAddsNoKey) {
