@@ -254,6 +254,16 @@ Sketch finish_sketch(StrokeSet set, const std::string& file, int last_line, cons
   }
   const double size = set.strokes.empty() ? 0.0 : (hi - lo).norm();
   if (!std::isfinite(size)) fail_at(file, last_line, "the drawing's coordinates are too large");
+  // Below this the drawing's points merge in the arithmetic (cubes of its lengths underflow,
+  // tolerances relative to it vanish): say so, not that some outline has 1 vertex or no extent.
+  constexpr double kSmallestDrawing = 1e-100;
+  // hypot, not norm(): the squares of so small an extent underflow to 0.
+  const double extent = set.strokes.empty() ? 0.0 : std::hypot(hi.x() - lo.x(), hi.y() - lo.y());
+  if (extent > 0 && extent < kSmallestDrawing)
+    fail_at(file, set.strokes.front().line,
+            fmt::format("the drawing is too small to compute with: it spans {:.3g} (the diagonal of its bounding "
+                        "box, in the drawing's units), below {:.0e}, where its points merge; scale it up",
+                        extent, kSmallestDrawing));
   Sketch sketch;
   sketch.circles = std::move(set.circles);
   sketch.points = std::move(set.points);

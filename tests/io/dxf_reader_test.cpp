@@ -309,6 +309,19 @@ TEST(DxfReader, ABowTiePolylineCrossesItselfAtAPoint) {
               HasSubstr("bad.dxf:5:1: the outline crosses itself at (50, 20), within the entity here"));
 }
 
+// A drawing far below the precision of the arithmetic: its points would merge into an outline
+// of "1 vertex"; the message says that the drawing is too small, and how small.
+TEST(DxfReader, ADrawingTooSmallToComputeWithSaysSo) {
+  EXPECT_THAT(error_of(entities(dxf({{0, "LWPOLYLINE"}, {90, "4"}, {70, "1"}, {10, "0"}, {20, "0"}, {10, "3e-200"},
+                                     {20, "0"}, {10, "3e-200"}, {20, "4e-200"}, {10, "0"}, {20, "4e-200"}}))),
+              HasSubstr("bad.dxf:5:1: the drawing is too small to compute with: it spans 5e-200 (the diagonal of its "
+                        "bounding box, in the drawing's units), below 1e-100, where its points merge; scale it up"));
+  // The same plate 1e-90 the size is still read.
+  EXPECT_EQ(error_of(entities(dxf({{0, "LWPOLYLINE"}, {90, "4"}, {70, "1"}, {10, "0"}, {20, "0"}, {10, "3e-90"},
+                                   {20, "0"}, {10, "3e-90"}, {20, "4e-90"}, {10, "0"}, {20, "4e-90"}}))),
+            "no error");
+}
+
 class TempDir {
  public:
   TempDir() : dir_(std::filesystem::temp_directory_path() / ("nbar_dxf_" + std::to_string(::getpid()))) {
