@@ -68,11 +68,7 @@ struct LocalFrame {
   explicit LocalFrame(std::span<const BodyPose> poses) {
     for (const BodyPose& p : poses) origin += p.point;
     origin /= static_cast<double>(poses.size());
-    double sum = 0;
-    for (const BodyPose& p : poses) sum += (p.point - origin).squaredNorm();
-    const double rms = std::sqrt(sum / static_cast<double>(poses.size()));
-    // Reference points all at one place: any unit will do, the motion is a rotation there.
-    if (rms > 1e-14 * std::max(1.0, origin.norm())) scale = rms;
+    scale = pose_scale(poses);
     for (const BodyPose& p : poses) {
       points.push_back(to_local(p.point));
       angles.push_back(p.angle);
@@ -673,10 +669,6 @@ FourBarDesign three_position_design(const std::array<BodyPose, 3>& poses, PivotC
   if ((in.centre - in.circle).norm() <= 1e-12 * size) fail("the input link has zero length");
   if ((out.centre - out.circle).norm() <= 1e-12 * size) fail("the output link has zero length");
   return design_from_pairs(in, out, poses[0].point);
-}
-
-double largest_window_radius(std::span<const BodyPose> poses) {
-  return kMaxWindowRadius * LocalFrame(poses).scale;
 }
 
 BurmesterCurves four_position_curves(const std::array<BodyPose, 4>& poses, const CurveOptions& options) {

@@ -73,6 +73,9 @@ struct CurveOptions {
 // out the curves' equation overflows, so that nothing at all is traced.
 inline constexpr double kMaxWindowRadius = 1e6;
 double largest_window_radius(std::span<const BodyPose> poses);
+// The poses' size: the RMS distance of their reference points from their centroid (1 when the
+// points coincide), the unit of length the curves are traced in.
+double pose_scale(std::span<const BodyPose> poses);
 
 struct BurmesterCurves {
   // Polylines, each sample a dyad valid for all four positions. centre_curve is traced along
