@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "nbar/kinematics/loop_closure.hpp"
+#include "nbar/kinematics/sized.hpp"
 
 namespace nbar {
 
@@ -63,9 +64,8 @@ void grow(double& largest, double x) {
   if (!(size <= largest) && !std::isnan(largest)) largest = size;
 }
 
-// A step's work on the coordinates, for N of them known when compiled (track() takes a square
-// system of 2 to 8 coordinates so, and its loops over them unroll: a seventh fewer instructions a
-// four-bar step) or, with N = 0, as many as the vectors hold. The arithmetic is the same either way.
+// A step's work on the coordinates, for N of them known when compiled (nbar/kinematics/sized.hpp:
+// a seventh fewer instructions a four-bar step) or, with N = 0, as many as the vectors hold.
 template <int N>
 Eigen::Index coordinates(const Eigen::VectorXd& q) {
   if constexpr (N > 0) {
@@ -418,16 +418,11 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
 
 TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, double p_end,
                   const TrackOptions& options) {
-  if (state.solver().method() == LinearSolver::Method::LU) {
-    switch (mech.coordinate_count()) {  // points have two coordinates each
-      case 2: return track_sized<2>(mech, state, path, p_end, options);
-      case 4: return track_sized<4>(mech, state, path, p_end, options);
-      case 6: return track_sized<6>(mech, state, path, p_end, options);
-      case 8: return track_sized<8>(mech, state, path, p_end, options);
-      default: break;
-    }
-  }
-  return track_sized<0>(mech, state, path, p_end, options);
+  // Sized only for the dense LU's solves (least squares reads its size at run time).
+  const bool lu = state.solver().method() == LinearSolver::Method::LU;
+  return with_coordinate_count(lu ? mech.coordinate_count() : 0, [&](auto n) {
+    return track_sized<decltype(n)::value>(mech, state, path, p_end, options);
+  });
 }
 
 namespace {

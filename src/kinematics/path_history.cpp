@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "nbar/kinematics/sized.hpp"
 #include "nbar/model/series.hpp"
 
 namespace nbar {
@@ -45,17 +46,12 @@ void weigh(const double* now, const double* before, const Eigen::MatrixXd& a, co
   }
 }
 
-// The common sizes unrolled: a sweep of order 2 or 3, a mechanism of 1 to 4 moving points.
+// The common sizes unrolled: a sweep of order 2 or 3, the coordinates a step is compiled for.
 template <int Terms>
 void weigh(const double* now, const double* before, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
            Eigen::VectorXd& q) {
-  switch (a.rows()) {
-    case 2: return weigh<Terms, 2>(now, before, a, b, q);
-    case 4: return weigh<Terms, 4>(now, before, a, b, q);
-    case 6: return weigh<Terms, 6>(now, before, a, b, q);
-    case 8: return weigh<Terms, 8>(now, before, a, b, q);
-    default: return weigh<Terms, 0>(now, before, a, b, q);
-  }
+  with_coordinate_count(static_cast<int>(a.rows()),
+                        [&](auto n) { weigh<Terms, decltype(n)::value>(now, before, a, b, q); });
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "nbar/kinematics/position.hpp"
 
+#include "nbar/kinematics/sized.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -109,8 +111,8 @@ NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterati
 
 namespace {
 
-// compute_series for N coordinates known when compiled (a square system of 2 to 8; its loops
-// unroll), or with N = 0 any number.
+// compute_series for N coordinates known when compiled (nbar/kinematics/sized.hpp), or with
+// N = 0 any number.
 template <int N>
 void series_sized(const Mechanism& mech, State& state, const std::vector<DriverState>& drivers, int terms,
                   Eigen::MatrixXd& out) {
@@ -134,16 +136,9 @@ void series_sized(const Mechanism& mech, State& state, const std::vector<DriverS
 
 void compute_series(const Mechanism& mech, State& state, const std::vector<DriverState>& drivers, int terms,
                     Eigen::MatrixXd& out) {
-  if (state.solver().method() == LinearSolver::Method::LU) {
-    switch (mech.coordinate_count()) {
-      case 2: return series_sized<2>(mech, state, drivers, terms, out);
-      case 4: return series_sized<4>(mech, state, drivers, terms, out);
-      case 6: return series_sized<6>(mech, state, drivers, terms, out);
-      case 8: return series_sized<8>(mech, state, drivers, terms, out);
-      default: break;
-    }
-  }
-  series_sized<0>(mech, state, drivers, terms, out);
+  const bool lu = state.solver().method() == LinearSolver::Method::LU;
+  with_coordinate_count(lu ? mech.coordinate_count() : 0,
+                        [&](auto n) { series_sized<decltype(n)::value>(mech, state, drivers, terms, out); });
 }
 
 void compute_series(const Mechanism& mech, State& state, int terms) {

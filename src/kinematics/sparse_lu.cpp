@@ -350,26 +350,34 @@ bool SparseLU::unfactorised(double* x) const {
   return true;
 }
 
-void SparseLU::solve(const double* b, double* x) const {
+template <int N>
+void SparseLU::solve_dense(const double* b, double* x) const {
   if (current_ < 0 && unfactorised(x)) return;
-  const Elimination& e = current();
-  if (n_ <= kDenseSolveLimit) {
-    const double* lu = value_.data();
-    const double* d = inverse_pivot_.data();
-    const int* p = e.pivot_row.data();
-    const int* q = column_order_.data();
-    switch (n_) {
-      case 1: return dense_solve<1>(lu, d, p, q, b, x);
-      case 2: return dense_solve<2>(lu, d, p, q, b, x);
-      case 3: return dense_solve<3>(lu, d, p, q, b, x);
-      case 4: return dense_solve<4>(lu, d, p, q, b, x);
-      case 5: return dense_solve<5>(lu, d, p, q, b, x);
-      case 6: return dense_solve<6>(lu, d, p, q, b, x);
-      case 7: return dense_solve<7>(lu, d, p, q, b, x);
-      case 8: return dense_solve<8>(lu, d, p, q, b, x);
-      default: break;
-    }
+  dense_solve<N>(value_.data(), inverse_pivot_.data(), current().pivot_row.data(), column_order_.data(), b, x);
+}
+template void SparseLU::solve_dense<1>(const double*, double*) const;
+template void SparseLU::solve_dense<2>(const double*, double*) const;
+template void SparseLU::solve_dense<3>(const double*, double*) const;
+template void SparseLU::solve_dense<4>(const double*, double*) const;
+template void SparseLU::solve_dense<5>(const double*, double*) const;
+template void SparseLU::solve_dense<6>(const double*, double*) const;
+template void SparseLU::solve_dense<7>(const double*, double*) const;
+template void SparseLU::solve_dense<8>(const double*, double*) const;
+
+void SparseLU::solve(const double* b, double* x) const {
+  switch (n_) {  // the dense factors' sizes
+    case 1: return solve_dense<1>(b, x);
+    case 2: return solve_dense<2>(b, x);
+    case 3: return solve_dense<3>(b, x);
+    case 4: return solve_dense<4>(b, x);
+    case 5: return solve_dense<5>(b, x);
+    case 6: return solve_dense<6>(b, x);
+    case 7: return solve_dense<7>(b, x);
+    case 8: return solve_dense<8>(b, x);
+    default: break;
   }
+  if (unfactorised(x)) return;
+  const Elimination& e = current();
   double* w = work_.data();
   const double* v = value_.data();
   for (int k = 0; k < n_; ++k) w[k] = b[e.pivot_row[static_cast<std::size_t>(k)]];
@@ -386,20 +394,6 @@ void SparseLU::solve(const double* b, double* x) const {
   }
   for (int k = 0; k < n_; ++k) x[column_order_[static_cast<std::size_t>(k)]] = w[k];
 }
-
-template <int N>
-void SparseLU::solve_dense(const double* b, double* x) const {
-  if (current_ < 0 && unfactorised(x)) return;
-  dense_solve<N>(value_.data(), inverse_pivot_.data(), current().pivot_row.data(), column_order_.data(), b, x);
-}
-template void SparseLU::solve_dense<1>(const double*, double*) const;
-template void SparseLU::solve_dense<2>(const double*, double*) const;
-template void SparseLU::solve_dense<3>(const double*, double*) const;
-template void SparseLU::solve_dense<4>(const double*, double*) const;
-template void SparseLU::solve_dense<5>(const double*, double*) const;
-template void SparseLU::solve_dense<6>(const double*, double*) const;
-template void SparseLU::solve_dense<7>(const double*, double*) const;
-template void SparseLU::solve_dense<8>(const double*, double*) const;
 
 // A = P^T L U Q^T, so A^T y = c is U^T L^T (P y) = Q^T c: U^T forward, L^T backward.
 void SparseLU::solve_transposed(const double* b, double* x) const {
