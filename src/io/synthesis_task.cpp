@@ -344,12 +344,13 @@ class TaskParser : yaml::Reader {
       const Fields f = mapping(*curves, keys_under(*curves, {"radius", "step"}), "{radius: 5, step: 0.01}");
       if (const Entry* r = f.find("radius")) {
         task_.curves.radius = non_negative(*r, "the radius", true);
-        const double widest = synthesis::largest_window_radius(task_.poses);
+        const double size = synthesis::pose_scale(task_.poses);
+        const double widest = synthesis::kMaxWindowRadius * size;
         if (task_.curves.radius > widest) {
           std::ostringstream s;
           s.precision(6);
           s << "the radius " << task_.curves.radius << " " << task_.units.length << " is more than 10^6 times the "
-            << "size of the poses (" << widest / synthesis::kMaxWindowRadius << " " << task_.units.length
+            << "size of the poses (" << size << " " << task_.units.length
             << ", the RMS distance of their points from the centroid): no curve can be traced in so wide a "
             << "window; give at most " << widest << " " << task_.units.length
             << ", or leave `radius` out for 1.5 times the farthest pose or pole";
