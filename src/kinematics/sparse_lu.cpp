@@ -1,5 +1,7 @@
 #include "nbar/kinematics/sparse_lu.hpp"
 
+#include "nbar/kinematics/sized.hpp"
+
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
 
@@ -59,6 +61,46 @@ void dense_solve(const double* lu, const double* inverse_pivot, const int* pivot
     for (int i = 0; i < k; ++i) w[i] -= lu[k * N + i] * w[k];
   }
   for (int k = 0; k < N; ++k) x[column_order[k]] = w[k];
+}
+
+// The replay's elimination for N <= kDenseSolveLimit known when compiled, on the whole N x N
+// array: the compiled list's loads of slots cost three times its arithmetic at these sizes. It
+// does the list's multiply-subtracts in the list's order (each entry's in ascending pivot order),
+// and besides them only ones whose product is an exact zero, which leave a nonzero entry as it
+// was. Returns false when a pivot fails the threshold; sign, smallest and largest as replay's.
+template <int N>
+bool dense_eliminate(double* v, double* inverse_pivot, double threshold, int& sign, double& smallest,
+                     double& largest) {
+  double least = smallest, most = largest;
+#pragma GCC unroll 8
+  for (int k = 0; k < N; ++k) {
+    double* column = v + k * N;
+#pragma GCC unroll 8
+    for (int j = 0; j < k; ++j) {
+      const double u = column[j];
+      const double* l = v + j * N;
+#pragma GCC unroll 8
+      for (int r = j + 1; r < N; ++r) column[r] -= l[r] * u;
+    }
+    const double pivot = column[k];
+    const double size = std::abs(pivot);
+    // The threshold against each entry below rather than their largest: the same test, with a NaN
+    // failing it.
+#pragma GCC unroll 8
+    for (int r = k + 1; r < N; ++r)
+      if (!(size >= threshold * std::abs(column[r]))) return false;
+    if (pivot == 0.0) return false;
+    const double inverse = 1.0 / pivot;
+    inverse_pivot[k] = inverse;
+#pragma GCC unroll 8
+    for (int r = k + 1; r < N; ++r) column[r] *= inverse;
+    if (pivot < 0.0) sign = -sign;
+    least = std::min(least, size);
+    most = std::max(most, size);
+  }
+  smallest = least;
+  largest = most;
+  return true;
 }
 
 }  // namespace
@@ -312,14 +354,29 @@ SparseLU::Replay SparseLU::replay(const Elimination& e, const double* values, bo
     probe += 0.0 * values[i];
   }
   if (probe != 0.0) return Replay::NotFinite;
+  const double threshold = check ? kPivotThreshold : 0.0;
+  int sign = e.permutation_sign;
+  double smallest = HUGE_VAL, largest = 0.0;
+  const bool done = with_coordinate_count(n_, [&](auto size) {
+    if constexpr (decltype(size)::value > 0) {
+      return dense_eliminate<decltype(size)::value>(v, inverse_pivot_.data(), threshold, sign, smallest, largest);
+    } else {
+      return sparse_eliminate(e, v, threshold, sign, smallest, largest);
+    }
+  });
+  if (!done) return Replay::Refused;
+  det_sign_ = sign;
+  pivot_ratio_ = largest > 0.0 ? smallest / largest : 0.0;
+  return Replay::Done;
+}
+
+bool SparseLU::sparse_eliminate(const Elimination& e, double* v, double threshold, int& sign, double& smallest,
+                                double& largest) {
   const Update* update = e.update.data();
   const int* update_start = e.update_start.data();
   const int* l_start = e.l_start.data();
   const int* l_slot = e.l_slot.data();
   const int* diagonal = e.diagonal.data();
-  const double threshold = check ? kPivotThreshold : 0.0;
-  int sign = e.permutation_sign;
-  double smallest = HUGE_VAL, largest = 0.0;
   for (int k = 0; k < n_; ++k) {
     for (int u = update_start[k]; u < update_start[k + 1]; ++u) v[update[u].target] -= v[update[u].l] * v[update[u].u];
     const double pivot = v[diagonal[k]];
@@ -329,7 +386,7 @@ SparseLU::Replay SparseLU::replay(const Elimination& e, const double* values, bo
       if (!(size <= biggest) && !std::isnan(biggest)) biggest = size;  // a NaN stays
     }
     // Written so that a NaN fails it.
-    if (!(std::abs(pivot) >= threshold * biggest) || pivot == 0.0) return Replay::Refused;
+    if (!(std::abs(pivot) >= threshold * biggest) || pivot == 0.0) return false;
     const double inverse = 1.0 / pivot;
     inverse_pivot_[static_cast<std::size_t>(k)] = inverse;
     for (int i = l_start[k]; i < l_start[k + 1]; ++i) v[l_slot[i]] *= inverse;
@@ -337,9 +394,7 @@ SparseLU::Replay SparseLU::replay(const Elimination& e, const double* values, bo
     smallest = std::min(smallest, std::abs(pivot));
     largest = std::max(largest, std::abs(pivot));
   }
-  det_sign_ = sign;
-  pivot_ratio_ = largest > 0.0 ? smallest / largest : 0.0;
-  return Replay::Done;
+  return true;
 }
 
 // No factors to solve with (none yet, the last factorisation failed, or an empty system): x is

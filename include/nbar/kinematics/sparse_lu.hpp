@@ -89,6 +89,9 @@ class SparseLU {
   // finite number (then no factors).
   enum class Replay { Done, Refused, NotFinite };
   Replay replay(const Elimination& e, const double* values, bool check);
+  // replay's elimination from the compiled list, for any size. False when a pivot is refused.
+  bool sparse_eliminate(const Elimination& e, double* v, double threshold, int& sign, double& smallest,
+                        double& largest);
   bool fail();  // the state of a failed factorisation; returns false
   bool unfactorised(double* x) const;
   const Elimination& current() const { return kept_[static_cast<std::size_t>(current_)]; }
