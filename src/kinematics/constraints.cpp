@@ -242,8 +242,36 @@ void for_each_group(const Mechanism& mech, Group&& group) {
   for (const RowGroup& g : mech.row_groups()) group(g.type, rows + g.first, rows + g.last);
 }
 
-double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
-                          Eigen::VectorXd& phi) {
+namespace {
+
+// A row whose gradient is g at its first point and -g at its second, written into the Jacobian's
+// values.
+void put_pair(double* out, const CompiledRow& c, Xy g) {
+  if (c.entry[0] >= 0) {
+    out[c.entry[0]] = -g.x;
+    out[c.entry[0] + 1] = -g.y;
+  }
+  if (c.entry[1] >= 0) {
+    out[c.entry[1]] = g.x;
+    out[c.entry[1] + 1] = g.y;
+  }
+}
+
+void put_gradient(double* out, const CompiledRow& c, const Points& r, const DriverValues& d) {
+  const std::array<Xy, 4> g = gradient(c, r, d);
+  for (std::size_t slot = 0; slot < 4; ++slot) {
+    const int e = c.entry[slot];
+    if (e < 0) continue;
+    out[e] = g[slot].x;
+    out[e + 1] = g[slot].y;
+  }
+}
+
+// The residuals, and WithJacobian the Jacobian's values too, in one pass over the rows: a row's
+// points are read once for both.
+template <bool WithJacobian>
+double evaluate_rows(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
+                     Eigen::VectorXd& phi, double* jacobian) {
   const auto& rows = mech.compiled_rows();
   if (phi.size() != static_cast<Eigen::Index>(rows.size())) phi.resize(static_cast<Eigen::Index>(rows.size()));
   double* out = phi.data();
@@ -264,6 +292,10 @@ double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const
         for (const CompiledRow* c = first; c != last; ++c) {
           const Xy u = r(c->at[1]) - r(c->at[0]);
           put(c->row, (dot(u, u) - c->a * c->a) * c->scale);
+          if constexpr (WithJacobian) {
+            const double f = 2.0 * c->scale;
+            put_pair(jacobian, *c, {f * u.x, f * u.y});
+          }
         }
         return;
       case ConstraintType::DriveAngle:
@@ -271,13 +303,33 @@ double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const
           const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
           const Xy u = r(c->at[1]) - r(c->at[0]);
           put(c->row, (u.x * d.sin.value() - u.y * d.cos.value()) * c->scale);
+          if constexpr (WithJacobian) put_pair(jacobian, *c, {c->scale * d.sin.value(), -c->scale * d.cos.value()});
         }
         return;
       default:
-        for (const CompiledRow* c = first; c != last; ++c) put(c->row, residual(*c, r, driver_values(*c, drivers)));
+        for (const CompiledRow* c = first; c != last; ++c) {
+          const DriverValues d = driver_values(*c, drivers);
+          put(c->row, residual(*c, r, d));
+          if constexpr (WithJacobian) put_gradient(jacobian, *c, r, d);
+        }
     }
   });
   return nan ? std::numeric_limits<double>::infinity() : largest;
+}
+
+}  // namespace
+
+double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
+                          Eigen::VectorXd& phi) {
+  return evaluate_rows<false>(mech, q, drivers, phi, nullptr);
+}
+
+double evaluate_residuals_and_jacobian(const Mechanism& mech, const Eigen::VectorXd& q,
+                                       const std::vector<DriverState>& drivers, Eigen::VectorXd& phi,
+                                       std::vector<double>& values) {
+  // Every pattern entry belongs to one (row, point) slot, so each is written once.
+  values.resize(mech.jacobian_pattern().size());
+  return evaluate_rows<true>(mech, q, drivers, phi, values.data());
 }
 
 void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
@@ -286,42 +338,23 @@ void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const st
   values.resize(mech.jacobian_pattern().size());
   double* out = values.data();
   const Points r{q.data(), mech.fixed_coordinates().data()};
-  // A row whose gradient is g at its first point and -g at its second.
-  const auto put_pair = [out](const CompiledRow& c, Xy g) {
-    if (c.entry[0] >= 0) {
-      out[c.entry[0]] = -g.x;
-      out[c.entry[0] + 1] = -g.y;
-    }
-    if (c.entry[1] >= 0) {
-      out[c.entry[1]] = g.x;
-      out[c.entry[1] + 1] = g.y;
-    }
-  };
   for_each_group(mech, [&](ConstraintType type, const CompiledRow* first, const CompiledRow* last) {
     switch (type) {
       case ConstraintType::Distance:
         for (const CompiledRow* c = first; c != last; ++c) {
           const Xy u = r(c->at[1]) - r(c->at[0]);
           const double f = 2.0 * c->scale;
-          put_pair(*c, {f * u.x, f * u.y});
+          put_pair(out, *c, {f * u.x, f * u.y});
         }
         return;
       case ConstraintType::DriveAngle:
         for (const CompiledRow* c = first; c != last; ++c) {
           const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
-          put_pair(*c, {c->scale * d.sin.value(), -c->scale * d.cos.value()});
+          put_pair(out, *c, {c->scale * d.sin.value(), -c->scale * d.cos.value()});
         }
         return;
       default:
-        for (const CompiledRow* c = first; c != last; ++c) {
-          const std::array<Xy, 4> g = gradient(*c, r, driver_values(*c, drivers));
-          for (std::size_t slot = 0; slot < 4; ++slot) {
-            const int e = c->entry[slot];
-            if (e < 0) continue;
-            out[e] = g[slot].x;
-            out[e + 1] = g[slot].y;
-          }
-        }
+        for (const CompiledRow* c = first; c != last; ++c) put_gradient(out, *c, r, driver_values(*c, drivers));
     }
   });
 }
@@ -329,10 +362,11 @@ void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const st
 namespace {
 
 // evaluate_series_remainder for coefficient K known when compiled (the sums over j unroll), or
-// with K = 0 for `runtime_k`.
+// with K = 0 for `runtime_k`. Kept out of line: inlined, the four instantiations share one frame
+// and its register saves (17 more instructions a four-bar step, callgrind).
 template <int K>
-void remainder_of_order(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int runtime_k,
-                        const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs) {
+[[gnu::noinline]] void remainder_of_order(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int runtime_k,
+                                          const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs) {
   const int k = K > 0 ? K : runtime_k;
   const auto& rows = mech.compiled_rows();
   if (rhs.size() != static_cast<Eigen::Index>(rows.size())) rhs.resize(static_cast<Eigen::Index>(rows.size()));

@@ -116,7 +116,8 @@ double residual_target(double tol, double rcond) {
 // largest |Phi| at the point found (state.phi holds its rows). The predicted point is corrected at
 // least once even when it already meets the tolerance, and on to a residual below it
 // (residual_target); a correction that no longer contracts ends it there if the tolerance is met,
-// with `short_of_target` set: the caller finishes with the point's own Jacobian (polish).
+// with `short_of_target` set: the caller finishes with the point's own Jacobian (polish). On
+// success state.jacobian holds the Jacobian's values at the point found.
 template <int N>
 bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, const Eigen::VectorXd& q_pred,
              double& residual, bool& short_of_target) {
@@ -132,7 +133,10 @@ bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, 
     return short_of_target;
   };
   for (int it = 0; it <= kMaxCorrections; ++it) {
-    residual = evaluate_residuals(mech, state.q, state.drivers, state.phi);  // max_residual without the call
+    // After a correction the point may be the last: its Jacobian comes with the residuals (the rows
+    // read once for both), and the caller factorises it from state.jacobian.
+    residual = it > 0 ? evaluate_residuals_and_jacobian(mech, state.q, state.drivers, state.phi, state.jacobian)
+                      : evaluate_residuals(mech, state.q, state.drivers, state.phi);
     if (it > 0 && residual <= target) return true;
     if (it == kMaxCorrections) return stop_within_tolerance(it);
     // Phi_q dq = -Phi: solved for -dq, which is subtracted.
@@ -336,7 +340,7 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
     double trial_residual = 0.0;
     bool short_of_target = false;
     const bool converged = correct<N>(mech, state, q_old, q_pred, trial_residual, short_of_target);
-    bool ok = converged && factorize_jacobian(mech, state, state.spare_solver());
+    bool ok = converged && state.spare_solver().factorize(state.jacobian);
     // On a singular position the point's own Jacobian would amplify the correction instead: the
     // point stays as the tolerance left it (a sample there takes its series from beside it).
     if (ok && short_of_target && state.spare_solver().reciprocal_condition() >= kHistoryRcond)

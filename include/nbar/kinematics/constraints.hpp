@@ -72,6 +72,10 @@ class Mechanism;
 // is NaN.
 double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q,
                         const std::vector<DriverState>& drivers, Eigen::VectorXd& phi);
+// The same, and the Jacobian's values as evaluate_jacobian gives them, in one pass over the rows.
+double evaluate_residuals_and_jacobian(const Mechanism& mech, const Eigen::VectorXd& q,
+                                       const std::vector<DriverState>& drivers, Eigen::VectorXd& phi,
+                                       std::vector<double>& values);
 // Jacobian values in the order of Mechanism::jacobian_pattern() (entries may repeat a
 // (row, col) pair; they add up).
 void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q,
