@@ -372,7 +372,9 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
                                rcond_new < kSuddenRcondDrop * state.solver().reciprocal_condition();
     if (onto_singular) ok = false;
     if (ok) {
-      state.history.push(state.parameter, state.series);
+      // The history takes the accepted point's series; the new point's are written over what it
+      // gives back.
+      state.history.take(state.parameter, state.series);
       state.parameter += h;
       state.swap_solvers();
       compute_series(mech, state, options.terms);

@@ -64,6 +64,12 @@ void PathHistory::push(double parameter, const Eigen::MatrixXd& series) {
   has_past_ = true;
 }
 
+void PathHistory::take(double parameter, Eigen::MatrixXd& series) {
+  past_.swap(series);
+  past_parameter_ = parameter;
+  has_past_ = true;
+}
+
 void PathHistory::mark_current(double parameter, const Eigen::MatrixXd& series) {
   current_parameter_ = parameter;
   const Eigen::Index n = series.rows();

@@ -66,5 +66,27 @@ TEST(PathHistory, IsUsedOnlyFromThePointTheLastStepReached) {
   EXPECT_FALSE(history.predict(1.0, series_at(1.0), 0.1, q));
 }
 
+// A sweep hands its series over (take) instead of having them copied (push): the same prediction,
+// bit for bit, and the caller gets back storage it may overwrite, the past point's kept apart.
+TEST(PathHistory, TakingTheSeriesPredictsAsCopyingThem) {
+  PathHistory copied, taken;
+  copied.push(0.8, series_at(0.8));
+  Eigen::MatrixXd handed = series_at(0.8);
+  taken.take(0.8, handed);
+  handed.setConstant(7.0);  // what the next step's series would overwrite
+  copied.push(0.9, series_at(0.9));
+  handed = series_at(0.9);
+  taken.take(0.9, handed);
+  handed.setConstant(-3.0);
+  copied.mark_current(1.0, series_at(1.0));
+  taken.mark_current(1.0, series_at(1.0));
+  Eigen::VectorXd from_copy, from_taken;
+  ASSERT_TRUE(copied.predict(1.0, series_at(1.0), 0.1, from_copy));
+  ASSERT_TRUE(taken.predict(1.0, series_at(1.0), 0.1, from_taken));
+  ASSERT_EQ(from_taken.size(), 2);
+  EXPECT_EQ(from_taken[0], from_copy[0]);
+  EXPECT_EQ(from_taken[1], from_copy[1]);
+}
+
 }  // namespace
 }  // namespace nbar

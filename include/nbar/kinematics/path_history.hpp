@@ -19,6 +19,9 @@ class PathHistory {
   void clear() { has_past_ = false; }
   // Before the step from `parameter` is accepted: remember that point's series.
   void push(double parameter, const Eigen::MatrixXd& series);
+  // push() without the copy: the history takes `series`' storage and leaves it the storage of the
+  // point it forgets, whose numbers the caller overwrites (a step's new series).
+  void take(double parameter, Eigen::MatrixXd& series);
   // After it is accepted: the point it reached, which the next prediction must start from.
   void mark_current(double parameter, const Eigen::MatrixXd& series);
   // q at parameter + h, from `series` at `parameter` and the past point's series, when the history
