@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include "nbar/kinematics/sized.hpp"
@@ -54,6 +55,16 @@ void weigh(const double* now, const double* before, const Eigen::MatrixXd& a, co
                         [&](auto n) { weigh<Terms, decltype(n)::value>(now, before, a, b, q); });
 }
 
+bool same_bits(const double* a, const double* b, Eigen::Index n) {
+  for (Eigen::Index i = 0; i < n; ++i) {
+    std::uint64_t x, y;
+    std::memcpy(&x, a + i, sizeof x);
+    std::memcpy(&y, b + i, sizeof y);
+    if (x != y) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 void PathHistory::push(double parameter, const Eigen::MatrixXd& series) {
@@ -86,10 +97,9 @@ bool PathHistory::continues_from(double parameter, const Eigen::MatrixXd& series
   if (!has_past_ || parameter != current_parameter_ || series.cols() < 2 || past_.cols() < series.cols()) return false;
   const Eigen::Index n = series.rows();
   if (current_q_.size() != n || current_rate_.size() != n) return false;
-  // Compared as bits (what was copied is what must still be there), two columns at once.
-  const auto bytes = static_cast<std::size_t>(n) * sizeof(double);
-  return std::memcmp(series.data(), current_q_.data(), bytes) == 0 &&
-         std::memcmp(series.data() + n, current_rate_.data(), bytes) == 0;
+  // Compared as bits (what was copied is what must still be there), in a loop: the columns are a
+  // few numbers, which two calls of memcmp cost more than.
+  return same_bits(series.data(), current_q_.data(), n) && same_bits(series.data() + n, current_rate_.data(), n);
 }
 
 // With the past point at -1, the current one at 0 and the target at r, the polynomial's
@@ -97,9 +107,12 @@ bool PathHistory::continues_from(double parameter, const Eigen::MatrixXd& series
 // sum_j a_j C(j, k) z^(j - k)), and its value at r is v . a with v_j = r^j: the weights are
 // M^-T v. M depends only on the number of terms, so its inverse is kept; a step then costs one
 // small product.
+bool PathHistory::weights_fit(double reach, int terms) const {
+  return terms == weight_terms_ && std::abs(reach - weight_reach_) <= kSameReach * std::abs(reach);
+}
+
 void PathHistory::update_weights(double reach, int terms) {
   const int n = 2 * terms;
-  if (terms == weight_terms_ && std::abs(reach - weight_reach_) <= kSameReach * std::abs(reach)) return;
   if (terms != weight_terms_) {
     weight_terms_ = terms;
     const double node[2] = {0.0, -1.0};
@@ -124,7 +137,7 @@ bool PathHistory::predict(double parameter, const Eigen::MatrixXd& series, doubl
   if (!(back * h > 0.0 && std::abs(h) <= kMaxReach * std::abs(back))) return false;
   const int terms = static_cast<int>(series.cols());
   if (terms > Series::kCapacity) return false;  // the weights' storage holds 2 x kCapacity
-  update_weights(h / back, terms);
+  if (!weights_fit(h / back, terms)) update_weights(h / back, terms);
   // Coefficient k in the scaled variable is coefficient k in the parameter times back^k.
   double now[Series::kCapacity], before[Series::kCapacity];
   double power = 1.0;

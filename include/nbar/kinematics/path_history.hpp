@@ -31,6 +31,9 @@ class PathHistory {
 
  private:
   bool continues_from(double parameter, const Eigen::MatrixXd& series) const;
+  // Whether the weights are those for this reach and number of terms (checked before the call, in
+  // line: they almost always are).
+  bool weights_fit(double reach, int terms) const;
   void update_weights(double reach, int terms);
 
   Eigen::MatrixXd past_;
