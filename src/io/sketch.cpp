@@ -166,6 +166,11 @@ SketchLoop polygonised_loop(const Chained& c, double tolerance, const std::strin
     loop.lines[kept] = loop.lines[i];
     ++kept;
   }
+  // And the last vertex that came back to within `same` of the first by a straight edge: an
+  // SVG subpath of relative moves closed by Z, whose sums of decimals land a rounding error off
+  // its start (0.06 + -0.02 is 0.039999999999999994). Kept, it was an edge 1e-17 long that the
+  // model written rounded to two coinciding vertices, in drawings of one unit and not of another.
+  if (kept > 2 && (loop.vertices[kept - 1] - loop.vertices[0]).norm() <= same && loop.bulges[kept - 1] == 0) --kept;
   loop.vertices.resize(kept);
   loop.bulges.resize(kept);
   loop.lines.resize(kept);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <map>
 #include <set>
@@ -55,17 +56,43 @@ bool wholly_inside(const std::vector<Vector2d>& inner, const std::vector<Vector2
          !polygons_meet(inner, outer);
 }
 
-double tidy(double v) {
-  const double t = std::round(v * 1e9) / 1e9;
-  return t == 0.0 ? 0.0 : t;
+// Coordinates written are rounded to a power of ten of about 1e-12 of the drawing's size
+// (10^(ceil(log10 size) - 12)), so that rounding noise (29.999999999999996, 2.5e-16) is written
+// 30 and 0. The step is relative, not a fixed 1e-9 of the unit: that one left a drawing in
+// metres 3 or 4 significant digits at 1e-6 and wrote one 1e-15 the size as all zeros, whose
+// outlines then had coinciding vertices. For drawings from 100 to 1000 units across (a part in
+// mm) the step is 1e-9 as it was, so their models are written as before.
+class Tidy {
+ public:
+  explicit Tidy(double size) {
+    if (!(size > 0) || !std::isfinite(size)) return;  // no extent to be relative to: as it is
+    const int exponent = static_cast<int>(std::ceil(std::log10(size))) - 12;
+    // 10^|exponent| read as the literal is, correctly rounded; the step 1e-9 is then
+    // round(v * 1e9) / 1e9, the arithmetic it always was, bit for bit.
+    power_ = std::strtod(("1e" + std::to_string(std::abs(exponent))).c_str(), nullptr);
+    fine_ = exponent < 0;
+    if (!std::isfinite(power_)) power_ = 0;  // a size times a scale beyond double's range
+  }
+  double operator()(double v) const {
+    if (power_ == 0) return v;
+    const double t = fine_ ? std::round(v * power_) / power_ : std::round(v / power_) * power_;
+    if (!std::isfinite(t)) return v;  // a stray circle far beyond the outlines, say
+    return t == 0.0 ? 0.0 : t;
+  }
+
+ private:
+  double power_ = 0;  // 10^|exponent|, 0 when there is no rounding
+  bool fine_ = true;  // the step is 1 / power_ (else power_)
+};
+
+std::string xy(const Vector2d& v, const Tidy& tidy) {
+  return fmt::format("[{:.12g}, {:.12g}", tidy(v.x()), tidy(v.y()));
 }
 
-std::string xy(const Vector2d& v) { return fmt::format("[{:.12g}, {:.12g}", tidy(v.x()), tidy(v.y())); }
-
-std::string ring_yaml(const SketchLoop& loop, double scale, const std::string& indent) {
+std::string ring_yaml(const SketchLoop& loop, double scale, const Tidy& tidy, const std::string& indent) {
   std::string out;
   for (std::size_t i = 0; i < loop.vertices.size(); ++i) {
-    out += indent + "- " + xy(loop.vertices[i] * scale);
+    out += indent + "- " + xy(loop.vertices[i] * scale, tidy);
     if (loop.bulges[i] != 0.0) out += fmt::format(", {{bulge: {:.12g}}}", loop.bulges[i]);
     out += "]\n";
   }
@@ -170,8 +197,12 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     while (!taken.insert(name).second) name += "_";
     bodies[k].name = name;
   }
+  // The drawing's size, the diagonal of its outlines' bounding box, which every length the
+  // import compares or rounds to is relative to, so that the drawing's unit changes nothing
+  // (hypot: the squares of a drawing 1e-100 across, the smallest read, underflow).
+  const double size = std::hypot(hi.x() - lo.x(), hi.y() - lo.y());
   // Points: circle centres that coincide are one; then the marked points.
-  const double same = 1e-6 * (hi - lo).norm();
+  const double same = 1e-6 * size;
   struct Joint {
     Vector2d at;
     double radius = 0;  // 0: a marked point, no hole
@@ -256,6 +287,8 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) c = '_';
   }
   out += annotation_note(sketch.annotations);
+  // Rounding of the drawing's coordinates (in the comments) and of the model's.
+  const Tidy tidy(size), tidy_model(size * options.scale);
   // Circles and points on no link are left out, and the reader told so, not left to find it.
   for (std::size_t j = 0; j < joints.size(); ++j) {
     if (bodies_at[j] == 0)
@@ -265,7 +298,7 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
   out += fmt::format("name: \"{}\"\nunits: {{length: {}, angle: deg}}\npoints:\n", name, options.length_unit);
   for (std::size_t j = 0; j < joints.size(); ++j) {
     if (bodies_at[j] == 0) continue;  // a circle outside every outline
-    out += fmt::format("  P{}: {}]\n", j + 1, xy(joints[j].at * options.scale));
+    out += fmt::format("  P{}: {}]\n", j + 1, xy(joints[j].at * options.scale, tidy_model));
   }
   out += "ground: [" + ground + "]\n";
   out += "gravity: standard\nbodies:\n";
@@ -273,12 +306,12 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     out += "  " + b.name + ":\n    points: [";
     for (std::size_t k = 0; k < b.points.size(); ++k) out += fmt::format("{}P{}", k ? ", " : "", b.points[k] + 1);
     out += fmt::format("]   # outline at line {} of {}\n", sketch.loops[b.loop].lines.front(), options.source_name);
-    out += "    shape:\n      outline:\n" + ring_yaml(sketch.loops[b.loop], options.scale, "        ");
+    out += "    shape:\n      outline:\n" + ring_yaml(sketch.loops[b.loop], options.scale, tidy_model, "        ");
     if (!b.holes.empty() || !b.pin_holes.empty()) out += "      holes:\n";
     for (const auto& [point, radius] : b.pin_holes) {
-      out += fmt::format("        - {{at: P{}, radius: {:.10g}}}\n", point + 1, tidy(radius * options.scale));
+      out += fmt::format("        - {{at: P{}, radius: {:.10g}}}\n", point + 1, tidy_model(radius * options.scale));
     }
-    for (std::size_t h : b.holes) out += "        - polygon:\n" + ring_yaml(sketch.loops[h], options.scale, "            ");
+    for (std::size_t h : b.holes) out += "        - polygon:\n" + ring_yaml(sketch.loops[h], options.scale, tidy_model, "            ");
     out += fmt::format("    thickness: {:.10g}\n    material: {}\n", options.thickness, options.material);
   }
   out += fmt::format("# drivers:\n#   - {{angle: {}, from: 0, to: 360, speed: 60 rpm}}\n", bodies.front().name);

@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -316,13 +317,21 @@ class SvgBuilder {
     const Vector2d half = (from - to) / 2;
     const Vector2d p(cp * half.x() + sp * half.y(), -sp * half.x() + cp * half.y());
     const double lambda = p.x() * p.x() / (rx * rx) + p.y() * p.y() / (ry * ry);
+    // Radii that reach half the chord to within what the rounding of the end points' coordinates
+    // can tell (lambda 1: a half ellipse, as a semicircle drawn by A is) put the centre on the
+    // chord. The square root below would turn that rounding, 1e-16 of the coordinates, into a
+    // centre 1e-8 of the radius off the chord, and a semicircle's bulge of 1 into 0.99999999, in
+    // a drawing made in one unit and not in another. Relative: a ratio of lengths.
+    const double rounding = 8 * std::numeric_limits<double>::epsilon() *
+                            (1 + std::max(from.cwiseAbs().maxCoeff(), to.cwiseAbs().maxCoeff()) / half.norm());
+    const bool on_chord = lambda >= 1 - rounding;
     if (lambda > 1) {
       rx *= std::sqrt(lambda);
       ry *= std::sqrt(lambda);
     }
     const double num = rx * rx * ry * ry - rx * rx * p.y() * p.y() - ry * ry * p.x() * p.x();
     const double den = rx * rx * p.y() * p.y() + ry * ry * p.x() * p.x();
-    const double root = (large == sweep ? -1 : 1) * std::sqrt(std::max(0.0, num / den));
+    const double root = on_chord ? 0.0 : (large == sweep ? -1 : 1) * std::sqrt(std::max(0.0, num / den));
     const Vector2d cprime(root * rx * p.y() / ry, -root * ry * p.x() / rx);
     const Vector2d centre = Vector2d(cp * cprime.x() - sp * cprime.y(), sp * cprime.x() + cp * cprime.y()) + (from + to) / 2;
     const Vector2d u((p.x() - cprime.x()) / rx, (p.y() - cprime.y()) / ry);

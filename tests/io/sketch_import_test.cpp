@@ -14,11 +14,14 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace nbar::io {
 namespace {
@@ -301,6 +304,160 @@ TEST(SketchImport, PinHolesThatMeetAreRefusedAtTheCirclesLine) {
                   SketchFormat::kDxf),
       {"p.dxf", "mm", 1.0, 5.0, "steel"});
   EXPECT_THAT(stray, HasSubstr("# Left out: the circle at line 39 (500, 10) lies on no link.\n"));
+}
+
+// A DXF with every coordinate and radius of its ENTITIES multiplied by `scale` (as if drawn in
+// another unit; the header's $INSUNITS kept): groups 10-18, 20-28, 30-38, a CIRCLE's or ARC's
+// radius (40), an LWPOLYLINE's width (43), a SPLINE's tolerances (42-44). Bulges, angles,
+// ratios, knots and weights have no length. `extra` (pairs, in the unscaled drawing's units) is
+// added at the end of the ENTITIES.
+std::string scaled_dxf(const std::string& text, double scale, const std::string& extra = {}) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(line);
+  }
+  const auto trimmed = [](std::string s) {
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.erase(s.begin());
+    return s;
+  };
+  std::string out, section, entity, previous;
+  const auto add = [&](const std::string& code_text, std::string value) {
+    const int code = std::atoi(code_text.c_str());
+    if (code == 0) entity = value;
+    if (code == 2 && previous == "SECTION") section = value;
+    if (code == 0) previous = value;
+    const bool length = (code >= 10 && code <= 38 && code % 10 <= 8) || (code == 40 && (entity == "CIRCLE" || entity == "ARC")) ||
+                        (code == 43 && entity == "LWPOLYLINE") || (code >= 42 && code <= 44 && entity == "SPLINE");
+    if (section == "ENTITIES" && code != 0 && length) value = fmt::format("{:.17g}", std::strtod(value.c_str(), nullptr) * scale);
+    out += code_text + "\n" + value + "\n";
+  };
+  for (std::size_t i = 0; i + 1 < lines.size(); i += 2) {
+    const std::string code = trimmed(lines[i]), value = trimmed(lines[i + 1]);
+    if (code == "0" && value == "ENDSEC" && section == "ENTITIES") {
+      std::istringstream more(extra);
+      for (std::string c, v; std::getline(more, c) && std::getline(more, v);) add(c, v);
+    }
+    add(code, value);
+  }
+  return out;
+}
+
+// A model written by model_from_sketch, taken apart: its text with each number replaced by #,
+// and the numbers, each marked as a length (a coordinate or radius) or not (a bulge, the
+// thickness, or in a comment: counts of links and joints, lines of the file).
+struct ModelNumbers {
+  std::string shape;
+  std::vector<double> values;
+  std::vector<bool> lengths;
+};
+
+ModelNumbers numbers_of(const std::string& model) {
+  ModelNumbers m;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i < model.size();) {
+    const char c = model[i];
+    if (c == '\n') line_start = i + 1;
+    const bool starts = (std::isdigit(static_cast<unsigned char>(c)) ||
+                         (c == '-' && i + 1 < model.size() && std::isdigit(static_cast<unsigned char>(model[i + 1])))) &&
+                        (i == 0 || !(std::isalnum(static_cast<unsigned char>(model[i - 1])) || model[i - 1] == '_' ||
+                                     model[i - 1] == '.'));
+    if (!starts) {
+      m.shape += c;
+      ++i;
+      continue;
+    }
+    char* end = nullptr;
+    m.values.push_back(std::strtod(model.c_str() + i, &end));
+    const std::string before = model.substr(line_start, i - line_start);
+    m.lengths.push_back(before.find('#') == std::string::npos && !before.ends_with("bulge: ") &&
+                        !before.ends_with("thickness: "));
+    m.shape += '#';
+    i = static_cast<std::size_t>(end - model.c_str());
+  }
+  return m;
+}
+
+// The model of `drawing(scale)` at each scale is the model at scale 1, every length times the
+// scale (to 1e-9 of itself), the rest as it is: the same links, joints, holes and vertices.
+template <class Drawing>
+void expect_same_model_at_every_scale(const Drawing& drawing, const std::string& name, const std::string& counts) {
+  const SketchModelOptions options{name, "mm", 1.0, 5.0, "steel"};
+  const std::string unit = model_from_sketch(read_sketch(drawing(1.0), name, *sketch_format(name)), options);
+  ASSERT_THAT(unit, HasSubstr(counts));
+  const ModelNumbers reference = numbers_of(unit);
+  for (const double scale : {1e-90, 1e-15, 1e-6, 1e-3, 1e3, 1e6, 1e90}) {
+    std::string model;
+    try {
+      model = model_from_sketch(read_sketch(drawing(scale), name, *sketch_format(name)), options);
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << name << " at the scale " << scale << ": " << e.what();
+      continue;
+    }
+    const ModelNumbers scaled = numbers_of(model);
+    if (scaled.shape != reference.shape || scaled.values.size() != reference.values.size()) {
+      ADD_FAILURE() << name << " at the scale " << scale << " is not the model at 1:\n" << model << "\nat 1:\n" << unit;
+      continue;
+    }
+    // The numbers that differ, each reported once per scale with the first of them.
+    std::size_t wrong = 0, first = 0;
+    for (std::size_t i = 0; i < scaled.values.size(); ++i) {
+      const double expected = reference.lengths[i] ? reference.values[i] * scale : reference.values[i];
+      const double allowed = reference.lengths[i] ? 1e-9 * std::abs(expected) : 0.0;
+      if (std::abs(scaled.values[i] - expected) <= allowed) continue;
+      if (wrong++ == 0) first = i;
+    }
+    EXPECT_EQ(wrong, 0u) << name << " at the scale " << scale << ": number " << first << " is " << scaled.values[first]
+                         << ", not " << reference.values[first] << (reference.lengths[first] ? " times the scale" : "")
+                         << ":\n" << model;
+  }
+}
+
+// The unit a drawing is made in must not change what is imported: the same shapes in numbers
+// 1e-3 (a part in mm drawn in metres), 1e-6, 1e-15 or 1e-90 (above 1e-100, refused as too small)
+// or 1e3 to 1e90 times as large are the same model, scaled. The models were written rounded to
+// 1e-9 of the unit: 5 significant digits at 1e-6, all zeros at 1e-15 (outlines whose vertices
+// coincide), and at 1e3 other digits than at 1 (196.27069731, not 196.270697). An SVG subpath of
+// relative moves closed by Z doubled its first vertex at 1e-3 (0.06 + -0.02 is not 0.04), and
+// an A semicircle's bulge came out 0.99999998 at 1e-15.
+TEST(SketchImport, TheDrawingsUnitChangesNothingButTheScale) {
+  // The AutoCAD fixture (an LWPOLYLINE slot with bulges, pin holes and an ELLIPSE window; a
+  // quarter disc of a rational SPLINE and two LINEs), with a POINT marking the quarter disc's
+  // pivot, which holds no pin hole of its own.
+  const std::string plates = fixture("autocad-r2000-plates.dxf");
+  expect_same_model_at_every_scale(
+      [&](double scale) { return scaled_dxf(plates, scale, "0\nPOINT\n8\nplate2\n10\n104\n20\n3\n"); }, "plates.dxf",
+      "2 links, 0 joints");
+  // The example four-bar: three slotted links, LWPOLYLINEs with bulges, pins coinciding at two
+  // joints.
+  std::ifstream in(std::string(NBAR_SOURCE_DIR) + "/examples/sketches/fourbar-sketch.dxf", std::ios::binary);
+  std::ostringstream fourbar;
+  fourbar << in.rdbuf();
+  expect_same_model_at_every_scale([&](double scale) { return scaled_dxf(fourbar.str(), scale); }, "fourbar.dxf",
+                                   "3 links, 2 joints");
+  // An SVG of two links sharing a pin (the one circle at their joint): paths with arcs, a
+  // quadratic Bézier window, a cubic end and an <ellipse> hole.
+  const auto svg = [](double scale) {
+    const auto v = [scale](double x) { return fmt::format("{:.17g}", x * scale); };
+    return fmt::format(
+        "<svg width=\"100mm\" height=\"50mm\" viewBox=\"0 0 100 50\">\n"
+        "<g id=\"crank\">\n"
+        "<path d=\"M {0},{1} H {2} A {0},{0} 0 0 1 {2},{3} H {0} A {0},{0} 0 0 1 {0},{1} Z\"/>\n"
+        "<path d=\"m {4},{5} h {5} q {6},{1} {7},0 z\"/>\n"
+        "<circle cx=\"{0}\" cy=\"{8}\" r=\"{9}\"/>\n"
+        "<circle cx=\"{10}\" cy=\"{8}\" r=\"{9}\"/>\n"
+        "</g>\n"
+        "<g id=\"bar\">\n"
+        "<path d=\"M {11},{8} A {0},{0} 0 0 1 {12},{8} L {12},{13} C {12},{14} {11},{14} {11},{13} Z\"/>\n"
+        "<ellipse cx=\"{10}\" cy=\"{15}\" rx=\"{16}\" ry=\"{17}\"/>\n"
+        "<circle cx=\"{10}\" cy=\"{18}\" r=\"{16}\"/>\n"
+        "</g>\n"
+        "</svg>\n",
+        v(10), v(15), v(90), v(35), v(40), v(20), v(-10), v(-20), v(25), v(5), v(90), v(80), v(100), v(125), v(138),
+        v(80), v(4), v(8), v(120));
+  };
+  expect_same_model_at_every_scale(svg, "two-links.svg", "2 links, 1 joint");
 }
 
 }  // namespace

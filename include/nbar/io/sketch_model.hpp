@@ -23,7 +23,10 @@ struct SketchModelOptions {
 // (a pin hole of that radius); a point in two or more bodies is a joint; a pin hole in a single
 // body is taken as a ground pivot. Marked points (DXF POINT, CSV Point) become points of the
 // bodies containing them, without holes. Throws Error (InvalidModel) when an outline contains
-// no point, or no loop is an outline.
+// no point, or no loop is an outline. Every tolerance is relative to the drawing's size (the
+// diagonal of its outlines' bounding box), so a drawing in another unit gives the same model,
+// scaled; coordinates are written rounded to 10^(ceil(log10 size) - 12) (1e-9 for a drawing
+// 100 to 1000 units across), with 12 significant digits.
 std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& options);
 
 }  // namespace nbar::io
