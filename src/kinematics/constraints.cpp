@@ -40,7 +40,7 @@ DriverValues driver_values(const CompiledRow& c, const std::vector<DriverState>&
   return {d.value.value(), d.cos.value(), d.sin.value()};
 }
 
-double residual(const CompiledRow& c, const Points& r, const DriverValues& d) {
+[[gnu::always_inline]] inline double residual(const CompiledRow& c, const Points& r, const DriverValues& d) {
   const auto& at = c.at;
   switch (c.type) {
     case ConstraintType::Distance: {
@@ -80,7 +80,7 @@ double residual(const CompiledRow& c, const Points& r, const DriverValues& d) {
 }
 
 // Gradient of one row with respect to its (up to four) points.
-std::array<Xy, 4> gradient(const CompiledRow& c, const Points& r, const DriverValues& d) {
+[[gnu::always_inline]] inline std::array<Xy, 4> gradient(const CompiledRow& c, const Points& r, const DriverValues& d) {
   std::array<Xy, 4> g{};
   const auto& at = c.at;
   switch (c.type) {
@@ -257,7 +257,7 @@ void put_pair(double* out, const CompiledRow& c, Xy g) {
   }
 }
 
-void put_gradient(double* out, const CompiledRow& c, const Points& r, const DriverValues& d) {
+[[gnu::always_inline]] inline void put_gradient(double* out, const CompiledRow& c, const Points& r, const DriverValues& d) {
   const std::array<Xy, 4> g = gradient(c, r, d);
   for (std::size_t slot = 0; slot < 4; ++slot) {
     const int e = c.entry[slot];
