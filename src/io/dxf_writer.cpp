@@ -13,32 +13,42 @@
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
+#include "drawing_rounding.hpp"
 
 namespace nbar::io {
 
 namespace {
 
+using drawing_detail::Tidy;
+
 // A DXF file is group-code/value pairs, each on its own line.
 class DxfOut {
  public:
+  // `tidy`: the rounding of the lengths written, relative to the drawing's size.
+  explicit DxfOut(const Tidy& tidy) : tidy_(tidy) {}
   void pair(int code, std::string_view value) { out_ += fmt::format("{:>3}\n{}\n", code, value); }
   void pair(int code, int value) { pair(code, std::to_string(value)); }
-  void number(int code, double value) {
-    // To 1e-9 of the unit, far below any cutting tolerance: a pose solved to rounding then
-    // writes 0, not 2.5e-11, and 12 digits keep a coordinate in mm to well below a micrometre.
+  // A coordinate or a radius, to about 1e-12 of the drawing's size (1e-9 of the unit for a
+  // drawing 100 to 1000 units across), far below any cutting tolerance: a pose solved to
+  // rounding then writes 0, not 2.5e-11, and a plate 2 mm across drawn in metres keeps its 12
+  // digits as one drawn in mm does.
+  void length(int code, double value) { pair(code, fmt::format("{:.12g}", tidy_(value))); }
+  // A bulge, a ratio the drawing's unit does not change: to 1e-9.
+  void ratio(int code, double value) {
     double tidy = std::round(value * 1e9) / 1e9;
     if (tidy == 0.0) tidy = 0.0;  // no "-0"
     pair(code, fmt::format("{:.12g}", tidy));
   }
   void point(int x_code, const Eigen::Vector2d& v) {
-    number(x_code, v.x());
-    number(x_code + 10, v.y());
-    number(x_code + 20, 0.0);
+    length(x_code, v.x());
+    length(x_code + 10, v.y());
+    length(x_code + 20, 0.0);
   }
   std::string take() { return std::move(out_); }
 
  private:
   std::string out_;
+  Tidy tidy_;
 };
 
 // DXF drawing units ($INSUNITS) of the model's length units.
@@ -98,7 +108,7 @@ void tables(DxfOut& dxf, const std::vector<std::string>& layers) {
   dxf.pair(3, "Solid line");
   dxf.pair(72, 65);
   dxf.pair(73, 0);
-  dxf.number(40, 0.0);
+  dxf.length(40, 0.0);
   dxf.pair(0, "ENDTAB");
   dxf.pair(0, "TABLE");
   dxf.pair(2, "LAYER");
@@ -127,7 +137,7 @@ void ring(DxfOut& dxf, const std::string& layer, const std::vector<Eigen::Vector
     dxf.pair(8, layer);
     dxf.point(10, place(vertices[i]) / unit);
     const double bulge = bulges.empty() ? 0.0 : bulges[i];
-    if (bulge != 0.0) dxf.number(42, bulge);  // a rigid motion keeps every arc's bulge
+    if (bulge != 0.0) dxf.ratio(42, bulge);  // a rigid motion keeps every arc's bulge
   }
   dxf.pair(0, "SEQEND");
   dxf.pair(8, layer);
@@ -144,19 +154,15 @@ void plate(DxfOut& dxf, const std::string& layer, const Region& r, const Placeme
     dxf.pair(0, "CIRCLE");
     dxf.pair(8, layer);
     dxf.point(10, place(c.centre) / unit);
-    dxf.number(40, c.radius / unit);
+    dxf.length(40, c.radius / unit);
   }
 }
 
 // The SVG path of a closed ring in the pose: y turned down, each arc as an A command (a rigid
 // motion keeps its radius and turn; the turn reverses with the y axis).
 std::string svg_ring(const std::vector<Eigen::Vector2d>& vertices, const std::vector<double>& bulges,
-                     const Placement& place, double unit) {
-  const auto xy = [](const Eigen::Vector2d& v) {
-    const auto tidy = [](double x) {
-      double t = std::round(x * 1e9) / 1e9;
-      return t == 0.0 ? 0.0 : t;
-    };
+                     const Placement& place, double unit, const Tidy& tidy) {
+  const auto xy = [&tidy](const Eigen::Vector2d& v) {
     return fmt::format("{:.12g} {:.12g}", tidy(v.x()), tidy(-v.y()));
   };
   std::string d;
@@ -198,33 +204,54 @@ std::vector<std::pair<int, std::string>> plate_layers(const Model& m) {
   return plates;
 }
 
+// The bounding box of the plates' outlines (arcs by their chords) in the pose, in the model's
+// length unit: the SVG's viewBox, and the size (its diagonal) that the rounding of the lengths
+// written, in either file, is relative to.
+struct Extent {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  double size() const { return std::hypot(hi.x() - lo.x(), hi.y() - lo.y()); }
+};
+
+Extent plates_extent(const Model& m, const std::vector<std::pair<int, std::string>>& plates,
+                     const std::vector<Eigen::Vector2d>& points) {
+  const double unit = m.units.length_scale;
+  Extent e;
+  for (const auto& plate : plates) {
+    const Placement place = placement(m, plate.first, points);
+    for (const Eigen::Vector2d& v : straight_edged(*m.bodies[static_cast<std::size_t>(plate.first)].shape).outline) {
+      const Eigen::Vector2d p = place(v) / unit;
+      e.lo = e.lo.cwiseMin(p);
+      e.hi = e.hi.cwiseMax(p);
+    }
+  }
+  return e;
+}
+
 }  // namespace
 
 std::string cutting_svg(const Mechanism& mechanism, const std::vector<Eigen::Vector2d>& points) {
   const Model& m = mechanism.model();
   const double unit = m.units.length_scale;
+  const std::vector<std::pair<int, std::string>> plates = plate_layers(m);
+  const Extent extent = plates_extent(m, plates, points);
+  const Eigen::Vector2d lo = extent.lo, hi = extent.hi;
+  const Tidy tidy(extent.size());
   std::string groups;
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const auto& [b, id] : plate_layers(m)) {
+  for (const auto& [b, id] : plates) {
     const Region& r = *m.bodies[static_cast<std::size_t>(b)].shape;
     const Placement place = placement(m, b, points);
-    for (const Eigen::Vector2d& v : straight_edged(r).outline) {
-      const Eigen::Vector2d p = place(v) / unit;
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-    std::string d = svg_ring(r.outline, r.outline_bulges, place, unit);
+    std::string d = svg_ring(r.outline, r.outline_bulges, place, unit, tidy);
     for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
       const std::vector<double> none;
       d.push_back(' ');
       d.append(svg_ring(r.polygon_holes[i], i < r.polygon_hole_bulges.size() ? r.polygon_hole_bulges[i] : none, place,
-                        unit));
+                        unit, tidy));
     }
     groups += fmt::format("  <g id=\"{}\">\n    <path d=\"{}\"/>\n", id, d);
     for (const Circle& c : r.circle_holes) {
       const Eigen::Vector2d centre = place(c.centre) / unit;
-      groups += fmt::format("    <circle cx=\"{:.12g}\" cy=\"{:.12g}\" r=\"{:.12g}\"/>\n", std::round(centre.x() * 1e9) / 1e9 + 0.0,
-                            std::round(-centre.y() * 1e9) / 1e9 + 0.0, c.radius / unit);
+      groups += fmt::format("    <circle cx=\"{:.12g}\" cy=\"{:.12g}\" r=\"{:.12g}\"/>\n", tidy(centre.x()),
+                            tidy(-centre.y()), c.radius / unit);
     }
     groups += "  </g>\n";
   }
@@ -258,7 +285,7 @@ std::string cutting_dxf(const Mechanism& mechanism, const std::vector<Eigen::Vec
   const std::vector<std::pair<int, std::string>> plates = plate_layers(m);
   std::vector<std::string> layers;
   for (const auto& plate : plates) layers.push_back(plate.second);
-  DxfOut dxf;
+  DxfOut dxf(Tidy(plates_extent(m, plates, points).size()));
   header(dxf, m);
   tables(dxf, layers);
   dxf.pair(0, "SECTION");

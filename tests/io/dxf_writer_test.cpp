@@ -10,9 +10,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <numbers>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -194,6 +199,116 @@ TEST(DxfWriter, PlatesMoveWithTheSolvedPose) {
   }
   EXPECT_DOUBLE_EQ(outline.vertices[1].numbers.at(42).front(), 1);
   EXPECT_NEAR(entities.at(3).numbers.at(20).front(), 80, 1e-9);  // the hole at A, now at (0, 80)
+}
+
+// kModel in metres with every length times `scale` (the bulges are ratios and stay).
+std::string scaled_model(double scale) {
+  std::string text = kModel;
+  text.replace(text.find("{length: mm}"), 12, "{length: m}");
+  std::string out;
+  const std::regex number(R"((bulge: )?-?\d+(\.\d+)?)");
+  std::size_t at = 0;
+  for (std::sregex_iterator it(text.begin(), text.end(), number), end; it != end; ++it) {
+    const std::smatch& m = *it;
+    out.append(text, at, static_cast<std::size_t>(m.position()) - at);
+    at = static_cast<std::size_t>(m.position() + m.length());
+    const bool length = !m[1].matched && text.compare(static_cast<std::size_t>(m.position()) - 6, 5, "from:") != 0 &&
+                        text.compare(static_cast<std::size_t>(m.position()) - 4, 3, "to:") != 0;
+    out += length ? fmt::format("{:.17g}", std::stod(m.str()) * scale) : m.str();
+  }
+  return out + text.substr(at);
+}
+
+// The numbers an SVG of plates writes, each marked a length or not (an A command's rotation
+// and flags, the stroke width in mm), and the text around them.
+struct Written {
+  std::string skeleton;
+  std::vector<double> values;
+  std::vector<bool> lengths;
+};
+
+Written svg_numbers(const std::string& svg) {
+  Written w;
+  const std::regex attribute(R"(([\w-]+)=\"([^\"]*)\")");
+  std::size_t at = 0;
+  for (std::sregex_iterator it(svg.begin(), svg.end(), attribute), end; it != end; ++it) {
+    const std::string name = (*it)[1].str(), value = (*it)[2].str();
+    const bool lengths = name == "width" || name == "height" || name == "viewBox" || name == "cx" || name == "cy" ||
+                         name == "r";
+    if (!lengths && name != "d" && name != "stroke-width") continue;
+    const auto pos = static_cast<std::size_t>(it->position(2));
+    w.skeleton += svg.substr(at, pos - at);
+    at = pos + value.size();
+    std::istringstream tokens(value);
+    std::string token;
+    int in_arc = -1;  // the place of a number among an A command's seven, -1 outside one
+    while (tokens >> token) {
+      if (std::isalpha(static_cast<unsigned char>(token[0])) && token.find_first_of("0123456789") == std::string::npos) {
+        w.skeleton += token + " ";
+        in_arc = token == "A" ? 0 : -1;
+        continue;
+      }
+      std::size_t used = 0;
+      w.values.push_back(std::stod(token, &used));
+      w.skeleton += '#';
+      w.skeleton.append(token, used);  // "mm" after a width
+      w.skeleton += ' ';
+      const bool ratio = name == "stroke-width" || (in_arc >= 2 && in_arc <= 4);
+      w.lengths.push_back(!ratio);
+      if (in_arc >= 0) ++in_arc;
+    }
+  }
+  w.skeleton += svg.substr(at);
+  return w;
+}
+
+Written dxf_numbers(const std::string& dxf) {
+  Written w;
+  for (const Pair& p : read_pairs(dxf)) {
+    const bool length = p.code == 10 || p.code == 20 || p.code == 30 || p.code == 40;
+    if (!length && p.code != 42) {
+      w.skeleton += std::to_string(p.code) + " " + p.value + "\n";
+      continue;
+    }
+    w.skeleton += std::to_string(p.code) + " #\n";
+    w.values.push_back(std::stod(p.value));
+    w.lengths.push_back(length);
+  }
+  return w;
+}
+
+// The same plates in a model in metres at 1e-12 to 1e6 the size: every length written the one
+// at scale 1 times the scale, to 1e-9 of itself, none of them 0 but those that are at scale 1,
+// in DXF and in SVG, as drawn and in a solved pose. Rounded to a fixed 1e-9 of the unit, a
+// plate 2.5e-4 m across kept 5 significant digits and one 2.5e-10 m across was all zeros.
+TEST(DxfWriter, TheModelsScaleChangesNothingButTheLengths) {
+  const auto written = [](double scale, bool posed, bool svg) {
+    const Mechanism mech(parse_model(scaled_model(scale), "m.yaml").model);
+    std::vector<Eigen::Vector2d> points;
+    for (const Point& p : mech.model().points) points.push_back(p.position);
+    if (posed) points = point_positions(mech, pose_at(mech, 30).taylor.col(0));
+    return svg ? svg_numbers(cutting_svg(mech, points)) : dxf_numbers(cutting_dxf(mech, points));
+  };
+  for (const bool svg : {false, true}) {
+    for (const bool posed : {false, true}) {
+      const Written one = written(1, posed, svg);
+      ASSERT_GT(one.values.size(), 40u);
+      for (const double scale : {1e-12, 1e-9, 1e-6, 1e-3, 1e3, 1e6}) {
+        SCOPED_TRACE(fmt::format("{} at {}{}", svg ? "SVG" : "DXF", scale, posed ? ", posed" : ""));
+        const Written w = written(scale, posed, svg);
+        ASSERT_EQ(w.skeleton, one.skeleton);
+        ASSERT_EQ(w.values.size(), one.values.size());
+        int wrong = 0;
+        for (std::size_t i = 0; i < w.values.size(); ++i) {
+          const double expected = one.lengths[i] ? one.values[i] * scale : one.values[i];
+          const bool ok = std::abs(w.values[i] - expected) <= 1e-9 * std::abs(expected) &&
+                          (w.values[i] == 0) == (one.values[i] == 0);
+          if (!ok && ++wrong <= 5) ADD_FAILURE() << "number " << i << ": " << w.values[i] << ", not " << expected;
+        }
+        EXPECT_EQ(wrong, 0);
+      }
+    }
+  }
 }
 
 TEST(DxfWriter, NothingToCut) {
