@@ -267,21 +267,19 @@ void put_pair(double* out, const CompiledRow& c, Xy g) {
   }
 }
 
-// The residuals, and WithJacobian the Jacobian's values too, in one pass over the rows: a row's
-// points are read once for both.
-template <bool WithJacobian>
+// The residuals (WithResiduals, into `residuals`, returning the largest |row|) and the Jacobian's
+// values (WithJacobian, into `jacobian`) in one pass over the rows: a row's points are read once
+// for both, and each row's formulas are written once for the three evaluations below.
+template <bool WithResiduals, bool WithJacobian>
 double evaluate_rows(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
-                     Eigen::VectorXd& phi, double* jacobian) {
-  const auto& rows = mech.compiled_rows();
-  if (phi.size() != static_cast<Eigen::Index>(rows.size())) phi.resize(static_cast<Eigen::Index>(rows.size()));
-  double* out = phi.data();
+                     double* residuals, double* jacobian) {
   const Points r{q.data(), mech.fixed_coordinates().data()};
   // The largest |row| found on the way (a second pass over the rows cost a tenth of a four-bar
   // step); a NaN anywhere is kept aside and makes it infinite.
   double largest = 0.0;
   bool nan = false;
   const auto put = [&](int row, double value) {
-    out[row] = value;
+    residuals[row] = value;
     const double size = std::abs(value);
     largest = size > largest ? size : largest;
     nan |= std::isnan(value);
@@ -291,7 +289,7 @@ double evaluate_rows(const Mechanism& mech, const Eigen::VectorXd& q, const std:
       case ConstraintType::Distance:
         for (const CompiledRow* c = first; c != last; ++c) {
           const Xy u = r(c->at[1]) - r(c->at[0]);
-          put(c->row, (dot(u, u) - c->a * c->a) * c->scale);
+          if constexpr (WithResiduals) put(c->row, (dot(u, u) - c->a * c->a) * c->scale);
           if constexpr (WithJacobian) {
             const double f = 2.0 * c->scale;
             put_pair(jacobian, *c, {f * u.x, f * u.y});
@@ -301,15 +299,17 @@ double evaluate_rows(const Mechanism& mech, const Eigen::VectorXd& q, const std:
       case ConstraintType::DriveAngle:
         for (const CompiledRow* c = first; c != last; ++c) {
           const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
-          const Xy u = r(c->at[1]) - r(c->at[0]);
-          put(c->row, (u.x * d.sin.value() - u.y * d.cos.value()) * c->scale);
+          if constexpr (WithResiduals) {
+            const Xy u = r(c->at[1]) - r(c->at[0]);
+            put(c->row, (u.x * d.sin.value() - u.y * d.cos.value()) * c->scale);
+          }
           if constexpr (WithJacobian) put_pair(jacobian, *c, {c->scale * d.sin.value(), -c->scale * d.cos.value()});
         }
         return;
       default:
         for (const CompiledRow* c = first; c != last; ++c) {
           const DriverValues d = driver_values(*c, drivers);
-          put(c->row, residual(*c, r, d));
+          if constexpr (WithResiduals) put(c->row, residual(*c, r, d));
           if constexpr (WithJacobian) put_gradient(jacobian, *c, r, d);
         }
     }
@@ -317,46 +317,34 @@ double evaluate_rows(const Mechanism& mech, const Eigen::VectorXd& q, const std:
   return nan ? std::numeric_limits<double>::infinity() : largest;
 }
 
+double* sized_residuals(const Mechanism& mech, Eigen::VectorXd& phi) {
+  const auto rows = static_cast<Eigen::Index>(mech.compiled_rows().size());
+  if (phi.size() != rows) phi.resize(rows);
+  return phi.data();
+}
+
+// Every pattern entry belongs to one (row, point) slot, so each is written once.
+double* sized_jacobian(const Mechanism& mech, std::vector<double>& values) {
+  values.resize(mech.jacobian_pattern().size());
+  return values.data();
+}
+
 }  // namespace
 
 double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
                           Eigen::VectorXd& phi) {
-  return evaluate_rows<false>(mech, q, drivers, phi, nullptr);
+  return evaluate_rows<true, false>(mech, q, drivers, sized_residuals(mech, phi), nullptr);
 }
 
 double evaluate_residuals_and_jacobian(const Mechanism& mech, const Eigen::VectorXd& q,
                                        const std::vector<DriverState>& drivers, Eigen::VectorXd& phi,
                                        std::vector<double>& values) {
-  // Every pattern entry belongs to one (row, point) slot, so each is written once.
-  values.resize(mech.jacobian_pattern().size());
-  return evaluate_rows<true>(mech, q, drivers, phi, values.data());
+  return evaluate_rows<true, true>(mech, q, drivers, sized_residuals(mech, phi), sized_jacobian(mech, values));
 }
 
 void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
                        std::vector<double>& values) {
-  // Every pattern entry belongs to one (row, point) slot, so each is written once.
-  values.resize(mech.jacobian_pattern().size());
-  double* out = values.data();
-  const Points r{q.data(), mech.fixed_coordinates().data()};
-  for_each_group(mech, [&](ConstraintType type, const CompiledRow* first, const CompiledRow* last) {
-    switch (type) {
-      case ConstraintType::Distance:
-        for (const CompiledRow* c = first; c != last; ++c) {
-          const Xy u = r(c->at[1]) - r(c->at[0]);
-          const double f = 2.0 * c->scale;
-          put_pair(out, *c, {f * u.x, f * u.y});
-        }
-        return;
-      case ConstraintType::DriveAngle:
-        for (const CompiledRow* c = first; c != last; ++c) {
-          const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
-          put_pair(out, *c, {c->scale * d.sin.value(), -c->scale * d.cos.value()});
-        }
-        return;
-      default:
-        for (const CompiledRow* c = first; c != last; ++c) put_gradient(out, *c, r, driver_values(*c, drivers));
-    }
-  });
+  evaluate_rows<false, true>(mech, q, drivers, nullptr, sized_jacobian(mech, values));
 }
 
 namespace {
