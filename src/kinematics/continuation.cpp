@@ -79,7 +79,7 @@ template <int N>
 void copy_coordinates(const Eigen::VectorXd& from, Eigen::VectorXd& to) {
   if constexpr (N > 0) {
     if (to.size() != N) to.resize(N);
-    std::copy_n(from.data(), N, to.data());
+    copy_numbers<N>(from.data(), N, to.data());
   } else {
     to = from;
   }
@@ -293,7 +293,7 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
   Eigen::VectorXd& q_pred = state.q_predicted;
   copy_coordinates<N>(state.q, q_old);
   const double p_start = state.parameter;
-  if (options.coast_terms > 0) state.q_track_start = state.q;
+  if (options.coast_terms > 0) copy_coordinates<N>(state.q, state.q_track_start);
   int sign_old = state.solver().determinant_sign();
   // The residual at the last accepted point, as correct() found it there (with the drivers
   // where they are now): computing it again at the end would give the same number.
@@ -326,7 +326,7 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
     // an extrapolation through the past point would multiply further: there, and where there is
     // no past point, the current point's series alone predict, with at least four terms.
     const bool regular = state.solver().reciprocal_condition() >= kHistoryRcond;
-    if (!regular || !state.history.predict(state.parameter, state.series, h, q_pred)) {
+    if (!regular || !state.history.predict<N>(state.parameter, state.series, h, q_pred)) {
       if (state.series.cols() < kTaylorPredictorTerms) {
         path(state.parameter, kTaylorPredictorTerms, values);
         set_drivers(mech, state, values);
@@ -378,7 +378,7 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
       state.parameter += h;
       state.swap_solvers();
       compute_series(mech, state, options.terms);
-      state.history.mark_current(state.parameter, state.series);
+      state.history.mark_current<N>(state.parameter, state.series);
       sign_old = state.solver().determinant_sign();
       copy_coordinates<N>(state.q, q_old);
       residual = trial_residual;

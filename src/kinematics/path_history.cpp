@@ -47,22 +47,42 @@ void weigh(const double* now, const double* before, const Eigen::MatrixXd& a, co
   }
 }
 
-// The common sizes unrolled: a sweep of order 2 or 3, the coordinates a step is compiled for.
-template <int Terms>
-void weigh(const double* now, const double* before, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
-           Eigen::VectorXd& q) {
-  with_coordinate_count(static_cast<int>(a.rows()),
-                        [&](auto n) { weigh<Terms, decltype(n)::value>(now, before, a, b, q); });
+// The common sizes unrolled: a sweep of order 2 or 3, the coordinates a step is compiled for
+// (N > 0, or with N = 0 the sizes of nbar/kinematics/sized.hpp found at run time).
+template <int Terms, int N>
+void weigh_sized(const double* now, const double* before, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+                 Eigen::VectorXd& q) {
+  if constexpr (N > 0) {
+    weigh<Terms, N>(now, before, a, b, q);
+  } else {
+    with_coordinate_count(static_cast<int>(a.rows()),
+                          [&](auto n) { weigh<Terms, decltype(n)::value>(now, before, a, b, q); });
+  }
 }
 
+// Whether n numbers are the same bits, N of them when N > 0: the differences' bits gathered, with
+// no branch per number (a few numbers, which two calls of memcmp cost more than); many with
+// memcmp, which compares 32 bytes at once.
+template <int N>
 bool same_bits(const double* a, const double* b, Eigen::Index n) {
-  for (Eigen::Index i = 0; i < n; ++i) {
+  if constexpr (N == 0) {
+    if (n > 8) return std::memcmp(a, b, static_cast<std::size_t>(n) * sizeof(double)) == 0;
+  }
+  std::uint64_t differ = 0;
+  for (Eigen::Index i = 0; i < (N > 0 ? N : n); ++i) {
     std::uint64_t x, y;
     std::memcpy(&x, a + i, sizeof x);
     std::memcpy(&y, b + i, sizeof y);
-    if (x != y) return false;
+    differ |= x ^ y;
   }
-  return true;
+  return differ == 0;
+}
+
+// to = the n numbers at from (N when N > 0), resized to them.
+template <int N>
+void copy_sized(const double* from, Eigen::Index n, Eigen::VectorXd& to) {
+  if (to.size() != (N > 0 ? N : n)) to.resize(N > 0 ? N : n);
+  copy_numbers<N>(from, n, to.data());
 }
 
 }  // namespace
@@ -81,30 +101,28 @@ void PathHistory::take(double parameter, Eigen::MatrixXd& series) {
   has_past_ = true;
 }
 
+template <int N>
 void PathHistory::mark_current(double parameter, const Eigen::MatrixXd& series) {
   current_parameter_ = parameter;
-  const Eigen::Index n = series.rows();
-  current_q_.resize(n);
-  std::copy_n(series.data(), n, current_q_.data());
-  current_rate_.resize(series.cols() > 1 ? n : 0);
-  if (series.cols() > 1) std::copy_n(series.data() + n, n, current_rate_.data());
+  const Eigen::Index n = N > 0 ? N : series.rows();
+  copy_sized<N>(series.data(), n, current_q_);
+  if (series.cols() > 1) {
+    copy_sized<N>(series.data() + n, n, current_rate_);
+  } else {
+    current_rate_.resize(0);
+  }
 }
 
 // The state must be the point the last accepted step reached, with the same path through it (its
 // rate along the path), bit for bit: anything else (a restart, a pose solved on its own, another
 // path through the same pose) has no usable past.
+template <int N>
 bool PathHistory::continues_from(double parameter, const Eigen::MatrixXd& series) const {
   if (!has_past_ || parameter != current_parameter_ || series.cols() < 2 || past_.cols() < series.cols()) return false;
   const Eigen::Index n = series.rows();
-  if (current_q_.size() != n || current_rate_.size() != n) return false;
-  // Compared as bits (what was copied is what must still be there): a few numbers in a loop, which
-  // two calls of memcmp cost more than; many with memcmp, which compares 32 bytes at once.
-  if (n > 8) {
-    const auto bytes = static_cast<std::size_t>(n) * sizeof(double);
-    return std::memcmp(series.data(), current_q_.data(), bytes) == 0 &&
-           std::memcmp(series.data() + n, current_rate_.data(), bytes) == 0;
-  }
-  return same_bits(series.data(), current_q_.data(), n) && same_bits(series.data() + n, current_rate_.data(), n);
+  if ((N > 0 && n != N) || current_q_.size() != n || current_rate_.size() != n) return false;
+  // Compared as bits: what was copied is what must still be there.
+  return same_bits<N>(series.data(), current_q_.data(), n) && same_bits<N>(series.data() + n, current_rate_.data(), n);
 }
 
 // With the past point at -1, the current one at 0 and the target at r, the polynomial's
@@ -136,8 +154,9 @@ void PathHistory::update_weights(double reach, int terms) {
   weight_reach_ = reach;
 }
 
+template <int N>
 bool PathHistory::predict(double parameter, const Eigen::MatrixXd& series, double h, Eigen::VectorXd& q) {
-  if (!continues_from(parameter, series)) return false;
+  if (!continues_from<N>(parameter, series)) return false;
   const double back = parameter - past_parameter_;  // the last step, signed as h is
   if (!(back * h > 0.0 && std::abs(h) <= kMaxReach * std::abs(back))) return false;
   const int terms = static_cast<int>(series.cols());
@@ -152,12 +171,24 @@ bool PathHistory::predict(double parameter, const Eigen::MatrixXd& series, doubl
   }
   if (q.size() != series.rows()) q.resize(series.rows());
   switch (terms) {  // the common sizes unrolled (a sweep of order 2 or 3)
-    case 3: weigh<3>(now, before, series, past_, q); break;
-    case 4: weigh<4>(now, before, series, past_, q); break;
-    default: weigh<0>(now, before, series, past_, q); break;
+    case 3: weigh_sized<3, N>(now, before, series, past_, q); break;
+    case 4: weigh_sized<4, N>(now, before, series, past_, q); break;
+    default: weigh_sized<0, N>(now, before, series, past_, q); break;
   }
   return true;
 }
+
+// The sizes of nbar/kinematics/sized.hpp, and any (N = 0).
+#define NBAR_PATH_HISTORY_SIZED(N)                                                                  \
+  template void PathHistory::mark_current<N>(double parameter, const Eigen::MatrixXd& series);      \
+  template bool PathHistory::predict<N>(double parameter, const Eigen::MatrixXd& series, double h, \
+                                        Eigen::VectorXd& q);
+NBAR_PATH_HISTORY_SIZED(0)
+NBAR_PATH_HISTORY_SIZED(2)
+NBAR_PATH_HISTORY_SIZED(4)
+NBAR_PATH_HISTORY_SIZED(6)
+NBAR_PATH_HISTORY_SIZED(8)
+#undef NBAR_PATH_HISTORY_SIZED
 
 
 }  // namespace nbar

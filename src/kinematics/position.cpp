@@ -118,7 +118,7 @@ void series_sized(const Mechanism& mech, State& state, const std::vector<DriverS
                   Eigen::MatrixXd& out) {
   const int n = N > 0 ? N : mech.coordinate_count();
   if (out.rows() != n || out.cols() != terms) out.resize(n, terms);
-  std::copy_n(state.q.data(), n, out.data());
+  copy_numbers<N>(state.q.data(), n, out.data());
   for (int k = 1; k < terms; ++k) {
     // Phi_q q_k = -R_k, solved for -q_k and turned round (exactly) in place.
     evaluate_series_remainder(mech, out, k, drivers, state.rhs);

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace nbar {
 namespace {
@@ -86,6 +88,43 @@ TEST(PathHistory, TakingTheSeriesPredictsAsCopyingThem) {
   ASSERT_EQ(from_taken.size(), 2);
   EXPECT_EQ(from_taken[0], from_copy[0]);
   EXPECT_EQ(from_taken[1], from_copy[1]);
+}
+
+// A step compiled for its number of coordinates (track() for 2, 4, 6 or 8) uses the history
+// sized the same way: the same prediction, bit for bit, and the same refusals.
+TEST(PathHistory, SizedWhenCompiledPredictsAsAnySize) {
+  const auto bits = [](double x) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  for (const double reach : {0.5, 1.0, 1.9}) {
+    PathHistory any, sized;
+    any.push(0.9, series_at(0.9));
+    sized.push(0.9, series_at(0.9));
+    any.mark_current(1.0, series_at(1.0));
+    sized.mark_current<2>(1.0, series_at(1.0));
+    Eigen::VectorXd from_any, from_sized;
+    ASSERT_TRUE(any.predict(1.0, series_at(1.0), 0.1 * reach, from_any));
+    ASSERT_TRUE(sized.predict<2>(1.0, series_at(1.0), 0.1 * reach, from_sized));
+    ASSERT_EQ(from_sized.size(), 2);
+    EXPECT_EQ(bits(from_sized[0]), bits(from_any[0])) << "reach " << reach;
+    EXPECT_EQ(bits(from_sized[1]), bits(from_any[1])) << "reach " << reach;
+  }
+  PathHistory sized;
+  sized.push(0.9, series_at(0.9));
+  sized.mark_current<2>(1.0, series_at(1.0));
+  Eigen::VectorXd q;
+  Eigen::MatrixXd moved = series_at(1.0);
+  moved(1, 0) = std::nextafter(moved(1, 0), 2.0);
+  EXPECT_FALSE(sized.predict<2>(1.0, moved, 0.1, q));  // the last coordinate moved by one bit
+  Eigen::MatrixXd other_path = series_at(1.0);
+  other_path(1, 1) = std::nextafter(other_path(1, 1), 2.0);
+  EXPECT_FALSE(sized.predict<2>(1.0, other_path, 0.1, q));  // its rate by one bit
+  // A series of another size than the step's is not the point the history continues from.
+  const Eigen::MatrixXd wider = Eigen::MatrixXd::Zero(4, 3);
+  EXPECT_FALSE(sized.predict<4>(1.0, wider, 0.1, q));
+  EXPECT_TRUE(sized.predict<2>(1.0, series_at(1.0), 0.1, q));
 }
 
 }  // namespace

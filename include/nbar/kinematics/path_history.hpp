@@ -23,13 +23,18 @@ class PathHistory {
   // point it forgets, whose numbers the caller overwrites (a step's new series).
   void take(double parameter, Eigen::MatrixXd& series);
   // After it is accepted: the point it reached, which the next prediction must start from.
+  // N > 0 (2, 4, 6 or 8, nbar/kinematics/sized.hpp) is the number of coordinates known when
+  // compiled, for a step compiled for it; 0 reads it from `series`. The numbers are the same.
+  template <int N = 0>
   void mark_current(double parameter, const Eigen::MatrixXd& series);
   // q at parameter + h, from `series` at `parameter` and the past point's series, when the history
   // continues from that point and the step reaches at most twice as far as the last; false
-  // otherwise (the caller then predicts from `series` alone).
+  // otherwise (the caller then predicts from `series` alone). N as for mark_current.
+  template <int N = 0>
   bool predict(double parameter, const Eigen::MatrixXd& series, double h, Eigen::VectorXd& q);
 
  private:
+  template <int N>
   bool continues_from(double parameter, const Eigen::MatrixXd& series) const;
   // Whether the weights are those for this reach and number of terms (checked before the call, in
   // line: they almost always are).
