@@ -214,25 +214,6 @@ double remainder(const CompiledRow& c, const Coefficients& q, int k, const std::
 
 }  // namespace
 
-void set_driver_state(DriverState& s, const Series& value, bool angular) {
-  // Term by term: the path has just stored them as scalars, and a copy of the whole series would
-  // read them back as vectors (a store-forwarding stall every step of a sweep).
-  s.value.reset(value.terms(), value[0]);
-  for (int k = 1; k < value.terms(); ++k) s.value[k] = value[k];
-  if (angular) {
-    sincos(value, s.sin, s.cos);
-  } else {
-    s.sin = Series(value.terms());
-    s.cos = Series(value.terms());
-  }
-}
-
-DriverState make_driver_state(const Series& value, bool angular) {
-  DriverState s;
-  set_driver_state(s, value, angular);
-  return s;
-}
-
 // The rows of one type run together (Mechanism::compiled_rows() is grouped so): the two commonest,
 // a body's length and a crank's angle, in loops of their own with nothing to dispatch; the others
 // through the general functions above.

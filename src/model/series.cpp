@@ -51,8 +51,10 @@ Series riccati(const Series& x, double y0, double square_sign) {
 // In place (a driver's sine and cosine, every step of a sweep): a temporary copied in would read
 // back as vectors what was just stored as scalars. Division by k = 1 or 2 is a multiplication,
 // the same number exactly, off the critical path of the first terms.
-void coupled(const Series& x, double s0, double c0, double sign, Series& s, Series& c) {
-  const int n = x.terms();
+// Terms > 0: that many terms, known when compiled (the loops unroll); 0: x's.
+template <int Terms>
+void coupled_terms(const Series& x, double s0, double c0, double sign, Series& s, Series& c) {
+  const int n = Terms > 0 ? Terms : x.terms();
   s.reset(n, s0);
   c.reset(n, c0);
   for (int k = 1; k < n; ++k) {
@@ -70,6 +72,16 @@ void coupled(const Series& x, double s0, double c0, double sign, Series& s, Seri
       s[k] = ss / k;
       c[k] = sign * cc / k;
     }
+  }
+}
+
+// A sweep's drivers carry 3 or 4 terms (order 2 or 3), the predictor's 4. In line: a driver's
+// sine and cosine run at every step of a sweep.
+[[gnu::always_inline]] inline void coupled(const Series& x, double s0, double c0, double sign, Series& s, Series& c) {
+  switch (x.terms()) {
+    case 3: return coupled_terms<3>(x, s0, c0, sign, s, c);
+    case 4: return coupled_terms<4>(x, s0, c0, sign, s, c);
+    default: return coupled_terms<0>(x, s0, c0, sign, s, c);
   }
 }
 

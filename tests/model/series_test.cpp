@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <complex>
+#include <cstring>
 #include <functional>
 #include <numbers>
 #include <ostream>
@@ -146,6 +147,25 @@ TEST(Series, TruncationDoesNotChangeLowerCoefficients) {
 
 // ---------------------------------------------------------------------------------------------
 // Closed-form derivatives of functions of the plain variable
+
+// A sweep's drivers carry 3 or 4 terms, whose sine and cosine are unrolled for those sizes: every
+// coefficient is the one the longer series have, bit for bit (a truncation changes no lower
+// coefficient, and the recurrence is the same).
+TEST(Series, SinCosOfThreeAndFourTermsAreTheLongerSeriesHeads) {
+  const Series x = make({0.7, -1.3, 0.45, 2.25, -0.6, 0.125, 3.0});
+  Series s_long, c_long;
+  sincos(x, s_long, c_long);
+  for (int terms = 1; terms < kMax; ++terms) {
+    Series s, c;
+    sincos(x.head(terms), s, c);
+    ASSERT_EQ(s.terms(), terms);
+    for (int k = 0; k < terms; ++k) {
+      EXPECT_EQ(std::memcmp(&s[k], &s_long[k], sizeof(double)), 0) << terms << " terms, sin coefficient " << k;
+      EXPECT_EQ(std::memcmp(&c[k], &c_long[k], sizeof(double)), 0) << terms << " terms, cos coefficient " << k;
+    }
+    for (int k = terms; k < kMax; ++k) EXPECT_EQ(s[k], 0.0) << terms << " terms, sin beyond them";
+  }
+}
 
 TEST(Series, SinCosOfScaledVariable) {
   // d^k/dt^k sin(2t) = 2^k sin(2t + k pi/2).

@@ -62,9 +62,24 @@ struct RowGroup {
 struct DriverState {
   Series value, cos, sin;
 };
-DriverState make_driver_state(const Series& value, bool angular);
-// The same, in place.
-void set_driver_state(DriverState& state, const Series& value, bool angular);
+// The same, in place; in line, as it runs for every driver at every step of a sweep.
+inline void set_driver_state(DriverState& state, const Series& value, bool angular) {
+  // Term by term: the path has just stored them as scalars, and a copy of the whole series would
+  // read them back as vectors (a store-forwarding stall every step of a sweep).
+  state.value.reset(value.terms(), value[0]);
+  for (int k = 1; k < value.terms(); ++k) state.value[k] = value[k];
+  if (angular) {
+    sincos(value, state.sin, state.cos);
+  } else {
+    state.sin = Series(value.terms());
+    state.cos = Series(value.terms());
+  }
+}
+inline DriverState make_driver_state(const Series& value, bool angular) {
+  DriverState s;
+  set_driver_state(s, value, angular);
+  return s;
+}
 
 class Mechanism;
 
