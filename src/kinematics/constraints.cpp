@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace nbar {
 
@@ -29,7 +30,25 @@ struct Points {
     const double* p = at >= 0 ? q + at : fixed + ~at;
     return {p[0], p[1]};
   }
+  // The same for a point known, when compiled, to be fixed (Fixed) or to move.
+  template <bool Fixed>
+  Xy point(int at) const {
+    const double* p = Fixed ? fixed + ~at : q + at;
+    return {p[0], p[1]};
+  }
 };
+
+// f(F0, F1), std::bool_constant each: whether a group's first and second points are fixed
+// (RowGroup::fixed).
+template <class F>
+void with_fixed_points(int fixed, F&& f) {
+  switch (fixed) {
+    case 0: return f(std::false_type{}, std::false_type{});
+    case 1: return f(std::true_type{}, std::false_type{});
+    case 2: return f(std::false_type{}, std::true_type{});
+    default: return f(std::true_type{}, std::true_type{});
+  }
+}
 
 struct DriverValues {
   double value = 0.0, cos = 1.0, sin = 0.0;
@@ -159,6 +178,25 @@ struct Coefficients {
     return {p[0], p[1]};
   }
   Xy rate_difference(int from, int to, int j) const { return rate(to, j) - rate(from, j); }
+  // The same for points known, when compiled, to be fixed or to move (0 < k).
+  template <bool Fixed>
+  Xy position(int at) const {
+    const double* p = Fixed ? fixed + ~at : series + at;
+    return {p[0], p[1]};
+  }
+  template <bool Fixed>
+  Xy rate(int at, int j) const {
+    if constexpr (Fixed) {
+      return {0.0, 0.0};
+    } else {
+      const double* p = series + j * n + at;
+      return {p[0], p[1]};
+    }
+  }
+  template <bool FromFixed, bool ToFixed>
+  Xy rate_difference(int from, int to, int j) const {
+    return rate<ToFixed>(to, j) - rate<FromFixed>(from, j);
+  }
 };
 
 double term(const Series& s, int j) { return j < s.terms() ? s[j] : 0.0; }
@@ -220,19 +258,20 @@ double remainder(const CompiledRow& c, const Coefficients& q, int k, const std::
 template <class Group>
 void for_each_group(const Mechanism& mech, Group&& group) {
   const CompiledRow* rows = mech.compiled_rows().data();
-  for (const RowGroup& g : mech.row_groups()) group(g.type, rows + g.first, rows + g.last);
+  for (const RowGroup& g : mech.row_groups()) group(g, rows + g.first, rows + g.last);
 }
 
 namespace {
 
-// A row whose gradient is g at its first point and -g at its second, written into the Jacobian's
-// values.
+// A row whose gradient is -g at its first point and g at its second, written into the Jacobian's
+// values where those points move (a fixed point has no entries).
+template <bool FirstFixed, bool SecondFixed>
 void put_pair(double* out, const CompiledRow& c, Xy g) {
-  if (c.entry[0] >= 0) {
+  if constexpr (!FirstFixed) {
     out[c.entry[0]] = -g.x;
     out[c.entry[0] + 1] = -g.y;
   }
-  if (c.entry[1] >= 0) {
+  if constexpr (!SecondFixed) {
     out[c.entry[1]] = g.x;
     out[c.entry[1] + 1] = g.y;
   }
@@ -265,28 +304,33 @@ double evaluate_rows(const Mechanism& mech, const Eigen::VectorXd& q, const std:
     largest = size > largest ? size : largest;
     nan |= std::isnan(value);
   };
-  for_each_group(mech, [&](ConstraintType type, const CompiledRow* first, const CompiledRow* last) {
-    switch (type) {
+  for_each_group(mech, [&](const RowGroup& group, const CompiledRow* first, const CompiledRow* last) {
+    switch (group.type) {
       case ConstraintType::Distance:
-        for (const CompiledRow* c = first; c != last; ++c) {
-          const Xy u = r(c->at[1]) - r(c->at[0]);
-          if constexpr (WithResiduals) put(c->row, (dot(u, u) - c->a * c->a) * c->scale);
-          if constexpr (WithJacobian) {
-            const double f = 2.0 * c->scale;
-            put_pair(jacobian, *c, {f * u.x, f * u.y});
+        return with_fixed_points(group.fixed, [&](auto first_fixed, auto second_fixed) {
+          constexpr bool F0 = decltype(first_fixed)::value, F1 = decltype(second_fixed)::value;
+          for (const CompiledRow* c = first; c != last; ++c) {
+            const Xy u = r.point<F1>(c->at[1]) - r.point<F0>(c->at[0]);
+            if constexpr (WithResiduals) put(c->row, (dot(u, u) - c->a * c->a) * c->scale);
+            if constexpr (WithJacobian) {
+              const double f = 2.0 * c->scale;
+              put_pair<F0, F1>(jacobian, *c, {f * u.x, f * u.y});
+            }
           }
-        }
-        return;
+        });
       case ConstraintType::DriveAngle:
-        for (const CompiledRow* c = first; c != last; ++c) {
-          const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
-          if constexpr (WithResiduals) {
-            const Xy u = r(c->at[1]) - r(c->at[0]);
-            put(c->row, (u.x * d.sin.value() - u.y * d.cos.value()) * c->scale);
+        return with_fixed_points(group.fixed, [&](auto first_fixed, auto second_fixed) {
+          constexpr bool F0 = decltype(first_fixed)::value, F1 = decltype(second_fixed)::value;
+          for (const CompiledRow* c = first; c != last; ++c) {
+            const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
+            if constexpr (WithResiduals) {
+              const Xy u = r.point<F1>(c->at[1]) - r.point<F0>(c->at[0]);
+              put(c->row, (u.x * d.sin.value() - u.y * d.cos.value()) * c->scale);
+            }
+            if constexpr (WithJacobian)
+              put_pair<F0, F1>(jacobian, *c, {c->scale * d.sin.value(), -c->scale * d.cos.value()});
           }
-          if constexpr (WithJacobian) put_pair(jacobian, *c, {c->scale * d.sin.value(), -c->scale * d.cos.value()});
-        }
-        return;
+        });
       default:
         for (const CompiledRow* c = first; c != last; ++c) {
           const DriverValues d = driver_values(*c, drivers);
@@ -341,8 +385,8 @@ template <int K>
   if (rhs.size() != static_cast<Eigen::Index>(rows.size())) rhs.resize(static_cast<Eigen::Index>(rows.size()));
   double* out = rhs.data();
   const Coefficients q{coefficients.data(), coefficients.rows(), mech.fixed_coordinates().data(), k};
-  for_each_group(mech, [&](ConstraintType type, const CompiledRow* first, const CompiledRow* last) {
-    switch (type) {
+  for_each_group(mech, [&](const RowGroup& group, const CompiledRow* first, const CompiledRow* last) {
+    switch (group.type) {
       case ConstraintType::Distance:
         // The first coefficient is linear in q_1 alone (no sum: 0 * scale, which is +0, every scale
         // being positive); the k-th, sum over j of u_j . u_(k-j).
@@ -350,32 +394,37 @@ template <int K>
           for (const CompiledRow* c = first; c != last; ++c) out[c->row] = 0.0;
           return;
         }
-        for (const CompiledRow* c = first; c != last; ++c) {
-          const int from = c->at[0], to = c->at[1];
-          double v = 0.0;
-          for (int j = 1; j < k; ++j) v += dot(q.rate_difference(from, to, j), q.rate_difference(from, to, k - j));
-          out[c->row] = v * c->scale;
-        }
-        return;
+        return with_fixed_points(group.fixed, [&](auto first_fixed, auto second_fixed) {
+          constexpr bool F0 = decltype(first_fixed)::value, F1 = decltype(second_fixed)::value;
+          for (const CompiledRow* c = first; c != last; ++c) {
+            const int from = c->at[0], to = c->at[1];
+            double v = 0.0;
+            for (int j = 1; j < k; ++j)
+              v += dot(q.rate_difference<F0, F1>(from, to, j), q.rate_difference<F0, F1>(from, to, k - j));
+            out[c->row] = v * c->scale;
+          }
+        });
       case ConstraintType::RigidX:
       case ConstraintType::RigidY:
         for (const CompiledRow* c = first; c != last; ++c) out[c->row] = 0.0;  // linear in q
         return;
       case ConstraintType::DriveAngle:
         // (u x (cos, sin)) coefficient k: sum over j < k of u_j against the driver's k - j.
-        for (const CompiledRow* c = first; c != last; ++c) {
-          const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
-          const int from = c->at[0], to = c->at[1];
-          const Xy u0 = q(to, 0) - q(from, 0);
-          double v = 0.0;  // added to, not started from, the first term: a -0 product stays +0
-          v += u0.x * term(d.sin, k) - u0.y * term(d.cos, k);
-          for (int j = 1; j < k; ++j) {
-            const Xy u = q.rate_difference(from, to, j);
-            v += u.x * term(d.sin, k - j) - u.y * term(d.cos, k - j);
+        return with_fixed_points(group.fixed, [&](auto first_fixed, auto second_fixed) {
+          constexpr bool F0 = decltype(first_fixed)::value, F1 = decltype(second_fixed)::value;
+          for (const CompiledRow* c = first; c != last; ++c) {
+            const DriverState& d = drivers[static_cast<std::size_t>(c->driver)];
+            const int from = c->at[0], to = c->at[1];
+            const Xy u0 = q.position<F1>(to) - q.position<F0>(from);
+            double v = 0.0;  // added to, not started from, the first term: a -0 product stays +0
+            v += u0.x * term(d.sin, k) - u0.y * term(d.cos, k);
+            for (int j = 1; j < k; ++j) {
+              const Xy u = q.rate_difference<F0, F1>(from, to, j);
+              v += u.x * term(d.sin, k - j) - u.y * term(d.cos, k - j);
+            }
+            out[c->row] = v * c->scale;
           }
-          out[c->row] = v * c->scale;
-        }
-        return;
+        });
       default:
         for (const CompiledRow* c = first; c != last; ++c) out[c->row] = remainder(*c, q, k, drivers);
     }

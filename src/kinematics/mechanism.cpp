@@ -243,12 +243,18 @@ void Mechanism::build_pattern() {
       pattern_.push_back({static_cast<int>(r), column_[p] + 1});
     }
   }
-  std::stable_sort(compiled_.begin(), compiled_.end(),
-                   [](const CompiledRow& a, const CompiledRow& b) { return a.type < b.type; });
+  const auto fixed_points = [](const CompiledRow& c) {
+    if (c.type != ConstraintType::Distance && c.type != ConstraintType::DriveAngle) return 0;
+    return (c.at[0] < 0 ? 1 : 0) | (c.at[1] < 0 ? 2 : 0);
+  };
+  std::stable_sort(compiled_.begin(), compiled_.end(), [&](const CompiledRow& a, const CompiledRow& b) {
+    return a.type != b.type ? a.type < b.type : fixed_points(a) < fixed_points(b);
+  });
   groups_.clear();
   for (std::size_t r = 0; r < compiled_.size(); ++r) {
-    if (groups_.empty() || groups_.back().type != compiled_[r].type)
-      groups_.push_back({compiled_[r].type, static_cast<int>(r), static_cast<int>(r)});
+    const int fixed = fixed_points(compiled_[r]);
+    if (groups_.empty() || groups_.back().type != compiled_[r].type || groups_.back().fixed != fixed)
+      groups_.push_back({compiled_[r].type, fixed, static_cast<int>(r), static_cast<int>(r)});
     groups_.back().last = static_cast<int>(r) + 1;
   }
 }

@@ -422,5 +422,88 @@ TEST(ResidualsAndJacobian, OnePassGivesWhatTheTwoEvaluationsGive) {
   }
 }
 
+// A body's length and a crank's angle are evaluated in loops compiled for which of the row's two
+// points are fixed (RowGroup::fixed). Checked here against the rows' formulas written out, with
+// the fixed point first and second: residuals, Jacobian entries (none for a fixed point) and the
+// second series remainder.
+TEST(ResidualsAndJacobian, RowsWithTheFixedPointFirstOrSecond) {
+  const auto four_bar = [](bool fixed_second) {
+    Model m;
+    const int o2 = add_point(m, "O2", {0, 0}, true);
+    const int o4 = add_point(m, "O4", {0.2, 0}, true);
+    const int a = add_point(m, "A", {0.04, 0.07});
+    const int b = add_point(m, "B", {0.21, 0.14});
+    const int crank = fixed_second ? add_body(m, "crank", {a, o2}) : add_body(m, "crank", {o2, a});
+    add_body(m, "coupler", fixed_second ? std::vector<int>{b, a} : std::vector<int>{a, b});
+    add_body(m, "rocker", fixed_second ? std::vector<int>{b, o4} : std::vector<int>{o4, b});
+    m.drivers.push_back(angle_driver("crank", crank));
+    return m;
+  };
+  for (const bool fixed_second : {false, true}) {
+    SCOPED_TRACE(fixed_second ? "fixed points second" : "fixed points first");
+    const Mechanism mech(four_bar(fixed_second));
+    State state(mech);
+    Series theta(3, mech.drawn_driver_values()[0] + 0.1);
+    theta[1] = 1.7;
+    theta[2] = -0.4;
+    set_drivers(mech, state, {theta});
+    for (Eigen::Index i = 0; i < state.q.size(); ++i) state.q[i] += 1e-3 * std::sin(3.0 + 5.0 * static_cast<double>(i));
+    // The second coefficient's remainder reads the first coefficients (column 1) and the positions.
+    Eigen::MatrixXd coefficients(state.q.size(), 3);
+    coefficients.col(0) = state.q;
+    for (Eigen::Index i = 0; i < state.q.size(); ++i) coefficients(i, 1) = std::cos(1.0 + 2.0 * static_cast<double>(i));
+    coefficients.col(2).setZero();
+    Eigen::VectorXd phi, rhs;
+    std::vector<double> jacobian;
+    evaluate_residuals_and_jacobian(mech, state.q, state.drivers, phi, jacobian);
+    evaluate_series_remainder(mech, coefficients, 2, state.drivers, rhs);
+    const DriverState& d = state.drivers[0];
+    int rows_checked = 0;
+    for (int r = 0; r < mech.row_count(); ++r) {
+      const Constraint& c = mech.rows()[static_cast<std::size_t>(r)];
+      SCOPED_TRACE(c.label);
+      const Eigen::Vector2d u = mech.point_position(c.p[1], state.q) - mech.point_position(c.p[0], state.q);
+      const auto rate = [&](int point) {
+        const int col = mech.column_of(point);
+        return col < 0 ? Eigen::Vector2d(0.0, 0.0) : Eigen::Vector2d(coefficients(col, 1), coefficients(col + 1, 1));
+      };
+      const Eigen::Vector2d u1 = rate(c.p[1]) - rate(c.p[0]);
+      Eigen::Vector2d gradient;  // at the second point; minus it at the first
+      if (c.type == ConstraintType::Distance) {
+        EXPECT_DOUBLE_EQ(phi[r], (u.squaredNorm() - c.a * c.a) * c.scale);
+        EXPECT_DOUBLE_EQ(rhs[r], u1.squaredNorm() * c.scale);
+        gradient = 2.0 * c.scale * u;
+      } else if (c.type == ConstraintType::DriveAngle) {
+        EXPECT_DOUBLE_EQ(phi[r], (u.x() * d.sin[0] - u.y() * d.cos[0]) * c.scale);
+        EXPECT_NEAR(rhs[r], (u.x() * d.sin[2] - u.y() * d.cos[2] + u1.x() * d.sin[1] - u1.y() * d.cos[1]) * c.scale,
+                    1e-15);
+        gradient = c.scale * Eigen::Vector2d(d.sin[0], -d.cos[0]);
+      } else {
+        ADD_FAILURE() << "a four-bar has lengths and a crank angle only";
+        continue;
+      }
+      for (int slot = 0; slot < 2; ++slot) {
+        const int e = mech.entry_index(r, slot);
+        const bool fixed = mech.model().points[static_cast<std::size_t>(c.p[slot])].ground;
+        ASSERT_EQ(e < 0, fixed) << "slot " << slot;
+        if (fixed) continue;
+        const double sign = slot == 0 ? -1.0 : 1.0;
+        EXPECT_DOUBLE_EQ(jacobian[static_cast<std::size_t>(e)], sign * gradient.x()) << "slot " << slot;
+        EXPECT_DOUBLE_EQ(jacobian[static_cast<std::size_t>(e) + 1], sign * gradient.y()) << "slot " << slot;
+      }
+      ++rows_checked;
+    }
+    EXPECT_EQ(rows_checked, 4);
+    // The loops ran for both orders: the groups know the fixed points where they are.
+    bool first_fixed = false, second_fixed = false;
+    for (const RowGroup& g : mech.row_groups()) {
+      first_fixed |= g.fixed == 1;
+      second_fixed |= g.fixed == 2;
+    }
+    EXPECT_EQ(first_fixed, !fixed_second);
+    EXPECT_EQ(second_fixed, fixed_second);
+  }
+}
+
 }  // namespace
 }  // namespace nbar::ktest

@@ -52,9 +52,13 @@ struct CompiledRow {
   std::array<int, 4> entry{-1, -1, -1, -1};
 };
 
-// A run of compiled rows of one type: compiled_rows()[first, last).
+// A run of compiled rows of one type: compiled_rows()[first, last). Rows of a body's length and
+// of a crank's angle are grouped besides by which of their two points are fixed (bit 0 of `fixed`
+// for the first, bit 1 for the second; 0 for the other types), so that their loops know it when
+// compiled.
 struct RowGroup {
   ConstraintType type = ConstraintType::Distance;
+  int fixed = 0;
   int first = 0, last = 0;
 };
 
@@ -62,7 +66,8 @@ struct RowGroup {
 struct DriverState {
   Series value, cos, sin;
 };
-// The same, in place; in line, as it runs for every driver at every step of a sweep.
+// Makes `state` the driver's at `value` (with its sine and cosine for an angle), in place; in line,
+// as it runs for every driver at every step of a sweep.
 inline void set_driver_state(DriverState& state, const Series& value, bool angular) {
   // Term by term: the path has just stored them as scalars, and a copy of the whole series would
   // read them back as vectors (a store-forwarding stall every step of a sweep).
@@ -75,6 +80,7 @@ inline void set_driver_state(DriverState& state, const Series& value, bool angul
     state.cos = Series(value.terms());
   }
 }
+// The same, as a new state.
 inline DriverState make_driver_state(const Series& value, bool angular) {
   DriverState s;
   set_driver_state(s, value, angular);
