@@ -349,7 +349,9 @@ SparseLU::Replay SparseLU::replay(const Elimination& e, const double* values, bo
   const int* entry_slot = e.entry_slot.data();
   // probe is NaN when any value is infinite or NaN (0 times it is NaN), and 0 otherwise.
   double probe = 0.0;
-  for (std::size_t i = 0; i < e.entry_slot.size(); ++i) {
+  const std::size_t entries = e.entry_slot.size();
+#pragma GCC unroll 4
+  for (std::size_t i = 0; i < entries; ++i) {
     v[entry_slot[i]] += values[i];
     probe += 0.0 * values[i];
   }
