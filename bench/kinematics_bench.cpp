@@ -59,6 +59,14 @@
 //   16 of 20. Callgrind: 3 334 -> 3 030 instructions a four-bar step, a chain of 10 loops 26 373 ->
 //   26 005; `nbar solve` of eight bundled examples (four-bar to radial-5) 0.1-1.3% fewer
 //   instructions a sample, every CSV byte for byte the same.
+// Last on 2026-11-28, 4317e1b against d1c8e19 (the predictor's history and a driver's sine and cosine
+//   sized when compiled, coordinates copied in line, rows grouped by which points are fixed): 12
+//   rounds, engine step / closed form median 1.56 (1.50 to 1.67; 0.22 us) against 1.73 (1.64 to
+//   1.84); beside a compiling build on the other core 1.69 (1.60 to 1.78) against 1.82 (1.76 to
+//   1.89); 12 rounds on a busier stretch 1.65 (1.52 to 1.74) against 1.82 (1.59 to 1.93). Chains
+//   per loop / four-bar step, N = 10, 100, 1000: 0.96, 0.78, 0.69 (0.22, 0.18, 0.18 us). Callgrind:
+//   3 030 -> 2 860 instructions a four-bar step, a chain of 10 loops 3.0% fewer; `nbar solve` of
+//   eight bundled examples 0.25-0.64% fewer instructions a sample, every CSV byte for byte the same.
 //
 // Run: kinematics_bench --benchmark_min_time=0.2
 //      kinematics_bench --benchmark_filter='Over' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
