@@ -253,8 +253,9 @@ double remainder(const CompiledRow& c, const Coefficients& q, int k, const std::
 }  // namespace
 
 // The rows of one type run together (Mechanism::compiled_rows() is grouped so): the two commonest,
-// a body's length and a crank's angle, in loops of their own with nothing to dispatch; the others
-// through the general functions above.
+// a body's length and a crank's angle, in loops of their own with nothing to dispatch, compiled
+// for which of their points are fixed (RowGroup::fixed); the others through the general functions
+// above.
 template <class Group>
 void for_each_group(const Mechanism& mech, Group&& group) {
   const CompiledRow* rows = mech.compiled_rows().data();
