@@ -103,6 +103,9 @@ void PathHistory::take(double parameter, Eigen::MatrixXd& series) {
 
 template <int N>
 void PathHistory::mark_current(double parameter, const Eigen::MatrixXd& series) {
+  if constexpr (N > 0) {
+    if (series.rows() != N) return mark_current<0>(parameter, series);  // not the size compiled for
+  }
   current_parameter_ = parameter;
   const Eigen::Index n = N > 0 ? N : series.rows();
   copy_sized<N>(series.data(), n, current_q_);

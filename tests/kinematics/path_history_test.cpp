@@ -121,10 +121,16 @@ TEST(PathHistory, SizedWhenCompiledPredictsAsAnySize) {
   Eigen::MatrixXd other_path = series_at(1.0);
   other_path(1, 1) = std::nextafter(other_path(1, 1), 2.0);
   EXPECT_FALSE(sized.predict<2>(1.0, other_path, 0.1, q));  // its rate by one bit
-  // A series of another size than the step's is not the point the history continues from.
-  const Eigen::MatrixXd wider = Eigen::MatrixXd::Zero(4, 3);
-  EXPECT_FALSE(sized.predict<4>(1.0, wider, 0.1, q));
+  // A step compiled for another size than the series' predicts nothing from them, even from the
+  // point the history continues from; a history marked by such a step is marked as by any size.
+  EXPECT_FALSE(sized.predict<4>(1.0, series_at(1.0), 0.1, q));
   EXPECT_TRUE(sized.predict<2>(1.0, series_at(1.0), 0.1, q));
+  PathHistory marked_wrong;
+  marked_wrong.push(0.9, series_at(0.9));
+  marked_wrong.mark_current<4>(1.0, series_at(1.0));
+  Eigen::VectorXd from_wrong;
+  ASSERT_TRUE(marked_wrong.predict(1.0, series_at(1.0), 0.1, from_wrong));
+  EXPECT_EQ(bits(from_wrong[1]), bits(q[1]));
 }
 
 }  // namespace

@@ -38,8 +38,8 @@ struct Constraint {
   bool is_driver() const { return driver >= 0; }
 };
 
-// A row as the evaluation loops read it (Mechanism::compiled_rows(), grouped by type so that each
-// loop runs over rows of one type): the constants, and for each
+// A row as the evaluation loops read it (Mechanism::compiled_rows(), grouped as RowGroup says so
+// that each loop runs over rows of one kind): the constants, and for each
 // of its points where its coordinates are: a column of q (>= 0), or ~i for the fixed coordinates
 // at Mechanism::fixed_coordinates()[i] (unused slots: ~0 too, never read); and where the row's
 // Jacobian entries for each point start in the pattern (-1 for fixed points and unused slots).
@@ -101,7 +101,7 @@ double evaluate_residuals_and_jacobian(const Mechanism& mech, const Eigen::Vecto
 // (row, col) pair; they add up).
 void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q,
                        const std::vector<DriverState>& drivers, std::vector<double>& values);
-// The k-th Taylor coefficient of every row evaluated with q's coefficients 0..k-1 from
+// The k-th Taylor coefficient (k >= 1) of every row evaluated with q's coefficients 0..k-1 from
 // `coefficients` (n x terms, column j = coefficient j) and coefficient k taken as zero.
 // Then Phi_q * q_k = -rhs gives q_k.
 void evaluate_series_remainder(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int k,

@@ -24,7 +24,8 @@ class PathHistory {
   void take(double parameter, Eigen::MatrixXd& series);
   // After it is accepted: the point it reached, which the next prediction must start from.
   // N > 0 (2, 4, 6 or 8, nbar/kinematics/sized.hpp) is the number of coordinates known when
-  // compiled, for a step compiled for it; 0 reads it from `series`. The numbers are the same.
+  // compiled, for a step compiled for it; 0 reads it from `series` (as N > 0 does when `series`
+  // has another number of rows). The numbers are the same.
   template <int N = 0>
   void mark_current(double parameter, const Eigen::MatrixXd& series);
   // q at parameter + h, from `series` at `parameter` and the past point's series, when the history
