@@ -26,10 +26,7 @@ Xy perp(Xy b) { return {b.y, -b.x}; }
 struct Points {
   const double* q;
   const double* fixed;
-  Xy operator()(int at) const {
-    const double* p = at >= 0 ? q + at : fixed + ~at;
-    return {p[0], p[1]};
-  }
+  Xy operator()(int at) const { return at >= 0 ? point<false>(at) : point<true>(at); }
   // The same for a point known, when compiled, to be fixed (Fixed) or to move.
   template <bool Fixed>
   Xy point(int at) const {
@@ -167,16 +164,11 @@ struct Coefficients {
   Xy operator()(int at, int j) const {
     if (j >= k) return {0.0, 0.0};
     if (j > 0) return rate(at, j);
-    const double* p = at >= 0 ? series + at : fixed + ~at;
-    return {p[0], p[1]};
+    return at >= 0 ? position<false>(at) : position<true>(at);
   }
   Xy difference(int from, int to, int j) const { return (*this)(to, j) - (*this)(from, j); }
   // Coefficient j for 0 < j < k, where a fixed point's is zero: what the loops over j >= 1 read.
-  Xy rate(int at, int j) const {
-    if (at < 0) return {0.0, 0.0};
-    const double* p = series + j * n + at;
-    return {p[0], p[1]};
-  }
+  Xy rate(int at, int j) const { return at < 0 ? rate<true>(at, j) : rate<false>(at, j); }
   Xy rate_difference(int from, int to, int j) const { return rate(to, j) - rate(from, j); }
   // The same for points known, when compiled, to be fixed or to move (0 < k).
   template <bool Fixed>
