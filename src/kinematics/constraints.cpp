@@ -369,7 +369,7 @@ namespace {
 
 // evaluate_series_remainder for coefficient K known when compiled (the sums over j unroll), or
 // with K = 0 for `runtime_k`. Kept out of line: inlined, the four instantiations share one frame
-// and its register saves (17 more instructions a four-bar step, callgrind).
+// and its register saves, which every step then pays even when it needs only one of them.
 template <int K>
 [[gnu::noinline]] void remainder_of_order(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int runtime_k,
                                           const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs) {

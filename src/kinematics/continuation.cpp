@@ -65,7 +65,8 @@ void grow(double& largest, double x) {
 }
 
 // A step's work on the coordinates, for N of them known when compiled (nbar/kinematics/sized.hpp:
-// a seventh fewer instructions a four-bar step) or, with N = 0, as many as the vectors hold.
+// the loops unroll, which is most of a small mechanism's step) or, with N = 0, as many as the
+// vectors hold.
 template <int N>
 Eigen::Index coordinates(const Eigen::VectorXd& q) {
   if constexpr (N > 0) {

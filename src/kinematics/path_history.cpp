@@ -21,7 +21,7 @@ constexpr double kMaxReach = 2.0;
 // k x 2.2e-16 at step k): a reach within this fraction of the one the weights are for keeps them.
 // The prediction then moves by about as little of the step's motion (1e-9 of a degree's step is
 // far below the tolerance, and the correction removes it); at 1e-12 a sweep past about 4 500
-// steps recomputed them at every step (4% of its instructions).
+// steps recomputed them at every step, work that changed nothing.
 constexpr double kSameReach = 1e-9;
 
 double binomial(int n, int k) {

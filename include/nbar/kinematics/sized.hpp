@@ -25,7 +25,7 @@ decltype(auto) with_coordinate_count(int n, F&& f) {
 }
 
 // Copies n numbers between arrays that do not overlap, N of them when N > 0: then a few moves in
-// line, where std::copy_n of a known size still calls memmove (about 11 instructions a call).
+// line, where std::copy_n of a known size still calls memmove, a call costlier than the copy.
 template <int N>
 void copy_numbers(const double* from, std::ptrdiff_t n, double* to) {
   if constexpr (N > 0) {
