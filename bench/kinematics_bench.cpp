@@ -17,56 +17,10 @@
 //
 // BM_FourBarStepOverClosedForm and BM_ChainPerLoopOverFourBar/<N> are the ratios of issue 14,
 // each measured interleaved in one benchmark (CPU time of the thread), so that a shared
-// machine's load falls on both sides alike. Medians of 5 repetitions, 2-core machine under the
-// load of 7 builds (2026-11-25):
-//   engine step / Norton's closed form: 4.6 before (0.57 us / 0.12 us), 4.0 after (0.50 / 0.12)
-//   chain per loop per step / four-bar step, N = 10, 100, 1000: before 2.1, 1.7, 1.9 (1.24,
-//   1.02, 1.19 us per loop); after 2.4, 1.9, 2.3 (1.19, 0.99, 1.13 us: the four-bar step got
-//   faster than the chains' sparse LU); linear in N
-// Same machine, load 3-4 (2026-11-25, later): the small LU without vectorised spills,
-//   engine step / closed form 3.7 (0.43 / 0.12 us); chains 2.7, 2.2, 2.0 (1.17, 0.94, 0.89 us)
-// 2026-11-27, after the sparse LU with kept pivots, the Hermite predictor and the step's
-// overheads (commits f061d8a..edd4cec): 10 rounds of this program alternating with the one built
-// before them (bench/kinematics_rounds.py --baseline OLD); the host's other load made two
-// regimes, quiet and busy:
-//   engine step / closed form: median 2.09 (1.78 quiet to 2.67 busy; 0.38 / 0.19 us at the
-//   median), the program before in the same rounds 3.80 (3.74 to 4.48; 0.66 / 0.18 us)
-//   chain per loop / four-bar step, N = 10, 100, 1000: medians 0.88, 0.81, 0.84 (0.30, 0.29,
-//   0.29 us per loop), before 2.71, 2.17, 1.98 (1.89, 1.55, 1.57 us)
-// Those rounds ran on 6d9c3df; the review fixes after it (59581e4) cost
-//   3.4% more instructions a four-bar step (3 776 -> 3 905, callgrind over 3 600 steps), 2.7 points of
-//   it SparseLU::factorize's scan for numbers that are not finite.
-// Later on 2026-11-27, 5801714 against 78ceca3, 10 rounds on a busier host: engine step / closed
-//   form median 2.58 (1.96 to 2.78) against 2.53 (2.01 to 2.83); 3 814 instructions a step
-//   against 3 884 (callgrind): differences below what this host's load lets a timing show.
-//   Sampled in time (perf -e cpu-clock, 400 000 steps), the solves take 14-19% of a step against
-//   7% of its instructions: their substitutions are chains of dependent multiply-subtracts (as is
-//   the crank's sine and cosine, 6-8%), which the straight step below has as well.
-// BM_StraightFourBarStepOverClosedForm times the same algorithm written straight for this one
-//   four-bar (straight_four_bar.hpp): 0.96 to 1.31 in three runs where the engine's ratio was 1.93
-//   to 2.33. What stands between the engine and the target is its generality, not its algorithm.
-// 2026-11-28, 5fc1462 + 27d9e97 against af90d1f, 8 rounds: engine step / closed form median 1.88
-//   (1.73 to 2.44; 0.32 / 0.17 us) against 1.96 (1.88 to 2.76); on a busier stretch 2.61 against
-//   2.83. Callgrind, a four-bar step: 3 940 -> 3 360 instructions, every number bit for bit the same
-//   (the step sized when compiled for 2 to 8 coordinates). The straight step executes 1 083. The
-//   engine runs near 4 instructions a cycle: when another tenant shares its core it slows about
-//   twofold, where the latency-bound straight step and closed form slow far less, so the ratio on a
-//   busy host follows the instruction count (2x there needs about 2 900).
-// Later on 2026-11-28, 1611a3f against 78f58de (the LU's replay on the dense array, one pass for a
-//   correction's residuals and Jacobian, the series handed to the predictor's history): 12 rounds,
-//   engine step / closed form median 1.66 (1.64 to 2.32; 0.30 us) against 1.87 (1.75 to 2.43); 20
-//   pairs of runs on a busier stretch 1.86 (1.65 to 2.35) against 2.01 (1.74 to 2.44), faster in
-//   16 of 20. Callgrind: 3 334 -> 3 030 instructions a four-bar step, a chain of 10 loops 26 373 ->
-//   26 005; `nbar solve` of eight bundled examples (four-bar to radial-5) 0.1-1.3% fewer
-//   instructions a sample, every CSV byte for byte the same.
-// Last on 2026-11-28, 4317e1b against d1c8e19 (the predictor's history and a driver's sine and cosine
-//   sized when compiled, coordinates copied in line, rows grouped by which points are fixed): 12
-//   rounds, engine step / closed form median 1.56 (1.50 to 1.67; 0.22 us) against 1.73 (1.64 to
-//   1.84); beside a compiling build on the other core 1.69 (1.60 to 1.78) against 1.82 (1.76 to
-//   1.89); 12 rounds on a busier stretch 1.65 (1.52 to 1.74) against 1.82 (1.59 to 1.93). Chains
-//   per loop / four-bar step, N = 10, 100, 1000: 0.96, 0.78, 0.69 (0.22, 0.18, 0.18 us). Callgrind:
-//   3 030 -> 2 860 instructions a four-bar step, a chain of 10 loops 3.0% fewer; `nbar solve` of
-//   eight bundled examples 0.25-0.64% fewer instructions a sample, every CSV byte for byte the same.
+// machine's load falls on both sides alike. BM_StraightFourBarStepOverClosedForm times the same
+// algorithm written straight for this one four-bar (straight_four_bar.hpp): the gap between it
+// and the engine is what the engine's generality costs. The measured ratios, dated, and what
+// each change bought are in docs/benchmarks.md.
 //
 // Run: kinematics_bench --benchmark_min_time=0.2
 //      kinematics_bench --benchmark_filter='Over' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
