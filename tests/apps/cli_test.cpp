@@ -92,7 +92,7 @@ TEST(Cli, EveryExampleChecksAndSolves) {
     EXPECT_EQ(j["columns"].size(), j["rows"][0].size());
     EXPECT_EQ(j["column_units"].size(), j["columns"].size());
     EXPECT_TRUE(j["complete"].get<bool>());
-    ASSERT_TRUE(j.contains("stop_reason"));  // always written, as the README says
+    ASSERT_TRUE(j.contains("stop_reason"));  // always written, as docs/cli.md says
     EXPECT_TRUE(j["stop_reason"].is_null());
   }
 }
