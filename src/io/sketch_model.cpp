@@ -95,21 +95,39 @@ struct Body {
   std::map<std::size_t, double> pin_holes;  // point -> radius
 };
 
-}  // namespace
+// A point of the model: circle centres that coincide are one; then the marked points.
+struct Joint {
+  Vector2d at;
+  double radius = 0;  // 0: a marked point, no hole
+  int line = 0;       // the circle's (the smallest, where several are drawn at one place)
+};
 
-std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& options) {
-  const std::size_t n = sketch.loops.size();
+// The sketch's loops as straight-edged polygons, their areas and the box around them.
+struct Outlines {
   std::vector<std::vector<Vector2d>> polygons;
   std::vector<double> areas;
   Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+};
+
+Outlines outlines_of(const Sketch& sketch) {
+  Outlines o;
   for (const SketchLoop& l : sketch.loops) {
-    polygons.push_back(chords(l));
-    areas.push_back(l.area());
-    for (const Vector2d& v : polygons.back()) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
+    o.polygons.push_back(chords(l));
+    o.areas.push_back(l.area());
+    for (const Vector2d& v : o.polygons.back()) {
+      o.lo = o.lo.cwiseMin(v);
+      o.hi = o.hi.cwiseMax(v);
     }
   }
+  return o;
+}
+
+// The plates (loops at an even depth of nesting), each with its holes (the loops at an odd
+// depth whose smallest container it is).
+std::vector<Body> plates_of(const Sketch& sketch, const Outlines& outlines, const SketchModelOptions& options) {
+  const std::size_t n = sketch.loops.size();
+  const auto& polygons = outlines.polygons;
+  const auto& areas = outlines.areas;
   // Each loop's containers, wholly around it; they must nest in turn, or the outline lies in
   // two that cross and could be a hole of either.
   std::vector<std::vector<bool>> contains(n, std::vector<bool>(n, false));
@@ -159,7 +177,11 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     }
     bodies[body->second].holes.push_back(i);
   }
-  // Names: the layer, when no other outline has it.
+  return bodies;
+}
+
+// Names: the layer, when no other outline has it.
+void name_bodies(const Sketch& sketch, std::vector<Body>& bodies) {
   std::map<std::string, int> layer_count;
   for (const Body& b : bodies) ++layer_count[sketch.loops[b.loop].layer];
   std::set<std::string> taken;
@@ -169,17 +191,10 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     while (!taken.insert(name).second) name += "_";
     bodies[k].name = name;
   }
-  // The drawing's size, the diagonal of its outlines' bounding box, which every length the
-  // import compares or rounds to is relative to, so that the drawing's unit changes nothing
-  // (hypot: the squares of a drawing 1e-100 across, the smallest read, underflow).
-  const double size = std::hypot(hi.x() - lo.x(), hi.y() - lo.y());
-  // Points: circle centres that coincide are one; then the marked points.
-  const double same = 1e-6 * size;
-  struct Joint {
-    Vector2d at;
-    double radius = 0;  // 0: a marked point, no hole
-    int line = 0;       // the circle's (the smallest, where several are drawn at one place)
-  };
+}
+
+// Points: circle centres that coincide (within `same`) are one; then the marked points.
+std::vector<Joint> joints_of(const Sketch& sketch, double same) {
   std::vector<Joint> joints;
   for (const SketchCircle& c : sketch.circles) {
     auto it = std::find_if(joints.begin(), joints.end(),
@@ -195,8 +210,14 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
     const bool known = std::any_of(joints.begin(), joints.end(), [&](const Joint& j) { return (j.at - p.at).norm() <= same; });
     if (!known) joints.push_back({p.at, 0.0, p.line});
   }
-  // A point belongs to every body whose plate holds it: inside the outline, outside its holes
-  // (a pin hole's own circle aside).
+  return joints;
+}
+
+// A point belongs to every body whose plate holds it: inside the outline, outside its holes
+// (a pin hole's own circle aside). Gives the number of bodies at each joint.
+std::vector<int> place_joints(const Sketch& sketch, const Outlines& outlines, const std::vector<Joint>& joints,
+                              std::vector<Body>& bodies, const SketchModelOptions& options) {
+  const auto& polygons = outlines.polygons;
   std::vector<int> bodies_at(joints.size(), 0);
   for (Body& b : bodies) {
     for (std::size_t j = 0; j < joints.size(); ++j) {
@@ -214,9 +235,14 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
                   options.source_name, {sketch.loops[b.loop].lines.front(), 1});
     }
   }
-  if (bodies.empty()) throw Error(ErrorKind::InvalidModel, "the sketch has no outline", {}, options.source_name);
-  // A pin hole must stand clear of its plate's outline, its other holes and the other pin holes,
-  // as the model reader will ask of the model written: said here, at the circle's line.
+  return bodies_at;
+}
+
+// A pin hole must stand clear of its plate's outline, its other holes and the other pin holes,
+// as the model reader will ask of the model written: said here, at the circle's line.
+void check_pin_holes(const Sketch& sketch, const Outlines& outlines, const std::vector<Joint>& joints,
+                     const std::vector<Body>& bodies, const SketchModelOptions& options) {
+  const auto& polygons = outlines.polygons;
   for (const Body& b : bodies) {
     for (auto hole = b.pin_holes.begin(); hole != b.pin_holes.end(); ++hole) {
       const Joint& j = joints[hole->first];
@@ -240,24 +266,69 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
       }
     }
   }
+}
 
-  std::string ground, joints_list;
-  int joint_count = 0;
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    if (bodies_at[j] >= 2) ++joint_count;
-    if (bodies_at[j] == 1 && joints[j].radius > 0) ground += (ground.empty() ? "" : ", ") + fmt::format("P{}", j + 1);
-  }
-  std::string out = fmt::format(
-      "# A model skeleton from {} (nbar import): {} link{}, {} joint{} between links.\n"
-      "# Pin holes in a single link are taken as ground pivots: check `ground`, then add a driver\n"
-      "# (see the end of the file) and set each plate's thickness and material.\n",
-      options.source_name, bodies.size(), bodies.size() == 1 ? "" : "s", joint_count, joint_count == 1 ? "" : "s");
-  // The model's name: the sketch file's, without folders and extension, and nothing YAML would escape.
-  std::string name = options.source_name.substr(options.source_name.find_last_of("/\\") + 1);
+// The model's name: the sketch file's, without folders and extension, and nothing YAML would escape.
+std::string model_name(const std::string& source_name) {
+  std::string name = source_name.substr(source_name.find_last_of("/\\") + 1);
   name = name.substr(0, name.rfind('.'));
   for (char& c : name) {
     if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) c = '_';
   }
+  return name;
+}
+
+// The comment that opens the model: what was found, and what the user must still give.
+std::string model_header(const std::vector<Joint>& joints, const std::vector<int>& bodies_at, std::size_t body_count,
+                         const SketchModelOptions& options) {
+  int joint_count = 0;
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    if (bodies_at[j] >= 2) ++joint_count;
+  }
+  return fmt::format(
+      "# A model skeleton from {} (nbar import): {} link{}, {} joint{} between links.\n"
+      "# Pin holes in a single link are taken as ground pivots: check `ground`, then add a driver\n"
+      "# (see the end of the file) and set each plate's thickness and material.\n",
+      options.source_name, body_count, body_count == 1 ? "" : "s", joint_count, joint_count == 1 ? "" : "s");
+}
+
+// A body's entry under `bodies:`: its points, its plate (outline and holes), thickness and material.
+std::string body_yaml(const Sketch& sketch, const Body& b, const Tidy& tidy_model, const SketchModelOptions& options) {
+  std::string out = "  " + b.name + ":\n    points: [";
+  for (std::size_t k = 0; k < b.points.size(); ++k) out += fmt::format("{}P{}", k ? ", " : "", b.points[k] + 1);
+  out += fmt::format("]   # outline at line {} of {}\n", sketch.loops[b.loop].lines.front(), options.source_name);
+  out += "    shape:\n      outline:\n" + ring_yaml(sketch.loops[b.loop], options.scale, tidy_model, "        ");
+  if (!b.holes.empty() || !b.pin_holes.empty()) out += "      holes:\n";
+  for (const auto& [point, radius] : b.pin_holes) {
+    out += fmt::format("        - {{at: P{}, radius: {:.10g}}}\n", point + 1, tidy_model(radius * options.scale));
+  }
+  for (std::size_t h : b.holes) out += "        - polygon:\n" + ring_yaml(sketch.loops[h], options.scale, tidy_model, "            ");
+  out += fmt::format("    thickness: {:.10g}\n    material: {}\n", options.thickness, options.material);
+  return out;
+}
+
+}  // namespace
+
+std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& options) {
+  const Outlines outlines = outlines_of(sketch);
+  std::vector<Body> bodies = plates_of(sketch, outlines, options);
+  name_bodies(sketch, bodies);
+  // The drawing's size, the diagonal of its outlines' bounding box, which every length the
+  // import compares or rounds to is relative to, so that the drawing's unit changes nothing
+  // (hypot: the squares of a drawing 1e-100 across, the smallest read, underflow).
+  const Vector2d lo = outlines.lo, hi = outlines.hi;
+  const double size = std::hypot(hi.x() - lo.x(), hi.y() - lo.y());
+  const std::vector<Joint> joints = joints_of(sketch, 1e-6 * size);
+  const std::vector<int> bodies_at = place_joints(sketch, outlines, joints, bodies, options);
+  if (bodies.empty()) throw Error(ErrorKind::InvalidModel, "the sketch has no outline", {}, options.source_name);
+  check_pin_holes(sketch, outlines, joints, bodies, options);
+
+  std::string ground;
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    if (bodies_at[j] == 1 && joints[j].radius > 0) ground += (ground.empty() ? "" : ", ") + fmt::format("P{}", j + 1);
+  }
+  std::string out = model_header(joints, bodies_at, bodies.size(), options);
+  const std::string name = model_name(options.source_name);
   out += annotation_note(sketch.annotations);
   // Rounding of the drawing's coordinates (in the comments) and of the model's.
   const Tidy tidy(size), tidy_model(size * options.scale);
@@ -274,18 +345,7 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
   }
   out += "ground: [" + ground + "]\n";
   out += "gravity: standard\nbodies:\n";
-  for (const Body& b : bodies) {
-    out += "  " + b.name + ":\n    points: [";
-    for (std::size_t k = 0; k < b.points.size(); ++k) out += fmt::format("{}P{}", k ? ", " : "", b.points[k] + 1);
-    out += fmt::format("]   # outline at line {} of {}\n", sketch.loops[b.loop].lines.front(), options.source_name);
-    out += "    shape:\n      outline:\n" + ring_yaml(sketch.loops[b.loop], options.scale, tidy_model, "        ");
-    if (!b.holes.empty() || !b.pin_holes.empty()) out += "      holes:\n";
-    for (const auto& [point, radius] : b.pin_holes) {
-      out += fmt::format("        - {{at: P{}, radius: {:.10g}}}\n", point + 1, tidy_model(radius * options.scale));
-    }
-    for (std::size_t h : b.holes) out += "        - polygon:\n" + ring_yaml(sketch.loops[h], options.scale, tidy_model, "            ");
-    out += fmt::format("    thickness: {:.10g}\n    material: {}\n", options.thickness, options.material);
-  }
+  for (const Body& b : bodies) out += body_yaml(sketch, b, tidy_model, options);
   out += fmt::format("# drivers:\n#   - {{angle: {}, from: 0, to: 360, speed: 60 rpm}}\n", bodies.front().name);
   return out;
 }
