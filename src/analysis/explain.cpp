@@ -41,112 +41,7 @@ class RowWriter {
     row.source = c.source;
     row.driver = c.is_driver();
     derivatives_.clear();
-    const auto& p = c.p;
-    E f;
-    switch (c.type) {
-      case ConstraintType::Distance:
-      case ConstraintType::DriveDistance: {
-        const E length = c.type == ConstraintType::Distance ? num(c.a / ls_) : driver_symbol(c.driver);
-        f = sum({{1, sq(dx(p[0], p[1]))}, {1, sq(dy(p[0], p[1]))}, {-1, sq(length)}});
-        add(p[1], 0, scale(dx(p[0], p[1]), 2));
-        add(p[1], 1, scale(dy(p[0], p[1]), 2));
-        add(p[0], 0, scale(dx(p[0], p[1]), -2));
-        add(p[0], 1, scale(dy(p[0], p[1]), -2));
-        row.kind = c.type == ConstraintType::Distance ? "distance" : "driver";
-        row.scale = c.scale * ls_;
-        break;
-      }
-      case ConstraintType::RigidX:
-        f = sum({{1, x(p[2])}, {-1, x(p[0])}, {-c.a, dx(p[0], p[1])}, {c.b, dy(p[0], p[1])}});
-        add(p[2], 0, num(1));
-        add(p[1], 0, num(-c.a));
-        add(p[1], 1, num(c.b));
-        add(p[0], 0, num(c.a - 1));
-        add(p[0], 1, num(-c.b));
-        row.kind = "rigid_x";
-        row.scale = 1.0;
-        break;
-      case ConstraintType::RigidY:
-        f = sum({{1, y(p[2])}, {-1, y(p[0])}, {-c.a, dy(p[0], p[1])}, {-c.b, dx(p[0], p[1])}});
-        add(p[2], 1, num(1));
-        add(p[1], 1, num(-c.a));
-        add(p[1], 0, num(-c.b));
-        add(p[0], 1, num(c.a - 1));
-        add(p[0], 0, num(c.b));
-        row.kind = "rigid_y";
-        row.scale = 1.0;
-        break;
-      case ConstraintType::PointOnLine: {
-        // (rk - ri) x (rj - ri)
-        const E ex = dx(p[0], p[2]), ey = dy(p[0], p[2]), wx = dx(p[0], p[1]), wy = dy(p[0], p[1]);
-        f = sum({{1, mul(ex, wy)}, {-1, mul(ey, wx)}});
-        add(p[2], 0, wy);
-        add(p[2], 1, scale(wx, -1));
-        add(p[1], 0, scale(ey, -1));
-        add(p[1], 1, ex);
-        add(p[0], 0, dy(p[1], p[2]));
-        add(p[0], 1, dx(p[2], p[1]));
-        row.kind = "point_on_line";
-        row.scale = c.scale * ls_;
-        break;
-      }
-      case ConstraintType::Orientation:
-      case ConstraintType::DriveRelativeAngle: {
-        // (rj - ri) x R (rn - rm), R the rotation by phi0 (constants a, b) or by the driver.
-        E cs, sn;
-        if (c.type == ConstraintType::Orientation) {
-          cs = num(c.a);
-          sn = num(c.b);
-        } else {
-          cs = call(false, driver_symbol(c.driver));
-          sn = call(true, driver_symbol(c.driver));
-        }
-        const E vx = dx(p[0], p[1]), vy = dy(p[0], p[1]), wx = dx(p[2], p[3]), wy = dy(p[2], p[3]);
-        const E zx = sum({{1, mul(cs, wx)}, {-1, mul(sn, wy)}});
-        const E zy = sum({{1, mul(sn, wx)}, {1, mul(cs, wy)}});
-        f = sum({{1, mul(vx, zy)}, {-1, mul(vy, zx)}});
-        add(p[1], 0, zy);
-        add(p[1], 1, scale(zx, -1));
-        add(p[0], 0, scale(zy, -1));
-        add(p[0], 1, zx);
-        const E gx = sum({{1, mul(sn, vx)}, {-1, mul(cs, vy)}});
-        const E gy = sum({{1, mul(cs, vx)}, {1, mul(sn, vy)}});
-        add(p[3], 0, gx);
-        add(p[3], 1, gy);
-        add(p[2], 0, scale(gx, -1));
-        add(p[2], 1, scale(gy, -1));
-        row.kind = c.type == ConstraintType::Orientation ? "orientation" : "driver";
-        row.scale = c.scale * ls_;
-        break;
-      }
-      case ConstraintType::DriveAngle: {
-        const E th = driver_symbol(c.driver);
-        const E cs = call(false, th), sn = call(true, th);
-        f = sum({{1, mul(dx(p[0], p[1]), sn)}, {-1, mul(dy(p[0], p[1]), cs)}});
-        add(p[1], 0, sn);
-        add(p[1], 1, scale(cs, -1));
-        add(p[0], 0, scale(sn, -1));
-        add(p[0], 1, cs);
-        row.kind = "driver";
-        row.scale = c.scale;
-        break;
-      }
-      case ConstraintType::DriveSlide: {
-        // (rk - ri).(rj - ri) / Lg - s
-        const double k = ls_ / c.a;  // 1 / Lg in model units
-        const E ex = dx(p[0], p[2]), ey = dy(p[0], p[2]), wx = dx(p[0], p[1]), wy = dy(p[0], p[1]);
-        f = sum({{k, mul(ex, wx)}, {k, mul(ey, wy)}, {-1, driver_symbol(c.driver)}});
-        add(p[2], 0, scale(wx, k));
-        add(p[2], 1, scale(wy, k));
-        add(p[1], 0, scale(ex, k));
-        add(p[1], 1, scale(ey, k));
-        add(p[0], 0, sum({{-k, wx}, {-k, ex}}));
-        add(p[0], 1, sum({{-k, wy}, {-k, ey}}));
-        row.kind = "driver";
-        row.scale = 1.0;
-        break;
-      }
-    }
+    const E f = equation(c, row);
     row.text = explain_detail::text(f) + " = 0";
     row.latex = explain_detail::latex(f) + " = 0";
     for (const auto& [column, parts] : derivatives_) {
@@ -167,6 +62,138 @@ class RowWriter {
   }
 
  private:
+  // The equation of row `c` (= 0), its derivatives added by column; sets the row's kind and scale.
+  E equation(const Constraint& c, EquationRow& row) {
+    switch (c.type) {
+      case ConstraintType::Distance:
+      case ConstraintType::DriveDistance: return distance(c, row);
+      case ConstraintType::RigidX: return rigid_x(c, row);
+      case ConstraintType::RigidY: return rigid_y(c, row);
+      case ConstraintType::PointOnLine: return point_on_line(c, row);
+      case ConstraintType::Orientation:
+      case ConstraintType::DriveRelativeAngle: return orientation(c, row);
+      case ConstraintType::DriveAngle: return drive_angle(c, row);
+      case ConstraintType::DriveSlide: return drive_slide(c, row);
+    }
+    return E{};
+  }
+
+  E distance(const Constraint& c, EquationRow& row) {
+    const auto& p = c.p;
+    const E length = c.type == ConstraintType::Distance ? num(c.a / ls_) : driver_symbol(c.driver);
+    const E f = sum({{1, sq(dx(p[0], p[1]))}, {1, sq(dy(p[0], p[1]))}, {-1, sq(length)}});
+    add(p[1], 0, scale(dx(p[0], p[1]), 2));
+    add(p[1], 1, scale(dy(p[0], p[1]), 2));
+    add(p[0], 0, scale(dx(p[0], p[1]), -2));
+    add(p[0], 1, scale(dy(p[0], p[1]), -2));
+    row.kind = c.type == ConstraintType::Distance ? "distance" : "driver";
+    row.scale = c.scale * ls_;
+    return f;
+  }
+
+  E rigid_x(const Constraint& c, EquationRow& row) {
+    const auto& p = c.p;
+    const E f = sum({{1, x(p[2])}, {-1, x(p[0])}, {-c.a, dx(p[0], p[1])}, {c.b, dy(p[0], p[1])}});
+    add(p[2], 0, num(1));
+    add(p[1], 0, num(-c.a));
+    add(p[1], 1, num(c.b));
+    add(p[0], 0, num(c.a - 1));
+    add(p[0], 1, num(-c.b));
+    row.kind = "rigid_x";
+    row.scale = 1.0;
+    return f;
+  }
+
+  E rigid_y(const Constraint& c, EquationRow& row) {
+    const auto& p = c.p;
+    const E f = sum({{1, y(p[2])}, {-1, y(p[0])}, {-c.a, dy(p[0], p[1])}, {-c.b, dx(p[0], p[1])}});
+    add(p[2], 1, num(1));
+    add(p[1], 1, num(-c.a));
+    add(p[1], 0, num(-c.b));
+    add(p[0], 1, num(c.a - 1));
+    add(p[0], 0, num(c.b));
+    row.kind = "rigid_y";
+    row.scale = 1.0;
+    return f;
+  }
+
+  E point_on_line(const Constraint& c, EquationRow& row) {
+    const auto& p = c.p;
+    // (rk - ri) x (rj - ri)
+    const E ex = dx(p[0], p[2]), ey = dy(p[0], p[2]), wx = dx(p[0], p[1]), wy = dy(p[0], p[1]);
+    const E f = sum({{1, mul(ex, wy)}, {-1, mul(ey, wx)}});
+    add(p[2], 0, wy);
+    add(p[2], 1, scale(wx, -1));
+    add(p[1], 0, scale(ey, -1));
+    add(p[1], 1, ex);
+    add(p[0], 0, dy(p[1], p[2]));
+    add(p[0], 1, dx(p[2], p[1]));
+    row.kind = "point_on_line";
+    row.scale = c.scale * ls_;
+    return f;
+  }
+
+  E orientation(const Constraint& c, EquationRow& row) {
+    const auto& p = c.p;
+    // (rj - ri) x R (rn - rm), R the rotation by phi0 (constants a, b) or by the driver.
+    E cs, sn;
+    if (c.type == ConstraintType::Orientation) {
+      cs = num(c.a);
+      sn = num(c.b);
+    } else {
+      cs = call(false, driver_symbol(c.driver));
+      sn = call(true, driver_symbol(c.driver));
+    }
+    const E vx = dx(p[0], p[1]), vy = dy(p[0], p[1]), wx = dx(p[2], p[3]), wy = dy(p[2], p[3]);
+    const E zx = sum({{1, mul(cs, wx)}, {-1, mul(sn, wy)}});
+    const E zy = sum({{1, mul(sn, wx)}, {1, mul(cs, wy)}});
+    const E f = sum({{1, mul(vx, zy)}, {-1, mul(vy, zx)}});
+    add(p[1], 0, zy);
+    add(p[1], 1, scale(zx, -1));
+    add(p[0], 0, scale(zy, -1));
+    add(p[0], 1, zx);
+    const E gx = sum({{1, mul(sn, vx)}, {-1, mul(cs, vy)}});
+    const E gy = sum({{1, mul(cs, vx)}, {1, mul(sn, vy)}});
+    add(p[3], 0, gx);
+    add(p[3], 1, gy);
+    add(p[2], 0, scale(gx, -1));
+    add(p[2], 1, scale(gy, -1));
+    row.kind = c.type == ConstraintType::Orientation ? "orientation" : "driver";
+    row.scale = c.scale * ls_;
+    return f;
+  }
+
+  E drive_angle(const Constraint& c, EquationRow& row) {
+    const auto& p = c.p;
+    const E th = driver_symbol(c.driver);
+    const E cs = call(false, th), sn = call(true, th);
+    const E f = sum({{1, mul(dx(p[0], p[1]), sn)}, {-1, mul(dy(p[0], p[1]), cs)}});
+    add(p[1], 0, sn);
+    add(p[1], 1, scale(cs, -1));
+    add(p[0], 0, scale(sn, -1));
+    add(p[0], 1, cs);
+    row.kind = "driver";
+    row.scale = c.scale;
+    return f;
+  }
+
+  E drive_slide(const Constraint& c, EquationRow& row) {
+    const auto& p = c.p;
+    // (rk - ri).(rj - ri) / Lg - s
+    const double k = ls_ / c.a;  // 1 / Lg in model units
+    const E ex = dx(p[0], p[2]), ey = dy(p[0], p[2]), wx = dx(p[0], p[1]), wy = dy(p[0], p[1]);
+    const E f = sum({{k, mul(ex, wx)}, {k, mul(ey, wy)}, {-1, driver_symbol(c.driver)}});
+    add(p[2], 0, scale(wx, k));
+    add(p[2], 1, scale(wy, k));
+    add(p[1], 0, scale(ex, k));
+    add(p[1], 1, scale(ey, k));
+    add(p[0], 0, sum({{-k, wx}, {-k, ex}}));
+    add(p[0], 1, sum({{-k, wy}, {-k, ey}}));
+    row.kind = "driver";
+    row.scale = 1.0;
+    return f;
+  }
+
   E coordinate(int point, int axis) const {
     if (mech_.column_of(point) < 0) return num(m_.points[point].position[axis] / ls_);
     const std::string& n = m_.points[point].name;
