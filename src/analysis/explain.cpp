@@ -317,42 +317,11 @@ std::vector<InstantCentre> instant_centres(const Mechanism& mech, const Eigen::V
 
 double max_abs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
-}  // namespace
-
-Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOptions& options) {
-  if (!mechanism) throw Error(ErrorKind::BadInput, "no mechanism to explain");
-  const Mechanism& mech = *mechanism;
+// The coordinates, two per moving point: columns are given to the moving points in their order,
+// so q's order is theirs.
+std::vector<Coordinate> coordinates_of(const Mechanism& mech) {
   const Model& m = mech.model();
-  const double ls = m.units.length_scale;
-  const int n = mech.coordinate_count();
-  const int nd = static_cast<int>(m.drivers.size());
-  if (options.max_iterations < 1) throw Error(ErrorKind::BadInput, "at least one Newton iteration is needed");
-  const SweepPath plan = sweep_path(mech, options.steps, options.max_steps);
-  const int samples = static_cast<int>(plan.parameters.size());
-  if (options.step < 0 || options.step >= samples)
-    throw Error(ErrorKind::BadInput, "step " + std::to_string(options.step) + " is not a step of the sweep (0 to " +
-                                         std::to_string(samples - 1) + ")");
-  SweepOptions sweep_options;
-  sweep_options.steps = options.steps;
-  sweep_options.order = 2;
-  const SweepResult sweep = run_sweep(mech, sweep_options, options.control);
-  options.control.checkpoint("explain", 0, 3);
-  if (options.step >= static_cast<int>(sweep.samples.size()))
-    throw Error(ErrorKind::StoppedAtLimit, sweep.stop_reason + ": step " + std::to_string(options.step) +
-                                               " is not reached");
-  const Sample& sample = sweep.samples[options.step];
-
-  Explanation ex;
-  ex.mechanism = mechanism;
-  ex.step = options.step;
-  ex.time = sample.time;
-  for (int d = 0; d < nd; ++d)
-    ex.driver_values.push_back(sample.driver_values[d] / (m.drivers[d].is_angular() ? m.units.angle_scale : ls));
-
-  const PairCount pairs = count_pairs(m);
-  ex.count = {pairs.links, pairs.lower_pairs, pairs.higher_pairs, pairs.dof, mech.mobility().dof};
-
-  // Columns are given to the moving points in their order: q's order is theirs.
+  std::vector<Coordinate> coordinates;
   for (std::size_t p = 0; p < m.points.size(); ++p) {
     const int col = mech.column_of(static_cast<int>(p));
     if (col < 0) continue;
@@ -362,19 +331,21 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
       c.symbol = std::string(axis == 0 ? "x_" : "y_") + explain_detail::plain_name(m.points[p].name);
       c.point = static_cast<int>(p);
       c.axis = axis;
-      ex.coordinates.push_back(c);
+      coordinates.push_back(c);
     }
   }
+  return coordinates;
+}
 
-  RowWriter writer(mech);
-  for (int r = 0; r < mech.row_count(); ++r) {
-    options.control.checkpoint("explain", 1, 3);
-    ex.equations.push_back(writer.write(r));
-  }
-
-  // Newton-Raphson, by the sweep's own solver, from the drawn pose (step 0) or from the sweep's
-  // previous sample, with the drivers at this sample's values.
-  State state(mech);
+// Newton-Raphson, by the sweep's own solver, from the drawn pose (step 0) or from the sweep's
+// previous sample, with the drivers at this sample's values. Leaves `state` at the sweep's
+// solution (its Jacobian factorised) and `values` the drivers' values.
+void explain_newton(const Mechanism& mech, const SweepResult& sweep, const ExplainOptions& options, State& state,
+                    std::vector<Series>& values, Explanation& ex) {
+  const Model& m = mech.model();
+  const double ls = m.units.length_scale;
+  const int nd = static_cast<int>(m.drivers.size());
+  const Sample& sample = sweep.samples[options.step];
   if (options.step == 0) {
     state.q = mech.drawn_coordinates();
     ex.start = "the drawn pose";
@@ -382,7 +353,6 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
     state.q = sweep.samples[options.step - 1].positions();
     ex.start = "step " + std::to_string(options.step - 1) + "'s pose";
   }
-  std::vector<Series> values;
   for (int d = 0; d < nd; ++d) values.push_back(Series(1, sample.driver_values[d]));
   set_drivers(mech, state, values);
   NewtonTrace trace;
@@ -419,12 +389,15 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
   }
   ex.q = state.q / ls;
   ex.residual = max_residual(mech, state) / ls;
+}
 
-  // The drivers as series in time, as the sweep's samples take them.
+// The drivers as series in time, as the sweep's samples take them.
+std::vector<DriverState> drivers_in_time(const Model& m, const SweepPath& plan, const Sample& sample, int step) {
+  const int nd = static_cast<int>(m.drivers.size());
   std::vector<DriverState> in_time(nd);
   if (plan.time_law || plan.parameter_is_time) {
     std::vector<Series> series;
-    plan.drivers(plan.parameters[options.step], 3, series);
+    plan.drivers(plan.parameters[step], 3, series);
     for (int d = 0; d < nd; ++d) in_time[d] = make_driver_state(series[d], m.drivers[d].is_angular());
   } else {
     for (int d = 0; d < nd; ++d) {
@@ -434,6 +407,14 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
       in_time[d] = make_driver_state(s, m.drivers[d].is_angular());
     }
   }
+  return in_time;
+}
+
+// Phi_q and the velocity and acceleration systems at `state`, checked against the sweep's sample.
+void explain_rates(const Mechanism& mech, State& state, const std::vector<DriverState>& in_time, const Sample& sample,
+                   Explanation& ex) {
+  const double ls = mech.model().units.length_scale;
+  const int n = mech.coordinate_count();
   std::vector<double> values_j;
   evaluate_jacobian(mech, state.q, in_time, values_j);
   ex.jacobian = Eigen::MatrixXd::Zero(mech.row_count(), n);
@@ -458,6 +439,53 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
         max_abs(ex.acceleration.solution - sample.derivative(2) / ls) > 1e-6 * as)
       ex.notes.push_back("the velocities or accelerations differ from the sweep's at this step");
   }
+}
+
+}  // namespace
+
+Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOptions& options) {
+  if (!mechanism) throw Error(ErrorKind::BadInput, "no mechanism to explain");
+  const Mechanism& mech = *mechanism;
+  const Model& m = mech.model();
+  const double ls = m.units.length_scale;
+  const int nd = static_cast<int>(m.drivers.size());
+  if (options.max_iterations < 1) throw Error(ErrorKind::BadInput, "at least one Newton iteration is needed");
+  const SweepPath plan = sweep_path(mech, options.steps, options.max_steps);
+  const int samples = static_cast<int>(plan.parameters.size());
+  if (options.step < 0 || options.step >= samples)
+    throw Error(ErrorKind::BadInput, "step " + std::to_string(options.step) + " is not a step of the sweep (0 to " +
+                                         std::to_string(samples - 1) + ")");
+  SweepOptions sweep_options;
+  sweep_options.steps = options.steps;
+  sweep_options.order = 2;
+  const SweepResult sweep = run_sweep(mech, sweep_options, options.control);
+  options.control.checkpoint("explain", 0, 3);
+  if (options.step >= static_cast<int>(sweep.samples.size()))
+    throw Error(ErrorKind::StoppedAtLimit, sweep.stop_reason + ": step " + std::to_string(options.step) +
+                                               " is not reached");
+  const Sample& sample = sweep.samples[options.step];
+
+  Explanation ex;
+  ex.mechanism = mechanism;
+  ex.step = options.step;
+  ex.time = sample.time;
+  for (int d = 0; d < nd; ++d)
+    ex.driver_values.push_back(sample.driver_values[d] / (m.drivers[d].is_angular() ? m.units.angle_scale : ls));
+
+  const PairCount pairs = count_pairs(m);
+  ex.count = {pairs.links, pairs.lower_pairs, pairs.higher_pairs, pairs.dof, mech.mobility().dof};
+  ex.coordinates = coordinates_of(mech);
+
+  RowWriter writer(mech);
+  for (int r = 0; r < mech.row_count(); ++r) {
+    options.control.checkpoint("explain", 1, 3);
+    ex.equations.push_back(writer.write(r));
+  }
+
+  State state(mech);
+  std::vector<Series> values;
+  explain_newton(mech, sweep, options, state, values, ex);
+  explain_rates(mech, state, drivers_in_time(m, plan, sample, options.step), sample, ex);
 
   options.control.checkpoint("explain", 2, 3);
   ex.centres = instant_centres(mech, ex.q, ex.velocity.solution, ex.notes);
