@@ -219,32 +219,38 @@ class RowWriter {
 Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// The instant centres of every pair of links, from the velocity field of each.
-std::vector<InstantCentre> instant_centres(const Mechanism& mech, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
-                                           std::vector<std::string>& notes) {
+// A point's position and velocity in model units, from q and qdot (ground points: drawn, at rest).
+Eigen::Vector2d position_at(const Mechanism& mech, const Eigen::VectorXd& q, int p) {
   const Model& m = mech.model();
-  const double lc = mech.characteristic_length() / m.units.length_scale;
-  auto position = [&](int p) -> Eigen::Vector2d {
-    const int col = mech.column_of(p);
-    return col < 0 ? Eigen::Vector2d(m.points[p].position / m.units.length_scale) : Eigen::Vector2d(q.segment<2>(col));
-  };
-  auto velocity = [&](int p) -> Eigen::Vector2d {
-    const int col = mech.column_of(p);
-    return col < 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(qdot.segment<2>(col));
-  };
-  struct Link {
-    int body;
-    std::string name;
-    Eigen::Vector2d r{0, 0}, v{0, 0};
-    double omega = 0.0;
-    std::vector<int> points;
-  };
+  const int col = mech.column_of(p);
+  return col < 0 ? Eigen::Vector2d(m.points[p].position / m.units.length_scale) : Eigen::Vector2d(q.segment<2>(col));
+}
+
+Eigen::Vector2d velocity_at(const Mechanism& mech, const Eigen::VectorXd& qdot, int p) {
+  const int col = mech.column_of(p);
+  return col < 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(qdot.segment<2>(col));
+}
+
+// A link's velocity field: v at r, turning at omega.
+struct Link {
+  int body;
+  std::string name;
+  Eigen::Vector2d r{0, 0}, v{0, 0};
+  double omega = 0.0;
+  std::vector<int> points;
+};
+
+// The ground and every link with an angle; `speed` the largest speed of the field (a point's,
+// or omega times the mechanism's size `lc`).
+std::vector<Link> moving_links(const Mechanism& mech, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
+                               double lc, double& speed, std::vector<std::string>& notes) {
+  const Model& m = mech.model();
   std::vector<Link> links;
   Link ground{-1, "ground", {0, 0}, {0, 0}, 0.0, {}};
   for (std::size_t p = 0; p < m.points.size(); ++p)
     if (m.points[p].ground) ground.points.push_back(static_cast<int>(p));
   links.push_back(ground);
-  double speed = 0.0;
+  speed = 0.0;
   std::vector<std::string> skipped;
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const BodyFrame f = body_frame(m, static_cast<int>(b));
@@ -256,9 +262,10 @@ std::vector<InstantCentre> instant_centres(const Mechanism& mech, const Eigen::V
     l.body = static_cast<int>(b);
     l.name = m.bodies[b].name;
     l.points = m.bodies[b].points;
-    l.r = position(f.origin);
-    l.v = velocity(f.origin);
-    const Eigen::Vector2d u = position(f.to) - position(f.from), du = velocity(f.to) - velocity(f.from);
+    l.r = position_at(mech, q, f.origin);
+    l.v = velocity_at(mech, qdot, f.origin);
+    const Eigen::Vector2d u = position_at(mech, q, f.to) - position_at(mech, q, f.from),
+                          du = velocity_at(mech, qdot, f.to) - velocity_at(mech, qdot, f.from);
     l.omega = cross2(u, du) / u.squaredNorm();
     speed = std::max({speed, l.v.norm(), std::abs(l.omega) * lc});
     links.push_back(l);
@@ -270,48 +277,62 @@ std::vector<InstantCentre> instant_centres(const Mechanism& mech, const Eigen::V
                     ": a link of one point with no guide has no angle, so its rotation is not defined");
   }
   if (speed == 0.0) notes.push_back("the mechanism is at rest at this instant: its instant centres are not defined");
+  return links;
+}
 
+// The instant centre of links a and b: at their shared joint, where their velocity fields agree,
+// or at infinity when they turn alike.
+InstantCentre instant_centre(const Mechanism& mech, const Eigen::VectorXd& q, const Link& a, const Link& b, double lc,
+                             double speed) {
+  InstantCentre c;
+  c.body_a = a.body;
+  c.body_b = b.body;
+  c.name = "I(" + a.name + "," + b.name + ")";
+  int shared = -1;
+  for (int p : a.points)
+    if (std::find(b.points.begin(), b.points.end(), p) != b.points.end()) {
+      shared = p;
+      break;
+    }
+  const double dw = a.omega - b.omega;
+  // Relative velocity of a's field minus b's at b's reference point.
+  const Eigen::Vector2d dv = a.v + a.omega * perp(b.r - a.r) - b.v;
+  if (shared >= 0) {
+    c.at_joint = true;
+    c.position = position_at(mech, q, shared);
+  } else if (speed == 0.0) {
+    c.indeterminate = true;
+  } else if (std::abs(dw) * lc <= 1e-9 * speed) {
+    if (dv.norm() <= 1e-9 * speed) {
+      c.indeterminate = true;
+    } else {
+      c.at_infinity = true;
+      // One of the two opposite directions, x positive; y positive when x is zero but for
+      // rounding (a vertical direction must not turn over with the last bit of x).
+      Eigen::Vector2d d = perp(dv).normalized();
+      if (std::abs(d.x()) <= 1e-9) d.x() = 0.0;
+      if (d.x() < 0 || (d.x() == 0 && d.y() < 0)) d = -d;
+      c.direction = d;
+    }
+  } else {
+    // a's field minus b's vanishes at p: dv + dw k x (p - b.r) = 0.
+    const Eigen::Vector2d k = -dv / dw;  // = k x (p - b.r) = (-(p - b.r).y, (p - b.r).x)
+    c.position = b.r + Eigen::Vector2d(k.y(), -k.x());
+  }
+  return c;
+}
+
+// The instant centres of every pair of links, from the velocity field of each.
+std::vector<InstantCentre> instant_centres(const Mechanism& mech, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
+                                           std::vector<std::string>& notes) {
+  const Model& m = mech.model();
+  const double lc = mech.characteristic_length() / m.units.length_scale;
+  double speed = 0.0;
+  const std::vector<Link> links = moving_links(mech, q, qdot, lc, speed, notes);
   std::vector<InstantCentre> out;
   for (std::size_t i = 0; i < links.size(); ++i)
-    for (std::size_t j = i + 1; j < links.size(); ++j) {
-      const Link &a = links[i], &b = links[j];
-      InstantCentre c;
-      c.body_a = a.body;
-      c.body_b = b.body;
-      c.name = "I(" + a.name + "," + b.name + ")";
-      int shared = -1;
-      for (int p : a.points)
-        if (std::find(b.points.begin(), b.points.end(), p) != b.points.end()) {
-          shared = p;
-          break;
-        }
-      const double dw = a.omega - b.omega;
-      // Relative velocity of a's field minus b's at b's reference point.
-      const Eigen::Vector2d dv = a.v + a.omega * perp(b.r - a.r) - b.v;
-      if (shared >= 0) {
-        c.at_joint = true;
-        c.position = position(shared);
-      } else if (speed == 0.0) {
-        c.indeterminate = true;
-      } else if (std::abs(dw) * lc <= 1e-9 * speed) {
-        if (dv.norm() <= 1e-9 * speed) {
-          c.indeterminate = true;
-        } else {
-          c.at_infinity = true;
-          // One of the two opposite directions, x positive; y positive when x is zero but for
-          // rounding (a vertical direction must not turn over with the last bit of x).
-          Eigen::Vector2d d = perp(dv).normalized();
-          if (std::abs(d.x()) <= 1e-9) d.x() = 0.0;
-          if (d.x() < 0 || (d.x() == 0 && d.y() < 0)) d = -d;
-          c.direction = d;
-        }
-      } else {
-        // a's field minus b's vanishes at p: dv + dw k x (p - b.r) = 0.
-        const Eigen::Vector2d k = -dv / dw;  // = k x (p - b.r) = (-(p - b.r).y, (p - b.r).x)
-        c.position = b.r + Eigen::Vector2d(k.y(), -k.x());
-      }
-      out.push_back(c);
-    }
+    for (std::size_t j = i + 1; j < links.size(); ++j)
+      out.push_back(instant_centre(mech, q, links[i], links[j], lc, speed));
   return out;
 }
 
