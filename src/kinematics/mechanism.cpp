@@ -26,6 +26,160 @@ double angle_of(const Eigen::Vector2d& u) { return std::atan2(u.y(), u.x()); }
 
 std::string point_pair(const Model& m, int i, int j) { return m.points[i].name + "-" + m.points[j].name; }
 
+// The rows are built once per model, by kind of joint. A row whose points are all fixed to the
+// frame holds by itself and is left out.
+bool all_fixed(const std::vector<int>& column, std::initializer_list<int> ids) {
+  return std::all_of(ids.begin(), ids.end(), [&](int i) { return column[i] < 0; });
+}
+
+// Each body's length (its first two points), and its further points by two linear equations in
+// the frame of the first two: they hold for collinear points too, where a distance equation
+// would be singular.
+void add_body_rows(const Model& model, const std::vector<int>& column, std::vector<Constraint>& rows) {
+  const auto& pts = model.points;
+  auto pos = [&](int i) -> const Eigen::Vector2d& { return pts[i].position; };
+  for (std::size_t bi = 0; bi < model.bodies.size(); ++bi) {
+    const Body& body = model.bodies[bi];
+    const EntityRef src{EntityRef::Kind::Body, static_cast<int>(bi)};
+    if (body.points.size() < 2) continue;
+    const int i = body.points[0], j = body.points[1];
+    const Eigen::Vector2d u = pos(j) - pos(i);
+    if (!all_fixed(column, {i, j})) {
+      Constraint c;
+      c.type = ConstraintType::Distance;
+      c.p = {i, j, -1, -1};
+      c.a = body.length.value_or(u.norm());
+      c.scale = 1.0 / (2.0 * c.a);
+      c.label = "length of " + body.name + " (" + point_pair(model, i, j) + ")";
+      c.source = src;
+      rows.push_back(c);
+    }
+    const double uu = u.squaredNorm();
+    for (std::size_t s = 2; s < body.points.size(); ++s) {
+      const int k = body.points[s];
+      if (all_fixed(column, {i, j, k})) continue;
+      const Eigen::Vector2d d = pos(k) - pos(i);
+      Constraint c;
+      c.p = {i, j, k, -1};
+      c.a = d.dot(u) / uu;
+      c.b = (-u.y() * d.x() + u.x() * d.y()) / uu;
+      c.source = src;
+      c.type = ConstraintType::RigidX;
+      c.label = "shape of " + body.name + " (" + pts[k].name + ", x)";
+      rows.push_back(c);
+      c.type = ConstraintType::RigidY;
+      c.label = "shape of " + body.name + " (" + pts[k].name + ", y)";
+      rows.push_back(c);
+    }
+  }
+}
+
+// A slider: its point on the guide line, and its body's orientation along the line.
+void add_slider_rows(const Model& model, const std::vector<int>& column, std::vector<Constraint>& rows) {
+  const auto& pts = model.points;
+  auto pos = [&](int i) -> const Eigen::Vector2d& { return pts[i].position; };
+  for (std::size_t si = 0; si < model.sliders.size(); ++si) {
+    const Slider& s = model.sliders[si];
+    const EntityRef src{EntityRef::Kind::Slider, static_cast<int>(si)};
+    const int i = s.along[0], j = s.along[1];
+    const Eigen::Vector2d w = pos(j) - pos(i);
+    const Body& body = model.bodies[s.body];
+    if (!all_fixed(column, {i, j, s.point})) {
+      Constraint c;
+      c.type = ConstraintType::PointOnLine;
+      c.p = {i, j, s.point, -1};
+      c.scale = 1.0 / w.norm();
+      c.label = pts[s.point].name + " of " + body.name + " on the line " + point_pair(model, i, j);
+      c.source = src;
+      rows.push_back(c);
+    }
+    if (body.points.size() >= 2) {
+      const int bi = body.points[0], bj = body.points[1];
+      if (!all_fixed(column, {bi, bj, i, j})) {
+        const double phi0 = angle_of(pos(bj) - pos(bi)) - angle_of(w);
+        Constraint c;
+        c.type = ConstraintType::Orientation;
+        c.p = {bi, bj, i, j};
+        c.a = std::cos(phi0);
+        c.b = std::sin(phi0);
+        c.scale = 1.0 / w.norm();
+        c.label = "orientation of " + body.name + " along " + point_pair(model, i, j);
+        c.source = src;
+        rows.push_back(c);
+      }
+    }
+  }
+}
+
+// A slot: its point on the line.
+void add_slot_rows(const Model& model, const std::vector<int>& column, std::vector<Constraint>& rows) {
+  const auto& pts = model.points;
+  auto pos = [&](int i) -> const Eigen::Vector2d& { return pts[i].position; };
+  for (std::size_t si = 0; si < model.slots.size(); ++si) {
+    const Slot& s = model.slots[si];
+    const int i = s.along[0], j = s.along[1];
+    if (all_fixed(column, {i, j, s.point})) continue;
+    Constraint c;
+    c.type = ConstraintType::PointOnLine;
+    c.p = {i, j, s.point, -1};
+    c.scale = 1.0 / (pos(j) - pos(i)).norm();
+    c.label = pts[s.point].name + " in the slot " + point_pair(model, i, j);
+    c.source = {EntityRef::Kind::Slot, static_cast<int>(si)};
+    rows.push_back(c);
+  }
+}
+
+// Driver `di`'s row, and its value in the drawn pose (`drawn`).
+Constraint driver_row(const Model& model, int di, double length_scale, double& drawn) {
+  auto pos = [&](int i) -> const Eigen::Vector2d& { return model.points[i].position; };
+  const Driver& d = model.drivers[di];
+  Constraint c;
+  c.driver = di;
+  c.source = {EntityRef::Kind::Driver, di};
+  c.label = "driver " + d.name;
+  drawn = 0.0;
+  switch (d.kind) {
+    case DriverKind::Angle: {
+      const Body& body = model.bodies[d.body];
+      const int i = body.points[0], j = body.points[1];
+      const Eigen::Vector2d u = pos(j) - pos(i);
+      if (d.relative_to < 0) {
+        c.type = ConstraintType::DriveAngle;
+        c.p = {i, j, -1, -1};
+        drawn = angle_of(u);
+      } else {
+        const Body& ref = model.bodies[d.relative_to];
+        const int m = ref.points[0], n = ref.points[1];
+        const Eigen::Vector2d w = pos(n) - pos(m);
+        c.type = ConstraintType::DriveRelativeAngle;
+        c.p = {i, j, m, n};
+        c.scale = 1.0 / w.norm();
+        drawn = std::atan2(w.x() * u.y() - w.y() * u.x(), w.dot(u));
+      }
+      break;
+    }
+    case DriverKind::Distance: {
+      const int i = d.points[0], j = d.points[1];
+      drawn = (pos(j) - pos(i)).norm();
+      c.type = ConstraintType::DriveDistance;
+      c.p = {i, j, -1, -1};
+      c.scale = 1.0 / (2.0 * std::max(drawn, 1e-3 * length_scale));
+      break;
+    }
+    case DriverKind::Slide: {
+      const Slider& s = model.sliders[d.slider];
+      const int i = s.along[0], j = s.along[1];
+      const Eigen::Vector2d w = pos(j) - pos(i);
+      c.type = ConstraintType::DriveSlide;
+      c.p = {i, j, s.point, -1};
+      c.a = w.norm();
+      drawn = (pos(s.point) - pos(i)).dot(w) / c.a;
+      break;
+    }
+  }
+  return c;
+}
+
 }  // namespace
 
 Mechanism::Mechanism(Model model) : model_(std::move(model)) {
@@ -75,144 +229,14 @@ Eigen::Vector2d Mechanism::point_position(int point, const Eigen::VectorXd& q) c
 }
 
 void Mechanism::build_rows() {
-  const auto& pts = model_.points;
-  auto pos = [&](int i) -> const Eigen::Vector2d& { return pts[i].position; };
-  auto all_fixed = [&](std::initializer_list<int> ids) {
-    return std::all_of(ids.begin(), ids.end(), [&](int i) { return column_[i] < 0; });
-  };
-
-  for (std::size_t bi = 0; bi < model_.bodies.size(); ++bi) {
-    const Body& body = model_.bodies[bi];
-    const EntityRef src{EntityRef::Kind::Body, static_cast<int>(bi)};
-    if (body.points.size() < 2) continue;
-    const int i = body.points[0], j = body.points[1];
-    const Eigen::Vector2d u = pos(j) - pos(i);
-    if (!all_fixed({i, j})) {
-      Constraint c;
-      c.type = ConstraintType::Distance;
-      c.p = {i, j, -1, -1};
-      c.a = body.length.value_or(u.norm());
-      c.scale = 1.0 / (2.0 * c.a);
-      c.label = "length of " + body.name + " (" + point_pair(model_, i, j) + ")";
-      c.source = src;
-      rows_.push_back(c);
-    }
-    // Further points by two linear equations in the frame of the first two: they hold for
-    // collinear points too, where a distance equation would be singular.
-    const double uu = u.squaredNorm();
-    for (std::size_t s = 2; s < body.points.size(); ++s) {
-      const int k = body.points[s];
-      if (all_fixed({i, j, k})) continue;
-      const Eigen::Vector2d d = pos(k) - pos(i);
-      Constraint c;
-      c.p = {i, j, k, -1};
-      c.a = d.dot(u) / uu;
-      c.b = (-u.y() * d.x() + u.x() * d.y()) / uu;
-      c.source = src;
-      c.type = ConstraintType::RigidX;
-      c.label = "shape of " + body.name + " (" + pts[k].name + ", x)";
-      rows_.push_back(c);
-      c.type = ConstraintType::RigidY;
-      c.label = "shape of " + body.name + " (" + pts[k].name + ", y)";
-      rows_.push_back(c);
-    }
-  }
-
-  for (std::size_t si = 0; si < model_.sliders.size(); ++si) {
-    const Slider& s = model_.sliders[si];
-    const EntityRef src{EntityRef::Kind::Slider, static_cast<int>(si)};
-    const int i = s.along[0], j = s.along[1];
-    const Eigen::Vector2d w = pos(j) - pos(i);
-    const Body& body = model_.bodies[s.body];
-    if (!all_fixed({i, j, s.point})) {
-      Constraint c;
-      c.type = ConstraintType::PointOnLine;
-      c.p = {i, j, s.point, -1};
-      c.scale = 1.0 / w.norm();
-      c.label = pts[s.point].name + " of " + body.name + " on the line " + point_pair(model_, i, j);
-      c.source = src;
-      rows_.push_back(c);
-    }
-    if (body.points.size() >= 2) {
-      const int bi = body.points[0], bj = body.points[1];
-      if (!all_fixed({bi, bj, i, j})) {
-        const double phi0 = angle_of(pos(bj) - pos(bi)) - angle_of(w);
-        Constraint c;
-        c.type = ConstraintType::Orientation;
-        c.p = {bi, bj, i, j};
-        c.a = std::cos(phi0);
-        c.b = std::sin(phi0);
-        c.scale = 1.0 / w.norm();
-        c.label = "orientation of " + body.name + " along " + point_pair(model_, i, j);
-        c.source = src;
-        rows_.push_back(c);
-      }
-    }
-  }
-
-  for (std::size_t si = 0; si < model_.slots.size(); ++si) {
-    const Slot& s = model_.slots[si];
-    const int i = s.along[0], j = s.along[1];
-    if (all_fixed({i, j, s.point})) continue;
-    Constraint c;
-    c.type = ConstraintType::PointOnLine;
-    c.p = {i, j, s.point, -1};
-    c.scale = 1.0 / (pos(j) - pos(i)).norm();
-    c.label = pts[s.point].name + " in the slot " + point_pair(model_, i, j);
-    c.source = {EntityRef::Kind::Slot, static_cast<int>(si)};
-    rows_.push_back(c);
-  }
-
+  add_body_rows(model_, column_, rows_);
+  add_slider_rows(model_, column_, rows_);
+  add_slot_rows(model_, column_, rows_);
   constraint_rows_ = static_cast<int>(rows_.size());
-
   for (std::size_t di = 0; di < model_.drivers.size(); ++di) {
-    const Driver& d = model_.drivers[di];
-    Constraint c;
-    c.driver = static_cast<int>(di);
-    c.source = {EntityRef::Kind::Driver, static_cast<int>(di)};
-    c.label = "driver " + d.name;
     double drawn = 0.0;
-    switch (d.kind) {
-      case DriverKind::Angle: {
-        const Body& body = model_.bodies[d.body];
-        const int i = body.points[0], j = body.points[1];
-        const Eigen::Vector2d u = pos(j) - pos(i);
-        if (d.relative_to < 0) {
-          c.type = ConstraintType::DriveAngle;
-          c.p = {i, j, -1, -1};
-          drawn = angle_of(u);
-        } else {
-          const Body& ref = model_.bodies[d.relative_to];
-          const int m = ref.points[0], n = ref.points[1];
-          const Eigen::Vector2d w = pos(n) - pos(m);
-          c.type = ConstraintType::DriveRelativeAngle;
-          c.p = {i, j, m, n};
-          c.scale = 1.0 / w.norm();
-          drawn = std::atan2(w.x() * u.y() - w.y() * u.x(), w.dot(u));
-        }
-        break;
-      }
-      case DriverKind::Distance: {
-        const int i = d.points[0], j = d.points[1];
-        drawn = (pos(j) - pos(i)).norm();
-        c.type = ConstraintType::DriveDistance;
-        c.p = {i, j, -1, -1};
-        c.scale = 1.0 / (2.0 * std::max(drawn, 1e-3 * length_scale_));
-        break;
-      }
-      case DriverKind::Slide: {
-        const Slider& s = model_.sliders[d.slider];
-        const int i = s.along[0], j = s.along[1];
-        const Eigen::Vector2d w = pos(j) - pos(i);
-        c.type = ConstraintType::DriveSlide;
-        c.p = {i, j, s.point, -1};
-        c.a = w.norm();
-        drawn = (pos(s.point) - pos(i)).dot(w) / c.a;
-        break;
-      }
-    }
+    rows_.push_back(driver_row(model_, static_cast<int>(di), length_scale_, drawn));
     driver_drawn_.push_back(drawn);
-    rows_.push_back(c);
   }
 }
 
