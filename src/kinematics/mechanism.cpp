@@ -377,6 +377,92 @@ std::string joints_of(const Model& model, int body) {
   return s;
 }
 
+// Whether a sparse LU of the square Jacobian (its `values` on `pattern`) succeeds: then it is
+// regular, of full rank.
+bool sparse_lu_regular(const std::vector<JacobianEntry>& pattern, const std::vector<double>& values, int m, int n) {
+  Eigen::SparseMatrix<double> J(m, n);
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t e = 0; e < pattern.size(); ++e) t.emplace_back(pattern[e].row, pattern[e].col, values[e]);
+  J.setFromTriplets(t.begin(), t.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(J);
+  return lu.info() == Eigen::Success;
+}
+
+// The dof differs from the number of drivers: says why, naming the body left free or the row
+// (a constraint or a driver) most likely put on by mistake.
+[[noreturn]] void refuse_driver_count(const Mechanism& mech, const std::vector<int>& column, const Eigen::MatrixXd& J,
+                                      const MobilityReport& r, int drivers_count) {
+  const Model& model = mech.model();
+  const std::string counts = "the mechanism has " + std::to_string(r.dof) + " degree" + (r.dof == 1 ? "" : "s") +
+                             " of freedom (Gruebler-Kutzbach count: " + std::to_string(r.grubler) + ") but " +
+                             std::to_string(drivers_count) + " driver" + (drivers_count == 1 ? " is" : "s are") +
+                             " given";
+  if (r.grubler == drivers_count)
+    throw ModelError({EntityRef::Kind::Model, -1},
+                     counts + "; the drawn pose may be a singular (toggle or flat) position: draw the mechanism "
+                              "in a general pose");
+  if (drivers_count < r.dof) {
+    const int body = drivers_count > 0 ? free_body(J, model, column) : -1;
+    if (body >= 0)
+      throw ModelError({EntityRef::Kind::Body, body},
+                       counts + "; body '" + model.bodies[body].name + "' can still move with the drivers held (" +
+                           joints_of(model, body) +
+                           "): give it a joint, a slider or a driver, or add one driver per free input");
+    throw ModelError({EntityRef::Kind::Model, -1}, counts + "; add one driver per free input");
+  }
+  // Joints that lock the mechanism by themselves: a constraint is at fault; otherwise a driver.
+  const int row = first_dependent_row(J, r.constraint_rows, r.dof == 0);
+  if (row >= 0) {
+    const Constraint& c = mech.rows()[row];
+    std::string why;
+    if (c.is_driver())
+      why = "driver '" + model.drivers[c.driver].name +
+            "' moves what the joints and the drivers before it already fix: remove it";
+    else
+      why = "'" + c.label + "' is already fixed by the drivers and the joints before it: " +
+            (c.source.kind == EntityRef::Kind::Slider ? std::string("is the slider on the right body?")
+             : c.source.kind == EntityRef::Kind::Slot ? std::string("is the slot where it should be?")
+                                                      : "is a joint of body '" + model.bodies[c.source.index].name +
+                                                            "' too many?") +
+            " (or remove drivers)";
+    throw ModelError(c.source, counts + "; " + why);
+  }
+  throw ModelError({EntityRef::Kind::Model, -1}, counts + "; remove drivers, or check for missing joints");
+}
+
+// With the right number of drivers, Phi_q must still have full column rank: else the first
+// driver whose row depends on the constraints and the drivers before it is at fault.
+void check_drivers_independent(const Model& model, const Eigen::MatrixXd& J, int constraint_rows,
+                               int constraint_rank) {
+  const int drivers_count = static_cast<int>(model.drivers.size());
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> full(J.transpose());
+  full.setThreshold(kRankTolerance);
+  if (full.rank() < J.cols()) {
+    for (int d = 0; d < drivers_count; ++d) {
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> partial(J.topRows(constraint_rows + d + 1).transpose());
+      partial.setThreshold(kRankTolerance);
+      if (partial.rank() < constraint_rank + d + 1)
+        throw ModelError({EntityRef::Kind::Driver, d},
+                         "driver '" + model.drivers[d].name +
+                             "' does not move the mechanism independently: what it drives is already fixed by the "
+                             "joints or by the other drivers");
+    }
+  }
+}
+
+// The reciprocal condition of Phi_q: LU's estimate when square, else the ratio of the extreme
+// singular values.
+double reciprocal_condition(const Eigen::MatrixXd& J) {
+  if (J.rows() == J.cols()) {
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
+    return lu.rcond();
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(J);
+  const auto& s = svd.singularValues();
+  return s(0) > 0 ? s(s.size() - 1) / s(0) : 0.0;
+}
+
 }  // namespace
 
 std::string Mechanism::mobility_counts(bool at_least) const {
@@ -446,20 +532,12 @@ void Mechanism::analyse_mobility() {
   const int m = row_count();
   const int drivers_count = static_cast<int>(model_.drivers.size());
 
-  if (n_ > kDenseAnalysisLimit && m == n_) {
-    // Large square systems: a regular sparse LU proves full rank, hence no redundancy.
-    Eigen::SparseMatrix<double> J(m, n_);
-    std::vector<Eigen::Triplet<double>> t;
-    for (std::size_t e = 0; e < pattern_.size(); ++e) t.emplace_back(pattern_[e].row, pattern_[e].col, values[e]);
-    J.setFromTriplets(t.begin(), t.end());
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-    lu.compute(J);
-    if (lu.info() == Eigen::Success) {
-      r.rank = constraint_rows_;
-      r.dof = n_ - constraint_rows_;
-      r.reciprocal_condition = 1.0;  // not estimated for sparse systems
-      return;
-    }
+  // Large square systems: a regular sparse LU proves full rank, hence no redundancy.
+  if (n_ > kDenseAnalysisLimit && m == n_ && sparse_lu_regular(pattern_, values, m, n_)) {
+    r.rank = constraint_rows_;
+    r.dof = n_ - constraint_rows_;
+    r.reciprocal_condition = 1.0;  // not estimated for sparse systems
+    return;
   }
 
   if (n_ > kDenseRankLimit) {
@@ -482,66 +560,9 @@ void Mechanism::analyse_mobility() {
     std::sort(r.redundant.begin(), r.redundant.end());
   }
 
-  const std::string counts = "the mechanism has " + std::to_string(r.dof) + " degree" + (r.dof == 1 ? "" : "s") +
-                             " of freedom (Gruebler-Kutzbach count: " + std::to_string(r.grubler) + ") but " +
-                             std::to_string(drivers_count) + " driver" + (drivers_count == 1 ? " is" : "s are") +
-                             " given";
-  if (r.dof != drivers_count) {
-    if (r.grubler == drivers_count)
-      throw ModelError({EntityRef::Kind::Model, -1},
-                       counts + "; the drawn pose may be a singular (toggle or flat) position: draw the mechanism "
-                                "in a general pose");
-    if (drivers_count < r.dof) {
-      const int body = drivers_count > 0 ? free_body(J, model_, column_) : -1;
-      if (body >= 0)
-        throw ModelError({EntityRef::Kind::Body, body},
-                         counts + "; body '" + model_.bodies[body].name + "' can still move with the drivers held (" +
-                             joints_of(model_, body) +
-                             "): give it a joint, a slider or a driver, or add one driver per free input");
-      throw ModelError({EntityRef::Kind::Model, -1}, counts + "; add one driver per free input");
-    }
-    // Joints that lock the mechanism by themselves: a constraint is at fault; otherwise a driver.
-    const int row = first_dependent_row(J, constraint_rows_, r.dof == 0);
-    if (row >= 0) {
-      const Constraint& c = rows_[row];
-      std::string why;
-      if (c.is_driver())
-        why = "driver '" + model_.drivers[c.driver].name +
-              "' moves what the joints and the drivers before it already fix: remove it";
-      else
-        why = "'" + c.label + "' is already fixed by the drivers and the joints before it: " +
-              (c.source.kind == EntityRef::Kind::Slider ? std::string("is the slider on the right body?")
-               : c.source.kind == EntityRef::Kind::Slot ? std::string("is the slot where it should be?")
-                                                        : "is a joint of body '" + model_.bodies[c.source.index].name +
-                                                              "' too many?") +
-              " (or remove drivers)";
-      throw ModelError(c.source, counts + "; " + why);
-    }
-    throw ModelError({EntityRef::Kind::Model, -1}, counts + "; remove drivers, or check for missing joints");
-  }
-
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> full(J.transpose());
-  full.setThreshold(kRankTolerance);
-  if (full.rank() < n_) {
-    // Find the first driver whose row depends on the constraints and the drivers before it.
-    for (int d = 0; d < drivers_count; ++d) {
-      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> partial(J.topRows(constraint_rows_ + d + 1).transpose());
-      partial.setThreshold(kRankTolerance);
-      if (partial.rank() < r.rank + d + 1)
-        throw ModelError({EntityRef::Kind::Driver, d},
-                         "driver '" + model_.drivers[d].name +
-                             "' does not move the mechanism independently: what it drives is already fixed by the "
-                             "joints or by the other drivers");
-    }
-  }
-  if (m == n_) {
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
-    r.reciprocal_condition = lu.rcond();
-  } else {
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(J);
-    const auto& s = svd.singularValues();
-    r.reciprocal_condition = s(0) > 0 ? s(s.size() - 1) / s(0) : 0.0;
-  }
+  if (r.dof != drivers_count) refuse_driver_count(*this, column_, J, r, drivers_count);
+  check_drivers_independent(model_, J, constraint_rows_, r.rank);
+  r.reciprocal_condition = reciprocal_condition(J);
 }
 
 }  // namespace nbar
