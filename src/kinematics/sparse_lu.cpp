@@ -158,42 +158,32 @@ int SparseLU::factor_nonzeros() const {
   return static_cast<int>(current().u_slot.size() + current().l_slot.size()) + n_;
 }
 
-// Left-looking LU with partial pivoting (Gilbert and Peierls): column k of L and U from the
-// solve L x = A(:, k) over the rows that the columns before it reach, then the largest remaining
-// entry of x as the pivot. It records the pivots and the patterns; the numbers come from the
-// replay that follows.
-bool SparseLU::analyse(const double* values, Elimination& chosen) {
-  ++analyses_;
-  const auto n = static_cast<std::size_t>(n_);
-  std::vector<std::vector<int>> entries_of_column(n);
-  for (std::size_t e = 0; e < entries_.size(); ++e)
-    entries_of_column[static_cast<std::size_t>(entries_[e].col)].push_back(static_cast<int>(e));
+namespace {
 
-  std::vector<int> position_of_row(n, -1);
-  std::vector<int>& pivot_row = chosen.pivot_row;
-  pivot_row.assign(n, -1);
-  std::vector<std::vector<int>> u_rows(n), l_rows(n);  // u: positions; l: the matrix's rows until compiled
-  std::vector<std::vector<double>> l_values(n);
-  std::vector<double> x(n, 0.0);        // by the matrix's row
-  std::vector<char> in_pattern(n, 0);   // by the matrix's row
-  std::vector<char> visited(n, 0);      // by position
+// The work of one analysis, column by column: the rows a column reaches and its values, by the
+// matrix's row; the columns of L and U found so far, by pivot position.
+struct ColumnElimination {
+  explicit ColumnElimination(std::size_t n)
+      : position_of_row(n, -1), u_rows(n), l_rows(n), l_values(n), x(n, 0.0), in_pattern(n, 0), visited(n, 0),
+        next_child(n, 0) {}
+
+  std::vector<int> position_of_row;
+  std::vector<std::vector<int>> u_rows, l_rows;  // u: positions; l: the matrix's rows until compiled
+  std::vector<std::vector<double>> l_values;
+  std::vector<double> x;        // by the matrix's row
+  std::vector<char> in_pattern;  // by the matrix's row
+  std::vector<char> visited;     // by position
   std::vector<int> pattern, finished, stack, next_child;
-  next_child.assign(n, 0);
 
-  for (std::size_t k = 0; k < n; ++k) {
-    pattern.clear();
-    finished.clear();
-    const auto add_row = [&](int r) {
-      if (!in_pattern[static_cast<std::size_t>(r)]) {
-        in_pattern[static_cast<std::size_t>(r)] = 1;
-        pattern.push_back(r);
-      }
-    };
-    for (int e : entries_of_column[static_cast<std::size_t>(column_order_[k])]) {
-      add_row(entries_[static_cast<std::size_t>(e)].row);
-      x[static_cast<std::size_t>(entries_[static_cast<std::size_t>(e)].row)] += values[e];
+  void add_row(int r) {
+    if (!in_pattern[static_cast<std::size_t>(r)]) {
+      in_pattern[static_cast<std::size_t>(r)] = 1;
+      pattern.push_back(r);
     }
-    // The pivots this column reaches through L, in depth-first post-order.
+  }
+
+  // The pivots this column reaches through L, in depth-first post-order (`finished`).
+  void reach() {
     const std::size_t first_rows = pattern.size();
     for (std::size_t i = 0; i < first_rows; ++i) {
       const int root = position_of_row[static_cast<std::size_t>(pattern[i])];
@@ -223,13 +213,20 @@ bool SparseLU::analyse(const double* values, Elimination& chosen) {
         }
       }
     }
-    // x = L \ A(:, k), the columns in topological order.
+  }
+
+  // x = L \ A(:, k), the columns in topological order.
+  void solve(const std::vector<int>& pivot_row) {
     for (auto it = finished.rbegin(); it != finished.rend(); ++it) {
       const auto j = static_cast<std::size_t>(*it);
       const double xj = x[static_cast<std::size_t>(pivot_row[j])];
       for (std::size_t i = 0; i < l_rows[j].size(); ++i)
         x[static_cast<std::size_t>(l_rows[j][i])] -= l_values[j][i] * xj;
     }
+  }
+
+  // The largest entry of x in a row not yet a pivot's; -1 when there is none.
+  int largest_free_entry() const {
     int pivot = -1;
     double biggest = 0.0;
     for (int r : pattern) {
@@ -239,32 +236,70 @@ bool SparseLU::analyse(const double* values, Elimination& chosen) {
         pivot = r;
       }
     }
-    if (pivot >= 0) {
-      pivot_row[k] = pivot;
-      position_of_row[static_cast<std::size_t>(pivot)] = static_cast<int>(k);
-      const double diagonal = x[static_cast<std::size_t>(pivot)];
-      for (int r : pattern) {
-        const int j = position_of_row[static_cast<std::size_t>(r)];
-        if (r == pivot) continue;
-        if (j >= 0) {
-          u_rows[k].push_back(j);
-        } else {
-          l_rows[k].push_back(r);
-          l_values[k].push_back(x[static_cast<std::size_t>(r)] / diagonal);
-        }
+    return pivot;
+  }
+
+  // Column k of U (the pivots above) and of L (x below the pivot over the pivot).
+  void take_pivot(std::size_t k, int pivot, std::vector<int>& pivot_row) {
+    pivot_row[k] = pivot;
+    position_of_row[static_cast<std::size_t>(pivot)] = static_cast<int>(k);
+    const double diagonal = x[static_cast<std::size_t>(pivot)];
+    for (int r : pattern) {
+      const int j = position_of_row[static_cast<std::size_t>(r)];
+      if (r == pivot) continue;
+      if (j >= 0) {
+        u_rows[k].push_back(j);
+      } else {
+        l_rows[k].push_back(r);
+        l_values[k].push_back(x[static_cast<std::size_t>(r)] / diagonal);
       }
-      std::sort(u_rows[k].begin(), u_rows[k].end());
     }
+    std::sort(u_rows[k].begin(), u_rows[k].end());
+  }
+
+  // Ready for the next column.
+  void clear_column() {
     for (int r : pattern) {
       x[static_cast<std::size_t>(r)] = 0.0;
       in_pattern[static_cast<std::size_t>(r)] = 0;
     }
     for (int j : finished) visited[static_cast<std::size_t>(j)] = 0;
+  }
+};
+
+}  // namespace
+
+// Left-looking LU with partial pivoting (Gilbert and Peierls): column k of L and U from the
+// solve L x = A(:, k) over the rows that the columns before it reach, then the largest remaining
+// entry of x as the pivot. It records the pivots and the patterns; the numbers come from the
+// replay that follows.
+bool SparseLU::analyse(const double* values, Elimination& chosen) {
+  ++analyses_;
+  const auto n = static_cast<std::size_t>(n_);
+  std::vector<std::vector<int>> entries_of_column(n);
+  for (std::size_t e = 0; e < entries_.size(); ++e)
+    entries_of_column[static_cast<std::size_t>(entries_[e].col)].push_back(static_cast<int>(e));
+
+  std::vector<int>& pivot_row = chosen.pivot_row;
+  pivot_row.assign(n, -1);
+  ColumnElimination w(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    w.pattern.clear();
+    w.finished.clear();
+    for (int e : entries_of_column[static_cast<std::size_t>(column_order_[k])]) {
+      w.add_row(entries_[static_cast<std::size_t>(e)].row);
+      w.x[static_cast<std::size_t>(entries_[static_cast<std::size_t>(e)].row)] += values[e];
+    }
+    w.reach();
+    w.solve(pivot_row);
+    const int pivot = w.largest_free_entry();
+    if (pivot >= 0) w.take_pivot(k, pivot, pivot_row);
+    w.clear_column();
     if (pivot < 0) return false;  // nothing nonzero left in this column: singular
   }
-  for (auto& rows : l_rows)
-    for (int& r : rows) r = position_of_row[static_cast<std::size_t>(r)];
-  compile(u_rows, l_rows, chosen);
+  for (auto& rows : w.l_rows)
+    for (int& r : rows) r = w.position_of_row[static_cast<std::size_t>(r)];
+  compile(w.u_rows, w.l_rows, chosen);
   return true;
 }
 
