@@ -460,15 +460,13 @@ std::string format_driver_value(const Model& m, int d, double si) {
   return s.str();
 }
 
-AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<double>& start) {
-  const Model& m = mech.model();
-  const int nd = static_cast<int>(m.drivers.size());
-  const std::vector<double>& drawn = mech.drawn_driver_values();
-  TrackOptions options;
-  AssemblyReport report;
+namespace {
 
-  // Angles are reached the short way round first; when that meets a limit, the long way.
-  std::vector<double> delta(nd), other_way(nd);
+// Each driver's offset from its drawn value to `start` (`delta`), angles the short way round,
+// and the long way round (`other_way`); whether any angle has a long way.
+bool offsets_to_start(const Model& m, const std::vector<double>& start, const std::vector<double>& drawn,
+                      std::vector<double>& delta, std::vector<double>& other_way) {
+  const int nd = static_cast<int>(m.drivers.size());
   bool has_other_way = false;
   for (int d = 0; d < nd; ++d) {
     delta[d] = other_way[d] = start[d] - drawn[d];
@@ -480,6 +478,53 @@ AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<d
       }
     }
   }
+  return has_other_way;
+}
+
+// The start was not reached along `active` (the offsets tracked): says where each driver
+// stopped, and whether the wanted values assemble at all.
+[[noreturn]] void refuse_unreached_start(const Mechanism& mech, State& state, const DriverPath& path,
+                                         const std::vector<double>& active, const std::vector<double>& start,
+                                         const TrackReport& tracked, bool has_other_way, int terms) {
+  const Model& m = mech.model();
+  const int nd = static_cast<int>(m.drivers.size());
+  const std::vector<double>& drawn = mech.drawn_driver_values();
+  std::ostringstream s;
+  s << "cannot reach the drivers' starting values from the drawn pose on its branch";
+  for (int d = 0; d < nd; ++d) {
+    if (active[d] == 0.0) continue;
+    s << "; driver '" << m.drivers[d].name << "' stops at "
+      << format_driver_value(m, d, drawn[d] + tracked.limit_parameter * active[d]) << " (drawn "
+      << format_driver_value(m, d, drawn[d]) << ", wanted " << format_driver_value(m, d, start[d]) << ")";
+    if (m.drivers[d].is_angular() && has_other_way) s << " either way round";
+  }
+  std::vector<Series> values;
+  path(1.0, terms, values);
+  set_drivers(mech, state, values);
+  int worst = -1;
+  if (solve_position(mech, state, 20).converged) {
+    s << "; the wanted values can only be assembled on another branch: draw the mechanism on that branch";
+  } else {
+    const double r = max_residual(mech, state, &worst);
+    s << "; at the wanted values constraint '" << mech.rows()[worst].label
+      << "' cannot be met (the closest pose found leaves it off by " << r / m.units.length_scale << " "
+      << m.units.length << ")";
+  }
+  throw AssemblyError(s.str(), worst, worst >= 0 ? mech.rows()[worst].source : EntityRef{});
+}
+
+}  // namespace
+
+AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<double>& start) {
+  const Model& m = mech.model();
+  const int nd = static_cast<int>(m.drivers.size());
+  const std::vector<double>& drawn = mech.drawn_driver_values();
+  TrackOptions options;
+  AssemblyReport report;
+
+  // Angles are reached the short way round first; when that meets a limit, the long way.
+  std::vector<double> delta(nd), other_way(nd);
+  const bool has_other_way = offsets_to_start(m, start, drawn, delta, other_way);
   const std::vector<double>* active = &delta;
   const DriverPath path = [&](double p, int terms, std::vector<Series>& out) {
     out.resize(nd);
@@ -522,30 +567,8 @@ AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<d
       state.q = q_first;
     }
   }
-  if (!tracked.reached) {
-    std::ostringstream s;
-    s << "cannot reach the drivers' starting values from the drawn pose on its branch";
-    for (int d = 0; d < nd; ++d) {
-      if ((*active)[d] == 0.0) continue;
-      s << "; driver '" << m.drivers[d].name << "' stops at "
-        << format_driver_value(m, d, drawn[d] + tracked.limit_parameter * (*active)[d]) << " (drawn "
-        << format_driver_value(m, d, drawn[d]) << ", wanted " << format_driver_value(m, d, start[d]) << ")";
-      if (m.drivers[d].is_angular() && has_other_way) s << " either way round";
-    }
-    std::vector<Series> values;
-    path(1.0, options.terms, values);
-    set_drivers(mech, state, values);
-    int worst = -1;
-    if (solve_position(mech, state, 20).converged) {
-      s << "; the wanted values can only be assembled on another branch: draw the mechanism on that branch";
-    } else {
-      const double r = max_residual(mech, state, &worst);
-      s << "; at the wanted values constraint '" << mech.rows()[worst].label
-        << "' cannot be met (the closest pose found leaves it off by " << r / m.units.length_scale << " "
-        << m.units.length << ")";
-    }
-    throw AssemblyError(s.str(), worst, worst >= 0 ? mech.rows()[worst].source : EntityRef{});
-  }
+  if (!tracked.reached)
+    refuse_unreached_start(mech, state, path, *active, start, tracked, has_other_way, options.terms);
   report.passed_singularity = tracked.passed_singularity;
   report.residual = state.residual;
   return report;
