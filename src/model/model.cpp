@@ -340,14 +340,7 @@ class Validator {
   void check_drivers() const {
     std::set<std::string> seen;
     const bool time_sweep = m_.has_time_law();
-    // The mechanism's size: the diagonal of its points' bounding box.
-    Eigen::Vector2d low = Eigen::Vector2d::Constant(0.0), high = low;
-    if (!m_.points.empty()) low = high = m_.points.front().position;
-    for (const Point& p : m_.points) {
-      low = low.cwiseMin(p.position);
-      high = high.cwiseMax(p.position);
-    }
-    const double size = (high - low).norm();
+    const double size = mechanism_size();
     for (std::size_t i = 0; i < m_.drivers.size(); ++i) {
       const Driver& d = m_.drivers[i];
       const auto where = ref(EntityRef::Kind::Driver, i);
@@ -358,80 +351,102 @@ class Validator {
       if (d.name == "step" || d.name == "t" || d.name.find('.') != std::string::npos)
         fail(where, name + ": a driver's name is its column in the results, so it cannot be 'step' or 't' or hold "
                            "a '.' (which joins a name to its quantity, as in rocker.angle): give it another `name:`");
-      switch (d.kind) {
-        case DriverKind::Angle:
-          if (!valid_body(d.body)) {
-            fail(where, name + " refers to body #" + std::to_string(d.body) + ", which does not exist");
+      check_driven(d, where, name);
+      check_motion(d, time_sweep, size, where, name);
+    }
+  }
+
+  // The mechanism's size: the diagonal of its points' bounding box.
+  double mechanism_size() const {
+    Eigen::Vector2d low = Eigen::Vector2d::Constant(0.0), high = low;
+    if (!m_.points.empty()) low = high = m_.points.front().position;
+    for (const Point& p : m_.points) {
+      low = low.cwiseMin(p.position);
+      high = high.cwiseMax(p.position);
+    }
+    return (high - low).norm();
+  }
+
+  // What a driver drives (a body's angle, a distance, a slider) exists and can move.
+  void check_driven(const Driver& d, EntityRef where, const std::string& name) const {
+    switch (d.kind) {
+      case DriverKind::Angle:
+        if (!valid_body(d.body)) {
+          fail(where, name + " refers to body #" + std::to_string(d.body) + ", which does not exist");
+        }
+        if (m_.bodies[d.body].points.size() < 2) {
+          fail(where, name + ": body " + body_name(d.body) + " needs two points to have an angle");
+        }
+        if (d.relative_to >= 0) {
+          if (!valid_body(d.relative_to)) {
+            fail(where, name + " is relative to body #" + std::to_string(d.relative_to) + ", which does not exist");
           }
-          if (m_.bodies[d.body].points.size() < 2) {
-            fail(where, name + ": body " + body_name(d.body) + " needs two points to have an angle");
+          if (d.relative_to == d.body) fail(where, name + " cannot be relative to its own body");
+          if (m_.bodies[d.relative_to].points.size() < 2) {
+            fail(where, name + ": body " + body_name(d.relative_to) + " needs two points to have an angle");
           }
-          if (d.relative_to >= 0) {
-            if (!valid_body(d.relative_to)) {
-              fail(where, name + " is relative to body #" + std::to_string(d.relative_to) + ", which does not exist");
-            }
-            if (d.relative_to == d.body) fail(where, name + " cannot be relative to its own body");
-            if (m_.bodies[d.relative_to].points.size() < 2) {
-              fail(where, name + ": body " + body_name(d.relative_to) + " needs two points to have an angle");
-            }
+        }
+        break;
+      case DriverKind::Distance:
+        for (int p : d.points) {
+          if (!valid_point(p)) {
+            fail(where, name + " refers to point #" + std::to_string(p) + ", which does not exist");
           }
-          break;
-        case DriverKind::Distance:
-          for (int p : d.points) {
-            if (!valid_point(p)) {
-              fail(where, name + " refers to point #" + std::to_string(p) + ", which does not exist");
-            }
+        }
+        if (d.points[0] == d.points[1]) {
+          fail(where, name + " measures the distance from point " + point_name(d.points[0]) + " to itself");
+        }
+        if (m_.points[d.points[0]].ground && m_.points[d.points[1]].ground) {
+          fail(where, name + " drives the distance between two ground points, which cannot change");
+        }
+        for (std::size_t b = 0; b < m_.bodies.size(); ++b) {
+          const int body = static_cast<int>(b);
+          if (body_has_point(body, d.points[0]) && body_has_point(body, d.points[1])) {
+            fail(where, name + " drives the distance between two points of body " + body_name(body) +
+                            ", which cannot change");
           }
-          if (d.points[0] == d.points[1]) {
-            fail(where, name + " measures the distance from point " + point_name(d.points[0]) + " to itself");
-          }
-          if (m_.points[d.points[0]].ground && m_.points[d.points[1]].ground) {
-            fail(where, name + " drives the distance between two ground points, which cannot change");
-          }
-          for (std::size_t b = 0; b < m_.bodies.size(); ++b) {
-            const int body = static_cast<int>(b);
-            if (body_has_point(body, d.points[0]) && body_has_point(body, d.points[1])) {
-              fail(where, name + " drives the distance between two points of body " + body_name(body) +
-                              ", which cannot change");
-            }
-          }
-          break;
-        case DriverKind::Slide:
-          if (d.slider < 0 || d.slider >= static_cast<int>(m_.sliders.size())) {
-            fail(where, name + " refers to slider #" + std::to_string(d.slider) + ", which does not exist");
-          }
-          break;
-      }
-      const auto finite = [](const std::optional<double>& v) { return !v || std::isfinite(*v); };
-      if (!finite(d.from)) fail(where, name + ": `from` is not a finite number");
-      if (!finite(d.to)) fail(where, name + ": `to` is not a finite number");
-      if (!std::isfinite(d.speed)) fail(where, name + ": the speed is not a finite number");
-      if (!std::isfinite(d.accel)) fail(where, name + ": the acceleration is not a finite number");
-      if (d.speed == 0.0) fail(where, name + ": the speed must not be zero");
-      // Time is travel over speed: a speed that is zero in all but name (1e-308) would make
-      // it infinite, and every rate computed from it meaningless.
-      if (std::abs(d.speed) < kMinDriverSpeed)
-        fail(where, name + ": the speed is too small to mean a motion (its size must be at least 1e-12 rad/s or "
-                           "m/s); give a real speed, or leave `speed` out");
-      if (d.from && d.to && !std::isfinite((*d.to - *d.from) / d.speed))
-        fail(where, name + ": its travel over its speed is not a finite time");
-      // The time a sample is at is its travel over the speed: against each other they gave t < 0,
-      // a crank going from 360 to 0 at +120 rpm with omega +720 deg/s.
-      if (d.from && d.to && (*d.to - *d.from) * d.speed < 0.0)
-        fail(where, name + " goes from " + value_text(d, *d.from) + " to " + value_text(d, *d.to) +
-                        " against the sign of its speed, so time would run backwards: make the speed " +
-                        (d.speed > 0.0 ? "negative" : "positive") + " (or swap `from` and `to`)");
-      check_travel(d, time_sweep, size, where, name);
-      if (d.law && (d.from || d.to)) {
-        fail(where, name + " follows a law, so it takes no `from` or `to`");
-      }
-      // In a time sweep a driver without a law just runs at its speed from `from`;
-      // silently ignoring a `to` would hide a misunderstanding.
-      if (time_sweep && !d.law && d.to) {
-        fail(where, name +
-                        ": `to` has no meaning when another driver follows a time law (drivers without a "
-                        "law then move at their speed from `from`)");
-      }
+        }
+        break;
+      case DriverKind::Slide:
+        if (d.slider < 0 || d.slider >= static_cast<int>(m_.sliders.size())) {
+          fail(where, name + " refers to slider #" + std::to_string(d.slider) + ", which does not exist");
+        }
+        break;
+    }
+  }
+
+  // A driver's motion: finite numbers, a speed that means one, time running forwards, a travel
+  // the sweep can follow, and no `from`, `to` or law that would be ignored.
+  void check_motion(const Driver& d, bool time_sweep, double size, EntityRef where, const std::string& name) const {
+    const auto finite = [](const std::optional<double>& v) { return !v || std::isfinite(*v); };
+    if (!finite(d.from)) fail(where, name + ": `from` is not a finite number");
+    if (!finite(d.to)) fail(where, name + ": `to` is not a finite number");
+    if (!std::isfinite(d.speed)) fail(where, name + ": the speed is not a finite number");
+    if (!std::isfinite(d.accel)) fail(where, name + ": the acceleration is not a finite number");
+    if (d.speed == 0.0) fail(where, name + ": the speed must not be zero");
+    // Time is travel over speed: a speed that is zero in all but name (1e-308) would make
+    // it infinite, and every rate computed from it meaningless.
+    if (std::abs(d.speed) < kMinDriverSpeed)
+      fail(where, name + ": the speed is too small to mean a motion (its size must be at least 1e-12 rad/s or "
+                         "m/s); give a real speed, or leave `speed` out");
+    if (d.from && d.to && !std::isfinite((*d.to - *d.from) / d.speed))
+      fail(where, name + ": its travel over its speed is not a finite time");
+    // The time a sample is at is its travel over the speed: against each other they gave t < 0,
+    // a crank going from 360 to 0 at +120 rpm with omega +720 deg/s.
+    if (d.from && d.to && (*d.to - *d.from) * d.speed < 0.0)
+      fail(where, name + " goes from " + value_text(d, *d.from) + " to " + value_text(d, *d.to) +
+                      " against the sign of its speed, so time would run backwards: make the speed " +
+                      (d.speed > 0.0 ? "negative" : "positive") + " (or swap `from` and `to`)");
+    check_travel(d, time_sweep, size, where, name);
+    if (d.law && (d.from || d.to)) {
+      fail(where, name + " follows a law, so it takes no `from` or `to`");
+    }
+    // In a time sweep a driver without a law just runs at its speed from `from`;
+    // silently ignoring a `to` would hide a misunderstanding.
+    if (time_sweep && !d.law && d.to) {
+      fail(where, name +
+                      ": `to` has no meaning when another driver follows a time law (drivers without a "
+                      "law then move at their speed from `from`)");
     }
   }
 
