@@ -179,99 +179,119 @@ void export_designs(const SynthesisTask& task, const Outcome& out, const Synthes
   }
 }
 
+namespace {
+
+// Calls visit(which, branch, line) on every line of the centre-point curve, then of the
+// circle-point curve.
+template <typename Visit>
+void each_burmester_line(const synthesis::BurmesterCurves& curves, const Visit& visit) {
+  for (const char* which : {"centre", "circle"}) {
+    const auto& lines = std::string(which) == "centre" ? curves.centre_curve : curves.circle_curve;
+    for (std::size_t b = 0; b < lines.size(); ++b) visit(which, static_cast<int>(b), lines[b]);
+  }
+}
+
+void write_burmester_json(std::ostream& out, const SynthesisTask& task, const synthesis::BurmesterCurves& curves) {
+  nlohmann::ordered_json j;
+  j["units"] = task.units.length;
+  j["window"] = {{"centre", {curves.window_centre.x(), curves.window_centre.y()}}, {"radius", curves.window_radius}};
+  for (const char* which : {"centre_curve", "circle_curve"}) j[which] = nlohmann::ordered_json::array();
+  each_burmester_line(curves, [&](const char* which, int, const std::vector<synthesis::BurmesterPair>& line) {
+    nlohmann::ordered_json samples = nlohmann::ordered_json::array();
+    for (const auto& s : line)
+      samples.push_back({{"centre", {s.centre.x(), s.centre.y()}}, {"circle", {s.circle.x(), s.circle.y()}}});
+    j[std::string(which) + "_curve"].push_back(samples);
+  });
+  out << json_text(j, 2) << '\n';
+}
+
+// Both curves at one scale, on a grid with labelled axes in the task's length unit, so that
+// pivots can be read off: centre points in blue, circle points in orange, each pose's
+// reference point as a dot with its number and a tick along its angle.
+void write_burmester_svg(std::ostream& out, const SynthesisTask& task, const synthesis::BurmesterCurves& curves) {
+  constexpr int kSize = 760;
+  constexpr double kMargin = 64;  // room for the tick labels
+  const Eigen::Vector2d half = Eigen::Vector2d::Constant(curves.window_radius);
+  const Eigen::Vector2d lo = curves.window_centre - half, hi = curves.window_centre + half;
+  const render::View view(lo, hi, kSize, kSize, kMargin);
+  render::SvgCanvas canvas(kSize, kSize);
+  const render::Color ink = render::Color::rgb(0x000000), grid = render::Color::rgb(0xdddddd);
+  const Eigen::Vector2d corner_lo = view.to_pixels(lo), corner_hi = view.to_pixels(hi);  // y grows down
+  canvas.begin_group("grid", "grid");
+  const std::vector<double> all_x = render::nice_ticks(lo.x(), hi.x(), 8), all_y = render::nice_ticks(lo.y(), hi.y(), 8);
+  std::vector<double> xs, ys;
+  for (double t : all_x)
+    if (t >= lo.x() - 1e-9 * curves.window_radius && t <= hi.x() + 1e-9 * curves.window_radius) xs.push_back(t);
+  for (double t : all_y)
+    if (t >= lo.y() - 1e-9 * curves.window_radius && t <= hi.y() + 1e-9 * curves.window_radius) ys.push_back(t);
+  const std::vector<std::string> x_labels = render::format_ticks(xs), y_labels = render::format_ticks(ys);
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    const double px = view.to_pixels({xs[i], lo.y()}).x();
+    canvas.polyline({{px, corner_lo.y()}, {px, corner_hi.y()}}, render::Stroke{grid, 1.0, {}});
+    canvas.text({px, corner_lo.y() + 16}, x_labels[i], 11, render::Anchor::Middle, ink);
+  }
+  for (std::size_t i = 0; i < ys.size(); ++i) {
+    const double py = view.to_pixels({lo.x(), ys[i]}).y();
+    canvas.polyline({{corner_lo.x(), py}, {corner_hi.x(), py}}, render::Stroke{grid, 1.0, {}});
+    canvas.text({corner_lo.x() - 6, py + 4}, y_labels[i], 11, render::Anchor::End, ink);
+  }
+  canvas.end_group();
+  canvas.begin_group("axes", "axes");
+  canvas.polyline({{corner_lo.x(), corner_lo.y()}, {corner_hi.x(), corner_lo.y()}, {corner_hi.x(), corner_hi.y()},
+                   {corner_lo.x(), corner_hi.y()}, {corner_lo.x(), corner_lo.y()}},
+                  render::Stroke{ink, 1.0, {}});
+  canvas.text({0.5 * (corner_lo.x() + corner_hi.x()), corner_lo.y() + 36}, "x (" + task.units.length + ")", 12,
+              render::Anchor::Middle, ink);
+  canvas.text({corner_lo.x() - 6, corner_hi.y() - 10}, "y (" + task.units.length + ")", 12, render::Anchor::Middle,
+              ink);
+  canvas.end_group();
+  canvas.begin_group("curves", "curves");
+  each_burmester_line(curves, [&](const char* which, int, const std::vector<synthesis::BurmesterPair>& line) {
+    const bool centre = std::string(which) == "centre";
+    std::vector<Eigen::Vector2d> points;
+    for (const auto& s : line) points.push_back(view.to_pixels(centre ? s.centre : s.circle));
+    canvas.polyline(points, render::Stroke{render::Color::rgb(centre ? 0x0072b2 : 0xe69f00), 1.5, {}});
+  });
+  canvas.end_group();
+  canvas.begin_group("poses", "poses");
+  for (std::size_t i = 0; i < task.poses.size(); ++i) {
+    const synthesis::BodyPose& p = task.poses[i];
+    const Eigen::Vector2d at = view.to_pixels(p.point);
+    const Eigen::Vector2d along(std::cos(p.angle), -std::sin(p.angle));  // pixels: y down
+    canvas.polyline({at, at + 22.0 * along}, render::Stroke{ink, 1.5, {}});
+    canvas.circle(at, 3.0, render::Paint{ink, std::nullopt});
+    canvas.text(at - 10.0 * along + Eigen::Vector2d(0, 4), std::to_string(i + 1), 12, render::Anchor::Middle, ink);
+  }
+  canvas.end_group();
+  canvas.text({kMargin, 20},
+              "centre-point curve (blue), circle-point curve (orange), poses 1-" + std::to_string(task.poses.size()) +
+                  " with their angles",
+              13, render::Anchor::Start, ink);
+  out << canvas.document();
+}
+
+void write_burmester_csv(std::ostream& out, const synthesis::BurmesterCurves& curves) {
+  out << "curve,branch,centre_x,centre_y,circle_x,circle_y\n";
+  each_burmester_line(curves, [&](const char* which, int branch, const std::vector<synthesis::BurmesterPair>& line) {
+    for (const auto& s : line)
+      out << fmt::format("{},{},{},{},{},{}\n", which, branch, s.centre.x(), s.centre.y(), s.circle.x(),
+                         s.circle.y());
+  });
+}
+
+}  // namespace
+
 // The Burmester curves as CSV, JSON or an SVG picture.
 void write_burmester_curves(const std::string& path, const SynthesisTask& task, const synthesis::BurmesterCurves& curves) {
   const std::string ext = fs::path(path).extension().string();
   std::ofstream out(path);
   if (!out) throw Error(ErrorKind::BadInput, cannot_write_message(path));
-  const auto each = [&](const auto& visit) {
-    for (const char* which : {"centre", "circle"}) {
-      const auto& lines = std::string(which) == "centre" ? curves.centre_curve : curves.circle_curve;
-      for (std::size_t b = 0; b < lines.size(); ++b) visit(which, static_cast<int>(b), lines[b]);
-    }
-  };
   if (ext == ".json") {
-    nlohmann::ordered_json j;
-    j["units"] = task.units.length;
-    j["window"] = {{"centre", {curves.window_centre.x(), curves.window_centre.y()}}, {"radius", curves.window_radius}};
-    for (const char* which : {"centre_curve", "circle_curve"}) j[which] = nlohmann::ordered_json::array();
-    each([&](const char* which, int, const std::vector<synthesis::BurmesterPair>& line) {
-      nlohmann::ordered_json samples = nlohmann::ordered_json::array();
-      for (const auto& s : line)
-        samples.push_back({{"centre", {s.centre.x(), s.centre.y()}}, {"circle", {s.circle.x(), s.circle.y()}}});
-      j[std::string(which) + "_curve"].push_back(samples);
-    });
-    out << json_text(j, 2) << '\n';
+    write_burmester_json(out, task, curves);
   } else if (ext == ".svg") {
-    // Both curves at one scale, on a grid with labelled axes in the task's length unit, so that
-    // pivots can be read off: centre points in blue, circle points in orange, each pose's
-    // reference point as a dot with its number and a tick along its angle.
-    constexpr int kSize = 760;
-    constexpr double kMargin = 64;  // room for the tick labels
-    const Eigen::Vector2d half = Eigen::Vector2d::Constant(curves.window_radius);
-    const Eigen::Vector2d lo = curves.window_centre - half, hi = curves.window_centre + half;
-    const render::View view(lo, hi, kSize, kSize, kMargin);
-    render::SvgCanvas canvas(kSize, kSize);
-    const render::Color ink = render::Color::rgb(0x000000), grid = render::Color::rgb(0xdddddd);
-    const Eigen::Vector2d corner_lo = view.to_pixels(lo), corner_hi = view.to_pixels(hi);  // y grows down
-    canvas.begin_group("grid", "grid");
-    const std::vector<double> all_x = render::nice_ticks(lo.x(), hi.x(), 8), all_y = render::nice_ticks(lo.y(), hi.y(), 8);
-    std::vector<double> xs, ys;
-    for (double t : all_x)
-      if (t >= lo.x() - 1e-9 * curves.window_radius && t <= hi.x() + 1e-9 * curves.window_radius) xs.push_back(t);
-    for (double t : all_y)
-      if (t >= lo.y() - 1e-9 * curves.window_radius && t <= hi.y() + 1e-9 * curves.window_radius) ys.push_back(t);
-    const std::vector<std::string> x_labels = render::format_ticks(xs), y_labels = render::format_ticks(ys);
-    for (std::size_t i = 0; i < xs.size(); ++i) {
-      const double px = view.to_pixels({xs[i], lo.y()}).x();
-      canvas.polyline({{px, corner_lo.y()}, {px, corner_hi.y()}}, render::Stroke{grid, 1.0, {}});
-      canvas.text({px, corner_lo.y() + 16}, x_labels[i], 11, render::Anchor::Middle, ink);
-    }
-    for (std::size_t i = 0; i < ys.size(); ++i) {
-      const double py = view.to_pixels({lo.x(), ys[i]}).y();
-      canvas.polyline({{corner_lo.x(), py}, {corner_hi.x(), py}}, render::Stroke{grid, 1.0, {}});
-      canvas.text({corner_lo.x() - 6, py + 4}, y_labels[i], 11, render::Anchor::End, ink);
-    }
-    canvas.end_group();
-    canvas.begin_group("axes", "axes");
-    canvas.polyline({{corner_lo.x(), corner_lo.y()}, {corner_hi.x(), corner_lo.y()}, {corner_hi.x(), corner_hi.y()},
-                     {corner_lo.x(), corner_hi.y()}, {corner_lo.x(), corner_lo.y()}},
-                    render::Stroke{ink, 1.0, {}});
-    canvas.text({0.5 * (corner_lo.x() + corner_hi.x()), corner_lo.y() + 36}, "x (" + task.units.length + ")", 12,
-                render::Anchor::Middle, ink);
-    canvas.text({corner_lo.x() - 6, corner_hi.y() - 10}, "y (" + task.units.length + ")", 12, render::Anchor::Middle,
-                ink);
-    canvas.end_group();
-    canvas.begin_group("curves", "curves");
-    each([&](const char* which, int, const std::vector<synthesis::BurmesterPair>& line) {
-      const bool centre = std::string(which) == "centre";
-      std::vector<Eigen::Vector2d> points;
-      for (const auto& s : line) points.push_back(view.to_pixels(centre ? s.centre : s.circle));
-      canvas.polyline(points, render::Stroke{render::Color::rgb(centre ? 0x0072b2 : 0xe69f00), 1.5, {}});
-    });
-    canvas.end_group();
-    canvas.begin_group("poses", "poses");
-    for (std::size_t i = 0; i < task.poses.size(); ++i) {
-      const synthesis::BodyPose& p = task.poses[i];
-      const Eigen::Vector2d at = view.to_pixels(p.point);
-      const Eigen::Vector2d along(std::cos(p.angle), -std::sin(p.angle));  // pixels: y down
-      canvas.polyline({at, at + 22.0 * along}, render::Stroke{ink, 1.5, {}});
-      canvas.circle(at, 3.0, render::Paint{ink, std::nullopt});
-      canvas.text(at - 10.0 * along + Eigen::Vector2d(0, 4), std::to_string(i + 1), 12, render::Anchor::Middle, ink);
-    }
-    canvas.end_group();
-    canvas.text({kMargin, 20},
-                "centre-point curve (blue), circle-point curve (orange), poses 1-" + std::to_string(task.poses.size()) +
-                    " with their angles",
-                13, render::Anchor::Start, ink);
-    out << canvas.document();
+    write_burmester_svg(out, task, curves);
   } else {
-    out << "curve,branch,centre_x,centre_y,circle_x,circle_y\n";
-    each([&](const char* which, int branch, const std::vector<synthesis::BurmesterPair>& line) {
-      for (const auto& s : line)
-        out << fmt::format("{},{},{},{},{},{}\n", which, branch, s.centre.x(), s.centre.y(), s.circle.x(),
-                           s.circle.y());
-    });
+    write_burmester_csv(out, curves);
   }
   if (!out) throw Error(ErrorKind::BadInput, cannot_write_message(path));
 }
