@@ -359,96 +359,114 @@ class SvgBuilder {
     s = Stroke{{}, false, line_, layer_};
   }
 
+  // Where the path data's pen is: its point, the start of its subpath (for Z) and the last
+  // control point (for the smooth curves S and T).
+  struct Pen {
+    Vector2d current{0, 0}, start{0, 0}, last_control{0, 0};
+  };
+
   void path(const std::string& d_text) {
     PathData d(d_text, file_, line_);
     Stroke s{{}, false, line_, layer_};
-    Vector2d current(0, 0), start(0, 0), last_control(0, 0);
+    Pen pen;
     char previous = ' ';
     char command = ' ';
     while (!d.at_end()) {
-      if (!d.at_number()) {
-        command = d.command();
-      } else if (command == ' ') {
-        fail_at(file_, line_, "path data must start with M or m");
-      } else if (command == 'M') {
-        command = 'L';  // numbers after a moveto are linetos
-      } else if (command == 'm') {
-        command = 'l';
-      } else if (command == 'Z' || command == 'z') {
-        fail_at(file_, line_, "path data: numbers after Z");
-      }
-      const bool relative = std::islower(static_cast<unsigned char>(command));
-      const Vector2d base = relative ? current : Vector2d(0, 0);
-      switch (std::toupper(static_cast<unsigned char>(command))) {
-        case 'M':
-          finish_stroke(s, false);
-          current = start = base + d.point();
-          break;
-        case 'L': {
-          const Vector2d to = base + d.point();
-          line_to(s, current, to);
-          current = to;
-          break;
-        }
-        case 'H': {
-          const Vector2d to(d.number() + (relative ? current.x() : 0), current.y());
-          line_to(s, current, to);
-          current = to;
-          break;
-        }
-        case 'V': {
-          const Vector2d to(current.x(), d.number() + (relative ? current.y() : 0));
-          line_to(s, current, to);
-          current = to;
-          break;
-        }
-        case 'C': {
-          const Vector2d c1 = base + d.point(), c2 = base + d.point(), to = base + d.point();
-          cubic_to(s, current, c1, c2, to);
-          last_control = c2;
-          current = to;
-          break;
-        }
-        case 'S': {
-          const bool smooth = std::strchr("CcSs", previous) != nullptr && previous != ' ';
-          const Vector2d c1 = smooth ? 2 * current - last_control : current;
-          const Vector2d c2 = base + d.point(), to = base + d.point();
-          cubic_to(s, current, c1, c2, to);
-          last_control = c2;
-          current = to;
-          break;
-        }
-        case 'Q':
-        case 'T': {
-          const bool smooth = std::strchr("QqTt", previous) != nullptr && previous != ' ';
-          const Vector2d q = std::toupper(static_cast<unsigned char>(command)) == 'Q'
-                                 ? Vector2d(base + d.point())
-                                 : (smooth ? Vector2d(2 * current - last_control) : current);
-          const Vector2d to = base + d.point();
-          cubic_to(s, current, current + 2.0 / 3 * (q - current), to + 2.0 / 3 * (q - to), to);
-          last_control = q;
-          current = to;
-          break;
-        }
-        case 'A': {
-          const double rx = d.number(), ry = d.number(), rotation = d.number();
-          const bool large = d.flag(), sweep = d.flag();
-          const Vector2d to = base + d.point();
-          arc_to(s, current, rx, ry, rotation, large, sweep, to);
-          current = to;
-          break;
-        }
-        case 'Z':
-          line_to(s, current, start);
-          current = start;
-          finish_stroke(s, true);
-          break;
-        default:
-          fail_at(file_, line_, std::string("path data: unknown command '") + command + "'");
-      }
+      command = next_command(d, command);
+      path_command(d, command, previous, pen, s);
       previous = command;
     }
     finish_stroke(s, false);
+  }
+
+  // The command of the next segment: a letter, or numbers that repeat the last command
+  // (numbers after a moveto are linetos).
+  char next_command(PathData& d, char command) const {
+    if (!d.at_number()) {
+      command = d.command();
+    } else if (command == ' ') {
+      fail_at(file_, line_, "path data must start with M or m");
+    } else if (command == 'M') {
+      command = 'L';  // numbers after a moveto are linetos
+    } else if (command == 'm') {
+      command = 'l';
+    } else if (command == 'Z' || command == 'z') {
+      fail_at(file_, line_, "path data: numbers after Z");
+    }
+    return command;
+  }
+
+  // One segment of `command` (its numbers read from `d`), drawn into `s` from the pen.
+  void path_command(PathData& d, char command, char previous, Pen& pen, Stroke& s) {
+    const bool relative = std::islower(static_cast<unsigned char>(command));
+    const Vector2d base = relative ? pen.current : Vector2d(0, 0);
+    switch (std::toupper(static_cast<unsigned char>(command))) {
+      case 'M':
+        finish_stroke(s, false);
+        pen.current = pen.start = base + d.point();
+        break;
+      case 'L': {
+        const Vector2d to = base + d.point();
+        line_to(s, pen.current, to);
+        pen.current = to;
+        break;
+      }
+      case 'H': {
+        const Vector2d to(d.number() + (relative ? pen.current.x() : 0), pen.current.y());
+        line_to(s, pen.current, to);
+        pen.current = to;
+        break;
+      }
+      case 'V': {
+        const Vector2d to(pen.current.x(), d.number() + (relative ? pen.current.y() : 0));
+        line_to(s, pen.current, to);
+        pen.current = to;
+        break;
+      }
+      case 'C': {
+        const Vector2d c1 = base + d.point(), c2 = base + d.point(), to = base + d.point();
+        cubic_to(s, pen.current, c1, c2, to);
+        pen.last_control = c2;
+        pen.current = to;
+        break;
+      }
+      case 'S': {
+        const bool smooth = std::strchr("CcSs", previous) != nullptr && previous != ' ';
+        const Vector2d c1 = smooth ? 2 * pen.current - pen.last_control : pen.current;
+        const Vector2d c2 = base + d.point(), to = base + d.point();
+        cubic_to(s, pen.current, c1, c2, to);
+        pen.last_control = c2;
+        pen.current = to;
+        break;
+      }
+      case 'Q':
+      case 'T': {
+        const bool smooth = std::strchr("QqTt", previous) != nullptr && previous != ' ';
+        const Vector2d q = std::toupper(static_cast<unsigned char>(command)) == 'Q'
+                               ? Vector2d(base + d.point())
+                               : (smooth ? Vector2d(2 * pen.current - pen.last_control) : pen.current);
+        const Vector2d to = base + d.point();
+        cubic_to(s, pen.current, pen.current + 2.0 / 3 * (q - pen.current), to + 2.0 / 3 * (q - to), to);
+        pen.last_control = q;
+        pen.current = to;
+        break;
+      }
+      case 'A': {
+        const double rx = d.number(), ry = d.number(), rotation = d.number();
+        const bool large = d.flag(), sweep = d.flag();
+        const Vector2d to = base + d.point();
+        arc_to(s, pen.current, rx, ry, rotation, large, sweep, to);
+        pen.current = to;
+        break;
+      }
+      case 'Z':
+        line_to(s, pen.current, pen.start);
+        pen.current = pen.start;
+        finish_stroke(s, true);
+        break;
+      default:
+        fail_at(file_, line_, std::string("path data: unknown command '") + command + "'");
+    }
   }
 
   const std::string& file_;
