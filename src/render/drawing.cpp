@@ -629,28 +629,101 @@ void draw_body(Canvas& canvas, const View& view, const Mechanism& mech, const Sw
   canvas.end_group();
 }
 
+// The paths of the traced points.
+void draw_traces(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
+                 const DrawOptions& options) {
+  auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
+  const auto paths = options.trace_paths.size() == options.traces.size() ? options.trace_paths
+                                                                          : trace_paths(mech, sweep, options.traces);
+  canvas.begin_group("traces", "traces");
+  for (const auto& path : paths) {
+    std::vector<Eigen::Vector2d> drawn;
+    for (const auto& p : path) drawn.push_back(px(p));
+    canvas.polyline(drawn, Stroke{Color::rgb(0x444444, 200), 1.3, {5, 3}});
+  }
+  canvas.end_group();
+}
+
+// Every point's name, placed clear of what is drawn.
+void draw_labels(Canvas& canvas, const View& view, const Model& m, const std::vector<Eigen::Vector2d>& points,
+                 Obstacles& obstacles) {
+  auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
+  canvas.begin_group("labels", "labels");
+  for (std::size_t p = 0; p < m.points.size(); ++p) {
+    // One text per point, in order (animations find a point's label by its place), empty
+    // for a far guide end.
+    if (far_guide_end(m, static_cast<int>(p), px(points[p]), canvas)) {
+      canvas.text(px(points[p]), "", 12, Anchor::Start, kInk);
+      continue;
+    }
+    const Eigen::Vector2d at = place_label(obstacles, canvas, px(points[p]), m.points[p].name, 12, 1.0, {8.0, 13.0, 20.0});
+    canvas.text(at, m.points[p].name, 12, Anchor::Start, kInk);
+  }
+  canvas.end_group();
+}
+
+// Markers on bodies (a ring and a dot, with their labels outside plates).
+void draw_markers(Canvas& canvas, const View& view, const Model& m, const std::vector<Eigen::Vector2d>& points,
+                  const DrawOptions& options, Obstacles& obstacles) {
+  auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
+  canvas.begin_group("markers", "markers");
+  for (const Marker& mk : options.markers) {
+    const Body& body = m.bodies[mk.body];
+    const Eigen::Vector2d o = points[body.points[0]];
+    const Eigen::Vector2d e = body.points.size() >= 2 ? Eigen::Vector2d((points[body.points[1]] - o).normalized())
+                                                      : Eigen::Vector2d(1, 0);
+    const Eigen::Vector2d at = px(o + mk.local.x() * e + mk.local.y() * perp(e));
+    canvas.circle(at, 7, Paint{std::nullopt, Stroke{Color::rgb(0xd00000), 2.2, {}}});
+    canvas.circle(at, 2, Paint{Color::rgb(0xd00000), std::nullopt});
+    obstacles.circles.push_back({at, 8});
+    if (!mk.label.empty()) {
+      // Outside plates, where it can be read.
+      const Eigen::Vector2d where = place_label(obstacles, canvas, at, mk.label, 12, 5.0, {10.0, 24.0, 40.0, 60.0});
+      canvas.text(where, mk.label, 12, Anchor::Start, Color::rgb(0xb00000));
+    }
+  }
+  canvas.end_group();
+}
+
+// Points marked in the plane (a ring and a cross).
+void draw_marked_points(Canvas& canvas, const View& view, const DrawOptions& options) {
+  auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
+  const Color mark = Color::rgb(0x1f5fbf);
+  canvas.begin_group("marked-points", "marked-points");
+  for (const MarkedPoint& mp : options.marked_points) {
+    const Eigen::Vector2d at = px(mp.position);
+    canvas.circle(at, 5, Paint{std::nullopt, Stroke{mark, 1.6, {}}});
+    canvas.polyline({at + Eigen::Vector2d(-7, 0), at + Eigen::Vector2d(7, 0)}, Stroke{mark, 1.2, {}});
+    canvas.polyline({at + Eigen::Vector2d(0, -7), at + Eigen::Vector2d(0, 7)}, Stroke{mark, 1.2, {}});
+    if (!mp.label.empty()) canvas.text(at + Eigen::Vector2d(8, 14), mp.label, 11, Anchor::Start, mark);
+  }
+  canvas.end_group();
+}
+
+// A scale bar of a round length, about a fifth of the width, at the bottom left.
+void draw_scale_bar(Canvas& canvas, const View& view, const Model& m) {
+  const double scale = view.pixels_per_metre();
+  const double unit = m.units.length_scale;
+  const double length = nice_length(0.2 * canvas.width() / scale / unit);  // model units
+  const double bar = length * unit * scale;
+  const Eigen::Vector2d a(14, canvas.height() - 14.0), b(14 + bar, canvas.height() - 14.0);
+  canvas.begin_group("scale-bar", "scale-bar");
+  canvas.polyline({a, b}, Stroke{kInk, 2, {}});
+  canvas.polyline({a + Eigen::Vector2d(0, -5), a + Eigen::Vector2d(0, 3)}, Stroke{kInk, 1.5, {}});
+  canvas.polyline({b + Eigen::Vector2d(0, -5), b + Eigen::Vector2d(0, 3)}, Stroke{kInk, 1.5, {}});
+  canvas.text(0.5 * (a + b) + Eigen::Vector2d(0, -7), number(length) + " " + m.units.length, 12, Anchor::Middle, kInk);
+  canvas.end_group();
+}
+
 }  // namespace
 
 void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
                     const std::vector<Eigen::Vector2d>& points, const DrawOptions& options) {
   const Model& m = mech.model();
-  auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
-  const double scale = view.pixels_per_metre();
   Obstacles obstacles;
 
   draw_ground(canvas, view, mech, sweep, points, obstacles);
-
-  if (!options.traces.empty()) {
-    const auto paths = options.trace_paths.size() == options.traces.size() ? options.trace_paths
-                                                                            : trace_paths(mech, sweep, options.traces);
-    canvas.begin_group("traces", "traces");
-    for (const auto& path : paths) {
-      std::vector<Eigen::Vector2d> drawn;
-      for (const auto& p : path) drawn.push_back(px(p));
-      canvas.polyline(drawn, Stroke{Color::rgb(0x444444, 200), 1.3, {5, 3}});
-    }
-    canvas.end_group();
-  }
+  if (!options.traces.empty()) draw_traces(canvas, view, mech, sweep, options);
 
   // Bodies, each with the joints it is the last drawn body of: drawn after every body that
   // meets there, a joint stays visible.
@@ -661,66 +734,10 @@ void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, con
   for (int b : order) draw_body(canvas, view, mech, sweep, points, b, joint_owner, options, obstacles);
   if (!options.stress_maps.empty()) draw_stress_legend(canvas, stress_scale(options));
 
-  if (options.labels) {
-    canvas.begin_group("labels", "labels");
-    for (std::size_t p = 0; p < m.points.size(); ++p) {
-      // One text per point, in order (animations find a point's label by its place), empty
-      // for a far guide end.
-      if (far_guide_end(m, static_cast<int>(p), px(points[p]), canvas)) {
-        canvas.text(px(points[p]), "", 12, Anchor::Start, kInk);
-        continue;
-      }
-      const Eigen::Vector2d at = place_label(obstacles, canvas, px(points[p]), m.points[p].name, 12, 1.0, {8.0, 13.0, 20.0});
-      canvas.text(at, m.points[p].name, 12, Anchor::Start, kInk);
-    }
-    canvas.end_group();
-  }
-
-  if (!options.markers.empty()) {
-    canvas.begin_group("markers", "markers");
-    for (const Marker& mk : options.markers) {
-      const Body& body = m.bodies[mk.body];
-      const Eigen::Vector2d o = points[body.points[0]];
-      const Eigen::Vector2d e = body.points.size() >= 2 ? Eigen::Vector2d((points[body.points[1]] - o).normalized())
-                                                        : Eigen::Vector2d(1, 0);
-      const Eigen::Vector2d at = px(o + mk.local.x() * e + mk.local.y() * perp(e));
-      canvas.circle(at, 7, Paint{std::nullopt, Stroke{Color::rgb(0xd00000), 2.2, {}}});
-      canvas.circle(at, 2, Paint{Color::rgb(0xd00000), std::nullopt});
-      obstacles.circles.push_back({at, 8});
-      if (!mk.label.empty()) {
-        // Outside plates, where it can be read.
-        const Eigen::Vector2d where = place_label(obstacles, canvas, at, mk.label, 12, 5.0, {10.0, 24.0, 40.0, 60.0});
-        canvas.text(where, mk.label, 12, Anchor::Start, Color::rgb(0xb00000));
-      }
-    }
-    canvas.end_group();
-  }
-
-  if (!options.marked_points.empty()) {
-    const Color mark = Color::rgb(0x1f5fbf);
-    canvas.begin_group("marked-points", "marked-points");
-    for (const MarkedPoint& mp : options.marked_points) {
-      const Eigen::Vector2d at = px(mp.position);
-      canvas.circle(at, 5, Paint{std::nullopt, Stroke{mark, 1.6, {}}});
-      canvas.polyline({at + Eigen::Vector2d(-7, 0), at + Eigen::Vector2d(7, 0)}, Stroke{mark, 1.2, {}});
-      canvas.polyline({at + Eigen::Vector2d(0, -7), at + Eigen::Vector2d(0, 7)}, Stroke{mark, 1.2, {}});
-      if (!mp.label.empty()) canvas.text(at + Eigen::Vector2d(8, 14), mp.label, 11, Anchor::Start, mark);
-    }
-    canvas.end_group();
-  }
-
-  if (options.scale_bar) {
-    const double unit = m.units.length_scale;
-    const double length = nice_length(0.2 * canvas.width() / scale / unit);  // model units
-    const double bar = length * unit * scale;
-    const Eigen::Vector2d a(14, canvas.height() - 14.0), b(14 + bar, canvas.height() - 14.0);
-    canvas.begin_group("scale-bar", "scale-bar");
-    canvas.polyline({a, b}, Stroke{kInk, 2, {}});
-    canvas.polyline({a + Eigen::Vector2d(0, -5), a + Eigen::Vector2d(0, 3)}, Stroke{kInk, 1.5, {}});
-    canvas.polyline({b + Eigen::Vector2d(0, -5), b + Eigen::Vector2d(0, 3)}, Stroke{kInk, 1.5, {}});
-    canvas.text(0.5 * (a + b) + Eigen::Vector2d(0, -7), number(length) + " " + m.units.length, 12, Anchor::Middle, kInk);
-    canvas.end_group();
-  }
+  if (options.labels) draw_labels(canvas, view, m, points, obstacles);
+  if (!options.markers.empty()) draw_markers(canvas, view, m, points, options, obstacles);
+  if (!options.marked_points.empty()) draw_marked_points(canvas, view, options);
+  if (options.scale_bar) draw_scale_bar(canvas, view, m);
   if (!options.title.empty()) canvas.text({14, 22}, options.title, 15, Anchor::Start, kInk);
 }
 
