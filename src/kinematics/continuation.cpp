@@ -282,6 +282,12 @@ bool coast_to_singular_end(const Mechanism& mech, State& state, const DriverPath
 namespace {
 
 // track(), for N coordinates (0: any number).
+// Left long (138 lines) on purpose: this is the sweep's inner loop, one pass a step, and its
+// state (the step h, the accepted point's q and determinant sign, the residual known there,
+// whether the coast was tried) is read and written by the predictor, the corrector, the tests
+// that accept or reject a step and the coast alike. Split into functions, that state would be
+// passed by reference through each call of the hot path whose cost a step the benchmarks track
+// (bench/kinematics_bench.cpp, docs/benchmarks.md); the comments mark its stages instead.
 template <int N>
 TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& path, double p_end,
                         const TrackOptions& options) {

@@ -382,6 +382,10 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
   return run_sweep(mech, options, control, nullptr);
 }
 
+// Left long (109 lines) on purpose: the start (assembly, the first series) and the loop over the
+// samples share the plan, the tracker's state, the reused sample and whether the sample being
+// recorded lies on a singular position with `record`; the loop runs once a sample, and the
+// warnings it gives read the tracker's report of that sample's track where it is made.
 SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control,
                       const SampleSink& sink) {
   check_derivative_order(options.order);
