@@ -1,0 +1,200 @@
+// What a user asks of nbar, one type per question, read from the options every front-end fills
+// (request/options.hpp). Each request owns its options' rules (ranges, defaults, choices), the
+// unit conversions of its options, and the choices made from them (the analysis it needs, the
+// pose it draws, the columns it selects), so that the command line, the web server and Python
+// give one answer, or one error, for one request:
+//
+//   request::Options options;                       // filled by a front-end
+//   options.set("order", 3LL);
+//   const SolveRequest solve = SolveRequest::read(options);   // throws OptionError
+//   Analysis a = analyse(mechanism, solve.analysis_options());
+//   ResultTable t = solve.table(a);                 // the columns asked for, or OptionError
+//
+// Ownership: a request is a plain value; the functions that take a Mechanism or an Analysis
+// keep no reference to them.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "nbar/analysis/analysis.hpp"
+#include "nbar/analysis/explain.hpp"
+#include "nbar/analysis/summary.hpp"
+#include "nbar/kinematics/table.hpp"
+#include "nbar/model/run_control.hpp"
+#include "nbar/render/drawing.hpp"
+#include "nbar/render/plot.hpp"
+#include "nbar/request/options.hpp"
+
+namespace nbar::request {
+
+// The sweep's number of samples: the model's, or `steps`; a larger sweep than `max_steps` is an
+// error (every sample is kept in memory, and each takes time).
+struct SweepSize {
+  std::optional<int> steps;
+  int max_steps = kDefaultMaxSweepSamples;
+
+  static std::vector<OptionRule> rules(bool with_steps = true);
+  static SweepSize read(const Options& options);
+  void apply(AnalysisOptions& analysis) const;
+};
+
+// How a picture looks: its size in pixels (each kind of picture has its own range), point names,
+// the points whose paths are drawn, a title.
+struct Picture {
+  int width = 900;
+  int height = 640;
+  bool labels = false;
+  std::vector<std::string> trace;
+  std::string title;
+
+  // The drawing options for this picture of `model`; an unknown traced point is an OptionError
+  // at `trace`.
+  render::DrawOptions draw_options(const Model& model) const;
+};
+
+// The size limits of each kind of picture, the same in every front-end.
+struct PictureLimits {
+  int min_width, min_height, max_width, max_height;
+  int default_width, default_height;
+};
+inline constexpr PictureLimits kDrawingLimits{100, 100, 10000, 10000, 900, 640};
+inline constexpr PictureLimits kAnimationLimits{64, 64, 8192, 8192, 900, 640};
+inline constexpr PictureLimits kPlotLimits{200, 150, 10000, 10000, 900, 520};
+
+// Stresses by finite elements: the element size far from holes, in the model's length unit (unset:
+// each plate's own default). Converted to metres here, once for every front-end.
+void use_finite_elements(AnalysisOptions& analysis, const Model& model, std::optional<double> mesh_size);
+
+// nbar check: the model's summary.
+struct CheckRequest {
+  std::string format = "text";  // text or json
+  int max_steps = kDefaultMaxSweepSamples;
+
+  static const std::vector<OptionRule>& rules();
+  static CheckRequest read(const Options& options);
+};
+
+// nbar solve: the sweep's columns.
+struct SolveRequest {
+  SweepSize sweep;
+  int order = 2;
+  bool dynamics = false;
+  std::vector<std::string> columns;  // names or globs; empty: every column
+  std::string format = "csv";        // csv, json or table
+
+  static const std::vector<OptionRule>& rules();
+  static SolveRequest read(const Options& options);
+  AnalysisOptions analysis_options() const;
+  // The columns asked for; an OptionError at `columns` names the columns there are (and says when
+  // the ones asked for need the dynamics).
+  ResultTable table(const Analysis& analysis) const;
+  // The same check for the column names alone (a streamed table selects by name).
+  void explain_column_error(const Mechanism& mechanism, const std::string& problem) const;
+};
+
+// nbar stress: every shaped link's largest stress, or one link's sections at one step.
+struct StressRequest {
+  SweepSize sweep;
+  StressMethod method = StressMethod::beam;
+  int sections = 200;
+  std::optional<double> mesh_size;  // the model's length unit
+  std::string format = "table";     // table, csv or json
+  std::string section_profile;      // a body: its sections at `step` instead of the peaks
+  std::optional<int> step;
+
+  static const std::vector<OptionRule>& rules();
+  static StressRequest read(const Options& options);
+  AnalysisOptions analysis_options(const Model& model) const;
+  // The section profile asked for: OptionError at `section_profile` or `step`.
+  ResultTable section_profile_table(const Analysis& analysis) const;
+};
+
+// A solved step of the sweep, checked: OptionError at `step` ("step 999 is not a solved step
+// (0 to 12)") when the sweep has no such sample.
+int solved_step(const SweepResult& sweep, int step);
+
+// nbar draw: the mechanism in one pose.
+struct DrawRequest {
+  SweepSize sweep;
+  std::optional<int> step;   // a sample of the sweep (default: render::default_drawn_step)
+  std::optional<double> at;  // or where the first driver has this value (model units)
+  Picture picture;
+  bool stress = false;
+  std::optional<double> mesh_size;
+  std::string format = "svg";  // svg or png (or the web app's scene)
+
+  static const std::vector<OptionRule>& rules();
+  static DrawRequest read(const Options& options);
+  AnalysisOptions analysis_options(const Model& model) const;
+  // The sample drawn, when the pose is a sample (not `at`).
+  int drawn_step(const Analysis& analysis) const;
+  // The positions drawn (m): the sample asked for, or the pose at `at` on the sweep's path.
+  std::vector<Eigen::Vector2d> points(const Analysis& analysis, const RunControl& control = {}) const;
+};
+
+// nbar animate: the sweep as a moving picture.
+struct AnimateRequest {
+  SweepSize sweep;
+  Picture picture;
+  double fps = 24.0;
+  std::optional<int> frames;  // unset: every sample, at most 120
+  bool stress = false;
+  std::optional<double> mesh_size;
+  std::string format = "html";  // gif, svg, html or mp4
+
+  static const std::vector<OptionRule>& rules();
+  static AnimateRequest read(const Options& options);
+  AnalysisOptions analysis_options(const Model& model) const;
+};
+
+// nbar plot: columns against a column.
+struct PlotRequest {
+  SweepSize sweep;
+  std::vector<std::string> y;
+  std::string x;  // empty: default_abscissa
+  std::optional<int> order;
+  bool dynamics = false;
+  std::optional<std::pair<double, double>> y_range;
+  int width = kPlotLimits.default_width;
+  int height = kPlotLimits.default_height;
+  std::string title;
+  std::string format = "svg";  // svg or png
+
+  static const std::vector<OptionRule>& rules();
+  static PlotRequest read(const Options& options);
+  // The stages and order the columns need; an OptionError at `y` or `x` when one matches nothing.
+  AnalysisOptions analysis_options(const Mechanism& mechanism) const;
+  // The plot of the analysis; `fallback_title` when neither the request nor the model names it.
+  render::PlotSpec plot(const Analysis& analysis, const std::string& fallback_title) const;
+};
+
+// nbar report: one HTML page about the mechanism.
+struct ReportRequest {
+  SweepSize sweep;
+  int frames = 72;
+  StressMethod stress_method = StressMethod::beam;
+  std::optional<double> mesh_size;
+
+  static const std::vector<OptionRule>& rules();
+  static ReportRequest read(const Options& options);
+  // The stages the report shows (what the summary says the model has), with this sweep and method.
+  AnalysisOptions analysis_options(const ModelSummary& summary, const Model& model) const;
+};
+
+// nbar explain: the method step by step at one sample.
+struct ExplainRequest {
+  SweepSize sweep;
+  int step = 0;
+  std::string format = "text";  // text, markdown, latex or json
+
+  static const std::vector<OptionRule>& rules();
+  static ExplainRequest read(const Options& options);
+  ExplainOptions explain_options() const;
+};
+
+}  // namespace nbar::request

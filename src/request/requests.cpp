@@ -1,0 +1,519 @@
+#include "nbar/request/requests.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <stdexcept>
+
+#include "nbar/analysis/columns.hpp"
+#include "nbar/analysis/pose.hpp"
+#include "nbar/render/report.hpp"
+
+namespace nbar::request {
+
+namespace {
+
+constexpr double kIntMax = INT_MAX;
+
+OptionRule rule(std::string key, OptionKind kind, std::string help) {
+  OptionRule r;
+  r.key = std::move(key);
+  r.kind = kind;
+  r.help = std::move(help);
+  return r;
+}
+
+OptionRule integer_rule(std::string key, std::string help, double low, double high) {
+  OptionRule r = rule(std::move(key), OptionKind::Integer, std::move(help));
+  r.low = low;
+  r.high = high;
+  return r;
+}
+
+OptionRule positive_integer(std::string key, std::string help) {
+  OptionRule r = rule(std::move(key), OptionKind::Integer, std::move(help));
+  r.positive = true;
+  r.high = kIntMax;
+  return r;
+}
+
+OptionRule number_rule(std::string key, std::string help, double low, double high) {
+  OptionRule r = rule(std::move(key), OptionKind::Number, std::move(help));
+  r.low = low;
+  r.high = high;
+  return r;
+}
+
+OptionRule positive_number(std::string key, std::string help) {
+  OptionRule r = rule(std::move(key), OptionKind::Number, std::move(help));
+  r.positive = true;
+  return r;
+}
+
+OptionRule flag(std::string key, std::string help) { return rule(std::move(key), OptionKind::Flag, std::move(help)); }
+OptionRule text(std::string key, std::string help) { return rule(std::move(key), OptionKind::Text, std::move(help)); }
+OptionRule names(std::string key, std::string help) { return rule(std::move(key), OptionKind::Names, std::move(help)); }
+
+OptionRule choice(std::string key, std::string help, std::vector<std::string> choices) {
+  OptionRule r = rule(std::move(key), OptionKind::Choice, std::move(help));
+  r.choices = std::move(choices);
+  return r;
+}
+
+std::vector<OptionRule> joined(std::vector<std::vector<OptionRule>> groups) {
+  std::vector<OptionRule> all;
+  for (auto& group : groups)
+    for (auto& rule : group) all.push_back(std::move(rule));
+  return all;
+}
+
+// The rules of a picture's size, labels, traces and title, within `limits`.
+std::vector<OptionRule> picture_rules(const PictureLimits& limits, bool with_title = true) {
+  std::vector<OptionRule> rules{
+      flag("labels", "write the name of every point"),
+      names("trace", "points whose paths over the sweep are drawn, comma-separated, e.g. P,Q"),
+      integer_rule("width", "picture width in pixels (default " + std::to_string(limits.default_width) + ")",
+                   limits.min_width, limits.max_width),
+      integer_rule("height", "picture height in pixels (default " + std::to_string(limits.default_height) + ")",
+                   limits.min_height, limits.max_height),
+  };
+  if (with_title) rules.push_back(text("title", "a title at the top left"));
+  return rules;
+}
+
+Picture read_picture(const Options& options, const std::vector<OptionRule>& rules, const PictureLimits& limits) {
+  Picture p;
+  p.width = static_cast<int>(read_integer(options, rule_of(rules, "width")).value_or(limits.default_width));
+  p.height = static_cast<int>(read_integer(options, rule_of(rules, "height")).value_or(limits.default_height));
+  p.labels = read_flag(options, rule_of(rules, "labels"));
+  p.trace = read_names(options, rule_of(rules, "trace"));
+  if (std::any_of(rules.begin(), rules.end(), [](const OptionRule& r) { return r.key == "title"; }))
+    p.title = read_text(options, rule_of(rules, "title")).value_or("");
+  return p;
+}
+
+std::vector<OptionRule> stress_map_rules(const std::string& what) {
+  return {flag("stress", what),
+          positive_number("mesh_size", "with {stress}: element edge far from holes, in the model's length unit "
+                                       "(default: a twentieth of each plate's size)")};
+}
+
+std::optional<int> optional_int(std::optional<long long> v) {
+  return v ? std::optional<int>(static_cast<int>(*v)) : std::nullopt;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------ shared parts
+
+std::vector<OptionRule> SweepSize::rules(bool with_steps) {
+  std::vector<OptionRule> rules;
+  if (with_steps) rules.push_back(positive_integer("steps", "number of samples, ends included (overrides the model's sweep)"));
+  rules.push_back(positive_integer("max_steps", "the most samples the sweep may have, the model's or {steps} (default " +
+                                                    std::to_string(kDefaultMaxSweepSamples) +
+                                                    "; every sample is kept in memory, except by solve's CSV)"));
+  return rules;
+}
+
+SweepSize SweepSize::read(const Options& options) {
+  static const std::vector<OptionRule> rules = SweepSize::rules();
+  SweepSize size;
+  size.steps = optional_int(read_integer(options, rule_of(rules, "steps")));
+  size.max_steps = static_cast<int>(read_integer(options, rule_of(rules, "max_steps")).value_or(kDefaultMaxSweepSamples));
+  return size;
+}
+
+void SweepSize::apply(AnalysisOptions& analysis) const {
+  analysis.steps = steps;
+  analysis.max_steps = max_steps;
+}
+
+render::DrawOptions Picture::draw_options(const Model& model) const {
+  render::DrawOptions draw;
+  draw.width = width;
+  draw.height = height;
+  draw.labels = labels;
+  draw.title = title;
+  try {
+    draw.traces = render::trace_points(model, trace);
+  } catch (const Error& e) {
+    throw OptionError("trace", literal(e.message()));
+  }
+  return draw;
+}
+
+void use_finite_elements(AnalysisOptions& analysis, const Model& model, std::optional<double> mesh_size) {
+  analysis.stress_method = StressMethod::fe;
+  if (mesh_size) analysis.fe.mesh_size = *mesh_size * model.units.length_scale;
+}
+
+int solved_step(const SweepResult& sweep, int step) {
+  const int solved = static_cast<int>(sweep.samples.size());
+  if (step < 0 || step >= solved)
+    throw OptionError("step", std::to_string(step) + " is not a solved step (0 to " + std::to_string(solved - 1) + ")",
+                      true);
+  return step;
+}
+
+// ----------------------------------------------------------------------------------- check
+
+const std::vector<OptionRule>& CheckRequest::rules() {
+  static const std::vector<OptionRule> rules = joined({
+      {choice("format", "text (default) or json (the same summary as data, in the model's units)", {"text", "json"})},
+      SweepSize::rules(false),
+  });
+  return rules;
+}
+
+CheckRequest CheckRequest::read(const Options& options) {
+  CheckRequest r;
+  r.format = read_text(options, rule_of(rules(), "format")).value_or("text");
+  r.max_steps = static_cast<int>(read_integer(options, rule_of(rules(), "max_steps")).value_or(kDefaultMaxSweepSamples));
+  return r;
+}
+
+// ----------------------------------------------------------------------------------- solve
+
+const std::vector<OptionRule>& SolveRequest::rules() {
+  static const std::vector<OptionRule> rules = joined({
+      SweepSize::rules(),
+      {integer_rule("order", "highest time derivative: 0 positions, 1 velocities, 2 accelerations (default), 3 jerk, "
+                             "up to 5",
+                    0, 5),
+       choice("format", "csv (default), json, or table (aligned, for reading)", {"csv", "json", "table"}),
+       names("columns", "only these columns, comma-separated names or globs, e.g. 'crank,rocker.*,B.v*'"),
+       flag("dynamics", "add inverse dynamics: the force at every joint, every driver's torque or force, energies "
+                        "(N, N m, J whatever the length unit; order at least 2)")},
+  });
+  return rules;
+}
+
+SolveRequest SolveRequest::read(const Options& options) {
+  SolveRequest r;
+  r.sweep = SweepSize::read(options);
+  r.order = static_cast<int>(read_integer(options, rule_of(rules(), "order")).value_or(2));
+  r.format = read_text(options, rule_of(rules(), "format")).value_or("csv");
+  r.columns = read_names(options, rule_of(rules(), "columns"));
+  r.dynamics = read_flag(options, rule_of(rules(), "dynamics"));
+  return r;
+}
+
+AnalysisOptions SolveRequest::analysis_options() const {
+  AnalysisOptions options;
+  sweep.apply(options);
+  options.order = order;
+  options.dynamics = dynamics;
+  return options;
+}
+
+void SolveRequest::explain_column_error(const Mechanism& mechanism, const std::string& problem) const {
+  // A force or torque column asked for without dynamics: say so rather than list the others.
+  if (!dynamics && column_needs(mechanism, columns, order, false).dynamics)
+    throw OptionError("columns", literal(problem) + ": the force and torque columns come from the inverse dynamics, add "
+                                           "{dynamics}");
+  std::string listed;
+  for (const std::string& name : column_names(column_catalogue(mechanism, order, dynamics)))
+    listed += (listed.empty() ? "" : ", ") + name;
+  throw OptionError("columns", literal(problem + "; the columns are: " + listed));
+}
+
+ResultTable SolveRequest::table(const Analysis& analysis) const {
+  ResultTable table = result_table(analysis);
+  if (columns.empty()) return table;
+  try {
+    return select_columns(table, columns);
+  } catch (const std::exception& e) {  // no column matches a pattern
+    explain_column_error(*analysis.mechanism, e.what());
+  }
+  return table;
+}
+
+// ---------------------------------------------------------------------------------- stress
+
+const std::vector<OptionRule>& StressRequest::rules() {
+  static const std::vector<OptionRule> rules = joined({
+      SweepSize::rules(),
+      {choice("method", "beam (default: quick, beam theory on cross-sections, for slender links between joints) or fe "
+                        "(plane-stress finite elements: the peaks at pin holes, fillets and in plates)",
+              {"beam", "fe"}),
+       integer_rule("sections", "beam: cross-sections per link, at least (default 200)", kMinSectionsPerLink,
+                    kMaxSectionsPerLink),
+       positive_number("mesh_size", "fe: element edge far from holes and corners, in the model's length unit "
+                                    "(default: a twentieth of each plate's size; finer around holes)"),
+       choice("format", "table (default), csv or json", {"table", "csv", "json"}),
+       text("section_profile", "instead, every section of BODY at one step: N, V, M, sigma, tau, von Mises"),
+       integer_rule("step", "the step for {section_profile} (default 0)", 0, kIntMax)},
+  });
+  return rules;
+}
+
+StressRequest StressRequest::read(const Options& options) {
+  StressRequest r;
+  r.sweep = SweepSize::read(options);
+  r.method = read_text(options, rule_of(rules(), "method")).value_or("beam") == "fe" ? StressMethod::fe : StressMethod::beam;
+  r.sections = static_cast<int>(read_integer(options, rule_of(rules(), "sections")).value_or(200));
+  r.mesh_size = read_number(options, rule_of(rules(), "mesh_size"));
+  r.format = read_text(options, rule_of(rules(), "format")).value_or("table");
+  r.section_profile = read_text(options, rule_of(rules(), "section_profile")).value_or("");
+  r.step = optional_int(read_integer(options, rule_of(rules(), "step")));
+  if (r.method == StressMethod::fe && !r.section_profile.empty())
+    throw OptionError("section_profile", "cuts sections, which the beam method has: leave out {method} fe", true);
+  if (r.step && r.section_profile.empty()) throw OptionError("step", "needs {section_profile}");
+  if (r.mesh_size && r.method != StressMethod::fe)
+    throw OptionError("mesh_size", "is the finite elements' element size: give {method} fe too");
+  return r;
+}
+
+AnalysisOptions StressRequest::analysis_options(const Model& model) const {
+  AnalysisOptions options;
+  sweep.apply(options);
+  options.stress = true;
+  options.sections = sections;
+  if (method == StressMethod::fe) use_finite_elements(options, model, mesh_size);
+  return options;
+}
+
+ResultTable StressRequest::section_profile_table(const Analysis& analysis) const {
+  const int body = analysis.model().find_body(section_profile);
+  if (body < 0) throw OptionError("section_profile", literal("'" + section_profile + "' is not a body of the model"));
+  if (!analysis.stress || !analysis.stress->links || !analysis.stress->links->analysed(body))
+    throw OptionError("section_profile", literal("'" + section_profile + "' has no shape to cut"));
+  return nbar::section_profile_table(analysis, body, solved_step(analysis.sweep, step.value_or(0)));
+}
+
+// ------------------------------------------------------------------------------------ draw
+
+const std::vector<OptionRule>& DrawRequest::rules() {
+  static const std::vector<OptionRule> rules = joined({
+      {choice("format", "svg (default) or png; the web app's scene", {"svg", "png", "scene"}),
+       integer_rule("step",
+                    "draw this sample of the sweep (default 0, the start, unless every point lies on one line "
+                    "there: then the most open pose)",
+                    0, kIntMax),
+       number_rule("at", "draw where the first driver has this value (model units; a time for time laws)",
+                   -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity())},
+      SweepSize::rules(),
+      picture_rules(kDrawingLimits),
+      stress_map_rules("colour every link with a shape by its von Mises stress at the drawn step (finite elements, "
+                       "as `nbar stress {method} fe`), with a colour legend and each link's peak marked"),
+  });
+  return rules;
+}
+
+DrawRequest DrawRequest::read(const Options& options) {
+  DrawRequest r;
+  r.format = read_text(options, rule_of(rules(), "format")).value_or("svg");
+  r.step = optional_int(read_integer(options, rule_of(rules(), "step")));
+  r.at = read_number(options, rule_of(rules(), "at"));
+  r.sweep = SweepSize::read(options);
+  r.picture = read_picture(options, rules(), kDrawingLimits);
+  r.stress = read_flag(options, rule_of(rules(), "stress"));
+  r.mesh_size = read_number(options, rule_of(rules(), "mesh_size"));
+  if (r.step && r.at) throw OptionError("at", "give {step} or {at}, not both");
+  if (r.stress && r.at) throw OptionError("at", "{stress} colours a solved step of the sweep: give {step} instead of {at}");
+  if (r.format == "scene" && r.at) throw OptionError("at", "a scene is drawn at a solved step: give {step}, not {at}");
+  return r;
+}
+
+AnalysisOptions DrawRequest::analysis_options(const Model& model) const {
+  AnalysisOptions options;
+  sweep.apply(options);
+  options.order = 0;  // positions are all a picture needs
+  if (stress) {
+    options.stress = true;
+    use_finite_elements(options, model, mesh_size);
+  }
+  return options;
+}
+
+int DrawRequest::drawn_step(const Analysis& analysis) const {
+  return solved_step(analysis.sweep, step.value_or(render::default_drawn_step(*analysis.mechanism, analysis.sweep)));
+}
+
+std::vector<Eigen::Vector2d> DrawRequest::points(const Analysis& analysis, const RunControl& control) const {
+  const Mechanism& mech = *analysis.mechanism;
+  if (at) return render::sample_points(mech, pose_at(mech, *at, 0, control));
+  return render::sample_points(mech, analysis.sweep.samples[static_cast<std::size_t>(drawn_step(analysis))]);
+}
+
+// --------------------------------------------------------------------------------- animate
+
+const std::vector<OptionRule>& AnimateRequest::rules() {
+  static const std::vector<OptionRule> rules = joined({
+      {choice("format", "gif, svg, html (default) or mp4 (with ffmpeg)", {"gif", "svg", "html", "mp4"}),
+       number_rule("fps", "frames per second (default 24)", 0.1, 120.0),
+       integer_rule("frames", "number of frames, evenly spaced over the sweep (default: every sample, at most 120)", 1,
+                    100000)},
+      SweepSize::rules(),
+      picture_rules(kAnimationLimits),
+      stress_map_rules("GIF and MP4: colour every link with a shape by its von Mises stress in every frame (finite "
+                       "elements, one colour scale for the whole sweep), each link's peak marked"),
+  });
+  return rules;
+}
+
+AnimateRequest AnimateRequest::read(const Options& options) {
+  AnimateRequest r;
+  r.format = read_text(options, rule_of(rules(), "format")).value_or("html");
+  r.fps = read_number(options, rule_of(rules(), "fps")).value_or(24.0);
+  r.frames = optional_int(read_integer(options, rule_of(rules(), "frames")));
+  r.sweep = SweepSize::read(options);
+  r.picture = read_picture(options, rules(), kAnimationLimits);
+  r.stress = read_flag(options, rule_of(rules(), "stress"));
+  r.mesh_size = read_number(options, rule_of(rules(), "mesh_size"));
+  return r;
+}
+
+AnalysisOptions AnimateRequest::analysis_options(const Model& model) const {
+  AnalysisOptions options;
+  sweep.apply(options);
+  options.order = 0;
+  if (stress) {
+    options.stress = true;
+    use_finite_elements(options, model, mesh_size);
+  }
+  return options;
+}
+
+// ------------------------------------------------------------------------------------ plot
+
+const std::vector<OptionRule>& PlotRequest::rules() {
+  static const std::vector<OptionRule> rules = [] {
+    OptionRule y_range = rule("y_range", OptionKind::Numbers, "a fixed y range LO,HI instead of one covering the data");
+    y_range.count = 2;
+    return joined({
+        {choice("format", "svg (default) or png", {"svg", "png"}),
+         names("y", "columns to plot: names or globs, comma-separated, e.g. 'rocker.omega,B.v*'"),
+         text("x", "the column along the x axis (default: the first driver's, or t when a driver follows a time law)"),
+         integer_rule("order", "highest time derivative to solve, 0 to 5 (default: 2, or what the columns need)", 0, 5),
+         flag("dynamics", "add the inverse-dynamics columns (joint forces, driver torques and forces, energies); on by "
+                          "itself when a column asked for needs it"),
+         y_range, text("title", "the title at the top (default: the model's name)"),
+         integer_rule("width", "picture width in pixels (default 900)", kPlotLimits.min_width, kPlotLimits.max_width),
+         integer_rule("height", "picture height in pixels (default 520)", kPlotLimits.min_height,
+                      kPlotLimits.max_height)},
+        SweepSize::rules(),
+    });
+  }();
+  return rules;
+}
+
+PlotRequest PlotRequest::read(const Options& options) {
+  PlotRequest r;
+  r.format = read_text(options, rule_of(rules(), "format")).value_or("svg");
+  r.y = read_names(options, rule_of(rules(), "y"));
+  if (r.y.empty()) throw OptionError("y", "missing: the columns to plot");
+  r.x = read_text(options, rule_of(rules(), "x")).value_or("");
+  r.order = optional_int(read_integer(options, rule_of(rules(), "order")));
+  r.dynamics = read_flag(options, rule_of(rules(), "dynamics"));
+  const std::vector<double> range = read_numbers(options, rule_of(rules(), "y_range"));
+  if (!range.empty()) {
+    if (!(std::abs(range[0]) <= 1e300 && std::abs(range[1]) <= 1e300 && range[0] < range[1]))
+      throw OptionError("y_range", "LO and HI must be finite numbers with LO < HI");
+    r.y_range = std::make_pair(range[0], range[1]);
+  }
+  r.title = read_text(options, rule_of(rules(), "title")).value_or("");
+  r.width = static_cast<int>(read_integer(options, rule_of(rules(), "width")).value_or(kPlotLimits.default_width));
+  r.height = static_cast<int>(read_integer(options, rule_of(rules(), "height")).value_or(kPlotLimits.default_height));
+  r.sweep = SweepSize::read(options);
+  return r;
+}
+
+AnalysisOptions PlotRequest::analysis_options(const Mechanism& mechanism) const {
+  const std::string x_pattern = x.empty() ? default_abscissa(mechanism.model()) : x;
+  std::vector<std::string> patterns = y;
+  patterns.push_back(x_pattern);
+  const ColumnNeeds needs = column_needs(mechanism, patterns, order, dynamics);
+  if (needs.unmatched >= 0) throw OptionError(needs.unmatched < static_cast<int>(y.size()) ? "y" : "x", literal(needs.message));
+  AnalysisOptions options;
+  sweep.apply(options);
+  options.order = needs.order;
+  options.dynamics = needs.dynamics;
+  return options;
+}
+
+render::PlotSpec PlotRequest::plot(const Analysis& analysis, const std::string& fallback_title) const {
+  const Model& m = analysis.model();
+  const std::string x_pattern = x.empty() ? default_abscissa(m) : x;
+  const ResultTable table = result_table(analysis);
+  const ResultTable x_column = select_columns(table, {x_pattern});
+  if (x_column.columns.size() != 1) {
+    std::string listed;
+    for (const std::string& c : x_column.columns) listed += (listed.empty() ? "" : ", ") + c;
+    throw OptionError("x", literal("'" + x_pattern + "' matches " + std::to_string(x_column.columns.size()) +
+                                   " columns (" + listed + "); name one"));
+  }
+  render::PlotSpec spec;
+  spec.title = !title.empty() ? title : !m.name.empty() ? m.name : fallback_title;
+  if (y_range) {
+    spec.y_lo = y_range->first;
+    spec.y_hi = y_range->second;
+  }
+  spec.width = width;
+  spec.height = height;
+  render::set_plot_data(spec, x_column, select_columns(table, y));
+  return spec;
+}
+
+// ---------------------------------------------------------------------------------- report
+
+const std::vector<OptionRule>& ReportRequest::rules() {
+  static const std::vector<OptionRule> rules = joined({
+      SweepSize::rules(),
+      {integer_rule("frames", "animation frames (default 72)", render::kMinReportFrames, render::kMaxReportFrames),
+       choice("stress_method",
+              "the stresses' method, as `nbar stress {method}`: beam (default) or fe (links coloured by their "
+              "finite-element von Mises stress)",
+              {"beam", "fe"}),
+       positive_number("mesh_size", "with {stress_method} fe: element edge far from holes, in the model's length unit")},
+  });
+  return rules;
+}
+
+ReportRequest ReportRequest::read(const Options& options) {
+  ReportRequest r;
+  r.sweep = SweepSize::read(options);
+  r.frames = static_cast<int>(read_integer(options, rule_of(rules(), "frames")).value_or(72));
+  r.stress_method =
+      read_text(options, rule_of(rules(), "stress_method")).value_or("beam") == "fe" ? StressMethod::fe : StressMethod::beam;
+  r.mesh_size = read_number(options, rule_of(rules(), "mesh_size"));
+  if (r.mesh_size && r.stress_method != StressMethod::fe)
+    throw OptionError("mesh_size", "is the finite elements' element size: give {stress_method} fe too");
+  return r;
+}
+
+AnalysisOptions ReportRequest::analysis_options(const ModelSummary& summary, const Model& model) const {
+  AnalysisOptions options = render::report_analysis_options(summary);
+  sweep.apply(options);
+  if (stress_method == StressMethod::fe) use_finite_elements(options, model, mesh_size);
+  return options;
+}
+
+// --------------------------------------------------------------------------------- explain
+
+const std::vector<OptionRule>& ExplainRequest::rules() {
+  static const std::vector<OptionRule> rules = joined({
+      {integer_rule("step", "the sample of the sweep to explain (default 0, the start)", 0, kIntMax)},
+      SweepSize::rules(),
+      {choice("format", "text (default), markdown (with LaTeX maths, for Jupyter), latex or json",
+              {"text", "markdown", "latex", "json"})},
+  });
+  return rules;
+}
+
+ExplainRequest ExplainRequest::read(const Options& options) {
+  ExplainRequest r;
+  r.step = static_cast<int>(read_integer(options, rule_of(rules(), "step")).value_or(0));
+  r.sweep = SweepSize::read(options);
+  r.format = read_text(options, rule_of(rules(), "format")).value_or("text");
+  return r;
+}
+
+ExplainOptions ExplainRequest::explain_options() const {
+  ExplainOptions options;
+  options.step = step;
+  options.steps = sweep.steps;
+  options.max_steps = sweep.max_steps;
+  return options;
+}
+
+}  // namespace nbar::request

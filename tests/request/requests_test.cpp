@@ -1,0 +1,214 @@
+// The request layer (nbar/request): each option read by one rule, whatever front-end filled it,
+// with the messages every front-end gives; and what the requests choose from their options.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "nbar/io/model_file.hpp"
+#include "nbar/request/requests.hpp"
+
+namespace nbar::request {
+namespace {
+
+using ::testing::HasSubstr;
+
+// The message of the OptionError `read` throws, with keys spelled as the command line does.
+template <class Read>
+std::string cli_message(Read read) {
+  try {
+    read();
+  } catch (const OptionError& e) {
+    return e.spelled(flag_name);
+  }
+  return "(no error)";
+}
+
+template <class Read>
+std::string message(Read read) {
+  try {
+    read();
+  } catch (const OptionError& e) {
+    return e.message();
+  }
+  return "(no error)";
+}
+
+Options with(const std::string& key, Value value) {
+  Options o(std::holds_alternative<std::string>(value) || std::holds_alternative<std::vector<std::string>>(value));
+  o.set(key, std::move(value));
+  return o;
+}
+
+TEST(RequestOptions, ANumberReadsTheSameAsTextAsJsonAndAsPython) {
+  // The command line gives text, JSON an integer or a double, Python an int: one answer.
+  for (const Value& v : {Value(std::string("3")), Value(3LL), Value(3.0)})
+    EXPECT_EQ(SolveRequest::read(with("order", v)).order, 3);
+  for (const Value& v : {Value(std::string("9")), Value(9LL), Value(9.0)})
+    EXPECT_EQ(message([&] { SolveRequest::read(with("order", v)); }), "order: must be from 0 to 5, not 9");
+  EXPECT_EQ(message([] { SolveRequest::read(with("order", std::string("2.5"))); }),
+            "order: must be a whole number, not 2.5");
+  EXPECT_EQ(message([] { SolveRequest::read(with("order", 2.5)); }), "order: must be a whole number, not 2.5");
+  EXPECT_EQ(message([] { SolveRequest::read(with("steps", std::string("abc"))); }),
+            "steps: 'abc' is not a finite number");
+  EXPECT_EQ(message([] { SolveRequest::read(with("steps", std::string("nan"))); }),
+            "steps: 'nan' is not a finite number");
+  EXPECT_EQ(message([] { SolveRequest::read(with("steps", 0LL)); }), "steps: must be a positive number, not 0");
+  EXPECT_EQ(message([] { SolveRequest::read(with("dynamics", std::string("yes"))); }),
+            "dynamics: must be true or false");
+  EXPECT_EQ(message([] { SolveRequest::read(with("format", std::string("xml"))); }),
+            "format: must be one of csv, json, table, not 'xml'");
+}
+
+TEST(RequestOptions, ATextWhereANumberBelongsIsRefusedUnlessEverythingIsText) {
+  // JSON's "3" and Python's "3" are texts, not the number the command line's typed 3 is.
+  Options json;
+  json.set("steps", std::string("3"));
+  EXPECT_EQ(message([&] { SolveRequest::read(json); }), "steps: must be a whole number, not the text '3'");
+  json.set("steps", 3LL);
+  json.set("fps", std::string("24"));
+  EXPECT_EQ(message([&] { AnimateRequest::read(json); }), "fps: must be a number, not the text '24'");
+  Options typed(true);
+  typed.set("steps", std::string("3"));
+  EXPECT_EQ(SolveRequest::read(typed).sweep.steps, 3);
+}
+
+TEST(RequestOptions, TheCommandLineSpellsEveryKeyItNames) {
+  EXPECT_EQ(flag_name("max_steps"), "--max-steps");
+  EXPECT_EQ(cli_message([] { StressRequest::read(with("mesh_size", std::string("-1"))); }),
+            "--mesh-size: must be a positive number, not -1");
+  // A problem that names another option: each front-end spells it, the message keeps the key.
+  Options fe_profile = with("method", std::string("fe"));
+  fe_profile.set("section_profile", std::string("crank"));
+  EXPECT_EQ(cli_message([&] { StressRequest::read(fe_profile); }),
+            "--section-profile cuts sections, which the beam method has: leave out --method fe");
+  EXPECT_EQ(message([&] { StressRequest::read(fe_profile); }),
+            "section_profile cuts sections, which the beam method has: leave out method fe");
+  // Braces in text from elsewhere (a name) stay braces.
+  EXPECT_EQ(spell_keys(literal("{x} and {{") + " {steps}", flag_name), "{x} and {{ --steps");
+}
+
+TEST(RequestOptions, AnUnknownKeyIsNamedWithTheOnesTheRequestTakes) {
+  Options o = with("frobnicate", 1LL);
+  const std::string m = message([&] { check_known(o, CheckRequest::rules(), "check"); });
+  EXPECT_EQ(m, "frobnicate: unknown option of check; it takes: format, max_steps");
+}
+
+TEST(RequestOptions, ListsOfNamesComeAsOneTextOrAsAList) {
+  EXPECT_EQ(SolveRequest::read(with("columns", std::string("crank,B.*"))).columns,
+            (std::vector<std::string>{"crank", "B.*"}));
+  EXPECT_EQ(SolveRequest::read(with("columns", std::vector<std::string>{"crank", "B.x,B.y"})).columns,
+            (std::vector<std::string>{"crank", "B.x", "B.y"}));
+  const PlotRequest plot = [] {
+    Options o = with("y", std::string("P.y"));
+    o.set("y_range", std::vector<std::string>{"-5", "5"});
+    return PlotRequest::read(o);
+  }();
+  ASSERT_TRUE(plot.y_range);
+  EXPECT_EQ(plot.y_range->first, -5.0);
+  EXPECT_EQ(plot.y_range->second, 5.0);
+  Options inverted = with("y", std::string("P.y"));
+  inverted.set("y_range", std::vector<double>{5, -5});
+  EXPECT_EQ(message([&] { PlotRequest::read(inverted); }), "y_range: LO and HI must be finite numbers with LO < HI");
+  Options three = with("y", std::string("P.y"));
+  three.set("y_range", std::vector<double>{1, 2, 3});
+  EXPECT_EQ(message([&] { PlotRequest::read(three); }), "y_range: must be 2 numbers, not 3");
+}
+
+TEST(RequestOptions, EachKindOfPictureHasItsOwnSizeInEveryFrontEnd) {
+  EXPECT_EQ(message([] { DrawRequest::read(with("width", 50LL)); }), "width: must be from 100 to 10000, not 50");
+  EXPECT_EQ(message([] { AnimateRequest::read(with("width", 9000LL)); }), "width: must be from 64 to 8192, not 9000");
+  Options plot = with("y", std::string("P.y"));
+  plot.set("height", 100LL);
+  EXPECT_EQ(message([&] { PlotRequest::read(plot); }), "height: must be from 150 to 10000, not 100");
+  EXPECT_EQ(message([] { AnimateRequest::read(with("fps", 200LL)); }), "fps: must be from 0.1 to 120, not 200");
+  const DrawRequest defaults = DrawRequest::read(Options());
+  EXPECT_EQ(defaults.picture.width, kDrawingLimits.default_width);
+  EXPECT_EQ(defaults.picture.height, kDrawingLimits.default_height);
+  EXPECT_EQ(PlotRequest::read(with("y", std::string("P.y"))).height, 520);
+}
+
+TEST(RequestOptions, AStepTooLargeForAnIntIsRefusedNotWrapped) {
+  EXPECT_EQ(message([] { DrawRequest::read(with("step", 3e9)); }),
+            "step: must be from 0 to 2147483647, not 3000000000");
+  EXPECT_EQ(message([] { DrawRequest::read(with("step", -1LL)); }), "step: must be 0 or more, not -1");
+}
+
+class RequestsOnAModel : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    file_ = io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml");
+    mechanism_ = std::make_shared<const Mechanism>(file_.model);
+  }
+  io::LoadedModel file_;
+  std::shared_ptr<const Mechanism> mechanism_;
+};
+
+TEST_F(RequestsOnAModel, TheMeshSizeIsConvertedFromTheModelsUnitOnce) {
+  // The crank-rocker is drawn in mm: 4 (mm) is 0.004 m, whichever front-end gave it.
+  Options o = with("method", std::string("fe"));
+  o.set("mesh_size", std::string("4"));
+  const AnalysisOptions options = StressRequest::read(o).analysis_options(file_.model);
+  EXPECT_EQ(options.stress_method, StressMethod::fe);
+  EXPECT_DOUBLE_EQ(options.fe.mesh_size, 0.004);
+  EXPECT_TRUE(options.stress);
+  Options beam = with("mesh_size", 4LL);
+  EXPECT_EQ(message([&] { StressRequest::read(beam); }),
+            "mesh_size: is the finite elements' element size: give method fe too");
+}
+
+TEST_F(RequestsOnAModel, ThePoseDrawnIsTheSampleAskedForOrWhereTheDriverIsAt) {
+  Options o = with("steps", 13LL);
+  o.set("step", 3LL);
+  const DrawRequest at_step = DrawRequest::read(o);
+  const Analysis analysis = analyse(mechanism_, at_step.analysis_options(file_.model));
+  ASSERT_EQ(analysis.sweep.samples.size(), 13u);
+  EXPECT_EQ(at_step.drawn_step(analysis), 3);
+  // 13 samples over the crank's turn: sample 3 is at 90 deg; `at: 90` is the same pose.
+  const std::vector<Eigen::Vector2d> by_step = at_step.points(analysis);
+  const std::vector<Eigen::Vector2d> by_value = DrawRequest::read(with("at", 90LL)).points(analysis);
+  ASSERT_EQ(by_step.size(), by_value.size());
+  for (std::size_t i = 0; i < by_step.size(); ++i) EXPECT_LT((by_step[i] - by_value[i]).norm(), 1e-12);
+  // The crank pin A of a crank of 80 mm at 90 deg about O2 = (0, 0).
+  const int a = file_.model.find_point("A");
+  ASSERT_GE(a, 0);
+  EXPECT_NEAR(by_step[static_cast<std::size_t>(a)].x(), 0.0, 1e-12);
+  EXPECT_NEAR(by_step[static_cast<std::size_t>(a)].y(), 0.080, 1e-12);
+  Options past = with("step", 13LL);
+  EXPECT_EQ(message([&] { DrawRequest::read(past).points(analysis); }), "step 13 is not a solved step (0 to 12)");
+}
+
+TEST_F(RequestsOnAModel, AColumnThatMatchesNothingListsTheColumnsOrSaysItNeedsTheDynamics) {
+  Options o = with("steps", 5LL);
+  o.set("columns", std::string("nosuch"));
+  const SolveRequest solve = SolveRequest::read(o);
+  const Analysis analysis = analyse(mechanism_, solve.analysis_options());
+  const std::string m = message([&] { solve.table(analysis); });
+  EXPECT_THAT(m, HasSubstr("columns: no column matches 'nosuch'; the columns are: step, t, crank, O2.x"));
+  o.set("columns", std::string("crank.torque"));
+  const SolveRequest torque = SolveRequest::read(o);
+  EXPECT_EQ(cli_message([&] { torque.table(analysis); }),
+            "--columns: no column matches 'crank.torque': the force and torque columns come from the inverse "
+            "dynamics, add --dynamics");
+  o.set("columns", std::string("crank,B.x"));
+  const ResultTable table = SolveRequest::read(o).table(analysis);
+  EXPECT_EQ(table.columns, (std::vector<std::string>{"crank", "B.x"}));
+  EXPECT_EQ(table.rows.size(), 5u);
+}
+
+TEST_F(RequestsOnAModel, APlotAsksForTheStagesItsColumnsNeed) {
+  Options o = with("y", std::string("crank.torque"));
+  const AnalysisOptions options = PlotRequest::read(o).analysis_options(*mechanism_);
+  EXPECT_TRUE(options.dynamics);
+  EXPECT_GE(options.order, 2);
+  o.set("y", std::string("rocker.jerk"));
+  EXPECT_EQ(PlotRequest::read(o).analysis_options(*mechanism_).order, 3);
+  o.set("y", std::string("nosuch"));
+  EXPECT_THAT(message([&] { PlotRequest::read(o).analysis_options(*mechanism_); }),
+              HasSubstr("y: no column matches 'nosuch'"));
+}
+
+}  // namespace
+}  // namespace nbar::request
