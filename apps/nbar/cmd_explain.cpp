@@ -8,17 +8,17 @@
 #include "nbar/io/json_text.hpp"
 #include "nbar/io/explain_writer.hpp"
 #include "nbar/render/pictures.hpp"
+#include "nbar/request/requests.hpp"
+#include "request_flags.hpp"
 #include "validators.hpp"
 
 namespace nbar::cli {
 
 namespace {
 
-struct ExplainArgs {
-  std::string model, output, format = "text", draw;
-  int step = 0;
-  std::optional<int> steps;
-  int max_steps = nbar::kDefaultMaxSweepSamples;
+struct ExplainCommand {
+  std::string model, output, draw;
+  std::unique_ptr<RequestFlags> flags;
 };
 
 std::string extension(const std::string& path) {
@@ -27,12 +27,11 @@ std::string extension(const std::string& path) {
 }
 
 // The pose with its finite instant centres marked.
-int draw_centres(const ExplainArgs& args, const Explanation& ex) {
+int draw_centres(const std::string& path, const Explanation& ex) {
   int off_picture = 0;
   try {
-    const bool written = extension(args.draw) == "svg"
-                             ? write_file(args.draw, render::instant_centres_svg(ex, &off_picture))
-                             : write_file(args.draw, render::instant_centres_png(ex, &off_picture));
+    const bool written = extension(path) == "svg" ? write_file(path, render::instant_centres_svg(ex, &off_picture))
+                                                  : write_file(path, render::instant_centres_png(ex, &off_picture));
     if (!written) return kBadUsage;
   } catch (const std::runtime_error& e) {
     std::cerr << "error: " << e.what() << '\n';
@@ -44,56 +43,49 @@ int draw_centres(const ExplainArgs& args, const Explanation& ex) {
   return kOk;
 }
 
-int run_explain(const ExplainArgs& args) {
-  if (!args.draw.empty() && extension(args.draw) != "svg" && extension(args.draw) != "png") {
-    std::cerr << "error: --draw " << args.draw << ": the picture's format comes from its extension: .svg or .png\n";
+int run_explain(const ExplainCommand& command) {
+  if (!command.draw.empty() && extension(command.draw) != "svg" && extension(command.draw) != "png") {
+    std::cerr << "error: --draw " << command.draw << ": the picture's format comes from its extension: .svg or .png\n";
     return kBadUsage;
   }
+  request::ExplainRequest request;
+  if (!read_request(*command.flags, request)) return kBadUsage;
   Loaded loaded;
-  if (int code = load(args.model, loaded)) return code;
-  ExplainOptions options;
-  options.step = args.step;
-  options.steps = args.steps;
-  options.max_steps = args.max_steps;
+  if (int code = load(command.model, loaded)) return code;
   Explanation ex;
   try {
-    ex = explain(loaded.mechanism, options);
+    ex = explain(loaded.mechanism, request.explain_options());
   } catch (const Error& e) {
-    return fail(args.model, e);
+    return fail(command.model, e);
   }
   Output output;
-  if (!output.open(args.output)) return kBadUsage;
+  if (!output.open(command.output)) return kBadUsage;
   std::ostream& out = output.stream();
-  if (args.format == "json")
+  if (request.format == "json")
     out << io::json_text(io::explanation_json(ex), 2) << '\n';
   else
-    out << render_explanation(ex, args.format == "markdown" ? ExplainFormat::Markdown
-                                  : args.format == "latex"  ? ExplainFormat::Latex
-                                                            : ExplainFormat::Text);
+    out << render_explanation(ex, request.format == "markdown" ? ExplainFormat::Markdown
+                                  : request.format == "latex"  ? ExplainFormat::Latex
+                                                               : ExplainFormat::Text);
   if (!output.finish()) return kBadUsage;
-  if (!args.draw.empty()) return draw_centres(args, ex);
+  if (!command.draw.empty()) return draw_centres(command.draw, ex);
   return kOk;
 }
 
 }  // namespace
 
 Command add_explain_command(CLI::App& app) {
-  auto args = std::make_shared<ExplainArgs>();
+  auto command = std::make_shared<ExplainCommand>();
   CLI::App* sub = app.add_subcommand("explain", "The method step by step at one sample: Gruebler count, q, the "
                                                 "constraint equations and their Jacobian, Newton's iterations, the "
                                                 "velocity and acceleration systems, the instant centres");
-  sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
-  sub->add_option("--step", args->step, "the sample of the sweep to explain (default 0, the start)")
-      ->check(nbar::cli::non_negative());
-  sub->add_option("--steps", args->steps, "samples of the sweep, ends included (overrides the model's sweep)")
-      ->check(nbar::cli::positive());
-  sub->add_option("--max-steps", args->max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
-  sub->add_option("--format", args->format, "text (default), markdown (with LaTeX maths, for Jupyter), latex or json")
-      ->check(CLI::IsMember({"text", "markdown", "latex", "json"}));
-  sub->add_option("-o,--output", args->output, "write to FILE instead of standard output")
+  sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
+  command->flags = std::make_unique<RequestFlags>(*sub, request::ExplainRequest::rules());
+  command->flags->add({"step", "steps", "max_steps", "format"});
+  sub->add_option("-o,--output", command->output, "write to FILE instead of standard output")
       ->check(nbar::cli::output_file());
-  sub->add_option("--draw", args->draw, "also draw the pose with its instant centres marked: FILE.svg or FILE.png");
-  return {sub, [args] { return run_explain(*args); }};
+  sub->add_option("--draw", command->draw, "also draw the pose with its instant centres marked: FILE.svg or FILE.png");
+  return {sub, [command] { return run_explain(*command); }};
 }
 
 }  // namespace nbar::cli

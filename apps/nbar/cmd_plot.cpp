@@ -16,20 +16,17 @@
 #include "nbar/kinematics/table.hpp"
 #include "nbar/render/plot.hpp"
 #include "nbar/render/image_canvas.hpp"
+#include "nbar/request/requests.hpp"
+#include "request_flags.hpp"
 #include "validators.hpp"
 
 namespace nbar::cli {
 
 namespace {
 
-struct PlotArgs {
-  std::string model, output, x, title;
-  std::vector<std::string> y;
-  std::vector<double> y_range;
-  std::optional<int> steps, order;
-  int max_steps = nbar::kDefaultMaxSweepSamples;
-  bool dynamics = false;
-  int width = 900, height = 520;
+struct PlotCommand {
+  std::string model, output;
+  std::unique_ptr<RequestFlags> flags;
 };
 
 const char* const kPlotHelp =
@@ -54,80 +51,58 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-int run_plot(const PlotArgs& args) {
-  const std::string format = lower_extension(args.output);
-  if (format != ".svg" && format != ".png") {
-    std::cerr << "error: -o: cannot tell the format of '" << args.output << "': name it .svg or .png\n";
-    return kBadUsage;
-  }
-  if (!args.y_range.empty() && !(std::isfinite(args.y_range[0]) && std::isfinite(args.y_range[1]) &&
-                                 std::abs(args.y_range[0]) <= 1e300 && std::abs(args.y_range[1]) <= 1e300 &&
-                                 args.y_range[0] < args.y_range[1])) {
-    std::cerr << "error: --y-range: LO and HI must be finite numbers with LO < HI\n";
-    return kBadUsage;
-  }
-
-  Loaded loaded;
-  if (int code = load(args.model, loaded)) return code;
-  const Model& m = loaded.mechanism->model();
-  const std::string x_pattern = !args.x.empty() ? args.x : default_abscissa(m);
-
-  // Which stages and order the columns need, from the library's column catalogue.
-  std::vector<std::string> patterns = args.y;
-  patterns.push_back(x_pattern);
-  const ColumnNeeds needs = column_needs(*loaded.mechanism, patterns, args.order, args.dynamics);
-  if (needs.unmatched >= 0) {
-    std::cerr << "error: " << (needs.unmatched < static_cast<int>(args.y.size()) ? "--y" : "--x") << ": "
-              << needs.message << '\n';
-    return kBadUsage;
-  }
-  AnalysisOptions options;
-  options.steps = args.steps;
-  options.max_steps = args.max_steps;
-  options.order = needs.order;
-  options.dynamics = needs.dynamics;
-  Analysis analysis;
-  if (int code = analyse_model(args.model, loaded, options, analysis)) return code;
-  const ResultTable table = result_table(analysis);
-
-  const ResultTable x_column = select_columns(table, {x_pattern});
-  if (x_column.columns.size() != 1) {
-    std::cerr << "error: --x: '" << x_pattern << "' matches " << x_column.columns.size() << " columns ("
-              << join(x_column.columns) << "); name one\n";
-    return kBadUsage;
-  }
-  const ResultTable y_columns = select_columns(table, args.y);
-
-  render::PlotSpec spec;
-  spec.title = !args.title.empty() ? args.title
-               : !m.name.empty()   ? m.name
-                                   : std::filesystem::path(args.model).stem().string();
-  if (!args.y_range.empty()) {
-    spec.y_lo = args.y_range[0];
-    spec.y_hi = args.y_range[1];
-  }
-  spec.width = args.width;
-  spec.height = args.height;
-  render::set_plot_data(spec, x_column, y_columns);
-
+int write_plot(const render::PlotSpec& spec, const std::string& format, const std::string& path) {
   if (format == ".svg") {
     render::SvgCanvas canvas(spec.width, spec.height);
     render::draw_plot(canvas, spec);
     Output output;
-    if (!output.open(args.output)) return kBadUsage;
+    if (!output.open(path)) return kBadUsage;
     output.stream() << canvas.document();
-    if (!output.finish()) return kBadUsage;
-  } else {
-    render::ImageCanvas canvas(spec.width, spec.height);
-    render::draw_plot(canvas, spec);
-    try {
-      canvas.write_png(args.output);
-    } catch (const std::runtime_error& e) {
-      std::cerr << "error: " << e.what() << '\n';
-      return kBadUsage;
-    }
+    return output.finish() ? kOk : kBadUsage;
   }
+  render::ImageCanvas canvas(spec.width, spec.height);
+  render::draw_plot(canvas, spec);
+  try {
+    canvas.write_png(path);
+  } catch (const Error& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kBadUsage;
+  } catch (const std::runtime_error& e) {  // until every render error is an nbar::Error
+    std::cerr << "error: " << e.what() << '\n';
+    return kBadUsage;
+  }
+  return kOk;
+}
 
+int run_plot(const PlotCommand& command) {
+  const std::string format = lower_extension(command.output);
+  if (format != ".svg" && format != ".png") {
+    std::cerr << "error: -o: cannot tell the format of '" << command.output << "': name it .svg or .png\n";
+    return kBadUsage;
+  }
+  request::PlotRequest request;
+  if (!read_request(*command.flags, request)) return kBadUsage;
+  request.format = format.substr(1);
+
+  Loaded loaded;
+  if (int code = load(command.model, loaded)) return code;
+  AnalysisOptions options;
+  try {
+    options = request.analysis_options(*loaded.mechanism);
+  } catch (const request::OptionError& e) {
+    print_option_error(e);
+    return kBadUsage;
+  }
+  Analysis analysis;
+  if (int code = analyse_model(command.model, loaded, options, analysis)) return code;
+  render::PlotSpec spec;
+  try {
+    spec = request.plot(analysis, std::filesystem::path(command.model).stem().string());
+  } catch (const request::OptionError& e) {
+    print_option_error(e);
+    return kBadUsage;
+  }
+  if (int code = write_plot(spec, format, command.output)) return code;
   print_warnings(analysis.warnings());
   return finish(loaded, analysis.sweep);
 }
@@ -135,35 +110,20 @@ int run_plot(const PlotArgs& args) {
 }  // namespace
 
 Command add_plot_command(CLI::App& app) {
-  auto shared = std::make_shared<PlotArgs>();
-  PlotArgs& args = *shared;
+  auto command = std::make_shared<PlotCommand>();
   CLI::App* sub = app.add_subcommand(
       "plot", "Plot result columns (angles, velocities, forces...) against a driver or any other column, "
               "as SVG or PNG");
-  sub->add_option("MODEL", args.model, "model file (YAML or JSON)")->required();
-  sub->add_option("--y", args.y, "columns to plot: names or globs, comma-separated, e.g. 'rocker.omega,B.v*'")
-      ->required()
-      ->delimiter(',');
-  sub->add_option("--x", args.x, "the column along the x axis (default: the first driver's, or t when a driver follows a time law)");
-  sub->add_option("-o,--output", args.output, "the picture to write: FILE.svg or FILE.png")
+  sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
+  command->flags = std::make_unique<RequestFlags>(*sub, request::PlotRequest::rules());
+  command->flags->add({"y"});
+  command->flags->option("y")->required();
+  command->flags->add({"x"});
+  sub->add_option("-o,--output", command->output, "the picture to write: FILE.svg or FILE.png")
       ->check(nbar::cli::output_file())->required();
-  sub->add_option("--steps", args.steps, "number of samples, ends included (overrides the model's sweep)")
-      ->check(nbar::cli::positive());
-  sub->add_option("--max-steps", args.max_steps, kMaxStepsHelp)->check(nbar::cli::positive());
-  sub->add_option("--order", args.order, "highest time derivative to solve, 0 to 5 (default: 2, or what the "
-                                         "columns need)")
-      ->check(nbar::cli::in_range(0, 5));
-  sub->add_flag("--dynamics", args.dynamics,
-                "add the inverse-dynamics columns (joint forces, driver torques and forces, energies); "
-                "on by itself when a column asked for needs it");
-  sub->add_option("--y-range", args.y_range, "a fixed y range LO,HI instead of one covering the data")
-      ->expected(2)
-      ->delimiter(',');
-  sub->add_option("--title", args.title, "the title at the top (default: the model's name)");
-  sub->add_option("--width", args.width, "picture width in pixels (default 900)")->check(nbar::cli::in_range(200, 10000));
-  sub->add_option("--height", args.height, "picture height in pixels (default 520)")->check(nbar::cli::in_range(150, 10000));
+  command->flags->add({"steps", "max_steps", "order", "dynamics", "y_range", "title", "width", "height"});
   sub->footer(kPlotHelp);
-  return {sub, [shared] { return run_plot(*shared); }};
+  return {sub, [command] { return run_plot(*command); }};
 }
 
 }  // namespace nbar::cli

@@ -1,0 +1,48 @@
+// nbar check: the model's summary, as text or JSON.
+#include "commands.hpp"
+#include "common.hpp"
+#include "nbar/analysis/summary.hpp"
+#include "nbar/io/summary_writer.hpp"
+#include "nbar/request/requests.hpp"
+#include "request_flags.hpp"
+
+namespace nbar::cli {
+
+namespace {
+
+struct CheckCommand {
+  std::string model;
+  std::unique_ptr<RequestFlags> flags;
+};
+
+int run_check(const CheckCommand& command) {
+  request::CheckRequest request;
+  if (!read_request(*command.flags, request)) return kBadUsage;
+  Loaded loaded;
+  if (int code = load(command.model, loaded)) return code;
+  const ModelSummary summary = summarize(*loaded.mechanism, request.max_steps);
+  if (request.format == "json")
+    std::cout << io::summary_json(*loaded.mechanism, summary, loaded.file.source);
+  else
+    io::write_summary_text(std::cout, *loaded.mechanism, summary, command.model);
+  if (summary.assembly_error) return fail(command.model, io::located(loaded.file.source, *summary.assembly_error));
+  if (summary.law_error) return fail(command.model, io::located(loaded.file.source, *summary.law_error));
+  return kOk;
+}
+
+}  // namespace
+
+Command add_check_command(CLI::App& app) {
+  auto command = std::make_shared<CheckCommand>();
+  CLI::App* sub = app.add_subcommand("check", "Summarise a model: bodies, joints, degrees of freedom, redundant "
+                                              "constraints, drivers, assembly at the start, Grashof class of "
+                                              "every four-bar loop");
+  sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
+  // check runs no sweep of the model's size (its law and cylinder checks sample a bounded
+  // number of poses), but it says whether the sweep would be refused, at max_steps.
+  command->flags = std::make_unique<RequestFlags>(*sub, request::CheckRequest::rules());
+  command->flags->add({"format", "max_steps"});
+  return {sub, [command] { return run_check(*command); }};
+}
+
+}  // namespace nbar::cli
