@@ -5,6 +5,7 @@
 
 #include "api_internal.hpp"
 #include "nbar/io/json_text.hpp"
+#include "nbar/request/options.hpp"
 
 namespace nbar::web {
 
@@ -112,6 +113,7 @@ ApiResponse error_answer(const Error& error, const Model* model, const io::Sourc
     }
     details["entity"] = entity;
   }
+  if (const auto* option = dynamic_cast<const request::OptionError*>(&error)) details["option"] = option->option();
   const ApiErrorKind kind = api_kind(error.kind());
   const std::string message = kind == ApiErrorKind::TimeBudget
                                   ? "the computation took longer than this server's time budget and was stopped"

@@ -1,0 +1,102 @@
+// The analysis endpoints: check, solve, stress, report and explain.
+#include "endpoints.hpp"
+#include "nbar/analysis/explain.hpp"
+#include "nbar/analysis/summary.hpp"
+#include "nbar/io/explain_writer.hpp"
+#include "nbar/io/json_text.hpp"
+#include "nbar/io/results_writer.hpp"
+#include "nbar/io/summary_writer.hpp"
+#include "nbar/render/report.hpp"
+#include "nbar/request/requests.hpp"
+
+namespace nbar::web {
+
+ApiResponse api_check(Job& job, const std::string& text) {
+  const RequestBody body(text, {"model"});
+  load_model(job, body.text("model", true));
+  job.start(Weight::Light);
+  const ModelSummary summary = summarize(*job.mechanism);
+  return answer(io::summary_json(*job.mechanism, summary, job.file->source));
+}
+
+ApiResponse api_solve(Job& job, const std::string& text) {
+  const RequestBody body(text, body_keys<request::SolveRequest>({"model"}));
+  const auto solve = read_request<request::SolveRequest>(body, {"model"}, true);
+  load_model(job, body.text("model", true));
+  check_sweep_size(job, solve.sweep.steps);
+  const AnalysisOptions options = solve.analysis_options();
+  check_table_size(job, options);
+  const Analysis analysis = run_analysis(job, options);
+  const ResultTable table = solve.table(analysis);
+  return answer(write([&](std::ostream& out) {
+                  io::write_table(out, solve.format, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr,
+                                  io::kTextTableWidth);
+                }),
+                text_type(solve.format));
+}
+
+ApiResponse api_stress(Job& job, const std::string& text) {
+  const RequestBody body(text, body_keys<request::StressRequest>({"model"}));
+  const auto stress = read_request<request::StressRequest>(body, {"model"}, true);
+  load_model(job, body.text("model", true));
+  check_sweep_size(job, stress.sweep.steps);
+  check_limit("sections", static_cast<double>(stress.sections), job.limits.max_sections,
+              "the number of sections per link");
+  AnalysisOptions options = stress.analysis_options(job.mechanism->model());
+  options.fe.max_nodes = job.limits.max_fe_nodes;
+  const Analysis analysis = run_analysis(job, options);
+  if (stress.section_profile.empty())
+    return answer(write([&](std::ostream& out) { io::write_stress_report(out, stress.format, analysis); }),
+                  text_type(stress.format));
+  const ResultTable profile = stress.section_profile_table(analysis);
+  return answer(write([&](std::ostream& out) { io::write_table(out, stress.format, analysis, profile); }),
+                text_type(stress.format));
+}
+
+ApiResponse api_report(Job& job, const std::string& text) {
+  const RequestBody body(text, body_keys<request::ReportRequest>({"model"}));
+  const auto report_request = read_request<request::ReportRequest>(body, {"model"});
+  load_model(job, body.text("model", true));
+  check_limit("frames", static_cast<double>(report_request.frames), job.limits.max_frames, "the number of frames");
+  check_sweep_size(job, report_request.sweep.steps);
+  const ModelSummary summary = summarize(*job.mechanism, report_request.sweep.max_steps);
+  AnalysisOptions options = report_request.analysis_options(summary, job.mechanism->model());
+  options.fe.max_nodes = job.limits.max_fe_nodes;
+  check_table_size(job, options);
+  job.start(Weight::Heavy);
+  const Analysis analysis = run_analysis(job, options);
+  job.checkpoint("report");
+  render::ReportOptions report;
+  report.source = kModelFile;
+  report.frames = report_request.frames;
+  report.control = job.control;
+  return answer_html(render::html_report(analysis, summary, report));
+}
+
+ApiResponse api_explain(Job& job, const std::string& text) {
+  const RequestBody body(text, body_keys<request::ExplainRequest>({"model"}));
+  const auto explain_request = read_request<request::ExplainRequest>(body, {"model"}, true);
+  load_model(job, body.text("model", true));
+  // The explanation writes Phi_q whole and every pair of links' instant centre: small models.
+  const Model& m = job.mechanism->model();
+  check_limit("explain_points", static_cast<double>(m.points.size()), job.limits.max_explain_points,
+              "the number of points of a model to explain");
+  check_limit("explain_bodies", static_cast<double>(m.bodies.size()), job.limits.max_explain_bodies,
+              "the number of bodies of a model to explain");
+  check_sweep_size(job, explain_request.sweep.steps);
+  ExplainOptions options = explain_request.explain_options();
+  options.control = job.control;
+  job.start(Weight::Light);
+  const Explanation ex = explain(job.mechanism, options);
+  job.checkpoint("explain");
+  const std::string& format = explain_request.format;
+  if (format == "json") return answer(io::json_text(io::explanation_json(ex), 2) + '\n');
+  const ExplainFormat f = format == "markdown" ? ExplainFormat::Markdown
+                          : format == "latex"  ? ExplainFormat::Latex
+                                               : ExplainFormat::Text;
+  return answer(render_explanation(ex, f), format == "markdown" ? "text/markdown; charset=utf-8"
+                                           : format == "latex"  ? "application/x-latex; charset=utf-8"
+                                                                : "text/plain; charset=utf-8");
+}
+
+}  // namespace nbar::web
