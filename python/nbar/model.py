@@ -291,8 +291,6 @@ class Model:
         (model units), with the paths of ``traces`` (a name, or a list of names). As ``nbar draw``,
         it draws any solved step of a sweep that stopped at a limit."""
         step, width, height = _whole("step", step), _whole("width", width), _whole("height", height)
-        if step is not None and at is not None:
-            raise BadInputError(f"draw takes step or at, not both (step={step}, at={at!r})")
         return Drawing(self.analyse(steps=steps, order=0), step=step, at=_real("at", at), labels=_flag("labels", labels),
                        traces=_names("traces", traces), width=width, height=height, title=_text("title", title))
 

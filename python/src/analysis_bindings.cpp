@@ -14,6 +14,7 @@
 #include "nbar/render/animation.hpp"
 #include "nbar/render/pictures.hpp"
 #include "nbar/render/report.hpp"
+#include "nbar/request/requests.hpp"
 
 namespace nbar::python {
 
@@ -24,28 +25,40 @@ struct PyAnalysis {
   Analysis analysis;
 };
 
+// The analysis options from Python's arguments, read by the same requests as the command line's
+// `solve` and `stress` (nbar/request): the same ranges, defaults, unit conversions and messages.
+AnalysisOptions analysis_options(const Model& model, std::optional<int> steps, int order, bool dynamics, bool stress,
+                                 int sections, std::optional<int> max_steps, const std::string& method,
+                                 std::optional<double> mesh_size) {
+  request::Options sweep;
+  if (steps) sweep.set("steps", static_cast<long long>(*steps));
+  if (max_steps) sweep.set("max_steps", static_cast<long long>(*max_steps));
+  request::Options solve = sweep;
+  solve.set("order", static_cast<long long>(order));
+  solve.set("dynamics", dynamics);
+  AnalysisOptions options = request::SolveRequest::read(solve).analysis_options();
+  request::Options stresses = sweep;
+  stresses.set("method", method);
+  stresses.set("sections", static_cast<long long>(sections));
+  if (mesh_size) stresses.set("mesh_size", *mesh_size);
+  const AnalysisOptions stress_options = request::StressRequest::read(stresses).analysis_options(model);
+  if (stress) {
+    options.stress = true;
+    options.sections = stress_options.sections;
+    options.stress_method = stress_options.stress_method;
+    options.fe = stress_options.fe;
+  }
+  return options;
+}
+
 std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::optional<int> steps, int order,
                                          bool dynamics, bool stress, int sections, std::optional<double> timeout,
                                          std::optional<int> max_steps, const std::string& method,
                                          std::optional<double> mesh_size) {
   auto out = std::make_shared<PyAnalysis>();
   out->model = model;
-  AnalysisOptions options;
-  options.steps = steps;
-  options.order = order;
-  options.dynamics = dynamics;
-  options.stress = stress;
-  options.sections = sections;
-  if (method == "fe")
-    options.stress_method = StressMethod::fe;
-  else if (method != "beam")
-    throw Error(ErrorKind::BadInput, "method must be 'beam' or 'fe', not '" + method + "'");
-  // In the model's length unit, as `nbar stress --mesh-size`.
-  if (mesh_size) {
-    if (!(*mesh_size > 0.0)) throw Error(ErrorKind::BadInput, "mesh_size must be a positive length");
-    options.fe.mesh_size = *mesh_size * model->mechanism->model().units.length_scale;
-  }
-  if (max_steps) options.max_steps = *max_steps;
+  AnalysisOptions options = analysis_options(model->mechanism->model(), steps, order, dynamics, stress, sections,
+                                             max_steps, method, mesh_size);
   run_interruptible(options.control, timeout, [&] {
     try {
       out->analysis = analyse(model->mechanism, options);
@@ -56,16 +69,21 @@ std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::op
   return out;
 }
 
+// The columns matching `patterns`, or an error at `columns` that lists them, as `nbar solve
+// --columns` gives.
 template <class Table>
-Table selected(Table table, const std::optional<std::vector<std::string>>& patterns) {
+Table selected(const PyAnalysis& a, Table table, const std::optional<std::vector<std::string>>& patterns) {
   if (!patterns) return table;
   try {
     return select_columns(table, *patterns);
-  } catch (const std::invalid_argument& e) {
-    std::string names;
-    for (const std::string& c : table.columns) names += (names.empty() ? "" : ", ") + c;
-    throw Error(ErrorKind::BadInput, std::string(e.what()) + "; the columns are: " + names);
+  } catch (const std::invalid_argument& e) {  // no column matches a pattern
+    request::SolveRequest solve;
+    solve.columns = *patterns;
+    solve.order = a.analysis.sweep.order;
+    solve.dynamics = a.analysis.dynamics.has_value();
+    solve.explain_column_error(*a.analysis.mechanism, e.what());
   }
+  return table;
 }
 
 // Column names, units and one numpy array per column. The arrays are views into one matrix the
@@ -97,71 +115,67 @@ py::list warning_list(const std::vector<Warning>& warnings) {
   return out;
 }
 
-render::DrawOptions draw_options(const Model& m, bool labels, const std::vector<std::string>& traces, int width,
-                                 int height, const std::string& title) {
-  if (width < 100 || width > 10000 || height < 100 || height > 10000)
-    throw Error(ErrorKind::BadInput, "width and height must be between 100 and 10000 pixels");
-  render::DrawOptions draw;
-  draw.labels = labels;
-  draw.traces = render::trace_points(m, traces);
-  draw.width = width;
-  draw.height = height;
-  draw.title = title;
-  return draw;
-}
-
-// The pose to draw: a sample of the sweep, or where the first driver has `at`.
-std::vector<Eigen::Vector2d> pose_points(const PyAnalysis& a, std::optional<int> step, std::optional<double> at) {
-  const Mechanism& mech = *a.model->mechanism;
-  if (at) {
-    try {
-      return render::sample_points(mech, pose_at(mech, *at));
-    } catch (const Error& e) {
-      throw located(*a.model, e);
-    }
-  }
-  const int k = step.value_or(render::default_drawn_step(mech, a.analysis.sweep));
-  const int solved = static_cast<int>(a.analysis.sweep.samples.size());
-  if (k < 0 || k >= solved)
-    throw Error(ErrorKind::BadInput, "step " + std::to_string(k) + " is not a solved step (0 to " +
-                                         std::to_string(solved - 1) + ")");
-  return render::sample_points(mech, a.analysis.sweep.samples[k]);
+// A picture's options as the request layer reads them (the same as `nbar draw`'s and
+// `nbar animate`'s flags).
+request::Options picture_options(const std::string& format, bool labels, const std::vector<std::string>& traces,
+                                 int width, int height, const std::string& title) {
+  request::Options options;
+  options.set("format", format);
+  options.set("labels", labels);
+  options.set("trace", traces);
+  options.set("width", static_cast<long long>(width));
+  options.set("height", static_cast<long long>(height));
+  options.set("title", title);
+  return options;
 }
 
 py::object draw(const PyAnalysis& a, const std::string& format, std::optional<int> step, std::optional<double> at,
                 bool labels, const std::vector<std::string>& traces, int width, int height, const std::string& title) {
+  request::Options options = picture_options(format, labels, traces, width, height, title);
+  if (step) options.set("step", static_cast<long long>(*step));
+  if (at) options.set("at", *at);
+  const request::DrawRequest request = request::DrawRequest::read(options);
+  if (request.format == "scene") throw request::OptionError("format", "must be one of svg, png, not 'scene'");
   const Mechanism& mech = *a.model->mechanism;
-  const render::DrawOptions options = draw_options(mech.model(), labels, traces, width, height, title);
-  const std::vector<Eigen::Vector2d> points = pose_points(a, step, at);
-  if (format == "svg") return py::str(render::drawing_svg(mech, a.analysis.sweep, points, options));
-  if (format == "png") {
-    const std::vector<std::uint8_t> png = render::drawing_png(mech, a.analysis.sweep, points, options);
-    return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
+  const render::DrawOptions draw = request.picture.draw_options(mech.model());
+  std::vector<Eigen::Vector2d> points;
+  try {
+    points = request.points(a.analysis);
+  } catch (const request::OptionError&) {
+    throw;
+  } catch (const Error& e) {
+    throw located(*a.model, e);
   }
-  throw Error(ErrorKind::BadInput, "a drawing's format is svg or png, not '" + format + "'");
+  if (request.format == "svg") return py::str(render::drawing_svg(mech, a.analysis.sweep, points, draw));
+  const std::vector<std::uint8_t> png = render::drawing_png(mech, a.analysis.sweep, points, draw);
+  return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
 }
 
 py::object animate(const PyAnalysis& a, const std::string& format, int frames, double fps, bool labels,
                    const std::vector<std::string>& traces, int width, int height, const std::string& title) {
-  const render::DrawOptions options = draw_options(a.model->file.model, labels, traces, width, height, title);
-  if (!(fps > 0 && fps <= 240)) throw Error(ErrorKind::BadInput, "fps must be above 0 and at most 240");
-  if (frames < 0 || frames > 10000) throw Error(ErrorKind::BadInput, "frames must be between 0 (every sample) and 10000");
-  const render::Animation animation(a.model->mechanism, a.analysis.sweep, options, frames, fps);
+  request::Options options = picture_options(format, labels, traces, width, height, title);
+  options.set("fps", fps);
+  if (frames != 0) options.set("frames", static_cast<long long>(frames));  // 0: every sample, at most 120
+  const request::AnimateRequest request = request::AnimateRequest::read(options);
+  const render::DrawOptions draw = request.picture.draw_options(a.model->file.model);
+  const render::Animation animation(a.model->mechanism, a.analysis.sweep, draw, request.frames.value_or(0), request.fps);
   const auto as_bytes = [](const std::vector<std::uint8_t>& b) {
     return py::bytes(reinterpret_cast<const char*>(b.data()), b.size());
   };
-  if (format == "html") return py::str(animation.html_animation());
-  if (format == "svg") return py::str(animation.svg_animation());
-  if (format == "gif") return as_bytes(animation.gif_bytes());
-  if (format == "mp4") return as_bytes(animation.mp4_bytes());
-  throw Error(ErrorKind::BadInput, "an animation's format is html, svg, gif or mp4, not '" + format + "'");
+  if (request.format == "html") return py::str(animation.html_animation());
+  if (request.format == "svg") return py::str(animation.svg_animation());
+  if (request.format == "gif") return as_bytes(animation.gif_bytes());
+  return as_bytes(animation.mp4_bytes());
 }
 
 // The page, whether the sweep reached its end, and why not (the report of a stopped sweep is
 // written all the same, as `nbar report` writes it before exiting 4).
 py::tuple report(std::shared_ptr<PyModel> model, int frames, std::optional<double> timeout) {
+  request::Options given;
+  given.set("frames", static_cast<long long>(frames));
+  const request::ReportRequest request = request::ReportRequest::read(given);
   const ModelSummary summary = summarize(*model->mechanism);
-  AnalysisOptions options = render::report_analysis_options(summary);
+  AnalysisOptions options = request.analysis_options(summary, model->mechanism->model());
   Analysis analysis;
   run_interruptible(options.control, timeout, [&] {
     try {
@@ -172,7 +186,7 @@ py::tuple report(std::shared_ptr<PyModel> model, int frames, std::optional<doubl
   });
   render::ReportOptions report;
   report.source = model->file.source.file;
-  report.frames = frames;
+  report.frames = request.frames;
   const std::string page = render::html_report(analysis, summary, report);
   return py::make_tuple(page, analysis.complete(),
                         analysis.complete() ? py::object(py::none()) : py::object(py::str(analysis.sweep.stop_reason)));
@@ -187,9 +201,10 @@ std::string stress_report(const PyAnalysis& a, const std::string& format) {
 
 py::tuple section_profile(const PyAnalysis& a, const std::string& body_name, int step) {
   if (!a.analysis.stress) throw Error(ErrorKind::BadInput, "the analysis has no stress stage: run it with stress=True");
-  const int body = a.analysis.model().find_body(body_name);
-  if (body < 0) throw Error(ErrorKind::BadInput, "'" + body_name + "' is not a body of the model");
-  return as_arrays(section_profile_table(a.analysis, body, step));
+  request::Options options;
+  options.set("section_profile", body_name);
+  options.set("step", static_cast<long long>(step));
+  return as_arrays(request::StressRequest::read(options).section_profile_table(a.analysis));
 }
 
 }  // namespace
@@ -211,11 +226,11 @@ void bind_analysis(py::module_& m) {
         return a.analysis.dynamics ? py::object(py::bool_(a.analysis.dynamics->unique)) : py::none();
       })
       .def("table", [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
-             return as_arrays(selected(result_columns(a.analysis), columns));
+             return as_arrays(selected(a, result_columns(a.analysis), columns));
            }, py::arg("columns") = std::nullopt)
       .def("json", [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
              std::ostringstream out;
-             io::write_json(out, a.analysis, selected(result_table(a.analysis), columns),
+             io::write_json(out, a.analysis, selected(a, result_table(a.analysis), columns),
                             a.analysis.dynamics ? &*a.analysis.dynamics : nullptr);
              return out.str();
            }, py::arg("columns") = std::nullopt)

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "nbar/request/requests.hpp"
 #include "nbar/analysis/explain.hpp"
 #include "nbar/io/explain_writer.hpp"
 #include "nbar/render/pictures.hpp"
@@ -109,9 +110,10 @@ void bind_explain(py::module_& m) {
            }, py::arg("format") = "text");
 
   m.def("explain", [](std::shared_ptr<PyModel> model, int step, std::optional<int> steps) {
-          ExplainOptions options;
-          options.step = step;
-          options.steps = steps;
+          request::Options given;
+          given.set("step", static_cast<long long>(step));
+          if (steps) given.set("steps", static_cast<long long>(*steps));
+          ExplainOptions options = request::ExplainRequest::read(given).explain_options();
           auto out = std::make_shared<Explanation>();
           RunControl control;
           run_interruptible(control, std::nullopt, [&] {

@@ -14,77 +14,14 @@ namespace nbar::python {
 
 namespace {
 
-py::dict mass_dict(const BodySummary& b, const Units& u) {
-  py::dict d;
-  d["mass"] = b.mass.mass;
-  d["cg"] = py::make_tuple(b.mass.cg.x() / u.length_scale, b.mass.cg.y() / u.length_scale);
-  d["inertia"] = b.mass.inertia;
-  d["source"] = b.mass_source;
-  return d;
-}
-
-py::list body_list(const ModelSummary& s, const Units& u) {
-  py::list bodies;
-  for (const BodySummary& b : s.bodies) {
-    py::dict d;
-    d["name"] = b.name;
-    d["points"] = b.points;
-    d["length"] = b.length ? py::object(py::float_(*b.length / u.length_scale)) : py::none();
-    d["length_given"] = b.length_given;
-    d["mass"] = mass_dict(b, u);
-    bodies.append(d);
-  }
-  return bodies;
-}
-
-py::list loop_list(const Mechanism& mech, const ModelSummary& s) {
-  const Model& m = mech.model();
-  const Units& u = m.units;
-  const auto name = [&](int body) { return body < 0 ? std::string("ground") : m.bodies[body].name; };
-  py::list loops;
-  for (const LoopSummary& l : s.loops) {
-    py::dict d;
-    d["name"] = l.loop.name;
-    d["frame"] = name(l.loop.frame);
-    d["input"] = name(l.loop.input);
-    d["coupler"] = name(l.loop.coupler);
-    d["output"] = name(l.loop.output);
-    d["grashof"] = grashof_name(l.grashof.kind, l.grashof.input_turns_fully);
-    d["lengths"] = py::make_tuple(l.grashof.frame / u.length_scale, l.grashof.input / u.length_scale,
-                                  l.grashof.coupler / u.length_scale, l.grashof.output / u.length_scale);
-    d["input_turns_fully"] = l.grashof.input_turns_fully;
-    d["output_turns_fully"] = l.grashof.output_turns_fully;
-    d["branch"] = l.branch;
-    d["transmission_angle"] = l.transmission_angle / u.angle_scale;
-    d["toggles"] = l.toggle_from && l.toggle_to
-                       ? py::object(py::make_tuple(*l.toggle_from / u.angle_scale, *l.toggle_to / u.angle_scale))
-                       : py::object(py::none());
-    d["description"] = l.description;
-    if (l.rocker) {
-      py::dict r;
-      r["swing"] = l.rocker->swing / u.angle_scale;
-      r["rocker_stretched"] = l.rocker->rocker_stretched / u.angle_scale;
-      r["rocker_folded"] = l.rocker->rocker_folded / u.angle_scale;
-      r["crank_stretched"] = l.rocker->crank_stretched / u.angle_scale;
-      r["crank_folded"] = l.rocker->crank_folded / u.angle_scale;
-      r["turn_to_stretched"] = l.rocker->turn_to_stretched / u.angle_scale;
-      r["turn_to_folded"] = l.rocker->turn_to_folded / u.angle_scale;
-      r["time_ratio"] = l.rocker->time_ratio;
-      r["description"] = l.rocker->description;
-      d["rocker"] = r;
-    } else {
-      d["rocker"] = py::none();
-    }
-    loops.append(d);
-  }
-  return loops;
-}
-
-// What `nbar check` prints, as plain data in the model's units.
+// What `nbar check` prints, as plain data in the model's units. The bodies, the loops, the
+// slider-cranks and the quick-returns are the JSON summary's (`nbar check --format json`, the
+// web API's): one rendering of them for every front-end.
 py::dict summary_dict(const PyModel& model) {
   const Mechanism& mech = *model.mechanism;
   const ModelSummary s = summarize(mech);
   const Units& u = mech.model().units;
+  const py::object json = py::module_::import("json").attr("loads")(io::summary_json(mech, s, model.file.source));
   py::dict d;
   d["ground_points"] = s.ground_points;
   d["moving_points"] = s.moving_points;
@@ -96,7 +33,7 @@ py::dict summary_dict(const PyModel& model) {
   d["rank"] = s.mobility.rank;
   d["redundant"] = s.redundant;
   d["drivers"] = s.drivers;
-  d["bodies"] = body_list(s, u);
+  d["bodies"] = json["bodies"];
   d["has_kinetics"] = s.has_kinetics();
   d["has_stress_links"] = s.has_stress_links;
   if (s.assembly) {
@@ -111,11 +48,9 @@ py::dict summary_dict(const PyModel& model) {
     d["assembly"] = py::none();
   }
   d["assembly_error"] = s.assembly_error ? py::object(py::str(located(model, *s.assembly_error).what())) : py::none();
-  d["loops"] = loop_list(mech, s);
-  // The slider-cranks' and quick-returns' facts as the JSON summary has them (one rendering).
-  const py::object facts = py::module_::import("json").attr("loads")(io::summary_json(mech, s, model.file.source));
-  d["slider_cranks"] = facts["slider_cranks"];
-  d["quick_returns"] = facts["quick_returns"];
+  d["loops"] = json["loops"];
+  d["slider_cranks"] = json["slider_cranks"];
+  d["quick_returns"] = json["quick_returns"];
   py::list warnings;
   for (const Warning& w : s.warnings) warnings.append(py::make_tuple(w.code, w.step, w.message));
   d["warnings"] = warnings;

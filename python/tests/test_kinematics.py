@@ -183,7 +183,10 @@ def test_from_dict_takes_numpy_values():
         "drivers": [{"angle": "crank", "from": np.int64(0), "to": 360, "speed": "60 rpm"}],
     })
     assert m.points["A"] == (80.0, 0.0)
-    assert m.check().loops[0].lengths == pytest.approx((200, 80, 180, 150))
+    loop = m.check().loops[0]
+    assert [loop.lengths[k] for k in ("frame", "input", "coupler", "output")] == pytest.approx((200, 80, 180, 150))
+    # The same loop as `nbar check --format json` and the web API give it: its Grashof margin too.
+    assert loop.grashof_margin == pytest.approx((180 + 150) - (80 + 200))
     with pytest.raises(nbar.ModelError, match="<dict>:5:7: y must be a finite number, not 'NaN'"):
         nbar.Model.from_dict({"points": {"O": np.array([0.0, np.nan])}})  # NaN in an array: refused where it is
 
