@@ -29,17 +29,11 @@ int solve_to_csv(const SolveCommand& command, const request::SolveRequest& reque
   } catch (const Error& e) {
     return fail(command.model, io::located(loaded.file.source, e));
   }
-  if (!request.columns.empty()) {
-    try {
-      try {
-        stream->select(request.columns);
-      } catch (const std::invalid_argument& e) {  // no column matches a pattern
-        request.explain_column_error(*loaded.mechanism, e.what());
-      }
-    } catch (const request::OptionError& e) {
-      print_option_error(e);
-      return kBadUsage;
-    }
+  try {
+    request.select(*loaded.mechanism, *stream);
+  } catch (const request::OptionError& e) {
+    print_option_error(e);
+    return kBadUsage;
   }
   Output output;
   if (!output.open(command.output)) return kBadUsage;

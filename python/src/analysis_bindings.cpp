@@ -71,19 +71,12 @@ std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::op
 
 // The columns matching `patterns`, or an error at `columns` that lists them, as `nbar solve
 // --columns` gives.
-template <class Table>
-Table selected(const PyAnalysis& a, Table table, const std::optional<std::vector<std::string>>& patterns) {
-  if (!patterns) return table;
-  try {
-    return select_columns(table, *patterns);
-  } catch (const std::invalid_argument& e) {  // no column matches a pattern
-    request::SolveRequest solve;
-    solve.columns = *patterns;
-    solve.order = a.analysis.sweep.order;
-    solve.dynamics = a.analysis.dynamics.has_value();
-    solve.explain_column_error(*a.analysis.mechanism, e.what());
-  }
-  return table;
+request::SolveRequest column_request(const PyAnalysis& a, const std::optional<std::vector<std::string>>& patterns) {
+  request::SolveRequest solve;
+  if (patterns) solve.columns = *patterns;
+  solve.order = a.analysis.sweep.order;
+  solve.dynamics = a.analysis.dynamics.has_value();
+  return solve;
 }
 
 // Column names, units and one numpy array per column. The arrays are views into one matrix the
@@ -219,6 +212,16 @@ void bind_analysis(py::module_& m) {
         return a.analysis.sweep.max_residual / a.analysis.model().units.length_scale;
       })
       .def_property_readonly("branches", [](const PyAnalysis& a) { return a.analysis.sweep.branches; })
+      .def_property_readonly("transmission_angles", [](const PyAnalysis& a) {
+        const double unit = a.analysis.model().units.angle_scale;
+        py::dict out;
+        for (const TransmissionExtremes& mu : transmission_extremes(a.analysis))
+          out[py::str(mu.loop)] = py::dict(py::arg("min") = mu.min / unit, py::arg("min_step") = mu.min_step,
+                                           py::arg("max") = mu.max / unit, py::arg("max_step") = mu.max_step,
+                                           py::arg("design") = mu.design / unit,
+                                           py::arg("design_step") = mu.design_step);
+        return out;
+      })
       .def_property_readonly("warnings", [](const PyAnalysis& a) { return warning_list(a.analysis.warnings()); })
       .def_property_readonly("has_dynamics", [](const PyAnalysis& a) { return a.analysis.dynamics.has_value(); })
       .def_property_readonly("has_stress", [](const PyAnalysis& a) { return a.analysis.stress.has_value(); })
@@ -226,11 +229,11 @@ void bind_analysis(py::module_& m) {
         return a.analysis.dynamics ? py::object(py::bool_(a.analysis.dynamics->unique)) : py::none();
       })
       .def("table", [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
-             return as_arrays(selected(a, result_columns(a.analysis), columns));
+             return as_arrays(column_request(a, columns).columns_of(*a.analysis.mechanism, result_columns(a.analysis)));
            }, py::arg("columns") = std::nullopt)
       .def("json", [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
              std::ostringstream out;
-             io::write_json(out, a.analysis, selected(a, result_table(a.analysis), columns),
+             io::write_json(out, a.analysis, column_request(a, columns).table(a.analysis),
                             a.analysis.dynamics ? &*a.analysis.dynamics : nullptr);
              return out.str();
            }, py::arg("columns") = std::nullopt)

@@ -216,15 +216,34 @@ void SolveRequest::explain_column_error(const Mechanism& mechanism, const std::s
   throw OptionError("columns", literal(problem + "; the columns are: " + listed));
 }
 
+// The library's select_columns and TableStream::select say which pattern matched nothing; the
+// request adds what the user can do about it.
 ResultTable SolveRequest::table(const Analysis& analysis) const {
   ResultTable table = result_table(analysis);
   if (columns.empty()) return table;
   try {
     return select_columns(table, columns);
-  } catch (const std::exception& e) {  // no column matches a pattern
+  } catch (const std::exception& e) {
     explain_column_error(*analysis.mechanism, e.what());
   }
-  return table;
+}
+
+ColumnTable SolveRequest::columns_of(const Mechanism& mechanism, const ColumnTable& table) const {
+  if (columns.empty()) return table;
+  try {
+    return select_columns(table, columns);
+  } catch (const std::exception& e) {
+    explain_column_error(mechanism, e.what());
+  }
+}
+
+void SolveRequest::select(const Mechanism& mechanism, TableStream& stream) const {
+  if (columns.empty()) return;
+  try {
+    stream.select(columns);
+  } catch (const std::exception& e) {
+    explain_column_error(mechanism, e.what());
+  }
 }
 
 // ---------------------------------------------------------------------------------- stress

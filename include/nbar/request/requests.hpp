@@ -24,6 +24,7 @@
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/analysis/explain.hpp"
 #include "nbar/analysis/summary.hpp"
+#include "nbar/analysis/table_stream.hpp"
 #include "nbar/kinematics/table.hpp"
 #include "nbar/model/run_control.hpp"
 #include "nbar/render/drawing.hpp"
@@ -93,8 +94,13 @@ struct SolveRequest {
   // The columns asked for; an OptionError at `columns` names the columns there are (and says when
   // the ones asked for need the dynamics).
   ResultTable table(const Analysis& analysis) const;
-  // The same check for the column names alone (a streamed table selects by name).
-  void explain_column_error(const Mechanism& mechanism, const std::string& problem) const;
+  // The columns asked for of a table of numbers (Python's arrays), or the same OptionError.
+  ColumnTable columns_of(const Mechanism& mechanism, const ColumnTable& table) const;
+  // The columns asked for of a streamed table (the CLI's CSV), or the same OptionError.
+  void select(const Mechanism& mechanism, TableStream& stream) const;
+
+ private:
+  [[noreturn]] void explain_column_error(const Mechanism& mechanism, const std::string& problem) const;
 };
 
 // nbar stress: every shaped link's largest stress, or one link's sections at one step.
