@@ -50,6 +50,7 @@ class Result(Table):
     warnings: List[Warning]
     max_residual: float
     branches: List[str]
+    transmission_angles: Dict[str, Dict[str, float]]
     forces_unique: Optional[bool]
     default_x: Optional[str]
     def to_json(self) -> str: ...

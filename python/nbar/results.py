@@ -80,6 +80,8 @@ class Result(Table):
     - ``complete``: the sweep reached its end; otherwise ``stop_reason`` says where and why.
     - ``warnings``: change points passed, branch changes, forces that are not unique.
     - ``max_residual``: the largest constraint residual over the sweep, in the model's length unit.
+    - ``transmission_angles``: per four-bar loop, ``{"min", "max", "design"}`` over the sweep (model
+      angle unit; ``design`` is the smallest of min(mu, 180 deg - mu)) and the step of each.
     """
 
     def __init__(self, analysis, names, units, arrays):
@@ -90,6 +92,9 @@ class Result(Table):
         self.warnings: List[Warning] = [Warning(*w) for w in analysis.warnings]
         self.max_residual: float = analysis.max_residual
         self.branches: List[str] = list(analysis.branches)
+        # Per four-bar loop, its transmission angle over the sweep in the model's angle unit: min and
+        # max with their steps, and the design value, the smallest min(mu, 180 deg - mu), with its step.
+        self.transmission_angles: Dict[str, Dict[str, float]] = dict(analysis.transmission_angles)
         self.forces_unique: Optional[bool] = analysis.forces_unique
         self.default_x: Optional[str] = None  # the column plots run along, as the CLI's plots
 

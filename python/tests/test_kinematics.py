@@ -3,6 +3,7 @@ four-bar, sympy's derivatives of the slider-crank's closed form, and the CLI's o
 
 import csv
 import io
+import json
 import math
 import subprocess
 
@@ -214,3 +215,20 @@ def test_check_gives_a_crank_rockers_swing_and_time_ratio(examples):
     turn = stretched + 360 - folded
     assert loop.rocker.time_ratio == pytest.approx((360 - turn) / turn, rel=1e-8)
     assert loop.rocker.swing == pytest.approx(65.921, abs=1e-3)
+
+
+def test_the_transmission_angle_over_the_sweep_comes_from_the_core(examples):
+    # Frame 200, crank 80, coupler 180, rocker 150 mm: mu is extreme with the crank along the frame,
+    # cos mu = (180^2 + 150^2 - d^2) / (2 180 150) with d = 200 - 80 and 200 + 80.
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    r = m.solve(steps=361, order=0)
+    mu = r.transmission_angles["crank-coupler-rocker"]
+    b = math.dist(m.points["A"], m.points["B"])  # the drawing's coupler, 179.9999998 mm
+    smallest = math.degrees(math.acos((b**2 + 150**2 - 120**2) / (2 * b * 150)))
+    largest = math.degrees(math.acos((b**2 + 150**2 - 280**2) / (2 * b * 150)))
+    assert mu["min"] == pytest.approx(smallest, abs=1e-9) and mu["min_step"] == 0
+    assert mu["max"] == pytest.approx(largest, abs=1e-9) and mu["max_step"] == 180
+    assert mu["design"] == pytest.approx(min(smallest, 180 - largest), abs=1e-9) and mu["design_step"] == 0
+    # The same numbers as the JSON of `nbar solve --format json`.
+    branches = json.loads(r.to_json())["branches"]
+    assert branches[0]["transmission_angle"] == mu

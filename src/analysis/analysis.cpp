@@ -1,8 +1,11 @@
 #include "nbar/analysis/analysis.hpp"
+
 #include "nbar/analysis/summary.hpp"
 #include "nbar/analysis/table_stream.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -119,6 +122,26 @@ StressStage run_stress_stage(const Analysis& analysis, const AnalysisOptions& op
 }
 
 }  // namespace
+
+std::vector<TransmissionExtremes> transmission_extremes(const Analysis& analysis) {
+  const Mechanism& mech = *analysis.mechanism;
+  std::vector<TransmissionExtremes> out;
+  if (analysis.sweep.samples.empty()) return out;
+  for (const FourBarLoop& loop : mech.four_bar_loops()) out.push_back({loop.name});
+  for (const Sample& sample : analysis.sweep.samples) {
+    const std::vector<Eigen::Vector2d> points = point_positions(mech, sample.taylor.col(0));
+    for (std::size_t l = 0; l < out.size(); ++l) {
+      const double mu = transmission_angle(mech.four_bar_loops()[l], points);
+      const double from_dead_point = std::min(mu, std::numbers::pi - mu);
+      TransmissionExtremes& e = out[l];
+      const bool first = e.min_step < 0;
+      if (first || mu < e.min) e.min = mu, e.min_step = sample.step;
+      if (first || mu > e.max) e.max = mu, e.max_step = sample.step;
+      if (first || from_dead_point < e.design) e.design = from_dead_point, e.design_step = sample.step;
+    }
+  }
+  return out;
+}
 
 std::vector<Warning> Analysis::warnings() const {
   std::vector<Warning> all = sweep.warnings;

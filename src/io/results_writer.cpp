@@ -121,6 +121,18 @@ std::vector<std::string> messages(const std::vector<Warning>& warnings) {
 
 }  // namespace
 
+namespace {
+
+// A loop's transmission angle over the sweep, in the model's angle unit: its extremes and its
+// design value (the smallest of min(mu, 180 deg - mu)), each with its step.
+nlohmann::ordered_json transmission_json(const TransmissionExtremes& mu, double angle_scale) {
+  return {{"min", mu.min / angle_scale},       {"min_step", mu.min_step},
+          {"max", mu.max / angle_scale},       {"max_step", mu.max_step},
+          {"design", mu.design / angle_scale}, {"design_step", mu.design_step}};
+}
+
+}  // namespace
+
 void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& table, const DynamicsStage* dynamics) {
   const Mechanism& mech = *analysis.mechanism;
   const SweepResult& sweep = analysis.sweep;
@@ -134,8 +146,12 @@ void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& 
   for (int r : mob.redundant) redundant.push_back(mech.rows()[r].label);
   j["dof"] = {{"gruebler", mob.grubler}, {"mobility", mob.dof}, {"redundant_constraints", redundant}};
   nlohmann::ordered_json loops = nlohmann::json::array();
-  for (std::size_t l = 0; l < mech.four_bar_loops().size(); ++l)
-    loops.push_back({{"loop", mech.four_bar_loops()[l].name}, {"branch", sweep.branches[l]}});
+  const std::vector<TransmissionExtremes> mu = transmission_extremes(analysis);
+  for (std::size_t l = 0; l < mech.four_bar_loops().size(); ++l) {
+    nlohmann::ordered_json loop = {{"loop", mech.four_bar_loops()[l].name}, {"branch", sweep.branches[l]}};
+    if (l < mu.size()) loop["transmission_angle"] = transmission_json(mu[l], m.units.angle_scale);
+    loops.push_back(loop);
+  }
   j["branches"] = loops;
   j["order"] = sweep.order;
   j["complete"] = sweep.complete;

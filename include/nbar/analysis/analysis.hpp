@@ -94,4 +94,15 @@ ColumnTable result_columns(const Analysis& analysis);
 // step that was not solved.
 ResultTable section_profile_table(const Analysis& analysis, int body, int step);
 
+// A four-bar loop's transmission angle mu over the sweep (rad), each extreme with the sample
+// where it occurs: the smallest and largest mu, and the design value, the smallest of
+// min(mu, pi - mu) over the sweep (how near the loop comes to a dead point, whichever side of
+// 90 deg mu swings to). From the core, so that no front-end computes it. Empty without samples.
+struct TransmissionExtremes {
+  std::string loop;
+  double min = 0.0, max = 0.0, design = 0.0;  // rad
+  int min_step = -1, max_step = -1, design_step = -1;
+};
+std::vector<TransmissionExtremes> transmission_extremes(const Analysis& analysis);
+
 }  // namespace nbar

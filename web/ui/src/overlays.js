@@ -300,8 +300,10 @@ function info(row) {
     const i = app.col(`${l.name}.mu`);
     let mu = '';
     if (i >= 0 && Number.isFinite(row[i])) {
-      const vals = app.state.solve.rows.map((r) => r[i]).filter(Number.isFinite);
-      mu = ` · μ = ${app.fmt(row[i])}° <small>(${t('minIs')} ${app.fmt(Math.min(...vals))}°)</small>`;
+      // The design value over the sweep, min(μ, 180° − μ) at its smallest, is the core's (the
+      // solve's branches[].transmission_angle), not worked out here.
+      const design = app.state.solve.branches?.find((b) => b.loop === l.name)?.transmission_angle?.design;
+      mu = ` · μ = ${app.fmt(row[i])}°` + (Number.isFinite(design) ? ` <small>(${t('minIs')} ${app.fmt(design)}°)</small>` : '');
     }
     return `<span class="loop" title="${app.esc(l.description ?? '')}"><b>${app.esc(l.name)}</b>: ${app.esc(l.grashof ?? '')}${mu}</span>`;
   });
