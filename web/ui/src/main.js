@@ -596,10 +596,8 @@ async function download(kind) {
   try {
     status(t('loading'), false, true);
     if (kind === 'csv') {
-      const s = state.solve;
-      if (!s) return;
-      const lines = [s.columns.join(','), ...s.rows.map((r) => r.map((v) => (v === null ? '' : String(v))).join(','))];
-      save(new Blob([`${lines.join('\n')}\n`], { type: 'text/csv' }), `${name}.csv`);
+      // The core's CSV writer, as `nbar solve` writes it: the browser writes no numbers of its own.
+      save(await api('/api/solve', { model, format: 'csv' }, 'blob'), `${name}.csv`);
     } else if (kind === 'json') {
       if (!state.solveText) return;
       save(new Blob([state.solveText], { type: 'application/json' }), `${name}.json`);
