@@ -8,6 +8,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar {
 
 namespace {
@@ -435,7 +437,7 @@ class InverseDynamics::Assembly {
 
 DynamicsResult InverseDynamics::solve(const Sample& sample, DynamicsWorkspace& workspace) const {
   if (sample.taylor.cols() < 3)
-    throw std::invalid_argument("inverse dynamics needs accelerations: solve the sweep with order 2 or more");
+    throw Error(ErrorKind::BadInput, "inverse dynamics needs accelerations: solve the sweep with order 2 or more");
   ++solves;
   DynamicsResult out;
   out.motion = sample_motion(*mechanism_, sample);

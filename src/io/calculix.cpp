@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar::fe {
 
 void write_calculix_input(std::ostream& out, const PlateModel& model, const LoadCase& loads,
@@ -36,7 +38,7 @@ namespace {
 // A result line: " -1", the node number in 10 columns, then values in 12 columns each.
 void read_result_line(const std::string& line, int line_number, int values, std::vector<double>& into, int& node) {
   const auto fail = [&] {
-    throw std::runtime_error(fmt::format("CalculiX results, line {}: cannot read the result line '{}'", line_number, line));
+    throw Error(ErrorKind::BadInput, fmt::format("CalculiX results, line {}: cannot read the result line '{}'", line_number, line));
   };
   if (line.size() < 13 + 12 * static_cast<std::size_t>(values)) fail();
   try {

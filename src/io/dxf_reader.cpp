@@ -20,6 +20,7 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/sketch.hpp"
 #include "nbar/model/curves.hpp"
+#include "nbar/model/diagnostics.hpp"
 
 namespace nbar::io {
 
@@ -367,7 +368,9 @@ class SketchBuilder {
       auto nurbs = std::make_shared<const BSpline>(degree, control, knots, weights);
       const Vector2d a = (*nurbs)(nurbs->start()), b = (*nurbs)(nurbs->end());
       add_stroke(e, {{a, b, 0, [nurbs](double u) { return (*nurbs)(u); }, nurbs->start(), nurbs->end()}}, closed);
-    } catch (const std::invalid_argument& error) {
+    } catch (const ModelFileError&) {
+      throw;  // already placed in the file
+    } catch (const Error& error) {  // the curve's own complaint
       reader_.fail(e.line, std::string("SPLINE: ") + error.what());
     }
   }

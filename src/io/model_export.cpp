@@ -1,6 +1,7 @@
 #include "nbar/io/model_export.hpp"
 
 #include "nbar/io/yaml_support.hpp"
+#include "nbar/model/diagnostics.hpp"
 
 #include <fmt/format.h>
 
@@ -116,7 +117,7 @@ void refuse_kinetics(const Model& m) {
   if (!m.gravity.isZero()) what = "it has gravity";
   if (!m.point_loads.empty() || !m.torques.empty()) what = "it has loads";
   if (!m.springs.empty()) what = "it has springs";
-  if (!what.empty()) throw std::invalid_argument("only kinematic models can be written as model files yet: " + what);
+  if (!what.empty()) throw Error(ErrorKind::BadInput, "only kinematic models can be written as model files yet: " + what);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 #include "nbar/io/results_writer.hpp"
 
-#include "nbar/model/units.hpp"
 #include "nbar/io/json_text.hpp"
+#include "nbar/model/diagnostics.hpp"
+#include "nbar/model/units.hpp"
 
 #include <fmt/format.h>
 
@@ -180,7 +181,7 @@ void write_table(std::ostream& out, const std::string& format, const Analysis& a
   else if (format == "csv")
     write_csv(out, table);
   else
-    throw std::invalid_argument("a table is written as csv, table or json, not '" + format + "'");
+    throw Error(ErrorKind::BadInput, "a table is written as csv, table or json, not '" + format + "'");
 }
 
 namespace {

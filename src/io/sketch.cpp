@@ -143,7 +143,7 @@ SketchLoop polygonised_loop(const Chained& c, double tolerance, const std::strin
     std::vector<Vector2d> points;
     try {
       points = sample_curve(g.curve, g.s0, g.s1, tolerance);
-    } catch (const std::invalid_argument& error) {
+    } catch (const Error& error) {
       fail_at(file, c.lines[i], std::string("this curve: ") + error.what());
     }
     points.front() = g.a;
@@ -222,7 +222,7 @@ void check_loop(const SketchLoop& loop, const std::string& file) {
   }
   try {
     check_region(r);
-  } catch (const std::invalid_argument& error) {
+  } catch (const Error& error) {
     const std::string message = error.what();
     const std::vector<EdgeMention> edges = edge_mentions(message);
     if (edges.size() == 2 && message.find(" meets ") != std::string::npos) {
@@ -487,7 +487,7 @@ Region checked_plate_from_sketch(const Sketch& sketch, double scale, const std::
   Region r = plate_from_sketch(sketch, scale);
   try {
     check_region(r);
-  } catch (const std::invalid_argument& error) {
+  } catch (const Error& error) {
     std::size_t outer = 0;
     for (std::size_t i = 1; i < sketch.loops.size(); ++i)
       if (sketch.loops[i].area() > sketch.loops[outer].area()) outer = i;

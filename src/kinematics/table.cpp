@@ -7,6 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar {
 
 namespace {
@@ -217,7 +219,7 @@ std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns, c
       any = true;
       if (std::find(picked.begin(), picked.end(), c) == picked.end()) picked.push_back(c);
     }
-    if (!any) throw std::invalid_argument(no_column_message(pattern, columns));
+    if (!any) throw Error(ErrorKind::BadInput, no_column_message(pattern, columns));
   }
   return picked;
 }

@@ -8,13 +8,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar {
 
 namespace {
 
 using Eigen::Vector2d;
 
-[[noreturn]] void fail(const std::string& message) { throw std::invalid_argument(message); }
+[[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
 
 // Distance from p to the segment a-b (not the line: a curve that doubles back is caught).
 double distance_to_segment(const Vector2d& p, const Vector2d& a, const Vector2d& b) {

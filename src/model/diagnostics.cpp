@@ -16,6 +16,7 @@ const char* to_string(ErrorKind kind) {
     case ErrorKind::StoppedAtLimit: return "stopped_at_limit";
     case ErrorKind::UndefinedLaw: return "undefined_law";
     case ErrorKind::Cancelled: return "cancelled";
+    case ErrorKind::Internal: return "internal";
   }
   return "error";
 }

@@ -13,6 +13,8 @@
 #include <string>
 #include <utility>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar {
 
 namespace {
@@ -288,7 +290,7 @@ std::string point_text(const Vector2d& v) {
   return os.str();
 }
 
-[[noreturn]] void fail(const std::string& message) { throw std::invalid_argument(message); }
+[[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
 
 double orient(const Vector2d& a, const Vector2d& b, const Vector2d& c) {
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());

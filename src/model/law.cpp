@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar {
 
 namespace {
@@ -67,7 +69,7 @@ Series absolute(const Series& x) {
   if (x[0] != 0.0) return x[0] > 0.0 ? x : -x;
   for (int m = 1; m < x.terms(); ++m) {
     if (x[m] == 0.0) continue;
-    if (m % 2 == 1) throw std::domain_error("abs is not differentiable at 0");
+    if (m % 2 == 1) throw Error(ErrorKind::UndefinedLaw, "abs is not differentiable at 0");
     return x[m] > 0.0 ? x : -x;
   }
   // x vanishes to the order kept, hence so does |x|.
@@ -420,7 +422,7 @@ Law Law::parse(const std::string& text, double scale, std::string_view variable)
 }
 
 double Law::value(double t) const {
-  if (!root_) throw std::logic_error("law evaluated before being parsed");
+  if (!root_) throw Error(ErrorKind::BadInput, "law evaluated before being parsed");
   const double v = root_->evaluate(t) * scale_;
   if (!std::isfinite(v)) {
     throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " is undefined at " + variable_ + " = " + format_time(t));
@@ -429,17 +431,17 @@ double Law::value(double t) const {
 }
 
 Series Law::series(double t0, int terms) const {
-  if (!root_) throw std::logic_error("law evaluated before being parsed");
+  if (!root_) throw Error(ErrorKind::BadInput, "law evaluated before being parsed");
   if (terms < 1 || terms > Series::kCapacity) {
-    throw std::invalid_argument("law series needs 1 to " + std::to_string(Series::kCapacity) +
+    throw Error(ErrorKind::BadInput, "law series needs 1 to " + std::to_string(Series::kCapacity) +
                                 " terms, got " + std::to_string(terms));
   }
   Series s;
   try {
     s = root_->evaluate(Series::variable(terms, t0));
-  } catch (const std::domain_error& e) {  // from an operation that has no derivative there
+  } catch (const Error& e) {  // from an operation that has no derivative there (abs at 0)
     throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " at " + variable_ + " = " + format_time(t0) + ": " +
-                            e.what());
+                            e.message());
   }
   s *= scale_;
   if (!std::isfinite(s[0])) {

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
 
 namespace nbar {
@@ -534,7 +535,7 @@ class Validator {
       if (b.shape) {
         try {
           check_region(*b.shape);
-        } catch (const std::invalid_argument& error) {
+        } catch (const Error& error) {
           fail(where, "the shape of " + name + " is not valid: " + error.what());
         }
         if (!std::isfinite(b.thickness) || b.thickness <= 0.0) {

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar {
 
 std::optional<double> length_unit_scale(const std::string& unit) {
@@ -53,9 +55,9 @@ Quantity parse_rate(const std::string& text, int order) {
   try {
     number = std::stod(s, &used);
   } catch (const std::exception&) {
-    throw std::invalid_argument("expected a number followed by a unit, got '" + text + "'");
+    throw Error(ErrorKind::BadInput, "expected a number followed by a unit, got '" + text + "'");
   }
-  if (!std::isfinite(number)) throw std::invalid_argument("'" + text + "' is not a finite number");
+  if (!std::isfinite(number)) throw Error(ErrorKind::BadInput, "'" + text + "' is not a finite number");
   std::string unit = trim(std::string_view(s).substr(used));
   // Accept "s2", "s^2", "s²" alike for accelerations.
   const std::string per = order == 1 ? "/s" : "/s^2";
@@ -77,11 +79,11 @@ Quantity parse_rate(const std::string& text, int order) {
     bool fits = true;
     try {
       parse_rate(suggestion, order);
-    } catch (const std::invalid_argument&) {
+    } catch (const Error&) {
       fits = false;
     }
     if (fits)
-      throw std::invalid_argument("'" + text + "': units are case-sensitive: did you mean '" + suggestion + "'?");
+      throw Error(ErrorKind::BadInput, "'" + text + "': units are case-sensitive: did you mean '" + suggestion + "'?");
   }
   Quantity q;
   if (order == 1 && unit == "rpm") {
@@ -91,7 +93,7 @@ Quantity parse_rate(const std::string& text, int order) {
   }
   std::string base = unit;
   if (!strip_per_time(base)) {
-    throw std::invalid_argument("'" + text + "' needs a unit per time such as " +
+    throw Error(ErrorKind::BadInput, "'" + text + "' needs a unit per time such as " +
                                 (order == 1 ? std::string("rpm, rad/s, deg/s or m/s")
                                             : std::string("rad/s^2, deg/s^2 or m/s^2")));
   }
@@ -105,7 +107,7 @@ Quantity parse_rate(const std::string& text, int order) {
     q.value_si = number * *l;
     q.angular = false;
   } else {
-    throw std::invalid_argument("unknown unit '" + unit + "' in '" + text + "' (use rpm, rad" + per +
+    throw Error(ErrorKind::BadInput, "unknown unit '" + unit + "' in '" + text + "' (use rpm, rad" + per +
                                 ", deg" + per + ", rev" + per + ", m" + per + ", mm" + per + ", in" + per + "...)");
   }
   return q;

@@ -1,6 +1,7 @@
 #include "nbar/render/animation.hpp"
-#include "nbar/render/stress_map.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/file_errors.hpp"
+#include "nbar/render/stress_map.hpp"
 
 #include <cgif.h>
 #include <stdlib.h>
@@ -72,7 +73,7 @@ void write_text_file(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   if (out) out << text;
   if (out) out.close();  // a full disk fails here, after the text was taken
-  if (!out) throw std::runtime_error(cannot_write_message(path));
+  if (!out) throw Error(ErrorKind::Internal, cannot_write_message(path));
 }
 
 // The angle (deg) equal to `angle` modulo 360 that is nearest to `previous`.
@@ -202,8 +203,8 @@ Animation::Animation(std::shared_ptr<const Mechanism> mechanism, const SweepResu
       fps_(fps),
       view_(fit_view(mech_, sweep_, options)) {
   const Mechanism& mech = mech_;
-  if (sweep.samples.empty()) throw std::invalid_argument("there is no solved pose to animate");
-  if (!(fps > 0) || !std::isfinite(fps)) throw std::invalid_argument("frames per second must be positive");
+  if (sweep.samples.empty()) throw Error(ErrorKind::BadInput, "there is no solved pose to animate");
+  if (!(fps > 0) || !std::isfinite(fps)) throw Error(ErrorKind::BadInput, "frames per second must be positive");
   const int n = static_cast<int>(sweep.samples.size());
   const auto first = sample_points(mech, sweep.samples.front());
   if (n > 2) {
@@ -299,7 +300,7 @@ void Animation::write_gif(const std::string& path) const {
 
 std::vector<std::uint8_t> Animation::gif_bytes() const {
   const int w = options_.width, h = options_.height;
-  if (w > 65535 || h > 65535) throw std::invalid_argument("a GIF is at most 65535 pixels wide and high");
+  if (w > 65535 || h > 65535) throw Error(ErrorKind::BadInput, "a GIF is at most 65535 pixels wide and high");
   // Two passes: the colours of every frame, then the frames in that palette. Without
   // antialiasing the colours are those drawn and the blends of translucent plates.
   Palette palette;
@@ -323,7 +324,7 @@ std::vector<std::uint8_t> Animation::gif_bytes() const {
   config.height = static_cast<std::uint16_t>(h);
   CGIF* gif = cgif_newgif(&config);
   const std::string failure = "cannot make the GIF";
-  if (!gif) throw std::runtime_error(failure);
+  if (!gif) throw Error(ErrorKind::Internal, failure);
 
   std::vector<std::uint8_t> indices(static_cast<std::size_t>(w) * h);
   int result = CGIF_OK;
@@ -356,7 +357,7 @@ std::vector<std::uint8_t> Animation::gif_bytes() const {
     result = cgif_addframe(gif, &frame);
   }
   const int closed = cgif_close(gif);
-  if (result != CGIF_OK || closed != CGIF_OK) throw std::runtime_error(failure);
+  if (result != CGIF_OK || closed != CGIF_OK) throw Error(ErrorKind::Internal, failure);
   return bytes;
 }
 
@@ -429,7 +430,7 @@ std::string animate_element(const std::string& type, const std::string& values, 
 
 std::string Animation::svg_animation() const {
   if (shows_stresses())
-    throw std::invalid_argument("stress colours change from frame to frame, which only GIF and MP4 animations draw "
+    throw Error(ErrorKind::BadInput, "stress colours change from frame to frame, which only GIF and MP4 animations draw "
                                 "(an SVG animation moves the bodies of its first frame)");
   SvgCanvas svg(options_.width, options_.height);
   draw_mechanism(svg, view_, mech_, sweep_, points_[0], options_);
@@ -496,7 +497,7 @@ std::string Animation::readout(int frame) const {
 
 std::string Animation::html_animation() const {
   if (shows_stresses())
-    throw std::invalid_argument("stress colours change from frame to frame, which only GIF and MP4 animations draw "
+    throw Error(ErrorKind::BadInput, "stress colours change from frame to frame, which only GIF and MP4 animations draw "
                                 "(an HTML animation moves the bodies of its first frame)");
   SvgCanvas svg(options_.width, options_.height);
   draw_mechanism(svg, view_, mech_, sweep_, points_[0], options_);
@@ -648,7 +649,7 @@ void Animation::write_html_animation(const std::string& path) const { write_text
 // ---------------------------------------------------------------------------------------- MP4
 
 void Animation::write_mp4(const std::string& path) const {
-  if (!program_available("ffmpeg")) throw std::runtime_error("MP4 needs the ffmpeg program: apt-get install ffmpeg");
+  if (!program_available("ffmpeg")) throw Error(ErrorKind::Internal, "MP4 needs the ffmpeg program: apt-get install ffmpeg");
   const int w = options_.width, h = options_.height;
   std::string command = "ffmpeg -y -loglevel error -f rawvideo -pix_fmt bgra -s ";
   command += std::to_string(w);
@@ -685,31 +686,27 @@ void Animation::write_mp4(const std::string& path) const {
     std::string message = "cannot write ";
     message += path;
     message += ": ffmpeg failed";
-    throw std::runtime_error(message);
+    throw Error(ErrorKind::Internal, message);
   }
 }
 
 std::vector<std::uint8_t> Animation::mp4_bytes() const {
   // ffmpeg writes a seekable file (the index goes at its start): a private folder, removed after.
   char folder[] = "/tmp/nbar-mp4-XXXXXX";
-  if (!::mkdtemp(folder)) throw std::runtime_error("cannot make a temporary folder for the MP4");
+  if (!::mkdtemp(folder)) throw Error(ErrorKind::Internal, "cannot make a temporary folder for the MP4");
   const std::string path = std::string(folder) + "/animation.mp4";
   std::vector<std::uint8_t> bytes;
-  std::string failure;
-  std::optional<Error> stopped;
+  std::optional<Error> failure;  // thrown once the folder is removed
   try {
     write_mp4(path);
     std::ifstream in(path, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   } catch (const Error& e) {
-    stopped = e;
-  } catch (const std::runtime_error& e) {
-    failure = e.what();
+    failure = e;
   }
   std::error_code ignored;
   std::filesystem::remove_all(folder, ignored);
-  if (stopped) throw *stopped;
-  if (!failure.empty()) throw std::runtime_error(failure);
+  if (failure) throw *failure;
   return bytes;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "nbar/dynamics/inverse_dynamics.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/render/stress_map.hpp"
 
 namespace nbar::render {
@@ -743,8 +744,11 @@ void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, con
 
 void draw_sample(Canvas& canvas, const Mechanism& mech, const SweepResult& sweep, int step,
                  const DrawOptions& options) {
+  if (step < 0 || static_cast<std::size_t>(step) >= sweep.samples.size())
+    throw Error(ErrorKind::BadInput, "step " + std::to_string(step) + " is not one of the sweep's " +
+                                         std::to_string(sweep.samples.size()) + " samples");
   const View view = fit_view(mech, sweep, options);
-  draw_mechanism(canvas, view, mech, sweep, sample_points(mech, sweep.samples.at(step)), options);
+  draw_mechanism(canvas, view, mech, sweep, sample_points(mech, sweep.samples[static_cast<std::size_t>(step)]), options);
 }
 
 std::vector<PixelTransform> body_transforms(const Mechanism& mech, const View& view,

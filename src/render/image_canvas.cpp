@@ -1,4 +1,5 @@
 #include "nbar/render/image_canvas.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/file_errors.hpp"
 
 #include <cairo.h>
@@ -95,10 +96,10 @@ void release_caches_at_exit() {
 
 ImageCanvas::ImageCanvas(int width, int height, const Color& background)
     : Canvas(width, height), impl_(std::make_unique<Impl>()), background_(background) {
-  if (width <= 0 || height <= 0) throw std::invalid_argument("an image needs a positive width and height");
+  if (width <= 0 || height <= 0) throw Error(ErrorKind::BadInput, "an image needs a positive width and height");
   impl_->surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height);
   if (cairo_surface_status(impl_->surface) != CAIRO_STATUS_SUCCESS)
-    throw std::runtime_error("cannot create a " + std::to_string(width) + "x" + std::to_string(height) +
+    throw Error(ErrorKind::Internal, "cannot create a " + std::to_string(width) + "x" + std::to_string(height) +
                              " image: " + describe(cairo_surface_status(impl_->surface)));
   impl_->cr = cairo_create(impl_->surface);
   release_caches_at_exit();
@@ -210,7 +211,7 @@ std::vector<std::uint8_t> ImageCanvas::png_bytes() const {
   cairo_surface_flush(impl_->surface);
   std::vector<std::uint8_t> bytes;
   const cairo_status_t status = cairo_surface_write_to_png_stream(impl_->surface, &append_png, &bytes);
-  if (status != CAIRO_STATUS_SUCCESS) throw std::runtime_error(std::string("cannot encode the PNG: ") + describe(status));
+  if (status != CAIRO_STATUS_SUCCESS) throw Error(ErrorKind::Internal, std::string("cannot encode the PNG: ") + describe(status));
   return bytes;
 }
 
@@ -219,7 +220,7 @@ void ImageCanvas::write_png(const std::string& path) const {
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   if (out) out.close();  // a full disk fails here, after the bytes were taken
-  if (!out) throw std::runtime_error(cannot_write_message(path));
+  if (!out) throw Error(ErrorKind::Internal, cannot_write_message(path));
 }
 
 ImageCanvas ImageCanvas::read_png(const std::string& path) {
@@ -231,7 +232,7 @@ ImageCanvas ImageCanvas::read_png(const std::string& path) {
     message += path;
     message += ": ";
     message += describe(status);
-    throw std::runtime_error(message);
+    throw Error(ErrorKind::Internal, message);
   }
   ImageCanvas image(cairo_image_surface_get_width(png), cairo_image_surface_get_height(png),
                     Color{0, 0, 0, 0});
@@ -254,7 +255,7 @@ const std::uint8_t* ImageCanvas::data() const {
 }
 
 Color ImageCanvas::pixel(int x, int y) const {
-  if (x < 0 || y < 0 || x >= width() || y >= height()) throw std::out_of_range("pixel outside the image");
+  if (x < 0 || y < 0 || x >= width() || y >= height()) throw Error(ErrorKind::BadInput, "pixel outside the image");
   const std::uint8_t* p = data() + static_cast<std::ptrdiff_t>(y) * stride() + 4 * x;
   const std::uint8_t a = p[3];
   auto unpremultiply = [a](std::uint8_t v) {

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar::render {
 
 namespace {
@@ -206,10 +208,10 @@ bool plots_a_path(const PlotSpec& spec) {
 }
 
 std::vector<double> nice_ticks(double lo, double hi, int target) {
-  if (!std::isfinite(lo) || !std::isfinite(hi)) throw std::invalid_argument("nice_ticks: the range is not finite");
+  if (!std::isfinite(lo) || !std::isfinite(hi)) throw Error(ErrorKind::BadInput, "nice_ticks: the range is not finite");
   if (std::abs(lo) > kLargest || std::abs(hi) > kLargest)
-    throw std::invalid_argument("nice_ticks: the range is too large (beyond 1e300)");
-  if (target < 1 || target > 1000) throw std::invalid_argument("nice_ticks: the target must be 1 to 1000 intervals");
+    throw Error(ErrorKind::BadInput, "nice_ticks: the range is too large (beyond 1e300)");
+  if (target < 1 || target > 1000) throw Error(ErrorKind::BadInput, "nice_ticks: the target must be 1 to 1000 intervals");
   if (lo > hi) std::swap(lo, hi);
   const double size = std::max(std::abs(lo), std::abs(hi));
   if (hi - lo <= 1e-10 * size || hi - lo < 1e-290) {
@@ -290,12 +292,12 @@ constexpr double kPad = 12, kSwatch = 24, kEntryHeight = 18;
 void check_spec(const PlotSpec& spec) {
   for (const PlotSeries& s : spec.series)
     if (s.y.size() != spec.x.size())
-      throw std::invalid_argument("plot: series '" + s.name + "' has " + std::to_string(s.y.size()) +
+      throw Error(ErrorKind::BadInput, "plot: series '" + s.name + "' has " + std::to_string(s.y.size()) +
                                   " values for " + std::to_string(spec.x.size()) + " values of " + spec.x_name);
   if (spec.y_lo.has_value() != spec.y_hi.has_value())
-    throw std::invalid_argument("plot: a fixed y range needs both ends");
+    throw Error(ErrorKind::BadInput, "plot: a fixed y range needs both ends");
   if (spec.y_lo && !(usable(*spec.y_lo) && usable(*spec.y_hi) && *spec.y_lo < *spec.y_hi))
-    throw std::invalid_argument("plot: the fixed y range must be finite and increasing");
+    throw Error(ErrorKind::BadInput, "plot: the fixed y range must be finite and increasing");
 }
 
 // Data ranges over the samples that can be drawn.
@@ -626,8 +628,9 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
 }
 
 void set_plot_data(PlotSpec& spec, const ResultTable& x_column, const ResultTable& y_columns) {
-  spec.x_name = x_column.columns.at(0);
-  spec.x_unit = x_column.units.at(0);
+  if (x_column.columns.empty() || x_column.units.empty()) throw Error(ErrorKind::BadInput, "plot: there is no x column");
+  spec.x_name = x_column.columns.front();
+  spec.x_unit = x_column.units.front();
   spec.x.clear();
   for (const auto& row : x_column.rows) spec.x.push_back(row[0]);
   spec.series.clear();

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/render/canvas.hpp"
 
 namespace nbar::render {
@@ -164,7 +165,10 @@ std::string drawing_scene_json(const Mechanism& mech, const SweepResult& sweep, 
     reference_step = 0;
   } else {
     if (reference_step < 0) reference_step = default_drawn_step(mech, sweep);
-    reference = sample_points(mech, sweep.samples.at(static_cast<std::size_t>(reference_step)));
+    if (static_cast<std::size_t>(reference_step) >= sweep.samples.size())
+      throw Error(ErrorKind::BadInput, "step " + std::to_string(reference_step) + " is past the sweep's " +
+                                           std::to_string(sweep.samples.size()) + " samples");
+    reference = sample_points(mech, sweep.samples[static_cast<std::size_t>(reference_step)]);
   }
   SceneCanvas canvas(options.width, options.height);
   draw_mechanism(canvas, view, mech, sweep, reference, options);

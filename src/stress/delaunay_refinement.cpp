@@ -14,9 +14,10 @@
 #include <cstdint>
 #include <deque>
 #include <numbers>
-#include <stdexcept>
 #include <string>
 #include <unordered_map>
+
+#include "nbar/model/diagnostics.hpp"
 
 namespace nbar::fe::detail {
 namespace {
@@ -191,7 +192,7 @@ class Refiner {
     for (std::size_t i = 0; i < in_.points.size(); ++i) {
       const int seed = locate(in_.points[i], last);
       if (seed < 0 || !make_cavity(in_.points[i], seed)) {
-        throw std::runtime_error("mesher: could not insert a boundary point");
+        throw Error(ErrorKind::Internal, "mesher: could not insert a boundary point");
       }
       commit(add_vertex(in_.points[i], in_.corner[i] != 0, true));
       last = new_tris_.front();
@@ -341,7 +342,7 @@ class Refiner {
     for (int t : new_tris_) {
       Tri& tri = tris_[t];
       const int across_bv = fan_start_[tri.v[1]];  // (b, c, v) shares the edge b-v
-      if (across_bv < 0) throw std::runtime_error("mesher: a cavity's rim is not closed");
+      if (across_bv < 0) throw Error(ErrorKind::Internal, "mesher: a cavity's rim is not closed");
       tri.n[0] = across_bv;
       tris_[across_bv].n[1] = t;
     }
@@ -420,8 +421,8 @@ class Refiner {
     const double tm = s.ta + f * (s.tb - s.ta);
     const Vector2d m = in_.curved[s.curve] ? in_.curve_point(s.curve, tm) : Vector2d(pa + f * (pb - pa));
     const int seed = locate(m, vertex_tri_[s.a]);
-    if (seed < 0) throw std::runtime_error("mesher: could not locate a boundary split");
-    if (!make_cavity(m, seed)) throw std::runtime_error("mesher: could not split a boundary segment");
+    if (seed < 0) throw Error(ErrorKind::Internal, "mesher: could not locate a boundary split");
+    if (!make_cavity(m, seed)) throw Error(ErrorKind::Internal, "mesher: could not split a boundary segment");
     remove_segment(si);
     // Other segments inside the cavity would stop being edges: split them too.
     find_cavity_segments();
@@ -462,7 +463,7 @@ class Refiner {
       if (tri.inside && is_bad(t)) tri_queue_.push_back(t);
     }
     if (static_cast<int>(pts_.size()) - kSuper > in_.max_vertices) {
-      throw std::length_error("mesher: more than " + std::to_string(in_.max_vertices) + " vertices");
+      throw VertexBudgetExceeded("mesher: more than " + std::to_string(in_.max_vertices) + " vertices");
     }
   }
 
@@ -476,7 +477,7 @@ class Refiner {
       const bool edge = is_edge(segs_[s].s.a, segs_[s].s.b);
       if (!edge && !long_enough(segs_[s])) {
         const Vector2d& at = pts_[segs_[s].s.a];
-        throw std::runtime_error("the boundary cannot be resolved near (" + std::to_string(at.x()) + ", " +
+        throw Error(ErrorKind::BadInput, "the boundary cannot be resolved near (" + std::to_string(at.x()) + ", " +
                                  std::to_string(at.y()) + ") m: a corner too sharp or parts too close");
       }
       if (!edge || (long_enough(segs_[s]) && encroached(segs_[s]))) split_segment(s);
@@ -567,11 +568,11 @@ class Refiner {
 
   void check_conformity() const {
     for (const Seg& seg : segs_) {
-      if (seg.alive && !is_edge(seg.s.a, seg.s.b)) throw std::runtime_error("mesher: a boundary segment was lost");
+      if (seg.alive && !is_edge(seg.s.a, seg.s.b)) throw Error(ErrorKind::Internal, "mesher: a boundary segment was lost");
     }
     for (const Tri& tri : tris_) {
       if (tri.alive && tri.inside && (tri.v[0] < kSuper || tri.v[1] < kSuper || tri.v[2] < kSuper)) {
-        throw std::runtime_error("mesher: the boundary is not closed");
+        throw Error(ErrorKind::Internal, "mesher: the boundary is not closed");
       }
     }
   }

@@ -7,9 +7,18 @@
 
 #include <array>
 #include <functional>
+#include <string>
 #include <vector>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar::fe::detail {
+
+// Refinement needs more vertices than RefinementInput::max_vertices allows.
+class VertexBudgetExceeded : public Error {
+ public:
+  explicit VertexBudgetExceeded(const std::string& message) : Error(ErrorKind::BadInput, message) {}
+};
 
 // A piece of boundary from vertex a to vertex b with the plate on its left, lying on curve
 // `curve` between its parameters ta (at a) and tb (at b).
@@ -29,7 +38,7 @@ struct RefinementInput {
   std::function<double(const Eigen::Vector2d&)> size_at;  // wanted edge length near a point
   double min_angle_deg = 28.0;  // triangles with a smaller angle are refined
   double min_length = 0.0;      // triangles and segments shorter than this are left alone
-  int max_vertices = 0;         // refinement throws std::length_error beyond this
+  int max_vertices = 0;         // refinement throws VertexBudgetExceeded beyond this
   int smoothing_passes = 2;
 };
 
@@ -40,8 +49,8 @@ struct RefinedMesh {
   std::vector<BoundarySegment> segments;         // the boundary, subdivided, plate on the left
 };
 
-// Throws std::length_error when the mesh would need more than max_vertices vertices, and
-// std::runtime_error if the boundary cannot be recovered (a bug, not bad input).
+// Throws VertexBudgetExceeded when the mesh would need more than max_vertices vertices, and
+// Error(ErrorKind::Internal) if the boundary cannot be recovered (a bug, not bad input).
 RefinedMesh refine(const RefinementInput& input);
 
 }  // namespace nbar::fe::detail

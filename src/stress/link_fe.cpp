@@ -151,7 +151,7 @@ LinkFe::LinkFe(std::shared_ptr<const InverseDynamics> dynamics, const FeOptions&
       link = std::make_unique<Link>(index, *body.shape,
                                     fe::PlateModel(fe::mesh_region(*body.shape, mesh_options), material),
                                     mesh_options.size);
-    } catch (const std::invalid_argument& e) {
+    } catch (const Error& e) {
       fail_at_body(index, "the plate of " + body_name(m, index) + " cannot be analysed by finite elements: " + e.what());
     }
     const fe::TriMesh& mesh = link->plate.mesh();
@@ -173,7 +173,7 @@ bool LinkFe::analysed(int body) const {
 }
 
 const fe::PlateModel& LinkFe::plate(int body) const {
-  if (!analysed(body)) throw std::invalid_argument("body " + std::to_string(body) + " has no plate model");
+  if (!analysed(body)) throw Error(ErrorKind::BadInput, "body " + std::to_string(body) + " has no plate model");
   return links_[body]->plate;
 }
 
@@ -199,7 +199,7 @@ const PlatePlacement& LinkFe::placement(const Link& link, const Eigen::Vector2d&
 }
 
 fe::LoadCase LinkFe::load_case(const DynamicsResult& forces, int body) const {
-  if (!analysed(body)) throw std::invalid_argument("body " + std::to_string(body) + " has no plate model");
+  if (!analysed(body)) throw Error(ErrorKind::BadInput, "body " + std::to_string(body) + " has no plate model");
   const Link& link = *links_[body];
   const Model& m = dynamics_->mechanism().model();
   const BodyMotion bm = body_motion(m, forces.motion, body);

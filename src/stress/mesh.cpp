@@ -2,6 +2,7 @@
 // graded away from holes, arcs and re-entrant corners, the boundary cut to that size, conforming
 // Delaunay refinement (delaunay_refinement.cpp), then mid-side nodes, on the true curve for
 // boundary edges on arcs and circles.
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/stress/mesh.hpp"
 
 #include <algorithm>
@@ -31,7 +32,7 @@ constexpr double kReentrantTurn = 0.05;
 constexpr double kCornerRefinement = 5.0;
 constexpr double kMinAngleDeg = 28.0;
 
-[[noreturn]] void fail(const std::string& message) { throw std::invalid_argument("mesh: " + message); }
+[[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::BadInput, "mesh: " + message); }
 
 double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -455,10 +456,10 @@ TriMesh mesh_region(const Region& r, const MeshOptions& options) {
   detail::RefinedMesh refined;
   try {
     refined = detail::refine(in);
-  } catch (const std::length_error&) {
+  } catch (const detail::VertexBudgetExceeded&) {
     fail("the mesh would have more than max_nodes = " + std::to_string(options.max_nodes) +
          " nodes; use a larger element size");
-  } catch (const std::runtime_error& e) {
+  } catch (const Error& e) {
     fail(std::string("could not mesh the plate: ") + e.what());
   }
   return quadratic_mesh(refined, b, options.max_nodes);

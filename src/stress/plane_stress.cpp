@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "nbar/model/diagnostics.hpp"
+
 #include "t6_element.hpp"
 
 namespace nbar::fe {
@@ -30,7 +32,7 @@ std::string at_point(const Eigen::Vector2d& p) {
 }
 
 void check_material(const ElasticMaterial& m) {
-  const auto bad = [](const std::string& what) { throw std::invalid_argument("finite elements: " + what); };
+  const auto bad = [](const std::string& what) { throw Error(ErrorKind::BadInput, "finite elements: " + what); };
   if (!(std::isfinite(m.youngs_modulus) && m.youngs_modulus > 0)) bad("Young's modulus must be a positive number");
   if (!(m.poisson_ratio >= 0 && m.poisson_ratio < 0.5)) bad("Poisson's ratio must be in [0, 0.5)");
   if (!(std::isfinite(m.thickness) && m.thickness > 0)) bad("the plate thickness must be a positive number");
@@ -40,7 +42,7 @@ void check_material(const ElasticMaterial& m) {
 // Every index in range, every node finite and used, one connected piece (else the stiffness is
 // singular beyond the three rigid-body modes the supports remove).
 void check_mesh(const TriMesh& mesh) {
-  const auto bad = [](const std::string& what) { throw std::invalid_argument("finite elements: the mesh " + what); };
+  const auto bad = [](const std::string& what) { throw Error(ErrorKind::BadInput, "finite elements: the mesh " + what); };
   const int n = static_cast<int>(mesh.nodes.size());
   if (mesh.triangles.empty() || n < 6) bad("has no triangles");
   for (const Eigen::Vector2d& p : mesh.nodes)
@@ -300,7 +302,7 @@ void PlateModel::Impl::integrate_geometry() {
       const Eigen::Matrix<double, 6, 1> shape = t6::shape(q.xi, q.eta);
       const double det_j = t6::jacobian(e, t6::shape_derivatives(q.xi, q.eta)).determinant();
       if (!(det_j > 0))
-        throw std::invalid_argument("finite elements: triangle " + std::to_string(t) + " near " +
+        throw Error(ErrorKind::BadInput, "finite elements: triangle " + std::to_string(t) + " near " +
                                     at_point(t6::position(e, shape)) + " is inverted or degenerate");
       const Eigen::Vector2d x = t6::position(e, shape);
       for (int i = 0; i < 6; ++i) {
@@ -343,7 +345,7 @@ void PlateModel::Impl::find_holes() {
 const HoleGeometry& PlateModel::Impl::hole(int index) const {
   const auto it = holes.find(index);
   if (it == holes.end())
-    throw std::invalid_argument("finite elements: the plate has no circle hole " + std::to_string(index) +
+    throw Error(ErrorKind::BadInput, "finite elements: the plate has no circle hole " + std::to_string(index) +
                                 " (it has " + std::to_string(holes.size()) + ")");
   return it->second;
 }
@@ -360,7 +362,7 @@ void PlateModel::Impl::assemble_and_factorise() {
       Eigen::Matrix<double, 3, 12> b;
       double det_j = 0;
       if (!t6::strain_matrix(e, q.xi, q.eta, b, det_j))
-        throw std::invalid_argument("finite elements: triangle " + std::to_string(t) + " is inverted or degenerate");
+        throw Error(ErrorKind::BadInput, "finite elements: triangle " + std::to_string(t) + " is inverted or degenerate");
       k.noalias() += (q.weight * det_j * thickness) * (b.transpose() * elasticity * b);
     };
     if (t6::is_curved(e))
@@ -388,7 +390,7 @@ void PlateModel::Impl::assemble_and_factorise() {
   support_rows.setFromTriplets(support_part.begin(), support_part.end());
   const Eigen::SimplicialLLT<SparseColumns> factor(stiffness);
   if (factor.info() != Eigen::Success)
-    throw std::invalid_argument("finite elements: the stiffness matrix could not be factorised (degenerate mesh?)");
+    throw Error(ErrorKind::BadInput, "finite elements: the stiffness matrix could not be factorised (degenerate mesh?)");
   keep_factor(factor);
 }
 
@@ -405,7 +407,7 @@ void PlateModel::Impl::build_recovery() {
       Eigen::Matrix<double, 3, 12> b;
       double det_j = 0;
       if (!t6::strain_matrix(e, t6::kNodeNatural[local][0], t6::kNodeNatural[local][1], b, det_j))
-        throw std::invalid_argument("finite elements: triangle " + std::to_string(t) + " is inverted at its node " +
+        throw Error(ErrorKind::BadInput, "finite elements: triangle " + std::to_string(t) + " is inverted at its node " +
                                     at_point(e[local]));
       const int node = mesh.triangles[t][local];
       const Eigen::Matrix<double, 3, 12> db = (1.0 / sharing[node]) * (elasticity * b);
@@ -455,7 +457,7 @@ std::vector<Eigen::Vector2d> PlateModel::Impl::hole_traction(const HoleGeometry&
 double PlateModel::Impl::add_bearing(const BearingLoad& load, Eigen::VectorXd& f) const {
   const HoleGeometry& h = hole(load.hole);
   if (!load.force.allFinite())
-    throw std::invalid_argument("finite elements: the bearing force on hole " + std::to_string(load.hole) + " is not finite");
+    throw Error(ErrorKind::BadInput, "finite elements: the bearing force on hole " + std::to_string(load.hole) + " is not finite");
   const double magnitude = load.force.norm();
   if (magnitude == 0) return 0;
   const Eigen::Vector2d direction = load.force / magnitude;
@@ -478,7 +480,7 @@ double PlateModel::Impl::add_bearing(const BearingLoad& load, Eigen::VectorXd& f
 double PlateModel::Impl::add_couple(const HoleCouple& load, Eigen::VectorXd& f) const {
   const HoleGeometry& h = hole(load.hole);
   if (!std::isfinite(load.moment))
-    throw std::invalid_argument("finite elements: the couple on hole " + std::to_string(load.hole) + " is not finite");
+    throw Error(ErrorKind::BadInput, "finite elements: the couple on hole " + std::to_string(load.hole) + " is not finite");
   if (load.moment == 0) return 0;
   const double tau = load.moment / (2 * std::numbers::pi * h.radius * h.radius * material.thickness);
   const std::vector<Eigen::Vector2d> part = hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
@@ -494,7 +496,7 @@ double PlateModel::Impl::add_couple(const HoleCouple& load, Eigen::VectorXd& f) 
 // force and whose centre is the point (so its moment is exact), instead of one node's singularity.
 double PlateModel::Impl::add_point_force(const PointForce& load, Eigen::VectorXd& f) const {
   if (!load.force.allFinite() || !load.at.allFinite())
-    throw std::invalid_argument("finite elements: a point force or its point is not finite");
+    throw Error(ErrorKind::BadInput, "finite elements: a point force or its point is not finite");
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const t6::Element e = t6::element_nodes(mesh, static_cast<int>(t));
     Eigen::Vector2d lo = e[0], hi = e[0];
@@ -527,14 +529,14 @@ double PlateModel::Impl::add_point_force(const PointForce& load, Eigen::VectorXd
     }
     return load.force.norm();
   }
-  throw std::invalid_argument("finite elements: the point force at " + at_point(load.at) + " is outside the plate");
+  throw Error(ErrorKind::BadInput, "finite elements: the point force at " + at_point(load.at) + " is outside the plate");
 }
 
 // b(x) = c + α (r_y, −r_x) + ω² r with c = g − a_O and r = x − O; ∫N_i b dA from the node integrals.
 double PlateModel::Impl::add_body(const RigidBodyField& body, Eigen::VectorXd& f) const {
   if (!body.origin.allFinite() || !body.origin_acceleration.allFinite() || !body.gravity.allFinite() ||
       !std::isfinite(body.omega) || !std::isfinite(body.alpha))
-    throw std::invalid_argument("finite elements: the body-force field is not finite");
+    throw Error(ErrorKind::BadInput, "finite elements: the body-force field is not finite");
   const double rho_t = material.density * material.thickness;
   if (rho_t == 0) return 0;
   const Eigen::Vector2d c = body.gravity - body.origin_acceleration;
@@ -561,8 +563,8 @@ NodalLoads PlateModel::Impl::nodal_loads(const LoadCase& loads) const {
   double nodal_total = 0;  // half the sum of magnitudes: P for a pair of opposite tractions of resultant P
   for (const auto& p : loads.nodal) {
     if (p.node < 0 || p.node >= static_cast<int>(mesh.nodes.size()))
-      throw std::invalid_argument("finite elements: a nodal force is on node " + std::to_string(p.node) + ", which does not exist");
-    if (!p.force.allFinite()) throw std::invalid_argument("finite elements: the force on node " + std::to_string(p.node) + " is not finite");
+      throw Error(ErrorKind::BadInput, "finite elements: a nodal force is on node " + std::to_string(p.node) + ", which does not exist");
+    if (!p.force.allFinite()) throw Error(ErrorKind::BadInput, "finite elements: the force on node " + std::to_string(p.node) + " is not finite");
     f.segment<2>(2 * p.node) += p.force;
     nodal_total += 0.5 * p.force.norm();
   }

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar {
 
 namespace {
@@ -79,7 +81,7 @@ Intervals minus(const Intervals& material, const Intervals& holes) {
   return out;
 }
 
-[[noreturn]] void fail(const std::string& message) { throw std::invalid_argument(message); }
+[[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
 
 }  // namespace
 

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/solve.hpp"
 
 namespace nbar::synthesis {
@@ -29,7 +30,7 @@ template <class... Parts>
   std::ostringstream message;
   message << "Burmester synthesis: ";
   (message << ... << parts);
-  throw std::invalid_argument(message.str());
+  throw Error(ErrorKind::InvalidModel, message.str());
 }
 
 Mat2 rotation(double angle) {
@@ -397,7 +398,7 @@ struct Cubic2 {
         for (int k = 0; k < 4; ++k)
           for (int l = 0; k + l < 4; ++l) {
             if (a.c[i][j] == 0 || b.c[k][l] == 0) continue;
-            if (i + j + k + l > 3) throw std::logic_error("Cubic2: degree above 3");
+            if (i + j + k + l > 3) throw Error(ErrorKind::Internal, "Cubic2: degree above 3");
             p.c[i + k][j + l] += a.c[i][j] * b.c[k][l];
           }
     return p;

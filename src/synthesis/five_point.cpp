@@ -7,6 +7,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/five_point_start.hpp"
 
 namespace nbar::synthesis {
@@ -253,17 +254,17 @@ Complex as_complex(const Eigen::Vector2d& v) { return {v.x(), v.y()}; }
 void check_task(const FivePointTask& task) {
   auto finite = [](const Eigen::Vector2d& v) { return v.allFinite(); };
   if (!finite(task.pivot_a) || !finite(task.pivot_b))
-    throw std::invalid_argument("five-point task: a pivot is not a finite number");
+    throw Error(ErrorKind::InvalidModel, "five-point task: a pivot is not a finite number");
   for (const auto& d : task.points)
-    if (!finite(d)) throw std::invalid_argument("five-point task: a precision point is not a finite number");
+    if (!finite(d)) throw Error(ErrorKind::InvalidModel, "five-point task: a precision point is not a finite number");
   double size = (task.pivot_b - task.pivot_a).norm();
   for (const auto& d : task.points) size = std::max(size, (d - task.pivot_a).norm());
   if ((task.pivot_b - task.pivot_a).norm() <= 1e-9 * size)
-    throw std::invalid_argument("five-point task: the two fixed pivots coincide");
+    throw Error(ErrorKind::InvalidModel, "five-point task: the two fixed pivots coincide");
   for (int i = 0; i < 5; ++i)
     for (int j = i + 1; j < 5; ++j)
       if ((task.points[i] - task.points[j]).norm() <= 1e-9 * size)
-        throw std::invalid_argument("five-point task: precision points " + std::to_string(i + 1) + " and " +
+        throw Error(ErrorKind::InvalidModel, "five-point task: precision points " + std::to_string(i + 1) + " and " +
                                     std::to_string(j + 1) + " coincide");
 }
 

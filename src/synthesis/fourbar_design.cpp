@@ -19,6 +19,7 @@
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/sweep.hpp"
+#include "nbar/model/diagnostics.hpp"
 
 namespace nbar::synthesis {
 
@@ -423,7 +424,7 @@ class Checker {
         if (unwrapped_[i] != state.parameter && !track(mech, state, path, unwrapped_[i]).reached) break;
         if (!measure_target(mech, state, i)) break;
       }
-    } catch (const std::exception& e) {  // ModelError, AssemblyError: the design is not a linkage
+    } catch (const Error& e) {  // ModelError, AssemblyError: the design is not a linkage
       check_.invalid = e.what();
     }
   }

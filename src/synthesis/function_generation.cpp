@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar::synthesis {
 namespace {
 
@@ -21,7 +23,7 @@ template <class... Parts>
   std::ostringstream message;
   message << "Freudenstein synthesis: ";
   (message << ... << parts);
-  throw std::invalid_argument(message.str());
+  throw Error(ErrorKind::InvalidModel, message.str());
 }
 
 // Into (-pi, pi].

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/nine_point_start.hpp"
 #include "nbar/synthesis/tracker.hpp"
 
@@ -121,7 +122,7 @@ std::vector<Arrival> track_all(const CVector& from, const CVector& to, const CVe
     for (unsigned k = 0; k < threads; ++k) pool.emplace_back(worker);
     for (auto& t : pool) t.join();
   }
-  if (stopped) throw std::runtime_error("cancelled");
+  if (stopped) throw Error(ErrorKind::Cancelled, "cancelled");
   return arrivals;
 }
 
@@ -167,23 +168,23 @@ struct OrbitSet {
 
 void check_points(const std::array<Eigen::Vector2d, 9>& points) {
   for (const auto& q : points)
-    if (!q.allFinite()) throw std::invalid_argument("nine-point task: a point is not a finite number");
+    if (!q.allFinite()) throw Error(ErrorKind::InvalidModel, "nine-point task: a point is not a finite number");
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
   for (const auto& q : points) centroid += q / 9.0;
   Eigen::Matrix<double, 9, 2> centred;
   for (int i = 0; i < 9; ++i) centred.row(i) = (points[i] - centroid).transpose();
   const double spread = centred.norm();
-  if (!(spread > 0)) throw std::invalid_argument("nine-point task: the nine points coincide");
+  if (!(spread > 0)) throw Error(ErrorKind::InvalidModel, "nine-point task: the nine points coincide");
   for (int i = 0; i < 9; ++i)
     for (int j = i + 1; j < 9; ++j)
       if ((points[i] - points[j]).norm() <= 1e-9 * spread)
-        throw std::invalid_argument("nine-point task: points " + std::to_string(i + 1) + " and " +
+        throw Error(ErrorKind::InvalidModel, "nine-point task: points " + std::to_string(i + 1) + " and " +
                                     std::to_string(j + 1) + " coincide");
   const Eigen::JacobiSVD<Eigen::Matrix<double, 9, 2>> svd(centred);
   if (svd.singularValues()[1] <= 1e-9 * svd.singularValues()[0])
-    throw std::invalid_argument("nine-point task: the nine points lie on one line, which is no four-bar's coupler curve");
+    throw Error(ErrorKind::InvalidModel, "nine-point task: the nine points lie on one line, which is no four-bar's coupler curve");
   if (common_circle(points))
-    throw std::invalid_argument("nine-point task: the nine points lie on one circle, through which infinitely many "
+    throw Error(ErrorKind::InvalidModel, "nine-point task: the nine points lie on one circle, through which infinitely many "
                                 "four-bars pass");
 }
 

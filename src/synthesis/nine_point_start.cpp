@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/nine_point_start.hpp"
 
 namespace nbar::synthesis {
@@ -102,7 +103,7 @@ const NinePointStart& nine_point_start() {
     NinePointStart s;
     if (values.size() < 33) return s;
     const auto count = static_cast<size_t>(values[0]);
-    if (values.size() != 33 + 16 * count) throw std::logic_error("nine_point_start.inc is damaged");
+    if (values.size() != 33 + 16 * count) throw Error(ErrorKind::Internal, "nine_point_start.inc is damaged");
     s.parameters.resize(16);
     for (int k = 0; k < 16; ++k) s.parameters[k] = {values[1 + 2 * k], values[2 + 2 * k]};
     for (size_t n = 0; n < count; ++n) {

@@ -14,6 +14,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/five_point.hpp"
 #include "nbar/synthesis/nine_point.hpp"
 
@@ -61,10 +62,10 @@ struct Frame {
 // Rejects what no fit can use, and gives the frame.
 Frame frame_of(const std::vector<Vector2d>& targets) {
   if (targets.size() < 10)
-    throw std::invalid_argument(fmt::format("a path fit needs at least 10 target points, not {}", targets.size()));
+    throw Error(ErrorKind::InvalidModel, fmt::format("a path fit needs at least 10 target points, not {}", targets.size()));
   Frame f;
   for (const Vector2d& t : targets) {
-    if (!t.allFinite()) throw std::invalid_argument("a target point is not finite");
+    if (!t.allFinite()) throw Error(ErrorKind::InvalidModel, "a target point is not finite");
     f.centre += t;
   }
   f.centre /= static_cast<double>(targets.size());
@@ -72,10 +73,10 @@ Frame frame_of(const std::vector<Vector2d>& targets) {
   for (const Vector2d& t : targets) spread += (t - f.centre) * (t - f.centre).transpose();
   spread /= static_cast<double>(targets.size());
   f.scale = std::sqrt(spread.trace());
-  if (!(f.scale > 0) || !std::isfinite(f.scale)) throw std::invalid_argument("the target points all coincide");
+  if (!(f.scale > 0) || !std::isfinite(f.scale)) throw Error(ErrorKind::InvalidModel, "the target points all coincide");
   const Eigen::Vector2d widths = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread).eigenvalues();
   if (widths(0) <= 1e-12 * widths(1))
-    throw std::invalid_argument("the target points lie on one straight line: a four-bar's coupler curve is fitted to a curve");
+    throw Error(ErrorKind::InvalidModel, "the target points lie on one straight line: a four-bar's coupler curve is fitted to a curve");
   return f;
 }
 
@@ -496,7 +497,8 @@ std::vector<PathStart> five_point_starts(const PathFitTask& task, const PathFitO
         solver.seed = options.seed;
         for (const FivePointSolution& s : solve_five_point(problem, solver).solutions)
           if (s.real) out.push_back({frame.to_task(s.design), "five-point"});
-      } catch (const std::invalid_argument&) {  // pivots too close for the solver: skip them
+      } catch (const Error& e) {  // pivots too close for the solver: skip them
+        if (e.kind() != ErrorKind::InvalidModel && e.kind() != ErrorKind::BadInput) throw;
       }
     }
   }
@@ -522,7 +524,7 @@ std::vector<PathStart> nine_point_starts(const PathFitTask& task, const PathFitO
     try {
       for (const NinePointLinkage& linkage : solve_nine_point(points, solver).linkages)
         for (const FourBarDesign& d : linkage.designs) out.push_back({frame.to_task(d), "nine-point"});
-    } catch (const std::exception&) {  // nine targets the solver refuses (on a line...), or stopped
+    } catch (const Error&) {  // nine targets the solver refuses (on a line...), or stopped
     }
   }
   return out;

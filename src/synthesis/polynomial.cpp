@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "nbar/model/diagnostics.hpp"
+
 namespace nbar::synthesis {
 
 Polynomial Polynomial::constant(int variables, Complex value) {
@@ -11,7 +13,7 @@ Polynomial Polynomial::constant(int variables, Complex value) {
 }
 
 Polynomial Polynomial::variable(int variables, int index) {
-  if (index < 0 || index >= variables) throw std::out_of_range("Polynomial::variable: index out of range");
+  if (index < 0 || index >= variables) throw Error(ErrorKind::BadInput, "Polynomial::variable: index out of range");
   Exponents e(variables, 0);
   e[index] = 1;
   Polynomial p(variables);
@@ -41,7 +43,7 @@ int Polynomial::degree_in(const std::vector<int>& group) const {
 
 void Polynomial::add_term(const Exponents& exponents, Complex coefficient) {
   if (static_cast<int>(exponents.size()) != variables_)
-    throw std::invalid_argument("Polynomial: term has the wrong number of exponents");
+    throw Error(ErrorKind::BadInput, "Polynomial: term has the wrong number of exponents");
   if (coefficient == Complex(0.0)) return;
   auto [it, inserted] = terms_.emplace(exponents, coefficient);
   if (!inserted) {
@@ -80,13 +82,13 @@ Complex Polynomial::evaluate(const CVector& x, Eigen::Ref<Eigen::RowVectorXcd, 0
 }
 
 Polynomial& Polynomial::operator+=(const Polynomial& other) {
-  if (other.variables_ != variables_) throw std::invalid_argument("Polynomial: different numbers of variables");
+  if (other.variables_ != variables_) throw Error(ErrorKind::BadInput, "Polynomial: different numbers of variables");
   for (const auto& [e, c] : other.terms_) add_term(e, c);
   return *this;
 }
 
 Polynomial& Polynomial::operator-=(const Polynomial& other) {
-  if (other.variables_ != variables_) throw std::invalid_argument("Polynomial: different numbers of variables");
+  if (other.variables_ != variables_) throw Error(ErrorKind::BadInput, "Polynomial: different numbers of variables");
   for (const auto& [e, c] : other.terms_) add_term(e, -c);
   return *this;
 }
@@ -101,7 +103,7 @@ Polynomial& Polynomial::operator*=(Complex factor) {
 }
 
 Polynomial operator*(const Polynomial& a, const Polynomial& b) {
-  if (a.variables_ != b.variables_) throw std::invalid_argument("Polynomial: different numbers of variables");
+  if (a.variables_ != b.variables_) throw Error(ErrorKind::BadInput, "Polynomial: different numbers of variables");
   Polynomial product(a.variables_);
   Polynomial::Exponents e(a.variables_);
   for (const auto& [ea, ca] : a.terms_)
@@ -118,11 +120,11 @@ Polynomial operator+(Polynomial a, Complex c) {
 }
 
 PolynomialSystem::PolynomialSystem(std::vector<Polynomial> equations) : equations_(std::move(equations)) {
-  if (equations_.empty()) throw std::invalid_argument("PolynomialSystem: no equations");
+  if (equations_.empty()) throw Error(ErrorKind::BadInput, "PolynomialSystem: no equations");
   variables_ = equations_.front().variables();
   for (const auto& p : equations_)
     if (p.variables() != variables_)
-      throw std::invalid_argument("PolynomialSystem: equations have different numbers of variables");
+      throw Error(ErrorKind::BadInput, "PolynomialSystem: equations have different numbers of variables");
 }
 
 void PolynomialSystem::evaluate(const CVector& x, CVector& f) const {

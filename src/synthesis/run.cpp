@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/five_point.hpp"
 #include "nbar/synthesis/function_generation.hpp"
 #include "nbar/synthesis/nine_point.hpp"
@@ -116,7 +117,7 @@ Outcome five_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
 
 // Every real cognate triple: three rows, the solution and its two Roberts cognates.
 Outcome nine_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
-  if (task.points.size() != 9) throw std::invalid_argument("a nine-point task needs exactly 9 points");
+  if (task.points.size() != 9) throw Error(ErrorKind::InvalidModel, "a nine-point task needs exactly 9 points");
   std::array<Eigen::Vector2d, 9> points;
   std::copy(task.points.begin(), task.points.end(), points.begin());
   NinePointOptions options;
@@ -131,7 +132,7 @@ Outcome nine_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
   NinePointResult result;
   try {
     result = solve_nine_point(points, options);
-  } catch (const std::runtime_error& e) {
+  } catch (const Error&) {
     if (run.control.token.cancelled()) run.control.checkpoint("paths", 0, 0);  // throws Cancelled
     throw;
   }
@@ -192,7 +193,8 @@ Outcome burmester(const SynthesisTask& task, const SynthesisRunOptions& run) {
   const auto add_pair = [&](const BurmesterPair& input, const BurmesterPair& output) {
     try {
       out.rows.push_back(row_of(design_from_pairs(input, output, poses[0].point)));
-    } catch (const std::invalid_argument&) {
+    } catch (const Error& e) {  // the two dyads share a pivot
+      if (e.kind() != ErrorKind::InvalidModel) throw;
     }
   };
   if (poses.size() == 3) {
@@ -355,8 +357,9 @@ SynthesisOutcome run_synthesis(const SynthesisTask& task, const SynthesisRunOpti
       case SynthesisKind::Path:
         return path(task, options);
     }
-  } catch (const std::invalid_argument& e) {  // the solvers' complaints about the task's data
-    throw Error(ErrorKind::InvalidModel, e.what(), {}, task.file, task.where);
+  } catch (const Error& e) {  // the solvers' complaints about the task's data, placed at the task
+    if (e.kind() != ErrorKind::InvalidModel || !e.file().empty()) throw;
+    throw Error(ErrorKind::InvalidModel, e.message(), {}, task.file, task.where);
   }
   return {};
 }

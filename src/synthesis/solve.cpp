@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/tracker.hpp"
 
 namespace nbar::synthesis {
@@ -181,14 +182,14 @@ Homogenized homogenize(const PolynomialSystem& f, const VariableGroups& groups,
   hom.group_of.assign(hom.n, -1);
   for (size_t g = 0; g < groups.size(); ++g)
     for (int v : groups[g]) {
-      if (v < 0 || v >= hom.n) throw std::invalid_argument("variable groups: index out of range");
-      if (hom.group_of[v] != -1) throw std::invalid_argument("variable groups: a variable is in two groups");
+      if (v < 0 || v >= hom.n) throw Error(ErrorKind::BadInput, "variable groups: index out of range");
+      if (hom.group_of[v] != -1) throw Error(ErrorKind::BadInput, "variable groups: a variable is in two groups");
       hom.group_of[v] = static_cast<int>(g);
     }
   for (int v = 0; v < hom.n; ++v)
-    if (hom.group_of[v] == -1) throw std::invalid_argument("variable groups: a variable is in no group");
+    if (hom.group_of[v] == -1) throw Error(ErrorKind::BadInput, "variable groups: a variable is in no group");
   if (f.equations() != f.variables())
-    throw std::invalid_argument("homotopy solver: the system must be square (as many equations as unknowns)");
+    throw Error(ErrorKind::BadInput, "homotopy solver: the system must be square (as many equations as unknowns)");
 
   const int G = static_cast<int>(groups.size());
   const int N = hom.n + G;
@@ -506,7 +507,7 @@ SolveResult solve_parameter_homotopy(const ParameterizedSystem& f, const CVector
                                      const std::vector<CVector>& from_solutions, const CVector& to,
                                      const SolverOptions& options) {
   if (from.size() != f.parameters() || to.size() != f.parameters())
-    throw std::invalid_argument("parameter homotopy: wrong number of parameters");
+    throw Error(ErrorKind::BadInput, "parameter homotopy: wrong number of parameters");
   const ParameterHomotopy homotopy(f, from, to);
   return run_paths(homotopy, from_solutions, parameter_classifier(f, to, options), options);
 }

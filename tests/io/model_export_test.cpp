@@ -34,7 +34,7 @@ TEST(ModelExport, EveryKinematicExampleReadsBackTheSame) {
     SCOPED_TRACE(entry.path().string());
     const nbar::Model m = nbar::io::load_model_file(entry.path().string()).model;
     if (has_kinetics(m)) {
-      EXPECT_THROW(nbar::io::model_yaml(m), std::invalid_argument);
+      EXPECT_THROW(nbar::io::model_yaml(m), nbar::Error);
       continue;
     }
     ++kinematic;

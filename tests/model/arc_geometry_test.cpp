@@ -163,7 +163,7 @@ TEST(ArcCheck, ArcCrossingAnEdgeIsNamedByTheUsersEdges) {
   try {
     check_region(r);
     FAIL() << "accepted an outline whose arc crosses an edge";
-  } catch (const std::invalid_argument& e) {
+  } catch (const nbar::Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("the outline intersects itself: edge 1-2 meets edge 3-0"));
   }
 }
@@ -173,24 +173,24 @@ TEST(ArcCheck, HoleMustClearTheArcNotItsChord) {
   r.circle_holes = {{{0.215, 0}, 0.01}};  // beyond the chord polygon, inside the rounded end
   EXPECT_NO_THROW(check_region(r));
   r.circle_holes = {{{0.225, 0}, 0.01}};  // reaches 0.235 > 0.23, the arc's far end
-  EXPECT_THROW(check_region(r), std::invalid_argument);
+  EXPECT_THROW(check_region(r), nbar::Error);
 }
 
 TEST(ArcCheck, BadBulges) {
   Region r = stadium(0.2, 0.03);
   r.outline_bulges = {0, 1, 0};
-  EXPECT_THROW(check_region(r), std::invalid_argument);
+  EXPECT_THROW(check_region(r), nbar::Error);
   r.outline_bulges = {0, std::nan(""), 0, 1};
-  EXPECT_THROW(check_region(r), std::invalid_argument);
+  EXPECT_THROW(check_region(r), nbar::Error);
   Region two;
   two.outline = {{0, 0}, {1, 0}};
-  EXPECT_THROW(check_region(two), std::invalid_argument);  // two vertices and no arc: no area
+  EXPECT_THROW(check_region(two), nbar::Error);  // two vertices and no arc: no area
   r.outline_bulges = {0, 1e300, 0, 1};
-  EXPECT_THROW(check_region(r), std::invalid_argument);
+  EXPECT_THROW(check_region(r), nbar::Error);
   r.outline_bulges = {0, std::numeric_limits<double>::infinity(), 0, 1};
-  EXPECT_THROW(check_region(r), std::invalid_argument);
-  EXPECT_THROW(bulge_through({0, 0}, {1, 0}, {2, 0}), std::invalid_argument);
-  EXPECT_THROW(bulge_through({0, 0}, {1, 0}, {1, 0}), std::invalid_argument);
+  EXPECT_THROW(check_region(r), nbar::Error);
+  EXPECT_THROW(bulge_through({0, 0}, {1, 0}, {2, 0}), nbar::Error);
+  EXPECT_THROW(bulge_through({0, 0}, {1, 0}, {1, 0}), nbar::Error);
 }
 
 }  // namespace

@@ -217,7 +217,7 @@ TEST(MakeBar, RejectsBarsThatAreNotPlates) {
   const auto message = [](auto&& make) {
     try {
       make();
-    } catch (const std::invalid_argument& e) {
+    } catch (const nbar::Error& e) {
       return std::string(e.what());
     }
     return std::string("no error");
@@ -258,8 +258,8 @@ TEST(AreaHelpers, PlateMass) {
   EXPECT_NEAR(m.inertia, m.mass * (0.04 + 0.0016) / 12, 1e-15);
   EXPECT_NEAR(m.centre.x(), 0.1, 1e-15);
   EXPECT_NEAR(m.centre.y(), 0.02, 1e-15);
-  EXPECT_THROW(plate_mass(a, -1, 0.005), std::invalid_argument);
-  EXPECT_THROW(plate_mass(a, 7850, 0), std::invalid_argument);
+  EXPECT_THROW(plate_mass(a, -1, 0.005), nbar::Error);
+  EXPECT_THROW(plate_mass(a, 7850, 0), nbar::Error);
   EXPECT_NO_THROW(plate_mass(a, 0, 0.005));
 }
 
@@ -279,7 +279,7 @@ TEST(ClippedAreaProperties, RectangleGivesTheSmallerRectangle) {
   expect_near(clipped_area_properties(r, {4, 0}, {-1, 0}), area_properties(r), 4);
   // The diagonal: the lower-right triangle.
   expect_near(clipped_area_properties(r, {0, 0}, {1, -2}), area_properties(plate({{0, 0}, {4, 0}, {4, 2}})), 4);
-  EXPECT_THROW(clipped_area_properties(r, {0, 0}, {0, 0}), std::invalid_argument);
+  EXPECT_THROW(clipped_area_properties(r, {0, 0}, {0, 0}), nbar::Error);
 }
 
 TEST(ClippedAreaProperties, NonConvexPlateCutAcrossBothArms) {
@@ -393,7 +393,7 @@ TEST(ClippedAreaProperties, AgreesWithQuadrature) {
 std::string region_error(const Region& r) {
   try {
     check_region(r);
-  } catch (const std::invalid_argument& e) {
+  } catch (const nbar::Error& e) {
     return e.what();
   }
   return "valid";

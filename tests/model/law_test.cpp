@@ -229,8 +229,8 @@ TEST(Law, SeriesAndValueAgree) {
 
 TEST(Law, RejectsAnInvalidNumberOfTerms) {
   const Law law = Law::parse("t");
-  EXPECT_THROW(law.series(0.0, 0), std::invalid_argument);
-  EXPECT_THROW(law.series(0.0, Series::kCapacity + 1), std::invalid_argument);
+  EXPECT_THROW(law.series(0.0, 0), nbar::Error);
+  EXPECT_THROW(law.series(0.0, Series::kCapacity + 1), nbar::Error);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -234,8 +234,8 @@ TEST(Animation, FramesAreEvenlySpacedAndALoopDoesNotRepeatItsStart) {
     EXPECT_EQ(swing.steps().front(), 0);
     EXPECT_EQ(swing.steps().back(), static_cast<int>(rocker.sweep.samples.size()) - 1);
   }
-  EXPECT_THROW(Animation(crank.shared, nbar::SweepResult{}, small()), std::invalid_argument);
-  EXPECT_THROW(Animation(crank.shared, crank.sweep, small(), 10, 0.0), std::invalid_argument);
+  EXPECT_THROW(Animation(crank.shared, nbar::SweepResult{}, small()), nbar::Error);
+  EXPECT_THROW(Animation(crank.shared, crank.sweep, small(), 10, 0.0), nbar::Error);
 }
 
 // ------------------------------------------------------------------------------------- GIF
@@ -309,7 +309,7 @@ TEST(Animation, UnwritableFilesAreReportedWithTheirPath) {
     try {
       (a.*write)(bad);
       ADD_FAILURE() << "no exception";
-    } catch (const std::runtime_error& e) {
+    } catch (const nbar::Error& e) {
       EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
     }
   }
@@ -489,7 +489,7 @@ TEST(Animation, Mp4WithoutFfmpegSaysSo) {
   try {
     a.write_mp4((temp_dir() / "never.mp4").string());
     ADD_FAILURE() << "no exception";
-  } catch (const std::runtime_error& e) {
+  } catch (const nbar::Error& e) {
     EXPECT_NE(std::string(e.what()).find("ffmpeg"), std::string::npos);
   }
   ::setenv("PATH", saved.c_str(), 1);

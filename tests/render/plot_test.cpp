@@ -84,10 +84,10 @@ TEST(NiceTicks, SingleIntervalAboutZeroTakesTwo) { expect_ticks(nice_ticks(-1, 1
 
 TEST(NiceTicks, RejectsWhatCannotBeTicked) {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(nice_ticks(nan, 1), std::invalid_argument);
-  EXPECT_THROW(nice_ticks(0, inf), std::invalid_argument);
-  EXPECT_THROW(nice_ticks(0, 1e305), std::invalid_argument);
-  EXPECT_THROW(nice_ticks(0, 1, 0), std::invalid_argument);
+  EXPECT_THROW(nice_ticks(nan, 1), nbar::Error);
+  EXPECT_THROW(nice_ticks(0, inf), nbar::Error);
+  EXPECT_THROW(nice_ticks(0, 1e305), nbar::Error);
+  EXPECT_THROW(nice_ticks(0, 1, 0), nbar::Error);
 }
 
 // Every range: ticks cover it, are evenly spaced by 1, 2 or 5 times a power of ten, and no
@@ -440,16 +440,16 @@ TEST(DrawPlot, LinesCutAtAFixedRange) {
   EXPECT_NEAR(second.back().y(), f.bottom, kPx);
 
   spec.y_hi.reset();
-  EXPECT_THROW(svg_of(spec), std::invalid_argument);
+  EXPECT_THROW(svg_of(spec), nbar::Error);
   spec.y_hi = -1.0;
-  EXPECT_THROW(svg_of(spec), std::invalid_argument);
+  EXPECT_THROW(svg_of(spec), nbar::Error);
 }
 
 TEST(DrawPlot, SeriesOfTheWrongLengthRejected) {
   PlotSpec spec = trig_spec();
   spec.series[1].y.pop_back();
   SvgCanvas canvas(spec.width, spec.height);
-  EXPECT_THROW(draw_plot(canvas, spec), std::invalid_argument);
+  EXPECT_THROW(draw_plot(canvas, spec), nbar::Error);
 }
 
 TEST(DrawPlot, OneSampleIsADot) {

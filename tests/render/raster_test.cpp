@@ -293,16 +293,16 @@ TEST(ImageCanvas, FileErrorsNameThePath) {
   try {
     c.write_png(bad);
     FAIL() << "no exception";
-  } catch (const std::runtime_error& e) {
+  } catch (const nbar::Error& e) {
     EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
   }
   try {
     (void)ImageCanvas::read_png(bad);
     FAIL() << "no exception";
-  } catch (const std::runtime_error& e) {
+  } catch (const nbar::Error& e) {
     EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
   }
-  EXPECT_THROW(ImageCanvas(0, 10), std::invalid_argument);
+  EXPECT_THROW(ImageCanvas(0, 10), nbar::Error);
 }
 
 }  // namespace

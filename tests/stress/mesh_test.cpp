@@ -370,22 +370,22 @@ TEST(Mesh, MaxNodesIsHonoured) {
   o.max_nodes = static_cast<int>(m.nodes.size());
   EXPECT_EQ(mesh_region(r, o).nodes.size(), m.nodes.size());
   o.max_nodes -= 1;
-  EXPECT_THAT([&] { mesh_region(r, o); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("max_nodes")));
+  EXPECT_THAT([&] { mesh_region(r, o); }, ::testing::ThrowsMessage<nbar::Error>(HasSubstr("max_nodes")));
   // A size far too small fails fast at the boundary, not after filling memory.
   o = {};
   o.size = 1e-9;
-  EXPECT_THAT([&] { mesh_region(r, o); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("max_nodes")));
+  EXPECT_THAT([&] { mesh_region(r, o); }, ::testing::ThrowsMessage<nbar::Error>(HasSubstr("max_nodes")));
   // A size whose boundary fits (34 000 stations) but whose interior needs about 7e7 corners fails
   // before refining, from the area (it refined for minutes until the budget stopped it).
   o.size = 1e-4;
   EXPECT_THAT([&] { mesh_region(r, o); },
-              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("the mesh would have about")));
+              ::testing::ThrowsMessage<nbar::Error>(HasSubstr("the mesh would have about")));
 }
 
 TEST(Mesh, BadInputIsRefusedWithAReason) {
   const Region good = plate(rectangle(0, 0, 1, 1));
   auto refused = [](const Region& r, const MeshOptions& o, const std::string& why) {
-    EXPECT_THAT([&] { mesh_region(r, o); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr(why)));
+    EXPECT_THAT([&] { mesh_region(r, o); }, ::testing::ThrowsMessage<nbar::Error>(HasSubstr(why)));
   };
   refused(plate({{0, 0}, {1, 1}, {1, 0}, {0, 1}}), {}, "intersect");
   Region outside = good;
@@ -460,7 +460,7 @@ RC_GTEST_PROP(MeshProperty, RandomConvexPlatesWithHoles, ()) {
   const Region r = *random_plate();
   try {
     check_region(r);
-  } catch (const std::invalid_argument&) {
+  } catch (const nbar::Error&) {
     RC_DISCARD("holes overlap or touch the outline");
   }
   // Nor all but touching (a gap of 1e-17 m passes check_region; its mesh is valid but has

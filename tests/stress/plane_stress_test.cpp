@@ -258,7 +258,7 @@ TEST(PlaneStress, BadInputIsRefusedWithAClearMessage) {
   const auto message = [](auto&& f) {
     try {
       f();
-    } catch (const std::invalid_argument& e) {
+    } catch (const nbar::Error& e) {
       return std::string(e.what());
     }
     return std::string("no error");
@@ -404,7 +404,7 @@ TEST(PlaneStress, CalculixResultsReaderReadsBlocksAndLocatesBadLines) {
   try {
     read_calculix_frd(bad);
     ADD_FAILURE() << "no error";
-  } catch (const std::runtime_error& e) {
+  } catch (const nbar::Error& e) {
     EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
   }
 }

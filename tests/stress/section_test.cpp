@@ -121,8 +121,8 @@ TEST(SectionIntervals, MissingThePlate) {
 
 TEST(SectionIntervals, RejectsADegenerateLine) {
   const Region r = plate(rectangle(0, 0, 1, 1));
-  EXPECT_THROW(section_intervals(r, {0, 0}, {0, 0}), std::invalid_argument);
-  EXPECT_THROW(section_intervals(r, {std::nan(""), 0}, {0, 1}), std::invalid_argument);
+  EXPECT_THROW(section_intervals(r, {0, 0}, {0, 0}), nbar::Error);
+  EXPECT_THROW(section_intervals(r, {std::nan(""), 0}, {0, 1}), nbar::Error);
 }
 
 // ---- section properties ----
@@ -199,7 +199,7 @@ TEST(SectionProperties, OfAPlateWithAHole) {
 std::string properties_error(const Intervals& v, double t) {
   try {
     section_properties(v, t);
-  } catch (const std::invalid_argument& e) {
+  } catch (const nbar::Error& e) {
     return e.what();
   }
   return "valid";

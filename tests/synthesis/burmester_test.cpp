@@ -163,7 +163,7 @@ TEST(BurmesterThreePositions, BadInputIsRefusedByName) {
     try {
       call();
       ADD_FAILURE() << "no exception; expected one saying: " << text;
-    } catch (const std::invalid_argument& e) {
+    } catch (const nbar::Error& e) {
       EXPECT_THAT(e.what(), HasSubstr(text));
     }
   };
@@ -271,7 +271,7 @@ TEST(BurmesterFourPositions, DegenerateMotionsAreRefused) {
     try {
       four_position_curves(poses, o);
       ADD_FAILURE() << "no exception; expected one saying: " << text;
-    } catch (const std::invalid_argument& e) {
+    } catch (const nbar::Error& e) {
       EXPECT_THAT(e.what(), HasSubstr(text));
     }
   };
@@ -404,7 +404,7 @@ TEST(BurmesterFivePositions, DegenerateTasksAreRefused) {
     try {
       five_position_burmester(p);
       ADD_FAILURE() << "no exception; expected one saying: " << text;
-    } catch (const std::invalid_argument& e) {
+    } catch (const nbar::Error& e) {
       EXPECT_THAT(e.what(), HasSubstr(text));
     }
   };

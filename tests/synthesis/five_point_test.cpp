@@ -229,27 +229,27 @@ TEST(FivePointTest, BadTasksAreRefusedWithAReason) {
       {
         try {
           solve_five_point(same_pivots);
-        } catch (const std::invalid_argument& e) {
+        } catch (const nbar::Error& e) {
           EXPECT_NE(std::string(e.what()).find("pivots coincide"), std::string::npos);
           throw;
         }
       },
-      std::invalid_argument);
+      nbar::Error);
   FivePointTask repeated = t;
   repeated.points[3] = repeated.points[1];
   EXPECT_THROW(
       {
         try {
           solve_five_point(repeated);
-        } catch (const std::invalid_argument& e) {
+        } catch (const nbar::Error& e) {
           EXPECT_NE(std::string(e.what()).find("points 2 and 4 coincide"), std::string::npos);
           throw;
         }
       },
-      std::invalid_argument);
+      nbar::Error);
   FivePointTask nan = t;
   nan.points[0].x() = NAN;
-  EXPECT_THROW(solve_five_point(nan), std::invalid_argument);
+  EXPECT_THROW(solve_five_point(nan), nbar::Error);
 }
 
 }  // namespace

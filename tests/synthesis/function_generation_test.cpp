@@ -60,7 +60,7 @@ void expect_invalid(F&& call, const std::string& text) {
   try {
     call();
     ADD_FAILURE() << "no exception; expected one saying: " << text;
-  } catch (const std::invalid_argument& e) {
+  } catch (const nbar::Error& e) {
     EXPECT_THAT(e.what(), HasSubstr(text));
   }
 }

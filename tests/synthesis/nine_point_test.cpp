@@ -165,18 +165,18 @@ TEST(NinePoint, BadPointsAreRefused) {
   for (int k = 0; k < 9; ++k) points[k] = {k, k * k};
   auto repeated = points;
   repeated[5] = repeated[2];
-  EXPECT_THROW(solve_nine_point(repeated), std::invalid_argument);
+  EXPECT_THROW(solve_nine_point(repeated), nbar::Error);
   auto line = points;
   for (int k = 0; k < 9; ++k) line[k] = {k, 2 * k + 1};
-  EXPECT_THROW(solve_nine_point(line), std::invalid_argument);
+  EXPECT_THROW(solve_nine_point(line), nbar::Error);
   auto infinite = points;
   infinite[4].x() = std::nan("");
-  EXPECT_THROW(solve_nine_point(infinite), std::invalid_argument);
+  EXPECT_THROW(solve_nine_point(infinite), nbar::Error);
   // On one circle: a crank with the coupler point as its moving pivot, and any second dyad, is a
   // solution (it took minutes and reported more orbits than there are).
   std::array<Vector2d, 9> circle;
   for (int k = 0; k < 9; ++k) circle[k] = Vector2d(50, 20) + 100 * Vector2d(std::cos(0.3 + 0.7 * k), std::sin(0.3 + 0.7 * k));
-  EXPECT_THROW(solve_nine_point(circle), std::invalid_argument);
+  EXPECT_THROW(solve_nine_point(circle), nbar::Error);
 }
 
 TEST(NinePoint, CommonCircleIsFoundOnlyWhereThePointsAreOnOne) {

@@ -200,12 +200,12 @@ TEST(PathFit, ARunStopsWhenItsProgressSaysSo) {
 TEST(PathFit, RejectsTasksNoFitCanUse) {
   PathFitTask task;
   for (int k = 0; k < 9; ++k) task.targets.push_back(Vector2d(std::cos(k), std::sin(k)));
-  EXPECT_THROW(fit_path(task), std::invalid_argument);  // nine points
+  EXPECT_THROW(fit_path(task), nbar::Error);  // nine points
   task.targets.clear();
   for (int k = 0; k < 12; ++k) task.targets.push_back(Vector2d(k, 2 * k + 1));
-  EXPECT_THROW(fit_path(task), std::invalid_argument);  // one line
+  EXPECT_THROW(fit_path(task), nbar::Error);  // one line
   task.targets.assign(12, Vector2d(1, 1));
-  EXPECT_THROW(fit_path(task), std::invalid_argument);  // one point
+  EXPECT_THROW(fit_path(task), nbar::Error);  // one point
 }
 
 }  // namespace

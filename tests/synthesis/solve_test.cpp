@@ -143,8 +143,8 @@ TEST(HomotopySolverTest, SameAnswerOnOneThreadAndOnMany) {
 
 TEST(HomotopySolverTest, RejectsNonSquareSystems) {
   const auto x = var(2, 0), y = var(2, 1);
-  EXPECT_THROW(solve_total_degree(PolynomialSystem({x * y - 1.0})), std::invalid_argument);
-  EXPECT_THROW(solve_linear_product(PolynomialSystem({x - 1.0, y - 1.0}), {{0}}), std::invalid_argument);
+  EXPECT_THROW(solve_total_degree(PolynomialSystem({x * y - 1.0})), nbar::Error);
+  EXPECT_THROW(solve_linear_product(PolynomialSystem({x - 1.0, y - 1.0}), {{0}}), nbar::Error);
 }
 
 // Random dense quadrics in three unknowns have 2^3 = 8 isolated solutions.

@@ -34,7 +34,7 @@ class TableStream {
   const std::vector<std::string>& columns() const { return columns_; }
   const std::vector<std::string>& units() const { return units_; }
   // Keeps only the columns matching `patterns`, as select_columns does. Throws
-  // std::invalid_argument naming a pattern that matches nothing.
+  // Error(ErrorKind::BadInput) naming a pattern that matches nothing.
   void select(const std::vector<std::string>& patterns);
 
   // The first pass. Throws Error as analyse does.

@@ -27,7 +27,7 @@ struct CalculixResults {
   std::vector<Eigen::Vector3d> stress;        // per node: (σxx, σyy, τxy), Pa (ccx's nodal averages)
 };
 
-// Reads the DISP and STRESS blocks of an ASCII .frd file. Throws std::runtime_error with the line
+// Reads the DISP and STRESS blocks of an ASCII .frd file. Throws Error(ErrorKind::BadInput) with the line
 // number when a result line cannot be read.
 CalculixResults read_calculix_frd(std::istream& in);
 

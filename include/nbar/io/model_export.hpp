@@ -12,7 +12,7 @@
 namespace nbar::io {
 
 // The kinematic model: name, units, points, ground, bodies, lengths, sliders, slots, drivers
-// and sweep, after `comments` (one "# " line each). Throws std::invalid_argument for a model
+// and sweep, after `comments` (one "# " line each). Throws Error(ErrorKind::BadInput) for a model
 // with kinetics (masses, shapes, loads, springs, gravity), which are not written yet.
 void write_model_yaml(std::ostream& out, const Model& model, const std::vector<std::string>& comments = {});
 std::string model_yaml(const Model& model, const std::vector<std::string>& comments = {});

@@ -48,7 +48,7 @@ void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& 
                 const DynamicsStage* dynamics = nullptr);
 
 // The table in `format`: "csv" (write_csv), "table" (write_text_table) or "json" (write_json with
-// `dynamics`); throws std::invalid_argument for another format.
+// `dynamics`); throws Error(ErrorKind::BadInput) for another format.
 void write_table(std::ostream& out, const std::string& format, const Analysis& analysis, const ResultTable& table,
                  const DynamicsStage* dynamics = nullptr, std::size_t line_width = 0);
 

@@ -73,7 +73,7 @@ void zero_numerical_noise(ColumnTable& table);
 ColumnTable select_columns(const ColumnTable& table, const std::vector<std::string>& patterns);
 
 // The columns matching any of `patterns` (exact names, or globs with '*' such as
-// "rocker.*"), in the order of the patterns. Throws std::invalid_argument naming a pattern
+// "rocker.*"), in the order of the patterns. Throws Error(ErrorKind::BadInput) naming a pattern
 // that matches nothing.
 ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns);
 // The indices of those columns among `columns`.

@@ -27,7 +27,7 @@ constexpr double kRelativeCurveTolerance = 1e-4;
 constexpr int kMaxCurveSteps = 10000;
 
 // The vertices of the curve from s = a to s = b, both ends included, adaptive as described
-// above, starting from 16 equal parameter intervals. Throws std::invalid_argument when the
+// above, starting from 16 equal parameter intervals. Throws Error(ErrorKind::BadInput) when the
 // tolerance is not positive, a or b is not finite, or the curve would need more than
 // `max_vertices` vertices (a curve that never settles, such as sin(1/s) near 0). Exceptions
 // from `f` pass through.
@@ -40,7 +40,7 @@ std::vector<Eigen::Vector2d> sample_curve_uniform(const CurveFunction& f, double
 
 // A cubic spline through points (C2), parametrised by the cumulative chord length: natural
 // ends (zero curvature) when open, periodic when closed (the last point joins the first).
-// Throws std::invalid_argument for fewer than 2 points (3 when closed), non-finite points or
+// Throws Error(ErrorKind::BadInput) for fewer than 2 points (3 when closed), non-finite points or
 // two consecutive equal points.
 class CubicSpline {
  public:
@@ -70,7 +70,7 @@ Eigen::Vector2d cubic_bezier(const Eigen::Vector2d& p0, const Eigen::Vector2d& p
 
 // A non-uniform rational B-spline of `degree` (>= 1) with control points, knots
 // (control points + degree + 1 of them, non-decreasing) and weights (empty: all 1), at u in
-// [knots[degree], knots[n]]. Throws std::invalid_argument when the sizes do not agree, the
+// [knots[degree], knots[n]]. Throws Error(ErrorKind::BadInput) when the sizes do not agree, the
 // knots decrease or span nothing, or a weight is not positive.
 class BSpline {
  public:

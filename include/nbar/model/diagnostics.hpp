@@ -16,10 +16,12 @@ enum class ErrorKind {
   StoppedAtLimit,  // a sweep stopped at a limit (toggle) position before its end
   UndefinedLaw,    // a motion or load law has no value (or no derivative) where it is needed
   Cancelled,       // stopped by a cancellation token, a deadline or a progress callback
+  Internal,        // a defect of nbar ("cannot happen"), or the system refused: a file that cannot be
+                   // written, a program that cannot be started, a third-party library's failure
 };
 
 // "invalid_model", "bad_input", "cannot_assemble", "stopped_at_limit", "undefined_law",
-// "cancelled": stable names for JSON and Python.
+// "cancelled", "internal": stable names for JSON and Python.
 const char* to_string(ErrorKind kind);
 
 // A place in a source text: 1-based line and column; 0 when unknown.

@@ -43,7 +43,7 @@ struct Arc {
 // The arc from a to b with the given bulge (non-zero, finite; a != b).
 Arc arc_from_bulge(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double bulge);
 
-// The bulge of the arc from a to b through m. Throws std::invalid_argument when m is a or b, or
+// The bulge of the arc from a to b through m. Throws Error(ErrorKind::BadInput) when m is a or b, or
 // lies on the line through a and b but not between them (no arc passes through it).
 double bulge_through(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& m);
 
@@ -85,7 +85,7 @@ struct PlateMass {
 AreaProperties area_properties(const Region& r);
 
 // The part of r on the side n·(x − p) >= 0 of the line through p with normal n (not necessarily
-// unit). Arcs are cut as straight_edged(r). An empty part has area 0 and every other member 0. Throws std::invalid_argument when n
+// unit). Arcs are cut as straight_edged(r). An empty part has area 0 and every other member 0. Throws Error(ErrorKind::BadInput) when n
 // is zero or p, n are not finite.
 AreaProperties clipped_area_properties(const Region& r, const Eigen::Vector2d& p, const Eigen::Vector2d& n);
 
@@ -100,7 +100,7 @@ bool circle_clear_of_edges(const Circle& c, const std::vector<Eigen::Vector2d>& 
 // a pin sits in its hole.
 double distance_outside_outline(const Region& r, const Eigen::Vector2d& x);
 
-// Throws std::invalid_argument with a readable message when r is not a valid plate: fewer than 3
+// Throws Error(ErrorKind::BadInput) with a readable message when r is not a valid plate: fewer than 3
 // vertices, non-finite values, zero area, repeated consecutive vertices, self-intersecting
 // outline or hole, a hole not strictly inside the outline (touching counts as outside), holes
 // overlapping or touching each other, a non-positive radius.
@@ -117,7 +117,7 @@ std::vector<EdgeMention> edge_mentions(const std::string& message);
 
 // A straight bar: the rectangle of `width` around the segment p->q, extended by `margin` beyond
 // each end, with round holes of the given radii centred at p and q (radius 0 = no hole).
-// Throws std::invalid_argument unless the result is a valid plate: p != q, width > 0,
+// Throws Error(ErrorKind::BadInput) unless the result is a valid plate: p != q, width > 0,
 // margin >= 0, each hole radius < width/2 and < margin, and the two holes apart.
 Region make_bar(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double width, double margin,
                 double hole_radius_p, double hole_radius_q);
@@ -137,7 +137,7 @@ AreaProperties subtract(const AreaProperties& whole, const AreaProperties& part)
 AreaProperties transformed(const AreaProperties& a, double angle, const Eigen::Vector2d& shift);
 
 // mass = density * thickness * area, inertia = density * thickness * polar second moment.
-// Throws std::invalid_argument unless density >= 0 and thickness > 0 (both finite).
+// Throws Error(ErrorKind::BadInput) unless density >= 0 and thickness > 0 (both finite).
 PlateMass plate_mass(const AreaProperties& a, double density, double thickness);
 
 }  // namespace nbar

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -15,11 +14,11 @@ namespace nbar {
 
 class Expression;  // the parsed tree, defined in law.cpp
 
-// Thrown for a malformed expression; `column` is the 0-based offset in the text.
-class LawSyntaxError : public std::runtime_error {
+// Thrown for a malformed expression (an invalid model's law); `column` is the 0-based offset in
+// the text. The readers of model and task files catch it to point at the law's place in the file.
+class LawSyntaxError : public Error {
  public:
-  LawSyntaxError(int column, const std::string& message)
-      : std::runtime_error(message), column_(column) {}
+  LawSyntaxError(int column, const std::string& message) : Error(ErrorKind::InvalidModel, message), column_(column) {}
   int column() const { return column_; }
 
  private:

@@ -32,7 +32,7 @@ struct Quantity {
   double value_si = 0.0;
   bool angular = false;
 };
-// Throws std::invalid_argument with a readable reason when the text is not such a quantity.
+// Throws Error(ErrorKind::BadInput) with a readable reason when the text is not such a quantity.
 Quantity parse_rate(const std::string& text, int order);
 
 }  // namespace nbar

@@ -26,7 +26,7 @@ class Animation {
  public:
   // Shares the mechanism and keeps the positions of the sweep (not the sweep itself), so it may
   // outlive both the caller's pointer and the SweepResult. frames <= 0: the default.
-  // Throws std::invalid_argument when the sweep has no sample or fps is not positive.
+  // Throws Error(ErrorKind::BadInput) when the sweep has no sample or fps is not positive.
   Animation(std::shared_ptr<const Mechanism> mech, const SweepResult& sweep, const DrawOptions& options,
             int frames = 0, double fps = 24.0);
 
@@ -39,7 +39,7 @@ class Animation {
   // Colours every link with a shape by its von Mises stress in every frame (the analysis's
   // finite-element stage, which must have solved this sweep), on one scale for the whole sweep:
   // the colours change as the loads do. Only GIF and MP4 draw frames whole: the SVG and HTML
-  // writers then throw std::invalid_argument. Throws Error(BadInput) without that stage.
+  // writers then throw Error(ErrorKind::BadInput). Throws Error(BadInput) without that stage.
   void show_stresses(const Analysis& analysis);
   bool shows_stresses() const { return !frame_stress_.empty(); }
 
@@ -53,7 +53,7 @@ class Animation {
   // One frame, drawn whole.
   ImageCanvas render_frame(int frame, bool antialias = true) const;
 
-  // Each writer throws std::runtime_error naming the file when it cannot be written.
+  // Each writer throws Error(ErrorKind::Internal) naming the file when it cannot be written.
   // GIF: frames drawn without antialiasing, one palette of the colours used, looping forever.
   void write_gif(const std::string& path) const;
   std::vector<std::uint8_t> gif_bytes() const;
@@ -64,7 +64,7 @@ class Animation {
   // the time and driver values of the frame. Needs nothing from the network.
   std::string html_animation() const;
   void write_html_animation(const std::string& path) const;
-  // MP4 (H.264 by ffmpeg's defaults, yuv420p). Throws std::runtime_error when the ffmpeg
+  // MP4 (H.264 by ffmpeg's defaults, yuv420p). Throws Error(ErrorKind::Internal) when the ffmpeg
   // program is not on the PATH.
   void write_mp4(const std::string& path) const;
   std::vector<std::uint8_t> mp4_bytes() const;

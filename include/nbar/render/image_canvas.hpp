@@ -37,12 +37,12 @@ class ImageCanvas : public Canvas {
   void text(const Eigen::Vector2d& at, const std::string& text, double size, Anchor anchor,
             const Color& color) override;
 
-  // Throws std::runtime_error naming the path when the file cannot be written.
+  // Throws Error(ErrorKind::Internal) naming the path when the file cannot be written.
   void write_png(const std::string& path) const;
   // The PNG file's bytes, for a front-end that sends them without touching the disk.
   std::vector<std::uint8_t> png_bytes() const;
   // Reads any PNG into a canvas of its size (transparent pixels come out as premultiplied
-  // black). Throws std::runtime_error naming the path when it cannot.
+  // black). Throws Error(ErrorKind::Internal) naming the path when it cannot.
   static ImageCanvas read_png(const std::string& path);
 
   // The pixels: `height` rows of `stride` bytes, each pixel 4 bytes B, G, R, A (cairo's

@@ -61,14 +61,14 @@ struct PlotFrame {
 // data with a margin, and the legend names the path ("path of P" for P.y against P.x). A series that never changes is
 // shown in a range around its value. Groups: "grid", "series-<i>" (one per series, in order),
 // "axes" (frame, ticks, labels, title), "legend".
-// Throws std::invalid_argument when a series has a different number of values than x, or for a
+// Throws Error(ErrorKind::BadInput) when a series has a different number of values than x, or for a
 // fixed y range that is not finite, increasing and given at both ends.
 PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec);
 
 // Ticks at multiples of a step of 1, 2 or 5 times a power of ten, the first at or below `lo`
 // and the last at or above `hi`: the smallest such step giving at most `target` intervals.
 // An empty or nearly empty range (narrower than 1e-10 of its size) is widened to 10% of its
-// value either side (to -1..1 about zero). Throws std::invalid_argument for non-finite or
+// value either side (to -1..1 about zero). Throws Error(ErrorKind::BadInput) for non-finite or
 // overly large bounds (beyond 1e300) and for a target outside 1..1000.
 std::vector<double> nice_ticks(double lo, double hi, int target = 6);
 

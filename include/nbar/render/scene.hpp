@@ -26,7 +26,7 @@ namespace nbar::render {
 //                       body b at the sample is its group rotated by angle_deg about its pivot
 //                       (clockwise on screen) then moved by (dx, dy); label i (the i-th text
 //                       of the "labels" group, one per point) moved by (dx, dy)
-// reference_step < 0: default_drawn_step. Throws std::out_of_range for a step past the sweep.
+// reference_step < 0: default_drawn_step. Throws Error(ErrorKind::BadInput) for a step past the sweep.
 std::string drawing_scene_json(const Mechanism& mech, const SweepResult& sweep, const DrawOptions& options,
                                int reference_step = -1);
 

@@ -27,7 +27,7 @@ struct MeshOptions {
   int segments_per_hole = 48;
   // Growth of element size away from a refined feature, per element (> 1).
   double grading = 1.25;
-  // Refuse to make more nodes than this (std::invalid_argument), so a bad size cannot hang.
+  // Refuse to make more nodes than this (Error(ErrorKind::BadInput)), so a bad size cannot hang.
   int max_nodes = 400000;
 };
 
@@ -58,7 +58,7 @@ struct MeshQuality {
   double area = 0.0;  // sum of the triangles' areas, with curved edges, m^2
 };
 
-// Throws std::invalid_argument with a readable message when r fails check_region or the mesh
+// Throws Error(ErrorKind::BadInput) with a readable message when r fails check_region or the mesh
 // would exceed options.max_nodes.
 TriMesh mesh_region(const Region& r, const MeshOptions& options = {});
 

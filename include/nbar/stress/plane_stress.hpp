@@ -104,13 +104,13 @@ struct Support {
 
 class PlateModel {
  public:
-  // Assembles and factorises. Throws std::invalid_argument for a bad material or mesh.
+  // Assembles and factorises. Throws Error(ErrorKind::BadInput) for a bad material or mesh.
   PlateModel(TriMesh mesh, ElasticMaterial material);
   ~PlateModel();
   PlateModel(PlateModel&&) noexcept;
   PlateModel& operator=(PlateModel&&) noexcept;
 
-  // Throws std::invalid_argument for a hole index the plate does not have or a point outside it.
+  // Throws Error(ErrorKind::BadInput) for a hole index the plate does not have or a point outside it.
   StressField solve(const LoadCase& loads) const;
   // The same for many load cases (the steps of a sweep), in order: about 3 times faster per case
   // than solve() one by one, since each block of 16 cases reads the factor once. A field holds
@@ -126,7 +126,7 @@ class PlateModel {
   // The three supports: x and y at one node, one direction at the node farthest from it.
   const std::array<Support, 3>& supports() const;
   // Centre and radius of circle hole `hole`, as fitted to its boundary nodes. Throws
-  // std::invalid_argument when the mesh has no such hole.
+  // Error(ErrorKind::BadInput) when the mesh has no such hole.
   std::pair<Eigen::Vector2d, double> hole_circle(int hole) const;
 
  private:

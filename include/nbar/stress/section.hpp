@@ -18,7 +18,7 @@ namespace nbar {
 // of positive length. With d of unit length, s is a distance. A line running exactly along an
 // edge of the outline or of a hole gets the limit of lines shifted slightly to the right of d
 // (sections are meant to cross the plate). r should pass check_region. Throws
-// std::invalid_argument when d is zero or p, d are not finite.
+// Error(ErrorKind::BadInput) when d is zero or p, d are not finite.
 std::vector<std::pair<double, double>> section_intervals(const Region& r, const Eigen::Vector2d& p,
                                                          const Eigen::Vector2d& d);
 
@@ -34,7 +34,7 @@ struct SectionProperties {
 // |Q| is largest at the centroid. When the centroid falls in a gap between intervals, Q is the
 // same across the gap and shear_level is the nearer material edge of the gap (the lower one on
 // a tie), where the stress actually acts. No intervals give all zeros. Throws
-// std::invalid_argument when the intervals are not finite, sorted and disjoint with s0 <= s1, or
+// Error(ErrorKind::BadInput) when the intervals are not finite, sorted and disjoint with s0 <= s1, or
 // the thickness is not positive.
 SectionProperties section_properties(const std::vector<std::pair<double, double>>& intervals, double thickness);
 

@@ -8,7 +8,7 @@
 //   5 positions: at most 4 pairs (the Burmester points), 0, 2 or 4 of them real.
 // Method, conventions and limits: docs/synthesis-classic.md.
 //
-// Every function throws std::invalid_argument, naming the problem, for non-finite input,
+// Every function throws Error(ErrorKind::InvalidModel), naming the problem, for non-finite input,
 // coincident positions or a degenerate task; none returns NaN.
 #pragma once
 

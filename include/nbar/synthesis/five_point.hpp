@@ -45,7 +45,7 @@ struct FivePointResult {
   int retracked_paths = 0;
 };
 
-// Throws std::invalid_argument for coincident pivots or non-finite input.
+// Throws Error(ErrorKind::InvalidModel) for coincident pivots or non-finite input.
 FivePointResult solve_five_point(const FivePointTask& task, const SolverOptions& options = {});
 
 // The primer's twelve equations (c_i, s_i, x1, x2, y1, y2), pivots at 0 and (1, 0).

@@ -10,7 +10,7 @@
 // linear in K1, K2, K3. The task maps x in [x_start, x_end] linearly onto phi and
 // y = f(x) (from f(x_start) to f(x_end)) linearly onto psi. docs/synthesis-classic.md.
 //
-// Throws std::invalid_argument, naming the problem, for bad input (too few or coincident
+// Throws Error(ErrorKind::InvalidModel), naming the problem, for bad input (too few or coincident
 // precision points, non-finite numbers, empty ranges) and when no real four-bar results.
 #pragma once
 

@@ -40,7 +40,7 @@ struct NinePointOptions {
   // homotopy) or "monodromy" (done = orbits known, total = 1442 as a guide, not a rule).
   std::function<void(const std::string&, int, int)> progress;
   // Asked between paths (thread-safe); true stops the run, which then throws
-  // std::runtime_error("cancelled").
+  // Error(ErrorKind::Cancelled, "cancelled").
   std::function<bool()> stop;
   // When the parameter homotopy loses orbits for good, monodromy at the task recovers them: a
   // graph of three parameter nodes, run until closed or until max_loops rounds of its six edges.
@@ -81,7 +81,7 @@ struct NinePointCircle {
 };
 std::optional<NinePointCircle> common_circle(const std::array<Eigen::Vector2d, 9>& points);
 
-// Throws std::invalid_argument for non-finite, repeated (within 1e-9 of the spread), collinear
+// Throws Error(ErrorKind::InvalidModel) for non-finite, repeated (within 1e-9 of the spread), collinear
 // (a line is no coupler curve) or concyclic points (infinitely many four-bars).
 NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points,
                                  const NinePointOptions& options = {});

@@ -104,7 +104,7 @@ struct PathFitResult {
   std::vector<std::string> start_counts;  // "40 sampled", "93 five-point"
 };
 
-// Throws std::invalid_argument for fewer than 10 targets, non-finite ones, or targets that all
+// Throws Error(ErrorKind::InvalidModel) for fewer than 10 targets, non-finite ones, or targets that all
 // coincide or lie on one line (no four-bar's curve is fitted to a line this way).
 PathFitResult fit_path(const PathFitTask& task, const PathFitOptions& options = {});
 
