@@ -12,8 +12,8 @@ Everything is computed by nbar's C++ core; this package only translates.
 
 from . import synth
 from ._nbar import __version__
-from .errors import (AssemblyError, BadInputError, Cancelled, ColumnError, Error, LimitError, ModelError,
-                     UndefinedLawError)
+from .errors import (AssemblyError, BadInputError, Cancelled, ColumnError, Error, InternalError, LimitError,
+                     ModelError, UndefinedLawError)
 from .explain import Explanation
 from .model import Model, StressResult, Summary, load, loads
 from .pictures import Animation, Drawing, Report
@@ -24,5 +24,5 @@ __all__ = [
     "Model", "load", "loads", "Summary", "Result", "Table", "Warning", "StressResult", "Explanation",
     "Drawing", "Animation", "Report", "plot", "synth",
     "Error", "ModelError", "UndefinedLawError", "BadInputError", "ColumnError", "AssemblyError", "LimitError", "Cancelled",
-    "__version__",
+    "InternalError", "__version__",
 ]

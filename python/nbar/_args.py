@@ -49,6 +49,18 @@ def text(name: str, value: Any) -> str:
     raise BadInputError(f"{name} must be a string, not {value!r}")
 
 
+def path(name: str, value: Any) -> str:
+    """A file's path: a string or an os.PathLike (pathlib's paths), as a string."""
+    import os
+    if isinstance(value, str):
+        return value
+    if isinstance(value, os.PathLike):
+        text = os.fspath(value)
+        if isinstance(text, str):
+            return text
+    raise BadInputError(f"{name} must be a path (a string or a pathlib.Path), not {value!r}")
+
+
 def json_value(value: Any) -> Any:
     """numpy's arrays and scalars as the lists and numbers json writes (json.dumps' default=)."""
     import numpy as np
@@ -56,4 +68,5 @@ def json_value(value: Any) -> Any:
         return value.tolist()
     if isinstance(value, np.generic):
         return value.item()
+    # json.dumps' protocol for default=: a TypeError, which from_dict and task() turn into BadInputError.
     raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")

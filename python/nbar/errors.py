@@ -84,10 +84,20 @@ class Cancelled(Error):
     default_kind = "cancelled"
 
 
+class InternalError(Error):
+    """A defect of nbar, or the system refused (a file that cannot be written, ffmpeg missing).
+
+    Any C++ exception that is not one of nbar's own arrives as this class, with a message asking
+    for a report.
+    """
+
+    default_kind = "internal"
+
+
 class ColumnError(BadInputError, KeyError):
     """No column of that name: a ``BadInputError``, and a ``KeyError`` as a mapping's missing key is,
     so that ``name in result`` and ``result.get(name)`` work as on any mapping."""
 
 
 __all__ = ["Error", "ModelError", "UndefinedLawError", "BadInputError", "ColumnError", "AssemblyError", "LimitError",
-           "Cancelled"]
+           "Cancelled", "InternalError"]

@@ -9,7 +9,7 @@ from types import SimpleNamespace
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _nbar
-from ._args import flag as _flag, json_value as _json_value, real as _real, text as _text, whole as _whole
+from ._args import flag as _flag, json_value as _json_value, path as _path, real as _real, text as _text, whole as _whole
 from .errors import BadInputError, LimitError
 from .pictures import Animation, Drawing, Report, _write
 from .results import Result, Table, _no_column
@@ -337,7 +337,7 @@ class Model:
 
 def load(path: Union[str, os.PathLike]) -> Model:
     """Reads a model file (YAML or JSON). Errors are ``nbar.ModelError`` with file, line, column."""
-    return Model(_nbar.load(os.fspath(path)))
+    return Model(_nbar.load(_path("path", path)))
 
 
 def loads(text: str, name: str = "<string>") -> Model:

@@ -40,7 +40,8 @@ class Drawing:
         return self._png()
 
     def save(self, path: Union[str, os.PathLike]) -> None:
-        name = os.fspath(path)
+        from ._args import path as as_path
+        name = as_path("path", path)
         ext = name.rsplit(".", 1)[-1].lower()
         if ext == "png":
             _write(path, self.png())
@@ -81,10 +82,12 @@ class Animation:
         return self.html if format == "html" else self._analysis.animate(format, **self._options)
 
     def save(self, path: Union[str, os.PathLike]) -> None:
-        ext = os.fspath(path).rsplit(".", 1)[-1].lower()
+        from ._args import path as as_path
+        name = as_path("path", path)
+        ext = name.rsplit(".", 1)[-1].lower()
         if ext not in ("html", "svg", "gif", "mp4"):
             from .errors import BadInputError
-            raise BadInputError(f"{os.fspath(path)}: an animation is saved as .html, .svg, .gif or .mp4")
+            raise BadInputError(f"{name}: an animation is saved as .html, .svg, .gif or .mp4")
         _write(path, self.data(ext))
 
     def _repr_html_(self) -> str:

@@ -17,7 +17,7 @@ import os
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _nbar
-from ._args import flag, json_value, real, whole
+from ._args import flag, json_value, path as as_path, real, whole
 from .errors import BadInputError
 
 Point = Sequence[float]
@@ -88,11 +88,11 @@ class Designs(list):
         return self._outcome.table(self._all, self._top)
 
     def export(self, folder: Union[str, os.PathLike]) -> None:
-        self._outcome.export(os.fspath(folder), self._all, self._top)
+        self._outcome.export(as_path("folder", folder), self._all, self._top)
 
     def write_curves(self, path: Union[str, os.PathLike]) -> None:
         """Burmester through four poses: the centre- and circle-point curves (.svg, .csv, .json)."""
-        self._outcome.write_curves(os.fspath(path))
+        self._outcome.write_curves(as_path("path", path))
 
     def __str__(self) -> str:
         return self.table()
@@ -139,7 +139,7 @@ def task(data: Dict[str, Any], name: str = "<task>"):
 
 def load(path: Union[str, os.PathLike]):
     """Reads a task file (docs/synthesis.md)."""
-    return _nbar.load_task(os.fspath(path))
+    return _nbar.load_task(as_path("path", path))
 
 
 def run(the_task, all: bool = False, top: int = 0, threads: int = 0, seed: int = 1,

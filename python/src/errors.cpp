@@ -23,6 +23,7 @@ const char* error_class(ErrorKind kind) {
     case ErrorKind::CannotAssemble: return "AssemblyError";
     case ErrorKind::StoppedAtLimit: return "LimitError";
     case ErrorKind::Cancelled: return "Cancelled";
+    case ErrorKind::Internal: return "InternalError";
   }
   return "Error";
 }
@@ -70,19 +71,36 @@ bool on_main_thread() {
 
 }  // namespace
 
+// Any other C++ exception is a defect of nbar (the library turns its own problems and those of
+// the libraries it calls into Error): it crosses as nbar.InternalError, never as pybind11's
+// RuntimeError or ValueError, which `except nbar.Error` would miss.
+void raise_internal(const std::exception& e) {
+  raise(Error(ErrorKind::Internal, std::string("internal error in nbar (") + e.what() +
+                                       "); please report it, with the model or task that caused it"));
+}
+
 void register_error_translation(py::module_&) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const Error& e) {
       raise(e);
+    } catch (const py::error_already_set&) {
+      throw;  // a Python exception already (KeyboardInterrupt, one from a callback): pybind11 restores it
+    } catch (const py::builtin_exception&) {
+      throw;  // pybind11's own (StopIteration, a failed cast): pybind11 maps it
+    } catch (const std::exception& e) {
+      raise_internal(e);
     }
   });
 }
 
 Error located(const PyModel& model, const Error& error) {
-  // Bad input is about the call's arguments, a cancellation about time: neither has a place in the file.
-  if (!error.file().empty() || error.kind() == ErrorKind::BadInput || error.kind() == ErrorKind::Cancelled) return error;
+  // Bad input is about the call's arguments, a cancellation about time, an internal error about
+  // nbar: none has a place in the file.
+  if (!error.file().empty() || error.kind() == ErrorKind::BadInput || error.kind() == ErrorKind::Cancelled ||
+      error.kind() == ErrorKind::Internal)
+    return error;
   // A stop at a limit about no entity in particular (draw(at=...), explain(step=...)) is placed
   // where solve() and the command line place a stopped sweep: the sweep's or first driver's line.
   const bool sweep_stop = error.kind() == ErrorKind::StoppedAtLimit && error.where().kind == EntityRef::Kind::Model;
