@@ -495,28 +495,18 @@ std::string Animation::readout(int frame) const {
   return text;
 }
 
-std::string Animation::html_animation() const {
-  if (shows_stresses())
-    throw Error(ErrorKind::BadInput, "stress colours change from frame to frame, which only GIF and MP4 animations draw "
-                                "(an HTML animation moves the bodies of its first frame)");
-  SvgCanvas svg(options_.width, options_.height);
-  draw_mechanism(svg, view_, mech_, sweep_, points_[0], options_);
-  std::string element = svg.element();
-  const Model& m = mech_.model();
-  split_labels(element, m);
-  const auto motion = transforms();
-  const int n = frame_count();
+namespace {
 
-  std::string title = m.name.empty() ? std::string("Mechanism") : m.name;
-  std::string html;
-  html.reserve(element.size() + 64 * static_cast<std::size_t>(n) * (m.bodies.size() + m.points.size() + 2));
+// The page up to the stage that holds the drawing: the title, the style sheet, and a script
+// that records any script error in the body's data-errors (the browser tests read it).
+void append_html_page_start(std::string& html, const std::string& title, int main_width) {
   html += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
           "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>";
   html += xml_escape(title);
   html += " \u2014 nbar animation</title>\n<style>\n"
           "body{margin:0;font:15px/1.4 system-ui,sans-serif;color:#222;background:#f4f4f2}\n"
           "main{max-width:";
-  html += std::to_string(options_.width + 32);
+  html += std::to_string(main_width);
   html += "px;margin:0 auto;padding:12px 16px}\n"
           "h1{font-size:1.15em;margin:0 0 8px}\n"
           ".stage{background:#fff;border:1px solid #ddd;border-radius:4px}\n"
@@ -535,27 +525,30 @@ std::string Animation::html_animation() const {
           "</script>\n<main>\n<h1>";
   html += xml_escape(title);
   html += "</h1>\n<div class=\"stage\">\n";
-  html += element;
+}
+
+// After the stage: the play button, the frame slider and counter, the readout, and the start
+// of the player's script.
+void append_html_controls(std::string& html, int frames) {
   html += "</div>\n<div class=\"controls\">\n"
           "<button id=\"play\" type=\"button\">Pause</button>\n"
           "<input id=\"scrub\" type=\"range\" min=\"0\" max=\"";
-  html += std::to_string(n - 1);
+  html += std::to_string(frames - 1);
   html += "\" step=\"1\" value=\"0\" aria-label=\"Frame\">\n<span id=\"counter\">1 / ";
-  html += std::to_string(n);
+  html += std::to_string(frames);
   html += "</span>\n</div>\n<p id=\"readout\"></p>\n</main>\n<script>\n\"use strict\";\n(function () {\n";
-  html += "const fps = ";
-  html += general(fps_);
-  html += ";\n";
+}
 
-  // Bodies: [angle, pivot x, pivot y, shift x, shift y] per frame.
-  const std::vector<std::string> ids = body_group_ids();
+// The body groups' ids and, per frame, [angle, pivot x, pivot y, shift x, shift y] per body.
+void append_js_body_motion(std::string& html, const std::vector<std::string>& ids,
+                           const std::vector<std::vector<PixelTransform>>& motion, int frames) {
   html += "const bodies = [";
   for (std::size_t b = 0; b < ids.size(); ++b) {
     if (b) html += ',';
     html += js_string(ids[b]);
   }
   html += "];\nconst motion = [\n";
-  for (int k = 0; k < n; ++k) {
+  for (int k = 0; k < frames; ++k) {
     html += '[';
     for (std::size_t b = 0; b < ids.size(); ++b) {
       const PixelTransform& t = motion[k][b];
@@ -566,7 +559,11 @@ std::string Animation::html_animation() const {
     html += "],\n";
   }
   html += "];\n";
-  // Labels of moving points: [dx, dy] per frame.
+}
+
+// The label groups of the moving points and, per frame, [dx, dy] per label from the first frame.
+void append_js_label_shifts(std::string& html, const Model& m, const View& view,
+                            const std::vector<std::vector<Eigen::Vector2d>>& points, int frames) {
   std::vector<int> moving;
   for (std::size_t p = 0; p < m.points.size(); ++p)
     if (!m.points[p].ground) moving.push_back(static_cast<int>(p));
@@ -578,20 +575,22 @@ std::string Animation::html_animation() const {
     html += js_string(id);
   }
   html += "];\nconst shifts = [\n";
-  for (int k = 0; k < n; ++k) {
+  for (int k = 0; k < frames; ++k) {
     html += '[';
     for (std::size_t i = 0; i < moving.size(); ++i) {
       const int p = moving[i];
-      const Eigen::Vector2d d = view_.to_pixels(points_[k][p]) - view_.to_pixels(points_[0][p]);
+      const Eigen::Vector2d d = view.to_pixels(points[k][p]) - view.to_pixels(points[0][p]);
       if (i) html += ',';
       html += fixed(d.x(), 2) + "," + fixed(d.y(), 2);
     }
     html += "],\n";
   }
-  html += "];\nconst readouts = [\n";
-  for (int k = 0; k < n; ++k) html += js_string(readout(k)) + ",\n";
   html += "];\n";
-  html += R"JS(const n = motion.length;
+}
+
+// Shows a frame (bodies, labels, slider, counter, readout), plays at fps, and answers the
+// button, the slider and the arrow and space keys.
+constexpr const char* kHtmlPlayerScript = R"JS(const n = motion.length;
 const groups = bodies.map(function (id) { return document.getElementById(id); });
 const labelGroups = labels.map(function (id) { return document.getElementById(id); });
 const button = document.getElementById("play");
@@ -641,6 +640,35 @@ play(true);
 </body>
 </html>
 )JS";
+
+}  // namespace
+
+std::string Animation::html_animation() const {
+  if (shows_stresses())
+    throw Error(ErrorKind::BadInput, "stress colours change from frame to frame, which only GIF and MP4 animations draw "
+                                "(an HTML animation moves the bodies of its first frame)");
+  SvgCanvas svg(options_.width, options_.height);
+  draw_mechanism(svg, view_, mech_, sweep_, points_[0], options_);
+  std::string element = svg.element();
+  const Model& m = mech_.model();
+  split_labels(element, m);
+  const int n = frame_count();
+
+  const std::string title = m.name.empty() ? std::string("Mechanism") : m.name;
+  std::string html;
+  html.reserve(element.size() + 64 * static_cast<std::size_t>(n) * (m.bodies.size() + m.points.size() + 2));
+  append_html_page_start(html, title, options_.width + 32);
+  html += element;
+  append_html_controls(html, n);
+  html += "const fps = ";
+  html += general(fps_);
+  html += ";\n";
+  append_js_body_motion(html, body_group_ids(), transforms(), n);
+  append_js_label_shifts(html, m, view_, points_, n);
+  html += "const readouts = [\n";
+  for (int k = 0; k < n; ++k) html += js_string(readout(k)) + ",\n";
+  html += "];\n";
+  html += kHtmlPlayerScript;
   return html;
 }
 
