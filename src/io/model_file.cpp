@@ -58,7 +58,7 @@ std::string locate(const SourceMap& source, const ModelError& error) {
 
 Error located(const SourceMap& source, const Error& error) {
   if (!error.file().empty() || error.kind() == ErrorKind::BadInput || error.kind() == ErrorKind::Cancelled ||
-      error.where().kind == EntityRef::Kind::Model)
+      error.kind() == ErrorKind::Internal || error.where().kind == EntityRef::Kind::Model)
     return error;
   const SourceMark at = source.find(error.where());
   if (at.line == 0) return error;  // an entity the file does not name (made by the program)

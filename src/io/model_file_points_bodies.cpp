@@ -267,7 +267,7 @@ double Parser::rate(const Entry& e, int order, const Driver& d, double scale) co
   Quantity q;
   try {
     q = parse_rate(text, order);
-  } catch (const std::invalid_argument& error) {
+  } catch (const Error& error) {
     fail(mark(e), error.what());
   }
   if (q.angular != d.is_angular()) {

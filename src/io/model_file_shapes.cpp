@@ -155,7 +155,7 @@ Parser::CurveItem Parser::curve_item(const YAML::Node& node) const {
     c.node = node;
     try {
       c.spline = std::make_shared<const CubicSpline>(std::move(points), false);
-    } catch (const std::invalid_argument& error) {
+    } catch (const Error& error) {
       fail(mark(*spline), error.what());
     }
     return c;
@@ -247,8 +247,6 @@ std::vector<Eigen::Vector2d> Parser::curve_vertices(const CurveItem& c, double t
     return sample_curve(c.point, c.from, c.to, tolerance);
   } catch (const Error& error) {
     fail(c.node, std::string("this curve: ") + error.what());
-  } catch (const std::invalid_argument& error) {
-    fail(c.node, std::string("this curve: ") + error.what());
   }
 }
 
@@ -338,7 +336,7 @@ Parser::Ring Parser::ring_of(const std::vector<RingItem>& items, SourceMark wher
     if (!through[i]) continue;
     try {
       bulges[i] = bulge_through(ring.vertices[i], ring.vertices[(i + 1) % n], through[i]->second);
-    } catch (const std::invalid_argument& error) {
+    } catch (const Error& error) {
       fail(through[i]->first, std::string("`through`: ") + error.what());
     }
   }
@@ -524,7 +522,7 @@ Region Parser::parse_shape(const Entry& e, const std::string& body) const {
   }
   try {
     check_region(region);
-  } catch (const std::invalid_argument& error) {
+  } catch (const Error& error) {
     fail(mark(outline), invalid + with_origins(error.what(), outer));
   }
   std::vector<Hole> holes;
@@ -536,7 +534,7 @@ Region Parser::parse_shape(const Entry& e, const std::string& body) const {
     add_hole(alone, holes[k]);
     try {
       check_region(alone);
-    } catch (const std::invalid_argument& error) {
+    } catch (const Error& error) {
       // The hole is the only one checked, so it is "hole 0" to check_region.
       std::string reason = error.what();
       for (std::string_view name : {"circle hole 0", "polygon hole 0"}) {
@@ -550,7 +548,7 @@ Region Parser::parse_shape(const Entry& e, const std::string& body) const {
       add_hole(pair, holes[k]);
       try {
         check_region(pair);
-      } catch (const std::invalid_argument&) {
+      } catch (const Error&) {
         fail(holes[k].node, invalid + "this hole overlaps or touches hole " + std::to_string(j + 1) + " (line " +
                                 std::to_string(mark(holes[j].node).line) + ")");
       }
@@ -561,7 +559,7 @@ Region Parser::parse_shape(const Entry& e, const std::string& body) const {
     // The drawing's own holes were not checked one by one above.
     try {
       check_region(region);
-    } catch (const std::invalid_argument& error) {
+    } catch (const Error& error) {
       fail(mark(outline), invalid + error.what());
     }
   }
@@ -627,7 +625,7 @@ Region Parser::parse_bar(const Entry& e, const Body& body, const std::string& na
   }
   try {
     return to_si(make_bar(drawn(ends[0]), drawn(ends[1]), width, margin, radii[0], radii[1]));
-  } catch (const std::invalid_argument& error) {
+  } catch (const Error& error) {
     std::string_view reason = error.what();
     if (reason.rfind("make_bar: ", 0) == 0) reason.remove_prefix(10);
     fail(mark(e), "the bar of " + name + " is not valid: " + std::string(reason));
