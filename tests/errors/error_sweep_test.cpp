@@ -26,6 +26,7 @@
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/table.hpp"
 #include "nbar/model/curves.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
 #include "nbar/model/law.hpp"
 #include "nbar/model/units.hpp"
@@ -107,7 +108,7 @@ TEST(ErrorSweep, AnalyseWithBadOptions) {
   order.order = 9;
   EXPECT_NBAR_ERROR(BadInput, analyse(crank_rocker(), order));
   AnalysisOptions steps;
-  steps.steps = 1;
+  steps.steps = -1;
   EXPECT_NBAR_ERROR(BadInput, analyse(crank_rocker(), steps));
   AnalysisOptions too_many;
   too_many.steps = 1000;
@@ -231,7 +232,7 @@ TEST(ErrorSweep, Polynomials) {
   using synthesis::Polynomial;
   using synthesis::PolynomialSystem;
   EXPECT_NBAR_ERROR(BadInput, Polynomial::variable(2, 5));
-  EXPECT_NBAR_ERROR(BadInput, PolynomialSystem({}));
+  EXPECT_NBAR_ERROR(BadInput, PolynomialSystem(std::vector<Polynomial>{}));
   const Polynomial x = Polynomial::variable(2, 0), y = Polynomial::variable(2, 1);
   EXPECT_NBAR_ERROR(BadInput, PolynomialSystem({x, Polynomial::variable(3, 0)}));
   EXPECT_NBAR_ERROR(BadInput, x + Polynomial::variable(3, 0));
@@ -253,7 +254,7 @@ TEST(ErrorSweep, PicturesAndPlots) {
   EXPECT_NBAR_ERROR(BadInput, render::nice_ticks(0, std::numeric_limits<double>::infinity()));
   render::PlotSpec spec;
   spec.x = {0, 1, 2};
-  spec.series.push_back({"y", {1, 2}});
+  spec.series.push_back({"y", "m", {1, 2}});
   EXPECT_NBAR_ERROR(BadInput, render::draw_plot(canvas, spec));
   render::PlotSpec no_x;
   EXPECT_NBAR_ERROR(BadInput, render::set_plot_data(no_x, ResultTable{}, ResultTable{}));
@@ -300,9 +301,9 @@ TEST(ErrorSweep, SketchReadersAndWriters) {
 
 TEST(ErrorSweep, CalculixResultsAndWriters) {
   std::istringstream bad(" -4  DISP        4    1\n -1         1 1.0000\n");
-  EXPECT_NBAR_ERROR(BadInput, io::read_calculix_frd(bad));
+  EXPECT_NBAR_ERROR(BadInput, fe::read_calculix_frd(bad));
   std::istringstream garbled(" -4  DISP        4    1\n -1 nonsense!  1.00000E+00 2.00000E+00 3.00000E+00\n");
-  EXPECT_NBAR_ERROR(BadInput, io::read_calculix_frd(garbled));
+  EXPECT_NBAR_ERROR(BadInput, fe::read_calculix_frd(garbled));
 
   const Analysis analysis = crank_rocker_sweep();
   std::ostringstream out;

@@ -10,6 +10,7 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/sweep.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/fourbar_design.hpp"
 
 namespace {

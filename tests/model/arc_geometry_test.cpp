@@ -1,6 +1,7 @@
 // Plates bounded by circular arcs (bulges, as DXF writes them): the exact mass properties
 // against closed forms worked by hand, against a fine polygonisation, and the consumers that
 // need straight edges (validation, sections) seeing the true outline.
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
 #include "nbar/stress/section.hpp"
 

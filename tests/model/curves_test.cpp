@@ -2,6 +2,7 @@
 // splines pass through their points and are exact where a cubic is, and a rational B-spline
 // draws a circle exactly.
 #include "nbar/model/curves.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,9 @@
 // Plate geometry against closed forms worked by hand, against brute-force quadrature, and as
 // properties over random plates: the two sides of any cut add up to the whole, and the results
 // move rigidly with the plate.
-#include "nbar/model/geometry.hpp"
 #include "model/region_support.hpp"
+#include "nbar/model/diagnostics.hpp"
+#include "nbar/model/geometry.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/law.hpp"
 
 #include <gtest/gtest.h>

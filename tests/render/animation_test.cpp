@@ -21,6 +21,7 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/sweep.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/render/animation.hpp"
 #include "nbar/render/image_canvas.hpp"
 

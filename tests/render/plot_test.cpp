@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/render/canvas.hpp"
 #include "nbar/render/image_canvas.hpp"
 #include "nbar/render/plot.hpp"

@@ -17,6 +17,7 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/sweep.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/render/drawing.hpp"
 #include "nbar/render/image_canvas.hpp"
 

@@ -2,10 +2,11 @@
 // positive Jacobian at every node), the smallest angle, the boundary covered once with the
 // plate on its left, holes left empty, grading near holes and re-entrant corners,
 // reproducibility, limits and errors; over random convex plates with round holes too.
-#include "nbar/stress/mesh.hpp"
 #include "model/region_support.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/model.hpp"
+#include "nbar/stress/mesh.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

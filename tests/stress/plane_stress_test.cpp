@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "nbar/io/calculix.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/stress/plane_stress.hpp"
 #include "structured_t6.hpp"
 

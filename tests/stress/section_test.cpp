@@ -1,8 +1,9 @@
 // Sections of plates along a line: the material intervals by hand (through holes, vertices,
 // non-convex outlines), beam-section properties against the closed forms, and, over random
 // plates and lines, intervals that really are material with boundary at their ends.
-#include "nbar/stress/section.hpp"
 #include "model/region_support.hpp"
+#include "nbar/model/diagnostics.hpp"
+#include "nbar/stress/section.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -3,6 +3,7 @@
 // returned must carry its coupler through every precision position, checked with the same
 // independent closed form (link lengths and input angle only). The five-position solutions
 // are cross-checked with the homotopy solver.
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/burmester.hpp"
 
 #include <Eigen/LU>

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/five_point.hpp"
 #include "nbar/synthesis/five_point_start.hpp"
 #include "synthesis/fourbar_support.hpp"

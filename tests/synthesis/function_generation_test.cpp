@@ -2,6 +2,7 @@
 // from a closed-form position analysis written here, is the function to generate, and
 // three precision points must give its link lengths back. Designs for y = log10(x) are
 // simulated here, independently of the library, at their precision points.
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/function_generation.hpp"
 
 #include <gmock/gmock.h>

@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/fourbar_design.hpp"
 #include "nbar/synthesis/nine_point.hpp"
 #include "nbar/synthesis/nine_point_start.hpp"

@@ -1,3 +1,4 @@
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/path_fit.hpp"
 
 #include <gmock/gmock.h>

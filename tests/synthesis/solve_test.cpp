@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/solve.hpp"
 
 namespace nbar::synthesis {
