@@ -42,7 +42,7 @@ def test_exporting_a_model_with_kinetics(examples):
 
 
 def test_solving(crank):
-    raises(nbar.BadInputError, crank.solve, steps=1)
+    raises(nbar.BadInputError, crank.solve, steps=-1)
     raises(nbar.BadInputError, crank.solve, steps="ten")
     raises(nbar.BadInputError, crank.solve, order=9)
     raises(nbar.ColumnError, crank.solve, steps=5, columns="no-such-column")
@@ -58,7 +58,7 @@ def test_kinetics_and_stress(examples, crank):
     raises(nbar.BadInputError, steel.stress, steps=5, sections=1)
     raises(nbar.BadInputError, steel.stress, steps=5, method="magic")
     raises(nbar.BadInputError, steel.stress, steps=5, method="fe", mesh_size=-1)
-    raises(nbar.BadInputError, steel.dynamics, steps=1)
+    raises(nbar.BadInputError, steel.dynamics, steps=-1)
 
 
 def test_pictures(crank, tmp_path):
@@ -71,7 +71,7 @@ def test_pictures(crank, tmp_path):
     raises(nbar.BadInputError, crank.draw(steps=5).save, tmp_path / "no-folder" / "pose.svg")
     raises(nbar.BadInputError, crank.animate, frames=3, fps=0, steps=5)
     raises(nbar.BadInputError, crank.animate, frames=3, width=-5, steps=5)
-    animation = crank.animate(frames=2, width=60, height=40, steps=5)
+    animation = crank.animate(frames=2, width=120, height=100, steps=5)
     raises(nbar.BadInputError, animation.save, tmp_path / "a.avi")
     raises(nbar.BadInputError, animation.data, "avi")
 
