@@ -82,11 +82,7 @@ int run_animate(const AnimateCommand& command) {
     if (request.stress) animation.show_stresses(analysis);
     write_animation(animation, format, command.output);
   } catch (const Error& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return kBadUsage;
-  } catch (const std::runtime_error& e) {  // until every render error is an nbar::Error
-    std::cerr << "error: " << e.what() << '\n';
-    return kBadUsage;
+    return fail(command.model, e);
   }
   print_warnings(sweep.warnings);
   return finish(loaded, sweep);

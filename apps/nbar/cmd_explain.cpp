@@ -33,9 +33,9 @@ int draw_centres(const std::string& path, const Explanation& ex) {
     const bool written = extension(path) == "svg" ? write_file(path, render::instant_centres_svg(ex, &off_picture))
                                                   : write_file(path, render::instant_centres_png(ex, &off_picture));
     if (!written) return kBadUsage;
-  } catch (const std::runtime_error& e) {
+  } catch (const Error& e) {
     std::cerr << "error: " << e.what() << '\n';
-    return kBadUsage;
+    return exit_code(e.kind());
   }
   if (off_picture > 0)
     std::cerr << "note: --draw: " << off_picture << " instant centre" << (off_picture == 1 ? " lies" : "s lie")

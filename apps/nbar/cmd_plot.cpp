@@ -66,10 +66,7 @@ int write_plot(const render::PlotSpec& spec, const std::string& format, const st
     canvas.write_png(path);
   } catch (const Error& e) {
     std::cerr << "error: " << e.what() << '\n';
-    return kBadUsage;
-  } catch (const std::runtime_error& e) {  // until every render error is an nbar::Error
-    std::cerr << "error: " << e.what() << '\n';
-    return kBadUsage;
+    return exit_code(e.kind());
   }
   return kOk;
 }

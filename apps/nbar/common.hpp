@@ -31,14 +31,16 @@ inline int exit_code(ErrorKind kind) {
     case ErrorKind::CannotAssemble: return kCannotAssemble;
     case ErrorKind::StoppedAtLimit: return kStoppedEarly;
     case ErrorKind::Cancelled: return kCancelled;
+    case ErrorKind::Internal: return kBadUsage;
   }
   return kBadUsage;
 }
 
 // Prints the error, prefixed by the model file's name when the error does not carry a place
-// of its own, and returns its exit code. Bad input is about the options, not the file.
+// of its own, and returns its exit code. Bad input is about the options, an internal error
+// about nbar or the system, neither about the file.
 inline int fail(const std::string& model_path, const Error& e) {
-  if (!e.file().empty() || e.kind() == ErrorKind::BadInput || model_path.empty())
+  if (!e.file().empty() || e.kind() == ErrorKind::BadInput || e.kind() == ErrorKind::Internal || model_path.empty())
     std::cerr << "error: " << e.what() << '\n';
   else
     std::cerr << "error: " << model_path << ": " << e.message() << '\n';

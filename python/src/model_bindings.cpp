@@ -140,7 +140,7 @@ void bind_model(py::module_& m) {
   m.def("pick_columns", [](const std::vector<std::string>& columns, const std::vector<std::string>& patterns) {
           try {
             return py::make_tuple(pick_columns(columns, patterns), std::string());
-          } catch (const std::invalid_argument& e) {
+          } catch (const Error& e) {
             return py::make_tuple(std::vector<std::size_t>{}, std::string(e.what()));
           }
         },

@@ -216,15 +216,15 @@ void SolveRequest::explain_column_error(const Mechanism& mechanism, const std::s
   throw OptionError("columns", literal(problem + "; the columns are: " + listed));
 }
 
-// The library's select_columns and TableStream::select say which pattern matched nothing; the
-// request adds what the user can do about it.
+// The library's select_columns and TableStream::select say which pattern matched nothing (an
+// Error of kind BadInput); the request adds what the user can do about it.
 ResultTable SolveRequest::table(const Analysis& analysis) const {
   ResultTable table = result_table(analysis);
   if (columns.empty()) return table;
   try {
     return select_columns(table, columns);
-  } catch (const std::exception& e) {
-    explain_column_error(*analysis.mechanism, e.what());
+  } catch (const Error& e) {
+    explain_column_error(*analysis.mechanism, e.message());
   }
 }
 
@@ -232,8 +232,8 @@ ColumnTable SolveRequest::columns_of(const Mechanism& mechanism, const ColumnTab
   if (columns.empty()) return table;
   try {
     return select_columns(table, columns);
-  } catch (const std::exception& e) {
-    explain_column_error(mechanism, e.what());
+  } catch (const Error& e) {
+    explain_column_error(mechanism, e.message());
   }
 }
 
@@ -241,8 +241,8 @@ void SolveRequest::select(const Mechanism& mechanism, TableStream& stream) const
   if (columns.empty()) return;
   try {
     stream.select(columns);
-  } catch (const std::exception& e) {
-    explain_column_error(mechanism, e.what());
+  } catch (const Error& e) {
+    explain_column_error(mechanism, e.message());
   }
 }
 

@@ -93,8 +93,6 @@ ApiResponse answer_or_error(const ApiRequest& request, const ServerConfig& confi
     return error_answer(e.kind(), e.what(), e.details());
   } catch (const Error& e) {
     return error_answer(e);
-  } catch (const std::invalid_argument& e) {
-    return error_answer(ApiErrorKind::BadInput, e.what());
   } catch (const std::bad_alloc&) {
     return error_answer(ApiErrorKind::LimitExceeded, "the request needs more memory than the server has");
   } catch (const std::exception& e) {

@@ -57,6 +57,7 @@ ApiErrorKind api_kind(ErrorKind kind) {
     case ErrorKind::StoppedAtLimit: return ApiErrorKind::StoppedAtLimit;
     case ErrorKind::UndefinedLaw: return ApiErrorKind::UndefinedLaw;
     case ErrorKind::Cancelled: return ApiErrorKind::TimeBudget;  // the server cancels only by its deadline
+    case ErrorKind::Internal: return ApiErrorKind::Internal;
   }
   return ApiErrorKind::Internal;
 }
