@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "model/linear_algebra.hpp"
+
 namespace nbar {
 
 namespace {

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <map>
 
+#include "model/linear_algebra.hpp"
+
 namespace nbar {
 
 namespace {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "nbar/model/diagnostics.hpp"
+#include "linear_algebra.hpp"
 
 namespace nbar {
 

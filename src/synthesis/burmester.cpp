@@ -1,6 +1,9 @@
 #include "nbar/synthesis/burmester.hpp"
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/QR>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +14,7 @@
 #include <string>
 
 #include "nbar/model/diagnostics.hpp"
+#include "linear_algebra.hpp"
 #include "nbar/synthesis/solve.hpp"
 
 namespace nbar::synthesis {
@@ -478,8 +482,8 @@ std::vector<CVec2> roots(BinaryForm f) {
   Eigen::MatrixXcd companion = Eigen::MatrixXcd::Zero(n, n);
   for (int j = 0; j < n; ++j) companion(0, j) = -f[f.size() - 2 - static_cast<std::size_t>(j)] / f.back();
   for (int j = 1; j < n; ++j) companion(j, j - 1) = 1.0;
-  const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(companion, false);
-  for (int j = 0; j < n; ++j) out.push_back(direction(eig.eigenvalues()[j]));
+  const Eigen::VectorXcd eigenvalues = linear_algebra::eigenvalues(companion);
+  for (int j = 0; j < n; ++j) out.push_back(direction(eigenvalues[j]));
   return out;
 }
 
@@ -518,7 +522,7 @@ std::optional<Solution> refine(const CompatibilityRows& rows, Solution s) {
       j.block<1, 2>(k, 0) = rows.dc(k, s.q).transpose();
       j.block<1, 2>(k, 2) = rows.row(k, s.c).head<2>();
     }
-    const CVec4 delta = j.fullPivLu().solve(-residual(s));
+    const CVec4 delta = linear_algebra::solve_full_pivoting(j, -residual(s));
     if (!delta.allFinite()) return std::nullopt;
     s.c += delta.head<2>();
     s.q += delta.tail<2>();
@@ -569,8 +573,7 @@ std::vector<Solution> closed_form_candidates(const CompatibilityRows& rows, cons
     if (!c.allFinite()) continue;
     Eigen::Matrix<Complex, 4, 3> m;
     for (int k = 0; k < 4; ++k) m.row(k) = rows.row(k, c);
-    const Eigen::JacobiSVD<Eigen::Matrix<Complex, 4, 3>> svd(m, Eigen::ComputeFullV);
-    const Eigen::Vector3cd v = svd.matrixV().col(2);
+    const Eigen::Vector3cd v = linear_algebra::smallest_right_singular_vector(m);
     if (std::abs(v.z()) <= 1e-12 * v.norm()) continue;  // moving pivot at infinity
     if (auto refined = refine(rows, {c, v.head<2>() / v.z()})) out.push_back(*refined);
   }

@@ -12,6 +12,7 @@
 
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/tracker.hpp"
+#include "linear_algebra.hpp"
 
 namespace nbar::synthesis {
 namespace {

@@ -7,6 +7,8 @@
 #include <limits>
 #include <numbers>
 
+#include "linear_algebra.hpp"
+
 namespace nbar::synthesis {
 namespace {
 
