@@ -3,12 +3,15 @@
 #include <atomic>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "nbar/model/diagnostics.hpp"
+#include "model/linear_algebra.hpp"
 
 namespace nbar {
 
@@ -29,6 +32,35 @@ int owner_of_pair(const Model& m, int p, int q, int except) {
 }
 
 }  // namespace
+
+struct DynamicsWorkspace::Scratch {
+  // What a body receives directly, valued once the unknowns are known (column -1: known).
+  struct Pending {
+    AppliedLoad load;
+    int column = -1;
+  };
+  // A force on a joint's pin, handed to the pin's balancing link afterwards (column -1: known).
+  struct PinLoad {
+    int point = -1;
+    Eigen::Vector2d force{0, 0};
+    int column = -1;
+  };
+  Eigen::MatrixXd matrix;  // the Newton-Euler equations: 3 rows per body, one column per unknown
+  Eigen::VectorXd rhs, unknowns;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  Eigen::SparseMatrix<double> sparse;  // large systems: the same equations, factorised sparsely
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> sparse_lu;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> least_squares;
+  std::vector<Eigen::Vector2d> cg;  // every body's centre of mass, current pose
+  std::vector<Pending> pending;
+  std::vector<PinLoad> on_pins;
+  std::vector<Eigen::Vector2d> pin_balance;
+};
+
+DynamicsWorkspace::DynamicsWorkspace() : scratch_(std::make_unique<Scratch>()) {}
+DynamicsWorkspace::~DynamicsWorkspace() = default;
+DynamicsWorkspace::DynamicsWorkspace(DynamicsWorkspace&&) noexcept = default;
+DynamicsWorkspace& DynamicsWorkspace::operator=(DynamicsWorkspace&&) noexcept = default;
 
 MassProperties mass_properties(const Body& body) {
   MassProperties m;
@@ -167,7 +199,7 @@ InverseDynamics::InverseDynamics(std::shared_ptr<const Mechanism> mechanism) : m
 // outputs are compared byte for byte), so steps keep the order they always had.
 class InverseDynamics::Assembly {
  public:
-  Assembly(const InverseDynamics& id, const Sample& sample, DynamicsWorkspace& w, DynamicsResult& out)
+  Assembly(const InverseDynamics& id, const Sample& sample, DynamicsWorkspace::Scratch& w, DynamicsResult& out)
       : id_(id), m_(id.mechanism().model()), sample_(sample), w_(w), out_(out), r_(out.motion.r), v_(out.motion.v) {
     w_.matrix.setZero(id.equations_, id.unknowns_);
     w_.rhs.setZero(id.equations_);
@@ -347,7 +379,7 @@ class InverseDynamics::Assembly {
     const Eigen::VectorXd& x = w_.unknowns;
     out_.pin_forces.assign(id_.joint_links_.size(), Eigen::Vector2d::Zero());
     w_.pin_balance.assign(id_.joints_.size(), Eigen::Vector2d::Zero());
-    for (const DynamicsWorkspace::PinLoad& p : w_.on_pins)
+    for (const DynamicsWorkspace::Scratch::PinLoad& p : w_.on_pins)
       w_.pin_balance[id_.node_of_point_[p.point]] += p.column >= 0 ? Eigen::Vector2d(p.force * x(p.column)) : p.force;
     for (std::size_t i = 0; i < id_.joint_links_.size(); ++i) {
       if (id_.pin_column_[i] < 0) continue;
@@ -356,7 +388,7 @@ class InverseDynamics::Assembly {
     }
     for (std::size_t n = 0; n < id_.joints_.size(); ++n) out_.pin_forces[id_.dependent_[n]] = w_.pin_balance[n];
     out_.applied.reserve(w_.pending.size());
-    for (DynamicsWorkspace::Pending& p : w_.pending) {
+    for (DynamicsWorkspace::Scratch::Pending& p : w_.pending) {
       if (p.column >= 0) {
         p.load.force *= x(p.column);
         p.load.couple *= x(p.column);
@@ -429,7 +461,7 @@ class InverseDynamics::Assembly {
   const InverseDynamics& id_;
   const Model& m_;
   const Sample& sample_;
-  DynamicsWorkspace& w_;
+  DynamicsWorkspace::Scratch& w_;
   DynamicsResult& out_;
   const std::vector<Eigen::Vector2d>& r_;
   const std::vector<Eigen::Vector2d>& v_;
@@ -441,7 +473,8 @@ DynamicsResult InverseDynamics::solve(const Sample& sample, DynamicsWorkspace& w
   ++solves;
   DynamicsResult out;
   out.motion = sample_motion(*mechanism_, sample);
-  Assembly assembly(*this, sample, workspace, out);
+  if (!workspace.scratch_) workspace.scratch_ = std::make_unique<DynamicsWorkspace::Scratch>();  // moved from
+  Assembly assembly(*this, sample, *workspace.scratch_, out);
   assembly.inertia_and_weight();
   assembly.pin_columns();
   assembly.slider_and_slot_columns();

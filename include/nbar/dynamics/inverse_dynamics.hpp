@@ -12,9 +12,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Dense>
-#include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 
 #include <memory>
 #include <string>
@@ -92,29 +89,21 @@ struct DynamicsResult {
 
 // Scratch memory for InverseDynamics::solve: sized once for a mechanism and reused for every
 // sample, so a sweep allocates nothing per sample but the results. Not shared between threads:
-// give each thread its own.
-struct DynamicsWorkspace {
-  // What a body receives directly, valued once the unknowns are known (column -1: known).
-  struct Pending {
-    AppliedLoad load;
-    int column = -1;
-  };
-  // A force on a joint's pin, handed to the pin's balancing link afterwards (column -1: known).
-  struct PinLoad {
-    int point = -1;
-    Eigen::Vector2d force{0, 0};
-    int column = -1;
-  };
-  Eigen::MatrixXd matrix;  // the Newton-Euler equations: 3 rows per body, one column per unknown
-  Eigen::VectorXd rhs, unknowns;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-  Eigen::SparseMatrix<double> sparse;  // large systems: the same equations, factorised sparsely
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> sparse_lu;
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> least_squares;
-  std::vector<Eigen::Vector2d> cg;  // every body's centre of mass, current pose
-  std::vector<Pending> pending;
-  std::vector<PinLoad> on_pins;
-  std::vector<Eigen::Vector2d> pin_balance;
+// give each thread its own. Opaque: its matrices and factorisations (dense and sparse LU, a
+// complete orthogonal decomposition) live in inverse_dynamics.cpp, so this header needs no Eigen
+// decomposition and the units including it instantiate none.
+class DynamicsWorkspace {
+ public:
+  DynamicsWorkspace();
+  ~DynamicsWorkspace();
+  DynamicsWorkspace(DynamicsWorkspace&&) noexcept;
+  DynamicsWorkspace& operator=(DynamicsWorkspace&&) noexcept;
+
+  struct Scratch;  // inverse_dynamics.cpp
+
+ private:
+  friend class InverseDynamics;
+  std::unique_ptr<Scratch> scratch_;
 };
 
 class InverseDynamics {
