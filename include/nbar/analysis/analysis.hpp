@@ -62,10 +62,26 @@ struct StressStage {
   std::vector<FePeak> fe_peaks;             // fe: one per analysed body
 };
 
+// What analyse() keeps, field by field: the stage that fills it, its units and its shape (like
+// MuJoCo's mjData). N is the number of samples solved (sweep.samples.size()), n the coordinate
+// count (2 per moving point: mechanism->coordinate_count()), B the model's bodies.
 struct Analysis {
+  // Given to analyse() and shared, never copied: the model (SI units inside), its constraint rows
+  // and mobility. Set before any stage runs.
   std::shared_ptr<const Mechanism> mechanism;
+  // Stage 1, always: the assembly at the start, then N samples along the drawn branch, each with
+  // its time (s), driver values (SI: rad or m) and an n x (order + 1) matrix of Taylor
+  // coefficients of q in time (column k is q^(k) / k!; m, m/s, ...). A sweep stopped at a limit
+  // position keeps what it solved (complete false, stop_reason says why).
   SweepResult sweep;
+  // Stage 2, when options.dynamics or options.stress: N DynamicsResult in sample order, each with
+  // the pin forces (N, one per InverseDynamics::joint_links() entry), slider and slot forces (N,
+  // N m), driver efforts (N m or N, one per driver) and energies (J). Empty optional otherwise.
   std::optional<DynamicsStage> dynamics;
+  // Stage 3, when options.stress: one peak per shaped body, the largest von Mises stress over the
+  // N samples (Pa), where (the cross-section, or the plate's point in m) and at which step, with
+  // the safety factor when the material has a yield strength; by the beam model (peaks) or by
+  // finite elements (fe_peaks). Empty optional otherwise.
   std::optional<StressStage> stress;
 
   const Model& model() const { return mechanism->model(); }

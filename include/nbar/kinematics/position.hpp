@@ -17,15 +17,26 @@
 namespace nbar {
 
 // Copyable: a copy is a snapshot that solves on its own exactly as its source would.
+// Field by field (like MuJoCo's mjData): which call fills it, its units and its shape; n is
+// mech.coordinate_count() (x, y of every moving point), d the number of drivers.
 struct State {
   explicit State(const Mechanism& mech);
 
-  double parameter = 0.0;              // the path parameter (time, or sweep position)
-  Eigen::VectorXd q;                   // natural coordinates, m
-  std::vector<DriverState> drivers;    // driver values as series in the parameter
-  Eigen::MatrixXd series;              // n x terms Taylor coefficients of q in the parameter
-  double residual = 0.0;               // max |Phi| over every row, m
-  int iterations = 0;                  // of the last position solve
+  // track() and the sweep: where along the path q is (s for a sweep in time).
+  double parameter = 0.0;
+  // solve_position() and track(): the natural coordinates, x then y of every moving point in
+  // the model's order, m; n entries. The constructor sets the drawn pose.
+  Eigen::VectorXd q;
+  // set_drivers(): d entries, each driver's value (rad or m) with its sine and cosine for an
+  // angle, as series in the parameter.
+  std::vector<DriverState> drivers;
+  // compute_series(): n x terms Taylor coefficients of q in the parameter (column k is
+  // q^(k) / k!, m per unit parameter^k); column 0 is q.
+  Eigen::MatrixXd series;
+  // solve_position() and max_residual(): max |Phi| over every row at q, m.
+  double residual = 0.0;
+  // solve_position(): the Newton iterations of the last solve.
+  int iterations = 0;
 
   // The factorised Jacobian at q. Two slots, so a trial step can be rejected without
   // losing the factorisation of the last accepted point.
