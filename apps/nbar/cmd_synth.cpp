@@ -16,7 +16,7 @@
 #include "common.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/io/synthesis_writer.hpp"
-#include "nbar/io/yaml_support.hpp"
+#include "io/yaml_support.hpp"
 #include "nbar/synthesis/run.hpp"
 #include "validators.hpp"
 

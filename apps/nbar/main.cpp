@@ -11,7 +11,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "nbar/io/yaml_support.hpp"
+#include "io/yaml_support.hpp"
 #include "nbar/version.hpp"
 
 int main(int argc, char** argv) {

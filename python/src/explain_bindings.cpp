@@ -6,7 +6,7 @@
 #include "bindings.hpp"
 #include "nbar/request/requests.hpp"
 #include "nbar/analysis/explain.hpp"
-#include "nbar/io/explain_writer.hpp"
+#include "io/explain_writer.hpp"
 #include "nbar/render/pictures.hpp"
 
 namespace nbar::python {

@@ -1,4 +1,4 @@
-#include "nbar/io/explain_writer.hpp"
+#include "explain_writer.hpp"
 
 #include <cmath>
 

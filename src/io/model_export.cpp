@@ -1,7 +1,7 @@
 #include "nbar/io/model_export.hpp"
 
-#include "nbar/io/yaml_support.hpp"
 #include "nbar/model/diagnostics.hpp"
+#include "yaml_support.hpp"
 
 #include <fmt/format.h>
 

@@ -13,7 +13,7 @@
 
 #include "model_file_parser.hpp"
 #include "nbar/io/file_text.hpp"
-#include "nbar/io/yaml_support.hpp"
+#include "yaml_support.hpp"
 
 namespace nbar::io {
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "nbar/io/model_file.hpp"
-#include "nbar/io/yaml_support.hpp"
+#include "yaml_support.hpp"
 #include "nbar/model/curves.hpp"
 #include "nbar/model/geometry.hpp"
 #include "nbar/model/materials.hpp"

@@ -1,8 +1,8 @@
 #include "nbar/io/results_writer.hpp"
 
-#include "nbar/io/json_text.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/units.hpp"
+#include "json_text.hpp"
 
 #include <fmt/format.h>
 

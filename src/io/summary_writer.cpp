@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "nbar/kinematics/continuation.hpp"
-#include "nbar/io/json_text.hpp"
+#include "json_text.hpp"
 
 namespace nbar::io {
 

@@ -15,7 +15,7 @@
 #include <string_view>
 #include <system_error>
 
-#include "nbar/io/yaml_support.hpp"
+#include "yaml_support.hpp"
 
 namespace nbar::io {
 

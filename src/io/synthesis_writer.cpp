@@ -14,7 +14,7 @@
 #include "nbar/model/file_errors.hpp"
 #include "nbar/render/canvas.hpp"
 #include "nbar/render/plot.hpp"
-#include "nbar/io/json_text.hpp"
+#include "json_text.hpp"
 
 namespace nbar::io {
 

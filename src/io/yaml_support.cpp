@@ -1,4 +1,4 @@
-#include "nbar/io/yaml_support.hpp"
+#include "yaml_support.hpp"
 
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>

@@ -17,7 +17,7 @@
 #include <string>
 
 #include "nbar/analysis/explain.hpp"
-#include "nbar/io/explain_writer.hpp"
+#include "io/explain_writer.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/kinematics/position.hpp"
 #include "nbar/kinematics/sweep.hpp"

@@ -1,5 +1,7 @@
 # Installs nbar into a fresh prefix, then builds examples/cpp/analyse-model against it with
-# find_package(nbar) and runs it: what a C++ user outside the tree does.
+# find_package(nbar) and runs it: what a C++ user outside the tree does. The program includes
+# only the front door, "nbar/nbar.hpp", and the prefix must hold no header of nlohmann-json or
+# yaml-cpp types and none of the web server's.
 # cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DMODEL=... -P install_test.cmake
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
@@ -11,6 +13,22 @@ function(run)
   set(last_output "${out}" PARENT_SCOPE)
 endfunction()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+file(STRINGS ${SOURCE_DIR}/examples/cpp/analyse-model/main.cpp includes REGEX "^#include \"")
+if(NOT includes STREQUAL "#include \"nbar/nbar.hpp\"")
+  message(FATAL_ERROR "analyse-model should include only \"nbar/nbar.hpp\", not: ${includes}")
+endif()
+file(GLOB_RECURSE installed_headers ${prefix}/include/nbar/*.hpp)
+foreach(header IN LISTS installed_headers)
+  file(STRINGS ${header} private_types REGEX "nlohmann|YAML::|yaml-cpp")
+  if(private_types)
+    message(FATAL_ERROR "${header} is installed but uses nlohmann-json or yaml-cpp: ${private_types}")
+  endif()
+endforeach()
+if(EXISTS ${prefix}/include/nbar/web)
+  message(FATAL_ERROR "include/nbar/web is installed without its library")
+endif()
+list(LENGTH installed_headers header_count)
+message("${header_count} headers installed")
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/cpp/analyse-model -B ${WORK_DIR}/build
     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)

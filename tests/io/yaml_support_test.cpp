@@ -1,6 +1,6 @@
 // The readers' shared helpers: the typo distance (against the textbook full-matrix recursion,
 // and its cut-off) and the UTF-8 check (against hand-made byte sequences).
-#include "nbar/io/yaml_support.hpp"
+#include "io/yaml_support.hpp"
 
 #include <gtest/gtest.h>
 

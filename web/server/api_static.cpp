@@ -8,7 +8,7 @@
 #include <tuple>
 
 #include "endpoints.hpp"
-#include "nbar/io/json_text.hpp"
+#include "io/json_text.hpp"
 #include "nbar/render/animation.hpp"
 #include "nbar/version.hpp"
 #include "nbar/web/embedded.hpp"

@@ -1,6 +1,6 @@
 // The synthesis endpoints: /api/synth/five-point, burmester, function, nine-point and path.
 #include "endpoints.hpp"
-#include "nbar/io/json_text.hpp"
+#include "io/json_text.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/io/synthesis_writer.hpp"
 #include "nbar/synthesis/run.hpp"

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "api_internal.hpp"
-#include "nbar/io/json_text.hpp"
+#include "io/json_text.hpp"
 #include "nbar/request/options.hpp"
 
 namespace nbar::web {

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "nbar/analysis/columns.hpp"
-#include "nbar/io/yaml_support.hpp"
+#include "io/yaml_support.hpp"
 #include "nbar/kinematics/sweep.hpp"
 
 namespace nbar::web {

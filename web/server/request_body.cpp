@@ -2,8 +2,8 @@
 
 #include <unordered_set>
 
-#include "nbar/io/json_text.hpp"
-#include "nbar/io/yaml_support.hpp"
+#include "io/json_text.hpp"
+#include "io/yaml_support.hpp"
 
 namespace nbar::web {
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "api_internal.hpp"
-#include "nbar/io/json_text.hpp"
+#include "io/json_text.hpp"
 #include "nbar/request/options.hpp"
 
 namespace nbar::web {

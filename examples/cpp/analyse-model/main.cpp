@@ -5,8 +5,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "nbar/analysis/analysis.hpp"
-#include "nbar/io/model_file.hpp"
+#include "nbar/nbar.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 2) {
