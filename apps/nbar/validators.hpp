@@ -13,18 +13,11 @@
 #include <string>
 
 #include "nbar/model/file_errors.hpp"
+#include "nbar/request/options.hpp"
 
 namespace nbar::cli {
 
-// The whole text as a finite number, or nothing.
-inline std::optional<double> finite_number(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  char* end = nullptr;
-  errno = 0;
-  const double x = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(x)) return std::nullopt;
-  return x;
-}
+using request::finite_number;  // the request layer's reading of a typed number
 
 inline std::string number_text(double x) {
   std::ostringstream s;

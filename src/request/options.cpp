@@ -28,16 +28,6 @@ std::string joined(const std::vector<std::string>& items, const char* separator)
   return out;
 }
 
-// The whole text as a finite number, or nothing ("1.5x", "nan", "1e999" are not).
-std::optional<double> finite_number(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  char* end = nullptr;
-  errno = 0;
-  const double x = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(x)) return std::nullopt;
-  return x;
-}
-
 // A number and how the user wrote it (the text as given, so that a message quotes it).
 struct GivenNumber {
   double value;
@@ -80,6 +70,15 @@ void check_range(const OptionRule& rule, const GivenNumber& x) {
 }
 
 }  // namespace
+
+std::optional<double> finite_number(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const double x = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(x)) return std::nullopt;
+  return x;
+}
 
 const Value* Options::find(std::string_view key) const {
   const auto it = values_.find(key);

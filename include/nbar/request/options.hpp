@@ -76,6 +76,9 @@ std::string key_name(std::string_view key);
 // marked as braces, not keys.
 std::string literal(std::string_view text);
 
+// The whole text as a finite number ("1.5x", "nan", "1e999" are not), or nothing.
+std::optional<double> finite_number(const std::string& text);
+
 // The command line's spelling of a key: "max_steps" -> "--max-steps".
 std::string flag_name(std::string_view key);
 
