@@ -53,12 +53,6 @@ struct Loaded {
   std::shared_ptr<const Mechanism> mechanism;
 };
 
-// A sweep's size is bounded (--max-steps of every command that runs a sweep): most commands keep
-// every sample in memory, and every one takes time per sample.
-inline const std::string kMaxStepsHelp = "the most samples the sweep may have, the model's or --steps (default " +
-                                         std::to_string(nbar::kDefaultMaxSweepSamples) +
-                                         "; every sample is kept in memory, except by solve's CSV)";
-
 inline int load(const std::string& path, Loaded& out) {
   try {
     out.file = nbar::io::load_model_file(path);
@@ -104,19 +98,6 @@ inline int analyse_model(const std::string& path, const Loaded& loaded, const An
     return fail(path, nbar::io::located(loaded.file.source, e));
   }
   return kOk;
-}
-
-// The finite-element stress method, with --mesh-size given in the model's length unit.
-inline void use_finite_elements(AnalysisOptions& options, const Model& model, std::optional<double> mesh_size) {
-  options.stress_method = StressMethod::fe;
-  if (mesh_size) options.fe.mesh_size = *mesh_size * model.units.length_scale;
-}
-
-// "--step K is not a solved step (0 to N)" unless 0 <= step < samples.
-inline bool check_step(int step, const SweepResult& sweep) {
-  if (step >= 0 && step < static_cast<int>(sweep.samples.size())) return true;
-  std::cerr << "error: --step " << step << " is not a solved step (0 to " << sweep.samples.size() - 1 << ")\n";
-  return false;
 }
 
 // Writes a picture's or a document's bytes to `path`; false, after saying why, when it cannot.

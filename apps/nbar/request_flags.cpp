@@ -1,17 +1,10 @@
 #include "request_flags.hpp"
 
 #include <cmath>
-#include <sstream>
 
 namespace nbar::cli {
 
 namespace {
-
-std::string number_text(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
 
 // The type CLI11's help shows after the flag, as it showed for the typed options before
 // ("INT:POSITIVE", "INT:[0 to 5]", "TEXT:{csv,json,table}").
@@ -22,7 +15,7 @@ std::string type_name(const request::OptionRule& rule) {
     std::string name = is_integer ? "INT" : "FLOAT";
     if (rule.positive) return name + ":POSITIVE";
     if (std::isfinite(rule.low) && std::isfinite(rule.high) && rule.high < 2147483647.0)
-      return name + ":[" + number_text(rule.low) + " to " + number_text(rule.high) + "]";
+      return name + ":[" + request::number_text(rule.low) + " to " + request::number_text(rule.high) + "]";
     return name;
   }
   if (rule.kind == OptionKind::Choice) {

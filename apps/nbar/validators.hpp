@@ -17,13 +17,9 @@
 
 namespace nbar::cli {
 
-using request::finite_number;  // the request layer's reading of a typed number
-
-inline std::string number_text(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
+// The request layer's reading and writing of a typed number.
+using request::finite_number;
+using request::number_text;
 
 // A finite number for which `accept` holds; otherwise "'abc' is not a number" or the rule.
 template <class Accept>

@@ -10,15 +10,6 @@ namespace nbar::request {
 
 namespace {
 
-// Numbers in messages as a person writes them: 9, 0.1, 2147483647, 1.5e+20 (whole numbers in
-// full, others to six significant digits).
-std::string number_text(double x) {
-  if (std::floor(x) == x && std::abs(x) < 1e15) return std::to_string(static_cast<long long>(x));
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
 // A range's top this large is no limit a person means (INT_MAX of a step): messages leave it out.
 constexpr double kNoTop = 2147483647.0;
 
@@ -70,6 +61,13 @@ void check_range(const OptionRule& rule, const GivenNumber& x) {
 }
 
 }  // namespace
+
+std::string number_text(double x) {
+  if (std::floor(x) == x && std::abs(x) < 1e15) return std::to_string(static_cast<long long>(x));
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
 
 std::optional<double> finite_number(const std::string& text) {
   if (text.empty()) return std::nullopt;

@@ -68,14 +68,6 @@ void check_sweep_size(const Job& job, std::optional<int> steps) {
   }
 }
 
-// The steps option (a positive number, as the CLI's) and the sweep's size against the limit.
-std::optional<int> sweep_steps(const Job& job, const RequestBody& body) {
-  std::optional<int> steps;
-  if (auto s = body.integer("steps", 1, std::numeric_limits<int>::max())) steps = static_cast<int>(*s);
-  check_sweep_size(job, steps);
-  return steps;
-}
-
 // The table a solve or plot builds, samples x columns, against the limit (its memory and the
 // answer's size grow with it).
 double table_values(const Job& job, const AnalysisOptions& options) {

@@ -67,8 +67,6 @@ void load_model(Job& job, const std::string& text);
 // The sweep's number of samples against the server's limit (413), placed at the model's
 // `sweep:` when the model's own sweep is over it.
 void check_sweep_size(const Job& job, std::optional<int> steps);
-// The `steps` option of an endpoint without a request type, checked as check_sweep_size.
-std::optional<int> sweep_steps(const Job& job, const RequestBody& body);
 // The table a solve or plot builds, samples x columns, against the limit.
 double table_values(const Job& job, const AnalysisOptions& options);
 void check_table_size(const Job& job, const AnalysisOptions& options);

@@ -79,6 +79,10 @@ std::string literal(std::string_view text);
 // The whole text as a finite number ("1.5x", "nan", "1e999" are not), or nothing.
 std::optional<double> finite_number(const std::string& text);
 
+// A number as messages and help texts write it: whole numbers in full (9, 2147483647), others to
+// six significant digits (0.1, 1.5e+20).
+std::string number_text(double x);
+
 // The command line's spelling of a key: "max_steps" -> "--max-steps".
 std::string flag_name(std::string_view key);
 
