@@ -19,6 +19,8 @@
 #include <utility>
 #include <vector>
 
+// The DXF group lists are laid out one entity per line, as a DXF file reads.
+// clang-format off
 namespace nbar::io {
 namespace {
 
@@ -462,3 +464,4 @@ TEST(DxfReader, SvgGroupIdsAreTheDxfLayers) {
 
 }  // namespace
 }  // namespace nbar::io
+// clang-format on
