@@ -57,7 +57,7 @@ inline Eigen::Vector2d unit(double angle) { return {std::cos(angle), std::sin(an
 // `coupler` about the crank pin `a` with the circle of radius `output` about the output pivot
 // `o4`, on the left of the line from a to o4 when `left` (one assembly branch), else the right.
 inline Eigen::Vector2d coupler_output_pin(const Eigen::Vector2d& a, const Eigen::Vector2d& o4, double coupler,
-                                   double output, bool left) {
+                                          double output, bool left) {
   const Eigen::Vector2d d = o4 - a;
   const double dist = d.norm();
   const double along = (coupler * coupler - output * output + dist * dist) / (2.0 * dist);
@@ -106,10 +106,10 @@ inline nbar::Model four_bar_model() {
 // however long the chain, and no loop comes near a toggle.
 inline nbar::Model chain_model(int loops) {
   if (loops < 1) die("a chain needs at least one loop");
-  const double s = 0.01;                     // m per unit of length
+  const double s = 0.01;  // m per unit of length
   const double frame = 1.0 * s, coupler = 2.5 * s;
-  const double la = 2.0 * s, lc = 2.2 * s;   // crank and output of even loops; swapped in odd loops
-  const double theta0 = 0.3;                 // drawn input angle, rad
+  const double la = 2.0 * s, lc = 2.2 * s;  // crank and output of even loops; swapped in odd loops
+  const double theta0 = 0.3;                // drawn input angle, rad
 
   nbar::Model m;
   m.name = "chain of " + std::to_string(loops) + " four-bars";

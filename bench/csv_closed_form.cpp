@@ -32,11 +32,12 @@ int main(int argc, char** argv) {
   const double omega2 = 4.0 * pi;  // 120 rpm
   const double duration = 2.0 * pi / omega2;
 
-  std::fputs("step,t,crank,O2.x,O2.y,O2.vx,O2.vy,O2.ax,O2.ay,O4.x,O4.y,O4.vx,O4.vy,O4.ax,O4.ay,A.x,A.y,A.vx,A.vy,A.ax,"
-             "A.ay,B.x,B.y,B.vx,B.vy,B.ax,B.ay,P.x,P.y,P.vx,P.vy,P.ax,P.ay,crank.angle,crank.omega,crank.alpha,"
-             "coupler.angle,coupler.omega,coupler.alpha,rocker.angle,rocker.omega,rocker.alpha,"
-             "crank-coupler-rocker.mu\n",
-             out);
+  std::fputs(
+      "step,t,crank,O2.x,O2.y,O2.vx,O2.vy,O2.ax,O2.ay,O4.x,O4.y,O4.vx,O4.vy,O4.ax,O4.ay,A.x,A.y,A.vx,A.vy,A.ax,"
+      "A.ay,B.x,B.y,B.vx,B.vy,B.ax,B.ay,P.x,P.y,P.vx,P.vy,P.ax,P.ay,crank.angle,crank.omega,crank.alpha,"
+      "coupler.angle,coupler.omega,coupler.alpha,rocker.angle,rocker.omega,rocker.alpha,"
+      "crank-coupler-rocker.mu\n",
+      out);
   double row[43];
   for (long i = 0; i < steps; ++i) {
     const double fraction = static_cast<double>(i) / static_cast<double>(steps - 1);
@@ -44,17 +45,48 @@ int main(int argc, char** argv) {
     const auto p = linkage.solve(theta2, omega2, 0.0);
     const double angle = p.theta3 + p_angle, cp = p_radius * std::cos(angle), sp = p_radius * std::sin(angle);
     const double mu = std::acos(std::cos(p.theta4 - p.theta3));
-    const double values[] = {static_cast<double>(i), fraction * duration, theta2 * deg,
-                             0, 0, 0, 0, 0, 0,
-                             200, 0, 0, 0, 0, 0,
-                             p.ax, p.ay, p.avx, p.avy, p.aax, p.aay,
-                             p.bx, p.by, p.bvx, p.bvy, p.bax, p.bay,
-                             p.ax + cp, p.ay + sp, p.avx - p.omega3 * sp, p.avy + p.omega3 * cp,
+    const double values[] = {static_cast<double>(i),
+                             fraction * duration,
+                             theta2 * deg,
+                             0,
+                             0,
+                             0,
+                             0,
+                             0,
+                             0,
+                             200,
+                             0,
+                             0,
+                             0,
+                             0,
+                             0,
+                             p.ax,
+                             p.ay,
+                             p.avx,
+                             p.avy,
+                             p.aax,
+                             p.aay,
+                             p.bx,
+                             p.by,
+                             p.bvx,
+                             p.bvy,
+                             p.bax,
+                             p.bay,
+                             p.ax + cp,
+                             p.ay + sp,
+                             p.avx - p.omega3 * sp,
+                             p.avy + p.omega3 * cp,
                              p.aax - p.alpha3 * sp - p.omega3 * p.omega3 * cp,
                              p.aay + p.alpha3 * cp - p.omega3 * p.omega3 * sp,
-                             theta2 * deg, omega2 * deg, 0.0,
-                             p.theta3 * deg, p.omega3 * deg, p.alpha3 * deg,
-                             p.theta4 * deg, p.omega4 * deg, p.alpha4 * deg,
+                             theta2 * deg,
+                             omega2 * deg,
+                             0.0,
+                             p.theta3 * deg,
+                             p.omega3 * deg,
+                             p.alpha3 * deg,
+                             p.theta4 * deg,
+                             p.omega4 * deg,
+                             p.alpha4 * deg,
                              mu * deg};
     for (int c = 0; c < 43; ++c) row[c] = values[c];
     for (int c = 0; c < 43; ++c) std::fprintf(out, c ? ",%.12g" : "%.12g", row[c] + 0.0);

@@ -22,7 +22,8 @@ LoadCase step_loads(const TriMesh& mesh, int step) {
   loads.couples.push_back({0, 2.0 * std::cos(angle)});
   loads.body = RigidBodyField{{0.08, 0}, {3, -2}, 10.0, 50.0 * std::sin(angle), {0, -9.81}};
   structured::add_edge_traction(
-      mesh, kSteel.thickness, [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() > 0.1599 && b.x() > 0.1599; },
+      mesh, kSteel.thickness,
+      [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() > 0.1599 && b.x() > 0.1599; },
       [&](const Eigen::Vector2d&) -> Eigen::Vector2d {
         return Eigen::Vector2d(1000 * std::cos(angle), -1000 * std::sin(angle)) / (0.04 * kSteel.thickness);
       },
@@ -67,7 +68,8 @@ void BM_SolveManyPerStep(benchmark::State& state) {
     benchmark::DoNotOptimize(fields.back().peak);
   }
   state.SetItemsProcessed(state.iterations() * 360);
-  state.counters["per_step_us"] = benchmark::Counter(360.0 * state.iterations() * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["per_step_us"] =
+      benchmark::Counter(360.0 * state.iterations() * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_SolveManyPerStep)->Unit(benchmark::kMillisecond);
 
@@ -92,7 +94,8 @@ void BM_MeshedBarSolveManyPerStep(benchmark::State& state) {
     benchmark::DoNotOptimize(fields.back().peak);
   }
   state.counters["nodes"] = static_cast<double>(mesh.nodes.size());
-  state.counters["per_step_us"] = benchmark::Counter(360.0 * state.iterations() * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["per_step_us"] =
+      benchmark::Counter(360.0 * state.iterations() * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_MeshedBarSolveManyPerStep)->Unit(benchmark::kMillisecond);
 

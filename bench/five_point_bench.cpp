@@ -12,17 +12,17 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <filesystem>
 #include <random>
 #include <string>
 
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "phc_support.hpp"
 #include "nbar/synthesis/five_point.hpp"
+#include "phc_support.hpp"
 
 namespace {
 
@@ -114,7 +114,9 @@ struct ChildTimes {
 double children_cpu_seconds() {
   rusage u{};
   getrusage(RUSAGE_CHILDREN, &u);
-  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  const auto seconds = [](const timeval& t) {
+    return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+  };
   return seconds(u.ru_utime) + seconds(u.ru_stime);
 }
 template <class Run>
@@ -122,7 +124,8 @@ ChildTimes time_children(const Run& run, bool& ok) {
   const double cpu = children_cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   ok = run();
-  return {children_cpu_seconds() - cpu, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+  return {children_cpu_seconds() - cpu,
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
 }
 
 void BM_SynthCommandOverPhcpack(benchmark::State& state) {
@@ -131,7 +134,8 @@ void BM_SynthCommandOverPhcpack(benchmark::State& state) {
     return;
   }
   const std::vector<std::string> names{"c1", "s1", "c2", "s2", "c3", "s3", "c4", "s4", "x1", "x2", "y1", "y2"};
-  const auto dir = std::filesystem::temp_directory_path() / std::string("nbar-synth-").append(std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / std::string("nbar-synth-").append(std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto task = dir / "task.yaml", answer = dir / "answer.json";
   unsigned seed = 1;
@@ -145,12 +149,14 @@ void BM_SynthCommandOverPhcpack(benchmark::State& state) {
       out << "task: five-point\npivots: {a: [0, 0], b: [1, 0]}\npoints:\n";
       for (const auto& p : t.points) out << "  - [" << p.x() << ", " << p.y() << "]\n";
     }
-    const std::string command =
-        std::string(NBAR_BINARY " synth five-point --all --format json ").append(task.string()).append(" > ").append(answer.string());
+    const std::string command = std::string(NBAR_BINARY " synth five-point --all --format json ")
+                                    .append(task.string())
+                                    .append(" > ")
+                                    .append(answer.string());
     bool nbar_ok = false, phc_ok = false;
     const ChildTimes nbar_time = time_children([&] { return std::system(command.c_str()) == 0; }, nbar_ok);
-    const ChildTimes phc_time =
-        time_children([&] { return nbar::phc::solve(five_point_system(t.points), names, dir / "phc").has_value(); }, phc_ok);
+    const ChildTimes phc_time = time_children(
+        [&] { return nbar::phc::solve(five_point_system(t.points), names, dir / "phc").has_value(); }, phc_ok);
     if (!nbar_ok || !phc_ok) {
       state.SkipWithError(!nbar_ok ? "nbar synth failed" : "phc -b failed");
       break;

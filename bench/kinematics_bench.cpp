@@ -31,22 +31,22 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "bench_models.hpp"
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/position.hpp"
 #include "nbar/kinematics/sweep.hpp"
 #include "nbar/model/model.hpp"
-#include "bench_models.hpp"
 #include "norton_closed_form.hpp"
 #include "straight_four_bar.hpp"
 
@@ -173,8 +173,11 @@ void check_closed_form() {
   const int bx = mech.column_of(3);
   for (const nbar::Sample& s : r.samples) {
     const NortonFourBar::Pose p = closed.step();
-    const double errors[] = {s.taylor(bx, 0) - p.bx, s.taylor(bx + 1, 0) - p.by, s.derivative(bx, 1) - p.bvx,
-                             s.derivative(bx + 1, 1) - p.bvy, (s.derivative(bx, 2) - p.bax) / 100.0,
+    const double errors[] = {s.taylor(bx, 0) - p.bx,
+                             s.taylor(bx + 1, 0) - p.by,
+                             s.derivative(bx, 1) - p.bvx,
+                             s.derivative(bx + 1, 1) - p.bvy,
+                             (s.derivative(bx, 2) - p.bax) / 100.0,
                              (s.derivative(bx + 1, 2) - p.bay) / 100.0};
     for (double e : errors)
       if (!(std::abs(e) < 1e-9)) die("Norton's closed form and the engine disagree at step " + std::to_string(s.step));
@@ -267,11 +270,15 @@ void check_straight_four_bar() {
   for (int i = 0; i < kStepsPerTurn; ++i) {
     if (!straight.step()) die("the straight four-bar step failed at step " + std::to_string(i + 1));
     const NortonFourBar::Pose p = closed.step();
-    const double errors[] = {straight.coefficient(0, 2) - p.bx, straight.coefficient(0, 3) - p.by,
-                             straight.coefficient(1, 2) - p.bvx, straight.coefficient(1, 3) - p.bvy,
-                             (2 * straight.coefficient(2, 2) - p.bax) / 100.0, (2 * straight.coefficient(2, 3) - p.bay) / 100.0};
+    const double errors[] = {straight.coefficient(0, 2) - p.bx,
+                             straight.coefficient(0, 3) - p.by,
+                             straight.coefficient(1, 2) - p.bvx,
+                             straight.coefficient(1, 3) - p.bvy,
+                             (2 * straight.coefficient(2, 2) - p.bax) / 100.0,
+                             (2 * straight.coefficient(2, 3) - p.bay) / 100.0};
     for (double e : errors)
-      if (!(std::abs(e) < 1e-9)) die("Norton's closed form and the straight step disagree at step " + std::to_string(i + 1));
+      if (!(std::abs(e) < 1e-9))
+        die("Norton's closed form and the straight step disagree at step " + std::to_string(i + 1));
   }
 }
 

@@ -33,10 +33,10 @@ struct NortonFourBar {
     p.omega3 = a * omega2 / b * std::sin(p.theta4 - theta2) / std::sin(p.theta3 - p.theta4);
     p.omega4 = a * omega2 / c * std::sin(theta2 - p.theta3) / std::sin(p.theta4 - p.theta3);
     const double Aa = c * s4, Ba = b * s3, Da = c * c4, Ea = b * c3;
-    const double Ca = a * alpha2 * s2 + a * omega2 * omega2 * c2 + b * p.omega3 * p.omega3 * c3 -
-                      c * p.omega4 * p.omega4 * c4;
-    const double Fa = a * alpha2 * c2 - a * omega2 * omega2 * s2 - b * p.omega3 * p.omega3 * s3 +
-                      c * p.omega4 * p.omega4 * s4;
+    const double Ca =
+        a * alpha2 * s2 + a * omega2 * omega2 * c2 + b * p.omega3 * p.omega3 * c3 - c * p.omega4 * p.omega4 * c4;
+    const double Fa =
+        a * alpha2 * c2 - a * omega2 * omega2 * s2 - b * p.omega3 * p.omega3 * s3 + c * p.omega4 * p.omega4 * s4;
     const double det = Aa * Ea - Ba * Da;
     p.alpha3 = (Ca * Da - Aa * Fa) / det;
     p.alpha4 = (Ca * Ea - Ba * Fa) / det;

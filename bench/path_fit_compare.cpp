@@ -8,10 +8,10 @@
 // Exit status 1 when nbar's best RMS deviation is worse than DE's on any task.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <algorithm>
 #include <numbers>
 #include <random>
 #include <string>
@@ -43,7 +43,8 @@ std::vector<Vector2d> crank_rocker_points(const std::vector<double>& angles, dou
   std::mt19937_64 random(seed);
   std::normal_distribution<double> jitter(0, noise);
   std::vector<Vector2d> out;
-  for (double a : angles) out.push_back(*coupler_point_at(s, a) + (noise > 0 ? Vector2d(jitter(random), jitter(random)) : Vector2d(0, 0)));
+  for (double a : angles)
+    out.push_back(*coupler_point_at(s, a) + (noise > 0 ? Vector2d(jitter(random), jitter(random)) : Vector2d(0, 0)));
   return out;
 }
 
@@ -105,7 +106,8 @@ double differential_evolution(const std::vector<Vector2d>& targets, long budget,
   const int n = static_cast<int>(unit.size());
   const int dimension = 10 + n;  // 9 parameters, the branch, the angles
   std::vector<double> lo(dimension), hi(dimension);
-  const double bounds[10][2] = {{-2, 2}, {-2, 2}, {-2, 2}, {-2, 2}, {0.1, 1.5}, {0.3, 3}, {0.3, 3}, {-2, 2}, {-2, 2}, {-1, 1}};
+  const double bounds[10][2] = {{-2, 2},  {-2, 2},  {-2, 2}, {-2, 2}, {0.1, 1.5},
+                                {0.3, 3}, {0.3, 3}, {-2, 2}, {-2, 2}, {-1, 1}};
   for (int j = 0; j < 10; ++j) {
     lo[j] = bounds[j][0] * (j == 9 ? 1 : reach);
     hi[j] = bounds[j][1] * (j == 9 ? 1 : reach);
@@ -141,12 +143,16 @@ double differential_evolution(const std::vector<Vector2d>& targets, long budget,
   while (coupler_point_evaluations() - start < budget) {
     for (int i = 0; i < population; ++i) {
       int a, b, c;
-      do a = static_cast<int>(u(random) * population); while (a == i);
-      do b = static_cast<int>(u(random) * population); while (b == i || b == a);
-      do c = static_cast<int>(u(random) * population); while (c == i || c == a || c == b);
+      do a = static_cast<int>(u(random) * population);
+      while (a == i);
+      do b = static_cast<int>(u(random) * population);
+      while (b == i || b == a);
+      do c = static_cast<int>(u(random) * population);
+      while (c == i || c == a || c == b);
       const int forced = static_cast<int>(u(random) * dimension);
       for (int j = 0; j < dimension; ++j) {
-        trial[j] = (j == forced || u(random) < kCR) ? members[a][j] + kF * (members[b][j] - members[c][j]) : members[i][j];
+        trial[j] =
+            (j == forced || u(random) < kCR) ? members[a][j] + kF * (members[b][j] - members[c][j]) : members[i][j];
         if (trial[j] < lo[j] || trial[j] > hi[j]) trial[j] = lo[j] + (hi[j] - lo[j]) * u(random);  // back inside
       }
       const double f = cost(trial);
@@ -181,14 +187,18 @@ int main(int argc, char** argv) {
     double de = INFINITY;
     for (int population : populations)
       for (int seed = 1; seed <= seeds; ++seed)
-        de = std::min(de, differential_evolution(task.targets, fit.evaluations, population, static_cast<unsigned>(seed)));
+        de = std::min(de,
+                      differential_evolution(task.targets, fit.evaluations, population, static_cast<unsigned>(seed)));
     // Equal within rounding counts as at least as good.
     const bool at_least = nbar <= de * (1 + 1e-6) + 1e-12;
     const bool clearly = nbar < 0.5 * de;
     worse += !at_least;
     better += clearly;
-    fmt::print("{:<38} {:>12.4g} {:>12.4g} {:>8.3g} {:>12} {:>8.2f}  {}\n", task.name, nbar, de, de / std::max(nbar, 1e-300),
-               fit.evaluations, seconds, !at_least ? "DE better" : clearly ? "nbar clearly better" : "");
+    fmt::print("{:<38} {:>12.4g} {:>12.4g} {:>8.3g} {:>12} {:>8.2f}  {}\n", task.name, nbar, de,
+               de / std::max(nbar, 1e-300), fit.evaluations, seconds,
+               !at_least ? "DE better"
+               : clearly ? "nbar clearly better"
+                         : "");
   }
   fmt::print("nbar at least as good on {} of {} tasks, clearly better (half the RMS or less) on {}\n",
              static_cast<int>(all.size()) - worse, all.size(), better);

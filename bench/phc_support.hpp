@@ -46,7 +46,8 @@ inline std::optional<Result> solve(const synthesis::PolynomialSystem& f, const s
   const auto in = dir / "in.phc", out = dir / "out.phc";
   std::ofstream(in) << input(f, names);
   std::filesystem::remove(out);
-  const std::string command = std::string("phc -b ").append(in.string()).append(" ").append(out.string()).append(" > /dev/null 2>&1");
+  const std::string command =
+      std::string("phc -b ").append(in.string()).append(" ").append(out.string()).append(" > /dev/null 2>&1");
   if (std::system(command.c_str()) != 0) return std::nullopt;
   Result result;
   std::ifstream file(out);

@@ -19,8 +19,8 @@ class StraightFourBar {
   static constexpr int kN = 4;  // A.x, A.y, B.x, B.y
   // A crank a about the origin at angle omega t, coupler b, output c about (d, 0); `start` and
   // `before` are the series in time (q, dq/dt, d2q/dt2 / 2) at t = 0 and t = -step.
-  StraightFourBar(double a, double b, double c, double d, double omega, double step,
-                  const double start[3][kN], const double before[3][kN])
+  StraightFourBar(double a, double b, double c, double d, double omega, double step, const double start[3][kN],
+                  const double before[3][kN])
       : a_(a), b_(b), c_(c), d_(d), omega_(omega), step_(step) {
     std::copy(&start[0][0], &start[0][0] + 3 * kN, &now_[0][0]);
     std::copy(&before[0][0], &before[0][0] + 3 * kN, &past_[0][0]);

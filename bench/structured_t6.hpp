@@ -26,7 +26,9 @@ inline TriMesh map_grid(int nu, int nv, bool periodic_u, const std::function<Eig
   const int columns = periodic_u ? 2 * nu : 2 * nu + 1, rows = 2 * nv + 1;
   std::vector<int> id(static_cast<std::size_t>(columns) * rows, -1);
   TriMesh mesh;
-  const auto grid = [&](int i, int j) -> int& { return id[static_cast<std::size_t>(j) * columns + (periodic_u ? i % columns : i)]; };
+  const auto grid = [&](int i, int j) -> int& {
+    return id[static_cast<std::size_t>(j) * columns + (periodic_u ? i % columns : i)];
+  };
   for (int pass = 0; pass < 2; ++pass)  // corners first, then mid-side nodes
     for (int j = 0; j < rows; ++j)
       for (int i = 0; i < columns; ++i) {
@@ -63,7 +65,8 @@ inline TriMesh map_grid(int nu, int nv, bool periodic_u, const std::function<Eig
           const int mid = t[3 + k];
           if (p.j == q.j && p.j == 0) mesh.boundary.push_back({{t[k], t[(k + 1) % 3], mid}, tag(Side::v_low)});
           if (p.j == q.j && p.j == rows - 1) mesh.boundary.push_back({{t[k], t[(k + 1) % 3], mid}, tag(Side::v_high)});
-          if (!periodic_u && p.i == q.i && p.i == 0) mesh.boundary.push_back({{t[k], t[(k + 1) % 3], mid}, tag(Side::u_low)});
+          if (!periodic_u && p.i == q.i && p.i == 0)
+            mesh.boundary.push_back({{t[k], t[(k + 1) % 3], mid}, tag(Side::u_low)});
           if (!periodic_u && p.i == q.i && p.i == columns - 1)
             mesh.boundary.push_back({{t[k], t[(k + 1) % 3], mid}, tag(Side::u_high)});
         }
@@ -76,8 +79,9 @@ inline BoundaryTag outline_tag(Side) { return {}; }
 
 // The rectangle [x0, x0 + length] x [y0, y0 + height] in nx x ny squares, two triangles each.
 inline TriMesh rectangle(double x0, double y0, double length, double height, int nx, int ny) {
-  return map_grid(nx, ny, false, [=](double u, double v) { return Eigen::Vector2d(x0 + u * length, y0 + v * height); },
-                  outline_tag);
+  return map_grid(
+      nx, ny, false, [=](double u, double v) { return Eigen::Vector2d(x0 + u * length, y0 + v * height); },
+      outline_tag);
 }
 
 // Grading from the hole (v = 0) outwards: 0 -> 0, 1 -> 1, steps growing by exp(growth / rings).
@@ -89,33 +93,36 @@ inline double graded(double v, double growth) { return growth == 0 ? v : std::ex
 inline TriMesh plate_with_hole(double x0, double y0, double x1, double y1, const Eigen::Vector2d& centre, double radius,
                                int around, int rings, double growth) {
   const auto outer = [=](double theta) -> Eigen::Vector2d {  // theta in [-π/4, 7π/4): sides linear in theta
-    const double q = std::numbers::pi / 4, xm = (x0 + x1) / 2, ym = (y0 + y1) / 2, hx = (x1 - x0) / 2, hy = (y1 - y0) / 2;
+    const double q = std::numbers::pi / 4, xm = (x0 + x1) / 2, ym = (y0 + y1) / 2, hx = (x1 - x0) / 2,
+                 hy = (y1 - y0) / 2;
     if (theta < q) return {x1, ym + hy * theta / q};
     if (theta < 3 * q) return {xm - hx * (theta - 2 * q) / q, y1};
     if (theta < 5 * q) return {x0, ym - hy * (theta - 4 * q) / q};
     return {xm + hx * (theta - 6 * q) / q, y0};
   };
-  return map_grid(around, rings, true,
-                  [=](double u, double v) {
-                    const double theta = 2 * std::numbers::pi * u - std::numbers::pi / 4;
-                    const Eigen::Vector2d on_hole = centre + radius * Eigen::Vector2d(std::cos(theta), std::sin(theta));
-                    return Eigen::Vector2d(on_hole + graded(v, growth) * (outer(theta) - on_hole));
-                  },
-                  [](Side s) {
-                    return s == Side::v_low ? BoundaryTag{BoundaryTag::Kind::circle_hole, 0} : BoundaryTag{};
-                  });
+  return map_grid(
+      around, rings, true,
+      [=](double u, double v) {
+        const double theta = 2 * std::numbers::pi * u - std::numbers::pi / 4;
+        const Eigen::Vector2d on_hole = centre + radius * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+        return Eigen::Vector2d(on_hole + graded(v, growth) * (outer(theta) - on_hole));
+      },
+      [](Side s) {
+        return s == Side::v_low ? BoundaryTag{BoundaryTag::Kind::circle_hole, 0} : BoundaryTag{};
+      });
 }
 
 // The ring a <= r <= b about the origin (circle hole 0 inside, a curved outline outside).
 inline TriMesh ring(double a, double b, int around, int rings) {
-  return map_grid(around, rings, true,
-                  [=](double u, double v) {
-                    const double theta = 2 * std::numbers::pi * u, r = a + (b - a) * v;
-                    return Eigen::Vector2d(r * std::cos(theta), r * std::sin(theta));
-                  },
-                  [](Side s) {
-                    return s == Side::v_low ? BoundaryTag{BoundaryTag::Kind::circle_hole, 0} : BoundaryTag{};
-                  });
+  return map_grid(
+      around, rings, true,
+      [=](double u, double v) {
+        const double theta = 2 * std::numbers::pi * u, r = a + (b - a) * v;
+        return Eigen::Vector2d(r * std::cos(theta), r * std::sin(theta));
+      },
+      [](Side s) {
+        return s == Side::v_low ? BoundaryTag{BoundaryTag::Kind::circle_hole, 0} : BoundaryTag{};
+      });
 }
 
 // Consistent nodal forces of a traction t(x) (N/m^2, times `thickness`) on the straight boundary

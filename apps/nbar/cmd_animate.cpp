@@ -30,7 +30,8 @@ std::string format_of(const std::string& path) {
   const std::size_t slash = path.rfind('/');
   if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
   std::string ext = path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == "htm") ext = "html";
   for (const char* known : {"gif", "svg", "html", "mp4"})
     if (ext == known) return ext;
@@ -92,15 +93,17 @@ int run_animate(const AnimateCommand& command) {
 
 Command add_animate_command(CLI::App& app) {
   auto command = std::make_shared<AnimateCommand>();
-  CLI::App* sub = app.add_subcommand(
-      "animate", "Animate the sweep: an animated GIF, an animated SVG, a web page with play, pause and a "
-                 "slider, or an MP4 video (with ffmpeg); the format is the output file's extension");
+  CLI::App* sub =
+      app.add_subcommand("animate",
+                         "Animate the sweep: an animated GIF, an animated SVG, a web page with play, pause and a "
+                         "slider, or an MP4 video (with ffmpeg); the format is the output file's extension");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   sub->add_option("-o,--output", command->output, "FILE.gif, FILE.svg, FILE.html or FILE.mp4")
-      ->check(nbar::cli::output_file())->required();
+      ->check(nbar::cli::output_file())
+      ->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::AnimateRequest::rules());
-  command->flags->add({"fps", "frames", "steps", "max_steps", "labels", "trace", "stress", "mesh_size", "width",
-                       "height", "title"});
+  command->flags->add(
+      {"fps", "frames", "steps", "max_steps", "labels", "trace", "stress", "mesh_size", "width", "height", "title"});
   sub->footer(
       "Every format shows the same frames on one view that fits the whole sweep. A sweep that ends\n"
       "where it began loops without repeating its first pose. GIF frames are not antialiased (a\n"

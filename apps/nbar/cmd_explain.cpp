@@ -4,9 +4,9 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "nbar/analysis/explain.hpp"
-#include "io/json_text.hpp"
 #include "io/explain_writer.hpp"
+#include "io/json_text.hpp"
+#include "nbar/analysis/explain.hpp"
 #include "nbar/render/pictures.hpp"
 #include "nbar/request/requests.hpp"
 #include "request_flags.hpp"
@@ -76,9 +76,10 @@ int run_explain(const ExplainCommand& command) {
 
 Command add_explain_command(CLI::App& app) {
   auto command = std::make_shared<ExplainCommand>();
-  CLI::App* sub = app.add_subcommand("explain", "The method step by step at one sample: Gruebler count, q, the "
-                                                "constraint equations and their Jacobian, Newton's iterations, the "
-                                                "velocity and acceleration systems, the instant centres");
+  CLI::App* sub = app.add_subcommand("explain",
+                                     "The method step by step at one sample: Gruebler count, q, the "
+                                     "constraint equations and their Jacobian, Newton's iterations, the "
+                                     "velocity and acceleration systems, the instant centres");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::ExplainRequest::rules());
   command->flags->add({"step", "steps", "max_steps", "format"});

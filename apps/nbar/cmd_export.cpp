@@ -41,8 +41,9 @@ int run_export(const ExportArgs& args) {
 
 Command add_export_command(CLI::App& app) {
   auto args = std::make_shared<ExportArgs>();
-  CLI::App* sub = app.add_subcommand("export", "Write the links' plates (outlines, arcs, holes) as a DXF drawing for "
-                                               "cutting, one layer per link, or as SVG");
+  CLI::App* sub = app.add_subcommand("export",
+                                     "Write the links' plates (outlines, arcs, holes) as a DXF drawing for "
+                                     "cutting, one layer per link, or as SVG");
   sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
   sub->add_option("--dxf", args->dxf, "FILE.dxf: AutoCAD R12 ASCII DXF, in the model's length unit");
   sub->add_option("--svg", args->svg, "FILE.svg: the same plates as SVG, one group per link, true size in mm");

@@ -53,9 +53,10 @@ int run_import(const ImportArgs& args) {
     options.source_name = args.sketch;
     // The model's unit: --units, else the sketch's own, else mm; a sketch without a unit is
     // taken in the model's.
-    options.length_unit = !args.units.empty()                                   ? args.units
-                          : sketch.metres_per_unit && unit_name(*sketch.metres_per_unit) ? *unit_name(*sketch.metres_per_unit)
-                                                                                : std::string("mm");
+    options.length_unit = !args.units.empty() ? args.units
+                          : sketch.metres_per_unit && unit_name(*sketch.metres_per_unit)
+                              ? *unit_name(*sketch.metres_per_unit)
+                              : std::string("mm");
     options.scale = io::sketch_scale(sketch, std::nullopt, *length_unit_scale(options.length_unit));
     // 5 mm unless given, in the model's unit.
     options.thickness = args.thickness ? *args.thickness : 5e-3 / *length_unit_scale(options.length_unit);
@@ -63,8 +64,8 @@ int run_import(const ImportArgs& args) {
     // A material of the user's own is allowed (defined under `materials:` later), but say so: the
     // model written names a material it does not define, and `nbar check` refuses it until then.
     if (!builtin_material(args.material))
-      std::cerr << "warning: '" << args.material << "' is not a built-in material ("
-                << join(builtin_material_names()) << "): define it under `materials:` in the model written\n";
+      std::cerr << "warning: '" << args.material << "' is not a built-in material (" << join(builtin_material_names())
+                << "): define it under `materials:` in the model written\n";
     const std::string yaml = io::model_from_sketch(sketch, options);
     if (args.output.empty()) {
       std::cout << yaml;
@@ -81,8 +82,9 @@ int run_import(const ImportArgs& args) {
 
 Command add_import_command(CLI::App& app) {
   auto args = std::make_shared<ImportArgs>();
-  CLI::App* sub = app.add_subcommand("import", "A model skeleton from a sketch of several links (DXF, SVG or sketch "
-                                               "CSV): outlines become bodies, coinciding pin holes joints");
+  CLI::App* sub = app.add_subcommand("import",
+                                     "A model skeleton from a sketch of several links (DXF, SVG or sketch "
+                                     "CSV): outlines become bodies, coinciding pin holes joints");
   sub->add_option("SKETCH", args->sketch, "FILE.dxf, FILE.svg or FILE.csv")->required();
   sub->add_option("-o,--output", args->output, "the model file to write (default: standard output)")
       ->check(nbar::cli::output_file());

@@ -14,8 +14,8 @@
 #include "common.hpp"
 #include "nbar/analysis/columns.hpp"
 #include "nbar/kinematics/table.hpp"
-#include "nbar/render/plot.hpp"
 #include "nbar/render/image_canvas.hpp"
+#include "nbar/render/plot.hpp"
 #include "nbar/request/requests.hpp"
 #include "request_flags.hpp"
 #include "validators.hpp"
@@ -47,7 +47,8 @@ const char* const kPlotHelp =
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 
@@ -108,16 +109,18 @@ int run_plot(const PlotCommand& command) {
 
 Command add_plot_command(CLI::App& app) {
   auto command = std::make_shared<PlotCommand>();
-  CLI::App* sub = app.add_subcommand(
-      "plot", "Plot result columns (angles, velocities, forces...) against a driver or any other column, "
-              "as SVG or PNG");
+  CLI::App* sub =
+      app.add_subcommand("plot",
+                         "Plot result columns (angles, velocities, forces...) against a driver or any other column, "
+                         "as SVG or PNG");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::PlotRequest::rules());
   command->flags->add({"y"});
   command->flags->option("y")->required();
   command->flags->add({"x"});
   sub->add_option("-o,--output", command->output, "the picture to write: FILE.svg or FILE.png")
-      ->check(nbar::cli::output_file())->required();
+      ->check(nbar::cli::output_file())
+      ->required();
   command->flags->add({"steps", "max_steps", "order", "dynamics", "y_range", "title", "width", "height"});
   sub->footer(kPlotHelp);
   return {sub, [command] { return run_plot(*command); }};

@@ -29,8 +29,8 @@ int run_report(const ReportCommand& command) {
   if (int code = load(command.model, loaded)) return code;
   const ModelSummary summary = summarize(*loaded.mechanism, request.sweep.max_steps);
   Analysis analysis;
-  if (int code = analyse_model(command.model, loaded, request.analysis_options(summary, loaded.mechanism->model()),
-                               analysis))
+  if (int code =
+          analyse_model(command.model, loaded, request.analysis_options(summary, loaded.mechanism->model()), analysis))
     return code;
   render::ReportOptions report;
   report.source = command.model;
@@ -50,9 +50,10 @@ int run_report(const ReportCommand& command) {
 
 Command add_report_command(CLI::App& app) {
   auto command = std::make_shared<ReportCommand>();
-  CLI::App* sub = app.add_subcommand("report", "One self-contained HTML report: summary, animation, coupler paths, "
-                                               "angle/velocity/acceleration/jerk plots, and forces and stresses when "
-                                               "the model has masses, loads and shapes");
+  CLI::App* sub = app.add_subcommand("report",
+                                     "One self-contained HTML report: summary, animation, coupler paths, "
+                                     "angle/velocity/acceleration/jerk plots, and forces and stresses when "
+                                     "the model has masses, loads and shapes");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   sub->add_option("-o,--output", command->output, "FILE.html")->check(nbar::cli::output_file())->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::ReportRequest::rules());

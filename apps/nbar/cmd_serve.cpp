@@ -82,7 +82,8 @@ void print_reachable(const std::string& host, int port) {
   }
   const std::vector<std::string> addresses = reachable_addresses(host == "::");
   if (addresses.empty()) {
-    std::cerr << " at http://THIS-MACHINE:" << port << "/ (this machine's IP address or host name; no network "
+    std::cerr << " at http://THIS-MACHINE:" << port
+              << "/ (this machine's IP address or host name; no network "
                  "address found now)\n";
     return;
   }
@@ -108,8 +109,9 @@ int run_serve(const ServeArgs& args) {
     return kBadUsage;
   }
   const std::string shown_host = args.host == "0.0.0.0" || args.host == "::" ? "localhost" : args.host;
-  const std::string url = "http://" + (shown_host.find(':') != std::string::npos ? "[" + shown_host + "]" : shown_host) +
-                          ":" + std::to_string(server.bound_port()) + "/";
+  const std::string url = "http://" +
+                          (shown_host.find(':') != std::string::npos ? "[" + shown_host + "]" : shown_host) + ":" +
+                          std::to_string(server.bound_port()) + "/";
   std::cerr << "nbar serve: " << url << " (the API is under " << url << "api/; Ctrl-C stops)\n";
   if (args.host != "127.0.0.1" && args.host != "localhost" && args.host != "::1")
     print_reachable(args.host, server.bound_port());
@@ -123,7 +125,8 @@ int run_serve(const ServeArgs& args) {
 Command add_serve_command(CLI::App& app) {
   auto args = std::make_shared<ServeArgs>();
   CLI::App* sub = app.add_subcommand("serve", "Serve the web app and its JSON API (docs/web-api.md) on this machine");
-  sub->add_option("--port", args->port, "TCP port (default 8080; 0 for any free port)")->check(nbar::cli::in_range(0, 65535));
+  sub->add_option("--port", args->port, "TCP port (default 8080; 0 for any free port)")
+      ->check(nbar::cli::in_range(0, 65535));
   sub->add_option("--host", args->host,
                   "address to listen on (default 127.0.0.1, this machine only; 0.0.0.0 for a classroom)");
   sub->add_flag("--open", args->open, "open the page in a browser");
@@ -136,9 +139,12 @@ Command add_serve_command(CLI::App& app) {
   sub->add_option("--queue-wait", args->queue_wait,
                   "seconds a computation may wait for its turn before it is answered 503 (default 10)")
       ->check(nbar::cli::in_range(0.0, 600.0));
-  sub->add_option("--time-budget", args->time_budget, "seconds one request may compute before it is stopped (default 30)")
+  sub->add_option("--time-budget", args->time_budget,
+                  "seconds one request may compute before it is stopped (default 30)")
       ->check(nbar::cli::in_range(0.01, 86400.0));
-  sub->add_option("--threads", args->threads, "connections served at once (default 256; each open connection holds one)")->check(nbar::cli::in_range(2, 1024));
+  sub->add_option("--threads", args->threads,
+                  "connections served at once (default 256; each open connection holds one)")
+      ->check(nbar::cli::in_range(2, 1024));
   sub->add_option("--keep-alive", args->keep_alive,
                   "seconds an idle connection keeps its thread (default 5; 0: closed after every answer)")
       ->check(nbar::cli::in_range(0, 3600));

@@ -78,8 +78,9 @@ int run_solve(const SolveCommand& command) {
 
 Command add_solve_command(CLI::App& app) {
   auto command = std::make_shared<SolveCommand>();
-  CLI::App* sub = app.add_subcommand("solve", "Sweep the drivers and write positions, velocities, accelerations "
-                                              "and higher derivatives of every point and body");
+  CLI::App* sub = app.add_subcommand("solve",
+                                     "Sweep the drivers and write positions, velocities, accelerations "
+                                     "and higher derivatives of every point and body");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::SolveRequest::rules());
   command->flags->add({"steps", "max_steps", "order", "format", "columns"});

@@ -5,18 +5,18 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <optional>
-#include <unistd.h>
 
 #include <mutex>
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "io/yaml_support.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/io/synthesis_writer.hpp"
-#include "io/yaml_support.hpp"
 #include "nbar/synthesis/run.hpp"
 #include "validators.hpp"
 
@@ -42,13 +42,17 @@ struct SynthArgs {
       {"name", "--name", "the task's title (names the exported models)", {}},
       {"units", "--units", "e.g. '{length: mm, angle: deg}'", {}},
       {"pivots", "--pivots", "five-point: the fixed pivots, e.g. '{a: [0, 0], b: [1, 0]}'", {}},
-      {"points", "--points",
+      {"points",
+       "--points",
        "five-point: the 5 points '[[x, y], ...]'; nine-point: the 9 points; path: 10 or more; function: the number "
        "of precision points",
        {}},
       {"curve", "--curve-csv", "path: a CSV file of the target points (x, y a line)", {}},
       {"constraints", "--constraints", "path: e.g. '{crank: true, min_transmission: 30, lengths: [10, 200]}'", {}},
-      {"nine_point_starts", "--nine-point-starts", "path: subsets of nine targets solved for starting designs (slow)", {}},
+      {"nine_point_starts",
+       "--nine-point-starts",
+       "path: subsets of nine targets solved for starting designs (slow)",
+       {}},
       {"poses", "--poses", "burmester: '[{point: [x, y], angle: a}, ...]'", {}},
       {"fixed_pivots", "--fixed-pivots", "burmester, 3 poses: '{a: [x, y], b: [x, y]}'", {}},
       {"moving_pivots", "--moving-pivots", "burmester, 3 poses: '{a: [x, y], b: [x, y]}'", {}},
@@ -250,9 +254,10 @@ Command add_synth_command(CLI::App& app) {
   synth->add_option("--top", args.top, "list (and export) at most N designs, best first; 0 for all (default 20)")
       ->check(nbar::cli::non_negative());
   synth->add_option("--threads", args.threads, "threads for path tracking (default: all)");
-  synth->add_option("--timeout", args.timeout,
-                    "give up after SECONDS, exit 5 (a nine-point task on a conic or with five points on a line can "
-                    "take minutes)")
+  synth
+      ->add_option("--timeout", args.timeout,
+                   "give up after SECONDS, exit 5 (a nine-point task on a conic or with five points on a line can "
+                   "take minutes)")
       ->check(nbar::cli::positive());
   synth->add_option("--seed", args.seed, "random seed of the homotopy and of path's random starts (default 1)");
   synth->add_option("--curves", args.curves,

@@ -90,8 +90,7 @@ inline int finish(const Loaded& loaded, const SweepResult& sweep) {
 
 // Runs the analysis; the exit code says what went wrong (0 when it ran, even if the sweep
 // stopped early).
-inline int analyse_model(const std::string& path, const Loaded& loaded, const AnalysisOptions& options,
-                         Analysis& out) {
+inline int analyse_model(const std::string& path, const Loaded& loaded, const AnalysisOptions& options, Analysis& out) {
   try {
     out = analyse(loaded.mechanism, options);
   } catch (const Error& e) {
@@ -109,7 +108,9 @@ inline bool write_file(const std::string& path, const char* data, std::size_t si
   std::cerr << "error: " << cannot_write_message(path) << '\n';
   return false;
 }
-inline bool write_file(const std::string& path, const std::string& text) { return write_file(path, text.data(), text.size()); }
+inline bool write_file(const std::string& path, const std::string& text) {
+  return write_file(path, text.data(), text.size());
+}
 inline bool write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   return write_file(path, reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
@@ -141,8 +142,8 @@ class Output {
     stream().flush();
     if (file_.is_open()) file_.close();  // a failed close sets the file's failbit
     if (path_.empty() ? static_cast<bool>(std::cout) : static_cast<bool>(file_)) return true;
-    std::cerr << "error: " << (path_.empty() ? "cannot write to standard output" + reason() : cannot_write_message(path_))
-              << '\n';
+    std::cerr << "error: "
+              << (path_.empty() ? "cannot write to standard output" + reason() : cannot_write_message(path_)) << '\n';
     return false;
   }
 

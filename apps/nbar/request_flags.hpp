@@ -60,6 +60,8 @@ bool read_request(const RequestFlags& flags, Request& out) {
 
 // An option's value refused once the model is known (a column, a traced point, a step):
 // "error: --columns: no column matches ...".
-inline void print_option_error(const request::OptionError& e) { std::cerr << "error: " << e.spelled(spell_flag) << '\n'; }
+inline void print_option_error(const request::OptionError& e) {
+  std::cerr << "error: " << e.spelled(spell_flag) << '\n';
+}
 
 }  // namespace nbar::cli

@@ -17,7 +17,9 @@ int main() {
   const SolveResult r = solve_total_degree(f, options);
   std::printf("total degree: %ld paths\n", total_degree_count(f));
   for (const Endpoint& e : r.endpoints) {
-    const char* kind = e.kind == EndpointKind::Finite ? "finite" : e.kind == EndpointKind::AtInfinity ? "at infinity" : "failed";
+    const char* kind = e.kind == EndpointKind::Finite       ? "finite"
+                       : e.kind == EndpointKind::AtInfinity ? "at infinity"
+                                                            : "failed";
     std::printf("  path %d: %s%s%s", e.path, kind, e.singular ? ", singular" : "", e.real ? ", real" : "");
     if (e.kind == EndpointKind::Finite)
       std::printf("  x = %+.12f%+.12fi  y = %+.12f%+.12fi  residual %.1e  condition %.1e", e.x[0].real(), e.x[0].imag(),

@@ -87,7 +87,8 @@ py::tuple as_arrays(ColumnTable table) {
   const auto rows = static_cast<py::ssize_t>(values->rows());
   py::list arrays;
   for (Eigen::Index c = 0; c < values->cols(); ++c)
-    arrays.append(py::array_t<double>({rows}, {static_cast<py::ssize_t>(sizeof(double))}, values->col(c).data(), owner));
+    arrays.append(
+        py::array_t<double>({rows}, {static_cast<py::ssize_t>(sizeof(double))}, values->col(c).data(), owner));
   return py::make_tuple(table.columns, table.units, arrays);
 }
 
@@ -151,7 +152,8 @@ py::object animate(const PyAnalysis& a, const std::string& format, int frames, d
   if (frames != 0) options.set("frames", static_cast<long long>(frames));  // 0: every sample, at most 120
   const request::AnimateRequest request = request::AnimateRequest::read(options);
   const render::DrawOptions draw = request.picture.draw_options(a.model->file.model);
-  const render::Animation animation(a.model->mechanism, a.analysis.sweep, draw, request.frames.value_or(0), request.fps);
+  const render::Animation animation(a.model->mechanism, a.analysis.sweep, draw, request.frames.value_or(0),
+                                    request.fps);
   const auto as_bytes = [](const std::vector<std::uint8_t>& b) {
     return py::bytes(reinterpret_cast<const char*>(b.data()), b.size());
   };
@@ -208,35 +210,44 @@ void bind_analysis(py::module_& m) {
       .def_property_readonly("stop_reason", [](const PyAnalysis& a) { return a.analysis.sweep.stop_reason; })
       .def_property_readonly("samples", [](const PyAnalysis& a) { return a.analysis.sweep.samples.size(); })
       .def_property_readonly("order", [](const PyAnalysis& a) { return a.analysis.sweep.order; })
-      .def_property_readonly("max_residual", [](const PyAnalysis& a) {
-        return a.analysis.sweep.max_residual / a.analysis.model().units.length_scale;
-      })
+      .def_property_readonly(
+          "max_residual",
+          [](const PyAnalysis& a) { return a.analysis.sweep.max_residual / a.analysis.model().units.length_scale; })
       .def_property_readonly("branches", [](const PyAnalysis& a) { return a.analysis.sweep.branches; })
-      .def_property_readonly("transmission_angles", [](const PyAnalysis& a) {
-        const double unit = a.analysis.model().units.angle_scale;
-        py::dict out;
-        for (const TransmissionExtremes& mu : transmission_extremes(a.analysis))
-          out[py::str(mu.loop)] = py::dict(py::arg("min") = mu.min / unit, py::arg("min_step") = mu.min_step,
-                                           py::arg("max") = mu.max / unit, py::arg("max_step") = mu.max_step,
-                                           py::arg("design") = mu.design / unit,
-                                           py::arg("design_step") = mu.design_step);
-        return out;
-      })
+      .def_property_readonly("transmission_angles",
+                             [](const PyAnalysis& a) {
+                               const double unit = a.analysis.model().units.angle_scale;
+                               py::dict out;
+                               for (const TransmissionExtremes& mu : transmission_extremes(a.analysis))
+                                 out[py::str(mu.loop)] = py::dict(
+                                     py::arg("min") = mu.min / unit, py::arg("min_step") = mu.min_step,
+                                     py::arg("max") = mu.max / unit, py::arg("max_step") = mu.max_step,
+                                     py::arg("design") = mu.design / unit, py::arg("design_step") = mu.design_step);
+                               return out;
+                             })
       .def_property_readonly("warnings", [](const PyAnalysis& a) { return warning_list(a.analysis.warnings()); })
       .def_property_readonly("has_dynamics", [](const PyAnalysis& a) { return a.analysis.dynamics.has_value(); })
       .def_property_readonly("has_stress", [](const PyAnalysis& a) { return a.analysis.stress.has_value(); })
-      .def_property_readonly("forces_unique", [](const PyAnalysis& a) {
-        return a.analysis.dynamics ? py::object(py::bool_(a.analysis.dynamics->unique)) : py::none();
-      })
-      .def("table", [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
-             return as_arrays(column_request(a, columns).columns_of(*a.analysis.mechanism, result_columns(a.analysis)));
-           }, py::arg("columns") = std::nullopt)
-      .def("json", [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
-             std::ostringstream out;
-             io::write_json(out, a.analysis, column_request(a, columns).table(a.analysis),
-                            a.analysis.dynamics ? &*a.analysis.dynamics : nullptr);
-             return out.str();
-           }, py::arg("columns") = std::nullopt)
+      .def_property_readonly("forces_unique",
+                             [](const PyAnalysis& a) {
+                               return a.analysis.dynamics ? py::object(py::bool_(a.analysis.dynamics->unique))
+                                                          : py::none();
+                             })
+      .def(
+          "table",
+          [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
+            return as_arrays(column_request(a, columns).columns_of(*a.analysis.mechanism, result_columns(a.analysis)));
+          },
+          py::arg("columns") = std::nullopt)
+      .def(
+          "json",
+          [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
+            std::ostringstream out;
+            io::write_json(out, a.analysis, column_request(a, columns).table(a.analysis),
+                           a.analysis.dynamics ? &*a.analysis.dynamics : nullptr);
+            return out.str();
+          },
+          py::arg("columns") = std::nullopt)
       .def("stress_report", &stress_report, py::arg("format") = "json")
       .def("section_profile", &section_profile, py::arg("body"), py::arg("step"))
       .def("draw", &draw, py::arg("format") = "svg", py::arg("step") = std::nullopt, py::arg("at") = std::nullopt,
@@ -252,19 +263,22 @@ void bind_analysis(py::module_& m) {
         py::arg("mesh_size") = std::nullopt);
   // For bench/python: the same solve timed inside C++ (the sweep, then the sweep and its column
   // table), the reference Python's own cost is measured against.
-  m.def("_time_in_cpp", [](std::shared_ptr<PyModel> model, int steps, int order) {
-    py::gil_scoped_release release;
-    AnalysisOptions options;
-    options.steps = steps;
-    options.order = order;
-    const auto start = std::chrono::steady_clock::now();
-    const Analysis analysis = analyse(model->mechanism, options);
-    const auto swept = std::chrono::steady_clock::now();
-    const ColumnTable table = result_columns(analysis);
-    const auto tabled = std::chrono::steady_clock::now();
-    const std::chrono::duration<double> sweep = swept - start, total = tabled - start;
-    return std::make_pair(sweep.count(), table.values.size() > 0 ? total.count() : 0.0);
-  }, py::arg("model"), py::arg("steps"), py::arg("order") = 2);
+  m.def(
+      "_time_in_cpp",
+      [](std::shared_ptr<PyModel> model, int steps, int order) {
+        py::gil_scoped_release release;
+        AnalysisOptions options;
+        options.steps = steps;
+        options.order = order;
+        const auto start = std::chrono::steady_clock::now();
+        const Analysis analysis = analyse(model->mechanism, options);
+        const auto swept = std::chrono::steady_clock::now();
+        const ColumnTable table = result_columns(analysis);
+        const auto tabled = std::chrono::steady_clock::now();
+        const std::chrono::duration<double> sweep = swept - start, total = tabled - start;
+        return std::make_pair(sweep.count(), table.values.size() > 0 ? total.count() : 0.0);
+      },
+      py::arg("model"), py::arg("steps"), py::arg("order") = 2);
   m.def("report", &report, py::arg("model"), py::arg("frames") = 72, py::arg("timeout") = std::nullopt);
 }
 

@@ -105,7 +105,7 @@ Error located(const PyModel& model, const Error& error) {
   // where solve() and the command line place a stopped sweep: the sweep's or first driver's line.
   const bool sweep_stop = error.kind() == ErrorKind::StoppedAtLimit && error.where().kind == EntityRef::Kind::Model;
   const SourceMark mark = sweep_stop && model.file.source.sweep_stop().line > 0 ? model.file.source.sweep_stop()
-                                                                               : model.file.source.find(error.where());
+                                                                                : model.file.source.find(error.where());
   return Error(error.kind(), error.message(), error.where(), model.file.source.file, mark);
 }
 

@@ -4,10 +4,10 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "nbar/request/requests.hpp"
-#include "nbar/analysis/explain.hpp"
 #include "io/explain_writer.hpp"
+#include "nbar/analysis/explain.hpp"
 #include "nbar/render/pictures.hpp"
+#include "nbar/request/requests.hpp"
 
 namespace nbar::python {
 
@@ -50,7 +50,8 @@ py::list centre_list(const Explanation& e) {
     d["bodies"] = py::make_tuple(c.body_a, c.body_b);
     d["at_infinity"] = c.at_infinity;
     d["position"] = c.at_infinity ? py::object(py::none()) : py::object(py::make_tuple(c.position.x(), c.position.y()));
-    d["direction"] = c.at_infinity ? py::object(py::make_tuple(c.direction.x(), c.direction.y())) : py::object(py::none());
+    d["direction"] =
+        c.at_infinity ? py::object(py::make_tuple(c.direction.x(), c.direction.y())) : py::object(py::none());
     d["at_joint"] = c.at_joint;
     d["indeterminate"] = c.indeterminate;
     centres.append(d);
@@ -73,16 +74,19 @@ void bind_explain(py::module_& m) {
       .def_readonly("step", &Explanation::step)
       .def_readonly("time", &Explanation::time)
       .def_readonly("driver_values", &Explanation::driver_values)
-      .def_property_readonly("count", [](const Explanation& e) {
-        return py::dict(py::arg("links") = e.count.links, py::arg("lower_pairs") = e.count.lower_pairs,
-                        py::arg("higher_pairs") = e.count.higher_pairs, py::arg("dof") = e.count.dof,
-                        py::arg("mobility") = e.count.mobility);
-      })
-      .def_property_readonly("coordinates", [](const Explanation& e) {
-        std::vector<std::string> names;
-        for (const Coordinate& c : e.coordinates) names.push_back(c.name);
-        return names;
-      })
+      .def_property_readonly("count",
+                             [](const Explanation& e) {
+                               return py::dict(py::arg("links") = e.count.links,
+                                               py::arg("lower_pairs") = e.count.lower_pairs,
+                                               py::arg("higher_pairs") = e.count.higher_pairs,
+                                               py::arg("dof") = e.count.dof, py::arg("mobility") = e.count.mobility);
+                             })
+      .def_property_readonly("coordinates",
+                             [](const Explanation& e) {
+                               std::vector<std::string> names;
+                               for (const Coordinate& c : e.coordinates) names.push_back(c.name);
+                               return names;
+                             })
       .def_property_readonly("equations", &equation_list)
       .def_property_readonly("newton", &newton_list)
       .def_readonly("converged", &Explanation::converged)
@@ -97,35 +101,41 @@ void bind_explain(py::module_& m) {
       .def_readonly("sweep_difference", &Explanation::sweep_difference)
       .def_readonly("notes", &Explanation::notes)
       .def("json", [](const Explanation& e) { return io::explanation_json(e).dump(2); })
-      .def("centres_picture", [](const Explanation& e, const std::string& format) -> py::object {
-             if (format == "svg") return py::str(render::instant_centres_svg(e));
-             if (format == "png") {
-               const std::vector<std::uint8_t> png = render::instant_centres_png(e);
-               return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
-             }
-             throw Error(ErrorKind::BadInput, "a picture's format is svg or png, not '" + format + "'");
-           }, py::arg("format") = "svg")
-      .def("render", [](const Explanation& e, const std::string& format) {
-             return render_explanation(e, format_of(format));
-           }, py::arg("format") = "text");
-
-  m.def("explain", [](std::shared_ptr<PyModel> model, int step, std::optional<int> steps) {
-          request::Options given;
-          given.set("step", static_cast<long long>(step));
-          if (steps) given.set("steps", static_cast<long long>(*steps));
-          ExplainOptions options = request::ExplainRequest::read(given).explain_options();
-          auto out = std::make_shared<Explanation>();
-          RunControl control;
-          run_interruptible(control, std::nullopt, [&] {
-            try {
-              *out = explain(model->mechanism, options);
-            } catch (const Error& e) {
-              throw located(*model, e);
+      .def(
+          "centres_picture",
+          [](const Explanation& e, const std::string& format) -> py::object {
+            if (format == "svg") return py::str(render::instant_centres_svg(e));
+            if (format == "png") {
+              const std::vector<std::uint8_t> png = render::instant_centres_png(e);
+              return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
             }
-          });
-          return out;
-        },
-        py::arg("model"), py::arg("step") = 0, py::arg("steps") = std::nullopt);
+            throw Error(ErrorKind::BadInput, "a picture's format is svg or png, not '" + format + "'");
+          },
+          py::arg("format") = "svg")
+      .def(
+          "render",
+          [](const Explanation& e, const std::string& format) { return render_explanation(e, format_of(format)); },
+          py::arg("format") = "text");
+
+  m.def(
+      "explain",
+      [](std::shared_ptr<PyModel> model, int step, std::optional<int> steps) {
+        request::Options given;
+        given.set("step", static_cast<long long>(step));
+        if (steps) given.set("steps", static_cast<long long>(*steps));
+        ExplainOptions options = request::ExplainRequest::read(given).explain_options();
+        auto out = std::make_shared<Explanation>();
+        RunControl control;
+        run_interruptible(control, std::nullopt, [&] {
+          try {
+            *out = explain(model->mechanism, options);
+          } catch (const Error& e) {
+            throw located(*model, e);
+          }
+        });
+        return out;
+      },
+      py::arg("model"), py::arg("step") = 0, py::arg("steps") = std::nullopt);
 }
 
 }  // namespace nbar::python

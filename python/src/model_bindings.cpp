@@ -42,8 +42,9 @@ py::dict summary_dict(const PyModel& model) {
       const bool angular = mech.model().drivers[i].is_angular();
       values.append(s.assembly->driver_values[i] / (angular ? u.angle_scale : u.length_scale));
     }
-    d["assembly"] = py::dict(py::arg("driver_values") = values, py::arg("residual") = s.assembly->residual / u.length_scale,
-                             py::arg("passed_singularity") = s.assembly->passed_singularity);
+    d["assembly"] =
+        py::dict(py::arg("driver_values") = values, py::arg("residual") = s.assembly->residual / u.length_scale,
+                 py::arg("passed_singularity") = s.assembly->passed_singularity);
   } else {
     d["assembly"] = py::none();
   }
@@ -69,7 +70,8 @@ py::list catalogue(const PyModel& model, int max_order, bool dynamics) {
   return out;
 }
 
-py::dict needs(const PyModel& model, const std::vector<std::string>& patterns, std::optional<int> order, bool dynamics) {
+py::dict needs(const PyModel& model, const std::vector<std::string>& patterns, std::optional<int> order,
+               bool dynamics) {
   const ColumnNeeds n = column_needs(*model.mechanism, patterns, order, dynamics);
   py::dict d;
   d["order"] = n.order;
@@ -82,8 +84,8 @@ py::dict needs(const PyModel& model, const std::vector<std::string>& patterns, s
 py::list point_list(const Model& m) {
   py::list points;
   for (const Point& p : m.points)
-    points.append(py::make_tuple(p.name, p.position.x() / m.units.length_scale, p.position.y() / m.units.length_scale,
-                                 p.ground));
+    points.append(
+        py::make_tuple(p.name, p.position.x() / m.units.length_scale, p.position.y() / m.units.length_scale, p.ground));
   return points;
 }
 
@@ -117,17 +119,19 @@ void bind_model(py::module_& m) {
       .def_property_readonly("sweep_stop_place",
                              [](const PyModel& p) {
                                const SourceMark at = p.file.source.sweep_stop();
-                               return at.line > 0 ? py::object(py::make_tuple(at.line, at.column)) : py::object(py::none());
+                               return at.line > 0 ? py::object(py::make_tuple(at.line, at.column))
+                                                  : py::object(py::none());
                              })
       .def_property_readonly("length_unit", [](const PyModel& p) { return p.file.model.units.length; })
       .def_property_readonly("angle_unit", [](const PyModel& p) { return p.file.model.units.angle; })
       .def_property_readonly("points", [](const PyModel& p) { return point_list(p.file.model); })
       .def_property_readonly("bodies", [](const PyModel& p) { return body_points(p.file.model); })
-      .def_property_readonly("drivers", [](const PyModel& p) {
-        std::vector<std::string> names;
-        for (const Driver& d : p.file.model.drivers) names.push_back(d.name);
-        return names;
-      })
+      .def_property_readonly("drivers",
+                             [](const PyModel& p) {
+                               std::vector<std::string> names;
+                               for (const Driver& d : p.file.model.drivers) names.push_back(d.name);
+                               return names;
+                             })
       .def_property_readonly("has_time_law", [](const PyModel& p) { return p.file.model.has_time_law(); })
       .def_property_readonly("default_abscissa", [](const PyModel& p) { return default_abscissa(p.file.model); })
       .def("summary", &summary_dict)
@@ -137,21 +141,27 @@ void bind_model(py::module_& m) {
 
   // Which of `columns` the names or globs `patterns` pick, in the order `solve --columns` and
   // `plot --y` use: (indices, "") or ([], the message naming a pattern that matches nothing).
-  m.def("pick_columns", [](const std::vector<std::string>& columns, const std::vector<std::string>& patterns) {
-          try {
-            return py::make_tuple(pick_columns(columns, patterns), std::string());
-          } catch (const Error& e) {
-            return py::make_tuple(std::vector<std::size_t>{}, std::string(e.what()));
-          }
-        },
-        py::arg("columns"), py::arg("patterns"));
+  m.def(
+      "pick_columns",
+      [](const std::vector<std::string>& columns, const std::vector<std::string>& patterns) {
+        try {
+          return py::make_tuple(pick_columns(columns, patterns), std::string());
+        } catch (const Error& e) {
+          return py::make_tuple(std::vector<std::size_t>{}, std::string(e.what()));
+        }
+      },
+      py::arg("columns"), py::arg("patterns"));
 
-  m.def("load", [](const std::string& path) { return std::make_shared<PyModel>(compile_model(io::load_model_file(path))); },
-        py::arg("path"));
-  m.def("loads", [](const std::string& text, const std::string& name) {
-          return std::make_shared<PyModel>(compile_model(io::parse_model(text, name)));
-        },
-        py::arg("text"), py::arg("name") = "<string>");
+  m.def(
+      "load",
+      [](const std::string& path) { return std::make_shared<PyModel>(compile_model(io::load_model_file(path))); },
+      py::arg("path"));
+  m.def(
+      "loads",
+      [](const std::string& text, const std::string& name) {
+        return std::make_shared<PyModel>(compile_model(io::parse_model(text, name)));
+      },
+      py::arg("text"), py::arg("name") = "<string>");
 }
 
 }  // namespace nbar::python

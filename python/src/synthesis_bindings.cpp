@@ -57,29 +57,43 @@ void bind_synthesis(py::module_& m) {
       .def_property_readonly("method", [](const PySynthesis& s) { return s.outcome.method; })
       .def_property_readonly("notes", [](const PySynthesis& s) { return s.outcome.notes; })
       .def_property_readonly("task", [](const PySynthesis& s) { return s.task; })
-      .def("shown", [](const PySynthesis& s, bool all, int top) { return synthesis::shown_rows(s.outcome, all, top); },
-           py::arg("all") = false, py::arg("top") = 0)
-      .def("json", [](const PySynthesis& s, bool all, int top) {
-             return io::synthesis_json(s.task, s.outcome, s.listing(all, top));
-           }, py::arg("all") = false, py::arg("top") = 0)
+      .def(
+          "shown", [](const PySynthesis& s, bool all, int top) { return synthesis::shown_rows(s.outcome, all, top); },
+          py::arg("all") = false, py::arg("top") = 0)
+      .def(
+          "json",
+          [](const PySynthesis& s, bool all, int top) {
+            return io::synthesis_json(s.task, s.outcome, s.listing(all, top));
+          },
+          py::arg("all") = false, py::arg("top") = 0)
       .def("table", &table, py::arg("all") = false, py::arg("top") = 0)
-      .def("design_yaml", [](const PySynthesis& s, int row, int rank) {
-             return io::design_model_yaml(s.task, s.outcome, row, rank);
-           }, py::arg("row"), py::arg("rank"))
-      .def("export", [](const PySynthesis& s, const std::string& dir, bool all, int top) {
-             io::export_designs(s.task, s.outcome, s.listing(all, top, dir));
-           }, py::arg("dir"), py::arg("all") = false, py::arg("top") = 0)
-      .def("write_curves", [](const PySynthesis& s, const std::string& path) {
-             if (!s.outcome.curves)
-               throw Error(ErrorKind::BadInput, "only Burmester synthesis through four poses has curves");
-             io::write_burmester_curves(path, s.task, *s.outcome.curves);
-           }, py::arg("path"));
+      .def(
+          "design_yaml",
+          [](const PySynthesis& s, int row, int rank) { return io::design_model_yaml(s.task, s.outcome, row, rank); },
+          py::arg("row"), py::arg("rank"))
+      .def(
+          "export",
+          [](const PySynthesis& s, const std::string& dir, bool all, int top) {
+            io::export_designs(s.task, s.outcome, s.listing(all, top, dir));
+          },
+          py::arg("dir"), py::arg("all") = false, py::arg("top") = 0)
+      .def(
+          "write_curves",
+          [](const PySynthesis& s, const std::string& path) {
+            if (!s.outcome.curves)
+              throw Error(ErrorKind::BadInput, "only Burmester synthesis through four poses has curves");
+            io::write_burmester_curves(path, s.task, *s.outcome.curves);
+          },
+          py::arg("path"));
 
   // Python runs in the user's own process: a dict's `curve` names the user's file, read from the
   // current directory.
-  m.def("parse_task", [](const std::string& text, const std::string& name) {
-          return io::parse_synthesis_task(text, name, io::CurveFiles::read);
-        }, py::arg("text"), py::arg("name") = "<task>");
+  m.def(
+      "parse_task",
+      [](const std::string& text, const std::string& name) {
+        return io::parse_synthesis_task(text, name, io::CurveFiles::read);
+      },
+      py::arg("text"), py::arg("name") = "<task>");
   m.def("load_task", &io::load_synthesis_task, py::arg("path"));
   m.def("synthesize", &run, py::arg("task"), py::arg("threads") = 0, py::arg("seed") = 1,
         py::arg("timeout") = std::nullopt);

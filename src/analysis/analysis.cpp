@@ -103,8 +103,7 @@ StressStage run_fe_stress(const Analysis& analysis, const AnalysisOptions& optio
   stage.method = StressMethod::fe;
   stage.fe = std::make_shared<const LinkFe>(analysis.dynamics->solver, options.fe, options.control);
   bool any = false;
-  for (std::size_t b = 0; b < analysis.model().bodies.size(); ++b)
-    any = any || stage.fe->analysed(static_cast<int>(b));
+  for (std::size_t b = 0; b < analysis.model().bodies.size(); ++b) any = any || stage.fe->analysed(static_cast<int>(b));
   if (!any) no_shaped_link();
   stage.fe_peaks = fe_peaks(*stage.fe, analysis.sweep, analysis.dynamics->samples, options.control);
   for (const FePeak& p : stage.fe_peaks)
@@ -181,10 +180,10 @@ ResultTable section_profile_table(const Analysis& analysis, int body, int step) 
   if (!analysis.stress->links)
     throw Error(ErrorKind::BadInput, "section profiles are the beam method's: the finite elements cut no sections");
   if (body < 0 || body >= static_cast<int>(m.bodies.size()) || !analysis.stress->links->analysed(body))
-    throw Error(ErrorKind::BadInput, "'" + (body >= 0 && body < static_cast<int>(m.bodies.size())
-                                                ? m.bodies[body].name
-                                                : std::to_string(body)) +
-                                         "' has no shape to cut");
+    throw Error(
+        ErrorKind::BadInput,
+        "'" + (body >= 0 && body < static_cast<int>(m.bodies.size()) ? m.bodies[body].name : std::to_string(body)) +
+            "' has no shape to cut");
   const int steps = static_cast<int>(analysis.sweep.samples.size());
   if (step < 0 || step >= steps)
     throw Error(ErrorKind::BadInput,
@@ -206,8 +205,8 @@ ResultTable section_profile_table(const Analysis& analysis, int body, int step) 
     inputs += m.drivers[d].name + " = " + format_driver_value(m, static_cast<int>(d), at.driver_values[d]) + ", ";
   std::ostringstream time;
   time << at.time;
-  t.title = "Sections of " + m.bodies[body].name + " at step " + std::to_string(step) + " (" + inputs + "t = " +
-            time.str() + " s): x from " + m.points[m.bodies[body].points[0]].name + " towards " +
+  t.title = "Sections of " + m.bodies[body].name + " at step " + std::to_string(step) + " (" + inputs +
+            "t = " + time.str() + " s): x from " + m.points[m.bodies[body].points[0]].name + " towards " +
             m.points[m.bodies[body].points[1]].name;
   return t;
 }

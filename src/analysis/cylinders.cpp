@@ -82,12 +82,13 @@ std::vector<Warning> cylinder_warnings(const Mechanism& mech, const SweepResult&
           !sweep.samples[first_out].driver_values.empty())
         where = fmt::format(" ({} = {})", m.drivers[0].name,
                             format_driver_value(m, 0, sweep.samples[first_out].driver_values[0]));
-      out.push_back({"rod_leaves_barrel", first_out,
-                     fmt::format("cylinder {}/{}: the piston end {} leaves the barrel {}-{} ({} long) at step {}{} and gets "
-                                 "{} out of it: make the barrel or the rod longer, or the stroke shorter",
-                                 m.bodies[barrel].name, rod.name, m.points[p].name, m.points[s.along[0]].name,
-                                 m.points[s.along[1]].name, length_text(m, barrel_length), first_out, where,
-                                 length_text(m, farthest * barrel_length))});
+      out.push_back(
+          {"rod_leaves_barrel", first_out,
+           fmt::format("cylinder {}/{}: the piston end {} leaves the barrel {}-{} ({} long) at step {}{} and gets "
+                       "{} out of it: make the barrel or the rod longer, or the stroke shorter",
+                       m.bodies[barrel].name, rod.name, m.points[p].name, m.points[s.along[0]].name,
+                       m.points[s.along[1]].name, length_text(m, barrel_length), first_out, where,
+                       length_text(m, farthest * barrel_length))});
     }
   }
   return out;

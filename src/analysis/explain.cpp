@@ -9,15 +9,16 @@
 #include <map>
 #include <sstream>
 
+#include "explain_expr.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/kinematics/position.hpp"
 #include "nbar/kinematics/sweep.hpp"
-#include "explain_expr.hpp"
 
 namespace nbar {
 
 namespace {
 
+using explain_detail::call;
 using explain_detail::E;
 using explain_detail::latex_name;
 using explain_detail::mul;
@@ -27,7 +28,6 @@ using explain_detail::scale;
 using explain_detail::sq;
 using explain_detail::sum;
 using explain_detail::sym;
-using explain_detail::call;
 
 // The equations of the rows, written with the model's names and numbers in its units.
 class RowWriter {
@@ -242,8 +242,8 @@ struct Link {
 
 // The ground and every link with an angle; `speed` the largest speed of the field (a point's,
 // or omega times the mechanism's size `lc`).
-std::vector<Link> moving_links(const Mechanism& mech, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
-                               double lc, double& speed, std::vector<std::string>& notes) {
+std::vector<Link> moving_links(const Mechanism& mech, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double lc,
+                               double& speed, std::vector<std::string>& notes) {
   const Model& m = mech.model();
   std::vector<Link> links;
   Link ground{-1, "ground", {0, 0}, {0, 0}, 0.0, {}};
@@ -482,8 +482,8 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
   const SweepResult sweep = run_sweep(mech, sweep_options, options.control);
   options.control.checkpoint("explain", 0, 3);
   if (options.step >= static_cast<int>(sweep.samples.size()))
-    throw Error(ErrorKind::StoppedAtLimit, sweep.stop_reason + ": step " + std::to_string(options.step) +
-                                               " is not reached");
+    throw Error(ErrorKind::StoppedAtLimit,
+                sweep.stop_reason + ": step " + std::to_string(options.step) + " is not reached");
   const Sample& sample = sweep.samples[options.step];
 
   Explanation ex;

@@ -127,7 +127,9 @@ std::string text(const E& e) {
   switch (e->kind) {
     case K::Num: return number(e->value);
     case K::Sym: return e->text;
-    case K::Sum: return render_sum(*e, text_factor, [](double v) { return number(v); }, "*");
+    case K::Sum:
+      return render_sum(
+          *e, text_factor, [](double v) { return number(v); }, "*");
     case K::Prod: return cat({text_factor(e->a), "*", text_factor(e->b)});
     case K::Square: {
       const bool bare = e->a->kind == K::Sym || (e->a->kind == K::Num && e->a->value >= 0);
@@ -143,7 +145,9 @@ std::string latex(const E& e) {
   switch (e->kind) {
     case K::Num: return latex_number(e->value);
     case K::Sym: return e->latex;
-    case K::Sum: return render_sum(*e, latex_factor, [](double v) { return latex_number(v); }, "\\,");
+    case K::Sum:
+      return render_sum(
+          *e, latex_factor, [](double v) { return latex_number(v); }, "\\,");
     case K::Prod: return cat({latex_factor(e->a), "\\,", latex_factor(e->b)});
     case K::Square: {
       const bool bare = e->a->kind == K::Sym || (e->a->kind == K::Num && e->a->value >= 0);
@@ -209,8 +213,10 @@ std::string latex_number(double v, int digits) {
   if (e == std::string::npos) return s;
   const std::string mantissa = s.substr(0, e);
   int exponent = std::atoi(s.c_str() + e + 1);
-  return (mantissa == "1" ? "" : mantissa == "-1" ? "-" : mantissa + " \\times ") + "10^{" + std::to_string(exponent) +
-         "}";
+  return (mantissa == "1"    ? ""
+          : mantissa == "-1" ? "-"
+                             : mantissa + " \\times ") +
+         "10^{" + std::to_string(exponent) + "}";
 }
 
 }  // namespace nbar::explain_detail

@@ -15,10 +15,10 @@ using E = std::shared_ptr<const Ex>;
 
 struct Ex {
   enum class Kind { Num, Sym, Sum, Prod, Square, Sin, Cos } kind = Kind::Num;
-  double value = 0.0;                        // Num; Sum: the constant term
-  std::string text, latex;                   // Sym
-  std::vector<std::pair<double, E>> terms;   // Sum: coefficient * term (none of them a Num)
-  E a, b;                                    // Prod a*b; Square a^2; Sin, Cos of a
+  double value = 0.0;                       // Num; Sum: the constant term
+  std::string text, latex;                  // Sym
+  std::vector<std::pair<double, E>> terms;  // Sum: coefficient * term (none of them a Num)
+  E a, b;                                   // Prod a*b; Square a^2; Sin, Cos of a
 };
 
 E num(double v);

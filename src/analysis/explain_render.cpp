@@ -14,9 +14,9 @@ namespace {
 
 using explain_detail::clean;
 using explain_detail::latex_name;
-using explain_detail::tex_escape;
 using explain_detail::latex_number;
 using explain_detail::number;
+using explain_detail::tex_escape;
 
 constexpr int kWideMatrix = 8;  // columns beyond which Markdown and LaTeX list non-zeros instead
 
@@ -185,7 +185,8 @@ class Renderer {
     const Driver& drv = m_.drivers[d];
     const double v = ex_.driver_values[d];
     const double si = v * (drv.is_angular() ? m_.units.angle_scale : m_.units.length_scale);
-    const std::string num = latex ? latex_number(clean(v, 1e-12 * std::max(1.0, std::abs(v)))) : number(clean(v, 1e-12));
+    const std::string num =
+        latex ? latex_number(clean(v, 1e-12 * std::max(1.0, std::abs(v)))) : number(clean(v, 1e-12));
     if (drv.is_angular()) {
       if (m_.units.angle == "rad") return num + (latex ? "\\ \\mathrm{rad}" : " rad");
       return latex ? num + "^{\\circ} = " + latex_number(clean(si, 1e-15)) + "\\ \\mathrm{rad}"
@@ -209,16 +210,17 @@ class Renderer {
                         "model's names and numbers.";
     para(units);
     for (std::size_t d = 0; d < m_.drivers.size(); ++d)
-      display("driver " + m_.drivers[d].name + ": " + driver_symbol(static_cast<int>(d), false) + "(t) = " +
-                  driver_value(static_cast<int>(d), false),
+      display("driver " + m_.drivers[d].name + ": " + driver_symbol(static_cast<int>(d), false) +
+                  "(t) = " + driver_value(static_cast<int>(d), false),
               driver_symbol(static_cast<int>(d), true) + "(t) = " + driver_value(static_cast<int>(d), true));
   }
 
   void count() {
     const GrueblerCount& c = ex_.count;
     heading("1. Degrees of freedom (Gruebler-Kutzbach)");
-    para("n links (the ground included), PI one-freedom pairs (a revolute joint for each extra link meeting at a "
-         "point, and each slider), PII two-freedom pairs (pins in slots):");
+    para(
+        "n links (the ground included), PI one-freedom pairs (a revolute joint for each extra link meeting at a "
+        "point, and each slider), PII two-freedom pairs (pins in slots):");
     std::ostringstream p, l;
     p << "n = " << c.links << ", PI = " << c.lower_pairs << ", PII = " << c.higher_pairs;
     l << "n = " << c.links << ",\\quad P_{I} = " << c.lower_pairs << ",\\quad P_{II} = " << c.higher_pairs;
@@ -226,8 +228,8 @@ class Renderer {
     std::ostringstream g, gl;
     g << "G = 3 (n - 1) - 2 PI - PII = 3 (" << c.links << " - 1) - 2*" << c.lower_pairs << " - " << c.higher_pairs
       << " = " << c.dof;
-    gl << "G = 3(n-1) - 2P_{I} - P_{II} = 3(" << c.links << "-1) - 2\\cdot " << c.lower_pairs << " - "
-       << c.higher_pairs << " = " << c.dof;
+    gl << "G = 3(n-1) - 2P_{I} - P_{II} = 3(" << c.links << "-1) - 2\\cdot " << c.lower_pairs << " - " << c.higher_pairs
+       << " = " << c.dof;
     display(g.str(), gl.str());
     std::ostringstream s;
     s << "The true mobility, the number of coordinates minus the rank of the constraint Jacobian, is " << c.mobility
@@ -251,8 +253,8 @@ class Renderer {
     for (std::size_t p = 0; p < m_.points.size(); ++p) {
       if (!m_.points[p].ground) continue;
       const Eigen::Vector2d r = m_.points[p].position / m_.units.length_scale;
-      fixed_plain += (fixed_plain.empty() ? "" : ", ") + m_.points[p].name + " = (" + number(r.x()) + ", " +
-                     number(r.y()) + ")";
+      fixed_plain +=
+          (fixed_plain.empty() ? "" : ", ") + m_.points[p].name + " = (" + number(r.x()) + ", " + number(r.y()) + ")";
       fixed_latex += (fixed_latex.empty() ? "" : ",\\quad ") + latex_name(m_.points[p].name) + " = (" +
                      latex_number(r.x()) + ", " + latex_number(r.y()) + ")";
     }
@@ -273,7 +275,8 @@ class Renderer {
       const EquationRow& e = ex_.equations[r];
       // The kind (point_on_line) is a word of nbar's, not a name: Markdown reads its _ as letters.
       const std::string kind = tex() ? tex_escape(e.kind) : e.kind;
-      const std::string head = std::to_string(r + 1) + ". " + words(e.label) + " [" + kind + "], scale " + number(e.scale);
+      const std::string head =
+          std::to_string(r + 1) + ". " + words(e.label) + " [" + kind + "], scale " + number(e.scale);
       if (text()) {
         out_ << "  " << head << "\n      " << e.text << "\n";
       } else if (md()) {
@@ -297,8 +300,8 @@ class Renderer {
           plain.append("\n").append(std::to_string(r + 1).size() + 4, ' ');
         }
         plain.append("d/d").append(sym_[d.column]).append(" = ").append(d.text);
-        latex += (latex.empty() ? "" : " \\\\ ") +
-                 ("\\frac{\\partial\\Phi_{" + std::to_string(r + 1) + "}}{\\partial " + tsym_[d.column] + "} &= " + d.latex);
+        latex += (latex.empty() ? "" : " \\\\ ") + ("\\frac{\\partial\\Phi_{" + std::to_string(r + 1) +
+                                                    "}}{\\partial " + tsym_[d.column] + "} &= " + d.latex);
       }
       if (text())
         out_ << plain << "\n";
@@ -333,20 +336,24 @@ class Renderer {
       for (std::size_t c = 0; c < sym_.size(); ++c) q[c + 1].push_back(sym_[c]);
       for (std::size_t k = first; k < ex_.newton.size(); ++k) {
         q[0].push_back("q_" + std::to_string(k));
-        for (std::size_t c = 0; c < sym_.size(); ++c) q[c + 1].push_back(number(clean(ex_.newton[k].q[c], 1e-12 * lc_), 9));
+        for (std::size_t c = 0; c < sym_.size(); ++c)
+          q[c + 1].push_back(number(clean(ex_.newton[k].q[c], 1e-12 * lc_), 9));
       }
       out_ << "\n" << aligned(q);
     } else {
-      const std::vector<std::string> head{"$k$", "$\\max\\lvert\\Phi\\rvert$ " + unit, "$\\max\\lvert\\Delta q\\rvert$ " + unit};
+      const std::vector<std::string> head{"$k$", "$\\max\\lvert\\Phi\\rvert$ " + unit,
+                                          "$\\max\\lvert\\Delta q\\rvert$ " + unit};
       out_ << (md() ? md_table(head, rows) + "\n" : tex_table(head, rows));
       // The last few iterates, narrow enough for a phone.
       const std::size_t first = ex_.newton.size() > 4 ? ex_.newton.size() - 4 : 0;
       std::string latex = "\\begin{array}{c|" + std::string(ex_.newton.size() - first, 'r') + "} & ";
-      for (std::size_t k = first; k < ex_.newton.size(); ++k) latex += (k > first ? " & " : "") + ("q_{" + std::to_string(k) + "}");
+      for (std::size_t k = first; k < ex_.newton.size(); ++k)
+        latex += (k > first ? " & " : "") + ("q_{" + std::to_string(k) + "}");
       latex += " \\\\ \\hline ";
       for (std::size_t c = 0; c < sym_.size(); ++c) {
         latex += tsym_[c];
-        for (std::size_t k = first; k < ex_.newton.size(); ++k) latex += " & " + latex_number(clean(ex_.newton[k].q[c], 1e-12 * lc_), 9);
+        for (std::size_t k = first; k < ex_.newton.size(); ++k)
+          latex += " & " + latex_number(clean(ex_.newton[k].q[c], 1e-12 * lc_), 9);
         latex += " \\\\ ";
       }
       display("", latex + "\\end{array}");
@@ -413,13 +420,16 @@ class Renderer {
     const LinearSystem& s = acceleration ? ex_.acceleration : ex_.velocity;
     const std::string unit = m_.units.length + (acceleration ? "/s^2" : "/s");
     if (!acceleration) {
-      heading("7. Velocity: Phi_q qdot = -Phi_t", "7. Velocity: ", "\\Phi_{\\mathbf{q}}\\dot{\\mathbf{q}} = -\\Phi_{t}");
-      para("Phi_t is the rate of change of Phi with the drivers moving and q held: it comes from the driver rows. "
-           "The right-hand side and the solution are in " + unit + ".");
+      heading("7. Velocity: Phi_q qdot = -Phi_t",
+              "7. Velocity: ", "\\Phi_{\\mathbf{q}}\\dot{\\mathbf{q}} = -\\Phi_{t}");
+      para(
+          "Phi_t is the rate of change of Phi with the drivers moving and q held: it comes from the driver rows. "
+          "The right-hand side and the solution are in " +
+          unit + ".");
       display("Phi_q qdot = -Phi_t", "\\Phi_{\\mathbf{q}}\\,\\dot{\\mathbf{q}} = -\\Phi_{t}");
     } else {
-      heading("8. Acceleration: Phi_q qddot = -(Phi_q qdot)_q qdot - 2 Phi_qt qdot - Phi_tt", "8. Acceleration: ",
-              "\\Phi_{\\mathbf{q}}\\ddot{\\mathbf{q}} = \\dots");
+      heading("8. Acceleration: Phi_q qddot = -(Phi_q qdot)_q qdot - 2 Phi_qt qdot - Phi_tt",
+              "8. Acceleration: ", "\\Phi_{\\mathbf{q}}\\ddot{\\mathbf{q}} = \\dots");
       para("The right-hand side uses the velocities just found; Phi_q is the same matrix, factorised once. In " + unit +
            ".");
       display("Phi_q qddot = -(Phi_q qdot)_q qdot - 2 Phi_qt qdot - Phi_tt",
@@ -450,13 +460,17 @@ class Renderer {
 
   void centres() {
     heading("9. Instant centres");
-    para("For each pair of links (the ground included), the point where their velocities are equal, from each "
-         "link's angular velocity and the velocity of one of its points. A primary centre is a revolute joint the "
-         "two links share; links that translate relative to each other have their centre at infinity, in the "
-         "direction given. By the Aronhold-Kennedy theorem, the three centres of any three links lie on one line.");
+    para(
+        "For each pair of links (the ground included), the point where their velocities are equal, from each "
+        "link's angular velocity and the velocity of one of its points. A primary centre is a revolute joint the "
+        "two links share; links that translate relative to each other have their centre at infinity, in the "
+        "direction given. By the Aronhold-Kennedy theorem, the three centres of any three links lie on one line.");
     std::vector<std::vector<std::string>> rows;
     for (const InstantCentre& c : ex_.centres) {
-      std::string kind = c.at_joint ? "primary (joint)" : c.at_infinity ? "at infinity" : c.indeterminate ? "indeterminate" : "";
+      std::string kind = c.at_joint        ? "primary (joint)"
+                         : c.at_infinity   ? "at infinity"
+                         : c.indeterminate ? "indeterminate"
+                                           : "";
       if (c.at_infinity)
         rows.push_back({c.name, "-", "-",
                         kind + ", direction (" + number(clean(c.direction.x(), 1e-12)) + ", " +
@@ -464,7 +478,8 @@ class Renderer {
       else if (c.indeterminate)
         rows.push_back({c.name, "-", "-", "no relative motion at this instant"});
       else
-        rows.push_back({c.name, cell(clean(c.position.x(), 1e-9 * lc_)), cell(clean(c.position.y(), 1e-9 * lc_)), kind});
+        rows.push_back(
+            {c.name, cell(clean(c.position.x(), 1e-9 * lc_)), cell(clean(c.position.y(), 1e-9 * lc_)), kind});
     }
     const std::string x = "x (" + m_.units.length + ")", y = "y (" + m_.units.length + ")";
     if (text()) {

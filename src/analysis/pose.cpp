@@ -52,8 +52,8 @@ void check_pose_value(const Model& m, const SweepPath& path, double value, doubl
   } else {
     const double ranges = path.delta[0] != 0.0 ? std::abs((target - path.from[0]) / path.delta[0]) : 0.0;
     if (!(ranges > kMaxRanges)) return;
-    s << target_text(m, path, target) << " is " << ranges << " times the sweep's range from its start; a pose is limited to "
-      << static_cast<int>(kMaxRanges) << " times";
+    s << target_text(m, path, target) << " is " << ranges
+      << " times the sweep's range from its start; a pose is limited to " << static_cast<int>(kMaxRanges) << " times";
   }
   s << " (the work grows with the distance): check the value and its units";
   throw Error(ErrorKind::BadInput, s.str());

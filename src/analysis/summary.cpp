@@ -33,9 +33,7 @@ std::string describe_driver(const Model& m, int d) {
     case DriverKind::Distance:
       what = "distance " + m.points[drv.points[0]].name + "-" + m.points[drv.points[1]].name;
       break;
-    case DriverKind::Slide:
-      what = "slide of " + m.bodies[m.sliders[drv.slider].body].name + " along its guide";
-      break;
+    case DriverKind::Slide: what = "slide of " + m.bodies[m.sliders[drv.slider].body].name + " along its guide"; break;
   }
   const double rate_scale = drv.is_angular() ? m.units.angle_scale : m.units.length_scale;
   const std::string unit = drv.is_angular() ? m.units.angle : m.units.length;
@@ -114,14 +112,13 @@ void warn_about_input_limits(const Mechanism& mech, const std::vector<Eigen::Vec
       const double stop = end > start ? to : from;
       out.warnings.push_back(
           {"input_limited", -1,
-           fmt::format("the sweep asks {} to turn {}, from {} to {}, but loop {} lets it turn only between {} and {} "
-                       "(toggle positions): the sweep will stop near {}",
-                       drv.name, format_driver_value(m, static_cast<int>(d), std::abs(end - start)),
-                       format_driver_value(m, static_cast<int>(d), start),
-                       format_driver_value(m, static_cast<int>(d), end), loop.name,
-                       format_driver_value(m, static_cast<int>(d), from),
-                       format_driver_value(m, static_cast<int>(d), to),
-                       format_driver_value(m, static_cast<int>(d), stop))});
+           fmt::format(
+               "the sweep asks {} to turn {}, from {} to {}, but loop {} lets it turn only between {} and {} "
+               "(toggle positions): the sweep will stop near {}",
+               drv.name, format_driver_value(m, static_cast<int>(d), std::abs(end - start)),
+               format_driver_value(m, static_cast<int>(d), start), format_driver_value(m, static_cast<int>(d), end),
+               loop.name, format_driver_value(m, static_cast<int>(d), from),
+               format_driver_value(m, static_cast<int>(d), to), format_driver_value(m, static_cast<int>(d), stop))});
     }
   }
 }
@@ -189,8 +186,8 @@ void add_input_toggles(const Mechanism& mech, const std::vector<Eigen::Vector2d>
   double shift = 0.0;
   for (const Driver& d : m.drivers)
     if (d.kind == DriverKind::Angle && d.body == loop.input && d.relative_to < 0 && d.from)
-      shift = 2 * std::numbers::pi * std::round((*d.from - (angle_of(p[loop.a] - p[loop.o2]) + offset)) /
-                                                (2 * std::numbers::pi));
+      shift = 2 * std::numbers::pi *
+              std::round((*d.from - (angle_of(p[loop.a] - p[loop.o2]) + offset)) / (2 * std::numbers::pi));
   l.toggle_from = limits.from + offset + shift;
   l.toggle_to = limits.to + offset + shift;
 }

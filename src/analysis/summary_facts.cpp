@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
-#include <vector>
 #include <utility>
+#include <vector>
 
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/loop_closure.hpp"
@@ -38,9 +38,8 @@ CrankMeasure crank_measure(const Model& m, int crank, int pivot, int pin) {
   CrankMeasure c;
   const Body& body = m.bodies[crank];
   const auto position = [&](int p) { return m.points[p].position; };
-  c.offset = std::remainder(angle_of(position(body.points[1]) - position(body.points[0])) -
-                                angle_of(position(pin) - position(pivot)),
-                            kTurn);
+  c.offset = std::remainder(
+      angle_of(position(body.points[1]) - position(body.points[0])) - angle_of(position(pin) - position(pivot)), kTurn);
   for (std::size_t d = 0; d < m.drivers.size(); ++d) {
     const Driver& drv = m.drivers[d];
     if (drv.kind != DriverKind::Angle || drv.body != crank || drv.relative_to >= 0) continue;
@@ -69,7 +68,9 @@ std::string angle_text(const Model& m, const CrankMeasure& c, double si) {
   return fmt::format("{:.6g} {}", si / m.units.angle_scale, m.units.angle);
 }
 
-std::string length_text(const Model& m, double si) { return fmt::format("{:.6g} {}", si / m.units.length_scale, m.units.length); }
+std::string length_text(const Model& m, double si) {
+  return fmt::format("{:.6g} {}", si / m.units.length_scale, m.units.length);
+}
 
 // A crank on the ground whose pin is `pin`: {crank body, pivot point}, or {-1, -1}.
 std::pair<int, int> crank_at(const Model& m, int pin, std::initializer_list<int> not_these) {
@@ -109,9 +110,10 @@ void add_slider_crank(const Model& m, const Slider& s, std::vector<SliderCrankSu
       const CrankMeasure measure = crank_measure(m, crank, pivot, pin);
       if (!f.crank_turns_fully && measure.driver < 0) continue;  // a rocker driving a slider, not a crank
       if (!f.crank_turns_fully) {
-        f.description = fmt::format("slider-crank {}-{}-{}: crank {}, rod {}, offset {}: the crank cannot turn fully "
-                                    "(rod - crank is not longer than the offset)",
-                                    f.crank, f.rod, f.slider, length_text(m, cr), length_text(m, l), length_text(m, e));
+        f.description = fmt::format(
+            "slider-crank {}-{}-{}: crank {}, rod {}, offset {}: the crank cannot turn fully "
+            "(rod - crank is not longer than the offset)",
+            f.crank, f.rod, f.slider, length_text(m, cr), length_text(m, l), length_text(m, e));
         out.push_back(std::move(f));
         continue;
       }
@@ -124,19 +126,21 @@ void add_slider_crank(const Model& m, const Slider& s, std::vector<SliderCrankSu
       f.time_ratio = std::max(f.outstroke_turn, f.return_turn) / std::min(f.outstroke_turn, f.return_turn);
       const double unit = m.units.angle_scale;
       f.description = fmt::format(
-          "slider-crank {}-{}-{}: crank {}, rod {}, offset {}; stroke {}; dead centres at {} {} (outer) and {} (inner); "
+          "slider-crank {}-{}-{}: crank {}, rod {}, offset {}; stroke {}; dead centres at {} {} (outer) and {} "
+          "(inner); "
           "the outstroke takes {:.6g} {} of crank turn, the return {:.6g} {}: time ratio {:.4g}",
           f.crank, f.rod, f.slider, length_text(m, cr), length_text(m, l), length_text(m, e), length_text(m, f.stroke),
-          measure.driver >= 0 ? m.drivers[measure.driver].name : f.crank,
-          angle_text(m, measure, f.outer_dead_centre), angle_text(m, measure, f.inner_dead_centre),
-          f.outstroke_turn / unit, m.units.angle, f.return_turn / unit, m.units.angle, f.time_ratio);
+          measure.driver >= 0 ? m.drivers[measure.driver].name : f.crank, angle_text(m, measure, f.outer_dead_centre),
+          angle_text(m, measure, f.inner_dead_centre), f.outstroke_turn / unit, m.units.angle, f.return_turn / unit,
+          m.units.angle, f.time_ratio);
       out.push_back(std::move(f));
     }
   }
 }
 
 // A crank pin `pin` moving along the line through `along`, points of an arm pivoted on the ground.
-void add_quick_return(const Model& m, int pin, std::array<int, 2> along, int block, std::vector<QuickReturnSummary>& out) {
+void add_quick_return(const Model& m, int pin, std::array<int, 2> along, int block,
+                      std::vector<QuickReturnSummary>& out) {
   for (std::size_t a = 0; a < m.bodies.size(); ++a) {
     const Body& arm = m.bodies[a];
     if (static_cast<int>(a) == block || !has_point(arm, along[0]) || !has_point(arm, along[1])) continue;
@@ -174,7 +178,8 @@ void add_quick_return(const Model& m, int pin, std::array<int, 2> along, int blo
     f.time_ratio = f.slow_turn / f.fast_turn;
     const double unit = m.units.angle_scale;
     f.description = fmt::format(
-        "quick-return {}-{}: crank {}, pivots {} apart; the arm swings {:.6g} {}; its limits at {} {} and {}; one stroke "
+        "quick-return {}-{}: crank {}, pivots {} apart; the arm swings {:.6g} {}; its limits at {} {} and {}; one "
+        "stroke "
         "takes {:.6g} {} of crank turn, the other {:.6g} {}: time ratio {:.4g}",
         f.crank, f.arm, length_text(m, r), length_text(m, d), f.swing / unit, m.units.angle,
         measure.driver >= 0 ? m.drivers[measure.driver].name : f.crank, angle_text(m, measure, f.limit_from),

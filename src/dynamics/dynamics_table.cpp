@@ -50,8 +50,9 @@ std::vector<ColumnName> dynamics_columns(const InverseDynamics& dynamics) {
     columns.push_back({m.bodies[s.body].name + ".slider.M", "N m"});
   }
   for (const Slot& s : m.slots) columns.push_back({m.points[s.point].name + ".slot.N", "N"});
-  for (const Driver& d : m.drivers) columns.push_back({d.name + (d.kind == DriverKind::Angle ? ".torque" : ".force"),
-                                                       d.kind == DriverKind::Angle ? "N m" : "N"});
+  for (const Driver& d : m.drivers)
+    columns.push_back(
+        {d.name + (d.kind == DriverKind::Angle ? ".torque" : ".force"), d.kind == DriverKind::Angle ? "N m" : "N"});
   columns.push_back({"energy.kinetic", "J"});
   columns.push_back({"energy.potential", "J"});
   return columns;

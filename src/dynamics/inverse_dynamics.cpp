@@ -10,8 +10,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "nbar/model/diagnostics.hpp"
 #include "model/linear_algebra.hpp"
+#include "nbar/model/diagnostics.hpp"
 
 namespace nbar {
 
@@ -298,8 +298,9 @@ class InverseDynamics::Assembly {
     };
     for (std::size_t i = 0; i < m_.point_loads.size(); ++i) {
       const PointLoad& load = m_.point_loads[i];
-      known_at_point(load.point, load.body,
-                     {law_at(load.fx, EntityRef::Kind::PointLoad, i, 0), law_at(load.fy, EntityRef::Kind::PointLoad, i, 1)});
+      known_at_point(
+          load.point, load.body,
+          {law_at(load.fx, EntityRef::Kind::PointLoad, i, 0), law_at(load.fy, EntityRef::Kind::PointLoad, i, 1)});
     }
     for (std::size_t i = 0; i < m_.torques.size(); ++i) {
       const BodyTorque& torque = m_.torques[i];

@@ -19,9 +19,11 @@ void write_calculix_input(std::ostream& out, const PlateModel& model, const Load
   out << "*ELEMENT, TYPE=CPS6, ELSET=EALL\n";
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& v = mesh.triangles[t];
-    out << fmt::format("{}, {}, {}, {}, {}, {}, {}\n", t + 1, v[0] + 1, v[1] + 1, v[2] + 1, v[3] + 1, v[4] + 1, v[5] + 1);
+    out << fmt::format("{}, {}, {}, {}, {}, {}, {}\n", t + 1, v[0] + 1, v[1] + 1, v[2] + 1, v[3] + 1, v[4] + 1,
+                       v[5] + 1);
   }
-  out << fmt::format("*MATERIAL, NAME=PLATE\n*ELASTIC\n{:.12g}, {:.12g}\n", material.youngs_modulus, material.poisson_ratio);
+  out << fmt::format("*MATERIAL, NAME=PLATE\n*ELASTIC\n{:.12g}, {:.12g}\n", material.youngs_modulus,
+                     material.poisson_ratio);
   out << fmt::format("*SOLID SECTION, ELSET=EALL, MATERIAL=PLATE\n{:.12g}\n", material.thickness);
   out << "*BOUNDARY\n";
   for (const Support& s : model.supports())
@@ -38,7 +40,8 @@ namespace {
 // A result line: " -1", the node number in 10 columns, then values in 12 columns each.
 void read_result_line(const std::string& line, int line_number, int values, std::vector<double>& into, int& node) {
   const auto fail = [&] {
-    throw Error(ErrorKind::BadInput, fmt::format("CalculiX results, line {}: cannot read the result line '{}'", line_number, line));
+    throw Error(ErrorKind::BadInput,
+                fmt::format("CalculiX results, line {}: cannot read the result line '{}'", line_number, line));
   };
   if (line.size() < 13 + 12 * static_cast<std::size_t>(values)) fail();
   try {
@@ -69,7 +72,8 @@ CalculixResults read_calculix_frd(std::istream& in) {
       int node = 0;
       read_result_line(line, line_number, block == Block::displacement ? 2 : 4, values, node);
       if (block == Block::displacement) {
-        if (out.displacement.size() < static_cast<std::size_t>(node)) out.displacement.resize(node, Eigen::Vector2d::Zero());
+        if (out.displacement.size() < static_cast<std::size_t>(node))
+          out.displacement.resize(node, Eigen::Vector2d::Zero());
         out.displacement[node - 1] = {values[0], values[1]};
       } else {
         if (out.stress.size() < static_cast<std::size_t>(node)) out.stress.resize(node, Eigen::Vector3d::Zero());

@@ -16,11 +16,11 @@
 #include <utility>
 #include <vector>
 
-#include "sketch_strokes.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/sketch.hpp"
 #include "nbar/model/curves.hpp"
 #include "nbar/model/diagnostics.hpp"
+#include "sketch_strokes.hpp"
 
 namespace nbar::io {
 
@@ -146,10 +146,10 @@ std::optional<double> insunits_metres(int code) {
     case 15: return 1e1;
     case 16: return 1e2;
     case 17: return 1e9;
-    case 18: return 1.495978707e11;      // astronomical unit (IAU 2012)
-    case 19: return 9.4607304725808e15;  // light year (Julian)
+    case 18: return 1.495978707e11;         // astronomical unit (IAU 2012)
+    case 19: return 9.4607304725808e15;     // light year (Julian)
     case 20: return 3.0856775814913673e16;  // parsec
-    case 21: return 1200.0 / 3937.0;     // US survey foot
+    case 21: return 1200.0 / 3937.0;        // US survey foot
     default: return std::nullopt;
   }
 }
@@ -199,8 +199,9 @@ class SketchBuilder {
       polyline();
       return;
     }
-    reader_.fail(e.line, "nbar reads LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, SPLINE, ELLIPSE and POINT entities, not " +
-                             e.type + ": explode it into those or delete it (a shape's `layer` reads one layer only)");
+    reader_.fail(e.line,
+                 "nbar reads LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, SPLINE, ELLIPSE and POINT entities, not " +
+                     e.type + ": explode it into those or delete it (a shape's `layer` reads one layer only)");
   }
 
   void finish() const {
@@ -369,7 +370,7 @@ class SketchBuilder {
       const Vector2d a = (*nurbs)(nurbs->start()), b = (*nurbs)(nurbs->end());
       add_stroke(e, {{a, b, 0, [nurbs](double u) { return (*nurbs)(u); }, nurbs->start(), nurbs->end()}}, closed);
     } catch (const ModelFileError&) {
-      throw;  // already placed in the file
+      throw;                        // already placed in the file
     } catch (const Error& error) {  // the curve's own complaint
       reader_.fail(e.line, std::string("SPLINE: ") + error.what());
     }

@@ -10,10 +10,10 @@
 #include <utility>
 #include <vector>
 
+#include "drawing_rounding.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
-#include "drawing_rounding.hpp"
 
 namespace nbar::io {
 
@@ -177,7 +177,8 @@ std::string svg_ring(const std::vector<Eigen::Vector2d>& vertices, const std::ve
       continue;
     }
     const double radius = (b - a).norm() * (1 + bulge * bulge) / (4 * std::abs(bulge));
-    d += fmt::format(" A {:.12g} {:.12g} 0 {} {} ", radius, radius, std::abs(bulge) > 1 ? 1 : 0, bulge < 0 ? 1 : 0) + xy(b);
+    d += fmt::format(" A {:.12g} {:.12g} 0 {} {} ", radius, radius, std::abs(bulge) > 1 ? 1 : 0, bulge < 0 ? 1 : 0) +
+         xy(b);
   }
   return d + " Z";
 }
@@ -267,8 +268,7 @@ std::string cutting_svg(const Mechanism& mechanism, const std::vector<Eigen::Vec
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{:.12g}mm\" height=\"{:.12g}mm\" viewBox=\"{:.12g} {:.12g} "
       "{:.12g} {:.12g}\">\n"
       "<g fill=\"none\" stroke=\"#000\" stroke-width=\"{:.6g}\" fill-rule=\"evenodd\">\n{}</g>\n</svg>\n",
-      m.units.length, width * mm_per_unit, height * mm_per_unit, x0, y0, width,
-      height, 0.1 / mm_per_unit, groups);
+      m.units.length, width * mm_per_unit, height * mm_per_unit, x0, y0, width, height, 0.1 / mm_per_unit, groups);
 }
 
 std::string dxf_layer_name(const std::string& body_name) {

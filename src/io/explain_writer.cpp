@@ -24,9 +24,7 @@ json matrix_json(const Eigen::MatrixXd& m) {
   return rows;
 }
 
-json system_json(const LinearSystem& s) {
-  return {{"rhs", vector_json(s.rhs)}, {"solution", vector_json(s.solution)}};
-}
+json system_json(const LinearSystem& s) { return {{"rhs", vector_json(s.rhs)}, {"solution", vector_json(s.solution)}}; }
 
 }  // namespace
 
@@ -50,7 +48,8 @@ json explanation_json(const Explanation& ex) {
                 {"mobility", ex.count.mobility}};
   json q = json::array();
   for (const Coordinate& c : ex.coordinates)
-    q.push_back({{"name", c.name}, {"symbol", c.symbol}, {"point", m.points[c.point].name}, {"axis", c.axis == 0 ? "x" : "y"}});
+    q.push_back(
+        {{"name", c.name}, {"symbol", c.symbol}, {"point", m.points[c.point].name}, {"axis", c.axis == 0 ? "x" : "y"}});
   j["coordinates"] = q;
   json rows = json::array();
   for (const EquationRow& e : ex.equations) {

@@ -102,10 +102,8 @@ std::string default_driver_name(const Model& m, const Driver& d) {
   switch (d.kind) {
     case DriverKind::Angle:
       return m.bodies[d.body].name + (d.relative_to >= 0 ? "/" + m.bodies[d.relative_to].name : std::string());
-    case DriverKind::Distance:
-      return m.points[d.points[0]].name + "-" + m.points[d.points[1]].name;
-    case DriverKind::Slide:
-      return m.bodies[m.sliders[d.slider].body].name;
+    case DriverKind::Distance: return m.points[d.points[0]].name + "-" + m.points[d.points[1]].name;
+    case DriverKind::Slide: return m.bodies[m.sliders[d.slider].body].name;
   }
   return {};
 }
@@ -117,7 +115,8 @@ void refuse_kinetics(const Model& m) {
   if (!m.gravity.isZero()) what = "it has gravity";
   if (!m.point_loads.empty() || !m.torques.empty()) what = "it has loads";
   if (!m.springs.empty()) what = "it has springs";
-  if (!what.empty()) throw Error(ErrorKind::BadInput, "only kinematic models can be written as model files yet: " + what);
+  if (!what.empty())
+    throw Error(ErrorKind::BadInput, "only kinematic models can be written as model files yet: " + what);
 }
 
 }  // namespace
@@ -163,12 +162,8 @@ void write_model_yaml(std::ostream& out, const Model& m, const std::vector<std::
         out << "angle: " << name(m.bodies[d.body].name);
         if (d.relative_to >= 0) out << ", relative_to: " << name(m.bodies[d.relative_to].name);
         break;
-      case DriverKind::Distance:
-        out << "distance: " << point_pair(m, d.points);
-        break;
-      case DriverKind::Slide:
-        out << "slide: " << name(m.bodies[m.sliders[d.slider].body].name);
-        break;
+      case DriverKind::Distance: out << "distance: " << point_pair(m, d.points); break;
+      case DriverKind::Slide: out << "slide: " << name(m.bodies[m.sliders[d.slider].body].name); break;
     }
     if (d.name != default_driver_name(m, d)) out << ", name: " << quoted(d.name);
     if (d.law) {
@@ -223,11 +218,13 @@ std::vector<std::string> design_angle_comments(const synthesis::FourBarDesign& d
   const auto turned = [](double offset) { return std::abs(std::remainder(offset, 2 * std::numbers::pi)) > 1e-12; };
   std::vector<std::string> lines;
   if (turned(design.input_angle_offset))
-    lines.push_back("The input angle is the direction O2 -> Ip, a pointer on the input opposite to A "
-                    "(the synthesis gave the input a negative length)");
+    lines.push_back(
+        "The input angle is the direction O2 -> Ip, a pointer on the input opposite to A "
+        "(the synthesis gave the input a negative length)");
   if (turned(design.output_angle_offset))
-    lines.push_back("The output angle (output.angle) is the direction O4 -> Op, a pointer on the output opposite to B "
-                    "(the synthesis gave the output a negative length)");
+    lines.push_back(
+        "The output angle (output.angle) is the direction O4 -> Op, a pointer on the output opposite to B "
+        "(the synthesis gave the output a negative length)");
   return lines;
 }
 

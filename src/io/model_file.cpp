@@ -17,9 +17,7 @@
 
 namespace nbar::io {
 
-SourceMark SourceMap::sweep_stop() const {
-  return sweep.line > 0 ? sweep : find({EntityRef::Kind::Driver, 0});
-}
+SourceMark SourceMap::sweep_stop() const { return sweep.line > 0 ? sweep : find({EntityRef::Kind::Driver, 0}); }
 
 SourceMark SourceMap::find(const EntityRef& ref) const {
   const auto law_mark = [&](const std::vector<std::array<SourceMark, 2>>& laws) {
@@ -160,8 +158,7 @@ int Parser::body_ref(const YAML::Node& node) const {
 
 std::array<int, 2> Parser::point_pair(const Entry& e, std::string_view example) const {
   if (!e.value.IsSequence() || e.value.size() != 2) {
-    fail(mark(e),
-         "`" + e.key + "` needs two point names, like " + std::string(example) + ", not " + describe(e.value));
+    fail(mark(e), "`" + e.key + "` needs two point names, like " + std::string(example) + ", not " + describe(e.value));
   }
   return {point_ref(e.value[0]), point_ref(e.value[1])};
 }

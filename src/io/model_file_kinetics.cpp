@@ -17,12 +17,12 @@ namespace nbar::io::model_file_detail {
 namespace {
 
 constexpr double kPoundForce = 4.4482216152605;  // N
-constexpr double kInch = 0.0254;                  // m
+constexpr double kInch = 0.0254;                 // m
 const std::vector<UnitScale> kStiffnessUnits{
     {"N/m", 1.0}, {"N/mm", 1e3}, {"kN/m", 1e3}, {"lbf/in", kPoundForce / kInch}};
 const std::vector<UnitScale> kDampingUnits{{"N s/m", 1.0}, {"N s/mm", 1e3}};
 constexpr double kPsi = kPoundForce / (kInch * kInch);  // Pa
-const std::vector<UnitScale> kStressUnits{{"Pa", 1.0},  {"kPa", 1e3},       {"MPa", 1e6},
+const std::vector<UnitScale> kStressUnits{{"Pa", 1.0},  {"kPa", 1e3},  {"MPa", 1e6},
                                           {"GPa", 1e9}, {"psi", kPsi}, {"ksi", 1e3 * kPsi}};
 constexpr double kStandardGravity = 9.80665;  // m/s^2
 
@@ -49,8 +49,7 @@ double Parser::quantity(const Entry& e, const std::string& what, const std::vect
   if (!rest.empty() && rest.front() == '+') rest.remove_prefix(1);
   const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), value);
   if (ec == std::errc::invalid_argument || end == rest.data()) {
-    fail(mark(e), what + " must be a number or a quantity like '" + std::string(example) + "', not '" + text +
-                      "'");
+    fail(mark(e), what + " must be a number or a quantity like '" + std::string(example) + "', not '" + text + "'");
   }
   if (ec == std::errc::result_out_of_range || !std::isfinite(value)) {
     fail(mark(e), what + " must be a finite number, not '" + text + "'");
@@ -81,16 +80,16 @@ double Parser::quantity(const Entry& e, const std::string& what, const std::vect
 void Parser::parse_materials(const Entry& e) {
   if (e.value.IsNull()) return;
   if (!e.value.IsMap()) {
-    fail(mark(e), "`materials` must be a mapping like {my-alloy: {density: 2800, yield: 250 MPa}}, not " +
-                      describe(e.value));
+    fail(mark(e),
+         "`materials` must be a mapping like {my-alloy: {density: 2800, yield: 250 MPa}}, not " + describe(e.value));
   }
   for (const Entry& m : entries(e.value, "material")) {
     if (builtin_material(m.key)) {
       fail(m.key_node, "'" + m.key + "' is a built-in material; give yours another name");
     }
     if (!m.value.IsMap()) {
-      fail(mark(m), "material '" + m.key + "' needs a mapping like {density: 2800, yield: 250 MPa}, not " +
-                        describe(m.value));
+      fail(mark(m),
+           "material '" + m.key + "' needs a mapping like {density: 2800, yield: 250 MPa}, not " + describe(m.value));
     }
     user_materials_.push_back(material_fields(m.value, m.key));
   }
@@ -116,8 +115,8 @@ Material Parser::material_fields(const YAML::Node& map, const std::string& name)
     // 0.5 is an incompressible solid, which plane-stress elements cannot take; a negative
     // ratio (auxetic foams) is left out of a linkage tool's materials on purpose.
     if (*m.poisson_ratio < 0.0 || *m.poisson_ratio >= 0.5)
-      fail(mark(*nu), "Poisson's ratio must be at least 0 and less than 0.5 (0.3 for steel), not " +
-                          nu->value.Scalar());
+      fail(mark(*nu),
+           "Poisson's ratio must be at least 0 and less than 0.5 (0.3 for steel), not " + nu->value.Scalar());
   }
   return m;
 }
@@ -125,8 +124,10 @@ Material Parser::material_fields(const YAML::Node& map, const std::string& name)
 Material Parser::material_of(const Entry& e) const {
   if (e.value.IsMap()) return material_fields(e.value, "");
   if (!e.value.IsScalar() || e.value.Scalar().empty()) {
-    fail(mark(e), "`material` must be a material name like steel, or a mapping like {density: 7850, yield: 250 MPa}, "
-                  "not " + describe(e.value));
+    fail(mark(e),
+         "`material` must be a material name like steel, or a mapping like {density: 7850, yield: 250 MPa}, "
+         "not " +
+             describe(e.value));
   }
   const std::string name = e.value.Scalar();
   for (const Material& m : user_materials_) {
@@ -171,9 +172,7 @@ Law Parser::load_law(const YAML::Node& node, SourceMark at, const std::string& w
   const std::string text = node.Scalar();
   double value = 0.0;
   switch (parse_number(text, value)) {
-    case NumberStatus::Ok:
-      try {
-        return Law::parse(text.front() == '+' ? text.substr(1) : text);
+    case NumberStatus::Ok: try { return Law::parse(text.front() == '+' ? text.substr(1) : text);
       } catch (const LawSyntaxError&) {
         std::ostringstream canonical;  // a spelling of the number the law grammar does not read
         canonical.precision(17);
@@ -262,8 +261,8 @@ void Parser::parse_springs(const Entry& e) {
     const Entry& between = required(f, item, "between", "a spring");
     s.points = point_pair(between, "[P, Q]");
     if (s.points[0] == s.points[1]) {
-      fail(mark(between), "a spring joins two different points, not point '" + model_.points[s.points[0]].name +
-                              "' to itself");
+      fail(mark(between),
+           "a spring joins two different points, not point '" + model_.points[s.points[0]].name + "' to itself");
     }
     const Entry* stiffness = f.find("stiffness");
     const Entry* damping = f.find("damping");
@@ -286,8 +285,8 @@ void Parser::parse_springs(const Entry& e) {
       if (s.name.empty()) fail(mark(*n), "a spring name cannot be empty");
       for (std::size_t i = 0; i < model_.springs.size(); ++i) {
         if (model_.springs[i].name == s.name) {
-          fail(mark(*n), "two springs are named '" + s.name + "' (first on line " +
-                             std::to_string(name_marks[i].line) + ")");
+          fail(mark(*n),
+               "two springs are named '" + s.name + "' (first on line " + std::to_string(name_marks[i].line) + ")");
         }
       }
       name_marks.push_back(mark(*n));

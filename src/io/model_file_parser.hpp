@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "nbar/io/model_file.hpp"
-#include "yaml_support.hpp"
 #include "nbar/model/curves.hpp"
 #include "nbar/model/geometry.hpp"
 #include "nbar/model/materials.hpp"
+#include "yaml_support.hpp"
 
 namespace nbar::io::model_file_detail {
 
@@ -47,8 +47,8 @@ inline const AllowedKeys kSlotKeys{"in a slot", {"point", "along"}};
 inline const AllowedKeys kDriverKeys{
     "in a driver", {"name", "angle", "relative_to", "distance", "slide", "from", "to", "speed", "accel", "law"}};
 inline const AllowedKeys kSweepKeys{"in `sweep`", {"steps", "duration", "step"}};
-inline const AllowedKeys kBodyKeys{
-    "in a body", {"points", "shape", "bar", "thickness", "material", "mass", "cg", "inertia"}};
+inline const AllowedKeys kBodyKeys{"in a body",
+                                   {"points", "shape", "bar", "thickness", "material", "mass", "cg", "inertia"}};
 inline const AllowedKeys kShapeKeys{"in a `shape`", {"outline", "upper", "lower", "import", "layer", "units", "holes"}};
 inline const AllowedKeys kCurveKeys{"in a curve", {"x", "y", "s", "steps", "spline"}};
 inline const AllowedKeys kArcKeys{"in an arc", {"centre", "radius", "angles"}};
@@ -141,7 +141,7 @@ class Parser : yaml::Reader {
   // (parametric, function profiles, splines) that add their polygonised vertices.
   struct Ring {
     std::vector<Eigen::Vector2d> vertices;
-    std::vector<double> bulges;  // empty when every edge is straight
+    std::vector<double> bulges;      // empty when every edge is straight
     std::vector<YAML::Node> origin;  // the item each vertex came from
     bool curves = false;
   };

@@ -51,8 +51,7 @@ void Parser::parse_bodies(const Entry& e) {
     } else if (b.value.IsMap()) {
       parse_body_details(b, body);
     } else {
-      fail(mark(b), "body '" + b.key +
-                        "' needs a list of its points, like [A, B], or a mapping with `points:`, not " +
+      fail(mark(b), "body '" + b.key + "' needs a list of its points, like [A, B], or a mapping with `points:`, not " +
                         describe(b.value));
     }
     model_.bodies.push_back(std::move(body));

@@ -68,7 +68,8 @@ double Parser::curve_constant(const YAML::Node& node, std::string_view what) con
 }
 
 std::pair<double, double> Parser::curve_interval(const YAML::Node& node, std::string_view what) const {
-  if (!node.IsSequence() || node.size() != 2) fail(node, std::string(what) + " must be [from, to], not " + describe(node));
+  if (!node.IsSequence() || node.size() != 2)
+    fail(node, std::string(what) + " must be [from, to], not " + describe(node));
   const double a = curve_constant(node[0], "the start"), b = curve_constant(node[1], "the end");
   if (a == b) fail(node, std::string(what) + " is empty: [" + node[0].Scalar() + ", " + node[1].Scalar() + "]");
   return {a, b};
@@ -103,8 +104,8 @@ Parser::CurveItem Parser::profile(const YAML::Node& node, const YAML::Node& func
       }
     }
     if (parts.size() != 3) {
-      fail(function, "a profile's braces hold {from, to, steps}, as in \"x^2{0, 2, 15}\", not '" +
-                         text.substr(brace) + "'");
+      fail(function,
+           "a profile's braces hold {from, to, steps}, as in \"x^2{0, 2, 15}\", not '" + text.substr(brace) + "'");
     }
     c.from = constant_text(function, parts[0], "the start in the braces");
     c.to = constant_text(function, parts[1], "the end in the braces");
@@ -179,8 +180,10 @@ Parser::CurveItem Parser::curve_item(const YAML::Node& node) const {
   if (x && x->value.IsScalar() && (!y || y->value.IsSequence())) {
     return profile(node, x->value, "y", y ? &y->value : nullptr, steps_node);
   }
-  fail(node, "a curve is {x: \"f(s)\", y: \"g(s)\", s: [a, b]}, {y: \"f(x)\", x: [a, b]}, {x: \"f(y)\", y: [a, b]} "
-             "or {spline: [[x, y], ...]}, not " + describe(node));
+  fail(node,
+       "a curve is {x: \"f(s)\", y: \"g(s)\", s: [a, b]}, {y: \"f(x)\", x: [a, b]}, {x: \"f(y)\", y: [a, b]} "
+       "or {spline: [[x, y], ...]}, not " +
+           describe(node));
 }
 
 // {centre: [x, y], radius: r, angles: [from, to]}: the arc from angle `from` to `to` (the
@@ -292,8 +295,8 @@ Parser::Ring Parser::ring_of(const std::vector<RingItem>& items, SourceMark wher
     }
     for (const Eigen::Vector2d& p : added) {
       // A curve that starts where the previous item ended shares that vertex.
-      if ((item.curve || item.arc_end || after_curve) && !ring.vertices.empty() && (p - ring.vertices.back()).norm() <= same &&
-          bulges.back() == 0 && !through.back()) {
+      if ((item.curve || item.arc_end || after_curve) && !ring.vertices.empty() &&
+          (p - ring.vertices.back()).norm() <= same && bulges.back() == 0 && !through.back()) {
         continue;
       }
       ring.vertices.push_back(p);
@@ -329,8 +332,8 @@ Parser::Ring Parser::ring_of(const std::vector<RingItem>& items, SourceMark wher
                     std::to_string(2 * kMaxCurveSteps) + ": give its curves fewer `steps`");
   }
   if (n < (arcs ? 2u : 3u)) {
-    fail(where, std::string(what) + " needs at least " + (arcs ? "2 vertices with an arc" : "3 vertices") +
-                    ", not " + std::to_string(n));
+    fail(where, std::string(what) + " needs at least " + (arcs ? "2 vertices with an arc" : "3 vertices") + ", not " +
+                    std::to_string(n));
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!through[i]) continue;
@@ -346,8 +349,8 @@ Parser::Ring Parser::ring_of(const std::vector<RingItem>& items, SourceMark wher
 
 Parser::Ring Parser::polygon(const Entry& e, std::string_view what) const {
   if (!e.value.IsSequence()) {
-    fail(mark(e), "`" + e.key + "` must be a list of vertices like [[0, 0], [100, 0], [100, 20]], not " +
-                      describe(e.value));
+    fail(mark(e),
+         "`" + e.key + "` must be a list of vertices like [[0, 0], [100, 0], [100, 20]], not " + describe(e.value));
   }
   std::vector<RingItem> items;
   for (const YAML::Node& v : e.value) items.push_back(ring_item(v));
@@ -369,8 +372,9 @@ Parser::Ring Parser::polygon(const Entry& e, std::string_view what) const {
 // straight edges.
 Parser::Ring Parser::profiles_ring(const Entry* lower, const Entry* upper, const YAML::Node& shape) const {
   if (!lower || !upper) {
-    fail(shape, "a shape by profiles needs both `lower` and `upper` (each like \"x^2{0, 2, 15}\" or "
-                "{y: \"x^2\", x: [0, 2]})");
+    fail(shape,
+         "a shape by profiles needs both `lower` and `upper` (each like \"x^2{0, 2, 15}\" or "
+         "{y: \"x^2\", x: [0, 2]})");
   }
   const auto profiles = [&](const Entry& e) {
     std::vector<RingItem> items;
@@ -385,8 +389,7 @@ Parser::Ring Parser::profiles_ring(const Entry* lower, const Entry* upper, const
           fail(p, "an upper or lower profile is y = f(x): \"f{from, to, steps}\" or {y: \"f\", x: [from, to]}");
         }
       } else {
-        fail(p, "an upper or lower profile is \"f{from, to, steps}\" or {y: \"f\", x: [from, to]}, not " +
-                    describe(p));
+        fail(p, "an upper or lower profile is \"f{from, to, steps}\" or {y: \"f\", x: [from, to]}, not " + describe(p));
       }
       if (item.curve->from > item.curve->to) std::swap(item.curve->from, item.curve->to);
       items.push_back(std::move(item));
@@ -421,7 +424,8 @@ std::string Parser::with_origins(std::string message, const Ring& ring) {
   std::size_t last = 0;
   for (const EdgeMention& edge : edge_mentions(message)) {
     out.append(message, last, edge.end - last);
-    if (edge.from < ring.origin.size()) out += " (of the item at line " + std::to_string(mark(ring.origin[edge.from]).line) + ")";
+    if (edge.from < ring.origin.size())
+      out += " (of the item at line " + std::to_string(mark(ring.origin[edge.from]).line) + ")";
     last = edge.end;
   }
   out.append(message, last, std::string::npos);
@@ -456,16 +460,18 @@ void Parser::add_hole(Region& r, const Hole& h) {
 
 Parser::Hole Parser::parse_hole(const YAML::Node& item) const {
   if (!item.IsMap()) {
-    fail(item, "a hole is a mapping like {at: A, radius: 5}, {circle: [50, 10], radius: 4} or "
-               "{polygon: [[x, y], ...]}, not " + describe(item));
+    fail(item,
+         "a hole is a mapping like {at: A, radius: 5}, {circle: [50, 10], radius: 4} or "
+         "{polygon: [[x, y], ...]}, not " +
+             describe(item));
   }
   const Fields f = fields(item, kHoleKeys);
   const Entry* kind = nullptr;
   for (const Entry& field : f.entries) {
     if (field.key != "at" && field.key != "circle" && field.key != "polygon") continue;
     if (kind) {
-      fail(field.key_node, "a hole has exactly one of `at`, `circle` or `polygon`; this one already has `" +
-                               kind->key + "`");
+      fail(field.key_node,
+           "a hole has exactly one of `at`, `circle` or `polygon`; this one already has `" + kind->key + "`");
     }
     kind = &field;
   }
@@ -488,8 +494,8 @@ Parser::Hole Parser::parse_hole(const YAML::Node& item) const {
 // Checked piece by piece so that an error points at the outline or at the hole concerned.
 Region Parser::parse_shape(const Entry& e, const std::string& body) const {
   if (!e.value.IsMap()) {
-    fail(mark(e), "`shape` must be a mapping like {outline: [[0, 0], [100, 0], [100, 20], [0, 20]]}, not " +
-                      describe(e.value));
+    fail(mark(e),
+         "`shape` must be a mapping like {outline: [[0, 0], [100, 0], [100, 20], [0, 20]]}, not " + describe(e.value));
   }
   const Fields f = fields(e.value, kShapeKeys);
   const std::string invalid = "the shape of " + body + " is not valid: ";
@@ -509,7 +515,8 @@ Region Parser::parse_shape(const Entry& e, const std::string& body) const {
   const Entry& outline = imported ? *imported : written ? *written : lower ? *lower : *upper;
   Region region;
   const Entry* layer = f.find("layer");
-  if (layer && !imported) fail(layer->key_node, "`layer` goes with `import`: the layer (DXF) or group (SVG) of the drawing to read");
+  if (layer && !imported)
+    fail(layer->key_node, "`layer` goes with `import`: the layer (DXF) or group (SVG) of the drawing to read");
   const Entry* units = f.find("units");
   if (units && !imported) fail(units->key_node, "`units` goes with `import`: the length unit of the file read");
   Ring outer;
@@ -615,8 +622,7 @@ Region Parser::parse_bar(const Entry& e, const Body& body, const std::string& na
   if (hole) radii[0] = radii[1] = non_negative(*hole, "the hole radius");
   if (holes) {
     if (!holes->value.IsSequence() || holes->value.size() != 2) {
-      fail(mark(*holes), "`holes` needs two radii [r1, r2], one per end (0 for none), not " +
-                             describe(holes->value));
+      fail(mark(*holes), "`holes` needs two radii [r1, r2], one per end (0 for none), not " + describe(holes->value));
     }
     for (std::size_t i = 0; i < 2; ++i) {
       radii[i] = number(holes->value[i], mark(holes->value[i]), "a hole radius");

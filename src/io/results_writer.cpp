@@ -1,8 +1,8 @@
 #include "nbar/io/results_writer.hpp"
 
+#include "json_text.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/units.hpp"
-#include "json_text.hpp"
 
 #include <fmt/format.h>
 
@@ -127,9 +127,8 @@ namespace {
 // A loop's transmission angle over the sweep, in the model's angle unit: its extremes and its
 // design value (the smallest of min(mu, 180 deg - mu)), each with its step.
 nlohmann::ordered_json transmission_json(const TransmissionExtremes& mu, double angle_scale) {
-  return {{"min", mu.min / angle_scale},       {"min_step", mu.min_step},
-          {"max", mu.max / angle_scale},       {"max_step", mu.max_step},
-          {"design", mu.design / angle_scale}, {"design_step", mu.design_step}};
+  return {{"min", mu.min / angle_scale}, {"min_step", mu.min_step},           {"max", mu.max / angle_scale},
+          {"max_step", mu.max_step},     {"design", mu.design / angle_scale}, {"design_step", mu.design_step}};
 }
 
 }  // namespace
@@ -227,8 +226,9 @@ ResultTable beam_peak_table(const Analysis& analysis) {
   for (const StressPeak& p : analysis.stress->peaks) {
     std::vector<double> row = {to_megapascal(p.at.von_mises)};
     append_input_values(m, analysis.sweep, p.step, row);
-    for (double v : {p.at.where.x() / length, p.at.where.y() / length, to_megapascal(p.at.sigma), to_megapascal(p.at.tau), p.at.axial,
-                     p.at.shear, p.at.moment, p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN())})
+    for (double v :
+         {p.at.where.x() / length, p.at.where.y() / length, to_megapascal(p.at.sigma), to_megapascal(p.at.tau),
+          p.at.axial, p.at.shear, p.at.moment, p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN())})
       row.push_back(v);
     t.rows.push_back(std::move(row));
   }
@@ -251,10 +251,10 @@ ResultTable fe_peak_table(const Analysis& analysis) {
     std::vector<double> row = {to_megapascal(p.von_mises)};
     append_input_values(m, analysis.sweep, p.step, row);
     const Eigen::Vector2d where = body_frame_point(m, p.body, p.at);
-    for (double v : {where.x() / length, where.y() / length,
-                     p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN()), static_cast<double>(p.nodes),
-                     static_cast<double>(p.elements), p.mesh_size / length, p.min_angle_deg, p.load_unbalance,
-                     p.support_reaction})
+    for (double v :
+         {where.x() / length, where.y() / length, p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN()),
+          static_cast<double>(p.nodes), static_cast<double>(p.elements), p.mesh_size / length, p.min_angle_deg,
+          p.load_unbalance, p.support_reaction})
       row.push_back(v);
     t.rows.push_back(std::move(row));
   }

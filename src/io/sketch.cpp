@@ -14,9 +14,9 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "sketch_strokes.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/model/diagnostics.hpp"
+#include "sketch_strokes.hpp"
 
 namespace nbar::io {
 
@@ -354,7 +354,8 @@ StrokeSet read_csv_strokes(const std::string& text, const std::string& file, int
     }
     const std::size_t comma = row.find(',');
     double x = 0, y = 0;
-    if (comma == std::string_view::npos || !to_number(row.substr(0, comma), x) || !to_number(row.substr(comma + 1), y)) {
+    if (comma == std::string_view::npos || !to_number(row.substr(0, comma), x) ||
+        !to_number(row.substr(comma + 1), y)) {
       fail_at(file, line, "a sketch CSV line is 'x, y', 'New <name>' or 'Point', not '" + std::string(row) + "'");
     }
     if (awaiting_point) {
@@ -373,8 +374,9 @@ StrokeSet read_csv_strokes(const std::string& text, const std::string& file, int
     if (lowered.find("circle") != std::string::npos) {
       const std::optional<Circle> c = fitted_circle(e.points);
       if (e.points.size() < 3)
-        fail_at(file, e.line, "the circle '" + e.name + "' has " + std::to_string(e.points.size()) +
-                                  " point" + (e.points.size() == 1 ? "" : "s") + "; a circle needs at least 3");
+        fail_at(file, e.line,
+                "the circle '" + e.name + "' has " + std::to_string(e.points.size()) + " point" +
+                    (e.points.size() == 1 ? "" : "s") + "; a circle needs at least 3");
       if (!c) fail_at(file, e.line, "the points of the circle '" + e.name + "' do not lie on a circle");
       set.circles.push_back({*c, e.line, e.name});
       continue;
@@ -404,7 +406,8 @@ std::optional<SketchFormat> sketch_format(const std::string& file_name) {
   return std::nullopt;
 }
 
-Sketch read_sketch(const std::string& text, const std::string& file_name, SketchFormat format, const std::string& layer) {
+Sketch read_sketch(const std::string& text, const std::string& file_name, SketchFormat format,
+                   const std::string& layer) {
   using namespace sketch_detail;
   int last_line = 1;
   StrokeSet set;
@@ -417,8 +420,8 @@ Sketch read_sketch(const std::string& text, const std::string& file_name, Sketch
       break;
   }
   const std::string what =
-      layer.empty() ? std::string() : std::string(format == SketchFormat::kSvg ? " in the group '" : " on the layer '") +
-                                          layer + "'";
+      layer.empty() ? std::string()
+                    : std::string(format == SketchFormat::kSvg ? " in the group '" : " on the layer '") + layer + "'";
   return finish_sketch(std::move(set), file_name, last_line, what);
 }
 
@@ -447,7 +450,8 @@ Region plate_from_sketch(const Sketch& sketch, double scale) {
       r.polygon_hole_bulges.push_back(arcs ? l.bulges : std::vector<double>{});
     }
   }
-  for (const SketchCircle& c : sketch.circles) r.circle_holes.push_back({c.circle.centre * scale, c.circle.radius * scale});
+  for (const SketchCircle& c : sketch.circles)
+    r.circle_holes.push_back({c.circle.centre * scale, c.circle.radius * scale});
   return r;
 }
 

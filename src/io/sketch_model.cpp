@@ -11,16 +11,16 @@
 #include <map>
 #include <set>
 
+#include "drawing_rounding.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
-#include "drawing_rounding.hpp"
 
 namespace nbar::io {
 
 namespace {
 
-using Eigen::Vector2d;
 using drawing_detail::Tidy;  // the coordinates written rounded relative to the drawing's size
+using Eigen::Vector2d;
 
 // The straight-edged polygon of a loop, for containment tests.
 std::vector<Vector2d> chords(const SketchLoop& loop) {
@@ -73,7 +73,8 @@ std::string ring_yaml(const SketchLoop& loop, double scale, const Tidy& tidy, co
 
 bool is_name(const std::string& s) {
   if (s.empty() || s == "0" || s.size() > 64 || !std::isalpha(static_cast<unsigned char>(s[0]))) return false;
-  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
+  return std::all_of(s.begin(), s.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
 }
 
 // A comment line counting the annotations the sketch left out by kind ("2 TEXT, 1 DIMENSION"),
@@ -90,8 +91,8 @@ std::string annotation_note(const std::vector<std::string>& annotations) {
 struct Body {
   std::size_t loop;
   std::string name;
-  std::vector<std::size_t> holes;          // loops
-  std::vector<std::size_t> points;         // indices into the points
+  std::vector<std::size_t> holes;           // loops
+  std::vector<std::size_t> points;          // indices into the points
   std::map<std::size_t, double> pin_holes;  // point -> radius
 };
 
@@ -207,7 +208,8 @@ std::vector<Joint> joints_of(const Sketch& sketch, double same) {
     }
   }
   for (const SketchPoint& p : sketch.points) {
-    const bool known = std::any_of(joints.begin(), joints.end(), [&](const Joint& j) { return (j.at - p.at).norm() <= same; });
+    const bool known =
+        std::any_of(joints.begin(), joints.end(), [&](const Joint& j) { return (j.at - p.at).norm() <= same; });
     if (!known) joints.push_back({p.at, 0.0, p.line});
   }
   return joints;
@@ -222,7 +224,8 @@ std::vector<int> place_joints(const Sketch& sketch, const Outlines& outlines, co
   for (Body& b : bodies) {
     for (std::size_t j = 0; j < joints.size(); ++j) {
       if (!inside(polygons[b.loop], joints[j].at)) continue;
-      if (std::any_of(b.holes.begin(), b.holes.end(), [&](std::size_t h) { return inside(polygons[h], joints[j].at); })) {
+      if (std::any_of(b.holes.begin(), b.holes.end(),
+                      [&](std::size_t h) { return inside(polygons[h], joints[j].at); })) {
         continue;
       }
       b.points.push_back(j);
@@ -302,7 +305,8 @@ std::string body_yaml(const Sketch& sketch, const Body& b, const Tidy& tidy_mode
   for (const auto& [point, radius] : b.pin_holes) {
     out += fmt::format("        - {{at: P{}, radius: {:.10g}}}\n", point + 1, tidy_model(radius * options.scale));
   }
-  for (std::size_t h : b.holes) out += "        - polygon:\n" + ring_yaml(sketch.loops[h], options.scale, tidy_model, "            ");
+  for (std::size_t h : b.holes)
+    out += "        - polygon:\n" + ring_yaml(sketch.loops[h], options.scale, tidy_model, "            ");
   out += fmt::format("    thickness: {:.10g}\n    material: {}\n", options.thickness, options.material);
   return out;
 }
@@ -335,8 +339,9 @@ std::string model_from_sketch(const Sketch& sketch, const SketchModelOptions& op
   // Circles and points on no link are left out, and the reader told so, not left to find it.
   for (std::size_t j = 0; j < joints.size(); ++j) {
     if (bodies_at[j] == 0)
-      out += fmt::format("# Left out: the {} at line {} ({}, {}) lies on no link.\n", joints[j].radius > 0 ? "circle" : "point",
-                         joints[j].line, tidy(joints[j].at.x()), tidy(joints[j].at.y()));
+      out += fmt::format("# Left out: the {} at line {} ({}, {}) lies on no link.\n",
+                         joints[j].radius > 0 ? "circle" : "point", joints[j].line, tidy(joints[j].at.x()),
+                         tidy(joints[j].at.y()));
   }
   out += fmt::format("name: \"{}\"\nunits: {{length: {}, angle: deg}}\npoints:\n", name, options.length_unit);
   for (std::size_t j = 0; j < joints.size(); ++j) {

@@ -15,7 +15,8 @@ namespace nbar::io::sketch_detail {
 // An edge from a to b: straight, a circular arc (bulge != 0), or a curve running from
 // curve(s0) = a to curve(s1) = b.
 struct Segment {
-  Segment(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double arc_bulge = 0) : a(from), b(to), bulge(arc_bulge) {}
+  Segment(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double arc_bulge = 0)
+      : a(from), b(to), bulge(arc_bulge) {}
   Segment(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double arc_bulge, CurveFunction f, double start,
           double end)
       : a(from), b(to), bulge(arc_bulge), curve(std::move(f)), s0(start), s1(end) {}

@@ -4,8 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "nbar/kinematics/continuation.hpp"
 #include "json_text.hpp"
+#include "nbar/kinematics/continuation.hpp"
 
 namespace nbar::io {
 
@@ -73,8 +73,8 @@ void write_kinetics(std::ostream& out, const Model& m, const ModelSummary& s) {
       out << fmt::format("  {:<12} mass 0{}  [{}]\n", b.name, area, b.mass_source);
   }
   out << fmt::format("Loads: gravity ({:.6g}, {:.6g}) m/s^2, {} point force{}, {} torque{}, {} spring{}\n",
-                     m.gravity.x(), m.gravity.y(), m.point_loads.size(), plural(m.point_loads.size()),
-                     m.torques.size(), plural(m.torques.size()), m.springs.size(), plural(m.springs.size()));
+                     m.gravity.x(), m.gravity.y(), m.point_loads.size(), plural(m.point_loads.size()), m.torques.size(),
+                     plural(m.torques.size()), m.springs.size(), plural(m.springs.size()));
 }
 
 void write_start(std::ostream& out, const Model& m, const ModelSummary& s) {
@@ -85,8 +85,7 @@ void write_start(std::ostream& out, const Model& m, const ModelSummary& s) {
   }
   std::vector<std::string> at;
   for (std::size_t d = 0; d < s.assembly->driver_values.size(); ++d)
-    at.push_back(m.drivers[d].name + " = " +
-                 format_driver_value(m, static_cast<int>(d), s.assembly->driver_values[d]));
+    at.push_back(m.drivers[d].name + " = " + format_driver_value(m, static_cast<int>(d), s.assembly->driver_values[d]));
   out << fmt::format("Assembly at the start ({}): converged, residual {:.3g} {}\n", join(at),
                      s.assembly->residual / m.units.length_scale, m.units.length);
   if (s.assembly->passed_singularity)
@@ -171,7 +170,9 @@ Json loops_json(const Model& m, const ModelSummary& s) {
                      {"output", name(l.loop.output)},
                      {"grashof", grashof_name(g.kind, g.input_turns_fully)},
                      {"lengths",
-                      {{"frame", g.frame / unit}, {"input", g.input / unit}, {"coupler", g.coupler / unit},
+                      {{"frame", g.frame / unit},
+                       {"input", g.input / unit},
+                       {"coupler", g.coupler / unit},
                        {"output", g.output / unit}}},
                      {"grashof_margin", g.margin / unit},
                      {"input_turns_fully", g.input_turns_fully},
@@ -179,9 +180,9 @@ Json loops_json(const Model& m, const ModelSummary& s) {
                      {"description", l.description},
                      {"branch", l.branch},
                      {"transmission_angle", l.transmission_angle / m.units.angle_scale},
-                     {"toggles", l.toggle_from && l.toggle_to
-                                     ? Json::array({*l.toggle_from / m.units.angle_scale, *l.toggle_to / m.units.angle_scale})
-                                     : Json(nullptr)},
+                     {"toggles", l.toggle_from && l.toggle_to ? Json::array({*l.toggle_from / m.units.angle_scale,
+                                                                             *l.toggle_to / m.units.angle_scale})
+                                                              : Json(nullptr)},
                      {"rocker", rocker_json(m, l.rocker)}});
   }
   return loops;
@@ -191,9 +192,12 @@ void crank_mechanisms_json(const Model& m, const ModelSummary& s, Json& j) {
   const double length = m.units.length_scale, angle = m.units.angle_scale;
   Json sliders = Json::array();
   for (const SliderCrankSummary& f : s.slider_cranks) {
-    Json one = {{"crank", f.crank},         {"rod", f.rod},
-                {"slider", f.slider},       {"crank_length", f.crank_length / length},
-                {"rod_length", f.rod_length / length}, {"offset", f.offset / length},
+    Json one = {{"crank", f.crank},
+                {"rod", f.rod},
+                {"slider", f.slider},
+                {"crank_length", f.crank_length / length},
+                {"rod_length", f.rod_length / length},
+                {"offset", f.offset / length},
                 {"crank_turns_fully", f.crank_turns_fully}};
     if (f.crank_turns_fully) {
       one["stroke"] = f.stroke / length;
@@ -208,8 +212,11 @@ void crank_mechanisms_json(const Model& m, const ModelSummary& s, Json& j) {
   j["slider_cranks"] = sliders;
   Json quick = Json::array();
   for (const QuickReturnSummary& f : s.quick_returns) {
-    Json one = {{"crank", f.crank}, {"arm", f.arm}, {"crank_length", f.crank_length / length},
-                {"pivot_distance", f.pivot_distance / length}, {"arm_turns_fully", f.arm_turns_fully}};
+    Json one = {{"crank", f.crank},
+                {"arm", f.arm},
+                {"crank_length", f.crank_length / length},
+                {"pivot_distance", f.pivot_distance / length},
+                {"arm_turns_fully", f.arm_turns_fully}};
     if (!f.arm_turns_fully) {
       one["swing"] = f.swing / angle;
       one["limits"] = {f.limit_from / angle, f.limit_to / angle};

@@ -246,7 +246,9 @@ class SvgBuilder {
       const Vector2d c(number(e, "cx", 0), number(e, "cy", 0));
       const double rx = number(e, "rx"), ry = number(e, "ry");
       if (!(rx > 0) || !(ry > 0)) fail_at(file_, line_, "an <ellipse> needs positive `rx` and `ry`");
-      const auto f = [shift = shift_, c, rx, ry](double t) { return to_model(shift, c + Vector2d(rx * std::cos(t), ry * std::sin(t))); };
+      const auto f = [shift = shift_, c, rx, ry](double t) {
+        return to_model(shift, c + Vector2d(rx * std::cos(t), ry * std::sin(t)));
+      };
       Stroke s{{{f(0), f(0), 0, f, 0, 2 * std::numbers::pi}}, true, line_, layer_};
       set.strokes.push_back(std::move(s));
       return;
@@ -256,16 +258,19 @@ class SvgBuilder {
       return;
     }
     if (e.name == "use" || e.name == "image") {
-      fail_at(file_, line_, "nbar reads paths, lines, polylines, polygons, rects, circles and ellipses, not <" + e.name +
-                                ">: convert it to paths (Inkscape: Edit > Clone > Unlink Clone, or trace the image) or "
-                                "delete it (a shape's `layer` reads one group only)");
+      fail_at(file_, line_,
+              "nbar reads paths, lines, polylines, polygons, rects, circles and ellipses, not <" + e.name +
+                  ">: convert it to paths (Inkscape: Edit > Clone > Unlink Clone, or trace the image) or "
+                  "delete it (a shape's `layer` reads one group only)");
     }
   }
 
  private:
   // SVG user units to the sketch's: shifted by the groups' translations, y turned up.
   Vector2d model(const Vector2d& p) const { return to_model(shift_, p); }
-  static Vector2d to_model(const Vector2d& shift, const Vector2d& p) { return {p.x() + shift.x(), -(p.y() + shift.y())}; }
+  static Vector2d to_model(const Vector2d& shift, const Vector2d& p) {
+    return {p.x() + shift.x(), -(p.y() + shift.y())};
+  }
 
   std::string attribute(const Element& e, const std::string& key) const {
     const auto it = e.attributes.find(key);
@@ -302,7 +307,9 @@ class SvgBuilder {
   }
 
   void cubic_to(Stroke& s, const Vector2d& p0, const Vector2d& p1, const Vector2d& p2, const Vector2d& p3) {
-    const auto f = [shift = shift_, p0, p1, p2, p3](double t) { return to_model(shift, cubic_bezier(p0, p1, p2, p3, t)); };
+    const auto f = [shift = shift_, p0, p1, p2, p3](double t) {
+      return to_model(shift, cubic_bezier(p0, p1, p2, p3, t));
+    };
     s.segments.push_back({model(p0), model(p3), 0, f, 0, 1});
   }
 
@@ -333,7 +340,8 @@ class SvgBuilder {
     const double den = rx * rx * p.y() * p.y() + ry * ry * p.x() * p.x();
     const double root = on_chord ? 0.0 : (large == sweep ? -1 : 1) * std::sqrt(std::max(0.0, num / den));
     const Vector2d cprime(root * rx * p.y() / ry, -root * ry * p.x() / rx);
-    const Vector2d centre = Vector2d(cp * cprime.x() - sp * cprime.y(), sp * cprime.x() + cp * cprime.y()) + (from + to) / 2;
+    const Vector2d centre =
+        Vector2d(cp * cprime.x() - sp * cprime.y(), sp * cprime.x() + cp * cprime.y()) + (from + to) / 2;
     const Vector2d u((p.x() - cprime.x()) / rx, (p.y() - cprime.y()) / ry);
     const Vector2d v((-p.x() - cprime.x()) / rx, (-p.y() - cprime.y()) / ry);
     const double start = std::atan2(u.y(), u.x());
@@ -464,8 +472,7 @@ class SvgBuilder {
         pen.current = pen.start;
         finish_stroke(s, true);
         break;
-      default:
-        fail_at(file_, line_, std::string("path data: unknown command '") + command + "'");
+      default: fail_at(file_, line_, std::string("path data: unknown command '") + command + "'");
     }
   }
 
@@ -488,8 +495,9 @@ Vector2d translation(const Element& e, const std::string& file) {
   const std::string& t = it->second;
   const std::size_t open = t.find('('), close = t.rfind(')');
   if (t.rfind("translate", 0) != 0 || open == std::string::npos || close == std::string::npos) {
-    fail_at(file, e.line, "nbar applies only translate() of SVG transforms, not '" + t +
-                              "' (Inkscape: Extensions > Modify Path > Apply Transform)");
+    fail_at(file, e.line,
+            "nbar applies only translate() of SVG transforms, not '" + t +
+                "' (Inkscape: Extensions > Modify Path > Apply Transform)");
   }
   const std::vector<double> v = numbers_in(t.substr(open + 1, close - open - 1), file, e.line, "translate()");
   if (v.empty() || v.size() > 2) fail_at(file, e.line, "translate() takes 1 or 2 numbers");
@@ -552,9 +560,10 @@ StrokeSet read_svg_strokes(const std::string& text, const std::string& file, con
         if (it == e->attributes.end() || !same_name(it->second, layer) || here.in_layer) continue;
         // Compared without case, 'Crank' and 'crank' both match: reading both would merge two plates.
         if (matched) {
-          fail_at(file, e->line, fmt::format("the groups '{}' (line {}) and '{}' (here) both match the layer '{}' "
-                                             "(compared without case): rename one",
-                                             matched->first, matched->second, it->second, layer));
+          fail_at(file, e->line,
+                  fmt::format("the groups '{}' (line {}) and '{}' (here) both match the layer '{}' "
+                              "(compared without case): rename one",
+                              matched->first, matched->second, it->second, layer));
         }
         matched = std::pair(it->second, e->line);
         here.in_layer = true;

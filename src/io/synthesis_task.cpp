@@ -8,9 +8,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <numbers>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -41,8 +41,7 @@ const std::vector<std::string_view> kPathKeys{"points", "curve", "constraints", 
 const yaml::DocumentWording kTaskDocument{
     "the file holds no task (it is empty or only comments): start with `task: five-point`, "
     "`task: nine-point`, `task: burmester`, `task: function` or `task: path`",
-    "a task file holds a single YAML document",
-    "a task file is a mapping of keys (task:, ...), not "};
+    "a task file holds a single YAML document", "a task file is a mapping of keys (task:, ...), not "};
 
 // The keys a mapping under `e` takes: "unknown key 'c' in `pivots`".
 AllowedKeys keys_under(const Entry& e, std::vector<std::string_view> keys) {
@@ -68,8 +67,9 @@ class TaskParser : yaml::Reader {
     const Fields top{entries(root, "")};
     const Entry* kind = top.find("task");
     if (!kind)
-      fail(root, "a task file needs `task: five-point`, `task: nine-point`, `task: burmester`, `task: function` or "
-                 "`task: path`");
+      fail(root,
+           "a task file needs `task: five-point`, `task: nine-point`, `task: burmester`, `task: function` or "
+           "`task: path`");
     const std::string k = kind->value.IsScalar() ? kind->value.Scalar() : "";
     const std::vector<std::string_view>* own = nullptr;
     if (k == "five-point") {
@@ -101,21 +101,11 @@ class TaskParser : yaml::Reader {
       task_.units = units_of(mapping(*e, keys_under(*e, {"length", "angle"}), "{length: mm, angle: deg}"), task_.units);
     }
     switch (task_.kind) {
-      case SynthesisKind::FivePoint:
-        parse_five_point(top, root);
-        break;
-      case SynthesisKind::Burmester:
-        parse_burmester(top, root);
-        break;
-      case SynthesisKind::Function:
-        parse_function(top, root);
-        break;
-      case SynthesisKind::NinePoint:
-        parse_nine_point(top, root);
-        break;
-      case SynthesisKind::Path:
-        parse_path(top, root);
-        break;
+      case SynthesisKind::FivePoint: parse_five_point(top, root); break;
+      case SynthesisKind::Burmester: parse_burmester(top, root); break;
+      case SynthesisKind::Function: parse_function(top, root); break;
+      case SynthesisKind::NinePoint: parse_nine_point(top, root); break;
+      case SynthesisKind::Path: parse_path(top, root); break;
     }
     return std::move(task_);
   }
@@ -192,14 +182,15 @@ class TaskParser : yaml::Reader {
     const Vector2d middle = 0.5 * (task_.pivot_a + task_.pivot_b);
     for (std::size_t i = 0; i < items.size(); ++i) {
       const Vector2d& p = task_.points[i];
-      if (big(p)) fail(items[i], "point " + std::to_string(i + 1) + " has a coordinate beyond 1e100: use a larger length unit");
+      if (big(p))
+        fail(items[i], "point " + std::to_string(i + 1) + " has a coordinate beyond 1e100: use a larger length unit");
       const double spread = (p - middle).norm() / frame;
       if (!(spread <= kMaxSpread)) {
         std::ostringstream s;
         s.precision(3);
         s << "point " << i + 1 << " is " << spread << " times as far from the fixed pivots as they are apart; the "
-          << "five-point solver takes points within " << static_cast<int>(kMaxSpread) << " times the pivots' distance (" << frame
-          << "): check the point, the pivots and the units";
+          << "five-point solver takes points within " << static_cast<int>(kMaxSpread) << " times the pivots' distance ("
+          << frame << "): check the point, the pivots and the units";
         fail(items[i], s.str());
       }
     }
@@ -212,8 +203,9 @@ class TaskParser : yaml::Reader {
         area = std::max(area, std::abs(u.x() * v.y() - u.y() * v.x()));
       }
     if (area <= kCollinear * extent * extent)
-      fail(items[0], "the five points lie on one straight line: the five-point solver needs them spread over a "
-                     "curve; move one off the line");
+      fail(items[0],
+           "the five points lie on one straight line: the five-point solver needs them spread over a "
+           "curve; move one off the line");
   }
 
   void parse_five_point(const Fields& top, const YAML::Node& root) {
@@ -249,7 +241,8 @@ class TaskParser : yaml::Reader {
     for (const YAML::Node& item : items) {
       task_.points.push_back(point(item, mark(item), "point " + std::to_string(task_.points.size() + 1)));
       if (!(task_.points.back().cwiseAbs().maxCoeff() <= kMaxCoordinate))
-        fail(item, "point " + std::to_string(task_.points.size()) + " has a coordinate beyond 1e100: use a larger length unit");
+        fail(item, "point " + std::to_string(task_.points.size()) +
+                       " has a coordinate beyond 1e100: use a larger length unit");
     }
     Vector2d centroid = Vector2d::Zero();
     for (const Vector2d& p : task_.points) centroid += p / 9.0;
@@ -276,16 +269,17 @@ class TaskParser : yaml::Reader {
       off = std::max(off, std::abs(along.x() * d.y() - along.y() * d.x()));
     }
     if (off <= 1e-9 * spread)
-      fail(mark(points), "the nine points lie on one straight line, which is no four-bar's coupler curve: "
-                         "move some off the line");
+      fail(mark(points),
+           "the nine points lie on one straight line, which is no four-bar's coupler curve: "
+           "move some off the line");
     std::array<Vector2d, 9> nine;
     std::copy(task_.points.begin(), task_.points.end(), nine.begin());
     if (const auto circle = synthesis::common_circle(nine)) {
       std::ostringstream s;
       s.precision(6);
-      s << "the nine points lie on one circle (centre (" << circle->centre.x() << ", "
-        << circle->centre.y() << "), radius " << circle->radius
-        << " " << task_.units.length << "): a crank of that radius about its centre, whose moving pivot is the "
+      s << "the nine points lie on one circle (centre (" << circle->centre.x() << ", " << circle->centre.y()
+        << "), radius " << circle->radius << " " << task_.units.length
+        << "): a crank of that radius about its centre, whose moving pivot is the "
         << "coupler point, passes through them with any second dyad, so there are infinitely many four-bars; "
         << "move some off the circle";
       fail(mark(points), s.str());
@@ -437,7 +431,7 @@ class TaskParser : yaml::Reader {
     if (points && curve) fail(curve->key_node, "give the targets as `points` or as a `curve` file, not both");
     if (!points && !curve)
       fail(root, "a path task needs its target points: `points: [[x, y], ...]` (10 or more) or `curve: FILE.csv`");
-    std::vector<SourceMark> marks;  // of each point, where messages about it point
+    std::vector<SourceMark> marks;   // of each point, where messages about it point
     std::string where_file = file_;  // the file those marks are in
     if (points) {
       task_.where = mark(*points);
@@ -451,8 +445,9 @@ class TaskParser : yaml::Reader {
       // A task given as text (the web server's, Python's parse_task) must not make its reader
       // open files: on a server that would read the server's disk for any client.
       if (curve_files_ == CurveFiles::refused)
-        fail(mark(*curve), "`curve` reads a CSV file, which only a task read from a file may do: give the targets "
-                           "here as `points: [[x, y], ...]`");
+        fail(mark(*curve),
+             "`curve` reads a CSV file, which only a task read from a file may do: give the targets "
+             "here as `points: [[x, y], ...]`");
       const std::string name = text_value(*curve, "`curve`");
       if (name.empty()) fail(mark(*curve), "`curve` names a CSV file of the target points (x, y on each line)");
       task_.curve_file = resolve_beside_task(name);
@@ -467,13 +462,13 @@ class TaskParser : yaml::Reader {
     const std::size_t n = task_.points.size();
     const std::string from = points ? "" : " (in " + task_.curve_file + ")";
     if (n < kMinPathPoints)
-      fail(points ? mark(*points) : mark(*curve),
-           "a path task needs at least " + std::to_string(kMinPathPoints) + " target points" + from + ", not " +
-               std::to_string(n) + " (with 5 points and both pivots, use `task: five-point`)");
+      fail(points ? mark(*points) : mark(*curve), "a path task needs at least " + std::to_string(kMinPathPoints) +
+                                                      " target points" + from + ", not " + std::to_string(n) +
+                                                      " (with 5 points and both pivots, use `task: five-point`)");
     if (n > kMaxPathPoints)
-      fail(points ? mark(*points) : mark(*curve),
-           "a path task takes at most " + std::to_string(kMaxPathPoints) + " target points" + from + ", not " +
-               std::to_string(n) + ": take every k-th point of the curve");
+      fail(points ? mark(*points) : mark(*curve), "a path task takes at most " + std::to_string(kMaxPathPoints) +
+                                                      " target points" + from + ", not " + std::to_string(n) +
+                                                      ": take every k-th point of the curve");
     constexpr double kMaxCoordinate = 1e100;
     for (std::size_t i = 0; i < n; ++i)
       if (!(task_.points[i].cwiseAbs().maxCoeff() <= kMaxCoordinate))
@@ -490,7 +485,8 @@ class TaskParser : yaml::Reader {
         }
     check_not_collinear(points ? mark(*points) : mark(*curve));
     if (const Entry* c = top.find("constraints")) parse_constraints(*c);
-    if (const Entry* s = top.find("nine_point_starts")) task_.nine_point_starts = whole(*s, "`nine_point_starts`", 0, 10);
+    if (const Entry* s = top.find("nine_point_starts"))
+      task_.nine_point_starts = whole(*s, "`nine_point_starts`", 0, 10);
   }
 
   // The targets must span an area: a straight line is not a coupler curve to fit.
@@ -507,8 +503,9 @@ class TaskParser : yaml::Reader {
     }
     const double mean = 0.5 * (xx + yy), half = std::hypot(0.5 * (xx - yy), xy);
     if (mean - half <= 1e-12 * (mean + half))
-      fail(at, "the target points lie on one straight line: a path task fits a four-bar's coupler curve to points "
-               "spread over a curve");
+      fail(at,
+           "the target points lie on one straight line: a path task fits a four-bar's coupler curve to points "
+           "spread over a curve");
   }
 
   // A file named in the task, relative to the task file's folder.
@@ -589,15 +586,17 @@ class TaskParser : yaml::Reader {
   }
 
   bool flag(const Entry& e, const std::string& what) const {
-    if (e.value.IsScalar() && (e.value.Scalar() == "true" || e.value.Scalar() == "false")) return e.value.Scalar() == "true";
+    if (e.value.IsScalar() && (e.value.Scalar() == "true" || e.value.Scalar() == "false"))
+      return e.value.Scalar() == "true";
     fail(mark(e), what + " is true or false, not " + describe(e.value));
   }
 
   // constraints: {pivots: {min: [x, y], max: [x, y]}, crank: true, min_transmission: 30,
   //               lengths: [min, max]}
   void parse_constraints(const Entry& e) {
-    const Fields f = mapping(e, keys_under(e, {"pivots", "crank", "min_transmission", "lengths"}),
-                             "{pivots: {min: [0, 0], max: [100, 50]}, crank: true, min_transmission: 30, lengths: [10, 200]}");
+    const Fields f =
+        mapping(e, keys_under(e, {"pivots", "crank", "min_transmission", "lengths"}),
+                "{pivots: {min: [0, 0], max: [100, 50]}, crank: true, min_transmission: 30, lengths: [10, 200]}");
     synthesis::PathConstraints& c = task_.constraints;
     if (const Entry* p = f.find("pivots")) {
       const Fields box = mapping(*p, keys_under(*p, {"min", "max"}), "{min: [0, 0], max: [100, 50]}");
@@ -613,7 +612,8 @@ class TaskParser : yaml::Reader {
     if (const Entry* m = f.find("min_transmission")) {
       const double mu = angle(m->value, mark(*m), "`min_transmission`");
       if (!(mu >= 0 && mu < std::numbers::pi / 2))
-        fail(mark(*m), "`min_transmission` must be at least 0 and less than a right angle (90 deg, the best a linkage can keep)");
+        fail(mark(*m),
+             "`min_transmission` must be at least 0 and less than a right angle (90 deg, the best a linkage can keep)");
       c.min_transmission = mu;
     }
     if (const Entry* l = f.find("lengths")) {

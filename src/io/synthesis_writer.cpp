@@ -9,12 +9,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "json_text.hpp"
 #include "nbar/io/model_export.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/model/file_errors.hpp"
 #include "nbar/render/canvas.hpp"
 #include "nbar/render/plot.hpp"
-#include "json_text.hpp"
 
 namespace nbar::io {
 
@@ -61,8 +61,8 @@ void write_synthesis_table(std::ostream& os, const SynthesisTask& task, const Ou
   os << fmt::format("{:>4}  {:<14} {:>11} {:>11} {:>11} {:>11}  {:>8}  {:<22} {:>9}{}\n", "rank", "Grashof", "frame",
                     "input", "coupler", "output", "mu min", "defects", "error", rms_head);
   os << fmt::format("{:>4}  {:<14} {:>11} {:>11} {:>11} {:>11}  {:>8}  {:<22} {:>9}{}\n", "", "",
-                    "(" + task.units.length + ")", "", "", "", "(" + task.units.angle + ")", "",
-                    "(" + error_unit + ")", rms ? fmt::format(" {:>9}", "(" + error_unit + ")") : "");
+                    "(" + task.units.length + ")", "", "", "", "(" + task.units.angle + ")", "", "(" + error_unit + ")",
+                    rms ? fmt::format(" {:>9}", "(" + error_unit + ")") : "");
   int rank = 0;
   for (int i : shown) {
     const Row& r = out.rows[i];
@@ -218,7 +218,8 @@ void write_burmester_svg(std::ostream& out, const SynthesisTask& task, const syn
   const render::Color ink = render::Color::rgb(0x000000), grid = render::Color::rgb(0xdddddd);
   const Eigen::Vector2d corner_lo = view.to_pixels(lo), corner_hi = view.to_pixels(hi);  // y grows down
   canvas.begin_group("grid", "grid");
-  const std::vector<double> all_x = render::nice_ticks(lo.x(), hi.x(), 8), all_y = render::nice_ticks(lo.y(), hi.y(), 8);
+  const std::vector<double> all_x = render::nice_ticks(lo.x(), hi.x(), 8),
+                            all_y = render::nice_ticks(lo.y(), hi.y(), 8);
   std::vector<double> xs, ys;
   for (double t : all_x)
     if (t >= lo.x() - 1e-9 * curves.window_radius && t <= hi.x() + 1e-9 * curves.window_radius) xs.push_back(t);
@@ -237,8 +238,11 @@ void write_burmester_svg(std::ostream& out, const SynthesisTask& task, const syn
   }
   canvas.end_group();
   canvas.begin_group("axes", "axes");
-  canvas.polyline({{corner_lo.x(), corner_lo.y()}, {corner_hi.x(), corner_lo.y()}, {corner_hi.x(), corner_hi.y()},
-                   {corner_lo.x(), corner_hi.y()}, {corner_lo.x(), corner_lo.y()}},
+  canvas.polyline({{corner_lo.x(), corner_lo.y()},
+                   {corner_hi.x(), corner_lo.y()},
+                   {corner_hi.x(), corner_hi.y()},
+                   {corner_lo.x(), corner_hi.y()},
+                   {corner_lo.x(), corner_lo.y()}},
                   render::Stroke{ink, 1.0, {}});
   canvas.text({0.5 * (corner_lo.x() + corner_hi.x()), corner_lo.y() + 36}, "x (" + task.units.length + ")", 12,
               render::Anchor::Middle, ink);
@@ -274,15 +278,15 @@ void write_burmester_csv(std::ostream& out, const synthesis::BurmesterCurves& cu
   out << "curve,branch,centre_x,centre_y,circle_x,circle_y\n";
   each_burmester_line(curves, [&](const char* which, int branch, const std::vector<synthesis::BurmesterPair>& line) {
     for (const auto& s : line)
-      out << fmt::format("{},{},{},{},{},{}\n", which, branch, s.centre.x(), s.centre.y(), s.circle.x(),
-                         s.circle.y());
+      out << fmt::format("{},{},{},{},{},{}\n", which, branch, s.centre.x(), s.centre.y(), s.circle.x(), s.circle.y());
   });
 }
 
 }  // namespace
 
 // The Burmester curves as CSV, JSON or an SVG picture.
-void write_burmester_curves(const std::string& path, const SynthesisTask& task, const synthesis::BurmesterCurves& curves) {
+void write_burmester_curves(const std::string& path, const SynthesisTask& task,
+                            const synthesis::BurmesterCurves& curves) {
   const std::string ext = fs::path(path).extension().string();
   std::ofstream out(path);
   if (!out) throw Error(ErrorKind::BadInput, cannot_write_message(path));

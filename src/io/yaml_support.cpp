@@ -181,8 +181,10 @@ bool before(SourceMark a, SourceMark b) { return a.line < b.line || (a.line == b
 SourceMark unclosed_flow_bracket(std::string_view text, SourceMark at, char& bracket) {
   std::vector<std::pair<char, SourceMark>> open;
   for_each_flow_bracket(text, [&](char c, SourceMark where) {
-    if (opens(c)) open.emplace_back(c, where);
-    else if (!open.empty()) open.pop_back();
+    if (opens(c))
+      open.emplace_back(c, where);
+    else if (!open.empty())
+      open.pop_back();
     return true;
   });
   while (!open.empty() && !before(open.back().second, at)) open.pop_back();
@@ -196,8 +198,8 @@ SourceMark unclosed_flow_bracket(std::string_view text, SourceMark at, char& bra
 // quote makes yaml-cpp read on into the next lines and fail there. Quoted scalars may span lines
 // in YAML, so this only places an error the parser has already found.
 SourceMark unclosed_quote(std::string_view text, SourceMark at, char& quote) {
-  SourceMark opened;   // where the quote still open began
-  SourceMark found;    // the last scalar that spanned lines and ended near `at`, or is still open
+  SourceMark opened;  // where the quote still open began
+  SourceMark found;   // the last scalar that spanned lines and ended near `at`, or is still open
   char in = 0;
   int line = 1;
   std::size_t line_start = 0;
@@ -205,13 +207,26 @@ SourceMark unclosed_quote(std::string_view text, SourceMark at, char& quote) {
     const SourceMark here{line, static_cast<int>(i - line_start) + 1};
     if (!before(here, at)) break;
     const char c = text[i];
-    if (c == '\n') { ++line; line_start = i + 1; continue; }
+    if (c == '\n') {
+      ++line;
+      line_start = i + 1;
+      continue;
+    }
     if (in) {
-      if (in == '"' && c == '\\') { ++i; continue; }
-      if (in == '\'' && c == '\'' && i + 1 < text.size() && text[i + 1] == '\'') { ++i; continue; }
+      if (in == '"' && c == '\\') {
+        ++i;
+        continue;
+      }
+      if (in == '\'' && c == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
+        ++i;
+        continue;
+      }
       if (c != in) continue;
       in = 0;
-      if (opened.line < line && line >= at.line - 1) { found = opened; quote = c; }
+      if (opened.line < line && line >= at.line - 1) {
+        found = opened;
+        quote = c;
+      }
       continue;
     }
     const char prev = i == line_start ? ' ' : text[i - 1];
@@ -220,9 +235,15 @@ SourceMark unclosed_quote(std::string_view text, SourceMark at, char& quote) {
       continue;
     }
     const bool starts_scalar = prev == ' ' || prev == '\t' || prev == '[' || prev == '{' || prev == ',' || prev == ':';
-    if ((c == '"' || c == '\'') && starts_scalar) { in = c; opened = here; }
+    if ((c == '"' || c == '\'') && starts_scalar) {
+      in = c;
+      opened = here;
+    }
   }
-  if (in && opened.line < at.line) { found = opened; quote = in; }
+  if (in && opened.line < at.line) {
+    found = opened;
+    quote = in;
+  }
   return found;
 }
 
@@ -310,7 +331,8 @@ void Reader::check_text() const {
   const unsigned char c = static_cast<unsigned char>(text_[bad]);
   const std::string byte = std::string("byte 0x").append(1, kHex[c >> 4]).append(1, kHex[c & 15]);
   fail(SourceMark{line, static_cast<int>(bad - column_start) + 1},
-       is_control ? "the file is not text: " + byte + " here is a control character (UTF-16 or a binary file?); save it as UTF-8"
+       is_control ? "the file is not text: " + byte +
+                        " here is a control character (UTF-16 or a binary file?); save it as UTF-8"
                   : "the file is not valid UTF-8 text: " + byte + " here is not a character; save the file as UTF-8");
 }
 
@@ -334,7 +356,8 @@ YAML::Node Reader::load(const DocumentWording& wording) const {
       const bool markers = text_.rfind("---", 0) == 0 || text_.find("\n---") != std::string::npos ||
                            text_.rfind("...", 0) == 0 || text_.find("\n...") != std::string::npos;
       if (!markers && stray.line > 0) {
-        fail(stray, std::string("invalid YAML: a '") + bracket + "' that closes no '" + (bracket == '}' ? '{' : '[') + "'");
+        fail(stray,
+             std::string("invalid YAML: a '") + bracket + "' that closes no '" + (bracket == '}' ? '{' : '[') + "'");
       }
       fail(mark(counter.second), std::string(wording.several));
     }
@@ -359,8 +382,9 @@ YAML::Node Reader::load(const DocumentWording& wording) const {
       const std::size_t content = row.find_first_not_of(" \t\r");
       const std::size_t tab = row.find('\t');
       if (content != std::string_view::npos && tab < content && row[content] != '#')
-        fail(SourceMark{line, static_cast<int>(tab) + 1}, "invalid YAML: tab characters are not allowed in YAML "
-                                                           "indentation; indent with spaces");
+        fail(SourceMark{line, static_cast<int>(tab) + 1},
+             "invalid YAML: tab characters are not allowed in YAML "
+             "indentation; indent with spaces");
       start = end + 1;
     }
     SourceMark where = at;
@@ -418,7 +442,11 @@ Fields Reader::fields(const YAML::Node& map, const AllowedKeys& allowed) const {
 
 Fields Reader::mapping(const Entry& e, const AllowedKeys& allowed, std::string_view example) const {
   if (!e.value.IsMap()) {
-    fail(mark(e), std::string("`").append(e.key).append("` must be a mapping like ").append(example).append(", not ")
+    fail(mark(e), std::string("`")
+                      .append(e.key)
+                      .append("` must be a mapping like ")
+                      .append(example)
+                      .append(", not ")
                       .append(describe(e.value)));
   }
   return fields(e.value, allowed);
@@ -433,7 +461,11 @@ const Entry& Reader::required(const Fields& f, const YAML::Node& owner, std::str
 
 std::vector<YAML::Node> Reader::list(const Entry& e, std::string_view example) const {
   if (!e.value.IsSequence()) {
-    fail(mark(e), std::string("`").append(e.key).append("` must be a list like ").append(example).append(", not ")
+    fail(mark(e), std::string("`")
+                      .append(e.key)
+                      .append("` must be a list like ")
+                      .append(example)
+                      .append(", not ")
                       .append(describe(e.value)));
   }
   return {e.value.begin(), e.value.end()};

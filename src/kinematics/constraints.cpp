@@ -208,8 +208,7 @@ double remainder(const CompiledRow& c, const Coefficients& q, int k, const std::
       }
       return v * c.scale;
     case ConstraintType::RigidX:
-    case ConstraintType::RigidY:
-      return 0.0;  // linear in q: coefficient k depends on q_k alone
+    case ConstraintType::RigidY: return 0.0;  // linear in q: coefficient k depends on q_k alone
     case ConstraintType::PointOnLine:
       for (int j = 1; j < k; ++j) v += cross(q.difference(at[0], at[2], j), q.difference(at[0], at[1], k - j));
       return v * c.scale;
@@ -230,7 +229,8 @@ double remainder(const CompiledRow& c, const Coefficients& q, int k, const std::
       const DriverState& d = drivers[static_cast<std::size_t>(c.driver)];
       for (int j = 0; j < k; ++j) {
         Xy z{0.0, 0.0};
-        for (int l = 0; l <= k - j; ++l) z = z + rotate(q.difference(at[2], at[3], k - j - l), term(d.cos, l), term(d.sin, l));
+        for (int l = 0; l <= k - j; ++l)
+          z = z + rotate(q.difference(at[2], at[3], k - j - l), term(d.cos, l), term(d.sin, l));
         v += cross(q.difference(at[0], at[1], j), z);
       }
       return v * c.scale;
@@ -270,7 +270,8 @@ void put_pair(double* out, const CompiledRow& c, Xy g) {
   }
 }
 
-[[gnu::always_inline]] inline void put_gradient(double* out, const CompiledRow& c, const Points& r, const DriverValues& d) {
+[[gnu::always_inline]] inline void put_gradient(double* out, const CompiledRow& c, const Points& r,
+                                                const DriverValues& d) {
   const std::array<Xy, 4> g = gradient(c, r, d);
   for (std::size_t slot = 0; slot < 4; ++slot) {
     const int e = c.entry[slot];

@@ -261,10 +261,10 @@ double series_from(const Mechanism& mech, State& state, const DriverPath& path, 
 // then alternately further beyond it (fine sweeps) and nearer before it (coarse ones). On entry
 // state.q_track_start solved the constraints at p_start. False, with state back at the start,
 // when p_end is not singular or no point gives its series.
-bool coast_to_singular_end(const Mechanism& mech, State& state, const DriverPath& path, double p_start,
-                           double p_end, const TrackOptions& options, double* accuracy) {
+bool coast_to_singular_end(const Mechanism& mech, State& state, const DriverPath& path, double p_start, double p_end,
+                           const TrackOptions& options, double* accuracy) {
   const double half_step = 0.5 * (p_end - p_start);
-  const double distances[] = {half_step,         -half_step,         0.25 * half_step, -4.0 * half_step,
+  const double distances[] = {half_step,          -half_step,        0.25 * half_step,     -4.0 * half_step,
                               0.0625 * half_step, -16.0 * half_step, 0.015625 * half_step, -64.0 * half_step};
   for (double distance : distances) {
     const double error = series_from(mech, state, path, p_start, p_end, distance, options);
@@ -440,9 +440,7 @@ TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, d
 
 namespace {
 
-double wrap_angle(double a) {
-  return a - 2.0 * std::numbers::pi * std::round(a / (2.0 * std::numbers::pi));
-}
+double wrap_angle(double a) { return a - 2.0 * std::numbers::pi * std::round(a / (2.0 * std::numbers::pi)); }
 
 std::string worst_constraint_message(const Mechanism& mech, State& state) {
   int worst = -1;

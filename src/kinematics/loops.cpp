@@ -156,9 +156,7 @@ GrashofReport classify_grashof(double frame, double input, double coupler, doubl
       r.kind = GrashofClass::CrankRocker;
       r.output_turns_fully = true;
       break;
-    default:
-      r.kind = GrashofClass::DoubleRocker;
-      break;
+    default: r.kind = GrashofClass::DoubleRocker; break;
   }
   return r;
 }
@@ -260,10 +258,9 @@ double link_length(const Model& m, int link, int from_point, int to_point) {
 std::string loop_closure_failure(const Model& m, const std::vector<FourBarLoop>& loops) {
   for (const FourBarLoop& loop : loops) {
     const std::array<int, 4> links{loop.input, loop.coupler, loop.output, loop.frame};
-    const std::array<double, 4> lengths{link_length(m, loop.input, loop.o2, loop.a),
-                                        link_length(m, loop.coupler, loop.a, loop.b),
-                                        link_length(m, loop.output, loop.b, loop.o4),
-                                        link_length(m, loop.frame, loop.o4, loop.o2)};
+    const std::array<double, 4> lengths{
+        link_length(m, loop.input, loop.o2, loop.a), link_length(m, loop.coupler, loop.a, loop.b),
+        link_length(m, loop.output, loop.b, loop.o4), link_length(m, loop.frame, loop.o4, loop.o2)};
     const int longest = static_cast<int>(std::max_element(lengths.begin(), lengths.end()) - lengths.begin());
     const double others = lengths[0] + lengths[1] + lengths[2] + lengths[3] - lengths[longest];
     if (lengths[longest] - others <= 1e-9 * lengths[longest]) continue;

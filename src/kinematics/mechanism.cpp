@@ -1,10 +1,10 @@
 #include "nbar/kinematics/mechanism.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <Eigen/SparseQR>
-#include <Eigen/OrderingMethods>
 
 #include <algorithm>
 #include <cmath>
@@ -186,7 +186,8 @@ Constraint driver_row(const Model& model, int di, double length_scale, double& d
 
 Mechanism::Mechanism(Model model) : model_(std::move(model)) {
   // Before the validation, whose checks also grow with the size.
-  const auto moving = std::count_if(model_.points.begin(), model_.points.end(), [](const Point& p) { return !p.ground; });
+  const auto moving =
+      std::count_if(model_.points.begin(), model_.points.end(), [](const Point& p) { return !p.ground; });
   if (moving > kMaxMovingPoints)
     throw ModelError({EntityRef::Kind::Model, -1}, "the model has " + std::to_string(moving) +
                                                        " moving points; nbar analyses at most " +
@@ -309,8 +310,8 @@ std::vector<std::string> joint_places(const Model& model, int body) {
     bool shared = model.points[p].ground;
     for (std::size_t o = 0; o < model.bodies.size() && !shared; ++o)
       if (static_cast<int>(o) != body)
-        shared = std::find(model.bodies[o].points.begin(), model.bodies[o].points.end(), p) !=
-                 model.bodies[o].points.end();
+        shared =
+            std::find(model.bodies[o].points.begin(), model.bodies[o].points.end(), p) != model.bodies[o].points.end();
     if (shared) places.push_back(model.points[p].name);
   }
   for (const Slider& s : model.sliders)
@@ -402,8 +403,9 @@ bool sparse_lu_regular(const std::vector<JacobianEntry>& pattern, const std::vec
                              " given";
   if (r.grubler == drivers_count)
     throw ModelError({EntityRef::Kind::Model, -1},
-                     counts + "; the drawn pose may be a singular (toggle or flat) position: draw the mechanism "
-                              "in a general pose");
+                     counts +
+                         "; the drawn pose may be a singular (toggle or flat) position: draw the mechanism "
+                         "in a general pose");
   if (drivers_count < r.dof) {
     const int body = drivers_count > 0 ? free_body(J, model, column) : -1;
     if (body >= 0)
@@ -424,9 +426,9 @@ bool sparse_lu_regular(const std::vector<JacobianEntry>& pattern, const std::vec
     else
       why = "'" + c.label + "' is already fixed by the drivers and the joints before it: " +
             (c.source.kind == EntityRef::Kind::Slider ? std::string("is the slider on the right body?")
-             : c.source.kind == EntityRef::Kind::Slot ? std::string("is the slot where it should be?")
-                                                      : "is a joint of body '" + model.bodies[c.source.index].name +
-                                                            "' too many?") +
+             : c.source.kind == EntityRef::Kind::Slot
+                 ? std::string("is the slot where it should be?")
+                 : "is a joint of body '" + model.bodies[c.source.index].name + "' too many?") +
             " (or remove drivers)";
     throw ModelError(c.source, counts + "; " + why);
   }
@@ -435,8 +437,7 @@ bool sparse_lu_regular(const std::vector<JacobianEntry>& pattern, const std::vec
 
 // With the right number of drivers, Phi_q must still have full column rank: else the first
 // driver whose row depends on the constraints and the drivers before it is at fault.
-void check_drivers_independent(const Model& model, const Eigen::MatrixXd& J, int constraint_rows,
-                               int constraint_rank) {
+void check_drivers_independent(const Model& model, const Eigen::MatrixXd& J, int constraint_rows, int constraint_rank) {
   const int drivers_count = static_cast<int>(model.drivers.size());
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> full(J.transpose());
   full.setThreshold(kRankTolerance);

@@ -182,16 +182,14 @@ bool PathHistory::predict(double parameter, const Eigen::MatrixXd& series, doubl
 }
 
 // The sizes of nbar/kinematics/sized.hpp, and any (N = 0).
-#define NBAR_PATH_HISTORY_SIZED(N)                                                                  \
-  template void PathHistory::mark_current<N>(double parameter, const Eigen::MatrixXd& series);      \
-  template bool PathHistory::predict<N>(double parameter, const Eigen::MatrixXd& series, double h, \
-                                        Eigen::VectorXd& q);
+#define NBAR_PATH_HISTORY_SIZED(N)                                                             \
+  template void PathHistory::mark_current<N>(double parameter, const Eigen::MatrixXd& series); \
+  template bool PathHistory::predict<N>(double parameter, const Eigen::MatrixXd& series, double h, Eigen::VectorXd& q);
 NBAR_PATH_HISTORY_SIZED(0)
 NBAR_PATH_HISTORY_SIZED(2)
 NBAR_PATH_HISTORY_SIZED(4)
 NBAR_PATH_HISTORY_SIZED(6)
 NBAR_PATH_HISTORY_SIZED(8)
 #undef NBAR_PATH_HISTORY_SIZED
-
 
 }  // namespace nbar

@@ -20,7 +20,8 @@ State::State(const Mechanism& mech) : solvers_{LinearSolver(mech), LinearSolver(
 
 void set_drivers(const Mechanism& mech, State& state, const std::vector<Series>& values) {
   const auto& drivers = mech.model().drivers;
-  for (std::size_t d = 0; d < drivers.size(); ++d) set_driver_state(state.drivers[d], values[d], drivers[d].is_angular());
+  for (std::size_t d = 0; d < drivers.size(); ++d)
+    set_driver_state(state.drivers[d], values[d], drivers[d].is_angular());
 }
 
 bool factorize_jacobian(const Mechanism& mech, State& state, LinearSolver& solver) {
@@ -28,9 +29,7 @@ bool factorize_jacobian(const Mechanism& mech, State& state, LinearSolver& solve
   return solver.factorize(state.jacobian);
 }
 
-bool factorize_jacobian(const Mechanism& mech, State& state) {
-  return factorize_jacobian(mech, state, state.solver());
-}
+bool factorize_jacobian(const Mechanism& mech, State& state) { return factorize_jacobian(mech, state, state.solver()); }
 
 double max_residual(const Mechanism& mech, State& state, int* worst_row) {
   const double largest = evaluate_residuals(mech, state.q, state.drivers, state.phi);

@@ -69,8 +69,7 @@ void dense_solve(const double* lu, const double* inverse_pivot, const int* pivot
 // and besides them only ones whose product is an exact zero, which leave a nonzero entry as it
 // was. Returns false when a pivot fails the threshold; sign, smallest and largest as replay's.
 template <int N>
-bool dense_eliminate(double* v, double* inverse_pivot, double threshold, int& sign, double& smallest,
-                     double& largest) {
+bool dense_eliminate(double* v, double* inverse_pivot, double threshold, int& sign, double& smallest, double& largest) {
   double least = smallest, most = largest;
 #pragma GCC unroll 8
   for (int k = 0; k < N; ++k) {
@@ -130,7 +129,8 @@ bool SparseLU::factorize(const double* values) {
     if (replayed == Replay::NotFinite) return fail();
     if (replayed == Replay::Refused) continue;
     // Most recently used first: the next step most likely needs this one again.
-    std::rotate(kept_.begin(), kept_.begin() + static_cast<std::ptrdiff_t>(i), kept_.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+    std::rotate(kept_.begin(), kept_.begin() + static_cast<std::ptrdiff_t>(i),
+                kept_.begin() + static_cast<std::ptrdiff_t>(i) + 1);
     current_ = 0;
     return true;
   }
@@ -164,13 +164,19 @@ namespace {
 // matrix's row; the columns of L and U found so far, by pivot position.
 struct ColumnElimination {
   explicit ColumnElimination(std::size_t n)
-      : position_of_row(n, -1), u_rows(n), l_rows(n), l_values(n), x(n, 0.0), in_pattern(n, 0), visited(n, 0),
+      : position_of_row(n, -1),
+        u_rows(n),
+        l_rows(n),
+        l_values(n),
+        x(n, 0.0),
+        in_pattern(n, 0),
+        visited(n, 0),
         next_child(n, 0) {}
 
   std::vector<int> position_of_row;
   std::vector<std::vector<int>> u_rows, l_rows;  // u: positions; l: the matrix's rows until compiled
   std::vector<std::vector<double>> l_values;
-  std::vector<double> x;        // by the matrix's row
+  std::vector<double> x;         // by the matrix's row
   std::vector<char> in_pattern;  // by the matrix's row
   std::vector<char> visited;     // by position
   std::vector<int> pattern, finished, stack, next_child;
@@ -311,9 +317,7 @@ void SparseLU::compile(const std::vector<std::vector<int>>& u_rows, const std::v
   const auto n = static_cast<std::size_t>(n_);
   const bool dense = n_ <= kDenseSolveLimit;
   std::size_t next = 0;
-  const auto slot = [&](std::size_t row, std::size_t col) {
-    return static_cast<int>(dense ? col * n + row : next++);
-  };
+  const auto slot = [&](std::size_t row, std::size_t col) { return static_cast<int>(dense ? col * n + row : next++); };
   e.u_start.assign(n + 1, 0);
   e.l_start.assign(n + 1, 0);
   e.diagonal.assign(n, 0);
@@ -355,7 +359,7 @@ void SparseLU::compile(const std::vector<std::vector<int>>& u_rows, const std::v
       const auto j = static_cast<std::size_t>(e.u_row[static_cast<std::size_t>(i)]);
       for (int l = e.l_start[j]; l < e.l_start[j + 1]; ++l)
         e.update.push_back({slot_of[static_cast<std::size_t>(e.l_row[static_cast<std::size_t>(l)])],
-                           e.l_slot[static_cast<std::size_t>(l)], e.u_slot[static_cast<std::size_t>(i)]});
+                            e.l_slot[static_cast<std::size_t>(l)], e.u_slot[static_cast<std::size_t>(i)]});
     }
     for (const auto& [r, s] : column[k]) slot_of[static_cast<std::size_t>(r)] = -1;
   }
@@ -522,8 +526,10 @@ double SparseLU::reciprocal_condition_estimate(const double* values) const {
   std::vector<double> column_sum(n, 0.0);
   for (std::size_t k = 0; k < n; ++k) {
     column_sum[k] = std::abs(element[static_cast<std::size_t>(e.diagonal[k])]);
-    for (int i = e.u_start[k]; i < e.u_start[k + 1]; ++i) column_sum[k] += std::abs(element[static_cast<std::size_t>(e.u_slot[static_cast<std::size_t>(i)])]);
-    for (int i = e.l_start[k]; i < e.l_start[k + 1]; ++i) column_sum[k] += std::abs(element[static_cast<std::size_t>(e.l_slot[static_cast<std::size_t>(i)])]);
+    for (int i = e.u_start[k]; i < e.u_start[k + 1]; ++i)
+      column_sum[k] += std::abs(element[static_cast<std::size_t>(e.u_slot[static_cast<std::size_t>(i)])]);
+    for (int i = e.l_start[k]; i < e.l_start[k + 1]; ++i)
+      column_sum[k] += std::abs(element[static_cast<std::size_t>(e.l_slot[static_cast<std::size_t>(i)])]);
   }
   const double norm = *std::max_element(column_sum.begin(), column_sum.end());
   if (!(norm > 0.0)) return 0.0;

@@ -27,9 +27,8 @@ SweepPath plan_from_to(const Mechanism& mech, int samples, SweepPath plan, bool 
   // motion in time and one series serves both the predictor and the derivatives.
   bool proportional = nd > 0 && delta[0] != 0.0;
   for (int d = 0; d < nd && proportional; ++d) {
-    proportional = plan.accel[d] == 0.0 &&
-                   std::abs(plan.speed[d] * delta[0] - plan.speed[0] * delta[d]) <=
-                       1e-12 * std::abs(plan.speed[0] * delta[0]) + 1e-300;
+    proportional = plan.accel[d] == 0.0 && std::abs(plan.speed[d] * delta[0] - plan.speed[0] * delta[d]) <=
+                                               1e-12 * std::abs(plan.speed[0] * delta[0]) + 1e-300;
   }
   plan.fraction_time = nd > 0 && delta[0] != 0.0 ? delta[0] / plan.speed[0] : 0.0;
   plan.samples = static_cast<std::size_t>(samples);
@@ -178,10 +177,11 @@ void check_sample_count(const Model& m, std::optional<int> steps, int max_steps)
   const double count = sweep_sample_count(m, steps);
   const std::string limit = std::to_string(max_steps);
   if (steps) {
-    if (*steps < 1) throw Error(ErrorKind::BadInput, "a sweep needs at least one step (got " + std::to_string(*steps) + ")");
+    if (*steps < 1)
+      throw Error(ErrorKind::BadInput, "a sweep needs at least one step (got " + std::to_string(*steps) + ")");
     if (*steps > max_steps)
-      throw Error(ErrorKind::BadInput, "the sweep asks for " + std::to_string(*steps) + " steps, more than the limit of " +
-                                           limit + " (raise it with --max-steps)");
+      throw Error(ErrorKind::BadInput, "the sweep asks for " + std::to_string(*steps) +
+                                           " steps, more than the limit of " + limit + " (raise it with --max-steps)");
     return;
   }
   // The model's own sweep: validate() has made sure that the count is finite and at least 1.
@@ -258,9 +258,9 @@ class BranchWatch {
     for (std::size_t l = 0; l < loops.size(); ++l) {
       const int sign = branch_sign(loops[l], points);
       if (watched_[l] && sign != signs_[l])
-        result.warnings.push_back({"branch_changed", step,
-                                   "four-bar loop " + loops[l].name + " changed branch " + where() + " (now " +
-                                       branch_name(sign) + ")"});
+        result.warnings.push_back(
+            {"branch_changed", step,
+             "four-bar loop " + loops[l].name + " changed branch " + where() + " (now " + branch_name(sign) + ")"});
       signs_[l] = sign;
     }
   }
@@ -373,9 +373,8 @@ constexpr std::size_t kControlInterval = 16;
 
 void check_derivative_order(int order) {
   if (order < 0 || order > kMaxDerivativeOrder)
-    throw Error(ErrorKind::BadInput,
-                "the derivative order must be between 0 and " + std::to_string(kMaxDerivativeOrder) + ", not " +
-                    std::to_string(order));
+    throw Error(ErrorKind::BadInput, "the derivative order must be between 0 and " +
+                                         std::to_string(kMaxDerivativeOrder) + ", not " + std::to_string(order));
 }
 
 SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control) {
@@ -417,7 +416,7 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
 
   std::vector<DriverState> drivers_in_time(nd);
   std::vector<double> now(nd);
-  Sample streamed;  // a sink's sample, reused: its buffers are allocated once
+  Sample streamed;                    // a sink's sample, reused: its buffers are allocated once
   bool on_singular_position = false;  // the sample being recorded, as the tracker found it
   auto record = [&](int i) {
     Sample& s = sink ? streamed : result.samples.emplace_back();
@@ -515,7 +514,8 @@ void converge(const Mechanism& mech, State& state, const std::string& what) {
 Sample solve_at(const Mechanism& mech, State& state, const std::vector<double>& driver_values, int order) {
   const Model& m = mech.model();
   if (m.has_time_law())
-    throw Error(ErrorKind::BadInput, "the model has a driver that follows a law in time: pose it by time (solve_at_time)");
+    throw Error(ErrorKind::BadInput,
+                "the model has a driver that follows a law in time: pose it by time (solve_at_time)");
   if (driver_values.size() != m.drivers.size())
     throw Error(ErrorKind::BadInput, "expected " + std::to_string(m.drivers.size()) + " driver values, got " +
                                          std::to_string(driver_values.size()));
@@ -555,7 +555,8 @@ double Sample::derivative(int coordinate, int k) const { return factorial(k) * t
 std::vector<Eigen::Vector2d> point_positions(const Mechanism& mech, const Eigen::VectorXd& q) {
   std::vector<Eigen::Vector2d> out;
   out.reserve(mech.model().points.size());
-  for (std::size_t i = 0; i < mech.model().points.size(); ++i) out.push_back(mech.point_position(static_cast<int>(i), q));
+  for (std::size_t i = 0; i < mech.model().points.size(); ++i)
+    out.push_back(mech.point_position(static_cast<int>(i), q));
   return out;
 }
 

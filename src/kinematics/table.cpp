@@ -210,7 +210,8 @@ std::string no_column_message(const std::string& pattern, const std::vector<std:
 }
 
 // Which columns the patterns pick, in the order of the patterns, each once.
-std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns, const std::vector<std::string>& patterns) {
+std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns,
+                                      const std::vector<std::string>& patterns) {
   std::vector<std::size_t> picked;
   for (const std::string& pattern : patterns) {
     bool any = false;

@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "nbar/model/diagnostics.hpp"
 #include "linear_algebra.hpp"
+#include "nbar/model/diagnostics.hpp"
 
 namespace nbar {
 
@@ -41,8 +41,8 @@ class AdaptiveSampler {
     const double sm = s0 + h / 2;
     const Vector2d pm = f_(sm);
     const Vector2d q1 = f_(s0 + h / 4), q3 = f_(s0 + 3 * h / 4);
-    const double deviation = std::max({distance_to_segment(pm, p0, p1), distance_to_segment(q1, p0, p1),
-                                       distance_to_segment(q3, p0, p1)});
+    const double deviation =
+        std::max({distance_to_segment(pm, p0, p1), distance_to_segment(q1, p0, p1), distance_to_segment(q3, p0, p1)});
     if (deviation > tolerance_ && depth < kMaxDepth && sm != s0 && sm != s1) {  // s1 < s0 runs backwards
       refine(s0, p0, sm, pm, depth + 1);
       refine(sm, pm, s1, p1, depth + 1);
@@ -125,7 +125,7 @@ CubicSpline::CubicSpline(std::vector<Vector2d> points, bool closed) : points_(st
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::MatrixX2d rhs(static_cast<Eigen::Index>(m), 2);
   for (std::size_t row = 0; row < m; ++row) {
-    const std::size_t i = closed ? row : row + 1;     // the knot of this equation
+    const std::size_t i = closed ? row : row + 1;       // the knot of this equation
     const std::size_t before = i == 0 ? n - 2 : i - 1;  // interval before it (cyclic when closed)
     const double h0 = h(before), h1 = h(i);
     const Vector2d slope0 = (points_[before + 1] - points_[before]) / h0;
@@ -185,9 +185,8 @@ BSpline::BSpline(int degree, std::vector<Vector2d> control, std::vector<double> 
          " control points, not " + std::to_string(control_.size()));
   }
   if (knots_.size() != control_.size() + static_cast<std::size_t>(degree_) + 1) {
-    fail("a B-spline with " + std::to_string(control_.size()) + " control points of degree " +
-         std::to_string(degree_) + " needs " + std::to_string(control_.size() + degree_ + 1) + " knots, not " +
-         std::to_string(knots_.size()));
+    fail("a B-spline with " + std::to_string(control_.size()) + " control points of degree " + std::to_string(degree_) +
+         " needs " + std::to_string(control_.size() + degree_ + 1) + " knots, not " + std::to_string(knots_.size()));
   }
   if (weights_.empty()) weights_.assign(control_.size(), 1.0);
   if (weights_.size() != control_.size()) fail("a B-spline needs one weight per control point");

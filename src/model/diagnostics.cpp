@@ -56,7 +56,8 @@ std::string output_path_problem(const std::string& path) {
   const std::string message = "cannot write " + path;
   const fs::path folder = fs::path(path).parent_path();
   std::error_code ec;
-  if (!folder.empty() && !fs::exists(folder, ec)) return message + ": the folder '" + folder.string() + "' does not exist";
+  if (!folder.empty() && !fs::exists(folder, ec))
+    return message + ": the folder '" + folder.string() + "' does not exist";
   if (!folder.empty() && !fs::is_directory(folder, ec))
     return message + ": '" + folder.string() + "' is a file, not a folder";
   if (fs::is_directory(path, ec)) return message + ": it is a folder";

@@ -1,8 +1,8 @@
 #include "nbar/model/geometry.hpp"
 
+#include <Eigen/Geometry>
 #include <cctype>
 #include <string_view>
-#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -335,7 +335,6 @@ bool strictly_inside(const Polygon& poly, const Vector2d& x) {
   return inside;
 }
 
-
 // The first pair (i, j), j > i + 1, of edges of a closed polygon that are not neighbours and
 // meet, in the order (i, then j); {n, n} when none do. Edges are swept in the order of their
 // leftmost x, each tested only against the edges whose x range it overlaps.
@@ -429,17 +428,18 @@ void check_polygon(const Polygon& poly, const std::string& what, const std::vect
 }
 
 // A ring with arcs: its own vertices and bulges first, then its polygonisation as a polygon.
-Polygon checked_ring(const Polygon& ring, const std::vector<double>& bulges, double tolerance, const std::string& what) {
+Polygon checked_ring(const Polygon& ring, const std::vector<double>& bulges, double tolerance,
+                     const std::string& what) {
   bool arcs = false;
   if (!bulges.empty()) {
     if (bulges.size() != ring.size()) {
-      fail(what + " has " + std::to_string(ring.size()) + " vertices but " + std::to_string(bulges.size()) +
-           " bulges");
+      fail(what + " has " + std::to_string(ring.size()) + " vertices but " + std::to_string(bulges.size()) + " bulges");
     }
     for (std::size_t i = 0; i < bulges.size(); ++i) {
       if (!std::isfinite(bulges[i])) fail(what + " bulge " + std::to_string(i) + " is not finite");
       if (std::abs(bulges[i]) > kLargestBulge) {
-        fail(what + " bulge " + std::to_string(i) + " is larger than 1e6 (an arc of all but 0.0002 degrees of a circle)");
+        fail(what + " bulge " + std::to_string(i) +
+             " is larger than 1e6 (an arc of all but 0.0002 degrees of a circle)");
       }
       arcs = arcs || is_arc(bulges[i]);
     }
@@ -595,8 +595,8 @@ Region make_bar(const Vector2d& p, const Vector2d& q, double width, double margi
   for (const double radius : {hole_radius_p, hole_radius_q}) {
     if (radius > 0 && !(radius < width / 2 && radius < margin)) {
       std::ostringstream os;
-      os << "make_bar: a hole of radius " << radius << " does not fit in a bar of width " << width
-         << " with margin " << margin << " (it needs radius < width/2 and radius < margin)";
+      os << "make_bar: a hole of radius " << radius << " does not fit in a bar of width " << width << " with margin "
+         << margin << " (it needs radius < width/2 and radius < margin)";
       fail(os.str());
     }
   }
@@ -745,7 +745,8 @@ double distance_outside_outline(const Region& r, const Vector2d& x) {
   const std::size_t n = outline.size();
   if (n < 3 || strictly_inside(outline, x)) return 0.0;
   double nearest = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < n; ++i) nearest = std::min(nearest, distance_to_segment(x, outline[i], outline[(i + 1) % n]));
+  for (std::size_t i = 0; i < n; ++i)
+    nearest = std::min(nearest, distance_to_segment(x, outline[i], outline[(i + 1) % n]));
   return nearest;
 }
 

@@ -50,10 +50,9 @@ struct FunctionName {
 };
 
 constexpr FunctionName kFunctions[] = {
-    {"sin", Op::kSin},   {"cos", Op::kCos},   {"tan", Op::kTan},   {"exp", Op::kExp},
-    {"log", Op::kLog},   {"sqrt", Op::kSqrt}, {"abs", Op::kAbs},   {"asin", Op::kAsin},
-    {"acos", Op::kAcos}, {"atan", Op::kAtan}, {"sinh", Op::kSinh}, {"cosh", Op::kCosh},
-    {"tanh", Op::kTanh}, {"log10", Op::kLog10},
+    {"sin", Op::kSin},   {"cos", Op::kCos},   {"tan", Op::kTan},   {"exp", Op::kExp},     {"log", Op::kLog},
+    {"sqrt", Op::kSqrt}, {"abs", Op::kAbs},   {"asin", Op::kAsin}, {"acos", Op::kAcos},   {"atan", Op::kAtan},
+    {"sinh", Op::kSinh}, {"cosh", Op::kCosh}, {"tanh", Op::kTanh}, {"log10", Op::kLog10},
 };
 
 // A constant of the same kind as `like`: a double, or a series with as many terms.
@@ -80,8 +79,8 @@ template <class S>
 S apply_function(Op op, const S& x) {
   // Block-scope using-declarations pick std:: for double; argument-dependent lookup adds the
   // nbar:: overloads for Series.
-  using std::acos, std::asin, std::atan, std::cos, std::cosh, std::exp, std::log, std::sin,
-      std::sinh, std::sqrt, std::tan, std::tanh;
+  using std::acos, std::asin, std::atan, std::cos, std::cosh, std::exp, std::log, std::sin, std::sinh, std::sqrt,
+      std::tan, std::tanh;
   switch (op) {
     case Op::kSin: return sin(x);
     case Op::kCos: return cos(x);
@@ -155,8 +154,8 @@ class Expression {
   struct Node {
     Op op;
     bool has_t;
-    int a;  // first operand (index into nodes_), or -1
-    int b;  // second operand, or -1
+    int a;         // first operand (index into nodes_), or -1
+    int b;         // second operand, or -1
     double value;  // kNumber only
   };
 
@@ -275,8 +274,7 @@ class Parser {
     if (at_end()) return "end of expression";
     std::size_t end = pos_ + 1;
     if (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_') {
-      while (end < text_.size() &&
-             (std::isalnum(static_cast<unsigned char>(text_[end])) || text_[end] == '_')) {
+      while (end < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[end])) || text_[end] == '_')) {
         ++end;
       }
     }
@@ -353,9 +351,7 @@ class Parser {
   int parse_number() {
     const std::size_t start = pos_;
     std::size_t p = pos_;
-    auto digit = [&](std::size_t i) {
-      return i < text_.size() && std::isdigit(static_cast<unsigned char>(text_[i]));
-    };
+    auto digit = [&](std::size_t i) { return i < text_.size() && std::isdigit(static_cast<unsigned char>(text_[i])); };
     bool digits = false;
     while (digit(p)) ++p, digits = true;
     if (p < text_.size() && text_[p] == '.') {
@@ -383,8 +379,7 @@ class Parser {
 
   int parse_name() {
     const std::size_t start = pos_;
-    while (!at_end() &&
-           (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_')) {
+    while (!at_end() && (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_')) {
       ++pos_;
     }
     const std::string_view name = text_.substr(start, pos_ - start);
@@ -425,7 +420,8 @@ double Law::value(double t) const {
   if (!root_) throw Error(ErrorKind::BadInput, "law evaluated before being parsed");
   const double v = root_->evaluate(t) * scale_;
   if (!std::isfinite(v)) {
-    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " is undefined at " + variable_ + " = " + format_time(t));
+    throw Error(ErrorKind::UndefinedLaw,
+                "law " + quoted(text_) + " is undefined at " + variable_ + " = " + format_time(t));
   }
   return v;
 }
@@ -433,24 +429,25 @@ double Law::value(double t) const {
 Series Law::series(double t0, int terms) const {
   if (!root_) throw Error(ErrorKind::BadInput, "law evaluated before being parsed");
   if (terms < 1 || terms > Series::kCapacity) {
-    throw Error(ErrorKind::BadInput, "law series needs 1 to " + std::to_string(Series::kCapacity) +
-                                " terms, got " + std::to_string(terms));
+    throw Error(ErrorKind::BadInput,
+                "law series needs 1 to " + std::to_string(Series::kCapacity) + " terms, got " + std::to_string(terms));
   }
   Series s;
   try {
     s = root_->evaluate(Series::variable(terms, t0));
   } catch (const Error& e) {  // from an operation that has no derivative there (abs at 0)
-    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " at " + variable_ + " = " + format_time(t0) + ": " +
-                            e.message());
+    throw Error(ErrorKind::UndefinedLaw,
+                "law " + quoted(text_) + " at " + variable_ + " = " + format_time(t0) + ": " + e.message());
   }
   s *= scale_;
   if (!std::isfinite(s[0])) {
-    throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " is undefined at " + variable_ + " = " + format_time(t0));
+    throw Error(ErrorKind::UndefinedLaw,
+                "law " + quoted(text_) + " is undefined at " + variable_ + " = " + format_time(t0));
   }
   for (int k = 1; k < s.terms(); ++k) {
     if (!std::isfinite(s[k])) {
-      throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " has no finite " + ordinal(k) +
-                              " derivative at " + variable_ + " = " + format_time(t0));
+      throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " has no finite " + ordinal(k) + " derivative at " +
+                                               variable_ + " = " + format_time(t0));
     }
   }
   return s;

@@ -73,7 +73,7 @@ class Validator {
  private:
   const Model& m_;
   double tolerance_ = 0.0;
-  double size_ = 0.0;  // the drawing's bounding-box diagonal (m)
+  double size_ = 0.0;                // the drawing's bounding-box diagonal (m)
   std::vector<int> slider_of_body_;  // slider index per body, -1 when none
 
   [[noreturn]] static void fail(EntityRef where, const std::string& message) { throw ModelError(where, message); }
@@ -179,7 +179,8 @@ class Validator {
         // Apart, but by less than the drawing's resolution: one far point makes the others so.
         fail(where, name + " is " + length_text(apart) + " long, less than a billionth of the drawing's size (" +
                         length_text(size_) + "), so its points " + m_.points[b.points[0]].name + " and " +
-                        m_.points[b.points[1]].name + " count as coinciding: check the coordinates far from the others");
+                        m_.points[b.points[1]].name +
+                        " count as coinciding: check the coordinates far from the others");
       }
       const bool all_ground = std::all_of(b.points.begin(), b.points.end(), [&](int p) { return m_.points[p].ground; });
       if (all_ground) {
@@ -196,8 +197,10 @@ class Validator {
         // The drawing is the assembly's first guess and the scale of every tolerance: a length a
         // million times the drawing is a unit mistake, not a linkage nbar can assemble.
         if (*b.length > 1e6 * size_) {
-          fail(where, "the length of " + name + ", " + length_text(*b.length) + ", is more than a million times the "
-                          "drawing's size (" + length_text(size_) + "): check the number and the length unit");
+          fail(where, "the length of " + name + ", " + length_text(*b.length) +
+                          ", is more than a million times the "
+                          "drawing's size (" +
+                          length_text(size_) + "): check the number and the length unit");
         }
       }
     }
@@ -350,8 +353,9 @@ class Validator {
       const std::string name = "driver '" + d.name + "'";
       // A driver's name is its column in the results: 'rocker.angle' made two columns of that name.
       if (d.name == "step" || d.name == "t" || d.name.find('.') != std::string::npos)
-        fail(where, name + ": a driver's name is its column in the results, so it cannot be 'step' or 't' or hold "
-                           "a '.' (which joins a name to its quantity, as in rocker.angle): give it another `name:`");
+        fail(where, name +
+                        ": a driver's name is its column in the results, so it cannot be 'step' or 't' or hold "
+                        "a '.' (which joins a name to its quantity, as in rocker.angle): give it another `name:`");
       check_driven(d, where, name);
       check_motion(d, time_sweep, size, where, name);
     }
@@ -403,8 +407,8 @@ class Validator {
         for (std::size_t b = 0; b < m_.bodies.size(); ++b) {
           const int body = static_cast<int>(b);
           if (body_has_point(body, d.points[0]) && body_has_point(body, d.points[1])) {
-            fail(where, name + " drives the distance between two points of body " + body_name(body) +
-                            ", which cannot change");
+            fail(where,
+                 name + " drives the distance between two points of body " + body_name(body) + ", which cannot change");
           }
         }
         break;
@@ -428,8 +432,9 @@ class Validator {
     // Time is travel over speed: a speed that is zero in all but name (1e-308) would make
     // it infinite, and every rate computed from it meaningless.
     if (std::abs(d.speed) < kMinDriverSpeed)
-      fail(where, name + ": the speed is too small to mean a motion (its size must be at least 1e-12 rad/s or "
-                         "m/s); give a real speed, or leave `speed` out");
+      fail(where, name +
+                      ": the speed is too small to mean a motion (its size must be at least 1e-12 rad/s or "
+                      "m/s); give a real speed, or leave `speed` out");
     if (d.from && d.to && !std::isfinite((*d.to - *d.from) / d.speed))
       fail(where, name + ": its travel over its speed is not a finite time");
     // The time a sample is at is its travel over the speed: against each other they gave t < 0,
@@ -479,7 +484,8 @@ class Validator {
     } else {
       if (!(size > 0.0) || travel <= kMaxSizes * size) return;
       s << name << " travels " << travel / size << " times the mechanism's size over the sweep; a sweep is limited to "
-        << static_cast<int>(kMaxSizes) << " times (the work grows with the travel): check " << inputs << " and the units";
+        << static_cast<int>(kMaxSizes) << " times (the work grows with the travel): check " << inputs
+        << " and the units";
     }
     fail(where, s.str());
   }
@@ -491,7 +497,8 @@ class Validator {
     constexpr int kTravelSamples = 1000;
     const double duration = m_.sweep.duration;
     const double samples = duration / m_.sweep.time_step.value_or(duration / 100.0);
-    const int n = std::isfinite(samples) ? static_cast<int>(std::clamp(std::ceil(samples), 1.0, double(kTravelSamples))) : kTravelSamples;
+    const int n = std::isfinite(samples) ? static_cast<int>(std::clamp(std::ceil(samples), 1.0, double(kTravelSamples)))
+                                         : kTravelSamples;
     double travel = 0.0;
     std::optional<double> previous;
     for (int k = 0; k <= n; ++k) {
@@ -521,8 +528,9 @@ class Validator {
     if (m_.has_time_law()) {
       const double samples = s.duration / s.time_step.value_or(s.duration / 100.0);
       if (!std::isfinite(samples))
-        fail(where, "the sweep's duration over its time step makes more samples than nbar can count: "
-                    "give a longer `step` or a shorter `duration`");
+        fail(where,
+             "the sweep's duration over its time step makes more samples than nbar can count: "
+             "give a longer `step` or a shorter `duration`");
     }
   }
 
@@ -649,8 +657,6 @@ class Validator {
 
 }  // namespace
 
-void validate(const Model& model) {
-  Validator(model).run();
-}
+void validate(const Model& model) { Validator(model).run(); }
 
 }  // namespace nbar

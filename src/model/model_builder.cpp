@@ -12,9 +12,9 @@ template <class Items>
 [[noreturn]] void unknown(const char* what, const std::string& name, const Items& items, EntityRef::Kind kind) {
   std::string known;
   for (const auto& item : items) known += (known.empty() ? "" : ", ") + item.name;
-  throw ModelError({kind, -1}, std::string("unknown ") + what + " '" + name + "'" +
-                                   (known.empty() ? std::string(" (none yet)") : "; the " + std::string(what) +
-                                                                                    "s are: " + known));
+  throw ModelError({kind, -1},
+                   std::string("unknown ") + what + " '" + name + "'" +
+                       (known.empty() ? std::string(" (none yet)") : "; the " + std::string(what) + "s are: " + known));
 }
 
 // A constant as a law, written to the last bit so that its text reads back to the same value.
@@ -121,8 +121,7 @@ ModelBuilder& ModelBuilder::distance_driver(const std::string& name, const std::
   return *this;
 }
 
-ModelBuilder& ModelBuilder::slide_driver(const std::string& name, const std::string& body,
-                                         const DriverMotion& motion) {
+ModelBuilder& ModelBuilder::slide_driver(const std::string& name, const std::string& body, const DriverMotion& motion) {
   const int b = body_index(body);
   Driver d;
   d.name = name;
@@ -150,8 +149,7 @@ ModelBuilder& ModelBuilder::gravity(double gx, double gy) {
   return *this;
 }
 
-ModelBuilder& ModelBuilder::mass(const std::string& body, double kilograms, double cg_x, double cg_y,
-                                 double inertia) {
+ModelBuilder& ModelBuilder::mass(const std::string& body, double kilograms, double cg_x, double cg_y, double inertia) {
   const Units& u = model_.units;
   model_.bodies[body_index(body)].inertia =
       GivenInertia{kilograms, Eigen::Vector2d(u.to_si_length(cg_x), u.to_si_length(cg_y)), inertia};
@@ -173,9 +171,8 @@ ModelBuilder& ModelBuilder::torque(const std::string& body, double newton_metres
   return *this;
 }
 
-ModelBuilder& ModelBuilder::spring(const std::string& name, const std::string& from_point,
-                                   const std::string& to_point, double stiffness, double free_length,
-                                   double damping) {
+ModelBuilder& ModelBuilder::spring(const std::string& name, const std::string& from_point, const std::string& to_point,
+                                   double stiffness, double free_length, double damping) {
   model_.springs.push_back(Spring{name,
                                   {point_index(from_point), point_index(to_point)},
                                   stiffness,

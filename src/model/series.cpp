@@ -121,9 +121,7 @@ Series operator/(const Series& a, const Series& b) {
 
 Series operator/(double a, const Series& b) { return Series(b.terms(), a) / b; }
 
-void sincos(const Series& x, Series& s, Series& c) {
-  coupled(x, std::sin(x[0]), std::cos(x[0]), -1.0, s, c);
-}
+void sincos(const Series& x, Series& s, Series& c) { coupled(x, std::sin(x[0]), std::cos(x[0]), -1.0, s, c); }
 
 Series sin(const Series& x) {
   Series s;

@@ -93,9 +93,9 @@ Quantity parse_rate(const std::string& text, int order) {
   }
   std::string base = unit;
   if (!strip_per_time(base)) {
-    throw Error(ErrorKind::BadInput, "'" + text + "' needs a unit per time such as " +
-                                (order == 1 ? std::string("rpm, rad/s, deg/s or m/s")
-                                            : std::string("rad/s^2, deg/s^2 or m/s^2")));
+    throw Error(ErrorKind::BadInput,
+                "'" + text + "' needs a unit per time such as " +
+                    (order == 1 ? std::string("rpm, rad/s, deg/s or m/s") : std::string("rad/s^2, deg/s^2 or m/s^2")));
   }
   if (auto a = angle_unit_scale(base)) {
     q.value_si = number * *a;
@@ -107,8 +107,8 @@ Quantity parse_rate(const std::string& text, int order) {
     q.value_si = number * *l;
     q.angular = false;
   } else {
-    throw Error(ErrorKind::BadInput, "unknown unit '" + unit + "' in '" + text + "' (use rpm, rad" + per +
-                                ", deg" + per + ", rev" + per + ", m" + per + ", mm" + per + ", in" + per + "...)");
+    throw Error(ErrorKind::BadInput, "unknown unit '" + unit + "' in '" + text + "' (use rpm, rad" + per + ", deg" +
+                                         per + ", rev" + per + ", m" + per + ", mm" + per + ", in" + per + "...)");
   }
   return q;
 }

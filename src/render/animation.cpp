@@ -6,9 +6,9 @@
 #include <cgif.h>
 #include <stdlib.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <iterator>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -77,9 +77,7 @@ void write_text_file(const std::string& path, const std::string& text) {
 }
 
 // The angle (deg) equal to `angle` modulo 360 that is nearest to `previous`.
-double unwrap(double angle, double previous) {
-  return previous + std::remainder(angle - previous, 360.0);
-}
+double unwrap(double angle, double previous) { return previous + std::remainder(angle - previous, 360.0); }
 
 // Inserts `markup` right after the start tag of the element with that id; false when absent.
 bool insert_into(std::string& svg, const std::string& id, const std::string& markup) {
@@ -430,8 +428,9 @@ std::string animate_element(const std::string& type, const std::string& values, 
 
 std::string Animation::svg_animation() const {
   if (shows_stresses())
-    throw Error(ErrorKind::BadInput, "stress colours change from frame to frame, which only GIF and MP4 animations draw "
-                                "(an SVG animation moves the bodies of its first frame)");
+    throw Error(ErrorKind::BadInput,
+                "stress colours change from frame to frame, which only GIF and MP4 animations draw "
+                "(an SVG animation moves the bodies of its first frame)");
   SvgCanvas svg(options_.width, options_.height);
   draw_mechanism(svg, view_, mech_, sweep_, points_[0], options_);
   std::string doc = svg.document();
@@ -500,29 +499,33 @@ namespace {
 // The page up to the stage that holds the drawing: the title, the style sheet, and a script
 // that records any script error in the body's data-errors (the browser tests read it).
 void append_html_page_start(std::string& html, const std::string& title, int main_width) {
-  html += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>";
+  html +=
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>";
   html += xml_escape(title);
-  html += " \u2014 nbar animation</title>\n<style>\n"
-          "body{margin:0;font:15px/1.4 system-ui,sans-serif;color:#222;background:#f4f4f2}\n"
-          "main{max-width:";
+  html +=
+      " \u2014 nbar animation</title>\n<style>\n"
+      "body{margin:0;font:15px/1.4 system-ui,sans-serif;color:#222;background:#f4f4f2}\n"
+      "main{max-width:";
   html += std::to_string(main_width);
-  html += "px;margin:0 auto;padding:12px 16px}\n"
-          "h1{font-size:1.15em;margin:0 0 8px}\n"
-          ".stage{background:#fff;border:1px solid #ddd;border-radius:4px}\n"
-          ".stage svg{display:block;width:100%;height:auto}\n"
-          ".controls{display:flex;align-items:center;gap:10px;margin-top:10px}\n"
-          ".controls input{flex:1;min-width:0}\n"
-          "button{font:inherit;min-width:5em;padding:6px 12px}\n"
-          "#counter{font-variant-numeric:tabular-nums;white-space:nowrap}\n"
-          "#readout{font-variant-numeric:tabular-nums;margin:8px 0 0;color:#444}\n"
-          "</style>\n</head>\n<body data-frame=\"0\" data-errors=\"\">\n"
-          "<script>\n"
-          "window.onerror = function (message, source, line) {\n"
-          "  var b = document.body;\n"
-          "  if (b) b.dataset.errors = (b.dataset.errors ? b.dataset.errors + '\\n' : '') + message + ' (line ' + line + ')';\n"
-          "};\n"
-          "</script>\n<main>\n<h1>";
+  html +=
+      "px;margin:0 auto;padding:12px 16px}\n"
+      "h1{font-size:1.15em;margin:0 0 8px}\n"
+      ".stage{background:#fff;border:1px solid #ddd;border-radius:4px}\n"
+      ".stage svg{display:block;width:100%;height:auto}\n"
+      ".controls{display:flex;align-items:center;gap:10px;margin-top:10px}\n"
+      ".controls input{flex:1;min-width:0}\n"
+      "button{font:inherit;min-width:5em;padding:6px 12px}\n"
+      "#counter{font-variant-numeric:tabular-nums;white-space:nowrap}\n"
+      "#readout{font-variant-numeric:tabular-nums;margin:8px 0 0;color:#444}\n"
+      "</style>\n</head>\n<body data-frame=\"0\" data-errors=\"\">\n"
+      "<script>\n"
+      "window.onerror = function (message, source, line) {\n"
+      "  var b = document.body;\n"
+      "  if (b) b.dataset.errors = (b.dataset.errors ? b.dataset.errors + '\\n' : '') + message + ' (line ' + line + "
+      "')';\n"
+      "};\n"
+      "</script>\n<main>\n<h1>";
   html += xml_escape(title);
   html += "</h1>\n<div class=\"stage\">\n";
 }
@@ -530,9 +533,10 @@ void append_html_page_start(std::string& html, const std::string& title, int mai
 // After the stage: the play button, the frame slider and counter, the readout, and the start
 // of the player's script.
 void append_html_controls(std::string& html, int frames) {
-  html += "</div>\n<div class=\"controls\">\n"
-          "<button id=\"play\" type=\"button\">Pause</button>\n"
-          "<input id=\"scrub\" type=\"range\" min=\"0\" max=\"";
+  html +=
+      "</div>\n<div class=\"controls\">\n"
+      "<button id=\"play\" type=\"button\">Pause</button>\n"
+      "<input id=\"scrub\" type=\"range\" min=\"0\" max=\"";
   html += std::to_string(frames - 1);
   html += "\" step=\"1\" value=\"0\" aria-label=\"Frame\">\n<span id=\"counter\">1 / ";
   html += std::to_string(frames);
@@ -645,8 +649,9 @@ play(true);
 
 std::string Animation::html_animation() const {
   if (shows_stresses())
-    throw Error(ErrorKind::BadInput, "stress colours change from frame to frame, which only GIF and MP4 animations draw "
-                                "(an HTML animation moves the bodies of its first frame)");
+    throw Error(ErrorKind::BadInput,
+                "stress colours change from frame to frame, which only GIF and MP4 animations draw "
+                "(an HTML animation moves the bodies of its first frame)");
   SvgCanvas svg(options_.width, options_.height);
   draw_mechanism(svg, view_, mech_, sweep_, points_[0], options_);
   std::string element = svg.element();
@@ -677,7 +682,8 @@ void Animation::write_html_animation(const std::string& path) const { write_text
 // ---------------------------------------------------------------------------------------- MP4
 
 void Animation::write_mp4(const std::string& path) const {
-  if (!program_available("ffmpeg")) throw Error(ErrorKind::Internal, "MP4 needs the ffmpeg program: apt-get install ffmpeg");
+  if (!program_available("ffmpeg"))
+    throw Error(ErrorKind::Internal, "MP4 needs the ffmpeg program: apt-get install ffmpeg");
   const int w = options_.width, h = options_.height;
   std::string command = "ffmpeg -y -loglevel error -f rawvideo -pix_fmt bgra -s ";
   command += std::to_string(w);
@@ -688,7 +694,8 @@ void Animation::write_mp4(const std::string& path) const {
   command += " -i - -an -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' ";
   command += shell_quote(path);
   // A program that stops reading must not kill us with SIGPIPE.
-  struct sigaction ignore {}, previous {};
+  struct sigaction ignore {
+  }, previous{};
   ignore.sa_handler = SIG_IGN;
   sigemptyset(&ignore.sa_mask);
   sigaction(SIGPIPE, &ignore, &previous);
@@ -701,7 +708,8 @@ void Animation::write_mp4(const std::string& path) const {
     const ImageCanvas image = render_frame(k, true);
     const std::uint8_t* data = image.data();
     for (int y = 0; ok && y < h; ++y)
-      ok = std::fwrite(data + static_cast<std::ptrdiff_t>(y) * image.stride(), 4, w, pipe) == static_cast<std::size_t>(w);
+      ok = std::fwrite(data + static_cast<std::ptrdiff_t>(y) * image.stride(), 4, w, pipe) ==
+           static_cast<std::size_t>(w);
   }
   const int status = pipe ? ::pclose(pipe) : -1;
   sigaction(SIGPIPE, &previous, nullptr);

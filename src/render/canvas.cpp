@@ -132,8 +132,8 @@ void SvgCanvas::outline(const Outline& shape, const Paint& paint) {
   for (const auto& hole : shape.polygon_holes) append_ring(d, hole);
   for (const auto& [c, r] : shape.circle_holes) {
     const std::string rr = num(r), y = num(c.y()), right = num(c.x() + r), left = num(c.x() - r);
-    append(d, {"M", right, " ", y, " A", rr, " ", rr, " 0 1 0 ", left, " ", y, " A", rr, " ", rr, " 0 1 0 ", right, " ", y,
-               " Z "});
+    append(d, {"M", right, " ", y,   " A", rr,        " ",   rr,  " 0 1 0 ", left, " ",
+               y,   " A",  rr,  " ", rr,   " 0 1 0 ", right, " ", y,         " Z "});
   }
   append(body_, {"<path fill-rule=\"evenodd\" d=\"", d, "\"", paint_attributes(paint), "/>\n"});
 }
@@ -151,8 +151,8 @@ void SvgCanvas::raw(const std::string& markup) { body_ += markup; }
 std::string SvgCanvas::element() const {
   const std::string w = std::to_string(width()), h = std::to_string(height());
   std::string svg;
-  append(svg, {"<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"", w, "\" height=\"", h, "\" viewBox=\"0 0 ", w, " ", h,
-               "\">\n<rect width=\"100%\" height=\"100%\" fill=\"", background_, "\"/>\n", body_, "</svg>\n"});
+  append(svg, {"<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"", w, "\" height=\"", h, "\" viewBox=\"0 0 ", w, " ",
+               h, "\">\n<rect width=\"100%\" height=\"100%\" fill=\"", background_, "\"/>\n", body_, "</svg>\n"});
   return svg;
 }
 

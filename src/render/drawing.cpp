@@ -1,12 +1,12 @@
 #include "nbar/render/drawing.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <limits>
-#include <cmath>
 #include <numbers>
 #include <optional>
-#include <array>
 #include <string>
 
 #include "nbar/dynamics/inverse_dynamics.hpp"
@@ -21,7 +21,7 @@ constexpr double kJointRadius = 4.5;   // px
 constexpr double kBarWidth = 9.0;      // px, bodies without a shape
 constexpr double kBlockLength = 30.0;  // px, slider blocks
 constexpr double kBlockWidth = 18.0;
-constexpr double kPivotSize = 13.0;    // px, ground pivot triangles
+constexpr double kPivotSize = 13.0;  // px, ground pivot triangles
 
 const Color kInk = Color::rgb(0x222222);
 const Color kGround = Color::rgb(0x555555);
@@ -73,7 +73,8 @@ std::vector<int> links_at(const Model& m, int point) {
 // rounding of the line through its neighbours (a body's points drawn in line) is left out, so that
 // the outline does not depend on the last bits of a solved pose.
 std::vector<Eigen::Vector2d> hull(std::vector<Eigen::Vector2d> p) {
-  std::sort(p.begin(), p.end(), [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  std::sort(p.begin(), p.end(),
+            [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   if (p.size() < 3) return p;
   double extent = 0.0;
   for (const auto& q : p) extent = std::max(extent, (q - p.front()).lpNorm<Eigen::Infinity>());
@@ -313,7 +314,8 @@ bool box_meets_segment(const std::array<double, 4>& box, const Eigen::Vector2d& 
     return p.x() >= grown[0] && p.x() <= grown[2] && p.y() >= grown[1] && p.y() <= grown[3];
   };
   if (inside(a) || inside(b)) return true;
-  const Eigen::Vector2d corners[4] = {{grown[0], grown[1]}, {grown[2], grown[1]}, {grown[2], grown[3]}, {grown[0], grown[3]}};
+  const Eigen::Vector2d corners[4] = {
+      {grown[0], grown[1]}, {grown[2], grown[1]}, {grown[2], grown[3]}, {grown[0], grown[3]}};
   for (int i = 0; i < 4; ++i)
     if (segments_cross(a, b, corners[i], corners[(i + 1) % 4])) return true;
   return false;
@@ -361,9 +363,12 @@ Eigen::Vector2d place_label(Obstacles& o, const Canvas& canvas, const Eigen::Vec
       const Eigen::Vector2d dir(std::cos(angle), -std::sin(angle));
       // The box's nearest corner or edge at distance d from the point.
       const Eigen::Vector2d anchor = at + d * dir;
-      const Eigen::Vector2d start(dir.x() < -0.3 ? anchor.x() - width : dir.x() > 0.3 ? anchor.x() : anchor.x() - 0.5 * width,
-                                  dir.y() < -0.3 ? anchor.y() : dir.y() > 0.3 ? anchor.y() + 0.8 * size
-                                                                               : anchor.y() + 0.3 * size);
+      const Eigen::Vector2d start(dir.x() < -0.3  ? anchor.x() - width
+                                  : dir.x() > 0.3 ? anchor.x()
+                                                  : anchor.x() - 0.5 * width,
+                                  dir.y() < -0.3  ? anchor.y()
+                                  : dir.y() > 0.3 ? anchor.y() + 0.8 * size
+                                                  : anchor.y() + 0.3 * size);
       const double penalty = cover(o, label_box(start, text, size), canvas, plate_weight);
       if (penalty < least - 1e-9) least = penalty, best = start;
     }
@@ -529,8 +534,8 @@ void draw_fixed_guides(Canvas& canvas, const View& view, const Mechanism& mech, 
 // the guide is drawn where it is used.
 bool far_guide_end(const Model& m, int point, const Eigen::Vector2d& at, const Canvas& canvas) {
   const double inset = 20;
-  return guide_end_only(m, point) && (at.x() < inset || at.y() < inset || at.x() > canvas.width() - inset ||
-                                      at.y() > canvas.height() - inset);
+  return guide_end_only(m, point) &&
+         (at.x() < inset || at.y() < inset || at.x() > canvas.width() - inset || at.y() > canvas.height() - inset);
 }
 
 void draw_ground(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
@@ -543,8 +548,10 @@ void draw_ground(Canvas& canvas, const View& view, const Mechanism& mech, const 
     const Eigen::Vector2d c = view.to_pixels(points[p]);
     if (links_at(m, static_cast<int>(p)).size() >= 2) {
       draw_pivot(canvas, c);
-      obstacles.blocks.push_back({c, {c.x() - 0.6 * kPivotSize, c.y() + kPivotSize}, {c.x() + 0.6 * kPivotSize, c.y() + kPivotSize}});
-      obstacles.segments.push_back({{c.x() - kPivotSize, c.y() + kPivotSize + 3}, {c.x() + kPivotSize, c.y() + kPivotSize + 3}, 3.0});
+      obstacles.blocks.push_back(
+          {c, {c.x() - 0.6 * kPivotSize, c.y() + kPivotSize}, {c.x() + 0.6 * kPivotSize, c.y() + kPivotSize}});
+      obstacles.segments.push_back(
+          {{c.x() - kPivotSize, c.y() + kPivotSize + 3}, {c.x() + kPivotSize, c.y() + kPivotSize + 3}, 3.0});
     } else if (!far_guide_end(m, static_cast<int>(p), c, canvas)) {  // a guide's end, a spring's anchor
       canvas.polygon(rectangle(c, {1, 0}, 7, 7), Paint{Color::rgb(0x9a9a9a), Stroke{kGround, 1.0, {}}});
     }
@@ -635,7 +642,7 @@ void draw_traces(Canvas& canvas, const View& view, const Mechanism& mech, const 
                  const DrawOptions& options) {
   auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
   const auto paths = options.trace_paths.size() == options.traces.size() ? options.trace_paths
-                                                                          : trace_paths(mech, sweep, options.traces);
+                                                                         : trace_paths(mech, sweep, options.traces);
   canvas.begin_group("traces", "traces");
   for (const auto& path : paths) {
     std::vector<Eigen::Vector2d> drawn;
@@ -657,7 +664,8 @@ void draw_labels(Canvas& canvas, const View& view, const Model& m, const std::ve
       canvas.text(px(points[p]), "", 12, Anchor::Start, kInk);
       continue;
     }
-    const Eigen::Vector2d at = place_label(obstacles, canvas, px(points[p]), m.points[p].name, 12, 1.0, {8.0, 13.0, 20.0});
+    const Eigen::Vector2d at =
+        place_label(obstacles, canvas, px(points[p]), m.points[p].name, 12, 1.0, {8.0, 13.0, 20.0});
     canvas.text(at, m.points[p].name, 12, Anchor::Start, kInk);
   }
   canvas.end_group();
@@ -671,8 +679,8 @@ void draw_markers(Canvas& canvas, const View& view, const Model& m, const std::v
   for (const Marker& mk : options.markers) {
     const Body& body = m.bodies[mk.body];
     const Eigen::Vector2d o = points[body.points[0]];
-    const Eigen::Vector2d e = body.points.size() >= 2 ? Eigen::Vector2d((points[body.points[1]] - o).normalized())
-                                                      : Eigen::Vector2d(1, 0);
+    const Eigen::Vector2d e =
+        body.points.size() >= 2 ? Eigen::Vector2d((points[body.points[1]] - o).normalized()) : Eigen::Vector2d(1, 0);
     const Eigen::Vector2d at = px(o + mk.local.x() * e + mk.local.y() * perp(e));
     canvas.circle(at, 7, Paint{std::nullopt, Stroke{Color::rgb(0xd00000), 2.2, {}}});
     canvas.circle(at, 2, Paint{Color::rgb(0xd00000), std::nullopt});
@@ -748,7 +756,8 @@ void draw_sample(Canvas& canvas, const Mechanism& mech, const SweepResult& sweep
     throw Error(ErrorKind::BadInput, "step " + std::to_string(step) + " is not one of the sweep's " +
                                          std::to_string(sweep.samples.size()) + " samples");
   const View view = fit_view(mech, sweep, options);
-  draw_mechanism(canvas, view, mech, sweep, sample_points(mech, sweep.samples[static_cast<std::size_t>(step)]), options);
+  draw_mechanism(canvas, view, mech, sweep, sample_points(mech, sweep.samples[static_cast<std::size_t>(step)]),
+                 options);
 }
 
 std::vector<PixelTransform> body_transforms(const Mechanism& mech, const View& view,

@@ -3,10 +3,10 @@
 #include "nbar/model/file_errors.hpp"
 
 #include <cairo.h>
-#include <vector>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <vector>
 
 // Under AddressSanitizer, cairo's and fontconfig's font caches are released at exit, or the
 // leak checker reports them (they live as long as the process).
@@ -100,7 +100,7 @@ ImageCanvas::ImageCanvas(int width, int height, const Color& background)
   impl_->surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height);
   if (cairo_surface_status(impl_->surface) != CAIRO_STATUS_SUCCESS)
     throw Error(ErrorKind::Internal, "cannot create a " + std::to_string(width) + "x" + std::to_string(height) +
-                             " image: " + describe(cairo_surface_status(impl_->surface)));
+                                         " image: " + describe(cairo_surface_status(impl_->surface)));
   impl_->cr = cairo_create(impl_->surface);
   release_caches_at_exit();
   // Explicit font options: with cairo's defaults, glyphs drawn after an unantialiased canvas
@@ -211,7 +211,8 @@ std::vector<std::uint8_t> ImageCanvas::png_bytes() const {
   cairo_surface_flush(impl_->surface);
   std::vector<std::uint8_t> bytes;
   const cairo_status_t status = cairo_surface_write_to_png_stream(impl_->surface, &append_png, &bytes);
-  if (status != CAIRO_STATUS_SUCCESS) throw Error(ErrorKind::Internal, std::string("cannot encode the PNG: ") + describe(status));
+  if (status != CAIRO_STATUS_SUCCESS)
+    throw Error(ErrorKind::Internal, std::string("cannot encode the PNG: ") + describe(status));
   return bytes;
 }
 
@@ -234,8 +235,7 @@ ImageCanvas ImageCanvas::read_png(const std::string& path) {
     message += describe(status);
     throw Error(ErrorKind::Internal, message);
   }
-  ImageCanvas image(cairo_image_surface_get_width(png), cairo_image_surface_get_height(png),
-                    Color{0, 0, 0, 0});
+  ImageCanvas image(cairo_image_surface_get_width(png), cairo_image_surface_get_height(png), Color{0, 0, 0, 0});
   cairo_t* cr = image.impl_->cr;
   cairo_save(cr);
   cairo_set_operator(cr, CAIRO_OPERATOR_SOURCE);

@@ -50,7 +50,8 @@ CentresPicture centres_picture(const Explanation& ex) {
     hi = hi.cwiseMax(at);
     const int a = number[c.body_a + 1], b = number[c.body_b + 1];
     std::string label(1, 'I');
-    label += short_labels ? std::to_string(a) + std::to_string(b) : '(' + std::to_string(a) + ',' + std::to_string(b) + ')';
+    label +=
+        short_labels ? std::to_string(a) + std::to_string(b) : '(' + std::to_string(a) + ',' + std::to_string(b) + ')';
     pic.options.marked_points.push_back({at, label});
   }
   pic.lo = lo;

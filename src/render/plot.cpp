@@ -211,7 +211,8 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
   if (!std::isfinite(lo) || !std::isfinite(hi)) throw Error(ErrorKind::BadInput, "nice_ticks: the range is not finite");
   if (std::abs(lo) > kLargest || std::abs(hi) > kLargest)
     throw Error(ErrorKind::BadInput, "nice_ticks: the range is too large (beyond 1e300)");
-  if (target < 1 || target > 1000) throw Error(ErrorKind::BadInput, "nice_ticks: the target must be 1 to 1000 intervals");
+  if (target < 1 || target > 1000)
+    throw Error(ErrorKind::BadInput, "nice_ticks: the target must be 1 to 1000 intervals");
   if (lo > hi) std::swap(lo, hi);
   const double size = std::max(std::abs(lo), std::abs(hi));
   if (hi - lo <= 1e-10 * size || hi - lo < 1e-290) {
@@ -260,8 +261,8 @@ std::vector<std::string> format_ticks(const std::vector<double>& ticks) {
   // Exponents for millions with few digits that change (2e6, 1.5e6, but 1001000), for
   // billions and up, and for thousandths and below.
   const int largest_magnitude = largest > 0 ? static_cast<int>(std::floor(std::log10(largest * (1 + 1e-12)))) : 0;
-  const bool exponents = (largest >= 1e6 && (largest_magnitude - digit <= 2 || largest_magnitude >= 9)) ||
-                         (largest > 0 && largest < 1e-3);
+  const bool exponents =
+      (largest >= 1e6 && (largest_magnitude - digit <= 2 || largest_magnitude >= 9)) || (largest > 0 && largest < 1e-3);
   char buf[64];
   for (double t : ticks) {
     if (!std::isfinite(t)) {
@@ -293,7 +294,8 @@ void check_spec(const PlotSpec& spec) {
   for (const PlotSeries& s : spec.series)
     if (s.y.size() != spec.x.size())
       throw Error(ErrorKind::BadInput, "plot: series '" + s.name + "' has " + std::to_string(s.y.size()) +
-                                  " values for " + std::to_string(spec.x.size()) + " values of " + spec.x_name);
+                                           " values for " + std::to_string(spec.x.size()) + " values of " +
+                                           spec.x_name);
   if (spec.y_lo.has_value() != spec.y_hi.has_value())
     throw Error(ErrorKind::BadInput, "plot: a fixed y range needs both ends");
   if (spec.y_lo && !(usable(*spec.y_lo) && usable(*spec.y_hi) && *spec.y_lo < *spec.y_hi))
@@ -498,8 +500,9 @@ void place_x_axis(DataRange data, Layout& layout) {
   for (int target = std::clamp(static_cast<int>((f.right - f.left) / 60), 2, 14); target >= 1; --target) {
     f.x_ticks = inner_ticks(f.x_lo, f.x_hi, target);
     layout.x_tick_labels = format_ticks(f.x_ticks);
-    const double spacing = f.x_ticks.size() >= 2 ? (f.x_ticks[1] - f.x_ticks[0]) / (f.x_hi - f.x_lo) * (f.right - f.left)
-                                                 : f.right - f.left;
+    const double spacing = f.x_ticks.size() >= 2
+                               ? (f.x_ticks[1] - f.x_ticks[0]) / (f.x_hi - f.x_lo) * (f.right - f.left)
+                               : f.right - f.left;
     if (widest(layout.x_tick_labels, kTickFont) + 12 <= spacing) break;
   }
 }
@@ -560,11 +563,11 @@ void draw_axes(Canvas& canvas, const PlotSpec& spec, const Labels& labels, const
   }
   if (!labels.y2.empty()) canvas.text({f.right, f.top - 14}, labels.y2, kLabelFont, Anchor::End, kInk);
   if (!labels.x.empty())
-    canvas.text({0.5 * (f.left + f.right), f.bottom + kTickLength + kTickFont + 10 + kLabelFont}, labels.x,
-                kLabelFont, Anchor::Middle, kInk);
+    canvas.text({0.5 * (f.left + f.right), f.bottom + kTickLength + kTickFont + 10 + kLabelFont}, labels.x, kLabelFont,
+                Anchor::Middle, kInk);
   if (!labels.y.empty())
-    canvas.text({std::max(kPad, f.left - widest(layout.y_tick_labels, kTickFont) - kTickLength - 4), f.top - 14}, labels.y,
-                kLabelFont, Anchor::Start, kInk);
+    canvas.text({std::max(kPad, f.left - widest(layout.y_tick_labels, kTickFont) - kTickLength - 4), f.top - 14},
+                labels.y, kLabelFont, Anchor::Start, kInk);
   if (!spec.title.empty())
     canvas.text({0.5 * canvas.width(), kPad + kTitleFont}, spec.title, kTitleFont, Anchor::Middle, kInk);
   canvas.end_group();
@@ -628,7 +631,8 @@ PlotFrame draw_plot(Canvas& canvas, const PlotSpec& spec) {
 }
 
 void set_plot_data(PlotSpec& spec, const ResultTable& x_column, const ResultTable& y_columns) {
-  if (x_column.columns.empty() || x_column.units.empty()) throw Error(ErrorKind::BadInput, "plot: there is no x column");
+  if (x_column.columns.empty() || x_column.units.empty())
+    throw Error(ErrorKind::BadInput, "plot: there is no x column");
   spec.x_name = x_column.columns.front();
   spec.x_unit = x_column.units.front();
   spec.x.clear();

@@ -7,14 +7,14 @@
 
 #include "nbar/analysis/columns.hpp"
 #include "nbar/dynamics/dynamics_table.hpp"
-#include "nbar/version.hpp"
-#include "nbar/model/units.hpp"
 #include "nbar/kinematics/table.hpp"
+#include "nbar/model/units.hpp"
 #include "nbar/render/animation.hpp"
 #include "nbar/render/drawing.hpp"
 #include "nbar/render/plot.hpp"
 #include "nbar/render/stress_map.hpp"
 #include "nbar/stress/link_stress.hpp"
+#include "nbar/version.hpp"
 
 namespace nbar::render {
 
@@ -122,7 +122,6 @@ struct Html {
   }
 };
 
-
 // The x axis of every plot: the first driver, or the time.
 struct Axis {
   std::string name, unit;
@@ -141,9 +140,10 @@ PlotSpec plot_against(const Axis& x, const std::string& title) {
 void write_head(Html& h, const Model& m, const ReportOptions& options) {
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
-    << "<title>" << esc(m.name.empty() ? "nbar report" : m.name) << "</title><style>" << kStyle << "</style></head><body>\n";
-  h << "<h1>" << esc(m.name.empty() ? "Mechanism" : m.name) << "</h1>\n<p class=\"meta\">"
-    << esc(options.source) << " &middot; lengths in " << esc(m.units.length) << ", angles in " << esc(m.units.angle)
+    << "<title>" << esc(m.name.empty() ? "nbar report" : m.name) << "</title><style>" << kStyle
+    << "</style></head><body>\n";
+  h << "<h1>" << esc(m.name.empty() ? "Mechanism" : m.name) << "</h1>\n<p class=\"meta\">" << esc(options.source)
+    << " &middot; lengths in " << esc(m.units.length) << ", angles in " << esc(m.units.angle)
     << ", forces in N &middot; report by nbar " << kVersion << "</p>\n";
 }
 
@@ -187,8 +187,8 @@ void write_loops_table(Html& h, const Analysis& analysis, const ModelSummary& su
 }
 
 void write_bodies_table(Html& h, const Model& m, const ModelSummary& summary) {
-  h << "<h3>Bodies</h3><div class=\"scroll\"><table><tr><th>Body</th><th>Points</th><th>Length ["
-    << esc(m.units.length) << "]</th><th>Mass [kg]</th><th>Inertia [kg m&sup2;]</th></tr>\n";
+  h << "<h3>Bodies</h3><div class=\"scroll\"><table><tr><th>Body</th><th>Points</th><th>Length [" << esc(m.units.length)
+    << "]</th><th>Mass [kg]</th><th>Inertia [kg m&sup2;]</th></tr>\n";
   for (const BodySummary& b : summary.bodies) {
     std::string points;
     for (const std::string& p : b.points) points += (points.empty() ? "" : ", ") + esc(p);
@@ -209,7 +209,8 @@ DrawOptions report_drawing(const Model& m) {
   draw.height = 560;
   for (std::size_t p = 0; p < m.points.size(); ++p) {
     int links = m.points[p].ground ? 1 : 0;
-    for (const Body& b : m.bodies) links += static_cast<int>(std::count(b.points.begin(), b.points.end(), static_cast<int>(p)));
+    for (const Body& b : m.bodies)
+      links += static_cast<int>(std::count(b.points.begin(), b.points.end(), static_cast<int>(p)));
     if (!m.points[p].ground && links == 1) draw.traces.push_back(static_cast<int>(p));
   }
   return draw;
@@ -230,8 +231,8 @@ void write_motion(Html& h, const Analysis& analysis, const DrawOptions& draw, co
 }
 
 void write_kinematics(Html& h, const Analysis& analysis, const ResultTable& table, const Axis& x) {
-  const char* quantities[][2] = {{"angle", "Angle"}, {"omega", "Angular velocity"}, {"alpha", "Angular acceleration"},
-                                 {"jerk", "Angular jerk"}};
+  const char* quantities[][2] = {
+      {"angle", "Angle"}, {"omega", "Angular velocity"}, {"alpha", "Angular acceleration"}, {"jerk", "Angular jerk"}};
   h << "<section id=\"kinematics\"><h2>Angles, angular velocities, accelerations and jerk</h2>\n";
   for (int q = 0; q <= std::min(analysis.sweep.order, 3); ++q) {
     PlotSpec spec = plot_against(x, quantities[q][1]);
@@ -248,7 +249,8 @@ void write_kinematics(Html& h, const Analysis& analysis, const ResultTable& tabl
 void write_forces(Html& h, const Analysis& analysis, const ResultTable& table, const Axis& x) {
   const DynamicsStage& dynamics = *analysis.dynamics;
   h << "<section id=\"forces\"><h2>Forces</h2>\n";
-  if (!dynamics.unique) h << "<p class=\"warn\">Redundant constraints: the joint forces shown are the minimum-norm set.</p>";
+  if (!dynamics.unique)
+    h << "<p class=\"warn\">Redundant constraints: the joint forces shown are the minimum-norm set.</p>";
   PlotSpec efforts = plot_against(x, "Driver efforts");
   for (const Driver& d : analysis.model().drivers) {
     const std::string name = d.name + (d.kind == DriverKind::Angle ? ".torque" : ".force");
@@ -284,10 +286,10 @@ void write_stresses(Html& h, const Analysis& analysis, const DrawOptions& draw, 
   for (const StressPeak& p : analysis.stress->peaks) {
     const double at = p.step >= 0 ? x.values[static_cast<std::size_t>(p.step)] : 0.0;
     h << "<tr><td>" << esc(m.bodies[p.body].name) << "</td><td class=\"num\">" << num(to_megapascal(p.at.von_mises))
-      << "</td><td class=\"num\">" << num(at) << "</td><td class=\"num\">"
-      << num(p.at.where.x() / m.units.length_scale) << ", " << num(p.at.where.y() / m.units.length_scale)
-      << "</td><td class=\"num\">" << num(to_megapascal(p.at.sigma)) << ", " << num(to_megapascal(p.at.tau))
-      << "</td><td class=\"num\">" << (p.safety_factor ? num(*p.safety_factor, 3) : "") << "</td></tr>\n";
+      << "</td><td class=\"num\">" << num(at) << "</td><td class=\"num\">" << num(p.at.where.x() / m.units.length_scale)
+      << ", " << num(p.at.where.y() / m.units.length_scale) << "</td><td class=\"num\">"
+      << num(to_megapascal(p.at.sigma)) << ", " << num(to_megapascal(p.at.tau)) << "</td><td class=\"num\">"
+      << (p.safety_factor ? num(*p.safety_factor, 3) : "") << "</td></tr>\n";
     drawn.emplace_back(&p, at);
   }
   h << "</table></div><p>Each link's largest stress is marked in the pose where it occurs. Beam theory on the net "
@@ -318,8 +320,7 @@ void write_fe_stresses(Html& h, const Analysis& analysis, const DrawOptions& dra
       << "</td><td class=\"num\">" << num(at) << "</td><td class=\"num\">" << num(where.x() / length) << ", "
       << num(where.y() / length) << "</td><td class=\"num\">" << (p.safety_factor ? num(*p.safety_factor, 3) : "")
       << "</td><td class=\"num\">" << std::to_string(p.nodes) << ", " << std::to_string(p.elements)
-      << "</td><td class=\"num\">"
-      << num(p.load_unbalance, 2) << ", " << num(p.support_reaction, 2) << "</td></tr>\n";
+      << "</td><td class=\"num\">" << num(p.load_unbalance, 2) << ", " << num(p.support_reaction, 2) << "</td></tr>\n";
   }
   h << "</table></div><p>Plane-stress 6-node triangles on each link's plate; pin forces as bearing pressures on "
     << "their holes, torques as shear around theirs, d'Alembert forces as body forces. Each link is coloured by von "

@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
 #include <initializer_list>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -103,7 +103,8 @@ class SceneCanvas : public Canvas {
     item(cat({"{\"type\":\"polygon\",\"points\":", flat_points(points), paint_fields(paint), "}"}));
   }
   void polyline(const std::vector<Eigen::Vector2d>& points, const Stroke& stroke) override {
-    item(cat({"{\"type\":\"polyline\",\"points\":", flat_points(points), paint_fields(Paint{std::nullopt, stroke}), "}"}));
+    item(cat(
+        {"{\"type\":\"polyline\",\"points\":", flat_points(points), paint_fields(Paint{std::nullopt, stroke}), "}"}));
   }
   void circle(const Eigen::Vector2d& centre, double radius, const Paint& paint) override {
     item(cat({"{\"type\":\"circle\",\"cx\":", num(centre.x()), ",\"cy\":", num(centre.y()), ",\"r\":", num(radius),
@@ -143,7 +144,8 @@ std::string step_motion(const Mechanism& mech, const View& view, const std::vect
   std::string s = "{\"bodies\":[";
   const std::vector<PixelTransform> moves = body_transforms(mech, view, reference, points);
   for (std::size_t b = 0; b < moves.size(); ++b)
-    s += cat({b ? ",[" : "[", precise(moves[b].angle_deg), ",", num(moves[b].shift.x()), ",", num(moves[b].shift.y()), "]"});
+    s += cat(
+        {b ? ",[" : "[", precise(moves[b].angle_deg), ",", num(moves[b].shift.x()), ",", num(moves[b].shift.y()), "]"});
   s += "],\"labels\":[";
   for (std::size_t p = 0; p < points.size(); ++p) {
     const Eigen::Vector2d d = view.to_pixels(points[p]) - view.to_pixels(reference[p]);
@@ -176,15 +178,17 @@ std::string drawing_scene_json(const Mechanism& mech, const SweepResult& sweep, 
   // Pixels to model length units, y down: the model's x and -y.
   const double unit = m.units.length_scale;
   const Eigen::Vector2d origin = view.to_world({0, 0});
-  std::string s = cat({"{\"width\":", std::to_string(options.width), ",\"height\":", std::to_string(options.height),
-                       ",\"to_model\":[", precise(1.0 / (view.pixels_per_metre() * unit)), ",", precise(origin.x() / unit),
-                       ",", precise(-origin.y() / unit), "],\"reference_step\":", std::to_string(reference_step),
-                       ",\"items\":", canvas.items(), ",\"bodies\":["});
+  std::string s =
+      cat({"{\"width\":", std::to_string(options.width), ",\"height\":", std::to_string(options.height),
+           ",\"to_model\":[", precise(1.0 / (view.pixels_per_metre() * unit)), ",", precise(origin.x() / unit), ",",
+           precise(-origin.y() / unit), "],\"reference_step\":", std::to_string(reference_step),
+           ",\"items\":", canvas.items(), ",\"bodies\":["});
   const std::vector<PixelTransform> still = body_transforms(mech, view, reference, reference);
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Eigen::Vector2d pivot = still[b].pivot;
-    s += cat({b ? "," : "", "{\"name\":", json_string(m.bodies[b].name), ",\"group\":",
-              json_string(cat({"body-", m.bodies[b].name})), ",\"pivot\":[", num(pivot.x()), ",", num(pivot.y()), "]}"});
+    s += cat({b ? "," : "", "{\"name\":", json_string(m.bodies[b].name),
+              ",\"group\":", json_string(cat({"body-", m.bodies[b].name})), ",\"pivot\":[", num(pivot.x()), ",",
+              num(pivot.y()), "]}"});
   }
   s += "],\"steps\":[";
   for (std::size_t k = 0; k < sweep.samples.size(); ++k)

@@ -34,7 +34,7 @@ GivenNumber given_number(const OptionRule& rule, const Value& value, bool text_v
   if (const auto* text = std::get_if<std::string>(&value)) {
     if (!text_values)
       throw OptionError(rule.key, literal((rule.kind == OptionKind::Integer ? "must be a whole number, not the text '"
-                                                                              : "must be a number, not the text '") +
+                                                                            : "must be a number, not the text '") +
                                           *text + "'"));
     const std::optional<double> x = finite_number(*text);
     if (!x) throw OptionError(rule.key, literal("'" + *text + "' is not a finite number"));
@@ -54,8 +54,8 @@ void check_range(const OptionRule& rule, const GivenNumber& x) {
   const bool bounded_below = std::isfinite(rule.low);
   const bool bounded_above = std::isfinite(rule.high) && (rule.high < kNoTop || x.value > rule.high);
   if (bounded_below && bounded_above)
-    throw OptionError(rule.key, "must be from " + number_text(rule.low) + " to " + number_text(rule.high) + ", not " +
-                                    x.shown);
+    throw OptionError(rule.key,
+                      "must be from " + number_text(rule.low) + " to " + number_text(rule.high) + ", not " + x.shown);
   if (bounded_below) throw OptionError(rule.key, "must be " + number_text(rule.low) + " or more, not " + x.shown);
   throw OptionError(rule.key, "must be at most " + number_text(rule.high) + ", not " + x.shown);
 }
@@ -182,9 +182,11 @@ std::optional<std::string> read_text(const Options& options, const OptionRule& r
   const Value* value = options.find(rule.key);
   if (!value) return std::nullopt;
   const auto* text = std::get_if<std::string>(value);
-  if (!text) throw OptionError(rule.key, rule.kind == OptionKind::Choice ? "must be one of " + joined(rule.choices, ", ")
-                                                                          : std::string("must be a text"));
-  if (rule.kind == OptionKind::Choice && std::find(rule.choices.begin(), rule.choices.end(), *text) == rule.choices.end())
+  if (!text)
+    throw OptionError(rule.key, rule.kind == OptionKind::Choice ? "must be one of " + joined(rule.choices, ", ")
+                                                                : std::string("must be a text"));
+  if (rule.kind == OptionKind::Choice &&
+      std::find(rule.choices.begin(), rule.choices.end(), *text) == rule.choices.end())
     throw OptionError(rule.key, "must be one of " + joined(rule.choices, ", ") + ", not '" + literal(*text) + "'");
   return *text;
 }
@@ -227,7 +229,8 @@ std::vector<double> read_numbers(const Options& options, const OptionRule& rule)
   for (const double x : numbers)
     if (!std::isfinite(x)) throw OptionError(rule.key, "must be a list of finite numbers");
   if (rule.count > 0 && numbers.size() != rule.count)
-    throw OptionError(rule.key, "must be " + std::to_string(rule.count) + " numbers, not " + std::to_string(numbers.size()));
+    throw OptionError(rule.key,
+                      "must be " + std::to_string(rule.count) + " numbers, not " + std::to_string(numbers.size()));
   return numbers;
 }
 

@@ -93,8 +93,9 @@ Picture read_picture(const Options& options, const std::vector<OptionRule>& rule
 
 std::vector<OptionRule> stress_map_rules(const std::string& what) {
   return {flag("stress", what),
-          positive_number("mesh_size", "with {stress}: element edge far from holes, in the model's length unit "
-                                       "(default: a twentieth of each plate's size)")};
+          positive_number("mesh_size",
+                          "with {stress}: element edge far from holes, in the model's length unit "
+                          "(default: a twentieth of each plate's size)")};
 }
 
 std::optional<int> optional_int(std::optional<long long> v) {
@@ -107,10 +108,12 @@ std::optional<int> optional_int(std::optional<long long> v) {
 
 std::vector<OptionRule> SweepSize::rules(bool with_steps) {
   std::vector<OptionRule> rules;
-  if (with_steps) rules.push_back(positive_integer("steps", "number of samples, ends included (overrides the model's sweep)"));
-  rules.push_back(positive_integer("max_steps", "the most samples the sweep may have, the model's or {steps} (default " +
-                                                    std::to_string(kDefaultMaxSweepSamples) +
-                                                    "; every sample is kept in memory, except by solve's CSV)"));
+  if (with_steps)
+    rules.push_back(positive_integer("steps", "number of samples, ends included (overrides the model's sweep)"));
+  rules.push_back(
+      positive_integer("max_steps", "the most samples the sweep may have, the model's or {steps} (default " +
+                                        std::to_string(kDefaultMaxSweepSamples) +
+                                        "; every sample is kept in memory, except by solve's CSV)"));
   return rules;
 }
 
@@ -118,7 +121,8 @@ SweepSize SweepSize::read(const Options& options) {
   static const std::vector<OptionRule> rules = SweepSize::rules();
   SweepSize size;
   size.steps = optional_int(read_integer(options, rule_of(rules, "steps")));
-  size.max_steps = static_cast<int>(read_integer(options, rule_of(rules, "max_steps")).value_or(kDefaultMaxSweepSamples));
+  size.max_steps =
+      static_cast<int>(read_integer(options, rule_of(rules, "max_steps")).value_or(kDefaultMaxSweepSamples));
   return size;
 }
 
@@ -167,7 +171,8 @@ const std::vector<OptionRule>& CheckRequest::rules() {
 CheckRequest CheckRequest::read(const Options& options) {
   CheckRequest r;
   r.format = read_text(options, rule_of(rules(), "format")).value_or("text");
-  r.max_steps = static_cast<int>(read_integer(options, rule_of(rules(), "max_steps")).value_or(kDefaultMaxSweepSamples));
+  r.max_steps =
+      static_cast<int>(read_integer(options, rule_of(rules(), "max_steps")).value_or(kDefaultMaxSweepSamples));
   return r;
 }
 
@@ -176,13 +181,15 @@ CheckRequest CheckRequest::read(const Options& options) {
 const std::vector<OptionRule>& SolveRequest::rules() {
   static const std::vector<OptionRule> rules = joined({
       SweepSize::rules(),
-      {integer_rule("order", "highest time derivative: 0 positions, 1 velocities, 2 accelerations (default), 3 jerk, "
-                             "up to 5",
+      {integer_rule("order",
+                    "highest time derivative: 0 positions, 1 velocities, 2 accelerations (default), 3 jerk, "
+                    "up to 5",
                     0, 5),
        choice("format", "csv (default), json, or table (aligned, for reading)", {"csv", "json", "table"}),
        names("columns", "only these columns, comma-separated names or globs, e.g. 'crank,rocker.*,B.v*'"),
-       flag("dynamics", "add inverse dynamics: the force at every joint, every driver's torque or force, energies "
-                        "(N, N m, J whatever the length unit; order at least 2)")},
+       flag("dynamics",
+            "add inverse dynamics: the force at every joint, every driver's torque or force, energies "
+            "(N, N m, J whatever the length unit; order at least 2)")},
   });
   return rules;
 }
@@ -208,8 +215,9 @@ AnalysisOptions SolveRequest::analysis_options() const {
 void SolveRequest::explain_column_error(const Mechanism& mechanism, const std::string& problem) const {
   // A force or torque column asked for without dynamics: say so rather than list the others.
   if (!dynamics && column_needs(mechanism, columns, order, false).dynamics)
-    throw OptionError("columns", literal(problem) + ": the force and torque columns come from the inverse dynamics, add "
-                                           "{dynamics}");
+    throw OptionError("columns", literal(problem) +
+                                     ": the force and torque columns come from the inverse dynamics, add "
+                                     "{dynamics}");
   std::string listed;
   for (const std::string& name : column_names(column_catalogue(mechanism, order, dynamics)))
     listed += (listed.empty() ? "" : ", ") + name;
@@ -251,13 +259,15 @@ void SolveRequest::select(const Mechanism& mechanism, TableStream& stream) const
 const std::vector<OptionRule>& StressRequest::rules() {
   static const std::vector<OptionRule> rules = joined({
       SweepSize::rules(),
-      {choice("method", "beam (default: quick, beam theory on cross-sections, for slender links between joints) or fe "
-                        "(plane-stress finite elements: the peaks at pin holes, fillets and in plates)",
+      {choice("method",
+              "beam (default: quick, beam theory on cross-sections, for slender links between joints) or fe "
+              "(plane-stress finite elements: the peaks at pin holes, fillets and in plates)",
               {"beam", "fe"}),
        integer_rule("sections", "beam: cross-sections per link, at least (default 200)", kMinSectionsPerLink,
                     kMaxSectionsPerLink),
-       positive_number("mesh_size", "fe: element edge far from holes and corners, in the model's length unit "
-                                    "(default: a twentieth of each plate's size; finer around holes)"),
+       positive_number("mesh_size",
+                       "fe: element edge far from holes and corners, in the model's length unit "
+                       "(default: a twentieth of each plate's size; finer around holes)"),
        choice("format", "table (default), csv or json", {"table", "csv", "json"}),
        text("section_profile", "instead, every section of BODY at one step: N, V, M, sigma, tau, von Mises"),
        integer_rule("step", "the step for {section_profile} (default 0)", 0, kIntMax)},
@@ -268,7 +278,8 @@ const std::vector<OptionRule>& StressRequest::rules() {
 StressRequest StressRequest::read(const Options& options) {
   StressRequest r;
   r.sweep = SweepSize::read(options);
-  r.method = read_text(options, rule_of(rules(), "method")).value_or("beam") == "fe" ? StressMethod::fe : StressMethod::beam;
+  r.method =
+      read_text(options, rule_of(rules(), "method")).value_or("beam") == "fe" ? StressMethod::fe : StressMethod::beam;
   r.sections = static_cast<int>(read_integer(options, rule_of(rules(), "sections")).value_or(200));
   r.mesh_size = read_number(options, rule_of(rules(), "mesh_size"));
   r.format = read_text(options, rule_of(rules(), "format")).value_or("table");
@@ -328,7 +339,8 @@ DrawRequest DrawRequest::read(const Options& options) {
   r.stress = read_flag(options, rule_of(rules(), "stress"));
   r.mesh_size = read_number(options, rule_of(rules(), "mesh_size"));
   if (r.step && r.at) throw OptionError("at", "give {step} or {at}, not both");
-  if (r.stress && r.at) throw OptionError("at", "{stress} colours a solved step of the sweep: give {step} instead of {at}");
+  if (r.stress && r.at)
+    throw OptionError("at", "{stress} colours a solved step of the sweep: give {step} instead of {at}");
   if (r.format == "scene" && r.at) throw OptionError("at", "a scene is drawn at a solved step: give {step}, not {at}");
   return r;
 }
@@ -404,8 +416,9 @@ const std::vector<OptionRule>& PlotRequest::rules() {
          names("y", "columns to plot: names or globs, comma-separated, e.g. 'rocker.omega,B.v*'"),
          text("x", "the column along the x axis (default: the first driver's, or t when a driver follows a time law)"),
          integer_rule("order", "highest time derivative to solve, 0 to 5 (default: 2, or what the columns need)", 0, 5),
-         flag("dynamics", "add the inverse-dynamics columns (joint forces, driver torques and forces, energies); on by "
-                          "itself when a column asked for needs it"),
+         flag("dynamics",
+              "add the inverse-dynamics columns (joint forces, driver torques and forces, energies); on by "
+              "itself when a column asked for needs it"),
          y_range, text("title", "the title at the top (default: the model's name)"),
          integer_rule("width", "picture width in pixels (default 900)", kPlotLimits.min_width, kPlotLimits.max_width),
          integer_rule("height", "picture height in pixels (default 520)", kPlotLimits.min_height,
@@ -442,7 +455,8 @@ AnalysisOptions PlotRequest::analysis_options(const Mechanism& mechanism) const 
   std::vector<std::string> patterns = y;
   patterns.push_back(x_pattern);
   const ColumnNeeds needs = column_needs(mechanism, patterns, order, dynamics);
-  if (needs.unmatched >= 0) throw OptionError(needs.unmatched < static_cast<int>(y.size()) ? "y" : "x", literal(needs.message));
+  if (needs.unmatched >= 0)
+    throw OptionError(needs.unmatched < static_cast<int>(y.size()) ? "y" : "x", literal(needs.message));
   AnalysisOptions options;
   sweep.apply(options);
   options.order = needs.order;
@@ -483,7 +497,8 @@ const std::vector<OptionRule>& ReportRequest::rules() {
               "the stresses' method, as `nbar stress {method}`: beam (default) or fe (links coloured by their "
               "finite-element von Mises stress)",
               {"beam", "fe"}),
-       positive_number("mesh_size", "with {stress_method} fe: element edge far from holes, in the model's length unit")},
+       positive_number("mesh_size",
+                       "with {stress_method} fe: element edge far from holes, in the model's length unit")},
   });
   return rules;
 }
@@ -492,8 +507,8 @@ ReportRequest ReportRequest::read(const Options& options) {
   ReportRequest r;
   r.sweep = SweepSize::read(options);
   r.frames = static_cast<int>(read_integer(options, rule_of(rules(), "frames")).value_or(72));
-  r.stress_method =
-      read_text(options, rule_of(rules(), "stress_method")).value_or("beam") == "fe" ? StressMethod::fe : StressMethod::beam;
+  r.stress_method = read_text(options, rule_of(rules(), "stress_method")).value_or("beam") == "fe" ? StressMethod::fe
+                                                                                                   : StressMethod::beam;
   r.mesh_size = read_number(options, rule_of(rules(), "mesh_size"));
   if (r.mesh_size && r.stress_method != StressMethod::fe)
     throw OptionError("mesh_size", "is the finite elements' element size: give {stress_method} fe too");

@@ -478,7 +478,7 @@ class Refiner {
       if (!edge && !long_enough(segs_[s])) {
         const Vector2d& at = pts_[segs_[s].s.a];
         throw Error(ErrorKind::BadInput, "the boundary cannot be resolved near (" + std::to_string(at.x()) + ", " +
-                                 std::to_string(at.y()) + ") m: a corner too sharp or parts too close");
+                                             std::to_string(at.y()) + ") m: a corner too sharp or parts too close");
       }
       if (!edge || (long_enough(segs_[s]) && encroached(segs_[s]))) split_segment(s);
     }
@@ -568,7 +568,8 @@ class Refiner {
 
   void check_conformity() const {
     for (const Seg& seg : segs_) {
-      if (seg.alive && !is_edge(seg.s.a, seg.s.b)) throw Error(ErrorKind::Internal, "mesher: a boundary segment was lost");
+      if (seg.alive && !is_edge(seg.s.a, seg.s.b))
+        throw Error(ErrorKind::Internal, "mesher: a boundary segment was lost");
     }
     for (const Tri& tri : tris_) {
       if (tri.alive && tri.inside && (tri.v[0] < kSuper || tri.v[1] < kSuper || tri.v[2] < kSuper)) {

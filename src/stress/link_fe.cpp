@@ -41,9 +41,10 @@ std::string body_name(const Model& m, int body) { return "body '" + m.bodies[bod
 fe::ElasticMaterial elastic_material(const Model& m, int body, const MassProperties& mass) {
   const Body& b = m.bodies[body];
   if (!b.material || !b.material->youngs_modulus || !b.material->poisson_ratio) {
-    const std::string what = !b.material               ? body_name(m, body) + " has no material"
-                             : b.material->name.empty() ? "the material of " + body_name(m, body)
-                                                        : "material '" + b.material->name + "' of " + body_name(m, body);
+    const std::string what = !b.material ? body_name(m, body) + " has no material"
+                             : b.material->name.empty()
+                                 ? "the material of " + body_name(m, body)
+                                 : "material '" + b.material->name + "' of " + body_name(m, body);
     fail_at_body(body, what + (b.material ? " has no " : ", so no ") +
                            (b.material && b.material->youngs_modulus ? "" : "Young's modulus (`youngs_modulus`) and ") +
                            "Poisson's ratio (`poisson_ratio`), which finite-element stresses need; give them in the "
@@ -101,9 +102,9 @@ struct LinkFe::Link {
   Region region;
   fe::PlateModel plate;
   double mesh_size = 0.0;
-  double tolerance = 0.0;                   // for matching points, m
-  std::vector<int> interior_corners;        // corner nodes off the boundary
-  std::vector<PlatePlacement> at_points;    // one per point of the body, in its order
+  double tolerance = 0.0;                 // for matching points, m
+  std::vector<int> interior_corners;      // corner nodes off the boundary
+  std::vector<PlatePlacement> at_points;  // one per point of the body, in its order
   Link(int b, Region r, fe::PlateModel p, double size)
       : body(b), region(std::move(r)), plate(std::move(p)), mesh_size(size) {}
 
@@ -148,11 +149,11 @@ LinkFe::LinkFe(std::shared_ptr<const InverseDynamics> dynamics, const FeOptions&
     mesh_options.max_nodes = options.max_nodes;
     std::unique_ptr<Link> link;
     try {
-      link = std::make_unique<Link>(index, *body.shape,
-                                    fe::PlateModel(fe::mesh_region(*body.shape, mesh_options), material),
-                                    mesh_options.size);
+      link = std::make_unique<Link>(
+          index, *body.shape, fe::PlateModel(fe::mesh_region(*body.shape, mesh_options), material), mesh_options.size);
     } catch (const Error& e) {
-      fail_at_body(index, "the plate of " + body_name(m, index) + " cannot be analysed by finite elements: " + e.what());
+      fail_at_body(index,
+                   "the plate of " + body_name(m, index) + " cannot be analysed by finite elements: " + e.what());
     }
     const fe::TriMesh& mesh = link->plate.mesh();
     std::vector<bool> on_boundary(mesh.nodes.size(), false);

@@ -61,8 +61,7 @@ std::vector<double> section_positions(const Model& m, const Body& body, const Ei
 
 }  // namespace
 
-LinkStress::LinkStress(std::shared_ptr<const InverseDynamics> dynamics, int sections)
-    : dynamics_(std::move(dynamics)) {
+LinkStress::LinkStress(std::shared_ptr<const InverseDynamics> dynamics, int sections) : dynamics_(std::move(dynamics)) {
   const Model& m = dynamics_->mechanism().model();
   bodies_.resize(m.bodies.size());
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {

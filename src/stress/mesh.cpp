@@ -2,8 +2,8 @@
 // graded away from holes, arcs and re-entrant corners, the boundary cut to that size, conforming
 // Delaunay refinement (delaunay_refinement.cpp), then mid-side nodes, on the true curve for
 // boundary edges on arcs and circles.
-#include "nbar/model/diagnostics.hpp"
 #include "nbar/stress/mesh.hpp"
+#include "nbar/model/diagnostics.hpp"
 
 #include <algorithm>
 #include <array>
@@ -259,14 +259,15 @@ void check_interior_budget(const Boundary& b, double size, const MeshOptions& o)
   const double corners = area / (std::sqrt(3.0) / 2 * size * size);
   if (corners > 2.0 * static_cast<double>(corner_budget(o))) {
     std::ostringstream os;
-    os << "the mesh would have about " << std::llround(std::min(corners * 4, 1e18)) << " nodes, more than max_nodes = "
-       << o.max_nodes << "; use a larger element size";
+    os << "the mesh would have about " << std::llround(std::min(corners * 4, 1e18))
+       << " nodes, more than max_nodes = " << o.max_nodes << "; use a larger element size";
     fail(os.str());
   }
 }
 
 // Where a piece's boundary vertices go: parameters u in [0, 1), the first at 0.
-std::vector<double> piece_stations(const Curve& c, const Piece& p, const Sizing& h, double h_min, const MeshOptions& o) {
+std::vector<double> piece_stations(const Curve& c, const Piece& p, const Sizing& h, double h_min,
+                                   const MeshOptions& o) {
   const double length = c.length();
   // Fine enough to see the smallest feature's size change along the piece.
   const int samples = static_cast<int>(std::clamp(std::ceil(length / h_min), 16.0, 4096.0));
@@ -285,8 +286,9 @@ std::vector<double> piece_stations(const Curve& c, const Piece& p, const Sizing&
   std::vector<double> u;
   if (c.arc) {
     const double sweep = std::abs(c.circle.sweep);
-    const int n = std::max({static_cast<int>(std::ceil(segments * sweep / (2 * kPi) - 1e-9)),
-                            static_cast<int>(std::ceil(sweep / (kPi / 4) - 1e-9)), static_cast<int>(std::lround(total)), 1});
+    const int n =
+        std::max({static_cast<int>(std::ceil(segments * sweep / (2 * kPi) - 1e-9)),
+                  static_cast<int>(std::ceil(sweep / (kPi / 4) - 1e-9)), static_cast<int>(std::lround(total)), 1});
     for (int j = 0; j < n; ++j) u.push_back(static_cast<double>(j) / n);
     return u;
   }
@@ -338,7 +340,8 @@ detail::RefinementInput refinement_input(const Boundary& b, const Sizing& h, con
     in.segments.back().b = first;  // close the ring
   }
   double shortest = std::numeric_limits<double>::infinity();
-  for (const detail::BoundarySegment& s : in.segments) shortest = std::min(shortest, (in.points[s.a] - in.points[s.b]).norm());
+  for (const detail::BoundarySegment& s : in.segments)
+    shortest = std::min(shortest, (in.points[s.a] - in.points[s.b]).norm());
   for (const Curve& c : b.curves) {
     in.curved.push_back(c.arc ? 1 : 0);
     in.arc_radius.push_back(c.arc ? c.circle.radius : 0.0);
@@ -392,7 +395,8 @@ TriMesh quadratic_mesh(const detail::RefinedMesh& m, const Boundary& b, int max_
          "; use a larger element size");
   }
   std::unordered_map<std::uint64_t, int> segment_at;
-  for (std::size_t i = 0; i < m.segments.size(); ++i) segment_at[edge_key(m.segments[i].a, m.segments[i].b)] = static_cast<int>(i);
+  for (std::size_t i = 0; i < m.segments.size(); ++i)
+    segment_at[edge_key(m.segments[i].a, m.segments[i].b)] = static_cast<int>(i);
 
   mesh.nodes.reserve(total);
   mesh.triangles.resize(triangles);

@@ -42,7 +42,9 @@ void check_material(const ElasticMaterial& m) {
 // Every index in range, every node finite and used, one connected piece (else the stiffness is
 // singular beyond the three rigid-body modes the supports remove).
 void check_mesh(const TriMesh& mesh) {
-  const auto bad = [](const std::string& what) { throw Error(ErrorKind::BadInput, "finite elements: the mesh " + what); };
+  const auto bad = [](const std::string& what) {
+    throw Error(ErrorKind::BadInput, "finite elements: the mesh " + what);
+  };
   const int n = static_cast<int>(mesh.nodes.size());
   if (mesh.triangles.empty() || n < 6) bad("has no triangles");
   for (const Eigen::Vector2d& p : mesh.nodes)
@@ -56,14 +58,17 @@ void check_mesh(const TriMesh& mesh) {
   std::vector<char> used(n, 0);
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (int v : mesh.triangles[t]) {
-      if (v < 0 || v >= n) bad("triangle " + std::to_string(t) + " refers to node " + std::to_string(v) + ", which does not exist");
+      if (v < 0 || v >= n)
+        bad("triangle " + std::to_string(t) + " refers to node " + std::to_string(v) + ", which does not exist");
       used[v] = 1;
       parent[root(v)] = root(mesh.triangles[t][0]);
     }
   }
   for (int i = 0; i < n; ++i) {
     if (!used[i]) bad("node " + std::to_string(i) + " at " + at_point(mesh.nodes[i]) + " belongs to no triangle");
-    if (root(i) != root(0)) bad("is in more than one piece (node " + std::to_string(i) + " at " + at_point(mesh.nodes[i]) + " is not connected to node 0)");
+    if (root(i) != root(0))
+      bad("is in more than one piece (node " + std::to_string(i) + " at " + at_point(mesh.nodes[i]) +
+          " is not connected to node 0)");
   }
   for (const BoundaryEdge& e : mesh.boundary)
     for (int v : e.nodes)
@@ -80,8 +85,8 @@ Eigen::Matrix3d plane_stress_elasticity(const ElasticMaterial& m) {
 struct HoleGeometry {
   Eigen::Vector2d centre{0, 0};
   double radius = 0;
-  std::vector<int> edges;  // indices into TriMesh::boundary
-  std::vector<int> nodes;  // the nodes on the hole, each once
+  std::vector<int> edges;                      // indices into TriMesh::boundary
+  std::vector<int> nodes;                      // the nodes on the hole, each once
   std::vector<std::array<int, 3>> edge_nodes;  // per edge, its nodes' positions in `nodes`
 };
 
@@ -134,8 +139,8 @@ struct PlateModel::Impl {
   std::map<int, HoleGeometry> holes;
   std::array<Support, 3> supports;
   std::vector<int> reduced_index;  // per dof: its row in the reduced system, -1 when supported
-  SparseRows support_rows;  // the stiffness rows of the three supported dofs (for the reactions)
-  SparseRows recovery;      // nodal (σxx, σyy, τxy) from the displacements: element values at the node, averaged
+  SparseRows support_rows;         // the stiffness rows of the three supported dofs (for the reactions)
+  SparseRows recovery;  // nodal (σxx, σyy, τxy) from the displacements: element values at the node, averaged
 
   int dofs() const { return 2 * static_cast<int>(mesh.nodes.size()); }
   void choose_supports();
@@ -152,7 +157,8 @@ struct PlateModel::Impl {
   // The nodal forces of a traction on hole h, per node of h.nodes.
   // The traction may have a kink where `cut`·(x − centre) changes sign (zero `cut`: none).
   template <class Traction>
-  std::vector<Eigen::Vector2d> hole_traction(const HoleGeometry& h, Traction traction, const Eigen::Vector2d& cut) const;
+  std::vector<Eigen::Vector2d> hole_traction(const HoleGeometry& h, Traction traction,
+                                             const Eigen::Vector2d& cut) const;
   NodalLoads nodal_loads(const LoadCase& loads) const;
 
   // The factor L (P K P^T = L L^T) as plain arrays: strictly-lower entries by column and the
@@ -249,7 +255,8 @@ void PlateModel::Impl::solve_block(const LoadCase* cases, int count, std::vector
     if (applied[c].load_scale > 0) {
       double largest = 0;
       for (int k = 0; k < 3; ++k)
-        largest = std::max(largest, std::abs(reactions(k, c) - applied[c].forces[2 * supports[k].node + supports[k].direction]));
+        largest = std::max(largest,
+                           std::abs(reactions(k, c) - applied[c].forces[2 * supports[k].node + supports[k].direction]));
       field.support_reaction = largest / applied[c].load_scale;
     }
     field.displacement.resize(n_dofs);
@@ -303,7 +310,7 @@ void PlateModel::Impl::integrate_geometry() {
       const double det_j = t6::jacobian(e, t6::shape_derivatives(q.xi, q.eta)).determinant();
       if (!(det_j > 0))
         throw Error(ErrorKind::BadInput, "finite elements: triangle " + std::to_string(t) + " near " +
-                                    at_point(t6::position(e, shape)) + " is inverted or degenerate");
+                                             at_point(t6::position(e, shape)) + " is inverted or degenerate");
       const Eigen::Vector2d x = t6::position(e, shape);
       for (int i = 0; i < 6; ++i) {
         const int node = mesh.triangles[t][i];
@@ -346,7 +353,7 @@ const HoleGeometry& PlateModel::Impl::hole(int index) const {
   const auto it = holes.find(index);
   if (it == holes.end())
     throw Error(ErrorKind::BadInput, "finite elements: the plate has no circle hole " + std::to_string(index) +
-                                " (it has " + std::to_string(holes.size()) + ")");
+                                         " (it has " + std::to_string(holes.size()) + ")");
   return it->second;
 }
 
@@ -362,7 +369,8 @@ void PlateModel::Impl::assemble_and_factorise() {
       Eigen::Matrix<double, 3, 12> b;
       double det_j = 0;
       if (!t6::strain_matrix(e, q.xi, q.eta, b, det_j))
-        throw Error(ErrorKind::BadInput, "finite elements: triangle " + std::to_string(t) + " is inverted or degenerate");
+        throw Error(ErrorKind::BadInput,
+                    "finite elements: triangle " + std::to_string(t) + " is inverted or degenerate");
       k.noalias() += (q.weight * det_j * thickness) * (b.transpose() * elasticity * b);
     };
     if (t6::is_curved(e))
@@ -390,7 +398,8 @@ void PlateModel::Impl::assemble_and_factorise() {
   support_rows.setFromTriplets(support_part.begin(), support_part.end());
   const Eigen::SimplicialLLT<SparseColumns> factor(stiffness);
   if (factor.info() != Eigen::Success)
-    throw Error(ErrorKind::BadInput, "finite elements: the stiffness matrix could not be factorised (degenerate mesh?)");
+    throw Error(ErrorKind::BadInput,
+                "finite elements: the stiffness matrix could not be factorised (degenerate mesh?)");
   keep_factor(factor);
 }
 
@@ -407,8 +416,8 @@ void PlateModel::Impl::build_recovery() {
       Eigen::Matrix<double, 3, 12> b;
       double det_j = 0;
       if (!t6::strain_matrix(e, t6::kNodeNatural[local][0], t6::kNodeNatural[local][1], b, det_j))
-        throw Error(ErrorKind::BadInput, "finite elements: triangle " + std::to_string(t) + " is inverted at its node " +
-                                    at_point(e[local]));
+        throw Error(ErrorKind::BadInput, "finite elements: triangle " + std::to_string(t) +
+                                             " is inverted at its node " + at_point(e[local]));
       const int node = mesh.triangles[t][local];
       const Eigen::Matrix<double, 3, 12> db = (1.0 / sharing[node]) * (elasticity * b);
       for (int r = 0; r < 3; ++r)
@@ -421,12 +430,15 @@ void PlateModel::Impl::build_recovery() {
 
 template <class Traction>
 std::vector<Eigen::Vector2d> PlateModel::Impl::hole_traction(const HoleGeometry& h, Traction traction,
-                                                            const Eigen::Vector2d& cut) const {
+                                                             const Eigen::Vector2d& cut) const {
   std::vector<Eigen::Vector2d> out(h.nodes.size(), Eigen::Vector2d::Zero());
   for (std::size_t e = 0; e < h.edges.size(); ++e) {
     const auto& nodes = mesh.boundary[h.edges[e]].nodes;  // first, second, middle
     const std::array<Eigen::Vector2d, 3> x{mesh.nodes[nodes[0]], mesh.nodes[nodes[1]], mesh.nodes[nodes[2]]};
-    const auto point = [&](double s) { const Eigen::Vector3d n = t6::edge_shape(s); return Eigen::Vector2d(n[0] * x[0] + n[1] * x[1] + n[2] * x[2]); };
+    const auto point = [&](double s) {
+      const Eigen::Vector3d n = t6::edge_shape(s);
+      return Eigen::Vector2d(n[0] * x[0] + n[1] * x[1] + n[2] * x[2]);
+    };
     const auto side = [&](double s) { return cut.dot(point(s) - h.centre); };
     // Integrate each smooth piece on its own: split where the traction has its kink.
     std::array<double, 3> ends{-1, 1, 1};
@@ -457,14 +469,18 @@ std::vector<Eigen::Vector2d> PlateModel::Impl::hole_traction(const HoleGeometry&
 double PlateModel::Impl::add_bearing(const BearingLoad& load, Eigen::VectorXd& f) const {
   const HoleGeometry& h = hole(load.hole);
   if (!load.force.allFinite())
-    throw Error(ErrorKind::BadInput, "finite elements: the bearing force on hole " + std::to_string(load.hole) + " is not finite");
+    throw Error(ErrorKind::BadInput,
+                "finite elements: the bearing force on hole " + std::to_string(load.hole) + " is not finite");
   const double magnitude = load.force.norm();
   if (magnitude == 0) return 0;
   const Eigen::Vector2d direction = load.force / magnitude;
   const double p0 = 2 * magnitude / (std::numbers::pi * h.radius * material.thickness);
-  const std::vector<Eigen::Vector2d> part = hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
-    return std::max(0.0, radial.dot(direction)) * p0 * radial;
-  }, direction);
+  const std::vector<Eigen::Vector2d> part = hole_traction(
+      h,
+      [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
+        return std::max(0.0, radial.dot(direction)) * p0 * radial;
+      },
+      direction);
   Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
   for (const auto& p : part) resultant += p;
   // The discrete circle bends the resultant by ~1e-8: turn and scale it onto F (a tangential
@@ -480,12 +496,14 @@ double PlateModel::Impl::add_bearing(const BearingLoad& load, Eigen::VectorXd& f
 double PlateModel::Impl::add_couple(const HoleCouple& load, Eigen::VectorXd& f) const {
   const HoleGeometry& h = hole(load.hole);
   if (!std::isfinite(load.moment))
-    throw Error(ErrorKind::BadInput, "finite elements: the couple on hole " + std::to_string(load.hole) + " is not finite");
+    throw Error(ErrorKind::BadInput,
+                "finite elements: the couple on hole " + std::to_string(load.hole) + " is not finite");
   if (load.moment == 0) return 0;
   const double tau = load.moment / (2 * std::numbers::pi * h.radius * h.radius * material.thickness);
-  const std::vector<Eigen::Vector2d> part = hole_traction(h, [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d {
-    return tau * Eigen::Vector2d(-radial.y(), radial.x());
-  }, Eigen::Vector2d::Zero());
+  const std::vector<Eigen::Vector2d> part = hole_traction(
+      h,
+      [&](const Eigen::Vector2d& radial) -> Eigen::Vector2d { return tau * Eigen::Vector2d(-radial.y(), radial.x()); },
+      Eigen::Vector2d::Zero());
   double moment = 0;
   for (std::size_t i = 0; i < part.size(); ++i) moment += cross(mesh.nodes[h.nodes[i]] - h.centre, part[i]);
   for (std::size_t i = 0; i < part.size(); ++i) f.segment<2>(2 * h.nodes[i]) += (load.moment / moment) * part[i];
@@ -529,7 +547,8 @@ double PlateModel::Impl::add_point_force(const PointForce& load, Eigen::VectorXd
     }
     return load.force.norm();
   }
-  throw Error(ErrorKind::BadInput, "finite elements: the point force at " + at_point(load.at) + " is outside the plate");
+  throw Error(ErrorKind::BadInput,
+              "finite elements: the point force at " + at_point(load.at) + " is outside the plate");
 }
 
 // b(x) = c + α (r_y, −r_x) + ω² r with c = g − a_O and r = x − O; ∫N_i b dA from the node integrals.
@@ -563,8 +582,11 @@ NodalLoads PlateModel::Impl::nodal_loads(const LoadCase& loads) const {
   double nodal_total = 0;  // half the sum of magnitudes: P for a pair of opposite tractions of resultant P
   for (const auto& p : loads.nodal) {
     if (p.node < 0 || p.node >= static_cast<int>(mesh.nodes.size()))
-      throw Error(ErrorKind::BadInput, "finite elements: a nodal force is on node " + std::to_string(p.node) + ", which does not exist");
-    if (!p.force.allFinite()) throw Error(ErrorKind::BadInput, "finite elements: the force on node " + std::to_string(p.node) + " is not finite");
+      throw Error(ErrorKind::BadInput,
+                  "finite elements: a nodal force is on node " + std::to_string(p.node) + ", which does not exist");
+    if (!p.force.allFinite())
+      throw Error(ErrorKind::BadInput,
+                  "finite elements: the force on node " + std::to_string(p.node) + " is not finite");
     f.segment<2>(2 * p.node) += p.force;
     nodal_total += 0.5 * p.force.norm();
   }

@@ -15,8 +15,8 @@ struct TrianglePoint {
 };
 
 // Degree 2: exact for the stiffness of a straight-sided T6 (B is linear there).
-inline constexpr std::array<TrianglePoint, 3> kGauss3{{
-    {1.0 / 6, 1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6, 1.0 / 6}, {1.0 / 6, 2.0 / 3, 1.0 / 6}}};
+inline constexpr std::array<TrianglePoint, 3> kGauss3{
+    {{1.0 / 6, 1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6, 1.0 / 6}, {1.0 / 6, 2.0 / 3, 1.0 / 6}}};
 
 // Degree 4 (Dunavant): curved elements, whose Jacobian varies, and loads of degree 3-4.
 inline constexpr double kA1 = 0.445948490915965, kW1 = 0.223381589678011 / 2;
@@ -89,8 +89,7 @@ inline bool is_curved(const Element& e) {
 
 // Strain-displacement matrix (3 x 12, dofs u0 v0 u1 v1 ...) and det J at (xi, eta).
 // Returns false when the map is not orientation-preserving there.
-inline bool strain_matrix(const Element& e, double xi, double eta, Eigen::Matrix<double, 3, 12>& b,
-                          double& det_j) {
+inline bool strain_matrix(const Element& e, double xi, double eta, Eigen::Matrix<double, 3, 12>& b, double& det_j) {
   const Eigen::Matrix<double, 2, 6> d = shape_derivatives(xi, eta);
   const Eigen::Matrix2d j = jacobian(e, d);
   det_j = j.determinant();

@@ -13,8 +13,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "nbar/model/diagnostics.hpp"
 #include "linear_algebra.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/solve.hpp"
 
 namespace nbar::synthesis {
@@ -50,14 +50,12 @@ bool same_angle(double a, double b, double tolerance) { return std::abs(std::sin
 
 void check_poses(std::span<const BodyPose> poses) {
   for (std::size_t i = 0; i < poses.size(); ++i)
-    if (!poses[i].point.allFinite() || !std::isfinite(poses[i].angle))
-      fail("position ", i + 1, " is not finite");
+    if (!poses[i].point.allFinite() || !std::isfinite(poses[i].angle)) fail("position ", i + 1, " is not finite");
   double size = 0;
   for (const BodyPose& p : poses) size = std::max(size, p.point.cwiseAbs().maxCoeff());
   for (std::size_t i = 0; i < poses.size(); ++i)
     for (std::size_t j = i + 1; j < poses.size(); ++j)
-      if ((poses[i].point - poses[j].point).norm() <= 1e-12 * size &&
-          same_angle(poses[i].angle, poses[j].angle, 1e-12))
+      if ((poses[i].point - poses[j].point).norm() <= 1e-12 * size && same_angle(poses[i].angle, poses[j].angle, 1e-12))
         fail("positions ", i + 1, " and ", j + 1, " coincide");
 }
 
@@ -188,8 +186,7 @@ std::optional<Vec2> partner(const CompatibilityRows& rows, const Vec2& c, double
 
 class CurveTracer {
  public:
-  CurveTracer(const CompatibilityRows& rows, double radius, double step)
-      : rows_(rows), radius_(radius), step_(step) {}
+  CurveTracer(const CompatibilityRows& rows, double radius, double step) : rows_(rows), radius_(radius), step_(step) {}
 
   // Polylines through every seed (seeds on a part already traced are skipped).
   std::vector<std::vector<Vec2>> trace(const std::vector<Vec2>& seeds) const {
@@ -351,8 +348,8 @@ void check_motion(const std::vector<Displacement>& disp) {
 }
 
 // Samples of one traced polyline as pairs; polylines break where the partner is too far.
-void add_pairs(const CompatibilityRows& rows, const LocalFrame& frame, bool swap,
-               const std::vector<Vec2>& line, std::vector<std::vector<BurmesterPair>>& out) {
+void add_pairs(const CompatibilityRows& rows, const LocalFrame& frame, bool swap, const std::vector<Vec2>& line,
+               std::vector<std::vector<BurmesterPair>>& out) {
   constexpr double far = 1e6;
   std::vector<BurmesterPair> current;
   auto flush = [&] {
@@ -534,7 +531,9 @@ std::optional<Solution> refine(const CompatibilityRows& rows, Solution s) {
   return s;
 }
 
-double distance(const Solution& a, const Solution& b) { return std::sqrt((a.c - b.c).squaredNorm() + (a.q - b.q).squaredNorm()); }
+double distance(const Solution& a, const Solution& b) {
+  return std::sqrt((a.c - b.c).squaredNorm() + (a.q - b.q).squaredNorm());
+}
 
 void add_distinct(std::vector<Solution>& found, const Solution& s) {
   const double size = 1 + std::max(s.c.norm(), s.q.norm());
@@ -567,8 +566,7 @@ std::vector<Solution> closed_form_candidates(const CompatibilityRows& rows, cons
     const Complex A2 = evaluate(a2, u), B2 = evaluate(b2, u), C2 = evaluate(c2, u);
     // The common root of A s^2 + B s + C from either elimination, the better conditioned.
     const Complex den1 = A1 * B2 - A2 * B1, den2 = A1 * C2 - A2 * C1;
-    const Complex s =
-        std::abs(den1) >= std::abs(den2) ? -(A1 * C2 - A2 * C1) / den1 : -(B1 * C2 - B2 * C1) / den2;
+    const Complex s = std::abs(den1) >= std::abs(den2) ? -(A1 * C2 - A2 * C1) / den1 : -(B1 * C2 - B2 * C1) / den2;
     const CVec2 c = p01.cast<Complex>() + s * u;
     if (!c.allFinite()) continue;
     Eigen::Matrix<Complex, 4, 3> m;
@@ -646,8 +644,8 @@ Eigen::Vector2d circle_point(const std::array<BodyPose, 3>& poses, const Eigen::
   // positions seen from the body (the inverted motion).
   const std::vector<Displacement> inv = inverted(displacements(frame));
   const Vec2 c = frame.to_local(centre);
-  return frame.to_world(circumcentre({c, inv[1].apply(c), inv[2].apply(c)}, "centre point (seen from the body)",
-                                     "circle point"));
+  return frame.to_world(
+      circumcentre({c, inv[1].apply(c), inv[2].apply(c)}, "centre point (seen from the body)", "circle point"));
 }
 
 FourBarDesign three_position_design(const std::array<BodyPose, 3>& poses, PivotChoice given,

@@ -265,7 +265,7 @@ void check_task(const FivePointTask& task) {
     for (int j = i + 1; j < 5; ++j)
       if ((task.points[i] - task.points[j]).norm() <= 1e-9 * size)
         throw Error(ErrorKind::InvalidModel, "five-point task: precision points " + std::to_string(i + 1) + " and " +
-                                    std::to_string(j + 1) + " coincide");
+                                                 std::to_string(j + 1) + " coincide");
 }
 
 // The frame the solver works in: origin at the points' centroid, lengths in units of their
@@ -372,9 +372,7 @@ PolynomialSystem five_point_system(const std::array<Eigen::Vector2d, 5>& points)
   return PolynomialSystem(std::move(eqs));
 }
 
-VariableGroups five_point_groups() {
-  return {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {8, 9}, {10, 11}};
-}
+VariableGroups five_point_groups() { return {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {8, 9}, {10, 11}}; }
 
 namespace {
 
@@ -461,8 +459,8 @@ FivePointResult solve_five_point(const FivePointTask& task, const SolverOptions&
   result.paths += static_cast<int>(fallback.endpoints.size());
   result.failed_paths += fallback.count(EndpointKind::Failed);  // the note counts both runs' paths
   result.retracked_paths += fallback.retracked;
-  result.method = "linear-product homotopy (" + std::to_string(fallback.endpoints.size()) + " paths: " +
-                  std::to_string(fallback.count(EndpointKind::Finite)) + " finite, " +
+  result.method = "linear-product homotopy (" + std::to_string(fallback.endpoints.size()) +
+                  " paths: " + std::to_string(fallback.count(EndpointKind::Finite)) + " finite, " +
                   std::to_string(fallback.count(EndpointKind::AtInfinity)) + " at infinity, " +
                   std::to_string(fallback.count(EndpointKind::Failed)) +
                   " failed) after the parameter homotopy found " + std::to_string(found.size()) + " of " +
@@ -470,9 +468,8 @@ FivePointResult solve_five_point(const FivePointTask& task, const SolverOptions&
   // Every distinct solution either run found.
   for (const auto* e : fallback.finite_regular()) {
     const CVector a = isotropic_from_primer(task, e->x);
-    const bool known = std::any_of(found.begin(), found.end(), [&](const Found& b) {
-      return (a - b.affine).norm() <= 1e-7 * (1.0 + a.norm());
-    });
+    const bool known = std::any_of(found.begin(), found.end(),
+                                   [&](const Found& b) { return (a - b.affine).norm() <= 1e-7 * (1.0 + a.norm()); });
     if (!known) found.push_back({a, e->condition});
   }
   result.solutions = solutions_of(task, found);

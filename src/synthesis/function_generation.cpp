@@ -73,8 +73,8 @@ double evaluate(const FunctionTask& task, double x) {
 
 void check_task(const FunctionTask& task) {
   if (!task.f) fail("no function given");
-  for (double v : {task.x_start, task.x_end, task.input_start, task.input_range, task.output_start,
-                   task.output_range, task.frame_length})
+  for (double v : {task.x_start, task.x_end, task.input_start, task.input_range, task.output_start, task.output_range,
+                   task.frame_length})
     if (!std::isfinite(v)) fail("the task has a non-finite number");
   if (task.x_start == task.x_end) fail("the range of x is empty (x_start equals x_end)");
   if (task.input_range == 0) fail("the input angle range is zero");

@@ -133,8 +133,8 @@ struct OrbitKey {
   double reach = 0.0;
   explicit OrbitKey(const Key& k) : key(k) {
     for (int side = 0; side < 2; ++side) {
-      reach = std::max({reach, std::abs(k[3 * side]), std::sqrt(std::abs(k[3 * side + 1])),
-                        std::cbrt(std::abs(k[3 * side + 2]))});
+      reach = std::max(
+          {reach, std::abs(k[3 * side]), std::sqrt(std::abs(k[3 * side + 1])), std::cbrt(std::abs(k[3 * side + 2]))});
     }
   }
 };
@@ -178,14 +178,16 @@ void check_points(const std::array<Eigen::Vector2d, 9>& points) {
   for (int i = 0; i < 9; ++i)
     for (int j = i + 1; j < 9; ++j)
       if ((points[i] - points[j]).norm() <= 1e-9 * spread)
-        throw Error(ErrorKind::InvalidModel, "nine-point task: points " + std::to_string(i + 1) + " and " +
-                                    std::to_string(j + 1) + " coincide");
+        throw Error(ErrorKind::InvalidModel,
+                    "nine-point task: points " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " coincide");
   const Eigen::JacobiSVD<Eigen::Matrix<double, 9, 2>> svd(centred);
   if (svd.singularValues()[1] <= 1e-9 * svd.singularValues()[0])
-    throw Error(ErrorKind::InvalidModel, "nine-point task: the nine points lie on one line, which is no four-bar's coupler curve");
+    throw Error(ErrorKind::InvalidModel,
+                "nine-point task: the nine points lie on one line, which is no four-bar's coupler curve");
   if (common_circle(points))
-    throw Error(ErrorKind::InvalidModel, "nine-point task: the nine points lie on one circle, through which infinitely many "
-                                "four-bars pass");
+    throw Error(ErrorKind::InvalidModel,
+                "nine-point task: the nine points lie on one circle, through which infinitely many "
+                "four-bars pass");
 }
 
 // |value| / sum of |terms| of each affine equation, the largest.
@@ -196,7 +198,8 @@ double relative_residual(const CVector& s, const CVector& p) {
     worst = std::max(worst, std::abs(t * tb - 1.0) / (1.0 + std::abs(t * tb)));
     for (int dyad = 0; dyad < 2; ++dyad) {
       const Complex x = s[16 + 4 * dyad], xb = s[17 + 4 * dyad], a = s[18 + 4 * dyad], ab = s[19 + 4 * dyad];
-      const std::array<Complex, 8> terms{t * x * (db - ab), tb * xb * (d - a), d * db, -d * ab, -a * db, x * ab, a * xb, 0.0};
+      const std::array<Complex, 8> terms{
+          t * x * (db - ab), tb * xb * (d - a), d * db, -d * ab, -a * db, x * ab, a * xb, 0.0};
       Complex sum = 0.0;
       double size = 0.0;
       for (Complex term : terms) {
@@ -322,7 +325,8 @@ bool nine_point_monodromy(const CVector& parameters, std::vector<CVector>& repre
     ++loops;
     for (const auto& a : arrivals)
       if (a.ok) sets[edge->to].add(a.affine);
-    if (options.progress) options.progress("monodromy", static_cast<int>(sets[0].representatives.size()), kNinePointOrbits);
+    if (options.progress)
+      options.progress("monodromy", static_cast<int>(sets[0].representatives.size()), kNinePointOrbits);
   }
   representatives = sets[0].representatives;
   for (const auto& e : edges)
@@ -450,7 +454,8 @@ NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, c
     const int d = ++done;
     if (options.progress && (d % 16 == 0 || d == total)) options.progress("paths", d, total);
   };
-  std::vector<Arrival> arrivals = track_all(start.parameters, target, straight, start.representatives, options, on_path);
+  std::vector<Arrival> arrivals =
+      track_all(start.parameters, target, straight, start.representatives, options, on_path);
   result.paths = total;
   retrack_suspects(start, target, options, arrivals, result);
   Reached reached;

@@ -32,7 +32,7 @@ int dyad_base(int dyad) { return dyad == 0 ? kDyad0 : kDyad1; }
 //   t X (db H - Ab) + tb Xb (d H - A) + d db H^2 - d Ab H - A db H + X Ab + A Xb = 0
 // (|d + t x - a|^2 = |x - a|^2 with t tb = 1 used, then x = X/H, a = A/H).
 struct PositionRows {
-  Eigen::Matrix<Complex, 3, 2> block;            // d/d(t, tb)
+  Eigen::Matrix<Complex, 3, 2> block;                  // d/d(t, tb)
   std::array<Eigen::Matrix<Complex, 1, 5>, 2> border;  // dyad row d/d(its five coordinates)
   Eigen::Vector3cd value;
   std::array<std::array<Complex, 2>, 2> by_parameter;  // dyad row d/d(delta, deltab)

@@ -3,8 +3,8 @@
 // weights mean the same for every task; starts and results are in the task's coordinates.
 #include "nbar/synthesis/path_fit.hpp"
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <array>
@@ -62,7 +62,8 @@ struct Frame {
 // Rejects what no fit can use, and gives the frame.
 Frame frame_of(const std::vector<Vector2d>& targets) {
   if (targets.size() < 10)
-    throw Error(ErrorKind::InvalidModel, fmt::format("a path fit needs at least 10 target points, not {}", targets.size()));
+    throw Error(ErrorKind::InvalidModel,
+                fmt::format("a path fit needs at least 10 target points, not {}", targets.size()));
   Frame f;
   for (const Vector2d& t : targets) {
     if (!t.allFinite()) throw Error(ErrorKind::InvalidModel, "a target point is not finite");
@@ -76,7 +77,8 @@ Frame frame_of(const std::vector<Vector2d>& targets) {
   if (!(f.scale > 0) || !std::isfinite(f.scale)) throw Error(ErrorKind::InvalidModel, "the target points all coincide");
   const Eigen::Vector2d widths = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread).eigenvalues();
   if (widths(0) <= 1e-12 * widths(1))
-    throw Error(ErrorKind::InvalidModel, "the target points lie on one straight line: a four-bar's coupler curve is fitted to a curve");
+    throw Error(ErrorKind::InvalidModel,
+                "the target points lie on one straight line: a four-bar's coupler curve is fitted to a curve");
   return f;
 }
 
@@ -297,8 +299,7 @@ class LocalFit {
     }
     VectorXd delta(kParameters + n_);
     delta.head(kParameters) = reduced.ldlt().solve(rhs);
-    for (int i = 0; i < n_; ++i)
-      delta(kParameters + i) = (gt(i) - hpt.col(i).dot(delta.head(kParameters))) / htt(i);
+    for (int i = 0; i < n_; ++i) delta(kParameters + i) = (gt(i) - hpt.col(i).dot(delta.head(kParameters))) / htt(i);
     return delta;
   }
 

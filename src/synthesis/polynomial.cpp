@@ -65,7 +65,8 @@ Complex Polynomial::evaluate(const CVector& x) const {
   return sum;
 }
 
-Complex Polynomial::evaluate(const CVector& x, Eigen::Ref<Eigen::RowVectorXcd, 0, Eigen::InnerStride<>> gradient) const {
+Complex Polynomial::evaluate(const CVector& x,
+                             Eigen::Ref<Eigen::RowVectorXcd, 0, Eigen::InnerStride<>> gradient) const {
   gradient.setZero();
   Complex sum = 0.0;
   Exponents lowered;

@@ -4,11 +4,11 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <cmath>
-#include <numbers>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -23,16 +23,11 @@ namespace nbar::synthesis {
 
 std::string to_string(SynthesisKind kind) {
   switch (kind) {
-    case SynthesisKind::FivePoint:
-      return "five-point";
-    case SynthesisKind::Burmester:
-      return "burmester";
-    case SynthesisKind::Function:
-      return "function";
-    case SynthesisKind::NinePoint:
-      return "nine-point";
-    case SynthesisKind::Path:
-      return "path";
+    case SynthesisKind::FivePoint: return "five-point";
+    case SynthesisKind::Burmester: return "burmester";
+    case SynthesisKind::Function: return "function";
+    case SynthesisKind::NinePoint: return "nine-point";
+    case SynthesisKind::Path: return "path";
   }
   return {};
 }
@@ -199,12 +194,11 @@ Outcome burmester(const SynthesisTask& task, const SynthesisRunOptions& run) {
   };
   if (poses.size() == 3) {
     out.method = task.given == PivotChoice::Fixed ? "three positions, fixed pivots chosen"
-                                                             : "three positions, moving pivots chosen";
-    out.rows.push_back(row_of(
-        three_position_design({poses[0], poses[1], poses[2]}, task.given, task.given_a, task.given_b)));
+                                                  : "three positions, moving pivots chosen";
+    out.rows.push_back(
+        row_of(three_position_design({poses[0], poses[1], poses[2]}, task.given, task.given_a, task.given_b)));
   } else if (poses.size() == 4) {
-    const BurmesterCurves curves =
-        four_position_curves({poses[0], poses[1], poses[2], poses[3]}, task.curves);
+    const BurmesterCurves curves = four_position_curves({poses[0], poses[1], poses[2], poses[3]}, task.curves);
     out.curves = curves;
     const auto dyads = spread_dyads(curves, task.samples);
     out.method = fmt::format("four positions: {} dyads along the centre-point curve, every ordered pair", dyads.size());
@@ -219,8 +213,7 @@ Outcome burmester(const SynthesisTask& task, const SynthesisRunOptions& run) {
       for (std::size_t j = 0; j < dyads.size(); ++j)
         if (i != j) add_pair(dyads[i], dyads[j]);
   } else {
-    const FivePositionResult r =
-        five_position_burmester({poses[0], poses[1], poses[2], poses[3], poses[4]});
+    const FivePositionResult r = five_position_burmester({poses[0], poses[1], poses[2], poses[3], poses[4]});
     out.method = fmt::format("five positions: {} real Burmester points, every ordered pair", r.points.size());
     for (std::size_t i = 0; i < r.points.size(); ++i)
       for (std::size_t j = 0; j < r.points.size(); ++j)
@@ -302,7 +295,8 @@ Outcome path(const SynthesisTask& task, const SynthesisRunOptions& run) {
   options.nine_point_subsets = task.nine_point_starts;
   options.stop = [&run] { return run.control.should_stop("starts", 0, 0); };
   options.progress = [&run](int done, int total) {
-    if (run.control.on_progress && !run.control.on_progress(Progress{"starts", done, total})) run.control.token.cancel();
+    if (run.control.on_progress && !run.control.on_progress(Progress{"starts", done, total}))
+      run.control.token.cancel();
   };
   const PathFitResult result = fit_path(problem, options);
   run.control.checkpoint("starts", result.starts, result.starts);
@@ -346,16 +340,11 @@ SynthesisOutcome run_synthesis(const SynthesisTask& task, const SynthesisRunOpti
   options.control.checkpoint("paths", 0, 0);
   try {
     switch (task.kind) {
-      case SynthesisKind::FivePoint:
-        return five_point(task, options);
-      case SynthesisKind::Burmester:
-        return burmester(task, options);
-      case SynthesisKind::Function:
-        return function(task, options);
-      case SynthesisKind::NinePoint:
-        return nine_point(task, options);
-      case SynthesisKind::Path:
-        return path(task, options);
+      case SynthesisKind::FivePoint: return five_point(task, options);
+      case SynthesisKind::Burmester: return burmester(task, options);
+      case SynthesisKind::Function: return function(task, options);
+      case SynthesisKind::NinePoint: return nine_point(task, options);
+      case SynthesisKind::Path: return path(task, options);
     }
   } catch (const Error& e) {  // the solvers' complaints about the task's data, placed at the task
     if (e.kind() != ErrorKind::InvalidModel || !e.file().empty()) throw;
@@ -375,10 +364,11 @@ std::vector<int> shown_rows(const SynthesisOutcome& out, bool all, int top) {
       checks.push_back(out.rows[i].check);
     }
   std::vector<int> order = rank_designs(checks);
-  if (out.ranked) std::sort(order.begin(), order.end(), [&](int i, int j) {
-    if (checks[i].defect_free() != checks[j].defect_free()) return checks[i].defect_free();
-    return i < j;
-  });
+  if (out.ranked)
+    std::sort(order.begin(), order.end(), [&](int i, int j) {
+      if (checks[i].defect_free() != checks[j].defect_free()) return checks[i].defect_free();
+      return i < j;
+    });
   std::vector<int> shown;
   for (int k : order)
     if (all || checks[k].defect_free()) shown.push_back(real[k]);

@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <thread>
 
+#include "linear_algebra.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/tracker.hpp"
-#include "linear_algebra.hpp"
 
 namespace nbar::synthesis {
 namespace {
@@ -31,8 +31,7 @@ Complex random_unit(std::mt19937_64& rng) {
 
 double relative_imaginary(const CVector& x) {
   double worst = 0.0;
-  for (Eigen::Index i = 0; i < x.size(); ++i)
-    worst = std::max(worst, std::abs(x[i].imag()) / (1.0 + std::abs(x[i])));
+  for (Eigen::Index i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(x[i].imag()) / (1.0 + std::abs(x[i])));
   return worst;
 }
 
@@ -98,8 +97,8 @@ Endpoint track_one(const Homotopy& h, const CVector& start, int path, const Trac
 // Runs every path (on all threads), then re-tracks, with tighter settings, pairs of regular
 // endpoints (finite or at infinity) that coincide (two paths cannot end at one regular
 // solution, so one jumped) and, when asked, paths that failed.
-SolveResult run_paths(const Homotopy& h, const std::vector<CVector>& starts,
-                      const Classifier& classify, const SolverOptions& options) {
+SolveResult run_paths(const Homotopy& h, const std::vector<CVector>& starts, const Classifier& classify,
+                      const SolverOptions& options) {
   SolveResult result;
   result.endpoints.resize(starts.size());
   const TrackSettings settings = track_settings(options);
@@ -159,12 +158,12 @@ SolveResult run_paths(const Homotopy& h, const std::vector<CVector>& starts,
 // Homogenization and the linear-product start system.
 
 struct Homogenized {
-  int n = 0;                          // affine variables
-  VariableGroups groups;              // affine variables of each group
-  std::vector<int> group_of;          // group of each affine variable
-  PolynomialSystem target;            // homogenized, in n + groups variables
+  int n = 0;                             // affine variables
+  VariableGroups groups;                 // affine variables of each group
+  std::vector<int> group_of;             // group of each affine variable
+  PolynomialSystem target;               // homogenized, in n + groups variables
   std::vector<std::vector<int>> degree;  // degree[i][g]
-  std::vector<CVector> patch;         // per group: coefficients over (group vars..., h_g)
+  std::vector<CVector> patch;            // per group: coefficients over (group vars..., h_g)
 
   int size() const { return n + static_cast<int>(groups.size()); }
   int h_index(int g) const { return n + g; }
@@ -175,8 +174,7 @@ struct Homogenized {
   }
 };
 
-Homogenized homogenize(const PolynomialSystem& f, const VariableGroups& groups,
-                       std::mt19937_64& rng) {
+Homogenized homogenize(const PolynomialSystem& f, const VariableGroups& groups, std::mt19937_64& rng) {
   Homogenized hom;
   hom.n = f.variables();
   hom.groups = groups;
@@ -304,8 +302,10 @@ class LinearProductHomotopy final : public Homotopy {
     h.resize(N);
     CVector f, g(n);
     CMatrix jf, jg = CMatrix::Zero(n, N);
-    if (hx) hom_.target.evaluate(x, f, jf);
-    else hom_.target.evaluate(x, f);
+    if (hx)
+      hom_.target.evaluate(x, f, jf);
+    else
+      hom_.target.evaluate(x, f);
     for (int i = 0; i < n; ++i) start_value(i, x, g[i], hx ? &jg : nullptr);
     h.head(n) = (1.0 - t) * gamma_ * g + t * f;
     if (hx) {
@@ -357,8 +357,7 @@ class LinearProductHomotopy final : public Homotopy {
   Complex gamma_;
 };
 
-SolveResult solve_grouped(const PolynomialSystem& f, const VariableGroups& groups,
-                          const SolverOptions& options) {
+SolveResult solve_grouped(const PolynomialSystem& f, const VariableGroups& groups, const SolverOptions& options) {
   std::mt19937_64 rng(options.seed);
   const Homogenized hom = homogenize(f, groups, rng);
   const LinearProductStart start = make_start(hom, rng);
@@ -416,8 +415,7 @@ class ParameterHomotopy final : public Homotopy {
   CVector from_, to_, direction_;
 };
 
-Classifier parameter_classifier(const ParameterizedSystem& f, const CVector& to,
-                                const SolverOptions& options) {
+Classifier parameter_classifier(const ParameterizedSystem& f, const CVector& to, const SolverOptions& options) {
   return [&f, to, options](const CVector& x, Endpoint& e) {
     if (!finite_endpoint(e, x, f.infinity_measure(x), options)) return;
     CVector value;
@@ -429,8 +427,7 @@ Classifier parameter_classifier(const ParameterizedSystem& f, const CVector& to,
 
 }  // namespace
 
-bool ParameterizedSystem::linear_solve(const CVector& x, const CVector& p, const CVector* dp,
-                                       CVector& y) const {
+bool ParameterizedSystem::linear_solve(const CVector& x, const CVector& p, const CVector* dp, CVector& y) const {
   CVector f;
   CMatrix jx, jp;
   evaluate(x, p, f, &jx, dp ? &jp : nullptr);
@@ -442,16 +439,16 @@ bool ParameterizedSystem::linear_solve(const CVector& x, const CVector& p, const
 bool ParameterizedSystem::is_real(const CVector& affine) const { return relative_imaginary(affine) < 1e-8; }
 
 int SolveResult::count(EndpointKind kind) const {
-  return static_cast<int>(std::count_if(endpoints.begin(), endpoints.end(),
-                                        [kind](const Endpoint& e) { return e.kind == kind; }));
+  return static_cast<int>(
+      std::count_if(endpoints.begin(), endpoints.end(), [kind](const Endpoint& e) { return e.kind == kind; }));
 }
 
 std::vector<const Endpoint*> SolveResult::finite_regular() const {
   std::vector<const Endpoint*> out;
   for (const auto& e : endpoints) {
     if (e.kind != EndpointKind::Finite || e.singular) continue;
-    const bool duplicate = std::any_of(out.begin(), out.end(),
-                                       [&](const Endpoint* o) { return same_point(o->x, e.x, 1e-7); });
+    const bool duplicate =
+        std::any_of(out.begin(), out.end(), [&](const Endpoint* o) { return same_point(o->x, e.x, 1e-7); });
     if (!duplicate) out.push_back(&e);
   }
   return out;
@@ -513,9 +510,8 @@ SolveResult solve_parameter_homotopy(const ParameterizedSystem& f, const CVector
   return run_paths(homotopy, from_solutions, parameter_classifier(f, to, options), options);
 }
 
-MonodromyResult monodromy_solve(const ParameterizedSystem& f, const CVector& p,
-                                const std::vector<CVector>& seeds, int target,
-                                const SolverOptions& options, int stale_loops, int max_loops) {
+MonodromyResult monodromy_solve(const ParameterizedSystem& f, const CVector& p, const std::vector<CVector>& seeds,
+                                int target, const SolverOptions& options, int stale_loops, int max_loops) {
   MonodromyResult result;
   result.solutions = seeds;
   std::mt19937_64 rng(options.seed);

@@ -21,8 +21,7 @@ bool velocity(const Homotopy& homotopy, const CVector& x, Complex t, Complex dt,
 
 // Newton at fixed t. Fails when it does not converge within the iterations or when the steps
 // do not shrink fast enough: a slow contraction means the prediction fell near another path.
-bool correct(const Homotopy& homotopy, CVector& x, Complex t, const TrackSettings& s,
-             CVector& dx, double& first_step) {
+bool correct(const Homotopy& homotopy, CVector& x, Complex t, const TrackSettings& s, CVector& dx, double& first_step) {
   double previous = std::numeric_limits<double>::infinity();
   for (int k = 0; k < s.corrector_iterations; ++k) {
     if (!homotopy.linear_solve(x, t, false, dx) || !dx.allFinite()) return false;
@@ -79,8 +78,7 @@ double refine(const Homotopy& homotopy, CVector& x, Complex t, int iterations, d
   return last;
 }
 
-TrackResult track_segment(const Homotopy& homotopy, const CVector& start, const TPath& path,
-                          const TrackSettings& s) {
+TrackResult track_segment(const Homotopy& homotopy, const CVector& start, const TPath& path, const TrackSettings& s) {
   TrackResult result;
   result.x = start;
   CVector k1, k2, k3, k4, stage, predicted, correction;
@@ -139,8 +137,7 @@ namespace {
 
 // Cauchy's integral formula around |1 - t| = r: the endpoint is the mean of x over the
 // circle, taken as many times round as it takes x to come back (the winding number).
-TrackResult cauchy_endgame(const Homotopy& homotopy, CVector x, double r, const TrackSettings& s,
-                           int steps_so_far) {
+TrackResult cauchy_endgame(const Homotopy& homotopy, CVector x, double r, const TrackSettings& s, int steps_so_far) {
   constexpr int samples = 8;
   const double dtheta = 2.0 * std::numbers::pi / samples;
   TrackResult result;

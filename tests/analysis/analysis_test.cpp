@@ -289,18 +289,19 @@ TEST(Summary, WarnsOfManyTurnsAndNamesTheUnit) {
 // A plate drawn where its body is not (a DXF part in its own frame, here turned 90 degrees)
 // is said with how far the point is off it; pins in holes, on the edge or inside are not.
 std::shared_ptr<const Mechanism> crank_with_plate(const std::string& outline) {
-  return std::make_shared<const Mechanism>(
-      io::parse_model("units: {length: mm, angle: deg}\n"
-                      "points: {O: [0, 0], A: [80, 0]}\n"
-                      "ground: [O]\n"
-                      "bodies:\n"
-                      "  crank:\n"
-                      "    points: [O, A]\n"
-                      "    shape: {outline: " + outline + ", holes: [{at: O, radius: 4}]}\n"
-                      "    thickness: 5\n"
-                      "    material: steel\n"
-                      "drivers: [{angle: crank, from: 0, to: 360}]\n")
-          .model);
+  return std::make_shared<const Mechanism>(io::parse_model("units: {length: mm, angle: deg}\n"
+                                                           "points: {O: [0, 0], A: [80, 0]}\n"
+                                                           "ground: [O]\n"
+                                                           "bodies:\n"
+                                                           "  crank:\n"
+                                                           "    points: [O, A]\n"
+                                                           "    shape: {outline: " +
+                                                           outline +
+                                                           ", holes: [{at: O, radius: 4}]}\n"
+                                                           "    thickness: 5\n"
+                                                           "    material: steel\n"
+                                                           "drivers: [{angle: crank, from: 0, to: 360}]\n")
+                                               .model);
 }
 
 TEST(Summary, WarnsOfABodysPointOffItsPlate) {
@@ -445,14 +446,14 @@ TEST(Summary, FourBarToggleInputAngles) {
 
 // A loop whose longest link is longer than the other three cannot close: said plainly.
 TEST(Summary, ALoopThatCannotCloseSaysSo) {
-  const auto mech = std::make_shared<const Mechanism>(
-      io::parse_model("units: {length: mm}\n"
-                      "points: {O: [0, 0], A: [40, 0], B: [60, 40], Q: [200, 0]}\n"
-                      "ground: [O, Q]\n"
-                      "bodies: {crank: [O, A], coupler: [A, B], rocker: [Q, B]}\n"
-                      "lengths: {coupler: 50, rocker: 50}\n"
-                      "drivers:\n  - {angle: crank, from: 0, to: 360}\n")
-          .model);
+  const auto mech =
+      std::make_shared<const Mechanism>(io::parse_model("units: {length: mm}\n"
+                                                        "points: {O: [0, 0], A: [40, 0], B: [60, 40], Q: [200, 0]}\n"
+                                                        "ground: [O, Q]\n"
+                                                        "bodies: {crank: [O, A], coupler: [A, B], rocker: [Q, B]}\n"
+                                                        "lengths: {coupler: 50, rocker: 50}\n"
+                                                        "drivers:\n  - {angle: crank, from: 0, to: 360}\n")
+                                            .model);
   const ModelSummary s = summarize(*mech);
   ASSERT_TRUE(s.assembly_error);
   EXPECT_NE(s.assembly_error->message().find(
@@ -470,7 +471,8 @@ TEST(Analysis, TablesWriteExactZerosForNumericalNoise) {
   const ResultTable table = result_table(a);
   const ColumnTable columns = result_columns(a);
   const auto column = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin());
+    return static_cast<std::size_t>(std::find(table.columns.begin(), table.columns.end(), name) -
+                                    table.columns.begin());
   };
   const std::size_t vx = column("C.vx"), alpha = column("crank.alpha"), crank = column("crank");
   ASSERT_LT(alpha, table.columns.size());

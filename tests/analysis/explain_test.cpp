@@ -9,15 +9,15 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <sstream>
 #include <map>
 #include <memory>
 #include <regex>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
-#include "nbar/analysis/explain.hpp"
 #include "io/explain_writer.hpp"
+#include "nbar/analysis/explain.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/kinematics/position.hpp"
 #include "nbar/kinematics/sweep.hpp"
@@ -230,7 +230,8 @@ TEST(Explain, PrintedEquationsGiveTheSolversResidualsAndJacobianOnEveryExample) 
     }
     // The numeric Phi_q at the solution is the solver's there.
     const Eigen::MatrixXd at_solution = dense_jacobian(*mech, ex.q * ls, drivers);
-    EXPECT_LE((ex.jacobian - at_solution).cwiseAbs().maxCoeff(), 1e-12 * std::max(1.0, at_solution.cwiseAbs().maxCoeff()));
+    EXPECT_LE((ex.jacobian - at_solution).cwiseAbs().maxCoeff(),
+              1e-12 * std::max(1.0, at_solution.cwiseAbs().maxCoeff()));
   }
   // Every kind of row was written and checked somewhere.
   for (const char* kind : {"distance", "rigid_x", "rigid_y", "point_on_line", "orientation", "driver"})
@@ -407,7 +408,8 @@ TEST(Explain, InstantCentresOfTheCrankRockerMatchTheClosedForm) {
     auto at = [&](const char* point) {
       const int p = m.find_point(point);
       const int col = mech->column_of(p);
-      return col < 0 ? Eigen::Vector2d(m.points[p].position / m.units.length_scale) : Eigen::Vector2d(ex.q.segment<2>(col));
+      return col < 0 ? Eigen::Vector2d(m.points[p].position / m.units.length_scale)
+                     : Eigen::Vector2d(ex.q.segment<2>(col));
     };
     const Eigen::Vector2d O2 = at("O2"), O4 = at("O4"), A = at("A"), B = at("B");
     const double tol = 1e-7 * mech->characteristic_length() / m.units.length_scale;
@@ -466,9 +468,10 @@ void expect_kennedy(const Explanation& ex, int& triples) {
 
 TEST(Explain, InstantCentresObeyKennedysTheorem) {
   int triples = 0;
-  for (const char* name : {"watt-sixbar.yaml", "stephenson-sixbar.yaml", "fourbar-crank-rocker.yaml",
-                           "slider-crank-offset.yaml", "inverted-slider-crank-shaper.yaml", "scissor-lift.yaml",
-                           "five-bar.yaml", "machine-18.yaml", "compressor-myszka.yaml", "fourbar-drives-fourbar.yaml"}) {
+  for (const char* name :
+       {"watt-sixbar.yaml", "stephenson-sixbar.yaml", "fourbar-crank-rocker.yaml", "slider-crank-offset.yaml",
+        "inverted-slider-crank-shaper.yaml", "scissor-lift.yaml", "five-bar.yaml", "machine-18.yaml",
+        "compressor-myszka.yaml", "fourbar-drives-fourbar.yaml"}) {
     SCOPED_TRACE(name);
     const auto mech = example(name);
     for (int step : {2, 7}) {
@@ -524,7 +527,8 @@ TEST(Explain, DocumentsHaveNoNegativeZerosOrNoise) {
 }
 
 TEST(Explain, TextSaysWhatTheCourseNotebooksWouldAsk) {
-  const Explanation ex = explain(example("fourbar-crank-rocker.yaml"), ExplainOptions{30, std::nullopt, 50, {}, kDefaultMaxSweepSamples});
+  const Explanation ex =
+      explain(example("fourbar-crank-rocker.yaml"), ExplainOptions{30, std::nullopt, 50, {}, kDefaultMaxSweepSamples});
   const std::string text = render_explanation(ex, ExplainFormat::Text);
   for (const char* expected : {"n = 4, PI = 4, PII = 0", "G = 3 (n - 1) - 2 PI - PII = 3 (4 - 1) - 2*4 - 0 = 1",
                                "q = [x_A, y_A, x_B, y_B, x_P, y_P]^T", "x_A^2 + y_A^2 - 80^2 = 0",

@@ -36,7 +36,8 @@ Error error_of(Run run) {
 }
 
 TEST(Overflow, AHugeDriverAccelerationIsAnErrorAtTheDriverNotNanDerivatives) {
-  const auto mech = compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 90, accel: 1e300}]\n");
+  const auto mech =
+      compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 90, accel: 1e300}]\n");
   AnalysisOptions options;
   options.order = 2;
   const Analysis ok = analyse(mech, options);  // accelerations of 1e300 are still numbers
@@ -50,10 +51,11 @@ TEST(Overflow, AHugeDriverAccelerationIsAnErrorAtTheDriverNotNanDerivatives) {
 }
 
 TEST(Overflow, AMassThatOverflowsIsRejectedAtTheBody) {
-  for (const std::string body : {"{points: [O, A], bar: {width: 0.1}, thickness: 1e306, material: steel}",
-                                 "{points: [O, A], mass: 1e308}"}) {
+  for (const std::string body :
+       {"{points: [O, A], bar: {width: 0.1}, thickness: 1e306, material: steel}", "{points: [O, A], mass: 1e308}"}) {
     const Error e = error_of([&] {
-      compile(kBase + "gravity: [0, -9.81]\nbodies:\n  crank: " + body + "\ndrivers: [{angle: crank, from: 0, to: 90}]\n");
+      compile(kBase + "gravity: [0, -9.81]\nbodies:\n  crank: " + body +
+              "\ndrivers: [{angle: crank, from: 0, to: 90}]\n");
     });
     // Found while reading: placed at the body, line 5 of the text.
     EXPECT_EQ(e.kind(), ErrorKind::InvalidModel) << body;
@@ -67,12 +69,14 @@ TEST(Overflow, AnOverflowBlamesTheInputThatCausedIt) {
   const std::string drivers = "drivers: [{angle: crank, from: 0, to: 90}]\n";
   const std::string bar = "{points: [O, A], bar: {width: 0.1}, thickness: 0.01, material: steel}";
   // Gravity of 1e308 overflows the weight of a 0.8 kg bar: gravity is to blame, not the thickness.
-  const Error heavy = error_of([&] { compile(kBase + "gravity: [0, -1e308]\nbodies:\n  crank: " + bar + "\n" + drivers); });
+  const Error heavy =
+      error_of([&] { compile(kBase + "gravity: [0, -1e308]\nbodies:\n  crank: " + bar + "\n" + drivers); });
   EXPECT_THAT(heavy.message(), HasSubstr("(its mass times gravity) is too large to compute with: check `gravity`"));
   EXPECT_THAT(heavy.message(), testing::Not(HasSubstr("thickness")));
   // A bar 1e300 wide: its outline is too large, not flat.
   const Error wide = error_of([&] {
-    compile(kBase + "bodies:\n  crank: {points: [O, A], bar: {width: 1e300}, thickness: 0.01, material: steel}\n" + drivers);
+    compile(kBase + "bodies:\n  crank: {points: [O, A], bar: {width: 1e300}, thickness: 0.01, material: steel}\n" +
+            drivers);
   });
   EXPECT_THAT(wide.message(), HasSubstr("is too large to compute with (its area overflows)"));
   EXPECT_THAT(wide.message(), testing::Not(HasSubstr("zero area")));
@@ -99,8 +103,9 @@ TEST(Overflow, ASpeedTooSmallToMeanAMotionIsRejectedAtTheDriver) {
 }
 
 TEST(SweepSize, ATimeSweepOfMoreSamplesThanAnIntHoldsIsLimitedWithoutOverflow) {
-  const auto mech = compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"1e-6*t\"}]\n"
-                                    "sweep: {duration: 2147483647, step: 1}\n");
+  const auto mech = compile(kBase +
+                            "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"1e-6*t\"}]\n"
+                            "sweep: {duration: 2147483647, step: 1}\n");
   AnalysisOptions options;
   options.max_steps = std::numeric_limits<int>::max();
   const Error e = error_of([&] { analyse(mech, options); });
@@ -109,8 +114,9 @@ TEST(SweepSize, ATimeSweepOfMoreSamplesThanAnIntHoldsIsLimitedWithoutOverflow) {
 }
 
 TEST(SweepSize, TheModelsSweepIsLimitedAtTheSweepAndAnOptionAsBadInput) {
-  const auto mech = compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 360}]\n"
-                                    "sweep: {steps: 1000000000}\n");
+  const auto mech = compile(kBase +
+                            "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 360}]\n"
+                            "sweep: {steps: 1000000000}\n");
   const Error model = error_of([&] { analyse(mech, {}); });
   EXPECT_EQ(model.kind(), ErrorKind::InvalidModel);
   EXPECT_EQ(model.where().kind, EntityRef::Kind::Sweep);
@@ -126,7 +132,8 @@ TEST(SweepSize, TheModelsSweepIsLimitedAtTheSweepAndAnOptionAsBadInput) {
 
 TEST(SweepSize, ATimeSweepTooLongToCountIsRejectedAtTheSweep) {
   const Error e = error_of([&] {
-    compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"t\"}]\nsweep: {duration: 1e300, step: 1e-10}\n");
+    compile(kBase +
+            "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"t\"}]\nsweep: {duration: 1e300, step: 1e-10}\n");
   });
   EXPECT_EQ(e.mark().line, 5);  // the sweep's line
   EXPECT_THAT(e.message(), HasSubstr("more samples than nbar can count"));
@@ -135,7 +142,8 @@ TEST(SweepSize, ATimeSweepTooLongToCountIsRejectedAtTheSweep) {
 TEST(SweepSize, ALawThatTurnsTooFarIsRejectedAtTheLawsText) {
   // 1e12 deg/s for 2 s: 5.56e9 turns, beyond the 1000 turns a sweep may follow.
   const Error e = error_of([&] {
-    compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"1e12*t\"}]\nsweep: {duration: 2, step: 0.5}\n");
+    compile(kBase +
+            "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"1e12*t\"}]\nsweep: {duration: 2, step: 0.5}\n");
   });
   EXPECT_EQ(e.mark().line, 4);
   EXPECT_EQ(e.mark().column, 31);  // the law's text, not the driver's mapping at column 11
@@ -146,10 +154,11 @@ TEST(SweepSize, ALawThatTurnsTooFarIsRejectedAtTheLawsText) {
 }
 
 TEST(LawLocation, AForcesUndefinedFyIsReportedAtItsText) {
-  const io::LoadedModel loaded = io::parse_model(kBase + "bodies: {crank: {points: [O, A], mass: 1}}\n"
-                                                         "drivers: [{angle: crank, law: \"90*t\"}]\n"
-                                                         "forces: [{point: A, body: crank, fx: 1, fy: \"log(t-1)\"}]\n"
-                                                         "sweep: {duration: 2, step: 0.5}\n");
+  const io::LoadedModel loaded = io::parse_model(kBase +
+                                                 "bodies: {crank: {points: [O, A], mass: 1}}\n"
+                                                 "drivers: [{angle: crank, law: \"90*t\"}]\n"
+                                                 "forces: [{point: A, body: crank, fx: 1, fy: \"log(t-1)\"}]\n"
+                                                 "sweep: {duration: 2, step: 0.5}\n");
   AnalysisOptions options;
   options.dynamics = true;
   const Error e = error_of([&] { analyse(std::make_shared<const Mechanism>(loaded.model), options); });

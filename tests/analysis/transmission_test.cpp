@@ -33,7 +33,7 @@ TEST(TransmissionExtremes, ACrankRockersExtremesAreWhereTheCrankLiesAlongTheFram
   const Model& m = file.model;
   const double coupler = (m.points[m.find_point("B")].position - m.points[m.find_point("A")].position).norm();
   ASSERT_NEAR(coupler, 0.180, 1e-9);
-  const double smallest = mu_closed_form(0.200, 0.080, coupler, 0.150, 0.0);             // 41.41 deg
+  const double smallest = mu_closed_form(0.200, 0.080, coupler, 0.150, 0.0);              // 41.41 deg
   const double largest = mu_closed_form(0.200, 0.080, coupler, 0.150, std::numbers::pi);  // 115.79 deg
   EXPECT_NEAR(mu[0].min, smallest, 1e-9);
   EXPECT_NEAR(mu[0].max, largest, 1e-9);

@@ -156,7 +156,8 @@ sweep: {steps: 3}
 TEST(Cli, OutputFileAndColumnSelection) {
   TempModel dir("");
   const std::string out = dir.dir() + "/out.csv";
-  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --steps 3 --columns 'crank,rocker.*' -o " + out);
+  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR +
+                        "/fourbar-crank-rocker.yaml --steps 3 --columns 'crank,rocker.*' -o " + out);
   ASSERT_EQ(r.code, 0) << r.err;
   std::ifstream f(out);
   std::string header;
@@ -167,8 +168,8 @@ TEST(Cli, OutputFileAndColumnSelection) {
   EXPECT_THAT(bad.err, HasSubstr("no column matches 'nosuch'"));
   // A force column without --dynamics: the hint, not a list of the kinematic columns.
   for (const char* format : {"csv", "table"}) {
-    const CliRun force = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-steel-bars.yaml --steps 3 --format " +
-                              format + " --columns crank.torque");
+    const CliRun force = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR +
+                              "/fourbar-steel-bars.yaml --steps 3 --format " + format + " --columns crank.torque");
     EXPECT_EQ(force.code, 2);
     EXPECT_THAT(force.err, HasSubstr("no column matches 'crank.torque': the force and torque columns come from the "
                                      "inverse dynamics, add --dynamics"));
@@ -176,7 +177,8 @@ TEST(Cli, OutputFileAndColumnSelection) {
 }
 
 TEST(Cli, TableFormatHasUnits) {
-  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --steps 3 --format table --columns crank,rocker.omega");
+  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR +
+                        "/fourbar-crank-rocker.yaml --steps 3 --format table --columns crank,rocker.omega");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("[deg/s]"));
   EXPECT_EQ(count_lines(r.out), 5);
@@ -188,7 +190,8 @@ TEST(Cli, HelpAndBadUsage) {
   EXPECT_EQ(nbar("solve --help").code, 0);
   EXPECT_EQ(nbar("").code, 2);
   EXPECT_EQ(nbar("frobnicate").code, 2);
-  EXPECT_THAT(nbar("frobnicate").err, HasSubstr("error: 'frobnicate' is not an nbar command (the commands are: check, solve, "));
+  EXPECT_THAT(nbar("frobnicate").err,
+              HasSubstr("error: 'frobnicate' is not an nbar command (the commands are: check, solve, "));
   EXPECT_THAT(nbar("sovle x.yaml").err, testing::EndsWith("explain, export, import, serve); did you mean 'solve'?\n"));
   const std::string model = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml";
   EXPECT_EQ(nbar("solve " + model + " --order 6").code, 2);
@@ -215,7 +218,8 @@ TEST(Cli, SyntaxErrorGivesFileLineColumn) {
 }
 
 TEST(Cli, DriversNotMatchingTheDegreesOfFreedomAreAnInvalidModel) {
-  TempModel m(std::string(kFourBar) + "drivers:\n  - {angle: crank, from: 90, to: 100}\n  - {angle: rocker, from: 60, to: 70}\n");
+  TempModel m(std::string(kFourBar) +
+              "drivers:\n  - {angle: crank, from: 90, to: 100}\n  - {angle: rocker, from: 60, to: 70}\n");
   const CliRun r = nbar("check " + m.path());
   EXPECT_EQ(r.code, 1);
   EXPECT_THAT(r.err, HasSubstr("1 degree of freedom"));
@@ -224,8 +228,9 @@ TEST(Cli, DriversNotMatchingTheDegreesOfFreedomAreAnInvalidModel) {
 }
 
 TEST(Cli, CheckWarnsOfASweepThatWillStopOrTurnTooOften) {
-  const std::string body = "points: {O2: [0, 0], O4: [200, 0], A: [80, 0], B: [181.25, 148.823511]}\n"
-                           "ground: [O2, O4]\nbodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n";
+  const std::string body =
+      "points: {O2: [0, 0], O4: [200, 0], A: [80, 0], B: [181.25, 148.823511]}\n"
+      "ground: [O2, O4]\nbodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n";
   TempModel limited("units: {length: mm, angle: deg}\n" + body +
                     "lengths: {crank: 130, rocker: 150}\ndrivers: [{angle: crank, from: 0, to: 360}]\n");
   const CliRun r = nbar("check " + limited.path());
@@ -262,8 +267,9 @@ TEST(Cli, CheckPrintsNoCentreOfMassForABodyWithoutMass) {
 }
 
 TEST(Cli, DegreesOfFreedomNotMatchingPointAtTheLikelyCulprit) {
-  const std::string head = "name: s\npoints: {O2: [0, 0], X: [400, 0], A: [50, 20], C: [230, 0]}\n"
-                           "ground: [O2, X]\nbodies:\n  crank: [O2, A]\n  rod: [A, C]\n";
+  const std::string head =
+      "name: s\npoints: {O2: [0, 0], X: [400, 0], A: [50, 20], C: [230, 0]}\n"
+      "ground: [O2, X]\nbodies:\n  crank: [O2, A]\n  rod: [A, C]\n";
   const std::string driver = "drivers:\n  - {angle: crank, from: 0, to: 360}\n";
   TempModel wrong(head + "sliders:\n  - {body: rod, point: C, along: [O2, X]}\n" + driver);
   const CliRun w = nbar("check " + wrong.path());
@@ -312,8 +318,9 @@ TEST(Cli, DynamicsColumnsAndJson) {
   std::istringstream lines(r.out);
   std::string header;
   std::getline(lines, header);
-  for (const char* column : {"O2.ground>crank.Fx", "A.crank>coupler.Fy", "A.crank>coupler.along", "B.coupler>rocker.across",
-                             "O4.ground>rocker.Fx", "crank.torque", "energy.kinetic", "energy.potential"})
+  for (const char* column :
+       {"O2.ground>crank.Fx", "A.crank>coupler.Fy", "A.crank>coupler.along", "B.coupler>rocker.across",
+        "O4.ground>rocker.Fx", "crank.torque", "energy.kinetic", "energy.potential"})
     EXPECT_THAT(header, HasSubstr(column));
   const CliRun json = nbar("solve " + model + " --dynamics --steps 7 --format json");
   ASSERT_EQ(json.code, 0) << json.err;
@@ -323,7 +330,8 @@ TEST(Cli, DynamicsColumnsAndJson) {
 }
 
 TEST(Cli, DynamicsOfARedundantMechanismSaysTheForcesAreNotUnique) {
-  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/parallelogram-redundant.yaml --dynamics --steps 5");
+  const CliRun r =
+      nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/parallelogram-redundant.yaml --dynamics --steps 5");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("not unique"));
 }
@@ -358,10 +366,12 @@ TEST(Cli, SectionProfileSaysWhichBodyAndStep) {
 TEST(Cli, WritingIntoAMissingFolderSaysTheFolderIsMissing) {
   TempModel dir("");
   const std::string missing = dir.dir() + "/no-such-folder";
-  const CliRun solve = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml -o " + missing + "/a.csv");
+  const CliRun solve =
+      nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml -o " + missing + "/a.csv");
   EXPECT_EQ(solve.code, 2);
   EXPECT_THAT(solve.err, HasSubstr("cannot write " + missing + "/a.csv: the folder '" + missing + "' does not exist"));
-  const CliRun draw = nbar(std::string("draw ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml -o " + missing + "/a.png");
+  const CliRun draw =
+      nbar(std::string("draw ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml -o " + missing + "/a.png");
   EXPECT_NE(draw.code, 0);
   EXPECT_THAT(draw.err, HasSubstr("the folder '" + missing + "' does not exist"));
 }
@@ -402,14 +412,16 @@ TEST(Cli, AnOutputThatCannotBeWrittenIsRefusedBeforeAnythingIsComputed) {
     EXPECT_THAT(run.err, HasSubstr("the folder '" + missing + "' does not exist"));
     EXPECT_THAT(run.err, testing::Not(HasSubstr("no-such-model")));
   }
-  const CliRun into_a_file = nbar("draw " + input + " -o " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml/a.svg");
+  const CliRun into_a_file =
+      nbar("draw " + input + " -o " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml/a.svg");
   EXPECT_EQ(into_a_file.code, 2);
   EXPECT_THAT(into_a_file.err, HasSubstr("fourbar-crank-rocker.yaml' is a file, not a folder"));
 }
 
 TEST(Cli, WideTablesAreWrappedIntoColumnGroups) {
   ::setenv("COLUMNS", "80", 1);
-  const CliRun r = nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --steps 3 --format table");
+  const CliRun r =
+      nbar(std::string("solve ") + NBAR_EXAMPLES_DIR + "/fourbar-crank-rocker.yaml --steps 3 --format table");
   ::unsetenv("COLUMNS");
   ASSERT_EQ(r.code, 0) << r.err;
   std::istringstream lines(r.out);
@@ -444,7 +456,8 @@ TEST(Cli, StressBadUsage) {
 TEST(Cli, PlotOfASweepInTimeIsAgainstTimeByDefault) {
   TempModel dir("");
   const std::string svg = dir.dir() + "/omega.svg";
-  const CliRun r = nbar("plot " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-oscillating.yaml --y output.omega -o " + svg);
+  const CliRun r =
+      nbar("plot " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-oscillating.yaml --y output.omega -o " + svg);
   ASSERT_EQ(r.code, 0) << r.err;
   std::ifstream in(svg);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -525,8 +538,8 @@ TEST(Cli, ExplainWritesEveryFormatAndDrawsTheCentres) {
 
   const fs::path dir = fs::temp_directory_path() / ("nbar_explain_cli_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  const CliRun drawn = nbar("explain " + model + " --step 30 -o " + (dir / "e.md").string() + " --format markdown --draw " +
-                            (dir / "c.svg").string());
+  const CliRun drawn = nbar("explain " + model + " --step 30 -o " + (dir / "e.md").string() +
+                            " --format markdown --draw " + (dir / "c.svg").string());
   ASSERT_EQ(drawn.code, 0) << drawn.err;
   EXPECT_TRUE(drawn.out.empty());
   std::ifstream svg(dir / "c.svg");

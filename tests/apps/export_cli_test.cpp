@@ -64,8 +64,8 @@ TEST(ExportCli, WritesTheDxfAsDrawnAndInAPose) {
 
 TEST(ExportCli, Errors) {
   ScratchDir dir("nbar_export");
-  const CliRun none = nbar("export " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml --dxf " +
-                           dir.file("x.dxf"));
+  const CliRun none =
+      nbar("export " + std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml --dxf " + dir.file("x.dxf"));
   EXPECT_EQ(none.code, 2);
   EXPECT_THAT(none.err, HasSubstr("there is nothing to cut"));
   const CliRun neither = nbar("export " + kExample);
@@ -86,9 +86,7 @@ TEST(ImportCli, SketchBecomesAModelSkeleton) {
   EXPECT_THAT(yaml, HasSubstr("ground: [P1, P4]\n"));
   EXPECT_THAT(yaml, HasSubstr("  coupler:\n    points: [P2, P3]"));
   yaml += "drivers: [{angle: crank, from: 0, to: 360, speed: 60 rpm}]\n";
-  {
-    std::ofstream(dir.file("driven.yaml")) << yaml;
-  }
+  { std::ofstream(dir.file("driven.yaml")) << yaml; }
   const CliRun check = nbar("check " + dir.file("driven.yaml"));
   ASSERT_EQ(check.code, 0) << check.err;
   EXPECT_THAT(check.out, HasSubstr("Degrees of freedom: 1"));
@@ -96,9 +94,7 @@ TEST(ImportCli, SketchBecomesAModelSkeleton) {
   EXPECT_THAT(check.out, HasSubstr("area 900.531"));  // 800 + 64π - 32π
 
   // A sketch that is not one: exit 1 at the file's line; an unknown format: exit 2.
-  {
-    std::ofstream(dir.file("open.csv")) << "X, Y\nNew_Line\n0, 0\n10, 0\nNew_Line\n10, 0\n10, 10\n";
-  }
+  { std::ofstream(dir.file("open.csv")) << "X, Y\nNew_Line\n0, 0\n10, 0\nNew_Line\n10, 0\n10, 10\n"; }
   const CliRun open = nbar("import " + dir.file("open.csv"));
   EXPECT_EQ(open.code, 1);
   EXPECT_THAT(open.err, HasSubstr("open.csv:5:1: the outline is not closed"));

@@ -125,7 +125,9 @@ std::string first_difference(const std::string& expected, const std::string& act
     const auto nl = expected.rfind('\n', at - 1);
     return nl == std::string::npos ? std::size_t{0} : nl + 1;
   }();
-  const std::size_t line = static_cast<std::size_t>(std::count(expected.begin(), expected.begin() + static_cast<long>(line_start), '\n')) + 1;
+  const std::size_t line =
+      static_cast<std::size_t>(std::count(expected.begin(), expected.begin() + static_cast<long>(line_start), '\n')) +
+      1;
   auto line_of = [&](const std::string& s) -> std::string {
     if (line_start >= s.size()) return "<end of file>";
     const auto end = s.find('\n', line_start);
@@ -198,8 +200,8 @@ TEST_P(Golden, Output) {
 
   if (!differences.empty()) {
     std::ostringstream os;
-    os << "golden case '" << c.name << "' (tests/golden/cases.txt line " << c.line << ") differs from tests/golden/expected/"
-       << c.name << ".*\n"
+    os << "golden case '" << c.name << "' (tests/golden/cases.txt line " << c.line
+       << ") differs from tests/golden/expected/" << c.name << ".*\n"
        << "  command: cd " << kSourceDir.string() << " && nbar " << c.args << "\n"
        << "  " << detail << "\n";
     if (differences.size() > 1) {

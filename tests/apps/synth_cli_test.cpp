@@ -230,7 +230,8 @@ TEST(SynthCli, FunctionGeneratorRunsOverTheRangeOfX) {
   ASSERT_EQ(json.code, 0) << json.err;
   const auto targets = nlohmann::json::parse(json.out)["designs"][0]["targets"];
   ASSERT_EQ(targets.size(), 3u);
-  EXPECT_NEAR(targets[0]["input_angle"].get<double>(), 90 + 60 * (1.5 - 0.5 * std::cos(std::numbers::pi / 6) - 1), 1e-9);
+  EXPECT_NEAR(targets[0]["input_angle"].get<double>(), 90 + 60 * (1.5 - 0.5 * std::cos(std::numbers::pi / 6) - 1),
+              1e-9);
   EXPECT_NEAR(targets[1]["input_angle"].get<double>(), 120, 1e-9);
 }
 
@@ -364,11 +365,13 @@ TEST(SynthCli, MalformedYamlInAnOptionSaysWhere) {
   EXPECT_EQ(unclosed.err,
             "error: --points at character 18: invalid YAML: this '[' is never closed by a ']' (end of sequence flow "
             "not found)\n");
-  const CliRun word = nbar("synth five-point --pivots '{a: [0, 0], b: [1, 0]}' --points '[[0, 1], [1, abc], [2, 1.5], [3, 1], [4, 0.5]]'");
+  const CliRun word = nbar(
+      "synth five-point --pivots '{a: [0, 0], b: [1, 0]}' --points '[[0, 1], [1, abc], [2, 1.5], [3, 1], [4, 0.5]]'");
   EXPECT_EQ(word.code, 2);
   EXPECT_EQ(word.err, "error: --points at character 14: point 2 must be a number, not 'abc'\n");
   // 1,2 is read as [1, 2]: the character is still the option's own.
-  const CliRun range = nbar("synth function --function 'log10(x)' --x 1,abc --input-range 90,150 --output-range 60,120");
+  const CliRun range =
+      nbar("synth function --function 'log10(x)' --x 1,abc --input-range 90,150 --output-range 60,120");
   EXPECT_EQ(range.code, 2);
   EXPECT_THAT(range.err, StartsWith("error: --x at character 3: "));
 }
@@ -410,10 +413,11 @@ TEST(SynthCli, ATimeoutStopsANinePointTaskOnAConic) {
   // Nine points on an ellipse: the solver takes minutes (every design degenerates), and the
   // command had no bound but Ctrl-C. --timeout gives up with exit 5.
   TempDir dir;
-  const std::string task = dir.file("ellipse.yaml",
-                                    "task: nine-point\npoints:\n  - [2, 0]\n  - [1.5321, 0.6428]\n  - [0.3473, 0.9848]\n"
-                                    "  - [-1, 0.866]\n  - [-1.8794, 0.342]\n  - [-1.8794, -0.342]\n  - [-1, -0.866]\n"
-                                    "  - [0.3473, -0.9848]\n  - [1.5321, -0.6428]\n");
+  const std::string task =
+      dir.file("ellipse.yaml",
+               "task: nine-point\npoints:\n  - [2, 0]\n  - [1.5321, 0.6428]\n  - [0.3473, 0.9848]\n"
+               "  - [-1, 0.866]\n  - [-1.8794, 0.342]\n  - [-1.8794, -0.342]\n  - [-1, -0.866]\n"
+               "  - [0.3473, -0.9848]\n  - [1.5321, -0.6428]\n");
   const auto start = std::chrono::steady_clock::now();
   const CliRun run = nbar("synth nine-point " + task + " --timeout 0.5");
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));

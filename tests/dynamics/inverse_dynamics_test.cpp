@@ -45,7 +45,7 @@ struct LoadedFourBar {
   double m2 = 0.4, m3 = 1.1, m4 = 0.8;
   double i2 = 2e-4, i3 = 3e-3, i4 = 1.5e-3;
   Eigen::Vector2d g2_local{0.02, 0.005}, g3_local{0.06, 0.02}, g4_local{0.07, -0.01};  // along, across each link
-  Eigen::Vector2d p_local{0.075, 0.04};  // the coupler point
+  Eigen::Vector2d p_local{0.075, 0.04};                                                // the coupler point
   Eigen::Vector2d force_p{30.0, -50.0};
   double torque4 = -2.0;
   Eigen::Vector2d gravity{0.0, -9.81};
@@ -148,11 +148,11 @@ TEST(InverseDynamics, FourBarMatchesNortonsNewtonEulerSystem) {
       worst = std::max(worst, err);
       EXPECT_LT(err, 1e-9) << "got " << got.transpose() << " want " << want.transpose() << " at step " << s.step;
     };
-    check(r.pin_forces[find_link(dyn, o2, crank)], ref.segment<2>(0));       // F12
-    check(r.pin_forces[find_link(dyn, a, coupler)], -ref.segment<2>(2));     // F23 = -F32
-    check(r.pin_forces[find_link(dyn, a, crank)], ref.segment<2>(2));        // F32
-    check(r.pin_forces[find_link(dyn, b, rocker)], -ref.segment<2>(4));      // F34 = -F43
-    check(r.pin_forces[find_link(dyn, o4, rocker)], ref.segment<2>(6));      // F14
+    check(r.pin_forces[find_link(dyn, o2, crank)], ref.segment<2>(0));    // F12
+    check(r.pin_forces[find_link(dyn, a, coupler)], -ref.segment<2>(2));  // F23 = -F32
+    check(r.pin_forces[find_link(dyn, a, crank)], ref.segment<2>(2));     // F32
+    check(r.pin_forces[find_link(dyn, b, rocker)], -ref.segment<2>(4));   // F34 = -F43
+    check(r.pin_forces[find_link(dyn, o4, rocker)], ref.segment<2>(6));   // F14
     EXPECT_NEAR(r.driver_effort[0], ref(8), 1e-9 * scale) << "step " << s.step;
   }
   std::printf("[ accuracy ] four-bar joint forces vs Norton's 9x9: max relative error %.1e\n", worst);
@@ -225,8 +225,8 @@ void expect_power_balance(const Mechanism& mech, const SweepResult& sweep) {
     }
     const double err = std::abs(driver_power + load_power - d_energy) / scale;
     worst = std::max(worst, err);
-    EXPECT_LT(err, 1e-9) << "step " << s.step << ": driver " << driver_power << " loads " << load_power
-                         << " dE/dt " << d_energy;
+    EXPECT_LT(err, 1e-9) << "step " << s.step << ": driver " << driver_power << " loads " << load_power << " dE/dt "
+                         << d_energy;
   }
   std::printf("[ accuracy ] %s: power balance max relative error %.1e\n", m.name.c_str(), worst);
 }
@@ -331,7 +331,8 @@ TEST(InverseDynamics, SliderNormalForceOfAStaticCentredSliderCrank) {
   const DynamicsResult res = InverseDynamics(std::make_shared<const Mechanism>(mech)).solve(sweep.samples[0]);
   const double phi = std::asin(A.y() / l);  // rod angle below the axis, seen from the piston
   EXPECT_NEAR(std::abs(res.slider_normal[0]), F * std::tan(phi), 1e-9 * F);
-  const double piston_speed = -r * std::sin(theta) - r * r * std::sin(theta) * std::cos(theta) / std::sqrt(l * l - A.y() * A.y());
+  const double piston_speed =
+      -r * std::sin(theta) - r * r * std::sin(theta) * std::cos(theta) / std::sqrt(l * l - A.y() * A.y());
   EXPECT_NEAR(res.driver_effort[0], -(-F) * piston_speed, 1e-9 * F * r);
 }
 
@@ -378,7 +379,8 @@ TEST(InverseDynamics, RedundantParallelogramGivesTheMinimumNormForcesAndSaysSo) 
   Model m;
   const int o1 = add_point(m, "O1", {0, 0}, true), o2 = add_point(m, "O2", {0.2, 0}, true),
             o3 = add_point(m, "O3", {0.1, 0.03}, true);
-  const int a1 = add_point(m, "A1", {0, 0.05}), a2 = add_point(m, "A2", {0.2, 0.05}), a3 = add_point(m, "A3", {0.1, 0.08});
+  const int a1 = add_point(m, "A1", {0, 0.05}), a2 = add_point(m, "A2", {0.2, 0.05}),
+            a3 = add_point(m, "A3", {0.1, 0.08});
   const int c1 = add_body(m, "crank1", {o1, a1});
   add_body(m, "crank2", {o2, a2});
   add_body(m, "crank3", {o3, a3});
@@ -410,8 +412,8 @@ namespace nbar::ktest {
 namespace {
 
 TEST(InverseDynamics, OutlivesTheCallersMechanism) {
-  auto mech = std::make_shared<const Mechanism>(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) +
-                                                                    "/fourbar-steel-bars.yaml").model);
+  auto mech = std::make_shared<const Mechanism>(
+      io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-steel-bars.yaml").model);
   const SweepResult sweep = run_sweep(*mech, sweep_options(2, 7));
   const std::weak_ptr<const Mechanism> watch = mech;
   const InverseDynamics dynamics(mech);

@@ -58,8 +58,8 @@ namespace {
     return ::testing::AssertionFailure() << "an nbar::Error of kind " << to_string(e.kind()) << " instead of "
                                          << to_string(expected) << ": " << e.what();
   } catch (const std::exception& e) {
-    return ::testing::AssertionFailure() << "a " << typeid(e).name() << " that is not an nbar::Error left the library: "
-                                         << e.what();
+    return ::testing::AssertionFailure() << "a " << typeid(e).name()
+                                         << " that is not an nbar::Error left the library: " << e.what();
   } catch (...) {
     return ::testing::AssertionFailure() << "an exception that is not even a std::exception left the library";
   }
@@ -89,9 +89,9 @@ TEST(ErrorSweep, ModelParsing) {
   EXPECT_NBAR_ERROR(InvalidModel, io::parse_model("name: \"\xff\xfe\"\n", "not-utf8.yaml"));
   EXPECT_NBAR_ERROR(InvalidModel, io::load_model_file("/nonexistent-nbar-dir/model.yaml"));
   const std::string driver = "drivers: [{angle: crank, from: 0, to: 360, law: \"sin(\"}]\n";
-  EXPECT_NBAR_ERROR(InvalidModel, io::parse_model("points: {O: [0, 0], A: [1, 0]}\nground: [O]\nbodies: {crank: [O, A]}\n" +
-                                                      driver,
-                                                  "law.yaml"));
+  EXPECT_NBAR_ERROR(
+      InvalidModel,
+      io::parse_model("points: {O: [0, 0], A: [1, 0]}\nground: [O]\nbodies: {crank: [O, A]}\n" + driver, "law.yaml"));
 }
 
 TEST(ErrorSweep, MechanismConstruction) {
@@ -291,7 +291,7 @@ TEST(ErrorSweep, SketchReadersAndWriters) {
   EXPECT_NBAR_ERROR(InvalidModel, io::read_dxf_plate("not a dxf", "bad.dxf", 1e-3));
   EXPECT_NBAR_ERROR(InvalidModel, io::read_sketch("<svg", "bad.svg", io::SketchFormat::kSvg));
   EXPECT_NBAR_ERROR(InvalidModel, io::read_sketch("<svg xmlns='http://www.w3.org/2000/svg'></svg>", "empty.svg",
-                                                   io::SketchFormat::kSvg));
+                                                  io::SketchFormat::kSvg));
   EXPECT_NBAR_ERROR(InvalidModel, io::read_sketch("1, 2\n3\n", "bad.csv", io::SketchFormat::kCsv));
   // The crank-rocker has no plates to cut.
   const auto points = render::sample_points(*crank_rocker(), crank_rocker_sweep().sweep.samples[0]);

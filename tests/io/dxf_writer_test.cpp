@@ -25,7 +25,6 @@
 namespace nbar::io {
 namespace {
 
-
 struct Pair {
   int code;
   std::string value;
@@ -122,7 +121,8 @@ const std::string kModel =
     "    points: [O, A]\n"
     "    shape:\n"
     "      outline: [[0, -10], [80, -10, {bulge: 1}], [80, 10], [0, 10, {bulge: 1}]]\n"
-    "      holes: [{at: O, radius: 5}, {at: A, radius: 5}, {polygon: [[30, -4], [50, -4, {bulge: 0.5}], [50, 4], [30, 4]]}]\n"
+    "      holes: [{at: O, radius: 5}, {at: A, radius: 5}, {polygon: [[30, -4], [50, -4, {bulge: 0.5}], [50, 4], [30, "
+    "4]]}]\n"
     "    thickness: 8\n"
     "    material: steel\n"
     "  coupler: [A, B]\n"
@@ -233,8 +233,8 @@ Written svg_numbers(const std::string& svg) {
   std::size_t at = 0;
   for (std::sregex_iterator it(svg.begin(), svg.end(), attribute), end; it != end; ++it) {
     const std::string name = (*it)[1].str(), value = (*it)[2].str();
-    const bool lengths = name == "width" || name == "height" || name == "viewBox" || name == "cx" || name == "cy" ||
-                         name == "r";
+    const bool lengths =
+        name == "width" || name == "height" || name == "viewBox" || name == "cx" || name == "cy" || name == "r";
     if (!lengths && name != "d" && name != "stroke-width") continue;
     const auto pos = static_cast<std::size_t>(it->position(2));
     w.skeleton += svg.substr(at, pos - at);
@@ -243,7 +243,8 @@ Written svg_numbers(const std::string& svg) {
     std::string token;
     int in_arc = -1;  // the place of a number among an A command's seven, -1 outside one
     while (tokens >> token) {
-      if (std::isalpha(static_cast<unsigned char>(token[0])) && token.find_first_of("0123456789") == std::string::npos) {
+      if (std::isalpha(static_cast<unsigned char>(token[0])) &&
+          token.find_first_of("0123456789") == std::string::npos) {
         w.skeleton += token + " ";
         in_arc = token == "A" ? 0 : -1;
         continue;

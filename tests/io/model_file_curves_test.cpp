@@ -21,16 +21,16 @@ using test_support::fails_at;
 
 // A link in metres (as the thesis tool works) whose plate is given from line 8 onwards.
 std::string link(const std::string& shape_lines) {
-  return "units: {length: m}\n"                            // 1
-         "points: {O: [0, 0], A: [0, 2]}\n"                // 2
-         "ground: [O]\n"                                   // 3
-         "bodies:\n"                                       // 4
-         "  link:\n"                                       // 5
-         "    points: [O, A]\n"                            // 6
-         "    thickness: 0.01\n"                           // 7
-         "    material: steel\n"                           // 8
-         "    shape:\n" +                                  // 9
-         shape_lines;                                      // 10...
+  return "units: {length: m}\n"              // 1
+         "points: {O: [0, 0], A: [0, 2]}\n"  // 2
+         "ground: [O]\n"                     // 3
+         "bodies:\n"                         // 4
+         "  link:\n"                         // 5
+         "    points: [O, A]\n"              // 6
+         "    thickness: 0.01\n"             // 7
+         "    material: steel\n"             // 8
+         "    shape:\n" +                    // 9
+         shape_lines;                        // 10...
 }
 
 AreaProperties plate(const std::string& shape_lines) {
@@ -90,7 +90,8 @@ TEST(ModelFileCurves, SplineOutlines) {
   std::string points;
   for (int k = 0; k <= 12; ++k) {
     const double t = 2 * kPi * (k % 12) / 12;
-    points += (k ? ", " : "") + std::string("[") + std::to_string(std::cos(t)) + ", " + std::to_string(std::sin(t)) + "]";
+    points +=
+        (k ? ", " : "") + std::string("[") + std::to_string(std::cos(t)) + ", " + std::to_string(std::sin(t)) + "]";
   }
   const AreaProperties closed = plate("      outline: [{spline: [" + points + "]}]\n");
   EXPECT_NEAR(closed.area, kPi, 5e-3);
@@ -105,13 +106,15 @@ TEST(ModelFileCurves, Errors) {
   EXPECT_TRUE(fails_at(link("      outline: [{y: \"sqrt(x)\", x: [-1, 1]}, [0, 3]]\n"), "10:17",
                        "this curve: law 'sqrt(x)' is undefined at x = -1"));
   EXPECT_TRUE(fails_at(link("      outline: [{y: \"x^2\"}, [0, 3]]\n"), "10:17", "needs its interval"));
-  EXPECT_TRUE(fails_at(link("      outline: [{y: \"x^2{0, 2}\"}, [0, 3]]\n"), "10:21", "braces hold {from, to, steps}"));
+  EXPECT_TRUE(
+      fails_at(link("      outline: [{y: \"x^2{0, 2}\"}, [0, 3]]\n"), "10:21", "braces hold {from, to, steps}"));
   EXPECT_TRUE(fails_at(link("      outline: [{x: \"s\", y: \"s\", s: [0, 1], bend: 2}, [0, 3]]\n"), "10:45", "bend"));
   EXPECT_TRUE(fails_at(link("      lower: \"x^2{0, 2, 15}\"\n"), "10:7", "needs both `lower` and `upper`"));
   // The upper profile dips below the lower one: the outline crosses itself, at the items' lines.
+  EXPECT_TRUE(
+      fails_at(link("      lower: \"x^2{0, 2, 15}\"\n      upper: \"1{0, 2, 2}\"\n"), "10:14", "intersects itself"));
   EXPECT_TRUE(fails_at(link("      lower: \"x^2{0, 2, 15}\"\n      upper: \"1{0, 2, 2}\"\n"), "10:14",
-                       "intersects itself"));
-  EXPECT_TRUE(fails_at(link("      lower: \"x^2{0, 2, 15}\"\n      upper: \"1{0, 2, 2}\"\n"), "10:14", "(of the item at line 11)"));
+                       "(of the item at line 11)"));
 }
 
 }  // namespace

@@ -2,8 +2,8 @@
 // properties, forces, torques and springs.
 // The project headers come first: <signal.h>, which gtest pulls in, defines a macro
 // named value_si that would break units.hpp's Quantity::value_si.
-#include "nbar/io/model_file.hpp"
 #include "io/model_file_support.hpp"
+#include "nbar/io/model_file.hpp"
 #include "nbar/model/geometry.hpp"
 #include "nbar/model/materials.hpp"
 
@@ -635,8 +635,8 @@ TEST(ModelFileKineticsErrors, Materials) {
                        "Poisson's ratio must be at least 0 and less than 0.5 (0.3 for steel), not 0.5"));
   EXPECT_TRUE(fails_at(kLinkage + "materials:\n  foo: {density: 1, poisson_ratio: -0.1}\n", "14:36",
                        "Poisson's ratio must be at least 0 and less than 0.5"));
-  EXPECT_TRUE(fails_at(kLinkage + "materials:\n  foo: {density: 1, poisson_ratio: soft}\n", "14:36",
-                       "Poisson's ratio"));
+  EXPECT_TRUE(
+      fails_at(kLinkage + "materials:\n  foo: {density: 1, poisson_ratio: soft}\n", "14:36", "Poisson's ratio"));
   EXPECT_TRUE(fails_at(kLinkage + "materials:\n  foo: {density: 1, youngs_modulus: 0 GPa}\n", "14:37",
                        "Young's modulus must be positive, like 200 GPa for steel"));
   EXPECT_TRUE(fails_at(kLinkage + "materials:\n  foo: {density: 1, youngs_modulus: 200 Gpa}\n", "14:37",

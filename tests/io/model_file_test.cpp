@@ -1,8 +1,8 @@
 // The project headers come first: <signal.h>, which gtest pulls in, defines a macro
 // named value_si that would break units.hpp's Quantity::value_si.
-#include "nbar/io/file_text.hpp"
 #include "nbar/io/model_file.hpp"
 #include "io/model_file_support.hpp"
+#include "nbar/io/file_text.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -386,14 +386,16 @@ TEST(ModelFileErrors, SizesTheDrawingCannotResolve) {
   const auto model = [](const std::string& a, const std::string& extra = "") {
     return "units: {length: mm, angle: deg}\npoints: {O2: [0, 0], O4: [200, 0], A: " + a +
            ", B: [160, 150]}\nground: [O2, O4]\nbodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n"
-           "drivers: [{angle: crank, from: 0, to: 360}]\n" + extra;
+           "drivers: [{angle: crank, from: 0, to: 360}]\n" +
+           extra;
   };
   EXPECT_TRUE(fails_at(model("[1e15, 0]"), "4:43",
                        "body 'rocker' is 155.242 mm long, less than a billionth of the drawing's size (1e+15 mm), so "
                        "its points O4 and B count as coinciding"));
   EXPECT_TRUE(fails_at(model("[1e308, 0]"), "2:36", "point 'A' has a coordinate beyond 1e100 mm"));
-  EXPECT_TRUE(fails_at(model("[0, 80]", "lengths: {crank: 1e12}\n"), "4:10",
-                       "the length of body 'crank', 1e+12 mm, is more than a million times the drawing's size (250 mm)"));
+  EXPECT_TRUE(
+      fails_at(model("[0, 80]", "lengths: {crank: 1e12}\n"), "4:10",
+               "the length of body 'crank', 1e+12 mm, is more than a million times the drawing's size (250 mm)"));
   EXPECT_NO_THROW(parse_model(model("[0, 80]", "lengths: {crank: 1e3}\n"), "m.yaml"));
 }
 
@@ -642,7 +644,8 @@ TEST(ModelFileErrors, Sweep) {
   EXPECT_EQ(parse_model(head + "sweep: {steps: 1}\n").model.sweep.steps, 1);
   EXPECT_TRUE(fails_at(head + "sweep: {steps: 2.5}\n", "13:16", "`steps` must be a whole number"));
   // 1e10 is whole: what is wrong is its size.
-  EXPECT_TRUE(fails_at(head + "sweep: {steps: 1e10}\n", "13:16", "`steps` must be a whole number of at most a billion"));
+  EXPECT_TRUE(
+      fails_at(head + "sweep: {steps: 1e10}\n", "13:16", "`steps` must be a whole number of at most a billion"));
   EXPECT_TRUE(fails_at(head + "sweep: {steps: many}\n", "13:16", "`steps` must be a number, not 'many'"));
   EXPECT_TRUE(
       fails_at(head + "sweep: {steps: 10, step: 0.1}\n", "13:20", "give the sweep either `steps` or `step`, not both"));
@@ -740,7 +743,8 @@ TEST_F(ModelFileOnDisk, AnEndlessFileIsReadOnlyToTheLimit) {
     load_model_file("/dev/zero");
     FAIL() << "expected an error";
   } catch (const ModelFileError& e) {
-    EXPECT_EQ(std::string(e.what()), "/dev/zero:1:1: the file has more than 16777216 bytes; nbar reads at most 16777216");
+    EXPECT_EQ(std::string(e.what()),
+              "/dev/zero:1:1: the file has more than 16777216 bytes; nbar reads at most 16777216");
   }
   const FileText zeros = read_file_text("/dev/zero", 100'000);
   EXPECT_TRUE(zeros.too_long);

@@ -5,8 +5,8 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/sketch.hpp"
 #include "nbar/io/sketch_model.hpp"
-#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/curves.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
 
 #include <gmock/gmock.h>
@@ -139,12 +139,14 @@ TEST(SketchImport, ThesisSketchCsv) {
   EXPECT_NEAR((s.circles[0].circle.centre - Eigen::Vector2d(0.01, 0.01)).norm(), 0, 1e-7);
   const Region r = plate_from_sketch(s, 1000);  // metres into a model in mm
   EXPECT_NEAR(area_properties(r).area, 2000 - kPi * 16, 1e-3);
-  EXPECT_THAT(error_of("X, Y\nNew_Line\n0, 0\n1, zero\n", "b.csv"), HasSubstr("b.csv:4:1: a sketch CSV line is 'x, y'"));
+  EXPECT_THAT(error_of("X, Y\nNew_Line\n0, 0\n1, zero\n", "b.csv"),
+              HasSubstr("b.csv:4:1: a sketch CSV line is 'x, y'"));
   EXPECT_THAT(error_of("X, Y\n0, 0\n", "b.csv"), HasSubstr("b.csv:2:1: coordinates before the first 'New <name>'"));
   // A circle from three or four points on it (eight were needed; fewer said they were off a circle).
   for (const char* points : {"14, 10\n10, 14\n6, 10\n10, 6\n", "14, 10\n10, 14\n6, 10\n"}) {
-    const Sketch few = read_sketch(std::string("X, Y\nNew_Circle\n") + points + "New_Line\n0, 0\n20, 0\n20, 20\n0, 20\n0, 0\n",
-                                   "c.csv", SketchFormat::kCsv);
+    const Sketch few =
+        read_sketch(std::string("X, Y\nNew_Circle\n") + points + "New_Line\n0, 0\n20, 0\n20, 20\n0, 20\n0, 0\n",
+                    "c.csv", SketchFormat::kCsv);
     ASSERT_EQ(few.circles.size(), 1u) << points;
     EXPECT_NEAR(few.circles[0].circle.radius, 4, 1e-12);
     EXPECT_NEAR((few.circles[0].circle.centre - Eigen::Vector2d(10, 10)).norm(), 0, 1e-12);
@@ -160,14 +162,15 @@ TEST(SketchImport, BadFilesAtTheirLine) {
   EXPECT_THAT(error_of("X, Y\nNew_Line\n0, 0\n10, 0\nNew_Line\n10, 0\n10, 10\nNew_Line\n10, 10\n0, 1\n", "o.csv"),
               HasSubstr("o.csv:8:1: the outline is not closed"));
   // A bow tie: the outline crosses itself at (5, 5), between the entities at lines 2 and 8.
-  EXPECT_THAT(error_of("X, Y\nNew_A\n0, 0\n10, 10\nNew_B\n10, 10\n10, 0\nNew_C\n10, 0\n0, 10\nNew_D\n0, 10\n0, 0\n",
-                       "x.csv"),
-              HasSubstr("x.csv:2:1: the outline crosses itself at (5, 5): the entity here meets the one at line 8"));
+  EXPECT_THAT(
+      error_of("X, Y\nNew_A\n0, 0\n10, 10\nNew_B\n10, 10\n10, 0\nNew_C\n10, 0\n0, 10\nNew_D\n0, 10\n0, 0\n", "x.csv"),
+      HasSubstr("x.csv:2:1: the outline crosses itself at (5, 5): the entity here meets the one at line 8"));
   EXPECT_THAT(error_of("<svg><path d=\"M 0 0 L 10 0 L 10 10 X\"/></svg>", "p.svg"),
               HasSubstr("p.svg:1:1: path data: unknown command 'X'"));
   EXPECT_THAT(error_of("<svg>\n<g transform=\"rotate(30)\">\n</g></svg>", "t.svg"),
               HasSubstr("t.svg:2:1: nbar applies only translate()"));
-  EXPECT_THAT(error_of("<svg>\n<path d=\"M 0 0 L 10 0 L 10 10\"/>\n</svg>", "o.svg"), HasSubstr("o.svg:2:1: the outline is not closed"));
+  EXPECT_THAT(error_of("<svg>\n<path d=\"M 0 0 L 10 0 L 10 10\"/>\n</svg>", "o.svg"),
+              HasSubstr("o.svg:2:1: the outline is not closed"));
   EXPECT_THAT(error_of("<svg>\n<path d=\"M 0 0 L 10 0 L 10 10 z\">\n", "u.svg"), HasSubstr("still open"));
 }
 
@@ -188,9 +191,10 @@ TEST(SketchImport, PlateHoleErrorsAtTheirLine) {
   EXPECT_THAT(error(outline + "New_Hole\n10, 0\n20, 0\n20, 10\n10, 10\n10, 0\n"),
               HasSubstr("h.csv:8:1: the hole drawn here meets the outline (the outline starts at line 2)"));
   // Two holes that overlap: the second is named by its line.
-  EXPECT_THAT(error(outline + "New_A\n10, 10\n30, 10\n30, 30\n10, 30\n10, 10\n" +
-                    "New_B\n20, 20\n40, 20\n40, 40\n20, 40\n20, 20\n"),
-              HasSubstr("h.csv:8:1: the hole drawn here and the one at line 14 overlap (the outline starts at line 2)"));
+  EXPECT_THAT(
+      error(outline + "New_A\n10, 10\n30, 10\n30, 30\n10, 30\n10, 10\n" +
+            "New_B\n20, 20\n40, 20\n40, 40\n20, 40\n20, 20\n"),
+      HasSubstr("h.csv:8:1: the hole drawn here and the one at line 14 overlap (the outline starts at line 2)"));
   // A plate with a hole well inside it is a plate.
   EXPECT_EQ(error(outline + "New_Hole\n10, 10\n20, 10\n20, 20\n10, 20\n10, 10\n"), "no error");
 }
@@ -222,18 +226,22 @@ TEST(SketchImport, CrossingOutlinesAreRefusedAtTheirLine) {
 // Two slotted links that overlap at their joint (100, 0): a along x, b up from the joint. Only
 // wholly inside another is an outline a hole, whichever vertex either starts at.
 TEST(SketchImport, LinksOverlappingAtAJointAreNoHoles) {
-  const std::string a = "0\nLWPOLYLINE\n8\na\n90\n4\n70\n1\n10\n0\n20\n-10\n10\n100\n20\n-10\n42\n1\n"
-                        "10\n100\n20\n10\n10\n0\n20\n10\n42\n1\n"
-                        "0\nCIRCLE\n8\na\n10\n0\n20\n0\n40\n4\n0\nCIRCLE\n8\na\n10\n100\n20\n0\n40\n4\n";
+  const std::string a =
+      "0\nLWPOLYLINE\n8\na\n90\n4\n70\n1\n10\n0\n20\n-10\n10\n100\n20\n-10\n42\n1\n"
+      "10\n100\n20\n10\n10\n0\n20\n10\n42\n1\n"
+      "0\nCIRCLE\n8\na\n10\n0\n20\n0\n40\n4\n0\nCIRCLE\n8\na\n10\n100\n20\n0\n40\n4\n";
   const std::string pins = "0\nCIRCLE\n8\nb\n10\n100\n20\n60\n40\n4\n0\nCIRCLE\n8\nb\n10\n100\n20\n0\n40\n4\n";
   // b starting at the joint's side (92, 0), inside a; and starting at (108, 60), outside it.
-  const std::string b_inside = "0\nLWPOLYLINE\n8\nb\n90\n4\n70\n1\n10\n92\n20\n0\n42\n1\n10\n108\n20\n0\n"
-                               "10\n108\n20\n60\n42\n1\n10\n92\n20\n60\n";
-  const std::string b_outside = "0\nLWPOLYLINE\n8\nb\n90\n4\n70\n1\n10\n108\n20\n60\n42\n1\n10\n92\n20\n60\n"
-                                "10\n92\n20\n0\n42\n1\n10\n108\n20\n0\n";
+  const std::string b_inside =
+      "0\nLWPOLYLINE\n8\nb\n90\n4\n70\n1\n10\n92\n20\n0\n42\n1\n10\n108\n20\n0\n"
+      "10\n108\n20\n60\n42\n1\n10\n92\n20\n60\n";
+  const std::string b_outside =
+      "0\nLWPOLYLINE\n8\nb\n90\n4\n70\n1\n10\n108\n20\n60\n42\n1\n10\n92\n20\n60\n"
+      "10\n92\n20\n0\n42\n1\n10\n108\n20\n0\n";
   for (const std::string& b : {b_inside, b_outside}) {
     const std::string text = "0\nSECTION\n2\nENTITIES\n" + a + b + pins + "0\nENDSEC\n0\nEOF\n";
-    const std::string model = model_from_sketch(read_sketch(text, "i.dxf", SketchFormat::kDxf), {"i.dxf", "mm", 1.0, 5.0, "steel"});
+    const std::string model =
+        model_from_sketch(read_sketch(text, "i.dxf", SketchFormat::kDxf), {"i.dxf", "mm", 1.0, 5.0, "steel"});
     EXPECT_THAT(model, HasSubstr("2 links, 1 joint between links")) << b;
     EXPECT_THAT(model, HasSubstr("\n  a:\n    points: [P1, P2]")) << b;
     EXPECT_THAT(model, HasSubstr("\n  b:\n    points: [P2, P3]")) << b;
@@ -267,9 +275,10 @@ TEST(SketchImport, AnnotationsAreLeftOutWithANote) {
   EXPECT_NEAR(area_properties(plate_from_sketch(sketch, 1.0)).area, 4000 - kPi * 25, 1e-9);
   EXPECT_THAT(model_from_sketch(sketch, {"notes.dxf", "mm", 1.0, 5.0, "steel"}),
               HasSubstr("# Left out of the sketch, as notes that draw no link: 1 DIMENSION, 1 MTEXT, 2 TEXT.\n"));
-  const Sketch svg = read_sketch("<svg>\n<rect width=\"10\" height=\"5\"/><circle cx=\"2\" cy=\"2\" r=\"1\"/>\n"
-                                 "<text x=\"0\" y=\"0\">crank<tspan>arm</tspan></text>\n</svg>\n",
-                                 "notes.svg", SketchFormat::kSvg);
+  const Sketch svg = read_sketch(
+      "<svg>\n<rect width=\"10\" height=\"5\"/><circle cx=\"2\" cy=\"2\" r=\"1\"/>\n"
+      "<text x=\"0\" y=\"0\">crank<tspan>arm</tspan></text>\n</svg>\n",
+      "notes.svg", SketchFormat::kSvg);
   EXPECT_NEAR(area_properties(plate_from_sketch(svg, 1.0)).area, 50 - kPi, 1e-9);
   EXPECT_THAT(svg.annotations, ::testing::ElementsAre("<text>"));
   // A block is geometry nbar does not read: an error that says what to do in either use.
@@ -281,20 +290,23 @@ TEST(SketchImport, AnnotationsAreLeftOutWithANote) {
 // Pin holes that overlap, or meet their plate's outline, were written into a model that `nbar
 // check` then refused at a line of that model: they are refused here, at the circle's line.
 TEST(SketchImport, PinHolesThatMeetAreRefusedAtTheCirclesLine) {
-  const std::string plate = "0\nLWPOLYLINE\n8\np\n90\n4\n70\n1\n10\n0\n20\n0\n10\n100\n20\n0\n10\n100\n20\n20\n10\n0\n20\n20\n";
+  const std::string plate =
+      "0\nLWPOLYLINE\n8\np\n90\n4\n70\n1\n10\n0\n20\n0\n10\n100\n20\n0\n10\n100\n20\n20\n10\n0\n20\n20\n";
   const auto circle = [](int x, int r) { return fmt::format("0\nCIRCLE\n8\np\n10\n{}\n20\n10\n40\n{}\n", x, r); };
   const auto error = [&](const std::string& entities) {
     try {
-      model_from_sketch(read_sketch("0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n", "p.dxf", SketchFormat::kDxf),
-                        {"p.dxf", "mm", 1.0, 5.0, "steel"});
+      model_from_sketch(
+          read_sketch("0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n", "p.dxf", SketchFormat::kDxf),
+          {"p.dxf", "mm", 1.0, 5.0, "steel"});
     } catch (const Error& e) {
       return std::string(e.what());
     }
     return std::string("no error");
   };
   // The plate is lines 5-28, the first circle 29-38, the second from 39.
-  EXPECT_THAT(error(plate + circle(10, 4) + circle(12, 4)),
-              HasSubstr("p.dxf:39:1: this pin hole (centre (12, 10), radius 4) overlaps the pin hole drawn at line 29"));
+  EXPECT_THAT(
+      error(plate + circle(10, 4) + circle(12, 4)),
+      HasSubstr("p.dxf:39:1: this pin hole (centre (12, 10), radius 4) overlaps the pin hole drawn at line 29"));
   EXPECT_THAT(error(plate + circle(10, 4) + circle(90, 15)),
               HasSubstr("p.dxf:39:1: this pin hole (centre (90, 10), radius 15) meets the outline drawn at line 5"));
   EXPECT_EQ(error(plate + circle(10, 4) + circle(90, 4)), "no error");
@@ -328,9 +340,11 @@ std::string scaled_dxf(const std::string& text, double scale, const std::string&
     if (code == 0) entity = value;
     if (code == 2 && previous == "SECTION") section = value;
     if (code == 0) previous = value;
-    const bool length = (code >= 10 && code <= 38 && code % 10 <= 8) || (code == 40 && (entity == "CIRCLE" || entity == "ARC")) ||
+    const bool length = (code >= 10 && code <= 38 && code % 10 <= 8) ||
+                        (code == 40 && (entity == "CIRCLE" || entity == "ARC")) ||
                         (code == 43 && entity == "LWPOLYLINE") || (code >= 42 && code <= 44 && entity == "SPLINE");
-    if (section == "ENTITIES" && code != 0 && length) value = fmt::format("{:.17g}", std::strtod(value.c_str(), nullptr) * scale);
+    if (section == "ENTITIES" && code != 0 && length)
+      value = fmt::format("{:.17g}", std::strtod(value.c_str(), nullptr) * scale);
     out += code_text + "\n" + value + "\n";
   };
   for (std::size_t i = 0; i + 1 < lines.size(); i += 2) {
@@ -359,10 +373,11 @@ ModelNumbers numbers_of(const std::string& model) {
   for (std::size_t i = 0; i < model.size();) {
     const char c = model[i];
     if (c == '\n') line_start = i + 1;
-    const bool starts = (std::isdigit(static_cast<unsigned char>(c)) ||
-                         (c == '-' && i + 1 < model.size() && std::isdigit(static_cast<unsigned char>(model[i + 1])))) &&
-                        (i == 0 || !(std::isalnum(static_cast<unsigned char>(model[i - 1])) || model[i - 1] == '_' ||
-                                     model[i - 1] == '.'));
+    const bool starts =
+        (std::isdigit(static_cast<unsigned char>(c)) ||
+         (c == '-' && i + 1 < model.size() && std::isdigit(static_cast<unsigned char>(model[i + 1])))) &&
+        (i == 0 ||
+         !(std::isalnum(static_cast<unsigned char>(model[i - 1])) || model[i - 1] == '_' || model[i - 1] == '.'));
     if (!starts) {
       m.shape += c;
       ++i;
@@ -410,7 +425,8 @@ void expect_same_model_at_every_scale(const Drawing& drawing, const std::string&
     }
     EXPECT_EQ(wrong, 0u) << name << " at the scale " << scale << ": number " << first << " is " << scaled.values[first]
                          << ", not " << reference.values[first] << (reference.lengths[first] ? " times the scale" : "")
-                         << ":\n" << model;
+                         << ":\n"
+                         << model;
   }
 }
 

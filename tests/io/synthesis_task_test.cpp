@@ -73,18 +73,22 @@ TEST(SynthesisTask, NinePointMistakes) {
   EXPECT_EQ(error_of(repeated), "task.yaml:11:5: points 3 and 9 coincide: the nine points must be distinct");
   std::string line = head;
   for (int i = 0; i < 9; ++i) line += "  - [" + std::to_string(i) + ", " + std::to_string(2 * i + 1) + "]\n";
-  EXPECT_EQ(error_of(line), "task.yaml:3:3: the nine points lie on one straight line, which is no four-bar's coupler "
-                            "curve: move some off the line");
+  EXPECT_EQ(error_of(line),
+            "task.yaml:3:3: the nine points lie on one straight line, which is no four-bar's coupler "
+            "curve: move some off the line");
   EXPECT_EQ(error_of(eight + "  - 3\n"), "task.yaml:11:5: point 9 needs two numbers, like [x, y], not '3'");
   // On one circle (3-4-5 triangles' corners on the circle of radius 5 about (1, 2)).
-  const std::string circle = head + "  - [6, 2]\n  - [5, 5]\n  - [4, 6]\n  - [1, 7]\n  - [-2, 6]\n  - [-3, 5]\n"
-                                    "  - [-4, 2]\n  - [-3, -1]\n  - [1, -3]\n";
-  EXPECT_EQ(error_of(circle), "task.yaml:3:3: the nine points lie on one circle (centre (1, 2), radius 5 m): a crank of "
-                              "that radius about its centre, whose moving pivot is the coupler point, passes through "
-                              "them with any second dyad, so there are infinitely many four-bars; move some off the "
-                              "circle");
-  EXPECT_EQ(error_of("task: nine-point\npivots: {a: [0, 0], b: [1, 0]}\n"),
-            "task.yaml:2:1: unknown key 'pivots' in a nine-point task (allowed: task, name, description, units, points)");
+  const std::string circle = head +
+                             "  - [6, 2]\n  - [5, 5]\n  - [4, 6]\n  - [1, 7]\n  - [-2, 6]\n  - [-3, 5]\n"
+                             "  - [-4, 2]\n  - [-3, -1]\n  - [1, -3]\n";
+  EXPECT_EQ(error_of(circle),
+            "task.yaml:3:3: the nine points lie on one circle (centre (1, 2), radius 5 m): a crank of "
+            "that radius about its centre, whose moving pivot is the coupler point, passes through "
+            "them with any second dyad, so there are infinitely many four-bars; move some off the "
+            "circle");
+  EXPECT_EQ(
+      error_of("task: nine-point\npivots: {a: [0, 0], b: [1, 0]}\n"),
+      "task.yaml:2:1: unknown key 'pivots' in a nine-point task (allowed: task, name, description, units, points)");
 }
 
 TEST(SynthesisTask, Burmester) {
@@ -171,9 +175,10 @@ TEST(SynthesisTask, DocumentErrors) {
   EXPECT_THAT(error_of("task: [five-point\n"), HasSubstr("task.yaml:1:7: invalid YAML: this '[' is never closed"));
   EXPECT_EQ(error_of("- task: five-point\n"),
             "task.yaml:1:1: a task file is a mapping of keys (task:, ...), not a list");
-  EXPECT_EQ(error_of("name: x\n"),
-            "task.yaml:1:1: a task file needs `task: five-point`, `task: nine-point`, `task: burmester`, `task: function` or "
-            "`task: path`");
+  EXPECT_EQ(
+      error_of("name: x\n"),
+      "task.yaml:1:1: a task file needs `task: five-point`, `task: nine-point`, `task: burmester`, `task: function` or "
+      "`task: path`");
   EXPECT_EQ(error_of("name: x\ntask: six-point\n"),
             "task.yaml:2:7: unknown task 'six-point' (tasks are: five-point, nine-point, burmester, function, path)");
   EXPECT_EQ(error_of("task: five-point\ntask: burmester\n"),
@@ -303,8 +308,8 @@ TEST(SynthesisTask, MisspeltKeysSuggestTheRightOne) {
             "task.yaml:2:9: unknown key 'lenght' in `units`; did you mean 'length'?");
   EXPECT_EQ(error_of(replaced(kThreePoses, "angle: 30", "angel: 30")),
             "task.yaml:4:21: unknown key 'angel' in `pose`; did you mean 'angle'?");
-  const std::string four = replaced(kThreePoses, "fixed_pivots: {a: [0, -1], b: [2, -1]}\n",
-                                    "  - {point: [3, 3], angle: 90}\n");
+  const std::string four =
+      replaced(kThreePoses, "fixed_pivots: {a: [0, -1], b: [2, -1]}\n", "  - {point: [3, 3], angle: 90}\n");
   EXPECT_EQ(error_of(four + "curves: {raduis: 5}\n"),
             "task.yaml:7:10: unknown key 'raduis' in `curves`; did you mean 'radius'?");
   // Nothing close enough: the allowed keys are listed instead.
@@ -371,8 +376,9 @@ TEST(SynthesisTask, PathErrors) {
             "given once round: leave out the last point)");
   std::string line = "task: path\npoints:\n";
   for (int k = 0; k < 12; ++k) line += "  - [" + std::to_string(k) + ", " + std::to_string(3 * k - 1) + "]\n";
-  EXPECT_EQ(error_of(line), "task.yaml:3:3: the target points lie on one straight line: a path task fits a "
-                            "four-bar's coupler curve to points spread over a curve");
+  EXPECT_EQ(error_of(line),
+            "task.yaml:3:3: the target points lie on one straight line: a path task fits a "
+            "four-bar's coupler curve to points spread over a curve");
   EXPECT_EQ(error_of(replaced(kPath, "[0, 20]", "[0, x]")), "task.yaml:7:9: point 4 must be a number, not 'x'");
   EXPECT_EQ(error_of(replaced(kPath, "units:", "curve: c.csv\nunits:")),
             "task.yaml:2:1: give the targets as `points` or as a `curve` file, not both");
@@ -388,16 +394,18 @@ TEST(SynthesisTask, PathErrors) {
             "task.yaml:16:48: the pivots' region is empty: max must exceed min in x and in y");
   EXPECT_EQ(error_of(replaced(kPath, "lengths: [5, 200]", "lengths: [50, 20]")),
             "task.yaml:16:103: `lengths` is [min, max] with 0 <= min < max");
-  EXPECT_EQ(error_of(replaced(kPath, "crank: true", "crank: true, grashof: 1")),
-            "task.yaml:16:72: unknown key 'grashof' in `constraints` (allowed: pivots, crank, min_transmission, lengths)");
+  EXPECT_EQ(
+      error_of(replaced(kPath, "crank: true", "crank: true, grashof: 1")),
+      "task.yaml:16:72: unknown key 'grashof' in `constraints` (allowed: pivots, crank, min_transmission, lengths)");
 }
 
 // A task parsed from text (a web client's, Python's task()) opens no file: `curve` is refused
 // at its value, whether or not the file exists; loaded from a file, the same task reads it.
 TEST(SynthesisTask, TaskFromTextReadsNoCurveFile) {
   const std::string text = "task: path\ncurve: " + kDir + "path/d-shape.csv\n";
-  EXPECT_EQ(error_of(text), "task.yaml:2:8: `curve` reads a CSV file, which only a task read from a file may do: give "
-                            "the targets here as `points: [[x, y], ...]`");
+  EXPECT_EQ(error_of(text),
+            "task.yaml:2:8: `curve` reads a CSV file, which only a task read from a file may do: give "
+            "the targets here as `points: [[x, y], ...]`");
   EXPECT_EQ(error_of("task: path\ncurve: /nonexistent.csv\n"),
             "task.yaml:2:8: `curve` reads a CSV file, which only a task read from a file may do: give the targets here "
             "as `points: [[x, y], ...]`");
@@ -419,7 +427,8 @@ TEST(SynthesisTask, PathCurveFileErrors) {
     return std::string();
   };
   std::string good = "x,y\n";
-  for (int k = 0; k < 12; ++k) good += std::to_string(std::cos(k * 0.5)) + ", " + std::to_string(std::sin(k * 0.5)) + "\n";
+  for (int k = 0; k < 12; ++k)
+    good += std::to_string(std::cos(k * 0.5)) + ", " + std::to_string(std::sin(k * 0.5)) + "\n";
   EXPECT_EQ(load_error(good), "");
   const std::string c = (dir / "c.csv").string(), t = (dir / "t.yaml").string();
   EXPECT_EQ(load_error(good + "1, 2, 3\n"), c + ":14:1: a line holds two numbers, x and y (found 3 fields)");
@@ -429,7 +438,7 @@ TEST(SynthesisTask, PathCurveFileErrors) {
             c + ":14:1: points 1 and 13 coincide: the coupler point meets each target once (a closed curve is given "
                 "once round: leave out the last point)");
   EXPECT_EQ(load_error("x,y\n1,2\n3,1\n"), t + ":2:8: a path task needs at least 10 target points (in " + c +
-                                                 "), not 2 (with 5 points and both pivots, use `task: five-point`)");
+                                               "), not 2 (with 5 points and both pivots, use `task: five-point`)");
   std::ofstream(dir / "missing.yaml") << "task: path\ncurve: missing.csv\n";
   try {
     nbar::io::load_synthesis_task((dir / "missing.yaml").string());
@@ -477,7 +486,8 @@ output_range: [0, 60]
   // other proportions, silently.
   const std::string framed = replaced(function, "input_range: [0, 1e308]", "input_range: [0, 90]\nframe: 1e308");
   EXPECT_THAT(error_of(framed), HasSubstr("task.yaml:5:8: the frame length must be from 1e-100 to 1e100"));
-  EXPECT_THAT(error_of(replaced(framed, "1e308", "1e-160")), HasSubstr("the frame length must be from 1e-100 to 1e100"));
+  EXPECT_THAT(error_of(replaced(framed, "1e308", "1e-160")),
+              HasSubstr("the frame length must be from 1e-100 to 1e100"));
   EXPECT_EQ(error_of(replaced(framed, "1e308", "1e20")), "");
 }
 

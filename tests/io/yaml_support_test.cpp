@@ -70,12 +70,12 @@ TEST(Utf8, ValidTextPasses) {
 
 TEST(Utf8, TheFirstBadByteIsFound) {
   EXPECT_EQ(first_invalid_utf8("A\xff"), 1u);
-  EXPECT_EQ(first_invalid_utf8("ab\xC3"), 2u);              // cut short
-  EXPECT_EQ(first_invalid_utf8("\xC0\xAF"), 0u);            // overlong '/'
-  EXPECT_EQ(first_invalid_utf8("x\xE0\x80\xAF"), 1u);       // overlong, three bytes
-  EXPECT_EQ(first_invalid_utf8("\xED\xA0\x80"), 0u);        // a UTF-16 surrogate
-  EXPECT_EQ(first_invalid_utf8("\xF4\x90\x80\x80"), 0u);    // past U+10FFFF
-  EXPECT_EQ(first_invalid_utf8("\xE2\x82\xAC\x80"), 3u);    // a stray continuation byte
+  EXPECT_EQ(first_invalid_utf8("ab\xC3"), 2u);            // cut short
+  EXPECT_EQ(first_invalid_utf8("\xC0\xAF"), 0u);          // overlong '/'
+  EXPECT_EQ(first_invalid_utf8("x\xE0\x80\xAF"), 1u);     // overlong, three bytes
+  EXPECT_EQ(first_invalid_utf8("\xED\xA0\x80"), 0u);      // a UTF-16 surrogate
+  EXPECT_EQ(first_invalid_utf8("\xF4\x90\x80\x80"), 0u);  // past U+10FFFF
+  EXPECT_EQ(first_invalid_utf8("\xE2\x82\xAC\x80"), 3u);  // a stray continuation byte
   EXPECT_EQ(utf8_character_length("\xE2\x82\xAC", 0), 3u);
 }
 

@@ -59,8 +59,8 @@ TEST(BadInput, NoDriverForAOneDofLinkage) {
     Mechanism mech(f.m);
     FAIL() << "a four-bar without drivers was accepted";
   } catch (const ModelError& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr("1 degree of freedom"), HasSubstr("0 drivers are given"),
-                                HasSubstr("add one driver")));
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr("1 degree of freedom"), HasSubstr("0 drivers are given"), HasSubstr("add one driver")));
     EXPECT_EQ(e.where().kind, EntityRef::Kind::Model);
   }
 }
@@ -269,7 +269,8 @@ TEST(BadInput, DistanceDriverReachingZero) {
   const Mechanism mech(m);
   const SweepResult r = run_sweep(mech);
   EXPECT_FALSE(r.complete);
-  EXPECT_THAT(r.stop_reason, AllOf(HasSubstr("'actuator'"), HasSubstr("must be positive"), HasSubstr("between steps 3 and 4")));
+  EXPECT_THAT(r.stop_reason,
+              AllOf(HasSubstr("'actuator'"), HasSubstr("must be positive"), HasSubstr("between steps 3 and 4")));
   ASSERT_EQ(r.samples.size(), 4u);
   for (const Sample& s : r.samples) {
     const Motion2 mc = point_motion(mech, s, c);
@@ -330,7 +331,8 @@ TEST(BadInput, LawWithADomainErrorMidSweep) {
     EXPECT_EQ(e.kind(), ErrorKind::UndefinedLaw);
     EXPECT_EQ(e.where().kind, EntityRef::Kind::Driver);
     EXPECT_EQ(e.where().index, 0);
-    EXPECT_THAT(e.message(), AllOf(HasSubstr("sqrt(1.05 - t)"), HasSubstr("t = 1.1"), HasSubstr("between steps 10 and 11")));
+    EXPECT_THAT(e.message(),
+                AllOf(HasSubstr("sqrt(1.05 - t)"), HasSubstr("t = 1.1"), HasSubstr("between steps 10 and 11")));
   }
 }
 

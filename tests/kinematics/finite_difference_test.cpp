@@ -1,7 +1,7 @@
 // The time derivatives (orders 1 to 5) of every coordinate and every body angle against
 // Richardson-extrapolated central differences of positions solved at neighbouring times, for
-// mechanisms covering every joint and driver kind. The differences use only position solutions, so they check the Taylor-series
-// machinery (and the driver's speed/accel semantics) from the outside.
+// mechanisms covering every joint and driver kind. The differences use only position solutions, so they check the
+// Taylor-series machinery (and the driver's speed/accel semantics) from the outside.
 #include "helpers/kinematics_support.hpp"
 
 #include <gtest/gtest.h>
@@ -15,8 +15,8 @@ namespace {
 struct FdCase {
   std::string label;
   Model model;
-  double h = 0.05;                // step of the differences for orders 4 and 5 (h/2 below), s
-  int steps = 9;                  // samples of the sweep
+  double h = 0.05;  // step of the differences for orders 4 and 5 (h/2 below), s
+  int steps = 9;    // samples of the sweep
   std::vector<int> samples{2, 4, 6};
   // Per order, relative to the largest derivative of that order: 10 to 25 times what the
   // differences themselves reach (worst measured: d1 4e-11, d2 1e-10, d3 1e-8, d4 5e-7, d5 1e-5).
@@ -97,7 +97,8 @@ void check_case(const FdCase& c) {
     const Eigen::VectorXd theta0 = angles(f[0]);
     for (const auto& [j, q] : f) {
       theta[j] = angles(q);
-      for (Eigen::Index i = 0; i < theta0.size(); ++i) theta[j][i] = theta0[i] + angle_difference(theta[j][i], theta0[i]);
+      for (Eigen::Index i = 0; i < theta0.size(); ++i)
+        theta[j][i] = theta0[i] + angle_difference(theta[j][i], theta0[i]);
     }
 
     auto central = [&](std::map<int, Eigen::VectorXd>& values, int k, int spacing) {
@@ -133,14 +134,15 @@ void check_case(const FdCase& c) {
       for (std::size_t b = 0; b < angled.size(); ++b) exact_angle[b] = body_angle_motion(mech, s, angled[b])[k];
       const double angle_scale = std::max(exact_angle.lpNorm<Eigen::Infinity>(), std::pow(rate, k));
       const double angle_err = (fd_angle - exact_angle).lpNorm<Eigen::Infinity>() / angle_scale;
-      EXPECT_LE(angle_err, c.tolerance[k]) << "angle derivative " << k << "\nexact " << exact_angle.transpose()
-                                           << "\nfd    " << fd_angle.transpose();
+      EXPECT_LE(angle_err, c.tolerance[k])
+          << "angle derivative " << k << "\nexact " << exact_angle.transpose() << "\nfd    " << fd_angle.transpose();
       worst_angle[k] = std::max(worst_angle[k], angle_err);
     }
   }
-  std::printf("[ accuracy ] %-40s FD relative error, points d1-d5: %.0e %.0e %.0e %.0e %.0e; angles %.0e %.0e %.0e %.0e %.0e\n",
-              c.label.c_str(), worst[1], worst[2], worst[3], worst[4], worst[5], worst_angle[1], worst_angle[2],
-              worst_angle[3], worst_angle[4], worst_angle[5]);
+  std::printf(
+      "[ accuracy ] %-40s FD relative error, points d1-d5: %.0e %.0e %.0e %.0e %.0e; angles %.0e %.0e %.0e %.0e %.0e\n",
+      c.label.c_str(), worst[1], worst[2], worst[3], worst[4], worst[5], worst_angle[1], worst_angle[2], worst_angle[3],
+      worst_angle[4], worst_angle[5]);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -382,7 +384,9 @@ TEST(FiniteDifferences, DistanceDriverWithSliderBetweenMovingBodies) {
   check_case({"tipper, distance driver", tipper(), 0.5});
 }
 TEST(FiniteDifferences, PinInSlot) { check_case({"slotted lever", slotted_lever(), 0.05}); }
-TEST(FiniteDifferences, TimeLawDriver) { check_case({"four-bar, law 0.5 sin 3t + 0.2 t^2", four_bar_time_law(), 0.02}); }
+TEST(FiniteDifferences, TimeLawDriver) {
+  check_case({"four-bar, law 0.5 sin 3t + 0.2 t^2", four_bar_time_law(), 0.02});
+}
 
 // The corrections take a point's Jacobian from the pass that evaluates its residuals: the same
 // numbers, bit for bit, as the two evaluations apart, for every kind of row these models hold (at

@@ -80,8 +80,8 @@ struct Case {
   NortonFourBar g;
   bool open = true;
   DrawingFrame frame;
-  double theta_drawn = 0;     // local crank angle of the drawing
-  double from = 0, to = 0;    // local crank angles of the sweep
+  double theta_drawn = 0;         // local crank angle of the drawing
+  double from = 0, to = 0;        // local crank angles of the sweep
   double omega2 = 1, alpha2 = 0;  // local
   int steps = 73;
 };
@@ -233,8 +233,7 @@ std::vector<Case> random_cases(Kind kind, unsigned seed, int count) {
     const double alpha = unit(rng) < 0.5 ? 0.0 : (unit(rng) - 0.5) * 400;
     const double drawn = range.full_turn ? 2 * kPi * unit(rng) : range.from + (range.to - range.from) * unit(rng);
     bool ok = true;
-    for (bool open : {true, false})
-      ok = ok && worst_transmission(g, from, to, open, 200) > 0.2 && g.feasible(drawn);
+    for (bool open : {true, false}) ok = ok && worst_transmission(g, from, to, open, 200) > 0.2 && g.feasible(drawn);
     if (!ok) continue;
     for (bool open : {true, false}) {
       Case c;
@@ -299,8 +298,8 @@ TEST(FourBarClosedForm, FrameNotHorizontalAndMirroredDrawings) {
         c.omega2 = 25.0;
         c.alpha2 = -15.0;
         c.steps = 145;
-        c.label = "rotation " + std::to_string(rotation) + (mirror < 0 ? ", mirrored" : "") +
-                  (open ? ", open" : ", crossed");
+        c.label =
+            "rotation " + std::to_string(rotation) + (mirror < 0 ? ", mirrored" : "") + (open ? ", open" : ", crossed");
         check_case(c, worst);
       }
     }

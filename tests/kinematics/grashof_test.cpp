@@ -46,9 +46,7 @@ TEST(Grashof, RhombusTurnsBothCranks) { expect_change_point({0.6, 0.6, 0.6, 0.6}
 TEST(Grashof, KiteWithShortFrameAndInputTurnsBoth) { expect_change_point({0.1, 0.1, 0.3, 0.3}, true, true); }
 
 // A kite whose short links are input and coupler: only the input turns fully relative to the frame.
-TEST(Grashof, KiteWithShortInputAndCouplerTurnsTheInputOnly) {
-  expect_change_point({0.3, 0.1, 0.1, 0.3}, true, false);
-}
+TEST(Grashof, KiteWithShortInputAndCouplerTurnsTheInputOnly) { expect_change_point({0.3, 0.1, 0.1, 0.3}, true, false); }
 
 // Away from the boundary the classes are textbook ones (Norton, table 2-4).
 TEST(Grashof, ClassesAwayFromTheBoundary) {

@@ -23,7 +23,8 @@ std::string braced_truss(int n) {
   for (int i = 0; i < n; ++i)
     text += numbered("  P", i) + ": [" + std::to_string(1 + i) + ", " + (i % 2 ? "-0.3" : "0.3") + "]\n";
   text += "ground: [O, G]\nbodies:\n  c0: [O, P0]\n";
-  for (int i = 1; i < n; ++i) text += numbered("  c", i) + ": [" + numbered("P", i - 1) + ", " + numbered("P", i) + "]\n";
+  for (int i = 1; i < n; ++i)
+    text += numbered("  c", i) + ": [" + numbered("P", i - 1) + ", " + numbered("P", i) + "]\n";
   for (int i = 0; i < n; ++i) text += numbered("  g", i) + ": [G, " + numbered("P", i) + "]\n";
   text += "  brace: [P0, P2]\ndrivers: []\n";
   return text;

@@ -61,7 +61,7 @@ TEST(PathHistory, IsUsedOnlyFromThePointTheLastStepReached) {
   EXPECT_FALSE(history.predict(1.0, moved, 0.1, q));  // another pose
   Eigen::MatrixXd other_path = series_at(1.0);
   other_path(1, 1) *= 2.0;
-  EXPECT_FALSE(history.predict(1.0, other_path, 0.1, q));  // the same pose on another path
+  EXPECT_FALSE(history.predict(1.0, other_path, 0.1, q));       // the same pose on another path
   EXPECT_FALSE(history.predict(1.0, series_at(1.0), -0.1, q));  // backwards, towards the past point
   EXPECT_FALSE(history.predict(1.0, series_at(1.0), 0.25, q));  // more than twice the last step
   history.clear();

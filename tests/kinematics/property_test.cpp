@@ -155,7 +155,8 @@ RC_GTEST_PROP(SweepProperties, NonGrashofOverARandomFeasibleRange, ()) {
   Built f = build_four_bar(g, oriented, drawn, open);
   const double world_from = oriented.angle_to_world(from), world_to = oriented.angle_to_world(to);
   // Time runs forward: the speed has the sign of the travel.
-  f.m.drivers.push_back(angle_driver("crank", f.crank, world_from, world_to, std::copysign(2.0, world_to - world_from)));
+  f.m.drivers.push_back(
+      angle_driver("crank", f.crank, world_from, world_to, std::copysign(2.0, world_to - world_from)));
   f.m.sweep.steps = 41;
   const Mechanism mech(f.m);
   const SweepResult r = run_sweep(mech, sweep_options(2));

@@ -86,8 +86,8 @@ void check_translation(double omega, double alpha) {
       }
     }
   }
-  std::printf("[ accuracy ] redundant parallelogram (w=%g, alpha=%g): max relative error %.1e over orders 0-5\n",
-              omega, alpha, worst);
+  std::printf("[ accuracy ] redundant parallelogram (w=%g, alpha=%g): max relative error %.1e over orders 0-5\n", omega,
+              alpha, worst);
 }
 
 TEST(RedundantParallelogram, FullTurnCouplerTranslatesWithTheCrankTip) { check_translation(2 * kPi, 0); }

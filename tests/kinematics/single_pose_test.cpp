@@ -86,7 +86,9 @@ void expect_copy_is_a_snapshot(const Mechanism& mech, LinearSolver::Method metho
   EXPECT_LT(largest(series - before.taylor), 1e-13 * largest(before.taylor));
 }
 
-TEST(State, CopiesAreSnapshotsSmall) { expect_copy_is_a_snapshot(Mechanism(nbar_bench::four_bar_model()), LinearSolver::Method::LU); }
+TEST(State, CopiesAreSnapshotsSmall) {
+  expect_copy_is_a_snapshot(Mechanism(nbar_bench::four_bar_model()), LinearSolver::Method::LU);
+}
 
 TEST(State, CopiesAreSnapshotsLarge) {
   const Mechanism chain(nbar_bench::chain_model(12));

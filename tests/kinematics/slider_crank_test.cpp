@@ -64,8 +64,8 @@ Built build(const Case& k) {
 struct Errors {
   std::array<double, kTerms> e{};
   void print(const char* what) const {
-    std::printf("[ accuracy ] %s: max relative error x %.1e, v %.1e, a %.1e, jerk %.1e, d4 %.1e, d5 %.1e\n", what,
-                e[0], e[1], e[2], e[3], e[4], e[5]);
+    std::printf("[ accuracy ] %s: max relative error x %.1e, v %.1e, a %.1e, jerk %.1e, d4 %.1e, d5 %.1e\n", what, e[0],
+                e[1], e[2], e[3], e[4], e[5]);
   }
 };
 
@@ -130,7 +130,8 @@ TEST(SliderCrank, CentredWithAngularAcceleration) {
 TEST(SliderCrank, OffsetBothSidesRotatedAndMirrored) {
   Errors worst;
   for (const double e : {0.025, -0.04}) {
-    for (const DrawingFrame& frame : {DrawingFrame{}, DrawingFrame{{0.1, 0.2}, 2.0, 1}, DrawingFrame{{0, 0}, -0.4, -1}}) {
+    for (const DrawingFrame& frame :
+         {DrawingFrame{}, DrawingFrame{{0.1, 0.2}, 2.0, 1}, DrawingFrame{{0, 0}, -0.4, -1}}) {
       for (const double alpha : {0.0, -250.0}) {
         Case k;
         k.g = {0.05, 0.18, e};

@@ -4,10 +4,10 @@
 // its eliminations and still choose again when a kept pivot becomes small.
 #include "nbar/kinematics/sparse_lu.hpp"
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
 #include <rapidcheck/gtest.h>
+#include <Eigen/Dense>
 
 #include <cmath>
 #include <numbers>
@@ -49,7 +49,8 @@ Problem random_problem(int n, int per_row, std::mt19937& rng) {
 }
 
 double relative_residual(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
-  return (a * x - b).lpNorm<Eigen::Infinity>() / (a.lpNorm<Eigen::Infinity>() * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>());
+  return (a * x - b).lpNorm<Eigen::Infinity>() /
+         (a.lpNorm<Eigen::Infinity>() * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>());
 }
 
 // Solves, transposed solves, the sign of det(A) and the condition estimate against the dense
@@ -70,7 +71,8 @@ void expect_agrees_with_dense(const SparseLU& lu, const Problem& p) {
   EXPECT_EQ(lu.determinant_sign(), reference.determinant() > 0 ? 1 : -1);
 
   // Hager's estimate of |A^-1|_1 is a lower bound, exact or nearly so on such matrices.
-  const double exact = 1.0 / (a.cwiseAbs().colwise().sum().maxCoeff() * a.inverse().cwiseAbs().colwise().sum().maxCoeff());
+  const double exact =
+      1.0 / (a.cwiseAbs().colwise().sum().maxCoeff() * a.inverse().cwiseAbs().colwise().sum().maxCoeff());
   const double estimate = lu.reciprocal_condition_estimate(p.values.data());
   EXPECT_GE(estimate, exact * (1 - 1e-9));
   EXPECT_LE(estimate, 10 * exact);

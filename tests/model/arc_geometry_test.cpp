@@ -64,8 +64,8 @@ TEST(ArcArea, StadiumClosedForm) {
   const double half = kPi * R * R / 2, e = 4 * R / (3 * kPi);
   const double end_iyy = kPi * std::pow(R, 4) / 8 - half * e * e + half * std::pow(L / 2 + e, 2);
   expect_props(area_properties(r), 2 * R * L + kPi * R * R, {L / 2, 0},
-               L * std::pow(2 * R, 3) / 12 + kPi * std::pow(R, 4) / 4, 2 * R * std::pow(L, 3) / 12 + 2 * end_iyy, 0,
-               L, 1e-13);
+               L * std::pow(2 * R, 3) / 12 + kPi * std::pow(R, 4) / 4, 2 * R * std::pow(L, 3) / 12 + 2 * end_iyy, 0, L,
+               1e-13);
 }
 
 TEST(ArcArea, ClockwiseStadiumWeighsTheSame) {

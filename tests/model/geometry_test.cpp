@@ -1,9 +1,9 @@
 // Plate geometry against closed forms worked by hand, against brute-force quadrature, and as
 // properties over random plates: the two sides of any cut add up to the whole, and the results
 // move rigidly with the plate.
+#include "nbar/model/geometry.hpp"
 #include "model/region_support.hpp"
 #include "nbar/model/diagnostics.hpp"
-#include "nbar/model/geometry.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,9 +12,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -153,9 +153,9 @@ TEST(AreaProperties, SquareWithOffCentreRoundHole) {
   const Vector2d c = (as * Vector2d(side / 2, side / 2) - ah * hole) / area;
   const double is = side * side * side * side / 12, ih = kPi * r * r * r * r / 4;
   const Vector2d ds = Vector2d(side / 2, side / 2) - c, dh = hole - c;
-  const AreaProperties e = props(area, c, is + as * ds.y() * ds.y() - ih - ah * dh.y() * dh.y(),
-                                 is + as * ds.x() * ds.x() - ih - ah * dh.x() * dh.x(),
-                                 as * ds.x() * ds.y() - ah * dh.x() * dh.y());
+  const AreaProperties e =
+      props(area, c, is + as * ds.y() * ds.y() - ih - ah * dh.y() * dh.y(),
+            is + as * ds.x() * ds.x() - ih - ah * dh.x() * dh.x(), as * ds.x() * ds.y() - ah * dh.x() * dh.y());
   expect_near(area_properties(reg), e, side);
   // A centred hole: the plain a² − πr² and a⁴/12 − πr⁴/4.
   Region centred = plate(rectangle(-side / 2, -side / 2, side / 2, side / 2));
@@ -192,7 +192,8 @@ TEST(MakeBar, TwoHolesByHand) {
   const double cx = (total * w * len / 2 - aq * len) / area;
   const double ixx = total * w * w * w / 12 - kPi * std::pow(rp, 4) / 4 - kPi * std::pow(rq, 4) / 4;
   const double iyy = w * total * total * total / 12 + total * w * std::pow(len / 2 - cx, 2) -
-                     (kPi * std::pow(rp, 4) / 4 + ap * cx * cx) - (kPi * std::pow(rq, 4) / 4 + aq * std::pow(len - cx, 2));
+                     (kPi * std::pow(rp, 4) / 4 + ap * cx * cx) -
+                     (kPi * std::pow(rq, 4) / 4 + aq * std::pow(len - cx, 2));
   const AreaProperties e = props(area, {cx, 0}, ixx, iyy, 0);
   expect_near(area_properties(bar), e, len);
 
@@ -201,10 +202,10 @@ TEST(MakeBar, TwoHolesByHand) {
   const Vector2d p(0.4, -0.1), dir(std::cos(angle), std::sin(angle));
   const AreaProperties turned = area_properties(make_bar(p, p + len * dir, w, m, rp, rq));
   const double cs = std::cos(angle), sn = std::sin(angle);
-  expect_near(turned,
-              props(area, p + cx * dir, cs * cs * ixx + sn * sn * iyy, sn * sn * ixx + cs * cs * iyy,
-                    sn * cs * (iyy - ixx)),
-              len);
+  expect_near(
+      turned,
+      props(area, p + cx * dir, cs * cs * ixx + sn * sn * iyy, sn * sn * ixx + cs * cs * iyy, sn * cs * (iyy - ixx)),
+      len);
   expect_near(turned, transformed(e, angle, p), len);
 }
 
@@ -363,8 +364,8 @@ TEST(ClippedAreaProperties, AgreesWithQuadrature) {
   r.polygon_holes.push_back({{0.08, 0.03}, {0.16, 0.03}, {0.1, 0.08}});
   ASSERT_NO_THROW(check_region(r));
   // The second cut crosses the round hole at (0.25, 0.04) and the triangular one.
-  for (const auto& [p, n] : {std::pair{Vector2d(0.1, 0.05), Vector2d(1, 0.6)},
-                             std::pair{Vector2d(0.25, 0.045), Vector2d(0.1, 1.4)}}) {
+  for (const auto& [p, n] :
+       {std::pair{Vector2d(0.1, 0.05), Vector2d(1, 0.6)}, std::pair{Vector2d(0.25, 0.045), Vector2d(0.1, 1.4)}}) {
     const int cells = 1500;
     const double h = 0.3 / cells;
     double a = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
@@ -454,7 +455,8 @@ TEST(CheckRegion, ReportsEachProblem) {
     return region_error(r);
   };
 
-  EXPECT_THAT(region_error(plate({{0, 0}, {1, 0}})), HasSubstr("the outline has 2 vertices; a polygon needs at least 3"));
+  EXPECT_THAT(region_error(plate({{0, 0}, {1, 0}})),
+              HasSubstr("the outline has 2 vertices; a polygon needs at least 3"));
   EXPECT_THAT(region_error(plate({})), HasSubstr("the outline has 0 vertices"));
   EXPECT_THAT(region_error(plate({{0, 0}, {1, nan}, {1, 1}})), HasSubstr("the outline vertex 1 is not finite"));
   EXPECT_THAT(region_error(plate({{0, 0}, {inf, 0}, {1, 1}})), HasSubstr("vertex 1 is not finite"));
@@ -467,13 +469,19 @@ TEST(CheckRegion, ReportsEachProblem) {
   EXPECT_THAT(region_error(plate({{0, 0}, {2, 0}, {1, 1}, {2, 2}, {0, 2}, {1, 1}})), HasSubstr("intersects itself"));
   EXPECT_THAT(region_error(plate({{0, 0}, {2, 0}, {1, 0}, {1, 1}})), HasSubstr("doubles back on itself at vertex 1"));
 
-  EXPECT_THAT(with([](Region& r) { r.circle_holes.push_back({{0.5, 0.5}, 0}); }),
+  EXPECT_THAT(with([](Region& r) {
+                r.circle_holes.push_back({{0.5, 0.5}, 0});
+              }),
               HasSubstr("circle hole 0 (centre (0.5, 0.5), radius 0) has a non-positive radius"));
   EXPECT_THAT(with([](Region& r) { r.circle_holes.push_back({{0.5, 0.5}, -0.1}); }), HasSubstr("non-positive radius"));
   EXPECT_THAT(with([&](Region& r) { r.circle_holes.push_back({{0.5, nan}, 0.1}); }), HasSubstr("is not finite"));
-  EXPECT_THAT(with([](Region& r) { r.circle_holes.push_back({{1.5, 0.5}, 0.1}); }),
+  EXPECT_THAT(with([](Region& r) {
+                r.circle_holes.push_back({{1.5, 0.5}, 0.1});
+              }),
               HasSubstr("circle hole 0 (centre (1.5, 0.5), radius 0.1) is outside the outline"));
-  EXPECT_THAT(with([](Region& r) { r.circle_holes.push_back({{0.5, 0.5}, 0.5}); }),
+  EXPECT_THAT(with([](Region& r) {
+                r.circle_holes.push_back({{0.5, 0.5}, 0.5});
+              }),
               HasSubstr("radius 0.5) meets the outline"));
   EXPECT_THAT(with([](Region& r) { r.circle_holes.push_back({{0.95, 0.5}, 0.1}); }), HasSubstr("meets the outline"));
   EXPECT_THAT(with([](Region& r) { r.polygon_holes.push_back(rectangle(2, 2, 3, 3)); }),
@@ -482,7 +490,9 @@ TEST(CheckRegion, ReportsEachProblem) {
               HasSubstr("polygon hole 0 meets the outline"));
   EXPECT_THAT(with([](Region& r) { r.polygon_holes.push_back(rectangle(0, 0.2, 0.5, 0.7)); }),
               HasSubstr("polygon hole 0 meets the outline"));
-  EXPECT_THAT(with([](Region& r) { r.polygon_holes.push_back({{0.2, 0.2}, {0.4, 0.2}}); }),
+  EXPECT_THAT(with([](Region& r) {
+                r.polygon_holes.push_back({{0.2, 0.2}, {0.4, 0.2}});
+              }),
               HasSubstr("polygon hole 0 has 2 vertices"));
   EXPECT_THAT(with([](Region& r) {
                 r.polygon_holes.push_back(rectangle(0.1, 0.1, 0.3, 0.3));
@@ -581,20 +591,19 @@ Vector2d gen_point_on_plate(const Region& r, double size) {
   for (const Vector2d& v : r.outline) c += v;
   c /= static_cast<double>(r.outline.size());
   switch (*rc::gen::inRange(0, 4)) {
-    case 0:
-      return r.outline[*rc::gen::inRange<std::size_t>(0, r.outline.size())];
+    case 0: return r.outline[*rc::gen::inRange<std::size_t>(0, r.outline.size())];
     case 1:
       if (!r.circle_holes.empty()) {
         const Circle& h = r.circle_holes[*rc::gen::inRange<std::size_t>(0, r.circle_holes.size())];
         const double a = gen_real(0, 2 * kPi);
-        return *rc::gen::arbitrary<bool>() ? h.centre : Vector2d(h.centre + h.radius * Vector2d(std::cos(a), std::sin(a)));
+        return *rc::gen::arbitrary<bool>() ? h.centre
+                                           : Vector2d(h.centre + h.radius * Vector2d(std::cos(a), std::sin(a)));
       }
       [[fallthrough]];
     case 2:
       if (!r.polygon_holes.empty()) return r.polygon_holes[0][0];
       [[fallthrough]];
-    default:
-      return c + Vector2d(gen_real(-1.5, 1.5) * size, gen_real(-1.5, 1.5) * size);
+    default: return c + Vector2d(gen_real(-1.5, 1.5) * size, gen_real(-1.5, 1.5) * size);
   }
 }
 

@@ -1,5 +1,5 @@
-#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/law.hpp"
+#include "nbar/model/diagnostics.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -105,7 +105,8 @@ TEST(Law, EveryFunction) {
       {"atan", 0.7, [](double x) { return std::atan(x); }, [](double x) { return 1.0 / (1 + x * x); }},
       {"sinh", 0.7, [](double x) { return std::sinh(x); }, [](double x) { return std::cosh(x); }},
       {"cosh", 0.7, [](double x) { return std::cosh(x); }, [](double x) { return std::sinh(x); }},
-      {"tanh", 0.7, [](double x) { return std::tanh(x); }, [](double x) { return 1.0 / (std::cosh(x) * std::cosh(x)); }},
+      {"tanh", 0.7, [](double x) { return std::tanh(x); },
+       [](double x) { return 1.0 / (std::cosh(x) * std::cosh(x)); }},
   };
   for (const FunctionCase& c : cases) {
     const Law law = Law::parse(std::string(c.name) + "(t)");
@@ -215,8 +216,8 @@ TEST(Law, AbsOfAnEvenZeroIsSmooth) {
 }
 
 TEST(Law, SeriesAndValueAgree) {
-  for (const char* text : {"t", "3*t^2-t+1", "sin(t)*exp(-t/2)", "atan(t)/(1+t^2)", "sqrt(1+t^2)^3",
-                           "cosh(t)-sinh(t)", "2^t*t^-2", "tanh(t)*acos(t/4)", "log(2+cos(3*t))"}) {
+  for (const char* text : {"t", "3*t^2-t+1", "sin(t)*exp(-t/2)", "atan(t)/(1+t^2)", "sqrt(1+t^2)^3", "cosh(t)-sinh(t)",
+                           "2^t*t^-2", "tanh(t)*acos(t/4)", "log(2+cos(3*t))"}) {
     const Law law = Law::parse(text, 2.5);
     for (double t : {-1.3, 0.2, 1.7}) {
       for (int terms = 1; terms <= Series::kCapacity; ++terms) {
@@ -440,23 +441,20 @@ RC_GTEST_PROP(LawProperty, SeriesDerivativesMatchFiniteDifferences, ()) {
   // Fourth-order central stencils, each extrapolated (Richardson) from steps h and h/2 to
   // sixth order, which keeps the truncation error small even for the fast-varying laws the
   // generator can build; h balances truncation against rounding (eps / h^k).
-  const auto first = [&](double h) {
-    return (-f(t + 2 * h) + 8 * f(t + h) - 8 * f(t - h) + f(t - 2 * h)) / (12 * h);
-  };
+  const auto first = [&](double h) { return (-f(t + 2 * h) + 8 * f(t + h) - 8 * f(t - h) + f(t - 2 * h)) / (12 * h); };
   const auto second = [&](double h) {
     return (-f(t + 2 * h) + 16 * f(t + h) - 30 * f(t) + 16 * f(t - h) - f(t - 2 * h)) / (12 * h * h);
   };
   const auto third = [&](double h) {
-    return (-f(t + 3 * h) + 8 * f(t + 2 * h) - 13 * f(t + h) + 13 * f(t - h) - 8 * f(t - 2 * h) +
-            f(t - 3 * h)) /
+    return (-f(t + 3 * h) + 8 * f(t + 2 * h) - 13 * f(t + h) + 13 * f(t - h) - 8 * f(t - 2 * h) + f(t - 3 * h)) /
            (8 * h * h * h);
   };
   const auto richardson = [](const auto& d, double h) { return (16 * d(h / 2) - d(h)) / 15; };
   const double d1 = richardson(first, 2e-3);
   const double d2 = richardson(second, 4e-3);
   const double d3 = richardson(third, 1e-2);
-  const double magnitude = 1.0 + std::abs(s[0]) + std::abs(s.derivative(1)) + std::abs(s.derivative(2)) +
-                           std::abs(s.derivative(3));
+  const double magnitude =
+      1.0 + std::abs(s[0]) + std::abs(s.derivative(1)) + std::abs(s.derivative(2)) + std::abs(s.derivative(3));
   RC_ASSERT(std::abs(s.derivative(1) - d1) <= 1e-9 * magnitude);
   RC_ASSERT(std::abs(s.derivative(2) - d2) <= 1e-8 * magnitude);
   RC_ASSERT(std::abs(s.derivative(3) - d3) <= 1e-6 * magnitude);

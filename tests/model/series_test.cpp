@@ -36,8 +36,7 @@ Series make(std::initializer_list<double> coefficients) {
 // of radius r: c_k = mean_j f(r w^j) w^(-jk) / r^k. Independent of every recurrence under test
 // (it only needs std::complex), and exact to rounding when f is analytic on a disc of radius
 // well above r. `bound` receives max |f| on the circle, which sets the rounding error.
-std::vector<double> cauchy(const std::function<Complex(Complex)>& f, int n, double& bound,
-                           double r = 0.25) {
+std::vector<double> cauchy(const std::function<Complex(Complex)>& f, int n, double& bound, double r = 0.25) {
   constexpr int kSamples = 128;
   std::vector<Complex> values(kSamples);
   bound = 0.0;
@@ -55,8 +54,7 @@ std::vector<double> cauchy(const std::function<Complex(Complex)>& f, int n, doub
 }
 
 // Compares every coefficient of `s` with the Cauchy reference of `f`.
-void expect_matches_cauchy(const Series& s, const std::function<Complex(Complex)>& f,
-                           const std::string& what) {
+void expect_matches_cauchy(const Series& s, const std::function<Complex(Complex)>& f, const std::string& what) {
   constexpr double r = 0.25;
   double bound = 0.0;
   const auto ref = cauchy(f, s.terms(), bound, r);
@@ -116,8 +114,10 @@ TEST(Series, GeometricSeriesFromDivision) {
 TEST(Series, DivisionMatchesCauchy) {
   const Series a = inner(0.7);
   const Series b = exp(inner(0.2));
-  expect_matches_cauchy(a / b, [](Complex s) { return inner(0.7, s) / std::exp(inner(0.2, s)); }, "a/b");
-  expect_matches_cauchy(3.0 / b, [](Complex s) { return 3.0 / std::exp(inner(0.2, s)); }, "3/b");
+  expect_matches_cauchy(
+      a / b, [](Complex s) { return inner(0.7, s) / std::exp(inner(0.2, s)); }, "a/b");
+  expect_matches_cauchy(
+      3.0 / b, [](Complex s) { return 3.0 / std::exp(inner(0.2, s)); }, "3/b");
 }
 
 TEST(Series, BinaryOperationsKeepTheShorterLength) {
@@ -341,7 +341,8 @@ class SeriesFunction : public ::testing::TestWithParam<UnaryCase> {};
 TEST_P(SeriesFunction, MatchesCauchyReferenceToAllOrders) {
   const UnaryCase& c = GetParam();
   const double x0 = c.x0;
-  expect_matches_cauchy(c.series(inner(x0)), [&](Complex s) { return c.reference(inner(x0, s)); }, c.name);
+  expect_matches_cauchy(
+      c.series(inner(x0)), [&](Complex s) { return c.reference(inner(x0, s)); }, c.name);
 }
 
 Series pow_2_5(const Series& x) { return pow(x, 2.5); }
@@ -377,8 +378,7 @@ INSTANTIATE_TEST_SUITE_P(
         // atan2(y, x) with x > 0 is atan(y/x) exactly.
         UnaryCase{"atan2 right half", 0.3, atan2_of, [](Complex z) { return std::atan(z / (0.4 - z * z)); }},
         // In the left half plane it differs from atan(y/x) by the constant pi (here y > 0).
-        UnaryCase{"atan2 left half", 0.5, atan2_left,
-                  [](Complex z) { return std::atan(z / (-1.0 - z * z)) + kPi; }}),
+        UnaryCase{"atan2 left half", 0.5, atan2_left, [](Complex z) { return std::atan(z / (-1.0 - z * z)) + kPi; }}),
     [](const ::testing::TestParamInfo<UnaryCase>& info) {
       std::string name = info.param.name;
       for (char& ch : name) {

@@ -3,10 +3,10 @@
 // nbar animate command.
 #include <gtest/gtest.h>
 
-#include <iterator>
 #include <sys/wait.h>
 #include <tinyxml2.h>
 #include <unistd.h>
+#include <iterator>
 
 #include <algorithm>
 #include <cstdlib>
@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
-#include "render/render_support.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/sweep.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/render/animation.hpp"
 #include "nbar/render/image_canvas.hpp"
+#include "render/render_support.hpp"
 
 namespace {
 
@@ -165,7 +165,8 @@ Gif read_gif(const std::string& bytes) {
         if (label == 0xF9 && data.size() == 4) {
           delay = data[1] | (data[2] << 8);
           transparent = (data[0] & 1) ? data[3] : -1;
-        } else if (label == 0xFF && data.size() == 14 && std::string(data.begin(), data.begin() + 11) == "NETSCAPE2.0") {
+        } else if (label == 0xFF && data.size() == 14 &&
+                   std::string(data.begin(), data.begin() + 11) == "NETSCAPE2.0") {
           g.loops_forever = data[11] == 1 && data[12] == 0 && data[13] == 0;
         }
       } else if (block == 0x2C) {
@@ -272,7 +273,8 @@ TEST(Animation, GifHasEveryFrameLoopsForeverAndShowsTheDrawing) {
     const ImageCanvas drawn = a.render_frame(k, false);
     int differ = 0;
     for (int y = 0; y < g.height; ++y)
-      for (int x = 0; x < g.width; ++x) differ += g.frames[k][static_cast<std::size_t>(y) * g.width + x] != rgb(drawn, x, y);
+      for (int x = 0; x < g.width; ++x)
+        differ += g.frames[k][static_cast<std::size_t>(y) * g.width + x] != rgb(drawn, x, y);
     EXPECT_EQ(differ, 0);
   }
   EXPECT_NE(g.frames[0], g.frames[4]);  // it moves
@@ -297,7 +299,8 @@ TEST(Animation, GifWithMoreColoursThanAPaletteMapsToTheNearest) {
   for (int y = 0; y < g.height; ++y)
     for (int x = 0; x < g.width; ++x) {
       const std::uint32_t want = rgb(drawn, x, y), got = g.frames[2][static_cast<std::size_t>(y) * g.width + x];
-      for (int shift : {0, 8, 16}) far += std::abs(static_cast<int>((want >> shift) & 0xff) - static_cast<int>((got >> shift) & 0xff)) > 40;
+      for (int shift : {0, 8, 16})
+        far += std::abs(static_cast<int>((want >> shift) & 0xff) - static_cast<int>((got >> shift) & 0xff)) > 40;
     }
   EXPECT_LT(far, g.width * g.height / 1000);
 }
@@ -436,10 +439,10 @@ TEST(Animation, HtmlPlaysInHeadlessChromium) {
   EXPECT_GT(std::atoi(frame.c_str()), 10) << "frame " << frame;  // about 72 after 3 s
   EXPECT_NE(after.find("transform=\"translate("), std::string::npos);
 
-  const std::string screenshot = browser_command(browser, dir / "profile") +
-                                 " --virtual-time-budget=1500 --window-size=800,600 --screenshot=" +
-                                 quote(shot.string()) + " " + quote("file://" + page.string()) + " > " +
-                                 quote((dir / "shot.err").string()) + " 2>&1";
+  const std::string screenshot =
+      browser_command(browser, dir / "profile") +
+      " --virtual-time-budget=1500 --window-size=800,600 --screenshot=" + quote(shot.string()) + " " +
+      quote("file://" + page.string()) + " > " + quote((dir / "shot.err").string()) + " 2>&1";
   ASSERT_EQ(run(screenshot), 0) << read_file(dir / "shot.err");
   const ImageCanvas png = ImageCanvas::read_png(shot.string());
   EXPECT_EQ(png.width(), 800);
@@ -553,7 +556,9 @@ TEST(AnimateCommand, WritesEachFormatAndRejectsOthers) {
   EXPECT_NE(read_file(dir / "err.txt").find(".gif, .svg, .html or .mp4"), std::string::npos);
   EXPECT_EQ(run(cli + " animate " + model + " -o " + quote((dir / "x.gif").string()) + " --trace Q" + quiet), 2);
   EXPECT_NE(read_file(dir / "err.txt").find("'Q'"), std::string::npos);
-  EXPECT_EQ(run(cli + " animate " + quote((dir / "missing.yaml").string()) + " -o " + quote((dir / "x.gif").string()) + quiet), 1);
+  EXPECT_EQ(run(cli + " animate " + quote((dir / "missing.yaml").string()) + " -o " + quote((dir / "x.gif").string()) +
+                quiet),
+            1);
   EXPECT_EQ(run(cli + " animate " + model + quiet), 2);  // no -o
   EXPECT_EQ(run(cli + " animate " + model + " -o /nonexistent-nbar-dir/a.gif" + quiet), 2);
   EXPECT_NE(read_file(dir / "err.txt").find("/nonexistent-nbar-dir/a.gif"), std::string::npos);
@@ -603,7 +608,9 @@ TEST(Animation, EveryWriterStopsBetweenFramesWhenItsControlSaysSo) {
   const auto stop_at = [&](long n, long& calls) {
     calls = 0;
     nbar::RunControl control;
-    control.on_progress = [n, &calls](const nbar::Progress& p) { return std::string(p.stage) != "frames" || ++calls != n; };
+    control.on_progress = [n, &calls](const nbar::Progress& p) {
+      return std::string(p.stage) != "frames" || ++calls != n;
+    };
     a.set_control(control);
   };
   const auto expect_cancelled = [](const auto& write) {

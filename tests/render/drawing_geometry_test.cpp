@@ -22,7 +22,8 @@ struct Example {
   Mechanism mech;
   SweepResult sweep;
   explicit Example(const std::string& name, int steps = 37)
-      : file(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name)), mech(file.model),
+      : file(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name)),
+        mech(file.model),
         sweep(run_sweep(mech, [steps] {
           SweepOptions o;
           o.order = 0;
@@ -38,7 +39,9 @@ struct Picture {
   RecordingCanvas canvas;
   std::vector<Eigen::Vector2d> points;
   Picture(const Example& e, int step, DrawOptions o)
-      : options(std::move(o)), view(fit_view(e.mech, e.sweep, options)), canvas(options.width, options.height),
+      : options(std::move(o)),
+        view(fit_view(e.mech, e.sweep, options)),
+        canvas(options.width, options.height),
         points(sample_points(e.mech, e.sweep.samples.at(step))) {
     draw_mechanism(canvas, view, e.mech, e.sweep, points, options);
   }
@@ -282,11 +285,11 @@ TEST(DrawingGeometry, AMarkerLabelStaysOffThePlates) {
       const auto box = text_box(*labels[0]);
       for (const Drawn& plate : pic.canvas.drawn) {
         if (plate.kind != Drawn::Outline) continue;
-        for (const Eigen::Vector2d& c : {Eigen::Vector2d(box[0], box[1]), Eigen::Vector2d(box[2], box[1]),
-                                         Eigen::Vector2d(box[2], box[3]), Eigen::Vector2d(box[0], box[3]),
-                                         Eigen::Vector2d(0.5 * (box[0] + box[2]), 0.5 * (box[1] + box[3]))}) {
-          EXPECT_FALSE(inside(plate.points, c)) << "step " << step << ", marker on " << m.bodies[b].name
-                                                << ": its label is on " << plate.group;
+        for (const Eigen::Vector2d& c :
+             {Eigen::Vector2d(box[0], box[1]), Eigen::Vector2d(box[2], box[1]), Eigen::Vector2d(box[2], box[3]),
+              Eigen::Vector2d(box[0], box[3]), Eigen::Vector2d(0.5 * (box[0] + box[2]), 0.5 * (box[1] + box[3]))}) {
+          EXPECT_FALSE(inside(plate.points, c))
+              << "step " << step << ", marker on " << m.bodies[b].name << ": its label is on " << plate.group;
         }
       }
     }

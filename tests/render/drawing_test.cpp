@@ -52,7 +52,8 @@ struct Drawn {
   Mechanism mech;
   SweepResult sweep;
   explicit Drawn(const std::string& name)
-      : file(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name)), mech(file.model),
+      : file(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name)),
+        mech(file.model),
         sweep(run_sweep(mech, [] {
           SweepOptions o;
           o.order = 0;
@@ -70,13 +71,15 @@ TEST(Drawing, FourBarHasAGroupPerBodyACirclePerJointAndAPathPerTrace) {
   draw_sample(canvas, d.mech, d.sweep, 0, options);
   const std::string svg = canvas.document();
   EXPECT_TRUE(well_formed(svg));
-  for (const char* body : {"crank", "coupler", "rocker"}) EXPECT_EQ(count(svg, std::string("id=\"body-") + body + "\""), 1);
+  for (const char* body : {"crank", "coupler", "rocker"})
+    EXPECT_EQ(count(svg, std::string("id=\"body-") + body + "\""), 1);
   // Joints O2, O4, A, B as open circles (white fill, r 4.5); the coupler point as a dot.
   EXPECT_EQ(count(svg, "r=\"4.5\" fill=\"#ffffff\""), 4);
   EXPECT_EQ(count(svg, "r=\"2.5\""), 1);
   // Two traces, one polyline each, with one vertex per sample of the finer sweep the traces
   // are solved on (the sweep has 37).
-  const auto traces = svg.substr(svg.find("id=\"traces\""), svg.find("</g>", svg.find("id=\"traces\"")) - svg.find("id=\"traces\""));
+  const auto traces =
+      svg.substr(svg.find("id=\"traces\""), svg.find("</g>", svg.find("id=\"traces\"")) - svg.find("id=\"traces\""));
   EXPECT_EQ(count(traces, "<polyline"), 2);
   const std::size_t points = traces.find("points=\"") + 8;
   EXPECT_EQ(count(traces.substr(points, traces.find('"', points) - points), ","), kTraceSamples);
@@ -116,12 +119,12 @@ TEST(Drawing, EveryPoseOfTheSweepFitsTheView) {
   for (const Sample& s : d.sweep.samples)
     for (const Body& body : m.bodies)
       for (int point : body.points) {
-      const Eigen::Vector2d q = view.to_pixels(sample_points(d.mech, s)[point]);
-      EXPECT_GE(q.x(), options.margin);
-      EXPECT_LE(q.x(), options.width - options.margin);
-      EXPECT_GE(q.y(), options.margin);
-      EXPECT_LE(q.y(), options.height - options.margin);
-    }
+        const Eigen::Vector2d q = view.to_pixels(sample_points(d.mech, s)[point]);
+        EXPECT_GE(q.x(), options.margin);
+        EXPECT_LE(q.x(), options.width - options.margin);
+        EXPECT_GE(q.y(), options.margin);
+        EXPECT_LE(q.y(), options.height - options.margin);
+      }
 }
 
 TEST(Drawing, BodyTransformsCarryTheStartingPoseOntoAnyOther) {

@@ -142,7 +142,8 @@ std::string group(const std::string& svg, const std::string& id) {
 
 std::vector<std::string> elements(const std::string& markup, const std::string& tag) {
   std::vector<std::string> out;
-  for (std::size_t at = markup.find("<" + tag + " "); at != std::string::npos; at = markup.find("<" + tag + " ", at + 1))
+  for (std::size_t at = markup.find("<" + tag + " "); at != std::string::npos;
+       at = markup.find("<" + tag + " ", at + 1))
     out.push_back(markup.substr(at, markup.find('>', at) - at + 1));
   return out;
 }
@@ -236,9 +237,9 @@ TEST(DrawPlot, OneLinePerSeriesMappedOntoTheAxes) {
   }
   const auto sine = points(elements(group(svg, "series-0"), "polyline")[0]);
   const double middle = 0.5 * (r.top + r.bottom);
-  EXPECT_NEAR(sine[0].y(), middle, kPx);      // sin 0 = 0
-  EXPECT_NEAR(sine[90].y(), r.top, kPx);      // sin 90 = 1, the top tick
-  EXPECT_NEAR(sine[270].y(), r.bottom, kPx);  // sin 270 = -1, the bottom tick
+  EXPECT_NEAR(sine[0].y(), middle, kPx);                               // sin 0 = 0
+  EXPECT_NEAR(sine[90].y(), r.top, kPx);                               // sin 90 = 1, the top tick
+  EXPECT_NEAR(sine[270].y(), r.bottom, kPx);                           // sin 270 = -1, the bottom tick
   EXPECT_NEAR(sine[30].y(), middle - 0.25 * (r.bottom - r.top), kPx);  // sin 30 = 0.5
   EXPECT_THAT(svg, Not(HasSubstr("series-2")));
   EXPECT_THAT(svg, Not(HasSubstr("nan")));
@@ -252,7 +253,7 @@ TEST(DrawPlot, AxisLabelsTicksAndTitle) {
   EXPECT_THAT(labels, testing::Contains("trig"));
   EXPECT_THAT(labels, testing::Contains("-1.0"));
   EXPECT_THAT(labels, testing::Contains("1.0"));
-  EXPECT_THAT(labels, testing::Contains("0"));    // an x tick
+  EXPECT_THAT(labels, testing::Contains("0"));  // an x tick
   EXPECT_THAT(labels, testing::Contains("300"));
   EXPECT_FALSE(elements(group(svg, "grid"), "polyline").empty());
 }
@@ -515,8 +516,8 @@ struct PlotRun {
 
 PlotRun nbar_plot(const std::string& args) {
   static int count = 0;
-  const fs::path err = fs::temp_directory_path() / ("nbar_plot_test_" + std::to_string(::getpid()) + "_" +
-                                                    std::to_string(count++) + ".err");
+  const fs::path err = fs::temp_directory_path() /
+                       ("nbar_plot_test_" + std::to_string(::getpid()) + "_" + std::to_string(count++) + ".err");
   std::string command = NBAR_CLI_PATH;
   command += " plot ";
   command += args;
@@ -555,14 +556,15 @@ class PlotCli : public ::testing::Test {
 };
 
 TEST_F(PlotCli, TwoColumnsAsSvg) {
-  const PlotRun run = nbar_plot(example("fourbar-crank-rocker.yaml") + " --y rocker.angle,rocker.omega -o " + out("x.svg"));
+  const PlotRun run =
+      nbar_plot(example("fourbar-crank-rocker.yaml") + " --y rocker.angle,rocker.omega -o " + out("x.svg"));
   ASSERT_EQ(run.code, 0) << run.err;
   const std::string svg = read(out("x.svg"));
   EXPECT_EQ(elements(group(svg, "series-0"), "polyline").size(), 1u);
   EXPECT_EQ(elements(group(svg, "series-1"), "polyline").size(), 1u);
   EXPECT_THAT(svg, Not(HasSubstr("series-2")));
   EXPECT_THAT(texts(group(svg, "legend")), ElementsAre("rocker.angle [deg]", "rocker.omega [deg/s] (right)"));
-  EXPECT_THAT(texts(group(svg, "axes")), testing::Contains("crank [deg]"));  // the driver by default
+  EXPECT_THAT(texts(group(svg, "axes")), testing::Contains("crank [deg]"));         // the driver by default
   EXPECT_EQ(points(elements(group(svg, "series-0"), "polyline")[0]).size(), 361u);  // the model's steps
 }
 
@@ -573,8 +575,8 @@ TEST_F(PlotCli, GlobsStepsAndPng) {
 }
 
 TEST_F(PlotCli, OtherXAndTitle) {
-  const PlotRun run = nbar_plot(example("fourbar-crank-rocker.yaml") + " --x P.x --y P.y --title 'Coupler curve' -o " +
-                            out("c.svg"));
+  const PlotRun run =
+      nbar_plot(example("fourbar-crank-rocker.yaml") + " --x P.x --y P.y --title 'Coupler curve' -o " + out("c.svg"));
   ASSERT_EQ(run.code, 0) << run.err;
   const auto labels = texts(group(read(out("c.svg")), "axes"));
   EXPECT_THAT(labels, testing::Contains("P.x [mm]"));

@@ -5,21 +5,21 @@
 #include <fstream>
 #include <iterator>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <numbers>
 #include <set>
 #include <string>
-#include <unistd.h>
 
-#include "render/render_support.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/sweep.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/render/drawing.hpp"
 #include "nbar/render/image_canvas.hpp"
+#include "render/render_support.hpp"
 
 namespace {
 

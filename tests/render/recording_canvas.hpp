@@ -11,9 +11,9 @@ namespace nbar::render::test_support {
 
 struct Drawn {
   enum Kind { Polygon, Polyline, Circle, Outline, Text } kind;
-  std::string group;  // the innermost group's id
+  std::string group;                    // the innermost group's id
   std::vector<Eigen::Vector2d> points;  // vertices; a circle's centre; a text's baseline start
-  double size = 0;    // stroke width (polylines), radius (circles), font size (texts)
+  double size = 0;                      // stroke width (polylines), radius (circles), font size (texts)
   std::string text;
   Paint paint;
 };

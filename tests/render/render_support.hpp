@@ -67,12 +67,12 @@ inline std::string browser_command(const std::string& browser, const std::filesy
 
 // Without Chromium a browser test fails, unless NBAR_SKIP_BROWSER_TESTS=1 says to skip it.
 #define REQUIRE_CHROMIUM(browser)                                                                   \
-  const std::string browser = nbar::render::test_support::chromium();                              \
+  const std::string browser = nbar::render::test_support::chromium();                               \
   if (browser.empty()) {                                                                            \
     const char* skip = std::getenv("NBAR_SKIP_BROWSER_TESTS");                                      \
     if (skip && std::string(skip) == "1")                                                           \
       GTEST_SKIP() << "\n*** Chromium is not installed (/usr/bin/chromium): the browser test is "   \
-                      "NOT run. scripts/install-deps.sh installs it. ***\n";                       \
+                      "NOT run. scripts/install-deps.sh installs it. ***\n";                        \
     FAIL() << "Chromium is not installed (/usr/bin/chromium): run scripts/install-deps.sh, or set " \
               "NBAR_SKIP_BROWSER_TESTS=1 to skip this test";                                        \
   }

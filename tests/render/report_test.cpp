@@ -84,7 +84,7 @@ TEST(Report, KineticsAndStressesWhenTheModelHasThem) {
     EXPECT_THAT(html, HasSubstr(std::string("id=\"") + id));
   EXPECT_THAT(html, HasSubstr("Driver efforts"));
   EXPECT_THAT(html, HasSubstr("O2.ground&gt;crank"));  // a joint force, escaped
-  EXPECT_THAT(html, HasSubstr("id=\"markers\""));       // largest stresses marked on the drawing
+  EXPECT_THAT(html, HasSubstr("id=\"markers\""));      // largest stresses marked on the drawing
   EXPECT_THAT(html, HasSubstr("Safety factor"));
   EXPECT_THAT(urls(html), ::testing::IsEmpty());
   EXPECT_THAT(html, Not(HasSubstr("nan")));
@@ -106,8 +106,10 @@ TEST(Report, StressMarkersInThePoseOfEachMaximum) {
   const std::string stresses = html.substr(html.find("id=\"stresses\""));
   ASSERT_EQ(analysis.stress->peaks.size(), 3u);
   std::size_t figures = 0, markers = 0;
-  for (std::size_t i = stresses.find("<figure>"); i != std::string::npos; i = stresses.find("<figure>", i + 1)) ++figures;
-  for (std::size_t i = stresses.find("id=\"markers\""); i != std::string::npos; i = stresses.find("id=\"markers\"", i + 1))
+  for (std::size_t i = stresses.find("<figure>"); i != std::string::npos; i = stresses.find("<figure>", i + 1))
+    ++figures;
+  for (std::size_t i = stresses.find("id=\"markers\""); i != std::string::npos;
+       i = stresses.find("id=\"markers\"", i + 1))
     ++markers;
   EXPECT_EQ(figures, 3u);
   EXPECT_EQ(markers, 3u);  // one marker a picture

@@ -167,8 +167,8 @@ TEST(LinkStress, EverySectionOfAMovingFourBarIsInEquilibrium) {
       for (int k = 0; k < stress.section_count(body); ++k) {
         const PartLoads near = stress.part_loads(forces, body, k, -1);
         const PartLoads far = stress.part_loads(forces, body, k, +1);
-        const double err = std::max((near.force + far.force).norm() / scale,
-                                    std::abs(near.moment + far.moment) / (scale * 0.2));
+        const double err =
+            std::max((near.force + far.force).norm() / scale, std::abs(near.moment + far.moment) / (scale * 0.2));
         worst = std::max(worst, err);
         ASSERT_LT(err, 1e-9) << "body " << body << " section " << k << " step " << sample.step;
       }

@@ -2,11 +2,11 @@
 // positive Jacobian at every node), the smallest angle, the boundary covered once with the
 // plate on its left, holes left empty, grading near holes and re-entrant corners,
 // reproducibility, limits and errors; over random convex plates with round holes too.
+#include "nbar/stress/mesh.hpp"
 #include "model/region_support.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/model.hpp"
-#include "nbar/stress/mesh.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -180,7 +180,8 @@ double expected_curved_excess(const TriMesh& m) {
 }
 
 int edges_on(const TriMesh& m, BoundaryTag::Kind kind) {
-  return static_cast<int>(std::count_if(m.boundary.begin(), m.boundary.end(), [&](const BoundaryEdge& e) { return e.on.kind == kind; }));
+  return static_cast<int>(
+      std::count_if(m.boundary.begin(), m.boundary.end(), [&](const BoundaryEdge& e) { return e.on.kind == kind; }));
 }
 
 // The curved (isoparametric) area errs by the parabolic segments alone, so by O(n⁻⁴) with n

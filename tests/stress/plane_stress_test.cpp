@@ -22,18 +22,20 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 const ElasticMaterial kSteel{200e9, 0.3, 0.01, 7850};
 
-double max_principal(const Eigen::Vector3d& s) {
-  return 0.5 * (s[0] + s[1]) + std::hypot(0.5 * (s[0] - s[1]), s[2]);
-}
+double max_principal(const Eigen::Vector3d& s) { return 0.5 * (s[0] + s[1]) + std::hypot(0.5 * (s[0] - s[1]), s[2]); }
 
 // Uniform tension `stress` along x on the edges x = x_min and x = x_max of a mesh.
 std::vector<NodalForce> end_tension(const TriMesh& mesh, double x_min, double x_max, double stress, double thickness) {
   std::vector<NodalForce> out;
   const auto on = [](double x) {
-    return [x](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return std::abs(a.x() - x) < 1e-12 && std::abs(b.x() - x) < 1e-12; };
+    return [x](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+      return std::abs(a.x() - x) < 1e-12 && std::abs(b.x() - x) < 1e-12;
+    };
   };
-  structured::add_edge_traction(mesh, thickness, on(x_max), [&](const Eigen::Vector2d&) { return Eigen::Vector2d(stress, 0); }, out);
-  structured::add_edge_traction(mesh, thickness, on(x_min), [&](const Eigen::Vector2d&) { return Eigen::Vector2d(-stress, 0); }, out);
+  structured::add_edge_traction(
+      mesh, thickness, on(x_max), [&](const Eigen::Vector2d&) { return Eigen::Vector2d(stress, 0); }, out);
+  structured::add_edge_traction(
+      mesh, thickness, on(x_min), [&](const Eigen::Vector2d&) { return Eigen::Vector2d(-stress, 0); }, out);
   return out;
 }
 
@@ -88,14 +90,18 @@ TEST(PlaneStress, CantileverMatchesBeamTheoryAwayFromItsEnds) {
   const PlateModel model(mesh, kSteel);
   const auto shear = [&](double y) { return 1.5 * load / (depth * thickness) * (1 - 4 * y * y / (depth * depth)); };
   const auto at_x = [](double x) {
-    return [x](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return std::abs(a.x() - x) < 1e-12 && std::abs(b.x() - x) < 1e-12; };
+    return [x](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+      return std::abs(a.x() - x) < 1e-12 && std::abs(b.x() - x) < 1e-12;
+    };
   };
   LoadCase loads;
-  structured::add_edge_traction(mesh, thickness, at_x(length), [&](const Eigen::Vector2d& p) { return Eigen::Vector2d(0, -shear(p.y())); },
-                                loads.nodal);
-  structured::add_edge_traction(mesh, thickness, at_x(0),
-                                [&](const Eigen::Vector2d& p) { return Eigen::Vector2d(-load * length * p.y() / inertia, shear(p.y())); },
-                                loads.nodal);
+  structured::add_edge_traction(
+      mesh, thickness, at_x(length), [&](const Eigen::Vector2d& p) { return Eigen::Vector2d(0, -shear(p.y())); },
+      loads.nodal);
+  structured::add_edge_traction(
+      mesh, thickness, at_x(0),
+      [&](const Eigen::Vector2d& p) { return Eigen::Vector2d(-load * length * p.y() / inertia, shear(p.y())); },
+      loads.nodal);
   const StressField field = model.solve(loads);
   EXPECT_LT(field.load_unbalance, 1e-12);
   EXPECT_LT(field.support_reaction, 1e-9);
@@ -122,7 +128,8 @@ struct KirschRun {
 // A plate 30 hole diameters long and W = 15 d wide, a central hole, tension σ along its length.
 KirschRun kirsch(int around, int rings) {
   const double radius = 0.01, half_width = 15 * radius, half_length = 45 * radius, stress = 1e6;
-  const TriMesh mesh = structured::plate_with_hole(-half_length, -half_width, half_length, half_width, {0, 0}, radius, around, rings, 4.5);
+  const TriMesh mesh = structured::plate_with_hole(-half_length, -half_width, half_length, half_width, {0, 0}, radius,
+                                                   around, rings, 4.5);
   const PlateModel model(mesh, kSteel);
   LoadCase loads;
   loads.nodal = end_tension(mesh, -half_length, half_length, stress, kSteel.thickness);
@@ -160,7 +167,8 @@ TEST(PlaneStress, KirschHoleInAWidePlateAndMeshConvergence) {
 // below the curve; the test holds them to 10 % and 15 % and below it.
 double lug_kt(double d_over_h, int around, int rings) {
   const double height = 0.04, radius = d_over_h * height / 2, load = 1000.0;
-  const TriMesh mesh = structured::plate_with_hole(-height, -height / 2, 4 * height, height / 2, {0, 0}, radius, around, rings, 2.5);
+  const TriMesh mesh =
+      structured::plate_with_hole(-height, -height / 2, 4 * height, height / 2, {0, 0}, radius, around, rings, 2.5);
   const PlateModel model(mesh, kSteel);
   LoadCase loads;
   loads.bearings.push_back({0, {-load, 0}});
@@ -264,9 +272,18 @@ TEST(PlaneStress, BadInputIsRefusedWithAClearMessage) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message([&] { PlateModel(mesh, {0, 0.3, 0.01, 0}); }), "finite elements: Young's modulus must be a positive number");
-  EXPECT_EQ(message([&] { PlateModel(mesh, {1e9, 0.5, 0.01, 0}); }), "finite elements: Poisson's ratio must be in [0, 0.5)");
-  EXPECT_EQ(message([&] { PlateModel(mesh, {1e9, 0.3, -1, 0}); }), "finite elements: the plate thickness must be a positive number");
+  EXPECT_EQ(message([&] {
+              PlateModel(mesh, {0, 0.3, 0.01, 0});
+            }),
+            "finite elements: Young's modulus must be a positive number");
+  EXPECT_EQ(message([&] {
+              PlateModel(mesh, {1e9, 0.5, 0.01, 0});
+            }),
+            "finite elements: Poisson's ratio must be in [0, 0.5)");
+  EXPECT_EQ(message([&] {
+              PlateModel(mesh, {1e9, 0.3, -1, 0});
+            }),
+            "finite elements: the plate thickness must be a positive number");
   TriMesh broken = mesh;
   broken.triangles[3][4] = 100000;
   EXPECT_NE(message([&] { PlateModel(broken, kSteel); }).find("triangle 3 refers to node 100000"), std::string::npos);
@@ -287,7 +304,8 @@ TEST(PlaneStress, BadInputIsRefusedWithAClearMessage) {
   EXPECT_EQ(message([&] { model.solve(loads); }), "finite elements: the bearing force on hole 0 is not finite");
   loads.bearings.clear();
   loads.forces.push_back({{1.0, 1.0}, {1, 0}});
-  EXPECT_EQ(message([&] { model.solve(loads); }), "finite elements: the point force at (1.000000, 1.000000) is outside the plate");
+  EXPECT_EQ(message([&] { model.solve(loads); }),
+            "finite elements: the point force at (1.000000, 1.000000) is outside the plate");
   loads.forces = {{{0.0, 0.0}, {1, 0}}};  // the hole's centre is not in the plate
   EXPECT_NE(message([&] { model.solve(loads); }).find("outside the plate"), std::string::npos);
   // No load: zero stress, no NaN.
@@ -306,7 +324,8 @@ namespace {
 // calculix-ccx, run here): displacements and the peak stress must agree.
 TEST(PlaneStress, AgreesWithCalculix) {
   const double height = 0.04, radius = 0.01, load = 1000.0;
-  const TriMesh mesh = structured::plate_with_hole(-height, -height / 2, 4 * height, height / 2, {0, 0}, radius, 64, 20, 2.5);
+  const TriMesh mesh =
+      structured::plate_with_hole(-height, -height / 2, 4 * height, height / 2, {0, 0}, radius, 64, 20, 2.5);
   const PlateModel model(mesh, kSteel);
   LoadCase loads;
   loads.bearings.push_back({0, {-load * 0.8, load * 0.6}});
@@ -322,7 +341,8 @@ TEST(PlaneStress, AgreesWithCalculix) {
     write_calculix_input(deck, model, loads, "nbar lug");
   }
   const std::string command = "cd '" + dir.string() + "' && ccx -i lug > ccx.log 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << "ccx failed or is not installed (Debian package calculix-ccx); see " << dir / "ccx.log";
+  ASSERT_EQ(std::system(command.c_str()), 0)
+      << "ccx failed or is not installed (Debian package calculix-ccx); see " << dir / "ccx.log";
   std::ifstream frd(dir / "lug.frd");
   ASSERT_TRUE(frd) << "ccx wrote no " << dir / "lug.frd";
   const CalculixResults theirs = read_calculix_frd(frd);
@@ -330,15 +350,17 @@ TEST(PlaneStress, AgreesWithCalculix) {
   ASSERT_EQ(theirs.stress.size(), mesh.nodes.size());
 
   double largest = 0, worst = 0, their_peak = 0;
-  for (std::size_t i = 0; i < mesh.nodes.size(); ++i) largest = std::max(largest, ours.displacement.segment<2>(2 * i).norm());
+  for (std::size_t i = 0; i < mesh.nodes.size(); ++i)
+    largest = std::max(largest, ours.displacement.segment<2>(2 * i).norm());
   for (std::size_t i = 0; i < mesh.nodes.size(); ++i) {
     worst = std::max(worst, (ours.displacement.segment<2>(2 * i) - theirs.displacement[i]).norm());
     const Eigen::Vector3d& s = theirs.stress[i];
     their_peak = std::max(their_peak, std::sqrt(s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3 * s[2] * s[2]));
   }
-  std::printf("CalculiX: %zu nodes; largest displacement difference %.3g of the largest displacement; "
-              "peak von Mises %.6g Pa (nbar) and %.6g Pa (ccx): %.3f %%\n",
-              mesh.nodes.size(), worst / largest, ours.peak, their_peak, 100 * (ours.peak / their_peak - 1));
+  std::printf(
+      "CalculiX: %zu nodes; largest displacement difference %.3g of the largest displacement; "
+      "peak von Mises %.6g Pa (nbar) and %.6g Pa (ccx): %.3f %%\n",
+      mesh.nodes.size(), worst / largest, ours.peak, their_peak, 100 * (ours.peak / their_peak - 1));
   // ccx expands CPS6 into 15-node wedges through the thickness, so nodal displacements differ
   // slightly (0.2 % on a plain rectangle, most at mid-side nodes on the edge).
   EXPECT_LT(worst / largest, 0.01);
@@ -465,7 +487,8 @@ TEST(PlaneStress, MeshedTwoHoleBarIsTheLugAndConverges) {
 TEST(PlaneStress, MeshedKirschPlate) {
   const double radius = 0.01, half_width = 15 * radius, half_length = 30 * radius;
   Region plate;
-  plate.outline = {{-half_length, -half_width}, {half_length, -half_width}, {half_length, half_width}, {-half_length, half_width}};
+  plate.outline = {
+      {-half_length, -half_width}, {half_length, -half_width}, {half_length, half_width}, {-half_length, half_width}};
   plate.circle_holes = {Circle{{0, 0}, radius}};
   MeshOptions options;
   options.size = 0.02;

@@ -1,9 +1,9 @@
 // Sections of plates along a line: the material intervals by hand (through holes, vertices,
 // non-convex outlines), beam-section properties against the closed forms, and, over random
 // plates and lines, intervals that really are material with boundary at their ends.
+#include "nbar/stress/section.hpp"
 #include "model/region_support.hpp"
 #include "nbar/model/diagnostics.hpp"
-#include "nbar/stress/section.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -107,7 +107,7 @@ TEST(SectionIntervals, NonConvexOutline) {
 
 TEST(SectionIntervals, AlongAnEdgeTakesTheLimitFromTheRight) {
   const Region square = plate(rectangle(0, 0, 1, 1));
-  expect_intervals(section_intervals(square, {0, 0}, {1, 0}), {});           // the plate is to the left
+  expect_intervals(section_intervals(square, {0, 0}, {1, 0}), {});          // the plate is to the left
   expect_intervals(section_intervals(square, {0, 0}, {-1, 0}), {{-1, 0}});  // the plate is to the right
 }
 
@@ -347,9 +347,8 @@ RC_GTEST_PROP(SectionProperty, QIsLargestAtTheReportedLevel, ()) {
   // Q vanishes past the last fibre (it is a first moment about the centroid).
   RC_ASSERT(std::abs(q(sp.s_max)) <= 1e-12 * t);
   RC_ASSERT(std::abs(std::abs(q(sp.shear_level)) - sp.max_first_moment) <= 1e-12 * t);
-  const bool in_material = std::any_of(v.begin(), v.end(), [&](const auto& i) {
-    return i.first <= sp.shear_level && sp.shear_level <= i.second;
-  });
+  const bool in_material = std::any_of(
+      v.begin(), v.end(), [&](const auto& i) { return i.first <= sp.shear_level && sp.shear_level <= i.second; });
   RC_ASSERT(in_material);
   for (int k = 0; k <= 400; ++k) {
     const double level = sp.s_min + (sp.s_max - sp.s_min) * k / 400;

@@ -3,12 +3,12 @@
 // returned must carry its coupler through every precision position, checked with the same
 // independent closed form (link lengths and input angle only). The five-position solutions
 // are cross-checked with the homotopy solver.
-#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/burmester.hpp"
+#include "nbar/model/diagnostics.hpp"
 
-#include <Eigen/LU>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include <cmath>
 #include <limits>
@@ -361,8 +361,8 @@ TEST(BurmesterFivePositions, RecoversTheKnownFourBarAndEveryDesignReachesAllPosi
     }
   }
   expect_agrees_with_homotopy(poses, r);
-  std::printf("five positions: %zu real Burmester points, %d complex, %zu designs\n", r.points.size(),
-              r.complex_points, r.designs.size());
+  std::printf("five positions: %zu real Burmester points, %d complex, %zu designs\n", r.points.size(), r.complex_points,
+              r.designs.size());
 }
 
 TEST(BurmesterFivePositions, AgreesWithTheHomotopySolverOnRandomTasks) {

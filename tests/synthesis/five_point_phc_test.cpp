@@ -6,8 +6,8 @@
 
 #include <random>
 
-#include "phc_support.hpp"
 #include "nbar/synthesis/five_point.hpp"
+#include "phc_support.hpp"
 
 namespace nbar::synthesis {
 namespace {
@@ -19,7 +19,8 @@ TEST(FivePointPhcpackTest, SameThirtySixSolutionsAsPhcpack) {
   std::uniform_real_distribution<double> u(-1.0, 2.0);
   for (auto& p : t.points) p = {u(rng), u(rng)};
   const std::vector<std::string> names{"c1", "s1", "c2", "s2", "c3", "s3", "c4", "s4", "x1", "x2", "y1", "y2"};
-  const auto dir = std::filesystem::temp_directory_path() / std::string("nbar-phc-test-").append(std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / std::string("nbar-phc-test-").append(std::to_string(::getpid()));
   const auto theirs = phc::solve(five_point_system(t.points), names, dir);
   std::filesystem::remove_all(dir);
   ASSERT_TRUE(theirs.has_value());

@@ -16,9 +16,7 @@
 namespace nbar::synthesis {
 namespace {
 
-Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle) {
-  return Eigen::Rotation2Dd(angle) * v;
-}
+Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle) { return Eigen::Rotation2Dd(angle) * v; }
 
 Eigen::Vector2d coupler_point_at(const FourBarDesign& d, double crank) {
   return test_support::coupler_pose_at(d, crank).point;
@@ -214,7 +212,8 @@ TEST(FivePointTest, CollinearPointsAreDegenerateAndSaySo) {
   EXPECT_EQ(r.paths, 36 + 96);
   for (const auto& s : r.solutions) {
     EXPECT_TRUE(std::isfinite(s.residual));
-    for (int k = 0; k < 2; ++k) EXPECT_TRUE(std::isfinite(std::abs(s.moving_a[k])) && std::isfinite(std::abs(s.moving_b[k])));
+    for (int k = 0; k < 2; ++k)
+      EXPECT_TRUE(std::isfinite(std::abs(s.moving_a[k])) && std::isfinite(std::abs(s.moving_b[k])));
     if (s.real) {
       EXPECT_TRUE(s.design.moving_a.allFinite() && s.design.moving_b.allFinite());
     }

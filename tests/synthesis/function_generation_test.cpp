@@ -2,8 +2,8 @@
 // from a closed-form position analysis written here, is the function to generate, and
 // three precision points must give its link lengths back. Designs for y = log10(x) are
 // simulated here, independently of the library, at their precision points.
-#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/function_generation.hpp"
+#include "nbar/model/diagnostics.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -173,9 +173,10 @@ TEST(FunctionGenerationFreudenstein, Log10HitsItsChebyshevPrecisionPointsExactly
   // The lengths close the Freudenstein relations.
   EXPECT_NEAR(d.k[0], d.frame / d.input * (d.k[0] > 0 ? 1 : -1), 1e-12);
   EXPECT_NEAR(d.k[1], d.frame / d.output * (d.k[1] > 0 ? 1 : -1), 1e-12);
-  std::printf("log10 on [1, 2], 3 Chebyshev points: a %.6f b %.6f c %.6f d %.6f; K %.6f %.6f %.6f; "
-              "worst error %.3e rad at x = %.4f\n",
-              d.input, d.coupler, d.output, d.frame, d.k[0], d.k[1], d.k[2], d.worst.angle, d.worst.x);
+  std::printf(
+      "log10 on [1, 2], 3 Chebyshev points: a %.6f b %.6f c %.6f d %.6f; K %.6f %.6f %.6f; "
+      "worst error %.3e rad at x = %.4f\n",
+      d.input, d.coupler, d.output, d.frame, d.k[0], d.k[1], d.k[2], d.worst.angle, d.worst.x);
 }
 
 // Sum of squared Freudenstein residuals of K at the given x.
@@ -221,9 +222,8 @@ TEST(FunctionGenerationFreudenstein, DesignUsesTheTasksAngles) {
   const Vec2 pointer = m.points[in.points[1]].position - m.points[in.points[0]].position;
   EXPECT_NEAR(std::atan2(pointer.y(), pointer.x()), phi1, 1e-12);
   const Vec2 output = m.points[out.points[1]].position - m.points[out.points[0]].position;
-  EXPECT_NEAR(std::atan2(output.y(), output.x()), task.output_start + task.output_range *
-                                                                           std::log10(xs[0]) / std::log10(2.0),
-              1e-9);
+  EXPECT_NEAR(std::atan2(output.y(), output.x()),
+              task.output_start + task.output_range * std::log10(xs[0]) / std::log10(2.0), 1e-9);
 
   // Positive lengths (the 45 deg task above): no offsets, no pointers.
   const FunctionDesign plain = freudenstein_design(log10_task(), xs);
@@ -271,8 +271,11 @@ TEST(FunctionGenerationFreudenstein, BadInputIsRefusedByName) {
   const auto cheb = chebyshev_spacing(1, 2, 3);
   expect_invalid([&] { freudenstein_design(task, {1, 2}); }, "at least 3 precision points");
   expect_invalid([&] { freudenstein_design(task, {1, 1.5, 1.5}); }, "precision points 2 and 3 coincide");
-  expect_invalid([&] { freudenstein_design(task, {1, std::numeric_limits<double>::quiet_NaN(), 2}); },
-                 "precision point 2 is not finite");
+  expect_invalid(
+      [&] {
+        freudenstein_design(task, {1, std::numeric_limits<double>::quiet_NaN(), 2});
+      },
+      "precision point 2 is not finite");
   auto t = task;
   t.f = nullptr;
   expect_invalid([&] { freudenstein_design(t, cheb); }, "no function given");

@@ -55,10 +55,10 @@ TEST(NinePoint, AKnownFourBarAndItsCognatesComeBack) {
   // The orbit's representative may be any of the six labellings: look for the linkage among
   // the three designs of each real triple, with either dyad first.
   auto is_linkage = [&](const FourBarDesign& d) {
-    return (near(d.ground_a, linkage.a, 1e-6) && near(d.ground_b, linkage.b, 1e-6) && near(d.moving_a, first[0], 1e-6) &&
-            near(d.moving_b, first[1], 1e-6)) ||
-           (near(d.ground_a, linkage.b, 1e-6) && near(d.ground_b, linkage.a, 1e-6) && near(d.moving_a, first[1], 1e-6) &&
-            near(d.moving_b, first[0], 1e-6));
+    return (near(d.ground_a, linkage.a, 1e-6) && near(d.ground_b, linkage.b, 1e-6) &&
+            near(d.moving_a, first[0], 1e-6) && near(d.moving_b, first[1], 1e-6)) ||
+           (near(d.ground_a, linkage.b, 1e-6) && near(d.ground_b, linkage.a, 1e-6) &&
+            near(d.moving_a, first[1], 1e-6) && near(d.moving_b, first[0], 1e-6));
   };
   int matches = 0;
   for (const NinePointLinkage& l : result.linkages) {
@@ -176,7 +176,8 @@ TEST(NinePoint, BadPointsAreRefused) {
   // On one circle: a crank with the coupler point as its moving pivot, and any second dyad, is a
   // solution (it took minutes and reported more orbits than there are).
   std::array<Vector2d, 9> circle;
-  for (int k = 0; k < 9; ++k) circle[k] = Vector2d(50, 20) + 100 * Vector2d(std::cos(0.3 + 0.7 * k), std::sin(0.3 + 0.7 * k));
+  for (int k = 0; k < 9; ++k)
+    circle[k] = Vector2d(50, 20) + 100 * Vector2d(std::cos(0.3 + 0.7 * k), std::sin(0.3 + 0.7 * k));
   EXPECT_THROW(solve_nine_point(circle), nbar::Error);
 }
 

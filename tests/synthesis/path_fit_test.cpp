@@ -1,5 +1,5 @@
-#include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/path_fit.hpp"
+#include "nbar/model/diagnostics.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

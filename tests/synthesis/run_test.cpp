@@ -122,8 +122,8 @@ TEST(RunSynthesis, TaskDataTheSolverRejectsIsAnInvalidModelAtTheTask) {
 // A window the centre-point curve does not cross yields no dyads, and a note says why rather
 // than an unexplained "0 solutions".
 TEST(RunSynthesis, FourPosesWithNoCurveInTheWindowSayWhy) {
-  SynthesisTask task = io::load_synthesis_task(std::string(NBAR_EXAMPLES_DIR) +
-                                               "/synthesis/burmester-four-positions.yaml");
+  SynthesisTask task =
+      io::load_synthesis_task(std::string(NBAR_EXAMPLES_DIR) + "/synthesis/burmester-four-positions.yaml");
   task.curves.radius = 1;  // mm, about the poses' centroid, where the curve does not pass
   const SynthesisOutcome outcome = run_synthesis(task);
   EXPECT_TRUE(outcome.rows.empty());

@@ -8,8 +8,8 @@
 #include "nbar/synthesis/burmester.hpp"
 #include "nbar/synthesis/five_point.hpp"
 #include "nbar/synthesis/fourbar_design.hpp"
-#include "synthesis/fourbar_support.hpp"
 #include "nbar/synthesis/function_generation.hpp"
+#include "synthesis/fourbar_support.hpp"
 
 namespace nbar::synthesis {
 namespace {
@@ -43,8 +43,8 @@ std::vector<Target> targets_of(const std::vector<BodyPose>& poses) {
 }
 
 double size_of(const FourBarDesign& d) {
-  return std::max({(d.ground_b - d.ground_a).norm(), (d.moving_a - d.ground_a).norm(),
-                   (d.moving_b - d.moving_a).norm(), (d.moving_b - d.ground_b).norm()});
+  return std::max({(d.ground_b - d.ground_a).norm(), (d.moving_a - d.ground_a).norm(), (d.moving_b - d.moving_a).norm(),
+                   (d.moving_b - d.ground_b).norm()});
 }
 
 TEST(SimulatedDesignsTest, ThreePositionBurmesterDesignHitsItsPoses) {

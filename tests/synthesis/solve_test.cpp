@@ -61,10 +61,9 @@ TEST(HomotopySolverTest, FindsAllFourRootsOfTwoQuadrics) {
 TEST(HomotopySolverTest, KatsuraThreeHasEightSolutions) {
   const int n = 4;
   const auto u0 = var(n, 0), u1 = var(n, 1), u2 = var(n, 2), u3 = var(n, 3);
-  const PolynomialSystem f({u0 + 2.0 * u1 + 2.0 * u2 + 2.0 * u3 - 1.0,
-                            u0 * u0 + 2.0 * u1 * u1 + 2.0 * u2 * u2 + 2.0 * u3 * u3 - u0,
-                            2.0 * u0 * u1 + 2.0 * u1 * u2 + 2.0 * u2 * u3 - u1,
-                            u1 * u1 + 2.0 * u0 * u2 + 2.0 * u1 * u3 - u2});
+  const PolynomialSystem f(
+      {u0 + 2.0 * u1 + 2.0 * u2 + 2.0 * u3 - 1.0, u0 * u0 + 2.0 * u1 * u1 + 2.0 * u2 * u2 + 2.0 * u3 * u3 - u0,
+       2.0 * u0 * u1 + 2.0 * u1 * u2 + 2.0 * u2 * u3 - u1, u1 * u1 + 2.0 * u0 * u2 + 2.0 * u1 * u3 - u2});
   EXPECT_EQ(total_degree_count(f), 8);
   const SolveResult r = solve_total_degree(f);
   const auto s = r.solutions();

@@ -16,7 +16,8 @@ namespace {
 // A primitive's vertices (px), sorted: a body's outline is the same whichever vertex it starts at.
 using Vertices = std::vector<std::pair<double, double>>;
 Vertices sorted(Vertices v) {
-  std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first + 1e-3 * a.second < b.first + 1e-3 * b.second; });
+  std::sort(v.begin(), v.end(),
+            [](const auto& a, const auto& b) { return a.first + 1e-3 * a.second < b.first + 1e-3 * b.second; });
   return v;
 }
 
@@ -27,7 +28,8 @@ std::vector<Vertices> svg_primitives(const std::string& svg, const std::regex& p
     const std::string text = (*it)[1].str();
     const std::regex number(R"(-?[0-9.]+)");
     std::vector<double> numbers;
-    for (std::sregex_iterator n(text.begin(), text.end(), number); n != end; ++n) numbers.push_back(std::stod(n->str()));
+    for (std::sregex_iterator n(text.begin(), text.end(), number); n != end; ++n)
+      numbers.push_back(std::stod(n->str()));
     Vertices v;
     for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) v.emplace_back(numbers[i], numbers[i + 1]);
     out.push_back(sorted(v));
@@ -36,8 +38,8 @@ std::vector<Vertices> svg_primitives(const std::string& svg, const std::regex& p
 }
 
 // The same from a scene's items, each body group moved by its motion in `motions`.
-void scene_primitives(const Json& items, const Json& scene, const Json& motions, int body, std::vector<Vertices>& points,
-                      std::vector<Vertices>& circles) {
+void scene_primitives(const Json& items, const Json& scene, const Json& motions, int body,
+                      std::vector<Vertices>& points, std::vector<Vertices>& circles) {
   auto place = [&](double x, double y) {
     if (body < 0) return std::pair{x, y};
     const Json& m = motions[body];
@@ -56,7 +58,8 @@ void scene_primitives(const Json& items, const Json& scene, const Json& motions,
       scene_primitives(it["items"], scene, motions, inner, points, circles);
     } else if (type == "polygon" || type == "polyline") {
       Vertices v;
-      for (std::size_t i = 0; i + 1 < it["points"].size(); i += 2) v.push_back(place(it["points"][i], it["points"][i + 1]));
+      for (std::size_t i = 0; i + 1 < it["points"].size(); i += 2)
+        v.push_back(place(it["points"][i], it["points"][i + 1]));
       points.push_back(sorted(v));
     } else if (type == "circle") {
       circles.push_back({place(it["cx"], it["cy"])});
@@ -104,7 +107,8 @@ TEST(WebApi, CheckTakesAModelWrittenAsJson) {
 }
 
 TEST(WebApi, SolveIsByteForByteNbarSolveFormatJson) {
-  const ApiResponse r = post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 7}, {"order", 3}}));
+  const ApiResponse r =
+      post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 7}, {"order", 3}}));
   ASSERT_EQ(r.status, 200) << r.body;
   const cli_test::CliRun run = cli("solve examples/fourbar-crank-rocker.yaml --steps 7 --order 3 --format json");
   ASSERT_EQ(run.code, 0);
@@ -117,17 +121,19 @@ TEST(WebApi, SolveIsByteForByteNbarSolveFormatJson) {
 }
 
 TEST(WebApi, SolveWithDynamicsColumnsAndOrderFive) {
-  const ApiResponse r = post("/api/solve", with_model("examples/fourbar-steel-bars.yaml",
-                                                      {{"steps", 13}, {"dynamics", true},
-                                                       {"columns", {"crank", "crank.torque", "*.Fx"}}}));
+  const ApiResponse r = post(
+      "/api/solve", with_model("examples/fourbar-steel-bars.yaml",
+                               {{"steps", 13}, {"dynamics", true}, {"columns", {"crank", "crank.torque", "*.Fx"}}}));
   ASSERT_EQ(r.status, 200) << r.body;
-  EXPECT_EQ(r.body, cli("solve examples/fourbar-steel-bars.yaml --steps 13 --dynamics --columns 'crank,crank.torque,*.Fx' "
-                        "--format json")
-                        .out);
+  EXPECT_EQ(r.body,
+            cli("solve examples/fourbar-steel-bars.yaml --steps 13 --dynamics --columns 'crank,crank.torque,*.Fx' "
+                "--format json")
+                .out);
   const ApiResponse o5 = post("/api/solve", with_model("examples/compressor-myszka.yaml",
                                                        {{"steps", 5}, {"order", 5}, {"columns", "crank,C.*"}}));
   ASSERT_EQ(o5.status, 200) << o5.body;
-  EXPECT_EQ(o5.body, cli("solve examples/compressor-myszka.yaml --steps 5 --order 5 --columns 'crank,C.*' --format json").out);
+  EXPECT_EQ(o5.body,
+            cli("solve examples/compressor-myszka.yaml --steps 5 --order 5 --columns 'crank,C.*' --format json").out);
 }
 
 TEST(WebApi, SolveAsCsvAndTable) {
@@ -135,24 +141,27 @@ TEST(WebApi, SolveAsCsvAndTable) {
   ASSERT_EQ(csv.status, 200);
   EXPECT_EQ(csv.content_type, "text/csv; charset=utf-8");
   EXPECT_EQ(csv.body, cli("solve examples/five-bar.yaml --steps 5").out);
-  const ApiResponse table = post("/api/solve", with_model("examples/five-bar.yaml", {{"steps", 5}, {"format", "table"}}));
+  const ApiResponse table =
+      post("/api/solve", with_model("examples/five-bar.yaml", {{"steps", 5}, {"format", "table"}}));
   EXPECT_EQ(table.body, cli("solve examples/five-bar.yaml --steps 5 --format table").out);
 }
 
 TEST(WebApi, ASweepStoppedAtAToggleIsNotAnError) {
-  const ApiResponse r = post("/api/solve", with_model("tests/golden/inputs/toggle-stop.yaml",
-                                                      {{"columns", {"input", "output.angle"}}}));
+  const ApiResponse r =
+      post("/api/solve", with_model("tests/golden/inputs/toggle-stop.yaml", {{"columns", {"input", "output.angle"}}}));
   ASSERT_EQ(r.status, 200) << r.body;
   const Json j = Json::parse(r.body);
   EXPECT_FALSE(j["complete"].get<bool>());
   EXPECT_FALSE(j["stop_reason"].get<std::string>().empty());
-  const cli_test::CliRun run = cli("solve tests/golden/inputs/toggle-stop.yaml --columns input,output.angle --format json");
+  const cli_test::CliRun run =
+      cli("solve tests/golden/inputs/toggle-stop.yaml --columns input,output.angle --format json");
   EXPECT_EQ(run.code, 4);
   EXPECT_EQ(r.body, run.out);
 }
 
 TEST(WebApi, StressIsNbarStressFormatJson) {
-  const ApiResponse r = post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"steps", 13}, {"sections", 40}}));
+  const ApiResponse r =
+      post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"steps", 13}, {"sections", 40}}));
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_EQ(r.body, cli("stress examples/fourbar-steel-bars.yaml --steps 13 --sections 40 --format json").out);
   const ApiResponse profile =
@@ -168,7 +177,8 @@ TEST(WebApi, FiniteElementStressIsNbarStressMethodFe) {
   const ApiResponse r = post("/api/stress", with_model("examples/fourbar-steel-bars.yaml",
                                                        {{"steps", 5}, {"method", "fe"}, {"mesh_size", 4}}));
   ASSERT_EQ(r.status, 200) << r.body;
-  EXPECT_EQ(r.body, cli("stress examples/fourbar-steel-bars.yaml --steps 5 --method fe --mesh-size 4 --format json").out);
+  EXPECT_EQ(r.body,
+            cli("stress examples/fourbar-steel-bars.yaml --steps 5 --method fe --mesh-size 4 --format json").out);
   EXPECT_NE(r.body.find("\"method\": \"fe\""), std::string::npos);
   EXPECT_EQ(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"method", "fem"}})).status, 400);
   EXPECT_EQ(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"mesh_size", 4}})).status, 400);
@@ -187,30 +197,34 @@ TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
     ASSERT_EQ(r.status, 200) << r.body;
     // The same designs; the last bits of the homotopy's numbers may differ between runs in
     // unoptimised builds (paths on several threads), so numbers are compared to 1e-9.
-    EXPECT_TRUE(json_near(Json::parse(r.body), Json::parse(cli("synth " + kind + " " + file + " --all --top 5 --format json").out)));
+    EXPECT_TRUE(json_near(Json::parse(r.body),
+                          Json::parse(cli("synth " + kind + " " + file + " --all --top 5 --format json").out)));
   }
   // Nine-point tasks have their endpoint; a task sent to another method's is refused, naming the right one.
-  const Json wrong = error_of(post("/api/synth/nine-point", with_task("examples/synthesis/five-point-crank-rocker.yaml")));
+  const Json wrong =
+      error_of(post("/api/synth/nine-point", with_task("examples/synthesis/five-point-crank-rocker.yaml")));
   EXPECT_EQ(wrong["kind"], "bad_input");
   EXPECT_NE(wrong["message"].get<std::string>().find("/api/synth/five-point"), std::string::npos);
-  EXPECT_NE(error_of(post("/api/synth/five-point", with_task("examples/synthesis/nine-point-crank-rocker.yaml")))["message"]
-                .get<std::string>()
-                .find("/api/synth/nine-point"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(post("/api/synth/five-point", with_task("examples/synthesis/nine-point-crank-rocker.yaml")))["message"]
+          .get<std::string>()
+          .find("/api/synth/nine-point"),
+      std::string::npos);
   const ApiResponse five = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml"));
   ASSERT_EQ(five.status, 200);
   EXPECT_NE(five.body.find("crank-rocker"), std::string::npos);
   // Another seed, one thread: still the CLI's answer for that seed.
   const ApiResponse seeded = post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml",
-                                                                    {{"seed", 7}, {"threads", 1}, {"top", 0}}));
+                                                                     {{"seed", 7}, {"threads", 1}, {"top", 0}}));
   ASSERT_EQ(seeded.status, 200) << seeded.body;
-  EXPECT_TRUE(json_near(Json::parse(seeded.body),
-                        Json::parse(cli("synth five-point examples/synthesis/five-point-crank-rocker.yaml --seed 7 --top 0 "
-                                        "--format json")
-                                        .out)));
+  EXPECT_TRUE(
+      json_near(Json::parse(seeded.body),
+                Json::parse(cli("synth five-point examples/synthesis/five-point-crank-rocker.yaml --seed 7 --top 0 "
+                                "--format json")
+                                .out)));
   // The task as a JSON object.
-  const Json task = {{"task", "function"}, {"name", "square"}, {"function", "x^2"}, {"x", {0, 1}},
-                     {"input_range", {90, 150}}, {"output_range", {60, 120}}};
+  const Json task = {{"task", "function"}, {"name", "square"},         {"function", "x^2"},
+                     {"x", {0, 1}},        {"input_range", {90, 150}}, {"output_range", {60, 120}}};
   const ApiResponse object = post("/api/synth/function", {{"task", task}});
   ASSERT_EQ(object.status, 200) << object.body;
   EXPECT_EQ(Json::parse(object.body)["name"], "square");
@@ -220,7 +234,8 @@ TEST(WebApi, PathSynthesisIsNbarSynthPathAndOpensNoFile) {
   const std::string file = "examples/synthesis/path/crank-rocker-measured.yaml";
   const ApiResponse r = post("/api/synth/path", with_task(file, {{"top", 3}, {"threads", 1}}));
   ASSERT_EQ(r.status, 200) << r.body;
-  EXPECT_TRUE(json_near(Json::parse(r.body), Json::parse(cli("synth path " + file + " --top 3 --threads 1 --format json").out)));
+  EXPECT_TRUE(json_near(Json::parse(r.body),
+                        Json::parse(cli("synth path " + file + " --top 3 --threads 1 --format json").out)));
   // A client's `curve:` names a file on the server: refused at its line and column, unread
   // (the file exists and its second line would be quoted back if it were read).
   const auto dir = temp_folder("path-curve");
@@ -231,8 +246,9 @@ TEST(WebApi, PathSynthesisIsNbarSynthPathAndOpensNoFile) {
   const Json error = error_of(curve);
   EXPECT_EQ(error["line"], 2);
   EXPECT_EQ(error["column"], 8);
-  EXPECT_EQ(error["message"], "`curve` reads a CSV file, which only a task read from a file may do: give the targets "
-                              "here as `points: [[x, y], ...]`");
+  EXPECT_EQ(error["message"],
+            "`curve` reads a CSV file, which only a task read from a file may do: give the targets "
+            "here as `points: [[x, y], ...]`");
   EXPECT_EQ(curve.body.find("do-not-show-this"), std::string::npos);
   // The same from another method's endpoint, which parses the task before checking its kind.
   EXPECT_EQ(post("/api/synth/five-point", {{"task", "task: path\ncurve: " + secret + "\n"}}).body.find("do-not-show"),
@@ -252,7 +268,9 @@ TEST(WebApi, SynthesisModelsAreTheFilesOfSynthExport) {
   ASSERT_EQ(run.code, 0) << run.err;
   const Json designs = Json::parse(r.body)["designs"];
   ASSERT_EQ(designs.size(), 36u);  // every solution of the 36 paths
-  const auto file_of = [&](int rank) { return dir / ((rank < 10 ? "design-0" : "design-") + std::to_string(rank) + ".yaml"); };
+  const auto file_of = [&](int rank) {
+    return dir / ((rank < 10 ? "design-0" : "design-") + std::to_string(rank) + ".yaml");
+  };
   int with_model = 0;
   int without = 0;
   for (const Json& d : designs) {
@@ -293,16 +311,24 @@ TEST(WebApi, SynthesisModelsAreTheFilesOfSynthExport) {
 TEST(WebApi, RenderDrawIsNbarDraw) {
   const auto dir = temp_folder("draw");
   for (const std::string format : {"svg", "png"}) {
-    const ApiResponse r = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
-                                                         {{"kind", "draw"}, {"format", format}, {"labels", true},
-                                                          {"trace", "P"}, {"step", 30}, {"width", 400}, {"height", 300}}));
+    const ApiResponse r = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"},
+                                                                                                {"format", format},
+                                                                                                {"labels", true},
+                                                                                                {"trace", "P"},
+                                                                                                {"step", 30},
+                                                                                                {"width", 400},
+                                                                                                {"height", 300}}));
     ASSERT_EQ(r.status, 200) << r.body;
     EXPECT_EQ(r.content_type, format == "svg" ? "image/svg+xml" : "image/png");
     const std::string out = (dir / ("draw." + format)).string();
-    ASSERT_EQ(cli("draw examples/fourbar-crank-rocker.yaml --labels --trace P --step 30 --width 400 --height 300 -o " + out).code, 0);
+    ASSERT_EQ(
+        cli("draw examples/fourbar-crank-rocker.yaml --labels --trace P --step 30 --width 400 --height 300 -o " + out)
+            .code,
+        0);
     EXPECT_EQ(r.body, read_file(out)) << format;
   }
-  const ApiResponse at = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"at", 90}}));
+  const ApiResponse at =
+      post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"at", 90}}));
   ASSERT_EQ(at.status, 200);
   const std::string out = (dir / "at.svg").string();
   ASSERT_EQ(cli("draw examples/fourbar-crank-rocker.yaml --at 90 -o " + out).code, 0);
@@ -316,8 +342,9 @@ TEST(WebApi, RenderSceneIsNbarDrawAtEverySample) {
   const auto dir = temp_folder("scene");
   for (const std::string example : {"fourbar-crank-rocker", "slider-crank-offset", "dump-truck-tipper"}) {
     const std::string file = "examples/" + example + ".yaml";
-    const ApiResponse r = post("/api/render", with_model(file, {{"kind", "draw"}, {"format", "scene"}, {"labels", true},
-                                                                {"width", 400}, {"height", 300}}));
+    const ApiResponse r = post(
+        "/api/render",
+        with_model(file, {{"kind", "draw"}, {"format", "scene"}, {"labels", true}, {"width", 400}, {"height", 300}}));
     ASSERT_EQ(r.status, 200) << r.body;
     EXPECT_EQ(r.content_type, "application/json");
     const Json scene = Json::parse(r.body);
@@ -327,7 +354,9 @@ TEST(WebApi, RenderSceneIsNbarDrawAtEverySample) {
     const std::regex points(R"re(points="([^"]*)")re"), circles(R"re(<circle cx="([^"]*" cy="[^"]*)")re");
     for (const int step : {reference, reference + 40}) {
       const std::string out = (dir / (example + ".svg")).string();
-      ASSERT_EQ(cli("draw " + file + " --labels --width 400 --height 300 --step " + std::to_string(step) + " -o " + out).code, 0);
+      ASSERT_EQ(
+          cli("draw " + file + " --labels --width 400 --height 300 --step " + std::to_string(step) + " -o " + out).code,
+          0);
       std::string svg = read_file(out);
       svg = std::regex_replace(svg, std::regex(R"(<g id="labels"[\s\S]*?</g>)"), "");
       std::vector<Vertices> scene_lines, scene_circles;
@@ -354,7 +383,8 @@ TEST(WebApi, RenderSceneIsNbarDrawAtEverySample) {
       bool found = false;
       for (std::size_t c = 0; c + 1 < column.size(); ++c) {
         const std::string name = column[c];
-        if (name.size() < 2 || name.substr(name.size() - 2) != ".x" || column[c + 1] != name.substr(0, name.size() - 2) + ".y")
+        if (name.size() < 2 || name.substr(name.size() - 2) != ".x" ||
+            column[c + 1] != name.substr(0, name.size() - 2) + ".y")
           continue;
         const double px = solve["rows"][reference][c], py = solve["rows"][reference][c + 1];
         found = found || std::hypot(px - x, -py - y) < 0.02 * k * 100;
@@ -371,8 +401,10 @@ TEST(WebApi, RenderSceneIsNbarDrawAtEverySample) {
 
 // ffprobe's count of the video frames of an MP4 file and their size, as "frames WxH".
 std::string probe_mp4(const std::string& path) {
-  const std::string command = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-                              "stream=nb_read_frames,width,height,codec_name -of csv=p=0 '" + path + "'";
+  const std::string command =
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=nb_read_frames,width,height,codec_name -of csv=p=0 '" +
+      path + "'";
   std::FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return "";
   std::string out;
@@ -385,12 +417,16 @@ std::string probe_mp4(const std::string& path) {
 TEST(WebApi, RenderAnimateIsNbarAnimate) {
   const auto dir = temp_folder("animate");
   for (const std::string format : {"gif", "svg", "html"}) {
-    const ApiResponse r = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
-                                                         {{"kind", "animate"}, {"format", format}, {"frames", 12},
-                                                          {"fps", 10}, {"width", 300}, {"height", 200}}));
+    const ApiResponse r = post(
+        "/api/render",
+        with_model(
+            "examples/fourbar-crank-rocker.yaml",
+            {{"kind", "animate"}, {"format", format}, {"frames", 12}, {"fps", 10}, {"width", 300}, {"height", 200}}));
     ASSERT_EQ(r.status, 200) << r.body;
     const std::string out = (dir / ("anim." + format)).string();
-    ASSERT_EQ(cli("animate examples/fourbar-crank-rocker.yaml --frames 12 --fps 10 --width 300 --height 200 -o " + out).code, 0);
+    ASSERT_EQ(
+        cli("animate examples/fourbar-crank-rocker.yaml --frames 12 --fps 10 --width 300 --height 200 -o " + out).code,
+        0);
     EXPECT_EQ(r.body, read_file(out)) << format;
     if (format == "html") {
       EXPECT_EQ(header(r, "Content-Security-Policy"), "sandbox allow-scripts");
@@ -407,7 +443,8 @@ TEST(WebApi, RenderAnimateIsNbarAnimate) {
       std::ofstream(file, std::ios::binary) << mp4.body;
       EXPECT_EQ(probe_mp4(file), "h264,900,640,4\n");
       const std::string cli_file = (dir / "cli.mp4").string();
-      ASSERT_EQ(cli("animate examples/fourbar-crank-rocker.yaml --frames 6 --width 320 --height 240 -o " + cli_file).code, 0);
+      ASSERT_EQ(
+          cli("animate examples/fourbar-crank-rocker.yaml --frames 6 --width 320 --height 240 -o " + cli_file).code, 0);
       EXPECT_EQ(probe_mp4(cli_file), "h264,320,240,6\n");
     }
   } else {
@@ -436,24 +473,33 @@ TEST(WebApi, RenderPlatesIsNbarExport) {
     EXPECT_EQ(at.body, read_file(posed)) << format;
     EXPECT_NE(at.body, r.body);
   }
-  EXPECT_EQ(error_of(post("/api/render", with_model(model, {{"kind", "plates"}, {"format", "png"}})))["kind"], "bad_input");
+  EXPECT_EQ(error_of(post("/api/render", with_model(model, {{"kind", "plates"}, {"format", "png"}})))["kind"],
+            "bad_input");
   std::filesystem::remove_all(dir);
 }
 
 TEST(WebApi, RenderPlotIsNbarPlot) {
   const auto dir = temp_folder("plot");
   for (const std::string format : {"svg", "png"}) {
-    const ApiResponse r = post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
-                                                         {{"kind", "plot"}, {"format", format}, {"x", "P.x"}, {"y", "P.y"},
-                                                          {"steps", 37}, {"title", "coupler curve"}}));
+    const ApiResponse r =
+        post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "plot"},
+                                                                              {"format", format},
+                                                                              {"x", "P.x"},
+                                                                              {"y", "P.y"},
+                                                                              {"steps", 37},
+                                                                              {"title", "coupler curve"}}));
     ASSERT_EQ(r.status, 200) << r.body;
     const std::string out = (dir / ("plot." + format)).string();
-    ASSERT_EQ(cli("plot examples/fourbar-crank-rocker.yaml --x P.x --y P.y --steps 37 --title 'coupler curve' -o " + out).code, 0);
+    ASSERT_EQ(
+        cli("plot examples/fourbar-crank-rocker.yaml --x P.x --y P.y --steps 37 --title 'coupler curve' -o " + out)
+            .code,
+        0);
     EXPECT_EQ(r.body, read_file(out)) << format;
   }
   // Force columns switch the dynamics on, as in the CLI.
-  const ApiResponse torque = post("/api/render", with_model("examples/fourbar-steel-bars.yaml",
-                                                            {{"kind", "plot"}, {"y", {"crank.torque"}}, {"steps", 19}}));
+  const ApiResponse torque =
+      post("/api/render",
+           with_model("examples/fourbar-steel-bars.yaml", {{"kind", "plot"}, {"y", {"crank.torque"}}, {"steps", 19}}));
   ASSERT_EQ(torque.status, 200) << torque.body;
   const std::string out = (dir / "torque.svg").string();
   ASSERT_EQ(cli("plot examples/fourbar-steel-bars.yaml --y crank.torque --steps 19 -o " + out).code, 0);
@@ -462,7 +508,8 @@ TEST(WebApi, RenderPlotIsNbarPlot) {
 }
 
 TEST(WebApi, ReportIsNbarReport) {
-  const ApiResponse r = post("/api/report", with_model("examples/fourbar-steel-bars.yaml", {{"steps", 13}, {"frames", 6}}));
+  const ApiResponse r =
+      post("/api/report", with_model("examples/fourbar-steel-bars.yaml", {{"steps", 13}, {"frames", 6}}));
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_EQ(r.content_type, "text/html; charset=utf-8");
   const auto dir = temp_folder("report");
@@ -470,7 +517,10 @@ TEST(WebApi, ReportIsNbarReport) {
   const std::filesystem::path model = dir / "model";
   std::filesystem::copy_file(std::filesystem::path(NBAR_SOURCE_DIR) / "examples/fourbar-steel-bars.yaml", model);
   const std::string out = (dir / "report.html").string();
-  ASSERT_EQ(cli_test::run_shell("cd '" + dir.string() + "' && '" + NBAR_CLI_PATH + "' report model --steps 13 --frames 6 -o " + out).code, 0);
+  ASSERT_EQ(cli_test::run_shell("cd '" + dir.string() + "' && '" + NBAR_CLI_PATH +
+                                "' report model --steps 13 --frames 6 -o " + out)
+                .code,
+            0);
   EXPECT_EQ(r.body, read_file(out));
   std::filesystem::remove_all(dir);
 }
@@ -481,8 +531,8 @@ TEST(WebApi, ExplainIsNbarExplain) {
   EXPECT_EQ(r.content_type, "application/json");
   EXPECT_EQ(r.body, cli("explain examples/scissor-lift.yaml --steps 13 --step 3 --format json").out);
   for (const std::string format : {"text", "markdown", "latex"}) {
-    const ApiResponse doc = post("/api/explain", with_model("examples/fourbar-crank-rocker.yaml",
-                                                            {{"step", 30}, {"format", format}}));
+    const ApiResponse doc =
+        post("/api/explain", with_model("examples/fourbar-crank-rocker.yaml", {{"step", 30}, {"format", format}}));
     ASSERT_EQ(doc.status, 200) << doc.body;
     EXPECT_EQ(doc.body, cli("explain examples/fourbar-crank-rocker.yaml --step 30 --format " + format).out) << format;
   }
@@ -506,7 +556,8 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
     EXPECT_EQ(text.content_type, "application/yaml; charset=utf-8");
     EXPECT_EQ(text.body, repo_file(e["file"].get<std::string>()));
   }
-  EXPECT_EQ(models, 26);  // every model file of examples/, fourbar-ansys-plates.yaml and fourbar-curved-links.yaml the newest
+  EXPECT_EQ(models,
+            26);  // every model file of examples/, fourbar-ansys-plates.yaml and fourbar-curved-links.yaml the newest
   EXPECT_EQ(tasks, 7);  // path/crank-rocker-measured.yaml the newest
   EXPECT_EQ(templates, 6);
   // Each runs as it is; a template too, and its name never clashes with the example's.

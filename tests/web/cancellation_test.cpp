@@ -19,7 +19,9 @@ struct Case {
 };
 
 std::vector<Case> cases() {
-  const auto fourbar = [](Json options) { return with_model("examples/fourbar-crank-rocker.yaml", std::move(options)); };
+  const auto fourbar = [](Json options) {
+    return with_model("examples/fourbar-crank-rocker.yaml", std::move(options));
+  };
   const auto steel = [](Json options) { return with_model("examples/fourbar-steel-bars.yaml", std::move(options)); };
   std::vector<Case> out = {
       {"/api/solve", fourbar({{"steps", 37}}), "sweep"},

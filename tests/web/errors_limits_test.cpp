@@ -67,9 +67,9 @@ TEST(WebErrors, EveryComputingEndpointRefusesBadJsonBadYamlAndOversizedBodies) {
   ServerConfig config = test_config();
   config.limits.max_body_bytes = 4096;
   const std::string broken_yaml = "name: broken\npoints:\n  A: [0, 0\n  B: [1, 1]\n";
-  for (const std::string path : {"/api/check", "/api/solve", "/api/stress", "/api/synth/five-point",
-                                 "/api/synth/burmester", "/api/synth/function", "/api/render", "/api/report",
-                                 "/api/explain"}) {
+  for (const std::string path :
+       {"/api/check", "/api/solve", "/api/stress", "/api/synth/five-point", "/api/synth/burmester",
+        "/api/synth/function", "/api/render", "/api/report", "/api/explain"}) {
     SCOPED_TRACE(path);
     expect_error(call("POST", path, "{\"model\": \"points: {}\",", config), 400, "bad_json");
     expect_error(call("POST", path, "not json at all", config), 400, "bad_json");
@@ -108,7 +108,8 @@ TEST(WebErrors, BadOptions) {
   expect_error(columns, 400, "bad_input");
   EXPECT_NE(error_of(columns)["message"].get<std::string>().find("the columns are"), std::string::npos);
   expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "sculpt"}})), 400, "bad_input");
-  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "draw"}, {"frames", 3}})), 400, "bad_input");
+  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "draw"}, {"frames", 3}})), 400,
+               "bad_input");
   expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "draw"}, {"format", "gif"}})), 400,
                "bad_input");
   expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "draw"}, {"step", 10000}})), 400,
@@ -116,9 +117,10 @@ TEST(WebErrors, BadOptions) {
   expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "draw"}, {"trace", "Q9"}})), 400,
                "bad_input");
   expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "plot"}})), 400, "bad_input");
-  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "plot"}, {"y", "zz"}})), 400, "bad_input");
-  expect_error(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"section_profile", "nobody"}})), 400,
+  expect_error(post("/api/render", with_model("examples/five-bar.yaml", {{"kind", "plot"}, {"y", "zz"}})), 400,
                "bad_input");
+  expect_error(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"section_profile", "nobody"}})),
+               400, "bad_input");
   expect_error(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"step", 3}})), 400, "bad_input");
 }
 
@@ -131,7 +133,8 @@ TEST(WebErrors, AKeyGivenTwiceIsBadJsonNamingIt) {
   EXPECT_EQ(error_of(twice)["message"], "the body gives 'steps' twice; give each option once");
   EXPECT_EQ(error_of(twice)["key"], "steps");
   // The kind of a render, which is read before the rest.
-  const ApiResponse kind = call("POST", "/api/render", "{\"kind\": \"draw\", \"model\": " + model + ", \"kind\": \"plot\"}");
+  const ApiResponse kind =
+      call("POST", "/api/render", "{\"kind\": \"draw\", \"model\": " + model + ", \"kind\": \"plot\"}");
   expect_error(kind, 400, "bad_json");
   EXPECT_EQ(error_of(kind)["key"], "kind");
   // Inside a model sent as a JSON object, with where it is.
@@ -143,7 +146,8 @@ TEST(WebErrors, AKeyGivenTwiceIsBadJsonNamingIt) {
   EXPECT_EQ(error_of(call("POST", "/api/check", listed))["message"],
             "the body gives the key 'angle' twice in 'model.drivers[]'");
   // The same key in different objects is no duplicate.
-  const std::string apart = R"({"model": {"name": "x", "points": {"name": [0, 0]}, "sweep": {"steps": 3}}, "steps": 3})";
+  const std::string apart =
+      R"({"model": {"name": "x", "points": {"name": [0, 0]}, "sweep": {"steps": 3}}, "steps": 3})";
   expect_error(call("POST", "/api/solve", apart), 422, "invalid_model");
 }
 
@@ -160,8 +164,9 @@ TEST(WebErrors, YamlErrorsHaveTheirLineAndColumn) {
   std::ofstream(dir / "model") << model;
   const cli_test::CliRun run = cli_test::run_shell("cd '" + dir.string() + "' && '" + NBAR_CLI_PATH + "' check model");
   EXPECT_EQ(run.code, 1);
-  EXPECT_NE(run.err.find("model:" + std::to_string(e["line"].get<int>()) + ":" + std::to_string(e["column"].get<int>())),
-            std::string::npos)
+  EXPECT_NE(
+      run.err.find("model:" + std::to_string(e["line"].get<int>()) + ":" + std::to_string(e["column"].get<int>())),
+      std::string::npos)
       << run.err << r.body;
   std::filesystem::remove_all(dir);
 }
@@ -222,11 +227,10 @@ TEST(WebErrors, UnknownEndpointsAndMethods) {
 
 TEST(WebErrors, NoPathTraversal) {
   // Paths as the HTTP layer hands them over (decoded), and as they may arrive undecoded.
-  for (const std::string name :
-       {"../README.md", "../../../../etc/passwd", "/etc/passwd", "%2e%2e/README.md", "%2e%2e%2fREADME.md",
-        "..%2f..%2fetc%2fpasswd", "synthesis/../fourbar-crank-rocker", "fourbar-crank-rocker.yaml",
-        "./fourbar-crank-rocker", "fourbar-crank-rocker/", "synthesis", "", ".", "..",
-        "..\\..\\etc\\passwd", "~/.ssh/id_rsa"}) {
+  for (const std::string name : {"../README.md", "../../../../etc/passwd", "/etc/passwd", "%2e%2e/README.md",
+                                 "%2e%2e%2fREADME.md", "..%2f..%2fetc%2fpasswd", "synthesis/../fourbar-crank-rocker",
+                                 "fourbar-crank-rocker.yaml", "./fourbar-crank-rocker", "fourbar-crank-rocker/",
+                                 "synthesis", "", ".", "..", "..\\..\\etc\\passwd", "~/.ssh/id_rsa"}) {
     SCOPED_TRACE(name);
     expect_error(call("GET", "/api/examples/" + name), 404, "not_found");
   }
@@ -293,15 +297,18 @@ TEST(WebLimits, Steps) {
   // The table: samples x columns (machine-18 has hundreds of columns).
   const ApiResponse table = post("/api/solve", with_model("examples/machine-18.yaml", {{"steps", 100001}}));
   expect_limit(table, "table_values");
-  expect_limit(post("/api/render", with_model("examples/machine-18.yaml", {{"kind", "plot"}, {"y", "crank"}, {"steps", 100001}})),
+  expect_limit(post("/api/render",
+                    with_model("examples/machine-18.yaml", {{"kind", "plot"}, {"y", "crank"}, {"steps", 100001}})),
                "table_values");
   expect_limit(post("/api/report", with_model("examples/machine-18.yaml", {{"steps", 100001}})), "table_values");
   // A scene holds every sample's positions (it answered 76 MB from a light slot).
-  expect_limit(post("/api/render", with_model("examples/machine-18.yaml",
-                                               {{"kind", "draw"}, {"format", "scene"}, {"steps", 100001}})),
+  expect_limit(post("/api/render",
+                    with_model("examples/machine-18.yaml", {{"kind", "draw"}, {"format", "scene"}, {"steps", 100001}})),
                "table_values");
-  EXPECT_EQ(post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 100001}, {"columns", "crank"}})).status,
-            200);
+  EXPECT_EQ(
+      post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 100001}, {"columns", "crank"}}))
+          .status,
+      200);
   // The order: 0 to 5, as the CLI's.
   expect_error(post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"order", 6}})), 400, "bad_input");
 }
@@ -318,17 +325,21 @@ TEST(WebLimits, SectionsFramesAndPixels) {
   // (2000) is a 413, above.
   EXPECT_EQ(error_of(few)["message"], "sections: must be from 10 to 100000, not 5");
   EXPECT_EQ(error_of(few)["option"], "sections");
-  expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "animate"}, {"frames", 1000}})),
-               "frames");
+  expect_limit(
+      post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "animate"}, {"frames", 1000}})),
+      "frames");
   expect_limit(post("/api/report", with_model("examples/fourbar-crank-rocker.yaml", {{"frames", 900}})), "frames");
-  expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 5000}})),
-               "pixels");
+  expect_limit(
+      post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 5000}})),
+      "pixels");
   // Outside the request's range is bad input, with the range every front-end gives; inside it but
   // over this server's limit, a 413 (above).
   const auto message = [](const ApiResponse& r) { return error_of(r)["message"].get<std::string>(); };
-  EXPECT_EQ(message(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 20000}}))),
+  EXPECT_EQ(message(post("/api/render",
+                         with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 20000}}))),
             "width: must be from 100 to 10000, not 20000");
-  EXPECT_EQ(message(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "animate"}, {"height", 10}}))),
+  EXPECT_EQ(message(post("/api/render",
+                         with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "animate"}, {"height", 10}}))),
             "height: must be from 64 to 8192, not 10");
   EXPECT_EQ(message(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
                                                    {{"kind", "plot"}, {"y", "P.y"}, {"width", 50}}))),
@@ -338,14 +349,16 @@ TEST(WebLimits, SectionsFramesAndPixels) {
   const ApiResponse narrow =
       post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 50}}), small);
   EXPECT_EQ(message(narrow), "width: must be from 100 to 10000, not 50");
-  expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 1200}}), small),
-               "pixels");
-  expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "plot"}, {"y", "P.y"},
-                                                                                     {"height", 3000}})),
-               "pixels");
+  expect_limit(
+      post("/api/render", with_model("examples/fourbar-crank-rocker.yaml", {{"kind", "draw"}, {"width", 1200}}), small),
+      "pixels");
   expect_limit(post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
-                                              {{"kind", "animate"}, {"frames", 360}, {"width", 2000}, {"height", 2000}})),
-               "animation_pixels");
+                                              {{"kind", "plot"}, {"y", "P.y"}, {"height", 3000}})),
+               "pixels");
+  expect_limit(
+      post("/api/render", with_model("examples/fourbar-crank-rocker.yaml",
+                                     {{"kind", "animate"}, {"frames", 360}, {"width", 2000}, {"height", 2000}})),
+      "animation_pixels");
 }
 
 TEST(WebLimits, ExplainTakesSmallModels) {
@@ -360,10 +373,12 @@ TEST(WebLimits, ExplainTakesSmallModels) {
 }
 
 TEST(WebLimits, Synthesis) {
-  expect_limit(post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml", {{"top", 1000}})),
-               "top");
-  expect_limit(post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml", {{"threads", 64}})),
-               "threads");
+  expect_limit(
+      post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml", {{"top", 1000}})),
+      "top");
+  expect_limit(
+      post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml", {{"threads", 64}})),
+      "threads");
   std::string curves = repo_file("examples/synthesis/burmester-four-positions.yaml");
   const std::string window = "curves: {radius: 400}";
   ASSERT_NE(curves.find(window), std::string::npos);
@@ -378,13 +393,14 @@ TEST(WebLimits, TimeBudgetCancelsAHugeSweep) {
   config.limits.time_budget_seconds = 0.2;
   config.limits.max_table_values = 1e12;
   const auto start = std::chrono::steady_clock::now();
-  const ApiResponse r = post("/api/solve", with_model("examples/machine-18.yaml",
-                                                      {{"steps", 100001}, {"order", 5}, {"dynamics", true}}),
-                             config);
+  const ApiResponse r =
+      post("/api/solve", with_model("examples/machine-18.yaml", {{"steps", 100001}, {"order", 5}, {"dynamics", true}}),
+           config);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   expect_error(r, 504, "time_budget_exceeded");
   EXPECT_LT(seconds, 3.0);
-  std::cout << "[ web      ] a 100001-step sweep of machine-18 with a 0.2 s budget answered 504 after " << seconds << " s\n";
+  std::cout << "[ web      ] a 100001-step sweep of machine-18 with a 0.2 s budget answered 504 after " << seconds
+            << " s\n";
   // Synthesis too.
   config.limits.time_budget_seconds = 1e-6;
   expect_error(post("/api/synth/five-point", with_task("examples/synthesis/five-point-crank-rocker.yaml"), config), 504,
@@ -409,11 +425,13 @@ TEST(WebLimits, TooManyJobsIsA503WithRetryAfter) {
     expect_error(post("/api/report", fourbar, config), 503, "too_many_jobs");
     // Light computations have slots of their own: a class's solves never wait for a synthesis.
     EXPECT_EQ(post("/api/check", fourbar, config).status, 200);
-    const ApiResponse solve = post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 361}}), config);
+    const ApiResponse solve =
+        post("/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 361}}), config);
     EXPECT_EQ(solve.status, 200);
     EXPECT_EQ(Json::parse(solve.body)["rows"].size(), 361u);
     // A sweep whose table is over light_table_values is heavy.
-    expect_error(post("/api/solve", with_model("examples/machine-18.yaml", {{"steps", 361}}), config), 503, "too_many_jobs");
+    expect_error(post("/api/solve", with_model("examples/machine-18.yaml", {{"steps", 361}}), config), 503,
+                 "too_many_jobs");
     // What computes nothing is still answered.
     EXPECT_EQ(call("GET", "/api/health", "", config).status, 200);
   }
@@ -438,7 +456,7 @@ TEST(WebLimits, OneMoreSimultaneousHeavyJobThanSlotsGetsOne503WhenNoneMayWait) {
   config.jobs = std::make_shared<web::JobSlots>(kSlots);
   config.queue_wait_seconds = 0;
   config.limits.time_budget_seconds = 1.5;  // each heavy job runs into it
-  config.limits.max_table_values = 1e12;  // the sweep must run into the time budget
+  config.limits.max_table_values = 1e12;    // the sweep must run into the time budget
   const Json huge = with_model("examples/machine-18.yaml", {{"steps", 100001}, {"order", 5}, {"dynamics", true}});
   std::vector<std::future<int>> statuses;
   std::promise<void> go;
@@ -503,7 +521,7 @@ TEST(WebJobSlots, FirstComeFirstServedWithABoundedWait) {
   std::thread two(waiter, 2);
   while (slots.waiting() < 2) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   EXPECT_FALSE(slots.acquire(std::chrono::seconds(30)));  // the queue is full: no wait
-  held = web::JobSlots::Slot();                            // gives the slot back
+  held = web::JobSlots::Slot();                           // gives the slot back
   one.join();
   two.join();
   EXPECT_EQ(order, (std::vector<int>{1, 2}));

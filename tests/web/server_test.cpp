@@ -97,12 +97,12 @@ TEST_F(WebServer, OversizedBodies) {
 }
 
 TEST_F(WebServer, PathTraversalOverHttp) {
-  for (const std::string path : {"/api/examples/..%2f..%2fREADME.md", "/api/examples/%2e%2e%2f%2e%2e%2fetc%2fpasswd",
-                                 "/api/examples/../../etc/passwd", "/../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd",
-                                 "/api/examples/%2Fetc%2Fpasswd", "/api/examples//etc/passwd",
-                                 "/index.html/../../etc/passwd", "/..%5c..%5cetc%5cpasswd", "/%2e%2e%2fREADME.md",
-                                 "/app.js%00.html", "/api/examples/five-bar%00../../etc/passwd",
-                                 "/api/examples/%2e%2e%2f%2e%2e%2fexamples%2ffive-bar.yaml"}) {
+  for (const std::string path :
+       {"/api/examples/..%2f..%2fREADME.md", "/api/examples/%2e%2e%2f%2e%2e%2fetc%2fpasswd",
+        "/api/examples/../../etc/passwd", "/../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd",
+        "/api/examples/%2Fetc%2Fpasswd", "/api/examples//etc/passwd", "/index.html/../../etc/passwd",
+        "/..%5c..%5cetc%5cpasswd", "/%2e%2e%2fREADME.md", "/app.js%00.html",
+        "/api/examples/five-bar%00../../etc/passwd", "/api/examples/%2e%2e%2f%2e%2e%2fexamples%2ffive-bar.yaml"}) {
     SCOPED_TRACE(path);
     const auto r = client_->Get(path);
     ASSERT_TRUE(r);
@@ -147,8 +147,9 @@ TEST_F(WebServer, MalformedRequestsAndChunkedBodiesAreAnsweredAsJsonAndTheServer
   EXPECT_EQ(garbage.rfind("HTTP/1.1 400", 0), 0u) << garbage.substr(0, 200);
   EXPECT_NE(garbage.find("\"bad_input\""), std::string::npos) << garbage;
   // A body over the limit without a Content-Length, in chunks: refused as it grows.
-  std::string chunked = "POST /api/check HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n"
-                        "Content-Type: application/json\r\nConnection: close\r\n\r\n";
+  std::string chunked =
+      "POST /api/check HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n"
+      "Content-Type: application/json\r\nConnection: close\r\n\r\n";
   const std::string chunk(64 * 1024, ' ');
   for (int i = 0; i < 48; ++i) chunked += "10000\r\n" + chunk + "\r\n";  // 3 MiB
   chunked += "0\r\n\r\n";
@@ -157,8 +158,9 @@ TEST_F(WebServer, MalformedRequestsAndChunkedBodiesAreAnsweredAsJsonAndTheServer
   EXPECT_NE(big.find("\"body_too_large\""), std::string::npos) << big.substr(0, 400);
   // A small chunked body is a request like any other.
   const std::string body = Json{{"model", repo_file("examples/five-bar.yaml")}}.dump();
-  std::string small = "POST /api/check HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n"
-                      "Content-Type: application/json\r\nConnection: close\r\n\r\n";
+  std::string small =
+      "POST /api/check HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n"
+      "Content-Type: application/json\r\nConnection: close\r\n\r\n";
   small += fmt::format("{:x}\r\n", body.size()) + body + "\r\n0\r\n\r\n";
   const std::string ok = raw_exchange(port, small);
   EXPECT_EQ(ok.rfind("HTTP/1.1 200", 0), 0u) << ok.substr(0, 300);
@@ -171,8 +173,9 @@ TEST_F(WebServer, MalformedRequestsAndChunkedBodiesAreAnsweredAsJsonAndTheServer
 // 1.7 GB. A body with a Content-Encoding is refused before it is read.
 TEST_F(WebServer, CompressedBodiesAreRefusedBeforeTheyAreRead) {
   const int port = server_->bound_port();
-  std::string request = "POST /api/check HTTP/1.1\r\nHost: x\r\nContent-Encoding: gzip\r\n"
-                        "Content-Type: application/json\r\nContent-Length: 1000000\r\n\r\n";
+  std::string request =
+      "POST /api/check HTTP/1.1\r\nHost: x\r\nContent-Encoding: gzip\r\n"
+      "Content-Type: application/json\r\nContent-Length: 1000000\r\n\r\n";
   request += std::string(1000000, '\x1f');  // not even gzip: it is never inflated
   const std::string answer = raw_exchange(port, request);
   EXPECT_EQ(answer.rfind("HTTP/1.1 415", 0), 0u) << answer.substr(0, 200);
@@ -194,8 +197,8 @@ TEST_F(WebServer, BrowsersGetGzipNotBrotli) {
   const std::string body = Json{{"model", repo_file("examples/fourbar-crank-rocker.yaml")}, {"steps", 721}}.dump();
   const auto request = [&](const std::string& accept) {
     return "POST /api/solve HTTP/1.1\r\nHost: x\r\nAccept-Encoding: " + accept +
-           "\r\nContent-Type: application/json\r\nConnection: close\r\nContent-Length: " +
-           std::to_string(body.size()) + "\r\n\r\n" + body;
+           "\r\nContent-Type: application/json\r\nConnection: close\r\nContent-Length: " + std::to_string(body.size()) +
+           "\r\n\r\n" + body;
   };
   const std::string browser = raw_exchange(port, request("gzip, deflate, br"));
   ASSERT_EQ(browser.rfind("HTTP/1.1 200", 0), 0u) << browser.substr(0, 300);

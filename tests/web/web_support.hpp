@@ -30,7 +30,9 @@ inline std::string read_file(const std::filesystem::path& path) {
 }
 
 // A file of the repository, by its path from the root.
-inline std::string repo_file(const std::string& path) { return read_file(std::filesystem::path(NBAR_SOURCE_DIR) / path); }
+inline std::string repo_file(const std::string& path) {
+  return read_file(std::filesystem::path(NBAR_SOURCE_DIR) / path);
+}
 
 // The tests compare answers; a budget of their own keeps a slow machine or the sanitizer build
 // (a path synthesis there takes 30 s, the server's default budget) from turning them into tests
@@ -81,7 +83,8 @@ inline ::testing::AssertionResult json_near(const Json& a, const Json& b, double
                                             double absolute = 1e-5, const std::string& at = "$") {
   if (a.is_number() && b.is_number()) {
     const double x = a.get<double>(), y = b.get<double>();
-    if (std::abs(x - y) <= absolute + relative * std::max(std::abs(x), std::abs(y))) return ::testing::AssertionSuccess();
+    if (std::abs(x - y) <= absolute + relative * std::max(std::abs(x), std::abs(y)))
+      return ::testing::AssertionSuccess();
     return ::testing::AssertionFailure() << at << ": " << x << " != " << y;
   }
   if (a.type() != b.type()) return ::testing::AssertionFailure() << at << ": " << a.dump() << " != " << b.dump();
@@ -94,7 +97,8 @@ inline ::testing::AssertionResult json_near(const Json& a, const Json& b, double
     return ::testing::AssertionSuccess();
   }
   if (a.is_array()) {
-    if (a.size() != b.size()) return ::testing::AssertionFailure() << at << ": " << a.size() << " != " << b.size() << " items";
+    if (a.size() != b.size())
+      return ::testing::AssertionFailure() << at << ": " << a.size() << " != " << b.size() << " items";
     for (std::size_t i = 0; i < a.size(); ++i)
       if (auto r = json_near(a[i], b[i], relative, absolute, at + "[" + std::to_string(i) + "]"); !r) return r;
     return ::testing::AssertionSuccess();
@@ -110,7 +114,8 @@ inline cli_test::CliRun cli(const std::string& args) {
 
 // A fresh empty folder for files the CLI writes.
 inline std::filesystem::path temp_folder(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("nbar_web_test_" + std::to_string(::getpid()) + "_" + name);
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("nbar_web_test_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

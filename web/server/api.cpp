@@ -79,7 +79,8 @@ ApiResponse route(const ApiRequest& request, const ServerConfig& config) {
   if (path == "/api/health") return get ? api_health(config) : method_not_allowed(method, path, "GET");
   if (path == "/api/examples") return get ? api_examples() : method_not_allowed(method, path, "GET");
   if (path.starts_with("/api/examples/"))
-    return get ? api_example(path.substr(std::string("/api/examples/").size())) : method_not_allowed(method, path, "GET");
+    return get ? api_example(path.substr(std::string("/api/examples/").size()))
+               : method_not_allowed(method, path, "GET");
   if (path == "/api" || path.starts_with("/api/"))
     throw ApiError(ApiErrorKind::NotFound, "no endpoint " + path + "; see docs/web-api.md");
   if (!get) return method_not_allowed(method, path, "GET");

@@ -1,9 +1,9 @@
 // The analysis endpoints: check, solve, stress, report and explain.
 #include "endpoints.hpp"
-#include "nbar/analysis/explain.hpp"
-#include "nbar/analysis/summary.hpp"
 #include "io/explain_writer.hpp"
 #include "io/json_text.hpp"
+#include "nbar/analysis/explain.hpp"
+#include "nbar/analysis/summary.hpp"
 #include "nbar/io/results_writer.hpp"
 #include "nbar/io/summary_writer.hpp"
 #include "nbar/render/report.hpp"

@@ -62,8 +62,9 @@ ApiResponse render_animate(Job& job, const std::string& text) {
   const RequestBody body(text, body_keys<request::AnimateRequest>({"model", "kind"}));
   const auto animate = read_request<request::AnimateRequest>(body, {"model", "kind"});
   if (animate.format == "mp4" && !render::Animation::program_available("ffmpeg"))
-    throw ApiError(ApiErrorKind::NotImplemented,
-                   "MP4 needs the ffmpeg program on the server (apt-get install ffmpeg); GIF, SVG and HTML work without it");
+    throw ApiError(
+        ApiErrorKind::NotImplemented,
+        "MP4 needs the ffmpeg program on the server (apt-get install ffmpeg); GIF, SVG and HTML work without it");
   load_model(job, body.text("model", true));
   check_picture_size(job, animate.picture.width, animate.picture.height);
   const render::DrawOptions draw = animate.picture.draw_options(job.mechanism->model());

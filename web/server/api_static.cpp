@@ -82,11 +82,16 @@ const std::vector<Example>& examples() {
 std::string content_type_of(std::string_view path) {
   const std::size_t dot = path.rfind('.');
   const std::string_view ext = dot == std::string_view::npos ? std::string_view() : path.substr(dot + 1);
-  static const std::map<std::string_view, const char*> types = {
-      {"html", "text/html; charset=utf-8"}, {"css", "text/css; charset=utf-8"},
-      {"js", "text/javascript; charset=utf-8"}, {"json", "application/json"},
-      {"svg", "image/svg+xml"}, {"png", "image/png"}, {"ico", "image/x-icon"},
-      {"woff2", "font/woff2"}, {"txt", "text/plain; charset=utf-8"}, {"yaml", "application/yaml; charset=utf-8"}};
+  static const std::map<std::string_view, const char*> types = {{"html", "text/html; charset=utf-8"},
+                                                                {"css", "text/css; charset=utf-8"},
+                                                                {"js", "text/javascript; charset=utf-8"},
+                                                                {"json", "application/json"},
+                                                                {"svg", "image/svg+xml"},
+                                                                {"png", "image/png"},
+                                                                {"ico", "image/x-icon"},
+                                                                {"woff2", "font/woff2"},
+                                                                {"txt", "text/plain; charset=utf-8"},
+                                                                {"yaml", "application/yaml; charset=utf-8"}};
   const auto it = types.find(ext);
   return it == types.end() ? "application/octet-stream" : it->second;
 }
@@ -138,9 +143,12 @@ ApiResponse api_health(const ServerConfig& config) {
                  {"queue_wait_seconds", json_number(config.queue_wait_seconds)}};
   Json j = {{"status", "ok"},
             {"version", kVersion},
-            {"jobs", {{"running", config.jobs->in_use()}, {"waiting", config.jobs->waiting()}, {"max", config.jobs->total()}}},
+            {"jobs",
+             {{"running", config.jobs->in_use()}, {"waiting", config.jobs->waiting()}, {"max", config.jobs->total()}}},
             {"light_jobs",
-             {{"running", config.light_jobs->in_use()}, {"waiting", config.light_jobs->waiting()}, {"max", config.light_jobs->total()}}},
+             {{"running", config.light_jobs->in_use()},
+              {"waiting", config.light_jobs->waiting()},
+              {"max", config.light_jobs->total()}}},
             {"mp4", render::Animation::program_available("ffmpeg")},
             {"limits", limits}};
   return answer(io::json_text(j, 2) + '\n');

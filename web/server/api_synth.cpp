@@ -43,14 +43,16 @@ ApiResponse api_synth(Job& job, const std::string& request, synthesis::Synthesis
   synthesis::SynthesisRunOptions run;
   run.threads = static_cast<unsigned>(body.integer("threads", 1, 1024).value_or(max_threads));
   check_limit("threads", run.threads, max_threads, "threads");
-  if (body.has("seed")) run.seed = static_cast<std::uint64_t>(*body.integer("seed", 0, std::numeric_limits<long long>::max()));
+  if (body.has("seed"))
+    run.seed = static_cast<std::uint64_t>(*body.integer("seed", 0, std::numeric_limits<long long>::max()));
   job.start(Weight::Heavy);
   run.control = job.control;
   const synthesis::SynthesisOutcome outcome = synthesis::run_synthesis(task, run);
   io::SynthesisListing listing;
   listing.all = body.flag("all");
   // top 0 lists every design (the CLI's meaning), here at most the limit.
-  listing.shown = synthesis::shown_rows(outcome, listing.all, top == 0 ? job.limits.max_synthesis_top : static_cast<int>(top));
+  listing.shown =
+      synthesis::shown_rows(outcome, listing.all, top == 0 ? job.limits.max_synthesis_top : static_cast<int>(top));
   if (!body.flag("models")) return answer(io::synthesis_json(task, outcome, listing));
   return answer(with_design_models(io::synthesis_json(task, outcome, listing), task, outcome, listing));
 }

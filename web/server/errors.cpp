@@ -75,7 +75,6 @@ ApiResponse error_answer(ApiErrorKind kind, const std::string& message, const Js
 
 namespace {
 
-
 // The entity's name in the model, when it has one.
 std::string entity_name(const Model& m, const EntityRef& ref) {
   const auto at = [&](const auto& items) -> std::string {
@@ -131,8 +130,7 @@ Json json_number(double v) {
 
 void check_limit(const char* limit, double value, double max, const std::string& what) {
   if (value <= max) return;
-  throw ApiError(ApiErrorKind::LimitExceeded,
-                 fmt::format("{} is {}; this server allows at most {}", what, value, max),
+  throw ApiError(ApiErrorKind::LimitExceeded, fmt::format("{} is {}; this server allows at most {}", what, value, max),
                  Json{{"limit", limit}, {"max", json_number(max)}, {"value", json_number(value)}});
 }
 

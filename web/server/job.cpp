@@ -6,12 +6,11 @@
 #include <limits>
 #include <sstream>
 
-#include "nbar/analysis/columns.hpp"
 #include "io/yaml_support.hpp"
+#include "nbar/analysis/columns.hpp"
 #include "nbar/kinematics/sweep.hpp"
 
 namespace nbar::web {
-
 
 // Parses, checks the size limits and compiles the model; errors are located in its text.
 void load_model(Job& job, const std::string& text) {
@@ -85,7 +84,8 @@ void check_table_size(const Job& job, const AnalysisOptions& options) {
 
 // Stresses and large tables are heavy; a sweep that asks neither is light.
 Analysis run_analysis(Job& job, AnalysisOptions options) {
-  job.start(options.stress || table_values(job, options) > job.config.light_table_values ? Weight::Heavy : Weight::Light);
+  job.start(options.stress || table_values(job, options) > job.config.light_table_values ? Weight::Heavy
+                                                                                         : Weight::Light);
   options.control = job.control;
   return analyse(job.mechanism, options);
 }
@@ -114,7 +114,9 @@ std::string write(const std::function<void(std::ostream&)>& writer) {
 }
 
 const char* text_type(const std::string& format) {
-  return format == "json" ? "application/json" : format == "csv" ? "text/csv; charset=utf-8" : "text/plain; charset=utf-8";
+  return format == "json"  ? "application/json"
+         : format == "csv" ? "text/csv; charset=utf-8"
+                           : "text/plain; charset=utf-8";
 }
 
 }  // namespace nbar::web

@@ -14,7 +14,8 @@ JobSlots::Slot JobSlots::acquire(std::chrono::duration<double> max_wait) {
   if (max_wait.count() <= 0 || static_cast<int>(queue_.size()) >= max_waiting_) return Slot();
   const std::uint64_t ticket = next_ticket_++;
   queue_.push_back(ticket);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(max_wait);
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(max_wait);
   const bool served = freed_.wait_until(lock, deadline, [&] { return free_ > 0 && queue_.front() == ticket; });
   if (served) {
     queue_.pop_front();

@@ -85,8 +85,7 @@ nlohmann::json parse_request(const std::string& text) {
                          Json{{"key", key}});
         }
         break;
-      case Event::value:
-        break;
+      case Event::value: break;
     }
     return true;
   });
@@ -104,9 +103,11 @@ request::Options RequestBody::options(const std::vector<std::string>& documents)
       options.set(key, value.get<double>());
     } else if (value.is_string()) {
       options.set(key, value.get<std::string>());
-    } else if (value.is_array() && std::all_of(value.begin(), value.end(), [](const auto& v) { return v.is_string(); })) {
+    } else if (value.is_array() &&
+               std::all_of(value.begin(), value.end(), [](const auto& v) { return v.is_string(); })) {
       options.set(key, value.get<std::vector<std::string>>());  // an empty list too
-    } else if (value.is_array() && std::all_of(value.begin(), value.end(), [](const auto& v) { return v.is_number(); })) {
+    } else if (value.is_array() &&
+               std::all_of(value.begin(), value.end(), [](const auto& v) { return v.is_number(); })) {
       std::vector<double> numbers;
       for (const auto& v : value) numbers.push_back(v.get<double>());
       options.set(key, numbers);

@@ -164,5 +164,4 @@ class RequestBody {
   nlohmann::json json_;
 };
 
-
 }  // namespace nbar::web

@@ -85,7 +85,8 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   impl_->config.limits = options.limits;
   impl_->config.jobs = std::make_shared<JobSlots>(std::max(1, options.max_jobs));
   const int cores = static_cast<int>(std::thread::hardware_concurrency());
-  impl_->config.light_jobs = std::make_shared<JobSlots>(options.light_jobs > 0 ? options.light_jobs : std::max(2, cores));
+  impl_->config.light_jobs =
+      std::make_shared<JobSlots>(options.light_jobs > 0 ? options.light_jobs : std::max(2, cores));
   impl_->config.queue_wait_seconds = options.queue_wait_seconds;
   httplib::Server& server = impl_->server;
   const int threads = std::max(2, options.threads);
@@ -161,7 +162,8 @@ bool HttpServer::bind(std::string& error) {
     impl_->port = impl_->server.bind_to_port(o.host, o.port) ? o.port : -1;
   }
   if (impl_->port < 0) {
-    error = "cannot listen on " + o.host + ":" + std::to_string(o.port) + " (in use, or not an address of this machine)";
+    error =
+        "cannot listen on " + o.host + ":" + std::to_string(o.port) + " (in use, or not an address of this machine)";
     return false;
   }
   raise_listen_backlog(impl_->port);

@@ -19,8 +19,8 @@ int main(int argc, char** argv) {
     const auto mechanism = std::make_shared<const nbar::Mechanism>(file.model);
 
     nbar::AnalysisOptions options;
-    options.steps = 13;        // 13 samples of the model's sweep, ends included
-    options.dynamics = true;   // joint forces and driver efforts at every sample
+    options.steps = 13;       // 13 samples of the model's sweep, ends included
+    options.dynamics = true;  // joint forces and driver efforts at every sample
     const nbar::Analysis analysis = nbar::analyse(mechanism, options);
 
     const nbar::Model& model = analysis.model();

@@ -37,10 +37,10 @@ struct AnalysisOptions {
   bool dynamics = false;     // joint forces, driver efforts, energies at every sample
   bool stress = false;       // the largest von Mises stress of every link with a shape (implies dynamics)
   StressMethod stress_method = StressMethod::beam;
-  int sections = 200;        // stress, beam: cross-sections per link, at least (10 to 100 000)
-  FeOptions fe;              // stress, fe: mesh size and threads
+  int sections = 200;                       // stress, beam: cross-sections per link, at least (10 to 100 000)
+  FeOptions fe;                             // stress, fe: mesh size and threads
   int max_steps = kDefaultMaxSweepSamples;  // a larger sweep (the model's or `steps`) is an error
-  RunControl control;        // cancellation, deadline and progress for every stage
+  RunControl control;                       // cancellation, deadline and progress for every stage
 };
 
 // The inverse dynamics of every sample, solved once.

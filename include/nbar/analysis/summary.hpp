@@ -40,8 +40,8 @@ struct RockerSwing {
 struct LoopSummary {
   FourBarLoop loop;
   GrashofReport grashof;
-  std::string description;  // loops.hpp describe(): class, lengths, which links turn fully
-  std::string branch;       // "open" or "crossed" at the start
+  std::string description;          // loops.hpp describe(): class, lengths, which links turn fully
+  std::string branch;               // "open" or "crossed" at the start
   double transmission_angle = 0.0;  // rad, at the start
   // When the input cannot turn fully (the loop on the ground): the input angles of its two
   // toggle positions, rad, on the start's part of the range, in the input's measure (its
@@ -69,11 +69,11 @@ struct SliderCrankSummary {
 // the ground. When the crank is shorter than the distance between the pivots the arm swings:
 // limit positions where the crank is perpendicular to the arm.
 struct QuickReturnSummary {
-  std::string crank, arm;                     // body names
-  double crank_length = 0, pivot_distance = 0;  // m
-  bool arm_turns_fully = false;               // crank longer than the pivot distance (Whitworth)
-  double swing = 0;                           // rad, the arm's angle between its limits
-  double limit_from = 0, limit_to = 0;        // rad, the crank's input angles at the arm's limits
+  std::string crank, arm;                               // body names
+  double crank_length = 0, pivot_distance = 0;          // m
+  bool arm_turns_fully = false;                         // crank longer than the pivot distance (Whitworth)
+  double swing = 0;                                     // rad, the arm's angle between its limits
+  double limit_from = 0, limit_to = 0;                  // rad, the crank's input angles at the arm's limits
   double slow_turn = 0, fast_turn = 0, time_ratio = 1;  // rad of crank turn per stroke; slow / fast
   std::string description;
 };
@@ -94,8 +94,8 @@ struct ModelSummary {
 
   bool has_masses = false;     // some body has a mass
   bool has_mass_data = false;  // some body has mass properties given or a shape (even without a material)
-  bool has_shapes = false;  // some body has a plate outline
-  bool has_loads = false;   // gravity, forces, torques or springs
+  bool has_shapes = false;     // some body has a plate outline
+  bool has_loads = false;      // gravity, forces, torques or springs
   // Whether inverse dynamics has anything to compute: masses or loads.
   bool has_kinetics() const { return has_masses || has_loads; }
   // Whether the stress stage has a link to cut: a shape with a thickness on a body of two or more points.

@@ -64,8 +64,8 @@ class TableStream {
   std::shared_ptr<const InverseDynamics> dynamics_;
   std::vector<std::string> columns_, units_;
   std::vector<std::string> all_units_;
-  std::vector<std::size_t> picked_;       // columns kept, in the order asked
-  std::vector<double> threshold_;         // per column of the whole table: noise below this is 0
+  std::vector<std::size_t> picked_;  // columns kept, in the order asked
+  std::vector<double> threshold_;    // per column of the whole table: noise below this is 0
   bool measured_ = false;
   std::size_t kept_rows_budget_ = std::size_t{4} << 20;
   std::vector<double> kept_rows_;  // the first pass's rows, every column, when they fit

@@ -67,9 +67,9 @@ struct JointLink {
 // actuators at points only that body has, slider and slot contact, driver efforts.
 struct AppliedLoad {
   int body = -1;
-  Eigen::Vector2d at{0, 0};      // where it acts, current pose, m
-  Eigen::Vector2d force{0, 0};   // N
-  double couple = 0.0;           // N m
+  Eigen::Vector2d at{0, 0};     // where it acts, current pose, m
+  Eigen::Vector2d force{0, 0};  // N
+  double couple = 0.0;          // N m
 };
 
 struct DynamicsResult {
@@ -140,14 +140,14 @@ class InverseDynamics {
   std::vector<MassProperties> masses_;
   std::vector<BodyFrame> frames_;
   std::vector<int> joints_;
-  std::vector<int> node_of_point_;   // -1 when the point is not a joint
+  std::vector<int> node_of_point_;  // -1 when the point is not a joint
   std::vector<JointLink> joint_links_;
   std::vector<int> single_body_of_point_;  // the only moving body of a non-joint point, or -1
   // At every joint one link, the ground when it is there, takes the pin's balance: its force
   // follows from the others', so only 3 equations per body remain (square when the drivers
   // match Gruebler's count).
-  std::vector<int> dependent_;     // per joint: index into joint_links_ of the link that balances the pin
-  std::vector<int> pin_column_;    // per joint link: first of its two unknowns, -1 for the dependent one
+  std::vector<int> dependent_;                  // per joint: index into joint_links_ of the link that balances the pin
+  std::vector<int> pin_column_;                 // per joint link: first of its two unknowns, -1 for the dependent one
   std::vector<int> slider_guide_, slot_guide_;  // the body owning each guide, -1 for the ground
   int slider_base_ = 0, slot_base_ = 0, driver_base_ = 0, unknowns_ = 0, equations_ = 0;
 

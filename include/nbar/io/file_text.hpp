@@ -14,9 +14,9 @@ namespace nbar::io {
 inline constexpr std::size_t kMaxInputFileBytes = 16u << 20;
 
 struct FileText {
-  std::string text;        // the file, or its first `limit` bytes when too_long
-  std::error_code error;   // it could not be opened or read (a folder included): text is empty
-  bool too_long = false;   // it has more than `limit` bytes
+  std::string text;       // the file, or its first `limit` bytes when too_long
+  std::error_code error;  // it could not be opened or read (a folder included): text is empty
+  bool too_long = false;  // it has more than `limit` bytes
 };
 
 FileText read_file_text(const std::filesystem::path& path, std::size_t limit = kMaxInputFileBytes);

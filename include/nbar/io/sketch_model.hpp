@@ -9,10 +9,10 @@
 namespace nbar::io {
 
 struct SketchModelOptions {
-  std::string source_name;    // the sketch file, for the comments
-  std::string length_unit;    // the model's unit: mm, cm, m, in or ft
-  double scale = 1;           // sketch coordinates to the model's unit
-  double thickness = 5;       // plates' thickness, in the model's unit
+  std::string source_name;  // the sketch file, for the comments
+  std::string length_unit;  // the model's unit: mm, cm, m, in or ft
+  double scale = 1;         // sketch coordinates to the model's unit
+  double thickness = 5;     // plates' thickness, in the model's unit
   std::string material = "steel";
 };
 

@@ -25,8 +25,8 @@ std::string synthesis_json(const synthesis::SynthesisTask& task, const synthesis
 
 // The model file of outcome.rows[row], listed at `rank` (1 = best): what export_designs writes
 // for it. Throws Error(BadInput) for a complex or invalid design.
-std::string design_model_yaml(const synthesis::SynthesisTask& task, const synthesis::SynthesisOutcome& outcome,
-                              int row, int rank);
+std::string design_model_yaml(const synthesis::SynthesisTask& task, const synthesis::SynthesisOutcome& outcome, int row,
+                              int rank);
 // DIR/design-01.yaml... for the real designs listed, in rank order. Throws Error(BadInput)
 // naming the folder or file that cannot be written.
 void export_designs(const synthesis::SynthesisTask& task, const synthesis::SynthesisOutcome& outcome,

@@ -15,15 +15,15 @@
 namespace nbar {
 
 enum class ConstraintType {
-  Distance,       // |rj - ri|^2 - L^2 = 0                       (p: i, j; a = L)
-  RigidX,         // rk = ri + a u + b u_perp, u = rj - ri: x row (p: i, j, k)
-  RigidY,         //                                      y row
-  PointOnLine,    // (rk - ri) x (rj - ri) = 0                   (p: i, j, k)
-  Orientation,    // (rj - ri) x R(phi0) (rn - rm) = 0            (p: i, j, m, n; a, b = cos, sin phi0)
-  DriveAngle,     // (rj - ri) x (cos th, sin th) = 0             (p: i, j)
+  Distance,            // |rj - ri|^2 - L^2 = 0                       (p: i, j; a = L)
+  RigidX,              // rk = ri + a u + b u_perp, u = rj - ri: x row (p: i, j, k)
+  RigidY,              //                                      y row
+  PointOnLine,         // (rk - ri) x (rj - ri) = 0                   (p: i, j, k)
+  Orientation,         // (rj - ri) x R(phi0) (rn - rm) = 0            (p: i, j, m, n; a, b = cos, sin phi0)
+  DriveAngle,          // (rj - ri) x (cos th, sin th) = 0             (p: i, j)
   DriveRelativeAngle,  // (rj - ri) x R(th) (rn - rm) = 0         (p: i, j, m, n)
-  DriveDistance,  // |rj - ri|^2 - s^2 = 0                        (p: i, j)
-  DriveSlide,     // (rk - ri).(rj - ri) / Lg - s = 0             (p: i, j, k; a = Lg)
+  DriveDistance,       // |rj - ri|^2 - s^2 = 0                        (p: i, j)
+  DriveSlide,          // (rk - ri).(rj - ri) / Lg - s = 0             (p: i, j, k; a = Lg)
 };
 
 struct Constraint {
@@ -91,16 +91,16 @@ class Mechanism;
 
 // Residuals of every row at q (length units). Returns the largest |residual|, infinite when one
 // is NaN.
-double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q,
-                        const std::vector<DriverState>& drivers, Eigen::VectorXd& phi);
+double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
+                          Eigen::VectorXd& phi);
 // The same, and the Jacobian's values as evaluate_jacobian gives them, in one pass over the rows.
 double evaluate_residuals_and_jacobian(const Mechanism& mech, const Eigen::VectorXd& q,
                                        const std::vector<DriverState>& drivers, Eigen::VectorXd& phi,
                                        std::vector<double>& values);
 // Jacobian values in the order of Mechanism::jacobian_pattern() (entries may repeat a
 // (row, col) pair; they add up).
-void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q,
-                       const std::vector<DriverState>& drivers, std::vector<double>& values);
+void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
+                       std::vector<double>& values);
 // The k-th Taylor coefficient (k >= 1) of every row evaluated with q's coefficients 0..k-1 from
 // `coefficients` (n x terms, column j = coefficient j) and coefficient k taken as zero.
 // Then Phi_q * q_k = -rhs gives q_k.

@@ -17,8 +17,8 @@ namespace nbar {
 using DriverPath = std::function<void(double p, int terms, std::vector<Series>& out)>;
 
 struct TrackOptions {
-  int terms = 4;            // coefficients of the predictor series (order + 1)
-  double min_step = 1e-7;   // relative to the interval, below which the path is given up
+  int terms = 4;           // coefficients of the predictor series (order + 1)
+  double min_step = 1e-7;  // relative to the interval, below which the path is given up
   // When p_end lies on a singular position (a change point, where branches cross), take the
   // series there from a regular point just before it instead of from its singular Jacobian,
   // accurate in their first `coast_terms` coefficients; 0: never (the end is then accepted as
@@ -36,7 +36,7 @@ struct TrackReport {
   // that the next step continues the same branch through the singular position.
   bool singular_end = false;
   double singular_end_accuracy = 0.0;  // an estimate of their relative error in q, q', q''
-  double limit_parameter = 0.0;     // where the path was given up
+  double limit_parameter = 0.0;        // where the path was given up
   double reciprocal_condition = 0.0;
   std::string reason;
 };

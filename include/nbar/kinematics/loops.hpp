@@ -15,26 +15,26 @@ namespace nbar {
 // -1 for the ground. The frame is the ground when the loop contains it.
 struct FourBarLoop {
   int frame = -1, input = -1, coupler = -1, output = -1;
-  int o2 = -1;  // joint frame-input
-  int a = -1;   // joint input-coupler
-  int b = -1;   // joint coupler-output
-  int o4 = -1;  // joint output-frame
+  int o2 = -1;       // joint frame-input
+  int a = -1;        // joint input-coupler
+  int b = -1;        // joint coupler-output
+  int o4 = -1;       // joint output-frame
   std::string name;  // "input-coupler-output" by body names
 };
 
 enum class GrashofClass {
-  CrankRocker,          // Grashof, shortest link adjacent to the frame: it is the crank
-  DoubleCrank,          // Grashof, shortest link is the frame (drag link)
-  DoubleRocker,         // Grashof, shortest link is the coupler
-  TripleRocker,         // not Grashof: no link turns fully (a non-Grashof double-rocker)
-  ChangePoint,          // s + l = p + q: can switch branches at the flat positions
+  CrankRocker,   // Grashof, shortest link adjacent to the frame: it is the crank
+  DoubleCrank,   // Grashof, shortest link is the frame (drag link)
+  DoubleRocker,  // Grashof, shortest link is the coupler
+  TripleRocker,  // not Grashof: no link turns fully (a non-Grashof double-rocker)
+  ChangePoint,   // s + l = p + q: can switch branches at the flat positions
 };
 
 struct GrashofReport {
   GrashofClass kind = GrashofClass::TripleRocker;
   double frame = 0, input = 0, coupler = 0, output = 0;  // link lengths
-  double margin = 0;            // (p + q) - (s + l); > 0 Grashof
-  bool input_turns_fully = false;   // relative to the frame
+  double margin = 0;                                     // (p + q) - (s + l); > 0 Grashof
+  bool input_turns_fully = false;                        // relative to the frame
   bool output_turns_fully = false;
 };
 
@@ -43,10 +43,8 @@ struct GrashofReport {
 std::vector<FourBarLoop> find_four_bar_loops(const Model& model);
 
 // `tolerance` decides equality for the change-point case (absolute, in length units).
-GrashofReport classify_grashof(double frame, double input, double coupler, double output,
-                               double tolerance);
-GrashofReport classify_grashof(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& points,
-                               double tolerance);
+GrashofReport classify_grashof(double frame, double input, double coupler, double output, double tolerance);
+GrashofReport classify_grashof(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& points, double tolerance);
 
 // The one vocabulary of Grashof classes, as textbooks name them (Norton): "crank-rocker",
 // "double-crank", "double-rocker", "triple-rocker", "change point"; a crank-rocker driven by

@@ -37,12 +37,12 @@ PairCount count_pairs(const Model& model);
 inline constexpr int kMaxMovingPoints = 20000;
 
 struct MobilityReport {
-  int coordinates = 0;          // moving points x 2
-  int constraint_rows = 0;      // without drivers
-  int grubler = 0;              // Gruebler-Kutzbach count
-  int rank = 0;                 // rank of the constraint Jacobian at the drawn pose
-  int dof = 0;                  // true mobility: coordinates - rank
-  std::vector<int> redundant;   // rows that depend on the others (one choice of them)
+  int coordinates = 0;                // moving points x 2
+  int constraint_rows = 0;            // without drivers
+  int grubler = 0;                    // Gruebler-Kutzbach count
+  int rank = 0;                       // rank of the constraint Jacobian at the drawn pose
+  int dof = 0;                        // true mobility: coordinates - rank
+  std::vector<int> redundant;         // rows that depend on the others (one choice of them)
   double reciprocal_condition = 0.0;  // of the driven system at the drawn pose
 };
 

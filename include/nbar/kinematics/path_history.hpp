@@ -10,7 +10,6 @@
 
 #include <Eigen/Core>
 
-
 namespace nbar {
 
 class PathHistory {

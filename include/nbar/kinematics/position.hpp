@@ -80,10 +80,10 @@ struct NewtonReport {
 struct NewtonTrace {
   struct Iterate {
     Eigen::VectorXd q;
-    double residual = 0.0;   // max |Phi| at q
+    double residual = 0.0;  // max |Phi| at q
     Eigen::VectorXd dq;
-    double damping = 1.0;    // the fraction of the Newton step taken (1: the full step)
-    bool nudged = false;     // the Jacobian was singular: dq is a small nudge off the singular set
+    double damping = 1.0;  // the fraction of the Newton step taken (1: the full step)
+    bool nudged = false;   // the Jacobian was singular: dq is a small nudge off the singular set
   };
   std::vector<Iterate> iterates;
 };
@@ -91,8 +91,7 @@ struct NewtonTrace {
 // Damped Newton-Raphson (Gauss-Newton for redundant systems) from state.q with the drivers
 // as set. On success the Jacobian is factorised at the solution. With a trace, every iterate
 // is recorded there (nothing is recorded, or allocated, without one).
-NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterations = 50,
-                            NewtonTrace* trace = nullptr);
+NewtonReport solve_position(const Mechanism& mech, State& state, int max_iterations = 50, NewtonTrace* trace = nullptr);
 
 // Taylor coefficients 1..terms-1 of q in the path parameter, with the Jacobian factorised at
 // state.q: Phi_q q_k = -R_k. Writes state.series (or `out`).

@@ -26,8 +26,8 @@ inline constexpr int kMaxDerivativeOrder = 5;
 void check_derivative_order(int order);
 
 struct SweepOptions {
-  std::optional<int> steps;  // overrides the model's sweep: number of samples, ends included
-  int order = 2;             // highest time derivative (0 = positions only), at most 5
+  std::optional<int> steps;                 // overrides the model's sweep: number of samples, ends included
+  int order = 2;                            // highest time derivative (0 = positions only), at most 5
   int max_steps = kDefaultMaxSweepSamples;  // more samples than this is an error
 };
 
@@ -38,7 +38,7 @@ struct Sample {
   // n x (order+1) Taylor coefficients of q in time: column k is q^(k) / k!, not the k-th
   // derivative (read derivatives with derivative()).
   Eigen::MatrixXd taylor;
-  double residual = 0.0;              // max |Phi| over all rows, m
+  double residual = 0.0;  // max |Phi| over all rows, m
 
   int order() const { return static_cast<int>(taylor.cols()) - 1; }
   // The k-th time derivative of q (k! times column k), and of one coordinate.
@@ -51,12 +51,12 @@ struct SweepResult {
   int order = 2;
   std::vector<Sample> samples;
   bool complete = true;
-  std::string stop_reason;             // when !complete
-  std::vector<Warning> warnings;       // branch changes ("branch_changed"), singular crossings ("change_point_passed")
+  std::string stop_reason;        // when !complete
+  std::vector<Warning> warnings;  // branch changes ("branch_changed"), singular crossings ("change_point_passed")
   AssemblyReport assembly;
-  std::vector<std::string> branches;   // each four-bar loop's branch at the start: open | crossed
+  std::vector<std::string> branches;  // each four-bar loop's branch at the start: open | crossed
   double max_residual = 0.0;
-  std::size_t solved = 0;              // samples solved: samples.size(), or those handed to a sink
+  std::size_t solved = 0;  // samples solved: samples.size(), or those handed to a sink
 };
 
 // Receives every sample as the sweep solves it, in order. The sample is the sweep's scratch
@@ -89,7 +89,7 @@ struct SweepPath {
   double sample_parameter(std::size_t i) const;
   double sample_time(std::size_t i) const;
   bool parameter_is_time = true;
-  bool time_law = false;  // some driver follows a law in t: the parameter is the time
+  bool time_law = false;                          // some driver follows a law in t: the parameter is the time
   std::vector<double> from, delta, speed, accel;  // per driver (SI), for from/to sweeps
   // The parameter at which the first driver has `value` (SI), or, for time laws, the time
   // `value` (s). Throws Error(BadInput) for a model without drivers or a first driver that

@@ -77,7 +77,8 @@ ColumnTable select_columns(const ColumnTable& table, const std::vector<std::stri
 // that matches nothing.
 ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns);
 // The indices of those columns among `columns`.
-std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns, const std::vector<std::string>& patterns);
+std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns,
+                                      const std::vector<std::string>& patterns);
 
 // Whether `text` matches `pattern`, where '*' stands for any run of characters.
 bool glob_match(const std::string& pattern, const std::string& text);

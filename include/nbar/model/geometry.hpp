@@ -61,8 +61,8 @@ Region straight_edged(const Region& r);
 constexpr double kRelativeChordTolerance = 1e-5;
 
 struct AreaProperties {
-  double area = 0;                   // m^2
-  Eigen::Vector2d centroid{0, 0};    // m
+  double area = 0;                 // m^2
+  Eigen::Vector2d centroid{0, 0};  // m
   double ixx = 0, iyy = 0, ixy = 0;  // about the centroid, axes parallel to x, y: ∫y'^2 dA, ∫x'^2 dA, ∫x'y' dA (m^4)
   double polar() const { return ixx + iyy; }
 };
@@ -85,8 +85,8 @@ struct PlateMass {
 AreaProperties area_properties(const Region& r);
 
 // The part of r on the side n·(x − p) >= 0 of the line through p with normal n (not necessarily
-// unit). Arcs are cut as straight_edged(r). An empty part has area 0 and every other member 0. Throws Error(ErrorKind::BadInput) when n
-// is zero or p, n are not finite.
+// unit). Arcs are cut as straight_edged(r). An empty part has area 0 and every other member 0. Throws
+// Error(ErrorKind::BadInput) when n is zero or p, n are not finite.
 AreaProperties clipped_area_properties(const Region& r, const Eigen::Vector2d& p, const Eigen::Vector2d& n);
 
 // Whether an edge of the closed polygon p and one of q share a point (crossing or touching).
@@ -119,8 +119,8 @@ std::vector<EdgeMention> edge_mentions(const std::string& message);
 // each end, with round holes of the given radii centred at p and q (radius 0 = no hole).
 // Throws Error(ErrorKind::BadInput) unless the result is a valid plate: p != q, width > 0,
 // margin >= 0, each hole radius < width/2 and < margin, and the two holes apart.
-Region make_bar(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double width, double margin,
-                double hole_radius_p, double hole_radius_q);
+Region make_bar(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double width, double margin, double hole_radius_p,
+                double hole_radius_q);
 
 // The second moments of a about `point` (parallel-axis theorem).
 SecondMoments second_moments_about(const AreaProperties& a, const Eigen::Vector2d& point);

@@ -38,19 +38,19 @@ struct Material {
 
 // Mass properties given directly instead of computed from a shape.
 struct GivenInertia {
-  double mass = 0.0;            // kg
-  Eigen::Vector2d cg{0, 0};     // m, in the starting pose
-  double inertia = 0.0;         // kg m^2 about the centre of mass
+  double mass = 0.0;         // kg
+  Eigen::Vector2d cg{0, 0};  // m, in the starting pose
+  double inertia = 0.0;      // kg m^2 about the centre of mass
 };
 
 struct Body {
   std::string name;
-  std::vector<int> points;             // indices into Model::points; the first two define its angle
-  std::optional<double> length;        // exact length of a two-point body (m), overriding the drawing
-  std::optional<Region> shape;         // the plate's outline minus holes, in the starting pose (m)
-  double thickness = 0.0;              // m, with a shape
-  std::optional<Material> material;    // with a shape: density and strength
-  std::optional<GivenInertia> inertia; // explicit mass properties (then the shape is only for stresses)
+  std::vector<int> points;              // indices into Model::points; the first two define its angle
+  std::optional<double> length;         // exact length of a two-point body (m), overriding the drawing
+  std::optional<Region> shape;          // the plate's outline minus holes, in the starting pose (m)
+  double thickness = 0.0;               // m, with a shape
+  std::optional<Material> material;     // with a shape: density and strength
+  std::optional<GivenInertia> inertia;  // explicit mass properties (then the shape is only for stresses)
 };
 
 // Prismatic joint: `point` of `body` moves on the line through along[0], along[1], and `body`
@@ -82,23 +82,23 @@ inline constexpr double kMaxDriverTurns = 1000.0;
 struct Driver {
   std::string name;  // column name in outputs
   DriverKind kind = DriverKind::Angle;
-  int body = -1;         // Angle
-  int relative_to = -1;  // Angle: -1 means the +x axis of the frame
+  int body = -1;                      // Angle
+  int relative_to = -1;               // Angle: -1 means the +x axis of the frame
   std::array<int, 2> points{-1, -1};  // Distance
   int slider = -1;                    // Slide: index into Model::sliders
 
   std::optional<double> from;  // SI (rad or m); unset means "the value in the drawn pose"
   std::optional<double> to;
-  double speed = 1.0;  // SI per second
-  double accel = 0.0;  // SI per second squared
+  double speed = 1.0;      // SI per second
+  double accel = 0.0;      // SI per second squared
   std::optional<Law> law;  // value as a function of t, in SI
 
   bool is_angular() const { return kind == DriverKind::Angle; }
 };
 
 struct SweepSpec {
-  int steps = 361;            // from/to sweeps: number of samples, ends included
-  double duration = 1.0;      // time-law sweeps, s
+  int steps = 361;                  // from/to sweeps: number of samples, ends included
+  double duration = 1.0;            // time-law sweeps, s
   std::optional<double> time_step;  // time-law sweeps, s; default duration/100
 };
 

@@ -59,7 +59,7 @@ class ModelBuilder {
   // The position along its guide of the slider on `body`.
   ModelBuilder& slide_driver(const std::string& name, const std::string& body, const DriverMotion& motion = {});
 
-  ModelBuilder& steps(int samples);                                       // from/to sweeps
+  ModelBuilder& steps(int samples);                                         // from/to sweeps
   ModelBuilder& duration(double seconds, std::optional<double> step = {});  // time-law sweeps
 
   ModelBuilder& gravity(double gx, double gy);  // m/s^2

@@ -7,9 +7,9 @@
 namespace nbar {
 
 struct Units {
-  std::string length = "m";   // m | mm | cm | in | ft
-  std::string angle = "deg";  // deg | rad
-  double length_scale = 1.0;  // metres per length unit
+  std::string length = "m";                   // m | mm | cm | in | ft
+  std::string angle = "deg";                  // deg | rad
+  double length_scale = 1.0;                  // metres per length unit
   double angle_scale = 0.017453292519943295;  // radians per angle unit
 
   static std::optional<Units> make(const std::string& length, const std::string& angle);

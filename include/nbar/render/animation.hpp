@@ -27,8 +27,8 @@ class Animation {
   // Shares the mechanism and keeps the positions of the sweep (not the sweep itself), so it may
   // outlive both the caller's pointer and the SweepResult. frames <= 0: the default.
   // Throws Error(ErrorKind::BadInput) when the sweep has no sample or fps is not positive.
-  Animation(std::shared_ptr<const Mechanism> mech, const SweepResult& sweep, const DrawOptions& options,
-            int frames = 0, double fps = 24.0);
+  Animation(std::shared_ptr<const Mechanism> mech, const SweepResult& sweep, const DrawOptions& options, int frames = 0,
+            double fps = 24.0);
 
   static constexpr int kDefaultMaxFrames = 120;
 
@@ -45,7 +45,7 @@ class Animation {
 
   int frame_count() const { return static_cast<int>(steps_.size()); }
   const std::vector<int>& steps() const { return steps_; }  // the sample shown by each frame
-  bool periodic() const { return periodic_; }  // the last frame runs on into the first
+  bool periodic() const { return periodic_; }               // the last frame runs on into the first
   double fps() const { return fps_; }
   double duration() const { return frame_count() / fps_; }  // s, one loop
   const View& view() const { return view_; }

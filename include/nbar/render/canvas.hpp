@@ -24,8 +24,8 @@ struct Color {
 
 struct Stroke {
   Color color;
-  double width = 1.5;         // px
-  std::vector<double> dash;   // px on, px off...; empty = solid
+  double width = 1.5;        // px
+  std::vector<double> dash;  // px on, px off...; empty = solid
 };
 
 struct Paint {

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "nbar/kinematics/sweep.hpp"
-#include "nbar/stress/mesh.hpp"
 #include "nbar/render/canvas.hpp"
+#include "nbar/stress/mesh.hpp"
 
 namespace nbar::render {
 
@@ -52,7 +52,7 @@ struct DrawOptions {
   std::vector<Marker> markers;
   std::vector<MarkedPoint> marked_points;  // drawn last, in the group "marked-points"
   bool scale_bar = true;
-  std::string title;              // drawn at the top left when not empty
+  std::string title;  // drawn at the top left when not empty
   // Plates coloured by stress (render/stress_map.hpp), with a colour legend at the top right
   // from 0 to `stress_scale` (Pa; 0: the largest value of the maps).
   std::vector<StressMap> stress_maps;
@@ -84,8 +84,7 @@ void draw_mechanism(Canvas& canvas, const View& view, const Mechanism& mech, con
                     const std::vector<Eigen::Vector2d>& points, const DrawOptions& options);
 
 // Convenience: the whole picture of sample `step` on a fitted view.
-void draw_sample(Canvas& canvas, const Mechanism& mech, const SweepResult& sweep, int step,
-                 const DrawOptions& options);
+void draw_sample(Canvas& canvas, const Mechanism& mech, const SweepResult& sweep, int step, const DrawOptions& options);
 
 // The rigid motion, in pixels, that takes each body from where it is drawn at `reference` to
 // where it is at `points`: p -> rotation(angle) * (p - pivot) + pivot + shift. Angles in

@@ -84,9 +84,9 @@ class LinkFe {
 // far to trust it.
 struct FePeak {
   int body = -1;
-  int step = -1;                        // the sample's step number
-  double von_mises = 0.0;               // Pa
-  Eigen::Vector2d at{0, 0};             // where, plate frame (the starting pose), m
+  int step = -1;             // the sample's step number
+  double von_mises = 0.0;    // Pa
+  Eigen::Vector2d at{0, 0};  // where, plate frame (the starting pose), m
   int node = -1;
   std::optional<double> safety_factor;  // yield strength / von Mises, when the material has one
   int nodes = 0, elements = 0;          // the mesh

@@ -24,14 +24,14 @@
 namespace nbar {
 
 struct SectionStress {
-  double position = 0.0;        // along the axis from the body's first point, m
-  double area = 0.0, inertia = 0.0;  // m^2, m^4
+  double position = 0.0;                          // along the axis from the body's first point, m
+  double area = 0.0, inertia = 0.0;               // m^2, m^4
   double axial = 0.0, shear = 0.0, moment = 0.0;  // N, V (N) and M (N m)
-  double sigma_low = 0.0, sigma_high = 0.0;  // normal stress at the extreme fibres (right, left of the axis), Pa
-  double tau_max = 0.0;                      // Pa, at the neutral axis
-  double von_mises = 0.0;                    // largest of the three places, Pa
-  double sigma = 0.0, tau = 0.0;             // components where von_mises is
-  Eigen::Vector2d where{0, 0};  // that place in the body frame: x along the axis, y to its left, m
+  double sigma_low = 0.0, sigma_high = 0.0;       // normal stress at the extreme fibres (right, left of the axis), Pa
+  double tau_max = 0.0;                           // Pa, at the neutral axis
+  double von_mises = 0.0;                         // largest of the three places, Pa
+  double sigma = 0.0, tau = 0.0;                  // components where von_mises is
+  Eigen::Vector2d where{0, 0};                    // that place in the body frame: x along the axis, y to its left, m
 };
 
 // The forces on the part of a body between a section and its first point (or the other part),
@@ -89,8 +89,8 @@ class LinkStress {
 struct StressPeak {
   int body = -1;
   int step = -1;
-  SectionStress at;                      // the section and place of the largest von Mises
-  std::optional<double> safety_factor;   // yield strength / von Mises, when the material has one
+  SectionStress at;                     // the section and place of the largest von Mises
+  std::optional<double> safety_factor;  // yield strength / von Mises, when the material has one
 };
 
 // The largest von Mises stress of every analysed body over the sweep, from the dynamics

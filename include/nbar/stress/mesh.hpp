@@ -53,9 +53,9 @@ struct TriMesh {
 
 // Quality figures of a mesh, for tests and reports.
 struct MeshQuality {
-  double min_angle_deg = 0.0;  // smallest corner angle of any triangle (straight-sided measure)
+  double min_angle_deg = 0.0;             // smallest corner angle of any triangle (straight-sided measure)
   double max_edge = 0.0, min_edge = 0.0;  // m
-  double area = 0.0;  // sum of the triangles' areas, with curved edges, m^2
+  double area = 0.0;                      // sum of the triangles' areas, with curved edges, m^2
 };
 
 // Throws Error(ErrorKind::BadInput) with a readable message when r fails check_region or the mesh

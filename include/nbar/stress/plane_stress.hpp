@@ -75,12 +75,12 @@ struct LoadCase {
 };
 
 struct StressField {
-  Eigen::VectorXd displacement;          // (u, v) of every node, m: 2 * node count
-  std::vector<double> von_mises;         // at every node (averaged from the elements around it), Pa
-  std::vector<Eigen::Vector3d> stress;   // (σxx, σyy, τxy) at every node, Pa
-  double peak = 0.0;                     // largest nodal von Mises, Pa
+  Eigen::VectorXd displacement;         // (u, v) of every node, m: 2 * node count
+  std::vector<double> von_mises;        // at every node (averaged from the elements around it), Pa
+  std::vector<Eigen::Vector3d> stress;  // (σxx, σyy, τxy) at every node, Pa
+  double peak = 0.0;                    // largest nodal von Mises, Pa
   int peak_node = -1;
-  Eigen::Vector2d peak_at{0, 0};         // m
+  Eigen::Vector2d peak_at{0, 0};  // m
   // Numerical honesty: |net force| + |net moment| / size of the applied loads before inertia
   // relief, relative to the largest applied load (0 for loads in exact equilibrium), and the
   // largest support reaction after it, relative likewise.

@@ -27,8 +27,9 @@ struct SectionProperties {
   double centroid = 0;          // s of the centroid (neutral axis for in-plane bending)
   double inertia = 0;           // thickness * ∫ (s - centroid)^2 ds over the material
   double s_min = 0, s_max = 0;  // extreme fibres (s of the first and last material)
-  double max_first_moment = 0;  // max over levels s of |Q(s)|, Q(s) = thickness * ∫_{material below s} (s' - centroid) ds'
-  double shear_level = 0;       // the level s where that maximum is reached
+  double max_first_moment =
+      0;                   // max over levels s of |Q(s)|, Q(s) = thickness * ∫_{material below s} (s' - centroid) ds'
+  double shear_level = 0;  // the level s where that maximum is reached
 };
 
 // |Q| is largest at the centroid. When the centroid falls in a gap between intervals, Q is the

@@ -55,8 +55,7 @@ enum class PivotChoice { Moving, Fixed };
 // or fixed pivots), the body's reference point as coupler point. Throws for coincident pivots
 // or a link of zero length.
 FourBarDesign three_position_design(const std::array<BodyPose, 3>& poses, PivotChoice given,
-                                    const Eigen::Vector2d& input_pivot,
-                                    const Eigen::Vector2d& output_pivot);
+                                    const Eigen::Vector2d& input_pivot, const Eigen::Vector2d& output_pivot);
 
 // ---- Four positions --------------------------------------------------------------------
 
@@ -89,22 +88,21 @@ struct BurmesterCurves {
   double window_radius = 0;
 };
 
-BurmesterCurves four_position_curves(const std::array<BodyPose, 4>& poses,
-                                     const CurveOptions& options = {});
+BurmesterCurves four_position_curves(const std::array<BodyPose, 4>& poses, const CurveOptions& options = {});
 
 // ---- Five positions --------------------------------------------------------------------
 
 // A four-bar made of two Burmester pairs.
 struct BurmesterDesign {
-  FourBarDesign design;     // input dyad `input`, output dyad `output`, coupler point =
-                            // the body's reference point in the first position
+  FourBarDesign design;         // input dyad `input`, output dyad `output`, coupler point =
+                                // the body's reference point in the first position
   int input = -1, output = -1;  // indices into FivePositionResult::points
-  bool one_branch = false;  // all five positions on one assembly branch (see branch_signs)
+  bool one_branch = false;      // all five positions on one assembly branch (see branch_signs)
 };
 
 struct FivePositionResult {
-  std::vector<BurmesterPair> points;  // the real Burmester pairs: 0, 2 or 4 for generic data
-  int complex_points = 0;             // finite solutions that are not real (conjugate pairs)
+  std::vector<BurmesterPair> points;     // the real Burmester pairs: 0, 2 or 4 for generic data
+  int complex_points = 0;                // finite solutions that are not real (conjugate pairs)
   std::vector<BurmesterDesign> designs;  // every pair of distinct points: up to 6
 };
 

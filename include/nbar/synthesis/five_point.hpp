@@ -20,8 +20,8 @@
 namespace nbar::synthesis {
 
 struct FivePointTask {
-  Eigen::Vector2d pivot_a{0, 0};  // fixed pivot of the first dyad
-  Eigen::Vector2d pivot_b{1, 0};  // fixed pivot of the second dyad
+  Eigen::Vector2d pivot_a{0, 0};          // fixed pivot of the first dyad
+  Eigen::Vector2d pivot_b{1, 0};          // fixed pivot of the second dyad
   std::array<Eigen::Vector2d, 5> points;  // coupler point, in the order it should pass them
 };
 
@@ -38,10 +38,10 @@ struct FivePointSolution {
 
 struct FivePointResult {
   std::vector<FivePointSolution> solutions;  // distinct finite solutions (36 generically)
-  int paths = 0;                // paths tracked in all
-  bool used_fallback = false;   // the linear-product homotopy was needed
-  std::string method;           // "parameter homotopy (36 paths)" or the fallback's name
-  int failed_paths = 0;          // of the parameter homotopy, after re-tracking
+  int paths = 0;                             // paths tracked in all
+  bool used_fallback = false;                // the linear-product homotopy was needed
+  std::string method;                        // "parameter homotopy (36 paths)" or the fallback's name
+  int failed_paths = 0;                      // of the parameter homotopy, after re-tracking
   int retracked_paths = 0;
 };
 

@@ -10,7 +10,7 @@
 namespace nbar::synthesis {
 
 struct FivePointStart {
-  CVector parameters;  // delta_0..4, deltab_0..4, alpha, alphab, beta, betab (generic complex)
+  CVector parameters;              // delta_0..4, deltab_0..4, alpha, alphab, beta, betab (generic complex)
   std::vector<CVector> solutions;  // affine isotropic: t1..t4, tb1..tb4, x, xb, y, yb
 };
 

@@ -52,14 +52,14 @@ struct FunctionDesign {
   // point (in the order given), the coupler point on the output's moving pivot.
   FourBarDesign design;
   double input = 0, coupler = 0, output = 0, frame = 0;  // link lengths a, b, c, d (> 0)
-  std::array<double, 3> k{};  // K1, K2, K3; a negative K1 (K2) means the crank (output
-                              // link) points opposite to phi (psi): the design has it right
+  std::array<double, 3> k{};                             // K1, K2, K3; a negative K1 (K2) means the crank (output
+                                                         // link) points opposite to phi (psi): the design has it right
   int branch = 0;  // +1/-1: side of B from the line A -> O4 (as branch_signs in burmester.hpp),
                    // the assembly that best meets the first precision point; kept over the range
   std::vector<StructuralError> precision;  // at each precision point, simulated
-  StructuralError worst;  // largest |angle error| over the range's samples and the precision points
-  bool whole_range = true;  // the linkage assembles on its branch at every sample and precision point
-  double fails_at_x = 0;    // when not: the first such x (samples from x_start on, then precision points)
+  StructuralError worst;                   // largest |angle error| over the range's samples and the precision points
+  bool whole_range = true;                 // the linkage assembles on its branch at every sample and precision point
+  double fails_at_x = 0;  // when not: the first such x (samples from x_start on, then precision points)
 };
 
 // The precision points as check_design's targets: the input's and the output's rotations from

@@ -30,12 +30,12 @@
 
 namespace nbar::synthesis {
 
-inline constexpr int kNinePointOrbits = 1442;       // generic number of cognate triples
-inline constexpr int kNinePointSolutions = 8652;    // of the isotropic system (6 per orbit)
+inline constexpr int kNinePointOrbits = 1442;     // generic number of cognate triples
+inline constexpr int kNinePointSolutions = 8652;  // of the isotropic system (6 per orbit)
 
 struct NinePointOptions {
-  unsigned threads = 0;       // 0: every hardware thread
-  std::uint64_t seed = 1;     // random parameter nodes and gammas
+  unsigned threads = 0;    // 0: every hardware thread
+  std::uint64_t seed = 1;  // random parameter nodes and gammas
   // Called with (stage, done, total), from worker threads: stage "paths" (parameter
   // homotopy) or "monodromy" (done = orbits known, total = 1442 as a guide, not a rule).
   std::function<void(const std::string&, int, int)> progress;
@@ -58,11 +58,11 @@ struct NinePointLinkage {
 
 struct NinePointResult {
   std::vector<NinePointLinkage> linkages;  // one per real orbit (cognate triple)
-  int orbits = 0;          // distinct orbits found, real or complex (1442 generically)
-  int real_orbits = 0;     // = linkages.size()
-  int paths = 0;           // paths tracked in all (parameter homotopy and monodromy)
-  int failed_paths = 0;    // of the parameter homotopy from the stored instance
-  int monodromy_loops = 0; // loops run to recover what the parameter homotopy lost
+  int orbits = 0;                          // distinct orbits found, real or complex (1442 generically)
+  int real_orbits = 0;                     // = linkages.size()
+  int paths = 0;                           // paths tracked in all (parameter homotopy and monodromy)
+  int failed_paths = 0;                    // of the parameter homotopy from the stored instance
+  int monodromy_loops = 0;                 // loops run to recover what the parameter homotopy lost
   // How complete the set is: complete when as many distinct orbits were reached as the stored
   // instance has (1442, closed under monodromy when it was made); the sentence says so or not.
   std::string certificate;
@@ -83,7 +83,6 @@ std::optional<NinePointCircle> common_circle(const std::array<Eigen::Vector2d, 9
 
 // Throws Error(ErrorKind::InvalidModel) for non-finite, repeated (within 1e-9 of the spread), collinear
 // (a line is no coupler curve) or concyclic points (infinitely many four-bars).
-NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points,
-                                 const NinePointOptions& options = {});
+NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, const NinePointOptions& options = {});
 
 }  // namespace nbar::synthesis

@@ -28,9 +28,9 @@ std::vector<CVector> nine_point_orbit(const CVector& affine, const CVector& para
 Eigen::Matrix<Complex, 6, 1> orbit_key(const CVector& affine);
 
 struct NinePointStart {
-  CVector parameters;                   // generic complex
-  std::vector<CVector> representatives; // affine, one per orbit
-  int loops = 0;                        // monodromy: edges tracked
+  CVector parameters;                    // generic complex
+  std::vector<CVector> representatives;  // affine, one per orbit
+  int loops = 0;                         // monodromy: edges tracked
   int paths = 0;
   bool closed = false;  // every orbit at every node went along every edge: nothing new
 };

@@ -27,10 +27,10 @@ namespace nbar::synthesis {
 // Lengths in the targets' unit, angles in radians.
 struct PathConstraints {
   std::optional<Eigen::Vector2d> region_min, region_max;  // both fixed pivots inside this box
-  bool crank = false;           // the input turns fully
-  double min_transmission = 0;  // over the motion through the targets (a crank's whole turn)
-  double min_length = 0;        // every link: frame, input, coupler, output; 0 for none
-  double max_length = 0;        // 0 for none
+  bool crank = false;                                     // the input turns fully
+  double min_transmission = 0;                            // over the motion through the targets (a crank's whole turn)
+  double min_length = 0;                                  // every link: frame, input, coupler, output; 0 for none
+  double max_length = 0;                                  // 0 for none
 };
 
 struct PathFitTask {
@@ -73,7 +73,7 @@ struct PathFitOptions {
   int max_fits = 30;           // distinct optima kept, best first
   // Empty: default_start_providers().
   std::vector<StartProvider> providers;
-  std::function<bool()> stop;  // asked between starts; true stops (the fits so far are kept)
+  std::function<bool()> stop;              // asked between starts; true stops (the fits so far are kept)
   std::function<void(int, int)> progress;  // (starts fitted, starts)
 };
 
@@ -88,19 +88,19 @@ std::vector<PathStart> nine_point_starts(const PathFitTask& task, const PathFitO
 
 // One local optimum.
 struct PathFit {
-  FourBarDesign design;             // in the pose that meets the first target
+  FourBarDesign design;              // in the pose that meets the first target
   std::vector<double> input_angles;  // the matched input angle of every target (rad)
-  double rms_deviation = 0;         // sqrt(mean squared distance), targets to matched points
+  double rms_deviation = 0;          // sqrt(mean squared distance), targets to matched points
   double max_deviation = 0;
-  std::string origin;               // of its start
+  std::string origin;  // of its start
   int iterations = 0;
 };
 
 struct PathFitResult {
-  std::vector<PathFit> fits;  // distinct local optima meeting the constraints, smallest RMS first
-  int starts = 0;             // starting designs fitted
-  int rejected = 0;           // optima dropped because they break a constraint
-  long evaluations = 0;       // coupler-point evaluations in all (screening included)
+  std::vector<PathFit> fits;              // distinct local optima meeting the constraints, smallest RMS first
+  int starts = 0;                         // starting designs fitted
+  int rejected = 0;                       // optima dropped because they break a constraint
+  long evaluations = 0;                   // coupler-point evaluations in all (screening included)
   std::vector<std::string> start_counts;  // "40 sampled", "93 five-point"
 };
 

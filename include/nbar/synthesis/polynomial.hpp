@@ -50,7 +50,6 @@ class Polynomial {
   friend Polynomial operator-(Polynomial a, Complex c) { return a + (-c); }
   friend Polynomial operator-(Polynomial a) { return a *= -1.0; }
 
-
  private:
   int variables_;
   std::map<Exponents, Complex> terms_;  // no zero coefficients kept

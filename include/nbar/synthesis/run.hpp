@@ -20,7 +20,7 @@ struct DesignRow {
   bool real = true;
   FourBarDesign design;
   DesignCheck check;
-  std::optional<InputMotion> motion;       // for an exported model, instead of check.motion
+  std::optional<InputMotion> motion;  // for an exported model, instead of check.motion
   double solver_residual = 0;
   double solver_condition = 0;             // five-point: the homotopy's condition number at the endpoint
   std::optional<double> structural_error;  // function generation: worst output error over the range (rad)
@@ -32,9 +32,9 @@ struct SynthesisOutcome {
   std::string method;
   std::vector<DesignRow> rows;
   std::vector<std::string> notes;
-  bool angle_errors = false;                // errors are output angles (function generation), not lengths
-  std::optional<BurmesterCurves> curves;    // burmester with 4 poses: the centre- and circle-point curves
-  bool ranked = false;                      // rows are in rank order already (path: by RMS deviation)
+  bool angle_errors = false;              // errors are output angles (function generation), not lengths
+  std::optional<BurmesterCurves> curves;  // burmester with 4 poses: the centre- and circle-point curves
+  bool ranked = false;                    // rows are in rank order already (path: by RMS deviation)
 };
 
 struct SynthesisRunOptions {

@@ -21,12 +21,12 @@ namespace nbar::synthesis {
 using VariableGroups = std::vector<std::vector<int>>;
 
 struct SolverOptions {
-  unsigned threads = 0;        // 0: every hardware thread
-  std::uint64_t seed = 1;      // gamma and patches; the answer depends on it, not on threads
-  double tolerance = 1e-11;    // relative accuracy asked of the corrector near the end
+  unsigned threads = 0;              // 0: every hardware thread
+  std::uint64_t seed = 1;            // gamma and patches; the answer depends on it, not on threads
+  double tolerance = 1e-11;          // relative accuracy asked of the corrector near the end
   double singular_condition = 1e13;  // endpoints with a larger condition number are singular
   double infinity_threshold = 1e-8;  // |homogenizing coordinate| below this: at infinity
-  int max_steps = 3000;        // per path (a regular path takes 20 to 200)
+  int max_steps = 3000;              // per path (a regular path takes 20 to 200)
   // Track failed paths again with tighter settings: worth it when every path should arrive
   // (parameter homotopies, where solve_five_point asks for it), wasted on the many paths of
   // a total-degree or linear-product homotopy that end on a singular set at infinity.
@@ -43,15 +43,15 @@ enum class EndpointKind { Finite, AtInfinity, Failed };
 struct Endpoint {
   int path = -1;
   EndpointKind kind = EndpointKind::Failed;
-  CVector x;                 // affine coordinates (finite endpoints); the last point otherwise
-  bool singular = false;     // condition above the threshold, or a winding number above 1
-  bool real = false;         // every coordinate real to 1e-8 (relative)
-  double residual = 0.0;     // max |F_i(x)| after Newton refinement
-  double condition = 0.0;    // 1-norm condition number of the tracker's Jacobian at x
-  int winding = 1;           // cycle number found by the endgame (1 = regular endpoint)
-  int steps = 0;             // accepted predictor-corrector steps
-  bool retracked = false;    // tracked again after it landed on another path's endpoint
-  std::string failure;       // why, when kind == Failed
+  CVector x;               // affine coordinates (finite endpoints); the last point otherwise
+  bool singular = false;   // condition above the threshold, or a winding number above 1
+  bool real = false;       // every coordinate real to 1e-8 (relative)
+  double residual = 0.0;   // max |F_i(x)| after Newton refinement
+  double condition = 0.0;  // 1-norm condition number of the tracker's Jacobian at x
+  int winding = 1;         // cycle number found by the endgame (1 = regular endpoint)
+  int steps = 0;           // accepted predictor-corrector steps
+  bool retracked = false;  // tracked again after it landed on another path's endpoint
+  std::string failure;     // why, when kind == Failed
 };
 
 struct SolveResult {
@@ -82,8 +82,7 @@ class ParameterizedSystem {
   virtual int variables() const = 0;  // equal to the number of equations
   virtual int parameters() const = 0;
   // f = F(x; p); jx = dF/dx and jp = dF/dp when not null.
-  virtual void evaluate(const CVector& x, const CVector& p, CVector& f, CMatrix* jx,
-                        CMatrix* jp) const = 0;
+  virtual void evaluate(const CVector& x, const CVector& p, CVector& f, CMatrix* jx, CMatrix* jp) const = 0;
   // y = Fx^{-1} F (dp null: a Newton step) or Fx^{-1} (Fp dp) (a velocity) at (x; p); false
   // when Fx is singular. The default evaluates and factors densely.
   virtual bool linear_solve(const CVector& x, const CVector& p, const CVector* dp, CVector& y) const;
@@ -100,8 +99,8 @@ class ParameterizedSystem {
 // Moves the known solutions of F(x; from) to F(x; to) along the segment between the
 // parameters (choose `from` generic complex so the segment avoids the discriminant).
 SolveResult solve_parameter_homotopy(const ParameterizedSystem& f, const CVector& from,
-                                     const std::vector<CVector>& from_solutions,
-                                     const CVector& to, const SolverOptions& options = {});
+                                     const std::vector<CVector>& from_solutions, const CVector& to,
+                                     const SolverOptions& options = {});
 
 struct MonodromyResult {
   std::vector<CVector> solutions;  // of F(x; p), tracker coordinates
@@ -111,9 +110,8 @@ struct MonodromyResult {
 // Grows a set of solutions of F(x; p) from one seed solution by tracking around random
 // triangles in parameter space. Stops at `target` solutions (when > 0) or after
 // `stale_loops` loops in a row bring nothing new.
-MonodromyResult monodromy_solve(const ParameterizedSystem& f, const CVector& p,
-                                const std::vector<CVector>& seeds, int target,
-                                const SolverOptions& options = {}, int stale_loops = 5,
+MonodromyResult monodromy_solve(const ParameterizedSystem& f, const CVector& p, const std::vector<CVector>& seeds,
+                                int target, const SolverOptions& options = {}, int stale_loops = 5,
                                 int max_loops = 200);
 
 }  // namespace nbar::synthesis

@@ -64,9 +64,8 @@ struct SynthesisTask {
   // path: `points` holds the targets (10 or more, from the file or its `curve` CSV), and these
   // bound the designs.
   PathConstraints constraints;
-  std::string curve_file;  // the CSV the targets came from, if any
+  std::string curve_file;     // the CSV the targets came from, if any
   int nine_point_starts = 0;  // subsets of nine targets whose nine-point designs start fits too
-
 };
 
 }  // namespace nbar::synthesis

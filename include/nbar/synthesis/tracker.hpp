@@ -22,16 +22,16 @@ class Homotopy {
 };
 
 struct TrackSettings {
-  double initial_step = 0.05;   // in the path parameter, which runs over [0, 1]
+  double initial_step = 0.05;  // in the path parameter, which runs over [0, 1]
   double max_step = 0.25;
   double min_step = 1e-13;
   double corrector_tolerance = 1e-6;  // relative Newton step accepted while tracking
   int corrector_iterations = 3;
-  double predictor_target = 3e-3;     // relative predictor error the step size aims at
-  double contraction = 0.5;     // required ratio of successive Newton steps (guards jumps)
-  double final_tolerance = 1e-12;     // relative, when refining at t = 1
-  int max_steps = 3000;  // per path: accepted steps, endgame included; attempts per segment
-  double endgame_radius = 0.05;  // |1 - t| where a singular end switches to the Cauchy endgame
+  double predictor_target = 3e-3;  // relative predictor error the step size aims at
+  double contraction = 0.5;        // required ratio of successive Newton steps (guards jumps)
+  double final_tolerance = 1e-12;  // relative, when refining at t = 1
+  int max_steps = 3000;            // per path: accepted steps, endgame included; attempts per segment
+  double endgame_radius = 0.05;    // |1 - t| where a singular end switches to the Cauchy endgame
   double singular_condition = 1e13;
   int max_winding = 12;
 };
@@ -42,16 +42,15 @@ struct TrackResult {
   TrackStatus status = TrackStatus::Failed;
   CVector x;
   int steps = 0;
-  double last_step = 0;   // the step size reached, to continue with
+  double last_step = 0;  // the step size reached, to continue with
   int winding = 1;
-  double condition = 0;   // 1-norm condition number of Hx at the end
+  double condition = 0;  // 1-norm condition number of Hx at the end
   std::string failure;
 };
 
 // Tracks x from t = path(0) to t = path(1), where path(tau) gives (t, dt/dtau).
 using TPath = std::function<std::pair<Complex, Complex>(double tau)>;
-TrackResult track_segment(const Homotopy& h, const CVector& start, const TPath& path,
-                          const TrackSettings& settings);
+TrackResult track_segment(const Homotopy& h, const CVector& start, const TPath& path, const TrackSettings& settings);
 
 // Tracks from t = 0 to t = 1 along the real segment, with the Cauchy endgame when the end
 // is singular.
