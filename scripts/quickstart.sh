@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
-# From nothing to a first result: installs what is missing, builds nbar, and analyses a
-# bundled four-bar.
+# From nothing to a first result: installs what is missing (only what building and running nbar
+# needs: scripts/install-deps.sh), builds nbar, and analyses a bundled four-bar.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/install-deps.sh"
 # ccache, when it is installed, makes rebuilds fast; nothing needs it.
 launcher=()
 if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
+# No tests or benchmarks: their libraries are scripts/test.sh's to install.
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DNBAR_BUILD_TESTS=OFF -DNBAR_BUILD_BENCH=OFF \
+  "${launcher[@]}" >/dev/null
 cmake --build "$root/build" -j"$(nproc)" --target nbar
 # The Python module, when pybind11 was found (scripts/install-deps.sh installs it).
 python_module=0
