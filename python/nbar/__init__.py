@@ -10,6 +10,12 @@
 Everything is computed by nbar's C++ core; this package only translates.
 """
 
+try:
+    import numpy  # noqa: F401  (the results are numpy arrays; say what to install before anything fails on it)
+except ImportError as missing_numpy:
+    raise ImportError("nbar needs numpy: apt-get install python3-numpy (for Debian's python3), "
+                      "or pip install numpy") from missing_numpy
+
 from . import synth
 from ._nbar import __version__
 from .errors import (AssemblyError, BadInputError, Cancelled, ColumnError, Error, InternalError, LimitError,
