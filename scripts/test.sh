@@ -17,6 +17,10 @@ cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DNBAR_BUILD_TESTS=
 cmake --build "$root/build" -j"$jobs"
 ctest --test-dir "$root/build" --output-on-failure -j"$jobs"
 
+echo "== Packages: the wheel and the .deb made from that build, installed into a scratch folder and used"
+"$root/scripts/package.sh"
+"$root/tests/packaging/packages_test.sh" "$root/dist"
+
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 # The sanitizer stage is focused where its time buys most (it was 44 of 70 minutes on 2 cores):
 # - -O1 with line tables only (-g1), as OSS-Fuzz builds: reports still give file:line, and the
