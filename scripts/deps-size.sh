@@ -2,8 +2,8 @@
 # Measures what scripts/install-deps.sh installs on a bare Debian bookworm, without one: apt
 # solves the install against a made-up dpkg status that holds only a bare system, and the
 # Installed-Size and Size (download) of every package it would install are added up.
-# The bare system is what debootstrap's minbase (and the debian:bookworm image) starts from: every
-# package of Priority required or Essential, with what they depend on, and apt. Its entries are
+# The bare system is what debootstrap's minbase makes: every package of Priority required or
+# Essential, with what they depend on, and apt (88 packages; a minbase chroot had the same 88). Its entries are
 # copied from this machine's dpkg status, so every one of them must be installed here (it is, on
 # any Debian). Prints one line per set: packages, download and installed size.
 #   scripts/deps-size.sh            the quick start's set and the tests' set (install-deps.sh --tests)
