@@ -137,13 +137,27 @@ std::string flag_name(std::string_view key) {
   return flag;
 }
 
+std::vector<std::string> known_keys(const std::vector<OptionRule>& rules, const std::vector<std::string>& documents) {
+  std::vector<std::string> keys = documents;
+  for (const OptionRule& r : rules) keys.push_back(r.key);
+  return keys;
+}
+
+std::optional<std::string> unknown_key(const std::vector<std::string>& given, const std::vector<OptionRule>& rules,
+                                       const std::vector<std::string>& documents) {
+  const std::vector<std::string> keys = known_keys(rules, documents);
+  for (const std::string& key : given)
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) return key;
+  return std::nullopt;
+}
+
 void check_known(const Options& options, const std::vector<OptionRule>& rules, const std::string& request_name) {
-  for (const auto& [key, value] : options.values()) {
-    const bool known = std::any_of(rules.begin(), rules.end(), [&](const OptionRule& r) { return r.key == key; });
-    if (known) continue;
-    std::vector<std::string> keys;
-    for (const OptionRule& r : rules) keys.push_back(r.key);
-    throw OptionError(key, "unknown option of " + request_name + "; it takes: " + joined(keys, ", "));
+  std::vector<std::string> given;
+  for (const auto& [key, value] : options.values()) given.push_back(key);
+  if (const std::optional<std::string> key = unknown_key(given, rules)) {
+    std::vector<std::string> marked;  // each spelled by the front-end
+    for (const std::string& k : known_keys(rules)) marked.push_back("{" + k + "}");
+    throw OptionError(*key, "unknown option of " + literal(request_name) + "; it takes: " + joined(marked, ", "));
   }
 }
 

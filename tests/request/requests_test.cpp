@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "nbar/io/model_file.hpp"
@@ -94,6 +95,11 @@ TEST(RequestOptions, AnUnknownKeyIsNamedWithTheOnesTheRequestTakes) {
   Options o = with("frobnicate", 1LL);
   const std::string m = message([&] { check_known(o, CheckRequest::rules(), "check"); });
   EXPECT_EQ(m, "frobnicate: unknown option of check; it takes: format, max_steps");
+  // The web server's rule is the same, with the documents it reads itself (the model's text).
+  EXPECT_EQ(known_keys(CheckRequest::rules(), {"model"}), (std::vector<std::string>{"model", "format", "max_steps"}));
+  EXPECT_EQ(unknown_key({"format", "model"}, CheckRequest::rules(), {"model"}), std::nullopt);
+  EXPECT_EQ(unknown_key({"format", "modle", "stepz"}, CheckRequest::rules(), {"model"}), "modle");
+  EXPECT_EQ(unknown_key({"model"}, CheckRequest::rules()), "model");
 }
 
 TEST(RequestOptions, ListsOfNamesComeAsOneTextOrAsAList) {

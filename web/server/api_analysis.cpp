@@ -20,7 +20,7 @@ ApiResponse api_check(Job& job, const std::string& text) {
 }
 
 ApiResponse api_solve(Job& job, const std::string& text) {
-  const RequestBody body(text, body_keys<request::SolveRequest>({"model"}));
+  const RequestBody body(text, request::SolveRequest::rules(), {"model"});
   const auto solve = read_request<request::SolveRequest>(body, {"model"}, true);
   load_model(job, body.text("model", true));
   check_sweep_size(job, solve.sweep.steps);
@@ -36,7 +36,7 @@ ApiResponse api_solve(Job& job, const std::string& text) {
 }
 
 ApiResponse api_stress(Job& job, const std::string& text) {
-  const RequestBody body(text, body_keys<request::StressRequest>({"model"}));
+  const RequestBody body(text, request::StressRequest::rules(), {"model"});
   const auto stress = read_request<request::StressRequest>(body, {"model"}, true);
   load_model(job, body.text("model", true));
   check_sweep_size(job, stress.sweep.steps);
@@ -54,7 +54,7 @@ ApiResponse api_stress(Job& job, const std::string& text) {
 }
 
 ApiResponse api_report(Job& job, const std::string& text) {
-  const RequestBody body(text, body_keys<request::ReportRequest>({"model"}));
+  const RequestBody body(text, request::ReportRequest::rules(), {"model"});
   const auto report_request = read_request<request::ReportRequest>(body, {"model"});
   load_model(job, body.text("model", true));
   check_limit("frames", static_cast<double>(report_request.frames), job.limits.max_frames, "the number of frames");
@@ -74,7 +74,7 @@ ApiResponse api_report(Job& job, const std::string& text) {
 }
 
 ApiResponse api_explain(Job& job, const std::string& text) {
-  const RequestBody body(text, body_keys<request::ExplainRequest>({"model"}));
+  const RequestBody body(text, request::ExplainRequest::rules(), {"model"});
   const auto explain_request = read_request<request::ExplainRequest>(body, {"model"}, true);
   load_model(job, body.text("model", true));
   // The explanation writes Phi_q whole and every pair of links' instant centre: small models.

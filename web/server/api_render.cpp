@@ -37,7 +37,7 @@ ApiResponse render_plates(Job& job, const std::string& request) {
 }
 
 ApiResponse render_draw(Job& job, const std::string& text) {
-  const RequestBody body(text, body_keys<request::DrawRequest>({"model", "kind"}));
+  const RequestBody body(text, request::DrawRequest::rules(), {"model", "kind"});
   const auto draw = read_request<request::DrawRequest>(body, {"model", "kind"});
   load_model(job, body.text("model", true));
   check_picture_size(job, draw.picture.width, draw.picture.height);
@@ -59,7 +59,7 @@ ApiResponse render_draw(Job& job, const std::string& text) {
 }
 
 ApiResponse render_animate(Job& job, const std::string& text) {
-  const RequestBody body(text, body_keys<request::AnimateRequest>({"model", "kind"}));
+  const RequestBody body(text, request::AnimateRequest::rules(), {"model", "kind"});
   const auto animate = read_request<request::AnimateRequest>(body, {"model", "kind"});
   if (animate.format == "mp4" && !render::Animation::program_available("ffmpeg"))
     throw ApiError(
@@ -89,7 +89,7 @@ ApiResponse render_animate(Job& job, const std::string& text) {
 }
 
 ApiResponse render_plot(Job& job, const std::string& text) {
-  const RequestBody body(text, body_keys<request::PlotRequest>({"model", "kind"}));
+  const RequestBody body(text, request::PlotRequest::rules(), {"model", "kind"});
   const auto plot = read_request<request::PlotRequest>(body, {"model", "kind"});
   load_model(job, body.text("model", true));
   check_picture_size(job, plot.width, plot.height);

@@ -26,13 +26,6 @@ ApiResponse api_example(const std::string& name);
 ApiResponse api_health(const ServerConfig& config);
 ApiResponse static_file(const std::string& path);
 
-// The keys a request type's body may have: its options' and the documents'.
-template <class Request>
-std::vector<std::string> body_keys(std::vector<std::string> documents) {
-  for (const request::OptionRule& rule : Request::rules()) documents.push_back(rule.key);
-  return documents;
-}
-
 // The request read from the body's options; `format` is JSON unless the body says otherwise (the
 // command line's default is for a terminal).
 template <class Request>

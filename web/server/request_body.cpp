@@ -91,6 +91,29 @@ nlohmann::json parse_request(const std::string& text) {
   });
 }
 
+RequestBody::RequestBody(const std::string& text, const std::vector<request::OptionRule>& rules,
+                         const std::vector<std::string>& documents) {
+  try {
+    json_ = parse_request(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    const auto [line, column] = line_column(text, e.byte > 0 ? e.byte - 1 : 0);
+    throw ApiError(ApiErrorKind::BadJson, std::string("the body is not valid JSON: ") + e.what(),
+                   Json{{"line", line}, {"column", column}});
+  } catch (const nlohmann::json::exception& e) {
+    // A number beyond a double's range (1e400): the parser gives no place for it.
+    throw ApiError(ApiErrorKind::BadJson, std::string("the body is not valid JSON: ") + e.what());
+  }
+  if (!json_.is_object())
+    throw ApiError(ApiErrorKind::BadJson, "the body must be a JSON object, e.g. {\"model\": \"...\"}");
+  std::vector<std::string> given;
+  for (const auto& [key, value] : json_.items()) given.push_back(key);
+  if (const std::optional<std::string> key = request::unknown_key(given, rules, documents)) {
+    std::string list;
+    for (const std::string& k : request::known_keys(rules, documents)) list += (list.empty() ? "" : ", ") + k;
+    bad_input("unknown option '" + *key + "'; this endpoint takes: " + list);
+  }
+}
+
 request::Options RequestBody::options(const std::vector<std::string>& documents) const {
   request::Options options;
   for (const auto& [key, value] : json_.items()) {

@@ -31,32 +31,18 @@ void check_document_shape(const nlohmann::json& document, const char* key);
 // The request's JSON, with a key given twice in one object refused (nlohmann keeps the last).
 nlohmann::json parse_request(const std::string& text);
 
-// The request's JSON object, read option by option; every key must be one the endpoint knows.
-// The endpoints that serve a typed request (nbar/request) take its options from options(); the
-// others read their few options here.
+// The request's JSON object: every key one the endpoint knows; the options handed to the endpoint's
+// request (nbar/request) by options(), the documents (a model's or a task's text) and the
+// options of the endpoints without a request type read here.
 class RequestBody {
  public:
-  RequestBody(const std::string& text, std::vector<std::string> allowed) {
-    try {
-      json_ = parse_request(text);
-    } catch (const nlohmann::json::parse_error& e) {
-      const auto [line, column] = line_column(text, e.byte > 0 ? e.byte - 1 : 0);
-      throw ApiError(ApiErrorKind::BadJson, std::string("the body is not valid JSON: ") + e.what(),
-                     Json{{"line", line}, {"column", column}});
-    } catch (const nlohmann::json::exception& e) {
-      // A number beyond a double's range (1e400): the parser gives no place for it.
-      throw ApiError(ApiErrorKind::BadJson, std::string("the body is not valid JSON: ") + e.what());
-    }
-    if (!json_.is_object())
-      throw ApiError(ApiErrorKind::BadJson, "the body must be a JSON object, e.g. {\"model\": \"...\"}");
-    for (const auto& [key, value] : json_.items()) {
-      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-        std::string list;
-        for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        bad_input("unknown option '" + key + "'; this endpoint takes: " + list);
-      }
-    }
-  }
+  // A body whose options are a request's (`rules`, read by the request layer) beside the
+  // `documents` the endpoint reads itself (the model's text, the render's kind); any other key is
+  // refused by the request layer's rule (request::unknown_key), listing the keys it takes.
+  RequestBody(const std::string& text, const std::vector<request::OptionRule>& rules,
+              const std::vector<std::string>& documents);
+  // A body of documents only (a check's model).
+  RequestBody(const std::string& text, const std::vector<std::string>& documents) : RequestBody(text, {}, documents) {}
 
   bool has(const char* key) const { return json_.contains(key) && !json_[key].is_null(); }
 

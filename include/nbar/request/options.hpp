@@ -108,6 +108,15 @@ struct OptionRule {
   std::size_t count = 0;             // Numbers: exactly this many (0: any)
 };
 
+// The keys a request takes: `documents` first (what a front-end reads itself, such as the model's
+// text in a JSON body), then every rule's key.
+std::vector<std::string> known_keys(const std::vector<OptionRule>& rules,
+                                    const std::vector<std::string>& documents = {});
+
+// The first of `given` that neither a rule nor `documents` names, or nothing.
+std::optional<std::string> unknown_key(const std::vector<std::string>& given, const std::vector<OptionRule>& rules,
+                                       const std::vector<std::string>& documents = {});
+
 // Refuses a key no rule names, with the list of the keys the request takes.
 void check_known(const Options& options, const std::vector<OptionRule>& rules, const std::string& request_name);
 
