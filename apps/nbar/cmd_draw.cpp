@@ -40,8 +40,10 @@ int run_draw(const DrawCommand& command) {
   std::vector<Eigen::Vector2d> points;
   try {
     draw = request.picture.draw_options(mech.model());
-    points = request.points(analysis);
-    if (request.stress) render::add_stress_maps(draw, analysis, request.drawn_step(analysis));
+    const request::DrawRequest::Pose pose = request.pose(analysis);
+    points = pose.points;
+    // A stress map is refused at `at` (DrawRequest::read): its pose is a sample.
+    if (request.stress) render::add_stress_maps(draw, analysis, pose.step.value());
   } catch (const request::OptionError& e) {
     print_option_error(e);
     return kBadUsage;

@@ -134,7 +134,7 @@ py::object draw(const PyAnalysis& a, const std::string& format, std::optional<in
   const render::DrawOptions draw = request.picture.draw_options(mech.model());
   std::vector<Eigen::Vector2d> points;
   try {
-    points = request.points(a.analysis);
+    points = request.pose(a.analysis).points;
   } catch (const request::OptionError&) {
     throw;
   } catch (const Error& e) {

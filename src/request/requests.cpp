@@ -360,10 +360,11 @@ int DrawRequest::drawn_step(const Analysis& analysis) const {
   return solved_step(analysis.sweep, step.value_or(render::default_drawn_step(*analysis.mechanism, analysis.sweep)));
 }
 
-std::vector<Eigen::Vector2d> DrawRequest::points(const Analysis& analysis, const RunControl& control) const {
+DrawRequest::Pose DrawRequest::pose(const Analysis& analysis, const RunControl& control) const {
   const Mechanism& mech = *analysis.mechanism;
-  if (at) return render::sample_points(mech, pose_at(mech, *at, 0, control));
-  return render::sample_points(mech, analysis.sweep.samples[static_cast<std::size_t>(drawn_step(analysis))]);
+  if (at) return {std::nullopt, render::sample_points(mech, pose_at(mech, *at, 0, control))};
+  const int drawn = drawn_step(analysis);
+  return {drawn, render::sample_points(mech, analysis.sweep.samples[static_cast<std::size_t>(drawn)])};
 }
 
 // --------------------------------------------------------------------------------- animate

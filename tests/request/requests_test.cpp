@@ -172,9 +172,12 @@ TEST_F(RequestsOnAModel, ThePoseDrawnIsTheSampleAskedForOrWhereTheDriverIsAt) {
   const Analysis analysis = analyse(mechanism_, at_step.analysis_options(file_.model));
   ASSERT_EQ(analysis.sweep.samples.size(), 13u);
   EXPECT_EQ(at_step.drawn_step(analysis), 3);
+  EXPECT_EQ(at_step.pose(analysis).step, 3);
+  EXPECT_EQ(DrawRequest::read(with("at", 90LL)).pose(analysis).step, std::nullopt);  // not a sample
+  EXPECT_EQ(DrawRequest::read(Options()).pose(analysis).step, 0);  // the start: the crank-rocker is open there
   // 13 samples over the crank's turn: sample 3 is at 90 deg; `at: 90` is the same pose.
-  const std::vector<Eigen::Vector2d> by_step = at_step.points(analysis);
-  const std::vector<Eigen::Vector2d> by_value = DrawRequest::read(with("at", 90LL)).points(analysis);
+  const std::vector<Eigen::Vector2d> by_step = at_step.pose(analysis).points;
+  const std::vector<Eigen::Vector2d> by_value = DrawRequest::read(with("at", 90LL)).pose(analysis).points;
   ASSERT_EQ(by_step.size(), by_value.size());
   for (std::size_t i = 0; i < by_step.size(); ++i) EXPECT_LT((by_step[i] - by_value[i]).norm(), 1e-12);
   // The crank pin A of a crank of 80 mm at 90 deg about O2 = (0, 0).
@@ -183,7 +186,7 @@ TEST_F(RequestsOnAModel, ThePoseDrawnIsTheSampleAskedForOrWhereTheDriverIsAt) {
   EXPECT_NEAR(by_step[static_cast<std::size_t>(a)].x(), 0.0, 1e-12);
   EXPECT_NEAR(by_step[static_cast<std::size_t>(a)].y(), 0.080, 1e-12);
   Options past = with("step", 13LL);
-  EXPECT_EQ(message([&] { DrawRequest::read(past).points(analysis); }), "step 13 is not a solved step (0 to 12)");
+  EXPECT_EQ(message([&] { DrawRequest::read(past).pose(analysis); }), "step 13 is not a solved step (0 to 12)");
 }
 
 TEST_F(RequestsOnAModel, AColumnThatMatchesNothingListsTheColumnsOrSaysItNeedsTheDynamics) {

@@ -49,13 +49,15 @@ ApiResponse render_draw(Job& job, const std::string& text) {
   // A scene carries every sample's positions: a table as large as a solve's of positions.
   if (draw.format == "scene") check_table_size(job, analysis_options);
   const Analysis analysis = run_analysis(job, analysis_options);
-  const std::vector<Eigen::Vector2d> points = draw.points(analysis, job.control);
-  if (draw.stress) render::add_stress_maps(options, analysis, draw.drawn_step(analysis));
+  // A stress map and a scene are refused at `at` (DrawRequest::read): their pose is a sample.
+  const request::DrawRequest::Pose pose = draw.pose(analysis, job.control);
+  if (draw.stress) render::add_stress_maps(options, analysis, pose.step.value());
   job.checkpoint("render");
   if (draw.format == "scene")
-    return answer(render::drawing_scene_json(mech, analysis.sweep, options, draw.drawn_step(analysis)));
-  if (draw.format == "svg") return answer(render::drawing_svg(mech, analysis.sweep, points, options), "image/svg+xml");
-  return answer_bytes(render::drawing_png(mech, analysis.sweep, points, options), "image/png");
+    return answer(render::drawing_scene_json(mech, analysis.sweep, options, pose.step.value()));
+  if (draw.format == "svg")
+    return answer(render::drawing_svg(mech, analysis.sweep, pose.points, options), "image/svg+xml");
+  return answer_bytes(render::drawing_png(mech, analysis.sweep, pose.points, options), "image/png");
 }
 
 ApiResponse render_animate(Job& job, const std::string& text) {

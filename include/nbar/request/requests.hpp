@@ -137,10 +137,15 @@ struct DrawRequest {
   static const std::vector<OptionRule>& rules();
   static DrawRequest read(const Options& options);
   AnalysisOptions analysis_options(const Model& model) const;
+  // The pose drawn: a sample of the sweep (`step`, or render::default_drawn_step, chosen once
+  // here) with its positions, or the positions at `at` on the sweep's path (no step).
+  struct Pose {
+    std::optional<int> step;
+    std::vector<Eigen::Vector2d> points;  // m
+  };
+  Pose pose(const Analysis& analysis, const RunControl& control = {}) const;
   // The sample drawn, when the pose is a sample (not `at`).
   int drawn_step(const Analysis& analysis) const;
-  // The positions drawn (m): the sample asked for, or the pose at `at` on the sweep's path.
-  std::vector<Eigen::Vector2d> points(const Analysis& analysis, const RunControl& control = {}) const;
 };
 
 // nbar animate: the sweep as a moving picture.
