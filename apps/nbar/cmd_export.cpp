@@ -1,38 +1,38 @@
 // nbar export: the links' plates as a DXF drawing for cutting, or as SVG.
-#include <optional>
-
 #include "commands.hpp"
 #include "common.hpp"
-#include "nbar/analysis/pose.hpp"
-#include "nbar/io/dxf_writer.hpp"
-#include "nbar/kinematics/sweep.hpp"
+#include "nbar/request/requests.hpp"
+#include "request_flags.hpp"
 
 namespace nbar::cli {
 
 namespace {
 
-struct ExportArgs {
+struct ExportCommand {
   std::string model, dxf, svg;
-  std::optional<double> at;
+  std::unique_ptr<RequestFlags> flags;
 };
 
-int run_export(const ExportArgs& args) {
-  if (args.dxf.empty() && args.svg.empty()) {
+int run_export(const ExportCommand& command) {
+  if (command.dxf.empty() && command.svg.empty()) {
     std::cerr << "error: nbar export needs --dxf FILE.dxf or --svg FILE.svg (or both)\n";
     return kBadUsage;
   }
+  request::ExportRequest request;
+  if (!read_request(*command.flags, request)) return kBadUsage;
   Loaded loaded;
-  if (int code = load(args.model, loaded)) return code;
+  if (int code = load(command.model, loaded)) return code;
   const Mechanism& mech = *loaded.mechanism;
   try {
-    // Without --at, the plates lie as drawn in the model file.
-    std::vector<Eigen::Vector2d> points;
-    for (const Point& p : mech.model().points) points.push_back(p.position);
-    if (args.at) points = point_positions(mech, pose_at(mech, *args.at).taylor.col(0));
-    if (!args.dxf.empty() && !write_file(args.dxf, io::cutting_dxf(mech, points))) return kBadUsage;
-    if (!args.svg.empty() && !write_file(args.svg, io::cutting_svg(mech, points))) return kBadUsage;
+    const std::vector<Eigen::Vector2d> points = request.points(mech);
+    // The format comes from the flag naming the file; both may be given.
+    for (const auto& [format, file] : {std::pair{"dxf", &command.dxf}, std::pair{"svg", &command.svg}}) {
+      if (file->empty()) continue;
+      request.format = format;
+      if (!write_file(*file, request.plates(mech, points))) return kBadUsage;
+    }
   } catch (const Error& e) {
-    return fail(args.model, e);
+    return fail(command.model, e);
   }
   return kOk;
 }
@@ -40,17 +40,16 @@ int run_export(const ExportArgs& args) {
 }  // namespace
 
 Command add_export_command(CLI::App& app) {
-  auto args = std::make_shared<ExportArgs>();
+  auto command = std::make_shared<ExportCommand>();
   CLI::App* sub = app.add_subcommand("export",
                                      "Write the links' plates (outlines, arcs, holes) as a DXF drawing for "
                                      "cutting, one layer per link, or as SVG");
-  sub->add_option("MODEL", args->model, "model file (YAML or JSON)")->required();
-  sub->add_option("--dxf", args->dxf, "FILE.dxf: AutoCAD R12 ASCII DXF, in the model's length unit");
-  sub->add_option("--svg", args->svg, "FILE.svg: the same plates as SVG, one group per link, true size in mm");
-  sub->add_option("--at", args->at,
-                  "place the plates where the first driver has this value (model units; a time for time laws); "
-                  "default: as drawn in the model file");
-  return {sub, [args] { return run_export(*args); }};
+  sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
+  sub->add_option("--dxf", command->dxf, "FILE.dxf: AutoCAD R12 ASCII DXF, in the model's length unit");
+  sub->add_option("--svg", command->svg, "FILE.svg: the same plates as SVG, one group per link, true size in mm");
+  command->flags = std::make_unique<RequestFlags>(*sub, request::ExportRequest::rules());
+  command->flags->add({"at"});
+  return {sub, [command] { return run_export(*command); }};
 }
 
 }  // namespace nbar::cli

@@ -6,6 +6,7 @@
 
 #include "nbar/analysis/columns.hpp"
 #include "nbar/analysis/pose.hpp"
+#include "nbar/io/dxf_writer.hpp"
 #include "nbar/render/report.hpp"
 
 namespace nbar::request {
@@ -549,6 +550,40 @@ ExplainOptions ExplainRequest::explain_options() const {
   options.steps = sweep.steps;
   options.max_steps = sweep.max_steps;
   return options;
+}
+
+// ---------------------------------------------------------------------------------- export
+
+const std::vector<OptionRule>& ExportRequest::rules() {
+  static const std::vector<OptionRule> rules{
+      choice("format",
+             "dxf (AutoCAD R12 ASCII DXF, in the model's length unit, one layer per link) or svg (default: one "
+             "group per link, true size in mm)",
+             {"svg", "dxf"}),
+      number_rule("at",
+                  "place the plates where the first driver has this value (model units; a time for time laws); "
+                  "default: as drawn in the model file",
+                  -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()),
+  };
+  return rules;
+}
+
+ExportRequest ExportRequest::read(const Options& options) {
+  ExportRequest r;
+  r.format = read_text(options, rule_of(rules(), "format")).value_or("svg");
+  r.at = read_number(options, rule_of(rules(), "at"));
+  return r;
+}
+
+std::vector<Eigen::Vector2d> ExportRequest::points(const Mechanism& mechanism, const RunControl& control) const {
+  if (at) return point_positions(mechanism, pose_at(mechanism, *at, 0, control).taylor.col(0));
+  std::vector<Eigen::Vector2d> drawn;
+  for (const Point& p : mechanism.model().points) drawn.push_back(p.position);
+  return drawn;
+}
+
+std::string ExportRequest::plates(const Mechanism& mechanism, const std::vector<Eigen::Vector2d>& points) const {
+  return format == "dxf" ? io::cutting_dxf(mechanism, points) : io::cutting_svg(mechanism, points);
 }
 
 }  // namespace nbar::request

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "nbar/io/dxf_writer.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/request/requests.hpp"
 
@@ -187,6 +188,34 @@ TEST_F(RequestsOnAModel, ThePoseDrawnIsTheSampleAskedForOrWhereTheDriverIsAt) {
   EXPECT_NEAR(by_step[static_cast<std::size_t>(a)].y(), 0.080, 1e-12);
   Options past = with("step", 13LL);
   EXPECT_EQ(message([&] { DrawRequest::read(past).pose(analysis); }), "step 13 is not a solved step (0 to 12)");
+}
+
+TEST_F(RequestsOnAModel, ThePlatesLieAsDrawnOrWhereTheDriverIsAt) {
+  const ExportRequest drawn = ExportRequest::read(Options());
+  EXPECT_EQ(drawn.format, "svg");
+  const std::vector<Eigen::Vector2d> as_drawn = drawn.points(*mechanism_);
+  ASSERT_EQ(as_drawn.size(), file_.model.points.size());
+  for (std::size_t i = 0; i < as_drawn.size(); ++i) EXPECT_EQ(as_drawn[i], file_.model.points[i].position);
+  // At 90 deg the crank of 80 mm stands straight up from O2 = (0, 0): its pin A at (0, 0.080) m.
+  const std::vector<Eigen::Vector2d> at_90 = ExportRequest::read(with("at", 90LL)).points(*mechanism_);
+  const auto a = static_cast<std::size_t>(file_.model.find_point("A"));
+  EXPECT_NEAR(at_90[a].x(), 0.0, 1e-12);
+  EXPECT_NEAR(at_90[a].y(), 0.080, 1e-12);
+  EXPECT_EQ(message([] { ExportRequest::read(with("format", std::string("png"))); }),
+            "format: must be one of svg, dxf, not 'png'");
+  // The crank-rocker's links have no plates: nothing to cut, in either format.
+  try {
+    drawn.plates(*mechanism_, as_drawn);
+    ADD_FAILURE() << "plates of a model without shapes";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+    EXPECT_THAT(e.message(), HasSubstr("nothing to cut"));
+  }
+  const io::LoadedModel steel = io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-steel-bars.yaml");
+  const Mechanism bars(steel.model);
+  const std::string dxf = ExportRequest::read(with("format", std::string("dxf"))).plates(bars, drawn.points(bars));
+  EXPECT_EQ(dxf, io::cutting_dxf(bars, drawn.points(bars)));
+  EXPECT_THAT(dxf, ::testing::StartsWith("  0\nSECTION"));
 }
 
 TEST_F(RequestsOnAModel, AColumnThatMatchesNothingListsTheColumnsOrSaysItNeedsTheDynamics) {

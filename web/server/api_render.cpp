@@ -1,8 +1,6 @@
 // The pictures: /api/render draws one pose, animates the sweep, plots columns or writes the
 // links' plates for cutting.
 #include "endpoints.hpp"
-#include "nbar/analysis/pose.hpp"
-#include "nbar/io/dxf_writer.hpp"
 #include "nbar/render/animation.hpp"
 #include "nbar/render/image_canvas.hpp"
 #include "nbar/render/pictures.hpp"
@@ -22,18 +20,14 @@ void check_picture_size(const Job& job, int width, int height) {
 }
 
 // The links' plates for cutting, as `nbar export --dxf/--svg [--at]` writes them.
-ApiResponse render_plates(Job& job, const std::string& request) {
-  const RequestBody body(request, {"model", "kind", "format", "at"});
-  const std::string format = body.choice("format", {"svg", "dxf"}, "svg");
+ApiResponse render_plates(Job& job, const std::string& text) {
+  const RequestBody body(text, request::ExportRequest::rules(), {"model", "kind"});
+  const auto plates = read_request<request::ExportRequest>(body, {"model", "kind"});
   load_model(job, body.text("model", true));
   const Mechanism& mech = *job.mechanism;
   job.start(Weight::Light);
-  std::vector<Eigen::Vector2d> points;
-  for (const Point& p : mech.model().points) points.push_back(p.position);
-  if (const std::optional<double> at = body.number("at"))
-    points = point_positions(mech, pose_at(mech, *at, 0, job.control).taylor.col(0));
-  if (format == "dxf") return answer(io::cutting_dxf(mech, points), "image/vnd.dxf");
-  return answer(io::cutting_svg(mech, points), "image/svg+xml");
+  const std::string drawing = plates.plates(mech, plates.points(mech, job.control));
+  return answer(drawing, plates.format == "dxf" ? "image/vnd.dxf" : "image/svg+xml");
 }
 
 ApiResponse render_draw(Job& job, const std::string& text) {

@@ -208,4 +208,17 @@ struct ExplainRequest {
   ExplainOptions explain_options() const;
 };
 
+// nbar export: the links' plates for cutting, as drawn in the model file or in one pose.
+struct ExportRequest {
+  std::optional<double> at;    // where the first driver has this value (model units); unset: as drawn
+  std::string format = "svg";  // svg (true size in mm) or dxf (the model's length unit)
+
+  static const std::vector<OptionRule>& rules();
+  static ExportRequest read(const Options& options);
+  // Where the plates lie (m): the points as drawn, or the pose at `at` on the first driver's path.
+  std::vector<Eigen::Vector2d> points(const Mechanism& mechanism, const RunControl& control = {}) const;
+  // The plates placed at `points`, in `format`.
+  std::string plates(const Mechanism& mechanism, const std::vector<Eigen::Vector2d>& points) const;
+};
+
 }  // namespace nbar::request
