@@ -16,8 +16,8 @@
 #include "common.hpp"
 #include "io/yaml_support.hpp"
 #include "nbar/io/synthesis_task.hpp"
-#include "nbar/io/synthesis_writer.hpp"
-#include "nbar/synthesis/run.hpp"
+#include "nbar/request/synthesis_request.hpp"
+#include "request_flags.hpp"
 #include "validators.hpp"
 
 namespace nbar::cli {
@@ -36,7 +36,7 @@ struct TaskOption {
 };
 
 struct SynthArgs {
-  std::string kind, file, format = "table", output, export_dir, curves;
+  std::string kind, file, output, export_dir, curves;
   std::optional<double> timeout;
   std::vector<TaskOption> task_options{
       {"name", "--name", "the task's title (names the exported models)", {}},
@@ -65,11 +65,16 @@ struct SynthArgs {
       {"spacing", "--spacing", "function: chebyshev or even", {}},
       {"frame", "--frame", "function: length of the frame link", {}},
   };
-  bool all = false;
-  int top = 20;
-  unsigned threads = 0;
-  std::uint64_t seed = 1;
+  std::unique_ptr<RequestFlags> flags;  // the request's options: format, all, top, threads, seed
 };
+
+// The method named on the command line (CLI11 has checked it is one of them).
+SynthesisKind kind_named(const std::string& name) {
+  for (const SynthesisKind kind : {SynthesisKind::FivePoint, SynthesisKind::Burmester, SynthesisKind::Function,
+                                   SynthesisKind::NinePoint, SynthesisKind::Path})
+    if (io::to_string(kind) == name) return kind;
+  throw Error(ErrorKind::BadInput, "no synthesis method '" + name + "'");
+}
 
 // A bar on standard error, only when it is a terminal; callbacks may come from worker threads.
 class Progress {
@@ -167,6 +172,13 @@ bool options_are_one_line(const SynthArgs& args) {
 }
 
 int run_synth(const SynthArgs& args) {
+  request::SynthesisRequest request;
+  try {
+    request = request::SynthesisRequest::read(kind_named(args.kind), args.flags->options());
+  } catch (const request::OptionError& e) {
+    std::cerr << e.spelled(spell_flag) << "\nRun with --help for more information.\n";
+    return kBadUsage;
+  }
   if (!options_are_one_line(args)) return kBadUsage;
   const OptionTask options(args);
   if (!options.empty() && !args.file.empty()) {
@@ -196,9 +208,7 @@ int run_synth(const SynthArgs& args) {
     return kBadUsage;
   }
   Progress progress;
-  synthesis::SynthesisRunOptions run;
-  run.threads = args.threads;
-  run.seed = args.seed;
+  synthesis::SynthesisRunOptions run = request.run_options();
   if (args.timeout) run.control.token.set_time_budget(std::chrono::duration<double>(*args.timeout));
   run.control.on_progress = [&progress](const nbar::Progress& p) {
     progress.update(static_cast<int>(p.done), static_cast<int>(p.total), p.stage);
@@ -210,16 +220,11 @@ int run_synth(const SynthArgs& args) {
     outcome = synthesis::run_synthesis(task, run);
     progress.clear();
     if (outcome.curves && !args.curves.empty()) io::write_burmester_curves(args.curves, task, *outcome.curves);
-    listing.shown = synthesis::shown_rows(outcome, args.all, args.top);
-    listing.all = args.all;
-    listing.export_dir = args.export_dir;
+    listing = request.listing(outcome, args.export_dir);
     Output output;
     if (!output.open(args.output)) return kBadUsage;
     if (!args.export_dir.empty()) io::export_designs(task, outcome, listing);
-    if (args.format == "json")
-      output.stream() << io::synthesis_json(task, outcome, listing);
-    else
-      io::write_synthesis_table(output.stream(), task, outcome, listing);
+    output.stream() << request.answer(task, outcome, listing);
     if (!output.finish()) return kBadUsage;
   } catch (const Error& e) {
     progress.clear();
@@ -246,20 +251,19 @@ Command add_synth_command(CLI::App& app) {
       ->required()
       ->check(CLI::IsMember({"five-point", "nine-point", "burmester", "function", "path"}));
   synth->add_option("FILE", args.file, "task file (YAML; see docs/synthesis.md), or the task options below");
-  synth->add_option("--format", args.format, "table (default) or json")->check(CLI::IsMember({"table", "json"}));
+  // Every method's options; one a method does not take is refused by its request.
+  args.flags = std::make_unique<RequestFlags>(*synth, request::SynthesisRequest::rules(SynthesisKind::FivePoint));
+  args.flags->add({"format"});
   synth->add_option("-o,--output", args.output, "write the table or JSON to FILE instead of standard output")
       ->check(nbar::cli::output_file());
   synth->add_option("--export", args.export_dir, "write every design listed as DIR/design-01.yaml, ... (model files)");
-  synth->add_flag("--all", args.all, "also list defective designs and (five-point) complex solutions");
-  synth->add_option("--top", args.top, "list (and export) at most N designs, best first; 0 for all (default 20)")
-      ->check(nbar::cli::non_negative());
-  synth->add_option("--threads", args.threads, "threads for path tracking (default: all)");
+  args.flags->add({"all", "top", "threads"});
   synth
       ->add_option("--timeout", args.timeout,
                    "give up after SECONDS, exit 5 (a nine-point task on a conic or with five points on a line can "
                    "take minutes)")
       ->check(nbar::cli::positive());
-  synth->add_option("--seed", args.seed, "random seed of the homotopy and of path's random starts (default 1)");
+  args.flags->add({"seed"});
   synth->add_option("--curves", args.curves,
                     "burmester, 4 poses: write the centre- and circle-point curves to FILE (.csv, .json or .svg)");
   for (TaskOption& o : args.task_options) synth->add_option(o.flag, o.value, o.help)->group("Task (instead of a file)");

@@ -17,7 +17,7 @@ import os
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _nbar
-from ._args import flag, json_value, path as as_path, real, whole
+from ._args import json_value, path as as_path, real
 from .errors import BadInputError
 
 Point = Sequence[float]
@@ -66,16 +66,14 @@ class Designs(list):
     ``nbar synth`` prints; ``.json`` is its JSON; ``.export(dir)`` writes every design as a model
     file; ``.notes`` says how the solve went."""
 
-    def __init__(self, outcome, all: bool = False, top: int = 0):
+    def __init__(self, outcome):
         self._outcome = outcome
-        self._all = all
-        self._top = top
-        self.json: str = outcome.json(all, top)
+        self.json: str = outcome.json()
         data = json.loads(self.json)
         self.data: Dict[str, Any] = data
         self.method: str = outcome.method
         self.notes: List[str] = list(outcome.notes)
-        rows = outcome.shown(all, top)
+        rows = outcome.shown()
         super().__init__(Design(outcome, row, d) for row, d in zip(rows, data.get("designs", [])))
 
     @property
@@ -85,10 +83,10 @@ class Designs(list):
         return self[0]
 
     def table(self) -> str:
-        return self._outcome.table(self._all, self._top)
+        return self._outcome.table()
 
     def export(self, folder: Union[str, os.PathLike]) -> None:
-        self._outcome.export(as_path("folder", folder), self._all, self._top)
+        self._outcome.export(as_path("folder", folder))
 
     def write_curves(self, path: Union[str, os.PathLike]) -> None:
         """Burmester through four poses: the centre- and circle-point curves (.svg, .csv, .json)."""
@@ -142,19 +140,25 @@ def load(path: Union[str, os.PathLike]):
     return _nbar.load_task(as_path("path", path))
 
 
-def run(the_task, all: bool = False, top: int = 0, threads: int = 0, seed: int = 1,
-        timeout: Optional[float] = None) -> Designs:
+def _option(value: Any) -> Any:
+    """numpy's scalars as Python's numbers and bools, which the request reads."""
+    return value.item() if type(value).__module__ == "numpy" and hasattr(value, "item") else value
+
+
+def run(the_task, all: Optional[bool] = None, top: Optional[int] = 0, threads: Optional[int] = None,
+        seed: Optional[int] = None, timeout: Optional[float] = None) -> Designs:
     """Solves a task (from ``task()``, ``load()`` or a path): the designs, best first. With
-    ``all``, defective and complex solutions too; ``top`` keeps the best few."""
-    if isinstance(top, bool) or not isinstance(top, numbers.Integral) or top < 0:
-        raise BadInputError(f"top must be a whole number, 0 (all) or more, not {top!r}")
+    ``all``, defective and complex solutions too; ``top`` keeps the best few (default 20, 0 for
+    every one); ``threads`` (default: every hardware thread) and ``seed`` (default 1; the methods
+    with random starts: five-point, nine-point, path) as ``nbar synth`` takes them, by the same
+    rules."""
     if isinstance(the_task, (str, os.PathLike)):
         the_task = load(the_task)
     elif isinstance(the_task, dict):
         the_task = task(the_task)
-    return Designs(_nbar.synthesize(the_task, threads=whole("threads", threads, minimum=0),
-                                    seed=whole("seed", seed, minimum=0), timeout=real("timeout", timeout)),
-                   all=flag("all", all), top=top)
+    options = {"all": all, "top": top, "threads": threads, "seed": seed}
+    return Designs(_nbar.synthesize(the_task, {k: _option(v) for k, v in options.items() if v is not None},
+                                    timeout=real("timeout", timeout)))
 
 
 _DEFAULT_NAMES = {"five-point": "Five-point synthesis", "burmester": "Burmester synthesis",

@@ -2,11 +2,10 @@
 // check and message is the CLI's), one run, and the CLI's JSON, table and model files.
 #include <pybind11/stl.h>
 
-#include <sstream>
-
 #include "bindings.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/io/synthesis_writer.hpp"
+#include "nbar/request/synthesis_request.hpp"
 #include "nbar/synthesis/run.hpp"
 
 namespace nbar::python {
@@ -15,32 +14,51 @@ namespace {
 
 struct PySynthesis {
   synthesis::SynthesisTask task;
+  request::SynthesisRequest request;  // the listing's `all` and `top`
   synthesis::SynthesisOutcome outcome;
 
-  io::SynthesisListing listing(bool all, int top, const std::string& export_dir = {}) const {
-    io::SynthesisListing l;
-    l.all = all;
-    l.shown = synthesis::shown_rows(outcome, all, top);
-    l.export_dir = export_dir;
-    return l;
+  std::string answer(const std::string& format) const {
+    request::SynthesisRequest as = request;
+    as.format = format;
+    return as.answer(task, outcome, request.listing(outcome));
   }
 };
 
-std::shared_ptr<PySynthesis> run(const synthesis::SynthesisTask& task, unsigned threads, std::uint64_t seed,
+// Python's keyword arguments as the request layer reads them: None is absent; a bool, an int, a
+// float or a str as it is (numpy's scalars are made Python's by nbar.synth).
+request::Options options_of(const py::dict& keywords) {
+  request::Options options;
+  for (const auto& [key_object, value] : keywords) {
+    const std::string key = py::str(key_object);
+    if (value.is_none()) continue;
+    if (py::isinstance<py::bool_>(value)) {
+      options.set(key, value.cast<bool>());
+    } else if (py::isinstance<py::int_>(value)) {
+      try {
+        options.set(key, value.cast<long long>());
+      } catch (const py::cast_error&) {  // beyond a long long: a number out of every rule's range
+        options.set(key, value.cast<double>());
+      }
+    } else if (py::isinstance<py::float_>(value)) {
+      options.set(key, value.cast<double>());
+    } else if (py::isinstance<py::str>(value)) {
+      options.set(key, value.cast<std::string>());
+    } else {
+      throw request::OptionError(key, request::literal("must be a number, True or False, or a text, not " +
+                                                       std::string(py::str(py::repr(value)))));
+    }
+  }
+  return options;
+}
+
+std::shared_ptr<PySynthesis> run(const synthesis::SynthesisTask& task, const py::dict& options,
                                  std::optional<double> timeout) {
   auto out = std::make_shared<PySynthesis>();
   out->task = task;
-  synthesis::SynthesisRunOptions options;
-  options.threads = threads;
-  options.seed = seed;
-  run_interruptible(options.control, timeout, [&] { out->outcome = synthesis::run_synthesis(task, options); });
+  out->request = request::SynthesisRequest::read(task.kind, options_of(options));
+  synthesis::SynthesisRunOptions run = out->request.run_options();
+  run_interruptible(run.control, timeout, [&] { out->outcome = synthesis::run_synthesis(task, run); });
   return out;
-}
-
-std::string table(const PySynthesis& s, bool all, int top) {
-  std::ostringstream out;
-  io::write_synthesis_table(out, s.task, s.outcome, s.listing(all, top));
-  return out.str();
 }
 
 }  // namespace
@@ -57,26 +75,19 @@ void bind_synthesis(py::module_& m) {
       .def_property_readonly("method", [](const PySynthesis& s) { return s.outcome.method; })
       .def_property_readonly("notes", [](const PySynthesis& s) { return s.outcome.notes; })
       .def_property_readonly("task", [](const PySynthesis& s) { return s.task; })
-      .def(
-          "shown", [](const PySynthesis& s, bool all, int top) { return synthesis::shown_rows(s.outcome, all, top); },
-          py::arg("all") = false, py::arg("top") = 0)
-      .def(
-          "json",
-          [](const PySynthesis& s, bool all, int top) {
-            return io::synthesis_json(s.task, s.outcome, s.listing(all, top));
-          },
-          py::arg("all") = false, py::arg("top") = 0)
-      .def("table", &table, py::arg("all") = false, py::arg("top") = 0)
+      .def("shown", [](const PySynthesis& s) { return s.request.listing(s.outcome).shown; })
+      .def("json", [](const PySynthesis& s) { return s.answer("json"); })
+      .def("table", [](const PySynthesis& s) { return s.answer("table"); })
       .def(
           "design_yaml",
           [](const PySynthesis& s, int row, int rank) { return io::design_model_yaml(s.task, s.outcome, row, rank); },
           py::arg("row"), py::arg("rank"))
       .def(
           "export",
-          [](const PySynthesis& s, const std::string& dir, bool all, int top) {
-            io::export_designs(s.task, s.outcome, s.listing(all, top, dir));
+          [](const PySynthesis& s, const std::string& dir) {
+            io::export_designs(s.task, s.outcome, s.request.listing(s.outcome, dir));
           },
-          py::arg("dir"), py::arg("all") = false, py::arg("top") = 0)
+          py::arg("dir"))
       .def(
           "write_curves",
           [](const PySynthesis& s, const std::string& path) {
@@ -95,8 +106,8 @@ void bind_synthesis(py::module_& m) {
       },
       py::arg("text"), py::arg("name") = "<task>");
   m.def("load_task", &io::load_synthesis_task, py::arg("path"));
-  m.def("synthesize", &run, py::arg("task"), py::arg("threads") = 0, py::arg("seed") = 1,
-        py::arg("timeout") = std::nullopt);
+  // The options are the request's (nbar/request/synthesis_request.hpp): all, top, threads, seed.
+  m.def("synthesize", &run, py::arg("task"), py::arg("options") = py::dict(), py::arg("timeout") = std::nullopt);
 }
 
 }  // namespace nbar::python

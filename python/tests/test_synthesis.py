@@ -72,7 +72,7 @@ def test_points_reach_the_task_reader_as_given():
         nbar.synth.five_point(pivots=[(0, 0)], points=POINTS)
     with pytest.raises(nbar.BadInputError, match="pose 1 must be \\(x, y, angle\\)"):
         nbar.synth.burmester([(0, 0), (1, 1, 3), (2, 2, 4)], fixed_pivots=[(0, 0), (200, 0)])
-    with pytest.raises(nbar.BadInputError, match="top must be a whole number"):
+    with pytest.raises(nbar.BadInputError, match="top: must be 0 or more, not -1"):
         nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=POINTS, units="mm", top=-1)
     # numpy numbers are numbers.
     designs = nbar.synth.five_point(pivots=np.array([[0.0, 0.0], [200.0, 0.0]]), points=np.array(POINTS), units="mm")
@@ -81,8 +81,9 @@ def test_points_reach_the_task_reader_as_given():
     function = nbar.synth.function("log10(x)", x=(1, 2), input_range=(90, 150), output_range=(60, 120),
                                    points=np.int64(3))
     assert function.best is not None
-    for options, message in [({"threads": -1}, "threads must be a whole number from 0"),
-                             ({"seed": -1}, "seed must be a whole number from 0"),
+    for options, message in [({"threads": -1}, "threads: must be from 0 to 1024, not -1"),
+                             ({"seed": -1}, "seed: must be 0 or more, not -1"),
+                             ({"top": 2.5}, "top: must be a whole number, not 2.5"),
                              ({"timeout": "5"}, "timeout must be a number, not '5'")]:
         with pytest.raises(nbar.BadInputError, match=message):
             nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=POINTS, units="mm", **options)

@@ -6,11 +6,14 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "nbar/io/dxf_writer.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/io/synthesis_task.hpp"
 #include "nbar/request/requests.hpp"
+#include "nbar/request/synthesis_request.hpp"
 
 namespace nbar::request {
 namespace {
@@ -101,6 +104,66 @@ TEST(RequestOptions, AnUnknownKeyIsNamedWithTheOnesTheRequestTakes) {
   EXPECT_EQ(unknown_key({"format", "model"}, CheckRequest::rules(), {"model"}), std::nullopt);
   EXPECT_EQ(unknown_key({"format", "modle", "stepz"}, CheckRequest::rules(), {"model"}), "modle");
   EXPECT_EQ(unknown_key({"model"}, CheckRequest::rules()), "model");
+}
+
+TEST(RequestOptions, EachSynthesisMethodTakesItsOwnOptions) {
+  using synthesis::SynthesisKind;
+  const auto keys = [](SynthesisKind kind) { return known_keys(SynthesisRequest::rules(kind)); };
+  const std::vector<std::string> run{"format", "all", "top", "threads"};
+  std::vector<std::string> seeded = run;
+  seeded.push_back("seed");
+  EXPECT_EQ(keys(SynthesisKind::FivePoint), seeded);
+  EXPECT_EQ(keys(SynthesisKind::NinePoint), seeded);
+  EXPECT_EQ(keys(SynthesisKind::Path), seeded);
+  EXPECT_EQ(keys(SynthesisKind::Burmester), run);  // no random numbers: no seed
+  EXPECT_EQ(keys(SynthesisKind::Function), run);
+  const SynthesisRequest defaults = SynthesisRequest::read(SynthesisKind::Path, Options());
+  EXPECT_EQ(defaults.top, 20);
+  EXPECT_EQ(defaults.threads, 0u);
+  EXPECT_EQ(defaults.seed, 1u);
+  EXPECT_EQ(defaults.format, "table");
+  EXPECT_FALSE(defaults.all);
+  // The command line's text and JSON's numbers read alike.
+  Options typed;
+  typed.set("seed", 4294967295LL);
+  typed.set("threads", 3LL);
+  typed.set("top", 0LL);
+  EXPECT_EQ(SynthesisRequest::read(SynthesisKind::FivePoint, typed).seed, 4294967295u);
+  EXPECT_EQ(SynthesisRequest::read(SynthesisKind::FivePoint, with("seed", std::string("12"))).seed, 12u);
+  EXPECT_EQ(SynthesisRequest::read(SynthesisKind::FivePoint, typed).run_options().threads, 3u);
+  EXPECT_EQ(cli_message([] { SynthesisRequest::read(SynthesisKind::Function, with("threads", 2000LL)); }),
+            "--threads: must be from 0 to 1024, not 2000");
+  EXPECT_EQ(message([] { SynthesisRequest::read(SynthesisKind::FivePoint, with("seed", 4294967296LL)); }),
+            "seed: must be from 0 to 4294967295, not 4294967296");
+  EXPECT_EQ(message([] { SynthesisRequest::read(SynthesisKind::Burmester, with("seed", 3LL)); }),
+            "seed: unknown option of burmester; it takes: format, all, top, threads");
+  EXPECT_EQ(cli_message([] { SynthesisRequest::read(SynthesisKind::Burmester, with("seed", std::string("3"))); }),
+            "--seed: unknown option of burmester; it takes: --format, --all, --top, --threads");
+  EXPECT_EQ(message([] { SynthesisRequest::read(SynthesisKind::Path, with("format", std::string("csv"))); }),
+            "format: must be one of table, json, not 'csv'");
+}
+
+TEST(RequestOptions, ASynthesisRequestListsAndWritesItsDesigns) {
+  const synthesis::SynthesisTask task =
+      io::load_synthesis_task(std::string(NBAR_EXAMPLES_DIR) + "/synthesis/function-log10.yaml");
+  Options o = with("all", true);
+  o.set("format", std::string("json"));
+  const SynthesisRequest every = SynthesisRequest::read(task.kind, o);
+  const synthesis::SynthesisOutcome outcome = synthesis::run_synthesis(task, every.run_options());
+  const io::SynthesisListing all = every.listing(outcome, "designs");
+  EXPECT_TRUE(all.all);
+  EXPECT_EQ(all.export_dir, "designs");
+  EXPECT_EQ(all.shown, synthesis::shown_rows(outcome, true, 20));
+  ASSERT_GE(all.shown.size(), 1u);
+  EXPECT_EQ(every.answer(task, outcome, all), io::synthesis_json(task, outcome, all));
+  o.set("top", 1LL);
+  o.set("format", std::string("table"));
+  const SynthesisRequest best = SynthesisRequest::read(task.kind, o);
+  EXPECT_EQ(best.listing(outcome).shown, std::vector<int>{all.shown[0]});
+  std::ostringstream table;
+  io::write_synthesis_table(table, task, outcome, best.listing(outcome));
+  EXPECT_EQ(best.answer(task, outcome, best.listing(outcome)), table.str());
+  EXPECT_THAT(table.str(), ::testing::StartsWith("function task"));
 }
 
 TEST(RequestOptions, ListsOfNamesComeAsOneTextOrAsAList) {

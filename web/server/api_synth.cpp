@@ -3,6 +3,7 @@
 #include "io/json_text.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/io/synthesis_writer.hpp"
+#include "nbar/request/synthesis_request.hpp"
 #include "nbar/synthesis/run.hpp"
 
 namespace nbar::web {
@@ -24,8 +25,13 @@ std::string with_design_models(const std::string& json, const synthesis::Synthes
 
 }  // namespace
 
-ApiResponse api_synth(Job& job, const std::string& request, synthesis::SynthesisKind kind) {
-  const RequestBody body(request, {"task", "all", "top", "seed", "threads", "models"});
+ApiResponse api_synth(Job& job, const std::string& text, synthesis::SynthesisKind kind) {
+  // "models" is this endpoint's own: the designs' model files in the answer.
+  const RequestBody body(text, request::SynthesisRequest::rules(kind), {"task", "models"});
+  const bool with_models = body.flag("models");
+  request::Options options = body.options({"task", "models"});
+  if (!options.has("format")) options.set("format", std::string("json"));
+  const auto synth = request::SynthesisRequest::read(kind, options);
   const synthesis::SynthesisTask task =
       io::parse_synthesis_task(body.text("task", true), "task", io::CurveFiles::refused);  // opens no file
   if (task.kind != kind)
@@ -37,24 +43,23 @@ ApiResponse api_synth(Job& job, const std::string& request, synthesis::Synthesis
     check_limit("curve_samples", task.curves.radius / task.curves.step, job.limits.max_curve_samples,
                 "curves: radius / step");
   }
-  const long long top = body.integer("top", 0, std::numeric_limits<int>::max()).value_or(20);
-  check_limit("top", static_cast<double>(top), job.limits.max_synthesis_top, "top");
+  check_limit("top", static_cast<double>(synth.top), job.limits.max_synthesis_top, "top");
+  // Every hardware thread (threads 0) is, here, as many as this server gives one request.
   const unsigned max_threads = std::max(1u, job.limits.max_synthesis_threads);
-  synthesis::SynthesisRunOptions run;
-  run.threads = static_cast<unsigned>(body.integer("threads", 1, 1024).value_or(max_threads));
+  synthesis::SynthesisRunOptions run = synth.run_options();
+  if (run.threads == 0) run.threads = max_threads;
   check_limit("threads", run.threads, max_threads, "threads");
-  if (body.has("seed"))
-    run.seed = static_cast<std::uint64_t>(*body.integer("seed", 0, std::numeric_limits<long long>::max()));
   job.start(Weight::Heavy);
   run.control = job.control;
   const synthesis::SynthesisOutcome outcome = synthesis::run_synthesis(task, run);
-  io::SynthesisListing listing;
-  listing.all = body.flag("all");
   // top 0 lists every design (the CLI's meaning), here at most the limit.
-  listing.shown =
-      synthesis::shown_rows(outcome, listing.all, top == 0 ? job.limits.max_synthesis_top : static_cast<int>(top));
-  if (!body.flag("models")) return answer(io::synthesis_json(task, outcome, listing));
-  return answer(with_design_models(io::synthesis_json(task, outcome, listing), task, outcome, listing));
+  request::SynthesisRequest listed = synth;
+  if (listed.top == 0) listed.top = job.limits.max_synthesis_top;
+  const io::SynthesisListing listing = listed.listing(outcome);
+  const std::string answer_text = synth.answer(task, outcome, listing);
+  if (synth.format != "json") return answer(answer_text, "text/plain; charset=utf-8");
+  if (!with_models) return answer(answer_text);
+  return answer(with_design_models(answer_text, task, outcome, listing));
 }
 
 }  // namespace nbar::web
