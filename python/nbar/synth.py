@@ -145,7 +145,7 @@ def _option(value: Any) -> Any:
     return value.item() if type(value).__module__ == "numpy" and hasattr(value, "item") else value
 
 
-def run(the_task, all: Optional[bool] = None, top: Optional[int] = 0, threads: Optional[int] = None,
+def run(the_task, all: Optional[bool] = None, top: Optional[int] = None, threads: Optional[int] = None,
         seed: Optional[int] = None, timeout: Optional[float] = None) -> Designs:
     """Solves a task (from ``task()``, ``load()`` or a path): the designs, best first. With
     ``all``, defective and complex solutions too; ``top`` keeps the best few (default 20, 0 for
