@@ -6,6 +6,7 @@
 
 #include "json_text.hpp"
 #include "nbar/kinematics/continuation.hpp"
+#include "nbar/model/bar_width.hpp"
 
 namespace nbar::io {
 
@@ -138,6 +139,7 @@ Json bodies_json(const Model& m, const ModelSummary& s) {
                       {"points", b.points},
                       {"length", optional_number(b.length, unit)},
                       {"length_given", b.length_given},
+                      {"default_bar_width", default_bar_width(m, static_cast<int>(i))},
                       {"mass", mass}});
   }
   return bodies;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "nbar/model/bar_width.hpp"
 #include "nbar/model/model.hpp"
 
 namespace nbar {
@@ -118,6 +119,30 @@ TEST(Validate, HasTimeLaw) {
   EXPECT_FALSE(m.has_time_law());
   m.drivers[0].law = Law::parse("30*t");
   EXPECT_TRUE(m.has_time_law());
+}
+
+// The web app's first width of a new bar: a tenth of the drawn length from the body's first point
+// to its second, in the model's unit, to two significant digits (the rule it had in JavaScript,
+// `+(len / 10).toPrecision(2) || 1`).
+TEST(Validate, ANewBarIsATenthOfItsBodysDrawnLengthWide) {
+  Model m;
+  m.units = *Units::make("mm", "deg");
+  const int o = add_point(m, "O", 0, 0, true);
+  const int a = add_point(m, "A", 0, 0.080);               // 80 mm from O
+  const int b = add_point(m, "B", 0.179999999795, 0.080);  // 179.999999795 mm from A
+  const int d = add_point(m, "D", 1.234, 0.080);           // 1234 mm from A
+  const int e = add_point(m, "E", 0.0123456, 0);           // 12.3456 mm from O
+  const int f = add_point(m, "F", 1.25, 0);                // 1250 mm from O
+  EXPECT_EQ(default_bar_width(m, add_body(m, "crank", {o, a})), 8.0);
+  EXPECT_EQ(default_bar_width(m, add_body(m, "coupler", {a, b, o})), 18.0);
+  EXPECT_EQ(default_bar_width(m, add_body(m, "long", {a, d})), 120.0);
+  EXPECT_EQ(default_bar_width(m, add_body(m, "tiny", {o, e})), 1.2);
+  EXPECT_EQ(default_bar_width(m, add_body(m, "same", {a, a})), 1.0);  // no length
+  EXPECT_EQ(default_bar_width(m, add_body(m, "one", {a})), 1.0);
+  const int tie = add_body(m, "tie", {o, f});
+  m.units = Units{};                                           // metres
+  EXPECT_EQ(default_bar_width(m, m.find_body("long")), 0.12);  // 1.234 m / 10
+  EXPECT_EQ(default_bar_width(m, tie), 0.13);                  // 0.125 exactly: a tie, rounded up
 }
 
 TEST(Validate, Points) {

@@ -260,13 +260,13 @@ function commitBody(input) {
         if (isObj(body)) for (const k of ['bar', 'shape']) out = deleteIn(out, ['bodies', selected, k]);
         return out;
       }
-      // A first guess for the user to adjust: a bar a tenth of the body's drawn length wide, or a
-      // plate outline around the body's drawn points, half that width clear of them.
+      // A first guess for the user to adjust: the server's width for a new bar of this body (the
+      // check's default_bar_width), or a plate outline around the body's drawn points, half that
+      // width clear of them.
       const pts = (isObj(body) ? body.points : body) ?? [];
       const xy = pts.map((n) => m.points?.[n]).filter((v) => Array.isArray(v) && v.every(Number.isFinite));
-      const [p, q] = xy;
-      const len = p && q ? Math.hypot(q[0] - p[0], q[1] - p[1]) : 10;
-      const width = +(len / 10).toPrecision(2) || 1;
+      const checked = editContext().state.check?.bodies?.find((b) => b.name === selected);
+      const width = checked?.default_bar_width ?? 1;
       const other = form === 'bar' ? 'shape' : 'bar';
       if (isObj(body)) out = deleteIn(out, ['bodies', selected, other]);
       let value = { width };
