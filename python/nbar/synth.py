@@ -152,13 +152,17 @@ def run(the_task, all: Optional[bool] = None, top: Optional[int] = None, threads
     every one); ``threads`` (default: every hardware thread) and ``seed`` (default 1; the methods
     with random starts: five-point, nine-point, path) as ``nbar synth`` takes them, by the same
     rules."""
+    given = {"all": all, "top": top, "threads": threads, "seed": seed}
+    options = {k: _option(v) for k, v in given.items() if v is not None}
+    # The options first, as `nbar synth` and the web API read them: by the method's rules when
+    # the method is known before the task is read.
+    kind = the_task.get("task") if isinstance(the_task, dict) else getattr(the_task, "kind", None)
+    _nbar.check_synthesis_options(kind if isinstance(kind, str) else "", options)
     if isinstance(the_task, (str, os.PathLike)):
         the_task = load(the_task)
     elif isinstance(the_task, dict):
         the_task = task(the_task)
-    options = {"all": all, "top": top, "threads": threads, "seed": seed}
-    return Designs(_nbar.synthesize(the_task, {k: _option(v) for k, v in options.items() if v is not None},
-                                    timeout=real("timeout", timeout)))
+    return Designs(_nbar.synthesize(the_task, options, timeout=real("timeout", timeout)))
 
 
 _DEFAULT_NAMES = {"five-point": "Five-point synthesis", "burmester": "Burmester synthesis",

@@ -51,6 +51,16 @@ request::Options options_of(const py::dict& keywords) {
   return options;
 }
 
+// The method a task's `task:` names; five-point (whose options are every method's) for a name the
+// task reader is to refuse.
+synthesis::SynthesisKind kind_named(const std::string& name) {
+  for (const synthesis::SynthesisKind kind :
+       {synthesis::SynthesisKind::FivePoint, synthesis::SynthesisKind::Burmester, synthesis::SynthesisKind::Function,
+        synthesis::SynthesisKind::NinePoint, synthesis::SynthesisKind::Path})
+    if (synthesis::to_string(kind) == name) return kind;
+  return synthesis::SynthesisKind::FivePoint;
+}
+
 std::shared_ptr<PySynthesis> run(const synthesis::SynthesisTask& task, const py::dict& options,
                                  std::optional<double> timeout) {
   auto out = std::make_shared<PySynthesis>();
@@ -107,6 +117,14 @@ void bind_synthesis(py::module_& m) {
       py::arg("text"), py::arg("name") = "<task>");
   m.def("load_task", &io::load_synthesis_task, py::arg("path"));
   // The options are the request's (nbar/request/synthesis_request.hpp): all, top, threads, seed.
+  // The options checked before the task is read, as the command line and the web server check
+  // them: `kind` is the task's `task:` when it is known before reading it.
+  m.def(
+      "check_synthesis_options",
+      [](const std::string& kind, const py::dict& options) {
+        request::SynthesisRequest::read(kind_named(kind), options_of(options));
+      },
+      py::arg("kind"), py::arg("options"));
   m.def("synthesize", &run, py::arg("task"), py::arg("options") = py::dict(), py::arg("timeout") = std::nullopt);
 }
 
