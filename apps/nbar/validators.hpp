@@ -38,10 +38,6 @@ inline CLI::Validator positive() {
   return number_check([](double x) { return x > 0.0; }, "a positive number", "POSITIVE");
 }
 
-inline CLI::Validator non_negative() {
-  return number_check([](double x) { return x >= 0.0; }, "0 or more", "NONNEGATIVE");
-}
-
 inline CLI::Validator in_range(double low, double high) {
   const std::string rule = "from " + number_text(low) + " to " + number_text(high);
   return number_check([low, high](double x) { return x >= low && x <= high; }, rule,
