@@ -40,8 +40,10 @@ std::vector<OptionRule> rules_of(SynthesisKind kind) {
            SynthesisRequest::kMaxThreads),
   };
   if (kind == SynthesisKind::FivePoint || kind == SynthesisKind::NinePoint || kind == SynthesisKind::Path)
-    rules.push_back(rule("seed", OptionKind::Integer,
-                         "random seed of the homotopy and of path's random starts (default 1)", 0, kMaxSeed));
+    rules.push_back(
+        rule("seed", OptionKind::Integer,
+             "five-point, nine-point, path: random seed of the homotopy and of path's random starts (default 1)", 0,
+             kMaxSeed));
   return rules;
 }
 
