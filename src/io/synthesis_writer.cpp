@@ -215,7 +215,7 @@ void write_burmester_svg(std::ostream& out, const SynthesisTask& task, const syn
   const Eigen::Vector2d lo = curves.window_centre - half, hi = curves.window_centre + half;
   const render::View view(lo, hi, kSize, kSize, kMargin);
   render::SvgCanvas canvas(kSize, kSize);
-  const render::Color ink = render::Color::rgb(0x000000), grid = render::Color::rgb(0xdddddd);
+  const render::Colour ink = render::Colour::rgb(0x000000), grid = render::Colour::rgb(0xdddddd);
   const Eigen::Vector2d corner_lo = view.to_pixels(lo), corner_hi = view.to_pixels(hi);  // y grows down
   canvas.begin_group("grid", "grid");
   const std::vector<double> all_x = render::nice_ticks(lo.x(), hi.x(), 8),
@@ -254,7 +254,7 @@ void write_burmester_svg(std::ostream& out, const SynthesisTask& task, const syn
     const bool centre = std::string(which) == "centre";
     std::vector<Eigen::Vector2d> points;
     for (const auto& s : line) points.push_back(view.to_pixels(centre ? s.centre : s.circle));
-    canvas.polyline(points, render::Stroke{render::Color::rgb(centre ? 0x0072b2 : 0xe69f00), 1.5, {}});
+    canvas.polyline(points, render::Stroke{render::Colour::rgb(centre ? 0x0072b2 : 0xe69f00), 1.5, {}});
   });
   canvas.end_group();
   canvas.begin_group("poses", "poses");

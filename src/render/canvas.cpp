@@ -34,8 +34,8 @@ std::string paint_attributes(const Paint& p) {
     s += " fill=\"none\"";
   }
   if (p.stroke) {
-    append(s, {" stroke=\"", p.stroke->color.hex(), "\" stroke-width=\"", num(p.stroke->width), "\""});
-    if (p.stroke->color.a != 255) append(s, {" stroke-opacity=\"", num(p.stroke->color.opacity()), "\""});
+    append(s, {" stroke=\"", p.stroke->colour.hex(), "\" stroke-width=\"", num(p.stroke->width), "\""});
+    if (p.stroke->colour.a != 255) append(s, {" stroke-opacity=\"", num(p.stroke->colour.opacity()), "\""});
     if (!p.stroke->dash.empty()) {
       s += " stroke-dasharray=\"";
       for (std::size_t i = 0; i < p.stroke->dash.size(); ++i) append(s, {i ? "," : "", num(p.stroke->dash[i])});
@@ -60,7 +60,7 @@ void append_ring(std::string& d, const std::vector<Eigen::Vector2d>& ring) {
 
 }  // namespace
 
-std::string Color::hex() const {
+std::string Colour::hex() const {
   char buf[8];
   std::snprintf(buf, sizeof buf, "#%02x%02x%02x", r, g, b);
   return buf;
@@ -139,10 +139,10 @@ void SvgCanvas::outline(const Outline& shape, const Paint& paint) {
 }
 
 void SvgCanvas::text(const Eigen::Vector2d& at, const std::string& text, double size, Anchor anchor,
-                     const Color& color) {
+                     const Colour& colour) {
   const char* a = anchor == Anchor::Start ? "start" : anchor == Anchor::Middle ? "middle" : "end";
   append(body_, {"<text x=\"", num(at.x()), "\" y=\"", num(at.y()), "\" font-size=\"", num(size),
-                 "\" font-family=\"sans-serif\" text-anchor=\"", a, "\" fill=\"", color.hex(), "\">", xml_escape(text),
+                 "\" font-family=\"sans-serif\" text-anchor=\"", a, "\" fill=\"", colour.hex(), "\">", xml_escape(text),
                  "</text>\n"});
 }
 

@@ -23,13 +23,13 @@ constexpr double kBlockLength = 30.0;  // px, slider blocks
 constexpr double kBlockWidth = 18.0;
 constexpr double kPivotSize = 13.0;  // px, ground pivot triangles
 
-const Color kInk = Color::rgb(0x222222);
-const Color kGround = Color::rgb(0x555555);
-const Color kPaper = Color::rgb(0xffffff);
+const Colour kInk = Colour::rgb(0x222222);
+const Colour kGround = Colour::rgb(0x555555);
+const Colour kPaper = Colour::rgb(0xffffff);
 
 Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 
-Color darker(const Color& c) {
+Colour darker(const Colour& c) {
   return {static_cast<std::uint8_t>(c.r * 0.6), static_cast<std::uint8_t>(c.g * 0.6),
           static_cast<std::uint8_t>(c.b * 0.6), 255};
 }
@@ -109,7 +109,7 @@ void draw_pivot(Canvas& c, const Eigen::Vector2d& at) {
   const double s = kPivotSize;
   const Eigen::Vector2d base(at.x(), at.y() + s);
   c.polygon({at, {at.x() - 0.6 * s, base.y()}, {at.x() + 0.6 * s, base.y()}},
-            Paint{Color::rgb(0xe6e6e6), Stroke{kGround, 1.4, {}}});
+            Paint{Colour::rgb(0xe6e6e6), Stroke{kGround, 1.4, {}}});
   c.polyline({{at.x() - s, base.y()}, {at.x() + s, base.y()}}, Stroke{kGround, 1.6, {}});
   for (int i = 0; i < 5; ++i) {
     const double x = at.x() - s + (i + 0.5) * (2 * s / 5);
@@ -143,7 +143,7 @@ std::string number(double v) {
 
 }  // namespace
 
-Color body_color(int index) {
+Colour body_colour(int index) {
   // Tableau's ten, then their light and dark companions: a machine of up to 30 bodies gets a
   // colour for each.
   static const std::uint32_t palette[] = {
@@ -151,7 +151,7 @@ Color body_color(int index) {
       0x9edae5, 0xffbb78, 0x98df8a, 0xff9896, 0xc5b0d5, 0xc49c94, 0xf7b6d2, 0xaec7e8, 0xdbdb8d, 0x393b79,
       0x637939, 0x8c6d31, 0x843c39, 0x7b4173, 0x3182bd, 0xe6550d, 0x31a354, 0x756bb1, 0x636363, 0xa55194};
   constexpr int count = static_cast<int>(sizeof palette / sizeof palette[0]);
-  return Color::rgb(palette[((index % count) + count) % count]);
+  return Colour::rgb(palette[((index % count) + count) % count]);
 }
 
 std::vector<Eigen::Vector2d> sample_points(const Mechanism& mech, const Sample& sample) {
@@ -553,7 +553,7 @@ void draw_ground(Canvas& canvas, const View& view, const Mechanism& mech, const 
       obstacles.segments.push_back(
           {{c.x() - kPivotSize, c.y() + kPivotSize + 3}, {c.x() + kPivotSize, c.y() + kPivotSize + 3}, 3.0});
     } else if (!far_guide_end(m, static_cast<int>(p), c, canvas)) {  // a guide's end, a spring's anchor
-      canvas.polygon(rectangle(c, {1, 0}, 7, 7), Paint{Color::rgb(0x9a9a9a), Stroke{kGround, 1.0, {}}});
+      canvas.polygon(rectangle(c, {1, 0}, 7, 7), Paint{Colour::rgb(0x9a9a9a), Stroke{kGround, 1.0, {}}});
     }
   }
   canvas.end_group();
@@ -561,14 +561,14 @@ void draw_ground(Canvas& canvas, const View& view, const Mechanism& mech, const 
 
 // The slots a moving body carries: a rounded outline over the stretch its pin travels.
 void draw_body_slots(Canvas& canvas, const View& view, const Mechanism& mech, const SweepResult& sweep,
-                     const std::vector<Eigen::Vector2d>& points, const Body& body, const Color& color) {
+                     const std::vector<Eigen::Vector2d>& points, const Body& body, const Colour& colour) {
   const Model& m = mech.model();
   for (const Slot& s : m.slots) {
     if (fixed_guide(m, s.along) || !holds_guide(body, s.along)) continue;
     const auto [lo, hi] = travel(mech, sweep, s.point, s.along, points);
     const Eigen::Vector2d a = points[s.along[0]], e = (points[s.along[1]] - a).normalized();
     canvas.polygon(stadium(view.to_pixels(a + lo * e), view.to_pixels(a + hi * e), kSlotHalfWidth),
-                   Paint{kPaper, Stroke{darker(color), 1.2, {}}});
+                   Paint{kPaper, Stroke{darker(colour), 1.2, {}}});
   }
 }
 
@@ -579,8 +579,8 @@ void draw_body(Canvas& canvas, const View& view, const Mechanism& mech, const Sw
   const Body& body = m.bodies[b];
   auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
   const double scale = view.pixels_per_metre();
-  const Color color = body_color(b);
-  const Paint plate{Color{color.r, color.g, color.b, 150}, Stroke{darker(color), 1.4, {}}};
+  const Colour colour = body_colour(b);
+  const Paint plate{Colour{colour.r, colour.g, colour.b, 150}, Stroke{darker(colour), 1.4, {}}};
   // A body with a slot or a guide (a slotted lever, a cylinder's barrel) is wider than what
   // rides in it.
   const double bar_width = carries_guide(m, body) ? kSlottedBarWidth : kBarWidth;
@@ -611,7 +611,7 @@ void draw_body(Canvas& canvas, const View& view, const Mechanism& mech, const Sw
     obstacles.blocks.push_back(block);
   } else if (ends) {  // two points, or more on one line: a bar
     const Eigen::Vector2d a = px(points[ends->first]), c = px(points[ends->second]);
-    canvas.polyline({a, c}, Stroke{color, bar_width, {}});
+    canvas.polyline({a, c}, Stroke{colour, bar_width, {}});
     obstacles.segments.push_back({a, c, 0.5 * bar_width});
   } else {
     std::vector<Eigen::Vector2d> corners;
@@ -624,8 +624,8 @@ void draw_body(Canvas& canvas, const View& view, const Mechanism& mech, const Sw
   // Guides and slots that ride on this body.
   for (const Slider& s : m.sliders)
     if (!fixed_guide(m, s.along) && holds_guide(body, s.along))
-      canvas.polyline({px(points[s.along[0]]), px(points[s.along[1]])}, Stroke{darker(color), 2.0, {6, 3}});
-  draw_body_slots(canvas, view, mech, sweep, points, body, color);
+      canvas.polyline({px(points[s.along[0]]), px(points[s.along[1]])}, Stroke{darker(colour), 2.0, {6, 3}});
+  draw_body_slots(canvas, view, mech, sweep, points, body, colour);
   for (int p : body.points) {
     if (joint_owner[p] != b) continue;
     if (is_joint(m, p))
@@ -647,7 +647,7 @@ void draw_traces(Canvas& canvas, const View& view, const Mechanism& mech, const 
   for (const auto& path : paths) {
     std::vector<Eigen::Vector2d> drawn;
     for (const auto& p : path) drawn.push_back(px(p));
-    canvas.polyline(drawn, Stroke{Color::rgb(0x444444, 200), 1.3, {5, 3}});
+    canvas.polyline(drawn, Stroke{Colour::rgb(0x444444, 200), 1.3, {5, 3}});
   }
   canvas.end_group();
 }
@@ -682,13 +682,13 @@ void draw_markers(Canvas& canvas, const View& view, const Model& m, const std::v
     const Eigen::Vector2d e =
         body.points.size() >= 2 ? Eigen::Vector2d((points[body.points[1]] - o).normalized()) : Eigen::Vector2d(1, 0);
     const Eigen::Vector2d at = px(o + mk.local.x() * e + mk.local.y() * perp(e));
-    canvas.circle(at, 7, Paint{std::nullopt, Stroke{Color::rgb(0xd00000), 2.2, {}}});
-    canvas.circle(at, 2, Paint{Color::rgb(0xd00000), std::nullopt});
+    canvas.circle(at, 7, Paint{std::nullopt, Stroke{Colour::rgb(0xd00000), 2.2, {}}});
+    canvas.circle(at, 2, Paint{Colour::rgb(0xd00000), std::nullopt});
     obstacles.circles.push_back({at, 8});
     if (!mk.label.empty()) {
       // Outside plates, where it can be read.
       const Eigen::Vector2d where = place_label(obstacles, canvas, at, mk.label, 12, 5.0, {10.0, 24.0, 40.0, 60.0});
-      canvas.text(where, mk.label, 12, Anchor::Start, Color::rgb(0xb00000));
+      canvas.text(where, mk.label, 12, Anchor::Start, Colour::rgb(0xb00000));
     }
   }
   canvas.end_group();
@@ -697,7 +697,7 @@ void draw_markers(Canvas& canvas, const View& view, const Model& m, const std::v
 // Points marked in the plane (a ring and a cross).
 void draw_marked_points(Canvas& canvas, const View& view, const DrawOptions& options) {
   auto px = [&](const Eigen::Vector2d& w) { return view.to_pixels(w); };
-  const Color mark = Color::rgb(0x1f5fbf);
+  const Colour mark = Colour::rgb(0x1f5fbf);
   canvas.begin_group("marked-points", "marked-points");
   for (const MarkedPoint& mp : options.marked_points) {
     const Eigen::Vector2d at = px(mp.position);

@@ -43,7 +43,7 @@ struct ImageCanvas::Impl {
 
 namespace {
 
-void set_colour(cairo_t* cr, const Color& c) {
+void set_colour(cairo_t* cr, const Colour& c) {
   cairo_set_source_rgba(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0, c.a / 255.0);
 }
 
@@ -55,7 +55,7 @@ void trace_ring(cairo_t* cr, const std::vector<Eigen::Vector2d>& ring) {
 }
 
 void apply_stroke(cairo_t* cr, const Stroke& s) {
-  set_colour(cr, s.color);
+  set_colour(cr, s.colour);
   cairo_set_line_width(cr, s.width);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
@@ -94,7 +94,7 @@ void release_caches_at_exit() {
 
 }  // namespace
 
-ImageCanvas::ImageCanvas(int width, int height, const Color& background)
+ImageCanvas::ImageCanvas(int width, int height, const Colour& background)
     : Canvas(width, height), impl_(std::make_unique<Impl>()), background_(background) {
   if (width <= 0 || height <= 0) throw Error(ErrorKind::BadInput, "an image needs a positive width and height");
   impl_->surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height);
@@ -180,7 +180,7 @@ void ImageCanvas::outline(const Outline& shape, const Paint& paint) {
 }
 
 void ImageCanvas::text(const Eigen::Vector2d& at, const std::string& text, double size, Anchor anchor,
-                       const Color& color) {
+                       const Colour& colour) {
   if (text.empty()) return;
   cairo_t* cr = impl_->cr;
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
@@ -191,7 +191,7 @@ void ImageCanvas::text(const Eigen::Vector2d& at, const std::string& text, doubl
     cairo_text_extents(cr, text.c_str(), &ext);
     x -= anchor == Anchor::Middle ? 0.5 * ext.x_advance : ext.x_advance;
   }
-  set_colour(cr, color);
+  set_colour(cr, colour);
   cairo_move_to(cr, x, at.y());
   cairo_show_text(cr, text.c_str());
   cairo_new_path(cr);
@@ -235,7 +235,7 @@ ImageCanvas ImageCanvas::read_png(const std::string& path) {
     message += describe(status);
     throw Error(ErrorKind::Internal, message);
   }
-  ImageCanvas image(cairo_image_surface_get_width(png), cairo_image_surface_get_height(png), Color{0, 0, 0, 0});
+  ImageCanvas image(cairo_image_surface_get_width(png), cairo_image_surface_get_height(png), Colour{0, 0, 0, 0});
   cairo_t* cr = image.impl_->cr;
   cairo_save(cr);
   cairo_set_operator(cr, CAIRO_OPERATOR_SOURCE);
@@ -243,7 +243,7 @@ ImageCanvas ImageCanvas::read_png(const std::string& path) {
   cairo_paint(cr);
   cairo_restore(cr);
   cairo_surface_destroy(png);
-  image.background_ = Color::rgb(0xffffff);
+  image.background_ = Colour::rgb(0xffffff);
   return image;
 }
 
@@ -254,7 +254,7 @@ const std::uint8_t* ImageCanvas::data() const {
   return cairo_image_surface_get_data(impl_->surface);
 }
 
-Color ImageCanvas::pixel(int x, int y) const {
+Colour ImageCanvas::pixel(int x, int y) const {
   if (x < 0 || y < 0 || x >= width() || y >= height()) throw Error(ErrorKind::BadInput, "pixel outside the image");
   const std::uint8_t* p = data() + static_cast<std::ptrdiff_t>(y) * stride() + 4 * x;
   const std::uint8_t a = p[3];

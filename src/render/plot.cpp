@@ -23,10 +23,10 @@ constexpr double kLargest = 1e300;  // larger magnitudes are treated like infini
 constexpr std::array<std::uint32_t, 7> kPalette = {0x0072B2, 0xD55E00, 0x009E73, 0xCC79A7,
                                                    0xE69F00, 0x56B4E9, 0x000000};
 
-const Color kInk = Color::rgb(0x222222);
-const Color kFrame = Color::rgb(0x444444);
-const Color kGrid = Color::rgb(0xe4e4e4);
-const Color kZeroLine = Color::rgb(0xb0b0b0);
+const Colour kInk = Colour::rgb(0x222222);
+const Colour kFrame = Colour::rgb(0x444444);
+const Colour kGrid = Colour::rgb(0xe4e4e4);
+const Colour kZeroLine = Colour::rgb(0xb0b0b0);
 
 constexpr double kTickFont = 12, kLabelFont = 13, kTitleFont = 16, kLegendFont = 12;
 constexpr double kTickLength = 5;
@@ -40,7 +40,7 @@ bool usable(double v) { return std::isfinite(v) && std::abs(v) <= kLargest; }
 
 Stroke series_stroke(std::size_t i) {
   Stroke s;
-  s.color = Color::rgb(kPalette[i % kPalette.size()]);
+  s.colour = Colour::rgb(kPalette[i % kPalette.size()]);
   s.width = 1.8;
   switch ((i / kPalette.size()) % 4) {
     case 1: s.dash = {7, 4}; break;
@@ -532,7 +532,7 @@ void draw_series(Canvas& canvas, const PlotSpec& spec, const PlotFrame& f) {
     if (f.right_axis && f.series_on_right[i]) axis.y_lo = f.y2_lo, axis.y_hi = f.y2_hi;
     const Pieces pieces = clip_series(spec.x, spec.series[i].y, axis);
     for (const auto& line : pieces.lines) canvas.polyline(line, stroke);
-    for (const Vec2& dot : pieces.dots) canvas.circle(dot, 2.0, Paint{stroke.color, std::nullopt});
+    for (const Vec2& dot : pieces.dots) canvas.circle(dot, 2.0, Paint{stroke.colour, std::nullopt});
     canvas.end_group();
   }
 }
@@ -595,7 +595,7 @@ void draw_legend(Canvas& canvas, const Labels& labels, Layout layout) {
     box_h = layout.legend_rows_height;
   }
   canvas.polygon({corner, corner + Vec2(box_w, 0), corner + Vec2(box_w, box_h), corner + Vec2(0, box_h)},
-                 Paint{Color::rgb(0xffffff), Stroke{Color::rgb(0xaaaaaa), 1.0, {}}});
+                 Paint{Colour::rgb(0xffffff), Stroke{Colour::rgb(0xaaaaaa), 1.0, {}}});
   for (const auto& [i, at] : layout.legend_places) {
     const Vec2 row = corner + at + Vec2(0, 0.5 * kEntryHeight);
     Stroke stroke = series_stroke(i);

@@ -75,8 +75,8 @@ std::string paint_fields(const Paint& p) {
     if (p.fill->a != 255) s += cat({",\"fill_opacity\":", num(p.fill->opacity())});
   }
   if (p.stroke) {
-    s += cat({",\"stroke\":", json_string(p.stroke->color.hex()), ",\"stroke_width\":", num(p.stroke->width)});
-    if (p.stroke->color.a != 255) s += cat({",\"stroke_opacity\":", num(p.stroke->color.opacity())});
+    s += cat({",\"stroke\":", json_string(p.stroke->colour.hex()), ",\"stroke_width\":", num(p.stroke->width)});
+    if (p.stroke->colour.a != 255) s += cat({",\"stroke_opacity\":", num(p.stroke->colour.opacity())});
     if (!p.stroke->dash.empty()) {
       s += ",\"dash\":[";
       for (std::size_t i = 0; i < p.stroke->dash.size(); ++i) s += cat({i ? "," : "", num(p.stroke->dash[i])});
@@ -121,10 +121,10 @@ class SceneCanvas : public Canvas {
     item(cat({"{\"type\":\"outline\",\"rings\":", rings, "],\"circles\":", circles, "]", paint_fields(paint), "}"}));
   }
   void text(const Eigen::Vector2d& at, const std::string& text, double size, Anchor anchor,
-            const Color& color) override {
+            const Colour& colour) override {
     const char* a = anchor == Anchor::Start ? "start" : anchor == Anchor::Middle ? "middle" : "end";
     item(cat({"{\"type\":\"text\",\"x\":", num(at.x()), ",\"y\":", num(at.y()), ",\"text\":", json_string(text),
-              ",\"size\":", num(size), ",\"anchor\":\"", a, "\",\"color\":", json_string(color.hex()), "}"}));
+              ",\"size\":", num(size), ",\"anchor\":\"", a, "\",\"color\":", json_string(colour.hex()), "}"}));
   }
 
   std::string items() const { return cat({"[", out_, "]"}); }

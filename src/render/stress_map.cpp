@@ -8,7 +8,7 @@
 
 namespace nbar::render {
 
-Color stress_color(double fraction) {
+Colour stress_colour(double fraction) {
   // Blue, cyan, green, yellow, red: the scale FE packages use, so a designer reads it at once.
   static constexpr std::array<std::array<double, 3>, 5> kStops{
       {{0.17, 0.32, 0.85}, {0.10, 0.75, 0.90}, {0.25, 0.80, 0.30}, {0.98, 0.85, 0.15}, {0.87, 0.12, 0.10}}};
@@ -43,7 +43,7 @@ void draw_stress_plate(Canvas& canvas, const StressMap& map, double scale,
     for (const auto& q : kQuarters) {
       double value = 0.0;
       for (int k : q) value += map.values[t[k]];
-      const Color c = stress_color(value / 3.0 / top);
+      const Colour c = stress_colour(value / 3.0 / top);
       // Stroked in its own colour, so that neighbours leave no hairline of background between
       // them when antialiased.
       canvas.polygon({px[t[q[0]]], px[t[q[1]]], px[t[q[2]]]}, Paint{c, Stroke{c, 0.6, {}}});
@@ -52,7 +52,7 @@ void draw_stress_plate(Canvas& canvas, const StressMap& map, double scale,
 }
 
 void draw_stress_legend(Canvas& canvas, double scale) {
-  const Color ink = Color::rgb(0x222222);
+  const Colour ink = Colour::rgb(0x222222);
   const double bar_height = std::clamp(0.35 * canvas.height(), 80.0, 200.0);
   const double bar_width = 14.0;
   const double x = canvas.width() - kStressLegendWidth + 6.0, top = 44.0;
@@ -61,7 +61,7 @@ void draw_stress_legend(Canvas& canvas, double scale) {
   canvas.text({canvas.width() - 10.0, top - 12.0}, "von Mises", 12, Anchor::End, ink);
   for (int i = 0; i < kBands; ++i) {
     const double y0 = top + bar_height * i / kBands, y1 = top + bar_height * (i + 1) / kBands;
-    const Color c = stress_color(1.0 - (i + 0.5) / kBands);
+    const Colour c = stress_colour(1.0 - (i + 0.5) / kBands);
     canvas.polygon({{x, y0}, {x + bar_width, y0}, {x + bar_width, y1}, {x, y1}}, Paint{c, Stroke{c, 0.5, {}}});
   }
   canvas.polygon({{x, top}, {x + bar_width, top}, {x + bar_width, top + bar_height}, {x, top + bar_height}},

@@ -4,8 +4,10 @@
 // and its CSV is write_csv's, byte for byte.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstring>
 #include <memory>
+#include <ostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -42,6 +44,19 @@ struct Case {
   bool dynamics;
   int order;
 };
+
+// gtest would print a Case as its bytes, a pointer among them, into every test's name in ctest.
+void PrintTo(const Case& c, std::ostream* out) {
+  *out << c.model << (c.dynamics ? " with dynamics" : "") << ", order " << c.order;
+}
+
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+  std::string name = info.param.model;
+  name = name.substr(0, name.find('.'));
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return name + (info.param.dynamics ? "_dynamics" : "") + "_order" + std::to_string(info.param.order);
+}
 
 class TableStreamTest : public ::testing::TestWithParam<Case> {};
 
@@ -102,7 +117,8 @@ INSTANTIATE_TEST_SUITE_P(Examples, TableStreamTest,
                                            Case{"slider-crank-offset.yaml", true, 3}, Case{"machine-18.yaml", true, 2},
                                            Case{"fourbar-double-rocker.yaml", false, 2},  // stops early
                                            Case{"compressor-myszka-kinetics.yaml", true, 2},
-                                           Case{"parallelogram-redundant.yaml", true, 2}));
+                                           Case{"parallelogram-redundant.yaml", true, 2}),
+                         case_name);
 
 TEST(TableStream, RefusesStresses) {
   AnalysisOptions options;

@@ -318,7 +318,7 @@ TEST(DrawingGeometry, EveryBodyOfALargeMachineHasItsOwnColourAndJointsAreAbovePl
   const Example e("machine-18.yaml");
   const Model& m = e.mech.model();
   std::set<std::string> colours;
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) colours.insert(body_color(static_cast<int>(b)).hex());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) colours.insert(body_colour(static_cast<int>(b)).hex());
   EXPECT_EQ(colours.size(), m.bodies.size());
   ASSERT_GT(m.bodies.size(), 10u);
   const Picture pic(e, 0, {});

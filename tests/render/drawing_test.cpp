@@ -194,8 +194,8 @@ TEST(StressMap, PlateFourBarIsColouredWithLegendAndPeaks) {
   const std::string svg = drawing_svg(*mech, analysis.sweep, sample_points(*mech, analysis.sweep.samples[0]), draw);
   EXPECT_NE(svg.find("stress-legend"), std::string::npos);
   EXPECT_NE(svg.find("11.2 MPa"), std::string::npos);
-  EXPECT_EQ(stress_color(0.0).hex(), "#2b52d9");
-  EXPECT_EQ(stress_color(1.0).hex(), "#de1f1a");
+  EXPECT_EQ(stress_colour(0.0).hex(), "#2b52d9");
+  EXPECT_EQ(stress_colour(1.0).hex(), "#de1f1a");
   EXPECT_EQ(stress_text(246e3), "246 kPa");
 }
 

@@ -501,7 +501,7 @@ TEST(DrawPlot, RastersToo) {
   const Eigen::Vector2d at = f.to_pixels(180, 0);
   bool blue = false;
   for (int dy = -1; dy <= 1; ++dy) {
-    const nbar::render::Color c = canvas.pixel(static_cast<int>(at.x()), static_cast<int>(std::floor(at.y())) + dy);
+    const nbar::render::Colour c = canvas.pixel(static_cast<int>(at.x()), static_cast<int>(std::floor(at.y())) + dy);
     blue = blue || (c.b > 120 && c.r < 100);
   }
   EXPECT_TRUE(blue);

@@ -24,16 +24,16 @@
 namespace {
 
 using nbar::render::Anchor;
-using nbar::render::Color;
+using nbar::render::Colour;
 using nbar::render::ImageCanvas;
 using nbar::render::Outline;
 using nbar::render::Paint;
 using nbar::render::Stroke;
 using V = Eigen::Vector2d;
 
-const Color kWhite = Color::rgb(0xffffff);
+const Colour kWhite = Colour::rgb(0xffffff);
 
-bool same(const Color& a, const Color& b) { return a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a; }
+bool same(const Colour& a, const Colour& b) { return a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a; }
 bool background(const ImageCanvas& c, int x, int y) { return same(c.pixel(x, y), kWhite); }
 
 std::filesystem::path temp_dir() {
@@ -58,7 +58,7 @@ TEST(ImageCanvas, StartsWhiteAndOpaque) {
 
 TEST(ImageCanvas, PolygonFillAndStrokeLandWhereTheyAreDrawn) {
   ImageCanvas c(100, 100);
-  const Color red = Color::rgb(0xff0000), blue = Color::rgb(0x0000ff);
+  const Colour red = Colour::rgb(0xff0000), blue = Colour::rgb(0x0000ff);
   c.polygon(square(20, 20, 80, 60), Paint{red, Stroke{blue, 4, {}}});
   EXPECT_TRUE(same(c.pixel(50, 40), red));
   EXPECT_TRUE(same(c.pixel(50, 20), blue));  // on the edge: the stroke, painted after the fill
@@ -74,7 +74,7 @@ TEST(ImageCanvas, PolygonFillAndStrokeLandWhereTheyAreDrawn) {
 
 TEST(ImageCanvas, OutlineIsFilledEvenOddWithPolygonAndCircleHoles) {
   ImageCanvas c(200, 100);
-  const Color green = Color::rgb(0x00a000);
+  const Colour green = Colour::rgb(0x00a000);
   Outline o;
   o.outer = square(10, 10, 190, 90);
   o.polygon_holes.push_back(square(30, 30, 70, 70));
@@ -91,7 +91,7 @@ TEST(ImageCanvas, OutlineIsFilledEvenOddWithPolygonAndCircleHoles) {
 
 TEST(ImageCanvas, CirclesPolylinesDashesAndTranslucency) {
   ImageCanvas c(120, 60);
-  const Color ink = Color::rgb(0x202020);
+  const Colour ink = Colour::rgb(0x202020);
   c.circle(V(20, 30), 10, Paint{ink, std::nullopt});
   EXPECT_TRUE(same(c.pixel(20, 30), ink));
   EXPECT_TRUE(same(c.pixel(27, 30), ink));
@@ -102,8 +102,8 @@ TEST(ImageCanvas, CirclesPolylinesDashesAndTranslucency) {
   EXPECT_TRUE(background(c, 49, 10));  // in the gap 46-52, less the round caps' 1.5 px
   EXPECT_FALSE(background(c, 55, 10));
   // Half-transparent black over white is mid grey.
-  c.polygon(square(40, 30, 100, 55), Paint{Color::rgb(0x000000, 128), std::nullopt});
-  const Color g = c.pixel(70, 42);
+  c.polygon(square(40, 30, 100, 55), Paint{Colour::rgb(0x000000, 128), std::nullopt});
+  const Colour g = c.pixel(70, 42);
   EXPECT_NEAR(g.r, 127, 2);
   EXPECT_EQ(g.r, g.g);
   EXPECT_EQ(g.a, 255);
@@ -113,14 +113,14 @@ TEST(ImageCanvas, WithoutAntialiasingOnlyTheColoursDrawnAppear) {
   ImageCanvas c(120, 80);
   c.set_antialias(false);
   EXPECT_FALSE(c.antialias());
-  const Color red = Color::rgb(0xd62728), ink = Color::rgb(0x222222);
+  const Colour red = Colour::rgb(0xd62728), ink = Colour::rgb(0x222222);
   c.circle(V(40.3, 40.7), 17.2, Paint{red, Stroke{ink, 1.5, {}}});
   c.polyline({V(3, 3), V(117, 71)}, Stroke{ink, 2.2, {}});
   c.text(V(70, 30), "O2 P", 14, Anchor::Start, ink);
   std::set<std::uint32_t> colours;
   for (int y = 0; y < c.height(); ++y)
     for (int x = 0; x < c.width(); ++x) {
-      const Color p = c.pixel(x, y);
+      const Colour p = c.pixel(x, y);
       colours.insert((std::uint32_t{p.r} << 16) | (std::uint32_t{p.g} << 8) | p.b);
     }
   EXPECT_EQ(colours, (std::set<std::uint32_t>{0xffffff, 0xd62728, 0x222222}));
@@ -130,7 +130,7 @@ TEST(ImageCanvas, WithoutAntialiasingOnlyTheColoursDrawnAppear) {
   std::set<std::uint32_t> blended;
   for (int y = 0; y < smooth.height(); ++y)
     for (int x = 0; x < smooth.width(); ++x) {
-      const Color p = smooth.pixel(x, y);
+      const Colour p = smooth.pixel(x, y);
       blended.insert((std::uint32_t{p.r} << 16) | (std::uint32_t{p.g} << 8) | p.b);
     }
   EXPECT_GT(blended.size(), 3u);
@@ -144,7 +144,7 @@ TEST(ImageCanvas, TextIsDrawnAtItsAnchor) {
         if (!background(c, x, y)) lo = std::min(lo, x), hi = std::max(hi, x);
     return std::pair{lo, hi};
   };
-  const Color ink = Color::rgb(0x000000);
+  const Colour ink = Colour::rgb(0x000000);
   ImageCanvas start(200, 40), middle(200, 40), end(200, 40);
   start.text(V(100, 28), "Coupler", 16, Anchor::Start, ink);
   middle.text(V(100, 28), "Coupler", 16, Anchor::Middle, ink);

@@ -37,7 +37,7 @@ class RecordingCanvas : public Canvas {
   void outline(const Outline& shape, const Paint& paint) override {
     drawn.push_back({Drawn::Outline, group(), shape.outer, 0, "", paint});
   }
-  void text(const Eigen::Vector2d& at, const std::string& text, double size, Anchor, const Color&) override {
+  void text(const Eigen::Vector2d& at, const std::string& text, double size, Anchor, const Colour&) override {
     drawn.push_back({Drawn::Text, group(), {at}, size, text, {}});
   }
 

@@ -12,9 +12,9 @@
 
 namespace nbar::render {
 
-struct Color {
+struct Colour {
   std::uint8_t r = 0, g = 0, b = 0, a = 255;
-  static Color rgb(std::uint32_t hex, std::uint8_t alpha = 255) {
+  static Colour rgb(std::uint32_t hex, std::uint8_t alpha = 255) {
     return {static_cast<std::uint8_t>(hex >> 16), static_cast<std::uint8_t>(hex >> 8), static_cast<std::uint8_t>(hex),
             alpha};
   }
@@ -23,13 +23,13 @@ struct Color {
 };
 
 struct Stroke {
-  Color color;
+  Colour colour;
   double width = 1.5;        // px
   std::vector<double> dash;  // px on, px off...; empty = solid
 };
 
 struct Paint {
-  std::optional<Color> fill;
+  std::optional<Colour> fill;
   std::optional<Stroke> stroke;
 };
 
@@ -58,7 +58,7 @@ class Canvas {
   virtual void outline(const Outline& shape, const Paint& paint) = 0;
   // `size` in px; the text's baseline starts, centres or ends at `at`.
   virtual void text(const Eigen::Vector2d& at, const std::string& text, double size, Anchor anchor,
-                    const Color& color) = 0;
+                    const Colour& colour) = 0;
 
  private:
   int width_, height_;
@@ -93,7 +93,7 @@ class SvgCanvas : public Canvas {
   void circle(const Eigen::Vector2d& centre, double radius, const Paint& paint) override;
   void outline(const Outline& shape, const Paint& paint) override;
   void text(const Eigen::Vector2d& at, const std::string& text, double size, Anchor anchor,
-            const Color& color) override;
+            const Colour& colour) override;
   // Raw SVG markup to insert (animation elements, titles).
   void raw(const std::string& markup);
   // The whole document (with the XML declaration) or only the <svg> element, for HTML.

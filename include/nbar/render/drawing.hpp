@@ -103,6 +103,6 @@ std::vector<PixelTransform> body_transforms(const Mechanism& mech, const View& v
 std::vector<int> trace_points(const Model& model, const std::vector<std::string>& names);
 
 // The colour of body `index` (a palette that stays distinct for neighbouring bodies).
-Color body_color(int index);
+Colour body_colour(int index);
 
 }  // namespace nbar::render

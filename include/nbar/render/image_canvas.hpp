@@ -13,7 +13,7 @@ namespace nbar::render {
 
 class ImageCanvas : public Canvas {
  public:
-  ImageCanvas(int width, int height, const Color& background = Color::rgb(0xffffff));
+  ImageCanvas(int width, int height, const Colour& background = Colour::rgb(0xffffff));
   ~ImageCanvas() override;
   ImageCanvas(ImageCanvas&&) noexcept;
   ImageCanvas& operator=(ImageCanvas&&) noexcept;
@@ -35,7 +35,7 @@ class ImageCanvas : public Canvas {
   void circle(const Eigen::Vector2d& centre, double radius, const Paint& paint) override;
   void outline(const Outline& shape, const Paint& paint) override;
   void text(const Eigen::Vector2d& at, const std::string& text, double size, Anchor anchor,
-            const Color& color) override;
+            const Colour& colour) override;
 
   // Throws Error(ErrorKind::Internal) naming the path when the file cannot be written.
   void write_png(const std::string& path) const;
@@ -51,12 +51,12 @@ class ImageCanvas : public Canvas {
   int stride() const;
   const std::uint8_t* data() const;
   // The colour of one pixel (alpha undone); (0,0) is the top left.
-  Color pixel(int x, int y) const;
+  Colour pixel(int x, int y) const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  Color background_;
+  Colour background_;
 };
 
 }  // namespace nbar::render

@@ -16,7 +16,7 @@ namespace nbar::render {
 
 // The colour of a stress at `fraction` of the scale (clamped to 0..1): blue, cyan, green,
 // yellow, red, as FE packages colour.
-Color stress_color(double fraction);
+Colour stress_colour(double fraction);
 
 // "246 kPa", "1.25 MPa": three significant digits in the unit that reads best.
 std::string stress_text(double pascals);
