@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/double_text.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/sketch.hpp"
 #include "nbar/model/curves.hpp"
@@ -87,7 +88,7 @@ class Reader {
   double number(const Pair& p) const {
     double value = 0;
     const std::string_view text = p.value;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    const auto [end, ec] = parse_double(text.data(), text.data() + text.size(), value);
     if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
       fail(p.line + 1, "group " + std::to_string(p.code) + " needs a finite number, not '" + shown(p.value) + "'");
     }

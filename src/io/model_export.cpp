@@ -1,5 +1,6 @@
 #include "nbar/io/model_export.hpp"
 
+#include "model/double_text.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "yaml_support.hpp"
 
@@ -24,7 +25,7 @@ namespace {
 std::string number(double v) {
   const std::string rounded = fmt::format("{:.15g}", v);
   double back = 0.0;
-  std::from_chars(rounded.data(), rounded.data() + rounded.size(), back);
+  parse_double(rounded.data(), rounded.data() + rounded.size(), back);
   const double ulp = std::nextafter(std::abs(v), HUGE_VAL) - std::abs(v);
   return std::abs(back - v) <= 2.0 * ulp ? rounded : fmt::format("{}", v);
 }

@@ -10,6 +10,7 @@
 #include <system_error>
 #include <vector>
 
+#include "model/double_text.hpp"
 #include "model_file_parser.hpp"
 
 namespace nbar::io::model_file_detail {
@@ -47,7 +48,7 @@ double Parser::quantity(const Entry& e, const std::string& what, const std::vect
   std::string_view rest = text;
   while (!rest.empty() && std::isspace(static_cast<unsigned char>(rest.front()))) rest.remove_prefix(1);
   if (!rest.empty() && rest.front() == '+') rest.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), value);
+  const auto [end, ec] = parse_double(rest.data(), rest.data() + rest.size(), value);
   if (ec == std::errc::invalid_argument || end == rest.data()) {
     fail(mark(e), what + " must be a number or a quantity like '" + std::string(example) + "', not '" + text + "'");
   }
@@ -184,7 +185,7 @@ Law Parser::load_law(const YAML::Node& node, SourceMark at, const std::string& w
   }
   // "5 N" reads as a number with a unit, which laws do not take.
   std::string hint;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  const auto [end, ec] = parse_double(text.data(), text.data() + text.size(), value);
   if (ec == std::errc() && end != text.data() && end != text.data() + text.size() && *end == ' ') {
     hint = what + " is in " + std::string(unit) + ": write a number without its unit, or an expression in t";
   }

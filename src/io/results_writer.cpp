@@ -1,6 +1,7 @@
 #include "nbar/io/results_writer.hpp"
 
 #include "json_text.hpp"
+#include "model/double_text.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/units.hpp"
 
@@ -52,7 +53,7 @@ void CsvWriter::row(const double* values) {
   for (std::size_t c = 0; c < columns_; ++c) {
     if (c) *p++ = ',';
     // Adding 0.0 turns -0 into 0, which nobody wants to read.
-    p = std::to_chars(p, end, values[c] + 0.0, std::chars_format::general, 12).ptr;
+    p = write_double_general(p, end, values[c] + 0.0, 12);
   }
   *p++ = '\n';
   used_ = static_cast<std::size_t>(p - buffer_.data());

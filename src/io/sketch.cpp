@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "model/double_text.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "sketch_strokes.hpp"
@@ -294,7 +295,7 @@ std::string_view trimmed(std::string_view s) {
 bool to_number(std::string_view text, double& value) {
   text = trimmed(text);
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  const auto [end, ec] = parse_double(text.data(), text.data() + text.size(), value);
   return ec == std::errc() && end == text.data() + text.size() && std::isfinite(value);
 }
 

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/double_text.hpp"
 #include "sketch_strokes.hpp"
 
 namespace nbar::io::sketch_detail {
@@ -162,7 +163,7 @@ class PathData {
     std::size_t start = pos_;
     if (d_[pos_] == '+') ++start;
     double value = 0;
-    const auto [end, ec] = std::from_chars(d_.data() + start, d_.data() + d_.size(), value);
+    const auto [end, ec] = parse_double(d_.data() + start, d_.data() + d_.size(), value);
     if (ec != std::errc() || !std::isfinite(value)) {
       fail_at(file_, line_, fmt::format("path data: a bad number at character {}", pos_ + 1));
     }
@@ -287,7 +288,7 @@ class SvgBuilder {
     std::string_view text = it->second;
     if (text.size() > 2 && text.substr(text.size() - 2) == "px") text.remove_suffix(2);
     double value = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    const auto [end, ec] = parse_double(text.data(), text.data() + text.size(), value);
     if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
       fail_at(file_, line_, "`" + key + "` of <" + e.name + "> needs a number, not '" + it->second + "'");
     }
@@ -513,7 +514,7 @@ std::optional<double> svg_unit(const Element& root, const std::string& file) {
   while (digits < w.size() && (std::isdigit(static_cast<unsigned char>(w[digits])) || w[digits] == '.')) ++digits;
   const double metres = length_metres(w.substr(digits));
   double value = 0;
-  if (metres == 0 || std::from_chars(w.data(), w.data() + digits, value).ec != std::errc() || !(value > 0)) {
+  if (metres == 0 || parse_double(w.data(), w.data() + digits, value).ec != std::errc() || !(value > 0)) {
     return std::nullopt;
   }
   const auto box = root.attributes.find("viewBox");

@@ -1,4 +1,5 @@
 #include "yaml_support.hpp"
+#include "model/double_text.hpp"
 
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>
@@ -101,7 +102,7 @@ NumberStatus parse_number(std::string_view text, double& value) {
   std::string_view s = text;
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);  // from_chars does not take it
   if (s.empty()) return NumberStatus::NotNumber;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  const auto [end, ec] = parse_double(s.data(), s.data() + s.size(), value);
   if (end != s.data() + s.size()) return NumberStatus::NotNumber;
   if (ec == std::errc::result_out_of_range) return NumberStatus::NotFinite;
   if (ec != std::errc()) return NumberStatus::NotNumber;

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/double_text.hpp"
 #include "nbar/model/diagnostics.hpp"
 
 namespace nbar {
@@ -370,7 +371,7 @@ class Parser {
       }
     }
     double value = 0.0;
-    const auto [end, error] = std::from_chars(text_.data() + start, text_.data() + p, value);
+    const auto [end, error] = parse_double(text_.data() + start, text_.data() + p, value);
     if (error == std::errc::result_out_of_range) fail("number out of range");
     if (error != std::errc() || end != text_.data() + p) fail("malformed number");
     pos_ = p;

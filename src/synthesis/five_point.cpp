@@ -163,7 +163,7 @@ class IsotropicFivePoint final : public ParameterizedSystem {
       // the border's X row touches only the X coordinates, its Y row only the Y ones
       schur.block<1, 3>(i - 1, 0) = n[1] * r.border.block<1, 3>(1, 0);
       schur.block<1, 3>(i - 1, 3) = n[2] * r.border.block<1, 3>(2, 3);
-      reduced[i - 1] = n * r.value;
+      reduced[i - 1] = (n * r.value).value();
     }
     schur.row(4).setZero();
     schur.row(5).setZero();

@@ -4,7 +4,6 @@
 // dyads' 8 coordinates; the rotations follow from them and Newton polishes all).
 #include <Eigen/LU>
 
-#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -40,7 +39,7 @@ std::vector<double> decode(const std::string& text) {
   for (size_t i = 0; i < values.size(); ++i) {
     std::uint64_t word = 0;
     for (int k = 0; k < 8; ++k) word |= std::uint64_t(static_cast<unsigned char>(bytes[8 * i + k])) << (8 * k);
-    values[i] = std::bit_cast<double>(word);
+    std::memcpy(&values[i], &word, sizeof word);  // std::bit_cast, which emscripten's libc++ 14 lacks
   }
   return values;
 }
@@ -48,7 +47,8 @@ std::vector<double> decode(const std::string& text) {
 std::string encode(const std::vector<double>& values) {
   std::string bytes;
   for (double v : values) {
-    const auto word = std::bit_cast<std::uint64_t>(v);
+    std::uint64_t word = 0;
+    std::memcpy(&word, &v, sizeof word);
     for (int k = 0; k < 8; ++k) bytes.push_back(static_cast<char>((word >> (8 * k)) & 0xFF));
   }
   std::string out;

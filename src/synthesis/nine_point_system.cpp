@@ -116,7 +116,7 @@ class IsotropicNinePoint final : public ParameterizedSystem {
                                   m(0, 0) * m(1, 1) - m(1, 0) * m(0, 1));
       schur.block<1, 5>(i, 0) = n[1] * r.border[0];
       schur.block<1, 5>(i, 5) = n[2] * r.border[1];
-      reduced[i] = n * r.value;
+      reduced[i] = (n * r.value).value();
     }
     for (int dyad = 0; dyad < 2; ++dyad) {
       for (int k = 0; k < 5; ++k) schur(8 + dyad, 5 * dyad + k) = kPatch[dyad][k];
