@@ -32,6 +32,7 @@ test_packages=(
   # scripts/package.sh and its test: the wheel (setuptools, wheel, pip, venv), the man page
   # (help2man), the .deb's dependencies (dpkg-shlibdeps, in dpkg-dev)
   python3-setuptools python3-wheel python3-pip python3-venv help2man dpkg-dev
+  emscripten  # scripts/build-wasm.sh: the engine in WebAssembly (dpkg-dev, above, unpacks yaml-cpp's source package)
 )
 
 list_only=0

@@ -30,6 +30,8 @@
 
 namespace nbar::render {
 
+bool raster_pictures_available() { return true; }
+
 struct ImageCanvas::Impl {
   cairo_surface_t* surface = nullptr;
   cairo_t* cr = nullptr;

@@ -19,6 +19,14 @@ void check_picture_size(const Job& job, int width, int height) {
   check_limit("pixels", height, job.limits.max_pixels, "height");
 }
 
+// A PNG or GIF where this build draws none (the WebAssembly engine: the browser draws them).
+void check_raster_format(const std::string& format) {
+  if (render::raster_pictures_available()) return;
+  throw ApiError(ApiErrorKind::NotImplemented,
+                 format + " pictures are drawn by the native nbar program (nbar serve); this engine draws SVG, HTML, " +
+                     "the web app's scene and DXF");
+}
+
 // The links' plates for cutting, as `nbar export --dxf/--svg [--at]` writes them.
 ApiResponse render_plates(Job& job, const std::string& text) {
   const RequestBody body(text, request::ExportRequest::rules(), {"model", "kind"});
@@ -33,6 +41,7 @@ ApiResponse render_plates(Job& job, const std::string& text) {
 ApiResponse render_draw(Job& job, const std::string& text) {
   const RequestBody body(text, request::DrawRequest::rules(), {"model", "kind"});
   const auto draw = read_request<request::DrawRequest>(body, {"model", "kind"});
+  if (draw.format == "png") check_raster_format("PNG");
   load_model(job, body.text("model", true));
   check_picture_size(job, draw.picture.width, draw.picture.height);
   const Mechanism& mech = *job.mechanism;
@@ -57,6 +66,7 @@ ApiResponse render_draw(Job& job, const std::string& text) {
 ApiResponse render_animate(Job& job, const std::string& text) {
   const RequestBody body(text, request::AnimateRequest::rules(), {"model", "kind"});
   const auto animate = read_request<request::AnimateRequest>(body, {"model", "kind"});
+  if (animate.format == "gif" || animate.format == "mp4") check_raster_format(animate.format == "gif" ? "GIF" : "MP4");
   if (animate.format == "mp4" && !render::Animation::program_available("ffmpeg"))
     throw ApiError(
         ApiErrorKind::NotImplemented,
@@ -87,6 +97,7 @@ ApiResponse render_animate(Job& job, const std::string& text) {
 ApiResponse render_plot(Job& job, const std::string& text) {
   const RequestBody body(text, request::PlotRequest::rules(), {"model", "kind"});
   const auto plot = read_request<request::PlotRequest>(body, {"model", "kind"});
+  if (plot.format == "png") check_raster_format("PNG");
   load_model(job, body.text("model", true));
   check_picture_size(job, plot.width, plot.height);
   const AnalysisOptions options = plot.analysis_options(*job.mechanism);

@@ -59,4 +59,8 @@ class ImageCanvas : public Canvas {
   Colour background_;
 };
 
+// Whether this build draws raster pictures (PNG, and the frames of GIF and MP4): not the
+// WebAssembly engine's, which has no cairo or cgif (its browser draws them itself).
+bool raster_pictures_available();
+
 }  // namespace nbar::render

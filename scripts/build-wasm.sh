@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Builds nbar's engine in WebAssembly (docs/javascript.md) into build-wasm/ (or $1), and with
+# --test runs its equality test against the native program (build/apps/nbar/nbar, which must be
+# built first):
+#   scripts/build-wasm.sh [build-dir] [--test]
+# It uses Debian's emscripten. yaml-cpp, the one library that must be compiled for WebAssembly,
+# comes from Debian's source package (apt-get source, with a deb-src entry added when there is
+# none), unpacked and built in the build folder, never in the repository.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="$root/build-wasm"
+run_test=0
+for arg in "$@"; do
+  case "$arg" in
+    --test) run_test=1 ;;
+    *) build="$(realpath -m "$arg")" ;;
+  esac
+done
+jobs="$(nproc)"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+
+# Debian's emscripten: its optimiser runs on Debian's node-acorn, found through NODE_PATH.
+if ! command -v emcmake >/dev/null 2>&1 || ! command -v dpkg-source >/dev/null 2>&1; then
+  $sudo apt-get update
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends emscripten dpkg-dev
+fi
+export NODE_PATH="${NODE_PATH:+$NODE_PATH:}/usr/share/nodejs"
+
+# yaml-cpp for WebAssembly, from the source of the version Debian ships (built once per folder).
+deps="$build/deps"
+yaml_prefix="$deps/yaml-cpp"
+if [ ! -f "$yaml_prefix/lib/libyaml-cpp.a" ]; then
+  mkdir -p "$deps/source"
+  if ! (cd "$deps/source" && apt-get source --print-uris yaml-cpp >/dev/null 2>&1); then
+    echo "adding a deb-src entry for Debian's source packages (/etc/apt/sources.list.d/nbar-deb-src.sources)"
+    # The suites and mirror of the machine's own deb entries, for its sources.
+    $sudo tee /etc/apt/sources.list.d/nbar-deb-src.sources >/dev/null <<'EOF'
+Types: deb-src
+URIs: http://deb.debian.org/debian
+Suites: bookworm bookworm-updates
+Components: main
+Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
+EOF
+    $sudo apt-get update
+  fi
+  (cd "$deps/source" && rm -rf yaml-cpp-* && apt-get source yaml-cpp)
+  yaml_source="$(find "$deps/source" -maxdepth 1 -type d -name 'yaml-cpp-*' | head -1)"
+  emcmake cmake -S "$yaml_source" -B "$deps/yaml-cpp-build" -DCMAKE_BUILD_TYPE=Release \
+    -DYAML_CPP_BUILD_TESTS=OFF -DYAML_CPP_BUILD_TOOLS=OFF -DYAML_CPP_BUILD_CONTRIB=OFF -DYAML_BUILD_SHARED_LIBS=OFF \
+    -DCMAKE_CXX_FLAGS=-fexceptions -DCMAKE_INSTALL_PREFIX="$yaml_prefix" >/dev/null
+  cmake --build "$deps/yaml-cpp-build" -j"$jobs"
+  cmake --install "$deps/yaml-cpp-build" >/dev/null
+fi
+
+emcmake cmake -S "$root" -B "$build" -DNBAR_WASM=ON -DCMAKE_BUILD_TYPE=Release -DNBAR_WASM_YAML_CPP="$yaml_prefix" \
+  -DNBAR_NATIVE="$root/build/apps/nbar/nbar" >/dev/null
+cmake --build "$build" -j"$jobs" --target nbar_engine
+ls -l "$build/web/engine/nbar-engine.wasm"
+if [ "$run_test" = 1 ]; then
+  ctest --test-dir "$build" --output-on-failure
+fi

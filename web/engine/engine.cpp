@@ -1,0 +1,52 @@
+// The web API in WebAssembly: JavaScript hands a request (method, path, body) to the same
+// handle_api that `nbar serve` answers with, and gets its status, content type and bytes back.
+// nbar.mjs beside this file wraps it as the module's `request(path, body)`.
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+
+#include <cstdint>
+#include <string>
+
+#include "nbar/version.hpp"
+#include "nbar/web/api.hpp"
+
+namespace {
+
+using emscripten::val;
+
+// The server's limits and time budget, on one thread: the browser engine has no shared memory
+// (a static host gives no cross-origin isolation), so synthesis tracks its paths on one.
+nbar::web::ServerConfig engine_config() {
+  nbar::web::ServerConfig config;
+  config.limits.max_synthesis_threads = 1;
+  return config;
+}
+
+// {status, contentType, headers: [[name, value]...], body: Uint8Array}; the body is copied out of
+// the module's memory, which the next request may reuse.
+val request(const std::string& method, const std::string& path, const std::string& body) {
+  static const nbar::web::ServerConfig config = engine_config();
+  const nbar::web::ApiResponse response = nbar::web::handle_api({method, path, body}, config);
+  val answer = val::object();
+  answer.set("status", response.status);
+  answer.set("contentType", response.content_type);
+  val headers = val::array();
+  for (const auto& [name, value] : response.headers) {
+    val header = val::array();
+    header.call<void>("push", name, value);
+    headers.call<void>("push", header);
+  }
+  answer.set("headers", headers);
+  const auto* bytes = reinterpret_cast<const std::uint8_t*>(response.body.data());
+  answer.set("body", val::global("Uint8Array").new_(emscripten::typed_memory_view(response.body.size(), bytes)));
+  return answer;
+}
+
+std::string version() { return nbar::kVersion; }
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(nbar_engine) {
+  emscripten::function("request", &request);
+  emscripten::function("version", &version);
+}
