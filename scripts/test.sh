@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds everything and runs the whole test suite twice: an
-# optimised build, then one under AddressSanitizer and UndefinedBehaviorSanitizer; then a short
+# optimised build (and the engine in WebAssembly, checked against it), then one under
+# AddressSanitizer and UndefinedBehaviorSanitizer; then a short
 # run of each libFuzzer harness (scripts/fuzz.sh, clang, ASan + UBSan; docs/fuzzing.md).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -20,6 +21,9 @@ ctest --test-dir "$root/build" --output-on-failure -j"$jobs"
 echo "== Packages: the wheel and the .deb made from that build, installed into a scratch folder and used"
 "$root/scripts/package.sh"
 "$root/tests/packaging/packages_test.sh" "$root/dist"
+
+echo "== The engine in WebAssembly, and its answers against the Release build's (docs/javascript.md)"
+"$root/scripts/build-wasm.sh" "$root/build-wasm" --test
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 # The sanitizer stage is focused where its time buys most (it was 44 of 70 minutes on 2 cores):

@@ -171,6 +171,9 @@ function compareAnswers(wasm, native, tally) {
     differences.push('the bodies differ (not JSON)');
   }
   if (wasm.status >= 400) tally.errors += 1;
+  // An error is the same error: kind, message, line and column, byte for byte.
+  if (wasm.status >= 400 && sameBytes(wasm.body, native.body)) tally.errorsBitForBit += 1;
+  else if (wasm.status >= 400 || native.status >= 400) differences.push('the errors differ');
   return differences;
 }
 
@@ -213,7 +216,7 @@ async function main() {
   const { server, port } = await startNativeServer(resolve(args.native));
   const tally = {
     answers: 0, bitForBit: 0, errors: 0, numbers: 0, inexact: 0, maxRelative: 0, maxScaled: 0, overTarget: 0,
-    roundOff: 0, ties: 0, roundOffTexts: 0,
+    roundOff: 0, ties: 0, roundOffTexts: 0, errorsBitForBit: 0,
   };
   let failures = 0;
   let passed = 0;
@@ -247,7 +250,8 @@ async function main() {
   } finally {
     server.kill();
   }
-  console.log(`${tally.answers} answers compared (${tally.errors} of them errors): ${tally.bitForBit} bit for bit; ` +
+  console.log(`${tally.answers} answers compared (${tally.errors} of them errors): ${tally.bitForBit} bit for bit ` +
+              `(${tally.errorsBitForBit} of the errors); ` +
               `${tally.numbers} numbers in the others, ${tally.inexact} not bit for bit: largest difference over ` +
               `${kAbsolute} ${tally.maxScaled.toExponential(2)} relative to its column's or vector's scale ` +
               `(${tally.overTarget} over ${kTarget}); ${tally.roundOff} round-off values ` +
