@@ -22,7 +22,7 @@ bool raster_pictures_available() { return false; }
 
 struct ImageCanvas::Impl {};
 
-ImageCanvas::ImageCanvas(int width, int height, const Color& background)
+ImageCanvas::ImageCanvas(int width, int height, const Colour& background)
     : Canvas(width, height), background_(background) {
   refuse();
 }
@@ -42,13 +42,13 @@ void ImageCanvas::polygon(const std::vector<Eigen::Vector2d>&, const Paint&) {}
 void ImageCanvas::polyline(const std::vector<Eigen::Vector2d>&, const Stroke&) {}
 void ImageCanvas::circle(const Eigen::Vector2d&, double, const Paint&) {}
 void ImageCanvas::outline(const Outline&, const Paint&) {}
-void ImageCanvas::text(const Eigen::Vector2d&, const std::string&, double, Anchor, const Color&) {}
+void ImageCanvas::text(const Eigen::Vector2d&, const std::string&, double, Anchor, const Colour&) {}
 void ImageCanvas::write_png(const std::string&) const { refuse(); }
 std::vector<std::uint8_t> ImageCanvas::png_bytes() const { refuse(); }
 ImageCanvas ImageCanvas::read_png(const std::string&) { refuse(); }
 int ImageCanvas::stride() const { return 0; }
 const std::uint8_t* ImageCanvas::data() const { return nullptr; }
-Color ImageCanvas::pixel(int, int) const { return background_; }
+Colour ImageCanvas::pixel(int, int) const { return background_; }
 
 std::vector<std::uint8_t> Animation::gif_bytes() const { refuse(); }
 
