@@ -1,5 +1,5 @@
 // The step-by-step explanation: every equation written from the solver's own rows
-// (Mechanism::rows(), constraints.cpp), Newton's iterations recorded by the solver itself
+// (Mechanism::equations().rows, kinematics/constraints.cpp), Newton's iterations recorded by the solver itself
 // (solve_position with a NewtonTrace), and the velocity and acceleration systems from the same
 // Taylor recursion the sweep uses. Rendering is in explain_render.cpp.
 #include "nbar/analysis/explain.hpp"
@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "explain_expr.hpp"
+#include "kinematics/constraints.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/kinematics/position.hpp"
 #include "nbar/kinematics/sweep.hpp"
@@ -35,7 +36,7 @@ class RowWriter {
   explicit RowWriter(const Mechanism& mech) : mech_(mech), m_(mech.model()), ls_(m_.units.length_scale) {}
 
   EquationRow write(int r) {
-    const Constraint& c = mech_.rows()[r];
+    const Constraint& c = mech_.equations().rows[r];
     EquationRow row;
     row.label = c.label;
     row.source = c.source;
@@ -439,7 +440,7 @@ void explain_rates(const Mechanism& mech, State& state, const std::vector<Driver
   std::vector<double> values_j;
   evaluate_jacobian(mech, state.q, in_time, values_j);
   ex.jacobian = Eigen::MatrixXd::Zero(mech.row_count(), n);
-  const auto& pattern = mech.jacobian_pattern();
+  const auto& pattern = mech.equations().pattern;
   for (std::size_t e = 0; e < pattern.size(); ++e) ex.jacobian(pattern[e].row, pattern[e].col) += values_j[e];
 
   Eigen::MatrixXd coefficients;

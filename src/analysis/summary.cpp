@@ -291,7 +291,7 @@ ModelSummary summarize(const Mechanism& mech, int max_steps) {
   s.has_loads = !m.gravity.isZero() || !m.point_loads.empty() || !m.torques.empty() || !m.springs.empty();
   s.joints = describe_joints(m);
   s.mobility = mech.mobility();
-  for (int r : s.mobility.redundant) s.redundant.push_back(mech.rows()[r].label);
+  for (int r : s.mobility.redundant) s.redundant.push_back(mech.row_label(r));
   for (std::size_t d = 0; d < m.drivers.size(); ++d) s.drivers.push_back(describe_driver(m, static_cast<int>(d)));
   warn_about_many_turns(m, s);
   warn_about_points_off_plates(m, s.warnings);

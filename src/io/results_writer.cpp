@@ -144,7 +144,7 @@ void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& 
   if (!table.title.empty()) j["title"] = table.title;
   j["units"] = {{"length", m.units.length}, {"angle", m.units.angle}, {"time", "s"}};
   nlohmann::ordered_json redundant = nlohmann::json::array();
-  for (int r : mob.redundant) redundant.push_back(mech.rows()[r].label);
+  for (int r : mob.redundant) redundant.push_back(mech.row_label(r));
   j["dof"] = {{"gruebler", mob.grubler}, {"mobility", mob.dof}, {"redundant_constraints", redundant}};
   nlohmann::ordered_json loops = nlohmann::json::array();
   const std::vector<TransmissionExtremes> mu = transmission_extremes(analysis);

@@ -1,4 +1,4 @@
-#include "nbar/kinematics/constraints.hpp"
+#include "constraints.hpp"
 
 #include "nbar/kinematics/mechanism.hpp"
 
@@ -244,14 +244,14 @@ double remainder(const CompiledRow& c, const Coefficients& q, int k, const std::
 
 }  // namespace
 
-// The rows of one type run together (Mechanism::compiled_rows() is grouped so): the two commonest,
+// The rows of one type run together (Mechanism::Equations::compiled is grouped so): the two commonest,
 // a body's length and a crank's angle, in loops of their own with nothing to dispatch, compiled
 // for which of their points are fixed (RowGroup::fixed); the others through the general functions
 // above.
 template <class Group>
 void for_each_group(const Mechanism& mech, Group&& group) {
-  const CompiledRow* rows = mech.compiled_rows().data();
-  for (const RowGroup& g : mech.row_groups()) group(g, rows + g.first, rows + g.last);
+  const CompiledRow* rows = mech.equations().compiled.data();
+  for (const RowGroup& g : mech.equations().groups) group(g, rows + g.first, rows + g.last);
 }
 
 namespace {
@@ -287,7 +287,7 @@ void put_pair(double* out, const CompiledRow& c, Xy g) {
 template <bool WithResiduals, bool WithJacobian>
 double evaluate_rows(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
                      double* residuals, double* jacobian) {
-  const Points r{q.data(), mech.fixed_coordinates().data()};
+  const Points r{q.data(), mech.equations().fixed_coordinates.data()};
   // The largest |row| found on the way (a second pass over the rows cost a tenth of a four-bar
   // step); a NaN anywhere is kept aside and makes it infinite.
   double largest = 0.0;
@@ -337,14 +337,14 @@ double evaluate_rows(const Mechanism& mech, const Eigen::VectorXd& q, const std:
 }
 
 double* sized_residuals(const Mechanism& mech, Eigen::VectorXd& phi) {
-  const auto rows = static_cast<Eigen::Index>(mech.compiled_rows().size());
+  const auto rows = static_cast<Eigen::Index>(mech.equations().compiled.size());
   if (phi.size() != rows) phi.resize(rows);
   return phi.data();
 }
 
 // Every pattern entry belongs to one (row, point) slot, so each is written once.
 double* sized_jacobian(const Mechanism& mech, std::vector<double>& values) {
-  values.resize(mech.jacobian_pattern().size());
+  values.resize(mech.equations().pattern.size());
   return values.data();
 }
 
@@ -375,10 +375,10 @@ template <int K>
 [[gnu::noinline]] void remainder_of_order(const Mechanism& mech, const Eigen::MatrixXd& coefficients, int runtime_k,
                                           const std::vector<DriverState>& drivers, Eigen::VectorXd& rhs) {
   const int k = K > 0 ? K : runtime_k;
-  const auto& rows = mech.compiled_rows();
+  const auto& rows = mech.equations().compiled;
   if (rhs.size() != static_cast<Eigen::Index>(rows.size())) rhs.resize(static_cast<Eigen::Index>(rows.size()));
   double* out = rhs.data();
-  const Coefficients q{coefficients.data(), coefficients.rows(), mech.fixed_coordinates().data(), k};
+  const Coefficients q{coefficients.data(), coefficients.rows(), mech.equations().fixed_coordinates.data(), k};
   for_each_group(mech, [&](const RowGroup& group, const CompiledRow* first, const CompiledRow* last) {
     switch (group.type) {
       case ConstraintType::Distance:

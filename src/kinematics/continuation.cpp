@@ -4,8 +4,10 @@
 #include <numbers>
 #include <sstream>
 
+#include "constraints.hpp"
 #include "nbar/kinematics/loop_closure.hpp"
-#include "nbar/kinematics/sized.hpp"
+#include "sized.hpp"
+#include "workspace.hpp"
 
 namespace nbar {
 
@@ -64,7 +66,7 @@ void grow(double& largest, double x) {
   if (!(size <= largest) && !std::isnan(largest)) largest = size;
 }
 
-// A step's work on the coordinates, for N of them known when compiled (nbar/kinematics/sized.hpp:
+// A step's work on the coordinates, for N of them known when compiled (sized.hpp:
 // the loops unroll, which is most of a small mechanism's step) or, with N = 0, as many as the
 // vectors hold.
 template <int N>
@@ -114,16 +116,17 @@ double residual_target(double tol, double rcond) {
 
 // Simplified Newton with the factorisation of the last accepted point; it never destroys
 // that factorisation, so a failed step can be retried shorter. On success `residual` is the
-// largest |Phi| at the point found (state.phi holds its rows). The predicted point is corrected at
-// least once even when it already meets the tolerance, and on to a residual below it
+// largest |Phi| at the point found (the workspace's phi holds its rows). The predicted point is
+// corrected at least once even when it already meets the tolerance, and on to a residual below it
 // (residual_target); a correction that no longer contracts ends it there if the tolerance is met,
 // with `short_of_target` set: the caller finishes with the point's own Jacobian (polish). On
-// success state.jacobian holds the Jacobian's values at the point found.
+// success the workspace's jacobian holds the Jacobian's values at the point found.
 template <int N>
 bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, const Eigen::VectorXd& q_pred,
              double& residual, bool& short_of_target) {
+  State::Workspace& work = state.workspace();
   const double tol = mech.tolerance();
-  const double target = residual_target(tol, state.solver().reciprocal_condition());
+  const double target = residual_target(tol, work.solver().reciprocal_condition());
   const double motion = largest_difference<N>(q_pred, q_old);
   const double allowed = std::max(kMaxCorrectionRatio * motion, 100.0 * tol);
   double previous = std::numeric_limits<double>::infinity();
@@ -135,21 +138,21 @@ bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, 
   };
   for (int it = 0; it <= kMaxCorrections; ++it) {
     // After a correction the point may be the last: its Jacobian comes with the residuals (the rows
-    // read once for both), and the caller factorises it from state.jacobian.
-    residual = it > 0 ? evaluate_residuals_and_jacobian(mech, state.q, state.drivers, state.phi, state.jacobian)
-                      : evaluate_residuals(mech, state.q, state.drivers, state.phi);
+    // read once for both), and the caller factorises it from work.jacobian.
+    residual = it > 0 ? evaluate_residuals_and_jacobian(mech, state.q, state.drivers, work.phi, work.jacobian)
+                      : evaluate_residuals(mech, state.q, state.drivers, work.phi);
     if (it > 0 && residual <= target) return true;
     if (it == kMaxCorrections) return stop_within_tolerance(it);
     // Phi_q dq = -Phi: solved for -dq, which is subtracted.
-    if (state.dq.size() != n) state.dq.resize(n);
-    solve_with<N>(state.solver(), state.phi.data(), state.dq.data());
+    if (work.dq.size() != n) work.dq.resize(n);
+    solve_with<N>(work.solver(), work.phi.data(), work.dq.data());
     double size = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i) grow(size, state.dq[i]);
+    for (Eigen::Index i = 0; i < n; ++i) grow(size, work.dq[i]);
     if (!std::isfinite(size) || size > 0.5 * previous) return stop_within_tolerance(it);
     previous = size;
     double moved = 0.0;
     for (Eigen::Index i = 0; i < n; ++i) {
-      state.q[i] -= state.dq[i];
+      state.q[i] -= work.dq[i];
       grow(moved, state.q[i] - q_pred[i]);
     }
     // Written so that a NaN fails it.
@@ -159,14 +162,16 @@ bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, 
 }
 
 // A point the simplified Newton left short of its residual target, with `solver` factorised at it
-// and state.phi its residuals: one Newton correction with that Jacobian, then the Jacobian
-// factorised again at the corrected point, so that the series come from the point they are for.
+// and the workspace's phi its residuals: one Newton correction with that Jacobian, then the
+// Jacobian factorised again at the corrected point, so that the series come from the point they
+// are for.
 // Returns false when that Jacobian is singular.
 bool polish(const Mechanism& mech, State& state, LinearSolver& solver, double& residual) {
+  State::Workspace& work = state.workspace();
   const Eigen::Index n = state.q.size();
-  state.dq.resize(n);
-  solver.solve(state.phi.data(), state.dq.data());
-  for (Eigen::Index i = 0; i < n; ++i) state.q[i] -= state.dq[i];
+  work.dq.resize(n);
+  solver.solve(work.phi.data(), work.dq.data());
+  for (Eigen::Index i = 0; i < n; ++i) state.q[i] -= work.dq[i];
   residual = max_residual(mech, state);
   return factorize_jacobian(mech, state, solver);
 }
@@ -202,14 +207,15 @@ double shift_error(const Eigen::MatrixXd& series, const Eigen::MatrixXd& shifted
 
 // Back at the start of the track: q_track_start at p_start, factorised, its series computed.
 bool restart(const Mechanism& mech, State& state, const DriverPath& path, double p_start, int terms) {
-  state.q = state.q_track_start;
+  State::Workspace& work = state.workspace();
+  state.q = work.q_track_start;
   state.parameter = p_start;
-  path(p_start, terms, state.driver_values);
-  set_drivers(mech, state, state.driver_values);
+  path(p_start, terms, work.driver_values);
+  set_drivers(mech, state, work.driver_values);
   if (!factorize_jacobian(mech, state)) return false;
   // The series whatever the condition, so that a failed restart still leaves the start's own.
   compute_series(mech, state, terms);
-  return state.solver().reciprocal_condition() >= kCoastRcond;
+  return work.solver().reciprocal_condition() >= kCoastRcond;
 }
 
 // The series at p_end from those at a regular point p_end - distance (before it, or beyond it
@@ -218,6 +224,7 @@ bool restart(const Mechanism& mech, State& state, const DriverPath& path, double
 // cannot be reached or p_end turns out to be regular after all.
 double series_from(const Mechanism& mech, State& state, const DriverPath& path, double p_start, double p_end,
                    double distance, const TrackOptions& options) {
+  State::Workspace& work = state.workspace();
   TrackOptions plain = options;
   plain.coast_terms = 0;
   const double p_b = p_end - distance;
@@ -226,26 +233,26 @@ double series_from(const Mechanism& mech, State& state, const DriverPath& path, 
     const TrackReport reach = track(mech, state, path, p_b, plain);
     // Before p_end the way there must stay on one side of the singular position.
     if (!reach.reached || (distance > 0.0 && reach.passed_singularity)) return HUGE_VAL;
-    if (state.solver().reciprocal_condition() < kCoastRcond) return HUGE_VAL;
-    path(p_b, kCoastSeriesTerms, state.driver_values);
+    if (work.solver().reciprocal_condition() < kCoastRcond) return HUGE_VAL;
+    path(p_b, kCoastSeriesTerms, work.driver_values);
   } catch (const Error&) {  // beyond the end of the sweep a law may be undefined
     return HUGE_VAL;
   }
-  set_drivers(mech, state, state.driver_values);
+  set_drivers(mech, state, work.driver_values);
   compute_series(mech, state, kCoastSeriesTerms);
   Eigen::MatrixXd shifted = state.series;
   shift_series(shifted, distance);
   const double error = shift_error(state.series, shifted, distance, std::min(options.coast_terms, kCoastCheckedTerms));
   if (!(error <= kCoastMaxError)) return HUGE_VAL;
   const Eigen::VectorXd q_b = state.q;
-  path(p_end, kCoastSeriesTerms, state.driver_values);
-  set_drivers(mech, state, state.driver_values);
+  path(p_end, kCoastSeriesTerms, work.driver_values);
+  set_drivers(mech, state, work.driver_values);
   state.q = shifted.col(0);
   double residual = 0.0;
   bool short_of_target = false;
   if (!correct<0>(mech, state, q_b, shifted.col(0), residual, short_of_target)) return HUGE_VAL;
-  const bool singular = !factorize_jacobian(mech, state, state.spare_solver()) ||
-                        state.spare_solver().reciprocal_condition() < kSingularEndRcond;
+  const bool singular = !factorize_jacobian(mech, state, work.spare_solver()) ||
+                        work.spare_solver().reciprocal_condition() < kSingularEndRcond;
   if (!singular) return HUGE_VAL;
   state.series = std::move(shifted);
   state.series.col(0) = state.q;
@@ -259,8 +266,8 @@ double series_from(const Mechanism& mech, State& state, const DriverPath& path, 
 // p_end, and the solver keeps that point's factorisation. Near the singular position rounding
 // spoils the series, far from it truncation does: the point is tried half a step before p_end,
 // then alternately further beyond it (fine sweeps) and nearer before it (coarse ones). On entry
-// state.q_track_start solved the constraints at p_start. False, with state back at the start,
-// when p_end is not singular or no point gives its series.
+// the workspace's q_track_start solved the constraints at p_start. False, with state back at the
+// start, when p_end is not singular or no point gives its series.
 bool coast_to_singular_end(const Mechanism& mech, State& state, const DriverPath& path, double p_start, double p_end,
                            const TrackOptions& options, double* accuracy) {
   const double half_step = 0.5 * (p_end - p_start);
@@ -291,17 +298,18 @@ namespace {
 template <int N>
 TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& path, double p_end,
                         const TrackOptions& options) {
+  State::Workspace& work = state.workspace();
   TrackReport report;
   const double span = p_end - state.parameter;
   const double h_min = std::abs(span) * options.min_step;
   double h = span;
-  std::vector<Series>& values = state.driver_values;
-  Eigen::VectorXd& q_old = state.q_accepted;
-  Eigen::VectorXd& q_pred = state.q_predicted;
+  std::vector<Series>& values = work.driver_values;
+  Eigen::VectorXd& q_old = work.q_accepted;
+  Eigen::VectorXd& q_pred = work.q_predicted;
   copy_coordinates<N>(state.q, q_old);
   const double p_start = state.parameter;
-  if (options.coast_terms > 0) copy_coordinates<N>(state.q, state.q_track_start);
-  int sign_old = state.solver().determinant_sign();
+  if (options.coast_terms > 0) copy_coordinates<N>(state.q, work.q_track_start);
+  int sign_old = work.solver().determinant_sign();
   // The residual at the last accepted point, as correct() found it there (with the drivers
   // where they are now): computing it again at the end would give the same number.
   double residual = 0.0;
@@ -318,7 +326,7 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
       return true;
     }
     q_old = state.q;
-    sign_old = state.solver().determinant_sign();
+    sign_old = work.solver().determinant_sign();
     h = p_end - state.parameter;
     return false;
   };
@@ -332,8 +340,8 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
     // Near a singular position the series carry about 1/rcond times the rounding error, which
     // an extrapolation through the past point would multiply further: there, and where there is
     // no past point, the current point's series alone predict, with at least four terms.
-    const bool regular = state.solver().reciprocal_condition() >= kHistoryRcond;
-    if (!regular || !state.history.predict<N>(state.parameter, state.series, h, q_pred)) {
+    const bool regular = work.solver().reciprocal_condition() >= kHistoryRcond;
+    if (!regular || !work.history.predict<N>(state.parameter, state.series, h, q_pred)) {
       if (state.series.cols() < kTaylorPredictorTerms) {
         path(state.parameter, kTaylorPredictorTerms, values);
         set_drivers(mech, state, values);
@@ -347,19 +355,19 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
     double trial_residual = 0.0;
     bool short_of_target = false;
     const bool converged = correct<N>(mech, state, q_old, q_pred, trial_residual, short_of_target);
-    bool ok = converged && state.spare_solver().factorize(state.jacobian);
+    bool ok = converged && work.spare_solver().factorize(work.jacobian);
     // On a singular position the point's own Jacobian would amplify the correction instead: the
     // point stays as the tolerance left it (a sample there takes its series from beside it).
-    if (ok && short_of_target && state.spare_solver().reciprocal_condition() >= kHistoryRcond)
-      ok = polish(mech, state, state.spare_solver(), trial_residual) && trial_residual <= mech.tolerance();
+    if (ok && short_of_target && work.spare_solver().reciprocal_condition() >= kHistoryRcond)
+      ok = polish(mech, state, work.spare_solver(), trial_residual) && trial_residual <= mech.tolerance();
     if (converged && final_step && options.coast_terms > 0 && !coast_tried &&
-        (!ok || state.spare_solver().reciprocal_condition() < kSingularEndRcond)) {
+        (!ok || work.spare_solver().reciprocal_condition() < kSingularEndRcond)) {
       if (coast()) break;
       continue;
     }
     bool crossing = false;
     if (ok) {
-      const int sign_new = state.spare_solver().determinant_sign();
+      const int sign_new = work.spare_solver().determinant_sign();
       if (sign_old != 0 && sign_new != 0 && sign_new != sign_old) {
         crossing = true;
         // A step that Newton hardly had to correct stayed on the branch the series continue,
@@ -374,19 +382,19 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
     // place to stop between samples: the series there would carry 1/rcond times the rounding
     // error into the next prediction. It is retried shorter, by a factor that does not land on
     // the same place again (halving can: a quarter step of a sweep may be a change point).
-    const double rcond_new = ok ? state.spare_solver().reciprocal_condition() : 1.0;
+    const double rcond_new = ok ? work.spare_solver().reciprocal_condition() : 1.0;
     const bool onto_singular = ok && !final_step && rcond_new < kSingularEndRcond &&
-                               rcond_new < kSuddenRcondDrop * state.solver().reciprocal_condition();
+                               rcond_new < kSuddenRcondDrop * work.solver().reciprocal_condition();
     if (onto_singular) ok = false;
     if (ok) {
       // The history takes the accepted point's series; the new point's are written over what it
       // gives back.
-      state.history.take(state.parameter, state.series);
+      work.history.take(state.parameter, state.series);
       state.parameter += h;
-      state.swap_solvers();
+      work.swap_solvers();
       compute_series(mech, state, options.terms);
-      state.history.mark_current<N>(state.parameter, state.series);
-      sign_old = state.solver().determinant_sign();
+      work.history.mark_current<N>(state.parameter, state.series);
+      sign_old = work.solver().determinant_sign();
       copy_coordinates<N>(state.q, q_old);
       residual = trial_residual;
       residual_known = true;
@@ -411,7 +419,7 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
     }
     if (std::abs(h) < h_min) {
       report.limit_parameter = state.parameter;
-      report.reciprocal_condition = state.solver().reciprocal_condition();
+      report.reciprocal_condition = work.solver().reciprocal_condition();
       std::ostringstream why;
       why << "the constraints cannot be followed past this point: a singular position, either a limit (toggle) "
              "that the input cannot pass or a change point where two branches cross (reciprocal condition of the "
@@ -432,7 +440,7 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
 TrackReport track(const Mechanism& mech, State& state, const DriverPath& path, double p_end,
                   const TrackOptions& options) {
   // Sized only for the dense LU's solves (least squares reads its size at run time).
-  const bool lu = state.solver().method() == LinearSolver::Method::LU;
+  const bool lu = state.workspace().solver().method() == LinearSolver::Method::LU;
   return with_coordinate_count(lu ? mech.coordinate_count() : 0, [&](auto n) {
     return track_sized<decltype(n)::value>(mech, state, path, p_end, options);
   });
@@ -448,8 +456,8 @@ std::string worst_constraint_message(const Mechanism& mech, State& state) {
   if (worst < 0) return "";
   const Model& m = mech.model();
   std::ostringstream s;
-  s << "constraint '" << mech.rows()[worst].label << "' cannot be met (off by " << r / m.units.length_scale << " "
-    << m.units.length << ")";
+  s << "constraint '" << mech.equations().rows[worst].label << "' cannot be met (off by " << r / m.units.length_scale
+    << " " << m.units.length << ")";
   return s.str();
 }
 
@@ -510,11 +518,11 @@ bool offsets_to_start(const Model& m, const std::vector<double>& start, const st
     s << "; the wanted values can only be assembled on another branch: draw the mechanism on that branch";
   } else {
     const double r = max_residual(mech, state, &worst);
-    s << "; at the wanted values constraint '" << mech.rows()[worst].label
+    s << "; at the wanted values constraint '" << mech.equations().rows[worst].label
       << "' cannot be met (the closest pose found leaves it off by " << r / m.units.length_scale << " "
       << m.units.length << ")";
   }
-  throw AssemblyError(s.str(), worst, worst >= 0 ? mech.rows()[worst].source : EntityRef{});
+  throw AssemblyError(s.str(), worst, worst >= 0 ? mech.equations().rows[worst].source : EntityRef{});
 }
 
 }  // namespace
@@ -552,7 +560,7 @@ AssemblyReport assemble(const Mechanism& mech, State& state, const std::vector<d
       const std::string open_loop = loop_closure_failure(mech.model(), mech.four_bar_loops());
       throw AssemblyError("cannot assemble the drawn pose with the given lengths: " +
                               (open_loop.empty() ? worst_constraint_message(mech, state) : open_loop),
-                          worst, worst >= 0 ? mech.rows()[worst].source : EntityRef{});
+                          worst, worst >= 0 ? mech.equations().rows[worst].source : EntityRef{});
     }
     compute_series(mech, state, options.terms);
   };

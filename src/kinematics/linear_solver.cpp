@@ -1,4 +1,4 @@
-#include "nbar/kinematics/linear_solver.hpp"
+#include "linear_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +22,7 @@ LinearSolver::LinearSolver(const Mechanism& mech)
     : method_(mech.overdetermined() ? Method::LeastSquares : Method::LU),
       rows_(mech.row_count()),
       cols_(mech.coordinate_count()),
-      pattern_(mech.jacobian_pattern()) {
+      pattern_(mech.equations().pattern) {
   if (method_ == Method::LU) {
     std::vector<SparseLU::Entry> entries;
     entries.reserve(pattern_.size());

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 
+#include "constraints.hpp"
 #include "model/linear_algebra.hpp"
 
 namespace nbar {
@@ -217,8 +218,10 @@ Mechanism::Mechanism(Model model) : model_(std::move(model)) {
   if (!(length_scale_ > 0.0))
     throw ModelError({EntityRef::Kind::Model, -1}, "all points coincide: the model has no size");
 
-  build_rows();
-  build_pattern();
+  auto equations = std::make_shared<Equations>();
+  build_rows(*equations);
+  build_pattern(*equations);
+  equations_ = std::move(equations);
   // The mobility first: a model with the wrong number of drivers is rejected before the loop
   // search, whose cost grows with the number of bodies joined at one point.
   analyse_mobility();
@@ -231,29 +234,37 @@ Eigen::Vector2d Mechanism::point_position(int point, const Eigen::VectorXd& q) c
   return q.segment<2>(col);
 }
 
-void Mechanism::build_rows() {
-  add_body_rows(model_, column_, rows_);
-  add_slider_rows(model_, column_, rows_);
-  add_slot_rows(model_, column_, rows_);
-  constraint_rows_ = static_cast<int>(rows_.size());
+const std::string& Mechanism::row_label(int row) const { return equations_->rows[row].label; }
+
+void Mechanism::build_rows(Equations& equations) {
+  std::vector<Constraint>& rows = equations.rows;
+  add_body_rows(model_, column_, rows);
+  add_slider_rows(model_, column_, rows);
+  add_slot_rows(model_, column_, rows);
+  constraint_rows_ = static_cast<int>(rows.size());
   for (std::size_t di = 0; di < model_.drivers.size(); ++di) {
     double drawn = 0.0;
-    rows_.push_back(driver_row(model_, static_cast<int>(di), length_scale_, drawn));
+    rows.push_back(driver_row(model_, static_cast<int>(di), length_scale_, drawn));
     driver_drawn_.push_back(drawn);
   }
+  row_count_ = static_cast<int>(rows.size());
 }
 
-void Mechanism::build_pattern() {
-  fixed_xy_.assign(2 * model_.points.size(), 0.0);
+void Mechanism::build_pattern(Equations& equations) const {
+  const std::vector<Constraint>& rows = equations.rows;
+  std::vector<double>& fixed_xy = equations.fixed_coordinates;
+  std::vector<CompiledRow>& compiled = equations.compiled;
+  std::vector<JacobianEntry>& pattern = equations.pattern;
+  fixed_xy.assign(2 * model_.points.size(), 0.0);
   for (std::size_t i = 0; i < model_.points.size(); ++i) {
-    fixed_xy_[2 * i] = model_.points[i].position.x();
-    fixed_xy_[2 * i + 1] = model_.points[i].position.y();
+    fixed_xy[2 * i] = model_.points[i].position.x();
+    fixed_xy[2 * i + 1] = model_.points[i].position.y();
   }
-  entry_.assign(rows_.size(), {-1, -1, -1, -1});
-  compiled_.assign(rows_.size(), CompiledRow{});
-  for (std::size_t r = 0; r < rows_.size(); ++r) {
-    const Constraint& c = rows_[r];
-    CompiledRow& k = compiled_[r];
+  equations.entry.assign(rows.size(), {-1, -1, -1, -1});
+  compiled.assign(rows.size(), CompiledRow{});
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const Constraint& c = rows[r];
+    CompiledRow& k = compiled[r];
     k.type = c.type;
     k.row = static_cast<int>(r);
     k.driver = c.driver;
@@ -265,24 +276,25 @@ void Mechanism::build_pattern() {
       if (p < 0) continue;
       k.at[slot] = column_[p] >= 0 ? column_[p] : ~(2 * p);
       if (column_[p] < 0) continue;
-      entry_[r][slot] = k.entry[slot] = static_cast<int>(pattern_.size());
-      pattern_.push_back({static_cast<int>(r), column_[p]});
-      pattern_.push_back({static_cast<int>(r), column_[p] + 1});
+      equations.entry[r][slot] = k.entry[slot] = static_cast<int>(pattern.size());
+      pattern.push_back({static_cast<int>(r), column_[p]});
+      pattern.push_back({static_cast<int>(r), column_[p] + 1});
     }
   }
   const auto fixed_points = [](const CompiledRow& c) {
     if (c.type != ConstraintType::Distance && c.type != ConstraintType::DriveAngle) return 0;
     return (c.at[0] < 0 ? 1 : 0) | (c.at[1] < 0 ? 2 : 0);
   };
-  std::stable_sort(compiled_.begin(), compiled_.end(), [&](const CompiledRow& a, const CompiledRow& b) {
+  std::stable_sort(compiled.begin(), compiled.end(), [&](const CompiledRow& a, const CompiledRow& b) {
     return a.type != b.type ? a.type < b.type : fixed_points(a) < fixed_points(b);
   });
-  groups_.clear();
-  for (std::size_t r = 0; r < compiled_.size(); ++r) {
-    const int fixed = fixed_points(compiled_[r]);
-    if (groups_.empty() || groups_.back().type != compiled_[r].type || groups_.back().fixed != fixed)
-      groups_.push_back({compiled_[r].type, fixed, static_cast<int>(r), static_cast<int>(r)});
-    groups_.back().last = static_cast<int>(r) + 1;
+  std::vector<RowGroup>& groups = equations.groups;
+  groups.clear();
+  for (std::size_t r = 0; r < compiled.size(); ++r) {
+    const int fixed = fixed_points(compiled[r]);
+    if (groups.empty() || groups.back().type != compiled[r].type || groups.back().fixed != fixed)
+      groups.push_back({compiled[r].type, fixed, static_cast<int>(r), static_cast<int>(r)});
+    groups.back().last = static_cast<int>(r) + 1;
   }
 }
 
@@ -418,7 +430,7 @@ bool sparse_lu_regular(const std::vector<JacobianEntry>& pattern, const std::vec
   // Joints that lock the mechanism by themselves: a constraint is at fault; otherwise a driver.
   const int row = first_dependent_row(J, r.constraint_rows, r.dof == 0);
   if (row >= 0) {
-    const Constraint& c = mech.rows()[row];
+    const Constraint& c = mech.equations().rows[row];
     std::string why;
     if (c.is_driver())
       why = "driver '" + model.drivers[c.driver].name +
@@ -492,8 +504,9 @@ void Mechanism::analyse_mobility_sparse(const std::vector<double>& values) {
     // Phi_q^T: columns are rows of Phi_q, so that the pivoting picks independent rows.
     Sparse jt(n_, rows);
     std::vector<Eigen::Triplet<double>> t;
-    for (std::size_t e = 0; e < pattern_.size(); ++e)
-      if (pattern_[e].row < rows) t.emplace_back(pattern_[e].col, pattern_[e].row, values[e]);
+    const std::vector<JacobianEntry>& pattern = equations_->pattern;
+    for (std::size_t e = 0; e < pattern.size(); ++e)
+      if (pattern[e].row < rows) t.emplace_back(pattern[e].col, pattern[e].row, values[e]);
     jt.setFromTriplets(t.begin(), t.end());
     jt.makeCompressed();
     return jt;
@@ -536,7 +549,7 @@ void Mechanism::analyse_mobility() {
   const int drivers_count = static_cast<int>(model_.drivers.size());
 
   // Large square systems: a regular sparse LU proves full rank, hence no redundancy.
-  if (n_ > kDenseAnalysisLimit && m == n_ && sparse_lu_regular(pattern_, values, m, n_)) {
+  if (n_ > kDenseAnalysisLimit && m == n_ && sparse_lu_regular(equations_->pattern, values, m, n_)) {
     r.rank = constraint_rows_;
     r.dof = n_ - constraint_rows_;
     r.reciprocal_condition = 1.0;  // not estimated for sparse systems
@@ -549,7 +562,8 @@ void Mechanism::analyse_mobility() {
   }
 
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, n_);
-  for (std::size_t e = 0; e < pattern_.size(); ++e) J(pattern_[e].row, pattern_[e].col) += values[e];
+  const std::vector<JacobianEntry>& pattern = equations_->pattern;
+  for (std::size_t e = 0; e < pattern.size(); ++e) J(pattern[e].row, pattern[e].col) += values[e];
 
   // Columns of Phi_q^T are rows of Phi_q: the pivoting picks an independent set of constraints.
   Eigen::MatrixXd Jc = J.topRows(constraint_rows_);

@@ -1,4 +1,4 @@
-#include "nbar/kinematics/path_history.hpp"
+#include "path_history.hpp"
 
 #include <Eigen/LU>
 
@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <cstring>
 
-#include "nbar/kinematics/sized.hpp"
 #include "nbar/model/series.hpp"
+#include "sized.hpp"
 
 namespace nbar {
 
@@ -48,7 +48,7 @@ void weigh(const double* now, const double* before, const Eigen::MatrixXd& a, co
 }
 
 // The common sizes unrolled: a sweep of order 2 or 3, the coordinates a step is compiled for
-// (N > 0, or with N = 0 the sizes of nbar/kinematics/sized.hpp found at run time).
+// (N > 0, or with N = 0 the sizes of kinematics/sized.hpp found at run time).
 template <int Terms, int N>
 void weigh_sized(const double* now, const double* before, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
                  Eigen::VectorXd& q) {
@@ -181,7 +181,7 @@ bool PathHistory::predict(double parameter, const Eigen::MatrixXd& series, doubl
   return true;
 }
 
-// The sizes of nbar/kinematics/sized.hpp, and any (N = 0).
+// The sizes of kinematics/sized.hpp, and any (N = 0).
 #define NBAR_PATH_HISTORY_SIZED(N)                                                             \
   template void PathHistory::mark_current<N>(double parameter, const Eigen::MatrixXd& series); \
   template bool PathHistory::predict<N>(double parameter, const Eigen::MatrixXd& series, double h, Eigen::VectorXd& q);

@@ -1,6 +1,6 @@
-#include "nbar/kinematics/sparse_lu.hpp"
+#include "sparse_lu.hpp"
 
-#include "nbar/kinematics/sized.hpp"
+#include "sized.hpp"
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>

@@ -1,5 +1,7 @@
 #include "nbar/kinematics/sweep.hpp"
 
+#include "constraints.hpp"
+
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -503,10 +505,10 @@ void converge(const Mechanism& mech, State& state, const std::string& what) {
   if (newton.converged) return;
   const Model& m = mech.model();
   std::ostringstream s;
-  s << what << ": " << mech.rows()[std::max(newton.worst_row, 0)].label << " is off by "
+  s << what << ": " << mech.equations().rows[std::max(newton.worst_row, 0)].label << " is off by "
     << newton.residual / m.units.length_scale << " " << m.units.length;
   throw AssemblyError(s.str(), newton.worst_row,
-                      newton.worst_row >= 0 ? mech.rows()[newton.worst_row].source : EntityRef{});
+                      newton.worst_row >= 0 ? mech.equations().rows[newton.worst_row].source : EntityRef{});
 }
 
 }  // namespace

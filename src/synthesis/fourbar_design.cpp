@@ -16,6 +16,7 @@
 #include <tuple>
 #include <utility>
 
+#include "kinematics/workspace.hpp"
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/sweep.hpp"
@@ -434,11 +435,12 @@ class Checker {
     constexpr int kTerms = 4;
     // The tracker stops at its tolerance (1e-12 of the size); two more Newton steps give the
     // pose to rounding, so that the misses measure the design, not the tracker.
+    State::Workspace& work = state.workspace();
     for (int k = 0; k < 2 && factorize_jacobian(mech, state); ++k) {
       max_residual(mech, state);
-      state.rhs = -state.phi;
-      state.solver().solve(state.rhs, state.dq);
-      state.q += state.dq;
+      work.rhs = -work.phi;
+      work.solver().solve(work.rhs, work.dq);
+      state.q += work.dq;
     }
     if (!factorize_jacobian(mech, state)) return false;
     compute_series(mech, state, kTerms);

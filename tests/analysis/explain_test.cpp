@@ -4,6 +4,8 @@
 // sweep's; its instant centres match the four-bar's closed form and Kennedy's theorem.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -17,6 +19,7 @@
 #include <string>
 
 #include "io/explain_writer.hpp"
+#include "kinematics/constraints.hpp"
 #include "nbar/analysis/explain.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/kinematics/position.hpp"
@@ -162,7 +165,7 @@ Eigen::MatrixXd dense_jacobian(const Mechanism& mech, const Eigen::VectorXd& q_s
   std::vector<double> values;
   evaluate_jacobian(mech, q_si, d, values);
   Eigen::MatrixXd j = Eigen::MatrixXd::Zero(mech.row_count(), mech.coordinate_count());
-  const auto& pattern = mech.jacobian_pattern();
+  const auto& pattern = mech.equations().pattern;
   for (std::size_t e = 0; e < pattern.size(); ++e) j(pattern[e].row, pattern[e].col) += values[e];
   return j;
 }
@@ -245,7 +248,7 @@ TEST(Explain, DriverRowsOfEveryKindAreWritten) {
   std::map<ConstraintType, int> seen;
   for (const std::string& name : all_examples()) {
     const auto mech = example(name);
-    for (const Constraint& c : mech->rows())
+    for (const Constraint& c : mech->equations().rows)
       if (c.is_driver()) ++seen[c.type];
   }
   EXPECT_GT(seen[ConstraintType::DriveAngle], 0);

@@ -188,7 +188,7 @@ TEST(BadInput, BarsTooShortToCloseNameAConstraint) {
   } catch (const AssemblyError& e) {
     ASSERT_GE(e.row(), 0) << e.what();
     ASSERT_LT(e.row(), mech.row_count());
-    const std::string label = mech.rows()[e.row()].label;
+    const std::string label = mech.row_label(e.row());
     EXPECT_THAT(e.what(), AllOf(HasSubstr("constraint '" + label + "'"), HasSubstr("cannot be met")));
     EXPECT_THAT(label, HasSubstr("length of"));
   }
@@ -218,7 +218,7 @@ TEST(BadInput, RockerAskedForAnUnreachableAngle) {
     EXPECT_THAT(what, AllOf(HasSubstr("driver 'rocker' stops at"), HasSubstr("wanted 100 deg")));
     // No pose exists at 100 deg, so the error names the constraint that the closest one misses.
     ASSERT_GE(e.row(), 0) << what;
-    EXPECT_THAT(what, HasSubstr("'" + mech.rows()[e.row()].label + "'"));
+    EXPECT_THAT(what, HasSubstr("'" + mech.row_label(e.row()) + "'"));
     const double stopped = number_after(what, "stops at ") * kDeg;
     EXPECT_NEAR(stopped, limit, 0.05 * kDeg) << what;
     std::printf("[ accuracy ] rocker limit: reported %.6f deg, closed form %.6f deg\n", stopped / kDeg, limit / kDeg);

@@ -3,6 +3,7 @@
 // mechanisms covering every joint and driver kind. The differences use only position solutions, so they check the
 // Taylor-series machinery (and the driver's speed/accel semantics) from the outside.
 #include "helpers/kinematics_support.hpp"
+#include "kinematics/constraints.hpp"
 
 #include <gtest/gtest.h>
 
@@ -464,7 +465,7 @@ TEST(ResidualsAndJacobian, RowsWithTheFixedPointFirstOrSecond) {
     const DriverState& d = state.drivers[0];
     int rows_checked = 0;
     for (int r = 0; r < mech.row_count(); ++r) {
-      const Constraint& c = mech.rows()[static_cast<std::size_t>(r)];
+      const Constraint& c = mech.equations().rows[static_cast<std::size_t>(r)];
       SCOPED_TRACE(c.label);
       const Eigen::Vector2d u = mech.point_position(c.p[1], state.q) - mech.point_position(c.p[0], state.q);
       const auto rate = [&](int point) {
@@ -487,7 +488,7 @@ TEST(ResidualsAndJacobian, RowsWithTheFixedPointFirstOrSecond) {
         continue;
       }
       for (int slot = 0; slot < 2; ++slot) {
-        const int e = mech.entry_index(r, slot);
+        const int e = mech.equations().entry_index(r, slot);
         const bool fixed = mech.model().points[static_cast<std::size_t>(c.p[slot])].ground;
         ASSERT_EQ(e < 0, fixed) << "slot " << slot;
         if (fixed) continue;
@@ -500,7 +501,7 @@ TEST(ResidualsAndJacobian, RowsWithTheFixedPointFirstOrSecond) {
     EXPECT_EQ(rows_checked, 4);
     // The loops ran for both orders: the groups know the fixed points where they are.
     bool first_fixed = false, second_fixed = false;
-    for (const RowGroup& g : mech.row_groups()) {
+    for (const RowGroup& g : mech.equations().groups) {
       first_fixed |= g.fixed == 1;
       second_fixed |= g.fixed == 2;
     }

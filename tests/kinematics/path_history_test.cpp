@@ -1,7 +1,7 @@
 // The predictor from two points' series: exact on polynomials of degree 5 (the Hermite
 // interpolant's), of error h^6 on others, and used only while the state is the point the last
 // step reached.
-#include "nbar/kinematics/path_history.hpp"
+#include "kinematics/path_history.hpp"
 
 #include <gtest/gtest.h>
 

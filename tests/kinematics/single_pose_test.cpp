@@ -7,8 +7,8 @@
 
 #include "bench_models.hpp"
 #include "helpers/kinematics_support.hpp"
+#include "kinematics/workspace.hpp"
 #include "nbar/analysis/pose.hpp"
-#include "nbar/kinematics/linear_solver.hpp"
 
 namespace nbar::ktest {
 namespace {
@@ -65,7 +65,7 @@ void expect_copy_is_a_snapshot(const Mechanism& mech, LinearSolver::Method metho
   State state(mech);
   const std::vector<double> start = sweep_start_values(mech);
   const Sample before = solve_at(mech, state, start, 2);
-  ASSERT_EQ(state.solver().method(), method);
+  ASSERT_EQ(state.workspace().solver().method(), method);
   const State snapshot = state;  // copy
   std::vector<double> moved = start;
   moved[0] += 0.3;
@@ -83,6 +83,14 @@ void expect_copy_is_a_snapshot(const Mechanism& mech, LinearSolver::Method metho
   State assigned(mech);
   assigned = snapshot;
   compute_series(mech, assigned, drivers, 3, series);
+  EXPECT_LT(largest(series - before.taylor), 1e-13 * largest(before.taylor));
+  // A State moved into another takes its workspace along: the factorisation is still there.
+  State taken = std::move(assigned);
+  compute_series(mech, taken, drivers, 3, series);
+  EXPECT_LT(largest(series - before.taylor), 1e-13 * largest(before.taylor));
+  State reassigned(mech);
+  reassigned = std::move(taken);
+  compute_series(mech, reassigned, drivers, 3, series);
   EXPECT_LT(largest(series - before.taylor), 1e-13 * largest(before.taylor));
 }
 
@@ -142,13 +150,13 @@ TEST(MaxResidual, IsInfiniteWhenAnyRowIsNaN) {
     worst = -1;
     EXPECT_EQ(max_residual(mech, broken, &worst), HUGE_VAL) << "coordinate " << i;
     ASSERT_GE(worst, 0);
-    EXPECT_TRUE(std::isnan(broken.phi[worst])) << "coordinate " << i;
+    EXPECT_TRUE(std::isnan(broken.workspace().phi[worst])) << "coordinate " << i;
   }
   // Without a NaN: the largest |row|, and the first row of that size.
   state.q[0] += 1e-3;
   const double r = max_residual(mech, state, &worst);
-  EXPECT_EQ(r, state.phi.cwiseAbs().maxCoeff());
-  EXPECT_EQ(std::abs(state.phi[worst]), r);
+  EXPECT_EQ(r, state.workspace().phi.cwiseAbs().maxCoeff());
+  EXPECT_EQ(std::abs(state.workspace().phi[worst]), r);
 }
 
 }  // namespace

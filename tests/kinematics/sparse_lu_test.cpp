@@ -2,7 +2,7 @@
 // of the determinant and the condition estimate, on random sparse matrices and on a sequence of
 // slowly turning ones (the way a linkage's Jacobian changes along a sweep), where it must reuse
 // its eliminations and still choose again when a kept pivot becomes small.
-#include "nbar/kinematics/sparse_lu.hpp"
+#include "kinematics/sparse_lu.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck.h>

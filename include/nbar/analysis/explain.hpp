@@ -2,7 +2,7 @@
 // out by hand (Gruebler-Kutzbach count, the vector q of natural coordinates, the constraint
 // equations Phi and their Jacobian Phi_q, the Newton-Raphson iterations, the velocity and
 // acceleration systems, the instant centres). Everything is derived from the constraint rows
-// the solver itself uses (Mechanism::rows()), so what is printed is what is solved. `nbar
+// the solver itself uses, so what is printed is what is solved. `nbar
 // explain`, Python's Model.explain() and the web app's step-by-step panel render it.
 #pragma once
 

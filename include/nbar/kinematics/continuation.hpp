@@ -32,8 +32,8 @@ struct TrackReport {
   bool passed_singularity = false;  // det(Phi_q) changed sign: a change point was crossed
   double singular_parameter = 0.0;
   // p_end lies on a singular position: state.series there were re-centred from a regular point
-  // before it on the branch followed, and state.solver() holds that point's factorisation, so
-  // that the next step continues the same branch through the singular position.
+  // before it on the branch followed, and the state's workspace holds that point's
+  // factorisation, so that the next step continues the same branch through the singular position.
   bool singular_end = false;
   double singular_end_accuracy = 0.0;  // an estimate of their relative error in q, q', q''
   double limit_parameter = 0.0;        // where the path was given up

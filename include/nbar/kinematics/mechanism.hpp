@@ -6,20 +6,15 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "nbar/kinematics/constraints.hpp"
 #include "nbar/kinematics/loops.hpp"
 #include "nbar/model/model.hpp"
 
 namespace nbar {
-
-struct JacobianEntry {
-  int row = 0;
-  int col = 0;
-};
 
 // The terms of the Gruebler-Kutzbach count G = 3 (n - 1) - 2 PI - PII: each point shared by k
 // links (bodies, and the ground when the point is fixed) makes k - 1 revolute pairs, each slider
@@ -54,9 +49,11 @@ class Mechanism {
 
   const Model& model() const { return model_; }
   int coordinate_count() const { return n_; }
-  int row_count() const { return static_cast<int>(rows_.size()); }
+  int row_count() const { return row_count_; }
   int constraint_row_count() const { return constraint_rows_; }  // rows before the drivers
-  const std::vector<Constraint>& rows() const { return rows_; }
+  // What a row of the constraints says, for people ("length of crank (O2-A)"): the rows that
+  // MobilityReport::redundant and AssemblyError::row() name. 0 <= row < row_count().
+  const std::string& row_label(int row) const;
   int column_of(int point) const { return column_[point]; }  // -1 for ground points
   double characteristic_length() const { return length_scale_; }
   double tolerance() const { return 1e-12 * length_scale_; }
@@ -68,23 +65,19 @@ class Mechanism {
   // Position of a point given q.
   Eigen::Vector2d point_position(int point, const Eigen::VectorXd& q) const;
 
-  const std::vector<JacobianEntry>& jacobian_pattern() const { return pattern_; }
-  // The rows as the evaluation loops read them, and the coordinates of the points fixed to the
-  // frame (x, y of every point, in the model's order) that CompiledRow::at points into.
-  const std::vector<CompiledRow>& compiled_rows() const { return compiled_; }
-  const std::vector<RowGroup>& row_groups() const { return groups_; }
-  const std::vector<double>& fixed_coordinates() const { return fixed_xy_; }
-  // Index of the first pattern entry of `row` for its point slot `slot` (x, then y at +1);
-  // -1 when that point is fixed.
-  int entry_index(int row, int slot) const { return entry_[row][slot]; }
+  // The constraint rows themselves, compiled for the solver (each row's equation, the Jacobian's
+  // sparsity pattern, the rows grouped for the evaluation loops): the kinematics engine's own,
+  // defined in src/kinematics/constraints.hpp, which only the library's sources include.
+  struct Equations;
+  const Equations& equations() const { return *equations_; }
 
   const MobilityReport& mobility() const { return mobility_; }
   const std::vector<FourBarLoop>& four_bar_loops() const { return loops_; }
   bool overdetermined() const { return row_count() > n_; }
 
  private:
-  void build_rows();
-  void build_pattern();
+  void build_rows(Equations& equations);
+  void build_pattern(Equations& equations) const;
   void analyse_mobility();
   void analyse_mobility_sparse(const std::vector<double>& jacobian_values);
   // "the mechanism has N degrees of freedom (Gruebler-Kutzbach count: G) but D drivers are given"
@@ -95,12 +88,9 @@ class Mechanism {
   int constraint_rows_ = 0;
   double length_scale_ = 1.0;
   std::vector<int> column_;
-  std::vector<Constraint> rows_;
-  std::vector<JacobianEntry> pattern_;
-  std::vector<std::array<int, 4>> entry_;
-  std::vector<CompiledRow> compiled_;
-  std::vector<RowGroup> groups_;
-  std::vector<double> fixed_xy_;
+  int row_count_ = 0;
+  // Shared by copies: it never changes once built.
+  std::shared_ptr<const Equations> equations_;
   Eigen::VectorXd q_drawn_;
   std::vector<double> driver_drawn_;
   MobilityReport mobility_;

@@ -5,16 +5,20 @@
 
 #include <Eigen/Core>
 
-#include <array>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "nbar/kinematics/linear_solver.hpp"
 #include "nbar/kinematics/mechanism.hpp"
-#include "nbar/kinematics/path_history.hpp"
+#include "nbar/model/series.hpp"
 
 namespace nbar {
+
+// A driver's value along the path as a Taylor series, with its sine and cosine for angles.
+struct DriverState {
+  Series value, cos, sin;
+};
 
 // Copyable: a copy is a snapshot that solves on its own exactly as its source would.
 // Field by field (like MuJoCo's mjData): which call fills it, its units and its shape; n is
@@ -38,31 +42,39 @@ struct State {
   // solve_position(): the Newton iterations of the last solve.
   int iterations = 0;
 
-  // The factorised Jacobian at q. Two slots, so a trial step can be rejected without
-  // losing the factorisation of the last accepted point.
-  LinearSolver& solver() { return solvers_[current_]; }
-  const LinearSolver& solver() const { return solvers_[current_]; }
-  LinearSolver& spare_solver() { return solvers_[1 - current_]; }
-  void swap_solvers() { current_ = 1 - current_; }
-
-  // Scratch space reused across steps: no allocation in the hot loop.
-  Eigen::VectorXd phi, dq, rhs, column, q_accepted, q_predicted, q_track_start;
-  std::vector<double> jacobian;
-  std::vector<Series> driver_values;
-  // The points track() accepted last, for its predictor.
-  PathHistory history;
+  // The solver's own, which no caller reads: the factorised Jacobian at q (and a spare, so that a
+  // trial step can be rejected without losing the last accepted point's), the predictor's past
+  // point and scratch space reused across steps, so that a step allocates nothing. Defined in
+  // src/kinematics/workspace.hpp; copied with the State (a State moved from may only be assigned
+  // to or destroyed).
+  struct Workspace;
+  Workspace& workspace() { return *workspace_; }
+  const Workspace& workspace() const { return *workspace_; }
 
  private:
-  std::array<LinearSolver, 2> solvers_;
-  int current_ = 0;
+  // Owns the workspace, and copies it when the State is copied.
+  class WorkspaceCopy {
+   public:
+    explicit WorkspaceCopy(const Mechanism& mech);
+    WorkspaceCopy(const WorkspaceCopy& other);
+    WorkspaceCopy& operator=(const WorkspaceCopy& other);
+    WorkspaceCopy(WorkspaceCopy&& other) noexcept;
+    WorkspaceCopy& operator=(WorkspaceCopy&& other) noexcept;
+    ~WorkspaceCopy();
+    Workspace& operator*() const { return *owned_; }
+
+   private:
+    std::unique_ptr<Workspace> owned_;
+  };
+  WorkspaceCopy workspace_;
 };
 
 // Sets the drivers from their values (series in the path parameter; terms >= 1).
 void set_drivers(const Mechanism& mech, State& state, const std::vector<Series>& values);
 
-// Factorises the Jacobian at state.q into state.solver(). False when singular.
+// Factorises the Jacobian at state.q (kept in the state's workspace for the solves that follow).
+// False when singular.
 bool factorize_jacobian(const Mechanism& mech, State& state);
-bool factorize_jacobian(const Mechanism& mech, State& state, LinearSolver& solver);
 
 // Largest |residual| over all rows at state.q, and which row it is.
 double max_residual(const Mechanism& mech, State& state, int* worst_row = nullptr);

@@ -4,6 +4,7 @@
 // differences.
 #pragma once
 
+#include "kinematics/workspace.hpp"
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/position.hpp"
@@ -241,9 +242,10 @@ inline Eigen::VectorXd solve_near(const Mechanism& mech, const Eigen::VectorXd& 
   for (int it = 0; it < 3; ++it) {
     max_residual(mech, state);
     if (!factorize_jacobian(mech, state)) break;
-    state.rhs = -state.phi;
-    state.solver().solve(state.rhs, state.dq);
-    state.q += state.dq;
+    State::Workspace& work = state.workspace();
+    work.rhs = -work.phi;
+    work.solver().solve(work.rhs, work.dq);
+    state.q += work.dq;
   }
   if (residual) *residual = max_residual(mech, state);
   return state.q;

@@ -1,6 +1,8 @@
 // Constraint equations in natural coordinates. Every equation is at most quadratic in the
 // coordinates q (driver laws enter through known functions of the parameter), and every row is
 // scaled so that its residual is a length: one tolerance, relative to the model's size, fits all.
+// The kinematics engine's own (not installed): a Mechanism keeps its rows here
+// (Mechanism::Equations), and the library's sources read them through Mechanism::equations().
 #pragma once
 
 #include <Eigen/Core>
@@ -9,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/position.hpp"
 #include "nbar/model/model.hpp"
 #include "nbar/model/series.hpp"
 
@@ -38,34 +42,56 @@ struct Constraint {
   bool is_driver() const { return driver >= 0; }
 };
 
-// A row as the evaluation loops read it (Mechanism::compiled_rows(), grouped as RowGroup says so
-// that each loop runs over rows of one kind): the constants, and for each
-// of its points where its coordinates are: a column of q (>= 0), or ~i for the fixed coordinates
-// at Mechanism::fixed_coordinates()[i] (unused slots: ~0 too, never read); and where the row's
-// Jacobian entries for each point start in the pattern (-1 for fixed points and unused slots).
+struct JacobianEntry {
+  int row = 0;
+  int col = 0;
+};
+
+// A row as the evaluation loops read it (Mechanism::Equations::compiled, grouped as RowGroup says
+// so that each loop runs over rows of one kind): the constants, and for each of its points where
+// its coordinates are: a column of q (>= 0), or ~i for the fixed coordinates at
+// Mechanism::Equations::fixed_coordinates[i] (unused slots: ~0 too, never read); and where the
+// row's Jacobian entries for each point start in the pattern (-1 for fixed points and unused
+// slots).
 struct CompiledRow {
   ConstraintType type = ConstraintType::Distance;
-  int row = 0;  // its place in Mechanism::rows() and in the residual vector
+  int row = 0;  // its place in Mechanism::Equations::rows and in the residual vector
   int driver = -1;
   double a = 0.0, b = 0.0, scale = 1.0;
   std::array<int, 4> at{~0, ~0, ~0, ~0};
   std::array<int, 4> entry{-1, -1, -1, -1};
 };
 
-// A run of compiled rows of one type: compiled_rows()[first, last). Rows of a body's length and
-// of a crank's angle are grouped besides by which of their two points are fixed (bit 0 of `fixed`
-// for the first, bit 1 for the second; 0 for the other types), so that their loops know it when
-// compiled.
+// A run of compiled rows of one type: Mechanism::Equations::compiled[first, last). Rows of a
+// body's length and of a crank's angle are grouped besides by which of their two points are fixed
+// (bit 0 of `fixed` for the first, bit 1 for the second; 0 for the other types), so that their
+// loops know it when compiled.
 struct RowGroup {
   ConstraintType type = ConstraintType::Distance;
   int fixed = 0;
   int first = 0, last = 0;
 };
 
-// A driver's value along the path as a Taylor series, with its sine and cosine for angles.
-struct DriverState {
-  Series value, cos, sin;
+// The rows of a Mechanism, built once with it.
+struct Mechanism::Equations {
+  // Every row, in the order of the residual vector: the constraints, then one row per driver.
+  std::vector<Constraint> rows;
+  // Where the Jacobian's values go, in the order evaluate_jacobian gives them (entries may repeat
+  // a (row, col) pair; they add up).
+  std::vector<JacobianEntry> pattern;
+  // The rows as the evaluation loops read them, grouped (RowGroup), and the coordinates of the
+  // points fixed to the frame (x, y of every point, in the model's order) that CompiledRow::at
+  // points into.
+  std::vector<CompiledRow> compiled;
+  std::vector<RowGroup> groups;
+  std::vector<double> fixed_coordinates;
+  // For each row and point slot, the index of its first pattern entry (x, then y at +1); -1 when
+  // that point is fixed.
+  std::vector<std::array<int, 4>> entry;
+
+  int entry_index(int row, int slot) const { return entry[row][slot]; }
 };
+
 // Makes `state` the driver's at `value` (with its sine and cosine for an angle), in place; in line,
 // as it runs for every driver at every step of a sweep.
 inline void set_driver_state(DriverState& state, const Series& value, bool angular) {
@@ -87,8 +113,6 @@ inline DriverState make_driver_state(const Series& value, bool angular) {
   return s;
 }
 
-class Mechanism;
-
 // Residuals of every row at q (length units). Returns the largest |residual|, infinite when one
 // is NaN.
 double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
@@ -97,7 +121,7 @@ double evaluate_residuals(const Mechanism& mech, const Eigen::VectorXd& q, const
 double evaluate_residuals_and_jacobian(const Mechanism& mech, const Eigen::VectorXd& q,
                                        const std::vector<DriverState>& drivers, Eigen::VectorXd& phi,
                                        std::vector<double>& values);
-// Jacobian values in the order of Mechanism::jacobian_pattern() (entries may repeat a
+// Jacobian values in the order of Mechanism::Equations::pattern (entries may repeat a
 // (row, col) pair; they add up).
 void evaluate_jacobian(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<DriverState>& drivers,
                        std::vector<double>& values);

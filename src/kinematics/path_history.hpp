@@ -22,7 +22,7 @@ class PathHistory {
   // point it forgets, whose numbers the caller overwrites (a step's new series).
   void take(double parameter, Eigen::MatrixXd& series);
   // After it is accepted: the point it reached, which the next prediction must start from.
-  // N > 0 (2, 4, 6 or 8, nbar/kinematics/sized.hpp) is the number of coordinates known when
+  // N > 0 (2, 4, 6 or 8, kinematics/sized.hpp) is the number of coordinates known when
   // compiled, for a step compiled for it; 0 reads it from `series` (as N > 0 does when `series`
   // has another number of rows). The numbers are the same.
   template <int N = 0>

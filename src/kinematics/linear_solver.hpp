@@ -9,8 +9,8 @@
 
 #include <vector>
 
-#include "nbar/kinematics/mechanism.hpp"
-#include "nbar/kinematics/sparse_lu.hpp"
+#include "constraints.hpp"
+#include "sparse_lu.hpp"
 
 namespace nbar {
 
