@@ -11,21 +11,24 @@ jobs="$(nproc)"
 launcher=()
 if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 
-echo "== Release build and tests"
+# Each stage's heading carries the time, so a CI log shows where its minutes went.
+stage() { echo "== $* [$(date -u +%H:%M:%S)]"; }
+
+stage "Release build and tests"
 # Tests and benchmarks named on: a build directory left by scripts/quickstart.sh has them off.
 cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DNBAR_BUILD_TESTS=ON -DNBAR_BUILD_BENCH=ON \
   "${launcher[@]}" >/dev/null
 cmake --build "$root/build" -j"$jobs"
 ctest --test-dir "$root/build" --output-on-failure -j"$jobs"
 
-echo "== Packages: the wheel and the .deb made from that build, installed into a scratch folder and used"
+stage "Packages: the wheel and the .deb made from that build, installed into a scratch folder and used"
 "$root/scripts/package.sh"
 "$root/tests/packaging/packages_test.sh" "$root/dist"
 
-echo "== The engine in WebAssembly, and its answers against the Release build's (docs/javascript.md)"
+stage "The engine in WebAssembly, and its answers against the Release build's (docs/javascript.md)"
 "$root/scripts/build-wasm.sh" "$root/build-wasm" --test
 
-echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+stage "AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 # The sanitizer stage is focused where its time buys most (it was 44 of 70 minutes on 2 cores):
 # - -O1 with line tables only (-g1), as OSS-Fuzz builds: reports still give file:line, and the
 #   build took 21 minutes where -O2 -g took 34;
@@ -42,5 +45,6 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
   ctest --test-dir "$root/build-asan" --output-on-failure -j"$jobs" \
   -E '^(Web\.Browser|Web\.YamlText|Report\.PhoneAndDesktop|BenchTasks/NinePointTask\.)'
 
-echo "== libFuzzer harnesses, ${NBAR_FUZZ_SECONDS:-60} s each (clang, ASan + UBSan)"
+stage "libFuzzer harnesses, ${NBAR_FUZZ_SECONDS:-60} s each (clang, ASan + UBSan)"
 "$root/scripts/fuzz.sh" "${NBAR_FUZZ_SECONDS:-60}"
+stage "done"
