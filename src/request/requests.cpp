@@ -1,64 +1,19 @@
 #include "nbar/request/requests.hpp"
 
 #include <algorithm>
-#include <climits>
 #include <stdexcept>
 
 #include "nbar/analysis/columns.hpp"
 #include "nbar/analysis/pose.hpp"
 #include "nbar/io/dxf_writer.hpp"
 #include "nbar/render/report.hpp"
+#include "request/option_rules.hpp"
 
 namespace nbar::request {
 
 namespace {
 
-constexpr double kIntMax = INT_MAX;
-
-OptionRule rule(std::string key, OptionKind kind, std::string help) {
-  OptionRule r;
-  r.key = std::move(key);
-  r.kind = kind;
-  r.help = std::move(help);
-  return r;
-}
-
-OptionRule integer_rule(std::string key, std::string help, double low, double high) {
-  OptionRule r = rule(std::move(key), OptionKind::Integer, std::move(help));
-  r.low = low;
-  r.high = high;
-  return r;
-}
-
-OptionRule positive_integer(std::string key, std::string help) {
-  OptionRule r = rule(std::move(key), OptionKind::Integer, std::move(help));
-  r.positive = true;
-  r.high = kIntMax;
-  return r;
-}
-
-OptionRule number_rule(std::string key, std::string help, double low, double high) {
-  OptionRule r = rule(std::move(key), OptionKind::Number, std::move(help));
-  r.low = low;
-  r.high = high;
-  return r;
-}
-
-OptionRule positive_number(std::string key, std::string help) {
-  OptionRule r = rule(std::move(key), OptionKind::Number, std::move(help));
-  r.positive = true;
-  return r;
-}
-
-OptionRule flag(std::string key, std::string help) { return rule(std::move(key), OptionKind::Flag, std::move(help)); }
-OptionRule text(std::string key, std::string help) { return rule(std::move(key), OptionKind::Text, std::move(help)); }
-OptionRule names(std::string key, std::string help) { return rule(std::move(key), OptionKind::Names, std::move(help)); }
-
-OptionRule choice(std::string key, std::string help, std::vector<std::string> choices) {
-  OptionRule r = rule(std::move(key), OptionKind::Choice, std::move(help));
-  r.choices = std::move(choices);
-  return r;
-}
+using namespace rule_builders;
 
 std::vector<OptionRule> joined(std::vector<std::vector<OptionRule>> groups) {
   std::vector<OptionRule> all;

@@ -3,47 +3,35 @@
 #include <map>
 #include <sstream>
 
+#include "request/option_rules.hpp"
+
 namespace nbar::request {
 
 namespace {
 
 using synthesis::SynthesisKind;
+using namespace rule_builders;
 
 // A seed is any 32-bit number: the widest every front-end holds exactly (a JSON number and
 // Python's int both would hold more, the rules' readers not beyond 2^53).
 constexpr double kMaxSeed = 4294967295.0;
 
-OptionRule rule(std::string key, OptionKind kind, std::string help, double low = 0, double high = 0) {
-  OptionRule r;
-  r.key = std::move(key);
-  r.kind = kind;
-  r.help = std::move(help);
-  if (kind == OptionKind::Integer) {
-    r.low = low;
-    r.high = high;
-  }
-  return r;
-}
-
 std::vector<OptionRule> rules_of(SynthesisKind kind) {
-  OptionRule format = rule("format", OptionKind::Choice, "table (default) or json");
-  format.choices = {"table", "json"};
   std::vector<OptionRule> rules{
-      format,
-      rule("all", OptionKind::Flag, "also list defective designs and (five-point) complex solutions"),
-      rule("top", OptionKind::Integer,
-           "list (and export) at most N designs, best first; 0 for all (default " +
-               std::to_string(SynthesisRequest::kDefaultTop) + ")",
-           0, 2147483647.0),
-      rule("threads", OptionKind::Integer,
-           "threads for path tracking and for checking the designs (default 0: every hardware thread)", 0,
-           SynthesisRequest::kMaxThreads),
+      choice("format", "table (default) or json", {"table", "json"}),
+      flag("all", "also list defective designs and (five-point) complex solutions"),
+      integer_rule("top",
+                   "list (and export) at most N designs, best first; 0 for all (default " +
+                       std::to_string(SynthesisRequest::kDefaultTop) + ")",
+                   0, kIntMax),
+      integer_rule("threads",
+                   "threads for path tracking and for checking the designs (default 0: every hardware thread)", 0,
+                   SynthesisRequest::kMaxThreads),
   };
   if (kind == SynthesisKind::FivePoint || kind == SynthesisKind::NinePoint || kind == SynthesisKind::Path)
-    rules.push_back(
-        rule("seed", OptionKind::Integer,
-             "five-point, nine-point, path: random seed of the homotopy and of path's random starts (default 1)", 0,
-             kMaxSeed));
+    rules.push_back(integer_rule(
+        "seed", "five-point, nine-point, path: random seed of the homotopy and of path's random starts (default 1)", 0,
+        kMaxSeed));
   return rules;
 }
 
