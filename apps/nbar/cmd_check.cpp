@@ -21,10 +21,13 @@ int run_check(const CheckCommand& command) {
   Loaded loaded;
   if (int code = load(command.model, loaded)) return code;
   const ModelSummary summary = summarize(*loaded.mechanism, request.max_steps);
+  Output output;
+  output.open("");
   if (request.format == "json")
-    std::cout << io::summary_json(*loaded.mechanism, summary, loaded.file.source);
+    output.stream() << io::summary_json(*loaded.mechanism, summary, loaded.file.source);
   else
-    io::write_summary_text(std::cout, *loaded.mechanism, summary, command.model);
+    io::write_summary_text(output.stream(), *loaded.mechanism, summary, command.model);
+  if (!output.finish()) return kBadUsage;
   if (summary.assembly_error) return fail(command.model, io::located(loaded.file.source, *summary.assembly_error));
   if (summary.law_error) return fail(command.model, io::located(loaded.file.source, *summary.law_error));
   return kOk;

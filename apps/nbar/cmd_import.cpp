@@ -68,7 +68,10 @@ int run_import(const ImportArgs& args) {
                 << "): define it under `materials:` in the model written\n";
     const std::string yaml = io::model_from_sketch(sketch, options);
     if (args.output.empty()) {
-      std::cout << yaml;
+      Output output;
+      output.open("");
+      output.stream() << yaml;
+      if (!output.finish()) return kBadUsage;
     } else if (!write_file(args.output, yaml)) {
       return kBadUsage;
     }
