@@ -56,7 +56,7 @@ int run_explain(const ExplainCommand& command) {
   try {
     ex = explain(loaded.mechanism, request.explain_options());
   } catch (const Error& e) {
-    return fail(command.model, e);
+    return fail(command.model, nbar::io::located(loaded.file.source, e));
   }
   Output output;
   if (!output.open(command.output)) return kBadUsage;

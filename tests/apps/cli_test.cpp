@@ -292,6 +292,12 @@ TEST(Cli, BarsTooShortToCloseCannotAssemble) {
   const CliRun solve = nbar("solve " + m.path());
   EXPECT_EQ(solve.code, 3);
   EXPECT_EQ(solve.out, "");
+  // explain says it at the same line and column as solve (it gave the file name only).
+  const std::string at = solve.err.substr(0, solve.err.find(": cannot"));
+  EXPECT_THAT(at, testing::MatchesRegex("error: .*model.yaml:[0-9]+:[0-9]+"));
+  const CliRun explain = nbar("explain " + m.path());
+  EXPECT_EQ(explain.code, 3);
+  EXPECT_EQ(explain.err.substr(0, at.size()), at);
 }
 
 TEST(Cli, DriverOutsideItsRangeStopsTheSweepEarlyAndKeepsTheRows) {
@@ -385,7 +391,10 @@ TEST(Cli, AFullDiskIsAnErrorNotALostOutput) {
         "solve " + examples + "/fourbar-crank-rocker.yaml --format json > /dev/full",
         "stress " + examples + "/fourbar-steel-bars.yaml --steps 3 -o /dev/full",
         "explain " + examples + "/fourbar-crank-rocker.yaml > /dev/full",
-        "synth five-point " + examples + "/synthesis/five-point-crank-rocker.yaml -o /dev/full"}) {
+        "synth five-point " + examples + "/synthesis/five-point-crank-rocker.yaml -o /dev/full",
+        "check " + examples + "/fourbar-crank-rocker.yaml > /dev/full",
+        "check " + examples + "/fourbar-crank-rocker.yaml --format json > /dev/full",
+        "import " + examples + "/sketches/fourbar-sketch.dxf > /dev/full"}) {
     SCOPED_TRACE(command);
     const CliRun run = nbar(command);
     EXPECT_EQ(run.code, 2);
