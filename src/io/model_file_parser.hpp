@@ -35,6 +35,9 @@ using yaml::NumberStatus;
 using yaml::parse_number;
 using yaml::suggestion;
 
+// The largest driver angle a model may give (rad): past it the spacing of doubles eats the motion.
+inline constexpr double kMaxDriverAngle = 1e6;
+
 // The keys each kind of mapping accepts, all in one place: new sections (shapes, loads,
 // gravity, materials...) are declared here and then read in Parser::parse.
 inline const AllowedKeys kTopLevelKeys{
@@ -131,6 +134,7 @@ class Parser : yaml::Reader {
   void parse_drivers(const Entry& e);
   void parse_driver(const YAML::Node& item);
   double rate(const Entry& e, int order, const Driver& d, double scale) const;
+  double driver_value(const Entry& e, const Driver& d, double scale, const std::string& unit) const;
   Law parse_law(const Entry& e, double scale) const;
   void parse_sweep(const Entry& e);
 

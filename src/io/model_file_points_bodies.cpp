@@ -1,7 +1,10 @@
 // The model file's points, ground, bodies, lengths, sliders, slots, drivers and sweep
 // (model_file_parser.hpp).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -227,8 +230,8 @@ void Parser::parse_driver(const YAML::Node& item) {
 
   const double scale = d.is_angular() ? model_.units.angle_scale : model_.units.length_scale;
   const std::string unit = d.is_angular() ? model_.units.angle : model_.units.length;
-  if (const Entry* from = f.find("from")) d.from = scale * number(*from, "`from` (" + unit + ")");
-  if (const Entry* to = f.find("to")) d.to = scale * number(*to, "`to` (" + unit + ")");
+  if (const Entry* from = f.find("from")) d.from = driver_value(*from, d, scale, unit);
+  if (const Entry* to = f.find("to")) d.to = driver_value(*to, d, scale, unit);
   // Without a speed, one driver unit a second towards `to`: time runs forward either way.
   d.speed = d.from && d.to && *d.to < *d.from ? -scale : scale;
   if (const Entry* speed = f.find("speed")) d.speed = rate(*speed, 1, d, scale);
@@ -247,6 +250,23 @@ void Parser::parse_driver(const YAML::Node& item) {
   model_.drivers.push_back(std::move(d));
   source_.drivers.push_back(mark(item));
   source_.driver_laws.push_back(law_marks);
+}
+
+// A driver's `from` or `to`. An angle is refused past a million radians: there the spacing of
+// doubles (1e-10 rad at 1e6, 2 deg at 1e16) eats the motion, and `from: 1e20` gave a time ratio
+// of inf with exit 0.
+double Parser::driver_value(const Entry& e, const Driver& d, double scale, const std::string& unit) const {
+  const double value = scale * number(e, "`" + e.key + "` (" + unit + ")");
+  if (d.is_angular() && std::abs(value) > kMaxDriverAngle) {
+    fail(mark(e), "`" + e.key + "` is " + e.value.Scalar() + " " + unit +
+                      ", too large for a driver angle: the largest is " +
+                      fmt::format("{:.9g}", kMaxDriverAngle / scale) + " " + unit +
+                      " (a million radians), past which the digits of a double no longer hold the motion" +
+                      " (at this value neighbouring doubles are " +
+                      fmt::format("{:.3g}", std::nextafter(std::abs(value), INFINITY) - std::abs(value)) +
+                      " rad apart); take whole turns off it");
+  }
+  return value;
 }
 
 // A bare number is in driver units (angle or length unit) per second, or per second
