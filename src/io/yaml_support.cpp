@@ -172,6 +172,42 @@ SourceMark stray_closing_bracket(std::string_view text, char& bracket) {
   return found;
 }
 
+// YAML reads a key of at most 1024 characters and, past it, reports some structure it cannot
+// close, at the key's end. The first key of `text` longer than that, with its `length`, or no mark.
+SourceMark overlong_key(std::string_view text, std::size_t& length) {
+  constexpr std::size_t kYamlKeyLimit = 1024;
+  constexpr std::size_t kNone = std::string_view::npos;
+  std::size_t token = kNone;  // where the current token's text starts, after spaces and a '- '
+  int line = 1;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n' || c == '{' || c == '[' || c == ',') {
+      if (c == '\n') {
+        ++line;
+        line_start = i + 1;
+      }
+      token = kNone;
+    } else if (c == ':' &&
+               (i + 1 == text.size() || text[i + 1] == ' ' || text[i + 1] == '\n' || (i > 0 && text[i - 1] == '"'))) {
+      if (token != kNone && i - token > kYamlKeyLimit) {
+        length = i - token - (text[token] == '"' || text[token] == '\'' ? 2 : 0);
+        return SourceMark{line, static_cast<int>(token - line_start) + 1};
+      }
+      token = kNone;
+    } else if (token == kNone && c != ' ' && c != '-') {
+      token = i;
+      if (c == '"' || c == '\'') {
+        // A quoted scalar: a value's colons are not keys. One left open ends the search.
+        const std::size_t close = text.find(c, i + 1);
+        if (close == kNone || text.substr(i, close - i).find('\n') != kNone) return SourceMark{};
+        i = close;
+      }
+    }
+  }
+  return SourceMark{};
+}
+
 bool before(SourceMark a, SourceMark b) { return a.line < b.line || (a.line == b.line && a.column < b.column); }
 
 // The innermost [ or { before `at` (where yaml-cpp gave up) that no ']' or '}' of the whole text
@@ -388,6 +424,10 @@ YAML::Node Reader::load(const DocumentWording& wording) const {
              "indentation; indent with spaces");
       start = end + 1;
     }
+    std::size_t key_length = 0;
+    if (const SourceMark key = overlong_key(text_, key_length); key.line > 0 && !before(at, key))
+      fail(key, "a key or name may have at most " + std::to_string(kMaxNameLength) + " characters (this one has " +
+                    std::to_string(key_length) + ")");
     SourceMark where = at;
     std::string message = e.msg;
     place_unclosed(text_, where, message);

@@ -365,6 +365,14 @@ TEST(ModelFileErrors, MalformedYaml) {
   EXPECT_TRUE(fails_at("name:\tt\npoints:\n  O: [0, 0\n", "3:6", "invalid YAML: this '[' is never closed"));
   EXPECT_TRUE(fails_at("points:\n  O: [0, 0]\n A: [1, 0]\n", "3:2", "invalid YAML: end of map not found"));
   EXPECT_TRUE(fails_at(R"({"points": {"A": [0, 0] "B": [1, 1]}})", "1:25", "invalid YAML: end of map flow not found"));
+  // Past YAML's 1024 characters a key is a syntax error to yaml-cpp ("end of map flow not
+  // found", "illegal map value" at its end): said as the name's own limit, at the key.
+  const std::string key(1100, 'P');
+  const std::string too_long = "a key or name may have at most 256 characters (this one has 1100)";
+  EXPECT_TRUE(fails_at(R"({"points": {")" + key + R"(": [0, 0]}})", "1:13", too_long));
+  EXPECT_TRUE(fails_at(R"({"points":{")" + key + R"(":[0, 0]}})", "1:12", too_long));
+  EXPECT_TRUE(fails_at("points:\n  " + key + ": [0, 0]\n", "2:3", too_long));
+  EXPECT_TRUE(fails_at("points:\n  O: [0, 0]\n  \"" + key + "\": [0, 0]\n", "3:3", too_long));
 }
 
 TEST(ModelFileErrors, NotAModel) {
@@ -615,6 +623,14 @@ TEST(ModelFileErrors, Drivers) {
   EXPECT_TRUE(
       fails_at(head + "  - {angle: crank, from: .inf}\n", "12:26", "`from` (deg) must be a finite number, not '.inf'"));
   EXPECT_TRUE(fails_at(head + "  - {distance: [A, Q], to: -.Inf}\n", "12:28", "`to` (m) must be a finite number"));
+  // 1e20 deg is 1.7e18 rad, where neighbouring doubles are 256 rad apart: `check` gave a time ratio of inf.
+  EXPECT_TRUE(fails_at(head + "  - {angle: crank, from: 1e20, to: 1e20}\n", "12:26",
+                       "`from` is 1e20 deg, too large for a driver angle: the largest is 57295779.5 deg (a million "
+                       "radians), past which the digits of a double no longer hold the motion (at this value "
+                       "neighbouring doubles are 256 rad apart); take whole turns off it"));
+  EXPECT_TRUE(fails_at(head + "  - {angle: crank, from: 0, to: -6e7}\n", "12:33",
+                       "`to` is -6e7 deg, too large for a driver angle"));
+  EXPECT_NO_THROW(parse_model(head + "  - {angle: crank, from: 5.7e7, to: 5.7e7}\n", "m.yaml"));
 }
 
 TEST(ModelFileErrors, Laws) {
