@@ -47,6 +47,10 @@ std::string quoted(const std::string& name) {
 
 // Below this (SI: rad/s or m/s) a driver's speed is a mistake, not a motion.
 constexpr double kMinDriverSpeed = 1e-12;
+// Past this the speed's powers in the higher derivatives (up to omega^5) overflow, and the sweep
+// cannot follow the motion: `speed: 1e150 rad/s` was blamed on a singular position. (A huge
+// acceleration is blamed at its driver when the derivatives overflow.)
+constexpr double kMaxDriverSpeed = 1e30;
 
 // Checks run in the order a reader would fix them: names first, then the references
 // between entities, then geometry, so that the first error reported is the root cause.
@@ -435,6 +439,10 @@ class Validator {
       fail(where, name +
                       ": the speed is too small to mean a motion (its size must be at least 1e-12 rad/s or "
                       "m/s); give a real speed, or leave `speed` out");
+    if (std::abs(d.speed) > kMaxDriverSpeed)
+      fail(where, name +
+                      ": the speed is too large to compute with (its size must be at most 1e30 rad/s or m/s, "
+                      "beyond which its powers in the accelerations and higher derivatives overflow)");
     if (d.from && d.to && !std::isfinite((*d.to - *d.from) / d.speed))
       fail(where, name + ": its travel over its speed is not a finite time");
     // The time a sample is at is its travel over the speed: against each other they gave t < 0,

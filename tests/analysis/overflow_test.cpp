@@ -102,6 +102,26 @@ TEST(Overflow, ASpeedTooSmallToMeanAMotionIsRejectedAtTheDriver) {
   EXPECT_THAT(e.message(), HasSubstr("the speed is too small"));
 }
 
+TEST(Overflow, ASpeedWhosePowersOverflowIsRejectedAtTheDriver) {
+  // At 1e150 rad/s omega^2 * L passes 1e300 and the sweep stopped "at a singular position".
+  const Error speed = error_of([&] {
+    compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 90, speed: 1e150 rad/s}]\n");
+  });
+  EXPECT_EQ(speed.mark().line, 4);
+  EXPECT_THAT(speed.message(), HasSubstr("the speed is too large to compute with (its size must be at most 1e30"));
+  // The largest speed still solves to the fifth derivative: the crank tip's is omega^5 on 1 m.
+  const auto fast = compile(kBase +
+                            "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 90, speed: 1e30 rad/s}]\n"
+                            "sweep: {steps: 3}\n");
+  AnalysisOptions options;
+  options.order = 5;
+  const Analysis a = analyse(fast, options);
+  ASSERT_TRUE(a.sweep.complete);
+  ASSERT_EQ(a.sweep.samples.size(), 3u);
+  for (const Sample& sample : a.sweep.samples) EXPECT_TRUE(sample.taylor.allFinite());
+  EXPECT_NEAR(a.sweep.samples[1].derivative(5).norm() / 1e150, 1.0, 1e-9);
+}
+
 TEST(SweepSize, ATimeSweepOfMoreSamplesThanAnIntHoldsIsLimitedWithoutOverflow) {
   const auto mech = compile(kBase +
                             "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, law: \"1e-6*t\"}]\n"
