@@ -407,9 +407,29 @@ std::optional<SketchFormat> sketch_format(const std::string& file_name) {
   return std::nullopt;
 }
 
+namespace {
+
+// A sketch is text: a NUL byte is UTF-16 or UTF-32 (what Windows' editors call "Unicode") or a
+// binary file, which the readers would otherwise misread at some later place ("the value of '").
+void check_is_text(const std::string& text, const std::string& file_name) {
+  const std::size_t nul = text.find('\0');
+  if (nul == std::string::npos) return;
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n'));
+  const bool utf16 =
+      text.size() >= 2 && ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF'));
+  sketch_detail::fail_at(
+      file_name, line,
+      std::string("the file is not text: it holds a NUL byte") +
+          (utf16 ? " and starts with a UTF-16 byte-order mark" : " (UTF-16, UTF-32 or a binary file?)") +
+          "; save it as UTF-8 (or ASCII)");
+}
+
+}  // namespace
+
 Sketch read_sketch(const std::string& text, const std::string& file_name, SketchFormat format,
                    const std::string& layer) {
   using namespace sketch_detail;
+  check_is_text(text, file_name);
   int last_line = 1;
   StrokeSet set;
   switch (format) {

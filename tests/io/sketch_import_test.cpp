@@ -476,5 +476,18 @@ TEST(SketchImport, TheDrawingsUnitChangesNothingButTheScale) {
   expect_same_model_at_every_scale(svg, "two-links.svg", "2 links, 1 joint");
 }
 
+TEST(SketchImport, AFileInUtf16IsSaidToBeNotTextAtItsFirstLine) {
+  // Notepad's "Unicode": the SVG reader said "the value of '" of an attribute it misread.
+  const std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\"><circle cx=\"1\" cy=\"2\" r=\"3\"/></svg>";
+  std::string utf16 = "\xFF\xFE";
+  for (char c : svg) utf16.append({c, '\0'});
+  EXPECT_THAT(
+      error_of(utf16, "u.svg"),
+      HasSubstr("u.svg:1:1: the file is not text: it holds a NUL byte and starts with a UTF-16 byte-order mark; "
+                "save it as UTF-8 (or ASCII)"));
+  EXPECT_THAT(error_of(std::string("0\nSECTION\n\0", 11), "b.dxf"),
+              HasSubstr("b.dxf:3:1: the file is not text: it holds a NUL byte (UTF-16, UTF-32 or a binary file?)"));
+}
+
 }  // namespace
 }  // namespace nbar::io
