@@ -429,7 +429,8 @@ void check_is_text(const std::string& text, const std::string& file_name) {
 Sketch read_sketch(const std::string& text, const std::string& file_name, SketchFormat format,
                    const std::string& layer) {
   using namespace sketch_detail;
-  check_is_text(text, file_name);
+  // The DXF reader says a binary file (and a binary DXF) itself, in DXF's terms.
+  if (format != SketchFormat::kDxf) check_is_text(text, file_name);
   int last_line = 1;
   StrokeSet set;
   switch (format) {

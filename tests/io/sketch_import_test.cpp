@@ -485,8 +485,8 @@ TEST(SketchImport, AFileInUtf16IsSaidToBeNotTextAtItsFirstLine) {
       error_of(utf16, "u.svg"),
       HasSubstr("u.svg:1:1: the file is not text: it holds a NUL byte and starts with a UTF-16 byte-order mark; "
                 "save it as UTF-8 (or ASCII)"));
-  EXPECT_THAT(error_of(std::string("0\nSECTION\n\0", 11), "b.dxf"),
-              HasSubstr("b.dxf:3:1: the file is not text: it holds a NUL byte (UTF-16, UTF-32 or a binary file?)"));
+  EXPECT_THAT(error_of(std::string("X, Y\nNew_Line\n\0", 15), "b.csv"),
+              HasSubstr("b.csv:3:1: the file is not text: it holds a NUL byte (UTF-16, UTF-32 or a binary file?)"));
 }
 
 }  // namespace
