@@ -83,7 +83,7 @@ int run_animate(const AnimateCommand& command) {
     if (request.stress) animation.show_stresses(analysis);
     write_animation(animation, format, command.output);
   } catch (const Error& e) {
-    return fail(command.model, e);
+    return fail(command.model, nbar::io::located(loaded.file.source, e));
   }
   print_warnings(sweep.warnings);
   return finish(loaded, sweep);

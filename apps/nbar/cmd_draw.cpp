@@ -48,7 +48,7 @@ int run_draw(const DrawCommand& command) {
     print_option_error(e);
     return kBadUsage;
   } catch (const Error& e) {
-    return fail(command.model, e);
+    return fail(command.model, nbar::io::located(loaded.file.source, e));
   }
   const bool written = format == "svg"
                            ? write_file(command.output, render::drawing_svg(mech, analysis.sweep, points, draw))

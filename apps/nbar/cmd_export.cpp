@@ -32,7 +32,7 @@ int run_export(const ExportCommand& command) {
       if (!write_file(*file, request.plates(mech, points))) return kBadUsage;
     }
   } catch (const Error& e) {
-    return fail(command.model, e);
+    return fail(command.model, nbar::io::located(loaded.file.source, e));
   }
   return kOk;
 }

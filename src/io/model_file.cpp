@@ -56,9 +56,13 @@ std::string locate(const SourceMap& source, const ModelError& error) {
 
 Error located(const SourceMap& source, const Error& error) {
   if (!error.file().empty() || error.kind() == ErrorKind::BadInput || error.kind() == ErrorKind::Cancelled ||
-      error.kind() == ErrorKind::Internal || error.where().kind == EntityRef::Kind::Model)
+      error.kind() == ErrorKind::Internal)
     return error;
-  const SourceMark at = source.find(error.where());
+  // A stop at a limit about no entity in particular (draw at a value, explain a step the sweep
+  // does not reach) is placed where a stopped sweep is: the sweep's line, or the first driver's.
+  const bool sweep_stop = error.kind() == ErrorKind::StoppedAtLimit && error.where().kind == EntityRef::Kind::Model;
+  if (error.where().kind == EntityRef::Kind::Model && !sweep_stop) return error;
+  const SourceMark at = sweep_stop ? source.sweep_stop() : source.find(error.where());
   if (at.line == 0) return error;  // an entity the file does not name (made by the program)
   return Error(error.kind(), error.message(), error.where(), source.file, at);
 }

@@ -300,6 +300,27 @@ TEST(Cli, BarsTooShortToCloseCannotAssemble) {
   EXPECT_EQ(explain.err.substr(0, at.size()), at);
 }
 
+TEST(Cli, APoseTheSweepDoesNotReachIsSaidWhereTheStoppedSweepIs) {
+  // The double-rocker's input toggles near 99.7 deg: driven to 120, its sweep stops there.
+  std::ifstream in(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-double-rocker.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_NE(text.find("to: 80,"), std::string::npos);
+  text.replace(text.find("to: 80,"), 7, "to: 120,");
+  TempModel m(text);
+  const CliRun solve = nbar("solve " + m.path());
+  EXPECT_EQ(solve.code, 4);
+  const std::string at = solve.err.substr(0, solve.err.find(": sweep stopped"));
+  EXPECT_THAT(at, testing::MatchesRegex("error: .*model.yaml:[0-9]+:[0-9]+"));
+  // draw and explain named the file only.
+  for (const std::string& command :
+       {"draw " + m.path() + " --at 110 -o " + m.dir() + "/a.svg", "explain " + m.path() + " --step 150"}) {
+    SCOPED_TRACE(command);
+    const CliRun run = nbar(command);
+    EXPECT_EQ(run.code, 4);
+    EXPECT_EQ(run.err.substr(0, at.size() + 2), at + ": ");
+  }
+}
+
 TEST(Cli, DriverOutsideItsRangeStopsTheSweepEarlyAndKeepsTheRows) {
   // Crank 80, coupler ~174, rocker 150, frame 200: s + l = 280 < 324: a crank-rocker, but
   // driving the rocker through a full turn is impossible.

@@ -93,12 +93,10 @@ std::string entity_name(const Model& m, const EntityRef& ref) {
 
 ApiResponse error_answer(const Error& error, const Model* model, const io::SourceMap* source) {
   Json details = Json::object();
-  SourceMark mark = error.mark();
-  std::string file = error.file();
-  if (file.empty() && source && error.where().kind != EntityRef::Kind::Model) {
-    mark = source->find(error.where());
-    file = source->file;
-  }
+  // Placed in the model's text by the rule the command line uses (io::located).
+  const Error placed = source ? io::located(*source, error) : error;
+  const SourceMark mark = placed.mark();
+  const std::string& file = placed.file();
   if (!file.empty()) details["file"] = file;
   if (mark.line > 0) {
     details["line"] = mark.line;

@@ -52,8 +52,9 @@ LoadedModel load_model_file(const std::string& path);
 
 // "file:line:column: message" for an error the core reports about an entity.
 std::string locate(const SourceMap& source, const ModelError& error);
-// The error placed in the file at the entity it is about, unless it names none, already has a
-// file or is about the call (BadInput) or time (Cancelled).
+// The error placed in the file at the entity it is about (a stop at a limit that names none: at
+// the sweep, as a stopped sweep), unless it names none, already has a file or is about the call
+// (BadInput) or time (Cancelled).
 Error located(const SourceMap& source, const Error& error);
 
 }  // namespace nbar::io
