@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -254,6 +255,8 @@ class TaskParser : yaml::Reader {
           fail(items[i], std::string("points ") + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
                              " coincide: the nine points must be distinct");
     if (!(spread > 0)) fail(mark(points), "the nine points coincide");
+    double ratio = 0;
+    if (const std::optional<std::size_t> stray = stray_target(ratio)) fail(items[*stray], stray_message(*stray, ratio));
     // Collinear: every point within a tiny distance of the line through the two farthest apart.
     std::size_t far_a = 0, far_b = 1;
     for (std::size_t i = 0; i < 9; ++i)
@@ -483,10 +486,46 @@ class TaskParser : yaml::Reader {
           if (j == 0 && i == n - 1) message += " (a closed curve is given once round: leave out the last point)";
           fail_at(at(i), message);
         }
+    double ratio = 0;
+    if (const std::optional<std::size_t> stray = stray_target(ratio)) fail_at(at(*stray), stray_message(*stray, ratio));
     check_not_collinear(points ? mark(*points) : mark(*curve));
     if (const Entry* c = top.find("constraints")) parse_constraints(*c);
     if (const Entry* s = top.find("nine_point_starts"))
       task_.nine_point_starts = whole(*s, "`nine_point_starts`", 0, 10);
+  }
+
+  // The index of a target far outside the others' scale, a typo such as [49680, 126.456] for
+  // [49.680, 126.456], or none. Measured from the coordinate-wise median, which one stray point
+  // cannot move, against the median distance from it: a coupler curve's targets lie within a few
+  // such distances, and the solvers' tracking crawls for minutes on such a task.
+  std::optional<std::size_t> stray_target(double& ratio) const {
+    constexpr double kMaxStray = 100.0;
+    const std::size_t n = task_.points.size();
+    const auto median = [](std::vector<double> v) {
+      std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+      return v[v.size() / 2];
+    };
+    std::vector<double> xs(n), ys(n), distances(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      xs[i] = task_.points[i].x();
+      ys[i] = task_.points[i].y();
+    }
+    const Vector2d centre(median(xs), median(ys));
+    for (std::size_t i = 0; i < n; ++i) distances[i] = (task_.points[i] - centre).norm();
+    const double typical = median(distances);
+    const auto far = std::max_element(distances.begin(), distances.end());
+    if (!(typical > 0) || *far <= kMaxStray * typical) return std::nullopt;
+    ratio = *far / typical;
+    return static_cast<std::size_t>(far - distances.begin());
+  }
+
+  static std::string stray_message(std::size_t i, double ratio) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "point " << i + 1 << " is " << ratio
+      << " times as far from the middle of the targets as a typical one is; a coupler point's targets lie within 100 "
+         "times that: check its digits and the units";
+    return s.str();
   }
 
   // The targets must span an area: a straight line is not a coupler curve to fit.

@@ -413,6 +413,21 @@ TEST(SynthesisTask, TaskFromTextReadsNoCurveFile) {
 }
 
 // The CSV's own mistakes are reported at its line and column.
+// A target typed 1000 times too far ran a nine-point synthesis for minutes: refused at once, at it.
+TEST(SynthesisTask, ATargetFarOutsideTheOthersScaleIsRefusedAtIt) {
+  std::ifstream in(kDir + "nine-point-crank-rocker.yaml");
+  std::string nine((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_NE(nine.find("[49.680, 126.456]"), std::string::npos);
+  EXPECT_EQ(error_of(nine), "");
+  nine.replace(nine.find("[49.680, 126.456]"), 17, "[49680, 126.456]");
+  // The coordinate-wise median is (15.369, 186.731); the median distance from it 101.04 mm, point 9's 49 664.7.
+  EXPECT_THAT(error_of(nine), HasSubstr("task.yaml:19:5: point 9 is 492 times as far from the middle of the targets as "
+                                        "a typical one is; a coupler point's targets lie within 100 times that: check "
+                                        "its digits and the units"));
+  EXPECT_EQ(error_of(replaced(kPath, "[-25, 17.3]", "[-25, 1730]")), "");  // 69 times: a strange curve, not a typo
+  EXPECT_THAT(error_of(replaced(kPath, "[-25, 17.3]", "[-25000, 17.3]")), HasSubstr("task.yaml:8:5: point 5 is "));
+}
+
 TEST(SynthesisTask, PathCurveFileErrors) {
   const fs::path dir = fs::temp_directory_path() / ("nbar_path_task_" + std::to_string(::getpid()));
   fs::create_directories(dir);
