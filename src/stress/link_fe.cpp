@@ -38,6 +38,10 @@ std::string body_name(const Model& m, int body) { return "body '" + m.bodies[bod
   throw Error(ErrorKind::InvalidModel, message, EntityRef{EntityRef::Kind::Body, body});
 }
 
+[[noreturn]] void fail_plate(const Model& m, int body, const Error& e) {
+  fail_at_body(body, "the plate of " + body_name(m, body) + " cannot be analysed by finite elements: " + e.what());
+}
+
 fe::ElasticMaterial elastic_material(const Model& m, int body, const MassProperties& mass) {
   const Body& b = m.bodies[body];
   if (!b.material || !b.material->youngs_modulus || !b.material->poisson_ratio) {
@@ -138,22 +142,36 @@ LinkFe::LinkFe(std::shared_ptr<const InverseDynamics> dynamics, const FeOptions&
   if (!(options.mesh_size >= 0.0) || !std::isfinite(options.mesh_size))
     throw Error(ErrorKind::BadInput, "the mesh size must be a positive length (or 0 for the default)");
   links_.resize(m.bodies.size());
+  const auto mesh_options_of = [&](const Body& body) {
+    fe::MeshOptions mesh_options;
+    mesh_options.size = options.mesh_size > 0.0 ? options.mesh_size : default_mesh_size(*body.shape);
+    mesh_options.max_nodes = options.max_nodes;
+    return mesh_options;
+  };
+  // Every plate's size is checked before any is meshed: a size too fine for the last plate
+  // was refused only after the others had been meshed (54 s and 2 GB for the steel four-bar).
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    if (!body.shape || body.thickness <= 0.0) continue;
+    try {
+      fe::check_mesh_budget(*body.shape, mesh_options_of(body));
+    } catch (const Error& e) {
+      fail_plate(m, static_cast<int>(b), e);
+    }
+  }
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Body& body = m.bodies[b];
     if (!body.shape || body.thickness <= 0.0) continue;
     control.checkpoint("mesh", static_cast<long>(b), static_cast<long>(m.bodies.size()));
     const int index = static_cast<int>(b);
     const fe::ElasticMaterial material = elastic_material(m, index, dynamics_->masses()[b]);
-    fe::MeshOptions mesh_options;
-    mesh_options.size = options.mesh_size > 0.0 ? options.mesh_size : default_mesh_size(*body.shape);
-    mesh_options.max_nodes = options.max_nodes;
+    const fe::MeshOptions mesh_options = mesh_options_of(body);
     std::unique_ptr<Link> link;
     try {
       link = std::make_unique<Link>(
           index, *body.shape, fe::PlateModel(fe::mesh_region(*body.shape, mesh_options), material), mesh_options.size);
     } catch (const Error& e) {
-      fail_at_body(index,
-                   "the plate of " + body_name(m, index) + " cannot be analysed by finite elements: " + e.what());
+      fail_plate(m, index, e);
     }
     const fe::TriMesh& mesh = link->plate.mesh();
     std::vector<bool> on_boundary(mesh.nodes.size(), false);

@@ -62,6 +62,11 @@ struct MeshQuality {
 // would exceed options.max_nodes.
 TriMesh mesh_region(const Region& r, const MeshOptions& options = {});
 
+// What mesh_region checks before it meshes: the region, the options, and whether the element size
+// needs more nodes than options.max_nodes (estimated from the area). Throws as mesh_region does,
+// in milliseconds, so that a program meshing several plates refuses before meshing any.
+void check_mesh_budget(const Region& r, const MeshOptions& options = {});
+
 MeshQuality mesh_quality(const TriMesh& mesh);
 
 }  // namespace nbar::fe
