@@ -22,11 +22,15 @@ nbar::web::ServerConfig engine_config() {
   return config;
 }
 
+const nbar::web::ServerConfig& shared_config() {
+  static const nbar::web::ServerConfig config = engine_config();
+  return config;
+}
+
 // {status, contentType, headers: [[name, value]...], body: Uint8Array}; the body is copied out of
 // the module's memory, which the next request may reuse.
-val request(const std::string& method, const std::string& path, const std::string& body) {
-  static const nbar::web::ServerConfig config = engine_config();
-  const nbar::web::ApiResponse response = nbar::web::handle_api({method, path, body}, config);
+val answer_of(const nbar::web::ApiRequest& api_request, const nbar::web::ServerConfig& config) {
+  const nbar::web::ApiResponse response = nbar::web::handle_api(api_request, config);
   val answer = val::object();
   answer.set("status", response.status);
   answer.set("contentType", response.content_type);
@@ -42,11 +46,29 @@ val request(const std::string& method, const std::string& path, const std::strin
   return answer;
 }
 
+val request(const std::string& method, const std::string& path, const std::string& body) {
+  return answer_of({method, path, body}, shared_config());
+}
+
+// The same request, calling on_progress(stage, done, total) at every checkpoint of its
+// computation (sweep samples, FE links, synthesis paths...), for a page's progress bar. The page
+// cancels by ending the worker the engine runs in: on one thread nothing else could ask to stop.
+val request_with_progress(const std::string& method, const std::string& path, const std::string& body,
+                          val on_progress) {
+  nbar::web::ServerConfig config = shared_config();
+  config.on_progress = [&on_progress](const nbar::Progress& progress) {
+    on_progress(std::string(progress.stage), static_cast<double>(progress.done), static_cast<double>(progress.total));
+    return true;
+  };
+  return answer_of({method, path, body}, config);
+}
+
 std::string version() { return nbar::kVersion; }
 
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(nbar_engine) {
   emscripten::function("request", &request);
+  emscripten::function("requestWithProgress", &request_with_progress);
   emscripten::function("version", &version);
 }
