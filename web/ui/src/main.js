@@ -1,7 +1,8 @@
-// The web app of `nbar serve`: a gallery of the bundled models, a YAML editor whose errors the
-// server's /api/check and /api/solve place at their line and column, the mechanism drawn and
-// animated as the core draws it (the server's scene), a plot and a table of any column, five-point
-// synthesis whose designs open as models, and downloads. Everything it needs is served by nbar.
+// The web app of nbar, as a static site and in `nbar serve`: a gallery of the bundled models, a
+// YAML editor whose errors the engine's check and solve place at their line and column, the
+// mechanism drawn and animated as the core draws it (the engine's scene), a plot and a table of
+// any column, synthesis whose designs open as models, and downloads. Every number comes from the
+// core, in the browser (WebAssembly in a worker, engine.js) or on the nbar server.
 import './style.css';
 import 'uplot/dist/uPlot.min.css';
 import uPlot from 'uplot';
@@ -21,6 +22,9 @@ import { initSynthesis } from './synthesis.js';
 import { initOverlays } from './overlays.js';
 import { initExplain } from './explain.js';
 import { initOffline } from './offline.js';
+import { startEngine, serverOnly } from './engine.js';
+import { initJobBar } from './job-bar.js';
+import { pngFromSvg, gifFromScene } from './pictures.js';
 
 const $ = (s) => document.querySelector(s);
 const state = {
@@ -30,11 +34,31 @@ const state = {
 
 // ------------------------------------------------------------------------------ API
 
-async function api(path, body, as = 'json') {
+// Where requests go: the in-browser engine, the server, or nowhere (with the reason); start()
+// settles it before the first request.
+let backend;
+const backendReady = new Promise((resolve) => { backend = resolve; });
+
+// One API request, answered as the server would answer it. options.key names what it is for, so
+// that a newer one cancels it (engine.js); options.label is shown while it runs.
+async function send(path, init, options) {
+  const where = await backendReady;
+  if (where.mode === 'server') return fetch(path, init);
+  if (where.mode === 'none') {
+    const e = new Error(where.reason);
+    e.info = { kind: 'no_engine', message: where.reason };
+    throw e;
+  }
+  const r = await where.engine.request(init.method ?? 'GET', path, init.body ?? '', options);
+  // What only a server makes (MP4): to the server when there is one, else said plainly.
+  return r.status === 501 ? serverOnly(path, init, r, options.label ?? path) : r;
+}
+
+async function api(path, body, as = 'json', options = {}) {
   const init = body === undefined ? {} : {
     method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body),
   };
-  const r = await fetch(path, init);
+  const r = await send(path, init, options);
   if (!r.ok) {
     let info;
     try { info = (await r.json()).error; } catch { info = { message: `${r.status} ${r.statusText}` }; }
@@ -174,16 +198,20 @@ async function analyse() {
   const seq = ++state.seq;
   const text = editor.state.doc.toString();
   state.text = text;
+  // The analysis of the text before this edit is stale: stopped, not waited for.
+  (await backendReady).engine?.cancel('analysis');
+  if (seq !== state.seq) return;
   // An empty document is analysed too: the server says it holds no model, at line 1, and the
   // results on screen are marked as not the text's (they were kept and called current).
   status(t('analysing'), false, true);
   document.body.dataset.busy = '1';
   try {
-    const check = await api('/api/check', { model: text });
+    const analysis = { key: 'analysis', label: t('analysing') };
+    const check = await api('/api/check', { model: text }, 'json', analysis);
     if (seq !== state.seq) return;
     // The answer's text is kept as the server wrote it: the JSON download is those bytes.
     const size = sceneSize();
-    const [solveText, scene] = await Promise.all([api('/api/solve', { model: text }, 'text'), api('/api/render', sceneRequest(text, size))]);
+    const [solveText, scene] = await Promise.all([api('/api/solve', { model: text }, 'text', analysis), api('/api/render', sceneRequest(text, size), 'json', analysis)]);
     if (seq !== state.seq) return;
     const solve = JSON.parse(solveText);
     state.check = check;
@@ -593,6 +621,7 @@ function save(blob, name) {
 async function download(kind) {
   const model = editor.state.doc.toString();
   const name = slug();
+  const inBrowser = (await backendReady).mode === 'engine';
   try {
     status(t('loading'), false, true);
     if (kind === 'csv') {
@@ -603,14 +632,23 @@ async function download(kind) {
       save(new Blob([state.solveText], { type: 'application/json' }), `${name}.json`);
     } else if (kind === 'model') {
       save(new Blob([model], { type: 'application/yaml' }), `${name}.yaml`);
-    } else if (kind === 'svg' || kind === 'png') {
+    } else if (kind === 'svg' || (kind === 'png' && !inBrowser)) {
       save(await api('/api/render', { model, kind: 'draw', format: kind, labels: true }, 'blob'), `${name}.${kind}`);
+    } else if (kind === 'png') {
+      // The engine draws no raster pictures: its SVG drawn on a canvas (the browser's own PNG).
+      const svg = await api('/api/render', { model, kind: 'draw', format: 'svg', labels: true }, 'text');
+      save(await pngFromSvg(svg), `${name}.png`);
+    } else if (kind === 'gif' && inBrowser) {
+      // The engine's scene posed at 36 samples, each drawn on a canvas, encoded here (gifenc).
+      const scene = await api('/api/render', { model, kind: 'draw', format: 'scene', labels: true, steps: 36, width: 640, height: 480 },
+        'json', { label: t('dlGif') });
+      save(await gifFromScene(scene), `${name}.gif`);
     } else if (kind === 'gif') {
       save(await api('/api/render', { model, kind: 'animate', format: 'gif', frames: 36 }, 'blob'), `${name}.gif`);
     } else if (kind === 'mp4') {
-      save(await api('/api/render', { model, kind: 'animate', format: 'mp4', frames: 72 }, 'blob'), `${name}.mp4`);
+      save(await api('/api/render', { model, kind: 'animate', format: 'mp4', frames: 72 }, 'blob', { label: t('dlMp4') }), `${name}.mp4`);
     } else if (kind === 'report') {
-      save(await api('/api/report', { model }, 'blob'), `${name}-report.html`);
+      save(await api('/api/report', { model }, 'blob', { label: t('dlReport') }), `${name}-report.html`);
     } else if (kind === 'plates-dxf' || kind === 'plates-svg') {
       const format = kind.slice(7);  // `nbar export --dxf/--svg`: the plates as drawn in the model file
       save(await api('/api/render', { model, kind: 'plates', format }, 'blob'), `${name}-plates.${format}`);
@@ -678,9 +716,26 @@ function trackHeaderHeight() {
   set();
 }
 
+// Where the computations run (engine.js); said under the header when the in-browser engine was
+// wanted but could not load, with Reload.
+async function settleBackend() {
+  const where = await startEngine();
+  backend(where);
+  document.body.dataset.engine = where.mode;
+  if (where.engine) initJobBar(where.engine);
+  if (where.note) {
+    const box = $('#engine-note');
+    box.querySelector('span').textContent = where.note;
+    box.hidden = false;
+  }
+  return where;
+}
+
 async function start() {
   $('#lang').value = getLang();
   translatePage();
+  settleBackend();
+  $('#engine-note button').addEventListener('click', () => location.reload());
   $('#lang').addEventListener('change', (e) => { setLang(e.target.value); });
   for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', () => showTab(b.dataset.tab));
   for (const b of document.querySelectorAll('[data-rtab]')) b.addEventListener('click', () => showResultTab(b.dataset.rtab));
@@ -693,7 +748,7 @@ async function start() {
   $('#scrub').addEventListener('input', (e) => { play(false); setFrame(+e.target.value); });
   $('#ycol').addEventListener('change', (e) => { state.ycol = e.target.value; buildPlot(); buildTable(); setFrame(state.frame); });
   $('#table').addEventListener('click', (e) => { const tr = e.target.closest('tr[data-i]'); if (tr) { play(false); setFrame(+tr.dataset.i); } });
-  const app = { state, api, setText, analyse, showTab, esc, fmt, status, play, setFrame, unitOf, col, model: () => editor.state.doc.toString() };
+  const app = { state, api, backendReady, setText, analyse, showTab, esc, fmt, status, play, setFrame, unitOf, col, model: () => editor.state.doc.toString() };
   initSynthesis(app); initOverlays(app); initExplain(app); initOffline(app);
   $('#share').addEventListener('click', share);
   $('#share-box button').addEventListener('click', () => { $('#share-box').hidden = true; });

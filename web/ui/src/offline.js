@@ -1,17 +1,20 @@
 // Offline use: registers the service worker (sw.js, which keeps the app shell and the last
 // answers), shows "Offline" in the header while the browser has no network, and the MP4
-// download only when /api/health says the server has ffmpeg.
+// download only when /api/health says the server has ffmpeg (or, in the browser's engine, to
+// say that MP4 needs the server).
 import { t } from './i18n.js';
 
 const $ = (s) => document.querySelector(s);
 
+// In the browser's engine nothing needs the network: offline is said, not a limit.
 function showOnline() {
   const off = !navigator.onLine;
+  const note = t(document.body.dataset.engine === 'engine' ? 'offlineInBrowser' : 'offlineNote');
   const badge = $('#offline');
   badge.hidden = !off;
-  badge.title = t('offlineNote');
+  badge.title = note;
   document.body.classList.toggle('is-offline', off);
-  if (off) $('#status').textContent = t('offlineNote');
+  if (off) $('#status').textContent = note;
 }
 
 export function initOffline(app) {
@@ -23,5 +26,10 @@ export function initOffline(app) {
   window.addEventListener('online', () => { showOnline(); if (app.state.text) app.analyse(); });
   window.addEventListener('offline', showOnline);
   showOnline();
-  app.api('/api/health').then((h) => { $('[data-download="mp4"]').hidden = !h.mp4; }).catch(() => {});
+  // In the browser's engine the MP4 button stays, and says that MP4 needs `nbar serve`.
+  app.backendReady.then(async (where) => {
+    const h = await app.api('/api/health');
+    $('[data-download="mp4"]').hidden = !h.mp4 && where.mode !== 'engine';
+    showOnline();
+  }).catch(() => {});
 }

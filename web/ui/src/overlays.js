@@ -62,9 +62,11 @@ const retryAfterMs = 3000;
 function fetchIfNeeded({ eager = true } = {}) {
   const model = app.state.lastOk;
   if (ov.model !== model) { ov.model = model; ov.forces = null; ov.stress = null; }
+  // In the browser's engine, an edit cancels these with the analysis they belong to.
+  const stale = { key: 'analysis', label: t('analysing') };
   const jobs = [
-    fetchOne('forces', () => app.api('/api/solve', { model, dynamics: true, order: 2, columns: ['*.Fx', '*.Fy'] }), eager),
-    fetchOne('stress', () => app.api('/api/stress', { model }), eager),
+    fetchOne('forces', () => app.api('/api/solve', { model, dynamics: true, order: 2, columns: ['*.Fx', '*.Fy'] }, 'json', stale), eager),
+    fetchOne('stress', () => app.api('/api/stress', { model }, 'json', { ...stale, label: t('jobStress') }), eager),
   ].filter(Boolean);
   if (!jobs.length) return undefined;
   return Promise.all(jobs).then(() => { if (ov.model === app.state.lastOk) { drawFrame(); legend(); } });

@@ -403,7 +403,7 @@ async function runSynthesis() {
   $('#synth-run').disabled = true;
   const run = ++synth.run;
   try {
-    const res = await app.api(`/api/synth/${synth.method}`, { task: taskText(), top: 10, models: true });
+    const res = await app.api(`/api/synth/${synth.method}`, { task: taskText(), top: 10, models: true }, 'json', { label: t('synthesis') });
     if (run !== synth.run) return;  // the method changed meanwhile
     st.textContent = t('designsFound', res.designs.length, res.solutions);
     list.replaceChildren(...res.designs.map((d) => designItem(d, res)));
