@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Builds nbar's engine in WebAssembly (docs/javascript.md) into build-wasm/ (or $1), and with
-# --test runs its equality test against the native program (build/apps/nbar/nbar, which must be
-# built first):
-#   scripts/build-wasm.sh [build-dir] [--test]
+# Builds nbar's engine in WebAssembly (docs/javascript.md) into build-wasm/ (or $1); with --site
+# also the web app as a static site in build-wasm/site/ (docs/web.md: any static web server serves
+# it, no nbar process); with --test (which implies --site) runs its tests: the equality test
+# against the native program (build/apps/nbar/nbar, which must be built first) and the static
+# site in Chromium with every /api request blocked:
+#   scripts/build-wasm.sh [build-dir] [--site] [--test]
 # It uses Debian's emscripten. yaml-cpp, the one library that must be compiled for WebAssembly,
 # comes from Debian's source package (apt-get source, with a deb-src entry added when there is
 # none), unpacked and built in the build folder, never in the repository.
@@ -10,9 +12,11 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$root/build-wasm"
 run_test=0
+site=0
 for arg in "$@"; do
   case "$arg" in
-    --test) run_test=1 ;;
+    --test) run_test=1 site=1 ;;
+    --site) site=1 ;;
     *) build="$(realpath -m "$arg")" ;;
   esac
 done
@@ -57,6 +61,15 @@ emcmake cmake -S "$root" -B "$build" -DNBAR_WASM=ON -DCMAKE_BUILD_TYPE=Release -
   -DNBAR_NATIVE="$root/build/apps/nbar/nbar" >/dev/null
 cmake --build "$build" -j"$jobs" --target nbar_engine
 ls -l "$build/web/engine/nbar-engine.wasm"
+if [ "$site" = 1 ]; then
+  # The app's npm packages (esbuild, the editor, the GIF encoder), as the native build installs them.
+  ui="$root/web/ui"
+  if [ ! -f "$ui/node_modules/.package-lock.json" ] || [ "$ui/package-lock.json" -nt "$ui/node_modules/.package-lock.json" ]; then
+    (cd "$ui" && npm ci --no-audit --no-fund --loglevel=error)
+  fi
+  cmake --build "$build" --target nbar_site
+  echo "static site: $build/site ($(du -sh "$build/site" | cut -f1)); serve it with: python3 -m http.server -d $build/site"
+fi
 if [ "$run_test" = 1 ]; then
   ctest --test-dir "$build" --output-on-failure
 fi

@@ -1,15 +1,26 @@
-// The web app's service worker (served by nbar serve as /sw.js, so its scope is the whole app):
-// the app shell and every answer are fetched from the network first and kept, so that without a
-// network the page, the editor and the last results still open. POST answers (check, solve,
-// stress, explain, synthesis, and the drawing's scene) are kept under a digest of the request's body: the same model asked again
-// offline gets the answer it had. Anything else asked offline is a 503 that says so.
-const CACHE = 'nbar-app-v1';
-const SHELL = ['./', 'index.html', 'app.js', 'app.css', 'api/examples'];
+// The web app's service worker (served at the root, as /sw.js by nbar serve or beside
+// index.html in the static site, so its scope is the whole app). The app's files are fetched
+// from the network first and kept, so that without a network the page, the editor and the last
+// results still open; in the static site they include the in-browser engine (the worker, the
+// module and the .wasm), so every analysis works offline too. POST answers of a server (check,
+// solve, stress, explain, synthesis, and the drawing's scene) are kept under a digest of the
+// request's body: the same model asked again offline gets the answer it had. Anything else asked
+// a server offline is a 503 that says so.
+//
+// web/ui/build.mjs writes VERSION (a digest of the app's files) and SHELL (the files kept at
+// install): a new site is a new sw.js, which the browser installs on the next visit, and its
+// activation deletes the older version's cache.
+const VERSION = '@VERSION@';
+const SHELL = ['@SHELL@'];
+const CACHE = `nbar-app-${VERSION}`;
 const KEPT_POSTS = ['/api/check', '/api/solve', '/api/stress', '/api/explain', '/api/synth/'];
 const MAX_POSTS = 60;
 
+// Each file on its own: one that is missing (no engine in nbar serve's app) keeps none out.
 self.addEventListener('install', (event) => {
-  event.waitUntil(caches.open(CACHE).then((c) => c.addAll(SHELL)).catch(() => {}).then(() => self.skipWaiting()));
+  event.waitUntil(caches.open(CACHE)
+    .then((c) => Promise.allSettled(SHELL.map((path) => c.add(path))))
+    .then(() => self.skipWaiting()));
 });
 self.addEventListener('activate', (event) => {
   event.waitUntil(caches.keys()
