@@ -25,8 +25,8 @@ stage "Packages: the wheel and the .deb made from that build, installed into a s
 "$root/scripts/package.sh"
 "$root/tests/packaging/packages_test.sh" "$root/dist"
 
-stage "The engine in WebAssembly, and its answers against the Release build's (docs/javascript.md)"
-"$root/scripts/build-wasm.sh" "$root/build-wasm" --test
+stage "The engine in WebAssembly, its answers against the Release build's (docs/javascript.md), and the static site in Chromium (docs/web.md)"
+"$root/scripts/build-wasm.sh" "$root/build-wasm" --site --test
 
 stage "AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 # The sanitizer stage is focused where its time buys most (it was 44 of 70 minutes on 2 cores):
