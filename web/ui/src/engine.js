@@ -52,8 +52,9 @@ class WorkerEngine {
   // Fetches the .wasm once (kept for restarts) and starts a worker; rejects with the reason.
   async load() {
     if (typeof WebAssembly !== 'object') throw new Error('this browser has no WebAssembly');
-    const r = await fetch(this.wasmUrl);
-    if (!r.ok) throw new Error(`${this.wasmUrl.pathname}: ${r.status} ${r.statusText}`);
+    const file = this.wasmUrl.pathname.split('/').pop();
+    const r = await fetch(this.wasmUrl).catch((e) => { throw new Error(`${file} did not arrive: ${e.message}`); });
+    if (!r.ok) throw new Error(`${file}: ${r.status} ${r.statusText}`);
     this.wasm = await r.arrayBuffer();
     this.version = await this.startWorker();
   }

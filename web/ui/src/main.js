@@ -772,7 +772,8 @@ async function start() {
   if (m) {
     try { await setText(await decodeModel(m[1])); opened = true; showTab('editor'); } catch { /* a bad link: the default */ }
   }
-  if (!opened) await openExample('fourbar-crank-rocker');
+  // With no engine and no server, the first model cannot open: the status says why.
+  if (!opened) await openExample('fourbar-crank-rocker').catch((e) => status(e.message, true));
   document.body.dataset.ready = '1';
 }
 

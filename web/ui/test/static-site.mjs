@@ -102,6 +102,12 @@ async function badModel(page, mobile, tag) {
   await shot(page, `${tag}-2-error`);
   await retype(page, mobile, 'crank:   [O2, Q]', 'Q]', 'A]');
   await page.waitForFunction(() => document.querySelector('#problems').textContent === 'No errors.');
+  // Over a limit of the server: refused the same way, at the same place.
+  await retype(page, mobile, 'sweep: {steps: 361}', '361', '999999');
+  await page.waitForFunction(() => /^line 22, column 16: the number of samples of the sweep is 999999; this server allows at most 100001/
+    .test(document.querySelector('#problems').textContent));
+  await retype(page, mobile, 'sweep: {steps: 999999}', '999999', '361');
+  await page.waitForFunction(() => document.querySelector('#problems').textContent === 'No errors.');
 }
 
 async function downloaded(page, mobile, kind) {
@@ -206,6 +212,26 @@ async function offline(context, page, mobile, tag) {
   }
 }
 
+// A .wasm that does not load (blocked here), on a static host (no server either): the page says
+// so plainly and offers Reload; nothing is computed anywhere else.
+async function engineMissing() {
+  const context = await browser.newContext({ viewport: { width: 390, height: 844 }, isMobile: true, hasTouch: true, deviceScaleFactor: 2 });
+  await context.route(/\/api(\/|$)|nbar-engine\.wasm$/, (route) => route.abort());
+  const page = await context.newPage();
+  page.on('pageerror', (e) => errors.push(`no engine: ${e.message}`));
+  await page.goto(base);
+  await page.waitForSelector('#engine-note:not([hidden])');
+  await page.waitForSelector('body[data-ready="1"]');
+  assert.match(await page.locator('#status').textContent(), /^The in-browser engine could not load/);
+  const note = await page.locator('#engine-note span').textContent();
+  assert.match(note, /^The in-browser engine could not load \(.*nbar-engine\.wasm.*\)\. There is no nbar server here either: reload the page/);
+  assert.ok(await page.locator('#engine-note button').isVisible(), 'Reload is offered');
+  assert.equal(await page.evaluate(() => document.body.dataset.engine), 'none');
+  await shot(page, 'phone-6-no-engine');
+  await context.close();
+  return note;
+}
+
 // Every page opened at the same moment from the one static server: each gets its analysis.
 async function manyAtOnce(count) {
   const context = await browser.newContext({ viewport: { width: 1366, height: 768 } });
@@ -236,6 +262,7 @@ try {
     console.log(`${tag}: first analysis ${firstAnalysisMs} ms after opening; downloads (bytes) ${JSON.stringify(sizes)}; progress "${progress}"`);
     await context.close();
   }
+  console.log(`no engine: "${await engineMissing()}"`);
   if (pages > 0) {
     const many = await manyAtOnce(pages);
     console.log(`${pages} pages at once: ${many.ok} analysed, the slowest after ${many.slowestMs} ms`);
