@@ -2,7 +2,7 @@
 // web/server embeds into the nbar program. Run by CMake (web/ui/build-ui.cmake) or by hand:
 //   npm ci && node build.mjs [OUTDIR]
 // With --engine DIR (the WebAssembly build's web/engine) it writes the static site instead: the
-// same app with the engine beside it (engine-worker.js, nbar-engine.mjs, nbar-engine.wasm), the
+// same app with the engine beside it (engine-worker.js, nbar-engine.js, nbar-engine.wasm), the
 // bundled examples in examples/, and index.html naming the engine, so that any static web server
 // serves the whole app (scripts/build-wasm.sh --site; docs/web.md):
 //   node build.mjs SITEDIR --engine build-wasm/web/engine [--examples ../../examples]
@@ -36,9 +36,12 @@ let index = readFileSync(join(here, 'src/index.html'), 'utf8');
 const shell = ['./', 'index.html', 'app.js', 'app.css'];
 if (engine) {
   // The engine's files beside the app; the worker is not bundled (it imports the engine module).
+  // The module is named .js: every static host serves that as JavaScript, which a module must
+  // be (some serve .mjs as bytes).
   copyFileSync(join(here, 'src/engine-worker.js'), join(out, 'engine-worker.js'));
-  for (const name of ['nbar-engine.mjs', 'nbar-engine.wasm', 'nbar.mjs']) copyFileSync(join(engine, name), join(out, name));
-  shell.push('engine-worker.js', 'nbar-engine.mjs', 'nbar-engine.wasm');
+  copyFileSync(join(engine, 'nbar-engine.mjs'), join(out, 'nbar-engine.js'));
+  copyFileSync(join(engine, 'nbar-engine.wasm'), join(out, 'nbar-engine.wasm'));
+  shell.push('engine-worker.js', 'nbar-engine.js', 'nbar-engine.wasm');
   mkdirSync(join(out, 'examples'), { recursive: true });
   for (const file of yamlFiles(examples)) {
     const target = join(out, 'examples', relative(examples, file));

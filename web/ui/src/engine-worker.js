@@ -1,7 +1,7 @@
 // The in-browser engine's Web Worker (engine.js starts it): nbar's core in WebAssembly
-// (nbar-engine.mjs and the .wasm bytes the page hands over) answering the web API's requests off
+// (nbar-engine.js, emscripten's module, and the .wasm bytes the page hands over) answering the web API's requests off
 // the page's thread, with the core's progress posted back while a request runs. Not bundled:
-// it is copied beside nbar-engine.mjs into the static site (web/ui/build.mjs --engine).
+// it is copied beside nbar-engine.js into the static site (web/ui/build.mjs --engine).
 //
 // Messages in:  {type: 'load', wasm: ArrayBuffer, moduleUrl}
 //               {type: 'request', id, method, path, body}

@@ -69,7 +69,7 @@ class WorkerEngine {
       };
     });
     // A copy each time: the bytes stay here for the next worker.
-    this.worker.postMessage({ type: 'load', wasm: this.wasm, moduleUrl: new URL('nbar-engine.mjs', this.wasmUrl).href });
+    this.worker.postMessage({ type: 'load', wasm: this.wasm, moduleUrl: new URL('nbar-engine.js', this.wasmUrl).href });
     return ready;
   }
 
