@@ -232,6 +232,19 @@ async function engineMissing() {
   return note;
 }
 
+// A file of the app that does not arrive (a server too busy to send it) leaves no blank page.
+async function appFileMissing() {
+  const context = await browser.newContext({ viewport: { width: 390, height: 844 }, isMobile: true, hasTouch: true });
+  await context.route(/\/app\.js$/, (route) => route.abort());
+  const page = await context.newPage();
+  await page.goto(base);
+  await page.waitForSelector('#load-failed');
+  const text = await page.locator('#load-failed').textContent();
+  assert.equal(text, 'A file of the app did not load (app.js). Reload');
+  await context.close();
+  return text;
+}
+
 // Every page opened at the same moment from the one static server: each gets its analysis.
 async function manyAtOnce(count) {
   const context = await browser.newContext({ viewport: { width: 1366, height: 768 } });
@@ -263,6 +276,7 @@ try {
     await context.close();
   }
   console.log(`no engine: "${await engineMissing()}"`);
+  console.log(`no app.js: "${await appFileMissing()}"`);
   if (pages > 0) {
     const many = await manyAtOnce(pages);
     console.log(`${pages} pages at once: ${many.ok} analysed, the slowest after ${many.slowestMs} ms`);
