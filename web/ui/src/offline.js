@@ -29,7 +29,9 @@ export function initOffline(app) {
   // In the browser's engine the MP4 button stays, and says that MP4 needs `nbar serve`.
   app.backendReady.then(async (where) => {
     const h = await app.api('/api/health');
-    $('[data-download="mp4"]').hidden = !h.mp4 && where.mode !== 'engine';
+    const mp4 = $('[data-download="mp4"]');
+    mp4.hidden = !h.mp4 && where.mode !== 'engine';
+    if (where.mode === 'engine') mp4.title = t('needsServer', mp4.textContent);
     showOnline();
   }).catch(() => {});
 }
