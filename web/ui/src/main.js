@@ -83,9 +83,10 @@ function status(text, bad = false, working = false) {
   el.classList.toggle('working', working);
 }
 
-// A busy server (429, 503) or no answer at all: worth trying again as it is. Anything else is
-// the model's or the request's fault, and the same request would fail the same way.
-function retryable(e) { return e.status === 429 || e.status === 503 || e.status === undefined; }
+// A busy server (429, 503), an analysis cancelled (499, engine.js) or no answer at all: worth
+// trying again as it is. Anything else is the model's or the request's fault, and the same
+// request would fail the same way.
+function retryable(e) { return e.status === 429 || e.status === 499 || e.status === 503 || e.status === undefined; }
 
 // After a failed analysis the drawing, plot and table still show the last model that worked:
 // they are dimmed and labelled "not updated" with the reason (and Retry when the server was
