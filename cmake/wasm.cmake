@@ -35,6 +35,19 @@ target_include_directories(yaml-cpp SYSTEM INTERFACE ${NBAR_WASM_YAML_CPP}/inclu
 add_library(Threads::Threads INTERFACE IMPORTED)
 
 # nbar's errors are exceptions: emscripten ignores them unless told (its default is
-# -fignore-exceptions), at compile and at link time.
-add_compile_options(-fexceptions)
-add_link_options(-fexceptions)
+# -fignore-exceptions), at compile and at link time. WebAssembly's own exception handling (wasm)
+# costs nothing until something throws; emscripten's JavaScript unwinding (js) calls every function
+# that may throw through JavaScript, which made the engine slower (docs/javascript.md), and is
+# only for browsers older than 2022 (Chrome 95, Firefox 100, Safari 15.2). yaml-cpp must be compiled
+# the same way (scripts/build-wasm.sh).
+set(NBAR_WASM_EXCEPTIONS wasm CACHE STRING "C++ exceptions in WebAssembly: wasm (WebAssembly's exception handling) or js (emscripten's JavaScript unwinding)")
+set_property(CACHE NBAR_WASM_EXCEPTIONS PROPERTY STRINGS wasm js)
+if(NBAR_WASM_EXCEPTIONS STREQUAL "wasm")
+  add_compile_options(-fwasm-exceptions)
+  add_link_options(-fwasm-exceptions)
+elseif(NBAR_WASM_EXCEPTIONS STREQUAL "js")
+  add_compile_options(-fexceptions)
+  add_link_options(-fexceptions)
+else()
+  message(FATAL_ERROR "NBAR_WASM_EXCEPTIONS is wasm or js, not ${NBAR_WASM_EXCEPTIONS}")
+endif()

@@ -31,9 +31,14 @@ if ! command -v emcmake >/dev/null 2>&1 || ! command -v dpkg-source >/dev/null 2
 fi
 export NODE_PATH="${NODE_PATH:+$NODE_PATH:}/usr/share/nodejs"
 
+# How C++ exceptions are compiled (cmake/wasm.cmake): wasm (the default) or js; yaml-cpp the same way.
+exceptions="${NBAR_WASM_EXCEPTIONS:-wasm}"
+exceptions_flag=-fwasm-exceptions
+if [ "$exceptions" = js ]; then exceptions_flag=-fexceptions; fi
+
 # yaml-cpp for WebAssembly, from the source of the version Debian ships (built once per folder).
 deps="$build/deps"
-yaml_prefix="$deps/yaml-cpp"
+yaml_prefix="$deps/yaml-cpp-$exceptions"
 if [ ! -f "$yaml_prefix/lib/libyaml-cpp.a" ]; then
   mkdir -p "$deps/source"
   if ! (cd "$deps/source" && apt-get source --print-uris yaml-cpp >/dev/null 2>&1); then
@@ -50,17 +55,19 @@ EOF
   fi
   (cd "$deps/source" && rm -rf yaml-cpp-* && apt-get source yaml-cpp)
   yaml_source="$(find "$deps/source" -maxdepth 1 -type d -name 'yaml-cpp-*' | head -1)"
-  emcmake cmake -S "$yaml_source" -B "$deps/yaml-cpp-build" -DCMAKE_BUILD_TYPE=Release \
+  emcmake cmake -S "$yaml_source" -B "$deps/yaml-cpp-build-$exceptions" -DCMAKE_BUILD_TYPE=Release \
     -DYAML_CPP_BUILD_TESTS=OFF -DYAML_CPP_BUILD_TOOLS=OFF -DYAML_CPP_BUILD_CONTRIB=OFF -DYAML_BUILD_SHARED_LIBS=OFF \
-    -DCMAKE_CXX_FLAGS=-fexceptions -DCMAKE_INSTALL_PREFIX="$yaml_prefix" >/dev/null
-  cmake --build "$deps/yaml-cpp-build" -j"$jobs"
-  cmake --install "$deps/yaml-cpp-build" >/dev/null
+    -DCMAKE_CXX_FLAGS="$exceptions_flag" -DCMAKE_INSTALL_PREFIX="$yaml_prefix" >/dev/null
+  cmake --build "$deps/yaml-cpp-build-$exceptions" -j"$jobs"
+  cmake --install "$deps/yaml-cpp-build-$exceptions" >/dev/null
 fi
 
-emcmake cmake -S "$root" -B "$build" -DNBAR_WASM=ON -DCMAKE_BUILD_TYPE=Release -DNBAR_WASM_YAML_CPP="$yaml_prefix" \
+emcmake cmake -S "$root" -B "$build" -DNBAR_WASM=ON -DCMAKE_BUILD_TYPE=Release -DNBAR_WASM_YAML_CPP="$yaml_prefix" -DNBAR_WASM_EXCEPTIONS="$exceptions" \
   -DNBAR_NATIVE="$root/build/apps/nbar/nbar" >/dev/null
 cmake --build "$build" -j"$jobs" --target nbar_engine
 ls -l "$build/web/engine/nbar-engine.wasm"
+# The npm package nbar-wasm-<version>.tgz (docs/javascript.md), from the engine just built.
+cmake --build "$build" --target nbar_wasm_package
 if [ "$site" = 1 ]; then
   # The app's npm packages (esbuild, the editor, the GIF encoder), as the native build installs them.
   ui="$root/web/ui"

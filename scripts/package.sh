@@ -4,6 +4,7 @@
 #   dist/nbar_<version>_amd64.deb                      the program, the module, the manual
 #   dist/libnbar-dev_<version>_amd64.deb               the C++ library and its CMake package
 #   dist/web/                                          the static web app, when a browser build exists
+#   dist/nbar-wasm-<version>.tgz                       the engine for JavaScript (npm), when build-wasm/ has it
 # It builds in the tree's build directory (NBAR_BUILD_DIR, default build/; configured here,
 # without tests and benchmarks, when it is not yet), so after scripts/quickstart.sh or
 # scripts/test.sh little is left to build. What it needs beyond the quick start's packages
@@ -42,5 +43,11 @@ web_static="${NBAR_WEB_STATIC_DIR:-$build/web/static}"
 if [ -f "$web_static/index.html" ]; then
   echo "== the static web app"
   cp -r "$web_static" "$dist/web"
+fi
+# The engine's npm package (docs/javascript.md): copied when a WebAssembly build made it.
+wasm_tarball="$(ls "${NBAR_WASM_BUILD_DIR:-$root/build-wasm}"/nbar-wasm-*.tgz 2>/dev/null | head -1 || true)"
+if [ -n "$wasm_tarball" ]; then
+  echo "== the npm package"
+  cp "$wasm_tarball" "$dist/"
 fi
 ls -l "$dist"

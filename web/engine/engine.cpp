@@ -16,16 +16,18 @@ using emscripten::val;
 
 // The server's limits and time budget, on one thread: the browser engine has no shared memory
 // (a static host gives no cross-origin isolation), so synthesis tracks its paths on one.
-nbar::web::ServerConfig engine_config() {
-  nbar::web::ServerConfig config;
-  config.limits.max_synthesis_threads = 1;
+nbar::web::ServerConfig& engine_config() {
+  static nbar::web::ServerConfig config = [] {
+    nbar::web::ServerConfig defaults;
+    defaults.limits.max_synthesis_threads = 1;
+    return defaults;
+  }();
   return config;
 }
 
-const nbar::web::ServerConfig& shared_config() {
-  static const nbar::web::ServerConfig config = engine_config();
-  return config;
-}
+// As `nbar serve --time-budget S`: a program (not a page) may give its long jobs, a nine-point
+// synthesis on one thread, longer than the server's 30 s. nbar.mjs checks the value.
+void set_time_budget(double seconds) { engine_config().limits.time_budget_seconds = seconds; }
 
 // {status, contentType, headers: [[name, value]...], body: Uint8Array}; the body is copied out of
 // the module's memory, which the next request may reuse.
@@ -47,7 +49,7 @@ val answer_of(const nbar::web::ApiRequest& api_request, const nbar::web::ServerC
 }
 
 val request(const std::string& method, const std::string& path, const std::string& body) {
-  return answer_of({method, path, body}, shared_config());
+  return answer_of({method, path, body}, engine_config());
 }
 
 // The same request, calling on_progress(stage, done, total) at every checkpoint of its
@@ -55,7 +57,7 @@ val request(const std::string& method, const std::string& path, const std::strin
 // cancels by ending the worker the engine runs in: on one thread nothing else could ask to stop.
 val request_with_progress(const std::string& method, const std::string& path, const std::string& body,
                           val on_progress) {
-  nbar::web::ServerConfig config = shared_config();
+  nbar::web::ServerConfig config = engine_config();
   config.on_progress = [&on_progress](const nbar::Progress& progress) {
     on_progress(std::string(progress.stage), static_cast<double>(progress.done), static_cast<double>(progress.total));
     return true;
@@ -71,4 +73,5 @@ EMSCRIPTEN_BINDINGS(nbar_engine) {
   emscripten::function("request", &request);
   emscripten::function("requestWithProgress", &request_with_progress);
   emscripten::function("version", &version);
+  emscripten::function("setTimeBudget", &set_time_budget);
 }

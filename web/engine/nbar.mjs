@@ -76,13 +76,22 @@ class Nbar {
 
 // Loads and starts the engine. options.wasmBinary: the .wasm's bytes (an ArrayBuffer or a
 // typed array), when the caller has them; options.locateFile(name): where a browser finds the
-// .wasm when it is not beside this file.
+// .wasm when it is not beside this file; options.timeBudgetSeconds: the wall time one request may
+// compute before it is answered 504 (default 30, as `nbar serve --time-budget`).
 export async function loadNbar(options = {}) {
   const moduleOptions = {};
   const bytes = options.wasmBinary ?? (isNode ? await nodeWasmBytes() : undefined);
   if (bytes) moduleOptions.wasmBinary = bytes;
-  if (options.locateFile) moduleOptions.locateFile = options.locateFile;
-  return new Nbar(await createNbarEngine(moduleOptions));
+  // The .wasm beside this file, written as `new URL('./file', import.meta.url)` so that bundlers
+  // (esbuild, webpack, Vite) see the file and ship it with the page that imports this package.
+  const besideThis = new URL('./nbar-engine.wasm', import.meta.url);
+  moduleOptions.locateFile = options.locateFile ?? ((name) => (name.endsWith('.wasm') ? besideThis.href : name));
+  const budget = options.timeBudgetSeconds;
+  if (budget !== undefined && !(typeof budget === 'number' && budget > 0 && Number.isFinite(budget)))
+    throw new RangeError(`timeBudgetSeconds: must be a number of seconds over 0, not ${budget}`);
+  const engine = await createNbarEngine(moduleOptions);
+  if (budget !== undefined) engine.setTimeBudget(budget);
+  return new Nbar(engine);
 }
 
 export default loadNbar;

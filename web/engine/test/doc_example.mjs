@@ -1,5 +1,5 @@
 // Runs docs/javascript.md's first example against the built engine, as a reader would run it: its
-// import of './nbar.mjs' pointed at the engine, in a file of its own. It fails when the example
+// import of 'nbar-wasm' (the npm package) pointed at the engine, in a file of its own. It fails when the example
 // throws (an answer that is not 200) or prints other than what its comments say.
 //
 //   node doc_example.mjs --engine build-wasm/web/engine/nbar.mjs --doc docs/javascript.md
@@ -15,7 +15,7 @@ const doc = readFileSync(args.doc, 'utf8');
 const start = doc.indexOf('```js\n') + '```js\n'.length;
 const example = doc.slice(start, doc.indexOf('```', start));
 const file = join(mkdtempSync(join(tmpdir(), 'nbar-doc-')), 'example.mjs');
-writeFileSync(file, example.replace("'./nbar.mjs'", `'${pathToFileURL(resolve(args.engine)).href}'`));
+writeFileSync(file, example.replace("'nbar-wasm'", `'${pathToFileURL(resolve(args.engine)).href}'`));
 const run = spawnSync(process.execPath, [file], { encoding: 'utf8' });
 process.stdout.write(run.stdout);
 process.stderr.write(run.stderr);
