@@ -105,7 +105,7 @@ LoadedModel Parser::parse() {
   } catch (const ModelError& error) {
     throw ModelFileError(source_.file, source_.find(error.where()), error.what());
   }
-  return LoadedModel{std::move(model_), std::move(source_)};
+  return LoadedModel{std::move(model_), std::move(source_), {}};
 }
 
 // Keys are also the names of points, bodies and materials, hence "key or name".
@@ -217,16 +217,24 @@ void Parser::parse_units(const Entry& e) {
 using model_file_detail::Parser;
 
 LoadedModel parse_model(const std::string& text, const std::string& file_name) {
-  return Parser(text, file_name).parse();
+  LoadedModel loaded = Parser(text, file_name).parse();
+  loaded.text = text;
+  return loaded;
+}
+
+LoadedModel parse_model(const std::string& text, const std::string& file_name, const std::string& import_dir) {
+  Parser parser(text, file_name);
+  parser.allow_imports(import_dir);
+  LoadedModel loaded = parser.parse();
+  loaded.text = text;
+  return loaded;
 }
 
 LoadedModel load_model_file(const std::string& path) {
   const FileText file = read_file_text(path);
   if (file.error) throw ModelFileError(path, SourceMark{}, "cannot read: " + file.error.message());
   if (file.too_long) throw ModelFileError(path, SourceMark{1, 1}, too_long_message());
-  Parser parser(file.text, path);
-  parser.allow_imports(std::filesystem::path(path).parent_path());
-  return parser.parse();
+  return parse_model(file.text, path, std::filesystem::path(path).parent_path().string());
 }
 
 }  // namespace nbar::io

@@ -161,19 +161,28 @@ std::string design_model_yaml(const SynthesisTask& task, const Outcome& out, int
   return text.str();
 }
 
-// DIR/design-01.yaml... for the real designs shown, in rank order.
-void export_designs(const SynthesisTask& task, const Outcome& out, const SynthesisListing& args) {
-  std::error_code error;
-  fs::create_directories(args.export_dir, error);
-  if (error) throw Error(ErrorKind::BadInput, "--export " + args.export_dir + ": " + error.message());
+std::vector<std::pair<std::string, std::string>> design_files(const SynthesisTask& task, const Outcome& out,
+                                                              const SynthesisListing& args) {
+  std::vector<std::pair<std::string, std::string>> files;
   int rank = 0;
   for (int i : args.shown) {
     const Row& r = out.rows[i];
     ++rank;
     if (!r.real || !r.check.invalid.empty()) continue;
-    const fs::path path = fs::path(args.export_dir) / design_file_name(rank);
+    files.emplace_back(design_file_name(rank), design_model_yaml(task, out, i, rank));
+  }
+  return files;
+}
+
+// DIR/design-01.yaml... for the real designs shown, in rank order.
+void export_designs(const SynthesisTask& task, const Outcome& out, const SynthesisListing& args) {
+  std::error_code error;
+  fs::create_directories(args.export_dir, error);
+  if (error) throw Error(ErrorKind::BadInput, "--export " + args.export_dir + ": " + error.message());
+  for (const auto& [name, text] : design_files(task, out, args)) {
+    const fs::path path = fs::path(args.export_dir) / name;
     std::ofstream file(path);
-    file << design_model_yaml(task, out, i, rank);
+    file << text;
     if (file) file.close();  // a full disk fails here, after the text was taken
     if (!file) throw Error(ErrorKind::BadInput, cannot_write_message(path.string()));
   }

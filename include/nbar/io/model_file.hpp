@@ -43,11 +43,15 @@ class ModelFileError : public Error {
 struct LoadedModel {
   Model model;
   SourceMap source;
+  std::string text;  // what was parsed: Python pickles a model as its text
 };
 
 // Parses and validates (nbar::validate) a model; throws ModelFileError for any problem,
 // including the ModelErrors of validate(), located with the source map.
 LoadedModel parse_model(const std::string& text, const std::string& file_name = "<model>");
+// The same, letting `shape: {import: FILE}` read files relative to `import_dir`, as a model file
+// read from that folder does (load_model_file).
+LoadedModel parse_model(const std::string& text, const std::string& file_name, const std::string& import_dir);
 LoadedModel load_model_file(const std::string& path);
 
 // "file:line:column: message" for an error the core reports about an entity.

@@ -4,6 +4,7 @@
 
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "nbar/synthesis/run.hpp"
@@ -27,6 +28,11 @@ std::string synthesis_json(const synthesis::SynthesisTask& task, const synthesis
 // for it. Throws Error(BadInput) for a complex or invalid design.
 std::string design_model_yaml(const synthesis::SynthesisTask& task, const synthesis::SynthesisOutcome& outcome, int row,
                               int rank);
+// The files export_designs writes, as (file name, model text): the real, valid designs listed,
+// in rank order.
+std::vector<std::pair<std::string, std::string>> design_files(const synthesis::SynthesisTask& task,
+                                                              const synthesis::SynthesisOutcome& outcome,
+                                                              const SynthesisListing& listing);
 // DIR/design-01.yaml... for the real designs listed, in rank order. Throws Error(BadInput)
 // naming the folder or file that cannot be written.
 void export_designs(const synthesis::SynthesisTask& task, const synthesis::SynthesisOutcome& outcome,
