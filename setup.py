@@ -62,6 +62,11 @@ class CMakeBuild(build_ext):
         if built[0].name != target.name:
             raise RuntimeError(f"the extension {built[0].name} was built for another Python than {target.name}")
         shutil.copyfile(built[0], target)
+        # The examples CMake laid out beside the extension (nbar.examples reads them) go in the wheel too.
+        examples = build_dir / "python" / "nbar" / "_examples"
+        if not examples.is_dir():
+            raise RuntimeError(f"the build has no examples in {examples}")
+        shutil.copytree(examples, target.parent / "_examples", dirs_exist_ok=True)
 
 
 (ROOT / "build-wheel" / "setuptools").mkdir(parents=True, exist_ok=True)  # egg_info's must exist before it runs

@@ -9,8 +9,8 @@
 # what they link (cairo's alone brings the X11 headers), which a user of the program should not
 # have to install.
 
-# The manual and the examples, where Debian keeps a package's documentation. The notebooks find
-# the examples as ../examples from there too.
+# The manual and the examples, where Debian keeps a package's documentation. The notebooks load
+# the copy inside the Python package (nbar.examples), so that they run wherever they are copied.
 set(NBAR_DOC_DIR ${CMAKE_INSTALL_DATADIR}/doc/nbar)
 install(FILES README.md CHANGELOG.md DESTINATION ${NBAR_DOC_DIR} COMPONENT runtime)
 install(FILES LICENSE DESTINATION ${NBAR_DOC_DIR} RENAME copyright COMPONENT runtime)

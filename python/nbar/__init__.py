@@ -1,7 +1,7 @@
 """nbar: analysis, simulation and synthesis of planar linkages.
 
 >>> import nbar
->>> m = nbar.load("examples/fourbar-crank-rocker.yaml")
+>>> m = nbar.load(nbar.examples.path("fourbar-crank-rocker"))   # or a model file of yours
 >>> print(m.check())                      # degrees of freedom, Grashof class, transmission angle
 >>> r = m.solve(steps=361)                # numpy arrays by column name
 >>> nbar.plot(r, "rocker.omega")
@@ -16,19 +16,19 @@ except ImportError as missing_numpy:
     raise ImportError("nbar needs numpy: apt-get install python3-numpy (for Debian's python3), "
                       "or pip install numpy") from missing_numpy
 
-from . import synth
+from . import examples, synth
 from ._nbar import __version__
 from .errors import (AssemblyError, BadInputError, Cancelled, ColumnError, Error, InternalError, LimitError,
                      ModelError, UndefinedLawError)
 from .explain import Explanation
-from .model import Model, StressResult, Summary, load, loads
+from .model import Model, ReadOnlyView, StressResult, Summary, load, loads, solve_many
 from .pictures import Animation, Drawing, Report
 from .plotting import plot
 from .results import Result, Table, Warning
 
 __all__ = [
-    "Model", "load", "loads", "Summary", "Result", "Table", "Warning", "StressResult", "Explanation",
-    "Drawing", "Animation", "Report", "plot", "synth",
+    "Model", "load", "loads", "solve_many", "ReadOnlyView", "Summary", "Result", "Table", "Warning", "StressResult", "Explanation",
+    "Drawing", "Animation", "Report", "plot", "synth", "examples",
     "Error", "ModelError", "UndefinedLawError", "BadInputError", "ColumnError", "AssemblyError", "LimitError", "Cancelled",
     "InternalError", "__version__",
 ]

@@ -1,12 +1,5 @@
-"""Four-bar synthesis: every four-bar that does a task, checked with the kinematics engine and
-ranked (``nbar synth``).
-
->>> designs = nbar.synth.five_point(pivots=[(0, 0), (200, 0)], points=[...], units="mm")
->>> best = designs[0]; best.model().animate()
-
-Each function builds the task a task file would hold (the same keys: see docs/synthesis.md), so
-its checks and messages are the command line's.
-"""
+"""nbar.synth's implementation: the task builders, the run and the designs. ``nbar.synth`` is its
+public namespace (only the names in its ``__all__``)."""
 
 from __future__ import annotations
 
@@ -19,6 +12,7 @@ from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 from . import _nbar
 from ._args import json_value, path as as_path, real
 from .errors import BadInputError
+from .pictures import _write
 
 Point = Sequence[float]
 
@@ -28,24 +22,26 @@ class Design:
     defects and how far the simulated linkage misses the targets (``error``). ``.model()``
     makes it a Model to solve, draw and animate; ``.yaml`` is its model file."""
 
-    def __init__(self, outcome, row: int, data: Dict[str, Any]):
+    def __init__(self, outcome: Any, row: int, data: Dict[str, Any]):
         self._outcome = outcome
         self._row = row
         self.data = data
         self.rank: int = data.get("rank", 0)
         self.real: bool = data.get("real", True)
         self.grashof: Optional[str] = data.get("grashof")
-        self.lengths: Optional[Dict[str, float]] = data.get("lengths")
+        # A complex solution has no link lengths, angle or error: {} and NaN, so that a real
+        # design's numbers are plain floats to index and round.
+        self.lengths: Dict[str, float] = data.get("lengths") or {}
         self.defects: Optional[Dict[str, Any]] = data.get("defects")
         self.defect_free: bool = bool(data.get("defect_free", False))
-        self.min_transmission: Optional[float] = data.get("min_transmission")
-        self.error: Optional[float] = data.get("max_error")
+        self.min_transmission: float = _number_or_nan(data.get("min_transmission"))
+        self.error: float = _number_or_nan(data.get("max_error"))
 
     @property
     def yaml(self) -> str:
         return self._outcome.design_yaml(self._row, self.rank)
 
-    def model(self):
+    def model(self) -> Any:
         """The design as a Model (a four-bar driven through its targets)."""
         from .model import loads
         return loads(self.yaml, f"<design {self.rank}>")
@@ -53,12 +49,75 @@ class Design:
     def __getitem__(self, key: str) -> Any:
         return self.data[key]
 
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        outcome = self._outcome if isinstance(self._outcome, _KeptOutcome) else _KeptOutcome(
+            _KeptOutcome.state_of(self._outcome))
+        return (Design, (outcome, self._row, self.data))
+
     def __repr__(self) -> str:
         if not self.real:
             return f"<nbar.synth.Design {self.rank}: complex>"
         lengths = ", ".join(f"{k} {v:.6g}" for k, v in (self.lengths or {}).items())
         return (f"<nbar.synth.Design {self.rank}: {self.grashof}, {lengths}; mu min {self.min_transmission:.4g}, "
                 f"{'no defects' if self.defect_free else 'defective'}, error {self.error:.3g}>")
+
+
+def _number_or_nan(value: Any) -> float:
+    return float("nan") if value is None else float(value)
+
+
+class _KeptOutcome:
+    """An unpickled Designs' stand-in for its synthesis run: what the run wrote when pickled (the
+    JSON, the table, each listed design's model file and the exported files)."""
+
+    def __init__(self, state: Dict[str, Any]):
+        self.__dict__.update(state)
+
+    @staticmethod
+    def state_of(outcome: Any) -> Dict[str, Any]:
+        rows = list(outcome.shown())
+        data = json.loads(outcome.json())
+        yamls = {}
+        for row, design in zip(rows, data.get("designs", [])):
+            if design.get("real", True) and not design.get("invalid"):
+                try:
+                    yamls[row] = outcome.design_yaml(row, design.get("rank", 0))
+                except Exception:  # a design no model file can be written for (design_yaml refuses it)
+                    pass
+        return {"method": outcome.method, "notes": list(outcome.notes), "_json": outcome.json(),
+                "_table": outcome.table(), "_rows": rows, "_counts": tuple(outcome.counts()), "_yamls": yamls, "_files": list(outcome.design_files())}
+
+    def json(self) -> str:
+        return self._json
+
+    def table(self) -> str:
+        return self._table
+
+    def shown(self) -> List[int]:
+        return self._rows
+
+    def counts(self) -> Tuple[int, int, int]:
+        return self._counts
+
+    def design_yaml(self, row: int, rank: int) -> str:
+        if row not in self._yamls:
+            raise BadInputError(f"design {rank} has no model file")
+        return self._yamls[row]
+
+    def design_files(self) -> List[Tuple[str, str]]:
+        return self._files
+
+    def export(self, folder: str) -> None:
+        try:
+            os.makedirs(folder, exist_ok=True)
+        except OSError as e:
+            raise BadInputError(f"cannot export to {folder}: {e.strerror}") from None
+        for name, text in self._files:
+            _write(os.path.join(folder, name), text)
+
+    def write_curves(self, path: str) -> None:
+        raise BadInputError("the Burmester curves are not kept when designs are pickled: write_curves() "
+                            "before pickling, or run the task again")
 
 
 class Designs(list):
@@ -78,12 +137,29 @@ class Designs(list):
 
     @property
     def best(self) -> Design:
+        """The best design; ``nbar.BadInputError`` saying how many solutions there were, and
+        why none is listed, when there is none."""
         if not self:
-            raise BadInputError("no design does the task: " + "; ".join(self.notes))
+            raise BadInputError(self._none_listed())
         return self[0]
 
+    def _none_listed(self) -> str:
+        solutions, real, clean = self._outcome.counts()
+        found = f"{solutions} solution{'s' if solutions != 1 else ''}, {real} real, {clean} without defects"
+        why = ("all=True lists the defective ones too" if real and not clean else
+               "top=0 lists every one" if clean else "none of them is real")
+        notes = "".join(f"; {n}" for n in self.notes)
+        return f"no design does the task ({self.method}): {found}; {why}{notes}"
+
     def table(self) -> str:
+        """The ranked table ``nbar synth`` prints, in Python's words (``all=True``, ``top=N``)."""
         return self._outcome.table()
+
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        # Designs cross to another process as what their run wrote: the run stays here.
+        outcome = self._outcome if isinstance(self._outcome, _KeptOutcome) else _KeptOutcome(
+            _KeptOutcome.state_of(self._outcome))
+        return (_unpickled_designs, (outcome.__dict__,))
 
     def export(self, folder: Union[str, os.PathLike]) -> None:
         self._outcome.export(as_path("folder", folder))
@@ -113,6 +189,10 @@ class Designs(list):
                 f"{real} real design{'s' if real != 1 else ''} listed</p>")
         return (f"{head}{'<ul>' + notes + '</ul>' if notes else ''}<table><tr><th>rank</th><th>Grashof</th><th>μ min</th><th>defects</th>"
                 f"<th>error</th></tr>{''.join(rows)}</table>")
+
+
+def _unpickled_designs(state: Dict[str, Any]) -> "Designs":
+    return Designs(_KeptOutcome(state))
 
 
 def _units(units: Union[None, str, Dict[str, str]]) -> Optional[Dict[str, str]]:
@@ -166,7 +246,8 @@ def run(the_task, all: Optional[bool] = None, top: Optional[int] = None, threads
 
 
 _DEFAULT_NAMES = {"five-point": "Five-point synthesis", "burmester": "Burmester synthesis",
-                  "function": "Function generation"}
+                  "function": "Function generation", "nine-point": "Nine-point synthesis",
+                  "path": "Path fit"}
 
 
 def _task_dict(kind: str, name: Optional[str], units, **keys) -> Dict[str, Any]:
@@ -236,4 +317,24 @@ def function(function: str, x: Tuple[float, float], input_range: Tuple[float, fl
     return run(task(d, "<function>"), **run_options)
 
 
-__all__ = ["Design", "Designs", "task", "load", "run", "five_point", "burmester", "function"]
+def nine_point(points: Iterable[Point], units: Union[None, str, Dict[str, str]] = None, name: Optional[str] = None,
+               **run_options: Any) -> Designs:
+    """Every four-bar whose coupler point passes through the nine ``points`` in order, pivots
+    unknown (Alt's problem: 1442 triples of Roberts cognates by homotopy continuation;
+    ``nbar synth nine-point``). Can take minutes: ``timeout=`` bounds it."""
+    d = _task_dict("nine-point", name, units, points=[_xy(p) for p in points])
+    return run(task(d, "<nine_point>"), **run_options)
+
+
+def path(points: Optional[Iterable[Point]] = None, curve: Union[None, str, os.PathLike] = None,
+         constraints: Optional[Dict[str, Any]] = None, nine_point_starts: Optional[int] = None,
+         units: Union[None, str, Dict[str, str]] = None, name: Optional[str] = None, **run_options: Any) -> Designs:
+    """The four-bars whose coupler curve passes closest to ``points`` (10 to 1000, in order), or
+    to the points of the CSV file ``curve``, with no pivots given (best-fit path generation,
+    ``nbar synth path``), ranked by their RMS deviation. ``constraints`` as a task file's:
+    ``{"pivots": {"min": [x, y], "max": [x, y]}, "crank": True, "min_transmission": 30,
+    "lengths": [10, 200]}``."""
+    d = _task_dict("path", name, units, points=None if points is None else [_xy(p) for p in points],
+                   curve=None if curve is None else as_path("curve", curve), constraints=constraints,
+                   nine_point_starts=nine_point_starts)
+    return run(task(d, "<path>"), **run_options)

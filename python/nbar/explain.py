@@ -2,20 +2,31 @@
 
 from __future__ import annotations
 
+from typing import Any, List
+
 
 class Explanation:
     """Gruebler's count, q, Φ and Φq (symbolic and numeric), every Newton–Raphson iteration,
     the velocity and acceleration systems and the instant centres, at one sample. Jupyter shows
     it as Markdown with LaTeX; ``print()`` gives plain text; ``.latex`` a LaTeX fragment."""
 
-    def __init__(self, native):
+    # The native explanation's fields, which __getattr__ reaches: listed by dir() (so that
+    # Jupyter completes them) and documented in docs/python.md.
+    FIELDS = ("step", "time", "driver_values", "count", "coordinates", "equations", "newton", "converged", "start",
+              "jacobian", "q", "velocity", "acceleration", "centres", "residual", "matches_sweep",
+              "sweep_difference", "notes")
+
+    def __init__(self, native: Any):
         self._native = native
 
-    def __getattr__(self, name):
-        # Only what the native explanation has: copy and pickle look for special names on an
-        # instance whose _native is not set yet, which would otherwise look for _native forever.
-        if name.startswith("__") or name == "_native":
-            raise AttributeError(name)
+    def __dir__(self) -> List[str]:
+        return sorted(set(super().__dir__()) | set(self.FIELDS))
+
+    def __getattr__(self, name: str) -> Any:
+        # Only the fields: copy and pickle look for special names on an instance whose _native is
+        # not set yet, which would otherwise look for _native forever.
+        if name not in self.FIELDS:
+            raise AttributeError(f"'Explanation' object has no attribute '{name}'")
         return getattr(self._native, name)
 
     def __deepcopy__(self, memo) -> "Explanation":

@@ -6,11 +6,11 @@ import html
 import json
 import os
 from types import SimpleNamespace
-from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Generic, Iterable, Iterator, List, Mapping, Optional, Sequence, Tuple, TypeVar, Union
 
 from . import _nbar
 from ._args import flag as _flag, json_value as _json_value, path as _path, real as _real, text as _text, whole as _whole
-from .errors import BadInputError, LimitError
+from .errors import BadInputError, Error, LimitError
 from .pictures import Animation, Drawing, Report, _write
 from .results import Result, Table, _no_column
 
@@ -42,6 +42,61 @@ def _names(name: str, value: Any) -> List[str]:
         if not isinstance(n, str):
             raise BadInputError(f"{name} must be point names (strings), not {n!r}")
     return names
+
+
+_Value = TypeVar("_Value")
+
+
+class ReadOnlyView(Mapping[str, _Value], Generic[_Value]):
+    """A model's points or bodies by name. A Model never changes: assigning to the view raises,
+    saying which method returns the edited Model, rather than changing a copy that is then lost."""
+
+    def __init__(self, what: str, items: Dict[str, _Value], how_to_edit: str):
+        self._what = what
+        self._items = items
+        self._how_to_edit = how_to_edit
+
+    def __getitem__(self, name: str) -> _Value:
+        try:
+            return self._items[name]
+        except KeyError:
+            raise KeyError(f"no {self._what[:-1] if self._what != 'bodies' else 'body'} '{name}'; "
+                           f"the {self._what} are {', '.join(self._items)}") from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def _refuse(self, *_: Any) -> None:
+        raise TypeError(f"m.{self._what} is read-only (a Model never changes): {self._how_to_edit}")
+
+    __setitem__ = __delitem__ = _refuse
+    update = pop = popitem = clear = setdefault = _refuse
+
+    def __repr__(self) -> str:
+        return repr(self._items)
+
+
+def _items(name: str, value: Any) -> List[Tuple[Any, Any]]:
+    if not isinstance(value, Mapping):
+        raise BadInputError(f"{name} must be a dict, not {value!r}")
+    return list(value.items())
+
+
+def _xy(name: str, value: Any) -> Tuple[float, float]:
+    items = list(value) if isinstance(value, Iterable) and not isinstance(value, (str, bytes)) else None
+    if items is None or len(items) != 2:
+        raise BadInputError(f"point {name} must move to (x, y), not {value!r}")
+    return (_number(f"x of {name}", items[0]), _number(f"y of {name}", items[1]))
+
+
+def _number(name: str, value: Any) -> float:
+    number = _real(name, value)
+    if number is None:
+        raise BadInputError(f"{name} must be a number, not None")
+    return number
 
 
 def _stopped(model, stop_reason: Optional[str], what: str, result: Any) -> "LimitError":
@@ -183,17 +238,37 @@ class Model:
         return {"length": self._c.length_unit, "angle": self._c.angle_unit}
 
     @property
-    def points(self) -> Dict[str, Tuple[float, float]]:
-        """Every point's drawn position, in the model's length unit."""
-        return {p[0]: (p[1], p[2]) for p in self._c.points}
+    def points(self) -> ReadOnlyView[Tuple[float, float]]:
+        """Every point's drawn position, in the model's length unit (read-only: ``with_points``
+        returns a Model with points moved)."""
+        return ReadOnlyView("points", {p[0]: (p[1], p[2]) for p in self._c.points},
+                            "m.with_points({name: (x, y)}) returns the Model with points moved")
 
     @property
     def ground(self) -> List[str]:
         return [p[0] for p in self._c.points if p[3]]
 
     @property
-    def bodies(self) -> Dict[str, List[str]]:
-        return {b[0]: b[1] for b in self._c.bodies}
+    def bodies(self) -> ReadOnlyView[Tuple[str, ...]]:
+        """Every body's points (read-only: ``with_lengths`` returns a Model with lengths set)."""
+        return ReadOnlyView("bodies", {b[0]: tuple(b[1]) for b in self._c.bodies},
+                            "m.with_lengths({body: length}) returns the Model with lengths set; "
+                            "m.with_points({name: (x, y)}) one with points moved")
+
+    # --- edited copies (a Model never changes) ---------------------------------------------------
+    def with_points(self, points: Mapping[str, Sequence[float]]) -> "Model":
+        """A new Model with ``points`` (name: (x, y), in the model's length unit) moved in the
+        drawing; this one is unchanged. Checked as a model file is: a point on a shaped body, or a
+        drawing that no longer assembles as asked, is an error."""
+        moved = [(_text("point name", name), _xy(name, xy)) for name, xy in _items("points", points)]
+        return Model(self._c.edited(moved, []))
+
+    def with_lengths(self, lengths: Mapping[str, float]) -> "Model":
+        """A new Model with the two-point bodies ``lengths`` (body: length, in the model's length
+        unit) set, as the model file's ``lengths:`` sets them; this one is unchanged."""
+        set_lengths = [(_text("body name", name), _number(f"the length of {name}", value))
+                       for name, value in _items("lengths", lengths)]
+        return Model(self._c.edited([], set_lengths))
 
     @property
     def drivers(self) -> List[str]:
@@ -210,6 +285,15 @@ class Model:
     def __repr__(self) -> str:
         return (f"<nbar.Model '{self.name}': {len(self._c.points)} points, {len(self._c.bodies)} bodies, "
                 f"drivers {', '.join(self.drivers) or 'none'}>")
+
+    def _repr_html_(self) -> str:
+        """Jupyter shows a model as its drawing in the starting pose, under its name."""
+        head = f"<p>{html.escape(repr(self))}</p>"
+        try:
+            drawing = self.draw(steps=2, width=600, height=420)
+        except Error as e:  # a model that does not assemble still shows what it is, and why
+            return head + f"<p>Not drawn: {html.escape(str(e))}</p>"
+        return head + drawing._repr_html_()
 
     # --- analyses ------------------------------------------------------------------------------
     def check(self) -> Summary:
@@ -244,14 +328,20 @@ class Model:
         (default 10 000 000, as ``nbar solve --max-steps``) is an error.
         """
         patterns = _patterns(columns)
-        order, dynamics = _whole("order", order), _flag("dynamics", dynamics)
+        order, dynamics = self._plan(patterns, _whole("order", order), _flag("dynamics", dynamics))
+        analysis = self.analyse(steps=steps, order=order, dynamics=dynamics, timeout=timeout, max_steps=max_steps)
+        return self._result(analysis, patterns, partial)
+
+    def _plan(self, patterns: Optional[List[str]], order: Optional[int], dynamics: bool) -> Tuple[int, bool]:
+        """The derivative order and dynamics a solve needs for ``patterns`` (None: every column)."""
         if patterns:
             needs = self._c.needs(patterns, order, dynamics)
             if needs["unmatched"] >= 0:
                 raise _no_column(patterns[needs["unmatched"]], self.columns(order=5, dynamics=True))
             order, dynamics = needs["order"], needs["dynamics"]
-        analysis = self.analyse(steps=steps, order=2 if order is None else order, dynamics=dynamics, timeout=timeout,
-                                max_steps=max_steps)
+        return (2 if order is None else order), dynamics
+
+    def _result(self, analysis: Any, patterns: Optional[List[str]], partial: bool) -> Result:
         result = Result(analysis, *analysis.table(patterns))
         result.default_x = self._c.default_abscissa
         if not result.complete and not partial:
@@ -333,6 +423,46 @@ class Model:
         Renders as Markdown with LaTeX in Jupyter; ``print()`` it for plain text."""
         from .explain import Explanation
         return Explanation(_nbar.explain(self._c, step=_whole("step", 0 if step is None else step), steps=_whole("steps", steps)))
+
+
+def solve_many(models: Iterable[Model], steps: Optional[int] = None, order: int = 2, columns: Columns = None,
+               dynamics: bool = False, threads: int = 0, partial: bool = False, timeout: Optional[float] = None,
+               max_steps: Optional[int] = None) -> List[Result]:
+    """``m.solve(...)`` of every model, run on ``threads`` threads of the core at once (0: one per
+    hardware thread) with the interpreter's lock released: the Results in the models' order, each
+    equal to its own ``solve``. A model whose sweep fails (or stops at a limit, unless
+    ``partial=True``) raises its error after all have run, with a note saying which model it was;
+    ``timeout`` (s) bounds the whole batch."""
+    models = list(models)
+    for i, m in enumerate(models):
+        if not isinstance(m, Model):
+            raise BadInputError(f"models[{i}] must be an nbar.Model, not {type(m).__name__}")
+    patterns = _patterns(columns)
+    order, dynamics = _whole("order", order), _flag("dynamics", dynamics)
+    threads = _whole("threads", threads, minimum=0)
+    if threads is not None and threads > 1024:
+        raise BadInputError(f"threads must be a whole number from 0 to 1024, not {threads}")
+    plans = [m._plan(patterns, order, dynamics) for m in models]
+    orders = {p for p in plans}
+    # One batch per (order, dynamics) the columns need: usually one.
+    analyses: List[Any] = [None] * len(models)
+    for plan in orders:
+        picked = [i for i, p in enumerate(plans) if p == plan]
+        done = _nbar.analyse_many([models[i]._c for i in picked], steps=_whole("steps", steps), order=plan[0],
+                                  dynamics=plan[1], max_steps=_whole("max_steps", max_steps, minimum=1),
+                                  threads=threads or 0, timeout=_real("timeout", timeout))
+        for i, a in zip(picked, done):
+            analyses[i] = a
+    results = []
+    for i, a in enumerate(analyses):
+        try:
+            if isinstance(a, BaseException):
+                raise a
+            results.append(models[i]._result(a, patterns, partial))
+        except Error as e:
+            e.add_note(f"in nbar.solve_many: models[{i}] ({models[i].name or models[i]._c.file})")
+            raise
+    return results
 
 
 def load(path: Union[str, os.PathLike]) -> Model:

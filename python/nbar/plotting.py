@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import List, Optional, Sequence, Union
+from typing import Any, List, Optional, Sequence, Union
 
 from .results import Table
 
@@ -38,14 +38,33 @@ def _with_unit(name: str, unit: str) -> str:
     return f"{name} [{unit}]".strip() if unit else name
 
 
-def plot(result: Table, y: Union[str, Sequence[str]], x: Optional[str] = None, ax=None, **line_options):
-    """Plots columns ``y`` of ``result`` (names or globs, as ``nbar plot --y``) against ``x``
-    (default: the first driver, or t) on ``ax`` (default: a new figure), with units on the axes.
+def plot(result: Table, *given: Union[str, Sequence[str]], x: Optional[str] = None, ax: Any = None,
+         **line_options: Any) -> Any:
+    """Plots columns of ``result`` (names or globs, as ``nbar plot --y``) on ``ax`` (default: a
+    new figure), with units on the axes. The columns come in matplotlib's order:
+
+    - ``plot(r, y)``: ``y`` against the first driver (or t, as ``nbar plot``), or against ``x=``;
+    - ``plot(r, x, y)``: ``y`` against ``x``, as ``plt.plot(x, y)``: ``plot(r, "P.x", "P.y")``
+      draws the coupler curve. Giving ``x=`` as well is refused, as is a third column.
 
     As ``nbar plot`` draws them: columns in two units go on two y axes, the second unit's on the
     right (``ax.right_ax``), each axis labelled with its unit; several columns in one unit share
     an axis labelled by the unit, with a legend naming them. Positions against positions get
     equal axis scales, so a coupler curve keeps its shape. Returns the (left) axes."""
+    from .errors import BadInputError
+    if len(given) == 2:
+        if x is not None:
+            raise BadInputError(f"plot(r, x, y) takes x once: plot(r, {given[0]!r}, {given[1]!r}) plots "
+                                f"{given[1]!r} against {given[0]!r}; x={x!r} as well is ambiguous")
+        if not isinstance(given[0], str):
+            raise BadInputError(f"plot(r, x, y): x is one column's name, not {given[0]!r}")
+        x, y = given
+    elif len(given) == 1:
+        y = given[0]
+    else:
+        raise BadInputError(f"plot takes the columns as (r, y) or (r, x, y), as matplotlib's plot(y) and "
+                            f"plot(x, y), not {len(given)} of them" if given else
+                            "plot(r, y) needs the columns to plot: a name or glob such as \"rocker.omega\" or \"P.*\"")
     import matplotlib.pyplot as plt
 
     ys = columns(result, y)

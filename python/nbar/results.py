@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import html
 from collections.abc import Mapping
-from typing import Dict, Iterator, List, NamedTuple, Optional
+from typing import Any, Dict, Iterator, List, NamedTuple, Optional, Tuple
 
 import numpy as np
 
@@ -67,6 +67,9 @@ class Table(Mapping):
         frame.attrs["units"] = dict(self.units)
         return frame
 
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        return (Table, (self.columns, [self.units[c] for c in self.columns], [self._data[c] for c in self.columns]))
+
     def _repr_html_(self) -> str:
         return _html_table(self, max_rows=8, max_columns=6)
 
@@ -101,6 +104,40 @@ class Result(Table):
     def to_json(self) -> str:
         """The JSON that ``nbar solve --format json`` writes for these columns."""
         return self._analysis.json(self.columns)
+
+    def __reduce__(self) -> Tuple[Any, Tuple[Dict[str, Any]]]:
+        # A Result crosses to another process (ProcessPoolExecutor, joblib) as its columns, what
+        # the solver reported and its JSON, written now: the analysis behind it stays here.
+        state = {name: getattr(self, name) for name in _RESULT_FIELDS}
+        state["arrays"] = [self._data[c] for c in self.columns]
+        state["units"] = [self.units[c] for c in self.columns]
+        state["json"] = self.to_json()
+        return (_unpickled_result, (state,))
+
+
+# What a Result reports besides its columns, in the order its docstring gives them.
+_RESULT_FIELDS = ("columns", "complete", "stop_reason", "warnings", "max_residual", "branches",
+                  "transmission_angles", "forces_unique", "default_x")
+
+
+class _KeptJson:
+    """An unpickled Result's stand-in for its analysis: the JSON written when it was pickled."""
+
+    def __init__(self, text: str):
+        self._text = text
+
+    def json(self, columns: List[str]) -> str:
+        return self._text
+
+
+def _unpickled_result(state: Dict[str, Any]) -> Result:
+    result = Result.__new__(Result)
+    Table.__init__(result, state["columns"], state["units"], state["arrays"])
+    result._analysis = _KeptJson(state["json"])
+    for name in _RESULT_FIELDS[1:]:
+        setattr(result, name, state[name])
+    result.warnings = [Warning(*w) for w in state["warnings"]]
+    return result
 
     def __repr__(self) -> str:
         state = "complete" if self.complete else f"stopped: {self.stop_reason}"

@@ -3,8 +3,11 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <sstream>
+#include <thread>
 
 #include "bindings.hpp"
 #include "nbar/analysis/columns.hpp"
@@ -66,6 +69,48 @@ std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::op
       throw located(*model, e);
     }
   });
+  return out;
+}
+
+// Many models' sweeps at once: `threads` workers (0: one per hardware thread, never more than
+// models) take the next model in turn, with the GIL released throughout. Each item of the answer
+// is the model's Analysis, or the nbar.errors instance its analysis raised (placed in its own
+// file), so that the caller can say which model failed. A timeout or Ctrl-C cancels them all.
+py::list run_many(const std::vector<std::shared_ptr<PyModel>>& models, std::optional<int> steps, int order,
+                  bool dynamics, std::optional<int> max_steps, unsigned threads, std::optional<double> timeout) {
+  std::vector<AnalysisOptions> options;
+  for (const auto& model : models)
+    options.push_back(analysis_options(model->mechanism->model(), steps, order, dynamics, false, 200, max_steps, "beam",
+                                       std::nullopt));
+  RunControl control;
+  std::vector<std::shared_ptr<PyAnalysis>> done(models.size());
+  std::vector<std::optional<Error>> failed(models.size());
+  run_interruptible(control, timeout, [&] {
+    std::atomic<std::size_t> next{0};
+    const auto work = [&] {
+      for (std::size_t i = next++; i < models.size(); i = next++) {
+        options[i].control = control;  // a copy shares the token: a cancel reaches every worker
+        try {
+          auto out = std::make_shared<PyAnalysis>();
+          out->model = models[i];
+          out->analysis = analyse(models[i]->mechanism, options[i]);
+          done[i] = std::move(out);
+        } catch (const Error& e) {
+          failed[i] = located(*models[i], e);
+        } catch (const std::exception& e) {
+          failed[i] = internal_error(e);
+        }
+      }
+    };
+    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t count = std::min<std::size_t>(threads == 0 ? hardware : threads, models.size());
+    std::vector<std::thread> workers;
+    for (std::size_t k = 1; k < count; ++k) workers.emplace_back(work);
+    work();
+    for (std::thread& w : workers) w.join();
+  });
+  py::list out;
+  for (std::size_t i = 0; i < models.size(); ++i) out.append(failed[i] ? python_error(*failed[i]) : py::cast(done[i]));
   return out;
 }
 
@@ -257,6 +302,9 @@ void bind_analysis(py::module_& m) {
            py::arg("labels") = false, py::arg("traces") = std::vector<std::string>{}, py::arg("width") = 900,
            py::arg("height") = 640, py::arg("title") = "");
 
+  m.def("analyse_many", &run_many, py::arg("models"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
+        py::arg("dynamics") = false, py::arg("max_steps") = std::nullopt, py::arg("threads") = 0u,
+        py::arg("timeout") = std::nullopt);
   m.def("analyse", &run_analysis, py::arg("model"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
         py::arg("dynamics") = false, py::arg("stress") = false, py::arg("sections") = 200,
         py::arg("timeout") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("method") = "beam",

@@ -4,10 +4,13 @@
 
 #include <pybind11/pybind11.h>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/io/model_file.hpp"
@@ -21,6 +24,11 @@ namespace py = pybind11;
 struct PyModel {
   io::LoadedModel file;
   std::shared_ptr<const Mechanism> mechanism;
+  std::string import_dir;  // where a model file's imports are read from; empty for a model from text
+  // Model.with_points and Model.with_lengths, in the model's units, in the order made: a pickled
+  // model is its text, parsed again, with these edits replayed.
+  std::vector<std::pair<std::string, std::array<double, 2>>> moved_points;
+  std::vector<std::pair<std::string, double>> set_lengths;
 };
 
 // Parses and compiles; an invalid model raises nbar.ModelError at file:line:column.
@@ -28,6 +36,13 @@ PyModel compile_model(io::LoadedModel loaded);
 
 // nbar::Error -> the nbar.errors class of its kind, with message, file, line, column, entity.
 void register_error_translation(py::module_& m);
+// A message or text of the core's with the command line's options named as Python's arguments
+// ("--max-steps" as "max_steps=").
+std::string in_python_words(std::string message);
+// The nbar.errors instance of an error, for a call that reports several (solve_many), and the
+// InternalError any other C++ exception crosses as.
+py::object python_error(const Error& e);
+Error internal_error(const std::exception& e);
 // The same error with the model file's place of its entity, when it has none of its own.
 Error located(const PyModel& model, const Error& error);
 

@@ -28,10 +28,13 @@ const char* error_class(ErrorKind kind) {
   return "Error";
 }
 
-// The core's messages name the command line's options where one raises a limit; in Python the
-// same limit is an argument.
+}  // namespace
+
+// The core's messages and the synthesis table name the command line's options where one raises a
+// limit or lists more; in Python the same thing is an argument.
 std::string in_python_words(std::string message) {
-  static const std::pair<const char*, const char*> kOptionArguments[] = {{"--max-steps", "max_steps="}};
+  static const std::pair<const char*, const char*> kOptionArguments[] = {
+      {"--max-steps", "max_steps="}, {"--all lists them", "all=True lists them"}, {"--top N", "top=N"}};
   for (const auto& [option, argument] : kOptionArguments) {
     const std::string from = option;
     for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at))
@@ -40,18 +43,33 @@ std::string in_python_words(std::string message) {
   return message;
 }
 
-void raise(const Error& e) {
-  py::object errors = py::module_::import("nbar.errors");
-  py::object cls = errors.attr(error_class(e.kind()));
+namespace {
+
+py::object error_class_of(const Error& e) { return py::module_::import("nbar.errors").attr(error_class(e.kind())); }
+
+}  // namespace
+
+py::object python_error(const Error& e) {
   py::object file = e.file().empty() ? py::none() : py::object(py::str(e.file()));
   py::object line = e.mark().line > 0 ? py::object(py::int_(e.mark().line)) : py::none();
   py::object column = e.mark().column > 0 ? py::object(py::int_(e.mark().column)) : py::none();
   py::object entity = py::none();
   if (e.where().kind != EntityRef::Kind::Model && e.where().index >= 0)
     entity = py::make_tuple(to_string(e.where().kind), e.where().index);
-  py::object instance = cls(in_python_words(e.message()), py::arg("kind") = to_string(e.kind()), py::arg("file") = file,
-                            py::arg("line") = line, py::arg("column") = column, py::arg("entity") = entity);
-  PyErr_SetObject(cls.ptr(), instance.ptr());
+  return error_class_of(e)(in_python_words(e.message()), py::arg("kind") = to_string(e.kind()), py::arg("file") = file,
+                           py::arg("line") = line, py::arg("column") = column, py::arg("entity") = entity);
+}
+
+Error internal_error(const std::exception& e) {
+  return Error(ErrorKind::Internal, std::string("internal error in nbar (") + e.what() +
+                                        "); please report it, with the model or task that caused it");
+}
+
+namespace {
+
+void raise(const Error& e) {
+  const py::object instance = python_error(e);
+  PyErr_SetObject(error_class_of(e).ptr(), instance.ptr());
 }
 
 // The token Ctrl-C cancels while a computation runs with the GIL released.
@@ -74,10 +92,7 @@ bool on_main_thread() {
 // Any other C++ exception is a defect of nbar (the library turns its own problems and those of
 // the libraries it calls into Error): it crosses as nbar.InternalError, never as pybind11's
 // RuntimeError or ValueError, which `except nbar.Error` would miss.
-void raise_internal(const std::exception& e) {
-  raise(Error(ErrorKind::Internal, std::string("internal error in nbar (") + e.what() +
-                                       "); please report it, with the model or task that caused it"));
-}
+void raise_internal(const std::exception& e) { raise(internal_error(e)); }
 
 void register_error_translation(py::module_&) {
   py::register_exception_translator([](std::exception_ptr p) {

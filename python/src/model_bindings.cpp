@@ -1,6 +1,8 @@
 // Models: loading, compiling, what `nbar check` says, the column catalogue.
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <sstream>
 
 #include "bindings.hpp"
@@ -99,6 +101,93 @@ py::list body_points(const Model& m) {
   return bodies;
 }
 
+std::string names_of(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+int point_named(const Model& m, const std::string& name) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    if (m.points[i].name == name) return static_cast<int>(i);
+    names.push_back(m.points[i].name);
+  }
+  throw Error(ErrorKind::BadInput, "no point '" + name + "'; the points are " + names_of(names));
+}
+
+Body& body_named(Model& m, const std::string& name) {
+  std::vector<std::string> names;
+  for (Body& b : m.bodies) {
+    if (b.name == name) return b;
+    names.push_back(b.name);
+  }
+  throw Error(ErrorKind::BadInput, "no body '" + name + "'; the bodies are " + names_of(names));
+}
+
+// Moves a point of the drawing. A shape is drawn around its body's points in the starting pose:
+// moving one of them would leave the outline where it was, so that is refused.
+void move_point(Model& m, const std::string& name, const std::array<double, 2>& xy) {
+  const int index = point_named(m, name);
+  for (const Body& b : m.bodies)
+    if (b.shape && std::find(b.points.begin(), b.points.end(), index) != b.points.end())
+      throw Error(ErrorKind::BadInput, "point '" + name + "' is on body '" + b.name +
+                                           "', whose shape is drawn around its points: edit the model file instead");
+  m.points[static_cast<std::size_t>(index)].position = Eigen::Vector2d(xy[0], xy[1]) * m.units.length_scale;
+}
+
+void set_length(Model& m, const std::string& name, double length) {
+  Body& body = body_named(m, name);
+  if (body.points.size() != 2)
+    throw Error(ErrorKind::BadInput, "body '" + name + "' has " + std::to_string(body.points.size()) +
+                                         " points: only a body of two points has a length");
+  if (body.shape)
+    throw Error(ErrorKind::BadInput,
+                "body '" + name + "' has a shape drawn around its points: edit the model file instead");
+  body.length = length * m.units.length_scale;
+}
+
+// The model with `points` moved and `lengths` set (model units), validated and compiled as a model
+// file is: an invalid result is a ModelError at the edited entity's place in the original text.
+PyModel edited(const PyModel& base, const std::vector<std::pair<std::string, std::array<double, 2>>>& points,
+               const std::vector<std::pair<std::string, double>>& lengths) {
+  io::LoadedModel file = base.file;
+  for (const auto& [name, xy] : points) move_point(file.model, name, xy);
+  for (const auto& [name, length] : lengths) set_length(file.model, name, length);
+  try {
+    validate(file.model);
+  } catch (const ModelError& e) {
+    throw io::ModelFileError(file.source.file, file.source.find(e.where()), e.message());
+  }
+  PyModel out = compile_model(std::move(file));
+  out.import_dir = base.import_dir;
+  out.moved_points = base.moved_points;
+  out.moved_points.insert(out.moved_points.end(), points.begin(), points.end());
+  out.set_lengths = base.set_lengths;
+  out.set_lengths.insert(out.set_lengths.end(), lengths.begin(), lengths.end());
+  return out;
+}
+
+// A pickled model: its text, its file's name and folder (for its imports) and the edits made
+// since; unpickling parses and compiles it again, so a model crosses to another process as a few
+// kilobytes of text.
+py::tuple model_state(const PyModel& p) {
+  return py::make_tuple(p.file.text, p.file.source.file, p.import_dir, p.moved_points, p.set_lengths);
+}
+
+std::shared_ptr<PyModel> model_from_state(const py::tuple& state) {
+  if (state.size() != 5) throw Error(ErrorKind::BadInput, "not a pickled nbar model");
+  const auto text = state[0].cast<std::string>();
+  const auto name = state[1].cast<std::string>();
+  const auto import_dir = state[2].cast<std::string>();
+  PyModel base =
+      compile_model(import_dir.empty() ? io::parse_model(text, name) : io::parse_model(text, name, import_dir));
+  base.import_dir = import_dir;
+  return std::make_shared<PyModel>(edited(base,
+                                          state[3].cast<std::vector<std::pair<std::string, std::array<double, 2>>>>(),
+                                          state[4].cast<std::vector<std::pair<std::string, double>>>()));
+}
+
 }  // namespace
 
 PyModel compile_model(io::LoadedModel loaded) {
@@ -137,7 +226,15 @@ void bind_model(py::module_& m) {
       .def("summary", &summary_dict)
       .def("catalogue", &catalogue, py::arg("max_order") = 5, py::arg("dynamics") = true)
       .def("needs", &needs, py::arg("patterns"), py::arg("order") = std::nullopt, py::arg("dynamics") = false)
-      .def("yaml", [](const PyModel& p) { return io::model_yaml(p.file.model); });
+      .def("yaml", [](const PyModel& p) { return io::model_yaml(p.file.model); })
+      .def(
+          "edited",
+          [](const PyModel& p, const std::vector<std::pair<std::string, std::array<double, 2>>>& points,
+             const std::vector<std::pair<std::string, double>>& lengths) {
+            return std::make_shared<PyModel>(edited(p, points, lengths));
+          },
+          py::arg("points"), py::arg("lengths"))
+      .def(py::pickle(&model_state, &model_from_state));
 
   // Which of `columns` the names or globs `patterns` pick, in the order `solve --columns` and
   // `plot --y` use: (indices, "") or ([], the message naming a pattern that matches nothing).
@@ -154,7 +251,12 @@ void bind_model(py::module_& m) {
 
   m.def(
       "load",
-      [](const std::string& path) { return std::make_shared<PyModel>(compile_model(io::load_model_file(path))); },
+      [](const std::string& path) {
+        auto model = std::make_shared<PyModel>(compile_model(io::load_model_file(path)));
+        // Absolute: a process that unpickles the model may run in another folder.
+        model->import_dir = std::filesystem::absolute(path).parent_path().string();
+        return model;
+      },
       py::arg("path"));
   m.def(
       "loads",

@@ -83,15 +83,32 @@ void bind_synthesis(py::module_& m) {
 
   py::class_<PySynthesis, std::shared_ptr<PySynthesis>>(m, "SynthesisOutcome", "Every design of one task, ranked")
       .def_property_readonly("method", [](const PySynthesis& s) { return s.outcome.method; })
-      .def_property_readonly("notes", [](const PySynthesis& s) { return s.outcome.notes; })
+      .def_property_readonly("notes",
+                             [](const PySynthesis& s) {
+                               std::vector<std::string> notes;
+                               for (const std::string& n : s.outcome.notes) notes.push_back(in_python_words(n));
+                               return notes;
+                             })
       .def_property_readonly("task", [](const PySynthesis& s) { return s.task; })
       .def("shown", [](const PySynthesis& s) { return s.request.listing(s.outcome).shown; })
+      // (solutions, real ones, real ones without defects), as the table's second line counts them.
+      .def("counts",
+           [](const PySynthesis& s) {
+             int real = 0, clean = 0;
+             for (const auto& r : s.outcome.rows) {
+               real += r.real;
+               clean += r.real && r.check.defect_free();
+             }
+             return py::make_tuple(s.outcome.rows.size(), real, clean);
+           })
       .def("json", [](const PySynthesis& s) { return s.answer("json"); })
-      .def("table", [](const PySynthesis& s) { return s.answer("table"); })
+      .def("table", [](const PySynthesis& s) { return in_python_words(s.answer("table")); })
       .def(
           "design_yaml",
           [](const PySynthesis& s, int row, int rank) { return io::design_model_yaml(s.task, s.outcome, row, rank); },
           py::arg("row"), py::arg("rank"))
+      .def("design_files",
+           [](const PySynthesis& s) { return io::design_files(s.task, s.outcome, s.request.listing(s.outcome)); })
       .def(
           "export",
           [](const PySynthesis& s, const std::string& dir) {
