@@ -1,0 +1,9 @@
+# Type stub of nbar.examples.
+import pathlib
+from typing import List
+
+def folder() -> pathlib.Path: ...
+def names() -> List[str]: ...
+def path(name: str) -> pathlib.Path: ...
+
+__all__ = ["folder", "names", "path"]

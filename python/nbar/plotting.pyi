@@ -1,0 +1,9 @@
+# Type stub of nbar.plotting.
+from typing import Any, List, Optional, Sequence, Union
+
+from .results import Table
+
+def default_x(result: Table) -> str: ...
+def columns(result: Table, y: Union[str, Sequence[str]]) -> List[str]: ...
+def plot(result: Table, *given: Union[str, Sequence[str]], x: Optional[str] = ..., ax: Any = ...,
+         **line_options: Any) -> Any: ...
