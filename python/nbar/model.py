@@ -112,8 +112,9 @@ class Summary:
     drivers, bodies with their mass properties, the assembly at the start and every four-bar
     loop with its Grashof class, branch and transmission angle. ``print(s)`` shows the text."""
 
-    def __init__(self, data: Dict[str, Any]):
+    def __init__(self, data: Dict[str, Any], units: Optional[Dict[str, str]] = None):
         self._data = data
+        self.units: Dict[str, str] = dict(units or {"length": "", "angle": ""})
         self.dof: int = data["dof"]
         self.gruebler: int = data["gruebler"]
         self.redundant: List[str] = data["redundant"]
@@ -152,8 +153,9 @@ class Summary:
             rows.append(("redundant", ", ".join(self.redundant)))
         rows += [("driver", d) for d in self.drivers]
         for loop in self.loops:
-            rows.append((loop.name, f"{loop.grashof}, {loop.branch} branch, transmission angle "
-                                    f"{loop.transmission_angle:.4g}"))
+            # At the start, as `nbar check` says: over the sweep, solve()'s transmission_angles.
+            rows.append((loop.name, f"{loop.grashof}; at the start: {loop.branch} branch, transmission angle "
+                                    f"{loop.transmission_angle:.4g} {self.units['angle']}"))
         rows += [("rocker", loop.rocker.description) for loop in self.loops if loop.rocker]
         rows += [("slider-crank", f.description) for f in self.slider_cranks]
         rows += [("quick-return", f.description) for f in self.quick_returns]
@@ -298,7 +300,7 @@ class Model:
     # --- analyses ------------------------------------------------------------------------------
     def check(self) -> Summary:
         """The summary ``nbar check`` prints, as data (``print()`` it for the text)."""
-        return Summary(self._c.summary())
+        return Summary(self._c.summary(), self.units)
 
     def analyse(self, steps: Optional[int] = None, order: int = 2, dynamics: bool = False, stress: bool = False,
                 sections: int = 200, timeout: Optional[float] = None, max_steps: Optional[int] = None,

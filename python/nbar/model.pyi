@@ -38,7 +38,8 @@ class Summary:
     has_kinetics: bool
     warnings: List[Warning]
     text: str
-    def __init__(self, data: Dict[str, Any]) -> None: ...
+    units: Dict[str, str]
+    def __init__(self, data: Dict[str, Any], units: Optional[Dict[str, str]] = ...) -> None: ...
 
 class StressResult:
     json: str

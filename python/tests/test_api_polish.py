@@ -247,6 +247,12 @@ def test_no_design_says_why_and_the_table_speaks_python():
     assert pickle.loads(pickle.dumps(designs))._none_listed() == str(caught.value)
 
 
+def test_the_checks_start_values_say_at_the_start_with_units(examples):
+    summary = nbar.load(examples / "fourbar-crank-rocker.yaml").check()
+    assert summary.units == {"length": "mm", "angle": "deg"}
+    assert ("crank-rocker; at the start: open branch, transmission angle 41.41 deg" in summary._repr_html_())
+
+
 # --- plots ---------------------------------------------------------------------------------------
 
 def test_plot_takes_matplotlibs_order_or_refuses(examples):
