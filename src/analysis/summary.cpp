@@ -81,45 +81,46 @@ std::vector<std::string> describe_joints(const Model& m) {
 
 double angle_of(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
 
-// An angle driver (from +x, with from/to) on the input of a loop on the ground whose sweep goes
-// past the loop's toggles: the sweep would stop there.
-void warn_about_input_limits(const Mechanism& mech, const std::vector<Eigen::Vector2d>& p, ModelSummary& out) {
+// The sweep's path meets a limit of the whole mechanism before its end (limits.hpp): the sweep
+// would stop there. Said with the limit's true value, and the range the input has, whichever loop
+// or dyad sets it; never a limit the path does not meet.
+void warn_about_input_limits(const Mechanism& mech, ModelSummary& out) {
+  if (!out.limits || !out.limits->stop) return;
   const Model& m = mech.model();
-  for (std::size_t d = 0; d < m.drivers.size(); ++d) {
-    const Driver& drv = m.drivers[d];
-    if (drv.kind != DriverKind::Angle || drv.relative_to >= 0 || drv.law || m.bodies[drv.body].points.size() < 2)
-      continue;
-    const double start = out.assembly->driver_values[d];
-    const double end = drv.to.value_or(start);
-    const double lo = std::min(start, end), hi = std::max(start, end);
-    const Body& body = m.bodies[drv.body];
-    for (const LoopSummary& l : out.loops) {
-      const FourBarLoop& loop = l.loop;
-      // Grashof's class, with the model's tolerance, decides a crank (change points included:
-      // the input turns fully through them).
-      if (loop.frame >= 0 || loop.input != drv.body || l.grashof.input_turns_fully) continue;
-      // The driver measures the body from its first to its second point; the loop the
-      // direction o2 -> a. `at` is o2 -> a in the driver's turn.
-      const double frame_angle = angle_of(p[loop.o4] - p[loop.o2]);
-      const double offset = std::remainder(
-          angle_of(p[body.points[1]] - p[body.points[0]]) - angle_of(p[loop.a] - p[loop.o2]), 2 * std::numbers::pi);
-      const InputLimits limits = input_limits(l.grashof.frame, l.grashof.input, l.grashof.coupler, l.grashof.output,
-                                              frame_angle, start - offset);
-      if (limits.full || !limits.closes) continue;
-      const double from = limits.from + offset, to = limits.to + offset;
-      const double slack = 1e-9;
-      if (lo >= from - slack && hi <= to + slack) continue;
-      const double stop = end > start ? to : from;
-      out.warnings.push_back(
-          {"input_limited", -1,
-           fmt::format(
-               "the sweep asks {} to turn {}, from {} to {}, but loop {} lets it turn only between {} and {} "
-               "(toggle positions): the sweep will stop near {}",
-               drv.name, format_driver_value(m, static_cast<int>(d), std::abs(end - start)),
-               format_driver_value(m, static_cast<int>(d), start), format_driver_value(m, static_cast<int>(d), end),
-               loop.name, format_driver_value(m, static_cast<int>(d), from),
-               format_driver_value(m, static_cast<int>(d), to), format_driver_value(m, static_cast<int>(d), stop))});
-    }
+  const PathLimits& l = *out.limits;
+  const PathSingularity& stop = *l.stop;
+  const SweepPath plan = sweep_path(mech, std::nullopt, kDefaultMaxSweepSamples, false);
+  std::vector<Series> start, end;
+  plan.drivers(l.start_parameter, 1, start);
+  plan.drivers(l.end_parameter, 1, end);
+  int d = 0;
+  while (d + 1 < static_cast<int>(start.size()) && start[d].value() == end[d].value()) ++d;
+  const Driver& drv = m.drivers[d];
+  const auto value = [&](double si) { return format_driver_value(m, d, si); };
+  const std::string who = stop.loop >= 0 ? "loop " + mech.four_bar_loops()[stop.loop].name : "the mechanism";
+  std::string range;
+  if (const PathSingularity* back = l.behind.limit()) {
+    const double a = std::min(back->driver_values[d], stop.driver_values[d]);
+    const double b = std::max(back->driver_values[d], stop.driver_values[d]);
+    range = fmt::format("only between {} and {}", value(a), value(b));
+  } else {
+    range = "only up to " + value(stop.driver_values[d]);
+  }
+  out.warnings.push_back(
+      {"input_limited", -1,
+       fmt::format("the sweep asks {} to {} {}, from {} to {}, but {} lets it {} {} (limit positions): the sweep "
+                   "will stop at {}: {}",
+                   drv.name, drv.is_angular() ? "turn" : "move", value(std::abs(end[d].value() - start[d].value())),
+                   value(start[d].value()), value(end[d].value()), who, drv.is_angular() ? "turn" : "move", range,
+                   value(stop.driver_values[d]), stop.involved)});
+}
+
+// The limits of the whole mechanism, searched on the sweep's own path from its start.
+void find_limits(const Mechanism& mech, ModelSummary& out) {
+  try {
+    out.limits = find_path_limits(mech);
+  } catch (const Error& e) {
+    out.limits_error = e.message();
   }
 }
 
@@ -263,7 +264,8 @@ void summarize_start(const Mechanism& mech, int max_steps, ModelSummary& out) {
     add_rocker_swing(mech, points, l);
     out.loops.push_back(std::move(l));
   }
-  warn_about_input_limits(mech, points, out);
+  find_limits(mech, out);
+  warn_about_input_limits(mech, out);
 }
 
 }  // namespace

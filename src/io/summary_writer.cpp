@@ -4,6 +4,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 #include "json_text.hpp"
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/model/bar_width.hpp"
@@ -108,6 +112,67 @@ void write_start(std::ostream& out, const Model& m, const ModelSummary& s) {
   }
 }
 
+// Whether a four-bar loop's closed form (the toggle line above) already gives this limit: its
+// input is the driven body and its toggle the limit's value.
+bool given_by_a_loop(const Model& m, const ModelSummary& s, const PathSingularity& limit, int driver) {
+  const Driver& drv = m.drivers[driver];
+  if (drv.kind != DriverKind::Angle || drv.relative_to >= 0) return false;
+  const double x = limit.driver_values[driver];
+  for (const LoopSummary& l : s.loops) {
+    if (l.loop.input != drv.body || !l.toggle_from || !l.toggle_to) continue;
+    for (const double toggle : {*l.toggle_from, *l.toggle_to})
+      if (std::abs(std::remainder(x - toggle, 2.0 * std::numbers::pi)) <= 1e-6) return true;
+  }
+  return false;
+}
+
+// The singular positions the sweep's path meets: change points inside the sweep's range, and the
+// first limit each way.
+std::vector<std::pair<std::string, const PathSingularity*>> met_on_path(const PathLimits& l) {
+  std::vector<std::pair<std::string, const PathSingularity*>> met;
+  const double lo = std::min(l.start_parameter, l.end_parameter), hi = std::max(l.start_parameter, l.end_parameter);
+  for (const auto& [name, reach] : {std::pair{"ahead", &l.ahead}, std::pair{"behind", &l.behind}})
+    for (const PathSingularity& s : reach->singularities)
+      if (s.kind == PathSingularityKind::Limit || (s.parameter >= lo && s.parameter <= hi)) met.emplace_back(name, &s);
+  return met;
+}
+
+// The limits of the whole mechanism, said when they add to the loops' closed forms above: a
+// limit no loop's toggle gives (a dyad of a six-bar, a cylinder), or a search that could not decide.
+void write_limits(std::ostream& out, const Model& m, const ModelSummary& s) {
+  if (s.limits_error) {
+    out << "Limits of the whole mechanism: the search failed: " << *s.limits_error << '\n';
+    return;
+  }
+  if (!s.limits || !s.limits->searched) return;
+  const PathLimits& l = *s.limits;
+  const int d = l.driver;
+  const auto met = met_on_path(l);
+  const bool news = !l.ahead.undecided.empty() || !l.behind.undecided.empty() ||
+                    std::any_of(met.begin(), met.end(), [&](const auto& e) {
+                      return e.second->kind == PathSingularityKind::Limit && !given_by_a_loop(m, s, *e.second, d);
+                    });
+  if (!news) return;
+  const auto value = [&](double si) {
+    return fmt::format("{:.10g} {}", si / (m.drivers[d].is_angular() ? m.units.angle_scale : m.units.length_scale),
+                       m.drivers[d].is_angular() ? m.units.angle : m.units.length);
+  };
+  out << "Limits of the whole mechanism on the sweep's path (" << m.drivers[d].name
+      << ", ahead the way the sweep goes):\n";
+  for (const auto& [way, singular] : met) {
+    const bool limit = singular->kind == PathSingularityKind::Limit;
+    out << fmt::format("  {}: {} at {} = {}: {}{}\n", way, limit ? "limit" : "change point", m.drivers[d].name,
+                       value(singular->driver_values[d]), singular->involved,
+                       l.stop && singular == l.ahead.limit() ? "; the sweep stops there"
+                       : limit                               ? ""
+                                                             : "; branches cross, the sweep passes on its branch");
+  }
+  for (const auto& [way, reach] : {std::pair{"ahead", &l.ahead}, std::pair{"behind", &l.behind}}) {
+    if (!reach->undecided.empty()) out << "  " << way << ": the search could not decide: " << reach->undecided << '\n';
+    if (reach->turns_fully) out << "  " << way << ": no limit over a full turn\n";
+  }
+}
+
 // Slider-cranks and quick-returns: stroke, dead centres, swing and time ratio.
 void write_crank_mechanisms(std::ostream& out, const ModelSummary& s) {
   if (!s.slider_cranks.empty()) {
@@ -188,6 +253,45 @@ Json loops_json(const Model& m, const ModelSummary& s) {
                      {"rocker", rocker_json(m, l.rocker)}});
   }
   return loops;
+}
+
+Json singularity_json(const Mechanism& mech, const PathSingularity& s, int driver) {
+  const Model& m = mech.model();
+  const auto in_units = [&](int d, double si) {
+    return si / (m.drivers[d].is_angular() ? m.units.angle_scale : m.units.length_scale);
+  };
+  Json values = Json::object();
+  for (std::size_t d = 0; d < s.driver_values.size(); ++d)
+    values[m.drivers[d].name] = in_units(static_cast<int>(d), s.driver_values[d]);
+  Json bodies = Json::array(), rows = Json::array();
+  for (int b : s.bodies) bodies.push_back(m.bodies[b].name);
+  for (int r : s.rows) rows.push_back(mech.row_label(r));
+  return Json{{"kind", s.kind == PathSingularityKind::Limit ? "limit" : "change_point"},
+              {"value", in_units(driver, s.driver_values[driver])},
+              {"driver_values", values},
+              {"bodies", bodies},
+              {"loop", s.loop >= 0 ? Json(mech.four_bar_loops()[s.loop].name) : Json(nullptr)},
+              {"constraints", rows},
+              {"involved", s.involved}};
+}
+
+// The whole mechanism's limits on the sweep's path (null when not searched).
+Json limits_json(const Mechanism& mech, const ModelSummary& s) {
+  if (!s.limits || !s.limits->searched) return nullptr;
+  const PathLimits& l = *s.limits;
+  const Model& m = mech.model();
+  const double scale = m.drivers[l.driver].is_angular() ? m.units.angle_scale : m.units.length_scale;
+  Json ahead = Json::array(), behind = Json::array();
+  for (const auto& [way, singular] : met_on_path(l))
+    (std::string(way) == "ahead" ? ahead : behind).push_back(singularity_json(mech, *singular, l.driver));
+  const auto undecided = [](const PathReach& r) { return r.undecided.empty() ? Json(nullptr) : Json(r.undecided); };
+  return Json{{"driver", m.drivers[l.driver].name},
+              {"stop", l.stop ? Json(l.stop->driver_values[l.driver] / scale) : Json(nullptr)},
+              {"ahead", ahead},
+              {"behind", behind},
+              {"turns_fully_ahead", l.ahead.turns_fully},
+              {"turns_fully_behind", l.behind.turns_fully},
+              {"undecided", {{"ahead", undecided(l.ahead)}, {"behind", undecided(l.behind)}}}};
 }
 
 void crank_mechanisms_json(const Model& m, const ModelSummary& s, Json& j) {
@@ -296,6 +400,8 @@ std::string summary_json(const Mechanism& mechanism, const ModelSummary& s, cons
   }
   j["loops"] = loops_json(m, s);
   crank_mechanisms_json(m, s, j);
+  j["limits"] = limits_json(mechanism, s);
+  if (s.limits_error) j["limits_error"] = *s.limits_error;
   return json_text(j, 2) + '\n';
 }
 
@@ -306,6 +412,7 @@ void write_summary_text(std::ostream& out, const Mechanism& mechanism, const Mod
   write_mobility(out, summary);
   write_kinetics(out, m, summary);
   write_start(out, m, summary);
+  write_limits(out, m, summary);
   write_crank_mechanisms(out, summary);
   if (!summary.warnings.empty()) {
     out << "Warnings: " << summary.warnings.size() << '\n';

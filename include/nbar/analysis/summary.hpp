@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "nbar/dynamics/inverse_dynamics.hpp"
+#include "nbar/kinematics/limits.hpp"
 #include "nbar/kinematics/loops.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/model/diagnostics.hpp"
@@ -108,12 +109,16 @@ struct ModelSummary {
   // reaches, at that driver, force or torque; `nbar check` reports it as an error.
   std::optional<Error> law_error;
   std::vector<LoopSummary> loops;
+  // The limits and change points of the whole mechanism on the sweep's own path (limits.hpp), from
+  // the start both ways, when the start assembles; `limits_error` when the search failed.
+  std::optional<PathLimits> limits;
+  std::optional<std::string> limits_error;
   // From the geometry alone (the model's lengths), whether or not the start assembles.
   std::vector<SliderCrankSummary> slider_cranks;
   std::vector<QuickReturnSummary> quick_returns;
 
   // What the sweep asks that it will not get, or may not mean, said before it runs:
-  // "input_limited" (an angle driver asked to turn past the toggles of its four-bar loop) and
+  // "input_limited" (the sweep's path meets a limit of the whole mechanism before its end) and
   // "many_turns" (an angle driver asked to turn more than 4 times, a likely unit mistake) and
   // "rod_leaves_barrel" (a cylinder's rod would leave its barrel over the sweep, cylinders.hpp).
   std::vector<Warning> warnings;

@@ -1,0 +1,72 @@
+// The limits of a whole mechanism along the path its sweep follows: the curve Phi(q, p) = 0 in
+// (q, p), p the sweep's parameter, followed by pseudo-arclength continuation so that it can be
+// followed through the positions where the input turns back. A limit is where p turns back along
+// the curve (the tangent's p component changes sign, Phi_q loses rank while [Phi_q Phi_p] keeps
+// it); a change point is where branches cross ([Phi_q Phi_p] loses rank: the bordered Jacobian's
+// determinant changes sign). Any number of loops: the whole constraint Jacobian decides, and the
+// constraints whose rows make it rank-deficient say which loop or joints are involved.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
+
+namespace nbar {
+
+enum class PathSingularityKind {
+  Limit,        // the input turns back: the sweep cannot pass it (it may reverse there)
+  ChangePoint,  // branches cross: the sweep passes it on the branch it came along
+};
+
+struct PathSingularity {
+  PathSingularityKind kind = PathSingularityKind::Limit;
+  double parameter = 0.0;             // the sweep's path parameter there
+  std::vector<double> driver_values;  // SI
+  Eigen::VectorXd q;                  // the pose there
+  // The constraint rows whose combination loses rank there (the left null vector of Phi_q), and
+  // the bodies those rows belong to, in the model's order.
+  std::vector<int> rows;
+  std::vector<int> bodies;
+  int loop = -1;         // the four-bar loop (Mechanism::four_bar_loops) holding all those bodies, or -1
+  std::string involved;  // for people: "link5 and link6 in line (loop ...)"
+};
+
+// The path from the sweep's start in one direction (+1: the way the sweep goes; -1: back).
+struct PathReach {
+  std::vector<PathSingularity> singularities;  // in the order met; a limit ends the list
+  bool turns_fully = false;                    // a full turn of the first driver without a limit
+  bool window_end = false;                     // searched to the end of its window without a limit
+  std::string undecided;                       // the search could not decide (why, and where)
+  // The first limit met, if any.
+  const PathSingularity* limit() const;
+};
+
+struct PathLimits {
+  bool searched = false;
+  std::string not_searched;  // why not (no driver, a driver that does not move...)
+  double start_parameter = 0.0, end_parameter = 0.0;
+  int driver = -1;  // the first driver the sweep moves: the one limits are told in
+  PathReach ahead, behind;
+  // The limit met before the sweep's end, where the sweep will stop (ahead, inside its range).
+  std::optional<PathSingularity> stop;
+};
+
+struct LimitSearchOptions {
+  // Beyond the sweep's end and behind its start, how far to look, as a multiple of the sweep's
+  // span; for angle drivers at least one full turn of the first driver.
+  double window_spans = 1.0;
+  bool full_turn = true;
+};
+
+// Follows the sweep's own path from its start both ways. Throws what assembling the start throws.
+PathLimits find_path_limits(const Mechanism& mech, const LimitSearchOptions& options = {});
+
+// The involved rows and bodies of a singular pose, and the text that names them.
+void describe_singularity(const Mechanism& mech, PathSingularity& s);
+
+}  // namespace nbar
