@@ -125,6 +125,8 @@ class Summary:
                       for loop in data["loops"]]
         self.slider_cranks = [SimpleNamespace(**f) for f in data["slider_cranks"]]
         self.quick_returns = [SimpleNamespace(**f) for f in data["quick_returns"]]
+        # The whole mechanism's limits on the sweep's path, as `nbar check --format json` has them.
+        self.limits: Optional[Dict[str, Any]] = data["limits"]
         self.assembly = SimpleNamespace(**data["assembly"]) if data["assembly"] else None
         self.assembly_error: Optional[str] = data["assembly_error"]
         self.has_kinetics: bool = data["has_kinetics"]

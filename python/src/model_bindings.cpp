@@ -54,6 +54,7 @@ py::dict summary_dict(const PyModel& model) {
   d["loops"] = json["loops"];
   d["slider_cranks"] = json["slider_cranks"];
   d["quick_returns"] = json["quick_returns"];
+  d["limits"] = json["limits"];
   py::list warnings;
   for (const Warning& w : s.warnings) warnings.append(py::make_tuple(w.code, w.step, w.message));
   d["warnings"] = warnings;

@@ -55,6 +55,23 @@ drivers: [{angle: crank, from: 0, to: 360}]
     assert e.value.kind == "cannot_assemble" and e.value.message
 
 
+def test_check_gives_the_whole_mechanisms_limits_where_the_sweep_stops(examples):
+    # A Watt I six-bar whose dyad straightens (at 15.2758 deg) long before its four-bar's toggle
+    # (99.7151 deg): check gives the dyad's, and the sweep driven past it stops there.
+    text = (examples / "watt-sixbar-limited.yaml").read_text().replace("to: 15,", "to: 60,")
+    m = nbar.loads(text, "watt.yaml")
+    s = m.check()
+    assert [w.code for w in s.warnings] == ["input_limited"]
+    limit = s.limits["ahead"][0]
+    assert limit["kind"] == "limit" and limit["bodies"] == ["link5", "link6"]
+    assert s.limits["stop"] == limit["value"]
+    assert s.limits["behind"][0]["value"] == pytest.approx(-limit["value"], rel=1e-12)
+    with pytest.raises(nbar.LimitError) as e:
+        m.solve(steps=601)
+    assert e.value.result["input"][-1] <= limit["value"]
+    assert e.value.result["input"][-1] >= limit["value"] - 0.1
+
+
 def test_toggle_stop_raises_with_the_rows_so_far(examples):
     text = (examples / "fourbar-crank-rocker.yaml").read_text().replace("lengths: {crank: 80, rocker: 150}",
                                                                        "lengths: {crank: 130, rocker: 150}")

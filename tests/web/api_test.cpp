@@ -557,7 +557,7 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
     EXPECT_EQ(text.body, repo_file(e["file"].get<std::string>()));
   }
   EXPECT_EQ(models,
-            26);  // every model file of examples/, fourbar-ansys-plates.yaml and fourbar-curved-links.yaml the newest
+            28);        // every model file of examples/, watt- and stephenson-sixbar-limited.yaml the newest
   EXPECT_EQ(tasks, 7);  // path/crank-rocker-measured.yaml the newest
   EXPECT_EQ(templates, 6);
   // Each runs as it is; a template too, and its name never clashes with the example's.
