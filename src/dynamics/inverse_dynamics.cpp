@@ -304,17 +304,20 @@ class InverseDynamics::Assembly {
     }
     for (std::size_t i = 0; i < m_.torques.size(); ++i) {
       const BodyTorque& torque = m_.torques[i];
-      known_couple(torque.body, law_at(torque.torque, EntityRef::Kind::Torque, i, 0), first_point(torque.body));
+      double value = law_at(torque.torque, EntityRef::Kind::Torque, i, 0);
+      if (torque.no_load_speed) value *= 1.0 - body_motion(m_, out_.motion, torque.body).omega / *torque.no_load_speed;
+      known_couple(torque.body, value, first_point(torque.body));
     }
     for (const Spring& s : m_.springs) {
       const Eigen::Vector2d d = r_[s.points[1]] - r_[s.points[0]];
       const double length = d.norm();
       const Eigen::Vector2d e = d / length;
       const double tension =
-          s.stiffness * (length - s.free_length) + s.damping * e.dot(v_[s.points[1]] - v_[s.points[0]]);
+          s.stiffness * (length - s.free_length) + s.preload + s.damping * e.dot(v_[s.points[1]] - v_[s.points[0]]);
       known_at_point(s.points[0], -1, tension * e);
       known_at_point(s.points[1], -1, -tension * e);
-      out_.potential_energy += 0.5 * s.stiffness * (length - s.free_length) * (length - s.free_length);
+      out_.potential_energy += 0.5 * s.stiffness * (length - s.free_length) * (length - s.free_length) +
+                               s.preload * (length - s.free_length);
     }
   }
 

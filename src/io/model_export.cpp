@@ -175,6 +175,8 @@ void write_model_yaml(std::ostream& out, const Model& m, const std::vector<std::
       out << ", speed: " << number(d.speed / scale);
       if (d.accel != 0.0) out << ", accel: " << number(d.accel / scale);
     }
+    if (d.free) out << ", free: true";
+    if (d.initial_speed != 0.0) out << ", initial_speed: " << number(d.initial_speed / scale);
     out << "}\n";
   }
   if (m.has_time_law()) {

@@ -244,6 +244,13 @@ void Parser::parse_torques(const Entry& e) {
     torque.body = body_ref(required(f, item, "body", "a torque").value);
     const Entry& value = required(f, item, "torque", "a torque");
     torque.torque = load_law(value.value, mark(value), "the torque", "N m");
+    if (const Entry* line = f.find("no_load_speed")) {
+      // A motor's line: rad/s, or a quantity with an angular unit (300 rpm).
+      Driver angular;
+      angular.name = "the motor of body '" + model_.bodies[torque.body].name + "'";
+      torque.no_load_speed = rate(*line, 1, angular, model_.units.angle_scale);
+      if (*torque.no_load_speed == 0.0) fail(mark(*line), "the no-load speed of a motor cannot be zero");
+    }
     model_.torques.push_back(std::move(torque));
     source_.torques.push_back(mark(item));
     source_.torque_laws.push_back({mark(value), SourceMark{}});
@@ -276,6 +283,7 @@ void Parser::parse_springs(const Entry& e) {
       s.damping = quantity(*damping, "the damping", kDampingUnits, "0.5 N s/mm");
       if (s.damping < 0.0) fail(mark(*damping), "the damping must not be negative");
     }
+    if (const Entry* preload = f.find("preload")) s.preload = number(*preload, "the preload (N)");
     if (const Entry* free = f.find("free_length")) {
       s.free_length = non_negative(*free, "the free length") * model_.units.length_scale;
     } else {

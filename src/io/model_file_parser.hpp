@@ -47,8 +47,9 @@ inline const AllowedKeys kTopLevelKeys{
 inline const AllowedKeys kUnitsKeys{"in `units`", {"length", "angle"}};
 inline const AllowedKeys kSliderKeys{"in a slider", {"body", "point", "along"}};
 inline const AllowedKeys kSlotKeys{"in a slot", {"point", "along"}};
-inline const AllowedKeys kDriverKeys{
-    "in a driver", {"name", "angle", "relative_to", "distance", "slide", "from", "to", "speed", "accel", "law"}};
+inline const AllowedKeys kDriverKeys{"in a driver",
+                                     {"name", "angle", "relative_to", "distance", "slide", "from", "to", "speed",
+                                      "accel", "law", "free", "initial_speed"}};
 inline const AllowedKeys kSweepKeys{"in `sweep`", {"steps", "duration", "step"}};
 inline const AllowedKeys kBodyKeys{"in a body",
                                    {"points", "shape", "bar", "thickness", "material", "mass", "cg", "inertia"}};
@@ -59,8 +60,9 @@ inline const AllowedKeys kHoleKeys{"in a hole", {"at", "circle", "radius", "poly
 inline const AllowedKeys kBarKeys{"in a `bar`", {"width", "margin", "hole", "holes", "between"}};
 inline const AllowedKeys kMaterialKeys{"in a material", {"density", "yield", "youngs_modulus", "poisson_ratio"}};
 inline const AllowedKeys kForceKeys{"in a force", {"point", "body", "force", "fx", "fy"}};
-inline const AllowedKeys kTorqueKeys{"in a torque", {"body", "torque"}};
-inline const AllowedKeys kSpringKeys{"in a spring", {"between", "stiffness", "free_length", "damping", "name"}};
+inline const AllowedKeys kTorqueKeys{"in a torque", {"body", "torque", "no_load_speed"}};
+inline const AllowedKeys kSpringKeys{"in a spring",
+                                     {"between", "stiffness", "free_length", "damping", "preload", "name"}};
 
 // A unit a quantity may be written in, and its value in SI.
 struct UnitScale {
@@ -133,7 +135,7 @@ class Parser : yaml::Reader {
   void parse_slots(const Entry& e);
   void parse_drivers(const Entry& e);
   void parse_driver(const YAML::Node& item);
-  double rate(const Entry& e, int order, const Driver& d, double scale) const;
+  double rate(const Entry& e, int order, const Driver& d, double scale, bool initial = false) const;
   double driver_value(const Entry& e, const Driver& d, double scale, const std::string& unit) const;
   Law parse_law(const Entry& e, double scale) const;
   void parse_sweep(const Entry& e);

@@ -247,6 +247,15 @@ void Parser::parse_driver(const YAML::Node& item) {
     }
     d.law = parse_law(*law, scale);
   }
+  if (const Entry* free = f.find("free")) {
+    const std::string text = free->value.IsScalar() ? free->value.Scalar() : std::string();
+    if (text != "true" && text != "false") fail(mark(*free), "`free` is true or false, not " + describe(free->value));
+    d.free = text == "true";
+  }
+  if (const Entry* initial = f.find("initial_speed")) {
+    if (!d.free) fail(initial->key_node, "`initial_speed` applies only to a driver with `free: true`");
+    d.initial_speed = rate(*initial, 1, d, scale, true);
+  }
   model_.drivers.push_back(std::move(d));
   source_.drivers.push_back(mark(item));
   source_.driver_laws.push_back(law_marks);
@@ -271,8 +280,8 @@ double Parser::driver_value(const Entry& e, const Driver& d, double scale, const
 
 // A bare number is in driver units (angle or length unit) per second, or per second
 // squared; text carries its own unit, which must be of the driver's kind.
-double Parser::rate(const Entry& e, int order, const Driver& d, double scale) const {
-  const std::string what = order == 1 ? "the speed" : "the acceleration";
+double Parser::rate(const Entry& e, int order, const Driver& d, double scale, bool initial) const {
+  const std::string what = order == 1 ? (initial ? "the initial speed" : "the speed") : "the acceleration";
   if (!e.value.IsScalar()) {
     fail(mark(e), what + " must be a number or a quantity like '1750 rpm', not " + describe(e.value));
   }

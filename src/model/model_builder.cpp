@@ -167,7 +167,7 @@ ModelBuilder& ModelBuilder::force(const std::string& point, double fx, double fy
 }
 
 ModelBuilder& ModelBuilder::torque(const std::string& body, double newton_metres) {
-  model_.torques.push_back(BodyTorque{body_index(body), constant(newton_metres)});
+  model_.torques.push_back(BodyTorque{body_index(body), constant(newton_metres), std::nullopt});
   return *this;
 }
 
@@ -177,7 +177,8 @@ ModelBuilder& ModelBuilder::spring(const std::string& name, const std::string& f
                                   {point_index(from_point), point_index(to_point)},
                                   stiffness,
                                   model_.units.to_si_length(free_length),
-                                  damping});
+                                  damping,
+                                  0.0});
   return *this;
 }
 

@@ -69,7 +69,7 @@ struct LoadedFourBar {
     m.sweep.steps = steps;
     m.gravity = gravity;
     m.point_loads.push_back(PointLoad{p, coupler, constant_law(force_p.x()), constant_law(force_p.y())});
-    m.torques.push_back(BodyTorque{rocker, constant_law(torque4)});
+    m.torques.push_back(BodyTorque{rocker, constant_law(torque4), std::nullopt});
     return m;
   }
 
@@ -235,7 +235,7 @@ TEST(InverseDynamics, PowerBalanceOfALoadedFourBarWithSpringAndDamper) {
   const LoadedFourBar case_;
   Model m = case_.model(91);
   m.name = "four-bar with spring";
-  m.springs.push_back(Spring{"s", {4, 0}, 800.0, 0.05, 3.0});  // P to O2
+  m.springs.push_back(Spring{"s", {4, 0}, 800.0, 0.05, 3.0, 0.0});  // P to O2
   m.point_loads[0].fx = Law::parse("30*sin(7*t)");
   const Mechanism mech(m);
   const SweepResult sweep = run_sweep(mech, sweep_options(2));

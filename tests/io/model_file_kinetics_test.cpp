@@ -544,7 +544,7 @@ TEST(ModelFileKineticsErrors, UnknownKeys) {
   EXPECT_TRUE(fails_at(kLinkage + "forces:\n  - {point: P, fz: 5}\n", "14:16",
                        "unknown key 'fz' in a force; did you mean 'fx'?"));
   EXPECT_TRUE(fails_at(kLinkage + "torques:\n  - {body: crank, moment: 5}\n", "14:19",
-                       "unknown key 'moment' in a torque (allowed: body, torque)"));
+                       "unknown key 'moment' in a torque (allowed: body, torque, no_load_speed)"));
   EXPECT_TRUE(fails_at(kLinkage + "springs:\n  - {between: [P, A], stifness: 5}\n", "14:23",
                        "unknown key 'stifness' in a spring; did you mean 'stiffness'?"));
 }
@@ -818,6 +818,42 @@ TEST(ModelFileKineticsErrors, Springs) {
   EXPECT_TRUE(fails_at(head + "  - {between: [P, O2], stiffness: 1, name: a}\n"
                               "  - {between: [P, O4], stiffness: 1, name: a}\n",
                        "15:44", "two springs are named 'a' (first on line 14)"));
+}
+
+}  // namespace
+}  // namespace nbar::io
+
+namespace nbar::io {
+namespace {
+
+// The keys of forward dynamics (issue 38): free drivers, spring preloads, motor lines.
+TEST(ModelFileKinetics, ForwardDynamicsKeys) {
+  const LoadedModel loaded = parse_model(kLinkage +
+                                         "torques:\n  - {body: crank, torque: 2, no_load_speed: 600 rpm}\n"
+                                         "springs:\n  - {between: [P, O4], stiffness: 10, preload: -3.5}\n"
+                                         "drivers:\n  - {angle: crank, free: true, initial_speed: 2 rad/s}\n");
+  const Model& m = loaded.model;
+  ASSERT_TRUE(m.torques[0].no_load_speed);
+  EXPECT_NEAR(*m.torques[0].no_load_speed, 600 * 2 * kPi / 60, 1e-12);
+  EXPECT_EQ(m.springs[0].preload, -3.5);
+  EXPECT_TRUE(m.drivers[0].free);
+  EXPECT_EQ(m.drivers[0].initial_speed, 2.0);
+  const LoadedModel plain = parse_model(kLinkage + "drivers:\n  - {angle: crank, from: 10}\n");
+  EXPECT_FALSE(plain.model.drivers[0].free);
+  EXPECT_EQ(plain.model.drivers[0].initial_speed, 0.0);
+}
+
+TEST(ModelFileKineticsErrors, ForwardDynamicsKeys) {
+  EXPECT_TRUE(fails_at(kLinkage + "drivers:\n  - {angle: crank, free: maybe}\n", "14:26",
+                       "`free` is true or false, not 'maybe'"));
+  EXPECT_TRUE(fails_at(kLinkage + "drivers:\n  - {angle: crank, initial_speed: 3}\n", "14:20",
+                       "`initial_speed` applies only to a driver with `free: true`"));
+  EXPECT_TRUE(fails_at(kLinkage + "drivers:\n  - {angle: crank, free: true, initial_speed: 2 m/s}\n", "14:47",
+                       "'2 m/s' is a linear speed"));
+  EXPECT_TRUE(fails_at(kLinkage + "torques:\n  - {body: crank, torque: 2, no_load_speed: 0}\n", "14:45",
+                       "the no-load speed of a motor cannot be zero"));
+  EXPECT_TRUE(fails_at(kLinkage + "springs:\n  - {between: [P, O4], stiffness: 10, preload: lots}\n", "14:48",
+                       "the preload (N)"));
 }
 
 }  // namespace

@@ -538,8 +538,8 @@ Model four_bar_with_mass() {
   m.gravity = Eigen::Vector2d(0, -9.81);
   m.point_loads.push_back(PointLoad{4, 1, Law::parse("0"), Law::parse("-100")});
   m.point_loads.push_back(PointLoad{3, -1, Law::parse("10*t"), Law::parse("0")});
-  m.torques.push_back(BodyTorque{2, Law::parse("-5")});
-  m.springs.push_back(Spring{"return", {4, 1}, 2000, 0.1, 5});
+  m.torques.push_back(BodyTorque{2, Law::parse("-5"), std::nullopt});
+  m.springs.push_back(Spring{"return", {4, 1}, 2000, 0.1, 5, 0.0});
   return m;
 }
 
@@ -651,7 +651,7 @@ TEST(Validate, PointLoadsAndTorques) {
   expect_error(m, Kind::Torque, 0, "torque #1 acts on body #-1, which does not exist");
 
   m = four_bar_with_mass();
-  m.torques.push_back(BodyTorque{1, Law()});
+  m.torques.push_back(BodyTorque{1, Law(), std::nullopt});
   expect_error(m, Kind::Torque, 1, "torque #2 on body 'coupler' has no value");
 }
 

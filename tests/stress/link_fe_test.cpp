@@ -45,7 +45,7 @@ Model loaded_four_bar() {
   give_bar(m, rocker, o4, b);
   m.drivers.push_back(angle_driver("crank", crank, 0.0, 2 * kPi, 12.0, 40.0));
   m.gravity = {0, -9.81};
-  m.torques.push_back(BodyTorque{rocker, Law::parse("2")});
+  m.torques.push_back(BodyTorque{rocker, Law::parse("2"), std::nullopt});
   m.point_loads.push_back(PointLoad{p, coupler, Law::parse("30"), Law::parse("-45")});
   m.point_loads.push_back(PointLoad{q, coupler, Law::parse("-20"), Law::parse("10")});
   m.sweep.steps = 7;

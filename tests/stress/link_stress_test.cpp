@@ -149,7 +149,7 @@ TEST(LinkStress, EverySectionOfAMovingFourBarIsInEquilibrium) {
   shape(rocker, {d, 0}, B);
   m.gravity = {0, -9.81};
   m.point_loads.push_back(PointLoad{pb, coupler, Law::parse("40"), Law::parse("-25*cos(5*t)")});
-  m.torques.push_back(BodyTorque{rocker, Law::parse("1.5")});
+  m.torques.push_back(BodyTorque{rocker, Law::parse("1.5"), std::nullopt});
   m.drivers.push_back(angle_driver("crank", crank, 0.4, 0.4 + 2 * kPi, 30.0, 20.0));
   m.sweep.steps = 13;
   const auto shared = std::make_shared<const InverseDynamics>(std::make_shared<const Mechanism>(m));

@@ -92,6 +92,10 @@ struct Driver {
   double speed = 1.0;      // SI per second
   double accel = 0.0;      // SI per second squared
   std::optional<Law> law;  // value as a function of t, in SI
+  // `nbar simulate` only: the input is left to the loads (its row is dropped) and starts at its
+  // start value moving at `initial_speed` (SI per second). Kinematics ignores both.
+  bool free = false;
+  double initial_speed = 0.0;
 
   bool is_angular() const { return kind == DriverKind::Angle; }
 };
@@ -114,16 +118,20 @@ struct PointLoad {
 struct BodyTorque {
   int body = -1;
   Law torque;
+  // A motor's torque-speed line: the torque falls linearly from `torque` at rest to 0 at this
+  // angular speed of the body (rad/s, non-zero, its sign the direction it drives).
+  std::optional<double> no_load_speed;
 };
 
 // A linear spring and damper between two points: tension = stiffness (length - free_length)
-// + damping d(length)/dt, pulling the points together when positive.
+// + damping d(length)/dt + preload, pulling the points together when positive.
 struct Spring {
   std::string name;
   std::array<int, 2> points{-1, -1};
   double stiffness = 0.0;    // N/m
   double free_length = 0.0;  // m
   double damping = 0.0;      // N s/m
+  double preload = 0.0;      // N, the tension at the free length
 };
 
 struct Model {
