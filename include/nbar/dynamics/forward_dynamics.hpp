@@ -1,0 +1,96 @@
+// Forward dynamics: how a mechanism moves under its loads when some (or all) of its drivers are
+// released (`free: true` in the model).
+//
+// Formulation (docs/dynamics.md): the equations of motion in the natural coordinates q of the
+// kinematics, M q'' + Phi_q^T lambda = Q(t, q, q'), with M constant (each body's mass and inertia
+// expressed on its two frame points), Phi the constraint rows and the rows of the drivers that stay
+// kinematic. Index 1: at every evaluation the accelerations solve Phi_q q'' = gamma and the
+// dynamics in the null space of Phi_q (an orthonormal basis from a rank-revealing QR of Phi_q^T),
+// so redundant constraints need no special treatment and a free motion without inertia is found
+// and refused. Integrated by the embedded Runge-Kutta pair of Dormand and Prince, 5(4), with its
+// continuous extension for the output times; after every accepted step q is projected back onto
+// Phi = 0 and q' onto Phi_q q' = -Phi_t (minimum-norm corrections), so the drift stays at the
+// solver's tolerance on all three levels.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
+#include "nbar/kinematics/table.hpp"
+#include "nbar/model/diagnostics.hpp"
+#include "nbar/model/run_control.hpp"
+
+namespace nbar {
+
+struct SimulationOptions {
+  double end_time = 1.0;             // s, > 0
+  double output_step = 0.0;          // s between rows; 0: end_time / 100
+  double relative_tolerance = 1e-8;  // of the Runge-Kutta error estimate
+  long max_steps = 10'000'000;       // accepted and rejected steps together
+};
+
+// Energies at one output time, J. The balance is kinetic + potential (gravity and springs)
+// + dissipated - work_in, minus its value at t = 0: zero up to the integration error.
+struct SimulationEnergy {
+  double kinetic = 0.0;
+  double gravity = 0.0;
+  double spring = 0.0;
+  double dissipated = 0.0;  // by dampers, since t = 0
+  double work_in = 0.0;     // by applied forces and torques and by the kinematic drivers, since t = 0
+  double balance = 0.0;
+};
+
+// How far the rows are from the constraints: max |Phi| (m), max |Phi_q q' + Phi_t| (m/s),
+// max |Phi_q q'' - gamma| (m/s^2), over every output row.
+struct ConstraintDrift {
+  double position = 0.0, velocity = 0.0, acceleration = 0.0;
+};
+
+struct SimulationStatistics {
+  long accepted_steps = 0;
+  long rejected_steps = 0;
+  long evaluations = 0;                            // of the accelerations
+  double smallest_step = 0.0, largest_step = 0.0;  // s, of the accepted steps
+  double largest_energy_error = 0.0;               // max |balance| over the rows, J
+  ConstraintDrift drift;
+};
+
+struct Simulation {
+  // One sample per output time: step, time, driver values (from q, free drivers included) and the
+  // Taylor coefficients [q, q', q''/2], as a sweep's samples are, so the kinematic columns of
+  // `nbar solve` apply unchanged.
+  std::vector<Sample> samples;
+  std::vector<SimulationEnergy> energies;
+  std::vector<int> free_drivers;
+  SimulationStatistics statistics;
+  bool complete = true;
+  std::string stop_reason;  // when !complete: what stopped it, at which time
+  EntityRef stop_where;     // the entity concerned, for the file position
+};
+
+// Runs the simulation from the model's start: positions assembled at t = 0 with every driver at
+// its start, velocities from the kinematic drivers' speeds and the free drivers' `initial_speed`.
+// A run that cannot continue (a singular position, a step size too small, a failed projection)
+// returns the rows so far with complete = false. Throws Error before the run for a model that
+// cannot be simulated (no mass where a free motion needs inertia, nothing free) and
+// Error(Cancelled) from `control`.
+Simulation simulate(const Mechanism& mechanism, const SimulationOptions& options, const RunControl& control = {});
+
+}  // namespace nbar
+
+namespace nbar {
+
+// The simulation as the table `nbar solve` writes (step, t, drivers, every point's x, y, vx, vy,
+// ax, ay, every body's angle, omega, alpha, transmission angles), in the model's units, followed
+// by the energies in J: energy.kinetic, energy.potential (gravity and springs, as in `solve
+// --dynamics`), energy.spring, energy.dissipated, energy.work (done by the loads and the
+// kinematic drivers) and energy.balance (kinetic + potential + dissipated - work, minus its start
+// value: the integration error).
+ResultTable simulation_table(const Mechanism& mechanism, const Simulation& simulation);
+
+}  // namespace nbar

@@ -1,0 +1,693 @@
+#include "nbar/dynamics/forward_dynamics.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+#include "kinematics/constraints.hpp"
+#include "nbar/dynamics/inverse_dynamics.hpp"
+#include "nbar/kinematics/position.hpp"
+
+namespace nbar {
+
+namespace {
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
+
+std::string time_text(double t) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "t = " << t << " s";
+  return s.str();
+}
+
+// Why a run stops early: said at an entity of the model when there is one.
+struct SimulationStop {
+  std::string reason;
+  EntityRef where;
+};
+
+// A body's centre of mass as a fixed combination of its frame points, r_cg = r_o + a u + b u_perp
+// with u = r_to - r_from: linear in q, so the body's mass on the coordinates is constant.
+struct BodyMass {
+  int body = -1;
+  double mass = 0.0;
+  double rotary = 0.0;  // inertia / |u|^2: the kinetic energy of rotation is rotary |u'|^2 / 2
+  BodyFrame frame;
+  double a = 0.0, b = 0.0;
+};
+
+// The equations of motion of one mechanism: its constant mass matrix, the rows kept (constraints
+// and the drivers that stay kinematic), and the loads. Evaluates the accelerations at (t, q, q').
+class EquationsOfMotion {
+ public:
+  // What one evaluation gives besides q'': the powers the energy balance integrates.
+  struct Rates {
+    Eigen::VectorXd acceleration;
+    double dissipated = 0.0;  // W, by dampers (>= 0)
+    double work_in = 0.0;     // W, by applied loads and the kinematic drivers
+  };
+
+  EquationsOfMotion(const Mechanism& mech, std::vector<double> start) : mech_(mech), start_(std::move(start)) {
+    const Model& m = mech.model();
+    n_ = mech.coordinate_count();
+    const auto& rows = mech.equations().rows;
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (!rows[r].is_driver() || !m.drivers[rows[r].driver].free) kept_.push_back(static_cast<int>(r));
+    selected_.assign(rows.size(), -1);
+    for (std::size_t i = 0; i < kept_.size(); ++i) selected_[kept_[i]] = static_cast<int>(i);
+    build_masses();
+  }
+
+  int coordinates() const { return n_; }
+  int kept_rows() const { return static_cast<int>(kept_.size()); }
+  const Eigen::MatrixXd& mass_matrix() const { return mass_; }
+
+  // Every driver's state at t: the kinematic ones by their law or from their start at their
+  // speed; the free ones (whose rows are dropped) at their start moving at their initial speed,
+  // which only the initial velocity solve reads.
+  void drivers_at(double t, std::vector<DriverState>& out) const {
+    const Model& m = mech_.model();
+    out.resize(m.drivers.size());
+    for (std::size_t d = 0; d < m.drivers.size(); ++d) {
+      const Driver& drv = m.drivers[d];
+      Series value;
+      if (drv.free) {
+        value = start_[d] + drv.initial_speed * Series::variable(kTerms, 0.0);
+      } else if (drv.law) {
+        try {
+          value = drv.law->series(t, kTerms);
+        } catch (const Error& e) {
+          throw SimulationStop{e.message() + " at " + time_text(t), {EntityRef::Kind::Driver, static_cast<int>(d), 0}};
+        }
+      } else {
+        const Series s = Series::variable(kTerms, t);
+        value = start_[d] + drv.speed * s + 0.5 * drv.accel * (s * s);
+      }
+      set_driver_state(out[d], value, drv.is_angular());
+    }
+  }
+
+  // The Jacobian of the kept rows (dense) and its rank-revealing factorisation.
+  void factorise(double t, const Eigen::VectorXd& q) {
+    drivers_at(t, drivers_);
+    evaluate_jacobian(mech_, q, drivers_, jacobian_values_);
+    jacobian_.setZero(kept_rows(), n_);
+    const auto& pattern = mech_.equations().pattern;
+    for (std::size_t i = 0; i < pattern.size(); ++i) {
+      const int row = selected_[pattern[i].row];
+      if (row >= 0) jacobian_(row, pattern[i].col) += jacobian_values_[i];
+    }
+    rank_ = 0;
+    basis_.setIdentity(n_, n_);
+    if (kept_rows() == 0) return;
+    qr_.setThreshold(1e-10);
+    qr_.compute(jacobian_.transpose());
+    rank_ = static_cast<int>(qr_.rank());
+    basis_ = qr_.householderQ();
+  }
+  int rank() const { return rank_; }
+  const Eigen::MatrixXd& jacobian() const { return jacobian_; }
+
+  // The minimum-norm x with Phi_q x = rhs (rhs over the kept rows; consistent when the rows are
+  // redundant), from the last factorisation.
+  Eigen::VectorXd minimum_norm(const Eigen::VectorXd& rhs) const {
+    if (rank_ == 0) return Eigen::VectorXd::Zero(n_);
+    const Eigen::VectorXd permuted = qr_.colsPermutation().transpose() * rhs;
+    const Eigen::VectorXd y = qr_.matrixR()
+                                  .topLeftCorner(rank_, rank_)
+                                  .transpose()
+                                  .triangularView<Eigen::Lower>()
+                                  .solve(permuted.head(rank_));
+    return basis_.leftCols(rank_) * y;
+  }
+
+  // The kept rows' residuals at (t, q) (factorise first at the same t).
+  Eigen::VectorXd residuals(const Eigen::VectorXd& q) {
+    evaluate_residuals(mech_, q, drivers_, all_rows_);
+    return select(all_rows_);
+  }
+  // Phi_t of the kept rows at (t, q): the first Taylor coefficient of Phi with q' = 0.
+  Eigen::VectorXd time_derivative(const Eigen::VectorXd& q) {
+    coefficients_.setZero(n_, 2);
+    coefficients_.col(0) = q;
+    evaluate_series_remainder(mech_, coefficients_, 1, drivers_, all_rows_);
+    return select(all_rows_);
+  }
+  // gamma of the kept rows: Phi_q q'' = gamma on the acceleration level.
+  Eigen::VectorXd gamma(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+    coefficients_.setZero(n_, 3);
+    coefficients_.col(0) = q;
+    coefficients_.col(1) = qd;
+    evaluate_series_remainder(mech_, coefficients_, 2, drivers_, all_rows_);
+    return -2.0 * select(all_rows_);
+  }
+
+  // q'' at (t, q, q') and the powers of the energy balance. Throws SimulationStop where the
+  // accelerations are not determined: a lost rank (a toggle), a free motion without inertia.
+  Rates evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+    factorise(t, q);
+    if (reference_rank_ >= 0 && rank_ < reference_rank_) {
+      throw SimulationStop{"the constraints became singular at " + time_text(t) + " (rank " + std::to_string(rank_) +
+                               " of " + std::to_string(reference_rank_) +
+                               "): the mechanism reached a toggle or dead-centre position, where its motion is "
+                               "not determined by the loads",
+                           first_free_driver()};
+    }
+    const Eigen::VectorXd particular = minimum_norm(gamma(q, qd));
+    double dissipated = 0.0, applied = 0.0;
+    const Eigen::VectorXd loads = generalised_forces(t, q, qd, dissipated, applied);
+    Rates out;
+    out.acceleration = particular;
+    const int free = n_ - rank_;
+    if (free > 0) {
+      const auto null = basis_.rightCols(free);
+      const Eigen::MatrixXd reduced = null.transpose() * mass_ * null;
+      reduced_.compute(reduced);
+      const double largest = std::max(reduced.diagonal().cwiseAbs().maxCoeff(), mass_scale_);
+      if (reduced_.info() != Eigen::Success || !(reduced_.vectorD().minCoeff() > 1e-12 * largest)) {
+        throw SimulationStop{"a free motion has no inertia at " + time_text(t) +
+                                 ": the bodies it moves have no mass or moment of inertia (give them `mass:` and "
+                                 "`inertia:`, or a shape and a material)",
+                             first_free_driver()};
+      }
+      const Eigen::VectorXd z = reduced_.solve(null.transpose() * (loads - mass_ * particular));
+      out.acceleration += null * z;
+    }
+    out.dissipated = dissipated;
+    // The constraint forces M q'' - Q do work only through the kinematic drivers' rows.
+    out.work_in = applied + (mass_ * out.acceleration - loads).dot(qd);
+    return out;
+  }
+
+  // Energies stored at (q, q'): kinetic, gravity, springs.
+  void stored_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, SimulationEnergy& e) const {
+    const Model& m = mech_.model();
+    e.kinetic = 0.5 * qd.dot(mass_ * qd);
+    e.gravity = 0.0;
+    for (const BodyMass& b : bodies_) e.gravity -= b.mass * m.gravity.dot(centre_of_mass(b, q));
+    e.spring = 0.0;
+    for (const Spring& s : m.springs) {
+      const double stretch = (position(s.points[1], q) - position(s.points[0], q)).norm() - s.free_length;
+      e.spring += 0.5 * s.stiffness * stretch * stretch + s.preload * stretch;
+    }
+  }
+
+  // Set once the start is known: a later rank below it is a singular position.
+  void keep_reference_rank() { reference_rank_ = rank_; }
+  const std::vector<DriverState>& drivers() const { return drivers_; }
+
+  EntityRef first_free_driver() const {
+    const auto& drivers = mech_.model().drivers;
+    for (std::size_t d = 0; d < drivers.size(); ++d)
+      if (drivers[d].free) return {EntityRef::Kind::Driver, static_cast<int>(d), -1};
+    return {EntityRef::Kind::Model, -1, -1};
+  }
+
+ private:
+  static constexpr int kTerms = 3;
+
+  Eigen::VectorXd select(const Eigen::VectorXd& rows) const {
+    Eigen::VectorXd out(kept_rows());
+    for (int i = 0; i < kept_rows(); ++i) out(i) = rows(kept_[i]);
+    return out;
+  }
+
+  Eigen::Vector2d position(int point, const Eigen::VectorXd& q) const { return mech_.point_position(point, q); }
+  Eigen::Vector2d velocity(int point, const Eigen::VectorXd& qd) const {
+    const int col = mech_.column_of(point);
+    return col < 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(qd.segment<2>(col));
+  }
+  void add_force(int point, const Eigen::Vector2d& force, Eigen::VectorXd& loads) const {
+    const int col = mech_.column_of(point);
+    if (col >= 0) loads.segment<2>(col) += force;
+  }
+
+  Eigen::Vector2d centre_of_mass(const BodyMass& b, const Eigen::VectorXd& q) const {
+    const Eigen::Vector2d origin = position(b.frame.origin, q);
+    if (b.frame.from < 0) return origin;
+    const Eigen::Vector2d u = position(b.frame.to, q) - position(b.frame.from, q);
+    return origin + b.a * u + b.b * perp(u);
+  }
+
+  // M = sum over bodies of m C^T C + (I / |u|^2) D^T D, where v_cg = C q' and u' = D q'.
+  void build_masses() {
+    const Model& m = mech_.model();
+    mass_.setZero(n_, n_);
+    gravity_.setZero(n_);
+    for (std::size_t i = 0; i < m.bodies.size(); ++i) {
+      const MassProperties props = mass_properties(m.bodies[i]);
+      BodyMass b;
+      b.body = static_cast<int>(i);
+      b.mass = props.mass;
+      b.frame = body_frame(m, b.body);
+      Eigen::MatrixXd to_cg = Eigen::MatrixXd::Zero(2, n_), to_direction = Eigen::MatrixXd::Zero(2, n_);
+      add_block(to_cg, b.frame.origin, Eigen::Matrix2d::Identity());
+      if (b.frame.from >= 0) {
+        const Eigen::Vector2d drawn = m.points[b.frame.to].position - m.points[b.frame.from].position;
+        const Eigen::Vector2d offset = props.cg - m.points[b.frame.origin].position;
+        const double length2 = drawn.squaredNorm();
+        b.a = offset.dot(drawn) / length2;
+        b.b = cross(drawn, offset) / length2;
+        b.rotary = props.inertia / length2;
+        Eigen::Matrix2d along;
+        along << b.a, -b.b, b.b, b.a;  // a I + b (rotation by 90 degrees)
+        add_block(to_cg, b.frame.to, along);
+        add_block(to_cg, b.frame.from, -along);
+        add_block(to_direction, b.frame.to, Eigen::Matrix2d::Identity());
+        add_block(to_direction, b.frame.from, -Eigen::Matrix2d::Identity());
+      }
+      mass_ += b.mass * to_cg.transpose() * to_cg + b.rotary * to_direction.transpose() * to_direction;
+      gravity_ += b.mass * to_cg.transpose() * m.gravity;
+      mass_scale_ = std::max(mass_scale_, 1e-30 * b.mass);
+      bodies_.push_back(b);
+    }
+  }
+  void add_block(Eigen::MatrixXd& map, int point, const Eigen::Matrix2d& block) const {
+    const int col = mech_.column_of(point);
+    if (col >= 0) map.block<2, 2>(0, col) += block;
+  }
+
+  // Q(t, q, q'): gravity, forces, torques (motors by their torque-speed line), springs and
+  // dampers; with the dampers' dissipated power and the applied loads' power.
+  Eigen::VectorXd generalised_forces(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double& dissipated,
+                                     double& applied) const {
+    const Model& m = mech_.model();
+    Eigen::VectorXd loads = gravity_;
+    Eigen::VectorXd applied_loads = Eigen::VectorXd::Zero(n_);
+    const auto law_at = [t](const Law& law, EntityRef::Kind kind, std::size_t index, int which) {
+      try {
+        return law.value(t);
+      } catch (const Error& e) {
+        throw SimulationStop{e.message() + " at " + time_text(t), EntityRef{kind, static_cast<int>(index), which}};
+      }
+    };
+    for (std::size_t i = 0; i < m.point_loads.size(); ++i) {
+      const PointLoad& load = m.point_loads[i];
+      add_force(load.point,
+                {law_at(load.fx, EntityRef::Kind::PointLoad, i, 0), law_at(load.fy, EntityRef::Kind::PointLoad, i, 1)},
+                applied_loads);
+    }
+    for (std::size_t i = 0; i < m.torques.size(); ++i) {
+      const BodyTorque& torque = m.torques[i];
+      const BodyFrame f = body_frame(m, torque.body);
+      if (f.from < 0) continue;
+      const Eigen::Vector2d u = position(f.to, q) - position(f.from, q);
+      double value = law_at(torque.torque, EntityRef::Kind::Torque, i, 0);
+      if (torque.no_load_speed) {
+        const double omega = cross(u, velocity(f.to, qd) - velocity(f.from, qd)) / u.squaredNorm();
+        value *= 1.0 - omega / *torque.no_load_speed;
+      }
+      // Virtual work T d(theta), with d(theta) = u x du / |u|^2.
+      const Eigen::Vector2d on_to = value * perp(u) / u.squaredNorm();
+      add_force(f.to, on_to, applied_loads);
+      add_force(f.from, -on_to, applied_loads);
+    }
+    applied = applied_loads.dot(qd);
+    loads += applied_loads;
+    dissipated = 0.0;
+    for (const Spring& s : m.springs) {
+      const Eigen::Vector2d d = position(s.points[1], q) - position(s.points[0], q);
+      const double length = d.norm();
+      const Eigen::Vector2d e = d / length;
+      const double rate = e.dot(velocity(s.points[1], qd) - velocity(s.points[0], qd));
+      const double tension = s.stiffness * (length - s.free_length) + s.preload + s.damping * rate;
+      add_force(s.points[0], tension * e, loads);
+      add_force(s.points[1], -tension * e, loads);
+      dissipated += s.damping * rate * rate;
+    }
+    return loads;
+  }
+
+  const Mechanism& mech_;
+  std::vector<double> start_;
+  int n_ = 0;
+  std::vector<int> kept_;      // rows of Phi kept, in order
+  std::vector<int> selected_;  // per row: its place among the kept, or -1
+  Eigen::MatrixXd mass_;
+  Eigen::VectorXd gravity_;
+  double mass_scale_ = 0.0;
+  std::vector<BodyMass> bodies_;
+  int reference_rank_ = -1;
+
+  std::vector<DriverState> drivers_;
+  std::vector<double> jacobian_values_;
+  Eigen::MatrixXd jacobian_, basis_, coefficients_;
+  Eigen::VectorXd all_rows_;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
+  Eigen::LDLT<Eigen::MatrixXd> reduced_;
+  int rank_ = 0;
+};
+
+// The Dormand-Prince 5(4) pair (Dormand & Prince 1980; Hairer, Norsett & Wanner, Solving ODEs I,
+// II.5) with its continuous extension of order 4.
+namespace dopri {
+constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
+constexpr double a21 = 1.0 / 5;
+constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
+constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
+constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561, a54 = -212.0 / 729;
+constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176, a65 = -5103.0 / 18656;
+constexpr double a71 = 35.0 / 384, a73 = 500.0 / 1113, a74 = 125.0 / 192, a75 = -2187.0 / 6784, a76 = 11.0 / 84;
+constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200, e6 = 22.0 / 525,
+                 e7 = -1.0 / 40;
+constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799, d4 = -10690763975.0 / 1880347072,
+                 d5 = 701980252875.0 / 199316789632, d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
+}  // namespace dopri
+
+// The state integrated: q, q', and the dissipated and input work since t = 0.
+class Integrator {
+ public:
+  Integrator(const Mechanism& mech, EquationsOfMotion& equations, const SimulationOptions& options)
+      : mech_(mech), eq_(equations), options_(options), n_(equations.coordinates()) {}
+
+  Eigen::VectorXd derivative(double t, const Eigen::VectorXd& y) {
+    ++evaluations_;
+    const EquationsOfMotion::Rates r = eq_.evaluate(t, y.head(n_), y.segment(n_, n_));
+    Eigen::VectorXd f(y.size());
+    f.head(n_) = y.segment(n_, n_);
+    f.segment(n_, n_) = r.acceleration;
+    f(2 * n_) = r.dissipated;
+    f(2 * n_ + 1) = r.work_in;
+    return f;
+  }
+
+  // Moves q onto Phi = 0 and q' onto Phi_q q' = -Phi_t at t; false when Newton fails.
+  bool project(double t, Eigen::VectorXd& y) {
+    Eigen::VectorXd q = y.head(n_);
+    const double tolerance = mech_.tolerance();
+    bool converged = false;
+    for (int iteration = 0; iteration < 12; ++iteration) {
+      eq_.factorise(t, q);
+      const Eigen::VectorXd phi = eq_.residuals(q);
+      if (!phi.allFinite()) return false;
+      if (phi.size() == 0 || phi.lpNorm<Eigen::Infinity>() <= tolerance) {
+        converged = true;
+        break;
+      }
+      q -= eq_.minimum_norm(phi);
+    }
+    if (!converged) return false;
+    Eigen::VectorXd qd = y.segment(n_, n_);
+    qd -= eq_.minimum_norm(eq_.jacobian() * qd + eq_.time_derivative(q));
+    y.head(n_) = q;
+    y.segment(n_, n_) = qd;
+    return y.allFinite();
+  }
+
+  // Weighted RMS norm of the q and q' parts (the work integrals are quadratures of the same steps
+  // and do not steer the step size).
+  double error_norm(const Eigen::VectorXd& error, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1) const {
+    const double rtol = options_.relative_tolerance;
+    const double length = mech_.characteristic_length();
+    double sum = 0.0;
+    for (int i = 0; i < 2 * n_; ++i) {
+      const double scale = rtol * length + rtol * std::max(std::abs(y0(i)), std::abs(y1(i)));
+      sum += (error(i) / scale) * (error(i) / scale);
+    }
+    return n_ > 0 ? std::sqrt(sum / (2 * n_)) : 0.0;
+  }
+
+  // Hairer's starting step: from the sizes of y, f and an estimate of f's change.
+  double initial_step(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f, double span) {
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(y.size());
+    const double d0 = error_norm(y, y, zero) * options_.relative_tolerance;
+    const double d1 = error_norm(f, y, zero) * options_.relative_tolerance;
+    double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+    h0 = std::min(h0, span);
+    const Eigen::VectorXd f1 = derivative(t + h0, y + h0 * f);
+    const double d2 = error_norm(f1 - f, y, zero) * options_.relative_tolerance / h0;
+    const double largest = std::max(d1, d2);
+    const double h1 = largest <= 1e-15 ? std::max(1e-6, 1e-3 * h0) : std::pow(0.01 / largest, 1.0 / 5);
+    return std::min({100 * h0, h1, span});
+  }
+
+  struct Step {
+    Eigen::VectorXd y1, k7;
+    double error = 0.0;
+    // The continuous extension on [t, t + h].
+    Eigen::VectorXd r2, r3, r4, r5;
+  };
+
+  Step step(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h) {
+    using namespace dopri;
+    const Eigen::VectorXd k2 = derivative(t + c2 * h, y + h * a21 * k1);
+    const Eigen::VectorXd k3 = derivative(t + c3 * h, y + h * (a31 * k1 + a32 * k2));
+    const Eigen::VectorXd k4 = derivative(t + c4 * h, y + h * (a41 * k1 + a42 * k2 + a43 * k3));
+    const Eigen::VectorXd k5 = derivative(t + c5 * h, y + h * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4));
+    const Eigen::VectorXd k6 = derivative(t + h, y + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5));
+    Step s;
+    s.y1 = y + h * (a71 * k1 + a73 * k3 + a74 * k4 + a75 * k5 + a76 * k6);
+    s.k7 = derivative(t + h, s.y1);
+    const Eigen::VectorXd error = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * s.k7);
+    s.error = error_norm(error, y, s.y1);
+    s.r2 = s.y1 - y;
+    s.r3 = h * k1 - s.r2;
+    s.r4 = s.r2 - h * s.k7 - s.r3;
+    s.r5 = h * (d1 * k1 + d3 * k3 + d4 * k4 + d5 * k5 + d6 * k6 + d7 * s.k7);
+    return s;
+  }
+
+  static Eigen::VectorXd interpolate(const Eigen::VectorXd& y0, const Step& s, double theta) {
+    const double rest = 1.0 - theta;
+    return y0 + theta * (s.r2 + rest * (s.r3 + theta * (s.r4 + rest * s.r5)));
+  }
+
+  long evaluations() const { return evaluations_; }
+
+ private:
+  const Mechanism& mech_;
+  EquationsOfMotion& eq_;
+  const SimulationOptions& options_;
+  int n_;
+  long evaluations_ = 0;
+};
+
+// Each driver's value at q (SI), angles unwrapped against `previous`.
+std::vector<double> driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q,
+                                     const std::vector<double>& previous) {
+  const Model& m = mech.model();
+  const auto at = [&](int p) { return mech.point_position(p, q); };
+  const auto angle_of = [&](int body) {
+    const Eigen::Vector2d u = at(m.bodies[body].points[1]) - at(m.bodies[body].points[0]);
+    return std::atan2(u.y(), u.x());
+  };
+  std::vector<double> out(m.drivers.size());
+  for (std::size_t d = 0; d < m.drivers.size(); ++d) {
+    const Driver& drv = m.drivers[d];
+    switch (drv.kind) {
+      case DriverKind::Angle: {
+        double angle = angle_of(drv.body) - (drv.relative_to >= 0 ? angle_of(drv.relative_to) : 0.0);
+        angle += 2 * M_PI * std::round((previous[d] - angle) / (2 * M_PI));
+        out[d] = angle;
+        break;
+      }
+      case DriverKind::Distance: out[d] = (at(drv.points[1]) - at(drv.points[0])).norm(); break;
+      case DriverKind::Slide: {
+        const Slider& s = m.sliders[drv.slider];
+        const Eigen::Vector2d guide = at(s.along[1]) - at(s.along[0]);
+        out[d] = (at(s.point) - at(s.along[0])).dot(guide) / guide.norm();
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+// One run: the start, the steps, and a row at every output time.
+class Run {
+ public:
+  Run(const Mechanism& mech, const SimulationOptions& options, const RunControl& control)
+      : mech_(mech),
+        options_(options),
+        control_(control),
+        start_(sweep_path(mech, 2).from),
+        eq_(mech, start_),
+        integrator_(mech, eq_, options_) {
+    n_ = mech.coordinate_count();
+    const double step = options.output_step > 0 ? options.output_step : options.end_time / 100;
+    const long whole = static_cast<long>(std::floor(options.end_time / step * (1 + 1e-12)));
+    for (long i = 0; i <= whole; ++i)
+      output_times_.push_back(std::min(static_cast<double>(i) * step, options.end_time));
+    if (output_times_.back() < options.end_time * (1 - 1e-12))
+      output_times_.push_back(options.end_time);  // the end too
+    outputs_ = static_cast<long>(output_times_.size()) - 1;
+  }
+
+  Simulation run() {
+    start();
+    double t = 0.0;
+    long next_output = 1;
+    Eigen::VectorXd k1 = integrator_.derivative(t, y_);
+    double h = integrator_.initial_step(t, y_, k1, options_.end_time);
+    try {
+      while (next_output <= outputs_) {
+        control_.checkpoint("simulate", next_output, outputs_);
+        const double remaining = options_.end_time - t;
+        if (h >= remaining * (1 - 1e-12)) h = remaining;
+        if (out_.statistics.accepted_steps + out_.statistics.rejected_steps >= options_.max_steps)
+          throw SimulationStop{"the simulation took more than " + std::to_string(options_.max_steps) +
+                                   " steps before " + time_text(options_.end_time) + " (stopped at " + time_text(t) +
+                                   ")",
+                               {}};
+        if (!(h > 1e-14 * std::max(1.0, std::abs(t))))
+          throw SimulationStop{"the step size fell below " + std::to_string(h) + " s at " + time_text(t) +
+                                   ": the motion is too fast or not smooth there for the tolerance asked",
+                               eq_.first_free_driver()};
+        const Integrator::Step s = integrator_.step(t, y_, k1, h);
+        if (!s.y1.allFinite() || !(s.error <= 1.0)) {
+          ++out_.statistics.rejected_steps;
+          h *= s.y1.allFinite() && std::isfinite(s.error) ? std::max(0.2, 0.9 * std::pow(s.error, -0.2)) : 0.2;
+          continue;
+        }
+        const double t1 = t + h;
+        while (next_output <= outputs_ && output_time(next_output) <= t1 * (1 + 1e-13)) {
+          const double at = output_time(next_output);
+          Eigen::VectorXd y = Integrator::interpolate(y_, s, std::clamp((at - t) / h, 0.0, 1.0));
+          record(at, y);
+          ++next_output;
+        }
+        accept(h);
+        y_ = s.y1;
+        t = t1;
+        if (!integrator_.project(t, y_))
+          throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(t) +
+                                   " (the mechanism may have reached a limit of its motion)",
+                               eq_.first_free_driver()};
+        k1 = integrator_.derivative(t, y_);
+        h *= std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(s.error, 1e-10), -0.2)));
+      }
+    } catch (const SimulationStop& stop) {
+      out_.complete = false;
+      out_.stop_reason = stop.reason;
+      out_.stop_where = stop.where;
+    }
+    out_.statistics.evaluations = integrator_.evaluations();
+    return std::move(out_);
+  }
+
+ private:
+  double output_time(long i) const { return output_times_[i]; }
+
+  // Positions assembled at t = 0, velocities from every driver's speed (free ones: their initial
+  // speed), on the full set of rows.
+  void start() {
+    try {
+      start_at_rest_or_speed();
+    } catch (const SimulationStop& stop) {  // before the run: the model cannot be simulated
+      throw Error(ErrorKind::InvalidModel, stop.reason, stop.where);
+    }
+    for (std::size_t d = 0; d < mech_.model().drivers.size(); ++d)
+      if (mech_.model().drivers[d].free) out_.free_drivers.push_back(static_cast<int>(d));
+  }
+
+  void start_at_rest_or_speed() {
+    State state(mech_);
+    const Sample at_start = solve_at_time(mech_, state, 0.0, 0);
+    Eigen::VectorXd q = at_start.positions();
+    std::vector<DriverState> drivers;
+    eq_.drivers_at(0.0, drivers);
+    std::vector<double> values;
+    evaluate_jacobian(mech_, q, drivers, values);
+    Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(mech_.row_count(), n_);
+    const auto& pattern = mech_.equations().pattern;
+    for (std::size_t i = 0; i < pattern.size(); ++i) jacobian(pattern[i].row, pattern[i].col) += values[i];
+    Eigen::MatrixXd coefficients = Eigen::MatrixXd::Zero(n_, 2);
+    coefficients.col(0) = q;
+    Eigen::VectorXd phi_t;
+    evaluate_series_remainder(mech_, coefficients, 1, drivers, phi_t);
+    const Eigen::VectorXd qd = jacobian.completeOrthogonalDecomposition().solve(-phi_t);
+    y_.setZero(2 * n_ + 2);
+    y_.head(n_) = q;
+    y_.segment(n_, n_) = qd;
+    eq_.factorise(0.0, q);
+    eq_.keep_reference_rank();
+    eq_.evaluate(0.0, q, qd);
+    previous_values_ = start_;
+    record(0.0, y_);
+    SimulationEnergy& first = out_.energies.front();
+    energy_at_start_ = first.kinetic + first.gravity + first.spring;
+    first.balance = 0.0;
+    out_.statistics.largest_energy_error = 0.0;
+  }
+
+  // A row at `at`: y projected, q'' evaluated there, the energies and the drift.
+  void record(double at, Eigen::VectorXd y) {
+    if (!integrator_.project(at, y))
+      throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(at),
+                           eq_.first_free_driver()};
+    const Eigen::VectorXd q = y.head(n_), qd = y.segment(n_, n_);
+    const EquationsOfMotion::Rates rates = eq_.evaluate(at, q, qd);
+    ConstraintDrift drift;
+    drift.position = eq_.kept_rows() ? eq_.residuals(q).lpNorm<Eigen::Infinity>() : 0.0;
+    if (eq_.kept_rows()) {
+      drift.velocity = (eq_.jacobian() * qd + eq_.time_derivative(q)).lpNorm<Eigen::Infinity>();
+      drift.acceleration = (eq_.jacobian() * rates.acceleration - eq_.gamma(q, qd)).lpNorm<Eigen::Infinity>();
+    }
+    ConstraintDrift& worst = out_.statistics.drift;
+    worst.position = std::max(worst.position, drift.position);
+    worst.velocity = std::max(worst.velocity, drift.velocity);
+    worst.acceleration = std::max(worst.acceleration, drift.acceleration);
+
+    Sample sample;
+    sample.step = static_cast<int>(out_.samples.size());
+    sample.time = at;
+    sample.driver_values = driver_values_at(mech_, q, previous_values_);
+    previous_values_ = sample.driver_values;
+    sample.taylor.resize(n_, 3);
+    sample.taylor.col(0) = q;
+    sample.taylor.col(1) = qd;
+    sample.taylor.col(2) = 0.5 * rates.acceleration;
+    sample.residual = drift.position;
+    out_.samples.push_back(std::move(sample));
+
+    SimulationEnergy e;
+    eq_.stored_energy(q, qd, e);
+    e.dissipated = y(2 * n_);
+    e.work_in = y(2 * n_ + 1);
+    e.balance = e.kinetic + e.gravity + e.spring + e.dissipated - e.work_in - energy_at_start_;
+    out_.statistics.largest_energy_error = std::max(out_.statistics.largest_energy_error, std::abs(e.balance));
+    out_.energies.push_back(e);
+  }
+
+  void accept(double h) {
+    SimulationStatistics& s = out_.statistics;
+    s.smallest_step = s.accepted_steps == 0 ? h : std::min(s.smallest_step, h);
+    s.largest_step = std::max(s.largest_step, h);
+    ++s.accepted_steps;
+  }
+
+  const Mechanism& mech_;
+  const SimulationOptions& options_;
+  const RunControl& control_;
+  std::vector<double> start_;
+  EquationsOfMotion eq_;
+  Integrator integrator_;
+  int n_ = 0;
+  std::vector<double> output_times_;  // the rows' times: 0, dt, 2 dt, ... and the end
+  long outputs_ = 0;
+  Eigen::VectorXd y_;
+  std::vector<double> previous_values_;
+  double energy_at_start_ = 0.0;
+  Simulation out_;
+};
+
+}  // namespace
+
+Simulation simulate(const Mechanism& mechanism, const SimulationOptions& options, const RunControl& control) {
+  if (!(options.end_time > 0.0) || !std::isfinite(options.end_time))
+    throw Error(ErrorKind::BadInput, "the simulated time must be a positive number of seconds");
+  if (options.output_step < 0.0 || !std::isfinite(options.output_step))
+    throw Error(ErrorKind::BadInput, "the output step must be a positive number of seconds");
+  if (!(options.relative_tolerance > 0.0 && options.relative_tolerance < 1.0))
+    throw Error(ErrorKind::BadInput, "the relative tolerance must be between 0 and 1");
+  Run run(mechanism, options, control);
+  return run.run();
+}
+
+}  // namespace nbar

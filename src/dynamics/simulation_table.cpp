@@ -1,0 +1,26 @@
+#include "nbar/dynamics/forward_dynamics.hpp"
+
+namespace nbar {
+
+ResultTable simulation_table(const Mechanism& mechanism, const Simulation& simulation) {
+  ResultTable table;
+  KinematicRows kinematic(mechanism, 2);
+  kinematic.name_columns(table.columns, table.units);
+  const std::size_t kinematic_columns = kinematic.column_count();
+  for (const char* name : {"kinetic", "potential", "spring", "dissipated", "work", "balance"}) {
+    table.columns.push_back(std::string("energy.") + name);
+    table.units.push_back("J");
+  }
+  table.rows.reserve(simulation.samples.size());
+  for (std::size_t i = 0; i < simulation.samples.size(); ++i) {
+    std::vector<double> row(table.columns.size());
+    kinematic.fill(simulation.samples[i], row.data());
+    const SimulationEnergy& e = simulation.energies[i];
+    const double energies[] = {e.kinetic, e.gravity + e.spring, e.spring, e.dissipated, e.work_in, e.balance};
+    std::copy(std::begin(energies), std::end(energies), row.begin() + static_cast<std::ptrdiff_t>(kinematic_columns));
+    table.rows.push_back(std::move(row));
+  }
+  return table;
+}
+
+}  // namespace nbar

@@ -1,0 +1,205 @@
+// Forward dynamics against references derived here by hand: a parallelogram with a redundant
+// third crank swinging as one pendulum (its equation in the crank angle, integrated by RK4 below),
+// a damped, spring-loaded pendulum settling where its potential is stationary, and a fully driven
+// mechanism following its kinematics. The four-bar, slider-crank and double pendulum against
+// Lagrange's equations are tests/dynamics/simulate_reference.py (through the CLI).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "nbar/dynamics/forward_dynamics.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/kinematics/position.hpp"
+
+namespace nbar {
+namespace {
+
+Mechanism mechanism_of(const std::string& text) { return Mechanism(io::parse_model(text).model); }
+
+double angle_of(const Mechanism& mech, const Sample& s, const std::string& body) {
+  const Body& b = mech.model().bodies[mech.model().find_body(body)];
+  const Eigen::Vector2d u =
+      mech.point_position(b.points[1], s.positions()) - mech.point_position(b.points[0], s.positions());
+  return std::atan2(u.y(), u.x());
+}
+
+// y'' = f(y, y') by the classical Runge-Kutta method, `steps` steps to time t.
+std::pair<double, double> rk4(const std::function<double(double, double)>& f, double y, double v, double t, int steps) {
+  const double h = t / steps;
+  for (int i = 0; i < steps; ++i) {
+    const double k1y = v, k1v = f(y, v);
+    const double k2y = v + 0.5 * h * k1v, k2v = f(y + 0.5 * h * k1y, v + 0.5 * h * k1v);
+    const double k3y = v + 0.5 * h * k2v, k3v = f(y + 0.5 * h * k2y, v + 0.5 * h * k2v);
+    const double k4y = v + h * k3v, k4v = f(y + h * k3y, v + h * k3v);
+    y += h / 6 * (k1y + 2 * k2y + 2 * k3y + k4y);
+    v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+  }
+  return {y, v};
+}
+
+// Three equal cranks (0.1 m, 0.4 kg, 2e-4 kg m^2 about their middles) carry a coupler of 1.5 kg,
+// which translates: the whole is one pendulum in the crank angle th,
+//   (3 (I + m r^2/4) + M r^2) th'' = -(3 m r/2 + M r) g cos th.
+// The third crank repeats a constraint (rank-deficient Jacobian); the motion is still unique.
+TEST(ForwardDynamics, RedundantParallelogramSwingsAsOnePendulum) {
+  const Mechanism mech = mechanism_of(R"(
+units: {length: m, angle: deg}
+points:
+  O1: [0, 0]
+  O2: [0.3, 0]
+  O3: [0.15, 0.12]
+  A1: [0.1, 0]
+  A2: [0.4, 0]
+  A3: [0.25, 0.12]
+ground: [O1, O2, O3]
+gravity: [0, -9.81]
+bodies:
+  crank1: {points: [O1, A1], mass: 0.4, inertia: 2e-4, cg: [0.05, 0]}
+  crank2: {points: [O2, A2], mass: 0.4, inertia: 2e-4, cg: [0.35, 0]}
+  crank3: {points: [O3, A3], mass: 0.4, inertia: 2e-4, cg: [0.2, 0.12]}
+  coupler: {points: [A1, A2, A3], mass: 1.5, cg: [0.25, 0.05]}
+drivers:
+  - {angle: crank1, free: true, initial_speed: 30}
+)");
+  ASSERT_FALSE(mech.mobility().redundant.empty());
+  SimulationOptions options;
+  options.end_time = 2.0;
+  options.output_step = 0.5;
+  options.relative_tolerance = 1e-12;
+  const Simulation sim = simulate(mech, options);
+  ASSERT_TRUE(sim.complete) << sim.stop_reason;
+  const double r = 0.1, m = 0.4, I = 2e-4, M = 1.5, g = 9.81;
+  const auto pendulum = [&](double th, double) {
+    return -(3 * m * r / 2 + M * r) * g * std::cos(th) / (3 * (I + m * r * r / 4) + M * r * r);
+  };
+  ASSERT_EQ(sim.samples.size(), 5u);
+  for (const Sample& s : sim.samples) {
+    const auto [th, w] = rk4(pendulum, 0.0, 30 * M_PI / 180, s.time, 20000);
+    EXPECT_NEAR(std::remainder(angle_of(mech, s, "crank1") - th, 2 * M_PI), 0.0, 1e-9) << "t = " << s.time;
+    EXPECT_NEAR(std::remainder(angle_of(mech, s, "crank3") - th, 2 * M_PI), 0.0, 1e-9) << "t = " << s.time;
+  }
+  EXPECT_LT(sim.statistics.drift.position, 1e-12);
+  EXPECT_LT(sim.statistics.drift.velocity, 1e-9);
+  EXPECT_LT(std::abs(sim.energies.back().balance), 1e-9);
+}
+
+// A 0.5 m bar pinned at O, held by a preloaded spring to S and damped: it settles where
+// V'(th) = m g (L/2) cos th + (k (l - l0) + P) dl/dth = 0, l = |A(th) - S|.
+TEST(ForwardDynamics, DampedSpringPendulumSettlesWherePotentialIsStationary) {
+  const Mechanism mech = mechanism_of(R"(
+units: {length: m, angle: rad}
+points:
+  O: [0, 0]
+  S: [0.5, 0.5]
+  A: [0.5, 0]
+ground: [O, S]
+gravity: [0, -9.81]
+bodies:
+  bar: {points: [O, A], mass: 2, inertia: 0.04, cg: [0.25, 0]}
+springs:
+  - {between: [A, S], stiffness: 100, free_length: 0.2, preload: 5, damping: 4}
+drivers:
+  - {angle: bar, free: true}
+)");
+  SimulationOptions options;
+  options.end_time = 30.0;
+  options.output_step = 1.0;
+  options.relative_tolerance = 1e-10;
+  const Simulation sim = simulate(mech, options);
+  ASSERT_TRUE(sim.complete) << sim.stop_reason;
+  const double m = 2, L = 0.5, g = 9.81, k = 100, l0 = 0.2, P = 5;
+  const auto slope = [&](double th) {
+    const Eigen::Vector2d a(L * std::cos(th), L * std::sin(th)), da(-L * std::sin(th), L * std::cos(th));
+    const Eigen::Vector2d d = a - Eigen::Vector2d(0.5, 0.5);
+    return m * g * L / 2 * std::cos(th) + (k * (d.norm() - l0) + P) * d.dot(da) / d.norm();
+  };
+  const double settled = angle_of(mech, sim.samples.back(), "bar");
+  double th = settled;  // Newton on V'(th) = 0 from there, by central differences of V'
+  for (int i = 0; i < 20; ++i) th -= slope(th) / ((slope(th + 1e-6) - slope(th - 1e-6)) / 2e-6);
+  EXPECT_NEAR(settled, th, 1e-7);
+  EXPECT_GT((slope(th + 1e-4) - slope(th - 1e-4)) / 2e-4, 0.0);  // a minimum of V
+  EXPECT_GT(std::abs(settled), 0.05);                            // it did move from the drawn pose
+  // The energy balance holds with the dissipated work in it.
+  const SimulationEnergy& end = sim.energies.back();
+  EXPECT_GT(end.dissipated, 0.1);
+  EXPECT_LT(std::abs(end.balance), 1e-7 * end.dissipated);
+}
+
+// With no driver free, the simulation is the kinematics in time: positions as solve_at_time's.
+TEST(ForwardDynamics, FullyDrivenMechanismFollowsItsKinematics) {
+  const Mechanism mech = mechanism_of(R"(
+units: {length: mm, angle: deg}
+points: {O2: [0, 0], O4: [200, 0], A: [80, 0], B: [190, 150]}
+ground: [O2, O4]
+gravity: [0, -9.81]
+bodies:
+  crank: {points: [O2, A], mass: 0.5, inertia: 3e-4, cg: [40, 0]}
+  coupler: {points: [A, B], mass: 1.0, inertia: 2e-3, cg: [135, 75]}
+  rocker: [O4, B]
+drivers:
+  - {angle: crank, from: 0, speed: 120 rpm}
+)");
+  SimulationOptions options;
+  options.end_time = 1.0;
+  options.output_step = 0.25;
+  options.relative_tolerance = 1e-11;
+  const Simulation sim = simulate(mech, options);
+  ASSERT_TRUE(sim.complete) << sim.stop_reason;
+  State state(mech);
+  double t = 0.0;
+  for (const Sample& s : sim.samples) {
+    // Newton from the last pose in small moves, so that it stays on the drawn branch.
+    for (; t < s.time - 1e-12; t += 0.01) solve_at_time(mech, state, t, 0);
+    const Sample kinematic = solve_at_time(mech, state, s.time, 2);
+    EXPECT_LT((s.taylor - kinematic.taylor).cwiseAbs().maxCoeff(), 1e-9) << "t = " << s.time;
+  }
+  // The motor's work is the rest of the balance: the crank turns at constant speed, so over whole
+  // turns (t = 0.5 s, 1 s) kinetic and potential energy are back where they started.
+  EXPECT_NEAR(sim.energies.back().work_in, 0.0, 1e-9);
+  EXPECT_LT(std::abs(sim.energies.back().balance), 1e-9);
+}
+
+TEST(ForwardDynamics, AFreeMotionWithoutInertiaIsRefusedAtItsDriver) {
+  const Mechanism mech = mechanism_of(R"(
+points: {O2: [0, 0], O4: [200, 0], A: [80, 0], B: [190, 150]}
+ground: [O2, O4]
+bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
+drivers:
+  - {angle: crank, free: true}
+)");
+  try {
+    simulate(mech, SimulationOptions{});
+    FAIL() << "simulated a mechanism without mass";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::InvalidModel);
+    EXPECT_EQ(e.where().kind, EntityRef::Kind::Driver);
+    EXPECT_NE(e.message().find("no inertia"), std::string::npos) << e.message();
+  }
+}
+
+TEST(ForwardDynamics, ARunThatCannotContinueKeepsItsRows) {
+  const Mechanism mech = mechanism_of(R"(
+units: {length: m}
+points: {O: [0, 0], A: [0.3, 0]}
+ground: [O]
+gravity: [0, -9.81]
+bodies:
+  bar: {points: [O, A], mass: 1, cg: [0.15, 0]}
+drivers:
+  - {angle: bar, free: true}
+)");
+  SimulationOptions options;
+  options.end_time = 10.0;
+  options.output_step = 0.001;
+  options.max_steps = 50;
+  const Simulation sim = simulate(mech, options);
+  EXPECT_FALSE(sim.complete);
+  EXPECT_NE(sim.stop_reason.find("more than 50 steps"), std::string::npos) << sim.stop_reason;
+  ASSERT_GT(sim.samples.size(), 1u);
+  EXPECT_LT(sim.samples.back().time, 10.0);
+}
+
+}  // namespace
+}  // namespace nbar
