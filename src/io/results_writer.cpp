@@ -329,4 +329,33 @@ void write_stress_report(std::ostream& out, const std::string& format, const Ana
   }
 }
 
+void write_simulation_json(std::ostream& out, const Mechanism& mechanism, const Simulation& simulation,
+                           const ResultTable& table) {
+  const Model& m = mechanism.model();
+  const SimulationStatistics& stats = simulation.statistics;
+  nlohmann::ordered_json j;
+  j["model"] = m.name;
+  j["units"] = {{"length", m.units.length}, {"angle", m.units.angle}, {"time", "s"}, {"energy", "J"}};
+  nlohmann::ordered_json free = nlohmann::json::array();
+  for (int d : simulation.free_drivers) free.push_back(m.drivers[d].name);
+  j["free_drivers"] = free;
+  j["complete"] = simulation.complete;
+  j["stop_reason"] =
+      simulation.complete ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(simulation.stop_reason);
+  j["integrator"] = {{"method", "Dormand-Prince 5(4), projected onto the constraints after every step"},
+                     {"accepted_steps", stats.accepted_steps},
+                     {"rejected_steps", stats.rejected_steps},
+                     {"evaluations", stats.evaluations},
+                     {"smallest_step", stats.smallest_step},
+                     {"largest_step", stats.largest_step}};
+  j["constraint_drift"] = {{"position", stats.drift.position / m.units.length_scale},
+                           {"velocity", stats.drift.velocity / m.units.length_scale},
+                           {"acceleration", stats.drift.acceleration / m.units.length_scale}};
+  j["largest_energy_error"] = stats.largest_energy_error;
+  j["columns"] = table.columns;
+  j["column_units"] = table.units;
+  j["rows"] = table.rows;
+  out << json_text(j, 1) << '\n';
+}
+
 }  // namespace nbar::io

@@ -541,4 +541,54 @@ std::string ExportRequest::plates(const Mechanism& mechanism, const std::vector<
   return format == "dxf" ? io::cutting_dxf(mechanism, points) : io::cutting_svg(mechanism, points);
 }
 
+// ----------------------------------------------------------------------------------- simulate
+
+const std::vector<OptionRule>& SimulateRequest::rules() {
+  static const std::vector<OptionRule> rules = {
+      positive_number("to", "the simulated time, s (required)"),
+      positive_number("dt", "time between output rows, s (default: a hundredth of --to)"),
+      number_rule("rtol", "relative tolerance of the integrator (default 1e-8), from 1e-14 to 0.01", 1e-14, 0.01),
+      positive_integer("max_steps", "most integration steps before the run stops (default 10000000)"),
+      choice("format", "csv (default), json (with the step statistics and constraint drift), or table",
+             {"csv", "json", "table"}),
+      names("columns", "only these columns, comma-separated names or globs, e.g. 'crank,energy.*'"),
+  };
+  return rules;
+}
+
+SimulateRequest SimulateRequest::read(const Options& options) {
+  SimulateRequest r;
+  const std::optional<double> to = read_number(options, rule_of(rules(), "to"));
+  if (!to) throw OptionError("to", "give the simulated time in seconds, e.g. {to} 2");
+  r.to = *to;
+  r.dt = read_number(options, rule_of(rules(), "dt"));
+  if (r.to / r.dt.value_or(r.to / 100) + 1 > kMaxRows)
+    throw OptionError("dt", "gives more than " + number_text(kMaxRows) + " rows over " + number_text(r.to) +
+                                " s; give a larger {dt}");
+  r.rtol = read_number(options, rule_of(rules(), "rtol")).value_or(1e-8);
+  r.max_steps = static_cast<long>(read_integer(options, rule_of(rules(), "max_steps")).value_or(10'000'000));
+  r.format = read_text(options, rule_of(rules(), "format")).value_or("csv");
+  r.columns = read_names(options, rule_of(rules(), "columns"));
+  return r;
+}
+
+SimulationOptions SimulateRequest::simulation_options() const {
+  SimulationOptions options;
+  options.end_time = to;
+  options.output_step = dt.value_or(0.0);
+  options.relative_tolerance = rtol;
+  options.max_steps = max_steps;
+  return options;
+}
+
+ResultTable SimulateRequest::table(const Mechanism& mechanism, const Simulation& simulation) const {
+  ResultTable table = simulation_table(mechanism, simulation);
+  if (columns.empty()) return table;
+  try {
+    return select_columns(table, columns);
+  } catch (const Error& e) {
+    throw OptionError("columns", literal(e.message()));
+  }
+}
+
 }  // namespace nbar::request

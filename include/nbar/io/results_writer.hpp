@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "nbar/analysis/analysis.hpp"
+#include "nbar/dynamics/forward_dynamics.hpp"
 #include "nbar/kinematics/table.hpp"
 
 namespace nbar::io {
@@ -61,5 +62,11 @@ void write_table(std::ostream& out, const std::string& format, const Analysis& a
 // mesh_size, min_angle) and the numerical checks (unbalance, reaction: relative, ~0), and the
 // JSON says "method": "fe".
 void write_stress_report(std::ostream& out, const std::string& format, const Analysis& analysis);
+
+// A simulation (nbar simulate) as JSON: the model, units, the free drivers, whether it ran to its
+// end (and why not), the integrator's statistics and the largest constraint drift and energy
+// error, then the table's columns, units and rows.
+void write_simulation_json(std::ostream& out, const Mechanism& mechanism, const Simulation& simulation,
+                           const ResultTable& table);
 
 }  // namespace nbar::io

@@ -25,6 +25,7 @@
 #include "nbar/analysis/explain.hpp"
 #include "nbar/analysis/summary.hpp"
 #include "nbar/analysis/table_stream.hpp"
+#include "nbar/dynamics/forward_dynamics.hpp"
 #include "nbar/kinematics/table.hpp"
 #include "nbar/model/run_control.hpp"
 #include "nbar/render/drawing.hpp"
@@ -219,6 +220,26 @@ struct ExportRequest {
   std::vector<Eigen::Vector2d> points(const Mechanism& mechanism, const RunControl& control = {}) const;
   // The plates placed at `points`, in `format`.
   std::string plates(const Mechanism& mechanism, const std::vector<Eigen::Vector2d>& points) const;
+};
+
+// nbar simulate: the motion under the loads, the free drivers released (forward dynamics).
+struct SimulateRequest {
+  double to = 0.0;                   // s, the simulated time
+  std::optional<double> dt;          // s between rows; unset: to / 100
+  double rtol = 1e-8;                // the integrator's relative tolerance
+  long max_steps = 10'000'000;       // integration steps
+  std::vector<std::string> columns;  // names or globs; empty: every column
+  std::string format = "csv";        // csv, json or table
+
+  // At most this many rows (every row is kept until the run ends).
+  static constexpr double kMaxRows = 1e6;
+
+  static const std::vector<OptionRule>& rules();
+  // `to` is required; a `dt` that gives more than kMaxRows rows is an OptionError at `dt`.
+  static SimulateRequest read(const Options& options);
+  SimulationOptions simulation_options() const;
+  // The columns asked for, or an OptionError at `columns` naming the columns there are.
+  ResultTable table(const Mechanism& mechanism, const Simulation& simulation) const;
 };
 
 }  // namespace nbar::request

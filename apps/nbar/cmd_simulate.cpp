@@ -1,0 +1,69 @@
+// nbar simulate: the motion under the loads, with the free drivers released (forward dynamics).
+#include "commands.hpp"
+#include "common.hpp"
+#include "nbar/dynamics/forward_dynamics.hpp"
+#include "nbar/request/requests.hpp"
+#include "request_flags.hpp"
+#include "validators.hpp"
+
+namespace nbar::cli {
+
+namespace {
+
+struct SimulateCommand {
+  std::string model;
+  std::string output;
+  std::unique_ptr<RequestFlags> flags;
+};
+
+int run_simulate(const SimulateCommand& command) {
+  request::SimulateRequest request;
+  if (!read_request(*command.flags, request)) return kBadUsage;
+  Loaded loaded;
+  if (int code = load(command.model, loaded)) return code;
+  Simulation simulation;
+  try {
+    simulation = simulate(*loaded.mechanism, request.simulation_options());
+  } catch (const Error& e) {
+    return fail(command.model, io::located(loaded.file.source, e));
+  }
+  ResultTable table;
+  try {
+    table = request.table(*loaded.mechanism, simulation);
+  } catch (const request::OptionError& e) {
+    print_option_error(e);
+    return kBadUsage;
+  }
+  Output output;
+  if (!output.open(command.output)) return kBadUsage;
+  if (request.format == "json")
+    io::write_simulation_json(output.stream(), *loaded.mechanism, simulation, table);
+  else if (request.format == "table")
+    io::write_text_table(output.stream(), table, terminal_width());
+  else
+    io::write_csv(output.stream(), table);
+  if (!output.finish()) return kBadUsage;
+  if (simulation.complete) return kOk;
+  // The rows so far are written; the reason is said at the entity concerned.
+  const Error stop(ErrorKind::StoppedAtLimit, "the simulation stopped early: " + simulation.stop_reason,
+                   simulation.stop_where);
+  fail(command.model, io::located(loaded.file.source, stop));
+  return kStoppedEarly;
+}
+
+}  // namespace
+
+Command add_simulate_command(CLI::App& app) {
+  auto command = std::make_shared<SimulateCommand>();
+  CLI::App* sub = app.add_subcommand("simulate",
+                                     "Let the mechanism move under its loads (forward dynamics), the drivers "
+                                     "marked free released: positions, velocities, accelerations and energies in time");
+  sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
+  command->flags = std::make_unique<RequestFlags>(*sub, request::SimulateRequest::rules());
+  command->flags->add({"to", "dt", "rtol", "max_steps", "format", "columns"});
+  sub->add_option("-o,--output", command->output, "write to FILE instead of standard output")
+      ->check(nbar::cli::output_file());
+  return {sub, [command] { return run_simulate(*command); }};
+}
+
+}  // namespace nbar::cli
