@@ -33,6 +33,7 @@ class Summary:
     loops: List[Any]
     slider_cranks: List[Any]
     quick_returns: List[Any]
+    limits: Optional[Dict[str, Any]]
     assembly: Any
     assembly_error: Optional[str]
     has_kinetics: bool
