@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "nbar/model/geometry.hpp"
+#include "nbar/model/materials.hpp"
 #include "nbar/model/model.hpp"
 
 namespace nbar_bench {
@@ -158,6 +160,21 @@ inline nbar::Model chain_model(int loops) {
   d.speed = 2.0 * kPi;  // 60 rpm
   m.drivers = {d};
   m.sweep.steps = kStepsPerTurn + 1;
+  return m;
+}
+
+// The chain of `loops` four-bars with every link cut from 4 x 3 mm steel bar, under gravity:
+// 2 * loops + 1 bodies with mass, for the dynamics, FE and simulation benchmarks.
+inline nbar::Model steel_chain(int loops) {
+  nbar::Model m = chain_model(loops);
+  const nbar::Material steel = *nbar::builtin_material("steel");
+  for (nbar::Body& b : m.bodies) {
+    const Eigen::Vector2d p = m.points[b.points[0]].position, q = m.points[b.points[1]].position;
+    b.shape = nbar::make_bar(p, q, 0.004, 0.003, 0.001, 0.001);
+    b.thickness = 0.003;
+    b.material = steel;
+  }
+  m.gravity = {0.0, -9.81};
   return m;
 }
 

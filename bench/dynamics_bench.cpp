@@ -20,21 +20,6 @@ using namespace nbar_bench;
 
 constexpr int kSections = 200;
 
-// The chain of `loops` four-bars with every link cut from 4 x 3 mm steel bar: 2 * loops + 1
-// bodies.
-nbar::Model steel_chain(int loops) {
-  nbar::Model m = chain_model(loops);
-  const nbar::Material steel{"steel", 7850.0, 250e6, 200e9, 0.3};
-  for (nbar::Body& b : m.bodies) {
-    const Eigen::Vector2d p = m.points[b.points[0]].position, q = m.points[b.points[1]].position;
-    b.shape = nbar::make_bar(p, q, 0.004, 0.003, 0.001, 0.001);
-    b.thickness = 0.003;
-    b.material = steel;
-  }
-  m.gravity = {0.0, -9.81};
-  return m;
-}
-
 void BM_SweepDynamicsStress(benchmark::State& st) {
   const auto shared = std::make_shared<const nbar::Mechanism>(steel_chain(5));
   const nbar::Mechanism& mech = *shared;

@@ -25,19 +25,6 @@ using namespace nbar_bench;
 
 constexpr int kTargetNodes = 5000;
 
-nbar::Model steel_chain(int loops) {
-  nbar::Model m = chain_model(loops);
-  const nbar::Material steel = *nbar::builtin_material("steel");
-  for (nbar::Body& b : m.bodies) {
-    const Eigen::Vector2d p = m.points[b.points[0]].position, q = m.points[b.points[1]].position;
-    b.shape = nbar::make_bar(p, q, 0.004, 0.003, 0.001, 0.001);
-    b.thickness = 0.003;
-    b.material = steel;
-  }
-  m.gravity = {0.0, -9.81};
-  return m;
-}
-
 // The machine with its sweep and inverse dynamics solved once, as the pipeline keeps them.
 struct Machine {
   std::shared_ptr<const nbar::InverseDynamics> dynamics;

@@ -16,15 +16,7 @@ namespace {
 using namespace nbar_bench;
 
 nbar::Model released_steel_chain(int loops) {
-  nbar::Model m = chain_model(loops);
-  const nbar::Material steel{"steel", 7850.0, 250e6, 200e9, 0.3};
-  for (nbar::Body& b : m.bodies) {
-    const Eigen::Vector2d p = m.points[b.points[0]].position, q = m.points[b.points[1]].position;
-    b.shape = nbar::make_bar(p, q, 0.004, 0.003, 0.001, 0.001);
-    b.thickness = 0.003;
-    b.material = steel;
-  }
-  m.gravity = {0.0, -9.81};
+  nbar::Model m = steel_chain(loops);
   for (nbar::Driver& d : m.drivers) d.free = true;
   return m;
 }
