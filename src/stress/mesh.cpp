@@ -460,19 +460,32 @@ TriMesh quadratic_mesh(const detail::RefinedMesh& m, const Boundary& b, int max_
 
 }  // namespace
 
-void check_mesh_budget(const Region& r, const MeshOptions& options) {
+namespace {
+
+// The region's boundary and element size, once the region, the options and the node budget are
+// checked: what mesh_region meshes, and all that check_mesh_budget needs.
+struct CheckedRegion {
+  Boundary boundary;
+  double size = 0.0;
+};
+CheckedRegion checked_region(const Region& r, const MeshOptions& options) {
   check_options(options);
   check_region(r);
-  const Boundary b = boundary_of(r);
-  check_interior_budget(b, options.size > 0 ? options.size : bounding_diagonal(b, b.rings.front()) / 20, options);
+  CheckedRegion out{boundary_of(r), 0.0};
+  const Boundary& b = out.boundary;
+  out.size = options.size > 0 ? options.size : bounding_diagonal(b, b.rings.front()) / 20;
+  check_interior_budget(b, out.size, options);
+  return out;
 }
 
+}  // namespace
+
+void check_mesh_budget(const Region& r, const MeshOptions& options) { checked_region(r, options); }
+
 TriMesh mesh_region(const Region& r, const MeshOptions& options) {
-  check_options(options);
-  check_region(r);
-  const Boundary b = boundary_of(r);
-  const double size = options.size > 0 ? options.size : bounding_diagonal(b, b.rings.front()) / 20;
-  check_interior_budget(b, size, options);
+  const CheckedRegion checked = checked_region(r, options);
+  const Boundary& b = checked.boundary;
+  const double size = checked.size;
   const Sizing h = sizing_of(b, options, size);
   const detail::RefinementInput in = refinement_input(b, h, options);
   detail::RefinedMesh refined;
