@@ -121,6 +121,8 @@ class Summary:
         self.drivers: List[str] = data["drivers"]
         self.joints: List[str] = data["joints"]
         self.bodies = [SimpleNamespace(**b) for b in data["bodies"]]
+        # Each loop's transmission_over_turn: {"min", "max", "design"} over the input's full turn
+        # (a crank on the ground), else None; transmission_angle is at the start.
         self.loops = [SimpleNamespace(**{**loop, "rocker": SimpleNamespace(**loop["rocker"]) if loop["rocker"] else None})
                       for loop in data["loops"]]
         self.slider_cranks = [SimpleNamespace(**f) for f in data["slider_cranks"]]
@@ -155,9 +157,15 @@ class Summary:
             rows.append(("redundant", ", ".join(self.redundant)))
         rows += [("driver", d) for d in self.drivers]
         for loop in self.loops:
-            # At the start, as `nbar check` says: over the sweep, solve()'s transmission_angles.
-            rows.append((loop.name, f"{loop.grashof}; at the start: {loop.branch} branch, transmission angle "
-                                    f"{loop.transmission_angle:.4g} {self.units['angle']}"))
+            # As `nbar check` says; over the sweep, solve()'s transmission_angles.
+            angle = self.units['angle']
+            text = (f"{loop.grashof}; at the start: {loop.branch} branch, transmission angle "
+                    f"{loop.transmission_angle:.4g} {angle}")
+            if loop.transmission_over_turn:
+                t = loop.transmission_over_turn
+                text += (f"; over the input's full turn {t['min']:.4g} to {t['max']:.4g} {angle}, "
+                         f"design value {t['design']:.4g} {angle}")
+            rows.append((loop.name, text))
         rows += [("rocker", loop.rocker.description) for loop in self.loops if loop.rocker]
         rows += [("slider-crank", f.description) for f in self.slider_cranks]
         rows += [("quick-return", f.description) for f in self.quick_returns]

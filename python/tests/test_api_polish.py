@@ -314,3 +314,24 @@ def test_the_examples_come_with_the_package(examples):
         nbar.examples.path("fourbar-crank-roker")
     with pytest.raises(nbar.BadInputError, match="no example '../CMakeLists.txt'"):
         nbar.examples.path("../CMakeLists.txt")
+
+
+# --- the transmission angle's design value --------------------------------------------------------
+
+def transmission_angle(diagonal):
+    """mu (deg) between coupler and rocker when O2-O4's partner diagonal A-O4 has this length."""
+    return math.degrees(math.acos((COUPLER ** 2 + ROCKER ** 2 - diagonal ** 2) / (2 * COUPLER * ROCKER)))
+
+
+def test_check_gives_the_transmission_angles_design_value_over_the_cranks_turn(examples):
+    m = nbar.load(examples / "fourbar-crank-rocker.yaml")
+    over_turn = m.check().loops[0].transmission_over_turn
+    crank = 80.0
+    # The input along the frame line: A-O4 is frame - crank, then frame + crank.
+    assert over_turn["min"] == pytest.approx(transmission_angle(FRAME - crank), abs=1e-5)
+    assert over_turn["max"] == pytest.approx(transmission_angle(FRAME + crank), abs=1e-5)
+    assert over_turn["design"] == pytest.approx(min(over_turn["min"], 180 - over_turn["max"]), abs=1e-12)
+    # The sweep's own design value, measured over 3 601 samples, agrees.
+    r = m.solve(steps=3601)
+    assert r.transmission_angles["crank-coupler-rocker"]["design"] == pytest.approx(over_turn["design"], abs=1e-4)
+    assert nbar.load(examples / "fourbar-double-rocker.yaml").check().loops[0].transmission_over_turn is None

@@ -260,6 +260,9 @@ void summarize_start(const Mechanism& mech, int max_steps, ModelSummary& out) {
     l.description = describe(l.grashof, loop, mech.model());
     l.branch = branch_name(branch_sign(loop, points));
     l.transmission_angle = transmission_angle(loop, points);
+    if (loop.frame < 0 && l.grashof.input_turns_fully)
+      l.transmission_over_turn =
+          transmission_over_full_turn(l.grashof.frame, l.grashof.input, l.grashof.coupler, l.grashof.output);
     add_input_toggles(mech, points, l);
     add_rocker_swing(mech, points, l);
     out.loops.push_back(std::move(l));

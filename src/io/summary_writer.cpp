@@ -104,6 +104,12 @@ void write_start(std::ostream& out, const Model& m, const ModelSummary& s) {
     out << "  " << l.loop.name << ": " << l.description << '\n';
     out << fmt::format("    at the start: {} branch, transmission angle {:.4g} {}\n", l.branch,
                        l.transmission_angle / m.units.angle_scale, m.units.angle);
+    if (const auto& t = l.transmission_over_turn)
+      out << fmt::format(
+          "    over the input's full turn: transmission angle from {:.4g} to {:.4g} {}, design value {:.4g} {} "
+          "(nearest a dead point: the smallest of mu and its supplement)\n",
+          t->min / m.units.angle_scale, t->max / m.units.angle_scale, m.units.angle, t->design / m.units.angle_scale,
+          m.units.angle);
     if (l.toggle_from && l.toggle_to)
       out << fmt::format("    the input turns only between its toggle positions, {:.6g} {} and {:.6g} {}\n",
                          *l.toggle_from / m.units.angle_scale, m.units.angle, *l.toggle_to / m.units.angle_scale,
@@ -210,6 +216,12 @@ Json bodies_json(const Model& m, const ModelSummary& s) {
   return bodies;
 }
 
+Json transmission_over_turn_json(const Model& m, const std::optional<TransmissionOverTurn>& t) {
+  if (!t) return nullptr;
+  const double unit = m.units.angle_scale;
+  return {{"min", t->min / unit}, {"max", t->max / unit}, {"design", t->design / unit}};
+}
+
 Json rocker_json(const Model& m, const std::optional<RockerSwing>& r) {
   if (!r) return nullptr;
   const double angle = m.units.angle_scale;
@@ -247,6 +259,7 @@ Json loops_json(const Model& m, const ModelSummary& s) {
                      {"description", l.description},
                      {"branch", l.branch},
                      {"transmission_angle", l.transmission_angle / m.units.angle_scale},
+                     {"transmission_over_turn", transmission_over_turn_json(m, l.transmission_over_turn)},
                      {"toggles", l.toggle_from && l.toggle_to ? Json::array({*l.toggle_from / m.units.angle_scale,
                                                                              *l.toggle_to / m.units.angle_scale})
                                                               : Json(nullptr)},

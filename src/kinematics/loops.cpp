@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -278,6 +279,17 @@ std::string loop_closure_failure(const Model& m, const std::vector<FourBarLoop>&
     return s.str();
   }
   return {};
+}
+
+TransmissionOverTurn transmission_over_full_turn(double frame, double input, double coupler, double output) {
+  const auto mu_at = [&](double f) {
+    return std::acos(std::clamp((coupler * coupler + output * output - f * f) / (2.0 * coupler * output), -1.0, 1.0));
+  };
+  TransmissionOverTurn t;
+  t.min = mu_at(std::abs(frame - input));
+  t.max = mu_at(frame + input);
+  t.design = std::min(std::min(t.min, std::numbers::pi - t.min), std::min(t.max, std::numbers::pi - t.max));
+  return t;
 }
 
 double transmission_angle(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p) {

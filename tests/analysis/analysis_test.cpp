@@ -380,6 +380,34 @@ TEST(Summary, CrankRockerSwingAndTimeRatio) {
   EXPECT_NE(r.description.find("swings 65.921 deg"), std::string::npos) << r.description;
 }
 
+// Over a crank's full turn the transmission angle's extremes and its design value (the
+// smallest of mu and 180 deg - mu) come from the closed form; a 36 001-step sweep of the whole
+// turn, measured by the analysis, finds the same to its step (mu is flat at its extremes).
+TEST(Summary, TransmissionOverTheCranksFullTurnIsTheSweepsExtremes) {
+  for (const char* name : {"fourbar-crank-rocker.yaml", "fourbar-double-crank.yaml"}) {
+    const auto mech = example(name);
+    const ModelSummary s = summarize(*mech);
+    ASSERT_EQ(s.loops.size(), 1u) << name;
+    ASSERT_TRUE(s.loops[0].transmission_over_turn) << name;
+    const TransmissionOverTurn& t = *s.loops[0].transmission_over_turn;
+    AnalysisOptions options;
+    options.steps = 36001;
+    const Analysis analysis = analyse(mech, options);
+    ASSERT_TRUE(analysis.complete()) << name;
+    const std::vector<TransmissionExtremes> swept = transmission_extremes(analysis);
+    ASSERT_EQ(swept.size(), 1u);
+    EXPECT_NEAR(t.min, swept[0].min, 1e-7) << name;
+    EXPECT_NEAR(t.max, swept[0].max, 1e-7) << name;
+    EXPECT_NEAR(t.design, swept[0].design, 1e-7) << name;
+    // The start's value lies inside the range, and the design value is never above it.
+    EXPECT_LE(t.min, s.loops[0].transmission_angle);
+    EXPECT_GE(t.max, s.loops[0].transmission_angle);
+    EXPECT_LE(t.design, std::min(t.min, std::numbers::pi - t.max) + 1e-15);
+  }
+  // A rocker input has no full turn: its design value would be the toggles' 0.
+  EXPECT_FALSE(summarize(*example("fourbar-double-rocker.yaml")).loops[0].transmission_over_turn);
+}
+
 // The limits are the extremes of the rocker's angle over a fine sweep of the machine's crank;
 // a loop whose input is moved by the rest of the machine (it may only swing) has none.
 TEST(Summary, CrankRockerLimitsAreTheSweepsExtremes) {

@@ -44,6 +44,8 @@ struct LoopSummary {
   std::string description;          // loops.hpp describe(): class, lengths, which links turn fully
   std::string branch;               // "open" or "crossed" at the start
   double transmission_angle = 0.0;  // rad, at the start
+  // A loop on the ground whose input turns fully: mu over that full turn (rad), closed form.
+  std::optional<TransmissionOverTurn> transmission_over_turn;
   // When the input cannot turn fully (the loop on the ground): the input angles of its two
   // toggle positions, rad, on the start's part of the range, in the input's measure (its
   // driver's, or the direction of the input from its first point to its second, from +x).

@@ -68,6 +68,17 @@ struct InputLimits {
 };
 InputLimits input_limits(double frame, double input, double coupler, double output, double frame_angle, double at);
 
+// The transmission angle mu of a four-bar whose input turns fully, over that full turn (rad).
+// Closed form: cos mu = (coupler^2 + output^2 - f^2) / (2 coupler output), f the diagonal from
+// the input-coupler joint to the output-frame joint, so mu grows with f and its extremes are at
+// f = |frame - input| and frame + input, the input along the frame line. `design` is the
+// smallest of min(mu, pi - mu), how near the loop comes to a dead point: at one of the two
+// extremes, since min(mu, pi - mu) has no minimum inside an interval of mu.
+struct TransmissionOverTurn {
+  double min = 0, max = 0, design = 0;
+};
+TransmissionOverTurn transmission_over_full_turn(double frame, double input, double coupler, double output);
+
 // Angle between the coupler and the output link at their joint, in [0, pi].
 double transmission_angle(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& points);
 
