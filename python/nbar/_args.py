@@ -44,9 +44,18 @@ def flag(name: str, value: Any) -> bool:
 
 
 def text(name: str, value: Any) -> str:
-    if isinstance(value, str):
-        return value
-    raise BadInputError(f"{name} must be a string, not {value!r}")
+    """A string that is text: a lone surrogate (half of a UTF-16 pair, as a broken decoder or
+    "\\ud800" leaves it) has no UTF-8 form for the core to read."""
+    if not isinstance(value, str):
+        raise BadInputError(f"{name} must be a string, not {value!r}")
+    try:
+        value.encode("utf-8")
+    except UnicodeEncodeError as e:
+        line = value.count("\n", 0, e.start) + 1
+        column = e.start - (value.rfind("\n", 0, e.start) + 1) + 1
+        raise BadInputError(f"{name} holds {value[e.start]!r} at line {line}, column {column}: half of a UTF-16 "
+                            "surrogate pair, which is not text (decode the file as UTF-8)") from None
+    return value
 
 
 def path(name: str, value: Any) -> str:

@@ -233,6 +233,9 @@ class Model:
             text = json.dumps(data, indent=2, default=_json_value)
         except (TypeError, ValueError) as e:
             raise BadInputError(f"{name}: the model must hold only numbers, strings, lists and dicts: {e}") from None
+        except RecursionError:
+            raise BadInputError(f"{name}: the model's lists and dicts are nested too deeply to be a model "
+                                "(a model file needs a few levels)") from None
         try:
             return cls(_nbar.loads(text, name))
         except Exception as e:

@@ -332,3 +332,30 @@ def test_an_explanation_copies_and_a_drawing_saves_under_an_upper_case_extension
     assert (tmp_path / "centres.PNG").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     with pytest.raises(nbar.BadInputError, match="a drawing is saved as .svg or .png"):
         drawing.save(tmp_path / "centres.jpg")
+
+
+def test_text_with_a_lone_surrogate_is_bad_input_at_its_line_and_column():
+    # What a broken decoder (or "\ud800" in a JSON string) leaves: no UTF-8 form for the core.
+    with pytest.raises(nbar.BadInputError, match=r"text holds '\\udcff' at line 3, column 4: half of a UTF-16"):
+        nbar.loads("points:\n  A: [0, 0]\n  B\udcff: [1, 0]\n")
+    with pytest.raises(nbar.BadInputError, match="name holds"):
+        nbar.loads("points: {}\n", name="m\ud800.yaml")
+
+
+def test_a_dict_nested_ten_thousand_deep_is_bad_input_not_a_recursion_error():
+    deep = {}
+    inner = deep
+    for _ in range(10000):
+        inner["a"] = {}
+        inner = inner["a"]
+    with pytest.raises(nbar.BadInputError, match="nested too deeply to be a model"):
+        nbar.Model.from_dict(deep)
+    # Shallower than Python's recursion limit, the reader says how deep and where.
+    lists = []
+    inner = lists
+    for _ in range(600):
+        inner.append([])
+        inner = inner[0]
+    with pytest.raises(nbar.ModelError, match="nested [0-9]+ levels deep here") as e:
+        nbar.Model.from_dict({"points": lists})
+    assert e.value.line is not None and e.value.column is not None

@@ -138,19 +138,24 @@ void for_each_flow_bracket(std::string_view text, Visit visit) {
 bool opens(char bracket) { return bracket == '[' || bracket == '{'; }
 
 // Where the flow collections ([ and {) of `text` first reach `depth` levels, or no mark.
-SourceMark flow_depth_reached(std::string_view text, int depth) {
+// The deepest nesting of [ and { in `text`, and the bracket that first reaches it (no mark
+// when there are none).
+struct FlowDepth {
+  int levels = 0;
+  SourceMark at;
+};
+FlowDepth deepest_flow_nesting(std::string_view text) {
   int level = 0;
-  SourceMark found;
+  FlowDepth deepest;
   for_each_flow_bracket(text, [&](char c, SourceMark at) {
     if (opens(c)) {
-      if (++level < depth) return true;
-      found = at;
-      return false;
+      if (++level > deepest.levels) deepest = {level, at};
+    } else if (level > 0) {
+      --level;
     }
-    if (level > 0) --level;
     return true;
   });
-  return found;
+  return deepest;
 }
 
 // The first ']' or '}' of `text` that closes nothing, or no mark.
@@ -400,14 +405,16 @@ YAML::Node Reader::load(const DocumentWording& wording) const {
     }
     if (counter.documents == 1) documents.push_back(YAML::Load(text_));
   } catch (const YAML::DeepRecursion& e) {
-    // yaml-cpp stops at a fixed depth, with "bad file" at some later place: say what and
-    // where, at the bracket that went too deep when the nesting is of [ and {.
-    // yaml-cpp counts four of its calls per level of nesting.
-    const int levels = e.depth() / 4;
-    const SourceMark bracket = flow_depth_reached(text_, levels - 1);
-    fail(bracket.line > 0 ? bracket : mark(e.mark),
-         "invalid YAML: lists and mappings nested too deeply (the reader stops at " + std::to_string(levels) +
-             " levels; a model or task needs a handful)");
+    // yaml-cpp stops at a depth of its own calls, which is not a number of levels (four calls
+    // for a level in some contexts, one in others), with "bad file" at some later place: say
+    // how deep the file goes and where, at the bracket that goes deepest.
+    const FlowDepth deepest = deepest_flow_nesting(text_);
+    if (deepest.levels == 0)
+      fail(mark(e.mark),
+           "invalid YAML: lists and mappings nested deeper than the reader follows (a model or task "
+           "needs a handful of levels)");
+    fail(deepest.at, "invalid YAML: lists and mappings nested " + std::to_string(deepest.levels) +
+                         " levels deep here, deeper than the reader follows (a model or task needs a handful)");
   } catch (const YAML::Exception& e) {
     // yaml-cpp reports a tab in the indentation as some structure it could not close, at some
     // later place: name the tab, at its line and column, when one comes before the error.

@@ -349,6 +349,24 @@ TEST(ModelFileErrors, ErrorFormat) {
   EXPECT_EQ(e.message(), "worse");
 }
 
+// Nesting deeper than yaml-cpp follows: the message gives the file's own depth, at the bracket
+// that reaches it (the reader's limit is a count of its calls, not of levels: 499 '[' fail and
+// 498 pass, while 300 levels of '{a: ' fail).
+TEST(ModelFileErrors, NestingTooDeepSaysHowDeepAndWhere) {
+  const auto nested = [](int levels, const std::string& open, const std::string& close) {
+    std::string text = "points: ";
+    for (int i = 0; i < levels; ++i) text += open;
+    for (int i = 0; i < levels; ++i) text += close;
+    return text + "\n";
+  };
+  EXPECT_TRUE(fails_at(nested(600, "[", "]"), "1:" + std::to_string(8 + 600),
+                       "invalid YAML: lists and mappings nested 600 levels deep here, deeper than the reader follows"));
+  EXPECT_TRUE(fails_at(nested(300, "{a: ", "}"), "1:" + std::to_string(8 + 4 * 299 + 1),
+                       "invalid YAML: lists and mappings nested 300 levels deep here"));
+  // Within the reader's depth, the nesting is the model's mistake, told at its key.
+  EXPECT_TRUE(fails_at(nested(400, "[", "]"), "1:9", "`points` must be a mapping"));
+}
+
 TEST(ModelFileErrors, MalformedYaml) {
   // An unclosed bracket or quote: at the opener, not where yaml-cpp next looked (the next line).
   EXPECT_TRUE(fails_at("points:\n  O: [0, 0\n  A: [1, 0]\n", "2:6",
