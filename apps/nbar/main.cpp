@@ -43,7 +43,10 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
-    return code == 0 ? kOk : kBadUsage;
+    // --help and --version write to standard output: a full disk or a closed pipe is a failure
+    // to report, as every command reports it.
+    if (code == 0) return Output().finish() ? kOk : kBadUsage;
+    return kBadUsage;
   }
   // Each command reports what it expects; anything else still ends in a message and an exit
   // code, never an abort.

@@ -415,7 +415,8 @@ TEST(Cli, AFullDiskIsAnErrorNotALostOutput) {
         "synth five-point " + examples + "/synthesis/five-point-crank-rocker.yaml -o /dev/full",
         "check " + examples + "/fourbar-crank-rocker.yaml > /dev/full",
         "check " + examples + "/fourbar-crank-rocker.yaml --format json > /dev/full",
-        "import " + examples + "/sketches/fourbar-sketch.dxf > /dev/full"}) {
+        "import " + examples + "/sketches/fourbar-sketch.dxf > /dev/full", std::string("--help > /dev/full"),
+        std::string("solve --help > /dev/full"), std::string("--version > /dev/full")}) {
     SCOPED_TRACE(command);
     const CliRun run = nbar(command);
     EXPECT_EQ(run.code, 2);
