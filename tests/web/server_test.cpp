@@ -116,8 +116,9 @@ TEST_F(WebServer, PathTraversalOverHttp) {
   EXPECT_EQ(ok->body, repo_file("examples/five-bar.yaml"));
 }
 
-// Raw bytes to the server, and what it answers (everything until it closes, or 5 s).
-std::string raw_exchange(int port, const std::string& bytes) {
+// Raw bytes to the server, and what it answers (everything until it closes, or 5 s; `closed`
+// says which).
+std::string raw_exchange(int port, const std::string& bytes, bool* closed = nullptr) {
   const int sock = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in address{};
   address.sin_family = AF_INET;
@@ -136,7 +137,9 @@ std::string raw_exchange(int port, const std::string& bytes) {
   }
   std::string answer;
   char buffer[4096];
-  for (ssize_t n; (n = ::recv(sock, buffer, sizeof buffer, 0)) > 0;) answer.append(buffer, static_cast<std::size_t>(n));
+  ssize_t n = 0;
+  while ((n = ::recv(sock, buffer, sizeof buffer, 0)) > 0) answer.append(buffer, static_cast<std::size_t>(n));
+  if (closed) *closed = n == 0;
   ::close(sock);
   return answer;
 }
@@ -167,6 +170,36 @@ TEST_F(WebServer, MalformedRequestsAndChunkedBodiesAreAnsweredAsJsonAndTheServer
   const auto health = client_->Get("/api/health");
   ASSERT_TRUE(health);
   EXPECT_EQ(health->status, 200);
+}
+
+// RFC 9112: a body framed two ways (two Content-Lengths that disagree, or a Content-Length with
+// chunked) is how a request is smuggled past a proxy that frames it the other way. Refused with
+// 400 and the connection closed, before the body is read; agreeing duplicates are one length.
+TEST_F(WebServer, RequestsFramedTwoWaysAreRefused) {
+  const int port = server_->bound_port();
+  const std::string body = Json{{"model", repo_file("examples/five-bar.yaml")}}.dump();
+  const std::string head = "POST /api/check HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\n";
+  const std::string length = "Content-Length: " + std::to_string(body.size()) + "\r\n";
+  bool closed = false;
+  const std::string two_lengths = raw_exchange(port, head + length + "Content-Length: 5\r\n\r\n" + body, &closed);
+  EXPECT_TRUE(closed);
+  EXPECT_EQ(two_lengths.rfind("HTTP/1.1 400", 0), 0u) << two_lengths.substr(0, 200);
+  EXPECT_NE(two_lengths.find("Content-Length headers disagree"), std::string::npos) << two_lengths;
+  EXPECT_NE(two_lengths.find("Connection: close"), std::string::npos) << two_lengths.substr(0, 400);
+  const std::string chunked = fmt::format("{:x}\r\n", body.size()) + body + "\r\n0\r\n\r\n";
+  const std::string both = raw_exchange(port, head + length + "Transfer-Encoding: chunked\r\n\r\n" + chunked);
+  EXPECT_EQ(both.rfind("HTTP/1.1 400", 0), 0u) << both.substr(0, 200);
+  EXPECT_NE(both.find("both Transfer-Encoding and Content-Length"), std::string::npos) << both;
+  // The refused request's body is never read as a request of its own (smuggled past a proxy
+  // that took the first length): one answer, and the connection closes.
+  const std::string smuggled = raw_exchange(
+      port, head + "Content-Length: 0\r\nContent-Length: 38\r\n\r\nGET /api/health HTTP/1.1\r\nHost: x\r\n\r\n",
+      &closed);
+  EXPECT_TRUE(closed) << "the connection stayed open after the refusal";
+  EXPECT_EQ(smuggled.rfind("HTTP/1.1 400", 0), 0u) << smuggled.substr(0, 200);
+  EXPECT_EQ(smuggled.find("HTTP/1.1", 1), std::string::npos) << smuggled;
+  const std::string same = raw_exchange(port, head + length + length + "Connection: close\r\n\r\n" + body);
+  EXPECT_EQ(same.rfind("HTTP/1.1 200", 0), 0u) << same.substr(0, 300);
 }
 
 // httplib inflated a compressed body whole before the size limit: 1 MB of gzipped zeros took

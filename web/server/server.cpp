@@ -6,11 +6,15 @@
 #include <arpa/inet.h>
 #include <httplib.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <filesystem>
+#include <optional>
+#include <string>
 #include <thread>
 
 namespace nbar::web {
@@ -29,6 +33,73 @@ namespace {
 // nginx's one connection per request) overflows it, and each dropped SYN costs its client a
 // 1 s retransmission. Listening again on the bound socket raises the backlog; httplib does not
 // hand the socket out, so it is found among the process's descriptors by its port.
+// A body whose length two headers tell differently (RFC 9112, 6.3): a proxy in front may frame
+// it one way and this server another, which is how requests are smuggled past the proxy. Such a
+// request is refused and its connection closed, before the body is read.
+std::optional<std::string> framing_error(const httplib::Request& req) {
+  const std::size_t lengths = req.get_header_value_count("Content-Length");
+  const bool chunked = req.has_header("Transfer-Encoding");
+  if (chunked && lengths > 0)
+    return "a request with both Transfer-Encoding and Content-Length has no single length; send one of them";
+  for (std::size_t i = 1; i < lengths; ++i)
+    if (req.get_header_value("Content-Length", i) != req.get_header_value("Content-Length", 0))
+      return "the request's Content-Length headers disagree; send one";
+  if (chunked && req.get_header_value_count("Transfer-Encoding") > 1)
+    return "the request has several Transfer-Encoding headers; send one";
+  return std::nullopt;
+}
+
+// The connection of a request, found by its two ends (httplib does not hand sockets to
+// handlers), or -1.
+int socket_of(const httplib::Request& req) {
+  const auto same_end = [](const sockaddr_storage& end, const std::string& address, int port) {
+    char text[INET6_ADDRSTRLEN] = {};
+    if (end.ss_family == AF_INET) {
+      const auto& v4 = reinterpret_cast<const sockaddr_in&>(end);
+      return ntohs(v4.sin_port) == port && ::inet_ntop(AF_INET, &v4.sin_addr, text, sizeof text) && address == text;
+    }
+    if (end.ss_family == AF_INET6) {
+      const auto& v6 = reinterpret_cast<const sockaddr_in6&>(end);
+      return ntohs(v6.sin6_port) == port && ::inet_ntop(AF_INET6, &v6.sin6_addr, text, sizeof text) && address == text;
+    }
+    return false;
+  };
+  const auto options = std::filesystem::directory_options::skip_permission_denied;
+  std::error_code ignored;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc/self/fd", options, ignored)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos || name.size() > 9) continue;
+    const int fd = std::stoi(name);
+    sockaddr_storage peer{}, local{};
+    socklen_t peer_size = sizeof peer, local_size = sizeof local;
+    if (::getpeername(fd, reinterpret_cast<sockaddr*>(&peer), &peer_size) == 0 &&
+        ::getsockname(fd, reinterpret_cast<sockaddr*>(&local), &local_size) == 0 &&
+        same_end(peer, req.remote_addr, req.remote_port) && same_end(local, req.local_addr, req.local_port))
+      return fd;
+  }
+  return -1;
+}
+
+// httplib 0.11 keeps a connection open after an answer whatever its Connection header says, and
+// reads the next request from where this one's headers ended: a body left unread would be taken
+// for the next request (a smuggled one). Once the answer is written (httplib calls its logger
+// then), the connection is closed the way servers close one with unread input: the answer is
+// ended (FIN), what the client still sends is read and dropped for a moment, then reading is shut
+// so that httplib's next read sees the end. Closing at once would answer the unread bytes with a
+// reset, which can destroy the answer before the client reads it.
+void close_after_answer(const httplib::Request& req) {
+  const int fd = socket_of(req);
+  if (fd < 0) return;
+  ::shutdown(fd, SHUT_WR);
+  char sink[16384];
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+  for (pollfd p{fd, POLLIN, 0}; std::chrono::steady_clock::now() < until; p.revents = 0) {
+    if (::poll(&p, 1, 50) <= 0) continue;
+    if (::recv(fd, sink, sizeof sink, MSG_DONTWAIT) <= 0) break;
+  }
+  ::shutdown(fd, SHUT_RD);
+}
+
 void raise_listen_backlog(int port) {
   for (int fd = 0; fd < 4096; ++fd) {
     int listening = 0;
@@ -119,13 +190,23 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   // zeros became 1 GB in memory), and the API's bodies are small JSON: it takes them as sent. The
   // check runs before the body is read; the connection closes, its unread body with it.
   server.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+    const auto refuse = [&res](int status, const std::string& message) {
+      send(error_response(status, message), res);
+      res.set_header("Connection", "close");
+      return httplib::Server::HandlerResponse::Handled;
+    };
+    if (const std::optional<std::string> framing = framing_error(req)) return refuse(400, *framing);
     const std::string encoding = req.get_header_value("Content-Encoding");
     if (encoding.empty() || encoding == "identity") return httplib::Server::HandlerResponse::Unhandled;
-    send(error_response(415, "this server reads bodies as they are sent, without Content-Encoding (here '" +
-                                 encoding.substr(0, 40) + "')"),
-         res);
-    res.set_header("Connection", "close");
-    return httplib::Server::HandlerResponse::Handled;
+    return refuse(415, "this server reads bodies as they are sent, without Content-Encoding (here '" +
+                           encoding.substr(0, 40) + "')");
+  });
+  // Refused before their bodies were read (above): closed once answered.
+  server.set_logger([](const httplib::Request& req, const httplib::Response& res) {
+    bool unread_body = req.body.empty() && req.has_header("Transfer-Encoding");
+    for (std::size_t i = 0; i < req.get_header_value_count("Content-Length"); ++i)
+      unread_body = unread_body || (req.body.empty() && req.get_header_value("Content-Length", i) != "0");
+    if (unread_body && res.get_header_value("Connection") == "close") close_after_answer(req);
   });
   const ServerConfig* config = &impl_->config;
   const auto handler = [config](const httplib::Request& req, httplib::Response& res) {
