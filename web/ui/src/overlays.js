@@ -314,14 +314,18 @@ function info(row) {
 
 function sweepWarnings() {
   const { solve } = app.state;
-  const list = (solve.warnings ?? []).map((w) => ({ step: w.step ?? 0, text: w.message, code: w.code }));
+  // The solve's JSON gives its warnings as plain messages; a structured one (from the core's
+  // Warning) may carry the step it happened at. A warning with no step gets no step button.
+  const list = (solve.warnings ?? []).map((w) => (typeof w === 'string'
+    ? { step: null, text: w, code: '' }
+    : { step: Number.isInteger(w.step) && w.step >= 0 ? w.step : null, text: w.message ?? '', code: w.code }));
   if (!solve.complete) list.push({ step: solve.rows.length - 1, text: solve.stop_reason ?? t('stopped'), code: 'stop' });
   return list;
 }
 
 function warnings() {
   const list = sweepWarnings();
-  $('#warnings').innerHTML = list.map((w) => `<li class="${w.code === 'stop' ? 'stop' : ''}"><button type="button" class="ghost" data-step="${w.step}">⚠ ${t('atStep', w.step)}</button> ${app.esc(w.text)}</li>`).join('');
+  $('#warnings').innerHTML = list.map((w) => `<li class="${w.code === 'stop' ? 'stop' : ''}">${w.step === null ? '⚠' : `<button type="button" class="ghost" data-step="${w.step}">⚠ ${t('atStep', w.step)}</button>`} ${app.esc(w.text)}</li>`).join('');
   for (const b of document.querySelectorAll('#warnings [data-step]')) b.addEventListener('click', () => { app.play(false); app.setFrame(+b.dataset.step); });
   // Ticks on the scrub bar where they happen.
   const n = Math.max(app.state.solve.rows.length - 1, 1);
@@ -332,7 +336,7 @@ function warnings() {
     $('#scrub').after(ticks);
   }
   placeTicks();
-  ticks.innerHTML = list.map((w) => `<i style="left:${(100 * w.step) / n}%"></i>`).join('');
+  ticks.innerHTML = list.filter((w) => w.step !== null).map((w) => `<i style="left:${(100 * w.step) / n}%"></i>`).join('');
 }
 
 // The ticks lie under the scrub bar's track.

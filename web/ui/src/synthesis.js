@@ -385,6 +385,8 @@ function designItem(d, res) {
   li.querySelector('[data-design]').addEventListener('click', async () => {
     stopPreview();
     for (const x of document.querySelectorAll('[data-example]')) x.classList.remove('current');
+    // Its downloads are named after the design, not the example opened before it.
+    app.state.current = `${$('#synth-method').value}-design-${d.rank}`;
     app.showTab('editor');
     await app.setText(d.model);
   });

@@ -73,6 +73,12 @@ async function fivePointByTapping(page, ctx) {
   await page.waitForFunction(() => /design 1$/.test(document.querySelector('#model-name').textContent));
   // The model is the core's design file (nbar synth --export), not one written by the browser.
   assert.match(await page.locator('.cm-content').textContent(), /# Design 1 of nbar synth five-point task/);
+  // Its downloads are named after the design on screen, not the example opened before it.
+  if (!mobile) {
+    await click(page, mobile, '[data-tab="downloads"]');
+    const [file] = await Promise.all([page.waitForEvent('download'), page.click('[data-download="model"]')]);
+    assert.equal(file.suggestedFilename(), 'five-point-design-1.yaml');
+  }
 }
 
 async function burmesterAndFunction(page, ctx) {
@@ -178,6 +184,17 @@ async function toggleStop(page, ctx) {
   await page.waitForSelector('#drawing .ov-warning');
   assert.equal(await page.locator('#scrub-ticks i').count(), 1);
   await ctx.shot(page, `${ctx.tag}-m5-toggle`);
+  // A warning with no step (the solve's are plain messages) reads as its text, with no step
+  // button and no tick: it showed as "⚠ step 0 undefined".
+  await ctx.retype(page, mobile, 'lengths: {crank: 140', '140', '80');
+  await ctx.retype(page, mobile, 'from: 0, to: 360', '360', '1800');
+  await page.waitForFunction(() => document.querySelector('#warnings li')?.textContent.includes('turns crank 5 times'));
+  const warning = await page.locator('#warnings li').first().textContent();
+  assert.match(warning, /^⚠ the sweep turns crank 5 times, from 0 deg to 1800 deg$/);
+  assert.equal(await page.locator('#warnings li button').count(), 0);
+  assert.equal(await page.locator('#scrub-ticks i').count(), 0);
+  await ctx.shot(page, `${ctx.tag}-m5-many-turns`);
+  await ctx.retype(page, mobile, 'from: 0, to: 1800', '1800', '360');
 }
 
 // The step-by-step panel of the crank-rocker at sample 0: Φq as a table, the server's numbers.
