@@ -26,6 +26,7 @@ function buildControls() {
     + '<div id="ov-traced" class="ov-chips" hidden></div>'
     + '<div id="ov-legend" class="ov-legend"></div>'
     + '<div id="motion-info" class="motion-info"></div>'
+    + '<div id="motion-facts" class="motion-info"></div>'
     + '<ul id="warnings" class="warnings"></ul>';
   $('.stage .controls').after(box);
   for (const c of box.querySelectorAll('[data-overlay]')) {
@@ -310,6 +311,22 @@ function info(row) {
     return `<span class="loop" title="${app.esc(l.description ?? '')}"><b>${app.esc(l.name)}</b>: ${app.esc(l.grashof ?? '')}${mu}</span>`;
   });
   $('#motion-info').innerHTML = parts.join('');
+  // The model's facts change with the model, not the frame: a line of their own, rewritten only
+  // when they change, so that the plot below never moves while the mechanism plays.
+  const facts = motionFacts(check);
+  if (facts !== shownFacts) $('#motion-facts').innerHTML = shownFacts = facts;
+}
+let shownFacts = '';
+
+// A crank-rocker's swing and time ratio, and a slider-crank's stroke and time ratio, as
+// `nbar check` gives them (the core's numbers; the full description in the tooltip).
+function motionFacts(check) {
+  const angle = app.esc(check?.units?.angle ?? ''), length = app.esc(check?.units?.length ?? '');
+  const rockers = (check?.loops ?? []).filter((l) => l.rocker).map((l) => `<span class="loop" title="${app.esc(l.rocker.description ?? '')}">`
+    + `<b>${app.esc(l.name)}</b>: ${t('swingIs', app.fmt(l.rocker.swing), angle)} · ${t('timeRatioIs', app.fmt(l.rocker.time_ratio))}</span>`);
+  const sliders = (check?.slider_cranks ?? []).map((f) => `<span class="loop" title="${app.esc(f.description ?? '')}">`
+    + `<b>${app.esc(f.slider)}</b>: ${t('strokeIs', app.fmt(f.stroke), length)} · ${t('timeRatioIs', app.fmt(f.time_ratio))}</span>`);
+  return [...rockers, ...sliders].join('');
 }
 
 function sweepWarnings() {

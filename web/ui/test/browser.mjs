@@ -191,6 +191,7 @@ async function desktop() {
 
   // Clicking the plot poses the mechanism at that sample; a hover read-out in the legend.
   await page.selectOption('#ycol', 'coupler.omega');
+  await page.locator('#plot .u-over').scrollIntoViewIfNeeded();
   const plot = await page.locator('#plot .u-over').boundingBox();
   await page.mouse.move(plot.x + plot.width * 0.75, plot.y + plot.height / 2);
   await page.mouse.down(); await page.mouse.up();

@@ -194,7 +194,13 @@ async function toggleStop(page, ctx) {
   assert.equal(await page.locator('#warnings li button').count(), 0);
   assert.equal(await page.locator('#scrub-ticks i').count(), 0);
   await ctx.shot(page, `${ctx.tag}-m5-many-turns`);
-  await ctx.retype(page, mobile, 'from: 0, to: 1800', '1800', '360');
+  // The crank-rocker's swing and time ratio, and a slider-crank's stroke, from the check.
+  assert.match(await page.locator('#motion-facts').textContent(), /swing 65\.92\d* deg · time ratio 1\.136/);
+  await ctx.openExample(page, mobile, 'slider-crank-offset');
+  await page.waitForFunction(() => document.querySelector('#motion-facts')?.textContent.includes('stroke'));
+  assert.match(await page.locator('#motion-facts').textContent(), /slider: stroke 101\.06\d* mm · time ratio 1\.055/);
+  await ctx.shot(page, `${ctx.tag}-m5-stroke`);
+  await ctx.openExample(page, mobile, 'fourbar-crank-rocker');
 }
 
 // The step-by-step panel of the crank-rocker at sample 0: Φq as a table, the server's numbers.
