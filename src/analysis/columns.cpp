@@ -67,7 +67,9 @@ std::vector<std::string> column_names(const std::vector<ColumnInfo>& columns) {
 bool column_matches(const std::string& pattern, const std::string& name) { return glob_match(pattern, name); }
 
 std::string default_abscissa(const Model& model) {
-  return model.drivers.empty() || model.has_time_law() ? std::string("t") : model.drivers[0].name;
+  // A rocking input goes back and forth: against time its oscillation shows.
+  const bool rocks = !model.drivers.empty() && model.drivers[0].at_limits == AtLimits::Reverse;
+  return model.drivers.empty() || model.has_time_law() || rocks ? std::string("t") : model.drivers[0].name;
 }
 
 ColumnNeeds column_needs(const Mechanism& mech, const std::vector<std::string>& patterns, std::optional<int> order,

@@ -87,6 +87,7 @@ double angle_of(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
 void warn_about_input_limits(const Mechanism& mech, ModelSummary& out) {
   if (!out.limits || !out.limits->stop) return;
   const Model& m = mech.model();
+  if (m.drivers.size() == 1 && m.drivers[0].at_limits == AtLimits::Reverse) return;  // it turns back there
   const PathLimits& l = *out.limits;
   const PathSingularity& stop = *l.stop;
   const SweepPath plan = sweep_path(mech, std::nullopt, kDefaultMaxSweepSamples, false);
@@ -113,6 +114,35 @@ void warn_about_input_limits(const Mechanism& mech, ModelSummary& out) {
                    drv.name, drv.is_angular() ? "turn" : "move", value(std::abs(end[d].value() - start[d].value())),
                    value(start[d].value()), value(end[d].value()), who, drv.is_angular() ? "turn" : "move", range,
                    value(stop.driver_values[d]), stop.involved)});
+}
+
+// A rocking driver's turns over one cycle of its path, or that it never turns back.
+void describe_rocking(const Mechanism& mech, ModelSummary& out) {
+  const Model& m = mech.model();
+  if (m.drivers.size() != 1 || m.drivers[0].at_limits != AtLimits::Reverse) return;
+  const std::string name = "driver '" + m.drivers[0].name + "'";
+  try {
+    const RockingPlan plan = plan_rocking(mech);
+    if (!plan.reverses) {
+      out.rocking = name + " never reverses: " + plan.never_reverses;
+      out.warnings.push_back({"never_reverses", -1,
+                              name + " never reverses (`at_limits: reverse`): " + plan.never_reverses +
+                                  ", so the sweep runs from its start to its end as usual"});
+      return;
+    }
+    std::string turns;
+    for (std::size_t i = 0; i < plan.turns.size(); ++i)
+      turns += (i ? ", then " : "") + format_driver_value(m, 0, plan.turns[i].driver_values[0]) + " (" +
+               plan.turns[i].involved + ")";
+    out.rocking =
+        name + " turns back at " + turns +
+        (plan.closed ? "; a cycle (back to the start's pose) is " + format_driver_value(m, 0, plan.circuit_travel) +
+                           " of travel, " + fmt::format("{:.6g}", plan.circuit_travel / plan.speed) + " s"
+                     : "; then its path turns fully and it goes on that way");
+  } catch (const Error& e) {
+    out.rocking = e.message();
+    out.warnings.push_back({"cannot_rock", -1, e.message()});
+  }
 }
 
 // The limits of the whole mechanism, searched on the sweep's own path from its start.
@@ -269,6 +299,7 @@ void summarize_start(const Mechanism& mech, int max_steps, ModelSummary& out) {
   }
   find_limits(mech, out);
   warn_about_input_limits(mech, out);
+  describe_rocking(mech, out);
 }
 
 }  // namespace

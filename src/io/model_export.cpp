@@ -177,6 +177,8 @@ void write_model_yaml(std::ostream& out, const Model& m, const std::vector<std::
     }
     if (d.free) out << ", free: true";
     if (d.initial_speed != 0.0) out << ", initial_speed: " << number(d.initial_speed / scale);
+    if (d.at_limits == AtLimits::Reverse) out << ", at_limits: reverse";
+    if (d.cycles) out << ", cycles: " << *d.cycles;
     out << "}\n";
   }
   if (m.has_time_law()) {

@@ -49,7 +49,7 @@ inline const AllowedKeys kSliderKeys{"in a slider", {"body", "point", "along"}};
 inline const AllowedKeys kSlotKeys{"in a slot", {"point", "along"}};
 inline const AllowedKeys kDriverKeys{"in a driver",
                                      {"name", "angle", "relative_to", "distance", "slide", "from", "to", "speed",
-                                      "accel", "law", "free", "initial_speed"}};
+                                      "accel", "law", "free", "initial_speed", "at_limits", "cycles"}};
 inline const AllowedKeys kSweepKeys{"in `sweep`", {"steps", "duration", "step"}};
 inline const AllowedKeys kBodyKeys{"in a body",
                                    {"points", "shape", "bar", "thickness", "material", "mass", "cg", "inertia"}};

@@ -256,6 +256,24 @@ void Parser::parse_driver(const YAML::Node& item) {
     if (!d.free) fail(initial->key_node, "`initial_speed` applies only to a driver with `free: true`");
     d.initial_speed = rate(*initial, 1, d, scale, true);
   }
+  if (const Entry* at_limits = f.find("at_limits")) {
+    const std::string text = at_limits->value.IsScalar() ? at_limits->value.Scalar() : std::string();
+    if (text != "stop" && text != "reverse")
+      fail(mark(*at_limits),
+           "`at_limits` is `stop` (the sweep ends at a limit) or `reverse` (it turns back and "
+           "rocks between the limits), not " +
+               describe(at_limits->value));
+    d.at_limits = text == "reverse" ? AtLimits::Reverse : AtLimits::Stop;
+  }
+  if (const Entry* cycles = f.find("cycles")) {
+    if (d.at_limits != AtLimits::Reverse)
+      fail(cycles->key_node, "`cycles` counts the cycles of a rocking motion: it needs `at_limits: reverse`");
+    const double n = number(*cycles, "`cycles`");
+    if (!(n >= 1.0 && n <= kMaxRockingCycles) || n != std::floor(n))
+      fail(mark(*cycles), "`cycles` is a whole number from 1 to " + std::to_string(kMaxRockingCycles) + ", not " +
+                              cycles->value.Scalar());
+    d.cycles = static_cast<int>(n);
+  }
   model_.drivers.push_back(std::move(d));
   source_.drivers.push_back(mark(item));
   source_.driver_laws.push_back(law_marks);

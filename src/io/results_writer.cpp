@@ -160,6 +160,18 @@ void write_json(std::ostream& out, const Analysis& analysis, const ResultTable& 
   j["stop_reason"] = sweep.complete ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(sweep.stop_reason);
   j["warnings"] = messages(sweep.warnings);
   j["max_residual"] = sweep.max_residual / m.units.length_scale;
+  if (std::any_of(m.drivers.begin(), m.drivers.end(),
+                  [](const Driver& d) { return d.at_limits == AtLimits::Reverse; })) {
+    nlohmann::ordered_json turns = nlohmann::json::array();
+    for (const Reversal& r : sweep.reversals)
+      turns.push_back({{"after_step", r.after_step},
+                       {"t", r.time},
+                       {m.drivers[0].name,
+                        r.driver_value / (m.drivers[0].is_angular() ? m.units.angle_scale : m.units.length_scale)},
+                       {"involved", r.involved},
+                       {"at_sample", r.at_sample}});
+    j["reversals"] = turns;
+  }
   if (dynamics) {
     j["dynamics"] = {{"units", "forces N, torques N m, energies J, whatever the model's length unit"},
                      {"unique", dynamics->unique},
@@ -285,7 +297,8 @@ void write_stress_report(std::ostream& out, const std::string& format, const Ana
       for (std::size_t c = 0; c < t.columns.size(); ++c) {
         const double v = t.rows[i][c];
         // Counts are whole numbers in JSON ("step": 12, not 12.0).
-        const bool count = t.columns[c] == "step" || t.columns[c] == "nodes" || t.columns[c] == "elements";
+        const bool count = t.columns[c] == "step" || t.columns[c] == "reversals" || t.columns[c] == "nodes" ||
+                           t.columns[c] == "elements";
         if (!std::isfinite(v))
           b[t.columns[c]] = nullptr;
         else if (count && v == std::floor(v) && std::abs(v) < 9e15)

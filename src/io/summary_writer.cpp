@@ -415,6 +415,7 @@ std::string summary_json(const Mechanism& mechanism, const ModelSummary& s, cons
   crank_mechanisms_json(m, s, j);
   j["limits"] = limits_json(mechanism, s);
   if (s.limits_error) j["limits_error"] = *s.limits_error;
+  if (s.rocking) j["rocking"] = *s.rocking;
   return json_text(j, 2) + '\n';
 }
 
@@ -426,6 +427,7 @@ void write_summary_text(std::ostream& out, const Mechanism& mechanism, const Mod
   write_kinetics(out, m, summary);
   write_start(out, m, summary);
   write_limits(out, m, summary);
+  if (summary.rocking) out << "Rocking: " << *summary.rocking << '\n';
   write_crank_mechanisms(out, summary);
   if (!summary.warnings.empty()) {
     out << "Warnings: " << summary.warnings.size() << '\n';

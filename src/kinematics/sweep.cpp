@@ -1,6 +1,7 @@
 #include "nbar/kinematics/sweep.hpp"
 
 #include "constraints.hpp"
+#include "rocking.hpp"
 
 #include <cmath>
 #include <limits>
@@ -383,13 +384,37 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
   return run_sweep(mech, options, control, nullptr);
 }
 
+namespace {
+SweepResult run_steady_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control,
+                             const SampleSink& sink);
+}  // namespace
+
+SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control,
+                      const SampleSink& sink) {
+  check_derivative_order(options.order);
+  if (!sweep_rocks(mech.model())) return run_steady_sweep(mech, options, control, sink);
+  const RockingPlan plan = plan_rocking(mech);
+  if (plan.reverses) {
+    SweepResult result = run_rocking_sweep(mech, plan, options, control, sink);
+    BranchWatch start(mech, plan.start_pose, result);  // each four-bar loop's branch at the start
+    return result;
+  }
+  SweepResult result = run_steady_sweep(mech, options, control, sink);
+  result.warnings.insert(result.warnings.begin(),
+                         {"never_reverses", -1,
+                          "driver '" + mech.model().drivers[0].name + "' never reverses (`at_limits: reverse`): " +
+                              plan.never_reverses + ", so the sweep runs from its start to its end as usual"});
+  return result;
+}
+
+namespace {
+
 // Left long (109 lines) on purpose: the start (assembly, the first series) and the loop over the
 // samples share the plan, the tracker's state, the reused sample and whether the sample being
 // recorded lies on a singular position with `record`; the loop runs once a sample, and the
 // warnings it gives read the tracker's report of that sample's track where it is made.
-SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control,
-                      const SampleSink& sink) {
-  check_derivative_order(options.order);
+SweepResult run_steady_sweep(const Mechanism& mech, const SweepOptions& options, const RunControl& control,
+                             const SampleSink& sink) {
   const Model& m = mech.model();
   const int nd = static_cast<int>(m.drivers.size());
   const SweepPath plan = sweep_path(mech, options.steps, options.max_steps, false);
@@ -496,6 +521,8 @@ SweepResult run_sweep(const Mechanism& mech, const SweepOptions& options, const 
   }
   return result;
 }
+
+}  // namespace
 
 namespace {
 

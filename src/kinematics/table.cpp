@@ -37,6 +37,8 @@ KinematicRows::KinematicRows(const Mechanism& mech, int order) : mech_(mech), or
   previous_.assign(m.bodies.size(), 0.0);
   started_.assign(m.bodies.size(), false);
   positions_.resize(m.points.size());
+  rocks_ =
+      std::any_of(m.drivers.begin(), m.drivers.end(), [](const Driver& d) { return d.at_limits == AtLimits::Reverse; });
 }
 
 void KinematicRows::name_columns(std::vector<std::string>& columns, std::vector<std::string>& units) const {
@@ -49,6 +51,7 @@ void KinematicRows::name_columns(std::vector<std::string>& columns, std::vector<
   add("step", "");
   add("t", "s");
   for (const Driver& d : m.drivers) add(d.name, d.is_angular() ? u.angle : u.length);
+  if (rocks_) add("reversals", "");
   for (const Point& p : m.points)
     for (int k = 0; k <= order_; ++k) {
       add(p.name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
@@ -61,7 +64,7 @@ void KinematicRows::name_columns(std::vector<std::string>& columns, std::vector<
 
 std::size_t KinematicRows::column_count() const {
   const Model& m = mech_.model();
-  return 2 + m.drivers.size() + 2 * (order_ + 1) * m.points.size() + (order_ + 1) * angled_.size() +
+  return 2 + m.drivers.size() + (rocks_ ? 1 : 0) + 2 * (order_ + 1) * m.points.size() + (order_ + 1) * angled_.size() +
          mech_.four_bar_loops().size();
 }
 
@@ -85,6 +88,7 @@ void KinematicRows::fill(const Sample& s, double* out, std::ptrdiff_t stride) {
   put(s.time);
   for (std::size_t d = 0; d < m.drivers.size(); ++d)
     put(s.driver_values[d] / (m.drivers[d].is_angular() ? u.angle_scale : u.length_scale));
+  if (rocks_) put(s.reversals);
   std::array<double, Series::kCapacity> x{}, y{};
   for (std::size_t p = 0; p < m.points.size(); ++p) {
     point_derivatives(mech_, s, static_cast<int>(p), x.data(), y.data());

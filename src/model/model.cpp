@@ -362,7 +362,29 @@ class Validator {
                         "a '.' (which joins a name to its quantity, as in rocker.angle): give it another `name:`");
       check_driven(d, where, name);
       check_motion(d, time_sweep, size, where, name);
+      check_rocking(d, where, name);
     }
+  }
+
+  // A rocking driver turns back where the mechanism's path does, at its own speed: it must be the
+  // only input (another one's motion would not turn with it) and keep its speed (no law, no
+  // acceleration), and a number of cycles means nothing without it.
+  void check_rocking(const Driver& d, EntityRef where, const std::string& name) const {
+    if (d.at_limits != AtLimits::Reverse) {
+      if (d.cycles)
+        fail(where, name + ": `cycles` counts the cycles of a rocking motion: it needs `at_limits: reverse`");
+      return;
+    }
+    const std::string rocks = name + " turns back at the mechanism's limits (`at_limits: reverse`), ";
+    if (m_.drivers.size() != 1)
+      fail(where, rocks + "which needs it to be the model's only driver (this model has " +
+                      std::to_string(m_.drivers.size()) + ")");
+    if (d.law) fail(where, rocks + "at its speed: it cannot also follow a law");
+    if (d.accel != 0.0) fail(where, rocks + "at a steady speed: it takes no `accel`");
+    if (d.free) fail(where, rocks + "so it cannot be free");
+    if (d.cycles && (*d.cycles < 1 || *d.cycles > kMaxRockingCycles))
+      fail(where, name + ": `cycles` is a whole number from 1 to " + std::to_string(kMaxRockingCycles) + ", not " +
+                      std::to_string(*d.cycles));
   }
 
   // The mechanism's size: the diagonal of its points' bounding box.

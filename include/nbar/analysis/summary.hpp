@@ -115,6 +115,9 @@ struct ModelSummary {
   // the start both ways, when the start assembles; `limits_error` when the search failed.
   std::optional<PathLimits> limits;
   std::optional<std::string> limits_error;
+  // A rocking driver (`at_limits: reverse`): where it turns back over one cycle, or that it never
+  // does (then also a never_reverses warning), or why it cannot rock.
+  std::optional<std::string> rocking;
   // From the geometry alone (the model's lengths), whether or not the start assembles.
   std::vector<SliderCrankSummary> slider_cranks;
   std::vector<QuickReturnSummary> quick_returns;

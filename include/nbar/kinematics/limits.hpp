@@ -69,4 +69,30 @@ PathLimits find_path_limits(const Mechanism& mech, const LimitSearchOptions& opt
 // The involved rows and bodies of a singular pose, and the text that names them.
 void describe_singularity(const Mechanism& mech, PathSingularity& s);
 
+// A rocking motion (`at_limits: reverse`): the model's one driver moves from its start at its
+// speed's size and turns back at every limit of the mechanism its path meets; the path goes on
+// through each limit (the configuration moves on along the curve, onto the branch beyond it), so
+// the motion is one closed circuit of the path when it comes back to its start.
+struct RockingPlan {
+  bool reverses = false;
+  std::string never_reverses;  // when !reverses: why (a full turn, or no limit within reach)
+  double start = 0.0;          // the driver's value at the start (SI)
+  int direction = 1;           // the way it moves first: +1 (its value grows) or -1
+  double speed = 0.0;          // its speed's size (SI per second)
+  // The limits met in order from the start, where the input turns back: one circuit when closed,
+  // else those met before the path turned fully without one (the motion then goes on that way).
+  std::vector<PathSingularity> turns;
+  bool closed = false;          // the path comes back to the start's pose: the turns repeat
+  double circuit_travel = 0.0;  // when closed: the input's travel over one circuit (SI)
+  Eigen::VectorXd start_pose;   // q at the start, assembled
+  AssemblyReport assembly;
+  std::vector<PathSingularity> change_points;  // passed on the way (branches cross; the input goes on)
+};
+
+// Follows the path from the start with the input turning back at each limit, until it comes back
+// to the start (or turns fully). Throws Error(StoppedAtLimit) at the driver when a turn would be
+// at a change point (branches cross there: the path does not say which way the input goes) or
+// the path cannot be followed; what assembling the start throws.
+RockingPlan plan_rocking(const Mechanism& mech);
+
 }  // namespace nbar

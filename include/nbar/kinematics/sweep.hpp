@@ -39,12 +39,28 @@ struct Sample {
   // derivative (read derivatives with derivative()).
   Eigen::MatrixXd taylor;
   double residual = 0.0;  // max |Phi| over all rows, m
+  // A rocking sweep (`at_limits: reverse`): how many times the input has turned back at a limit
+  // since the start (SweepResult::reversals says where and when).
+  int reversals = 0;
 
   int order() const { return static_cast<int>(taylor.cols()) - 1; }
   // The k-th time derivative of q (k! times column k), and of one coordinate.
   Eigen::VectorXd derivative(int k) const;
   double derivative(int coordinate, int k) const;
   Eigen::VectorXd positions() const { return taylor.col(0); }
+};
+
+// Where a rocking sweep's input turned back: at a limit of the mechanism, between two samples or
+// on one. The speed keeps its size and changes sign there; the mechanism's other velocities grow
+// without bound as the limit nears (the constraint Jacobian is singular at it).
+struct Reversal {
+  int after_step = 0;         // between this sample and the next
+  double time = 0.0;          // s
+  double driver_value = 0.0;  // SI: the limit, as find_path_limits locates it
+  std::string involved;       // what is in line there ("coupler and output in line at B")
+  // The sample `after_step` lies on the turn (its derivatives are then not numbers: the linkage is
+  // at its limit while the input moves at full speed); else the turn is between it and the next.
+  bool at_sample = false;
 };
 
 struct SweepResult {
@@ -56,7 +72,8 @@ struct SweepResult {
   AssemblyReport assembly;
   std::vector<std::string> branches;  // each four-bar loop's branch at the start: open | crossed
   double max_residual = 0.0;
-  std::size_t solved = 0;  // samples solved: samples.size(), or those handed to a sink
+  std::size_t solved = 0;           // samples solved: samples.size(), or those handed to a sink
+  std::vector<Reversal> reversals;  // a rocking sweep's turns, in order
 };
 
 // Receives every sample as the sweep solves it, in order. The sample is the sweep's scratch

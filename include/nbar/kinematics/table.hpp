@@ -45,6 +45,7 @@ class KinematicRows {
   std::vector<double> previous_;
   std::vector<bool> started_;
   bool first_done_ = false;
+  bool rocks_ = false;  // a rocking driver: a column counts the reversals
   std::vector<Eigen::Vector2d> positions_;
   Eigen::VectorXd q_;
 };

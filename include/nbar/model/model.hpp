@@ -77,6 +77,12 @@ enum class DriverKind {
 // the work of following the motion grows with the travel.
 inline constexpr double kMaxDriverTurns = 1000.0;
 
+// What a from/to sweep does when its path meets a limit of the mechanism (where the input
+// cannot go on and turns back): stop there (exit 4 on the command line), or turn back and rock
+// between the limits (`at_limits: reverse`, one driver without a law or an acceleration).
+enum class AtLimits { Stop, Reverse };
+inline constexpr int kMaxRockingCycles = 10000;
+
 // How a driver moves. Either a from/to sweep sampled at evenly spaced values (with the
 // derivatives of the driver moving at `speed` with `accel` at every sample), or a law in time.
 struct Driver {
@@ -96,6 +102,11 @@ struct Driver {
   // start value moving at `initial_speed` (SI per second). Kinematics ignores both.
   bool free = false;
   double initial_speed = 0.0;
+  AtLimits at_limits = AtLimits::Stop;
+  // With `at_limits: reverse`: full cycles of the rocking motion to run (each back to the start's
+  // pose, going the start's way); unset: the input travels |to - from| in all, turning back at
+  // each limit it meets.
+  std::optional<int> cycles;
 
   bool is_angular() const { return kind == DriverKind::Angle; }
 };

@@ -1,0 +1,244 @@
+// Rocking sweeps (`at_limits: reverse`): the input turns back at the mechanism's limits. Checked
+// against the double-rocker's toggle from the law of cosines (its input's time law is then a
+// triangle wave known in closed form), against find_path_limits' values, and against the motion
+// itself: a cycle closes on its start, the second cycle repeats the first, and the input's speed
+// changes sign with its size kept at each turn.
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <numbers>
+
+#include "../io/model_file_support.hpp"
+#include "nbar/analysis/summary.hpp"
+#include "nbar/io/model_file.hpp"
+#include "nbar/kinematics/limits.hpp"
+#include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/sweep.hpp"
+
+namespace nbar {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDeg = kPi / 180.0;
+
+Model example(const std::string& name) {
+  return io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name).model;
+}
+
+Model rocking(Model m, std::optional<int> cycles) {
+  m.drivers[0].at_limits = AtLimits::Reverse;
+  m.drivers[0].cycles = cycles;
+  return m;
+}
+
+// The largest difference of two samples' positions, of the model's size.
+double pose_gap(const Mechanism& mech, const Sample& a, const Sample& b) {
+  return (a.positions() - b.positions()).cwiseAbs().maxCoeff() / mech.characteristic_length();
+}
+
+// The double-rocker's toggle (coupler and output in line, stretched): |O4 A| = coupler + output.
+double double_rocker_toggle() {
+  const double input = 120, ground = 200, stretched = 100 + 150;
+  return std::acos((input * input + ground * ground - stretched * stretched) / (2 * input * ground));
+}
+
+TEST(Rocking, DoubleRockerTurnsAtItsTogglesOnATriangleWave) {
+  const Mechanism mech(rocking(example("fourbar-double-rocker.yaml"), 2));
+  SweepOptions options;
+  options.steps = 401;
+  const SweepResult sweep = run_sweep(mech, options);
+  ASSERT_TRUE(sweep.complete) << sweep.stop_reason;
+  ASSERT_EQ(sweep.samples.size(), 401u);
+  const double toggle = double_rocker_toggle();  // 99.7151 deg
+  ASSERT_EQ(sweep.reversals.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i)
+    EXPECT_NEAR(sweep.reversals[i].driver_value, i % 2 == 0 ? toggle : -toggle, 1e-12) << i;
+  // One cycle: from -80 deg up to the toggle, down to the other, up to -80 deg, at 30 deg/s.
+  const double start = -80 * kDeg, speed = 30 * kDeg;
+  const double cycle = (toggle - start) + 2 * toggle + (start + toggle);
+  EXPECT_NEAR(sweep.samples.back().time, 2 * cycle / speed, 1e-12);
+  EXPECT_NEAR(sweep.reversals[0].time, (toggle - start) / speed, 1e-12);
+  for (const Sample& s : sweep.samples) {
+    // The triangle wave, folded by hand: travel from the start, then reflected at the toggles.
+    const double travel = std::fmod(s.time * speed, cycle);
+    double expected = start + travel;
+    if (expected > toggle) expected = 2 * toggle - expected;
+    if (expected < -toggle) expected = -2 * toggle - expected;
+    ASSERT_NEAR(s.driver_values[0], expected, 1e-12) << "step " << s.step;
+  }
+}
+
+TEST(Rocking, ReversesWhereFindPathLimitsPutsTheLimits) {
+  for (const char* name :
+       {"fourbar-double-rocker.yaml", "watt-sixbar-limited.yaml", "stephenson-sixbar-limited.yaml"}) {
+    const Model plain = example(name);
+    const PathLimits limits = find_path_limits(Mechanism(plain));
+    ASSERT_TRUE(limits.ahead.limit()) << name;
+    const Mechanism mech(rocking(plain, 1));
+    SweepOptions options;
+    options.steps = 201;
+    const SweepResult sweep = run_sweep(mech, options);
+    ASSERT_TRUE(sweep.complete) << name << ": " << sweep.stop_reason;
+    ASSERT_GE(sweep.reversals.size(), 2u) << name;
+    const double ahead = limits.ahead.limit()->driver_values[0];
+    EXPECT_NEAR(sweep.reversals.front().driver_value, ahead, 1e-9 * std::abs(ahead)) << name;
+    // The last turn of a cycle is the limit behind the start: the path comes back through it.
+    ASSERT_TRUE(limits.behind.limit()) << name;
+    const double behind = limits.behind.limit()->driver_values[0];
+    EXPECT_NEAR(sweep.reversals.back().driver_value, behind, 1e-9 * std::abs(behind)) << name;
+    // A full cycle closes on itself.
+    EXPECT_LT(pose_gap(mech, sweep.samples.front(), sweep.samples.back()), 1e-12) << name;
+  }
+}
+
+TEST(Rocking, TheSecondCycleRepeatsTheFirst) {
+  for (const char* name :
+       {"fourbar-double-rocker.yaml", "watt-sixbar-limited.yaml", "stephenson-sixbar-limited.yaml"}) {
+    const Mechanism mech(rocking(example(name), 2));
+    SweepOptions options;
+    options.steps = 2 * 150 + 1;
+    const SweepResult sweep = run_sweep(mech, options);
+    ASSERT_TRUE(sweep.complete) << name << ": " << sweep.stop_reason;
+    double gap = 0, velocity_gap = 0, velocity_size = 0;
+    for (int i = 0; i <= 150; ++i) {
+      const Sample &first = sweep.samples[i], &second = sweep.samples[i + 150];
+      gap = std::max(gap, pose_gap(mech, first, second));
+      velocity_gap = std::max(velocity_gap, (first.derivative(1) - second.derivative(1)).cwiseAbs().maxCoeff());
+      velocity_size = std::max(velocity_size, first.derivative(1).cwiseAbs().maxCoeff());
+      ASSERT_EQ(second.reversals - first.reversals, sweep.reversals.size() / 2) << name << " step " << i;
+    }
+    EXPECT_LT(gap, 1e-12) << name;
+    EXPECT_LT(velocity_gap, 1e-9 * velocity_size) << name;
+  }
+}
+
+TEST(Rocking, TheInputsSpeedChangesSignWithItsSizeKept) {
+  const Mechanism mech(rocking(example("watt-sixbar-limited.yaml"), 1));
+  SweepOptions options;
+  options.steps = 100;  // 101 would put samples 25 and 75 on the turns (the cycle is symmetric)
+  const SweepResult sweep = run_sweep(mech, options);
+  ASSERT_TRUE(sweep.complete) << sweep.stop_reason;
+  const int input = mech.model().drivers[0].body;
+  ASSERT_EQ(sweep.reversals.size(), 2u);
+  for (const Reversal& r : sweep.reversals) {
+    ASSERT_FALSE(r.at_sample);
+    const Sample &before = sweep.samples[r.after_step], &after = sweep.samples[r.after_step + 1];
+    EXPECT_EQ(after.reversals, before.reversals + 1);
+    const double omega_before = body_angle_motion(mech, before, input)[1];
+    const double omega_after = body_angle_motion(mech, after, input)[1];
+    EXPECT_NEAR(omega_before, -omega_after, 1e-12 * std::abs(omega_before));
+    EXPECT_NEAR(std::abs(omega_before), 30 * kDeg, 1e-12);
+    // The turn lies between the two samples in time and in the input.
+    EXPECT_LT(before.time, r.time);
+    EXPECT_GT(after.time, r.time);
+    EXPECT_GT(std::abs(r.driver_value), std::abs(before.driver_values[0]));
+    EXPECT_GT(std::abs(r.driver_value), std::abs(after.driver_values[0]));
+  }
+}
+
+TEST(Rocking, ASampleOnATurnHasTheLimitsPoseAndNoDerivatives) {
+  // The Watt six-bar's cycle is symmetric (0, up to L, down to -L, back to 0): 201 samples put
+  // steps 50 and 150 on its turns, where the dyad C-E-D lies straight.
+  const Mechanism mech(rocking(example("watt-sixbar-limited.yaml"), 1));
+  SweepOptions options;
+  options.steps = 201;
+  const SweepResult sweep = run_sweep(mech, options);
+  ASSERT_TRUE(sweep.complete) << sweep.stop_reason;
+  ASSERT_EQ(sweep.reversals.size(), 2u);
+  const Model& m = mech.model();
+  const auto at = [&](const Sample& s, const char* name) {
+    for (std::size_t p = 0; p < m.points.size(); ++p)
+      if (m.points[p].name == name) return mech.point_position(static_cast<int>(p), s.positions());
+    ADD_FAILURE() << name;
+    return Eigen::Vector2d();
+  };
+  for (int k = 0; k < 2; ++k) {
+    const Reversal& r = sweep.reversals[k];
+    EXPECT_TRUE(r.at_sample);
+    EXPECT_EQ(r.after_step, 50 + 100 * k);
+    const Sample& s = sweep.samples[r.after_step];
+    EXPECT_EQ(s.driver_values[0], r.driver_value);
+    EXPECT_EQ(s.reversals, k + 1);
+    EXPECT_EQ(sweep.samples[r.after_step - 1].reversals, k);
+    // Straight: |CE| + |ED| = |CD|, to rounding of the 140 mm dyad.
+    const Eigen::Vector2d c = at(s, "C"), e = at(s, "E"), d = at(s, "D");
+    EXPECT_NEAR((e - c).norm() + (d - e).norm(), (d - c).norm(), 1e-12);
+    EXPECT_TRUE(s.positions().allFinite());
+    EXPECT_TRUE(std::isnan(s.derivative(1)[0]));
+  }
+  bool warned = false;
+  for (const Warning& w : sweep.warnings) warned = warned || (w.code == "sample_on_turn" && w.step == 50);
+  EXPECT_TRUE(warned);
+}
+
+TEST(Rocking, TravelFromToTurnsBackAndGoesOn) {
+  // Without cycles the input travels |to - from| in all: 0 to 15 deg and then 40 deg more.
+  Model m = rocking(example("watt-sixbar-limited.yaml"), std::nullopt);
+  m.drivers[0].to = 55 * kDeg;
+  const Mechanism mech(m);
+  const SweepResult sweep = run_sweep(mech);
+  ASSERT_TRUE(sweep.complete) << sweep.stop_reason;
+  EXPECT_NEAR(sweep.samples.back().time, 55.0 / 30.0, 1e-12);
+  ASSERT_EQ(sweep.reversals.size(), 2u);
+  const double limit = sweep.reversals[0].driver_value;  // 15.2758 deg, and -15.2758 deg after
+  EXPECT_NEAR(sweep.samples.back().driver_values[0], -limit + (55 * kDeg - limit - 2 * limit), 1e-12);
+}
+
+TEST(Rocking, AnInputThatTurnsFullyNeverReverses) {
+  const Model plain = example("fourbar-crank-rocker.yaml");
+  const Mechanism mech(rocking(plain, std::nullopt));
+  const SweepResult sweep = run_sweep(mech), ordinary = run_sweep(Mechanism(plain));
+  ASSERT_FALSE(sweep.warnings.empty());
+  EXPECT_EQ(sweep.warnings.front().code, "never_reverses");
+  EXPECT_NE(sweep.warnings.front().message.find("never reverses"), std::string::npos);
+  EXPECT_TRUE(sweep.reversals.empty());
+  ASSERT_EQ(sweep.samples.size(), ordinary.samples.size());
+  EXPECT_EQ(sweep.samples.back().positions(), ordinary.samples.back().positions());
+  const ModelSummary summary = summarize(mech);
+  ASSERT_TRUE(summary.rocking);
+  EXPECT_NE(summary.rocking->find("never reverses"), std::string::npos);
+  bool warned = false;
+  for (const Warning& w : summary.warnings) warned = warned || w.code == "never_reverses";
+  EXPECT_TRUE(warned);
+}
+
+TEST(Rocking, CheckSaysWhereItTurnsAndWarnsNotOfAStop) {
+  Model m = rocking(example("watt-sixbar-limited.yaml"), 1);
+  m.drivers[0].to = 20 * kDeg;  // past the limit: an ordinary sweep would stop there
+  const ModelSummary summary = summarize(Mechanism(m));
+  ASSERT_TRUE(summary.rocking);
+  EXPECT_NE(summary.rocking->find("turns back at 15.2758 deg"), std::string::npos) << *summary.rocking;
+  for (const Warning& w : summary.warnings) EXPECT_NE(w.code, "input_limited") << w.message;
+}
+
+using io::test_support::fails_at;
+
+const std::string kDoubleRocker =
+    "units: {length: mm, angle: deg}\n"                                                             // 1
+    "points: {O2: [0, 0], O4: [200, 0], A: [20.837781, -118.17693], B: [51.787322, -23.086837]}\n"  // 2
+    "ground: [O2, O4]\n"                                                                            // 3
+    "bodies: {input: [O2, A], coupler: [A, B], output: [O4, B]}\n"                                  // 4
+    "drivers:\n";                                                                                   // 5
+
+TEST(Rocking, ModelFileOptions) {
+  const Model m =
+      io::parse_model(kDoubleRocker + "  - {angle: input, from: -80, at_limits: reverse, cycles: 3}\n").model;
+  EXPECT_EQ(m.drivers[0].at_limits, AtLimits::Reverse);
+  EXPECT_EQ(m.drivers[0].cycles, 3);
+  EXPECT_EQ(io::parse_model(kDoubleRocker + "  - {angle: input, at_limits: stop}\n").model.drivers[0].at_limits,
+            AtLimits::Stop);
+  EXPECT_TRUE(fails_at(kDoubleRocker + "  - {angle: input, at_limits: bounce}\n", "6:31",
+                       "`at_limits` is `stop` (the sweep ends at a limit) or `reverse`"));
+  EXPECT_TRUE(fails_at(kDoubleRocker + "  - {angle: input, cycles: 2}\n", "6:20", "it needs `at_limits: reverse`"));
+  EXPECT_TRUE(fails_at(kDoubleRocker + "  - {angle: input, at_limits: reverse, cycles: 1.5}\n", "6:48",
+                       "`cycles` is a whole number from 1 to 10000"));
+  EXPECT_TRUE(fails_at(kDoubleRocker + "  - {angle: input, at_limits: reverse, accel: 1}\n", "6:5",
+                       "at a steady speed: it takes no `accel`"));
+  EXPECT_TRUE(fails_at(kDoubleRocker + "  - {angle: input, at_limits: reverse}\n  - {angle: output}\n", "6:5",
+                       "which needs it to be the model's only driver (this model has 2)"));
+}
+
+}  // namespace
+}  // namespace nbar
