@@ -102,8 +102,8 @@ Command add_animate_command(CLI::App& app) {
       ->check(nbar::cli::output_file())
       ->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::AnimateRequest::rules());
-  command->flags->add(
-      {"fps", "frames", "steps", "max_steps", "labels", "trace", "stress", "mesh_size", "width", "height", "title"});
+  command->flags->add({"fps", "frames", "steps", "max_steps", "at_limits", "cycles", "labels", "trace", "stress",
+                       "mesh_size", "width", "height", "title"});
   sub->footer(
       "Every format shows the same frames on one view that fits the whole sweep. A sweep that ends\n"
       "where it began loops without repeating its first pose. GIF frames are not antialiased (a\n"

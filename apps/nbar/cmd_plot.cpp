@@ -121,7 +121,8 @@ Command add_plot_command(CLI::App& app) {
   sub->add_option("-o,--output", command->output, "the picture to write: FILE.svg or FILE.png")
       ->check(nbar::cli::output_file())
       ->required();
-  command->flags->add({"steps", "max_steps", "order", "dynamics", "y_range", "title", "width", "height"});
+  command->flags->add(
+      {"steps", "max_steps", "at_limits", "cycles", "order", "dynamics", "y_range", "title", "width", "height"});
   sub->footer(kPlotHelp);
   return {sub, [command] { return run_plot(*command); }};
 }

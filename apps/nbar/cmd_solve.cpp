@@ -83,7 +83,7 @@ Command add_solve_command(CLI::App& app) {
                                      "and higher derivatives of every point and body");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::SolveRequest::rules());
-  command->flags->add({"steps", "max_steps", "order", "format", "columns"});
+  command->flags->add({"steps", "max_steps", "at_limits", "cycles", "order", "format", "columns"});
   sub->add_option("-o,--output", command->output, "write to FILE instead of standard output")
       ->check(nbar::cli::output_file());
   command->flags->add({"dynamics"});

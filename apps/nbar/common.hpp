@@ -77,8 +77,20 @@ inline void print_warnings(const std::vector<Warning>& warnings) {
   for (const Warning& w : warnings) std::cerr << "warning: " << w.message << '\n';
 }
 
+// A rocking sweep's turns, one line each, where warnings go.
+inline void print_reversals(const Model& m, const SweepResult& sweep) {
+  for (const Reversal& r : sweep.reversals)
+    std::cerr << "reversed: "
+              << (r.at_sample
+                      ? "at step " + std::to_string(r.after_step)
+                      : "between steps " + std::to_string(r.after_step) + " and " + std::to_string(r.after_step + 1))
+              << ", at t = " << r.time << " s, " << m.drivers[0].name << " = "
+              << format_driver_value(m, 0, r.driver_value) << " (" << r.involved << ")\n";
+}
+
 // The exit code of a sweep that stopped early (its rows are written), or 0.
 inline int finish(const Loaded& loaded, const SweepResult& sweep) {
+  print_reversals(loaded.file.model, sweep);
   if (!sweep.complete) {
     const nbar::io::SourceMap& source = loaded.file.source;
     std::cerr << "error: " << compose_location(source.file, source.sweep_stop(), sweep.stop_reason) << " ("

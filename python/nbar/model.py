@@ -317,22 +317,26 @@ class Model:
 
     def analyse(self, steps: Optional[int] = None, order: int = 2, dynamics: bool = False, stress: bool = False,
                 sections: int = 200, timeout: Optional[float] = None, max_steps: Optional[int] = None,
-                method: str = "beam", mesh_size: Optional[float] = None):
+                method: str = "beam", mesh_size: Optional[float] = None, at_limits: Optional[str] = None,
+                cycles: Optional[int] = None):
         """The pipeline's raw result (sweep, then dynamics, then stress), for the other methods.
 
         A sweep of more than ``max_steps`` samples (default 10 000 000, as ``--max-steps``) is an error.
         ``method`` is the stresses' (``"beam"`` or ``"fe"``), ``mesh_size`` the finite elements' edge
-        far from holes, in the model's length unit."""
+        far from holes, in the model's length unit. ``at_limits="reverse"`` turns the sweep back at the
+        mechanism's limits (over the driver's ``at_limits``), for ``cycles`` rocking cycles."""
         steps, order, sections = _whole("steps", steps), _whole("order", order), _whole("sections", sections)
-        max_steps = _whole("max_steps", max_steps, minimum=1)
+        max_steps, cycles = _whole("max_steps", max_steps, minimum=1), _whole("cycles", cycles, minimum=1)
         timeout, mesh_size = _real("timeout", timeout), _real("mesh_size", mesh_size)
+        at_limits = None if at_limits is None else _text("at_limits", at_limits)
         return _nbar.analyse(self._c, steps=steps, order=order, dynamics=_flag("dynamics", dynamics),
                              stress=_flag("stress", stress), sections=sections, timeout=timeout, max_steps=max_steps,
-                             method=_text("method", method), mesh_size=mesh_size)
+                             method=_text("method", method), mesh_size=mesh_size, at_limits=at_limits, cycles=cycles)
 
     def solve(self, steps: Optional[int] = None, order: Optional[int] = None, columns: Columns = None,
               dynamics: bool = False, partial: bool = False, timeout: Optional[float] = None,
-              max_steps: Optional[int] = None) -> Result:
+              max_steps: Optional[int] = None, at_limits: Optional[str] = None,
+              cycles: Optional[int] = None) -> Result:
         """Sweeps the drivers: positions, velocities, accelerations (to ``order``, at most 5) of
         every point and body, and with ``dynamics=True`` every joint force and driver effort.
 
@@ -340,11 +344,14 @@ class Model:
         switches dynamics on. A sweep that stops at a toggle raises ``nbar.LimitError`` (its
         ``.result`` holds the rows solved) unless ``partial=True``. Ctrl-C (Jupyter's interrupt)
         stops a long run; ``timeout`` (s) bounds it. A sweep of more than ``max_steps`` samples
-        (default 10 000 000, as ``nbar solve --max-steps``) is an error.
+        (default 10 000 000, as ``nbar solve --max-steps``) is an error. ``at_limits="reverse"``
+        (``--at-limits reverse``) turns the sweep back at each limit of the mechanism instead of
+        stopping there, for ``cycles`` cycles (``--cycles``); a ``reversals`` column counts the turns.
         """
         patterns = _patterns(columns)
         order, dynamics = self._plan(patterns, _whole("order", order), _flag("dynamics", dynamics))
-        analysis = self.analyse(steps=steps, order=order, dynamics=dynamics, timeout=timeout, max_steps=max_steps)
+        analysis = self.analyse(steps=steps, order=order, dynamics=dynamics, timeout=timeout, max_steps=max_steps,
+                                at_limits=at_limits, cycles=cycles)
         return self._result(analysis, patterns, partial)
 
     def _plan(self, patterns: Optional[List[str]], order: Optional[int], dynamics: bool) -> Tuple[int, bool]:

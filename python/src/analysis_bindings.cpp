@@ -32,10 +32,13 @@ struct PyAnalysis {
 // `solve` and `stress` (nbar/request): the same ranges, defaults, unit conversions and messages.
 AnalysisOptions analysis_options(const Model& model, std::optional<int> steps, int order, bool dynamics, bool stress,
                                  int sections, std::optional<int> max_steps, const std::string& method,
-                                 std::optional<double> mesh_size) {
+                                 std::optional<double> mesh_size, const std::optional<std::string>& at_limits,
+                                 std::optional<int> cycles) {
   request::Options sweep;
   if (steps) sweep.set("steps", static_cast<long long>(*steps));
   if (max_steps) sweep.set("max_steps", static_cast<long long>(*max_steps));
+  if (at_limits) sweep.set("at_limits", *at_limits);
+  if (cycles) sweep.set("cycles", static_cast<long long>(*cycles));
   request::Options solve = sweep;
   solve.set("order", static_cast<long long>(order));
   solve.set("dynamics", dynamics);
@@ -57,11 +60,12 @@ AnalysisOptions analysis_options(const Model& model, std::optional<int> steps, i
 std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::optional<int> steps, int order,
                                          bool dynamics, bool stress, int sections, std::optional<double> timeout,
                                          std::optional<int> max_steps, const std::string& method,
-                                         std::optional<double> mesh_size) {
+                                         std::optional<double> mesh_size, const std::optional<std::string>& at_limits,
+                                         std::optional<int> cycles) {
   auto out = std::make_shared<PyAnalysis>();
   out->model = model;
   AnalysisOptions options = analysis_options(model->mechanism->model(), steps, order, dynamics, stress, sections,
-                                             max_steps, method, mesh_size);
+                                             max_steps, method, mesh_size, at_limits, cycles);
   run_interruptible(options.control, timeout, [&] {
     try {
       out->analysis = analyse(model->mechanism, options);
@@ -81,7 +85,7 @@ py::list run_many(const std::vector<std::shared_ptr<PyModel>>& models, std::opti
   std::vector<AnalysisOptions> options;
   for (const auto& model : models)
     options.push_back(analysis_options(model->mechanism->model(), steps, order, dynamics, false, 200, max_steps, "beam",
-                                       std::nullopt));
+                                       std::nullopt, std::nullopt, std::nullopt));
   RunControl control;
   std::vector<std::shared_ptr<PyAnalysis>> done(models.size());
   std::vector<std::optional<Error>> failed(models.size());
@@ -308,7 +312,7 @@ void bind_analysis(py::module_& m) {
   m.def("analyse", &run_analysis, py::arg("model"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
         py::arg("dynamics") = false, py::arg("stress") = false, py::arg("sections") = 200,
         py::arg("timeout") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("method") = "beam",
-        py::arg("mesh_size") = std::nullopt);
+        py::arg("mesh_size") = std::nullopt, py::arg("at_limits") = std::nullopt, py::arg("cycles") = std::nullopt);
   // For bench/python: the same solve timed inside C++ (the sweep, then the sweep and its column
   // table), the reference Python's own cost is measured against.
   m.def(

@@ -72,6 +72,23 @@ def test_check_gives_the_whole_mechanisms_limits_where_the_sweep_stops(examples)
     assert e.value.result["input"][-1] >= limit["value"] - 0.1
 
 
+def test_the_same_sweep_rocks_with_at_limits_reverse(examples):
+    # The Watt I six-bar driven past its dyad's limit rocks instead of stopping: it turns back at
+    # check's limit (15.2758 deg) and at its mirror, and one cycle ends on its start.
+    text = (examples / "watt-sixbar-limited.yaml").read_text().replace("to: 15,", "to: 60,")
+    m = nbar.loads(text, "watt.yaml")
+    limit = m.check().limits["ahead"][0]["value"]
+    r = m.solve(steps=200, at_limits="reverse", cycles=1)  # 201 would put two samples on the turns
+    turns = r["reversals"]
+    assert list(turns[:3]) == [0, 0, 0] and turns[-1] == 2
+    assert max(r["input"]) < limit and max(r["input"]) > limit - 1.0
+    assert min(r["input"]) > -limit and min(r["input"]) < -limit + 1.0
+    assert r["input"][-1] == pytest.approx(r["input"][0], abs=1e-12)
+    assert r["link5.angle"][-1] == pytest.approx(r["link5.angle"][0], abs=1e-9)
+    with pytest.raises(nbar.BadInputError):
+        m.solve(steps=11, at_limits="sideways")
+
+
 def test_toggle_stop_raises_with_the_rows_so_far(examples):
     text = (examples / "fourbar-crank-rocker.yaml").read_text().replace("lengths: {crank: 80, rocker: 150}",
                                                                        "lengths: {crank: 130, rocker: 150}")

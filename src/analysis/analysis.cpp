@@ -148,10 +148,19 @@ std::vector<Warning> Analysis::warnings() const {
   return all;
 }
 
+std::shared_ptr<const Mechanism> with_sweep_options(std::shared_ptr<const Mechanism> mechanism,
+                                                    const AnalysisOptions& options) {
+  if ((!options.at_limits && !options.cycles) || mechanism->model().drivers.empty()) return mechanism;
+  Model model = mechanism->model();
+  if (options.at_limits) model.drivers[0].at_limits = *options.at_limits;
+  if (options.cycles) model.drivers[0].cycles = *options.cycles;
+  return std::make_shared<const Mechanism>(std::move(model));
+}
+
 Analysis analyse(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options) {
   check_options(options);
   Analysis analysis;
-  analysis.mechanism = std::move(mechanism);
+  analysis.mechanism = with_sweep_options(std::move(mechanism), options);
   analysis.sweep = run_sweep_stage(*analysis.mechanism, options);
   if (options.dynamics || options.stress) analysis.dynamics = run_dynamics_stage(analysis, options);
   if (options.stress) analysis.stress = run_stress_stage(analysis, options);
@@ -218,7 +227,7 @@ struct TableStream::Pass {
 };
 
 TableStream::TableStream(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options)
-    : mechanism_(std::move(mechanism)), options_(options) {
+    : mechanism_(with_sweep_options(std::move(mechanism), options)), options_(options) {
   check_options(options_);
   if (options_.stress) throw Error(ErrorKind::BadInput, "stresses need the whole sweep: use analyse");
   const int order = options_.dynamics ? std::max(options_.order, 2) : options_.order;

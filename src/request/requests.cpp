@@ -64,8 +64,16 @@ std::optional<int> optional_int(std::optional<long long> v) {
 
 std::vector<OptionRule> SweepSize::rules(bool with_steps) {
   std::vector<OptionRule> rules;
-  if (with_steps)
+  if (with_steps) {
     rules.push_back(positive_integer("steps", "number of samples, ends included (overrides the model's sweep)"));
+    rules.push_back(choice("at_limits",
+                           "what the sweep does at a limit of the mechanism, over the model's `at_limits`: stop, or "
+                           "reverse (turn back there and rock between the limits)",
+                           {"stop", "reverse"}));
+    rules.push_back(positive_integer("cycles",
+                                     "with {at_limits} reverse: the rocking cycles to run (over the "
+                                     "model's `cycles`; each comes back to the start's pose)"));
+  }
   rules.push_back(
       positive_integer("max_steps", "the most samples the sweep may have, the model's or {steps} (default " +
                                         std::to_string(kDefaultMaxSweepSamples) +
@@ -77,6 +85,12 @@ SweepSize SweepSize::read(const Options& options) {
   static const std::vector<OptionRule> rules = SweepSize::rules();
   SweepSize size;
   size.steps = optional_int(read_integer(options, rule_of(rules, "steps")));
+  if (const std::optional<std::string> at = read_text(options, rule_of(rules, "at_limits")))
+    size.at_limits = *at == "reverse" ? AtLimits::Reverse : AtLimits::Stop;
+  size.cycles = optional_int(read_integer(options, rule_of(rules, "cycles")));
+  if (size.cycles && *size.cycles > kMaxRockingCycles)
+    throw OptionError("cycles",
+                      "must be at most " + std::to_string(kMaxRockingCycles) + ", not " + std::to_string(*size.cycles));
   size.max_steps =
       static_cast<int>(read_integer(options, rule_of(rules, "max_steps")).value_or(kDefaultMaxSweepSamples));
   return size;
@@ -85,6 +99,8 @@ SweepSize SweepSize::read(const Options& options) {
 void SweepSize::apply(AnalysisOptions& analysis) const {
   analysis.steps = steps;
   analysis.max_steps = max_steps;
+  analysis.at_limits = at_limits;
+  analysis.cycles = cycles;
 }
 
 render::DrawOptions Picture::draw_options(const Model& model) const {

@@ -41,7 +41,17 @@ struct AnalysisOptions {
   FeOptions fe;                             // stress, fe: mesh size and threads
   int max_steps = kDefaultMaxSweepSamples;  // a larger sweep (the model's or `steps`) is an error
   RunControl control;                       // cancellation, deadline and progress for every stage
+  // Overrides of the model's first driver's `at_limits` and `cycles` (`--at-limits reverse`): the
+  // analysis then runs on the model with them (with_sweep_options).
+  std::optional<AtLimits> at_limits;
+  std::optional<int> cycles;
 };
+
+// The mechanism the options' sweep runs on: `mechanism` itself, or, when the options override
+// what its first driver does at a limit, the model with that override, compiled (a ModelError at
+// the driver when the model cannot rock so).
+std::shared_ptr<const Mechanism> with_sweep_options(std::shared_ptr<const Mechanism> mechanism,
+                                                    const AnalysisOptions& options);
 
 // The inverse dynamics of every sample, solved once.
 struct DynamicsStage {

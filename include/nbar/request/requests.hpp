@@ -39,6 +39,8 @@ namespace nbar::request {
 struct SweepSize {
   std::optional<int> steps;
   int max_steps = kDefaultMaxSweepSamples;
+  std::optional<AtLimits> at_limits;  // what the first driver does at a limit, over the model's
+  std::optional<int> cycles;          // with at_limits reverse: the cycles to run
 
   static std::vector<OptionRule> rules(bool with_steps = true);
   static SweepSize read(const Options& options);

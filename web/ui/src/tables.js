@@ -167,14 +167,16 @@ function driversSection(m) {
     const what = ['angle', 'distance', 'slide'].find((k) => k in d);
     const label = what ? `${what}: ${showValue(d[what])}${d.relative_to ? ` / ${d.relative_to}` : ''}` : '?';
     const cells = d.law !== undefined
-      ? `<td colspan="3">${field(['drivers', i, 'law'], d.law, 'text', `driver ${i + 1} law`)}</td>`
-      : ['from', 'to', 'speed'].map((k) => `<td>${field(['drivers', i, k], d[k], 'num', `driver ${i + 1} ${k}`)}</td>`).join('');
+      ? `<td colspan="4">${field(['drivers', i, 'law'], d.law, 'text', `driver ${i + 1} law`)}</td>`
+      : ['from', 'to', 'speed'].map((k) => `<td>${field(['drivers', i, k], d[k], 'num', `driver ${i + 1} ${k}`)}</td>`).join('')
+        + `<td>${field(['drivers', i, 'at_limits'], d.at_limits, 'text', `driver ${i + 1} at_limits`)}</td>`;
     return `<tr><th>${esc(label)}</th>${cells}${removeButton(['drivers', i], t('deleteRow'))}</tr>`;
   });
   // A new driver: the angle of a body, a full turn at 60 rpm (edit the numbers after).
   const bs = bodyNames(m);
   const add = bs.length ? adder('driver', [picker('body', bs, t('body'))], t('addDriver')) : '';
-  return section(t('drivers'), [t('driver'), t('from'), t('to'), t('speed'), ''], rows, t('none'), add);
+  // `at_limits`: stop (the default) or reverse, which rocks the input between its limits.
+  return section(t('drivers'), [t('driver'), t('from'), t('to'), t('speed'), t('atLimits'), ''], rows, t('none'), add);
 }
 
 function loadsSection(m) {
