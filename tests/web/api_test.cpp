@@ -557,7 +557,7 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
     EXPECT_EQ(text.body, repo_file(e["file"].get<std::string>()));
   }
   EXPECT_EQ(models,
-            29);        // every model file of examples/, crank-rocker-released.yaml (forward dynamics) the newest
+            30);        // every model file of examples/, fourbar-double-rocker-rocking.yaml (at_limits) the newest
   EXPECT_EQ(tasks, 7);  // path/crank-rocker-measured.yaml the newest
   EXPECT_EQ(templates, 6);
   // Each runs as it is; a template too, and its name never clashes with the example's.
