@@ -38,9 +38,17 @@ double pose_gap(const Mechanism& mech, const Sample& a, const Sample& b) {
   return (a.positions() - b.positions()).cwiseAbs().maxCoeff() / mech.characteristic_length();
 }
 
-// The double-rocker's toggle (coupler and output in line, stretched): |O4 A| = coupler + output.
-double double_rocker_toggle() {
-  const double input = 120, ground = 200, stretched = 100 + 150;
+// The double-rocker's toggle (coupler and output in line, stretched): |O4 A| = coupler + output,
+// with the lengths of the drawn links (120, 100 and 150 mm to the drawing's 6 decimals).
+double double_rocker_toggle(const Model& m) {
+  const auto at = [&](const char* name) {
+    for (const Point& p : m.points)
+      if (p.name == name) return p.position;
+    ADD_FAILURE() << name;
+    return Eigen::Vector2d();
+  };
+  const double input = (at("A") - at("O2")).norm(), ground = (at("O4") - at("O2")).norm();
+  const double stretched = (at("B") - at("A")).norm() + (at("B") - at("O4")).norm();
   return std::acos((input * input + ground * ground - stretched * stretched) / (2 * input * ground));
 }
 
@@ -51,7 +59,7 @@ TEST(Rocking, DoubleRockerTurnsAtItsTogglesOnATriangleWave) {
   const SweepResult sweep = run_sweep(mech, options);
   ASSERT_TRUE(sweep.complete) << sweep.stop_reason;
   ASSERT_EQ(sweep.samples.size(), 401u);
-  const double toggle = double_rocker_toggle();  // 99.7151 deg
+  const double toggle = double_rocker_toggle(mech.model());  // 99.7151 deg
   ASSERT_EQ(sweep.reversals.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i)
     EXPECT_NEAR(sweep.reversals[i].driver_value, i % 2 == 0 ? toggle : -toggle, 1e-12) << i;
