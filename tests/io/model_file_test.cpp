@@ -351,7 +351,7 @@ TEST(ModelFileErrors, ErrorFormat) {
 
 // Nesting deeper than yaml-cpp follows: the message gives the file's own depth, at the bracket
 // that reaches it (the reader's limit is a count of its calls, not of levels: 499 '[' fail and
-// 498 pass, while 300 levels of '{a: ' fail).
+// 498 pass).
 TEST(ModelFileErrors, NestingTooDeepSaysHowDeepAndWhere) {
   const auto nested = [](int levels, const std::string& open, const std::string& close) {
     std::string text = "points: ";
@@ -361,8 +361,8 @@ TEST(ModelFileErrors, NestingTooDeepSaysHowDeepAndWhere) {
   };
   EXPECT_TRUE(fails_at(nested(600, "[", "]"), "1:" + std::to_string(8 + 600),
                        "invalid YAML: lists and mappings nested 600 levels deep here, deeper than the reader follows"));
-  EXPECT_TRUE(fails_at(nested(300, "{a: ", "}"), "1:" + std::to_string(8 + 4 * 299 + 1),
-                       "invalid YAML: lists and mappings nested 300 levels deep here"));
+  EXPECT_TRUE(fails_at(nested(600, "{a: ", "}"), "1:" + std::to_string(8 + 4 * 599 + 1),
+                       "invalid YAML: lists and mappings nested 600 levels deep here"));
   // Within the reader's depth, the nesting is the model's mistake, told at its key.
   EXPECT_TRUE(fails_at(nested(400, "[", "]"), "1:9", "`points` must be a mapping"));
 }
