@@ -13,6 +13,7 @@
 #include <string>
 #include <utility>
 
+#include "model/box_index.hpp"
 #include "nbar/model/diagnostics.hpp"
 
 namespace nbar {
@@ -322,6 +323,7 @@ double distance_to_segment(const Vector2d& x, const Vector2d& a, const Vector2d&
 // Strictly inside: a point on the boundary is not.
 bool strictly_inside(const Polygon& poly, const Vector2d& x) {
   const std::size_t n = poly.size();
+  add_geometry_work(n);
   bool inside = false;
   for (std::size_t i = 0; i < n; ++i) {
     const Vector2d& a = poly[i];
@@ -350,6 +352,7 @@ std::pair<std::size_t, std::size_t> first_meeting_edges(const Polygon& poly) {
   for (std::size_t e : order) {
     const double x = low(e);
     std::erase_if(active, [&](std::size_t f) { return high(f) < x; });
+    add_geometry_work(active.size() + 1);
     const double y0 = std::min(poly[e].y(), poly[(e + 1) % n].y()), y1 = std::max(poly[e].y(), poly[(e + 1) % n].y());
     for (std::size_t f : active) {
       const std::size_t i = std::min(e, f), j = std::max(e, f);
@@ -476,6 +479,7 @@ std::string polygon_name(std::size_t i) { return "polygon hole " + std::to_strin
 }  // namespace
 
 bool circle_clear_of_edges(const Circle& c, const std::vector<Vector2d>& poly) {
+  add_geometry_work(poly.size());
   for (std::size_t i = 0; i < poly.size(); ++i) {
     if (distance_to_segment(c.centre, poly[i], poly[(i + 1) % poly.size()]) <= c.radius) return false;
   }
@@ -516,7 +520,156 @@ AreaProperties clipped_area_properties(const Region& r, const Vector2d& p, const
   return to_properties(m, origin);
 }
 
+namespace {
+
+Eigen::AlignedBox2d edge_box(const Polygon& ring, std::size_t i) {
+  Eigen::AlignedBox2d box(ring[i]);
+  box.extend(ring[(i + 1) % ring.size()]);
+  return box;
+}
+
+// The outline's edges in a BoxIndex: each test of a hole against the outline looks at the
+// edges near the hole, and gives what the same test over every edge gives.
+class OutlineEdges {
+ public:
+  explicit OutlineEdges(const Polygon& ring) : ring_(ring), index_(boxes(ring)) {}
+
+  // polygons_meet(p, ring).
+  bool meet(const Polygon& p) const {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Vector2d &a = p[i], &b = p[(i + 1) % p.size()];
+      for (std::size_t j : index_.meeting(edge_box(p, i))) {
+        add_geometry_work(1);
+        if (segments_meet(a, b, ring_[j], ring_[(j + 1) % ring_.size()])) return true;
+      }
+    }
+    return false;
+  }
+
+  // strictly_inside(ring, x): only the edges that reach x's height at or right of x can be
+  // under x or cross the ray to its right.
+  bool strictly_inside(const Vector2d& x) const {
+    const double far = std::max(x.x(), index_.size() ? right_ : x.x());
+    bool inside = false;
+    for (std::size_t i : index_.meeting(Eigen::AlignedBox2d(x, Vector2d(far, x.y())))) {
+      add_geometry_work(1);
+      const Vector2d& a = ring_[i];
+      const Vector2d& b = ring_[(i + 1) % ring_.size()];
+      if (orient(a, b, x) == 0 && on_segment(a, b, x)) return false;
+      if ((a.y() > x.y()) != (b.y() > x.y())) {
+        const double cross_x = a.x() + (x.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x());
+        if (x.x() < cross_x) inside = !inside;
+      }
+    }
+    return inside;
+  }
+
+  // circle_clear_of_edges(c, ring).
+  bool clear_of(const Circle& c) const {
+    for (std::size_t i : index_.meeting(circle_bounds(c))) {
+      add_geometry_work(1);
+      if (distance_to_segment(c.centre, ring_[i], ring_[(i + 1) % ring_.size()]) <= c.radius) return false;
+    }
+    return true;
+  }
+
+ private:
+  std::vector<Eigen::AlignedBox2d> boxes(const Polygon& ring) {
+    std::vector<Eigen::AlignedBox2d> out;
+    right_ = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      out.push_back(edge_box(ring, i));
+      right_ = std::max(right_, ring[i].x());
+    }
+    return out;
+  }
+  const Polygon& ring_;
+  double right_ = 0;
+  BoxIndex index_;
+};
+
+// Every hole inside the outline and clear of it, in the order of the holes (polygons first).
+void check_holes_in_outline(const Region& r) {
+  const OutlineEdges outline(r.outline);
+  for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
+    const Polygon& hole = r.polygon_holes[i];
+    if (outline.meet(hole)) fail(polygon_name(i) + " meets the outline");
+    if (!outline.strictly_inside(hole[0])) fail(polygon_name(i) + " is outside the outline");
+  }
+  for (std::size_t i = 0; i < r.circle_holes.size(); ++i) {
+    const Circle& c = r.circle_holes[i];
+    if (!outline.strictly_inside(c.centre)) fail(circle_name(i, c) + " is outside the outline");
+    if (!outline.clear_of(c)) fail(circle_name(i, c) + " meets the outline");
+  }
+}
+
+// No two holes overlap or touch. Only holes whose boxes meet can (the boxes hold the shapes,
+// and the index pads them past rounding); each hole's neighbours come from the index in
+// ascending order, polygons before circles, so the first pair that fails is the one the scan of
+// every pair (polygon i with each later polygon, then each circle; then circle i with each
+// later circle) would have found.
+void check_holes_apart(const Region& r) {
+  const std::size_t polygons = r.polygon_holes.size();
+  std::vector<Eigen::AlignedBox2d> boxes;
+  for (const Polygon& hole : r.polygon_holes) boxes.push_back(ring_bounds(hole, {}));
+  for (const Circle& c : r.circle_holes) boxes.push_back(circle_bounds(c));
+  const BoxIndex index(boxes);
+  for (std::size_t i = 0; i < polygons; ++i) {
+    const Polygon& a = r.polygon_holes[i];
+    for (std::size_t k : index.meeting(boxes[i])) {
+      if (k <= i) continue;
+      if (k < polygons) {
+        const Polygon& b = r.polygon_holes[k];
+        if (polygons_meet(a, b) || strictly_inside(a, b[0]) || strictly_inside(b, a[0])) {
+          fail(polygon_name(i) + " and " + polygon_name(k) + " overlap");
+        }
+        continue;
+      }
+      const Circle& c = r.circle_holes[k - polygons];
+      if (strictly_inside(a, c.centre) || !circle_clear_of_edges(c, a)) {
+        fail(polygon_name(i) + " and " + circle_name(k - polygons, c) + " overlap");
+      }
+    }
+  }
+  for (std::size_t i = 0; i < r.circle_holes.size(); ++i) {
+    const Circle& a = r.circle_holes[i];
+    for (std::size_t k : index.meeting(boxes[polygons + i])) {
+      if (k <= polygons + i) continue;
+      add_geometry_work(1);
+      const Circle& b = r.circle_holes[k - polygons];
+      if ((a.centre - b.centre).norm() <= a.radius + b.radius) {
+        fail(circle_name(i, a) + " and " + circle_name(k - polygons, b) + " overlap");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+Eigen::AlignedBox2d ring_bounds(const Polygon& ring, const std::vector<double>& bulges) {
+  Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  ring_box(ring, bulges, lo, hi);
+  return {lo, hi};
+}
+
+Eigen::AlignedBox2d circle_bounds(const Circle& c) {
+  const Vector2d r = Vector2d::Constant(c.radius);
+  return {c.centre - r, c.centre + r};
+}
+
+namespace {
+thread_local std::size_t work_on_this_thread = 0;
+}  // namespace
+
+std::size_t geometry_work() { return work_on_this_thread; }
+void add_geometry_work(std::size_t tests) { work_on_this_thread += tests; }
+
 void check_region(const Region& r) {
+  const std::size_t holes = r.polygon_holes.size() + r.circle_holes.size();
+  if (holes > kMaxHolesPerPlate) {
+    fail("the plate has " + std::to_string(holes) + " holes; at most " + std::to_string(kMaxHolesPerPlate) +
+         " are allowed");
+  }
   if (!r.polygon_hole_bulges.empty() && r.polygon_hole_bulges.size() != r.polygon_holes.size()) {
     fail("the region has " + std::to_string(r.polygon_holes.size()) + " polygon holes but " +
          std::to_string(r.polygon_hole_bulges.size()) + " lists of bulges");
@@ -544,41 +697,8 @@ void check_region(const Region& r) {
     if (!(c.radius > 0)) fail(circle_name(i, c) + " has a non-positive radius");
   }
 
-  for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
-    const Polygon& hole = r.polygon_holes[i];
-    if (polygons_meet(hole, r.outline)) fail(polygon_name(i) + " meets the outline");
-    if (!strictly_inside(r.outline, hole[0])) fail(polygon_name(i) + " is outside the outline");
-  }
-  for (std::size_t i = 0; i < r.circle_holes.size(); ++i) {
-    const Circle& c = r.circle_holes[i];
-    if (!strictly_inside(r.outline, c.centre)) fail(circle_name(i, c) + " is outside the outline");
-    if (!circle_clear_of_edges(c, r.outline)) fail(circle_name(i, c) + " meets the outline");
-  }
-
-  for (std::size_t i = 0; i < r.polygon_holes.size(); ++i) {
-    const Polygon& a = r.polygon_holes[i];
-    for (std::size_t j = i + 1; j < r.polygon_holes.size(); ++j) {
-      const Polygon& b = r.polygon_holes[j];
-      if (polygons_meet(a, b) || strictly_inside(a, b[0]) || strictly_inside(b, a[0])) {
-        fail(polygon_name(i) + " and " + polygon_name(j) + " overlap");
-      }
-    }
-    for (std::size_t j = 0; j < r.circle_holes.size(); ++j) {
-      const Circle& c = r.circle_holes[j];
-      if (strictly_inside(a, c.centre) || !circle_clear_of_edges(c, a)) {
-        fail(polygon_name(i) + " and " + circle_name(j, c) + " overlap");
-      }
-    }
-  }
-  for (std::size_t i = 0; i < r.circle_holes.size(); ++i) {
-    const Circle& a = r.circle_holes[i];
-    for (std::size_t j = i + 1; j < r.circle_holes.size(); ++j) {
-      const Circle& b = r.circle_holes[j];
-      if ((a.centre - b.centre).norm() <= a.radius + b.radius) {
-        fail(circle_name(i, a) + " and " + circle_name(j, b) + " overlap");
-      }
-    }
-  }
+  check_holes_in_outline(r);
+  check_holes_apart(r);
 }
 
 Region make_bar(const Vector2d& p, const Vector2d& q, double width, double margin, double hole_radius_p,
@@ -731,6 +851,7 @@ std::vector<EdgeMention> edge_mentions(const std::string& message) {
 }
 
 bool polygons_meet(const std::vector<Vector2d>& p, const std::vector<Vector2d>& q) {
+  add_geometry_work(p.size() * q.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::size_t j = 0; j < q.size(); ++j) {
       if (segments_meet(p[i], p[(i + 1) % p.size()], q[j], q[(j + 1) % q.size()])) return true;
