@@ -178,6 +178,7 @@ class Parser : yaml::Reader {
     Ring polygon;
   };
 
+  void check_listed_holes(const Region& region, const std::vector<Hole>& holes, const std::string& invalid) const;
   Eigen::Vector2d coordinates(const YAML::Node& node, std::string_view what) const;
   Law curve_law(const YAML::Node& node, const std::string& text, std::string_view variable) const;
   static std::string_view trimmed(std::string_view s);
