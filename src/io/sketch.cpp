@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "model/box_index.hpp"
 #include "model/double_text.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/model/diagnostics.hpp"
@@ -201,13 +202,19 @@ std::optional<Vector2d> meeting_point(const Vector2d& a, const Vector2d& b, cons
 }
 
 // The first point where two edges of the loop, arcs cut into chords, that are not neighbours
-// meet: where it crosses itself.
+// meet: where it crosses itself. The edges near each edge come from a BoxIndex in ascending
+// order, so the pair is the one a scan of every pair finds, without the scan's n² (an outline
+// of 10⁶ chords).
 std::optional<Vector2d> crossing_of(const Region& r) {
   const std::vector<Vector2d> p = straight_edged(r).outline;
   const std::size_t n = p.size();
+  std::vector<Eigen::AlignedBox2d> boxes;
+  for (std::size_t i = 0; i < n; ++i) boxes.push_back(Eigen::AlignedBox2d(p[i]).extend(p[(i + 1) % n]));
+  const BoxIndex index(boxes);
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = i + 2; j < n; ++j) {
-      if (i == 0 && j == n - 1) continue;
+    for (std::size_t j : index.meeting(boxes[i])) {
+      if (j < i + 2 || (i == 0 && j == n - 1)) continue;
+      add_geometry_work(1);
       if (auto at = meeting_point(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n])) return at;
     }
   }
@@ -244,7 +251,26 @@ void check_loop(const SketchLoop& loop, const std::string& file) {
 
 }  // namespace
 
+namespace {
+
+void check_entity_count(const StrokeSet& set, const std::string& file) {
+  const std::size_t count = set.strokes.size() + set.circles.size() + set.points.size();
+  if (count <= kMaxSketchEntities) return;
+  std::vector<int> lines;
+  for (const Stroke& s : set.strokes) lines.push_back(s.line);
+  for (const SketchCircle& c : set.circles) lines.push_back(c.line);
+  for (const SketchPoint& p : set.points) lines.push_back(p.line);
+  std::nth_element(lines.begin(), lines.begin() + kMaxSketchEntities, lines.end());
+  fail_at(file, lines[kMaxSketchEntities],
+          fmt::format("the drawing has {} entities (lines, arcs, curves, circles and points); at most {} are read, "
+                      "and this is the first one over",
+                      count, kMaxSketchEntities));
+}
+
+}  // namespace
+
 Sketch finish_sketch(StrokeSet set, const std::string& file, int last_line, const std::string& what) {
+  check_entity_count(set, file);
   Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   const auto grow = [&](const Vector2d& p) {
     lo = lo.cwiseMin(p);
@@ -278,6 +304,10 @@ Sketch finish_sketch(StrokeSet set, const std::string& file, int last_line, cons
   const double tolerance = size > 0 ? kRelativeCurveTolerance * size : 1.0;
   for (const Chained& c : chain(set.strokes, 1e-6 * size, file)) {
     sketch.loops.push_back(polygonised_loop(c, tolerance, file));
+    if (sketch.loops.back().vertices.size() > kMaxLoopVertices)
+      fail_at(file, sketch.loops.back().lines.front(),
+              fmt::format("the outline starting here has {} vertices once its curves are cut into chords; at most {}",
+                          sketch.loops.back().vertices.size(), kMaxLoopVertices));
     check_loop(sketch.loops.back(), file);
   }
   if (sketch.loops.empty()) fail_at(file, last_line, "the drawing has no closed outline" + what);

@@ -9,9 +9,11 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "drawing_rounding.hpp"
+#include "model/box_index.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
 
@@ -33,6 +35,7 @@ std::vector<Vector2d> chords(const SketchLoop& loop) {
 }
 
 bool inside(const std::vector<Vector2d>& polygon, const Vector2d& p) {
+  add_geometry_work(polygon.size());
   bool in = false;
   for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
     const Vector2d& a = polygon[i];
@@ -46,13 +49,15 @@ bool inside(const std::vector<Vector2d>& polygon, const Vector2d& p) {
 
 // Whether `inner` lies wholly inside `outer`: a vertex inside is not enough, as two links
 // drawn overlapping at their joint each have vertices inside the other.
+Eigen::AlignedBox2d box_of(const std::vector<Vector2d>& p) {
+  Eigen::AlignedBox2d b;
+  for (const Vector2d& v : p) b.extend(v);
+  return b;
+}
+
 bool wholly_inside(const std::vector<Vector2d>& inner, const std::vector<Vector2d>& outer) {
-  const auto box = [](const std::vector<Vector2d>& p) {
-    Eigen::AlignedBox2d b;
-    for (const Vector2d& v : p) b.extend(v);
-    return b;
-  };
-  if (!box(outer).contains(box(inner))) return false;  // the common case, without the edge pairs
+  add_geometry_work(1);
+  if (!box_of(outer).contains(box_of(inner))) return false;  // the common case, without the edge pairs
   return std::all_of(inner.begin(), inner.end(), [&](const Vector2d& v) { return inside(outer, v); }) &&
          !polygons_meet(inner, outer);
 }
@@ -130,13 +135,14 @@ std::vector<Body> plates_of(const Sketch& sketch, const Outlines& outlines, cons
   const auto& polygons = outlines.polygons;
   const auto& areas = outlines.areas;
   // Each loop's containers, wholly around it; they must nest in turn, or the outline lies in
-  // two that cross and could be a hole of either.
-  std::vector<std::vector<bool>> contains(n, std::vector<bool>(n, false));
-  for (std::size_t j = 0; j < n; ++j) {
-    for (std::size_t i = 0; i < n; ++i) {
-      contains[j][i] = i != j && areas[j] > areas[i] && wholly_inside(polygons[i], polygons[j]);
-    }
-  }
+  // two that cross and could be a hole of either. A container's box holds the loop's, so the
+  // candidates are the loops whose boxes meet its box (not all n², which 50 000 squares were).
+  const auto contains = [&](std::size_t j, std::size_t i) {
+    return i != j && areas[j] > areas[i] && wholly_inside(polygons[i], polygons[j]);
+  };
+  std::vector<Eigen::AlignedBox2d> boxes;
+  for (const auto& polygon : polygons) boxes.push_back(box_of(polygon));
+  const BoxIndex index(boxes);
   const auto crossing = [&](std::size_t i, std::size_t a, std::size_t b) {
     return Error(ErrorKind::InvalidModel,
                  fmt::format("this outline lies inside two outlines that cross (at lines {} and {}); outlines must "
@@ -147,11 +153,13 @@ std::vector<Body> plates_of(const Sketch& sketch, const Outlines& outlines, cons
   std::vector<int> parent(n, -1);
   std::vector<int> depth(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) {
-      if (!contains[j][i]) continue;
-      for (std::size_t k = 0; k < j; ++k) {
-        if (contains[k][i] && !contains[j][k] && !contains[k][j]) throw crossing(i, k, j);
+    std::vector<std::size_t> containers;  // ascending, as the scan of every loop met them
+    for (std::size_t j : index.meeting(boxes[i])) {
+      if (!contains(j, i)) continue;
+      for (std::size_t k : containers) {
+        if (!contains(j, k) && !contains(k, j)) throw crossing(i, k, j);
       }
+      containers.push_back(j);
       ++depth[i];
       if (parent[i] < 0 || areas[j] < areas[static_cast<std::size_t>(parent[i])]) parent[i] = static_cast<int>(j);
     }
@@ -194,23 +202,60 @@ void name_bodies(const Sketch& sketch, std::vector<Body>& bodies) {
   }
 }
 
+// The joints found so far in cells, so that finding the first one within `same`
+// of a point looks at the joints around it, not at all of them (40 000 circles were 8e8 tests).
+class JointCells {
+ public:
+  explicit JointCells(double same) : same_(same) {}
+  // The first joint (in the order they were added) within `same` of p, as a scan of them all
+  // would find it.
+  std::optional<std::size_t> first_near(const std::vector<Joint>& joints, const Vector2d& p) const {
+    std::optional<std::size_t> first;
+    const auto [i, j] = cell(p);
+    for (long long di = -1; di <= 1; ++di)
+      for (long long dj = -1; dj <= 1; ++dj)
+        if (const auto it = cells_.find({i + di, j + dj}); it != cells_.end())
+          for (std::size_t k : it->second) {
+            add_geometry_work(1);
+            if ((!first || k < *first) && (joints[k].at - p).norm() <= same_) first = k;
+          }
+    return first;
+  }
+  void add(const Vector2d& p, std::size_t k) { cells_[cell(p)].push_back(k); }
+
+ private:
+  // Cells of twice `same` (so that rounding cannot put two points within `same` two cells
+  // apart), or, when that is 0, of the exact point (only equal points are within 0);
+  // beyond ±1e15 cells the coordinates share a cell, which only costs tests, never a joint.
+  std::pair<long long, long long> cell(const Vector2d& p) const {
+    const auto index = [&](double x) {
+      const double c = same_ > 0 ? std::floor(x / (2 * same_)) : x;
+      return static_cast<long long>(std::clamp(std::isnan(c) ? 0.0 : c, -1e15, 1e15));
+    };
+    return {index(p.x()), index(p.y())};
+  }
+  double same_;
+  std::map<std::pair<long long, long long>, std::vector<std::size_t>> cells_;
+};
+
 // Points: circle centres that coincide (within `same`) are one; then the marked points.
 std::vector<Joint> joints_of(const Sketch& sketch, double same) {
   std::vector<Joint> joints;
+  JointCells cells(same);
   for (const SketchCircle& c : sketch.circles) {
-    auto it = std::find_if(joints.begin(), joints.end(),
-                           [&](const Joint& j) { return (j.at - c.circle.centre).norm() <= same; });
-    if (it == joints.end()) {
+    const std::optional<std::size_t> near = cells.first_near(joints, c.circle.centre);
+    if (!near) {
+      cells.add(c.circle.centre, joints.size());
       joints.push_back({c.circle.centre, c.circle.radius, c.line});
-    } else if (c.circle.radius < it->radius) {
-      it->radius = c.circle.radius;
-      it->line = c.line;
+    } else if (Joint& it = joints[*near]; c.circle.radius < it.radius) {
+      it.radius = c.circle.radius;
+      it.line = c.line;
     }
   }
   for (const SketchPoint& p : sketch.points) {
-    const bool known =
-        std::any_of(joints.begin(), joints.end(), [&](const Joint& j) { return (j.at - p.at).norm() <= same; });
-    if (!known) joints.push_back({p.at, 0.0, p.line});
+    if (cells.first_near(joints, p.at)) continue;
+    cells.add(p.at, joints.size());
+    joints.push_back({p.at, 0.0, p.line});
   }
   return joints;
 }
@@ -221,11 +266,20 @@ std::vector<int> place_joints(const Sketch& sketch, const Outlines& outlines, co
                               std::vector<Body>& bodies, const SketchModelOptions& options) {
   const auto& polygons = outlines.polygons;
   std::vector<int> bodies_at(joints.size(), 0);
+  // Only the joints in a plate's box can be in it, and only the holes whose box holds a joint
+  // can hold it: the indexes keep a plate of 40 000 pin holes from testing every pair.
+  std::vector<Eigen::AlignedBox2d> joint_boxes;
+  for (const Joint& j : joints) joint_boxes.emplace_back(j.at);
+  const BoxIndex joint_index(joint_boxes);
   for (Body& b : bodies) {
-    for (std::size_t j = 0; j < joints.size(); ++j) {
+    std::vector<Eigen::AlignedBox2d> hole_boxes;
+    for (std::size_t h : b.holes) hole_boxes.push_back(box_of(polygons[h]));
+    const BoxIndex hole_index(hole_boxes);
+    for (std::size_t j : joint_index.meeting(box_of(polygons[b.loop]))) {
       if (!inside(polygons[b.loop], joints[j].at)) continue;
-      if (std::any_of(b.holes.begin(), b.holes.end(),
-                      [&](std::size_t h) { return inside(polygons[h], joints[j].at); })) {
+      const std::vector<std::size_t> near = hole_index.meeting(Eigen::AlignedBox2d(joints[j].at));
+      if (std::any_of(near.begin(), near.end(),
+                      [&](std::size_t h) { return inside(polygons[b.holes[h]], joints[j].at); })) {
         continue;
       }
       b.points.push_back(j);
@@ -247,25 +301,37 @@ void check_pin_holes(const Sketch& sketch, const Outlines& outlines, const std::
                      const std::vector<Body>& bodies, const SketchModelOptions& options) {
   const auto& polygons = outlines.polygons;
   for (const Body& b : bodies) {
-    for (auto hole = b.pin_holes.begin(); hole != b.pin_holes.end(); ++hole) {
-      const Joint& j = joints[hole->first];
+    // The other holes and pin holes near each pin hole, from indexes, in the order of a scan.
+    std::vector<Eigen::AlignedBox2d> hole_boxes;
+    for (std::size_t h : b.holes) hole_boxes.push_back(box_of(polygons[h]));
+    const BoxIndex hole_index(hole_boxes);
+    std::vector<std::pair<std::size_t, double>> pins(b.pin_holes.begin(), b.pin_holes.end());
+    std::vector<Eigen::AlignedBox2d> pin_boxes;
+    for (const auto& [point, radius] : pins) pin_boxes.push_back(circle_bounds({joints[point].at, radius}));
+    const BoxIndex pin_index(pin_boxes);
+    for (std::size_t p = 0; p < pins.size(); ++p) {
+      const Joint& j = joints[pins[p].first];
+      const double radius = pins[p].second;
       const auto refuse = [&](const std::string& what, int line) {
         throw Error(ErrorKind::InvalidModel,
                     fmt::format("this pin hole (centre ({:.6g}, {:.6g}), radius {:.6g}) {} at line {}: a plate "
                                 "must hold its holes apart and inside its outline",
-                                j.at.x(), j.at.y(), hole->second, what, line),
+                                j.at.x(), j.at.y(), radius, what, line),
                     {}, options.source_name, {j.line, 1});
       };
-      const Circle disc{j.at, hole->second};
+      const Circle disc{j.at, radius};
       if (!circle_clear_of_edges(disc, polygons[b.loop]))
         refuse("meets the outline drawn", sketch.loops[b.loop].lines.front());
-      for (std::size_t h : b.holes) {
+      for (std::size_t k : hole_index.meeting(pin_boxes[p])) {
+        const std::size_t h = b.holes[k];
         if (inside(polygons[h], j.at) || !circle_clear_of_edges(disc, polygons[h]))
           refuse("meets the hole drawn", sketch.loops[h].lines.front());
       }
-      for (auto other = b.pin_holes.begin(); other != hole; ++other) {
-        const Joint& k = joints[other->first];
-        if ((k.at - j.at).norm() <= hole->second + other->second) refuse("overlaps the pin hole drawn", k.line);
+      for (std::size_t q : pin_index.meeting(pin_boxes[p])) {
+        if (q >= p) break;
+        add_geometry_work(1);
+        const Joint& k = joints[pins[q].first];
+        if ((k.at - j.at).norm() <= radius + pins[q].second) refuse("overlaps the pin hole drawn", k.line);
       }
     }
   }

@@ -42,6 +42,13 @@ struct StrokeSet {
   std::vector<std::string> annotations;
 };
 
+// The most entities (strokes, circles and points together) a drawing may hold, and the most
+// vertices an outline may have once its curves are cut into chords: the import is near-linear
+// in them (docs/robustness.md), and past them it is refused at the line of the first entity
+// over the count (or of the outline) instead of working for minutes.
+inline constexpr std::size_t kMaxSketchEntities = 200000;
+inline constexpr std::size_t kMaxLoopVertices = 1000000;
+
 // Chains the strokes into loops, polygonises their curves, checks that no loop crosses
 // itself; errors (ModelFileError) at `file`'s lines. `last_line` is where "nothing closed" is
 // reported; `what` names what was read ("on the layer 'x'") for that message.
