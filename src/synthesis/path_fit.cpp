@@ -8,8 +8,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -496,6 +499,7 @@ std::vector<PathStart> five_point_starts(const PathFitTask& task, const PathFitO
       try {
         SolverOptions solver;
         solver.seed = options.seed;
+        solver.stop = options.stop;
         for (const FivePointSolution& s : solve_five_point(problem, solver).solutions)
           if (s.real) out.push_back({frame.to_task(s.design), "five-point"});
       } catch (const Error& e) {  // pivots too close for the solver: skip them
@@ -533,7 +537,36 @@ std::vector<PathStart> nine_point_starts(const PathFitTask& task, const PathFitO
 
 std::vector<StartProvider> default_start_providers() { return {sampled_starts, five_point_starts, nine_point_starts}; }
 
-PathFitResult fit_path(const PathFitTask& task, const PathFitOptions& options) {
+namespace {
+
+// `options` with its stop also asked whether `share` of the time budget from `start` has run
+// out, which it records in `spent`.
+PathFitOptions with_budget(const PathFitOptions& options, std::chrono::steady_clock::time_point start, double share,
+                           const std::shared_ptr<std::atomic<bool>>& spent) {
+  if (!(options.time_budget > 0)) return options;
+  PathFitOptions bounded = options;
+  const auto deadline = start + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                    std::chrono::duration<double>(share * options.time_budget));
+  bounded.stop = [stop = options.stop, deadline, spent] {
+    if (stop && stop()) return true;
+    if (std::chrono::steady_clock::now() < deadline) return false;
+    spent->store(true);
+    return true;
+  };
+  return bounded;
+}
+
+}  // namespace
+
+PathFitResult fit_path(const PathFitTask& task, const PathFitOptions& given) {
+  if (!(given.time_budget >= 0) || !std::isfinite(given.time_budget))
+    throw Error(ErrorKind::BadInput, "the path fit's time budget must be a finite number of seconds, 0 for none");
+  // The starts get half the budget, so that the fits from the starts found by then have the
+  // rest: a budget spent on five-point solves alone would list nothing.
+  const auto spent = std::make_shared<std::atomic<bool>>(false);
+  const auto begun = std::chrono::steady_clock::now();
+  const PathFitOptions finding = with_budget(given, begun, 0.5, spent);
+  const PathFitOptions options = with_budget(given, begun, 1.0, spent);
   const long evaluations_before = coupler_point_evaluations();
   const Frame frame = frame_of(task.targets);
   std::vector<Vector2d> unit;
@@ -545,7 +578,7 @@ PathFitResult fit_path(const PathFitTask& task, const PathFitOptions& options) {
   PathFitResult result;
   std::vector<PathStart> starts;
   for (const StartProvider& provider : options.providers.empty() ? default_start_providers() : options.providers) {
-    std::vector<PathStart> more = provider(task, options);
+    std::vector<PathStart> more = provider(task, finding);
     if (!more.empty()) result.start_counts.push_back(fmt::format("{} {}", more.size(), more.front().origin));
     starts.insert(starts.end(), more.begin(), more.end());
   }
@@ -602,6 +635,7 @@ PathFitResult fit_path(const PathFitTask& task, const PathFitOptions& options) {
       result.fits.push_back(f);
   }
   result.evaluations = coupler_point_evaluations() - evaluations_before;
+  result.budget_spent = spent->load();
   return result;
 }
 

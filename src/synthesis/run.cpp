@@ -327,6 +327,11 @@ Outcome path(const SynthesisTask& task, const SynthesisRunOptions& run) {
   });
   out.notes.push_back(fmt::format("starts: {}; {} coupler-point evaluations", fmt::join(result.start_counts, ", "),
                                   result.evaluations));
+  if (result.budget_spent)
+    out.notes.push_back(
+        fmt::format("the fit stopped at its time budget of {:g} s after {} starts (the solves and fits "
+                    "not yet run were skipped): the designs listed are the best found by then",
+                    options.time_budget, result.starts));
   if (result.rejected > 0)
     out.notes.push_back(fmt::format("{} local {} a constraint and {} not listed", result.rejected,
                                     result.rejected == 1 ? "optimum broke" : "optima broke",

@@ -63,6 +63,9 @@ struct PathFitOptions;
 // Starting designs for the fit, in the targets' coordinates.
 using StartProvider = std::function<std::vector<PathStart>(const PathFitTask&, const PathFitOptions&)>;
 
+// The default time budget of a fit, seconds.
+inline constexpr double kDefaultPathFitBudget = 30.0;
+
 struct PathFitOptions {
   std::uint64_t seed = 1;
   int samples = 4000;          // random four-bars screened by sampled_starts
@@ -73,7 +76,14 @@ struct PathFitOptions {
   int max_fits = 30;           // distinct optima kept, best first
   // Empty: default_start_providers().
   std::vector<StartProvider> providers;
-  std::function<bool()> stop;              // asked between starts; true stops (the fits so far are kept)
+  // Asked between starts, between the five-point solves' paths and between the nine-point
+  // subsets; true stops (the fits so far are kept). From worker threads too: thread-safe.
+  std::function<bool()> stop;
+  // Seconds of wall-clock time for the whole fit (0: no limit). When it runs out the fit stops
+  // as `stop` would, keeps what it found and sets PathFitResult::budget_spent: ten points on a
+  // nearly straight line kept the five-point solves of the starts busy for minutes, where a
+  // usual task takes about a second (docs/synthesis-path.md).
+  double time_budget = kDefaultPathFitBudget;
   std::function<void(int, int)> progress;  // (starts fitted, starts)
 };
 
@@ -102,6 +112,7 @@ struct PathFitResult {
   int rejected = 0;                       // optima dropped because they break a constraint
   long evaluations = 0;                   // coupler-point evaluations in all (screening included)
   std::vector<std::string> start_counts;  // "40 sampled", "93 five-point"
+  bool budget_spent = false;              // the time budget ran out: the fits are the best found by then
 };
 
 // Throws Error(ErrorKind::InvalidModel) for fewer than 10 targets, non-finite ones, or targets that all
