@@ -247,14 +247,15 @@ TEST(ReaderScaling, TooManyEntitiesInADrawingAreRefusedAtTheFirstOneOver) {
 // One hole more than a plate may have: refused at that hole's line and column.
 TEST(ReaderScaling, TooManyHolesInAModelAreRefusedAtTheFirstOneOver) {
   const std::string text = model_with_holes(static_cast<int>(kMaxHolesPerPlate) + 1);
-  // The holes are listed from line 13, one a line, at column 11 ("        - {circle...").
+  // The holes are listed from line 14, one a line, at column 11 ("        - {circle...").
   try {
     io::parse_model(text, "m.yaml");
     FAIL() << "a plate of 100 001 holes was read";
   } catch (const io::ModelFileError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "m.yaml:100013:11: the shape of 'coupler' is not valid: a plate has at most 100000 holes; this is one "
-              "more");
+    EXPECT_EQ(
+        std::string(e.what()),
+        "m.yaml:100014:11: the shape of body 'coupler' is not valid: a plate has at most 100000 holes; this is one "
+        "more");
   }
 }
 
