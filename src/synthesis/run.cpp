@@ -293,6 +293,9 @@ Outcome path(const SynthesisTask& task, const SynthesisRunOptions& run) {
   PathFitOptions options;
   options.seed = run.seed;
   options.nine_point_subsets = task.nine_point_starts;
+  // A nine-point subset is a whole nine-point solve (seconds to a minute): each asked for
+  // brings its own share of time.
+  options.time_budget = kDefaultPathFitBudget * (1 + task.nine_point_starts);
   options.stop = [&run] { return run.control.should_stop("starts", 0, 0); };
   options.progress = [&run](int done, int total) {
     if (run.control.on_progress && !run.control.on_progress(Progress{"starts", done, total}))
