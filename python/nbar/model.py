@@ -378,6 +378,43 @@ class Model:
         kinetic and potential energy."""
         return self.solve(steps=steps, columns=columns, dynamics=True, **options)
 
+    def simulate(self, to: float, dt: Optional[float] = None, rtol: Optional[float] = None, columns: Columns = None,
+                 max_steps: Optional[int] = None, partial: bool = False,
+                 timeout: Optional[float] = None) -> Result:
+        """Lets the mechanism move under its loads for ``to`` seconds (``nbar simulate``): the
+        drivers marked ``free: true`` are released, the others stay kinematic. A row every ``dt``
+        seconds (default ``to``/100) with the columns of ``solve`` and the energies
+        (``energy.kinetic``, ``energy.balance``...); ``rtol`` is the integrator's relative
+        tolerance (default 1e-8).
+
+        ``result.statistics`` holds the integrator's steps, the largest constraint drift and
+        energy error. A run that cannot continue (a toggle, a step size too small) raises
+        ``nbar.LimitError`` with the rows so far as ``.result``, unless ``partial=True``."""
+        patterns = _patterns(columns)
+        run = _nbar.simulate(self._c, to=_number("to", to), dt=_real("dt", dt), rtol=_real("rtol", rtol),
+                             max_steps=_whole("max_steps", max_steps, minimum=1), timeout=_real("timeout", timeout))
+        result = Result(run, *self._simulated_columns(run, patterns))
+        result.default_x = "t"
+        if not result.complete and not partial:
+            line, column = run.stop_place or (None, None)
+            raise LimitError(f"the simulation stopped early: {result.stop_reason} ({result.rows} rows; "
+                             f"simulate(..., partial=True) returns them)", kind="stopped_at_limit", file=self._c.file,
+                             line=line, column=column, result=result)
+        return result
+
+    @staticmethod
+    def _simulated_columns(run: Any, patterns: Optional[List[str]]) -> Tuple[Any, ...]:
+        """The run's columns ``patterns`` pick; a pattern that picks none is the ColumnError
+        ``solve`` raises, with the names it is closest to."""
+        try:
+            return tuple(run.table(patterns))
+        except BadInputError:
+            names = run.table(None)[0]
+            for pattern in patterns or []:
+                if _nbar.pick_columns(names, [pattern])[1]:
+                    raise _no_column(pattern, names) from None
+            raise
+
     def stress(self, steps: Optional[int] = None, sections: int = 200, timeout: Optional[float] = None,
                max_steps: Optional[int] = None, method: str = "beam",
                mesh_size: Optional[float] = None, partial: bool = False) -> StressResult:

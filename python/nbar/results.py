@@ -85,6 +85,11 @@ class Result(Table):
     - ``max_residual``: the largest constraint residual over the sweep, in the model's length unit.
     - ``transmission_angles``: per four-bar loop, ``{"min", "max", "design"}`` over the sweep (model
       angle unit; ``design`` is the smallest of min(mu, 180 deg - mu)) and the step of each.
+    - ``statistics``: a simulation's (``Model.simulate``) integrator steps, constraint drift and
+      energy error; None for a sweep.
+
+    A simulation's Result is the same, its rows in time (``t``); ``max_residual`` is its largest
+    position drift, and it has no warnings, branches or transmission angles.
     """
 
     def __init__(self, analysis, names, units, arrays):
@@ -100,6 +105,9 @@ class Result(Table):
         self.transmission_angles: Dict[str, Dict[str, float]] = dict(analysis.transmission_angles)
         self.forces_unique: Optional[bool] = analysis.forces_unique
         self.default_x: Optional[str] = None  # the column plots run along, as the CLI's plots
+        # A simulation's (Model.simulate) integrator steps, largest constraint drift and energy
+        # error; None for a sweep, which has no integrator.
+        self.statistics: Optional[Dict[str, Any]] = getattr(analysis, "statistics", None)
 
     def to_json(self) -> str:
         """The JSON that ``nbar solve --format json`` writes for these columns."""
@@ -117,7 +125,7 @@ class Result(Table):
 
 # What a Result reports besides its columns, in the order its docstring gives them.
 _RESULT_FIELDS = ("columns", "complete", "stop_reason", "warnings", "max_residual", "branches",
-                  "transmission_angles", "forces_unique", "default_x")
+                  "transmission_angles", "forces_unique", "default_x", "statistics")
 
 
 class _KeptJson:

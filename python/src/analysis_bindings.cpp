@@ -13,6 +13,7 @@
 #include "nbar/analysis/columns.hpp"
 #include "nbar/analysis/pose.hpp"
 #include "nbar/analysis/summary.hpp"
+#include "nbar/dynamics/forward_dynamics.hpp"
 #include "nbar/io/results_writer.hpp"
 #include "nbar/render/animation.hpp"
 #include "nbar/render/pictures.hpp"
@@ -251,6 +252,98 @@ py::tuple section_profile(const PyAnalysis& a, const std::string& body_name, int
   return as_arrays(request::StressRequest::read(options).section_profile_table(a.analysis));
 }
 
+// A simulation (nbar simulate) as Python holds it: the run, and the request that chose its
+// options and picks its columns.
+struct PySimulation {
+  std::shared_ptr<PyModel> model;
+  request::SimulateRequest request;
+  Simulation simulation;
+};
+
+// Python's arguments read by the command line's rules (request::SimulateRequest): the same
+// ranges, defaults and messages as `nbar simulate`'s flags.
+std::shared_ptr<PySimulation> run_simulation(std::shared_ptr<PyModel> model, double to, std::optional<double> dt,
+                                             std::optional<double> rtol, std::optional<long long> max_steps,
+                                             std::optional<double> timeout) {
+  request::Options given;
+  given.set("to", to);
+  if (dt) given.set("dt", *dt);
+  if (rtol) given.set("rtol", *rtol);
+  if (max_steps) given.set("max_steps", *max_steps);
+  auto out = std::make_shared<PySimulation>();
+  out->model = model;
+  out->request = request::SimulateRequest::read(given);
+  RunControl control;
+  run_interruptible(control, timeout, [&] {
+    try {
+      out->simulation = simulate(*model->mechanism, out->request.simulation_options(), control);
+    } catch (const Error& e) {
+      throw located(*model, e);
+    }
+  });
+  return out;
+}
+
+// The columns matching `patterns` (every column without them), or an error at `columns`.
+ResultTable simulation_columns(const PySimulation& s, const std::optional<std::vector<std::string>>& patterns) {
+  request::SimulateRequest picked = s.request;
+  picked.columns = patterns.value_or(std::vector<std::string>{});
+  return picked.table(*s.model->mechanism, s.simulation);
+}
+
+void bind_simulation(py::module_& m) {
+  py::class_<PySimulation, std::shared_ptr<PySimulation>>(m, "Simulation", "One run of the forward dynamics")
+      .def_property_readonly("complete", [](const PySimulation& s) { return s.simulation.complete; })
+      .def_property_readonly("stop_reason", [](const PySimulation& s) { return s.simulation.stop_reason; })
+      // Where the command line places the stop: the line and column of the entity concerned.
+      .def_property_readonly("stop_place",
+                             [](const PySimulation& s) {
+                               const SourceMark at = s.model->file.source.find(s.simulation.stop_where);
+                               return !s.simulation.complete && at.line > 0
+                                          ? py::object(py::make_tuple(at.line, at.column))
+                                          : py::object(py::none());
+                             })
+      .def_property_readonly("samples", [](const PySimulation& s) { return s.simulation.samples.size(); })
+      // A Result's fields that a sweep has and a simulation has not: no branches, no change points.
+      .def_property_readonly("warnings", [](const PySimulation&) { return py::list(); })
+      .def_property_readonly("branches", [](const PySimulation&) { return py::list(); })
+      .def_property_readonly("transmission_angles", [](const PySimulation&) { return py::dict(); })
+      .def_property_readonly("forces_unique", [](const PySimulation&) { return py::none(); })
+      .def_property_readonly("max_residual",
+                             [](const PySimulation& s) {
+                               return s.simulation.statistics.drift.position / s.model->file.model.units.length_scale;
+                             })
+      .def_property_readonly(
+          "statistics",
+          [](const PySimulation& s) {
+            const SimulationStatistics& st = s.simulation.statistics;
+            const double length = s.model->file.model.units.length_scale;
+            return py::dict(py::arg("accepted_steps") = st.accepted_steps,
+                            py::arg("rejected_steps") = st.rejected_steps, py::arg("evaluations") = st.evaluations,
+                            py::arg("smallest_step") = st.smallest_step, py::arg("largest_step") = st.largest_step,
+                            py::arg("largest_energy_error") = st.largest_energy_error,
+                            py::arg("drift") = py::dict(py::arg("position") = st.drift.position / length,
+                                                        py::arg("velocity") = st.drift.velocity / length,
+                                                        py::arg("acceleration") = st.drift.acceleration / length));
+          })
+      .def(
+          "table",
+          [](const PySimulation& s, const std::optional<std::vector<std::string>>& columns) {
+            return as_arrays(simulation_columns(s, columns));
+          },
+          py::arg("columns") = std::nullopt)
+      .def(
+          "json",
+          [](const PySimulation& s, const std::optional<std::vector<std::string>>& columns) {
+            std::ostringstream out;
+            io::write_simulation_json(out, *s.model->mechanism, s.simulation, simulation_columns(s, columns));
+            return out.str();
+          },
+          py::arg("columns") = std::nullopt);
+  m.def("simulate", &run_simulation, py::arg("model"), py::arg("to"), py::arg("dt") = std::nullopt,
+        py::arg("rtol") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("timeout") = std::nullopt);
+}
+
 }  // namespace
 
 void bind_analysis(py::module_& m) {
@@ -332,6 +425,7 @@ void bind_analysis(py::module_& m) {
       },
       py::arg("model"), py::arg("steps"), py::arg("order") = 2);
   m.def("report", &report, py::arg("model"), py::arg("frames") = 72, py::arg("timeout") = std::nullopt);
+  bind_simulation(m);
 }
 
 }  // namespace nbar::python

@@ -1,0 +1,110 @@
+"""Model.simulate: the forward dynamics of `nbar simulate` from Python, checked against a motion
+integrated here (the same reference as the C++ test ForwardDynamics.RedundantParallelogram...)."""
+
+import math
+import pickle
+
+import numpy as np
+import pytest
+
+import nbar
+
+# Three equal cranks (0.1 m, 0.4 kg, 2e-4 kg m^2 about their middles) carry a coupler of 1.5 kg,
+# which translates: the whole is one pendulum in the crank angle th,
+#   (3 (I + m r^2/4) + M r^2) th'' = -(3 m r/2 + M r) g cos th,
+# released at th = 0 with th' = 30 deg/s. The third crank repeats a constraint.
+PARALLELOGRAM = """units: {length: m, angle: deg}
+points:
+  O1: [0, 0]
+  O2: [0.3, 0]
+  O3: [0.15, 0.12]
+  A1: [0.1, 0]
+  A2: [0.4, 0]
+  A3: [0.25, 0.12]
+ground: [O1, O2, O3]
+gravity: [0, -9.81]
+bodies:
+  crank1: {points: [O1, A1], mass: 0.4, inertia: 2e-4, cg: [0.05, 0]}
+  crank2: {points: [O2, A2], mass: 0.4, inertia: 2e-4, cg: [0.35, 0]}
+  crank3: {points: [O3, A3], mass: 0.4, inertia: 2e-4, cg: [0.2, 0.12]}
+  coupler: {points: [A1, A2, A3], mass: 1.5, cg: [0.25, 0.05]}
+drivers:
+  - {angle: crank1, free: true, initial_speed: 30}
+"""
+
+
+def pendulum_angle(t, steps=20000):
+    """th(t) of the equivalent pendulum, by the classical Runge-Kutta method."""
+    r, m, inertia, big_m, g = 0.1, 0.4, 2e-4, 1.5, 9.81
+    k = (3 * m * r / 2 + big_m * r) * g / (3 * (inertia + m * r * r / 4) + big_m * r * r)
+
+    def f(th, w):
+        return w, -k * math.cos(th)
+
+    th, w, h = 0.0, math.radians(30), t / steps
+    for _ in range(steps):
+        a1, b1 = f(th, w)
+        a2, b2 = f(th + h / 2 * a1, w + h / 2 * b1)
+        a3, b3 = f(th + h / 2 * a2, w + h / 2 * b2)
+        a4, b4 = f(th + h * a3, w + h * b3)
+        th += h / 6 * (a1 + 2 * a2 + 2 * a3 + a4)
+        w += h / 6 * (b1 + 2 * b2 + 2 * b3 + b4)
+    return th
+
+
+@pytest.fixture(scope="module")
+def parallelogram():
+    return nbar.loads(PARALLELOGRAM, "parallelogram.yaml")
+
+
+def test_simulate_follows_the_pendulum_it_is(parallelogram):
+    r = parallelogram.simulate(to=2, dt=0.5, rtol=1e-12)
+    assert r.complete and r.stop_reason is None
+    assert list(r["t"]) == [0, 0.5, 1.0, 1.5, 2.0]
+    for t, crank1, crank3 in zip(r["t"], r["crank1"], r["crank3.angle"]):
+        expected = math.degrees(pendulum_angle(t))
+        assert crank1 == pytest.approx(expected, abs=1e-7)  # deg: 2e-9 rad
+        assert math.remainder(crank3 - expected, 360) == pytest.approx(0, abs=1e-7)
+    assert r.units["crank1"] == "deg" and r.units["energy.kinetic"] == "J"
+    # Conservative: the balance stays at the integration error; the drift at rounding.
+    assert np.max(np.abs(r["energy.balance"])) < 1e-9
+    assert r.statistics is not None
+    assert r.statistics["drift"]["position"] < 1e-12 and r.max_residual == r.statistics["drift"]["position"]
+    assert r.statistics["accepted_steps"] > 10 and r.statistics["evaluations"] > 6 * r.statistics["accepted_steps"]
+
+
+def test_simulate_columns_pandas_json_and_pickle(parallelogram):
+    import json
+    r = parallelogram.simulate(to=0.2, columns="t,crank1,energy.*")
+    assert r.columns == ["t", "crank1", "energy.kinetic", "energy.potential", "energy.spring", "energy.dissipated",
+                         "energy.work", "energy.balance"]
+    assert r.rows == 101  # dt defaults to to/100
+    data = json.loads(r.to_json())
+    assert data["complete"] is True and data["free_drivers"] == ["crank1"]
+    assert data["columns"] == r.columns and len(data["rows"]) == 101
+    pytest.importorskip("pandas")
+    frame = r.to_pandas()
+    assert frame["crank1"].iloc[-1] == r["crank1"][-1] and frame.attrs["units"]["t"] == "s"
+    again = pickle.loads(pickle.dumps(r))
+    assert again.statistics == r.statistics and list(again["crank1"]) == list(r["crank1"])
+
+
+def test_a_run_that_stops_early_raises_with_the_rows_so_far(parallelogram):
+    with pytest.raises(nbar.LimitError) as caught:
+        parallelogram.simulate(to=2, dt=0.01, max_steps=5)
+    assert "more than 5 steps" in str(caught.value)
+    partial = caught.value.result
+    assert not partial.complete and 0 < partial.rows < 201
+    again = parallelogram.simulate(to=2, dt=0.01, max_steps=5, partial=True)
+    assert list(again["t"]) == list(partial["t"])
+
+
+def test_simulate_options_are_the_command_lines(parallelogram):
+    with pytest.raises(nbar.BadInputError, match="rtol"):
+        parallelogram.simulate(to=1, rtol=0.5)
+    with pytest.raises(nbar.BadInputError, match="to"):
+        parallelogram.simulate(to=0)
+    with pytest.raises(nbar.BadInputError, match="dt"):
+        parallelogram.simulate(to=10, dt=1e-6)  # more than a million rows
+    with pytest.raises(nbar.ColumnError, match="did you mean 'crank1'"):
+        parallelogram.simulate(to=0.1, columns="crank")
