@@ -42,6 +42,13 @@ int run_simulate(const SimulateCommand& command) {
     io::write_text_table(output.stream(), table, terminal_width());
   else
     io::write_csv(output.stream(), table);
+  // The events: in the JSON's "events"; after a table; on standard error beside a CSV, which stays
+  // rows only.
+  if (request.format == "table")
+    for (const SimulationEvent& event : simulation.events) output.stream() << "Event: " << event.message << '\n';
+  else if (request.format == "csv")
+    for (const SimulationEvent& event : simulation.events)
+      std::cerr << command.model << ": event: " << event.message << '\n';
   if (!output.finish()) return kBadUsage;
   if (simulation.complete) return kOk;
   // The rows so far are written; the reason is said at the entity concerned.
@@ -60,7 +67,7 @@ Command add_simulate_command(CLI::App& app) {
                                      "marked free released: positions, velocities, accelerations and energies in time");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::SimulateRequest::rules());
-  command->flags->add({"to", "dt", "rtol", "max_steps", "format", "columns"});
+  command->flags->add({"to", "dt", "rtol", "max_steps", "format", "columns", "stop_when", "at_toggle"});
   sub->add_option("-o,--output", command->output, "write to FILE instead of standard output")
       ->check(nbar::cli::output_file());
   return {sub, [command] { return run_simulate(*command); }};

@@ -379,20 +379,25 @@ class Model:
         return self.solve(steps=steps, columns=columns, dynamics=True, **options)
 
     def simulate(self, to: float, dt: Optional[float] = None, rtol: Optional[float] = None, columns: Columns = None,
-                 max_steps: Optional[int] = None, partial: bool = False,
-                 timeout: Optional[float] = None) -> Result:
+                 max_steps: Optional[int] = None, stop_when: Optional[str] = None, at_toggle: str = "stop",
+                 partial: bool = False, timeout: Optional[float] = None) -> Result:
         """Lets the mechanism move under its loads for ``to`` seconds (``nbar simulate``): the
         drivers marked ``free: true`` are released, the others stay kinematic. A row every ``dt``
         seconds (default ``to``/100) with the columns of ``solve`` and the energies
         (``energy.kinetic``, ``energy.balance``...); ``rtol`` is the integrator's relative
         tolerance (default 1e-8).
 
-        ``result.statistics`` holds the integrator's steps, the largest constraint drift and
-        energy error. A run that cannot continue (a toggle, a step size too small) raises
+        ``stop_when="slider.x > 200"`` ends the run where a column crosses a value (in its unit),
+        located to 1e-12 s; ``at_toggle="reverse"`` reverses every speed where the constraints
+        become singular instead of stopping there. ``result.events`` lists both with their times;
+        ``result.statistics`` holds the integrator's steps, the largest constraint drift and energy
+        error. A run that cannot continue (a toggle, a step size too small) raises
         ``nbar.LimitError`` with the rows so far as ``.result``, unless ``partial=True``."""
         patterns = _patterns(columns)
         run = _nbar.simulate(self._c, to=_number("to", to), dt=_real("dt", dt), rtol=_real("rtol", rtol),
-                             max_steps=_whole("max_steps", max_steps, minimum=1), timeout=_real("timeout", timeout))
+                             max_steps=_whole("max_steps", max_steps, minimum=1),
+                             stop_when=None if stop_when is None else _text("stop_when", stop_when),
+                             at_toggle=_text("at_toggle", at_toggle), timeout=_real("timeout", timeout))
         result = Result(run, *self._simulated_columns(run, patterns))
         result.default_x = "t"
         if not result.complete and not partial:

@@ -87,6 +87,8 @@ class Result(Table):
       angle unit; ``design`` is the smallest of min(mu, 180 deg - mu)) and the step of each.
     - ``statistics``: a simulation's (``Model.simulate``) integrator steps, constraint drift and
       energy error; None for a sweep.
+    - ``events``: a simulation's toggles and stop condition, each ``{"kind", "time", "row",
+      "message"}``; empty for a sweep.
 
     A simulation's Result is the same, its rows in time (``t``); ``max_residual`` is its largest
     position drift, and it has no warnings, branches or transmission angles.
@@ -108,6 +110,8 @@ class Result(Table):
         # A simulation's (Model.simulate) integrator steps, largest constraint drift and energy
         # error; None for a sweep, which has no integrator.
         self.statistics: Optional[Dict[str, Any]] = getattr(analysis, "statistics", None)
+        # A simulation's events (a toggle, a stop condition met): kind, time (s), row, message.
+        self.events: List[Dict[str, Any]] = list(getattr(analysis, "events", []))
 
     def to_json(self) -> str:
         """The JSON that ``nbar solve --format json`` writes for these columns."""
@@ -125,7 +129,7 @@ class Result(Table):
 
 # What a Result reports besides its columns, in the order its docstring gives them.
 _RESULT_FIELDS = ("columns", "complete", "stop_reason", "warnings", "max_residual", "branches",
-                  "transmission_angles", "forces_unique", "default_x", "statistics")
+                  "transmission_angles", "forces_unique", "default_x", "statistics", "events")
 
 
 class _KeptJson:

@@ -264,12 +264,15 @@ struct PySimulation {
 // ranges, defaults and messages as `nbar simulate`'s flags.
 std::shared_ptr<PySimulation> run_simulation(std::shared_ptr<PyModel> model, double to, std::optional<double> dt,
                                              std::optional<double> rtol, std::optional<long long> max_steps,
+                                             std::optional<std::string> stop_when, std::optional<std::string> at_toggle,
                                              std::optional<double> timeout) {
   request::Options given;
   given.set("to", to);
   if (dt) given.set("dt", *dt);
   if (rtol) given.set("rtol", *rtol);
   if (max_steps) given.set("max_steps", *max_steps);
+  if (stop_when) given.set("stop_when", *stop_when);
+  if (at_toggle) given.set("at_toggle", *at_toggle);
   auto out = std::make_shared<PySimulation>();
   out->model = model;
   out->request = request::SimulateRequest::read(given);
@@ -326,6 +329,15 @@ void bind_simulation(py::module_& m) {
                                                         py::arg("velocity") = st.drift.velocity / length,
                                                         py::arg("acceleration") = st.drift.acceleration / length));
           })
+      .def_property_readonly(
+          "events",
+          [](const PySimulation& s) {
+            py::list out;
+            for (const SimulationEvent& e : s.simulation.events)
+              out.append(py::dict(py::arg("kind") = e.kind == SimulationEvent::Kind::toggle ? "toggle" : "stop_when",
+                                  py::arg("time") = e.time, py::arg("row") = e.row, py::arg("message") = e.message));
+            return out;
+          })
       .def(
           "table",
           [](const PySimulation& s, const std::optional<std::vector<std::string>>& columns) {
@@ -341,7 +353,8 @@ void bind_simulation(py::module_& m) {
           },
           py::arg("columns") = std::nullopt);
   m.def("simulate", &run_simulation, py::arg("model"), py::arg("to"), py::arg("dt") = std::nullopt,
-        py::arg("rtol") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("timeout") = std::nullopt);
+        py::arg("rtol") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("stop_when") = std::nullopt,
+        py::arg("at_toggle") = std::nullopt, py::arg("timeout") = std::nullopt);
 }
 
 }  // namespace

@@ -108,3 +108,30 @@ def test_simulate_options_are_the_command_lines(parallelogram):
         parallelogram.simulate(to=10, dt=1e-6)  # more than a million rows
     with pytest.raises(nbar.ColumnError, match="did you mean 'crank1'"):
         parallelogram.simulate(to=0.1, columns="crank")
+
+
+def test_a_stop_condition_ends_the_run_at_its_time():
+    """A block falling along a vertical guide from y = 0.3 m at 0.5 m/s passes y = -0.2 m at the
+    root of g t^2 / 2 + 0.5 t - 0.5 = 0 (as ForwardDynamics.AStopConditionEndsTheRunAtItsCrossingTime)."""
+    block = nbar.loads("""units: {length: m, angle: deg}
+points: {Y1: [0, 1], Y2: [0, -1], C: [0, 0.3]}
+ground: [Y1, Y2]
+gravity: [0, -9.81]
+bodies:
+  block: {points: [C], mass: 2}
+sliders:
+  - {body: block, point: C, along: [Y1, Y2]}
+drivers:
+  - {slide: block, free: true, initial_speed: 0.5}
+""")
+    r = block.simulate(to=1, dt=0.01, rtol=1e-10, stop_when="C.y < -0.2")
+    g = 9.81
+    expected = (-0.5 + math.sqrt(0.25 + 2 * g * 0.5)) / g
+    assert r.complete and len(r.events) == 1
+    assert r.events[0]["kind"] == "stop_when" and r.events[0]["row"] == r.rows - 1
+    assert r.events[0]["time"] == pytest.approx(expected, abs=1e-10)
+    assert r["t"][-1] == r.events[0]["time"] and r["C.y"][-1] == pytest.approx(-0.2, abs=1e-9)
+    with pytest.raises(nbar.BadInputError, match="stop_when"):
+        block.simulate(to=1, stop_when="C.y is low")
+    with pytest.raises(nbar.BadInputError, match="at_toggle"):
+        block.simulate(to=1, at_toggle="bounce")

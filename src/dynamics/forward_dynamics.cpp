@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -152,7 +154,7 @@ class EquationsOfMotion {
   // accelerations are not determined: a lost rank (a toggle), a free motion without inertia.
   Rates evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
     factorise(t, q);
-    if (reference_rank_ >= 0 && rank_ < reference_rank_) {
+    if (reference_rank_ >= 0 && rank_ < reference_rank_ && !singular_allowed_) {
       throw SimulationStop{"the constraints became singular at " + time_text(t) + " (rank " + std::to_string(rank_) +
                                " of " + std::to_string(reference_rank_) +
                                "): the mechanism reached a toggle or dead-centre position, where its motion is "
@@ -200,6 +202,32 @@ class EquationsOfMotion {
 
   // Set once the start is known: a later rank below it is a singular position.
   void keep_reference_rank() { reference_rank_ = rank_; }
+  // At a located toggle the accelerations are still asked for (its row, the first step after a
+  // reversal): there they come from the larger null space, as if the lost constraint were free.
+  void allow_singular(bool allowed) { singular_allowed_ = allowed; }
+
+  // The toggle's signed measure (docs/dynamics.md, Events). The reference keeps, from the last
+  // factorisation, the rows its pivoting chose as independent (S) and an orthonormal basis U of
+  // their gradients' span; the measure det(U^T J_S^T) / prod |J_s| of the last factorisation
+  // changes sign where those rows become dependent: a toggle or change point. A rank deficiency
+  // the mechanism has everywhere (redundant constraints) is left out with the rows not in S.
+  void keep_toggle_reference() {
+    toggle_rows_.clear();
+    if (kept_rows() == 0) return;
+    for (int i = 0; i < rank_; ++i) toggle_rows_.push_back(qr_.colsPermutation().indices()(i));
+    toggle_span_ = basis_.leftCols(rank_);
+  }
+  double toggle_measure() const {
+    const int r = static_cast<int>(toggle_rows_.size());
+    if (r == 0) return 1.0;
+    Eigen::MatrixXd projected(r, r);
+    double norms = 1.0;
+    for (int i = 0; i < r; ++i) {
+      projected.col(i) = toggle_span_.transpose() * jacobian_.row(toggle_rows_[i]).transpose();
+      norms *= jacobian_.row(toggle_rows_[i]).norm();
+    }
+    return projected.determinant() / norms;
+  }
   const std::vector<DriverState>& drivers() const { return drivers_; }
 
   EntityRef first_free_driver() const {
@@ -334,6 +362,9 @@ class EquationsOfMotion {
   double mass_scale_ = 0.0;
   std::vector<BodyMass> bodies_;
   int reference_rank_ = -1;
+  bool singular_allowed_ = false;
+  std::vector<int> toggle_rows_;
+  Eigen::MatrixXd toggle_span_;
 
   std::vector<DriverState> drivers_;
   std::vector<double> jacobian_values_;
@@ -499,7 +530,96 @@ std::vector<double> driver_values_at(const Mechanism& mech, const Eigen::VectorX
   return out;
 }
 
-// One run: the start, the steps, and a row at every output time.
+// The bracket [a, b] where f changes sign (f(a) = fa and f(b) = fb have opposite signs),
+// narrowed until b - a <= tolerance: regula falsi with the Illinois halving, and a
+// bisection whenever a step fails to halve the bracket, so that it converges in both ends.
+std::pair<double, double> bracket_sign_change(const std::function<double(double)>& f, double a, double b, double fa,
+                                              double fb, double tolerance) {
+  int kept_end = 0;  // which end the last two steps kept: -1 a, +1 b
+  bool bisect = false;
+  for (int iteration = 0; iteration < 200 && b - a > tolerance; ++iteration) {
+    const double width = b - a;
+    double c = bisect ? 0.5 * (a + b) : (a * fb - b * fa) / (fb - fa);
+    if (!std::isfinite(c)) c = 0.5 * (a + b);
+    c = std::clamp(c, a + 0.25 * tolerance, b - 0.25 * tolerance);
+    const double fc = f(c);
+    if (fc == 0.0) return {c, c};
+    if ((fc > 0) == (fb > 0)) {
+      b = c, fb = fc;
+      if (kept_end == -1) fa *= 0.5;
+      kept_end = -1;
+    } else {
+      a = c, fa = fc;
+      if (kept_end == 1) fb *= 0.5;
+      kept_end = 1;
+    }
+    bisect = b - a > 0.5 * width;
+  }
+  return {a, b};
+}
+
+// Where f is smallest on [a, b] (f unimodal there), by golden-section search to `tolerance`.
+double golden_minimum(const std::function<double(double)>& f, double a, double b, double tolerance) {
+  const double ratio = (std::sqrt(5.0) - 1) / 2;
+  double c = b - ratio * (b - a), d = a + ratio * (b - a), fc = f(c), fd = f(d);
+  while (b - a > tolerance) {
+    if (fc < fd) {
+      b = d, d = c, fd = fc;
+      c = b - ratio * (b - a), fc = f(c);
+    } else {
+      a = c, c = d, fc = fd;
+      d = a + ratio * (b - a), fd = f(d);
+    }
+  }
+  return fc < fd ? c : d;
+}
+
+// One column of simulation_table at a state not yet kept as a row, for a stop condition: the
+// same names and units, angles unwrapped from the last state kept.
+class ColumnProbe {
+ public:
+  ColumnProbe(const Mechanism& mech, const StopCondition& condition) : rows_(mech, 2), condition_(condition) {
+    std::vector<std::string> names, units;
+    rows_.name_columns(names, units);
+    kinematic_ = names.size();
+    for (const char* name : {"kinetic", "potential", "spring", "dissipated", "work", "balance"})
+      names.push_back(std::string("energy.") + name);
+    const auto found = std::find(names.begin(), names.end(), condition.column);
+    if (found == names.end())
+      throw Error(ErrorKind::BadInput, "the stop condition '" + condition.text + "' names no column '" +
+                                           condition.column + "' (the columns are those of the simulation's table)");
+    index_ = static_cast<std::size_t>(found - names.begin());
+    row_.resize(names.size());
+  }
+
+  // How far the condition is from holding: > 0 where it holds.
+  double distance(const Sample& sample, const SimulationEnergy& energy, bool keep) {
+    double value = 0.0;
+    if (index_ < kinematic_) {
+      if (keep) {
+        rows_.fill(sample, row_.data());
+      } else {
+        KinematicRows trial = rows_;  // unwraps from the last kept state, which a trial leaves as it is
+        trial.fill(sample, row_.data());
+      }
+      value = row_[index_];
+    } else {
+      const double energies[] = {energy.kinetic, energy.gravity + energy.spring,
+                                 energy.spring,  energy.dissipated,
+                                 energy.work_in, energy.balance};
+      value = energies[index_ - kinematic_];
+    }
+    return condition_.above ? value - condition_.value : condition_.value - value;
+  }
+
+ private:
+  KinematicRows rows_;
+  StopCondition condition_;
+  std::size_t kinematic_ = 0, index_ = 0;
+  std::vector<double> row_;
+};
+
+// One run: the start, the steps, a row at every output time, and the events on the way.
 class Run {
  public:
   Run(const Mechanism& mech, const SimulationOptions& options, const RunControl& control)
@@ -510,6 +630,7 @@ class Run {
         eq_(mech, start_),
         integrator_(mech, eq_, options_) {
     n_ = mech.coordinate_count();
+    if (options.stop_when) probe_.emplace(mech, *options.stop_when);
     const double step = options.output_step > 0 ? options.output_step : options.end_time / 100;
     const long whole = static_cast<long>(std::floor(options.end_time / step * (1 + 1e-12)));
     for (long i = 0; i <= whole; ++i)
@@ -526,6 +647,11 @@ class Run {
     Eigen::VectorXd k1 = integrator_.derivative(t, y_);
     double h = integrator_.initial_step(t, y_, k1, options_.end_time);
     try {
+      if (probe_ && condition_ > 0) {
+        add_event(SimulationEvent::Kind::stop_when, 0.0,
+                  "the stop condition '" + options_.stop_when->text + "' holds at the start, " + time_text(0.0));
+        next_output = outputs_ + 1;  // nothing more to do
+      }
       while (next_output <= outputs_) {
         control_.checkpoint("simulate", next_output, outputs_);
         const double remaining = options_.end_time - t;
@@ -545,21 +671,35 @@ class Run {
           h *= s.y1.allFinite() && std::isfinite(s.error) ? std::max(0.2, 0.9 * std::pow(s.error, -0.2)) : 0.2;
           continue;
         }
+        eq_.allow_singular(false);
         const double t1 = t + h;
-        while (next_output <= outputs_ && output_time(next_output) <= t1 * (1 + 1e-13)) {
+        Eigen::VectorXd y1 = s.y1;
+        if (!integrator_.project(t1, y1))
+          throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(t1) +
+                                   " (the mechanism may have reached a limit of its motion)",
+                               eq_.first_free_driver()};
+        const std::optional<Found> event = first_event(t, h, s, y1);
+        const double reached = event ? t + event->theta * h : t1;
+        while (next_output <= outputs_ && output_time(next_output) <= reached * (1 + 1e-13)) {
           const double at = output_time(next_output);
-          Eigen::VectorXd y = Integrator::interpolate(y_, s, std::clamp((at - t) / h, 0.0, 1.0));
-          record(at, y);
+          if (event && at >= reached) break;  // the event's own row stands for it
+          record(at, Integrator::interpolate(y_, s, std::clamp((at - t) / h, 0.0, 1.0)));
           ++next_output;
         }
         accept(h);
-        y_ = s.y1;
+        if (event) {
+          if (!handle_event(*event, t, h, s)) break;
+          t = reached;  // reversed at the toggle: on from there
+          k1 = integrator_.derivative(t, y_);
+          keep_toggle_reference();
+          if (probe_) condition_ = condition_at(t, y_, true);
+          continue;
+        }
+        y_ = y1;
         t = t1;
-        if (!integrator_.project(t, y_))
-          throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(t) +
-                                   " (the mechanism may have reached a limit of its motion)",
-                               eq_.first_free_driver()};
         k1 = integrator_.derivative(t, y_);
+        keep_toggle_reference();
+        if (probe_) condition_ = condition_at(t, y_, true);
         h *= std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(s.error, 1e-10), -0.2)));
       }
     } catch (const SimulationStop& stop) {
@@ -572,7 +712,117 @@ class Run {
   }
 
  private:
+  // An event on a step: its kind and where on the step, theta in [0, 1].
+  struct Found {
+    SimulationEvent::Kind kind;
+    double theta;
+  };
+
   double output_time(long i) const { return output_times_[i]; }
+
+  // The state on the step [t, t + h] at theta, projected onto the constraints there.
+  Eigen::VectorXd projected_at(double t, double h, const Integrator::Step& s, double theta) {
+    Eigen::VectorXd y = Integrator::interpolate(y_, s, theta);
+    if (!integrator_.project(t + theta * h, y))
+      throw SimulationStop{
+          "the positions could not be brought back onto the constraints at " + time_text(t + theta * h),
+          eq_.first_free_driver()};
+    return y;
+  }
+
+  // The earliest event on the accepted step [t, t + h] whose projected end is y1 (the
+  // constraints factorised there), located on the continuous output to 1e-12 s: where the
+  // toggle measure changes sign (theta on the side the step started), or where the stop
+  // condition comes to hold (theta on the side where it holds).
+  std::optional<Found> first_event(double t, double h, const Integrator::Step& s, const Eigen::VectorXd& y1) {
+    const double tolerance = std::min(0.5, 1e-12 / h);
+    std::optional<Found> found;
+    if (const std::optional<double> theta = toggle_on_step(t, h, s, tolerance))
+      found = Found{SimulationEvent::Kind::toggle, *theta};
+    if (probe_) {
+      const double at_end = condition_at(t + h, y1, false);
+      if (at_end > 0) {
+        const auto distance_at = [&](double theta) {
+          return condition_at(t + theta * h, Integrator::interpolate(y_, s, theta), false);
+        };
+        const double held = bracket_sign_change(distance_at, 0.0, 1.0, condition_, at_end, tolerance).second;
+        if (!found || held < found->theta) found = Found{SimulationEvent::Kind::stop_when, held};
+      }
+    }
+    return found;
+  }
+
+  // Where on the step the constraints lose rank, if they do: the toggle measure changes sign, or
+  // (where the step passes a change point and goes on along the other branch, so that the
+  // measure only touches zero) dips to nothing. The ends are enough while the measure is well
+  // away from zero; near zero, three inner points find a crossing or a dip within the step.
+  std::optional<double> toggle_on_step(double t, double h, const Integrator::Step& s, double tolerance) {
+    const auto measure_at = [&](double theta) {
+      projected_at(t, h, s, theta);
+      return eq_.toggle_measure();
+    };
+    std::vector<double> theta = {0.0, 1.0}, measure = {toggle_at_start_, eq_.toggle_measure()};
+    const bool near_zero = std::min(std::abs(measure[0]), std::abs(measure[1])) < 0.05 * toggle_scale_;
+    if (near_zero) {
+      theta = {0.0, 0.25, 0.5, 0.75, 1.0};
+      measure = {measure[0], measure_at(0.25), measure_at(0.5), measure_at(0.75), measure[1]};
+    }
+    for (std::size_t i = 1; i < theta.size(); ++i)
+      if ((measure[i] > 0) != (measure[i - 1] > 0) || measure[i] == 0.0)
+        return bracket_sign_change(measure_at, theta[i - 1], theta[i], measure[i - 1], measure[i], tolerance).first;
+    if (!near_zero) return std::nullopt;
+    std::size_t lowest = 0;
+    for (std::size_t i = 1; i < theta.size(); ++i)
+      if (std::abs(measure[i]) < std::abs(measure[lowest])) lowest = i;
+    if (lowest == 0) return std::nullopt;
+    const double at = golden_minimum([&](double x) { return std::abs(measure_at(x)); }, theta[lowest - 1],
+                                     theta[std::min(lowest + 1, theta.size() - 1)], tolerance);
+    if (!(std::abs(measure_at(at)) <= 1e-6 * toggle_scale_)) return std::nullopt;
+    return at;
+  }
+
+  // The stop condition's distance (> 0: it holds) at a state, kept as the last state when `keep`.
+  double condition_at(double at, const Eigen::VectorXd& y, bool keep) {
+    const Row row = make_row(at, y, previous_values_);
+    return probe_->distance(row.sample, row.energy, keep);
+  }
+
+  // The event's row and report; false when the run ends there. At a toggle with
+  // AtToggle::reverse the state there is kept with every speed reversed.
+  bool handle_event(const Found& event, double t, double h, const Integrator::Step& s) {
+    const double at = t + event.theta * h;
+    Eigen::VectorXd y = projected_at(t, h, s, event.theta);
+    const bool toggle = event.kind == SimulationEvent::Kind::toggle;
+    if (toggle) eq_.allow_singular(true);
+    record(at, y);
+    if (!toggle) {
+      add_event(event.kind, at, "the stop condition '" + options_.stop_when->text + "' was met at " + time_text(at));
+      return false;
+    }
+    const std::string where = "the mechanism reached a toggle at " + time_text(at) +
+                              ": its constraints became singular (a dead centre or change point), where the loads "
+                              "no longer determine its motion";
+    if (options_.at_toggle == AtToggle::stop) {
+      add_event(event.kind, at, where);
+      throw SimulationStop{where, eq_.first_free_driver()};
+    }
+    add_event(event.kind, at, where + "; every speed reversed there");
+    y.segment(n_, n_) = -y.segment(n_, n_);
+    y_ = y;
+    return true;
+  }
+
+  void add_event(SimulationEvent::Kind kind, double at, std::string message) {
+    out_.events.push_back({kind, at, static_cast<int>(out_.samples.size()) - 1, std::move(message)});
+  }
+
+  // The toggle measure's reference, from the factorisation at the state just kept (the last
+  // derivative's).
+  void keep_toggle_reference() {
+    eq_.keep_toggle_reference();
+    toggle_at_start_ = eq_.toggle_measure();
+    if (toggle_scale_ == 0.0) toggle_scale_ = std::abs(toggle_at_start_);
+  }
 
   // Positions assembled at t = 0, velocities from every driver's speed (free ones: their initial
   // speed), on the full set of rows.
@@ -614,45 +864,60 @@ class Run {
     energy_at_start_ = first.kinetic + first.gravity + first.spring;
     first.balance = 0.0;
     out_.statistics.largest_energy_error = 0.0;
+    eq_.factorise(0.0, q);
+    keep_toggle_reference();
+    if (probe_) condition_ = condition_at(0.0, y_, true);
   }
 
-  // A row at `at`: y projected, q'' evaluated there, the energies and the drift.
-  void record(double at, Eigen::VectorXd y) {
+  // A row at `at` and what it says about the run, not yet kept.
+  struct Row {
+    Sample sample;
+    SimulationEnergy energy;
+    ConstraintDrift drift;
+  };
+
+  // The row at `at`: y projected, q'' evaluated there, the energies and the drift; driver angles
+  // unwrapped against `previous`.
+  Row make_row(double at, Eigen::VectorXd y, const std::vector<double>& previous) {
     if (!integrator_.project(at, y))
       throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(at),
                            eq_.first_free_driver()};
     const Eigen::VectorXd q = y.head(n_), qd = y.segment(n_, n_);
     const EquationsOfMotion::Rates rates = eq_.evaluate(at, q, qd);
-    ConstraintDrift drift;
-    drift.position = eq_.kept_rows() ? eq_.residuals(q).lpNorm<Eigen::Infinity>() : 0.0;
+    Row row;
+    row.drift.position = eq_.kept_rows() ? eq_.residuals(q).lpNorm<Eigen::Infinity>() : 0.0;
     if (eq_.kept_rows()) {
-      drift.velocity = (eq_.jacobian() * qd + eq_.time_derivative(q)).lpNorm<Eigen::Infinity>();
-      drift.acceleration = (eq_.jacobian() * rates.acceleration - eq_.gamma(q, qd)).lpNorm<Eigen::Infinity>();
+      row.drift.velocity = (eq_.jacobian() * qd + eq_.time_derivative(q)).lpNorm<Eigen::Infinity>();
+      row.drift.acceleration = (eq_.jacobian() * rates.acceleration - eq_.gamma(q, qd)).lpNorm<Eigen::Infinity>();
     }
-    ConstraintDrift& worst = out_.statistics.drift;
-    worst.position = std::max(worst.position, drift.position);
-    worst.velocity = std::max(worst.velocity, drift.velocity);
-    worst.acceleration = std::max(worst.acceleration, drift.acceleration);
-
-    Sample sample;
-    sample.step = static_cast<int>(out_.samples.size());
+    Sample& sample = row.sample;
     sample.time = at;
-    sample.driver_values = driver_values_at(mech_, q, previous_values_);
-    previous_values_ = sample.driver_values;
+    sample.driver_values = driver_values_at(mech_, q, previous);
     sample.taylor.resize(n_, 3);
     sample.taylor.col(0) = q;
     sample.taylor.col(1) = qd;
     sample.taylor.col(2) = 0.5 * rates.acceleration;
-    sample.residual = drift.position;
-    out_.samples.push_back(std::move(sample));
-
-    SimulationEnergy e;
+    sample.residual = row.drift.position;
+    SimulationEnergy& e = row.energy;
     eq_.stored_energy(q, qd, e);
     e.dissipated = y(2 * n_);
     e.work_in = y(2 * n_ + 1);
     e.balance = e.kinetic + e.gravity + e.spring + e.dissipated - e.work_in - energy_at_start_;
-    out_.statistics.largest_energy_error = std::max(out_.statistics.largest_energy_error, std::abs(e.balance));
-    out_.energies.push_back(e);
+    return row;
+  }
+
+  // Keeps the row at `at` in the answer.
+  void record(double at, const Eigen::VectorXd& y) {
+    Row row = make_row(at, y, previous_values_);
+    ConstraintDrift& worst = out_.statistics.drift;
+    worst.position = std::max(worst.position, row.drift.position);
+    worst.velocity = std::max(worst.velocity, row.drift.velocity);
+    worst.acceleration = std::max(worst.acceleration, row.drift.acceleration);
+    row.sample.step = static_cast<int>(out_.samples.size());
+    previous_values_ = row.sample.driver_values;
+    out_.samples.push_back(std::move(row.sample));
+    out_.statistics.largest_energy_error = std::max(out_.statistics.largest_energy_error, std::abs(row.energy.balance));
+    out_.energies.push_back(row.energy);
   }
 
   void accept(double h) {
@@ -674,6 +939,10 @@ class Run {
   Eigen::VectorXd y_;
   std::vector<double> previous_values_;
   double energy_at_start_ = 0.0;
+  double toggle_at_start_ = 1.0;      // the toggle measure at the state kept last
+  double toggle_scale_ = 0.0;         // its size at the start, where the mechanism is assembled
+  std::optional<ColumnProbe> probe_;  // the stop condition's column
+  double condition_ = -1.0;           // its distance at the state kept last (> 0: it holds)
   Simulation out_;
 };
 
@@ -688,6 +957,32 @@ Simulation simulate(const Mechanism& mechanism, const SimulationOptions& options
     throw Error(ErrorKind::BadInput, "the relative tolerance must be between 0 and 1");
   Run run(mechanism, options, control);
   return run.run();
+}
+
+}  // namespace nbar
+
+namespace nbar {
+
+std::optional<StopCondition> parse_stop_condition(const std::string& text) {
+  const auto trimmed = [](const std::string& s) {
+    const std::size_t first = s.find_first_not_of(" \t");
+    return first == std::string::npos ? std::string() : s.substr(first, s.find_last_not_of(" \t") - first + 1);
+  };
+  const std::size_t op = text.find_first_of("<>");
+  if (op == std::string::npos || text.find_first_of("<>", op + 1) != std::string::npos) return std::nullopt;
+  StopCondition condition;
+  condition.above = text[op] == '>';
+  condition.column = trimmed(text.substr(0, op));
+  // ">=" reads as ">": a crossing of a continuous quantity is the same either way.
+  const std::size_t number_start = op + 1 < text.size() && text[op + 1] == '=' ? op + 2 : op + 1;
+  const std::string number = trimmed(text.substr(number_start));
+  if (condition.column.empty() || condition.column.find_first_of(" \t=") != std::string::npos || number.empty())
+    return std::nullopt;
+  char* end = nullptr;
+  condition.value = std::strtod(number.c_str(), &end);
+  if (end != number.c_str() + number.size() || !std::isfinite(condition.value)) return std::nullopt;
+  condition.text = condition.column + (condition.above ? " > " : " < ") + number;
+  return condition;
 }
 
 }  // namespace nbar

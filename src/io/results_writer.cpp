@@ -365,6 +365,13 @@ void write_simulation_json(std::ostream& out, const Mechanism& mechanism, const 
                            {"velocity", stats.drift.velocity / m.units.length_scale},
                            {"acceleration", stats.drift.acceleration / m.units.length_scale}};
   j["largest_energy_error"] = stats.largest_energy_error;
+  nlohmann::ordered_json events = nlohmann::json::array();
+  for (const SimulationEvent& event : simulation.events)
+    events.push_back({{"kind", event.kind == SimulationEvent::Kind::toggle ? "toggle" : "stop_when"},
+                      {"time", event.time},
+                      {"row", event.row},
+                      {"message", event.message}});
+  j["events"] = events;
   j["columns"] = table.columns;
   j["column_units"] = table.units;
   j["rows"] = table.rows;

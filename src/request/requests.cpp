@@ -568,6 +568,12 @@ const std::vector<OptionRule>& SimulateRequest::rules() {
       choice("format", "csv (default), json (with the step statistics and constraint drift), or table",
              {"csv", "json", "table"}),
       names("columns", "only these columns, comma-separated names or globs, e.g. 'crank,energy.*'"),
+      text("stop_when",
+           "end the run where a column crosses a value, in the column's unit, e.g. 'slider.x > 200' "
+           "(located to 1e-12 s)"),
+      choice("at_toggle",
+             "where the constraints become singular (a toggle): stop (default), or reverse every speed and go on",
+             {"stop", "reverse"}),
   };
   return rules;
 }
@@ -585,6 +591,14 @@ SimulateRequest SimulateRequest::read(const Options& options) {
   r.max_steps = static_cast<long>(read_integer(options, rule_of(rules(), "max_steps")).value_or(10'000'000));
   r.format = read_text(options, rule_of(rules(), "format")).value_or("csv");
   r.columns = read_names(options, rule_of(rules(), "columns"));
+  if (const std::optional<std::string> stop = read_text(options, rule_of(rules(), "stop_when"))) {
+    r.stop_when = parse_stop_condition(*stop);
+    if (!r.stop_when)
+      throw OptionError("stop_when", "must be a column, < or > and a number, e.g. 'slider.x > 200', not " +
+                                         literal("'" + *stop + "'"));
+  }
+  r.at_toggle = read_text(options, rule_of(rules(), "at_toggle")).value_or("stop") == "reverse" ? AtToggle::reverse
+                                                                                                : AtToggle::stop;
   return r;
 }
 
@@ -594,6 +608,8 @@ SimulationOptions SimulateRequest::simulation_options() const {
   options.output_step = dt.value_or(0.0);
   options.relative_tolerance = rtol;
   options.max_steps = max_steps;
+  options.stop_when = stop_when;
+  options.at_toggle = at_toggle;
   return options;
 }
 

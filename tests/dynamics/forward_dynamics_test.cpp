@@ -5,7 +5,9 @@
 // Lagrange's equations are tests/dynamics/simulate_reference.py (through the CLI).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -199,6 +201,167 @@ drivers:
   EXPECT_NE(sim.stop_reason.find("more than 50 steps"), std::string::npos) << sim.stop_reason;
   ASSERT_GT(sim.samples.size(), 1u);
   EXPECT_LT(sim.samples.back().time, 10.0);
+}
+
+// A block falls along a vertical guide from y = 0.3 m at 0.5 m/s: y(t) = 0.3 - 0.5 t - g t^2 / 2,
+// so it passes y = -0.2 at the root of g t^2 / 2 + 0.5 t - 0.5 = 0. The run ends there, with the
+// event's row at that time, found on the continuous output to 1e-12 s.
+TEST(ForwardDynamics, AStopConditionEndsTheRunAtItsCrossingTime) {
+  const Mechanism mech = mechanism_of(R"(
+units: {length: m, angle: deg}
+points: {Y1: [0, 1], Y2: [0, -1], C: [0, 0.3]}
+ground: [Y1, Y2]
+gravity: [0, -9.81]
+bodies:
+  block: {points: [C], mass: 2}
+sliders:
+  - {body: block, point: C, along: [Y1, Y2]}
+drivers:
+  - {slide: block, free: true, initial_speed: 0.5}
+)");
+  SimulationOptions options;
+  options.end_time = 1.0;
+  options.output_step = 0.01;
+  options.relative_tolerance = 1e-10;
+  options.stop_when = parse_stop_condition("C.y < -0.2");
+  ASSERT_TRUE(options.stop_when);
+  const Simulation sim = simulate(mech, options);
+  ASSERT_TRUE(sim.complete) << sim.stop_reason;
+  const double g = 9.81, expected = (-0.5 + std::sqrt(0.25 + 4 * (g / 2) * 0.5)) / g;
+  ASSERT_EQ(sim.events.size(), 1u);
+  const SimulationEvent& event = sim.events.front();
+  EXPECT_EQ(event.kind, SimulationEvent::Kind::stop_when);
+  EXPECT_NEAR(event.time, expected, 1e-10);
+  EXPECT_EQ(event.row, static_cast<int>(sim.samples.size()) - 1);
+  EXPECT_DOUBLE_EQ(sim.samples.back().time, event.time);
+  EXPECT_NEAR(sim.samples.back().positions()(1), -0.2, 1e-9);
+  EXPECT_LT(sim.samples[sim.samples.size() - 2].time, event.time);  // no row after the event
+  EXPECT_NE(event.message.find("C.y < -0.2"), std::string::npos) << event.message;
+}
+
+TEST(ForwardDynamics, AStopConditionIsReadAndItsColumnChecked) {
+  const auto condition = parse_stop_condition("  slider.x>=0.25 ");
+  ASSERT_TRUE(condition);
+  EXPECT_EQ(condition->column, "slider.x");
+  EXPECT_TRUE(condition->above);
+  EXPECT_EQ(condition->value, 0.25);
+  EXPECT_FALSE(parse_stop_condition("slider.x = 2"));
+  EXPECT_FALSE(parse_stop_condition("slider.x > 2 mm"));
+  EXPECT_FALSE(parse_stop_condition("< 2"));
+  EXPECT_FALSE(parse_stop_condition("a < b < 2"));
+  const Mechanism mech = mechanism_of(R"(
+units: {length: m}
+points: {O: [0, 0], A: [0.3, 0]}
+ground: [O]
+gravity: [0, -9.81]
+bodies:
+  bar: {points: [O, A], mass: 1, cg: [0.15, 0]}
+drivers:
+  - {angle: bar, free: true}
+)");
+  SimulationOptions options;
+  options.stop_when = parse_stop_condition("A.z > 1");
+  try {
+    simulate(mech, options);
+    FAIL() << "stopped on a column that does not exist";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+    EXPECT_NE(e.message().find("no column 'A.z'"), std::string::npos) << e.message();
+  }
+}
+
+// A parallelogram (cranks 0.1 m, 0.4 kg, 2e-4 kg m^2; a translating coupler of 1.5 kg) released
+// at rest from 60 deg is one pendulum in the crank angle,
+//   (2 (I + m r^2/4) + M r^2) th'' = -(m r + M r) g cos th,
+// until th = 0, where all four links lie on one line: its constraints lose rank (the change
+// point to the crossed branch). The run stops there, at the time the pendulum takes to reach
+// th = 0 (integrated here); reversed there, it swings back to 60 deg at twice that time. The
+// integrated motion keeps its constraints to a drift d of about 1e-13 m, and near a change point
+// the positions with |Phi| = d are not the two branches crossing but a hyperbola's two arms, which
+// pass the crossing at about sqrt(d L) ~ 1e-7 m: that, not the root-finding (1e-12 s), bounds
+// how well a toggle's time is known, here to about 1e-7 s (docs/dynamics.md, Events).
+const char* const kParallelogramReleased = R"(
+units: {length: m, angle: deg}
+points:
+  O1: [0, 0]
+  O2: [0.3, 0]
+  A1: [0.05, 0.086602540378443865]
+  A2: [0.35, 0.086602540378443865]
+ground: [O1, O2]
+gravity: [0, -9.81]
+bodies:
+  crank1: {points: [O1, A1], mass: 0.4, inertia: 2e-4, cg: [0.025, 0.043301270189221932]}
+  crank2: {points: [O2, A2], mass: 0.4, inertia: 2e-4, cg: [0.325, 0.043301270189221932]}
+  coupler: {points: [A1, A2], mass: 1.5, inertia: 0.01, cg: [0.2, 0.1]}
+drivers:
+  - {angle: crank1, free: true}
+)";
+
+// The time the parallelogram's pendulum takes from 60 deg at rest to th = 0: RK4 steps of 1e-5 s
+// up to the crossing, then the last step's length by the secant method.
+double parallelogram_crossing_time() {
+  const double r = 0.1, m = 0.4, I = 2e-4, M = 1.5, g = 9.81;
+  const auto accel = [&](double th) {
+    return -(m * r + M * r) * g * std::cos(th) / (2 * (I + m * r * r / 4) + M * r * r);
+  };
+  const auto step = [&](double th, double w, double h) {
+    const double k1 = w, l1 = accel(th);
+    const double k2 = w + h / 2 * l1, l2 = accel(th + h / 2 * k1);
+    const double k3 = w + h / 2 * l2, l3 = accel(th + h / 2 * k2);
+    const double k4 = w + h * l3, l4 = accel(th + h * k3);
+    return std::make_pair(th + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4), w + h / 6 * (l1 + 2 * l2 + 2 * l3 + l4));
+  };
+  double th = M_PI / 3, w = 0.0, t = 0.0;
+  const double h = 1e-5;
+  for (;;) {
+    const auto [th1, w1] = step(th, w, h);
+    if (th1 <= 0) break;
+    th = th1, w = w1, t += h;
+  }
+  double a = 0.0, b = h, fa = th, fb = step(th, w, h).first;
+  for (int i = 0; i < 50 && std::abs(b - a) > 1e-16; ++i) {
+    const double c = b - fb * (b - a) / (fb - fa);
+    a = b, fa = fb, b = c, fb = step(th, w, c).first;
+  }
+  return t + b;
+}
+
+TEST(ForwardDynamics, AToggleStopsTheRunAtItsTime) {
+  const Mechanism mech = mechanism_of(kParallelogramReleased);
+  SimulationOptions options;
+  options.end_time = 1.0;
+  options.output_step = 0.01;
+  options.relative_tolerance = 1e-12;
+  const Simulation sim = simulate(mech, options);
+  EXPECT_FALSE(sim.complete);
+  ASSERT_EQ(sim.events.size(), 1u);
+  const double expected = parallelogram_crossing_time();
+  EXPECT_GT(expected, 0.1);
+  EXPECT_LT(expected, 0.3);
+  EXPECT_EQ(sim.events[0].kind, SimulationEvent::Kind::toggle);
+  EXPECT_NEAR(sim.events[0].time, expected, 2e-7);
+  EXPECT_NE(sim.stop_reason.find("toggle"), std::string::npos) << sim.stop_reason;
+  EXPECT_EQ(sim.stop_where.kind, EntityRef::Kind::Driver);
+  EXPECT_NEAR(angle_of(mech, sim.samples.back(), "crank1"), 0.0, 3e-6);
+}
+
+TEST(ForwardDynamics, AToggleCanReverseTheMotion) {
+  const Mechanism mech = mechanism_of(kParallelogramReleased);
+  const double crossing = parallelogram_crossing_time();
+  SimulationOptions options;
+  options.end_time = 2 * crossing;  // back at the start: 60 deg, at rest
+  options.output_step = 0.01;
+  options.relative_tolerance = 1e-12;
+  options.at_toggle = AtToggle::reverse;
+  const Simulation sim = simulate(mech, options);
+  ASSERT_TRUE(sim.complete) << sim.stop_reason;
+  ASSERT_EQ(sim.events.size(), 1u);
+  EXPECT_NEAR(sim.events[0].time, crossing, 2e-7);
+  const Sample& end = sim.samples.back();
+  EXPECT_DOUBLE_EQ(end.time, 2 * crossing);
+  EXPECT_NEAR(angle_of(mech, end, "crank1"), M_PI / 3, 1e-8);
+  EXPECT_LT(end.derivative(1).norm(), 3e-6);  // at rest again (m/s), but for the toggle's time
+  EXPECT_LT(std::abs(sim.energies.back().balance), 1e-9);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,11 +28,35 @@
 
 namespace nbar {
 
+// Stop when a column of the simulation's table (`simulation_table`) crosses a value, in the
+// column's unit (the model's units; J for the energies): "slider.x > 0.2".
+struct StopCondition {
+  std::string column;
+  bool above = true;  // stop when the column becomes > value (else < value)
+  double value = 0.0;
+  std::string text;  // as the user wrote it, for the report
+};
+
+// What a run does where its constraints (the kept rows' Jacobian) lose rank: a toggle or change
+// point, where the loads no longer determine the motion.
+enum class AtToggle { stop, reverse };
+
 struct SimulationOptions {
   double end_time = 1.0;             // s, > 0
   double output_step = 0.0;          // s between rows; 0: end_time / 100
   double relative_tolerance = 1e-8;  // of the Runge-Kutta error estimate
   long max_steps = 10'000'000;       // accepted and rejected steps together
+  std::optional<StopCondition> stop_when;
+  AtToggle at_toggle = AtToggle::stop;  // reverse: every speed reversed there (a rigid stop), the run goes on
+};
+
+// An event the run met, located by root-finding on the integrator's continuous output to 1e-12 s.
+// It adds a row at its time (`row`).
+struct SimulationEvent {
+  enum class Kind { toggle, stop_when } kind = Kind::toggle;
+  double time = 0.0;  // s
+  int row = 0;
+  std::string message;
 };
 
 // Energies at one output time, J. The balance is kinetic + potential (gravity and springs)
@@ -68,6 +93,7 @@ struct Simulation {
   std::vector<SimulationEnergy> energies;
   std::vector<int> free_drivers;
   SimulationStatistics statistics;
+  std::vector<SimulationEvent> events;  // in time order; a stop_when event ends the run (complete)
   bool complete = true;
   std::string stop_reason;  // when !complete: what stopped it, at which time
   EntityRef stop_where;     // the entity concerned, for the file position
@@ -78,7 +104,9 @@ struct Simulation {
 // A run that cannot continue (a singular position, a step size too small, a failed projection)
 // returns the rows so far with complete = false. Throws Error before the run for a model that
 // cannot be simulated (no mass where a free motion needs inertia, nothing free) and
-// Error(Cancelled) from `control`.
+// Error(Cancelled) from `control`. A toggle stops the run (complete = false) or, with
+// AtToggle::reverse, reverses every speed there; a stop condition met ends it (complete = true);
+// both are in `events`. A stop condition on a column the table does not have is Error(BadInput).
 Simulation simulate(const Mechanism& mechanism, const SimulationOptions& options, const RunControl& control = {});
 
 }  // namespace nbar
@@ -92,5 +120,9 @@ namespace nbar {
 // kinematic drivers) and energy.balance (kinetic + potential + dissipated - work, minus its start
 // value: the integration error).
 ResultTable simulation_table(const Mechanism& mechanism, const Simulation& simulation);
+
+// The text "slider.x > 0.2" (or <, with any spaces) as a StopCondition; nullopt when it is not a
+// column name, an operator and a number. The column is checked by `simulate`.
+std::optional<StopCondition> parse_stop_condition(const std::string& text);
 
 }  // namespace nbar

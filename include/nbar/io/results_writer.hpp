@@ -65,7 +65,7 @@ void write_stress_report(std::ostream& out, const std::string& format, const Ana
 
 // A simulation (nbar simulate) as JSON: the model, units, the free drivers, whether it ran to its
 // end (and why not), the integrator's statistics and the largest constraint drift and energy
-// error, then the table's columns, units and rows.
+// error, the events met (kind, time, row, message), then the table's columns, units and rows.
 void write_simulation_json(std::ostream& out, const Mechanism& mechanism, const Simulation& simulation,
                            const ResultTable& table);
 

@@ -226,12 +226,14 @@ struct ExportRequest {
 
 // nbar simulate: the motion under the loads, the free drivers released (forward dynamics).
 struct SimulateRequest {
-  double to = 0.0;                   // s, the simulated time
-  std::optional<double> dt;          // s between rows; unset: to / 100
-  double rtol = 1e-8;                // the integrator's relative tolerance
-  long max_steps = 10'000'000;       // integration steps
-  std::vector<std::string> columns;  // names or globs; empty: every column
-  std::string format = "csv";        // csv, json or table
+  double to = 0.0;                         // s, the simulated time
+  std::optional<double> dt;                // s between rows; unset: to / 100
+  double rtol = 1e-8;                      // the integrator's relative tolerance
+  long max_steps = 10'000'000;             // integration steps
+  std::vector<std::string> columns;        // names or globs; empty: every column
+  std::string format = "csv";              // csv, json or table
+  std::optional<StopCondition> stop_when;  // "slider.x > 0.2": the run ends where it comes to hold
+  AtToggle at_toggle = AtToggle::stop;
 
   // At most this many rows (every row is kept until the run ends).
   static constexpr double kMaxRows = 1e6;
