@@ -108,24 +108,6 @@ std::pair<Eigen::Vector2d, double> fit_circle(const std::vector<Eigen::Vector2d>
   return {mean + centre, std::sqrt(std::max(0.0, s[2] + centre.squaredNorm()))};
 }
 
-// Natural coordinates of x in element e by Newton on the isoparametric map; nullopt when x is
-// not inside it.
-std::optional<Eigen::Vector2d> locate_in(const t6::Element& e, const Eigen::Vector2d& x) {
-  Eigen::Vector2d nat(1.0 / 3, 1.0 / 3);
-  for (int it = 0; it < 30; ++it) {
-    const Eigen::Vector2d r = t6::position(e, t6::shape(nat.x(), nat.y())) - x;
-    const Eigen::Matrix2d j = t6::jacobian(e, t6::shape_derivatives(nat.x(), nat.y()));
-    if (!(std::abs(j.determinant()) > 0)) return std::nullopt;
-    const Eigen::Vector2d step = j.inverse() * r;
-    nat -= step;
-    if (!nat.allFinite() || nat.norm() > 10) return std::nullopt;
-    if (step.norm() < 1e-13) break;
-  }
-  constexpr double kTolerance = 1e-9;
-  if (nat.x() < -kTolerance || nat.y() < -kTolerance || nat.x() + nat.y() > 1 + kTolerance) return std::nullopt;
-  return nat;
-}
-
 }  // namespace
 
 struct PlateModel::Impl {
@@ -521,7 +503,7 @@ double PlateModel::Impl::add_point_force(const PointForce& load, Eigen::VectorXd
     for (const auto& p : e) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     const double slack = 0.05 * (hi - lo).norm();
     if ((load.at.array() < lo.array() - slack).any() || (load.at.array() > hi.array() + slack).any()) continue;
-    if (!locate_in(e, load.at)) continue;
+    if (!t6::locate(e, load.at)) continue;
     double a = 0;
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();
     Eigen::Matrix2d second = Eigen::Matrix2d::Zero();

@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
+#include <optional>
 
 #include "nbar/stress/mesh.hpp"
 
@@ -85,6 +87,23 @@ inline bool is_curved(const Element& e) {
     if ((e[m[0]] - 0.5 * (e[m[1]] + e[m[2]])).norm() > 1e-9 * chord) return true;
   }
   return false;
+}
+
+// Natural coordinates of x in element e by Newton on the isoparametric map; nullopt when x is
+// not inside it (to `tolerance` in natural coordinates).
+inline std::optional<Eigen::Vector2d> locate(const Element& e, const Eigen::Vector2d& x, double tolerance = 1e-9) {
+  Eigen::Vector2d nat(1.0 / 3, 1.0 / 3);
+  for (int it = 0; it < 30; ++it) {
+    const Eigen::Vector2d r = position(e, shape(nat.x(), nat.y())) - x;
+    const Eigen::Matrix2d j = jacobian(e, shape_derivatives(nat.x(), nat.y()));
+    if (!(std::abs(j.determinant()) > 0)) return std::nullopt;
+    const Eigen::Vector2d step = j.inverse() * r;
+    nat -= step;
+    if (!nat.allFinite() || nat.norm() > 10) return std::nullopt;
+    if (step.norm() < 1e-13) break;
+  }
+  if (nat.x() < -tolerance || nat.y() < -tolerance || nat.x() + nat.y() > 1 + tolerance) return std::nullopt;
+  return nat;
 }
 
 // Strain-displacement matrix (3 x 12, dofs u0 v0 u1 v1 ...) and det J at (xi, eta).
