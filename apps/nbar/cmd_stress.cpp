@@ -24,7 +24,7 @@ int run_stress(const StressCommand& command) {
   if (int code = analyse_model(command.model, loaded, request.analysis_options(loaded.mechanism->model()), analysis))
     return code;
   ResultTable profile;
-  if (!request.section_profile.empty()) {
+  if (request.profile_asked()) {
     try {
       profile = request.section_profile_table(analysis);
     } catch (const request::OptionError& e) {
@@ -34,7 +34,7 @@ int run_stress(const StressCommand& command) {
   }
   Output output;
   if (!output.open(command.output)) return kBadUsage;
-  if (!request.section_profile.empty())
+  if (request.profile_asked())
     io::write_table(output.stream(), request.format, analysis, profile);
   else
     io::write_stress_report(output.stream(), request.format, analysis);
@@ -55,6 +55,7 @@ Command add_stress_command(CLI::App& app) {
   sub->add_option("-o,--output", command->output, "write to FILE instead of standard output")
       ->check(nbar::cli::output_file());
   command->flags->add({"section_profile", "step"});
+  command->flags->add({"at", "along", "around_hole", "coordinates", "radius", "samples"});
   return {sub, [command] { return run_stress(*command); }};
 }
 

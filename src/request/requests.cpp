@@ -1,9 +1,11 @@
 #include "nbar/request/requests.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "nbar/analysis/columns.hpp"
+#include "nbar/analysis/fe_tables.hpp"
 #include "nbar/analysis/pose.hpp"
 #include "nbar/io/dxf_writer.hpp"
 #include "nbar/render/report.hpp"
@@ -241,8 +243,28 @@ const std::vector<OptionRule>& StressRequest::rules() {
                        "fe: element edge far from holes and corners, in the model's length unit "
                        "(default: a twentieth of each plate's size; finer around holes)"),
        choice("format", "table (default), csv or json", {"table", "csv", "json"}),
-       text("section_profile", "instead, every section of BODY at one step: N, V, M, sigma, tau, von Mises"),
-       integer_rule("step", "the step for {section_profile} (default 0)", 0, kIntMax)},
+       text("section_profile",
+            "instead, every section of BODY at one step: N, V, M, sigma, tau, von Mises (with {method} fe: "
+            "integrated over cuts of the finite-element field)"),
+       integer_rule("step", "the step for {section_profile} (default 0)", 0, kIntMax),
+       names("at",
+             "fe: the stresses of the {section_profile} body at a point, X,Y (model length unit) or a point's "
+             "name; several: X1,Y1,X2,Y2,..."),
+       names("along",
+             "fe: the stresses along a line of the {section_profile} body, X1,Y1,X2,Y2 or P1,P2 (points' names)"),
+       text("around_hole",
+            "fe: the stresses around a round hole's edge against the angle: a point at its centre (e.g. A) or its "
+            "number from 1, as BODY:HOLE or with {section_profile} BODY"),
+       choice("coordinates",
+              "where {at} and {along} are given and components point: body (default: x along the link from its "
+              "first point, y to its left) or model (the drawing's coordinates)",
+              {"body", "model"}),
+       positive_number("radius",
+                       "with {around_hole}: the stresses on a circle of this radius about the hole's centre (model "
+                       "length unit) instead of its edge"),
+       integer_rule("samples",
+                    "points along {along} or around {radius}, or cuts of an fe {section_profile} (default 101)", 2,
+                    100000)},
   });
   return rules;
 }
@@ -257,12 +279,42 @@ StressRequest StressRequest::read(const Options& options) {
   r.format = read_text(options, rule_of(rules(), "format")).value_or("table");
   r.section_profile = read_text(options, rule_of(rules(), "section_profile")).value_or("");
   r.step = optional_int(read_integer(options, rule_of(rules(), "step")));
-  if (r.method == StressMethod::fe && !r.section_profile.empty())
-    throw OptionError("section_profile", "cuts sections, which the beam method has: leave out {method} fe", true);
+  r.read_field_query(options);
   if (r.step && r.section_profile.empty()) throw OptionError("step", "needs {section_profile}");
   if (r.mesh_size && r.method != StressMethod::fe)
     throw OptionError("mesh_size", "is the finite elements' element size: give {method} fe too");
   return r;
+}
+
+void StressRequest::read_field_query(const Options& options) {
+  at = read_names(options, rule_of(rules(), "at"));
+  along = read_names(options, rule_of(rules(), "along"));
+  around_hole = read_text(options, rule_of(rules(), "around_hole")).value_or("");
+  const std::optional<std::string> frame = read_text(options, rule_of(rules(), "coordinates"));
+  coordinates = frame.value_or("body");
+  const std::optional<long long> count = read_integer(options, rule_of(rules(), "samples"));
+  samples = static_cast<int>(count.value_or(101));
+  radius = read_number(options, rule_of(rules(), "radius"));
+  if (radius && around_hole.empty()) throw OptionError("radius", "needs {around_hole}");
+  const auto given = [](bool v) { return v ? 1 : 0; };
+  const int queries = given(!at.empty()) + given(!along.empty()) + given(!around_hole.empty());
+  const char* query_key = !at.empty() ? "at" : !along.empty() ? "along" : "around_hole";
+  if (queries > 1) throw OptionError(query_key, "give one of {at}, {along} and {around_hole}");
+  if (queries == 1 && method != StressMethod::fe)
+    throw OptionError(query_key, "reads the finite-element field: give {method} fe too", true);
+  if (const std::size_t colon = around_hole.find(':'); colon != std::string::npos) {
+    const std::string body = around_hole.substr(0, colon);
+    if (!section_profile.empty() && section_profile != body)
+      throw OptionError("around_hole", literal("names body '" + body + "', but ") + "{section_profile} is '" +
+                                           literal(section_profile) + "'");
+    section_profile = body;
+    around_hole = around_hole.substr(colon + 1);
+  }
+  if (queries == 1 && section_profile.empty())
+    throw OptionError(query_key, "needs the body: give {section_profile} BODY");
+  if (frame && at.empty() && along.empty()) throw OptionError("coordinates", "applies to {at} and {along}");
+  if (count && along.empty() && !radius && !(method == StressMethod::fe && !section_profile.empty() && queries == 0))
+    throw OptionError("samples", "counts the points of {along} or the cuts of a {method} fe {section_profile}");
 }
 
 AnalysisOptions StressRequest::analysis_options(const Model& model) const {
@@ -277,9 +329,90 @@ AnalysisOptions StressRequest::analysis_options(const Model& model) const {
 ResultTable StressRequest::section_profile_table(const Analysis& analysis) const {
   const int body = analysis.model().find_body(section_profile);
   if (body < 0) throw OptionError("section_profile", literal("'" + section_profile + "' is not a body of the model"));
+  if (method == StressMethod::fe) {
+    if (!analysis.stress || !analysis.stress->fe || !analysis.stress->fe->analysed(body))
+      throw OptionError("section_profile", literal("'" + section_profile + "' has no plate to analyse"));
+    return field_query_table(analysis, body, solved_step(analysis.sweep, step.value_or(0)));
+  }
   if (!analysis.stress || !analysis.stress->links || !analysis.stress->links->analysed(body))
     throw OptionError("section_profile", literal("'" + section_profile + "' has no shape to cut"));
   return nbar::section_profile_table(analysis, body, solved_step(analysis.sweep, step.value_or(0)));
+}
+
+namespace {
+
+std::optional<double> parse_number(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+// The points of `key`'s values in `frame` (model units): pairs of numbers, or points' names.
+std::vector<Eigen::Vector2d> query_points(const Model& model, int body, QueryFrame frame,
+                                          const std::vector<std::string>& values, const std::string& key) {
+  std::vector<Eigen::Vector2d> out;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (const int point = model.find_point(values[i]); point >= 0) {
+      out.push_back(query_point(model, body, frame, model.points[point].position));
+      continue;
+    }
+    const std::optional<double> x = parse_number(values[i]);
+    const std::optional<double> y = i + 1 < values.size() ? parse_number(values[i + 1]) : std::nullopt;
+    if (!x || !y)
+      throw OptionError(key, literal("'" + values[i] + "' is neither a point of the model nor the X of an X,Y pair"));
+    out.emplace_back(*x, *y);
+    ++i;
+  }
+  return out;
+}
+
+// The hole named by `text`: a point of the model inside one of the body's round holes, or the
+// hole's number from 1.
+int hole_of(const Model& model, int body, const std::string& text) {
+  if (const int point = model.find_point(text); point >= 0) {
+    const int hole = hole_at_point(model, body, point);
+    if (hole < 0)
+      throw OptionError("around_hole",
+                        literal("point '" + text + "' is not in a round hole of '" + model.bodies[body].name + "'"));
+    return hole;
+  }
+  const std::optional<double> number = parse_number(text);
+  const int holes = model.bodies[body].shape ? static_cast<int>(model.bodies[body].shape->circle_holes.size()) : 0;
+  if (!number || *number != std::floor(*number) || *number < 1 || *number > holes)
+    throw OptionError("around_hole",
+                      literal("'" + text + "' is neither a point in a round hole of '" + model.bodies[body].name +
+                              "' nor a hole's number (" +
+                              (holes == 0 ? std::string("it has none") : "1 to " + std::to_string(holes)) + ")"));
+  return static_cast<int>(*number) - 1;
+}
+
+}  // namespace
+
+// The core's errors about a point off the plate become errors at the option that gave it.
+ResultTable StressRequest::field_query_table(const Analysis& analysis, int body, int step) const {
+  const Model& model = analysis.model();
+  const QueryFrame frame = coordinates == "model" ? QueryFrame::model : QueryFrame::body;
+  const std::string key = !at.empty() ? "at" : !along.empty() ? "along" : "section_profile";
+  try {
+    if (!around_hole.empty())
+      return fe_hole_table(analysis, body, step, hole_of(model, body, around_hole), frame, radius, samples);
+    if (!at.empty()) return fe_points_table(analysis, body, step, query_points(model, body, frame, at, "at"), frame);
+    if (!along.empty()) {
+      const std::vector<Eigen::Vector2d> ends = query_points(model, body, frame, along, "along");
+      if (ends.size() != 2) throw OptionError("along", "must be two points: X1,Y1,X2,Y2 or P1,P2");
+      return fe_line_table(analysis, body, step, ends[0], ends[1], samples, frame);
+    }
+    return fe_section_table(analysis, body, step, samples);
+  } catch (const OptionError&) {
+    throw;
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::BadInput) throw;
+    throw OptionError(key, literal(e.message()));
+  }
 }
 
 // ------------------------------------------------------------------------------------ draw

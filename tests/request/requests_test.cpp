@@ -85,12 +85,11 @@ TEST(RequestOptions, TheCommandLineSpellsEveryKeyItNames) {
   EXPECT_EQ(cli_message([] { StressRequest::read(with("mesh_size", std::string("-1"))); }),
             "--mesh-size: must be a positive number, not -1");
   // A problem that names another option: each front-end spells it, the message keeps the key.
-  Options fe_profile = with("method", std::string("fe"));
-  fe_profile.set("section_profile", std::string("crank"));
-  EXPECT_EQ(cli_message([&] { StressRequest::read(fe_profile); }),
-            "--section-profile cuts sections, which the beam method has: leave out --method fe");
-  EXPECT_EQ(message([&] { StressRequest::read(fe_profile); }),
-            "section_profile cuts sections, which the beam method has: leave out method fe");
+  Options beam_query = with("section_profile", std::string("crank"));
+  beam_query.set("at", std::vector<std::string>{"0.5", "0.1"});
+  EXPECT_EQ(cli_message([&] { StressRequest::read(beam_query); }),
+            "--at reads the finite-element field: give --method fe too");
+  EXPECT_EQ(message([&] { StressRequest::read(beam_query); }), "at reads the finite-element field: give method fe too");
   // Braces in text from elsewhere (a name) stay braces.
   EXPECT_EQ(spell_keys(literal("{x} and {{") + " {steps}", flag_name), "{x} and {{ --steps");
 }

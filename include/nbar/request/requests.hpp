@@ -115,12 +115,26 @@ struct StressRequest {
   std::string format = "table";     // table, csv or json
   std::string section_profile;      // a body: its sections at `step` instead of the peaks
   std::optional<int> step;
+  // fe: the field of the `section_profile` body at `step` read at points (each "X,Y" or a point's
+  // name), along a line ("X1,Y1,X2,Y2" or two points' names) or around a hole (a point's name
+  // or its number from 1, optionally "BODY:" first), in the body's frame or model coordinates.
+  std::vector<std::string> at, along;
+  std::string around_hole;
+  std::string coordinates = "body";  // body or model
+  int samples = 101;                 // points along the line or the circle; cuts of an fe section profile
+  std::optional<double> radius;      // around_hole: a circle of this radius instead of the edge
 
   static const std::vector<OptionRule>& rules();
   static StressRequest read(const Options& options);
   AnalysisOptions analysis_options(const Model& model) const;
-  // The section profile asked for: OptionError at `section_profile` or `step`.
+  // A table of one body at one step is asked for (a section profile or an fe query), not the peaks.
+  bool profile_asked() const { return !section_profile.empty(); }
+  // The section profile or fe query asked for: OptionError at the option that names what is wrong.
   ResultTable section_profile_table(const Analysis& analysis) const;
+
+ private:
+  void read_field_query(const Options& options);
+  ResultTable field_query_table(const Analysis& analysis, int body, int step) const;
 };
 
 // A solved step of the sweep, checked: OptionError at `step` ("step 999 is not a solved step
