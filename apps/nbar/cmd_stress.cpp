@@ -1,6 +1,11 @@
 // nbar stress: every shaped link's largest stress, or one link's sections at one step.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
 #include "commands.hpp"
 #include "common.hpp"
+#include "nbar/io/fe_export.hpp"
 #include "nbar/request/requests.hpp"
 #include "request_flags.hpp"
 #include "validators.hpp"
@@ -14,6 +19,38 @@ struct StressCommand {
   std::string output;
   std::unique_ptr<RequestFlags> flags;
 };
+
+// Each mesh the request asks for, as three files in its directory.
+int export_meshes(const request::StressRequest& request, const Analysis& analysis) {
+  std::vector<request::StressRequest::MeshExport> meshes;
+  try {
+    meshes = request.mesh_exports(analysis);
+  } catch (const request::OptionError& e) {
+    print_option_error(e);
+    return kBadUsage;
+  }
+  if (meshes.empty()) return 0;
+  const std::filesystem::path directory(request.export_mesh);
+  std::error_code made;
+  std::filesystem::create_directories(directory, made);
+  for (const auto& mesh : meshes) {
+    const auto write = [&](const std::string& name, const auto& writer) {
+      std::ofstream file(directory / name);
+      writer(file);
+      return static_cast<bool>(file);
+    };
+    const bool written =
+        write(mesh.stem + ".vtu", [&](std::ostream& o) { io::write_fe_vtu(o, analysis, mesh.body, mesh.step); }) &&
+        write(mesh.stem + "-nodes.csv",
+              [&](std::ostream& o) { io::write_fe_nodes_csv(o, analysis, mesh.body, mesh.step); }) &&
+        write(mesh.stem + "-elements.csv", [&](std::ostream& o) { io::write_fe_elements_csv(o, analysis, mesh.body); });
+    if (!written) {
+      std::cerr << "error: cannot write " << (directory / mesh.stem).string() << ".* (--export-mesh)\n";
+      return kBadUsage;
+    }
+  }
+  return 0;
+}
 
 int run_stress(const StressCommand& command) {
   request::StressRequest request;
@@ -32,6 +69,7 @@ int run_stress(const StressCommand& command) {
       return kBadUsage;
     }
   }
+  if (int code = export_meshes(request, analysis)) return code;
   Output output;
   if (!output.open(command.output)) return kBadUsage;
   if (request.profile_asked())
@@ -55,7 +93,7 @@ Command add_stress_command(CLI::App& app) {
   sub->add_option("-o,--output", command->output, "write to FILE instead of standard output")
       ->check(nbar::cli::output_file());
   command->flags->add({"section_profile", "step"});
-  command->flags->add({"at", "along", "around_hole", "coordinates", "radius", "samples"});
+  command->flags->add({"at", "along", "around_hole", "coordinates", "radius", "samples", "export_mesh"});
   return {sub, [command] { return run_stress(*command); }};
 }
 

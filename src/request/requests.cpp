@@ -259,6 +259,9 @@ const std::vector<OptionRule>& StressRequest::rules() {
               "where {at} and {along} are given and components point: body (default: x along the link from its "
               "first point, y to its left) or model (the drawing's coordinates)",
               {"body", "model"}),
+       text("export_mesh",
+            "fe: write each link's mesh and stresses into directory DIR, at {step} or at its peak's step: "
+            "BODY-stepK.vtu (VTK, for ParaView), BODY-stepK-nodes.csv and BODY-stepK-elements.csv"),
        positive_number("radius",
                        "with {around_hole}: the stresses on a circle of this radius about the hole's centre (model "
                        "length unit) instead of its edge"),
@@ -280,7 +283,8 @@ StressRequest StressRequest::read(const Options& options) {
   r.section_profile = read_text(options, rule_of(rules(), "section_profile")).value_or("");
   r.step = optional_int(read_integer(options, rule_of(rules(), "step")));
   r.read_field_query(options);
-  if (r.step && r.section_profile.empty()) throw OptionError("step", "needs {section_profile}");
+  if (r.step && r.section_profile.empty() && r.export_mesh.empty())
+    throw OptionError("step", "needs {section_profile} or {export_mesh}");
   if (r.mesh_size && r.method != StressMethod::fe)
     throw OptionError("mesh_size", "is the finite elements' element size: give {method} fe too");
   return r;
@@ -294,6 +298,9 @@ void StressRequest::read_field_query(const Options& options) {
   coordinates = frame.value_or("body");
   const std::optional<long long> count = read_integer(options, rule_of(rules(), "samples"));
   samples = static_cast<int>(count.value_or(101));
+  export_mesh = read_text(options, rule_of(rules(), "export_mesh")).value_or("");
+  if (!export_mesh.empty() && method != StressMethod::fe)
+    throw OptionError("export_mesh", "writes the finite-element meshes: give {method} fe too", true);
   radius = read_number(options, rule_of(rules(), "radius"));
   if (radius && around_hole.empty()) throw OptionError("radius", "needs {around_hole}");
   const auto given = [](bool v) { return v ? 1 : 0; };
@@ -337,6 +344,25 @@ ResultTable StressRequest::section_profile_table(const Analysis& analysis) const
   if (!analysis.stress || !analysis.stress->links || !analysis.stress->links->analysed(body))
     throw OptionError("section_profile", literal("'" + section_profile + "' has no shape to cut"));
   return nbar::section_profile_table(analysis, body, solved_step(analysis.sweep, step.value_or(0)));
+}
+
+std::vector<StressRequest::MeshExport> StressRequest::mesh_exports(const Analysis& analysis) const {
+  std::vector<MeshExport> out;
+  if (export_mesh.empty() || !analysis.stress || !analysis.stress->fe) return out;
+  const Model& model = analysis.model();
+  const int only = section_profile.empty() ? -1 : model.find_body(section_profile);
+  if (!section_profile.empty() && (only < 0 || !analysis.stress->fe->analysed(only)))
+    throw OptionError("section_profile", literal("'" + section_profile + "' has no plate to export"));
+  const std::optional<int> at = step ? std::optional<int>(solved_step(analysis.sweep, *step)) : std::nullopt;
+  for (const FePeak& peak : analysis.stress->fe_peaks) {
+    if (only >= 0 && peak.body != only) continue;
+    MeshExport e;
+    e.body = peak.body;
+    e.step = at.value_or(std::max(peak.step, 0));
+    e.stem = model.bodies[peak.body].name + "-step" + std::to_string(e.step);
+    out.push_back(std::move(e));
+  }
+  return out;
 }
 
 namespace {

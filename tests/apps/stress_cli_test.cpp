@@ -161,6 +161,25 @@ TEST(StressFieldCli, TheFiniteElementSectionsCarryTheBeamsForces) {
   EXPECT_NEAR(cut[fe.column("area")], 0.05, 1e-6);
 }
 
+TEST(StressFieldCli, ExportMeshWritesEachLinkAtItsPeakOrAtTheStep) {
+  ScratchDir f("nbar_stress_cli");
+  const std::string dir = f.file("meshes");
+  const CliRun all = nbar("stress " + kPlates + " --steps 3 --method fe --export-mesh " + dir);
+  ASSERT_EQ(all.code, 0) << all.err;
+  // Each link at its peak's step (docs/kinetics.md: the crank's at the last of these three).
+  EXPECT_THAT(read_file(dir + "/crank-step2.vtu"), HasSubstr("<VTKFile type=\"UnstructuredGrid\""));
+  EXPECT_THAT(read_file(dir + "/rocker-step1-nodes.csv"), HasSubstr("node,x,y,ux,uy"));
+  const CliRun one = nbar("stress " + kPlates +
+                          " --steps 3 --method fe --section-profile coupler --step 0 "
+                          "--export-mesh " +
+                          dir + " --format csv");
+  ASSERT_EQ(one.code, 0) << one.err;
+  EXPECT_THAT(read_file(dir + "/coupler-step0-elements.csv"), HasSubstr("element,n0,n1,n2,n3,n4,n5"));
+  const CliRun beam = nbar("stress " + kPlates + " --steps 3 --export-mesh " + dir);
+  EXPECT_EQ(beam.code, 2);
+  EXPECT_THAT(beam.err, HasSubstr("--export-mesh writes the finite-element meshes: give --method fe too"));
+}
+
 TEST(StressFieldCli, AlongALineAndWhatIsRefused) {
   // From hole to hole along the crank's axis: the samples in the holes are left out.
   const Csv line = stress_csv("--section-profile crank --along O2,A --samples 101");

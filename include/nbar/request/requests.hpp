@@ -124,9 +124,18 @@ struct StressRequest {
   int samples = 101;                 // points along the line or the circle; cuts of an fe section profile
   std::optional<double> radius;      // around_hole: a circle of this radius instead of the edge
 
+  std::string export_mesh;  // fe: a directory for each link's mesh and field (.vtu and CSV)
+
   static const std::vector<OptionRule>& rules();
   static StressRequest read(const Options& options);
   AnalysisOptions analysis_options(const Model& model) const;
+  // The meshes to export: the {section_profile} body or every analysed link, at {step} or at each
+  // link's peak step, each with the stem of its files ("crank-step12").
+  struct MeshExport {
+    int body = -1, step = 0;
+    std::string stem;
+  };
+  std::vector<MeshExport> mesh_exports(const Analysis& analysis) const;
   // A table of one body at one step is asked for (a section profile or an fe query), not the peaks.
   bool profile_asked() const { return !section_profile.empty(); }
   // The section profile or fe query asked for: OptionError at the option that names what is wrong.
