@@ -176,6 +176,21 @@ class Summary:
         return f"<table>{cells}</table>"
 
 
+def _places(value: Any) -> Optional[List[str]]:
+    """Points as the request reads them: "X,Y" texts' parts or points' names."""
+    if value is None:
+        return None
+    if isinstance(value, str):
+        return value.split(",")
+    items = list(value)
+    if len(items) == 2 and all(isinstance(v, (int, float)) for v in items):
+        items = [items]
+    out: List[str] = []
+    for item in items:
+        out += [item] if isinstance(item, str) else [repr(float(v)) for v in item]
+    return out
+
+
 class StressResult:
     """Each shaped link's largest von Mises stress over the sweep (``nbar stress``): where, when,
     N, V, M and the safety factor. ``.links`` is a list of dicts (stresses in MPa),
@@ -194,6 +209,21 @@ class StressResult:
 
     def profile(self, body: str, step: int = 0) -> Table:
         return Table(*self._analysis.section_profile(body, step))
+
+    def field(self, body: str, step: int = 0, *, at: Any = None, along: Any = None,
+              around_hole: Optional[Union[str, int]] = None, radius: Optional[float] = None,
+              coordinates: Optional[str] = None, samples: Optional[int] = None) -> Table:
+        """The finite-element stresses of one link at one step (``nbar stress --method fe``):
+        ``at=(x, y)``, several points ``[(x1, y1), "A"]`` or a point's name; ``along=((x1, y1), (x2, y2))``
+        or two points' names; ``around_hole="A"`` or its number from 1 (``radius=`` a circle about it);
+        in the body's frame or ``coordinates="model"``. Columns are numpy arrays (MPa, model units)."""
+        return Table(*self._analysis.stress_field(body, step, _places(at), _places(along),
+                                                  None if around_hole is None else str(around_hole), radius,
+                                                  coordinates, samples))
+
+    def vtu(self, body: str, step: int = 0) -> str:
+        """One link's mesh and stresses at one step as a VTK .vtu document (for ParaView)."""
+        return self._analysis.fe_vtu(body, step)
 
     def __getitem__(self, body: str) -> Dict[str, Any]:
         for link in self.links:

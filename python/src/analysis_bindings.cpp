@@ -14,6 +14,7 @@
 #include "nbar/analysis/pose.hpp"
 #include "nbar/analysis/summary.hpp"
 #include "nbar/dynamics/forward_dynamics.hpp"
+#include "nbar/io/fe_export.hpp"
 #include "nbar/io/results_writer.hpp"
 #include "nbar/render/animation.hpp"
 #include "nbar/render/pictures.hpp"
@@ -244,11 +245,34 @@ std::string stress_report(const PyAnalysis& a, const std::string& format) {
   return out.str();
 }
 
-py::tuple section_profile(const PyAnalysis& a, const std::string& body_name, int step) {
+// The request's options for one link at one step, by the analysis's own stress method.
+request::Options profile_options(const PyAnalysis& a, const std::string& body_name, int step) {
   if (!a.analysis.stress) throw Error(ErrorKind::BadInput, "the analysis has no stress stage: run it with stress=True");
   request::Options options;
   options.set("section_profile", body_name);
   options.set("step", static_cast<long long>(step));
+  if (a.analysis.stress->method == StressMethod::fe) options.set("method", std::string("fe"));
+  return options;
+}
+
+py::tuple section_profile(const PyAnalysis& a, const std::string& body_name, int step) {
+  return as_arrays(request::StressRequest::read(profile_options(a, body_name, step)).section_profile_table(a.analysis));
+}
+
+// The finite-element field at points, along a line or around a hole (`nbar stress --at`, `--along`,
+// `--around-hole`), as numpy arrays.
+py::tuple stress_field(const PyAnalysis& a, const std::string& body_name, int step,
+                       const std::optional<std::vector<std::string>>& at,
+                       const std::optional<std::vector<std::string>>& along,
+                       const std::optional<std::string>& around_hole, std::optional<double> radius,
+                       const std::optional<std::string>& coordinates, std::optional<int> samples) {
+  request::Options options = profile_options(a, body_name, step);
+  if (at) options.set("at", *at);
+  if (along) options.set("along", *along);
+  if (around_hole) options.set("around_hole", *around_hole);
+  if (radius) options.set("radius", *radius);
+  if (coordinates) options.set("coordinates", *coordinates);
+  if (samples) options.set("samples", static_cast<long long>(*samples));
   return as_arrays(request::StressRequest::read(options).section_profile_table(a.analysis));
 }
 
@@ -357,6 +381,17 @@ void bind_simulation(py::module_& m) {
         py::arg("at_toggle") = std::nullopt, py::arg("timeout") = std::nullopt);
 }
 
+// One link's mesh and field at one step as a .vtu document (`nbar stress --export-mesh`).
+std::string fe_vtu(const PyAnalysis& a, const std::string& body_name, int step) {
+  request::Options options = profile_options(a, body_name, step);
+  options.set("export_mesh", std::string("."));
+  const auto meshes = request::StressRequest::read(options).mesh_exports(a.analysis);
+  if (meshes.empty()) throw Error(ErrorKind::BadInput, "the analysis has no finite-element stresses: method='fe'");
+  std::ostringstream out;
+  io::write_fe_vtu(out, a.analysis, meshes.front().body, meshes.front().step);
+  return out.str();
+}
+
 }  // namespace
 
 void bind_analysis(py::module_& m) {
@@ -405,6 +440,10 @@ void bind_analysis(py::module_& m) {
           py::arg("columns") = std::nullopt)
       .def("stress_report", &stress_report, py::arg("format") = "json")
       .def("section_profile", &section_profile, py::arg("body"), py::arg("step"))
+      .def("stress_field", &stress_field, py::arg("body"), py::arg("step") = 0, py::arg("at") = std::nullopt,
+           py::arg("along") = std::nullopt, py::arg("around_hole") = std::nullopt, py::arg("radius") = std::nullopt,
+           py::arg("coordinates") = std::nullopt, py::arg("samples") = std::nullopt)
+      .def("fe_vtu", &fe_vtu, py::arg("body"), py::arg("step") = 0)
       .def("draw", &draw, py::arg("format") = "svg", py::arg("step") = std::nullopt, py::arg("at") = std::nullopt,
            py::arg("labels") = false, py::arg("traces") = std::vector<std::string>{}, py::arg("width") = 900,
            py::arg("height") = 640, py::arg("title") = "")

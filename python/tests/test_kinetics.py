@@ -49,6 +49,33 @@ def test_fe_stress_peaks_equal_the_cli(examples, cli):
         nbar.load(path).stress(steps=5, method="fem")
 
 
+def test_fe_field_queries_are_numpy_arrays_equal_to_the_cli(examples, cli):
+    path = examples / "fourbar-ansys-plates.yaml"
+    s = nbar.load(path).stress(steps=1, method="fe")
+
+    def cli_csv(*options):
+        out = subprocess.run([cli, "stress", str(path), "--steps", "1", "--method", "fe", "--format", "csv",
+                              *options], capture_output=True, text=True, check=True)
+        return np.loadtxt(out.stdout.splitlines()[1:], delimiter=",", ndmin=2)
+
+    hole = s.field("crank", around_hole="A")
+    assert isinstance(hole["von_mises"], np.ndarray) and hole.units["angle"] == "deg"
+    # docs/kinetics.md's "other hole" figure: 667 kPa at the crank's A hole.
+    assert abs(hole["von_mises"].max() - 0.667) < 0.002
+    # The CSV is written to 12 digits.
+    np.testing.assert_allclose(hole["sigma_hoop"], cli_csv("--around-hole", "crank:A")[:, 3], rtol=1e-10)
+    line = s.field("crank", along=((0.1, 0.0), (0.9, 0.0)), samples=9)
+    np.testing.assert_array_equal(line["arc"], np.linspace(0, 0.8, 9))
+    points = s.field("crank", at=[(0.5, 0.0), (0.3, 0.1)])
+    assert len(points["x"]) == 2
+    assert points["von_mises"][0] == pytest.approx(line["von_mises"][4], rel=1e-9)  # the same place, x = 0.5
+    sections = s.profile("crank")
+    assert sections.columns[:5] == ["x", "area", "N", "V", "M"]
+    assert s.vtu("coupler").startswith("<?xml")
+    with pytest.raises(nbar.BadInputError, match="is not on the plate of 'crank'"):
+        s.field("crank", at="O2")
+
+
 def test_stress_on_a_model_without_shapes_is_a_model_error(examples):
     with pytest.raises(nbar.ModelError):
         nbar.load(examples / "fourbar-crank-rocker.yaml").stress()
