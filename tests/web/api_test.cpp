@@ -184,6 +184,35 @@ TEST(WebApi, FiniteElementStressIsNbarStressMethodFe) {
   EXPECT_EQ(post("/api/stress", with_model("examples/fourbar-steel-bars.yaml", {{"mesh_size", 4}})).status, 400);
 }
 
+TEST(WebApi, FiniteElementFieldQueriesAnswerAsTheCommandLine) {
+  const std::string plates = "examples/fourbar-ansys-plates.yaml";
+  const std::vector<std::pair<Json, std::string>> cases = {
+      {{{"around_hole", "crank:A"}}, "--around-hole crank:A"},
+      {{{"section_profile", "crank"}, {"at", {"0.5", "0.1", "0.3", "0.2"}}},
+       "--section-profile crank --at 0.5,0.1,0.3,0.2"},
+      {{{"section_profile", "coupler"}, {"along", "A,B"}, {"samples", 21}, {"coordinates", "model"}},
+       "--section-profile coupler --along A,B --samples 21 --coordinates model"},
+      {{{"section_profile", "rocker"}, {"samples", 11}}, "--section-profile rocker --samples 11"},
+  };
+  for (const auto& [options, flags] : cases) {
+    Json body = options;
+    body["steps"] = 1;
+    body["method"] = "fe";
+    body["format"] = "json";
+    const ApiResponse r = post("/api/stress", with_model(plates, body));
+    ASSERT_EQ(r.status, 200) << flags << ": " << r.body;
+    EXPECT_EQ(r.body, cli("stress " + plates + " --steps 1 --method fe --format json " + flags).out) << flags;
+  }
+  const ApiResponse off = post(
+      "/api/stress", with_model(plates, {{"steps", 1}, {"method", "fe"}, {"section_profile", "crank"}, {"at", "O2"}}));
+  EXPECT_EQ(off.status, 400);
+  EXPECT_NE(off.body.find("is not on the plate of 'crank'"), std::string::npos) << off.body;
+  const ApiResponse files =
+      post("/api/stress", with_model(plates, {{"steps", 1}, {"method", "fe"}, {"export_mesh", "/tmp"}}));
+  EXPECT_EQ(files.status, 400);
+  EXPECT_NE(files.body.find("\"option\": \"export_mesh\""), std::string::npos) << files.body;
+}
+
 TEST(WebApi, SynthesisIsNbarSynthFormatJson) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"five-point", "examples/synthesis/five-point-crank-rocker.yaml"},

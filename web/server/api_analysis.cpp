@@ -42,10 +42,15 @@ ApiResponse api_stress(Job& job, const std::string& text) {
   check_sweep_size(job, stress.sweep.steps);
   check_limit("sections", static_cast<double>(stress.sections), job.limits.max_sections,
               "the number of sections per link");
+  check_limit("samples", static_cast<double>(stress.samples), job.limits.max_sections,
+              "the number of points or cuts of a stress profile");
+  // The server writes no file: a mesh export is the command line's and Python's.
+  if (!stress.export_mesh.empty())
+    throw request::OptionError("export_mesh", "writes files, which the web API does not (use the command line)", true);
   AnalysisOptions options = stress.analysis_options(job.mechanism->model());
   options.fe.max_nodes = job.limits.max_fe_nodes;
   const Analysis analysis = run_analysis(job, options);
-  if (stress.section_profile.empty())
+  if (!stress.profile_asked())
     return answer(write([&](std::ostream& out) { io::write_stress_report(out, stress.format, analysis); }),
                   text_type(stress.format));
   const ResultTable profile = stress.section_profile_table(analysis);
