@@ -139,7 +139,12 @@ std::string step_description(const Analysis& analysis, int step) {
 
 Eigen::Vector2d query_point(const Model& model, int body, QueryFrame frame, const Eigen::Vector2d& drawn) {
   const FrameAxes axes = frame_axes(model, body, frame);
-  return (Eigen::Rotation2Dd(-axes.angle) * (drawn - axes.origin)) / model.units.length_scale;
+  Eigen::Vector2d out = (Eigen::Rotation2Dd(-axes.angle) * (drawn - axes.origin)) / model.units.length_scale;
+  // A point on the body's axis (its own points) is on it, not 1e-16 beside it: rounding of the turn.
+  const double scale = std::max(out.cwiseAbs().maxCoeff(), drawn.norm() / model.units.length_scale);
+  for (int k = 0; k < 2; ++k)
+    if (std::abs(out[k]) < 1e-12 * scale) out[k] = 0;
+  return out;
 }
 
 Eigen::Vector2d drawn_point(const Model& model, int body, QueryFrame frame, const Eigen::Vector2d& query) {
