@@ -14,10 +14,12 @@
 
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/analysis/explain.hpp"
+#include "nbar/analysis/fe_tables.hpp"
 #include "nbar/analysis/pose.hpp"
 #include "nbar/io/calculix.hpp"
 #include "nbar/io/dxf_reader.hpp"
 #include "nbar/io/dxf_writer.hpp"
+#include "nbar/io/fe_export.hpp"
 #include "nbar/io/model_export.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/results_writer.hpp"
@@ -121,6 +123,15 @@ TEST(ErrorSweep, AnalyseWithBadOptions) {
   const Analysis analysis = crank_rocker_sweep();
   EXPECT_NBAR_ERROR(BadInput, select_columns(result_table(analysis), {"no-such-column"}));
   EXPECT_NBAR_ERROR(BadInput, section_profile_table(analysis, 99, 0));
+  // The finite-element field's tables and export need that stage: this sweep has none.
+  EXPECT_NBAR_ERROR(BadInput, fe_points_table(analysis, 0, 0, {{0, 0}}, QueryFrame::body));
+  EXPECT_NBAR_ERROR(BadInput, fe_line_table(analysis, 0, 0, {0, 0}, {1, 0}, 5, QueryFrame::model));
+  EXPECT_NBAR_ERROR(BadInput, fe_hole_table(analysis, 0, 0, 0, QueryFrame::body));
+  EXPECT_NBAR_ERROR(BadInput, fe_section_table(analysis, 0, 0, 5));
+  std::ostringstream out;
+  EXPECT_NBAR_ERROR(BadInput, io::write_fe_vtu(out, analysis, 0, 0));
+  EXPECT_NBAR_ERROR(BadInput, io::write_fe_nodes_csv(out, analysis, 0, 0));
+  EXPECT_NBAR_ERROR(BadInput, io::write_fe_elements_csv(out, analysis, 0));
 }
 
 TEST(ErrorSweep, PoseAndExplain) {
