@@ -121,6 +121,8 @@ void check_options(const MeshOptions& o) {
     os << "segments_per_hole must be at least 8, not " << o.segments_per_hole;
   } else if (!(std::isfinite(o.grading) && o.grading > 1 && o.grading <= 4)) {
     os << "grading must be above 1 and at most 4, not " << o.grading;
+  } else if (!(std::isfinite(o.edge_size) && o.edge_size >= 0)) {
+    os << "the edge element size must be a finite length >= 0 m (0 for automatic), not " << o.edge_size;
   } else if (o.max_nodes < 6) {
     os << "max_nodes must be at least 6, not " << o.max_nodes;
   } else {
@@ -199,13 +201,21 @@ double bounding_diagonal(const Boundary& b, const Ring& ring) {
   return (hi - lo).norm();
 }
 
-Sizing sizing_of(const Boundary& b, const MeshOptions& o, double size) {
+// The element edge at a feature whose automatic edge is `automatic`: scaled with the size below the
+// automatic size (`scale`), and at most the edge size asked for.
+double feature_edge(double automatic, double scale, const MeshOptions& o) {
+  const double h = automatic * scale;
+  return o.edge_size > 0 ? std::min(h, o.edge_size) : h;
+}
+
+// `scale`: size / the automatic size, at most 1 (MeshOptions::edge_size).
+Sizing sizing_of(const Boundary& b, const MeshOptions& o, double size, double scale) {
   Sizing s;
   s.size = size;
   s.growth = o.grading - 1;
   for (const Curve& c : b.curves) {
     if (!c.arc) continue;
-    const double h0 = 2 * kPi * c.circle.radius / o.segments_per_hole;
+    const double h0 = feature_edge(2 * kPi * c.circle.radius / o.segments_per_hole, scale, o);
     if (c.tag.kind == BoundaryTag::Kind::circle_hole) {
       s.circles.push_back({Circle{c.circle.centre, c.circle.radius}, h0});
     } else if (h0 < size) {
@@ -224,7 +234,9 @@ Sizing sizing_of(const Boundary& b, const MeshOptions& o, double size) {
       const Vector2d d_out = cout.derivative(out.param(0)) * (out.reversed ? -1 : 1);
       const double turn = std::atan2(cross(d_in, d_out), d_in.dot(d_out));
       if (turn < -kReentrantTurn) {
-        const double h0 = std::min({size, cin.length(), cout.length()}) / kCornerRefinement;
+        // The size is scaled already; the sides are not.
+        const double h0 =
+            feature_edge(std::min({size / scale, cin.length(), cout.length()}) / kCornerRefinement, scale, o);
         s.points.push_back({cout.at(out.param(0)), h0});
       }
     }
@@ -235,6 +247,13 @@ Sizing sizing_of(const Boundary& b, const MeshOptions& o, double size) {
 // A mesh of V corners has at least 2V - 3 edges, so 3V - 3 nodes with its mid-side ones: past
 // this many corners it cannot fit in max_nodes.
 std::size_t corner_budget(const MeshOptions& o) { return static_cast<std::size_t>(o.max_nodes) / 3 + 2; }
+
+[[noreturn]] void fail_budget(double nodes, const MeshOptions& o) {
+  std::ostringstream os;
+  os << "the mesh would have about " << std::llround(std::min(nodes, 1e18))
+     << " nodes, more than max_nodes = " << o.max_nodes << "; use a larger element size";
+  fail(os.str());
+}
 
 // The area a ring encloses and its perimeter, from its curves sampled as for bounding_diagonal.
 struct RingMeasure {
@@ -268,12 +287,99 @@ void check_interior_budget(const Boundary& b, double size, const MeshOptions& o)
   }
   const double corners = area / (std::sqrt(3.0) / 2 * size * size);
   const double nodes = 4 * corners - perimeter / size;
-  if (nodes > static_cast<double>(o.max_nodes)) {
-    std::ostringstream os;
-    os << "the mesh would have about " << std::llround(std::min(nodes, 1e18))
-       << " nodes, more than max_nodes = " << o.max_nodes << "; use a larger element size";
-    fail(os.str());
+  if (nodes > static_cast<double>(o.max_nodes)) fail_budget(nodes, o);
+}
+
+// Whether a point lies on the plate: inside the outline's polygon (its curves sampled as for
+// ring_measure), outside every polygon hole's, and outside every circle hole.
+class PlateTest {
+ public:
+  explicit PlateTest(const Boundary& b) {
+    for (const Ring& ring : b.rings) {
+      if (!ring.has_corners) {
+        const Arc& c = b.curves[ring.pieces.front().curve].circle;
+        circles_.push_back({c.centre, c.radius});
+        continue;
+      }
+      std::vector<Vector2d> x;
+      for (const Piece& p : ring.pieces) {
+        const int samples = b.curves[p.curve].arc ? 16 : 1;
+        for (int k = 0; k < samples; ++k) x.push_back(b.curves[p.curve].at(p.param(static_cast<double>(k) / samples)));
+      }
+      polygons_.push_back(std::move(x));
+    }
   }
+  bool contains(const Vector2d& x) const {
+    for (const Circle& c : circles_)
+      if ((x - c.centre).squaredNorm() < c.radius * c.radius) return false;
+    for (std::size_t k = 0; k < polygons_.size(); ++k)
+      if (inside(polygons_[k], x) != (k == 0)) return false;
+    return true;
+  }
+
+ private:
+  static bool inside(const std::vector<Vector2d>& polygon, const Vector2d& x) {
+    bool in = false;
+    for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+      const Vector2d& a = polygon[i];
+      const Vector2d& c = polygon[j];
+      if ((a.y() > x.y()) != (c.y() > x.y()) && x.x() < a.x() + (x.y() - a.y()) / (c.y() - a.y()) * (c.x() - a.x()))
+        in = !in;
+    }
+    return in;
+  }
+  std::vector<std::vector<Vector2d>> polygons_;
+  std::vector<Circle> circles_;
+};
+
+// The boundary's corners B of the graded mesh: the integral of ds / h along every curve.
+double boundary_corners(const Boundary& b, const Sizing& h) {
+  constexpr int kSamples = 256;
+  double corners = 0.0;
+  for (const Curve& c : b.curves)
+    for (int k = 0; k < kSamples; ++k) corners += c.length() / kSamples / h(c.at((k + 0.5) / kSamples));
+  return corners;
+}
+
+// Conforming Delaunay refinement leaves its triangles smaller than the sizing asks (a circumradius
+// at most 0.65 h, angles of 28 deg and more): its meshes have 1.55 to 1.75 times the nodes of
+// equilateral triangles of edge h (tests/stress/mesh_test.cpp, NodeEstimateFollowsTheGrading).
+constexpr double kRefinedDensity = 1.6;
+
+// The graded mesh's nodes, kRefinedDensity (4 V - B) as in check_interior_budget, with V the integral of
+// 1 / (sqrt(3)/2 h^2) over the plate: cells of a quadtree over the bounding box, each split until
+// it is no wider than h at its centre, counted when their centre is on the plate. Stops as soon as
+// the count passes `stop_above` (the refusal needs no more) and returns what it had.
+double graded_nodes(const Boundary& b, const Sizing& h, double stop_above) {
+  Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Curve& c : b.curves) {
+    for (int k = 0; k <= 16; ++k) {
+      lo = lo.cwiseMin(c.at(k / 16.0));
+      hi = hi.cwiseMax(c.at(k / 16.0));
+    }
+  }
+  const PlateTest plate(b);
+  const double boundary = boundary_corners(b, h);
+  const Vector2d extent = hi - lo;
+  const double side = std::max(extent.minCoeff(), extent.maxCoeff() / 64);
+  std::vector<std::pair<Vector2d, double>> cells;  // centre, side
+  for (double x = lo.x(); x < hi.x(); x += side)
+    for (double y = lo.y(); y < hi.y(); y += side) cells.push_back({{x + side / 2, y + side / 2}, side});
+  double corners = 0.0;
+  while (!cells.empty()) {
+    const auto [centre, width] = cells.back();
+    cells.pop_back();
+    const double wanted = h(centre);
+    if (width > wanted) {
+      for (int k = 0; k < 4; ++k)
+        cells.push_back({centre + width / 4 * Vector2d(k % 2 ? 1 : -1, k / 2 ? 1 : -1), width / 2});
+      continue;
+    }
+    if (!plate.contains(centre)) continue;
+    corners += width * width / (std::sqrt(3.0) / 2 * wanted * wanted);
+    if (kRefinedDensity * (4 * corners - boundary) > stop_above) break;
+  }
+  return kRefinedDensity * (4 * corners - boundary);
 }
 
 // Where a piece's boundary vertices go: parameters u in [0, 1), the first at 0.
@@ -462,19 +568,30 @@ TriMesh quadratic_mesh(const detail::RefinedMesh& m, const Boundary& b, int max_
 
 namespace {
 
-// The region's boundary and element size, once the region, the options and the node budget are
+// The region's boundary and element sizing, once the region, the options and the node budget are
 // checked: what mesh_region meshes, and all that check_mesh_budget needs.
 struct CheckedRegion {
   Boundary boundary;
-  double size = 0.0;
+  Sizing sizing;
+  double estimated_nodes = 0.0;
 };
+// The estimate refuses a mesh only when it passes the budget by this much: it is within 20 % of
+// the mesh's count, and the refinement's own count (VertexBudgetExceeded) refuses what it lets by.
+constexpr double kEstimateMargin = 1.25;
+
 CheckedRegion checked_region(const Region& r, const MeshOptions& options) {
   check_options(options);
   check_region(r);
-  CheckedRegion out{boundary_of(r), 0.0};
+  CheckedRegion out{boundary_of(r), {}, 0.0};
   const Boundary& b = out.boundary;
-  out.size = options.size > 0 ? options.size : bounding_diagonal(b, b.rings.front()) / 20;
-  check_interior_budget(b, out.size, options);
+  const double automatic = bounding_diagonal(b, b.rings.front()) / 20;
+  const double size = options.size > 0 ? options.size : automatic;
+  // The uniform estimate first: it bounds the graded estimate's work.
+  check_interior_budget(b, size, options);
+  out.sizing = sizing_of(b, options, size, std::min(1.0, size / automatic));
+  const double budget = kEstimateMargin * options.max_nodes;
+  out.estimated_nodes = graded_nodes(b, out.sizing, budget);
+  if (out.estimated_nodes > budget) fail_budget(out.estimated_nodes, options);
   return out;
 }
 
@@ -482,12 +599,22 @@ CheckedRegion checked_region(const Region& r, const MeshOptions& options) {
 
 void check_mesh_budget(const Region& r, const MeshOptions& options) { checked_region(r, options); }
 
+double estimated_mesh_nodes(const Region& r, const MeshOptions& options) {
+  MeshOptions unbounded = options;
+  unbounded.max_nodes = std::numeric_limits<int>::max();
+  return checked_region(r, unbounded).estimated_nodes;
+}
+
+double automatic_mesh_size(const Region& r) {
+  check_region(r);
+  const Boundary b = boundary_of(r);
+  return bounding_diagonal(b, b.rings.front()) / 20;
+}
+
 TriMesh mesh_region(const Region& r, const MeshOptions& options) {
   const CheckedRegion checked = checked_region(r, options);
   const Boundary& b = checked.boundary;
-  const double size = checked.size;
-  const Sizing h = sizing_of(b, options, size);
-  const detail::RefinementInput in = refinement_input(b, h, options);
+  const detail::RefinementInput in = refinement_input(b, checked.sizing, options);
   detail::RefinedMesh refined;
   try {
     refined = detail::refine(in);

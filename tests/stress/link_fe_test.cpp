@@ -180,10 +180,16 @@ TEST(LinkFe, ASizeTooFineForAnyPlateIsRefusedBeforeMeshing) {
   const Model m = loaded_four_bar();
   const auto dynamics = std::make_shared<const InverseDynamics>(std::make_shared<const Mechanism>(m));
   FeOptions options;
-  // At 1 mm the crank's plate (about 80 x 20 mm) needs about 6 700 nodes, the coupler's
-  // (about 170 x 20 mm) more than 10 000.
-  options.mesh_size = 0.001;
-  options.max_nodes = 10000;
+  // At 2 mm the crank's plate (about 80 x 20 mm) needs fewer nodes than the coupler's (about
+  // 170 x 20 mm); the budget lets the crank by and refuses the coupler, by the mesher's estimate
+  // (refused when over 1.25 times the budget).
+  options.mesh_size = 0.002;
+  fe::MeshOptions mesh;
+  mesh.size = options.mesh_size;
+  const double crank = fe::estimated_mesh_nodes(*m.bodies[0].shape, mesh);
+  const double coupler = fe::estimated_mesh_nodes(*m.bodies[1].shape, mesh);
+  ASSERT_LT(crank, 0.9 * coupler);
+  options.max_nodes = static_cast<int>(0.95 * coupler / 1.25);
   std::vector<std::string> stages;
   RunControl control;
   control.on_progress = [&](const Progress& p) {

@@ -14,7 +14,9 @@
 #include <rapidcheck/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <numbers>
@@ -382,6 +384,66 @@ TEST(Mesh, MaxNodesIsHonoured) {
   o.size = 1e-4;
   EXPECT_THAT([&] { mesh_region(r, o); },
               ::testing::ThrowsMessage<nbar::Error>(HasSubstr("the mesh would have about")));
+}
+
+// Halving the size halves the elements at the holes too (they kept 48 edges from the automatic
+// size down to 2πr / 48), and an edge size asked for refines the holes alone.
+TEST(Mesh, HoleEdgesFollowTheSizeAndTheEdgeSize) {
+  const Region r = make_bar({0, 0}, {0.2, 0}, 0.04, 0.02, 0.01, 0.01);
+  const double automatic = automatic_mesh_size(r);
+  EXPECT_NEAR(automatic, std::hypot(0.24, 0.04) / 20, 1e-12);
+  for (double refinement : {1.0, 2.0, 4.0}) {
+    MeshOptions o;
+    o.size = automatic / refinement;
+    // Refinement may split an edge or two more.
+    const int edges = edges_on(mesh_region(r, o), BoundaryTag::Kind::circle_hole);
+    EXPECT_GE(edges, static_cast<int>(2 * 48 * refinement)) << refinement;
+    EXPECT_LE(edges, static_cast<int>(2 * 48 * refinement) + 4) << refinement;
+  }
+  MeshOptions o;
+  o.edge_size = 2 * kPi * 0.01 / 100;  // 100 edges a hole
+  const TriMesh fine_edges = mesh_region(r, o);
+  EXPECT_GE(edges_on(fine_edges, BoundaryTag::Kind::circle_hole), 2 * 100);
+  EXPECT_LE(edges_on(fine_edges, BoundaryTag::Kind::circle_hole), 2 * 100 + 4);
+  o.edge_size = 1.0;  // larger than the automatic edge: the automatic mesh
+  EXPECT_EQ(mesh_region(r, o).nodes, mesh_region(r).nodes);
+  o.edge_size = -1;
+  EXPECT_THAT([&] { mesh_region(r, o); }, ::testing::ThrowsMessage<nbar::Error>(HasSubstr("edge element size")));
+}
+
+// The node estimate that refuses a mesh before meshing counts the graded refinement near holes
+// and corners: within 20 % of the mesh's count, and a size whose mesh passes the budget is
+// refused in milliseconds, before meshing.
+TEST(Mesh, NodeEstimateFollowsTheGrading) {
+  const Region bar = make_bar({0, 0}, {0.2, 0}, 0.04, 0.02, 0.01, 0.01);
+  const Region ansys_crank = make_bar({0, 0}, {1.0, 0}, 0.5, 0.1, 0.01, 0.01);
+  struct Case {
+    const Region* region;
+    double refinement;
+    double edge_size;
+  };
+  for (const Case& c : {Case{&bar, 1, 0}, Case{&bar, 4, 0}, Case{&bar, 1, 2e-4}, Case{&ansys_crank, 1, 0},
+                        Case{&ansys_crank, 2, 0}, Case{&ansys_crank, 1, 5e-4}}) {
+    MeshOptions o;
+    o.size = automatic_mesh_size(*c.region) / c.refinement;
+    o.edge_size = c.edge_size;
+    const double nodes = static_cast<double>(mesh_region(*c.region, o).nodes.size());
+    const double estimate = estimated_mesh_nodes(*c.region, o);
+    std::printf("node estimate %.1f for %.0f nodes (%.4f)\n", estimate, nodes, estimate / nodes);
+    EXPECT_NEAR(estimate / nodes, 1.0, 0.2) << c.refinement << " " << c.edge_size;
+  }
+  // At an eighth of the automatic size the crank's mesh would have about 90 000 nodes, its far
+  // field alone 42 000: a budget of 50 000 is refused by the graded estimate, before meshing.
+  MeshOptions o;
+  o.size = automatic_mesh_size(ansys_crank) / 8;
+  EXPECT_NEAR(estimated_mesh_nodes(ansys_crank, o), 90500, 1000);
+  o.max_nodes = 50000;
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_THAT([&] { check_mesh_budget(ansys_crank, o); },
+              ::testing::ThrowsMessage<nbar::Error>(HasSubstr("the mesh would have about")));
+  EXPECT_THAT([&] { mesh_region(ansys_crank, o); },
+              ::testing::ThrowsMessage<nbar::Error>(HasSubstr("the mesh would have about")));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.5);
 }
 
 TEST(Mesh, BadInputIsRefusedWithAReason) {

@@ -25,6 +25,12 @@ struct MeshOptions {
   double size = 0.0;
   // Edges along each circle hole (and per full turn of an arc), at least.
   int segments_per_hole = 48;
+  // Element edge along holes, arcs and re-entrant corners, m, at most (growing by `grading` away
+  // from them); 0: automatic. Automatic: 2πr / segments_per_hole at a hole or an arc, a fifth of
+  // the shorter of `size` and the corner's sides at a corner, each scaled by size /
+  // automatic_mesh_size(region) when `size` is below the automatic size, so that halving `size`
+  // halves every element, at the holes too.
+  double edge_size = 0.0;
   // Growth of element size away from a refined feature, per element (> 1).
   double grading = 1.25;
   // Refuse to make more nodes than this (Error(ErrorKind::BadInput)), so a bad size cannot hang.
@@ -68,5 +74,14 @@ TriMesh mesh_region(const Region& r, const MeshOptions& options = {});
 void check_mesh_budget(const Region& r, const MeshOptions& options = {});
 
 MeshQuality mesh_quality(const TriMesh& mesh);
+
+// The element size mesh_region uses when MeshOptions::size is 0: a twentieth of the diagonal of
+// the outline's bounding box, m.
+double automatic_mesh_size(const Region& r);
+
+// The number of nodes (corner and mid-side) check_mesh_budget expects mesh_region to make of r:
+// the element density 1 / (√3/2 h²) integrated over the plate for the graded sizing h, as for
+// equilateral triangles. Within 20 % of the mesh's count on the plates of tests/stress/mesh_test.cpp.
+double estimated_mesh_nodes(const Region& r, const MeshOptions& options = {});
 
 }  // namespace nbar::fe
