@@ -70,9 +70,19 @@ int run_stress(const StressCommand& command) {
     }
   }
   if (int code = export_meshes(request, analysis)) return code;
+  FeConvergence convergence;
+  if (request.converge) {
+    try {
+      convergence = request.convergence(analysis);
+    } catch (const Error& e) {
+      return fail(command.model, nbar::io::located(loaded.file.source, e));
+    }
+  }
   Output output;
   if (!output.open(command.output)) return kBadUsage;
-  if (request.profile_asked())
+  if (request.converge)
+    io::write_fe_convergence(output.stream(), request.format, analysis, convergence);
+  else if (request.profile_asked())
     io::write_table(output.stream(), request.format, analysis, profile);
   else
     io::write_stress_report(output.stream(), request.format, analysis);
@@ -94,6 +104,7 @@ Command add_stress_command(CLI::App& app) {
       ->check(nbar::cli::output_file());
   command->flags->add({"section_profile", "step"});
   command->flags->add({"at", "along", "around_hole", "coordinates", "radius", "samples", "export_mesh"});
+  command->flags->add({"segments_per_hole", "edge_size", "converge", "tolerance"});
   return {sub, [command] { return run_stress(*command); }};
 }
 

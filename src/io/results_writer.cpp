@@ -378,4 +378,88 @@ void write_simulation_json(std::ostream& out, const Mechanism& mechanism, const 
   out << json_text(j, 1) << '\n';
 }
 
+namespace {
+
+std::string percent_text(double fraction) { return fmt::format("{:.3g}", 100 * fraction); }
+
+// The study's verdict, one sentence.
+std::string convergence_verdict(const FeConvergence& c) {
+  if (c.converged)
+    return "converged: every peak changed by less than " + percent_text(c.tolerance) + " % on the last mesh";
+  return "not converged to " + percent_text(c.tolerance) + " %: " + c.stopped;
+}
+
+void write_fe_convergence_json(std::ostream& out, const Analysis& analysis, const FeConvergence& c) {
+  const Model& m = analysis.model();
+  nlohmann::ordered_json j;
+  j["model"] = m.name;
+  j["method"] = "fe";
+  j["units"] = {{"stress", "MPa"}, {"length", m.units.length}, {"change", "%"}};
+  j["tolerance"] = 100 * c.tolerance;
+  j["converged"] = c.converged;
+  j["stopped"] = c.converged ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(c.stopped);
+  nlohmann::ordered_json meshes = nlohmann::json::array();
+  for (const FeConvergence::Mesh& mesh : c.meshes) {
+    nlohmann::ordered_json links = nlohmann::json::array();
+    for (std::size_t k = 0; k < mesh.peaks.size(); ++k) {
+      const FePeak& p = mesh.peaks[k];
+      const Eigen::Vector2d where = body_frame_point(m, p.body, p.at);
+      nlohmann::ordered_json link;
+      link["body"] = m.bodies[p.body].name;
+      link["mesh_size"] = p.mesh_size / m.units.length_scale;
+      link["nodes"] = p.nodes;
+      link["elements"] = p.elements;
+      link["von_mises"] = to_megapascal(p.von_mises);
+      link["step"] = p.step;
+      link["x"] = where.x() / m.units.length_scale;
+      link["y"] = where.y() / m.units.length_scale;
+      link["change"] =
+          mesh.change.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(100 * mesh.change[k]);
+      links.push_back(link);
+    }
+    meshes.push_back({{"refinement", mesh.refinement}, {"links", links}});
+  }
+  j["meshes"] = meshes;
+  out << json_text(j, 1) << '\n';
+}
+
+}  // namespace
+
+void write_fe_convergence(std::ostream& out, const std::string& format, const Analysis& analysis,
+                          const FeConvergence& c) {
+  if (format == "json") return write_fe_convergence_json(out, analysis, c);
+  const Model& m = analysis.model();
+  std::vector<std::vector<std::string>> cells{{"mesh", "body", "mesh_size", "nodes", "von_mises", "change"}};
+  if (format != "csv") cells.push_back({"", "", "[" + m.units.length + "]", "", "[MPa]", "[%]"});
+  for (std::size_t i = 0; i < c.meshes.size(); ++i) {
+    const FeConvergence::Mesh& mesh = c.meshes[i];
+    for (std::size_t k = 0; k < mesh.peaks.size(); ++k) {
+      const FePeak& p = mesh.peaks[k];
+      cells.push_back({std::to_string(i + 1), m.bodies[p.body].name,
+                       fmt::format("{:.6g}", p.mesh_size / m.units.length_scale), std::to_string(p.nodes),
+                       fmt::format("{:.6g}", to_megapascal(p.von_mises)),
+                       mesh.change.empty() ? "" : fmt::format("{:.3f}", 100 * mesh.change[k])});
+    }
+  }
+  if (format == "csv") {
+    for (const auto& row : cells) {
+      for (std::size_t col = 0; col < row.size(); ++col) out << (col ? "," : "") << csv_field(row[col]);
+      out << '\n';
+    }
+    return;
+  }
+  out << "Finite-element peaks, refining every plate's mesh (element sizes halved each time):\n";
+  std::vector<std::size_t> width(cells[0].size(), 0);
+  for (const auto& row : cells)
+    for (std::size_t col = 0; col < row.size(); ++col) width[col] = std::max(width[col], row[col].size());
+  for (const auto& row : cells) {
+    std::string line;
+    for (std::size_t col = 0; col < row.size(); ++col)
+      line += col == 1 ? fmt::format("  {:<{}}", row[col], width[col])
+                       : fmt::format("{}{:>{}}", col ? "  " : "", row[col], width[col]);
+    out << line << '\n';
+  }
+  out << convergence_verdict(c) << '\n';
+}
+
 }  // namespace nbar::io

@@ -268,6 +268,15 @@ const std::vector<OptionRule>& StressRequest::rules() {
        integer_rule("samples",
                     "points along {along} or around {radius}, or cuts of an fe {section_profile} (default 101)", 2,
                     100000)},
+      {integer_rule("segments_per_hole", "fe: edges around each round hole, at least (default 48)", 8, 1e6),
+       positive_number("edge_size",
+                       "fe: element edge along holes, arcs and re-entrant corners, at most, in the model's length "
+                       "unit (default: 2 pi r / 48 at a hole, scaled down with {mesh_size} below the default size)"),
+       flag("converge",
+            "fe: refine every plate's mesh, halving its element sizes, until every link's peak changes by less than "
+            "{tolerance}; prints each mesh's nodes and peaks"),
+       number_rule("tolerance",
+                   "with {converge}: the largest change of a peak from one mesh to the next, % (default 1)", 0, 50)},
   });
   return rules;
 }
@@ -287,6 +296,7 @@ StressRequest StressRequest::read(const Options& options) {
     throw OptionError("step", "needs {section_profile} or {export_mesh}");
   if (r.mesh_size && r.method != StressMethod::fe)
     throw OptionError("mesh_size", "is the finite elements' element size: give {method} fe too");
+  read_fe_mesh_options(options, r);
   return r;
 }
 
@@ -324,12 +334,37 @@ void StressRequest::read_field_query(const Options& options) {
     throw OptionError("samples", "counts the points of {along} or the cuts of a {method} fe {section_profile}");
 }
 
+void StressRequest::read_fe_mesh_options(const Options& options, StressRequest& r) {
+  r.segments_per_hole = optional_int(read_integer(options, rule_of(rules(), "segments_per_hole")));
+  r.edge_size = read_number(options, rule_of(rules(), "edge_size"));
+  r.converge = read_flag(options, rule_of(rules(), "converge"));
+  const std::optional<double> tolerance = read_number(options, rule_of(rules(), "tolerance"));
+  if (tolerance && !(*tolerance > 0))
+    throw OptionError("tolerance", "must be above 0 %, not " + number_text(*tolerance));
+  if (tolerance) r.tolerance = *tolerance / 100;
+  for (const char* key : {"segments_per_hole", "edge_size", "converge"})
+    if (options.has(key) && r.method != StressMethod::fe)
+      throw OptionError(key, "is for finite elements: give {method} fe too");
+  if (tolerance && !r.converge) throw OptionError("tolerance", "needs {converge}");
+}
+
+FeConvergence StressRequest::convergence(const Analysis& analysis, const RunControl& control) const {
+  if (!analysis.stress || !analysis.stress->fe || !analysis.dynamics)
+    throw Error(ErrorKind::BadInput, "a convergence study needs the finite-element stresses of the analysis");
+  return converge_fe_peaks(analysis.dynamics->solver, analysis.stress->fe->options(), analysis.stress->fe_peaks,
+                           analysis.sweep, analysis.dynamics->samples, tolerance, 8, control);
+}
+
 AnalysisOptions StressRequest::analysis_options(const Model& model) const {
   AnalysisOptions options;
   sweep.apply(options);
   options.stress = true;
   options.sections = sections;
-  if (method == StressMethod::fe) use_finite_elements(options, model, mesh_size);
+  if (method == StressMethod::fe) {
+    use_finite_elements(options, model, mesh_size);
+    if (segments_per_hole) options.fe.segments_per_hole = *segments_per_hole;
+    if (edge_size) options.fe.edge_size = *edge_size * model.units.length_scale;
+  }
   return options;
 }
 

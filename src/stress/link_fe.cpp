@@ -65,14 +65,7 @@ fe::ElasticMaterial elastic_material(const Model& m, int body, const MassPropert
   return e;
 }
 
-double default_mesh_size(const Region& r) {
-  Eigen::Vector2d lo = r.outline.front(), hi = lo;
-  for (const Eigen::Vector2d& v : straight_edged(r).outline) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  return (hi - lo).norm() / 20.0;
-}
+double default_mesh_size(const Region& r) { return fe::automatic_mesh_size(r); }
 
 bool in_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
                  double tolerance) {
@@ -141,11 +134,16 @@ LinkFe::LinkFe(std::shared_ptr<const InverseDynamics> dynamics, const FeOptions&
   const Model& m = dynamics_->mechanism().model();
   if (!(options.mesh_size >= 0.0) || !std::isfinite(options.mesh_size))
     throw Error(ErrorKind::BadInput, "the mesh size must be a positive length (or 0 for the default)");
+  if (!(options.refinement >= 1.0) || !std::isfinite(options.refinement))
+    throw Error(ErrorKind::BadInput, "the mesh refinement must be a finite number >= 1");
   links_.resize(m.bodies.size());
   const auto mesh_options_of = [&](const Body& body) {
     fe::MeshOptions mesh_options;
-    mesh_options.size = options.mesh_size > 0.0 ? options.mesh_size : default_mesh_size(*body.shape);
+    mesh_options.size =
+        (options.mesh_size > 0.0 ? options.mesh_size : default_mesh_size(*body.shape)) / options.refinement;
     mesh_options.max_nodes = options.max_nodes;
+    mesh_options.segments_per_hole = options.segments_per_hole;
+    mesh_options.edge_size = options.edge_size / options.refinement;
     return mesh_options;
   };
   // Every plate's size is checked before any is meshed: a size too fine for the last plate
@@ -419,6 +417,51 @@ std::vector<FePeak> fe_peaks(const LinkFe& fe, const SweepResult& sweep, const s
       peak.safety_factor = *material->yield_strength / peak.von_mises;
   }
   return peaks;
+}
+
+namespace {
+
+// |b - a| / b per link, the links of a and b in the same order.
+std::vector<double> peak_changes(const std::vector<FePeak>& a, const std::vector<FePeak>& b) {
+  std::vector<double> change;
+  for (std::size_t k = 0; k < b.size(); ++k)
+    change.push_back(b[k].von_mises > 0.0 ? std::abs(b[k].von_mises - a[k].von_mises) / b[k].von_mises : 0.0);
+  return change;
+}
+
+}  // namespace
+
+FeConvergence converge_fe_peaks(const std::shared_ptr<const InverseDynamics>& dynamics, const FeOptions& options,
+                                std::vector<FePeak> first, const SweepResult& sweep,
+                                const std::vector<DynamicsResult>& per_sample, double tolerance, int max_meshes,
+                                const RunControl& control) {
+  if (!(tolerance > 0.0 && tolerance < 1.0))
+    throw Error(ErrorKind::BadInput, "the convergence tolerance must be above 0 and below 100 %");
+  FeConvergence out;
+  out.tolerance = tolerance;
+  out.meshes.push_back({options.refinement, std::move(first), {}});
+  FeOptions next = options;
+  while (true) {
+    if (static_cast<int>(out.meshes.size()) >= max_meshes) {
+      out.stopped = "stopped after " + std::to_string(max_meshes) + " meshes";
+      return out;
+    }
+    next.refinement *= 2;
+    std::unique_ptr<LinkFe> fe;
+    try {
+      fe = std::make_unique<LinkFe>(dynamics, next, control);
+    } catch (const Error& e) {
+      // The budget is checked before any plate is meshed; any other error is the caller's.
+      if (std::string(e.what()).find("max_nodes") == std::string::npos) throw;
+      out.stopped = std::string("stopped at the node budget: the next mesh is refused (") + e.what() + ")";
+      return out;
+    }
+    FeConvergence::Mesh mesh{next.refinement, fe_peaks(*fe, sweep, per_sample, control), {}};
+    mesh.change = peak_changes(out.meshes.back().peaks, mesh.peaks);
+    out.converged = std::all_of(mesh.change.begin(), mesh.change.end(), [&](double c) { return c < tolerance; });
+    out.meshes.push_back(std::move(mesh));
+    if (out.converged) return out;
+  }
 }
 
 }  // namespace nbar

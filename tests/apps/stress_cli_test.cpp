@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace nbar::cli_test {
 namespace {
 
@@ -54,6 +56,37 @@ TEST(StressPicturesCli, AnimationAndReport) {
   const CliRun report = nbar("report " + kPlates + " --stress-method fe --steps 3 -o " + html);
   ASSERT_EQ(report.code, 0) << report.err;
   EXPECT_THAT(read_file(html), HasSubstr("stress-legend"));  // the beam report has no map
+}
+
+}  // namespace
+namespace {
+
+// nbar stress --method fe --converge: the table of meshes and peaks, and the same as JSON.
+TEST(StressConvergenceCli, TableAndJsonOfTheMeshes) {
+  const CliRun table = nbar("stress " + kPlates + " --method fe --steps 3 --converge --tolerance 2");
+  ASSERT_EQ(table.code, 0) << table.err;
+  EXPECT_THAT(table.out, HasSubstr("mesh  body"));
+  EXPECT_THAT(table.out, HasSubstr("converged: every peak changed by less than 2 % on the last mesh"));
+  const CliRun json = nbar("stress " + kPlates + " --method fe --steps 3 --converge --tolerance 2 --format json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["tolerance"], 2.0);
+  EXPECT_EQ(j["converged"], true);
+  ASSERT_GE(j["meshes"].size(), 2u);
+  const auto& first = j["meshes"][0]["links"];
+  const auto& second = j["meshes"][1]["links"];
+  EXPECT_EQ(first[0]["body"], "crank");
+  EXPECT_TRUE(first[0]["change"].is_null());
+  const double a = first[0]["von_mises"], b = second[0]["von_mises"];
+  EXPECT_NEAR(second[0]["change"].get<double>(), 100 * std::abs(b - a) / b, 1e-9);
+  EXPECT_NEAR(second[0]["mesh_size"].get<double>(), first[0]["mesh_size"].get<double>() / 2, 1e-12);
+
+  const CliRun beam = nbar("stress " + kPlates + " --steps 3 --converge");
+  EXPECT_EQ(beam.code, 2);
+  EXPECT_THAT(beam.err, HasSubstr("--converge: is for finite elements: give --method fe too"));
+  const CliRun alone = nbar("stress " + kPlates + " --method fe --steps 3 --tolerance 2");
+  EXPECT_EQ(alone.code, 2);
+  EXPECT_THAT(alone.err, HasSubstr("--tolerance: needs --converge"));
 }
 
 }  // namespace

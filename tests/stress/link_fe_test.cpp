@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -301,6 +302,46 @@ TEST(LinkFe, PeaksOverTheSweepAreTheSameOnOneOrTwoThreads) {
     for (std::size_t i = 0; i < s1.forces.size(); ++i)
       EXPECT_LE(s1.fe.solve(s1.forces[i], p1[k].body).peak, p1[k].von_mises * (1 + 1e-12));
   }
+}
+
+}  // namespace
+}  // namespace nbar::ktest
+
+namespace nbar::ktest {
+namespace {
+
+// A convergence study halves every plate's element sizes until every peak changes by less than
+// the tolerance, each change |p_k - p_k-1| / p_k of the meshes it lists; or it stops, saying why,
+// when the next mesh would pass the node budget (refused before meshing).
+TEST(LinkFe, ConvergenceHalvesTheSizesUntilThePeaksSettle) {
+  const Solved s(loaded_four_bar(), coarse());
+  const std::vector<FePeak> first = fe_peaks(s.fe, s.sweep, s.forces);
+  const FeConvergence c = converge_fe_peaks(s.dynamics, s.fe.options(), first, s.sweep, s.forces, 0.01);
+  ASSERT_TRUE(c.converged) << c.stopped;
+  ASSERT_GE(c.meshes.size(), 2u);
+  for (std::size_t i = 1; i < c.meshes.size(); ++i) {
+    EXPECT_EQ(c.meshes[i].refinement, 2 * c.meshes[i - 1].refinement);
+    for (std::size_t k = 0; k < first.size(); ++k) {
+      const FePeak& now = c.meshes[i].peaks[k];
+      const FePeak& before = c.meshes[i - 1].peaks[k];
+      EXPECT_EQ(now.mesh_size, before.mesh_size / 2);
+      EXPECT_GT(now.nodes, before.nodes);
+      EXPECT_DOUBLE_EQ(c.meshes[i].change[k], std::abs(now.von_mises - before.von_mises) / now.von_mises);
+    }
+  }
+  for (double change : c.meshes.back().change) EXPECT_LT(change, 0.01);
+  std::printf("converged in %zu meshes; crank %.6g -> %.6g MPa\n", c.meshes.size(), first[0].von_mises / 1e6,
+              c.meshes.back().peaks[0].von_mises / 1e6);
+
+  // A budget that the second mesh passes.
+  FeOptions tight = s.fe.options();
+  tight.max_nodes = first[1].nodes + 10;
+  const FeConvergence stopped = converge_fe_peaks(s.dynamics, tight, first, s.sweep, s.forces, 1e-6);
+  EXPECT_FALSE(stopped.converged);
+  EXPECT_EQ(stopped.meshes.size(), 1u);
+  EXPECT_NE(stopped.stopped.find("stopped at the node budget"), std::string::npos) << stopped.stopped;
+  EXPECT_NE(stopped.stopped.find("max_nodes"), std::string::npos) << stopped.stopped;
+  EXPECT_THROW(converge_fe_peaks(s.dynamics, s.fe.options(), first, s.sweep, s.forces, 0.0), Error);
 }
 
 }  // namespace

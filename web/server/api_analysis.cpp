@@ -50,6 +50,13 @@ ApiResponse api_stress(Job& job, const std::string& text) {
   AnalysisOptions options = stress.analysis_options(job.mechanism->model());
   options.fe.max_nodes = job.limits.max_fe_nodes;
   const Analysis analysis = run_analysis(job, options);
+  if (stress.converge) {
+    // The meshes refine until the next one would pass the server's node limit.
+    const FeConvergence convergence = stress.convergence(analysis, job.control);
+    return answer(
+        write([&](std::ostream& out) { io::write_fe_convergence(out, stress.format, analysis, convergence); }),
+        text_type(stress.format));
+  }
   if (!stress.profile_asked())
     return answer(write([&](std::ostream& out) { io::write_stress_report(out, stress.format, analysis); }),
                   text_type(stress.format));

@@ -63,6 +63,14 @@ void write_table(std::ostream& out, const std::string& format, const Analysis& a
 // JSON says "method": "fe".
 void write_stress_report(std::ostream& out, const std::string& format, const Analysis& analysis);
 
+// A convergence study of the finite-element peaks (nbar stress --method fe --converge): per mesh
+// and link, the refinement (1, 2, 4...: the element sizes divided by it), the element size far
+// from holes, the nodes, the peak von Mises (MPa) and its change from the mesh before (%); then
+// whether every change fell below the tolerance, or why the study stopped. Format "table",
+// "csv" or "json".
+void write_fe_convergence(std::ostream& out, const std::string& format, const Analysis& analysis,
+                          const FeConvergence& convergence);
+
 // A simulation (nbar simulate) as JSON: the model, units, the free drivers, whether it ran to its
 // end (and why not), the integrator's statistics and the largest constraint drift and energy
 // error, the events met (kind, time, row, message), then the table's columns, units and rows.

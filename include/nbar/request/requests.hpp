@@ -141,9 +141,20 @@ struct StressRequest {
   // The section profile or fe query asked for: OptionError at the option that names what is wrong.
   ResultTable section_profile_table(const Analysis& analysis) const;
 
+  // fe: the mesh (unset: the mesher's defaults), and a convergence study instead of one mesh.
+  std::optional<int> segments_per_hole;
+  std::optional<double> edge_size;  // the model's length unit
+  bool converge = false;
+  double tolerance = 0.01;  // relative; the option `tolerance` is in %
+  // With `converge`: the meshes after the analysis of analysis_options (the first mesh), halving
+  // every plate's element sizes until the peaks change by less than `tolerance`, or the next mesh
+  // would pass the node budget.
+  FeConvergence convergence(const Analysis& analysis, const RunControl& control = {}) const;
+
  private:
   void read_field_query(const Options& options);
   ResultTable field_query_table(const Analysis& analysis, int body, int step) const;
+  static void read_fe_mesh_options(const Options& options, StressRequest& r);
 };
 
 // A solved step of the sweep, checked: OptionError at `step` ("step 999 is not a solved step

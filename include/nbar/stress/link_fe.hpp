@@ -22,6 +22,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "nbar/dynamics/inverse_dynamics.hpp"
@@ -39,6 +40,13 @@ struct FeOptions {
   int threads = 0;
   // A plate that would need more nodes is an error (the web server bounds its requests so).
   int max_nodes = 400000;
+  // Edges around each circle hole at least, and the element edge along holes, arcs and
+  // re-entrant corners at most (m; 0: automatic, scaled with mesh_size): fe::MeshOptions.
+  int segments_per_hole = 48;
+  double edge_size = 0.0;
+  // Every plate's element sizes (mesh_size or its automatic size, and edge_size) divided by this
+  // (>= 1): the meshes of a convergence study (converge_fe_peaks).
+  double refinement = 1.0;
 };
 
 // Where a load acting at one point of a body reaches its plate.
@@ -102,6 +110,30 @@ struct FePeak {
 // options().threads threads. Checks `control` between samples.
 std::vector<FePeak> fe_peaks(const LinkFe& fe, const SweepResult& sweep, const std::vector<DynamicsResult>& per_sample,
                              const RunControl& control = {});
+
+// A convergence study of the finite-element peaks: the meshes, each with every plate's element
+// sizes halved from the one before, and every link's peak on each.
+struct FeConvergence {
+  struct Mesh {
+    double refinement = 1.0;  // FeOptions::refinement
+    std::vector<FePeak> peaks;
+    // Per peak, |this peak - the last mesh's| / this peak; empty for the first mesh.
+    std::vector<double> change;
+  };
+  std::vector<Mesh> meshes;
+  double tolerance = 0.01;
+  bool converged = false;  // every peak of the last mesh changed by less than the tolerance
+  std::string stopped;     // when not converged: why (the node budget, the most meshes)
+};
+
+// Refines from `options` (whose peaks are `first`, as fe_peaks gave them) by halving every
+// plate's element sizes until every peak changes by less than `tolerance` (relative) from one
+// mesh to the next, the next mesh would pass options.max_nodes (refused before meshing), or
+// `max_meshes` meshes are done. Checks `control` between samples and meshes.
+FeConvergence converge_fe_peaks(const std::shared_ptr<const InverseDynamics>& dynamics, const FeOptions& options,
+                                std::vector<FePeak> first, const SweepResult& sweep,
+                                const std::vector<DynamicsResult>& per_sample, double tolerance, int max_meshes = 8,
+                                const RunControl& control = {});
 
 // A point of body `body` drawn in the starting pose (a plate-frame point), in the body's frame
 // as the stress reports give places: x along the body from its first point towards its
