@@ -8,13 +8,27 @@
 
 namespace nbar::fe {
 
+namespace {
+
+// ccx reads at most 20 characters a field (it read -9.18485099360515e-19 as -0.918): the most
+// significant digits, from 17 down, whose text fits; 13 always do (-1.234567890123e-308).
+std::string field(double x) {
+  for (int digits = 17; digits > 13; --digits) {
+    std::string text = fmt::format("{:.{}g}", x, digits);
+    if (text.size() <= 20) return text;
+  }
+  return fmt::format("{:.13g}", x);
+}
+
+}  // namespace
+
 void write_calculix_input(std::ostream& out, const PlateModel& model, const LoadCase& loads,
                           const std::string& heading) {
   const TriMesh& mesh = model.mesh();
   const ElasticMaterial& material = model.material();
   out << "*HEADING\n" << heading << "\n*NODE, NSET=NALL\n";
   for (std::size_t i = 0; i < mesh.nodes.size(); ++i)
-    out << fmt::format("{}, {:.12g}, {:.12g}\n", i + 1, mesh.nodes[i].x(), mesh.nodes[i].y());
+    out << fmt::format("{}, {}, {}\n", i + 1, field(mesh.nodes[i].x()), field(mesh.nodes[i].y()));
   // ccx's CPS6 numbers its nodes as TriMesh does: corners counterclockwise, then mid-sides 1-2, 2-3, 3-1.
   out << "*ELEMENT, TYPE=CPS6, ELSET=EALL\n";
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -22,16 +36,16 @@ void write_calculix_input(std::ostream& out, const PlateModel& model, const Load
     out << fmt::format("{}, {}, {}, {}, {}, {}, {}\n", t + 1, v[0] + 1, v[1] + 1, v[2] + 1, v[3] + 1, v[4] + 1,
                        v[5] + 1);
   }
-  out << fmt::format("*MATERIAL, NAME=PLATE\n*ELASTIC\n{:.12g}, {:.12g}\n", material.youngs_modulus,
-                     material.poisson_ratio);
-  out << fmt::format("*SOLID SECTION, ELSET=EALL, MATERIAL=PLATE\n{:.12g}\n", material.thickness);
+  out << fmt::format("*MATERIAL, NAME=PLATE\n*ELASTIC\n{}, {}\n", field(material.youngs_modulus),
+                     field(material.poisson_ratio));
+  out << fmt::format("*SOLID SECTION, ELSET=EALL, MATERIAL=PLATE\n{}\n", field(material.thickness));
   out << "*BOUNDARY\n";
   for (const Support& s : model.supports())
     out << fmt::format("{}, {}, {}\n", s.node + 1, s.direction + 1, s.direction + 1);
   out << "*STEP\n*STATIC\n*CLOAD\n";
   const Eigen::VectorXd forces = model.nodal_loads(loads).forces;
   for (int i = 0; i < forces.size(); ++i)
-    if (forces[i] != 0) out << fmt::format("{}, {}, {:.12g}\n", i / 2 + 1, i % 2 + 1, forces[i]);
+    if (forces[i] != 0) out << fmt::format("{}, {}, {}\n", i / 2 + 1, i % 2 + 1, field(forces[i]));
   out << "*NODE FILE, OUTPUT=2D\nU\n*EL FILE, OUTPUT=2D\nS\n*END STEP\n";
 }
 
@@ -76,8 +90,12 @@ CalculixResults read_calculix_frd(std::istream& in) {
           out.displacement.resize(node, Eigen::Vector2d::Zero());
         out.displacement[node - 1] = {values[0], values[1]};
       } else {
-        if (out.stress.size() < static_cast<std::size_t>(node)) out.stress.resize(node, Eigen::Vector3d::Zero());
+        if (out.stress.size() < static_cast<std::size_t>(node)) {
+          out.stress.resize(node, Eigen::Vector3d::Zero());
+          out.stress_zz.resize(node, 0.0);
+        }
         out.stress[node - 1] = {values[0], values[1], values[3]};
+        out.stress_zz[node - 1] = values[2];
       }
     }
   }

@@ -321,17 +321,21 @@ namespace nbar::fe {
 namespace {
 
 // The same mesh, material, supports and balanced nodal loads in CalculiX's CPS6 elements (Debian's
-// calculix-ccx, run here): displacements and the peak stress must agree.
+// calculix-ccx, run here): displacements and stresses must agree, node by node. ccx expands CPS6
+// into a layer of solid elements as thick as the section, which is plane stress only while it is
+// thin: at t = r (the 10 mm plate this test had) its σzz reached 0.2 of the net stress at the hole
+// and its σxx ran 1.5 % high. The plate here is 1 mm thick, a tenth of the hole's radius.
 TEST(PlaneStress, AgreesWithCalculix) {
   const double height = 0.04, radius = 0.01, load = 1000.0;
+  const ElasticMaterial thin{kSteel.youngs_modulus, kSteel.poisson_ratio, 0.001, kSteel.density};
   const TriMesh mesh =
       structured::plate_with_hole(-height, -height / 2, 4 * height, height / 2, {0, 0}, radius, 64, 20, 2.5);
-  const PlateModel model(mesh, kSteel);
+  const PlateModel model(mesh, thin);
   LoadCase loads;
   loads.bearings.push_back({0, {-load * 0.8, load * 0.6}});
   loads.couples.push_back({0, 2.0});
   loads.body = RigidBodyField{{0.08, 0}, {3, -2}, 40.0, 500.0, {0, -9.81}};
-  loads.nodal = end_tension(mesh, -1, 4 * height, load / (height * kSteel.thickness), kSteel.thickness);
+  loads.nodal = end_tension(mesh, -1, 4 * height, load / (height * thin.thickness), thin.thickness);
   const StressField ours = model.solve(loads);
 
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("nbar-ccx-" + std::to_string(::getpid()));
@@ -348,24 +352,82 @@ TEST(PlaneStress, AgreesWithCalculix) {
   const CalculixResults theirs = read_calculix_frd(frd);
   ASSERT_EQ(theirs.displacement.size(), mesh.nodes.size());
   ASSERT_EQ(theirs.stress.size(), mesh.nodes.size());
+  ASSERT_EQ(theirs.stress_zz.size(), mesh.nodes.size());
 
-  double largest = 0, worst = 0, their_peak = 0;
+  const auto von_mises = [](const Eigen::Vector3d& s) {
+    return std::sqrt(s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3 * s[2] * s[2]);
+  };
+  double largest = 0, worst = 0, their_peak = 0, worst_stress = 0, worst_far = 0, largest_zz = 0;
+  Eigen::Vector2d worst_at(0, 0);
   for (std::size_t i = 0; i < mesh.nodes.size(); ++i)
     largest = std::max(largest, ours.displacement.segment<2>(2 * i).norm());
   for (std::size_t i = 0; i < mesh.nodes.size(); ++i) {
     worst = std::max(worst, (ours.displacement.segment<2>(2 * i) - theirs.displacement[i]).norm());
-    const Eigen::Vector3d& s = theirs.stress[i];
-    their_peak = std::max(their_peak, std::sqrt(s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3 * s[2] * s[2]));
+    their_peak = std::max(their_peak, von_mises(theirs.stress[i]));
+    largest_zz = std::max(largest_zz, std::abs(theirs.stress_zz[i]));
+  }
+  // Node by node, relative to the peak: everywhere, and more than two radii from the hole.
+  for (std::size_t i = 0; i < mesh.nodes.size(); ++i) {
+    const double difference = std::abs(von_mises(ours.stress[i]) - von_mises(theirs.stress[i])) / ours.peak;
+    if (difference > worst_stress) worst_at = mesh.nodes[i];
+    worst_stress = std::max(worst_stress, difference);
+    if (mesh.nodes[i].norm() > 3 * radius) worst_far = std::max(worst_far, difference);
   }
   std::printf(
-      "CalculiX: %zu nodes; largest displacement difference %.3g of the largest displacement; "
-      "peak von Mises %.6g Pa (nbar) and %.6g Pa (ccx): %.3f %%\n",
-      mesh.nodes.size(), worst / largest, ours.peak, their_peak, 100 * (ours.peak / their_peak - 1));
-  // ccx expands CPS6 into 15-node wedges through the thickness, so nodal displacements differ
-  // slightly (0.2 % on a plain rectangle, most at mid-side nodes on the edge).
+      "CalculiX: %zu nodes, 1 mm plate; largest displacement difference %.3g of the largest displacement; "
+      "peak von Mises %.6g Pa (nbar) and %.6g Pa (ccx): %.3f %%; von Mises node by node within %.3f %% of the "
+      "peak, at (%.4g, %.4g) m (%.3f %% beyond 3 r); ccx's largest sigma_zz %.3g of the peak\n",
+      mesh.nodes.size(), worst / largest, ours.peak, their_peak, 100 * (ours.peak / their_peak - 1), 100 * worst_stress,
+      worst_at.x(), worst_at.y(), 100 * worst_far, largest_zz / their_peak);
   EXPECT_LT(worst / largest, 0.01);
-  EXPECT_NEAR(ours.peak, their_peak, 0.02 * their_peak);
+  EXPECT_NEAR(ours.peak, their_peak, 0.01 * their_peak);
+  // The largest difference is on the loaded hole's edge, under the bearing pressure and the
+  // shear couple (6.8 % of the peak, ccx's stresses there extrapolated from its wedges' points);
+  // beyond three radii, 0.8 %.
+  EXPECT_LT(worst_stress, 0.08);
+  EXPECT_LT(worst_at.norm(), 1.01 * radius);
+  EXPECT_LT(worst_far, 0.01);
+  EXPECT_LT(largest_zz, 0.05 * their_peak);
   std::filesystem::remove_all(dir);
+}
+
+// Every number of a deck fits ccx's 20-character fields, with the digits to read it back exactly
+// where they fit: -9.18485099360515e-19 (21 characters) was read as -0.918.
+TEST(PlaneStress, CalculixFieldsFitTwentyCharacters) {
+  TriMesh mesh = structured::rectangle(0, 0, 0.2, 0.05, 4, 2);
+  mesh.nodes[0].x() = -9.18485099360515e-19;  // on the rectangle's corner, to rounding
+  const PlateModel model(mesh, kSteel);
+  LoadCase loads;
+  loads.nodal = end_tension(mesh, 0, 0.2, 1.0 / 3.0, kSteel.thickness);
+  std::ostringstream deck;
+  write_calculix_input(deck, model, loads);
+  std::istringstream lines(deck.str());
+  std::string line;
+  int fields = 0;
+  bool in_nodes = false;
+  while (std::getline(lines, line)) {
+    if (line.rfind("*", 0) == 0) {
+      in_nodes = line.rfind("*NODE, NSET", 0) == 0;
+      continue;
+    }
+    std::istringstream cells(line);
+    std::string cell;
+    std::vector<std::string> row;
+    while (std::getline(cells, cell, ',')) {
+      if (!cell.empty() && cell[0] == ' ') cell.erase(0, 1);
+      EXPECT_LE(cell.size(), 20u) << line;
+      row.push_back(cell);
+      ++fields;
+    }
+    if (in_nodes && row.size() == 3) {
+      const int node = std::stoi(row[0]) - 1;
+      // 14 significant digits at the least, 16 or 17 for most numbers.
+      EXPECT_NEAR(std::stod(row[1]), mesh.nodes[node].x(), 1e-13 * std::abs(mesh.nodes[node].x())) << line;
+      EXPECT_NEAR(std::stod(row[2]), mesh.nodes[node].y(), 1e-13 * std::abs(mesh.nodes[node].y())) << line;
+    }
+  }
+  EXPECT_GT(fields, 100);
+  EXPECT_NE(deck.str().find("1, -9.1848509936051e-19, 0\n"), std::string::npos) << deck.str().substr(0, 200);
 }
 
 }  // namespace

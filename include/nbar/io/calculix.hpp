@@ -25,6 +25,9 @@ void write_calculix_input(std::ostream& out, const PlateModel& model, const Load
 struct CalculixResults {
   std::vector<Eigen::Vector2d> displacement;  // per node (index = ccx node - 1), m
   std::vector<Eigen::Vector3d> stress;        // per node: (σxx, σyy, τxy), Pa (ccx's nodal averages)
+  // Per node: σzz, Pa. 0 in plane stress; ccx expands CPS6 into a layer of solid elements as
+  // thick as the section, whose σzz grows with the thickness against the hole's radius.
+  std::vector<double> stress_zz;
 };
 
 // Reads the DISP and STRESS blocks of an ASCII .frd file. Throws Error(ErrorKind::BadInput) with the line
