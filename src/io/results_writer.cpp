@@ -457,6 +457,7 @@ void write_fe_convergence(std::ostream& out, const std::string& format, const An
     for (std::size_t col = 0; col < row.size(); ++col)
       line += col == 1 ? fmt::format("  {:<{}}", row[col], width[col])
                        : fmt::format("{}{:>{}}", col ? "  " : "", row[col], width[col]);
+    line.erase(line.find_last_not_of(' ') + 1);  // the first mesh has no change
     out << line << '\n';
   }
   out << convergence_verdict(c) << '\n';

@@ -228,6 +228,32 @@ TEST_F(RequestsOnAModel, TheMeshSizeIsConvertedFromTheModelsUnitOnce) {
             "mesh_size: is the finite elements' element size: give method fe too");
 }
 
+// The finite elements' mesh options and the convergence study's tolerance, read for every
+// front-end: the edge size converted from the model's unit, the tolerance from % to a fraction.
+TEST_F(RequestsOnAModel, TheMeshOptionsAndTheConvergenceTolerance) {
+  Options o = with("method", std::string("fe"));
+  o.set("edge_size", std::string("0.5"));
+  o.set("segments_per_hole", std::string("64"));
+  o.set("converge", true);
+  o.set("tolerance", std::string("0.5"));
+  const StressRequest r = StressRequest::read(o);
+  EXPECT_TRUE(r.converge);
+  EXPECT_DOUBLE_EQ(r.tolerance, 0.005);
+  const AnalysisOptions options = r.analysis_options(file_.model);
+  EXPECT_DOUBLE_EQ(options.fe.edge_size, 0.0005);
+  EXPECT_EQ(options.fe.segments_per_hole, 64);
+  EXPECT_DOUBLE_EQ(StressRequest::read(with("method", std::string("fe"))).tolerance, 0.01);
+  EXPECT_EQ(message([&] { StressRequest::read(with("edge_size", 1LL)); }),
+            "edge_size: is for finite elements: give method fe too");
+  Options few = with("method", std::string("fe"));
+  few.set("segments_per_hole", 4LL);
+  EXPECT_EQ(message([&] { StressRequest::read(few); }), "segments_per_hole: must be from 8 to 1000000, not 4");
+  Options zero = with("method", std::string("fe"));
+  zero.set("converge", true);
+  zero.set("tolerance", 0.0);
+  EXPECT_EQ(message([&] { StressRequest::read(zero); }), "tolerance: must be above 0 %, not 0");
+}
+
 TEST_F(RequestsOnAModel, ThePoseDrawnIsTheSampleAskedForOrWhereTheDriverIsAt) {
   Options o = with("steps", 13LL);
   o.set("step", 3LL);
