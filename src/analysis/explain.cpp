@@ -413,11 +413,17 @@ void explain_newton(const Mechanism& mech, const SweepResult& sweep, const Expla
   ex.residual = max_residual(mech, state) / ls;
 }
 
-// The drivers as series in time, as the sweep's samples take them.
+// The drivers as series in time, as the sweep's samples take them. A rocking input (`at_limits:
+// reverse`, one driver at a constant speed) moves at its speed's size, against it after an odd
+// number of turns: its own plan's law holds only up to the first turn.
 std::vector<DriverState> drivers_in_time(const Model& m, const SweepPath& plan, const Sample& sample, int step) {
   const int nd = static_cast<int>(m.drivers.size());
   std::vector<DriverState> in_time(nd);
-  if (plan.time_law || plan.parameter_is_time) {
+  if (nd == 1 && m.drivers[0].at_limits == AtLimits::Reverse) {
+    Series s(3, sample.driver_values[0]);
+    s[1] = (sample.reversals % 2 == 0 ? 1.0 : -1.0) * plan.speed[0];
+    in_time[0] = make_driver_state(s, m.drivers[0].is_angular());
+  } else if (plan.time_law || plan.parameter_is_time) {
     std::vector<Series> series;
     plan.drivers(plan.parameters[step], 3, series);
     for (int d = 0; d < nd; ++d) in_time[d] = make_driver_state(series[d], m.drivers[d].is_angular());
