@@ -126,6 +126,16 @@ class Result(Table):
         state["json"] = self.to_json()
         return (_unpickled_result, (state,))
 
+    def __repr__(self) -> str:
+        state = "complete" if self.complete else f"stopped: {self.stop_reason}"
+        return f"<nbar.Result: {self.rows} samples x {len(self.columns)} columns, {state}>"
+
+    def _repr_html_(self) -> str:
+        head = "complete" if self.complete else "stopped early: " + html.escape(self.stop_reason or "")
+        notes = "".join(f"<li>{html.escape(w.message)}</li>" for w in self.warnings)
+        return (f"<p>{self.rows} samples, {head}; largest residual {self.max_residual:.3g}</p>"
+                + (f"<ul>{notes}</ul>" if notes else "") + super()._repr_html_())
+
 
 # What a Result reports besides its columns, in the order its docstring gives them.
 _RESULT_FIELDS = ("columns", "complete", "stop_reason", "warnings", "max_residual", "branches",
@@ -150,16 +160,6 @@ def _unpickled_result(state: Dict[str, Any]) -> Result:
         setattr(result, name, state[name])
     result.warnings = [Warning(*w) for w in state["warnings"]]
     return result
-
-    def __repr__(self) -> str:
-        state = "complete" if self.complete else f"stopped: {self.stop_reason}"
-        return f"<nbar.Result: {self.rows} samples x {len(self.columns)} columns, {state}>"
-
-    def _repr_html_(self) -> str:
-        head = "complete" if self.complete else "stopped early: " + html.escape(self.stop_reason or "")
-        notes = "".join(f"<li>{html.escape(w.message)}</li>" for w in self.warnings)
-        return (f"<p>{self.rows} samples, {head}; largest residual {self.max_residual:.3g}</p>"
-                + (f"<ul>{notes}</ul>" if notes else "") + super()._repr_html_())
 
 
 def _no_column(pattern: str, names: List[str]):

@@ -335,3 +335,12 @@ def test_check_gives_the_transmission_angles_design_value_over_the_cranks_turn(e
     r = m.solve(steps=3601)
     assert r.transmission_angles["crank-coupler-rocker"]["design"] == pytest.approx(over_turn["design"], abs=1e-4)
     assert nbar.load(examples / "fourbar-double-rocker.yaml").check().loops[0].transmission_over_turn is None
+
+
+def test_a_result_says_what_it_is_in_the_shell_and_in_jupyter(examples):
+    r = nbar.load(examples / "fourbar-crank-rocker.yaml").solve(steps=37)
+    # The Result's own (they sat after a return in a module function and never ran: a Result
+    # printed as a bare Table).
+    assert repr(r) == f"<nbar.Result: 37 samples x {len(r.columns)} columns, complete>"
+    page = r._repr_html_()
+    assert page.startswith("<p>37 samples, complete; largest residual ") and "<table" in page
