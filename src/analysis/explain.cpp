@@ -11,6 +11,7 @@
 
 #include "explain_expr.hpp"
 #include "kinematics/constraints.hpp"
+#include "kinematics/rocking.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/kinematics/position.hpp"
 #include "nbar/kinematics/sweep.hpp"
@@ -419,7 +420,7 @@ void explain_newton(const Mechanism& mech, const SweepResult& sweep, const Expla
 std::vector<DriverState> drivers_in_time(const Model& m, const SweepPath& plan, const Sample& sample, int step) {
   const int nd = static_cast<int>(m.drivers.size());
   std::vector<DriverState> in_time(nd);
-  if (nd == 1 && m.drivers[0].at_limits == AtLimits::Reverse) {
+  if (sweep_rocks(m)) {
     Series s(3, sample.driver_values[0]);
     s[1] = (sample.reversals % 2 == 0 ? 1.0 : -1.0) * plan.speed[0];
     in_time[0] = make_driver_state(s, m.drivers[0].is_angular());

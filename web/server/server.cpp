@@ -203,10 +203,11 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   });
   // Refused before their bodies were read (above): closed once answered.
   server.set_logger([](const httplib::Request& req, const httplib::Response& res) {
-    bool unread_body = req.body.empty() && req.has_header("Transfer-Encoding");
+    if (!req.body.empty() || res.get_header_value("Connection") != "close") return;
+    bool unread_body = req.has_header("Transfer-Encoding");
     for (std::size_t i = 0; i < req.get_header_value_count("Content-Length"); ++i)
-      unread_body = unread_body || (req.body.empty() && req.get_header_value("Content-Length", i) != "0");
-    if (unread_body && res.get_header_value("Connection") == "close") close_after_answer(req);
+      unread_body = unread_body || req.get_header_value("Content-Length", i) != "0";
+    if (unread_body) close_after_answer(req);
   });
   const ServerConfig* config = &impl_->config;
   const auto handler = [config](const httplib::Request& req, httplib::Response& res) {
