@@ -117,12 +117,12 @@ void warn_about_input_limits(const Mechanism& mech, ModelSummary& out) {
 }
 
 // A rocking driver's turns over one cycle of its path, or that it never turns back.
-void describe_rocking(const Mechanism& mech, ModelSummary& out) {
+void describe_rocking(const Mechanism& mech, double work_budget, ModelSummary& out) {
   const Model& m = mech.model();
   if (m.drivers.size() != 1 || m.drivers[0].at_limits != AtLimits::Reverse) return;
   const std::string name = "driver '" + m.drivers[0].name + "'";
   try {
-    const RockingPlan plan = plan_rocking(mech);
+    const RockingPlan plan = plan_rocking(mech, work_budget);
     if (!plan.reverses) {
       out.rocking = name + " never reverses: " + plan.never_reverses;
       out.warnings.push_back({"never_reverses", -1,
@@ -146,9 +146,11 @@ void describe_rocking(const Mechanism& mech, ModelSummary& out) {
 }
 
 // The limits of the whole mechanism, searched on the sweep's own path from its start.
-void find_limits(const Mechanism& mech, ModelSummary& out) {
+void find_limits(const Mechanism& mech, double work_budget, ModelSummary& out) {
   try {
-    out.limits = find_path_limits(mech);
+    LimitSearchOptions options;
+    options.work_budget = work_budget;
+    out.limits = find_path_limits(mech, options);
   } catch (const Error& e) {
     out.limits_error = e.message();
   }
@@ -266,7 +268,7 @@ void check_laws_over_sweep(const Mechanism& mech, ModelSummary& out) {
 }
 
 // Assembles at the start of the sweep and classifies every four-bar loop in that pose.
-void summarize_start(const Mechanism& mech, int max_steps, ModelSummary& out) {
+void summarize_start(const Mechanism& mech, int max_steps, double work_budget, ModelSummary& out) {
   State state(mech);
   try {
     AssemblySummary a;
@@ -297,9 +299,9 @@ void summarize_start(const Mechanism& mech, int max_steps, ModelSummary& out) {
     add_rocker_swing(mech, points, l);
     out.loops.push_back(std::move(l));
   }
-  find_limits(mech, out);
+  find_limits(mech, work_budget, out);
   warn_about_input_limits(mech, out);
-  describe_rocking(mech, out);
+  describe_rocking(mech, work_budget, out);
 }
 
 }  // namespace
@@ -313,7 +315,7 @@ std::vector<Warning> check_before_sweep(const Mechanism& mech) {
   return s.warnings;
 }
 
-ModelSummary summarize(const Mechanism& mech, int max_steps) {
+ModelSummary summarize(const Mechanism& mech, int max_steps, double limit_search_work) {
   const Model& m = mech.model();
   ModelSummary s;
   for (const Point& p : m.points) (p.ground ? s.ground_points : s.moving_points).push_back(p.name);
@@ -332,7 +334,7 @@ ModelSummary summarize(const Mechanism& mech, int max_steps) {
   warn_about_many_turns(m, s);
   warn_about_points_off_plates(m, s.warnings);
   summarize_crank_mechanisms(m, s);
-  summarize_start(mech, max_steps, s);
+  summarize_start(mech, max_steps, limit_search_work, s);
   if (s.assembly)
     for (Warning& w : cylinder_warnings(mech)) s.warnings.push_back(std::move(w));
   check_laws_over_sweep(mech, s);

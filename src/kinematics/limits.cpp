@@ -163,12 +163,14 @@ PathLimits find_path_limits(const Mechanism& mech, const LimitSearchOptions& opt
   const double turn = angular ? 2.0 * std::numbers::pi / rate : 0.0;
   const double window = std::max(span * (1.0 + options.window_spans), options.full_turn ? turn * 1.0000001 : 0.0);
   PathFollower follower(mech, plan.drivers, span);
+  follower.set_work_budget(options.work_budget);
   Eigen::VectorXd y0(state.q.size() + 1);
   y0 << state.q, follower.scaled(p0);
   out.ahead = reach(follower, y0, ahead, window, angular && options.full_turn && window >= turn);
   out.behind = reach(follower, y0, -ahead, std::max(span * options.window_spans, options.full_turn ? turn : 0.0),
                      angular && options.full_turn && window >= turn);
   out.searched = true;
+  out.work = follower.work();
   for (PathReach* r : {&out.ahead, &out.behind})
     for (PathSingularity& s : r->singularities) describe_singularity(mech, s);
   if (const PathSingularity* limit = out.ahead.limit(); limit && ahead * (limit->parameter - p_end) < 0.0)

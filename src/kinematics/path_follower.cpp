@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "constraints.hpp"
 
@@ -88,6 +89,7 @@ bool PathFollower::tangent(const Eigen::VectorXd& y, const Eigen::VectorXd& bord
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(bordered.rows());
   rhs[rhs.size() - 1] = 1.0;
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(bordered);
+  count_factorisation(bordered.rows());
   t = qr.solve(rhs);
   // The bordered matrix is regular at limits and singular where branches cross: its pivoted R's
   // smallest diagonal over its largest estimates how near the path passes such a place.
@@ -112,6 +114,7 @@ bool PathFollower::correct(Eigen::VectorXd& y, const Eigen::VectorXd& border, co
     Eigen::VectorXd rhs(bordered.rows());
     rhs << phi_, border.dot(y - anchor);
     const Eigen::VectorXd dy = bordered.colPivHouseholderQr().solve(rhs);
+    count_factorisation(bordered.rows());
     const double size = dy.lpNorm<Eigen::Infinity>();
     if (!std::isfinite(size)) return false;
     // Rounding stops the contraction short of the target: what the tolerance allows is enough.
@@ -130,6 +133,7 @@ int PathFollower::determinant_sign(const Eigen::VectorXd& y, const Eigen::Vector
   for (Eigen::Index r = 0; r < n_; ++r) square.row(r) = augmented_.row(independent_rows_[r]);
   square.row(n_) = t.transpose();
   const double det = square.partialPivLu().determinant();
+  count_factorisation(n_ + 1);
   return det > 0.0 ? 1 : det < 0.0 ? -1 : 0;
 }
 
@@ -171,6 +175,7 @@ std::optional<PathSingularity> PathFollower::locate_limit(const Step& from, doub
   Eigen::VectorXd best = y;
   double best_value = std::abs(fb);
   for (int it = 0; it < kLocateIterations && b - a > 1e-13 * length_; ++it) {
+    if (over_budget()) return std::nullopt;
     const double c = fa != fb ? (a * fb - b * fa) / (fb - fa) : 0.5 * (a + b);
     const double sigma = c > a && c < b ? c : 0.5 * (a + b);
     if (!point_at(from, sigma, y) || !tangent(y, from.t, t)) return std::nullopt;
@@ -203,6 +208,7 @@ std::optional<PathSingularity> PathFollower::locate_change(const Step& from, dou
   const int sign_a = from.det_sign;
   Eigen::VectorXd y, t;
   for (int it = 0; it < kLocateIterations && b - a > 1e-12 * length_; ++it) {
+    if (over_budget()) return std::nullopt;
     const double sigma = 0.5 * (a + b);
     if (!point_at(from, sigma, y) || !tangent(y, from.t, t)) return std::nullopt;
     if (determinant_sign(y, t) == sign_a)
@@ -217,6 +223,11 @@ std::optional<PathSingularity> PathFollower::locate_change(const Step& from, dou
 PathFollower::Advance PathFollower::advance(Step& step) {
   Advance out;
   for (int attempt = 0; attempt < kMaxSteps; ++attempt) {
+    if (over_budget()) {
+      out.ok = false;
+      out.reason = budget_reason(step);
+      return out;
+    }
     if (step.h < kShortestStep * length_) {
       out.ok = false;
       out.reason = "the path cannot be followed past this point (the corrections do not converge)";
@@ -234,7 +245,7 @@ PathFollower::Advance PathFollower::advance(Step& step) {
       out.limit = locate_limit(step, step.h, y_limit);
       if (!out.limit) {
         out.ok = false;
-        out.reason = "a limit could not be located";
+        out.reason = over_budget() ? budget_reason(step) : "a limit could not be located";
         return out;
       }
       // On from the step's end, past the limit: at the limit itself the tangent's p component is
@@ -250,16 +261,35 @@ PathFollower::Advance PathFollower::advance(Step& step) {
       continue;
     }
     const int sign = determinant_sign(y, t);
-    if (sign != 0 && step.det_sign != 0 && sign != step.det_sign) out.change_point = locate_change(step, step.h);
+    if (sign != 0 && step.det_sign != 0 && sign != step.det_sign) {
+      out.change_point = locate_change(step, step.h);
+      if (!out.change_point && over_budget()) {
+        out.ok = false;
+        out.reason = budget_reason(step);
+        return out;
+      }
+    }
     step.y = y;
     step.t = t;
     step.det_sign = sign;
-    step.h = std::min(1.5 * step.h, kLongestStep * length_);
+    // The next step also stays under what the conditioning here allows (with a margin for its
+    // fall on the way), so that approaching a singular pose does not try every step twice.
+    step.h = std::min({1.5 * step.h, kLongestStep * length_, std::max(0.9 * allowed, kSlowest * length_)});
     return out;
   }
   out.ok = false;
   out.reason = "too many steps";
   return out;
+}
+
+std::string PathFollower::budget_reason(const Step& at) const {
+  std::ostringstream text;
+  text.precision(3);
+  text << "the path's search stopped at its work budget (" << work_budget_ << " flops on a model of " << n_
+       << " coordinates)";
+  text.precision(9);
+  text << " at " << parameter(at.y) << ", before it reached a limit or its end";
+  return text.str();
 }
 
 bool PathFollower::solve_at_parameter(Eigen::VectorXd& y, double p) {

@@ -50,6 +50,14 @@ class PathFollower {
   // converge.
   bool solve_at_parameter(Eigen::VectorXd& y, double p);
 
+  // Every step factorises dense matrices of the model's size, so a large model on a slowly
+  // followed path could take minutes: the follower counts its work (rows x columns^2 of each
+  // factorisation, about its flops, plus the cost of filling the matrix) and advance() refuses to
+  // go on past the budget (kDefaultLimitSearchWork unless set).
+  void set_work_budget(double budget) { work_budget_ = budget; }
+  double work() const { return work_; }
+  bool over_budget() const { return work_ > work_budget_; }
+
  private:
   void evaluate(const Eigen::VectorXd& y);
   bool tangent(const Eigen::VectorXd& y, const Eigen::VectorXd& border, Eigen::VectorXd& t);
@@ -58,6 +66,7 @@ class PathFollower {
   // The point at arclength sigma from `from` along `t` (corrected): false if it does not converge.
   bool point_at(const Step& from, double sigma, Eigen::VectorXd& y);
   PathSingularity singularity(const Eigen::VectorXd& y, PathSingularityKind kind);
+  std::string budget_reason(const Step& at) const;
   std::optional<PathSingularity> locate_limit(const Step& from, double h, Eigen::VectorXd& y_limit);
   std::optional<PathSingularity> locate_change(const Step& from, double h);
 
@@ -65,7 +74,9 @@ class PathFollower {
   DriverPath path_;
   Eigen::Index n_ = 0;
   double p_scale_ = 1.0, length_ = 1.0, tolerance_ = 0.0;
-  double conditioning_ = 1.0;          // of the bordered Jacobian at the last tangent (tangent())
+  double conditioning_ = 1.0;  // of the bordered Jacobian at the last tangent (tangent())
+  double work_ = 0.0, work_budget_ = kDefaultLimitSearchWork;
+  void count_factorisation(Eigen::Index rows) { work_ += double(rows) * double(n_ + 1) * double(n_ + 1) + 5000.0; }
   std::vector<int> independent_rows_;  // the rows without the redundant ones, when they are n
   // Scratch: the rows and the augmented Jacobian [Phi_q Phi_u] at the last point evaluated.
   State state_;

@@ -68,8 +68,9 @@ Eigen::VectorXd start_point(const PathFollower& follower, const Eigen::VectorXd&
 
 // Follows the path from the start until it comes back there going the same way (a closed
 // circuit), turns fully without a limit, or meets too many limits.
-void follow_circuit(const Mechanism& mech, RockingPlan& plan) {
+void follow_circuit(const Mechanism& mech, double work_budget, RockingPlan& plan) {
   PathFollower follower(mech, input_path(plan.start), input_span(mech));
+  follower.set_work_budget(work_budget);
   const Eigen::Index n = plan.start_pose.size();
   PathFollower::Step step = follower.begin(start_point(follower, plan.start_pose), plan.direction);
   const double window = open_window(mech);
@@ -182,6 +183,9 @@ class Walk {
  public:
   Walk(const Mechanism& mech, const RockingPlan& plan)
       : mech_(mech), follower_(mech, input_path(plan.start), input_span(mech)), start_(plan.start) {
+    // The samples asked for bound the walk (as many steps as the plan took per cycle), not the
+    // search's budget: a long run of many cycles is as much work as it asks for.
+    follower_.set_work_budget(HUGE_VAL);
     before_ = start_point(follower_, plan.start_pose);
     step_ = follower_.begin(before_, plan.direction);
   }
@@ -267,7 +271,7 @@ Warning turn_sample_warning(const Mechanism& mech, const std::vector<long>& step
 
 bool sweep_rocks(const Model& m) { return m.drivers.size() == 1 && m.drivers[0].at_limits == AtLimits::Reverse; }
 
-RockingPlan plan_rocking(const Mechanism& mech) {
+RockingPlan plan_rocking(const Mechanism& mech, double work_budget) {
   const Model& m = mech.model();
   if (!sweep_rocks(m)) throw Error(ErrorKind::BadInput, "the model has no rocking driver (`at_limits: reverse`)");
   const Driver& d = m.drivers[0];
@@ -278,7 +282,7 @@ RockingPlan plan_rocking(const Mechanism& mech) {
   State state(mech);
   plan.assembly = assemble(mech, state, {plan.start});
   plan.start_pose = state.q;
-  follow_circuit(mech, plan);
+  follow_circuit(mech, work_budget, plan);
   plan.reverses = !plan.turns.empty();
   if (!plan.reverses)
     plan.never_reverses = d.is_angular() ? "its path turns fully (a whole turn from its start without a limit)"

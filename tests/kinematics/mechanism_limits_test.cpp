@@ -209,5 +209,40 @@ TEST(MechanismLimits, AParallelogramsFlatPositionsAreChangePointsNotLimits) {
   }
 }
 
+// The scissor lift's way ahead passes the pose where all its arms stand upright (a change point of
+// its parallelogram), which the follower approaches with steps shrinking with the conditioning:
+// the longest search of the bundled examples. Its limit behind (the foot at 800 mm, where arm1
+// and arm2 fold in line: 600 mm arms, cross pins at mid-length) is the reference.
+TEST(MechanismLimits, TheExamplesSearchWellInsideTheDefaultBudget) {
+  for (const char* name : {"scissor-lift.yaml", "machine-18.yaml", "watt-sixbar.yaml", "fourbar-oscillating.yaml"}) {
+    const PathLimits limits = find_path_limits(Mechanism(example(name)));
+    EXPECT_GT(limits.work, 0.0) << name;
+    EXPECT_LT(limits.work, kDefaultLimitSearchWork / 20) << name;
+    EXPECT_TRUE(limits.ahead.undecided.empty() && limits.behind.undecided.empty()) << name;
+  }
+  const PathLimits scissor = find_path_limits(Mechanism(example("scissor-lift.yaml")));
+  ASSERT_NE(scissor.behind.limit(), nullptr);
+  EXPECT_NEAR(scissor.behind.limit()->driver_values[0], 0.8, 1e-9);
+}
+
+// A search past its budget stops within a step of it and says so, with where it stopped; the
+// summary carries the same words, and what the search found before it is kept.
+TEST(MechanismLimits, ASearchPastItsBudgetStopsThereAndSaysWhere) {
+  const Mechanism mech(example("scissor-lift.yaml"));
+  const PathLimits full = find_path_limits(mech);
+  for (double budget : {2e5, 3e6, 0.5 * full.work}) {
+    LimitSearchOptions options;
+    options.work_budget = budget;
+    const PathLimits limits = find_path_limits(mech, options);
+    EXPECT_LE(limits.work, budget + 1e6) << budget;
+    const std::string& why = limits.ahead.undecided.empty() ? limits.behind.undecided : limits.ahead.undecided;
+    EXPECT_NE(why.find("work budget"), std::string::npos) << budget << ": " << why;
+    EXPECT_NE(why.find(" at "), std::string::npos) << why;
+  }
+  const ModelSummary summary = summarize(mech, kDefaultMaxSweepSamples, 3e6);
+  ASSERT_TRUE(summary.limits.has_value());
+  EXPECT_NE(summary.limits->ahead.undecided.find("work budget"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace nbar

@@ -136,6 +136,9 @@ std::vector<Warning> check_before_sweep(const Mechanism& mechanism);
 
 // Never throws for a compiled mechanism: an assembly failure is kept in assembly_error (also a
 // model sweep of more than `max_steps` samples, as every command that sweeps refuses it).
-ModelSummary summarize(const Mechanism& mechanism, int max_steps = kDefaultMaxSweepSamples);
+// `limit_search_work` bounds the search for the mechanism's limits and a rocking driver's turns
+// (LimitSearchOptions::work_budget); past it the summary says the search could not decide.
+ModelSummary summarize(const Mechanism& mechanism, int max_steps = kDefaultMaxSweepSamples,
+                       double limit_search_work = kDefaultLimitSearchWork);
 
 }  // namespace nbar

@@ -54,13 +54,21 @@ struct PathLimits {
   PathReach ahead, behind;
   // The limit met before the sweep's end, where the sweep will stop (ahead, inside its range).
   std::optional<PathSingularity> stop;
+  double work = 0.0;  // what the search did, in LimitSearchOptions::work_budget's unit
 };
+
+// The default work budget of a search along a path (LimitSearchOptions::work_budget).
+inline constexpr double kDefaultLimitSearchWork = 1e9;
 
 struct LimitSearchOptions {
   // Beyond the sweep's end and behind its start, how far to look, as a multiple of the sweep's
   // span; for angle drivers at least one full turn of the first driver.
   double window_spans = 1.0;
   bool full_turn = true;
+  // The work (about the flops of the dense factorisations) the search may do, both ways together:
+  // past it the search says it could not decide, and where. The default is about a second on one
+  // core (the bundled examples take at most 1/25 of it).
+  double work_budget = kDefaultLimitSearchWork;
 };
 
 // Follows the sweep's own path from its start both ways. Throws what assembling the start throws.
@@ -93,6 +101,6 @@ struct RockingPlan {
 // to the start (or turns fully). Throws Error(StoppedAtLimit) at the driver when a turn would be
 // at a change point (branches cross there: the path does not say which way the input goes) or
 // the path cannot be followed; what assembling the start throws.
-RockingPlan plan_rocking(const Mechanism& mech);
+RockingPlan plan_rocking(const Mechanism& mech, double work_budget = kDefaultLimitSearchWork);
 
 }  // namespace nbar
