@@ -5,6 +5,9 @@
 # run finds new goes to build-fuzz/corpus/<harness>/, kept between runs. A crash, a sanitizer
 # report, a timeout or an out-of-memory input fails the script, and libFuzzer leaves the input in
 # build-fuzz/findings/; turn it into a regression (tests/fuzz/regressions/, docs/fuzzing.md).
+# NBAR_FUZZ_SEED fixes libFuzzer's random seed (CI sets it, so that its short runs mutate the same
+# way each time and a run that fails here fails the same way on a developer's machine); unset,
+# each run explores anew.
 #   scripts/fuzz.sh [SECONDS] [HARNESS...]     e.g. scripts/fuzz.sh 3600 fuzz_check
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -44,7 +47,8 @@ for harness in "${harnesses[@]}"; do
   if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     "$build/tests/fuzz/$harness" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
     -max_len=65536 -dict="$root/tests/fuzz/nbar.dict" -artifact_prefix="$build/findings/$harness-" \
-    -print_final_stats=1 "$corpus" $(seeds_of "$harness") 2>"$build/$harness.log"; then
+    -print_final_stats=1 ${NBAR_FUZZ_SEED:+-seed="$NBAR_FUZZ_SEED"} "$corpus" $(seeds_of "$harness") \
+    2>"$build/$harness.log"; then
     status=1
     tail -n 60 "$build/$harness.log"
     echo "== $harness FAILED; the input is in $build/findings/"

@@ -46,5 +46,5 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
   -E '^(Web\.Browser|Web\.YamlText|Report\.PhoneAndDesktop|BenchTasks/NinePointTask\.)'
 
 stage "libFuzzer harnesses, ${NBAR_FUZZ_SECONDS:-60} s each (clang, ASan + UBSan)"
-"$root/scripts/fuzz.sh" "${NBAR_FUZZ_SECONDS:-60}"
+NBAR_FUZZ_SEED="${NBAR_FUZZ_SEED:-1}" "$root/scripts/fuzz.sh" "${NBAR_FUZZ_SECONDS:-60}"
 stage "done"
