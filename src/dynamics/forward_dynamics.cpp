@@ -574,6 +574,23 @@ double golden_minimum(const std::function<double(double)>& f, double a, double b
   return fc < fd ? c : d;
 }
 
+// The stop condition's column is not in the table: say which columns are, the nearest first (one
+// sharing the name's point or body before the point) so that a typo shows its fix.
+std::string unknown_column(const StopCondition& condition, const std::vector<std::string>& names) {
+  const std::string owner = condition.column.substr(0, condition.column.find('.'));
+  std::vector<std::string> listed;
+  for (const std::string& name : names)
+    if (name.substr(0, name.find('.')) == owner) listed.push_back(name);
+  const bool same_owner = !listed.empty();
+  if (!same_owner) listed = names;
+  std::string list;
+  constexpr std::size_t kShown = 12;
+  for (std::size_t i = 0; i < listed.size() && i < kShown; ++i) list += (i ? ", " : "") + listed[i];
+  if (listed.size() > kShown) list += " and " + std::to_string(listed.size() - kShown) + " more";
+  return "the stop condition '" + condition.text + "' names no column '" + condition.column + "'; " +
+         (same_owner ? "the columns of " + owner + " are " : "the simulation's table has ") + list;
+}
+
 // One column of simulation_table at a state not yet kept as a row, for a stop condition: the
 // same names and units, angles unwrapped from the last state kept.
 class ColumnProbe {
@@ -585,9 +602,7 @@ class ColumnProbe {
     for (const char* name : {"kinetic", "potential", "spring", "dissipated", "work", "balance"})
       names.push_back(std::string("energy.") + name);
     const auto found = std::find(names.begin(), names.end(), condition.column);
-    if (found == names.end())
-      throw Error(ErrorKind::BadInput, "the stop condition '" + condition.text + "' names no column '" +
-                                           condition.column + "' (the columns are those of the simulation's table)");
+    if (found == names.end()) throw Error(ErrorKind::BadInput, unknown_column(condition, names));
     index_ = static_cast<std::size_t>(found - names.begin());
     row_.resize(names.size());
   }

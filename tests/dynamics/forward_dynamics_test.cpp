@@ -267,6 +267,16 @@ drivers:
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::BadInput);
     EXPECT_NE(e.message().find("no column 'A.z'"), std::string::npos) << e.message();
+    // A's own columns are offered, and only they.
+    EXPECT_NE(e.message().find("the columns of A are A.x, A.y"), std::string::npos) << e.message();
+    EXPECT_EQ(e.message().find("bar."), std::string::npos) << e.message();
+  }
+  options.stop_when = parse_stop_condition("Q.x > 1");
+  try {
+    simulate(mech, options);
+    FAIL() << "stopped on a column that does not exist";
+  } catch (const Error& e) {
+    EXPECT_NE(e.message().find("the simulation's table has step, t, bar, O.x"), std::string::npos) << e.message();
   }
 }
 
