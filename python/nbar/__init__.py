@@ -21,13 +21,13 @@ from ._nbar import __version__
 from .errors import (AssemblyError, BadInputError, Cancelled, ColumnError, Error, InternalError, LimitError,
                      ModelError, UndefinedLawError)
 from .explain import Explanation
-from .model import Model, ReadOnlyView, StressResult, Summary, load, loads, solve_many
+from .model import FeConvergence, Model, ReadOnlyView, StressResult, Summary, load, loads, solve_many
 from .pictures import Animation, Drawing, Report
 from .plotting import plot
 from .results import Result, Table, Warning
 
 __all__ = [
-    "Model", "load", "loads", "solve_many", "ReadOnlyView", "Summary", "Result", "Table", "Warning", "StressResult", "Explanation",
+    "Model", "load", "loads", "solve_many", "ReadOnlyView", "Summary", "Result", "Table", "Warning", "StressResult", "FeConvergence", "Explanation",
     "Drawing", "Animation", "Report", "plot", "synth", "examples",
     "Error", "ModelError", "UndefinedLawError", "BadInputError", "ColumnError", "AssemblyError", "LimitError", "Cancelled",
     "InternalError", "__version__",

@@ -5,7 +5,8 @@ from .errors import AssemblyError as AssemblyError, BadInputError as BadInputErr
 from .errors import ColumnError as ColumnError, Error as Error, InternalError as InternalError
 from .errors import LimitError as LimitError, ModelError as ModelError, UndefinedLawError as UndefinedLawError
 from .explain import Explanation as Explanation
-from .model import Model as Model, ReadOnlyView as ReadOnlyView, StressResult as StressResult, Summary as Summary
+from .model import FeConvergence as FeConvergence, Model as Model, ReadOnlyView as ReadOnlyView
+from .model import StressResult as StressResult, Summary as Summary
 from .model import load as load, loads as loads, solve_many as solve_many
 from .pictures import Animation as Animation, Drawing as Drawing, Report as Report
 from .plotting import plot as plot
@@ -23,6 +24,7 @@ __all__ = [
     "Table",
     "Warning",
     "StressResult",
+    "FeConvergence",
     "Explanation",
     "Drawing",
     "Animation",

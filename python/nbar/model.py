@@ -191,6 +191,33 @@ def _places(value: Any) -> Optional[List[str]]:
     return out
 
 
+class FeConvergence:
+    """A mesh-convergence study of the finite-element peaks (``StressResult.converge()``, ``nbar
+    stress --method fe --converge``). ``.meshes`` lists each mesh (``refinement``, and per link
+    ``mesh_size``, ``nodes``, ``elements``, ``von_mises`` in MPa, ``step``, ``x``, ``y``, ``change``
+    in % from the mesh before); ``.converged`` says whether the last change of every peak is below
+    ``.tolerance`` %, ``.stopped`` why the study stopped short, if it did."""
+
+    def __init__(self, text: str):
+        self.json: str = text
+        self.data: Dict[str, Any] = json.loads(text)
+        self.meshes: List[Dict[str, Any]] = self.data["meshes"]
+        self.converged: bool = bool(self.data["converged"])
+        self.tolerance: float = float(self.data["tolerance"])
+        self.stopped: Optional[str] = self.data.get("stopped")
+
+    def peaks(self, body: str) -> List[float]:
+        """One link's peak von Mises stress (MPa) on each mesh, coarsest first."""
+        found = [link["von_mises"] for mesh in self.meshes for link in mesh["links"] if link["body"] == body]
+        if not found:
+            raise BadInputError(f"'{body}' has no finite-element peak in the study")
+        return found
+
+    def __repr__(self) -> str:
+        state = "converged" if self.converged else f"not converged ({self.stopped})"
+        return f"<FeConvergence: {len(self.meshes)} meshes, {state} at {self.tolerance:g} %>"
+
+
 class StressResult:
     """Each shaped link's largest von Mises stress over the sweep (``nbar stress``): where, when,
     N, V, M and the safety factor. ``.links`` is a list of dicts (stresses in MPa),
@@ -224,6 +251,12 @@ class StressResult:
     def vtu(self, body: str, step: int = 0) -> str:
         """One link's mesh and stresses at one step as a VTK .vtu document (for ParaView)."""
         return self._analysis.fe_vtu(body, step)
+
+    def converge(self, tolerance: float = 1.0, timeout: Optional[float] = None) -> "FeConvergence":
+        """``nbar stress --method fe --converge``: these meshes, then every plate's element sizes
+        halved until each link's peak changes by less than ``tolerance`` % (at most 8 meshes)."""
+        return FeConvergence(self._analysis.fe_convergence(tolerance=_real("tolerance", tolerance),
+                                                          timeout=_real("timeout", timeout)))
 
     def __getitem__(self, body: str) -> Dict[str, Any]:
         for link in self.links:
@@ -348,20 +381,24 @@ class Model:
     def analyse(self, steps: Optional[int] = None, order: int = 2, dynamics: bool = False, stress: bool = False,
                 sections: int = 200, timeout: Optional[float] = None, max_steps: Optional[int] = None,
                 method: str = "beam", mesh_size: Optional[float] = None, at_limits: Optional[str] = None,
-                cycles: Optional[int] = None):
+                cycles: Optional[int] = None, segments_per_hole: Optional[int] = None,
+                edge_size: Optional[float] = None):
         """The pipeline's raw result (sweep, then dynamics, then stress), for the other methods.
 
         A sweep of more than ``max_steps`` samples (default 10 000 000, as ``--max-steps``) is an error.
         ``method`` is the stresses' (``"beam"`` or ``"fe"``), ``mesh_size`` the finite elements' edge
-        far from holes, in the model's length unit. ``at_limits="reverse"`` turns the sweep back at the
+        far from holes, in the model's length unit (``segments_per_hole`` edges at least around each
+        round hole, ``edge_size`` along holes and corners). ``at_limits="reverse"`` turns the sweep back at the
         mechanism's limits (over the driver's ``at_limits``), for ``cycles`` rocking cycles."""
         steps, order, sections = _whole("steps", steps), _whole("order", order), _whole("sections", sections)
         max_steps, cycles = _whole("max_steps", max_steps, minimum=1), _whole("cycles", cycles, minimum=1)
         timeout, mesh_size = _real("timeout", timeout), _real("mesh_size", mesh_size)
         at_limits = None if at_limits is None else _text("at_limits", at_limits)
+        segments_per_hole, edge_size = _whole("segments_per_hole", segments_per_hole), _real("edge_size", edge_size)
         return _nbar.analyse(self._c, steps=steps, order=order, dynamics=_flag("dynamics", dynamics),
                              stress=_flag("stress", stress), sections=sections, timeout=timeout, max_steps=max_steps,
-                             method=_text("method", method), mesh_size=mesh_size, at_limits=at_limits, cycles=cycles)
+                             method=_text("method", method), mesh_size=mesh_size, at_limits=at_limits, cycles=cycles,
+                             segments_per_hole=segments_per_hole, edge_size=edge_size)
 
     def solve(self, steps: Optional[int] = None, order: Optional[int] = None, columns: Columns = None,
               dynamics: bool = False, partial: bool = False, timeout: Optional[float] = None,
@@ -452,16 +489,19 @@ class Model:
 
     def stress(self, steps: Optional[int] = None, sections: int = 200, timeout: Optional[float] = None,
                max_steps: Optional[int] = None, method: str = "beam",
-               mesh_size: Optional[float] = None, partial: bool = False) -> StressResult:
+               mesh_size: Optional[float] = None, partial: bool = False, segments_per_hole: Optional[int] = None,
+               edge_size: Optional[float] = None) -> StressResult:
         """Stresses in every link with a shape (``nbar stress``): ``method="beam"`` (beam theory on
         cross-sections) or ``"fe"`` (plane-stress finite elements, ``nbar stress --method fe``;
-        ``mesh_size`` in the model's length unit).
+        ``mesh_size`` and ``edge_size`` in the model's length unit, ``segments_per_hole`` as
+        ``--segments-per-hole``; ``.converge()`` on the result refines until the peaks settle).
 
         A sweep that stops at a toggle raises ``nbar.LimitError`` as ``solve()`` does (``nbar
         stress`` exits 4): its ``.result`` holds the peaks over the steps solved, which
         ``partial=True`` returns instead."""
         analysis = self.analyse(steps=steps, stress=True, sections=sections, timeout=timeout, max_steps=max_steps,
-                                method=method, mesh_size=mesh_size)
+                                method=method, mesh_size=mesh_size, segments_per_hole=segments_per_hole,
+                                edge_size=edge_size)
         result = StressResult(analysis)
         if not analysis.complete and not partial:
             raise _stopped(self._c, analysis.stop_reason, f"the peaks over the {analysis.samples} steps solved", result)

@@ -35,7 +35,8 @@ struct PyAnalysis {
 AnalysisOptions analysis_options(const Model& model, std::optional<int> steps, int order, bool dynamics, bool stress,
                                  int sections, std::optional<int> max_steps, const std::string& method,
                                  std::optional<double> mesh_size, const std::optional<std::string>& at_limits,
-                                 std::optional<int> cycles) {
+                                 std::optional<int> cycles, std::optional<int> segments_per_hole = std::nullopt,
+                                 std::optional<double> edge_size = std::nullopt) {
   request::Options sweep;
   if (steps) sweep.set("steps", static_cast<long long>(*steps));
   if (max_steps) sweep.set("max_steps", static_cast<long long>(*max_steps));
@@ -49,6 +50,8 @@ AnalysisOptions analysis_options(const Model& model, std::optional<int> steps, i
   stresses.set("method", method);
   stresses.set("sections", static_cast<long long>(sections));
   if (mesh_size) stresses.set("mesh_size", *mesh_size);
+  if (segments_per_hole) stresses.set("segments_per_hole", static_cast<long long>(*segments_per_hole));
+  if (edge_size) stresses.set("edge_size", *edge_size);
   const AnalysisOptions stress_options = request::StressRequest::read(stresses).analysis_options(model);
   if (stress) {
     options.stress = true;
@@ -63,11 +66,13 @@ std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::op
                                          bool dynamics, bool stress, int sections, std::optional<double> timeout,
                                          std::optional<int> max_steps, const std::string& method,
                                          std::optional<double> mesh_size, const std::optional<std::string>& at_limits,
-                                         std::optional<int> cycles) {
+                                         std::optional<int> cycles, std::optional<int> segments_per_hole,
+                                         std::optional<double> edge_size) {
   auto out = std::make_shared<PyAnalysis>();
   out->model = model;
   AnalysisOptions options = analysis_options(model->mechanism->model(), steps, order, dynamics, stress, sections,
-                                             max_steps, method, mesh_size, at_limits, cycles);
+                                             max_steps, method, mesh_size, at_limits, cycles, segments_per_hole,
+                                             edge_size);
   run_interruptible(options.control, timeout, [&] {
     try {
       out->analysis = analyse(model->mechanism, options);
@@ -392,6 +397,28 @@ std::string fe_vtu(const PyAnalysis& a, const std::string& body_name, int step) 
   return out.str();
 }
 
+// The convergence study of `nbar stress --method fe --converge` from this analysis's meshes, as
+// the command's JSON: `tolerance` in %.
+std::string fe_convergence(const PyAnalysis& a, double tolerance, std::optional<double> timeout) {
+  request::Options options;
+  options.set("method", std::string("fe"));
+  options.set("converge", true);
+  options.set("tolerance", tolerance);
+  const request::StressRequest request = request::StressRequest::read(options);
+  FeConvergence convergence;
+  RunControl control;
+  run_interruptible(control, timeout, [&] {
+    try {
+      convergence = request.convergence(a.analysis, control);
+    } catch (const Error& e) {
+      throw located(*a.model, e);
+    }
+  });
+  std::ostringstream out;
+  io::write_fe_convergence(out, "json", a.analysis, convergence);
+  return out.str();
+}
+
 }  // namespace
 
 void bind_analysis(py::module_& m) {
@@ -444,6 +471,7 @@ void bind_analysis(py::module_& m) {
            py::arg("along") = std::nullopt, py::arg("around_hole") = std::nullopt, py::arg("radius") = std::nullopt,
            py::arg("coordinates") = std::nullopt, py::arg("samples") = std::nullopt)
       .def("fe_vtu", &fe_vtu, py::arg("body"), py::arg("step") = 0)
+      .def("fe_convergence", &fe_convergence, py::arg("tolerance") = 1.0, py::arg("timeout") = std::nullopt)
       .def("draw", &draw, py::arg("format") = "svg", py::arg("step") = std::nullopt, py::arg("at") = std::nullopt,
            py::arg("labels") = false, py::arg("traces") = std::vector<std::string>{}, py::arg("width") = 900,
            py::arg("height") = 640, py::arg("title") = "")
@@ -457,7 +485,8 @@ void bind_analysis(py::module_& m) {
   m.def("analyse", &run_analysis, py::arg("model"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
         py::arg("dynamics") = false, py::arg("stress") = false, py::arg("sections") = 200,
         py::arg("timeout") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("method") = "beam",
-        py::arg("mesh_size") = std::nullopt, py::arg("at_limits") = std::nullopt, py::arg("cycles") = std::nullopt);
+        py::arg("mesh_size") = std::nullopt, py::arg("at_limits") = std::nullopt, py::arg("cycles") = std::nullopt,
+        py::arg("segments_per_hole") = std::nullopt, py::arg("edge_size") = std::nullopt);
   // For bench/python: the same solve timed inside C++ (the sweep, then the sweep and its column
   // table), the reference Python's own cost is measured against.
   m.def(

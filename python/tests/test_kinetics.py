@@ -76,6 +76,36 @@ def test_fe_field_queries_are_numpy_arrays_equal_to_the_cli(examples, cli):
         s.field("crank", at="O2")
 
 
+def test_fe_convergence_is_the_clis_and_mesh_options_reach_the_mesher(examples, cli):
+    path = examples / "fourbar-ansys-plates.yaml"
+    s = nbar.load(path).stress(steps=3, method="fe")
+    study = s.converge(tolerance=1)
+    out = subprocess.run([cli, "stress", str(path), "--steps", "3", "--method", "fe", "--converge", "--tolerance",
+                          "1", "--format", "json"], capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout) == study.data
+    assert study.converged and study.tolerance == 1.0 and study.stopped is None
+    crank = study.peaks("crank")
+    # Each mesh halves the sizes of the one before; the last change is the one the tolerance judged.
+    assert len(crank) == len(study.meshes) >= 2
+    assert abs(crank[-1] - crank[-2]) < 0.01 * crank[-1]
+    assert study.meshes[1]["links"][0]["nodes"] > study.meshes[0]["links"][0]["nodes"]
+    assert "converged" in repr(study)
+    with pytest.raises(nbar.BadInputError):
+        study.peaks("frame")
+    with pytest.raises(nbar.BadInputError, match="tolerance"):
+        s.converge(tolerance=0)
+    # More edges around each hole: more nodes, as `--segments-per-hole` gives.
+    finer = nbar.load(path).stress(steps=1, method="fe", segments_per_hole=96)
+    out = subprocess.run([cli, "stress", str(path), "--steps", "1", "--method", "fe", "--segments-per-hole", "96",
+                          "--format", "json"], capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout) == finer.data
+    assert finer["crank"]["nodes"] > nbar.load(path).stress(steps=1, method="fe")["crank"]["nodes"]
+    with pytest.raises(nbar.BadInputError, match="segments_per_hole"):
+        nbar.load(path).stress(steps=1, method="fe", segments_per_hole=2)
+    with pytest.raises(nbar.BadInputError, match="edge_size"):
+        nbar.load(path).stress(steps=1, method="fe", edge_size=-1)
+
+
 def test_stress_on_a_model_without_shapes_is_a_model_error(examples):
     with pytest.raises(nbar.ModelError):
         nbar.load(examples / "fourbar-crank-rocker.yaml").stress()
