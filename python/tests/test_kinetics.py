@@ -79,6 +79,14 @@ def test_fe_field_queries_are_numpy_arrays_equal_to_the_cli(examples, cli):
 def test_fe_convergence_is_the_clis_and_mesh_options_reach_the_mesher(examples, cli):
     path = examples / "fourbar-ansys-plates.yaml"
     s = nbar.load(path).stress(steps=3, method="fe")
+    # The crank's peak lies on the edge of its pivot's hole (radius 10 mm, centred on the body frame's
+    # origin), where the stress is flat: the arc within 0.5 % of it holds the peak's own angle.
+    crank = s["crank"]
+    angle = np.degrees(np.arctan2(crank["y"], crank["x"])) % 360
+    assert np.hypot(crank["x"], crank["y"]) == pytest.approx(0.01, rel=1e-6)
+    assert crank["flat_from"] <= angle <= crank["flat_to"]
+    assert crank["flat_arc"] == pytest.approx(0.01 * np.radians(crank["flat_to"] - crank["flat_from"]), rel=1e-9)
+    assert crank["flat_to"] - crank["flat_from"] > 30  # the case: flat over a wide arc
     study = s.converge(tolerance=1)
     out = subprocess.run([cli, "stress", str(path), "--steps", "3", "--method", "fe", "--converge", "--tolerance",
                           "1", "--format", "json"], capture_output=True, text=True, check=True)

@@ -248,6 +248,21 @@ ResultTable beam_peak_table(const Analysis& analysis) {
   return t;
 }
 
+// A flat peak's arc as the body's frame sees it (the frame of the peak's x and y): its ends'
+// angles about the hole's centre, degrees in [0, 360).
+struct FlatArcInBody {
+  double from_deg, to_deg, length;
+};
+FlatArcInBody flat_arc_in_body(const Model& m, int body, const fe::FlatArc& arc) {
+  const Eigen::Vector2d centre = body_frame_point(m, body, arc.centre);
+  const auto angle = [&](const Eigen::Vector2d& plate_point) {
+    const Eigen::Vector2d arm = body_frame_point(m, body, plate_point) - centre;
+    const double deg = std::atan2(arm.y(), arm.x()) * 180.0 / std::numbers::pi;
+    return deg < 0.0 ? deg + 360.0 : deg;
+  };
+  return {angle(arc.from_at), angle(arc.to_at), arc.length};
+}
+
 ResultTable fe_peak_table(const Analysis& analysis) {
   const Model& m = analysis.model();
   const double length = m.units.length_scale;
@@ -259,15 +274,20 @@ ResultTable fe_peak_table(const Analysis& analysis) {
                                          {"mesh_size", m.units.length},
                                          {"min_angle", "deg"},
                                          {"unbalance", ""},
-                                         {"reaction", ""}});
+                                         {"reaction", ""},
+                                         {"flat_from", "deg"},
+                                         {"flat_to", "deg"},
+                                         {"flat_arc", m.units.length}});
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   for (const FePeak& p : analysis.stress->fe_peaks) {
     std::vector<double> row = {to_megapascal(p.von_mises)};
     append_input_values(m, analysis.sweep, p.step, row);
     const Eigen::Vector2d where = body_frame_point(m, p.body, p.at);
+    const FlatArcInBody flat = p.flat ? flat_arc_in_body(m, p.body, *p.flat) : FlatArcInBody{nan, nan, nan};
     for (double v :
-         {where.x() / length, where.y() / length, p.safety_factor.value_or(std::numeric_limits<double>::quiet_NaN()),
-          static_cast<double>(p.nodes), static_cast<double>(p.elements), p.mesh_size / length, p.min_angle_deg,
-          p.load_unbalance, p.support_reaction})
+         {where.x() / length, where.y() / length, p.safety_factor.value_or(nan), static_cast<double>(p.nodes),
+          static_cast<double>(p.elements), p.mesh_size / length, p.min_angle_deg, p.load_unbalance, p.support_reaction,
+          flat.from_deg, flat.to_deg, flat.length / length})
       row.push_back(v);
     t.rows.push_back(std::move(row));
   }

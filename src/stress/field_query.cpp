@@ -126,6 +126,36 @@ std::vector<HoleSample> stress_around_hole(const PlateModel& plate, const Stress
   return out;
 }
 
+std::optional<FlatArc> flat_arc_at_hole(const PlateModel& plate, const StressField& field, int node, double within) {
+  int hole = -1;
+  for (const BoundaryEdge& e : plate.mesh().boundary)
+    if (e.on.kind == BoundaryTag::Kind::circle_hole && std::find(e.nodes.begin(), e.nodes.end(), node) != e.nodes.end())
+      hole = e.on.index;
+  if (hole < 0) return std::nullopt;
+  const std::vector<HoleSample> edge = stress_around_hole(plate, field, hole);
+  const long n = static_cast<long>(edge.size());
+  long k = 0;
+  while (k < n && edge[k].node != node) ++k;
+  const double floor = (1.0 - within) * edge[k].stress.von_mises;
+  const auto at = [&](long i) -> const HoleSample& { return edge[((i % n) + n) % n]; };
+  long back = 0, ahead = 0;  // nodes within, each way from k
+  while (back + ahead + 1 < n && at(k - back - 1).stress.von_mises >= floor) ++back;
+  while (back + ahead + 1 < n && at(k + ahead + 1).stress.von_mises >= floor) ++ahead;
+  FlatArc arc;
+  arc.hole = hole;
+  const auto [centre, radius] = plate.hole_circle(hole);
+  arc.centre = centre;
+  arc.from = at(k - back).angle;
+  arc.to = at(k + ahead).angle;
+  arc.from_at = plate.mesh().nodes[at(k - back).node];
+  arc.to_at = plate.mesh().nodes[at(k + ahead).node];
+  const bool whole = back + ahead + 1 == n;
+  double span = arc.to - arc.from;
+  if (span < 0.0) span += 2 * std::numbers::pi;
+  arc.length = radius * (whole ? 2 * std::numbers::pi : span);
+  return arc;
+}
+
 std::vector<std::pair<double, double>> segment_on_plate(const MeshLocator& locator, const Eigen::Vector2d& from,
                                                         const Eigen::Vector2d& to, int samples) {
   samples = std::max(samples, 2);

@@ -344,6 +344,25 @@ void merge_peak(FePeak& into, const FePeak& from) {
 
 }  // namespace
 
+namespace {
+
+// Each peak on a hole's edge gets the arc around it within kFlatPeak: one more solve per link, at
+// the peak's step.
+void add_flat_arcs(const LinkFe& fe, const SweepResult& sweep, const std::vector<DynamicsResult>& per_sample,
+                   std::vector<FePeak>& peaks) {
+  const std::size_t samples = std::min(sweep.samples.size(), per_sample.size());
+  for (FePeak& peak : peaks) {
+    if (peak.node < 0) continue;
+    for (std::size_t i = 0; i < samples; ++i)
+      if (sweep.samples[i].step == peak.step) {
+        peak.flat = fe::flat_arc_at_hole(fe.plate(peak.body), fe.solve(per_sample[i], peak.body), peak.node, kFlatPeak);
+        break;
+      }
+  }
+}
+
+}  // namespace
+
 std::vector<FePeak> fe_peaks(const LinkFe& fe, const SweepResult& sweep, const std::vector<DynamicsResult>& per_sample,
                              const RunControl& control) {
   const Model& m = fe.dynamics().mechanism().model();
@@ -411,6 +430,7 @@ std::vector<FePeak> fe_peaks(const LinkFe& fe, const SweepResult& sweep, const s
     if (e) std::rethrow_exception(e);
   for (const PartialPeaks& part : partial)
     for (std::size_t k = 0; k < peaks.size(); ++k) merge_peak(peaks[k], part.peaks[k]);
+  add_flat_arcs(fe, sweep, per_sample, peaks);
   for (FePeak& peak : peaks) {
     const auto& material = m.bodies[peak.body].material;
     if (material && material->yield_strength && peak.von_mises > 0.0)

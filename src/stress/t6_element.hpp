@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/LU>  // the 2x2 determinant() and inverse() of locate(): declared by Core, defined here
 
 #include <array>
 #include <cmath>

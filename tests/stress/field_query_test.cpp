@@ -122,6 +122,38 @@ Kirsch kirsch_plate() {
   return k;
 }
 
+// Where Kirsch's peak is flat: σθθ = σ (1 − 2 cos 2θ) stays within 0.5 % of its 3σ while
+// cos 2θ <= −0.9925, θ = 90° ± 3.51°, an arc of 7.02°. The arc found runs between nodes on the edge
+// (1.875° apart), so the true arc's ends lie between its end nodes and the next ones out: it
+// brackets the closed form, holds the peak, and its length is r times its angle.
+TEST(FieldQuery, AFlatPeaksArcOnKirschsHoleBracketsTheClosedForm) {
+  const Kirsch k = kirsch_plate();
+  const PlateModel model(k.mesh, kSteel);
+  const std::vector<HoleSample> around = stress_around_hole(model, k.field, 0);
+  const auto peak = std::max_element(around.begin(), around.end(), [](const HoleSample& a, const HoleSample& b) {
+    return a.stress.von_mises < b.stress.von_mises;
+  });
+  const std::optional<FlatArc> arc = flat_arc_at_hole(model, k.field, peak->node, 0.005);
+  ASSERT_TRUE(arc);
+  EXPECT_EQ(arc->hole, 0);
+  const double span = arc->to - arc->from + (arc->to < arc->from ? 2 * kPi : 0.0);
+  const double exact = 2 * (kPi / 2 - std::acos(-0.9925) / 2), spacing = 2 * kPi / 192;
+  std::printf("Kirsch flat peak: arc %.3f deg (closed form %.3f deg)\n", span * 180 / kPi, exact * 180 / kPi);
+  EXPECT_LE(span, exact);
+  EXPECT_GE(span + 2 * spacing, exact);
+  const double mid = std::remainder(peak->angle - arc->from, 2 * kPi);
+  EXPECT_GE(mid, -1e-12);
+  EXPECT_LE(mid, span + 1e-12);
+  EXPECT_NEAR(arc->length, k.radius * span, 1e-12);
+  EXPECT_NEAR((arc->from_at - arc->centre).norm(), k.radius, 1e-9);
+  // A node away from the hole has no arc.
+  const MeshLocator locator(k.mesh);
+  int inner = -1;
+  for (std::size_t n = 0; n < k.mesh.nodes.size() && inner < 0; ++n)
+    if (k.mesh.nodes[n].norm() > 5 * k.radius) inner = static_cast<int>(n);
+  EXPECT_FALSE(flat_arc_at_hole(model, k.field, inner, 0.005));
+}
+
 TEST(FieldQuery, KirschHoleProfileAndFarField) {
   const Kirsch k = kirsch_plate();
   const PlateModel model(k.mesh, kSteel);

@@ -81,6 +81,19 @@ struct HoleSample {
 };
 std::vector<HoleSample> stress_around_hole(const PlateModel& plate, const StressField& field, int hole);
 
+// Where a peak on a circle hole's edge is flat (nodal values there scatter by a few tenths of a
+// percent, so the node that wins is arbitrary): the arc of that edge, through `node`, along which
+// the nodal von Mises stress stays within `within` (relative) of `node`'s. None when `node` is
+// not on a circle hole's edge.
+struct FlatArc {
+  int hole = -1;
+  double from = 0.0, to = 0.0;                 // rad from x, counterclockwise from `from` to `to`, in [0, 2π)
+  Eigen::Vector2d from_at{0, 0}, to_at{0, 0};  // the arc's end nodes, m
+  Eigen::Vector2d centre{0, 0};
+  double length = 0.0;  // along the edge, m (2πr when the whole edge is within)
+};
+std::optional<FlatArc> flat_arc_at_hole(const PlateModel& plate, const StressField& field, int node, double within);
+
 // The parts of the segment from `from` to `to` that lie on the plate, as parameter intervals
 // [t0, t1] of t in [0, 1]: the segment is sampled at `samples` points and each change between on
 // and off the plate is found by bisection, to about 1e-7 of the segment's length (a point

@@ -27,6 +27,7 @@
 
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/model/run_control.hpp"
+#include "nbar/stress/field_query.hpp"
 #include "nbar/stress/plane_stress.hpp"
 
 namespace nbar {
@@ -104,7 +105,11 @@ struct FePeak {
   // (StressField), both ~0 for loads in equilibrium.
   double load_unbalance = 0.0;
   double support_reaction = 0.0;
+  // When the peak lies on a circle hole's edge: the arc of that edge within kFlatPeak of it at the
+  // peak's step (plate frame), which says how far the peak's location is arbitrary.
+  std::optional<fe::FlatArc> flat;
 };
+inline constexpr double kFlatPeak = 0.005;
 
 // Every analysed body's peak over the samples (`per_sample[i]` at sweep.samples[i]), on
 // options().threads threads. Checks `control` between samples.
