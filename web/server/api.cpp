@@ -71,6 +71,7 @@ ApiResponse route(const ApiRequest& request, const ServerConfig& config) {
                      Json{{"limit", "body_bytes"}, {"max", config.limits.max_body_bytes}});
     Job job(config);
     try {
+      job.start(Weight::Light);
       return it->second(job, request.body);
     } catch (const Error& e) {
       return error_answer(e, job.model(), job.source());

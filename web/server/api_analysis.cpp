@@ -14,8 +14,8 @@ namespace nbar::web {
 ApiResponse api_check(Job& job, const std::string& text) {
   const RequestBody body(text, {"model"});
   load_model(job, body.text("model", true));
-  job.start(Weight::Light);
   const ModelSummary summary = summarize(*job.mechanism);
+  job.checkpoint("check");
   return answer(io::summary_json(*job.mechanism, summary, job.file->source));
 }
 

@@ -24,6 +24,8 @@ void load_model(Job& job, const std::string& text) {
   } catch (const ModelError& e) {
     throw Error(ErrorKind::InvalidModel, e.message(), e.where(), kModelFile, job.file->source.find(e.where()));
   }
+  // Reading and checking the model do not look at the deadline as they go; their time counts.
+  job.checkpoint("model");
 }
 
 // Where the model's text sets its sweep's number of samples: the value of `sweep: {steps}`, or

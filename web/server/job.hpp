@@ -33,17 +33,18 @@ struct Job {
   std::shared_ptr<const Mechanism> mechanism;
   JobSlots::Slot slot;
 
-  explicit Job(const ServerConfig& c) : config(c), limits(c.limits) {
-    control.on_progress = c.on_progress;
-    start_clock();
-  }
+  explicit Job(const ServerConfig& c) : config(c), limits(c.limits) { control.on_progress = c.on_progress; }
   const Model* model() const { return file ? &file->model : nullptr; }
   const io::SourceMap* source() const { return file ? &file->source : nullptr; }
-  // Waits for a job slot of its weight (the first call only; the request is read and checked
-  // against the limits before, so that nothing over a limit ever waits). The time budget runs
-  // from the moment the slot is held: waiting is bounded on its own.
+  // Waits for a job slot of its weight. Every request takes a light slot before it reads its
+  // body, so that parsing and checking the model (a plate of 20 000 holes, a drawing of
+  // thousands of entities) run inside a slot and under the deadline; a computation found heavy
+  // then trades its light slot for a heavy one. The time budget runs from the first slot and
+  // counts all the work; a wait for the heavy slot is not counted (it is bounded on its own).
   void start(Weight weight) {
-    if (slot) return;
+    if (slot && (weight == Weight::Light || weight_ == Weight::Heavy)) return;
+    const auto spent = slot ? std::chrono::steady_clock::now() - started_ : std::chrono::steady_clock::duration{};
+    slot = JobSlots::Slot();  // a light slot is given back before the heavy one is waited for
     JobSlots& slots = weight == Weight::Heavy ? *config.jobs : *config.light_jobs;
     slot = slots.acquire(std::chrono::duration<double>(config.queue_wait_seconds));
     if (!slot)
@@ -51,13 +52,16 @@ struct Job {
                      fmt::format("the server is busy ({} {} computations running, {} waiting); try again in a moment",
                                  slots.total(), weight == Weight::Heavy ? "heavy" : "light", slots.waiting()),
                      Json{{"limit", weight == Weight::Heavy ? "jobs" : "light_jobs"}, {"max", slots.total()}});
-    start_clock();
+    weight_ = weight;
+    started_ = std::chrono::steady_clock::now() - spent;
+    control.token.set_time_budget(std::chrono::duration<double>(limits.time_budget_seconds) - spent);
   }
   // Between stages that do not check the deadline themselves.
   void checkpoint(const char* stage) const { control.checkpoint(stage, 0, 0); }
 
  private:
-  void start_clock() { control.token.set_time_budget(std::chrono::duration<double>(limits.time_budget_seconds)); }
+  Weight weight_ = Weight::Light;
+  std::chrono::steady_clock::time_point started_;
 };
 
 constexpr const char* kModelFile = "model";  // the model's name in messages
