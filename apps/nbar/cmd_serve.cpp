@@ -32,6 +32,9 @@ struct ServeArgs {
   double time_budget = 30;
   int threads = 256;
   int keep_alive = 5;
+  double request_timeout = 10;
+  int max_connections = 4096;
+  int max_connections_per_client = 256;
 };
 
 // The browser, by xdg-open with the URL as its one argument: no shell.
@@ -100,6 +103,9 @@ int run_serve(const ServeArgs& args) {
   options.queue_wait_seconds = args.queue_wait;
   options.threads = args.threads;
   options.keep_alive_seconds = args.keep_alive;
+  options.request_read_seconds = args.request_timeout;
+  options.max_connections = args.max_connections;
+  options.max_connections_per_address = args.max_connections_per_client;
   options.limits.time_budget_seconds = args.time_budget;
   options.limits.max_synthesis_threads = 2;
   web::HttpServer server(options);
@@ -143,11 +149,23 @@ Command add_serve_command(CLI::App& app) {
                   "seconds one request may compute before it is stopped (default 30)")
       ->check(nbar::cli::in_range(0.01, 86400.0));
   sub->add_option("--threads", args->threads,
-                  "connections served at once (default 256; each open connection holds one)")
+                  "requests served at once (default 256; a connection holds a thread only while its request is "
+                  "served)")
       ->check(nbar::cli::in_range(2, 1024));
   sub->add_option("--keep-alive", args->keep_alive,
-                  "seconds an idle connection keeps its thread (default 5; 0: closed after every answer)")
+                  "seconds an idle connection is kept open (default 5; 0: closed after every answer)")
       ->check(nbar::cli::in_range(0, 3600));
+  sub->add_option("--request-timeout", args->request_timeout,
+                  "seconds a request may take to arrive whole, header and body, from its first byte (default 10; "
+                  "then 408)")
+      ->check(nbar::cli::in_range(0.1, 3600.0));
+  sub->add_option("--max-connections", args->max_connections,
+                  "open connections in all (default 4096, at most the descriptors the process may open; past it "
+                  "the longest idle one is closed)")
+      ->check(nbar::cli::in_range(16, 1 << 20));
+  sub->add_option("--max-connections-per-client", args->max_connections_per_client,
+                  "open connections from one client address (default 256; more are refused 503)")
+      ->check(nbar::cli::in_range(1, 1 << 20));
   return {sub, [args] { return run_serve(*args); }};
 }
 

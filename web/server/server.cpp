@@ -1,38 +1,159 @@
 // HTTP with cpp-httplib: every request goes to handle_api, whose answer is sent as it is. The
-// only decisions taken here are those httplib takes before the body is read (a body far over
-// the limit, a malformed request); they are answered with the API's JSON errors too.
+// connections are the front's (connection_front.hpp): it reads each request whole under its
+// deadlines and caps, then a worker hands the request's bytes to httplib's request processing.
+// The only decisions taken here are those taken before the body is read (a request framed two
+// ways, a compressed body); they are answered with the API's JSON errors too.
 #include "nbar/web/server.hpp"
 
-#include <arpa/inet.h>
 #include <httplib.h>
-#include <netinet/in.h>
+#include <netdb.h>
 #include <poll.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
-#include <filesystem>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <thread>
 
-namespace nbar::web {
+#include "connection_front.hpp"
 
-struct HttpServer::Impl {
-  ServeOptions options;
-  ServerConfig config;
-  httplib::Server server;
-  int port = -1;
-  std::atomic<bool> listening{false}, stopping{false};
-};
+namespace nbar::web {
 
 namespace {
 
-// httplib 0.11 listens with a backlog of 5: a burst of new connections (a class's browsers, or
-// nginx's one connection per request) overflows it, and each dropped SYN costs its client a
-// 1 s retransmission. Listening again on the bound socket raises the backlog; httplib does not
-// hand the socket out, so it is found among the process's descriptors by its port.
+// httplib's processing of one request (parse, route, write the answer), called on a stream that
+// holds the request whole; httplib's own socket loop is not used.
+class RequestProcessor : public httplib::Server {
+ public:
+  bool process(httplib::Stream& stream, bool last, bool& client_closes) {
+    return process_request(stream, last, client_closes, nullptr);
+  }
+};
+
+// Set by the logger, which httplib calls once an answer is written: the answer said
+// "Connection: close" (a request refused before its body was read).
+thread_local bool answer_closes = false;
+
+// One request's bytes, as the front read them, and the connection's socket to write the answer
+// to within the write deadline.
+class RequestStream final : public httplib::Stream {
+ public:
+  RequestStream(const Connection& c, double write_seconds)
+      : c_(c),
+        request_(c.input.data(), c.request_bytes),
+        write_until_(std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                            std::chrono::duration<double>(write_seconds))) {}
+  bool is_readable() const override { return at_ < request_.size(); }
+  bool is_writable() const override { return wait_writable(); }
+  ssize_t read(char* ptr, size_t size) override {
+    const std::size_t n = std::min(size, request_.size() - at_);
+    std::memcpy(ptr, request_.data() + at_, n);
+    at_ += n;
+    return static_cast<ssize_t>(n);
+  }
+  ssize_t write(const char* ptr, size_t size) override {
+    for (;;) {
+      const ssize_t n = ::send(c_.fd, ptr, size, MSG_DONTWAIT | MSG_NOSIGNAL);
+      if (n >= 0) return n;
+      if (errno == EINTR) continue;
+      if ((errno != EAGAIN && errno != EWOULDBLOCK) || !wait_writable()) return -1;
+    }
+  }
+  void get_remote_ip_and_port(std::string& ip, int& port) const override {
+    ip = c_.peer_address;
+    port = c_.peer_port;
+  }
+  void get_local_ip_and_port(std::string& ip, int& port) const override {
+    ip = c_.local_address;
+    port = c_.local_port;
+  }
+  // httplib asks only to refuse a socket select() cannot watch (>= FD_SETSIZE); this one is
+  // never given to select(), so none is refused: the front serves more connections than that.
+  socket_t socket() const override { return c_.fd < FD_SETSIZE ? c_.fd : INVALID_SOCKET; }
+
+ private:
+  bool wait_writable() const {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(write_until_ - std::chrono::steady_clock::now());
+    pollfd p{c_.fd, POLLOUT, 0};
+    return left.count() > 0 && ::poll(&p, 1, static_cast<int>(left.count())) > 0 && !(p.revents & (POLLERR | POLLHUP));
+  }
+  const Connection& c_;
+  std::string_view request_;
+  std::size_t at_ = 0;
+  std::chrono::steady_clock::time_point write_until_;
+};
+
+const char* reason_phrase(int status) {
+  switch (status) {
+    case 400: return "Bad Request";
+    case 408: return "Request Timeout";
+    case 413: return "Payload Too Large";
+    case 431: return "Request Header Fields Too Large";
+    case 501: return "Not Implemented";
+    case 503: return "Service Unavailable";
+    default: return "Error";
+  }
+}
+
+// A refusal of the front: the API's JSON error, and the connection closes after it.
+std::string refusal_text(int status, const std::string& message) {
+  const ApiResponse answer = error_response(status, message);
+  return "HTTP/1.1 " + std::to_string(status) + " " + reason_phrase(status) +
+         "\r\nContent-Type: " + answer.content_type + "\r\nContent-Length: " + std::to_string(answer.body.size()) +
+         "\r\nX-Content-Type-Options: nosniff\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n" + answer.body;
+}
+
+// Room for the connections the front takes: the soft limit on descriptors (often 1 024) raised to
+// the hard one.
+int descriptors_available() {
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_NOFILE, &limit) != 0) return 1024;
+  if (limit.rlim_cur < limit.rlim_max) {
+    limit.rlim_cur = limit.rlim_max;
+    ::setrlimit(RLIMIT_NOFILE, &limit);
+    ::getrlimit(RLIMIT_NOFILE, &limit);
+  }
+  return limit.rlim_cur > 1 << 20 ? 1 << 20 : static_cast<int>(limit.rlim_cur);
+}
+
+// A listening socket on host:port (port 0: any free one), or -1. SO_REUSEADDR but not
+// SO_REUSEPORT: a second server on a port in use fails to bind instead of sharing it silently.
+int listen_on(const std::string& host, int port, int& bound_port) {
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_PASSIVE | AI_NUMERICSERV;
+  addrinfo* found = nullptr;
+  if (::getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found) != 0) return -1;
+  int fd = -1;
+  for (const addrinfo* a = found; a && fd < 0; a = a->ai_next) {
+    fd = ::socket(a->ai_family, a->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, a->ai_protocol);
+    if (fd < 0) continue;
+    const int yes = 1;
+    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    if (::bind(fd, a->ai_addr, a->ai_addrlen) != 0 || ::listen(fd, SOMAXCONN) != 0) {
+      ::close(fd);
+      fd = -1;
+    }
+  }
+  ::freeaddrinfo(found);
+  if (fd < 0) return -1;
+  sockaddr_storage address{};
+  socklen_t length = sizeof address;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
+  bound_port = address.ss_family == AF_INET6 ? ntohs(reinterpret_cast<sockaddr_in6*>(&address)->sin6_port)
+                                             : ntohs(reinterpret_cast<sockaddr_in*>(&address)->sin_port);
+  return fd;
+}
+
 // A body whose length two headers tell differently (RFC 9112, 6.3): a proxy in front may frame
 // it one way and this server another, which is how requests are smuggled past the proxy. Such a
 // request is refused and its connection closed, before the body is read.
@@ -47,72 +168,6 @@ std::optional<std::string> framing_error(const httplib::Request& req) {
   if (chunked && req.get_header_value_count("Transfer-Encoding") > 1)
     return "the request has several Transfer-Encoding headers; send one";
   return std::nullopt;
-}
-
-// The connection of a request, found by its two ends (httplib does not hand sockets to
-// handlers), or -1.
-int socket_of(const httplib::Request& req) {
-  const auto same_end = [](const sockaddr_storage& end, const std::string& address, int port) {
-    char text[INET6_ADDRSTRLEN] = {};
-    if (end.ss_family == AF_INET) {
-      const auto& v4 = reinterpret_cast<const sockaddr_in&>(end);
-      return ntohs(v4.sin_port) == port && ::inet_ntop(AF_INET, &v4.sin_addr, text, sizeof text) && address == text;
-    }
-    if (end.ss_family == AF_INET6) {
-      const auto& v6 = reinterpret_cast<const sockaddr_in6&>(end);
-      return ntohs(v6.sin6_port) == port && ::inet_ntop(AF_INET6, &v6.sin6_addr, text, sizeof text) && address == text;
-    }
-    return false;
-  };
-  const auto options = std::filesystem::directory_options::skip_permission_denied;
-  std::error_code ignored;
-  for (const auto& entry : std::filesystem::directory_iterator("/proc/self/fd", options, ignored)) {
-    const std::string name = entry.path().filename().string();
-    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos || name.size() > 9) continue;
-    const int fd = std::stoi(name);
-    sockaddr_storage peer{}, local{};
-    socklen_t peer_size = sizeof peer, local_size = sizeof local;
-    if (::getpeername(fd, reinterpret_cast<sockaddr*>(&peer), &peer_size) == 0 &&
-        ::getsockname(fd, reinterpret_cast<sockaddr*>(&local), &local_size) == 0 &&
-        same_end(peer, req.remote_addr, req.remote_port) && same_end(local, req.local_addr, req.local_port))
-      return fd;
-  }
-  return -1;
-}
-
-// httplib 0.11 keeps a connection open after an answer whatever its Connection header says, and
-// reads the next request from where this one's headers ended: a body left unread would be taken
-// for the next request (a smuggled one). Once the answer is written (httplib calls its logger
-// then), the connection is closed the way servers close one with unread input: the answer is
-// ended (FIN), what the client still sends is read and dropped for a moment, then reading is shut
-// so that httplib's next read sees the end. Closing at once would answer the unread bytes with a
-// reset, which can destroy the answer before the client reads it.
-void close_after_answer(const httplib::Request& req) {
-  const int fd = socket_of(req);
-  if (fd < 0) return;
-  ::shutdown(fd, SHUT_WR);
-  char sink[16384];
-  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
-  for (pollfd p{fd, POLLIN, 0}; std::chrono::steady_clock::now() < until; p.revents = 0) {
-    if (::poll(&p, 1, 50) <= 0) continue;
-    if (::recv(fd, sink, sizeof sink, MSG_DONTWAIT) <= 0) break;
-  }
-  ::shutdown(fd, SHUT_RD);
-}
-
-void raise_listen_backlog(int port) {
-  for (int fd = 0; fd < 4096; ++fd) {
-    int listening = 0;
-    socklen_t size = sizeof listening;
-    if (::getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &size) != 0 || !listening) continue;
-    sockaddr_storage address{};
-    socklen_t length = sizeof address;
-    if (::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0) continue;
-    const int bound = address.ss_family == AF_INET    ? ntohs(reinterpret_cast<sockaddr_in*>(&address)->sin_port)
-                      : address.ss_family == AF_INET6 ? ntohs(reinterpret_cast<sockaddr_in6*>(&address)->sin6_port)
-                                                      : -1;
-    if (bound == port) ::listen(fd, SOMAXCONN);
-  }
 }
 
 // httplib 0.11 compresses an answer for a client that accepts br (every browser) with brotli at
@@ -151,6 +206,20 @@ void send(const ApiResponse& answer, httplib::Response& res) {
 
 }  // namespace
 
+struct HttpServer::Impl {
+  ServeOptions options;
+  ServerConfig config;
+  RequestProcessor server;
+  int listener = -1;
+  int port = -1;
+  std::unique_ptr<ConnectionFront> front;
+  std::atomic<bool> stopping{false};
+  ~Impl() {
+    front.reset();
+    if (listener >= 0) ::close(listener);
+  }
+};
+
 HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
   impl_->config.limits = options.limits;
@@ -160,32 +229,9 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
       std::make_shared<JobSlots>(options.light_jobs > 0 ? options.light_jobs : std::max(2, cores));
   impl_->config.queue_wait_seconds = options.queue_wait_seconds;
   httplib::Server& server = impl_->server;
-  const int threads = std::max(2, options.threads);
-  server.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
-  // Bodies up to twice the limit are read, so that handle_api answers them with its own 413;
-  // httplib refuses larger ones from their Content-Length alone.
-  server.set_payload_max_length(options.limits.max_body_bytes * 2);
-  // SO_REUSEADDR but not httplib's SO_REUSEPORT: a second server on a port in use fails to
-  // bind instead of sharing it silently.
-  server.set_socket_options([](socket_t sock) {
-    int yes = 1;
-    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
-  });
-  // httplib serves a connection on one thread from its first request to its close, so an idle
-  // keep-alive connection holds a thread: there are many threads (they mostly sleep), and an
-  // idle connection is closed after a few seconds. Behind nginx every request comes on a
-  // connection of its own.
-  if (options.keep_alive_seconds > 0) {
-    server.set_keep_alive_timeout(options.keep_alive_seconds);
-    server.set_keep_alive_max_count(100);
-  } else {
-    server.set_keep_alive_max_count(1);  // "Connection: close" after every answer
-  }
-  // Headers and body go out in separate writes: without this, Nagle's algorithm holds the body
-  // until the client's delayed acknowledgement, 40 ms on Linux, on every kept-alive request.
-  server.set_tcp_nodelay(true);
-  server.set_read_timeout(10, 0);
-  server.set_write_timeout(30, 0);
+  // The front refuses a body over the limit before reading it; httplib's own check stays as a
+  // second line.
+  server.set_payload_max_length(options.limits.max_body_bytes);
   // httplib inflates a gzip or deflate body whole before its size is checked (1 MB of gzipped
   // zeros became 1 GB in memory), and the API's bodies are small JSON: it takes them as sent. The
   // check runs before the body is read; the connection closes, its unread body with it.
@@ -201,13 +247,26 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
     return refuse(415, "this server reads bodies as they are sent, without Content-Encoding (here '" +
                            encoding.substr(0, 40) + "')");
   });
-  // Refused before their bodies were read (above): closed once answered.
+  // Refused before their bodies were read (above), or not HTTP at all (httplib's 400 for a
+  // request line it cannot read): the front closes the connection once answered, with whatever
+  // the client sent after it.
   server.set_logger([](const httplib::Request& req, const httplib::Response& res) {
-    if (!req.body.empty() || res.get_header_value("Connection") != "close") return;
-    bool unread_body = req.has_header("Transfer-Encoding");
-    for (std::size_t i = 0; i < req.get_header_value_count("Content-Length"); ++i)
-      unread_body = unread_body || req.get_header_value("Content-Length", i) != "0";
-    if (unread_body) close_after_answer(req);
+    answer_closes = res.get_header_value("Connection") == "close" || req.method.empty();
+  });
+  // The handlers answer every error themselves; what is left is httplib's own reading (memory
+  // for a body, say): never a 500 with the exception's text in a header, as httplib would.
+  server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
+    bool out_of_memory = false;
+    try {
+      std::rethrow_exception(error);
+    } catch (const std::bad_alloc&) {
+      out_of_memory = true;
+    } catch (...) {
+    }
+    send(out_of_memory ? error_response(413, "the request needs more memory than the server has")
+                       : error_response(400, "the request could not be read as HTTP"),
+         res);
+    res.set_header("Connection", "close");
   });
   const ServerConfig* config = &impl_->config;
   const auto handler = [config](const httplib::Request& req, httplib::Response& res) {
@@ -238,35 +297,48 @@ bool HttpServer::bind(std::string& error) {
   // A client that goes away mid-answer must not end the server (ffmpeg's pipe too).
   std::signal(SIGPIPE, SIG_IGN);
   const ServeOptions& o = impl_->options;
-  if (o.port == 0) {
-    impl_->port = impl_->server.bind_to_any_port(o.host);
-  } else {
-    impl_->port = impl_->server.bind_to_port(o.host, o.port) ? o.port : -1;
-  }
-  if (impl_->port < 0) {
+  impl_->listener = listen_on(o.host, o.port, impl_->port);
+  if (impl_->listener < 0) {
+    impl_->port = -1;
     error =
         "cannot listen on " + o.host + ":" + std::to_string(o.port) + " (in use, or not an address of this machine)";
     return false;
   }
-  raise_listen_backlog(impl_->port);
+  FrontLimits limits;
+  limits.max_body_bytes = o.limits.max_body_bytes;
+  limits.request_read_seconds = o.request_read_seconds;
+  limits.keep_alive_seconds = o.keep_alive_seconds;
+  limits.max_requests_per_connection = o.keep_alive_seconds > 0 ? 100 : 1;
+  // Each connection is a descriptor; some are kept for the rest of the program (ffmpeg's pipes).
+  limits.max_connections = std::max(16, std::min(o.max_connections, descriptors_available() - 64));
+  limits.max_connections_per_address = std::max(1, o.max_connections_per_address);
+  limits.workers = std::max(2, o.threads);
+  RequestProcessor* server = &impl_->server;
+  const double write_seconds = limits.write_seconds;
+  impl_->front = std::make_unique<ConnectionFront>(
+      impl_->listener, limits,
+      [server, write_seconds](Connection& c, bool last) {
+        RequestStream stream(c, write_seconds);
+        bool client_closes = false;
+        answer_closes = false;
+        const bool written = server->process(stream, last, client_closes);
+        return written && !client_closes && !last && !answer_closes;
+      },
+      &refusal_text);
+  if (impl_->stopping) impl_->front->stop();
   return true;
 }
 
 int HttpServer::bound_port() const { return impl_->port; }
 
 void HttpServer::listen() {
-  impl_->listening = true;
-  if (!impl_->stopping) impl_->server.listen_after_bind();
-  impl_->listening = false;
+  if (impl_->front) impl_->front->run();
 }
 
 void HttpServer::stop() {
-  // listen() may have been called on another thread and not be running yet: it either sees
-  // `stopping` and returns, or runs soon and is stopped here.
+  // listen() may run on another thread, before or after this: the front's stop holds either way.
   impl_->stopping = true;
-  for (int i = 0; i < 500 && impl_->listening && !impl_->server.is_running(); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  impl_->server.stop();
+  if (impl_->front) impl_->front->stop();
 }
 
 }  // namespace nbar::web

@@ -16,8 +16,15 @@ struct ServeOptions {
   int max_jobs = 2;                // heavy computations at once (ServerConfig::jobs)
   int light_jobs = 0;              // light computations at once; 0: one per core, at least 2
   double queue_wait_seconds = 10;  // a computation waits this long for a slot, then 503
-  int threads = 256;               // connections served at once (each one holds a thread)
-  int keep_alive_seconds = 5;      // an idle connection gives its thread back after this
+  int threads = 256;               // requests served at once (each one holds a thread)
+  int keep_alive_seconds = 5;      // an idle connection is closed after this
+  // Slow and idle clients (web/server/connection_front.hpp): a request must arrive whole (its
+  // header and body) within `request_read_seconds` of its first byte, else 408; a client address
+  // keeps at most `max_connections_per_address` open (more are refused 503), and past
+  // `max_connections` in all the one that has waited longest without a whole request is closed.
+  double request_read_seconds = 10;
+  int max_connections = 4096;  // at most the descriptors the process may open, less 64
+  int max_connections_per_address = 256;
   Limits limits;
 };
 
