@@ -223,7 +223,7 @@ TEST_F(WebServerUnderAttack, ConnectionsPerClientAreCapped) {
   int refused = 0;
   for (const int fd : fds) {
     bool closed = false;
-    const std::string answer = answer_on(fd, 0.2, &closed);
+    const std::string answer = answer_on(fd, 0.1, &closed);
     if (answer.rfind("HTTP/1.1 503", 0) == 0) {
       ++refused;
       EXPECT_NE(answer.find("too many connections from your address"), std::string::npos) << answer;

@@ -146,8 +146,10 @@ std::string raw_exchange(int port, const std::string& bytes, bool* closed = null
 
 TEST_F(WebServer, MalformedRequestsAndChunkedBodiesAreAnsweredAsJsonAndTheServerStaysUp) {
   const int port = server_->bound_port();
-  const std::string garbage = raw_exchange(port, "HELLO there\r\n\r\n");
+  bool closed = false;
+  const std::string garbage = raw_exchange(port, "HELLO there\r\n\r\n", &closed);
   EXPECT_EQ(garbage.rfind("HTTP/1.1 400", 0), 0u) << garbage.substr(0, 200);
+  EXPECT_TRUE(closed) << "what is not HTTP is not a connection to go on with";
   EXPECT_NE(garbage.find("\"bad_input\""), std::string::npos) << garbage;
   // A body over the limit without a Content-Length, in chunks: refused as it grows.
   std::string chunked =

@@ -247,11 +247,10 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
     return refuse(415, "this server reads bodies as they are sent, without Content-Encoding (here '" +
                            encoding.substr(0, 40) + "')");
   });
-  // Refused before their bodies were read (above), or not HTTP at all (httplib's 400 for a
-  // request line it cannot read): the front closes the connection once answered, with whatever
-  // the client sent after it.
+  // Refused before their bodies were read (above), or not read as HTTP (the error handler,
+  // below): the front closes the connection once answered, with whatever the client sent after.
   server.set_logger([](const httplib::Request& req, const httplib::Response& res) {
-    answer_closes = res.get_header_value("Connection") == "close" || req.method.empty();
+    answer_closes = answer_closes || res.get_header_value("Connection") == "close" || req.method.empty();
   });
   // The handlers answer every error themselves; what is left is httplib's own reading (memory
   // for a body, say): never a 500 with the exception's text in a header, as httplib would.
@@ -284,6 +283,7 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   // the same JSON errors. Answers of handle_api already have their body.
   server.set_error_handler([](const httplib::Request&, httplib::Response& res) {
     if (!res.body.empty()) return;
+    answer_closes = true;  // what httplib could not read is not a request to go on from
     const std::string message = res.status == 413   ? "the body is too large for this server"
                                 : res.status == 404 ? "not found"
                                                     : "the request could not be read as HTTP";
