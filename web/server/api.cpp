@@ -119,6 +119,10 @@ ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config) {
   return r;
 }
 
+ApiResponse body_too_large_response(const std::string& message, std::size_t max_body_bytes) {
+  return error_answer(ApiErrorKind::BodyTooLarge, message, Json{{"limit", "body_bytes"}, {"max", max_body_bytes}});
+}
+
 ApiResponse error_response(int status, const std::string& message) {
   const ApiErrorKind kind = status == 413   ? ApiErrorKind::BodyTooLarge
                             : status == 404 ? ApiErrorKind::NotFound

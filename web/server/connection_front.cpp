@@ -256,6 +256,16 @@ bool ConnectionFront::frame_header(Connection& c) {
     return false;
   }
   c.header_end = blank + 4;
+  // httplib skips a line that ends in a bare LF: a header hidden that way would frame the body
+  // differently there than here.
+  for (std::size_t i = 0; i < blank + 2; ++i) {
+    const bool bare_lf = c.input[i] == '\n' && (i == 0 || c.input[i - 1] != '\r');
+    const bool bare_cr = c.input[i] == '\r' && c.input[i + 1] != '\n';
+    if (bare_lf || bare_cr || c.input[i] == '\0') {
+      refuse(c, 400, "the request's header has a line that does not end with CR LF, or a NUL byte");
+      return false;
+    }
+  }
   std::vector<std::string> lengths, encodings;
   std::size_t expect_at = std::string::npos, expect_end = 0;
   for (std::size_t at = c.input.find("\r\n") + 2; at < blank + 2;) {

@@ -104,8 +104,10 @@ const char* reason_phrase(int status) {
 }
 
 // A refusal of the front: the API's JSON error, and the connection closes after it.
-std::string refusal_text(int status, const std::string& message) {
-  const ApiResponse answer = error_response(status, message);
+std::string refusal_text(int status, const std::string& message, std::size_t max_body_bytes) {
+  // A body over the limit is told as handle_api tells it, with the limit's name and value.
+  const ApiResponse answer =
+      status == 413 ? body_too_large_response(message, max_body_bytes) : error_response(status, message);
   return "HTTP/1.1 " + std::to_string(status) + " " + reason_phrase(status) +
          "\r\nContent-Type: " + answer.content_type + "\r\nContent-Length: " + std::to_string(answer.body.size()) +
          "\r\nX-Content-Type-Options: nosniff\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n" + answer.body;
@@ -324,7 +326,9 @@ bool HttpServer::bind(std::string& error) {
         const bool written = server->process(stream, last, client_closes);
         return written && !client_closes && !last && !answer_closes;
       },
-      &refusal_text);
+      [max_body = limits.max_body_bytes](int status, const std::string& message) {
+        return refusal_text(status, message, max_body);
+      });
   if (impl_->stopping) impl_->front->stop();
   return true;
 }

@@ -130,5 +130,7 @@ ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config);
 // The error answer for a status the HTTP layer decides itself (a body over the limit before it
 // is read, a malformed request): {"error": {"kind": ..., "message": ...}}.
 ApiResponse error_response(int status, const std::string& message);
+// The 413 of a body over `max_body_bytes` as handle_api answers it, with the limit's name and value.
+ApiResponse body_too_large_response(const std::string& message, std::size_t max_body_bytes);
 
 }  // namespace nbar::web
