@@ -1,6 +1,8 @@
 #include "nbar/kinematics/continuation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -14,15 +16,19 @@ namespace nbar {
 namespace {
 
 constexpr int kMaxCorrections = 8;
-// The corrections of a regular step go on to kRegularTarget of the tolerance (one more
-// correction costs little next to the step, and the pose is then known well below the
-// tolerance); below kRegularRcond, to a residual smaller still by the square of the condition's
-// ratio to it, down to kTightestTarget of that (1e-4 of the tolerance in all, about the residual's
-// own rounding: near a singular position they go on until they stop contracting). A correction
-// that no longer contracts ends them if the tolerance is met.
-constexpr double kRegularRcond = 0.1;
-constexpr double kTightestTarget = 1e-3;
-constexpr double kRegularTarget = 0.1;
+// The corrections go on until the pose is known to its rounding, not only to the tolerance: a
+// pose's residual r leaves it off by about r / sigma_min, and its velocities and accelerations by
+// that over sigma_min and sigma_min^2, so that near a limit a pose merely within the tolerance
+// (1e-12 of the linkage's size) gave accelerations off by 5e-8 of L w^2 0.3 deg from a six-bar's
+// limit (tests/kinematics/near_limit_test.cpp). They stop when the correction just solved, or the
+// next one as the contraction of the last two predicts it, is below this many units in the last
+// place of every point's coordinates (of the linkage's size for a point nearer the origin than
+// that): what is left is rounding, which further corrections would only stir. A correction found
+// to be rounding is not applied, so that the Jacobian evaluated with the residuals is the point's
+// own. A correction that does not contract by half ends them too: the factorisation they reuse
+// is too far from the point (near a singular position), and the point gets a Newton step with
+// its own Jacobian (polish) if the tolerance is met.
+constexpr double kRoundingUlps = 8.0;
 // A correction larger than this fraction of the predicted motion looks like a jump to
 // another branch: the step is retried shorter.
 constexpr double kMaxCorrectionRatio = 0.1;
@@ -105,50 +111,60 @@ double largest_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return largest;
 }
 
-// How far below the tolerance the residual is driven: the pose is off by about residual /
-// sigma_min, and its velocities and accelerations by that over sigma_min and sigma_min^2
-// (sigma_min relative: about the reciprocal condition), so nearer a singular position, further
-// (the constants above).
-double residual_target(double tol, double rcond) {
-  const double ratio = std::min(1.0, rcond / kRegularRcond);
-  return tol * kRegularTarget * std::max(kTightestTarget, ratio * ratio);
+// A correction's size in units of its points' own scale: the largest |dq| of a point over the
+// larger of its distance from the origin (the larger coordinate) and the linkage's size. A point
+// is known to about the rounding of its coordinates, so that a point riding along far out (a
+// centre of mass drawn as a point 470 m from a 5 m linkage, its correction the coupler's times
+// its lever) does not stop the joints' corrections at its own rounding.
+template <int N>
+double relative_size(const Eigen::VectorXd& dq, const Eigen::VectorXd& q, double length) {
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i + 1 < coordinates<N>(q); i += 2) {
+    const double scale = std::max({std::abs(q[i]), std::abs(q[i + 1]), length});
+    grow(largest, std::max(std::abs(dq[i]), std::abs(dq[i + 1])) / scale);
+  }
+  return largest;
 }
 
 // Simplified Newton with the factorisation of the last accepted point; it never destroys
 // that factorisation, so a failed step can be retried shorter. On success `residual` is the
-// largest |Phi| at the point found (the workspace's phi holds its rows). The predicted point is
-// corrected at least once even when it already meets the tolerance, and on to a residual below it
-// (residual_target); a correction that no longer contracts ends it there if the tolerance is met,
-// with `short_of_target` set: the caller finishes with the point's own Jacobian (polish). On
-// success the workspace's jacobian holds the Jacobian's values at the point found.
+// largest |Phi| at the point found (the workspace's phi holds its rows) and the point is known to
+// its rounding (kRoundingUlps), or, with `short_of_rounding` set, the corrections stopped
+// contracting first (within the tolerance): the caller finishes with the point's own Jacobian
+// (polish). The predicted point is corrected at least once even when it already meets the
+// tolerance. On success the workspace's jacobian holds the Jacobian's values at the point found.
 template <int N>
 bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, const Eigen::VectorXd& q_pred,
-             double& residual, bool& short_of_target) {
+             double& residual, bool& short_of_rounding) {
   State::Workspace& work = state.workspace();
   const double tol = mech.tolerance();
-  const double target = residual_target(tol, work.solver().reciprocal_condition());
+  const double rounding = kRoundingUlps * std::numeric_limits<double>::epsilon();
+  const double length = mech.characteristic_length();
   const double motion = largest_difference<N>(q_pred, q_old);
   const double allowed = std::max(kMaxCorrectionRatio * motion, 100.0 * tol);
   double previous = std::numeric_limits<double>::infinity();
+  double next = previous;  // the next correction's size, from the contraction of the last two
   const Eigen::Index n = coordinates<N>(state.q);
-  short_of_target = false;
+  short_of_rounding = false;
   const auto stop_within_tolerance = [&](int it) {
-    short_of_target = it > 0 && residual <= tol;
-    return short_of_target;
+    short_of_rounding = it > 0 && residual <= tol;
+    return short_of_rounding;
   };
   for (int it = 0; it <= kMaxCorrections; ++it) {
     // After a correction the point may be the last: its Jacobian comes with the residuals (the rows
     // read once for both), and the caller factorises it from work.jacobian.
     residual = it > 0 ? evaluate_residuals_and_jacobian(mech, state.q, state.drivers, work.phi, work.jacobian)
                       : evaluate_residuals(mech, state.q, state.drivers, work.phi);
-    if (it > 0 && residual <= target) return true;
+    if (it > 0 && next <= rounding) return residual <= tol;
     if (it == kMaxCorrections) return stop_within_tolerance(it);
     // Phi_q dq = -Phi: solved for -dq, which is subtracted.
     if (work.dq.size() != n) work.dq.resize(n);
     solve_with<N>(work.solver(), work.phi.data(), work.dq.data());
-    double size = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i) grow(size, work.dq[i]);
+    const double size = relative_size<N>(work.dq, state.q, length);
+    // Rounding already: left unapplied, so that the Jacobian just evaluated is the point's.
+    if (it > 0 && size <= rounding) return residual <= tol;
     if (!std::isfinite(size) || size > 0.5 * previous) return stop_within_tolerance(it);
+    if (it > 0) next = size * (size / previous);
     previous = size;
     double moved = 0.0;
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -161,7 +177,7 @@ bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, 
   return false;
 }
 
-// A point the simplified Newton left short of its residual target, with `solver` factorised at it
+// A point the simplified Newton left short of its rounding, with `solver` factorised at it
 // and the workspace's phi its residuals: one Newton correction with that Jacobian, then the
 // Jacobian factorised again at the corrected point, so that the series come from the point they
 // are for.
@@ -249,8 +265,8 @@ double series_from(const Mechanism& mech, State& state, const DriverPath& path, 
   set_drivers(mech, state, work.driver_values);
   state.q = shifted.col(0);
   double residual = 0.0;
-  bool short_of_target = false;
-  if (!correct<0>(mech, state, q_b, shifted.col(0), residual, short_of_target)) return HUGE_VAL;
+  bool short_of_rounding = false;
+  if (!correct<0>(mech, state, q_b, shifted.col(0), residual, short_of_rounding)) return HUGE_VAL;
   const bool singular = !factorize_jacobian(mech, state, work.spare_solver()) ||
                         work.spare_solver().reciprocal_condition() < kSingularEndRcond;
   if (!singular) return HUGE_VAL;
@@ -353,12 +369,12 @@ TrackReport track_sized(const Mechanism& mech, State& state, const DriverPath& p
     set_drivers(mech, state, values);
     copy_coordinates<N>(q_pred, state.q);
     double trial_residual = 0.0;
-    bool short_of_target = false;
-    const bool converged = correct<N>(mech, state, q_old, q_pred, trial_residual, short_of_target);
+    bool short_of_rounding = false;
+    const bool converged = correct<N>(mech, state, q_old, q_pred, trial_residual, short_of_rounding);
     bool ok = converged && work.spare_solver().factorize(work.jacobian);
     // On a singular position the point's own Jacobian would amplify the correction instead: the
     // point stays as the tolerance left it (a sample there takes its series from beside it).
-    if (ok && short_of_target && work.spare_solver().reciprocal_condition() >= kHistoryRcond)
+    if (ok && short_of_rounding && work.spare_solver().reciprocal_condition() >= kHistoryRcond)
       ok = polish(mech, state, work.spare_solver(), trial_residual) && trial_residual <= mech.tolerance();
     if (converged && final_step && options.coast_terms > 0 && !coast_tried &&
         (!ok || work.spare_solver().reciprocal_condition() < kSingularEndRcond)) {
