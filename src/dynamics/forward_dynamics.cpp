@@ -435,7 +435,9 @@ class Integrator {
   // and do not steer the step size).
   double error_norm(const Eigen::VectorXd& error, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1) const {
     const double rtol = options_.relative_tolerance;
-    const double length = mech_.characteristic_length();
+    // The whole drawing's size, riding points included: every coordinate is integrated, and the
+    // steps were chosen so before the linkage's own size set the position tolerance.
+    const double length = mech_.drawing_size();
     double sum = 0.0;
     for (int i = 0; i < 2 * n_; ++i) {
       const double scale = rtol * length + rtol * std::max(std::abs(y0(i)), std::abs(y1(i)));

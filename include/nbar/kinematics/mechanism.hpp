@@ -55,8 +55,17 @@ class Mechanism {
   // MobilityReport::redundant and AssemblyError::row() name. 0 <= row < row_count().
   const std::string& row_label(int row) const;
   int column_of(int point) const { return column_[point]; }  // -1 for ground points
+  // The linkage's size: the diagonal of the drawn bounding box of the points its joints, sliders,
+  // slots and drivers use (or a body's given length, if larger), not of points that only ride
+  // along on one body (a coupler point, a centre of mass drawn as a point).
   double characteristic_length() const { return length_scale_; }
-  double tolerance() const { return 1e-12 * length_scale_; }
+  // The diagonal of the whole drawing's bounding box, riding points included (or a body's given
+  // length, if larger): the forward dynamics' absolute error weight.
+  double drawing_size() const { return drawing_size_; }
+  // Positions are converged when every row's residual is below this: 1e-12 of the linkage's
+  // size, or of a thousandth of the whole drawing's when a riding point lies further out than a
+  // thousand times the linkage's size (its rows' rounding grows with its distance).
+  double tolerance() const { return tolerance_; }
 
   // q of the drawn pose.
   const Eigen::VectorXd& drawn_coordinates() const { return q_drawn_; }
@@ -87,6 +96,8 @@ class Mechanism {
   int n_ = 0;
   int constraint_rows_ = 0;
   double length_scale_ = 1.0;
+  double tolerance_ = 1e-12;
+  double drawing_size_ = 1.0;
   std::vector<int> column_;
   int row_count_ = 0;
   // Shared by copies: it never changes once built.
