@@ -146,23 +146,30 @@ bool correct(const Mechanism& mech, State& state, const Eigen::VectorXd& q_old, 
   double next = previous;  // the next correction's size, from the contraction of the last two
   const Eigen::Index n = coordinates<N>(state.q);
   short_of_rounding = false;
+  // The Jacobian is evaluated with the residuals only where the point is expected to be the last
+  // (the next correction predicted to be rounding), else once the corrections end: a step's
+  // corrections before its last need only the residuals.
+  bool jacobian_here = false;
+  const auto done = [&](bool ok) {
+    if (ok && !jacobian_here) evaluate_jacobian(mech, state.q, state.drivers, work.jacobian);
+    return ok;
+  };
   const auto stop_within_tolerance = [&](int it) {
     short_of_rounding = it > 0 && residual <= tol;
-    return short_of_rounding;
+    return done(short_of_rounding);
   };
   for (int it = 0; it <= kMaxCorrections; ++it) {
-    // After a correction the point may be the last: its Jacobian comes with the residuals (the rows
-    // read once for both), and the caller factorises it from work.jacobian.
-    residual = it > 0 ? evaluate_residuals_and_jacobian(mech, state.q, state.drivers, work.phi, work.jacobian)
-                      : evaluate_residuals(mech, state.q, state.drivers, work.phi);
-    if (it > 0 && next <= rounding) return residual <= tol;
+    jacobian_here = it > 0 && next <= rounding;
+    residual = jacobian_here ? evaluate_residuals_and_jacobian(mech, state.q, state.drivers, work.phi, work.jacobian)
+                             : evaluate_residuals(mech, state.q, state.drivers, work.phi);
+    if (jacobian_here) return residual <= tol;
     if (it == kMaxCorrections) return stop_within_tolerance(it);
     // Phi_q dq = -Phi: solved for -dq, which is subtracted.
     if (work.dq.size() != n) work.dq.resize(n);
     solve_with<N>(work.solver(), work.phi.data(), work.dq.data());
     const double size = relative_size<N>(work.dq, state.q, length);
-    // Rounding already: left unapplied, so that the Jacobian just evaluated is the point's.
-    if (it > 0 && size <= rounding) return residual <= tol;
+    // Rounding already: left unapplied, so that the Jacobian is the point's.
+    if (it > 0 && size <= rounding) return done(residual <= tol);
     if (!std::isfinite(size) || size > 0.5 * previous) return stop_within_tolerance(it);
     if (it > 0) next = size * (size / previous);
     previous = size;
