@@ -24,7 +24,7 @@ struct SolveCommand {
 int solve_to_csv(const SolveCommand& command, const request::SolveRequest& request, const Loaded& loaded) {
   std::optional<TableStream> stream;
   try {
-    stream.emplace(loaded.mechanism, request.analysis_options());
+    stream.emplace(loaded.mechanism, request.analysis_options(), request.columns_on_request(*loaded.mechanism));
     stream->measure();
   } catch (const Error& e) {
     return fail(command.model, io::located(loaded.file.source, e));

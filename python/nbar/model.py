@@ -382,14 +382,15 @@ class Model:
                 sections: int = 200, timeout: Optional[float] = None, max_steps: Optional[int] = None,
                 method: str = "beam", mesh_size: Optional[float] = None, at_limits: Optional[str] = None,
                 cycles: Optional[int] = None, segments_per_hole: Optional[int] = None,
-                edge_size: Optional[float] = None):
+                edge_size: Optional[float] = None, condition: bool = False):
         """The pipeline's raw result (sweep, then dynamics, then stress), for the other methods.
 
         A sweep of more than ``max_steps`` samples (default 10 000 000, as ``--max-steps``) is an error.
         ``method`` is the stresses' (``"beam"`` or ``"fe"``), ``mesh_size`` the finite elements' edge
         far from holes, in the model's length unit (``segments_per_hole`` edges at least around each
         round hole, ``edge_size`` along holes and corners). ``at_limits="reverse"`` turns the sweep back at the
-        mechanism's limits (over the driver's ``at_limits``), for ``cycles`` rocking cycles."""
+        mechanism's limits (over the driver's ``at_limits``), for ``cycles`` rocking cycles. ``condition``
+        estimates each sample's condition number, for the ``cond`` column."""
         steps, order, sections = _whole("steps", steps), _whole("order", order), _whole("sections", sections)
         max_steps, cycles = _whole("max_steps", max_steps, minimum=1), _whole("cycles", cycles, minimum=1)
         timeout, mesh_size = _real("timeout", timeout), _real("mesh_size", mesh_size)
@@ -398,7 +399,8 @@ class Model:
         return _nbar.analyse(self._c, steps=steps, order=order, dynamics=_flag("dynamics", dynamics),
                              stress=_flag("stress", stress), sections=sections, timeout=timeout, max_steps=max_steps,
                              method=_text("method", method), mesh_size=mesh_size, at_limits=at_limits, cycles=cycles,
-                             segments_per_hole=segments_per_hole, edge_size=edge_size)
+                             segments_per_hole=segments_per_hole, edge_size=edge_size,
+                             condition=_flag("condition", condition))
 
     def solve(self, steps: Optional[int] = None, order: Optional[int] = None, columns: Columns = None,
               dynamics: bool = False, partial: bool = False, timeout: Optional[float] = None,
@@ -417,8 +419,9 @@ class Model:
         """
         patterns = _patterns(columns)
         order, dynamics = self._plan(patterns, _whole("order", order), _flag("dynamics", dynamics))
+        condition = bool(patterns) and self._c.needs(patterns, order, dynamics)["condition"]
         analysis = self.analyse(steps=steps, order=order, dynamics=dynamics, timeout=timeout, max_steps=max_steps,
-                                at_limits=at_limits, cycles=cycles)
+                                at_limits=at_limits, cycles=cycles, condition=condition)
         return self._result(analysis, patterns, partial)
 
     def _plan(self, patterns: Optional[List[str]], order: Optional[int], dynamics: bool) -> Tuple[int, bool]:

@@ -91,7 +91,7 @@ class Model:
                 sections: int = ..., timeout: Optional[float] = ..., max_steps: Optional[int] = ...,
                 method: str = ..., mesh_size: Optional[float] = ..., at_limits: Optional[str] = ...,
                 cycles: Optional[int] = ..., segments_per_hole: Optional[int] = ...,
-                edge_size: Optional[float] = ...) -> Any: ...
+                edge_size: Optional[float] = ..., condition: bool = ...) -> Any: ...
     def solve(self, steps: Optional[int] = ..., order: Optional[int] = ..., columns: _Columns = ...,
               dynamics: bool = ..., partial: bool = ..., timeout: Optional[float] = ...,
               max_steps: Optional[int] = ..., at_limits: Optional[str] = ...,

@@ -67,12 +67,13 @@ std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::op
                                          std::optional<int> max_steps, const std::string& method,
                                          std::optional<double> mesh_size, const std::optional<std::string>& at_limits,
                                          std::optional<int> cycles, std::optional<int> segments_per_hole,
-                                         std::optional<double> edge_size) {
+                                         std::optional<double> edge_size, bool condition) {
   auto out = std::make_shared<PyAnalysis>();
   out->model = model;
   AnalysisOptions options = analysis_options(model->mechanism->model(), steps, order, dynamics, stress, sections,
                                              max_steps, method, mesh_size, at_limits, cycles, segments_per_hole,
                                              edge_size);
+  options.condition = condition;
   run_interruptible(options.control, timeout, [&] {
     try {
       out->analysis = analyse(model->mechanism, options);
@@ -453,7 +454,7 @@ void bind_analysis(py::module_& m) {
       .def(
           "table",
           [](const PyAnalysis& a, const std::optional<std::vector<std::string>>& columns) {
-            return as_arrays(column_request(a, columns).columns_of(*a.analysis.mechanism, result_columns(a.analysis)));
+            return as_arrays(column_request(a, columns).columns_of(a.analysis));
           },
           py::arg("columns") = std::nullopt)
       .def(
@@ -486,7 +487,8 @@ void bind_analysis(py::module_& m) {
         py::arg("dynamics") = false, py::arg("stress") = false, py::arg("sections") = 200,
         py::arg("timeout") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("method") = "beam",
         py::arg("mesh_size") = std::nullopt, py::arg("at_limits") = std::nullopt, py::arg("cycles") = std::nullopt,
-        py::arg("segments_per_hole") = std::nullopt, py::arg("edge_size") = std::nullopt);
+        py::arg("segments_per_hole") = std::nullopt, py::arg("edge_size") = std::nullopt,
+        py::arg("condition") = false);
   // For bench/python: the same solve timed inside C++ (the sweep, then the sweep and its column
   // table), the reference Python's own cost is measured against.
   m.def(

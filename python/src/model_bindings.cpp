@@ -79,6 +79,7 @@ py::dict needs(const PyModel& model, const std::vector<std::string>& patterns, s
   py::dict d;
   d["order"] = n.order;
   d["dynamics"] = n.dynamics;
+  d["condition"] = n.condition;
   d["unmatched"] = n.unmatched;
   d["message"] = n.message;
   return d;

@@ -1,5 +1,6 @@
 #include "nbar/analysis/analysis.hpp"
 
+#include "nbar/analysis/columns.hpp"
 #include "nbar/analysis/summary.hpp"
 #include "nbar/analysis/table_stream.hpp"
 
@@ -35,6 +36,7 @@ SweepResult run_sweep_stage(const Mechanism& mech, const AnalysisOptions& option
   sweep.steps = options.steps;
   sweep.max_steps = options.max_steps;
   sweep.order = options.dynamics || options.stress ? std::max(options.order, 2) : options.order;
+  sweep.condition = options.condition;
   std::vector<Warning> before = check_before_sweep(mech);
   SweepResult result = run_sweep(mech, sweep, options.control);
   result.warnings.insert(result.warnings.begin(), before.begin(), before.end());
@@ -167,16 +169,16 @@ Analysis analyse(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptio
   return analysis;
 }
 
-ResultTable result_table(const Analysis& analysis) {
-  ResultTable table = make_table(*analysis.mechanism, analysis.sweep);
+ResultTable result_table(const Analysis& analysis, const ColumnsOnRequest& extra) {
+  ResultTable table = make_table(*analysis.mechanism, analysis.sweep, extra);
   if (analysis.dynamics)
     append_dynamics_columns(*analysis.dynamics->solver, analysis.sweep, analysis.dynamics->samples, table);
   zero_numerical_noise(table);
   return table;
 }
 
-ColumnTable result_columns(const Analysis& analysis) {
-  ColumnTable table = make_column_table(*analysis.mechanism, analysis.sweep);
+ColumnTable result_columns(const Analysis& analysis, const ColumnsOnRequest& extra) {
+  ColumnTable table = make_column_table(*analysis.mechanism, analysis.sweep, extra);
   if (analysis.dynamics)
     append_dynamics_columns(*analysis.dynamics->solver, analysis.sweep, analysis.dynamics->samples, table);
   zero_numerical_noise(table);
@@ -226,27 +228,41 @@ struct TableStream::Pass {
   std::function<void(const double* full_row)> row;
 };
 
-TableStream::TableStream(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options)
-    : mechanism_(with_sweep_options(std::move(mechanism), options)), options_(options) {
+TableStream::TableStream(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options,
+                         ColumnsOnRequest extra)
+    : mechanism_(with_sweep_options(std::move(mechanism), options)), options_(options), extra_(std::move(extra)) {
   check_options(options_);
   if (options_.stress) throw Error(ErrorKind::BadInput, "stresses need the whole sweep: use analyse");
+  if (options_.dynamics) dynamics_ = std::make_shared<const InverseDynamics>(mechanism_);
+  name_columns();
+}
+
+TableStream::~TableStream() = default;
+
+void TableStream::name_columns() {
   const int order = options_.dynamics ? std::max(options_.order, 2) : options_.order;
-  KinematicRows(*mechanism_, order).name_columns(columns_, units_);
-  if (options_.dynamics) {
-    dynamics_ = std::make_shared<const InverseDynamics>(mechanism_);
+  const KinematicRows kinematic(*mechanism_, order, extra_);
+  columns_.clear();
+  units_.clear();
+  kinematic.name_columns(columns_, units_);
+  on_request_ = kinematic.on_request();
+  if (dynamics_) {
     for (ColumnName& c : dynamics_columns(*dynamics_)) {
       columns_.push_back(std::move(c.name));
       units_.push_back(std::move(c.unit));
     }
   }
   all_units_ = units_;
+  picked_.clear();
   for (std::size_t c = 0; c < columns_.size(); ++c) picked_.push_back(c);
 }
 
-TableStream::~TableStream() = default;
-
 void TableStream::select(const std::vector<std::string>& patterns) {
-  const std::vector<std::size_t> picked = pick_columns(columns_, patterns);
+  if (!measured_ && extra_.empty()) {
+    extra_ = columns_on_request(*mechanism_, patterns);
+    if (!extra_.empty()) name_columns();
+  }
+  const std::vector<std::size_t> picked = pick_columns(columns_, patterns, on_request_);
   std::vector<std::string> columns, units;
   std::vector<std::size_t> indices;
   for (std::size_t c : picked) {
@@ -262,7 +278,7 @@ void TableStream::select(const std::vector<std::string>& patterns) {
 void TableStream::run(Pass& pass) {
   const Mechanism& mech = *mechanism_;
   const int order = options_.dynamics ? std::max(options_.order, 2) : options_.order;
-  KinematicRows kinematic(mech, order);
+  KinematicRows kinematic(mech, order, extra_);
   const std::size_t kinematic_columns = kinematic.column_count();
   std::vector<double> row(all_units_.size());
   dynamics_stage_.reset();
@@ -276,6 +292,7 @@ void TableStream::run(Pass& pass) {
   sweep.steps = options_.steps;
   sweep.max_steps = options_.max_steps;
   sweep.order = order;
+  sweep.condition = options_.condition || extra_.condition;
   ++passes_;
   if (!before_sweep_) before_sweep_ = check_before_sweep(mech);
   sweep_ = run_sweep(mech, sweep, options_.control, [&](const Sample& s) {
@@ -315,8 +332,10 @@ void TableStream::measure() {
   for (std::size_t c = 0; c < n; ++c) {
     if (all_units_[c].empty()) continue;
     double scale = 0.0;
+    const bool requested = c < on_request_.size() && on_request_[c];
     for (std::size_t other = 0; other < n; ++other)
-      if (all_units_[other] == all_units_[c]) scale = std::max(scale, column_max[other]);
+      if (all_units_[other] == all_units_[c] && (requested || !(other < on_request_.size() && on_request_[other])))
+        scale = std::max(scale, column_max[other]);
     threshold_[c] = kNoiseRelative * scale;
   }
   measured_ = true;

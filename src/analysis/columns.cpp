@@ -4,16 +4,17 @@
 #include <unordered_map>
 
 #include "nbar/dynamics/dynamics_table.hpp"
+#include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/kinematics/table.hpp"
 
 namespace nbar {
 
 namespace {
 
-std::vector<ColumnInfo> kinematic_columns(const Mechanism& mech, int order) {
+std::vector<ColumnInfo> kinematic_columns(const Mechanism& mech, int order, const ColumnsOnRequest& extra = {}) {
   SweepResult empty;
   empty.order = order;
-  const ResultTable table = make_table(mech, empty);
+  const ResultTable table = make_table(mech, empty, extra);
   std::unordered_map<std::string, std::size_t> index;
   std::vector<ColumnInfo> out;
   for (std::size_t c = 0; c < table.columns.size(); ++c) {
@@ -23,7 +24,7 @@ std::vector<ColumnInfo> kinematic_columns(const Mechanism& mech, int order) {
   // A column's order is the lowest at which the table has it.
   for (int k = order - 1; k >= 0; --k) {
     empty.order = k;
-    for (const std::string& name : make_table(mech, empty).columns) out[index.at(name)].order = k;
+    for (const std::string& name : make_table(mech, empty, extra).columns) out[index.at(name)].order = k;
   }
   return out;
 }
@@ -38,6 +39,17 @@ std::vector<ColumnInfo> dynamic_columns(const Mechanism& mech) {
 
 bool any_matches(const std::vector<std::string>& names, const std::string& pattern) {
   return std::any_of(names.begin(), names.end(), [&](const std::string& n) { return column_matches(pattern, n); });
+}
+
+// The names of only the columns on request of `extra`, at `order`.
+std::vector<std::string> names_on_request(const Mechanism& mech, int order, const ColumnsOnRequest& extra) {
+  const KinematicRows rows(mech, order, extra);
+  std::vector<std::string> columns, units, out;
+  rows.name_columns(columns, units);
+  const std::vector<bool> flags = rows.on_request();
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (flags[c]) out.push_back(columns[c]);
+  return out;
 }
 
 std::string join(const std::vector<std::string>& items) {
@@ -58,6 +70,49 @@ std::vector<ColumnInfo> column_catalogue(const Mechanism& mech, int max_order, b
   return out;
 }
 
+ColumnsOnRequest every_column_on_request(const Mechanism& mech) {
+  const Model& m = mech.model();
+  ColumnsOnRequest extra;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const MassProperties mass = mass_properties(m.bodies[b]);
+    if (!(mass.mass > 0.0)) continue;
+    // The centre of mass in the body's frame, as the inverse dynamics places it (BodyMotion::point).
+    const BodyFrame frame = body_frame(m, static_cast<int>(b));
+    RidingPoint cg{m.bodies[b].name + ".cg", frame.origin, frame.origin, frame.origin, 0.0, 0.0};
+    const Eigen::Vector2d offset = mass.cg - m.points[frame.origin].position;
+    if (frame.from >= 0) {
+      const Eigen::Vector2d direction = m.points[frame.to].position - m.points[frame.from].position;
+      cg.from = frame.from;
+      cg.to = frame.to;
+      cg.along = offset.dot(direction) / direction.squaredNorm();
+      cg.across = (direction.x() * offset.y() - direction.y() * offset.x()) / direction.squaredNorm();
+    }
+    extra.points.push_back(std::move(cg));
+  }
+  extra.condition = true;
+  return extra;
+}
+
+ColumnsOnRequest columns_on_request(const Mechanism& mech, const std::vector<std::string>& patterns) {
+  ColumnsOnRequest asked;
+  if (patterns.empty()) return asked;
+  std::vector<std::string> ordinary = column_names(kinematic_columns(mech, kMaxDerivativeOrder));
+  for (const std::string& name : column_names(dynamic_columns(mech))) ordinary.push_back(name);
+  std::vector<std::string> open;  // the patterns that may ask for columns on request
+  for (const std::string& p : patterns)
+    if (!any_matches(ordinary, p)) open.push_back(p);
+  if (open.empty()) return asked;
+  const ColumnsOnRequest every = every_column_on_request(mech);
+  for (const RidingPoint& point : every.points) {
+    const std::vector<std::string> names = names_on_request(mech, kMaxDerivativeOrder, {{point}, false});
+    if (std::any_of(open.begin(), open.end(), [&](const std::string& p) { return any_matches(names, p); }))
+      asked.points.push_back(point);
+  }
+  asked.condition =
+      std::any_of(open.begin(), open.end(), [](const std::string& p) { return column_matches(p, "cond"); });
+  return asked;
+}
+
 std::vector<std::string> column_names(const std::vector<ColumnInfo>& columns) {
   std::vector<std::string> names;
   for (const ColumnInfo& c : columns) names.push_back(c.name);
@@ -75,7 +130,8 @@ std::string default_abscissa(const Model& model) {
 ColumnNeeds column_needs(const Mechanism& mech, const std::vector<std::string>& patterns, std::optional<int> order,
                          bool dynamics) {
   if (order) check_derivative_order(*order);
-  const std::vector<std::string> all_kinematic = column_names(kinematic_columns(mech, kMaxDerivativeOrder));
+  const ColumnsOnRequest extra = every_column_on_request(mech);
+  const std::vector<std::string> all_kinematic = column_names(kinematic_columns(mech, kMaxDerivativeOrder, extra));
   const std::vector<std::string> dynamic = column_names(dynamic_columns(mech));
   ColumnNeeds needs;
   needs.dynamics = dynamics;
@@ -89,7 +145,7 @@ ColumnNeeds column_needs(const Mechanism& mech, const std::vector<std::string>& 
   needs.order = order.value_or(2);
   if (!order) {
     for (int k = 2; k <= kMaxDerivativeOrder; ++k) {
-      const std::vector<std::string> names = column_names(kinematic_columns(mech, k));
+      const std::vector<std::string> names = column_names(kinematic_columns(mech, k, extra));
       if (std::all_of(kinematic_patterns.begin(), kinematic_patterns.end(),
                       [&](const std::string& p) { return any_matches(names, p); })) {
         needs.order = k;
@@ -100,8 +156,10 @@ ColumnNeeds column_needs(const Mechanism& mech, const std::vector<std::string>& 
   if (needs.dynamics) needs.order = std::max(needs.order, 2);
   std::vector<std::string> available = column_names(kinematic_columns(mech, needs.order));
   if (needs.dynamics) available.insert(available.end(), dynamic.begin(), dynamic.end());
+  const std::vector<std::string> on_request = names_on_request(mech, needs.order, extra);
+  needs.condition = columns_on_request(mech, patterns).condition;
   for (std::size_t i = 0; i < patterns.size(); ++i) {
-    if (any_matches(available, patterns[i])) continue;
+    if (any_matches(available, patterns[i]) || any_matches(on_request, patterns[i])) continue;
     needs.unmatched = static_cast<int>(i);
     std::vector<std::string> every = available;
     if (!needs.dynamics) every.insert(every.end(), dynamic.begin(), dynamic.end());

@@ -65,6 +65,11 @@ bool LinearSolver::factorize(const std::vector<double>& values) {
   return cod_.rank() == cols_ && rcond_ > kSingularRcond;
 }
 
+double LinearSolver::condition_estimate(const std::vector<double>& values) const {
+  if (method_ != Method::LU || rcond_ <= kRegularPivotRatio) return rcond_;
+  return lu_.reciprocal_condition_estimate(values.data());
+}
+
 void LinearSolver::solve(const double* b, double* x) {
   if (method_ == Method::LU) {
     lu_.solve(b, x);

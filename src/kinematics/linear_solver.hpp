@@ -41,8 +41,13 @@ class LinearSolver {
   }
   // Sign of det(J) for square systems: constant along a regular branch. 0 when not available.
   int determinant_sign() const { return det_sign_; }
-  // Estimate of 1/cond(J).
+  // Estimate of 1/cond(J): while the pivots are within kRegularPivotRatio of each other, only
+  // their ratio (what the solver needs to know: the matrix is regular).
   double reciprocal_condition() const { return rcond_; }
+  // An estimate of 1/cond_1(J) of the last factorisation (`values` its entries) everywhere: the
+  // one factorize() made when the pivots were far apart, else Hager's on the kept sparse factors
+  // (a few solves, no new factorisation); the least-squares method's own ratio.
+  double condition_estimate(const std::vector<double>& values) const;
   // How many times the LU chose its pivots (1 + the steps where the kept ones were no longer good).
   long pivot_analyses() const { return lu_.analyses(); }
 

@@ -7,6 +7,7 @@
 
 #include "constraints.hpp"
 #include "path_follower.hpp"
+#include "workspace.hpp"
 
 namespace nbar {
 
@@ -327,6 +328,7 @@ SweepResult run_rocking_sweep(const Mechanism& mech, const RockingPlan& plan, co
     if (place.on_turn) {
       on_turns.push_back(i);
       take_turn_sample(mech, schedule.turn(place.leg - 1), state, terms, sample);
+      if (options.condition) sample.reciprocal_condition = 0.0;  // a limit: Phi_q is singular there
     } else {
       state.q = walk.pose(place).head(state.q.size());
       if (!solve_position(mech, state).converged)
@@ -334,6 +336,7 @@ SweepResult run_rocking_sweep(const Mechanism& mech, const RockingPlan& plan, co
                               " (a sample too close to a limit: ask for another number of steps)");
       compute_series(mech, state, drivers, terms, sample.taylor);
       sample.residual = state.residual;
+      if (options.condition) sample.reciprocal_condition = sample_condition(state);
       if (!sample.taylor.allFinite())
         cannot_rock(mech, "its motion at step " + std::to_string(i) + " (" + value_text(mech, place.value) +
                               ") is not finite: a sample too close to a limit (ask for another number of steps)");

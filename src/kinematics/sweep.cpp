@@ -2,6 +2,7 @@
 
 #include "constraints.hpp"
 #include "rocking.hpp"
+#include "workspace.hpp"
 
 #include <cmath>
 #include <limits>
@@ -109,6 +110,15 @@ void time_drivers(const Mechanism& mech, const std::vector<double>& values, cons
     out[d] = make_driver_state(v, m.drivers[d].is_angular());
   }
 }
+
+}  // namespace
+
+double sample_condition(State& state) {
+  State::Workspace& work = state.workspace();
+  return work.solver().condition_estimate(work.jacobian);
+}
+
+namespace {
 
 // A Sample of the pose in `state` (solved, its Jacobian factorised), with the Taylor
 // coefficients in time for the drivers moving as `drivers` says.
@@ -459,11 +469,13 @@ SweepResult run_steady_sweep(const Mechanism& mech, const SweepOptions& options,
       else
         series_in_time(state.series, *rate, terms_out, s.taylor);
       s.residual = state.residual;
+
     } else {
       for (int d = 0; d < nd; ++d) now[d] = state.drivers[d].value.value();
       time_drivers(mech, now, plan.speed, plan.accel, terms_out, drivers_in_time);
       fill_sample(mech, state, i, plan.sample_time(i), drivers_in_time, terms_out, s);
     }
+    if (options.condition) s.reciprocal_condition = on_singular_position ? 0.0 : sample_condition(state);
     check_finite(mech, s, plan.parameter_is_time ? state.drivers : drivers_in_time);
     result.max_residual = std::max(result.max_residual, s.residual);
     ++result.solved;

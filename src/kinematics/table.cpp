@@ -30,10 +30,13 @@ double unwrap(double angle, double reference) {
 
 }  // namespace
 
-KinematicRows::KinematicRows(const Mechanism& mech, int order) : mech_(mech), order_(order) {
+KinematicRows::KinematicRows(const Mechanism& mech, int order, ColumnsOnRequest extra)
+    : mech_(mech), order_(order), extra_(std::move(extra)) {
   const Model& m = mech.model();
   for (std::size_t b = 0; b < m.bodies.size(); ++b)
     if (m.bodies[b].points.size() >= 2) angled_.push_back(static_cast<int>(b));
+  for (std::size_t p = 0; p < m.points.size(); ++p)
+    shown_.push_back(static_cast<int>(p));
   previous_.assign(m.bodies.size(), 0.0);
   started_.assign(m.bodies.size(), false);
   positions_.resize(m.points.size());
@@ -52,20 +55,36 @@ void KinematicRows::name_columns(std::vector<std::string>& columns, std::vector<
   add("t", "s");
   for (const Driver& d : m.drivers) add(d.name, d.is_angular() ? u.angle : u.length);
   if (rocks_) add("reversals", "");
-  for (const Point& p : m.points)
+  for (int p : shown_)
     for (int k = 0; k <= order_; ++k) {
-      add(p.name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
-      add(p.name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
+      add(m.points[p].name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
+      add(m.points[p].name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
     }
   for (int b : angled_)
     for (int k = 0; k <= order_; ++k) add(m.bodies[b].name + "." + kAngleName[k], per_time(u.angle, k));
   for (const FourBarLoop& loop : mech_.four_bar_loops()) add(loop.name + ".mu", u.angle);
+  for (const RidingPoint& p : extra_.points)
+    for (int k = 0; k <= order_; ++k) {
+      add(p.name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
+      add(p.name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
+    }
+  if (extra_.condition) add("cond", "");
+}
+
+std::size_t KinematicRows::own_column_count() const {
+  const Model& m = mech_.model();
+  return 2 + m.drivers.size() + (rocks_ ? 1 : 0) + 2 * (order_ + 1) * shown_.size() + (order_ + 1) * angled_.size() +
+         mech_.four_bar_loops().size();
 }
 
 std::size_t KinematicRows::column_count() const {
-  const Model& m = mech_.model();
-  return 2 + m.drivers.size() + (rocks_ ? 1 : 0) + 2 * (order_ + 1) * m.points.size() + (order_ + 1) * angled_.size() +
-         mech_.four_bar_loops().size();
+  return own_column_count() + 2 * (order_ + 1) * extra_.points.size() + (extra_.condition ? 1 : 0);
+}
+
+std::vector<bool> KinematicRows::on_request() const {
+  std::vector<bool> flags(column_count(), true);
+  std::fill_n(flags.begin(), own_column_count(), false);
+  return flags;
 }
 
 void KinematicRows::fill(const Sample& s, double* out, std::ptrdiff_t stride) {
@@ -90,8 +109,8 @@ void KinematicRows::fill(const Sample& s, double* out, std::ptrdiff_t stride) {
     put(s.driver_values[d] / (m.drivers[d].is_angular() ? u.angle_scale : u.length_scale));
   if (rocks_) put(s.reversals);
   std::array<double, Series::kCapacity> x{}, y{};
-  for (std::size_t p = 0; p < m.points.size(); ++p) {
-    point_derivatives(mech_, s, static_cast<int>(p), x.data(), y.data());
+  for (int p : shown_) {
+    point_derivatives(mech_, s, p, x.data(), y.data());
     for (int k = 0; k <= order_; ++k) {
       put(x[k] / u.length_scale);
       put(y[k] / u.length_scale);
@@ -109,12 +128,33 @@ void KinematicRows::fill(const Sample& s, double* out, std::ptrdiff_t stride) {
     for (std::size_t i = 0; i < positions_.size(); ++i) positions_[i] = mech_.point_position(static_cast<int>(i), q_);
     for (const FourBarLoop& loop : mech_.four_bar_loops()) put(transmission_angle(loop, positions_) / u.angle_scale);
   }
+  fill_on_request(s, out + stride * j, stride);
 }
 
-ResultTable make_table(const Mechanism& mech, const SweepResult& sweep) {
+void KinematicRows::fill_on_request(const Sample& s, double* out, std::ptrdiff_t stride) {
+  const double length_scale = mech_.model().units.length_scale;
+  std::ptrdiff_t j = 0;
+  auto put = [&](double v) { out[stride * j++] = v; };
+  // Every derivative of a riding point is the same combination of its frame points' derivatives.
+  std::array<double, Series::kCapacity> ox{}, oy{}, fx{}, fy{}, tx{}, ty{};
+  for (const RidingPoint& p : extra_.points) {
+    point_derivatives(mech_, s, p.origin, ox.data(), oy.data());
+    point_derivatives(mech_, s, p.from, fx.data(), fy.data());
+    point_derivatives(mech_, s, p.to, tx.data(), ty.data());
+    for (int k = 0; k <= order_; ++k) {
+      const double dx = tx[k] - fx[k], dy = ty[k] - fy[k];
+      put((ox[k] + p.along * dx - p.across * dy) / length_scale);
+      put((oy[k] + p.along * dy + p.across * dx) / length_scale);
+    }
+  }
+  if (extra_.condition) put(1.0 / s.reciprocal_condition);
+}
+
+ResultTable make_table(const Mechanism& mech, const SweepResult& sweep, const ColumnsOnRequest& extra) {
   ResultTable t;
-  KinematicRows rows(mech, sweep.order);
+  KinematicRows rows(mech, sweep.order, extra);
   rows.name_columns(t.columns, t.units);
+  if (!extra.empty()) t.on_request = rows.on_request();
   t.rows.reserve(sweep.samples.size());
   for (const Sample& s : sweep.samples) {
     std::vector<double> row(t.columns.size());
@@ -124,10 +164,11 @@ ResultTable make_table(const Mechanism& mech, const SweepResult& sweep) {
   return t;
 }
 
-ColumnTable make_column_table(const Mechanism& mech, const SweepResult& sweep) {
+ColumnTable make_column_table(const Mechanism& mech, const SweepResult& sweep, const ColumnsOnRequest& extra) {
   ColumnTable t;
-  KinematicRows rows(mech, sweep.order);
+  KinematicRows rows(mech, sweep.order, extra);
   rows.name_columns(t.columns, t.units);
+  if (!extra.empty()) t.on_request = rows.on_request();
   const auto samples = static_cast<std::ptrdiff_t>(sweep.samples.size());
   t.values.resize(samples, static_cast<Eigen::Index>(t.columns.size()));
   for (std::ptrdiff_t r = 0; r < samples; ++r) rows.fill(sweep.samples[r], t.values.data() + r, samples);
@@ -136,9 +177,15 @@ ColumnTable make_column_table(const Mechanism& mech, const SweepResult& sweep) {
 
 namespace {
 
-// For every column, the largest size of a value of its unit; 0 for unitless columns.
+bool is_on_request(const std::vector<bool>& on_request, std::size_t column) {
+  return column < on_request.size() && on_request[column];
+}
+
+// For every column, the largest size of a value of its unit; 0 for unitless columns. A column on
+// request counts only for the columns on request, so that asking for one changes no other.
 template <class ValueAt>
-std::vector<double> unit_scales(const std::vector<std::string>& units, std::size_t rows, ValueAt value_at) {
+std::vector<double> unit_scales(const std::vector<std::string>& units, const std::vector<bool>& on_request,
+                                std::size_t rows, ValueAt value_at) {
   std::vector<double> column_max(units.size(), 0.0);
   for (std::size_t c = 0; c < units.size(); ++c)
     for (std::size_t r = 0; r < rows; ++r)
@@ -147,14 +194,16 @@ std::vector<double> unit_scales(const std::vector<std::string>& units, std::size
   for (std::size_t c = 0; c < units.size(); ++c) {
     if (units[c].empty()) continue;
     for (std::size_t other = 0; other < units.size(); ++other)
-      if (units[other] == units[c]) scale[c] = std::max(scale[c], column_max[other]);
+      if (units[other] == units[c] && (is_on_request(on_request, c) || !is_on_request(on_request, other)))
+        scale[c] = std::max(scale[c], column_max[other]);
   }
   return scale;
 }
 
 template <class ValueAt>
-void zero_below_scales(const std::vector<std::string>& units, std::size_t rows, ValueAt value_at) {
-  const std::vector<double> scale = unit_scales(units, rows, value_at);
+void zero_below_scales(const std::vector<std::string>& units, const std::vector<bool>& on_request, std::size_t rows,
+                       ValueAt value_at) {
+  const std::vector<double> scale = unit_scales(units, on_request, rows, value_at);
   for (std::size_t c = 0; c < units.size(); ++c) {
     const double threshold = kNoiseRelative * scale[c];
     for (std::size_t r = 0; r < rows; ++r)
@@ -165,12 +214,12 @@ void zero_below_scales(const std::vector<std::string>& units, std::size_t rows, 
 }  // namespace
 
 void zero_numerical_noise(ResultTable& table) {
-  zero_below_scales(table.units, table.rows.size(),
+  zero_below_scales(table.units, table.on_request, table.rows.size(),
                     [&](std::size_t r, std::size_t c) -> double& { return table.rows[r][c]; });
 }
 
 void zero_numerical_noise(ColumnTable& table) {
-  zero_below_scales(table.units, static_cast<std::size_t>(table.values.rows()),
+  zero_below_scales(table.units, table.on_request, static_cast<std::size_t>(table.values.rows()),
                     [&](std::size_t r, std::size_t c) -> double& {
                       return table.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
                     });
@@ -214,27 +263,32 @@ std::string no_column_message(const std::string& pattern, const std::vector<std:
 }
 
 // Which columns the patterns pick, in the order of the patterns, each once.
-std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns,
-                                      const std::vector<std::string>& patterns) {
+std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns, const std::vector<std::string>& patterns,
+                                      const std::vector<bool>& on_request) {
   std::vector<std::size_t> picked;
-  for (const std::string& pattern : patterns) {
+  // Only a pattern that matches no ordinary column reaches the columns on request.
+  auto pick = [&](const std::string& pattern, bool requested) {
     bool any = false;
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (!glob_match(pattern, columns[c])) continue;
+      if (is_on_request(on_request, c) != requested || !glob_match(pattern, columns[c])) continue;
       any = true;
       if (std::find(picked.begin(), picked.end(), c) == picked.end()) picked.push_back(c);
     }
-    if (!any) throw Error(ErrorKind::BadInput, no_column_message(pattern, columns));
-  }
+    return any;
+  };
+  for (const std::string& pattern : patterns)
+    if (!pick(pattern, false) && !pick(pattern, true))
+      throw Error(ErrorKind::BadInput, no_column_message(pattern, columns));
   return picked;
 }
 
 ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns) {
-  const std::vector<std::size_t> picked = pick_columns(table.columns, patterns);
+  const std::vector<std::size_t> picked = pick_columns(table.columns, patterns, table.on_request);
   ResultTable out;
   for (std::size_t c : picked) {
     out.columns.push_back(table.columns[c]);
     out.units.push_back(table.units[c]);
+    if (!table.on_request.empty()) out.on_request.push_back(is_on_request(table.on_request, c));
   }
   for (const auto& row : table.rows) {
     std::vector<double> r;
@@ -246,12 +300,13 @@ ResultTable select_columns(const ResultTable& table, const std::vector<std::stri
 }
 
 ColumnTable select_columns(const ColumnTable& table, const std::vector<std::string>& patterns) {
-  const std::vector<std::size_t> picked = pick_columns(table.columns, patterns);
+  const std::vector<std::size_t> picked = pick_columns(table.columns, patterns, table.on_request);
   ColumnTable out;
   out.values.resize(table.values.rows(), static_cast<Eigen::Index>(picked.size()));
   for (std::size_t i = 0; i < picked.size(); ++i) {
     out.columns.push_back(table.columns[picked[i]]);
     out.units.push_back(table.units[picked[i]]);
+    if (!table.on_request.empty()) out.on_request.push_back(is_on_request(table.on_request, picked[i]));
     out.values.col(static_cast<Eigen::Index>(i)) = table.values.col(static_cast<Eigen::Index>(picked[i]));
   }
   return out;

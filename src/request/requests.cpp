@@ -183,6 +183,9 @@ AnalysisOptions SolveRequest::analysis_options() const {
   sweep.apply(options);
   options.order = order;
   options.dynamics = dynamics;
+  // A pattern that may name `cond` (which of them do needs the mechanism): its estimates are cheap.
+  options.condition =
+      std::any_of(columns.begin(), columns.end(), [](const std::string& p) { return glob_match(p, "cond"); });
   return options;
 }
 
@@ -201,13 +204,17 @@ void SolveRequest::explain_column_error(const Mechanism& mechanism, const std::s
 // The library's select_columns and TableStream::select say which pattern matched nothing (an
 // Error of kind BadInput); the request adds what the user can do about it.
 ResultTable SolveRequest::table(const Analysis& analysis) const {
-  ResultTable table = result_table(analysis);
+  ResultTable table = result_table(analysis, columns_on_request(*analysis.mechanism));
   if (columns.empty()) return table;
   try {
     return select_columns(table, columns);
   } catch (const Error& e) {
     explain_column_error(*analysis.mechanism, e.message());
   }
+}
+
+ColumnTable SolveRequest::columns_of(const Analysis& analysis) const {
+  return columns_of(*analysis.mechanism, result_columns(analysis, columns_on_request(*analysis.mechanism)));
 }
 
 ColumnTable SolveRequest::columns_of(const Mechanism& mechanism, const ColumnTable& table) const {
@@ -217,6 +224,10 @@ ColumnTable SolveRequest::columns_of(const Mechanism& mechanism, const ColumnTab
   } catch (const Error& e) {
     explain_column_error(mechanism, e.message());
   }
+}
+
+ColumnsOnRequest SolveRequest::columns_on_request(const Mechanism& mechanism) const {
+  return nbar::columns_on_request(mechanism, columns);
 }
 
 void SolveRequest::select(const Mechanism& mechanism, TableStream& stream) const {
@@ -628,13 +639,16 @@ AnalysisOptions PlotRequest::analysis_options(const Mechanism& mechanism) const 
   sweep.apply(options);
   options.order = needs.order;
   options.dynamics = needs.dynamics;
+  options.condition = needs.condition;
   return options;
 }
 
 render::PlotSpec PlotRequest::plot(const Analysis& analysis, const std::string& fallback_title) const {
   const Model& m = analysis.model();
   const std::string x_pattern = x.empty() ? default_abscissa(m) : x;
-  const ResultTable table = result_table(analysis);
+  std::vector<std::string> patterns = y;
+  patterns.push_back(x_pattern);
+  const ResultTable table = result_table(analysis, nbar::columns_on_request(*analysis.mechanism, patterns));
   const ResultTable x_column = select_columns(table, {x_pattern});
   if (x_column.columns.size() != 1) {
     std::string listed;

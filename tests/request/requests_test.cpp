@@ -338,3 +338,40 @@ TEST_F(RequestsOnAModel, APlotAsksForTheStagesItsColumnsNeed) {
 
 }  // namespace
 }  // namespace nbar::request
+
+namespace nbar::request {
+namespace {
+
+// The centres of mass and `cond` come only when `columns` names them, through every front-end's
+// request: the solve's table, its numpy columns, its analysis options and the plot's.
+TEST(SolveRequestColumns, ColumnsOnRequestComeOnlyWhenNamed) {
+  const auto mech = std::make_shared<const Mechanism>(
+      io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-steel-bars.yaml").model);
+  Options options;
+  options.set("columns", std::string("crank,coupler.*,coupler.cg.x,cond"));
+  options.set("steps", 13LL);
+  const SolveRequest solve = SolveRequest::read(options);
+  const AnalysisOptions analysis_options = solve.analysis_options();
+  EXPECT_TRUE(analysis_options.condition);
+  const Analysis analysis = analyse(mech, analysis_options);
+  const ResultTable table = solve.table(analysis);
+  EXPECT_EQ(table.columns, (std::vector<std::string>{"crank", "coupler.angle", "coupler.omega", "coupler.alpha",
+                                                     "coupler.cg.x", "cond"}));
+  for (const auto& row : table.rows) EXPECT_TRUE(std::isfinite(row[5]) && row[5] >= 1.0);
+  const ColumnTable arrays = solve.columns_of(analysis);
+  EXPECT_EQ(arrays.columns, table.columns);
+  EXPECT_EQ(arrays.values(6, 4), table.rows[6][4]);
+
+  Options ordinary;
+  ordinary.set("columns", std::string("crank,coupler.*"));
+  EXPECT_FALSE(SolveRequest::read(ordinary).analysis_options().condition);
+  EXPECT_EQ(SolveRequest::read(ordinary).table(analysis).columns.size(), 4u);
+
+  Options plot;
+  plot.set("y", std::string("coupler.cg.y,cond"));
+  const PlotRequest request = PlotRequest::read(plot);
+  EXPECT_TRUE(request.analysis_options(*mech).condition);
+}
+
+}  // namespace
+}  // namespace nbar::request

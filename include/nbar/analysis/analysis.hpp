@@ -45,6 +45,9 @@ struct AnalysisOptions {
   // analysis then runs on the model with them (with_sweep_options).
   std::optional<AtLimits> at_limits;
   std::optional<int> cycles;
+  // Each sample's condition estimate (Sample::reciprocal_condition), for the `cond` column: a few
+  // solves per sample with the factors the sweep kept, so only when asked.
+  bool condition = false;
 };
 
 // The mechanism the options' sweep runs on: `mechanism` itself, or, when the options override
@@ -111,9 +114,10 @@ Analysis analyse(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptio
 // The sweep as a table in the model's units: the kinematic columns, then the dynamics columns
 // when that stage ran (kinematics/table.hpp and dynamics/dynamics_table.hpp name them), with
 // numerical noise made exact 0 (zero_numerical_noise); so is section_profile_table's.
-ResultTable result_table(const Analysis& analysis);
+// `extra`, the columns on request (columns_on_request), come after the kinematic ones.
+ResultTable result_table(const Analysis& analysis, const ColumnsOnRequest& extra = {});
 // The same columns stored column by column, for front-ends that hand columns out whole.
-ColumnTable result_columns(const Analysis& analysis);
+ColumnTable result_columns(const Analysis& analysis, const ColumnsOnRequest& extra = {});
 
 // Every cross-section of one link at one sample: x, area, N, V, M, sigma at both fibres, tau
 // and von Mises. Needs the stress stage by the beam method; throws Error(BadInput) for a body without a shape or a

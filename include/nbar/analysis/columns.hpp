@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "nbar/kinematics/mechanism.hpp"
+#include "nbar/kinematics/table.hpp"
 
 namespace nbar {
 
@@ -26,16 +27,25 @@ std::vector<ColumnInfo> column_catalogue(const Mechanism& mechanism, int max_ord
 
 std::vector<std::string> column_names(const std::vector<ColumnInfo>& columns);
 
+// Every column a table can have on request: the centre of mass of every body with mass, as the
+// riding point B.cg (columns B.cg.x, B.cg.y, B.cg.vx, ... as a point's), and `cond`.
+ColumnsOnRequest every_column_on_request(const Mechanism& mechanism);
+// Those that `patterns` name: a pattern that matches no ordinary column (kinematic, of any order,
+// or dynamic) asks for the columns on request it matches ("coupler.cg.*", "*.cg.x", "cond"), and
+// the others are left out of the table; a pattern such as "coupler.*" asks for none of them.
+ColumnsOnRequest columns_on_request(const Mechanism& mechanism, const std::vector<std::string>& patterns);
+
 // Whether a column name matches a pattern: an exact name, or a glob with '*'.
 bool column_matches(const std::string& pattern, const std::string& name);
 
 // What a request for columns needs. A pattern that matches only dynamics columns switches
-// dynamics on; without a given order, the lowest order from 2 up that has every kinematic
-// pattern's columns. `unmatched` is the index of the first pattern that matches no column
-// the analysis would then have (-1 when all match), and `message` says so and lists them.
+// dynamics on; the columns on request count as there (but are not listed in `message`); without a given order, the
+// lowest order from 2 up that has every kinematic pattern's columns. `unmatched` is the index of the first pattern that
+// matches no column the analysis would then have (-1 when all match), and `message` says so and lists them.
 struct ColumnNeeds {
   int order = 2;
   bool dynamics = false;
+  bool condition = false;  // a pattern asks for `cond`: AnalysisOptions::condition
   int unmatched = -1;
   std::string message;
 };

@@ -25,7 +25,9 @@ class TableStream {
  public:
   // Throws Error(BadInput) for options out of range and for the stress stage (its peaks need
   // the whole sweep: use analyse).
-  TableStream(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options);
+  // `extra`: the columns on request to compute as well (columns_on_request), for a select()
+  // after measure() to find.
+  TableStream(std::shared_ptr<const Mechanism> mechanism, const AnalysisOptions& options, ColumnsOnRequest extra = {});
   ~TableStream();
   TableStream(const TableStream&) = delete;
   TableStream& operator=(const TableStream&) = delete;
@@ -33,8 +35,9 @@ class TableStream {
   // Every column (the selected ones after select()).
   const std::vector<std::string>& columns() const { return columns_; }
   const std::vector<std::string>& units() const { return units_; }
-  // Keeps only the columns matching `patterns`, as select_columns does. Throws
-  // Error(ErrorKind::BadInput) naming a pattern that matches nothing.
+  // Keeps only the columns matching `patterns`, as select_columns does, adding first the columns
+  // on request they name (columns_on_request). Throws Error(ErrorKind::BadInput) naming a
+  // pattern that matches nothing. Call it once, before measure().
   void select(const std::vector<std::string>& patterns);
 
   // The first pass. Throws Error as analyse does.
@@ -58,12 +61,15 @@ class TableStream {
  private:
   struct Pass;
   void run(Pass& pass);
+  void name_columns();
 
   std::shared_ptr<const Mechanism> mechanism_;
   AnalysisOptions options_;
   std::shared_ptr<const InverseDynamics> dynamics_;
   std::vector<std::string> columns_, units_;
   std::vector<std::string> all_units_;
+  ColumnsOnRequest extra_;
+  std::vector<bool> on_request_;     // per column of the whole table
   std::vector<std::size_t> picked_;  // columns kept, in the order asked
   std::vector<double> threshold_;    // per column of the whole table: noise below this is 0
   bool measured_ = false;

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@ struct SweepOptions {
   std::optional<int> steps;                 // overrides the model's sweep: number of samples, ends included
   int order = 2;                            // highest time derivative (0 = positions only), at most 5
   int max_steps = kDefaultMaxSweepSamples;  // more samples than this is an error
+  bool condition = false;                   // estimate each sample's condition (Sample::reciprocal_condition)
 };
 
 struct Sample {
@@ -39,6 +41,10 @@ struct Sample {
   // derivative (read derivatives with derivative()).
   Eigen::MatrixXd taylor;
   double residual = 0.0;  // max |Phi| over all rows, m
+  // With SweepOptions::condition, an estimate of 1 / cond_1(Phi_q) at this pose from the
+  // factorisation the series were solved with (LinearSolver::condition_estimate: no new
+  // factorisation); 0 on a singular position. NaN when not asked for.
+  double reciprocal_condition = std::numeric_limits<double>::quiet_NaN();
   // A rocking sweep (`at_limits: reverse`): how many times the input has turned back at a limit
   // since the start (SweepResult::reversals says where and when).
   int reversals = 0;

@@ -16,16 +16,38 @@ struct ResultTable {
   std::vector<std::string> columns;
   std::vector<std::string> units;  // per column: "mm", "deg/s^2", "s", "" for counts
   std::vector<std::vector<double>> rows;
+  // Per column, whether it is one of the columns given only on request (ColumnsOnRequest); empty,
+  // or shorter than `columns`, means the rest are not. Such a column is chosen only by a pattern
+  // that matches no other column, and does not move the noise threshold of the others.
+  std::vector<bool> on_request;
   // What the table is of, when that is not the sweep: "sections of coupler at step 90 (...)".
   // The text table prints it first and JSON has it as "title"; CSV leaves it out.
   std::string title;
 };
 
-// step, t, one column per driver, then for every point P.x, P.y, P.vx, P.vy, P.ax, P.ay,
-// P.jx, P.jy, P.d4x, ... up to the sweep's order, then for every body with an angle
-// B.angle, B.omega, B.alpha, B.jerk, B.d4, B.d5 (the angle unwrapped over the sweep), then
-// the transmission angle of every four-bar loop as <input>-<coupler>-<output>.mu.
-ResultTable make_table(const Mechanism& mech, const SweepResult& sweep);
+// A point fixed to a body that only rides along (a centre of mass): where it is follows from
+// the body's frame, origin + along * (to - from) + across * perp(to - from), with the frame's
+// points' series, so it costs the solve nothing and cannot change it.
+struct RidingPoint {
+  std::string name;  // its columns are name.x, name.y, name.vx, ...
+  int origin = -1, from = -1, to = -1;
+  double along = 0.0, across = 0.0;
+};
+
+// Columns a table has only when asked for (analysis/columns.hpp decides from the names asked):
+// riding points' columns, as a point's, and `cond`, the condition number of the constraint
+// Jacobian at each sample (1 / Sample::reciprocal_condition, the solver's own estimate).
+struct ColumnsOnRequest {
+  std::vector<RidingPoint> points;
+  bool condition = false;
+  bool empty() const { return points.empty() && !condition; }
+};
+
+// step, t, one column per driver, then for every point P.x, P.y, P.vx, P.vy, P.ax,
+// P.ay, P.jx, P.jy, P.d4x, ... up to the sweep's order, then for every body with an angle B.angle, B.omega, B.alpha,
+// B.jerk, B.d4, B.d5 (the angle unwrapped over the sweep), then the transmission angle of every four-bar loop as
+// <input>-<coupler>-<output>.mu; then the columns on request: every riding point's as a point's, and `cond`.
+ResultTable make_table(const Mechanism& mech, const SweepResult& sweep, const ColumnsOnRequest& extra = {});
 
 // Those columns for one sample at a time, handed the sweep's samples in order (each body's
 // angle is unwrapped against the sample before): what make_table fills its rows with, and what
@@ -33,14 +55,21 @@ ResultTable make_table(const Mechanism& mech, const SweepResult& sweep);
 // Nothing is allocated per sample.
 class KinematicRows {
  public:
-  KinematicRows(const Mechanism& mech, int order);
+  KinematicRows(const Mechanism& mech, int order, ColumnsOnRequest extra = {});
   void name_columns(std::vector<std::string>& columns, std::vector<std::string>& units) const;
+  // Per column, as ResultTable::on_request.
+  std::vector<bool> on_request() const;
   std::size_t column_count() const;
   void fill(const Sample& sample, double* out, std::ptrdiff_t stride = 1);
 
  private:
+  std::size_t own_column_count() const;
+  void fill_on_request(const Sample& sample, double* out, std::ptrdiff_t stride);
+
   const Mechanism& mech_;
   int order_;
+  ColumnsOnRequest extra_;
+  std::vector<int> shown_;  // the points whose columns the table has
   std::vector<int> angled_;
   std::vector<double> previous_;
   std::vector<bool> started_;
@@ -56,16 +85,17 @@ struct ColumnTable {
   std::vector<std::string> columns;
   std::vector<std::string> units;
   Eigen::MatrixXd values;
+  std::vector<bool> on_request;  // as ResultTable::on_request
 };
-ColumnTable make_column_table(const Mechanism& mech, const SweepResult& sweep);
+ColumnTable make_column_table(const Mechanism& mech, const SweepResult& sweep, const ColumnsOnRequest& extra = {});
 // Numerical noise made exact: a value whose size is at most kNoiseRelative times the largest
 // size of any value of the same unit in the table (every column in mm/s, every column in
-// deg/s^2, every force in N, ...) over the sweep becomes 0. The position solve stops at that
-// relative tolerance (Mechanism::tolerance is 1e-12 of the model's size) and what is smaller
-// cannot be told from 0: the 5e-11 mm/s a piston's velocity has at dead centre, or the 4e-16
-// deg/s^2 of a crank turning at constant speed. Unitless columns (step) are left alone. The
-// scale is per unit rather than per column, so that a column that is 0 throughout (a crank's
-// alpha) is measured against the other columns of its unit, not against its own noise.
+// deg/s^2, every force in N, ...) over the sweep becomes 0 (the columns on request count only
+// for themselves and each other, so asking for them leaves every other value as it was). The position solve stops at
+// that relative tolerance (Mechanism::tolerance is 1e-12 of the model's size) and what is smaller cannot be told from
+// 0: the 5e-11 mm/s a piston's velocity has at dead centre, or the 4e-16 deg/s^2 of a crank turning at constant speed.
+// Unitless columns (step) are left alone. The scale is per unit rather than per column, so that a column that is 0
+// throughout (a crank's alpha) is measured against the other columns of its unit, not against its own noise.
 constexpr double kNoiseRelative = 1e-12;
 void zero_numerical_noise(ResultTable& table);
 void zero_numerical_noise(ColumnTable& table);
@@ -75,11 +105,13 @@ ColumnTable select_columns(const ColumnTable& table, const std::vector<std::stri
 
 // The columns matching any of `patterns` (exact names, or globs with '*' such as
 // "rocker.*"), in the order of the patterns. Throws Error(ErrorKind::BadInput) naming a pattern
-// that matches nothing.
+// that matches nothing. A pattern that matches any column not on request picks only those
+// ("rocker.*" stays rocker's angles); one that matches none picks the columns on request it
+// matches ("rocker.cg.*", "*.cg.x", "cond").
 ResultTable select_columns(const ResultTable& table, const std::vector<std::string>& patterns);
-// The indices of those columns among `columns`.
-std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns,
-                                      const std::vector<std::string>& patterns);
+// The indices of those columns among `columns` (`on_request` as ResultTable's).
+std::vector<std::size_t> pick_columns(const std::vector<std::string>& columns, const std::vector<std::string>& patterns,
+                                      const std::vector<bool>& on_request = {});
 
 // Whether `text` matches `pattern`, where '*' stands for any run of characters.
 bool glob_match(const std::string& pattern, const std::string& text);

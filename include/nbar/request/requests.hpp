@@ -97,8 +97,13 @@ struct SolveRequest {
   // The columns asked for; an OptionError at `columns` names the columns there are (and says when
   // the ones asked for need the dynamics).
   ResultTable table(const Analysis& analysis) const;
-  // The columns asked for of a table of numbers (Python's arrays), or the same OptionError.
+  // The columns asked for as a table of numbers (Python's arrays), with the columns on request
+  // they name, or the same OptionError.
+  ColumnTable columns_of(const Analysis& analysis) const;
+  // The columns asked for of a table of numbers, or the same OptionError.
   ColumnTable columns_of(const Mechanism& mechanism, const ColumnTable& table) const;
+  // The columns on request that `columns` names, for a TableStream to compute.
+  ColumnsOnRequest columns_on_request(const Mechanism& mechanism) const;
   // The columns asked for of a streamed table (the CLI's CSV), or the same OptionError.
   void select(const Mechanism& mechanism, TableStream& stream) const;
 
