@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <charconv>
@@ -86,16 +87,29 @@ std::string name(const std::string& text) {
   return plain ? text : quoted(text);
 }
 
+// The points the file names: not those the reader makes for a guide given by a point and an angle.
 std::string point_list(const Model& m, const std::vector<int>& points) {
   std::string out = "[";
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (i) out += ", ";
-    out += name(m.points[points[i]].name);
+  bool first = true;
+  for (int p : points) {
+    if (m.points[p].guide_direction) continue;
+    out += (first ? "" : ", ") + name(m.points[p].name);
+    first = false;
   }
   return out + "]";
 }
 std::string point_pair(const Model& m, const std::array<int, 2>& p) {
   return fmt::format("[{}, {}]", name(m.points[p[0]].name), name(m.points[p[1]].name));
+}
+// A guide as the file gave it: two points, or a point and its angle in the model's unit.
+std::string guide_text(const Model& m, const std::array<int, 2>& along) {
+  if (!m.points[along[1]].guide_direction) return point_pair(m, along);
+  const Eigen::Vector2d d = m.points[along[1]].position - m.points[along[0]].position;
+  std::string carrier;  // a moving guide: the body that holds its direction point
+  for (const Body& b : m.bodies)
+    if (std::find(b.points.begin(), b.points.end(), along[1]) != b.points.end()) carrier = ", body: " + name(b.name);
+  return fmt::format("{{point: {}, angle: {}{}}}", name(m.points[along[0]].name),
+                     number(std::atan2(d.y(), d.x()) / m.units.angle_scale), carrier);
 }
 
 // The name the parser gives a driver without `name:`.
@@ -130,11 +144,12 @@ void write_model_yaml(std::ostream& out, const Model& m, const std::vector<std::
   out << "units: {length: " << m.units.length << ", angle: " << m.units.angle << "}\n";
   out << "points:\n";
   for (const Point& p : m.points)
-    out << "  " << name(p.name) << ": [" << number(p.position.x() / unit) << ", " << number(p.position.y() / unit)
-        << "]\n";
+    if (!p.guide_direction)
+      out << "  " << name(p.name) << ": [" << number(p.position.x() / unit) << ", " << number(p.position.y() / unit)
+          << "]\n";
   std::vector<int> ground;
   for (std::size_t i = 0; i < m.points.size(); ++i)
-    if (m.points[i].ground) ground.push_back(static_cast<int>(i));
+    if (m.points[i].ground && !m.points[i].guide_direction) ground.push_back(static_cast<int>(i));
   if (!ground.empty()) out << "ground: " << point_list(m, ground) << '\n';
   if (!m.bodies.empty()) out << "bodies:\n";
   for (const Body& b : m.bodies) out << "  " << name(b.name) << ": " << point_list(m, b.points) << '\n';
@@ -149,10 +164,10 @@ void write_model_yaml(std::ostream& out, const Model& m, const std::vector<std::
   if (!m.sliders.empty()) out << "sliders:\n";
   for (const Slider& s : m.sliders)
     out << "  - {body: " << name(m.bodies[s.body].name) << ", point: " << name(m.points[s.point].name)
-        << ", along: " << point_pair(m, s.along) << "}\n";
+        << ", along: " << guide_text(m, s.along) << "}\n";
   if (!m.slots.empty()) out << "slots:\n";
   for (const Slot& s : m.slots)
-    out << "  - {point: " << name(m.points[s.point].name) << ", along: " << point_pair(m, s.along) << "}\n";
+    out << "  - {point: " << name(m.points[s.point].name) << ", along: " << guide_text(m, s.along) << "}\n";
 
   if (!m.drivers.empty()) out << "drivers:\n";
   for (const Driver& d : m.drivers) {

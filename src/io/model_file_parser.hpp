@@ -47,6 +47,7 @@ inline const AllowedKeys kTopLevelKeys{
 inline const AllowedKeys kUnitsKeys{"in `units`", {"length", "angle"}};
 inline const AllowedKeys kSliderKeys{"in a slider", {"body", "point", "along"}};
 inline const AllowedKeys kSlotKeys{"in a slot", {"point", "along"}};
+inline const AllowedKeys kGuideKeys{"in a guide by a point and an angle", {"point", "angle", "body"}};
 inline const AllowedKeys kDriverKeys{"in a driver",
                                      {"name", "angle", "relative_to", "distance", "slide", "from", "to", "speed",
                                       "accel", "law", "free", "initial_speed", "at_limits", "cycles"}};
@@ -133,6 +134,10 @@ class Parser : yaml::Reader {
   void parse_lengths(const Entry& e);
   void parse_sliders(const Entry& e);
   void parse_slots(const Entry& e);
+  std::array<int, 2> guide(const Entry& e, std::string_view example, int slider_body);
+  int guide_carrier(const Entry& e, int through, int slider_body) const;
+  int guide_carrier(const YAML::Node& at, int through, int slider_body) const;
+  int guide_direction_point(const YAML::Node& at, int through, double angle, const std::string& name, int carrier);
   void parse_drivers(const Entry& e);
   void parse_driver(const YAML::Node& item);
   double rate(const Entry& e, int order, const Driver& d, double scale, bool initial = false) const;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -156,7 +157,7 @@ void Parser::parse_sliders(const Entry& e) {
     Slider s;
     s.body = body_ref(required(f, item, "body", "a slider").value);
     s.point = point_ref(required(f, item, "point", "a slider").value);
-    s.along = point_pair(required(f, item, "along", "a slider"), "[O2, X]");
+    s.along = guide(required(f, item, "along", "a slider"), "[O2, X]", s.body);
     model_.sliders.push_back(s);
     source_.sliders.push_back(mark(item));
   }
@@ -168,10 +169,86 @@ void Parser::parse_slots(const Entry& e) {
     const Fields f = fields(item, kSlotKeys);
     Slot s;
     s.point = point_ref(required(f, item, "point", "a slot").value);
-    s.along = point_pair(required(f, item, "along", "a slot"), "[E, F]");
+    s.along = guide(required(f, item, "along", "a slot"), "[E, F]", -1);
     model_.slots.push_back(s);
     source_.slots.push_back(mark(item));
   }
+}
+
+// A guide's line: two points, or a point and an angle (`{point: C, angle: 30 deg}`, the angle in
+// the drawing from +x, a number in the model's angle unit or a quantity in deg or rad), with
+// `body:` the body that carries the guide when it is not the ground or the one body of the point.
+std::array<int, 2> Parser::guide(const Entry& e, std::string_view example, int slider_body) {
+  if (!e.value.IsMap()) return point_pair(e, example);
+  const Fields f = fields(e.value, kGuideKeys);
+  const Entry& through_entry = required(f, e.value, "point", "a guide by a point and an angle");
+  const int through = point_ref(through_entry.value);
+  // A bare number is in the model's angle unit, the first of the list.
+  const UnitScale degrees{"deg", std::numbers::pi / 180.0}, radians{"rad", 1.0};
+  const std::vector<UnitScale> units =
+      model_.units.angle == "rad" ? std::vector<UnitScale>{radians, degrees} : std::vector<UnitScale>{degrees, radians};
+  const double angle =
+      quantity(required(f, e.value, "angle", "a guide by a point and an angle"), "the guide's angle", units, "30 deg");
+  const Entry* carrier_entry = f.find("body");
+  const int carrier = carrier_entry ? guide_carrier(*carrier_entry, through, slider_body)
+                                    : guide_carrier(through_entry.value, through, slider_body);
+  const std::string owner = slider_body >= 0 ? model_.bodies[slider_body].name : model_.points[through].name;
+  return {through, guide_direction_point(through_entry.value, through, angle, owner + ".guide", carrier)};
+}
+
+// The body `body:` names as the guide's: one that holds the guide's point, not the slider's own.
+int Parser::guide_carrier(const Entry& e, int through, int slider_body) const {
+  const int b = body_ref(e.value);
+  const std::vector<int>& points = model_.bodies[b].points;
+  if (std::find(points.begin(), points.end(), through) == points.end())
+    fail(e.value, "body '" + model_.bodies[b].name + "' does not hold point '" + model_.points[through].name +
+                      "', the guide's point");
+  if (b == slider_body) fail(e.value, "a slider cannot slide along its own body '" + model_.bodies[b].name + "'");
+  if (points.size() < 2)
+    fail(e.value, "body '" + model_.bodies[b].name + "' is a one-point slider block: it cannot carry a guide");
+  return b;
+}
+
+// Without `body:`: the ground (-1) for a ground point, else the one body that holds the point
+// (other than the slider's).
+int Parser::guide_carrier(const YAML::Node& at, int through, int slider_body) const {
+  const Point& c = model_.points[through];
+  if (c.ground) return -1;
+  int carrier = -1;
+  for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
+    const std::vector<int>& points = model_.bodies[b].points;
+    if (static_cast<int>(b) == slider_body || std::find(points.begin(), points.end(), through) == points.end())
+      continue;
+    if (carrier >= 0)
+      fail(at, "point '" + c.name + "' belongs to bodies '" + model_.bodies[carrier].name + "' and '" +
+                   model_.bodies[b].name + "': say which carries the guide with `body:`");
+    carrier = static_cast<int>(b);
+  }
+  if (carrier < 0) fail(at, "point '" + c.name + "' is on no body that could carry the guide");
+  if (model_.bodies[carrier].points.size() < 2)
+    fail(at, "point '" + c.name + "' is on '" + model_.bodies[carrier].name +
+                 "', a one-point slider block, which cannot carry a guide");
+  return carrier;
+}
+
+// The second point of a guide given by `through` and `angle`, on `carrier` (-1: the ground), a
+// drawing's size away so that the guide's rows are as well scaled as a guide drawn with two points.
+int Parser::guide_direction_point(const YAML::Node& at, int through, double angle, const std::string& name,
+                                  int carrier) {
+  const Point& c = model_.points[through];
+  Eigen::Vector2d low = c.position, high = c.position;
+  for (const Point& p : model_.points) {
+    low = low.cwiseMin(p.position);
+    high = high.cwiseMax(p.position);
+  }
+  const double reach = (high - low).norm() > 0.0 ? (high - low).norm() : model_.units.length_scale;
+  Point direction{name, c.position + reach * Eigen::Vector2d(std::cos(angle), std::sin(angle)), carrier < 0, true};
+  for (int k = 2; model_.find_point(direction.name) >= 0; ++k) direction.name = name + std::to_string(k);
+  const int index = static_cast<int>(model_.points.size());
+  model_.points.push_back(std::move(direction));
+  source_.points.push_back(mark(at));
+  if (carrier >= 0) model_.bodies[carrier].points.push_back(index);
+  return index;
 }
 
 void Parser::parse_drivers(const Entry& e) {

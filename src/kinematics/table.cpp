@@ -36,7 +36,7 @@ KinematicRows::KinematicRows(const Mechanism& mech, int order, ColumnsOnRequest 
   for (std::size_t b = 0; b < m.bodies.size(); ++b)
     if (m.bodies[b].points.size() >= 2) angled_.push_back(static_cast<int>(b));
   for (std::size_t p = 0; p < m.points.size(); ++p)
-    shown_.push_back(static_cast<int>(p));
+    if (!m.points[p].guide_direction) shown_.push_back(static_cast<int>(p));
   previous_.assign(m.bodies.size(), 0.0);
   started_.assign(m.bodies.size(), false);
   positions_.resize(m.points.size());

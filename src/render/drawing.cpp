@@ -659,8 +659,8 @@ void draw_labels(Canvas& canvas, const View& view, const Model& m, const std::ve
   canvas.begin_group("labels", "labels");
   for (std::size_t p = 0; p < m.points.size(); ++p) {
     // One text per point, in order (animations find a point's label by its place), empty
-    // for a far guide end.
-    if (far_guide_end(m, static_cast<int>(p), px(points[p]), canvas)) {
+    // for a far guide end and for the point that only gives a guide its direction.
+    if (m.points[p].guide_direction || far_guide_end(m, static_cast<int>(p), px(points[p]), canvas)) {
       canvas.text(px(points[p]), "", 12, Anchor::Start, kInk);
       continue;
     }

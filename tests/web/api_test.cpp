@@ -585,9 +585,8 @@ TEST(WebApi, ExamplesAreListedAndServedFromTheBinary) {
     EXPECT_EQ(text.content_type, "application/yaml; charset=utf-8");
     EXPECT_EQ(text.body, repo_file(e["file"].get<std::string>()));
   }
-  EXPECT_EQ(models,
-            30);        // every model file of examples/, fourbar-double-rocker-rocking.yaml (at_limits) the newest
-  EXPECT_EQ(tasks, 7);  // path/crank-rocker-measured.yaml the newest
+  EXPECT_EQ(models, 31);  // every model file of examples/, slider-crank-inclined.yaml (a guide by an angle) the newest
+  EXPECT_EQ(tasks, 7);    // path/crank-rocker-measured.yaml the newest
   EXPECT_EQ(templates, 6);
   // Each runs as it is; a template too, and its name never clashes with the example's.
   const ApiResponse five_bar = call("GET", "/api/examples/template-five-bar");

@@ -43,7 +43,7 @@ struct ColumnsOnRequest {
   bool empty() const { return points.empty() && !condition; }
 };
 
-// step, t, one column per driver, then for every point P.x, P.y, P.vx, P.vy, P.ax,
+// step, t, one column per driver, then for every point (but a guide's direction point) P.x, P.y, P.vx, P.vy, P.ax,
 // P.ay, P.jx, P.jy, P.d4x, ... up to the sweep's order, then for every body with an angle B.angle, B.omega, B.alpha,
 // B.jerk, B.d4, B.d5 (the angle unwrapped over the sweep), then the transmission angle of every four-bar loop as
 // <input>-<coupler>-<output>.mu; then the columns on request: every riding point's as a point's, and `cond`.
@@ -69,7 +69,7 @@ class KinematicRows {
   const Mechanism& mech_;
   int order_;
   ColumnsOnRequest extra_;
-  std::vector<int> shown_;  // the points whose columns the table has
+  std::vector<int> shown_;  // every point but those that only give a guide its direction
   std::vector<int> angled_;
   std::vector<double> previous_;
   std::vector<bool> started_;

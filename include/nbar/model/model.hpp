@@ -24,6 +24,9 @@ struct Point {
   std::string name;
   Eigen::Vector2d position;  // in the starting pose, m
   bool ground = false;       // fixed to the frame
+  // Made by the reader for a guide given by a point and an angle (`along: {point: C, angle: 30}`):
+  // it only sets the guide's direction, so it has no columns and no label.
+  bool guide_direction = false;
 };
 
 struct Material {
