@@ -70,9 +70,9 @@ std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::op
                                          std::optional<double> edge_size, bool condition) {
   auto out = std::make_shared<PyAnalysis>();
   out->model = model;
-  AnalysisOptions options = analysis_options(model->mechanism->model(), steps, order, dynamics, stress, sections,
-                                             max_steps, method, mesh_size, at_limits, cycles, segments_per_hole,
-                                             edge_size);
+  AnalysisOptions options =
+      analysis_options(model->mechanism->model(), steps, order, dynamics, stress, sections, max_steps, method,
+                       mesh_size, at_limits, cycles, segments_per_hole, edge_size);
   options.condition = condition;
   run_interruptible(options.control, timeout, [&] {
     try {
@@ -487,8 +487,7 @@ void bind_analysis(py::module_& m) {
         py::arg("dynamics") = false, py::arg("stress") = false, py::arg("sections") = 200,
         py::arg("timeout") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("method") = "beam",
         py::arg("mesh_size") = std::nullopt, py::arg("at_limits") = std::nullopt, py::arg("cycles") = std::nullopt,
-        py::arg("segments_per_hole") = std::nullopt, py::arg("edge_size") = std::nullopt,
-        py::arg("condition") = false);
+        py::arg("segments_per_hole") = std::nullopt, py::arg("edge_size") = std::nullopt, py::arg("condition") = false);
   // For bench/python: the same solve timed inside C++ (the sweep, then the sweep and its column
   // table), the reference Python's own cost is measured against.
   m.def(
