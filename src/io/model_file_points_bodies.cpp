@@ -180,6 +180,11 @@ void Parser::parse_slots(const Entry& e) {
 // `body:` the body that carries the guide when it is not the ground or the one body of the point.
 std::array<int, 2> Parser::guide(const Entry& e, std::string_view example, int slider_body) {
   if (!e.value.IsMap()) return point_pair(e, example);
+  const YAML::Node& given = e.value;
+  if (!given["point"] && !given["angle"]) {
+    fail(mark(e), "`" + e.key + "` needs two point names, like " + std::string(example) +
+                      ", or a point and an angle, like {point: O2, angle: 30 deg}, not " + describe(e.value));
+  }
   const Fields f = fields(e.value, kGuideKeys);
   const Entry& through_entry = required(f, e.value, "point", "a guide by a point and an angle");
   const int through = point_ref(through_entry.value);
