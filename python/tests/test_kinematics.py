@@ -90,6 +90,23 @@ def test_globs_and_order_follow_the_columns_asked(examples):
     assert r3.columns == ["rocker.jerk"]
 
 
+def test_centres_of_mass_and_cond_come_only_when_named(examples, cli):
+    m = nbar.load(examples / "fourbar-steel-bars.yaml")
+    assert "coupler.cg.x" not in m.solve(steps=5).columns
+    assert m.solve(steps=5, columns="coupler.*").columns == ["coupler.angle", "coupler.omega", "coupler.alpha"]
+    r = m.solve(steps=13, columns="A.x,B.x,coupler.cg.*,cond")
+    assert r.columns[:4] == ["A.x", "B.x", "coupler.cg.x", "coupler.cg.y"] and r.columns[-1] == "cond"
+    # The coupler is a symmetric steel bar between A and B: its centre of mass is their middle.
+    assert np.allclose(r["coupler.cg.x"], 0.5 * (r["A.x"] + r["B.x"]), rtol=0, atol=1e-9)
+    assert np.all(np.isfinite(r["cond"])) and np.all(r["cond"] >= 1.0)
+    # The same numbers as the command line's.
+    out = subprocess.run([cli, "solve", str(examples / "fourbar-steel-bars.yaml"), "--steps", "13",
+                          "--columns", "coupler.cg.x,cond"], capture_output=True, text=True, check=True).stdout
+    rows = list(csv.reader(io.StringIO(out)))[1:]
+    assert np.allclose([float(row[0]) for row in rows], r["coupler.cg.x"], rtol=1e-10, atol=1e-9)  # CSV: 12 digits
+    assert np.allclose([float(row[1]) for row in rows], r["cond"], rtol=1e-10, atol=0)
+
+
 def test_a_model_from_a_dict_equals_the_file(examples):
     L1, L2, L3, d, theta = 80.0, math.hypot(101.25, 148.823511), 150.0, 200.0, 0.0
     file_model = nbar.load(examples / "fourbar-crank-rocker.yaml")
