@@ -132,6 +132,19 @@ TEST(MechanismLimits, WattSixBarStopsWhereItsDyadStretchesNotAtItsFourBarsToggle
       << summary.warnings[0].message;
 }
 
+// The dump truck's cylinder (its pin-to-pin length the driver) is shortest where its eye E, on the
+// bed turning about the hinge H, lines up with its base C0: |C0 H| - |H E|. The path's limit behind
+// is that length, and the sweep toward it stops there.
+TEST(MechanismLimits, ADumpTrucksCylinderIsShortestWhereItsEyeLinesUpWithTheHinge) {
+  const Model m = example("dump-truck-tipper.yaml");
+  const double reference = (at(m, "C0") - at(m, "H")).norm() - (at(m, "E") - at(m, "H")).norm();
+  const PathLimits limits = find_path_limits(Mechanism(m));
+  EXPECT_FALSE(limits.stop.has_value());  // the sweep lengthens the cylinder, away from it
+  ASSERT_NE(limits.behind.limit(), nullptr);
+  EXPECT_NEAR(limits.behind.limit()->driver_values[0], reference, 1e-9 * reference);
+  expect_met_by_the_sweep(m, *limits.behind.limit());
+}
+
 TEST(MechanismLimits, StephensonSixBarIsLimitedOneWayByItsDyadAndTheOtherByItsFourBar) {
   const Model m = driven_to("stephenson-sixbar-limited.yaml", -60);
   const FourBar four(m);
