@@ -222,17 +222,15 @@ std::optional<PathSingularity> PathFollower::locate_change(const Step& from, dou
 
 PathFollower::Advance PathFollower::advance(Step& step) {
   Advance out;
+  const auto fail = [&](std::string reason) {
+    out.ok = false;
+    out.reason = std::move(reason);
+    return out;
+  };
   for (int attempt = 0; attempt < kMaxSteps; ++attempt) {
-    if (over_budget()) {
-      out.ok = false;
-      out.reason = budget_reason(step);
-      return out;
-    }
-    if (step.h < kShortestStep * length_) {
-      out.ok = false;
-      out.reason = "the path cannot be followed past this point (the corrections do not converge)";
-      return out;
-    }
+    if (over_budget()) return fail(budget_reason(step));
+    if (step.h < kShortestStep * length_)
+      return fail("the path cannot be followed past this point (the corrections do not converge)");
     Eigen::VectorXd y = step.y + step.h * step.t, t;
     const Eigen::VectorXd anchor = y;
     if (!correct(y, step.t, anchor) || (y - anchor).norm() > 0.5 * step.h || !tangent(y, step.t, t) ||
@@ -243,11 +241,7 @@ PathFollower::Advance PathFollower::advance(Step& step) {
     if ((t[n_] > 0.0) != (step.t[n_] > 0.0) && step.t[n_] != 0.0) {
       Eigen::VectorXd y_limit;
       out.limit = locate_limit(step, step.h, y_limit);
-      if (!out.limit) {
-        out.ok = false;
-        out.reason = over_budget() ? budget_reason(step) : "a limit could not be located";
-        return out;
-      }
+      if (!out.limit) return fail(over_budget() ? budget_reason(step) : "a limit could not be located");
       // On from the step's end, past the limit: at the limit itself the tangent's p component is
       // rounding, whose sign would announce the same limit again.
       step.y = y;
@@ -263,11 +257,7 @@ PathFollower::Advance PathFollower::advance(Step& step) {
     const int sign = determinant_sign(y, t);
     if (sign != 0 && step.det_sign != 0 && sign != step.det_sign) {
       out.change_point = locate_change(step, step.h);
-      if (!out.change_point && over_budget()) {
-        out.ok = false;
-        out.reason = budget_reason(step);
-        return out;
-      }
+      if (!out.change_point && over_budget()) return fail(budget_reason(step));
     }
     step.y = y;
     step.t = t;
@@ -277,9 +267,7 @@ PathFollower::Advance PathFollower::advance(Step& step) {
     step.h = std::min({1.5 * step.h, kLongestStep * length_, std::max(0.9 * allowed, kSlowest * length_)});
     return out;
   }
-  out.ok = false;
-  out.reason = "too many steps";
-  return out;
+  return fail("too many steps");
 }
 
 std::string PathFollower::budget_reason(const Step& at) const {
