@@ -335,6 +335,13 @@ def test_check_gives_the_transmission_angles_design_value_over_the_cranks_turn(e
     r = m.solve(steps=3601)
     assert r.transmission_angles["crank-coupler-rocker"]["design"] == pytest.approx(over_turn["design"], abs=1e-4)
     assert nbar.load(examples / "fourbar-double-rocker.yaml").check().loops[0].transmission_over_turn is None
+    # Per sample, min(mu, 180 - mu) on request: its min() is the design value, sample by sample
+    # the nearer side of the .mu column.
+    per_sample = m.solve(steps=3601, columns="*.mu,*.mu_design")
+    assert list(per_sample.columns) == ["crank-coupler-rocker.mu", "crank-coupler-rocker.mu_design"]
+    mu = per_sample["crank-coupler-rocker.mu"]
+    assert per_sample["crank-coupler-rocker.mu_design"] == pytest.approx(np.minimum(mu, 180 - mu), abs=1e-12)
+    assert per_sample["crank-coupler-rocker.mu_design"].min() == pytest.approx(over_turn["design"], abs=1e-4)
 
 
 def test_a_result_says_what_it_is_in_the_shell_and_in_jupyter(examples):

@@ -89,6 +89,7 @@ ColumnsOnRequest every_column_on_request(const Mechanism& mech) {
     }
     extra.points.push_back(std::move(cg));
   }
+  extra.design_transmission = !mech.four_bar_loops().empty();
   extra.condition = true;
   return extra;
 }
@@ -104,10 +105,15 @@ ColumnsOnRequest columns_on_request(const Mechanism& mech, const std::vector<std
   if (open.empty()) return asked;
   const ColumnsOnRequest every = every_column_on_request(mech);
   for (const RidingPoint& point : every.points) {
-    const std::vector<std::string> names = names_on_request(mech, kMaxDerivativeOrder, {{point}, false});
+    const std::vector<std::string> names = names_on_request(mech, kMaxDerivativeOrder, {{point}, false, false});
     if (std::any_of(open.begin(), open.end(), [&](const std::string& p) { return any_matches(names, p); }))
       asked.points.push_back(point);
   }
+  const auto asks_for = [&](const ColumnsOnRequest& only) {
+    const std::vector<std::string> names = names_on_request(mech, kMaxDerivativeOrder, only);
+    return std::any_of(open.begin(), open.end(), [&](const std::string& p) { return any_matches(names, p); });
+  };
+  asked.design_transmission = every.design_transmission && asks_for({{}, true, false});
   asked.condition =
       std::any_of(open.begin(), open.end(), [](const std::string& p) { return column_matches(p, "cond"); });
   return asked;

@@ -68,6 +68,8 @@ void KinematicRows::name_columns(std::vector<std::string>& columns, std::vector<
       add(p.name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
       add(p.name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
     }
+  if (extra_.design_transmission)
+    for (const FourBarLoop& loop : mech_.four_bar_loops()) add(loop.name + ".mu_design", u.angle);
   if (extra_.condition) add("cond", "");
 }
 
@@ -78,7 +80,8 @@ std::size_t KinematicRows::own_column_count() const {
 }
 
 std::size_t KinematicRows::column_count() const {
-  return own_column_count() + 2 * (order_ + 1) * extra_.points.size() + (extra_.condition ? 1 : 0);
+  return own_column_count() + 2 * (order_ + 1) * extra_.points.size() +
+         (extra_.design_transmission ? mech_.four_bar_loops().size() : 0) + (extra_.condition ? 1 : 0);
 }
 
 std::vector<bool> KinematicRows::on_request() const {
@@ -147,6 +150,11 @@ void KinematicRows::fill_on_request(const Sample& s, double* out, std::ptrdiff_t
       put((oy[k] + p.along * dy + p.across * dx) / length_scale);
     }
   }
+  if (extra_.design_transmission)
+    for (const FourBarLoop& loop : mech_.four_bar_loops()) {
+      const double mu = transmission_angle(loop, positions_);
+      put(std::min(mu, std::numbers::pi - mu) / mech_.model().units.angle_scale);
+    }
   if (extra_.condition) put(1.0 / s.reciprocal_condition);
 }
 

@@ -2,11 +2,13 @@
 // form of a crank-rocker, where mu is extreme with the crank along the frame line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numbers>
 
 #include "nbar/analysis/analysis.hpp"
+#include "nbar/analysis/columns.hpp"
 #include "nbar/io/model_file.hpp"
 
 namespace nbar {
@@ -72,6 +74,47 @@ TEST(TransmissionExtremes, TheDesignValueCountsAnAngleBeyondNinetyDegreesFromThe
   EXPECT_NEAR(mu[0].max, largest, 1e-9);
   EXPECT_NEAR(mu[0].design, std::numbers::pi - largest, 1e-9);
   EXPECT_EQ(mu[0].design_step, 180);
+}
+
+// The per-sample design value, a column on request: min(mu, 180 deg - mu) against the closed form
+// at every sample, its minimum the loop's design value (where the .mu column's minimum is 25 deg
+// off it), and nothing else added by asking for it.
+TEST(TransmissionExtremes, TheDesignValueColumnIsTheAngleFromTheNearerDeadPoint) {
+  const double frame = 100, crank = 20, coupler = 50, rocker = 80;
+  const std::string text =
+      "units: {length: mm, angle: deg}\n"
+      "points: {O2: [0, 0], O4: [100, 0], A: [20, 0], B: [35.625, 47.496]}\n"
+      "ground: [O2, O4]\n"
+      "bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n"
+      "lengths: {crank: 20, coupler: 50, rocker: 80}\n"
+      "drivers:\n  - {angle: crank, from: 0, to: 360}\n"
+      "sweep: {steps: 73}\n";
+  const auto mech = std::make_shared<const Mechanism>(io::parse_model(text, "wide.yaml").model);
+  AnalysisOptions options;
+  options.order = 0;
+  const Analysis analysis = analyse(mech, options);
+  ASSERT_TRUE(analysis.complete());
+  const std::vector<std::string> asked = {"crank", "*.mu", "*.mu_design"};
+  const ResultTable t = select_columns(result_table(analysis, columns_on_request(*mech, asked)), asked);
+  ASSERT_EQ(t.columns,
+            (std::vector<std::string>{"crank", "crank-coupler-rocker.mu", "crank-coupler-rocker.mu_design"}));
+  EXPECT_EQ(t.units[2], "deg");
+  double smallest_mu = 180, smallest_design = 180;
+  for (const auto& row : t.rows) {
+    const double mu =
+        mu_closed_form(frame, crank, coupler, rocker, row[0] * std::numbers::pi / 180) * 180 / std::numbers::pi;
+    EXPECT_NEAR(row[1], mu, 1e-7) << row[0];
+    EXPECT_NEAR(row[2], std::min(mu, 180 - mu), 1e-7) << row[0];
+    smallest_mu = std::min(smallest_mu, row[1]);
+    smallest_design = std::min(smallest_design, row[2]);
+  }
+  EXPECT_NEAR(smallest_design, transmission_extremes(analysis)[0].design * 180 / std::numbers::pi, 1e-9);
+  EXPECT_NEAR(smallest_design, 46.6, 0.05);
+  EXPECT_GT(smallest_mu - smallest_design, 25.0);  // the obvious min() of .mu is not the design value
+  // Asked for by name only: the full table has neither it nor cond unless asked.
+  const ResultTable plain = result_table(analysis, columns_on_request(*mech, {"*.mu"}));
+  EXPECT_EQ(std::count(plain.columns.begin(), plain.columns.end(), "crank-coupler-rocker.mu_design"), 0);
+  EXPECT_EQ(std::count(plain.columns.begin(), plain.columns.end(), "cond"), 0);
 }
 
 }  // namespace

@@ -39,14 +39,19 @@ struct RidingPoint {
 // Jacobian at each sample (1 / Sample::reciprocal_condition, the solver's own estimate).
 struct ColumnsOnRequest {
   std::vector<RidingPoint> points;
+  // Per four-bar loop, <loop>.mu_design: min(mu, pi - mu), how far the loop is from a dead point at
+  // that sample; its smallest value over the sweep is the loop's design value (0..90 deg, where
+  // the .mu column runs 0..180 deg and its minimum is not the design value when mu passes 90 deg).
+  bool design_transmission = false;
   bool condition = false;
-  bool empty() const { return points.empty() && !condition; }
+  bool empty() const { return points.empty() && !design_transmission && !condition; }
 };
 
 // step, t, one column per driver, then for every point (but a guide's direction point) P.x, P.y, P.vx, P.vy, P.ax,
 // P.ay, P.jx, P.jy, P.d4x, ... up to the sweep's order, then for every body with an angle B.angle, B.omega, B.alpha,
 // B.jerk, B.d4, B.d5 (the angle unwrapped over the sweep), then the transmission angle of every four-bar loop as
-// <input>-<coupler>-<output>.mu; then the columns on request: every riding point's as a point's, and `cond`.
+// <input>-<coupler>-<output>.mu; then the columns on request: every riding point's as a point's, every loop's
+// <loop>.mu_design, and `cond`.
 ResultTable make_table(const Mechanism& mech, const SweepResult& sweep, const ColumnsOnRequest& extra = {});
 
 // Those columns for one sample at a time, handed the sweep's samples in order (each body's
