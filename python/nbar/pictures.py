@@ -91,10 +91,16 @@ class Animation:
         _write(path, self.data(ext))
 
     def _repr_html_(self) -> str:
+        # The drawing scales with the width the notebook gives it, but the title, the controls and
+        # the read-out around it do not, and on a phone they wrap to more lines: the frame is the
+        # drawing's height at that width (a padding in percent is of the width) plus 175 px, or
+        # more when narrow (193 px at a phone's 250 px output), where one aspect ratio for the
+        # whole cut the controls off.
         width = self._options.get("width", 900)
-        height = self._options.get("height", 640) + 150  # the title, the controls and the readout
-        return (f'<iframe srcdoc="{html.escape(self.html, quote=True)}" style="width:100%;max-width:{width}px;'
-                f'aspect-ratio:{width}/{height};border:0" sandbox="allow-scripts"></iframe>')
+        drawing = 100.0 * self._options.get("height", 640) / width
+        return (f'<div style="max-width:{width}px"><div style="position:relative;padding-top:calc({drawing:.4g}% + '
+                f'max(175px, 205px - 5%))"><iframe srcdoc="{html.escape(self.html, quote=True)}" style="position:'
+                f'absolute;top:0;left:0;width:100%;height:100%;border:0" sandbox="allow-scripts"></iframe></div></div>')
 
     def __repr__(self) -> str:
         return "<nbar.Animation: .html, .data(format), .save(path)>"
