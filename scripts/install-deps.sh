@@ -29,6 +29,7 @@ test_packages=(
   # on an ipykernel, sympy's derivatives as a reference, docs/python.md's Result.to_pandas()
   python3-matplotlib python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-sympy
   python3-pandas
+  python3-nbconvert  # the notebooks as web pages read at 390 px (scripts/notebook-pages.sh)
   python3-mpmath python3-yaml  # tests: the 60-digit reference of six-bars near a limit (tests/kinematics/near_limit_reference.py)
   python3-mypy  # the Python stubs: stubtest against the module, mypy --strict on the docs' examples
   # scripts/package.sh and its test: the wheel (setuptools, wheel, pip, venv), the man page

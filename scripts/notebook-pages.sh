@@ -11,6 +11,6 @@ mkdir -p "$out"
 # The kernel draws figures inline (no MPLBACKEND) and imports the module just built; the
 # notebooks find their examples inside it, so they run from any folder.
 env -u MPLBACKEND PYTHONPATH="$build/python" PYDEVD_DISABLE_FILE_VALIDATION=1 \
-  /usr/bin/python3 -m jupyter nbconvert --to html --execute --log-level WARN --output-dir "$out" \
+  /usr/bin/python3 -m nbconvert --to html --execute --log-level WARN --output-dir "$out" \
   "$root"/notebooks/*.ipynb
 echo "notebook pages in $out"
