@@ -22,6 +22,7 @@ import { dirname, join, resolve } from 'node:path';
 import { performance } from 'node:perf_hooks';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { gzipSync } from 'node:zlib';
+import { benchCases } from './bench-cases.mjs';
 
 const args = { runs: '7' };
 for (let i = 2; i < process.argv.length; ++i) {
@@ -43,34 +44,7 @@ function timed(run) {
 
 const examples = resolve(args.examples);
 const native = resolve(args.native);
-const read = (file) => readFileSync(join(examples, file), 'utf8');
-const cases = [
-  {
-    name: '361-step crank-rocker solve with dynamics',
-    path: 'solve', body: { model: read('fourbar-crank-rocker.yaml'), steps: 361, dynamics: true },
-    cli: ['solve', join(examples, 'fourbar-crank-rocker.yaml'), '--steps', '361', '--dynamics', '--format', 'json'],
-    target: 2, runs: Number(args.runs),
-  },
-  {
-    name: 'five-point synthesis (native on 1 thread)',
-    path: 'synth/five-point', body: { task: read('synthesis/five-point-crank-rocker.yaml') },
-    cli: ['synth', 'five-point', join(examples, 'synthesis/five-point-crank-rocker.yaml'), '--format', 'json', '--threads', '1'],
-    serverBody: { task: read('synthesis/five-point-crank-rocker.yaml'), threads: 1 },
-    target: 3, runs: Number(args.runs),
-  },
-  {
-    name: 'five-point synthesis (native on every core)',
-    path: 'synth/five-point', body: { task: read('synthesis/five-point-crank-rocker.yaml') },
-    cli: ['synth', 'five-point', join(examples, 'synthesis/five-point-crank-rocker.yaml'), '--format', 'json'],
-    runs: Number(args.runs),
-  },
-  {
-    name: 'FE stress sweep of the steel four-bar (361 samples)',
-    path: 'stress', body: { model: read('fourbar-steel-bars.yaml'), method: 'fe' },
-    cli: ['stress', join(examples, 'fourbar-steel-bars.yaml'), '--method', 'fe', '--format', 'json'],
-    target: 3, runs: Math.max(3, Math.ceil(Number(args.runs) / 2)),
-  },
-];
+const cases = benchCases(examples, Number(args.runs));
 
 const loadStart = performance.now();
 const { loadNbar } = await import(pathToFileURL(resolve(args.engine)).href);

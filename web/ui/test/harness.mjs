@@ -1,6 +1,6 @@
 // What the browser tests share: their command-line options, Debian's Chromium through
 // playwright-core (never a downloaded browser; exit 77, ctest's SKIP_RETURN_CODE, when either is
-// missing), a watchdog, and `nbar serve` started on a free port of 127.0.0.1.
+// missing), a watchdog, `nbar serve` started on a free port of 127.0.0.1, and `python3 -m http.server`.
 import { spawn } from 'node:child_process';
 import { existsSync } from 'node:fs';
 
@@ -48,4 +48,26 @@ export async function startServer(nbar) {
     server.on('exit', (code) => reject(new Error(`nbar serve exited (${code}): ${text}`)));
   }).catch((e) => { console.error(e.message); stop(); process.exit(1); });
   return { base, stop };
+}
+
+// `python3 -m http.server` serving `site` on a free port of 127.0.0.1: {base, log, stop}; its
+// log (one line a request) is kept for the caller to check.
+export async function serveStatic(site, python = 'python3') {
+  const server = spawn(python, ['-u', '-m', 'http.server', '0', '--bind', '127.0.0.1', '--directory', site],
+    { stdio: ['ignore', 'pipe', 'pipe'] });
+  const log = [];
+  server.stderr.on('data', (d) => log.push(...String(d).split('\n').filter(Boolean)));
+  const stop = () => { try { server.kill('SIGTERM'); } catch { /* gone */ } };
+  process.on('exit', stop);
+  const base = await new Promise((resolve, reject) => {
+    let text = '';
+    const timer = setTimeout(() => reject(new Error(`http.server did not start: ${text}`)), 10000);
+    server.stdout.on('data', (d) => {
+      text += d;
+      const m = /port (\d+)/.exec(text);
+      if (m) { clearTimeout(timer); resolve(`http://127.0.0.1:${m[1]}/`); }
+    });
+    server.on('exit', (code) => reject(new Error(`http.server exited (${code}): ${text}`)));
+  });
+  return { base, log, stop };
 }

@@ -7,10 +7,9 @@
 // been opened, analyse an edit offline. Then 30 pages opened at once must all get their analysis.
 //   node test/static-site.mjs --site build-wasm/site [--python python3] [--out DIR] [--pages 30]
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { arg, launchChromium, watchdog } from './harness.mjs';
+import { arg, launchChromium, serveStatic, watchdog } from './harness.mjs';
 
 const site = arg('--site');
 const python = arg('--python', 'python3');
@@ -22,28 +21,7 @@ if (!site || !existsSync(join(site, 'nbar-engine.wasm'))) {
 }
 mkdirSync(out, { recursive: true });
 
-// python3 -m http.server on a free port; its log (one line a request) is kept to check.
-async function serveStatic() {
-  const server = spawn(python, ['-u', '-m', 'http.server', '0', '--bind', '127.0.0.1', '--directory', site],
-    { stdio: ['ignore', 'pipe', 'pipe'] });
-  const log = [];
-  server.stderr.on('data', (d) => log.push(...String(d).split('\n').filter(Boolean)));
-  const stop = () => { try { server.kill('SIGTERM'); } catch { /* gone */ } };
-  process.on('exit', stop);
-  const base = await new Promise((resolve, reject) => {
-    let text = '';
-    const timer = setTimeout(() => reject(new Error(`http.server did not start: ${text}`)), 10000);
-    server.stdout.on('data', (d) => {
-      text += d;
-      const m = /port (\d+)/.exec(text);
-      if (m) { clearTimeout(timer); resolve(`http://127.0.0.1:${m[1]}/`); }
-    });
-    server.on('exit', (code) => reject(new Error(`http.server exited (${code}): ${text}`)));
-  });
-  return { base, log, stop };
-}
-
-const { base, log, stop } = await serveStatic();
+const { base, log, stop } = await serveStatic(site, python);
 const browser = await launchChromium();
 const timer = watchdog(540000, () => { stop(); browser.close(); });
 const errors = [];
