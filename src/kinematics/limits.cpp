@@ -49,16 +49,15 @@ PathReach reach(PathFollower& follower, const Eigen::VectorXd& start, int direct
   PathReach out;
   PathFollower::Step step = follower.begin(start, direction);
   const double p0 = follower.parameter(start);
+  const auto undecided = [&](std::string why) {
+    out.undecided = std::move(why);
+    out.undecided_at = follower.singularity(step.y, PathSingularityKind::Limit);
+    return out;
+  };
   for (int steps = 0;; ++steps) {
-    if (steps == kMaxAccepted) {
-      out.undecided = "the path takes too many steps to follow near " + std::to_string(follower.parameter(step.y));
-      return out;
-    }
+    if (steps == kMaxAccepted) return undecided("the path takes too many steps to follow");
     const PathFollower::Advance advance = follower.advance(step);
-    if (!advance.ok) {
-      out.undecided = advance.reason;
-      return out;
-    }
+    if (!advance.ok) return undecided(advance.reason);
     if (advance.change_point) out.singularities.push_back(*advance.change_point);
     if (advance.limit) {
       out.singularities.push_back(*advance.limit);
@@ -71,6 +70,18 @@ PathReach reach(PathFollower& follower, const Eigen::VectorXd& start, int direct
       return out;
     }
   }
+}
+
+// Where an undecided search stopped, told as a found limit is: the input's value there and the
+// bodies of the Jacobian's weakest combination (those nearest a singular position: what makes the
+// path hard to follow there, or, for a search stopped by its budget, what it was creeping toward).
+void say_where_undecided(const Mechanism& mech, int driver, PathReach& reach) {
+  PathSingularity& at = *reach.undecided_at;
+  describe_singularity(mech, at);
+  const Model& m = mech.model();
+  reach.undecided += ", at " + m.drivers[driver].name + " = " +
+                     format_driver_value(m, driver, at.driver_values[driver]) +
+                     " (nearest a singular position there: " + at.involved + ")";
 }
 
 }  // namespace
@@ -171,8 +182,10 @@ PathLimits find_path_limits(const Mechanism& mech, const LimitSearchOptions& opt
                      angular && options.full_turn && window >= turn);
   out.searched = true;
   out.work = follower.work();
-  for (PathReach* r : {&out.ahead, &out.behind})
+  for (PathReach* r : {&out.ahead, &out.behind}) {
     for (PathSingularity& s : r->singularities) describe_singularity(mech, s);
+    if (r->undecided_at) say_where_undecided(mech, driver, *r);
+  }
   if (const PathSingularity* limit = out.ahead.limit(); limit && ahead * (limit->parameter - p_end) < 0.0)
     out.stop = *limit;
   return out;

@@ -26,6 +26,12 @@ constexpr int kLocateIterations = 200;
 // multiple of its relative smallest singular value (of the model's size), down to kSlowest.
 constexpr double kStepPerConditioning = 0.5;
 constexpr double kSlowest = 1e-6;
+// At a located limit, [Phi_q Phi_u]'s n-th singular value over its largest: a simple limit keeps
+// it well away from zero (the path is a smooth curve there, Phi_u outside Phi_q's range: 3e-3 to
+// 0.2 on the bundled examples' limits), a limit where branches also cross (Phi_q two short of full
+// rank) has it at the location's error (5e-12 to 3e-7 on a parallelogram driven by its diagonal,
+// 2e-9 on the scissor lift lying flat).
+constexpr double kBranchesCrossAtLimit = 1e-5;
 
 void fill_drivers(const Mechanism& mech, const std::vector<double>& values, std::vector<DriverState>& out) {
   out.resize(values.size());
@@ -228,7 +234,7 @@ PathFollower::Advance PathFollower::advance(Step& step) {
     return out;
   };
   for (int attempt = 0; attempt < kMaxSteps; ++attempt) {
-    if (over_budget()) return fail(budget_reason(step));
+    if (over_budget()) return fail(budget_reason());
     if (step.h < kShortestStep * length_)
       return fail("the path cannot be followed past this point (the corrections do not converge)");
     Eigen::VectorXd y = step.y + step.h * step.t, t;
@@ -241,7 +247,11 @@ PathFollower::Advance PathFollower::advance(Step& step) {
     if ((t[n_] > 0.0) != (step.t[n_] > 0.0) && step.t[n_] != 0.0) {
       Eigen::VectorXd y_limit;
       out.limit = locate_limit(step, step.h, y_limit);
-      if (!out.limit) return fail(over_budget() ? budget_reason(step) : "a limit could not be located");
+      if (!out.limit) return fail(over_budget() ? budget_reason() : "a limit could not be located");
+      if (branches_cross_at(y_limit)) {
+        out.change_point = *out.limit;  // the same pose, told first: the input turns back where branches cross
+        out.change_point->kind = PathSingularityKind::ChangePoint;
+      }
       // On from the step's end, past the limit: at the limit itself the tangent's p component is
       // rounding, whose sign would announce the same limit again.
       step.y = y;
@@ -257,7 +267,7 @@ PathFollower::Advance PathFollower::advance(Step& step) {
     const int sign = determinant_sign(y, t);
     if (sign != 0 && step.det_sign != 0 && sign != step.det_sign) {
       out.change_point = locate_change(step, step.h);
-      if (!out.change_point && over_budget()) return fail(budget_reason(step));
+      if (!out.change_point && over_budget()) return fail(budget_reason());
     }
     step.y = y;
     step.t = t;
@@ -270,13 +280,20 @@ PathFollower::Advance PathFollower::advance(Step& step) {
   return fail("too many steps");
 }
 
-std::string PathFollower::budget_reason(const Step& at) const {
+bool PathFollower::branches_cross_at(const Eigen::VectorXd& y) {
+  evaluate(y);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(augmented_);
+  count_factorisation(augmented_.rows());
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  if (sigma.size() < n_ || !(sigma[0] > 0.0)) return false;
+  return sigma[n_ - 1] < kBranchesCrossAtLimit * sigma[0];
+}
+
+std::string PathFollower::budget_reason() const {
   std::ostringstream text;
   text.precision(3);
   text << "the path's search stopped at its work budget (" << work_budget_ << " flops on a model of " << n_
-       << " coordinates)";
-  text.precision(9);
-  text << " at " << parameter(at.y) << ", before it reached a limit or its end";
+       << " coordinates) before it reached a limit or its end";
   return text.str();
 }
 

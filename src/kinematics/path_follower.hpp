@@ -50,6 +50,10 @@ class PathFollower {
   // converge.
   bool solve_at_parameter(Eigen::VectorXd& y, double p);
 
+  // The pose y of the path as a PathSingularity of `kind` (its parameter and driver values), for
+  // where a search stopped or a singular pose was found.
+  PathSingularity singularity(const Eigen::VectorXd& y, PathSingularityKind kind);
+
   // Every step factorises dense matrices of the model's size, so a large model on a slowly
   // followed path could take minutes: the follower counts its work (rows x columns^2 of each
   // factorisation, about its flops, plus the cost of filling the matrix) and advance() refuses to
@@ -65,8 +69,9 @@ class PathFollower {
   int determinant_sign(const Eigen::VectorXd& y, const Eigen::VectorXd& t);
   // The point at arclength sigma from `from` along `t` (corrected): false if it does not converge.
   bool point_at(const Step& from, double sigma, Eigen::VectorXd& y);
-  PathSingularity singularity(const Eigen::VectorXd& y, PathSingularityKind kind);
-  std::string budget_reason(const Step& at) const;
+  std::string budget_reason() const;
+  // Whether [Phi_q Phi_u] loses rank at y too (a limit where branches also cross).
+  bool branches_cross_at(const Eigen::VectorXd& y);
   std::optional<PathSingularity> locate_limit(const Step& from, double h, Eigen::VectorXd& y_limit);
   std::optional<PathSingularity> locate_change(const Step& from, double h);
 

@@ -12,6 +12,7 @@
 
 #include "nbar/analysis/summary.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/limits.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/sweep.hpp"
@@ -248,9 +249,25 @@ TEST(MechanismLimits, ASearchPastItsBudgetStopsThereAndSaysWhere) {
     options.work_budget = budget;
     const PathLimits limits = find_path_limits(mech, options);
     EXPECT_LE(limits.work, budget + 1e6) << budget;
-    const std::string& why = limits.ahead.undecided.empty() ? limits.behind.undecided : limits.ahead.undecided;
+    const PathReach& undecided = limits.ahead.undecided.empty() ? limits.behind : limits.ahead;
+    const std::string& why = undecided.undecided;
     EXPECT_NE(why.find("work budget"), std::string::npos) << budget << ": " << why;
-    EXPECT_NE(why.find(" at "), std::string::npos) << why;
+    // Where: the input's value in the model's unit, and the bodies nearest a singular position
+    // there, told as for a limit found (PathSingularity::involved).
+    ASSERT_TRUE(undecided.undecided_at) << why;
+    const PathSingularity& at = *undecided.undecided_at;
+    EXPECT_NE(why.find(", at actuator = " + format_driver_value(mech.model(), 0, at.driver_values[0]) +
+                       " (nearest a singular position there: " + at.involved + ")"),
+              std::string::npos)
+        << why;
+    EXPECT_FALSE(at.bodies.empty()) << why;
+    // The pose it stopped at is on the path: the model's rows hold there, the slide at its value.
+    State state(mech);
+    state.q = at.q;
+    const Sample solved = solve_at(mech, state, at.driver_values, 0);
+    EXPECT_LT((solved.positions() - at.q).norm(), 1e-9 * mech.characteristic_length()) << why;
+    // Between the foot's limit behind (800 mm) and a turn past its start (900 mm) ahead.
+    EXPECT_GT(at.driver_values[0], 0.8 - 1e-9);
   }
   const ModelSummary summary = summarize(mech, kDefaultMaxSweepSamples, 3e6);
   ASSERT_TRUE(summary.limits.has_value());

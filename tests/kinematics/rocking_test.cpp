@@ -221,6 +221,63 @@ TEST(Rocking, CheckSaysWhereItTurnsAndWarnsNotOfAStop) {
   for (const Warning& w : summary.warnings) EXPECT_NE(w.code, "input_limited") << w.message;
 }
 
+// A parallelogram (crank = rocker = 100 mm, coupler = frame = 200 mm) driven by its diagonal
+// |A O4|, drawn with the crank at 60 deg. As the crank passes 0 deg the diagonal is shortest,
+// d - a = 100 mm, so the input turns back there; but there the parallelogram also lies flat, a
+// change point where it may go on as a parallelogram or as an antiparallelogram (coupler and
+// rocker in line at B, over O4): four branches meet, and a turn there cannot say which it takes.
+const std::string kParallelogramByItsDiagonal =
+    "units: {length: mm, angle: deg}\n"
+    "points: {O2: [0, 0], O4: [200, 0], A: [50, 86.602540378443865], B: [250, 86.602540378443865]}\n"
+    "ground: [O2, O4]\n"
+    "bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n"
+    "drivers:\n"
+    "  - {distance: [A, O4], speed: -10 mm/s, at_limits: reverse, cycles: 1, name: diagonal}\n";
+
+TEST(Rocking, ATurnAtAChangePointIsRefusedAndSaysWhichAndWhere) {
+  const Mechanism mech(io::parse_model(kParallelogramByItsDiagonal).model);
+  std::string message;
+  try {
+    run_sweep(mech);
+    ADD_FAILURE() << "the sweep rocked through a change point";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::StoppedAtLimit);
+    message = e.message();
+  }
+  EXPECT_NE(message.find("driver 'diagonal' cannot rock: its path turns back at 100 mm, which is a change point"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("coupler and rocker in line at B"), std::string::npos) << message;
+  // check says the same, as a warning, before any sweep.
+  const ModelSummary summary = summarize(mech);
+  ASSERT_TRUE(summary.rocking);
+  EXPECT_EQ(*summary.rocking, message);
+  // The limit search finds both at the same place: d - a = 100 mm, the crank at 0 deg.
+  Model stopping = mech.model();
+  stopping.drivers[0].at_limits = AtLimits::Stop;
+  stopping.drivers[0].cycles.reset();
+  stopping.drivers[0].to = 0.050;  // down towards 50 mm: past the limit, where the sweep stops
+  const PathLimits limits = find_path_limits(Mechanism(stopping));
+  ASSERT_TRUE(limits.stop);
+  EXPECT_NEAR(limits.stop->driver_values[0], 0.100, 1e-9 * 0.100);
+  ASSERT_EQ(limits.ahead.singularities.size(), 2u);
+  EXPECT_EQ(limits.ahead.singularities[0].kind, PathSingularityKind::ChangePoint);
+  EXPECT_EQ(limits.ahead.singularities[1].kind, PathSingularityKind::Limit);
+  for (const PathSingularity& s : limits.ahead.singularities) {
+    EXPECT_NEAR(s.driver_values[0], 0.100, 1e-9 * 0.100);
+    const Eigen::Vector2d a = mech.point_position(mech.model().find_point("A"), s.q);
+    // Located to about 3e-7 of the model's size along the path: the crank's angle to that over its length.
+    EXPECT_NEAR(std::atan2(a.y(), a.x()), 0.0, 1e-5);
+  }
+}
+
+// A double-rocker's limit is not a change point: its branches do not cross there.
+TEST(Rocking, ASimpleLimitIsNotTakenForAChangePoint) {
+  const PathLimits limits = find_path_limits(Mechanism(example("fourbar-double-rocker.yaml")));
+  for (const PathReach* reach : {&limits.ahead, &limits.behind})
+    for (const PathSingularity& s : reach->singularities) EXPECT_EQ(s.kind, PathSingularityKind::Limit);
+}
+
 using io::test_support::fails_at;
 
 const std::string kDoubleRocker =

@@ -42,6 +42,9 @@ struct PathReach {
   bool turns_fully = false;                    // a full turn of the first driver without a limit
   bool window_end = false;                     // searched to the end of its window without a limit
   std::string undecided;                       // the search could not decide (why, and where)
+  // When undecided: the pose where the search stopped, its driver values and the bodies nearest a
+  // singular position there (the Jacobian's weakest combination, as for a singularity found).
+  std::optional<PathSingularity> undecided_at;
   // The first limit met, if any.
   const PathSingularity* limit() const;
 };
