@@ -49,7 +49,8 @@ std::string describe_driver(const Model& m, int d) {
 BodySummary summarize_body(const Model& m, const Body& b) {
   BodySummary s;
   s.name = b.name;
-  for (int p : b.points) s.points.push_back(m.points[p].name);
+  for (int p : b.points)
+    if (!m.points[p].guide_direction) s.points.push_back(m.points[p].name);
   if (b.points.size() >= 2) {
     s.length = b.length.value_or((m.points[b.points[1]].position - m.points[b.points[0]].position).norm());
     s.length_given = b.length.has_value();
@@ -57,6 +58,16 @@ BodySummary summarize_body(const Model& m, const Body& b) {
   s.mass = mass_properties(b);
   s.mass_source = b.inertia ? "given" : b.shape ? (b.material ? b.material->name : "shape, no material") : "none";
   return s;
+}
+
+// A guide's line as the model file gave it: two points, or a point and the angle in the drawing
+// (the reader's second point only sets the direction: the user never named it).
+std::string guide_text(const Model& m, const std::array<int, 2>& along) {
+  const Point &through = m.points[along[0]], &direction = m.points[along[1]];
+  if (!direction.guide_direction) return through.name + "-" + direction.name;
+  const Eigen::Vector2d d = direction.position - through.position;
+  return fmt::format("the line through {} at {:.6g} {}", through.name, std::atan2(d.y(), d.x()) / m.units.angle_scale,
+                     m.units.angle);
 }
 
 // Revolute pairs at shared points, then sliders and slots.
@@ -72,10 +83,8 @@ std::vector<std::string> describe_joints(const Model& m) {
   }
   for (const Slider& s : m.sliders)
     joints.push_back("slider " + m.bodies[s.body].name + " at " + m.points[s.point].name + " along " +
-                     m.points[s.along[0]].name + "-" + m.points[s.along[1]].name);
-  for (const Slot& s : m.slots)
-    joints.push_back("slot " + m.points[s.point].name + " in " + m.points[s.along[0]].name + "-" +
-                     m.points[s.along[1]].name);
+                     guide_text(m, s.along));
+  for (const Slot& s : m.slots) joints.push_back("slot " + m.points[s.point].name + " in " + guide_text(m, s.along));
   return joints;
 }
 
@@ -318,7 +327,9 @@ std::vector<Warning> check_before_sweep(const Mechanism& mech) {
 ModelSummary summarize(const Mechanism& mech, int max_steps, double limit_search_work) {
   const Model& m = mech.model();
   ModelSummary s;
-  for (const Point& p : m.points) (p.ground ? s.ground_points : s.moving_points).push_back(p.name);
+  // The reader's guide points (a guide by a point and an angle) are not the user's: not listed.
+  for (const Point& p : m.points)
+    if (!p.guide_direction) (p.ground ? s.ground_points : s.moving_points).push_back(p.name);
   for (const Body& b : m.bodies) {
     s.bodies.push_back(summarize_body(m, b));
     s.has_masses = s.has_masses || s.bodies.back().mass.mass > 0.0;

@@ -31,8 +31,8 @@ std::string plural(std::size_t n) { return n == 1 ? "" : "s"; }
 void write_structure(std::ostream& out, const Model& m, const ModelSummary& s, const std::string& source) {
   out << "Model: " << (m.name.empty() ? std::string("(unnamed)") : m.name) << "  [" << source << "]\n";
   out << "Units: length " << m.units.length << ", angle " << m.units.angle << ", time s\n";
-  out << fmt::format("Points: {} ({} fixed: {}; {} moving: {})\n", m.points.size(), s.ground_points.size(),
-                     join(s.ground_points), s.moving_points.size(), join(s.moving_points));
+  out << fmt::format("Points: {} ({} fixed: {}; {} moving: {})\n", s.ground_points.size() + s.moving_points.size(),
+                     s.ground_points.size(), join(s.ground_points), s.moving_points.size(), join(s.moving_points));
   out << "Bodies: " << m.bodies.size() << '\n';
   for (const BodySummary& b : s.bodies) {
     const std::string extra =
@@ -358,7 +358,9 @@ std::string summary_json(const Mechanism& mechanism, const ModelSummary& s, cons
   j["model"] = m.name;
   j["source"] = source.file;
   j["units"] = {{"length", m.units.length}, {"angle", m.units.angle}, {"time", "s"}};
-  j["points"] = {{"count", m.points.size()}, {"ground", s.ground_points}, {"moving", s.moving_points}};
+  j["points"] = {{"count", s.ground_points.size() + s.moving_points.size()},
+                 {"ground", s.ground_points},
+                 {"moving", s.moving_points}};
   j["bodies"] = bodies_json(m, s);
   j["joints"] = s.joints;
   j["dof"] = {{"gruebler", mob.grubler},

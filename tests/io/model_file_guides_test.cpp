@@ -7,13 +7,16 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "model_file_support.hpp"
 #include "nbar/analysis/analysis.hpp"
+#include "nbar/analysis/summary.hpp"
 #include "nbar/io/model_export.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/io/summary_writer.hpp"
 
 namespace nbar {
 namespace {
@@ -141,6 +144,48 @@ drivers:
   EXPECT_GT(*std::max_element(swing.begin(), swing.end()) - *std::min_element(swing.begin(), swing.end()), 30.0);
   // Written back with its body.
   EXPECT_NE(io::model_yaml(io::parse_model(by_angle).model).find(", body: arm}"), std::string::npos);
+}
+
+// `nbar check` lists the points the user wrote: the one the reader adds to give the guide its
+// direction is not among them, and the guide is told as it was given, through a point at an angle.
+TEST(GuideByAngle, CheckListsOnlyTheUsersPointsAndTheGuideAsGiven) {
+  const io::LoadedModel file = io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/slider-crank-inclined.yaml");
+  const Mechanism mech(file.model);
+  ASSERT_EQ(file.model.points.size(), 4u);  // O2, A, C and the guide's direction point
+  const ModelSummary summary = summarize(mech);
+  EXPECT_EQ(summary.ground_points, std::vector<std::string>{"O2"});
+  EXPECT_EQ(summary.moving_points, (std::vector<std::string>{"A", "C"}));
+  std::ostringstream text;
+  io::write_summary_text(text, mech, summary, "inclined.yaml");
+  EXPECT_NE(text.str().find("Points: 3 (1 fixed: O2; 2 moving: A, C)\n"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("  slider piston at C along the line through O2 at 30 deg\n"), std::string::npos)
+      << text.str();
+  EXPECT_EQ(text.str().find(".guide"), std::string::npos) << text.str();
+  const std::string json = io::summary_json(mech, summary, file.source);
+  EXPECT_NE(json.find("\"points\": {\n    \"count\": 3,\n    \"ground\": [\n      \"O2\"\n    ],"), std::string::npos)
+      << json;
+  EXPECT_EQ(json.find(".guide"), std::string::npos);
+}
+
+// A guide carried by a moving body: the body's points are the user's, and the angle is the drawing's
+// (atan2(100, 30) = 73.3008 deg).
+TEST(GuideByAngle, CheckTellsAMovingGuideByItsPointAndAngle) {
+  const std::string text = R"(units: {length: mm, angle: deg}
+points: {O2: [0, 0], Q: [0, -100], A: [30, 0], E: [60, 100]}
+ground: [O2, Q]
+bodies: {crank: [O2, A], arm: [Q, E]}
+slots:
+  - {point: A, along: {point: Q, angle: 1.2793395323170296 rad, body: arm}}
+drivers:
+  - {angle: crank, from: 0, to: 360}
+)";
+  const Mechanism mech(io::parse_model(text).model);
+  const ModelSummary summary = summarize(mech);
+  ASSERT_EQ(summary.bodies.size(), 2u);
+  EXPECT_EQ(summary.bodies[1].points, (std::vector<std::string>{"Q", "E"}));
+  EXPECT_EQ(summary.moving_points, (std::vector<std::string>{"A", "E"}));
+  EXPECT_NE(std::find(summary.joints.begin(), summary.joints.end(), "slot A in the line through Q at 73.3008 deg"),
+            summary.joints.end());
 }
 
 TEST(GuideByAngle, BadInputIsPlaced) {
