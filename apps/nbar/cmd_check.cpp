@@ -20,13 +20,14 @@ int run_check(const CheckCommand& command) {
   if (!read_request(*command.flags, request)) return kBadUsage;
   Loaded loaded;
   if (int code = load(command.model, loaded)) return code;
-  const ModelSummary summary = summarize(*loaded.mechanism, request.max_steps);
+  const std::shared_ptr<const Mechanism> mechanism = request.mechanism(loaded.mechanism);
+  const ModelSummary summary = summarize(*mechanism, request.max_steps);
   Output output;
   output.open("");
   if (request.format == "json")
-    output.stream() << io::summary_json(*loaded.mechanism, summary, loaded.file.source);
+    output.stream() << io::summary_json(*mechanism, summary, loaded.file.source);
   else
-    io::write_summary_text(output.stream(), *loaded.mechanism, summary, command.model);
+    io::write_summary_text(output.stream(), *mechanism, summary, command.model);
   if (!output.finish()) return kBadUsage;
   if (summary.assembly_error) return fail(command.model, io::located(loaded.file.source, *summary.assembly_error));
   if (summary.law_error) return fail(command.model, io::located(loaded.file.source, *summary.law_error));
@@ -45,7 +46,7 @@ Command add_check_command(CLI::App& app) {
   // check runs no sweep of the model's size (its law and cylinder checks sample a bounded
   // number of poses), but it says whether the sweep would be refused, at max_steps.
   command->flags = std::make_unique<RequestFlags>(*sub, request::CheckRequest::rules());
-  command->flags->add({"format", "max_steps"});
+  command->flags->add({"format", "at_limits", "cycles", "max_steps"});
   return {sub, [command] { return run_check(*command); }};
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "nbar/kinematics/continuation.hpp"
+#include "nbar/kinematics/limits.hpp"
 
 namespace nbar {
 
@@ -68,8 +69,12 @@ Sample pose_at(const Mechanism& mech, double value, int order, const RunControl&
   const double target =
       path.time_law ? value : value * (m.drivers[0].is_angular() ? m.units.angle_scale : m.units.length_scale);
   check_pose_value(m, path, value, target);
-  const double end = path.parameter_of(target);
   control.checkpoint("pose", 0, 1);
+  // A rocking driver takes most values more than once, on different branches: the pose is where
+  // its motion first has the value, after the turns it passes on the way.
+  if (m.drivers.size() == 1 && m.drivers[0].at_limits == AtLimits::Reverse && !path.time_law)
+    if (const RockingPlan plan = plan_rocking(mech); plan.reverses) return rocking_sample_at(mech, plan, target, order);
+  const double end = path.parameter_of(target);
 
   // From the sweep's start, along the sweep's own path: the branch the sweep takes.
   State state(mech);

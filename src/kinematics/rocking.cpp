@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <utility>
 
 #include "constraints.hpp"
 #include "path_follower.hpp"
@@ -269,6 +271,72 @@ Warning turn_sample_warning(const Mechanism& mech, const std::vector<long>& step
 }
 
 }  // namespace
+
+namespace {
+
+// The input's travel from the start to where the rocking motion first has `value`: along the legs
+// between the turns of one circuit, then on past the last turn when the path does not close (it
+// turns fully there and goes on). Empty when the motion never has that value.
+std::optional<double> travel_to_value(const RockingPlan& plan, double value) {
+  double at = plan.start, travelled = 0.0;
+  int way = plan.direction;
+  for (const PathSingularity& turn : plan.turns) {
+    const double end = turn.driver_values[0];
+    if (way * (value - at) >= 0.0 && way * (end - value) >= 0.0) return travelled + std::abs(value - at);
+    travelled += std::abs(end - at);
+    at = end;
+    way = -way;
+  }
+  if (way * (value - at) >= 0.0 && (!plan.closed || way * (plan.start - value) >= 0.0))
+    return travelled + std::abs(value - at);
+  return std::nullopt;
+}
+
+// The smallest and largest values the rocking input takes in one circuit.
+std::pair<double, double> rocking_range(const RockingPlan& plan) {
+  double low = plan.start, high = plan.start;
+  for (const PathSingularity& turn : plan.turns) {
+    low = std::min(low, turn.driver_values[0]);
+    high = std::max(high, turn.driver_values[0]);
+  }
+  return {low, high};
+}
+
+}  // namespace
+
+Sample rocking_sample_at(const Mechanism& mech, const RockingPlan& plan, double value, int order) {
+  const std::optional<double> travel = travel_to_value(plan, value);
+  if (!travel) {
+    const auto [low, high] = rocking_range(plan);
+    throw Error(ErrorKind::StoppedAtLimit,
+                "driver '" + mech.model().drivers[0].name + "' rocks between " + value_text(mech, low) + " and " +
+                    value_text(mech, high) + " (`at_limits: reverse`): it never reaches " + value_text(mech, value),
+                the_driver());
+  }
+  const Schedule schedule(plan);
+  const Schedule::Place place = schedule.at(*travel);
+  const int terms = order + 1;
+  Series series(terms, value);
+  if (terms > 1) series[1] = place.way * plan.speed;
+  const std::vector<DriverState> drivers{make_driver_state(series, mech.model().drivers[0].is_angular())};
+  State state(mech);
+  state.drivers = drivers;
+  Sample sample;
+  if (place.on_turn) {
+    take_turn_sample(mech, schedule.turn(place.leg - 1), state, terms, sample);
+  } else {
+    Walk walk(mech, plan);
+    state.q = walk.pose(place).head(state.q.size());
+    if (!solve_position(mech, state).converged)
+      cannot_rock(mech, "no pose at " + value_text(mech, value) + " (too close to a limit)");
+    compute_series(mech, state, drivers, terms, sample.taylor);
+    sample.residual = state.residual;
+  }
+  sample.time = *travel / plan.speed;
+  sample.driver_values.assign(1, value);
+  sample.reversals = static_cast<int>(place.leg);
+  return sample;
+}
 
 bool sweep_rocks(const Model& m) { return m.drivers.size() == 1 && m.drivers[0].at_limits == AtLimits::Reverse; }
 

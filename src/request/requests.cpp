@@ -136,7 +136,8 @@ int solved_step(const SweepResult& sweep, int step) {
 
 const std::vector<OptionRule>& CheckRequest::rules() {
   static const std::vector<OptionRule> rules = joined({
-      {choice("format", "text (default) or json (the same summary as data, in the model's units)", {"text", "json"})},
+      {choice("format", "text (default) or json (the same summary as data, in the model's units)", {"text", "json"}),
+       rule_of(SweepSize::rules(), "at_limits"), rule_of(SweepSize::rules(), "cycles")},
       SweepSize::rules(false),
   });
   return rules;
@@ -145,9 +146,18 @@ const std::vector<OptionRule>& CheckRequest::rules() {
 CheckRequest CheckRequest::read(const Options& options) {
   CheckRequest r;
   r.format = read_text(options, rule_of(rules(), "format")).value_or("text");
-  r.max_steps =
-      static_cast<int>(read_integer(options, rule_of(rules(), "max_steps")).value_or(kDefaultMaxSweepSamples));
+  const SweepSize sweep = SweepSize::read(options);  // the same rules for at_limits and cycles
+  r.max_steps = sweep.max_steps;
+  r.at_limits = sweep.at_limits;
+  r.cycles = sweep.cycles;
   return r;
+}
+
+std::shared_ptr<const Mechanism> CheckRequest::mechanism(std::shared_ptr<const Mechanism> loaded) const {
+  AnalysisOptions options;
+  options.at_limits = at_limits;
+  options.cycles = cycles;
+  return with_sweep_options(std::move(loaded), options);
 }
 
 // ----------------------------------------------------------------------------------- solve

@@ -321,6 +321,36 @@ TEST(Cli, APoseTheSweepDoesNotReachIsSaidWhereTheStoppedSweepIs) {
   }
 }
 
+// check --at-limits reverse describes the sweep solve --at-limits reverse runs: the double-rocker
+// driven to 120 deg would stop at its toggle (99.7151 deg, |O4 A| = coupler + output); rocking, it
+// turns back there and at -99.7151 deg, and check warns of no stop. draw --at on a rocking path
+// draws where the motion first has the value, and says the range it rocks over for one it never has.
+TEST(Cli, CheckAndDrawOnARockingPath) {
+  std::ifstream in(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-double-rocker.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_NE(text.find("to: 80,"), std::string::npos);
+  text.replace(text.find("to: 80,"), 7, "to: 120,");
+  TempModel m(text);
+  const CliRun stopping = nbar("check " + m.path());
+  EXPECT_EQ(stopping.code, 0) << stopping.err;
+  EXPECT_THAT(stopping.out, HasSubstr("the sweep will stop at 99.7151 deg"));
+  const CliRun rocking = nbar("check " + m.path() + " --at-limits reverse --cycles 2");
+  EXPECT_EQ(rocking.code, 0) << rocking.err;
+  EXPECT_THAT(rocking.out, HasSubstr("Rocking: driver 'input' turns back at 99.7151 deg (coupler and output in line "
+                                     "at B (four-bar loop input-coupler-output)), then -99.7151 deg"));
+  EXPECT_THAT(rocking.out, Not(HasSubstr("will stop")));
+  EXPECT_EQ(nbar("check " + m.path() + " --at-limits bounce").code, 2);
+
+  const std::string example = std::string(NBAR_EXAMPLES_DIR) + "/fourbar-double-rocker-rocking.yaml";
+  const CliRun drawn = nbar("draw " + example + " --at -90 -o " + m.dir() + "/at.svg");
+  EXPECT_EQ(drawn.code, 0) << drawn.err;
+  const CliRun never = nbar("draw " + example + " --at 120 -o " + m.dir() + "/never.svg");
+  EXPECT_EQ(never.code, 4);
+  EXPECT_THAT(never.err, HasSubstr("driver 'input' rocks between -99.7151 deg and 99.7151 deg (`at_limits: reverse`): "
+                                   "it never reaches 120 deg"));
+  EXPECT_EQ(nbar("draw " + example + " --step 150 -o " + m.dir() + "/step.svg").code, 0);
+}
+
 TEST(Cli, DriverOutsideItsRangeStopsTheSweepEarlyAndKeepsTheRows) {
   // Crank 80, coupler ~174, rocker 150, frame 200: s + l = 280 < 324: a crank-rocker, but
   // driving the rocker through a full turn is impossible.

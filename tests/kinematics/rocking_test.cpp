@@ -278,6 +278,51 @@ TEST(Rocking, ASimpleLimitIsNotTakenForAChangePoint) {
     for (const PathSingularity& s : reach->singularities) EXPECT_EQ(s.kind, PathSingularityKind::Limit);
 }
 
+// draw --at on a rocking path: the pose where the motion first has the value. The double-rocker
+// starts at -80 deg going up, turns at +L (99.7151 deg) onto its other branch (B across the line
+// O4-A from where it was drawn), comes down to -L and back onto the drawn branch. So 0 deg is first
+// met on the drawn branch, -90 deg on the way down, on the other one; 120 deg never.
+TEST(Rocking, APoseAtAValueIsWhereTheMotionFirstHasIt) {
+  const Mechanism mech(rocking(example("fourbar-double-rocker.yaml"), 1));
+  const Model& m = mech.model();
+  const RockingPlan plan = plan_rocking(mech);
+  const double toggle = double_rocker_toggle(m), speed = 30 * kDeg;
+  const auto at = [&](const char* name) { return m.points[m.find_point(name)].position; };
+  const Eigen::Vector2d o2 = at("O2"), o4 = at("O4");
+  const double input = (at("A") - o2).norm(), coupler = (at("B") - at("A")).norm(), output = (at("B") - o4).norm();
+  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const double drawn_side = cross(o4 - at("A"), at("B") - at("A")) > 0 ? 1.0 : -1.0;
+  // B at distance `coupler` from A and `output` from O4, on `side` of A -> O4 (as drawn: drawn_side).
+  const auto pin_b = [&](double theta, double side) {
+    const Eigen::Vector2d a = o2 + input * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+    const Eigen::Vector2d u = o4 - a;
+    const double d = u.norm(), along = (coupler * coupler - output * output + d * d) / (2 * d);
+    const double across = std::sqrt(coupler * coupler - along * along);
+    return Eigen::Vector2d(a + along * u / d + side * across * Eigen::Vector2d(-u.y(), u.x()) / d);
+  };
+  const int b = m.find_point("B");
+  const Sample up = rocking_sample_at(mech, plan, 0.0, 1);
+  EXPECT_EQ(up.reversals, 0);
+  EXPECT_NEAR(up.time, 80 * kDeg / speed, 1e-12);
+  EXPECT_LT((mech.point_position(b, up.positions()) - pin_b(0.0, drawn_side)).norm(), 1e-12);
+  EXPECT_NEAR(up.derivative(1)[mech.column_of(m.find_point("A")) + 1], input * speed, 1e-12);  // A.vy, rising
+  const Sample down = rocking_sample_at(mech, plan, -90 * kDeg, 1);
+  EXPECT_EQ(down.reversals, 1);
+  EXPECT_NEAR(down.time, ((toggle + 80 * kDeg) + (toggle + 90 * kDeg)) / speed, 1e-9);
+  EXPECT_LT((mech.point_position(b, down.positions()) - pin_b(-90 * kDeg, -drawn_side)).norm(), 1e-12);
+  // Coming down the input turns clockwise: A, straight below O2 at -90 deg, moves towards -x.
+  EXPECT_NEAR(down.derivative(1)[mech.column_of(m.find_point("A"))], -input * speed, 1e-12);
+  try {
+    rocking_sample_at(mech, plan, 120 * kDeg, 0);
+    ADD_FAILURE() << "a pose past the limits";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::StoppedAtLimit);
+    EXPECT_EQ(e.message(),
+              "driver 'input' rocks between -99.7151 deg and 99.7151 deg (`at_limits: reverse`): it never "
+              "reaches 120 deg");
+  }
+}
+
 using io::test_support::fails_at;
 
 const std::string kDoubleRocker =

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -97,9 +98,10 @@ TEST(RequestOptions, TheCommandLineSpellsEveryKeyItNames) {
 TEST(RequestOptions, AnUnknownKeyIsNamedWithTheOnesTheRequestTakes) {
   Options o = with("frobnicate", 1LL);
   const std::string m = message([&] { check_known(o, CheckRequest::rules(), "check"); });
-  EXPECT_EQ(m, "frobnicate: unknown option of check; it takes: format, max_steps");
+  EXPECT_EQ(m, "frobnicate: unknown option of check; it takes: format, at_limits, cycles, max_steps");
   // The web server's rule is the same, with the documents it reads itself (the model's text).
-  EXPECT_EQ(known_keys(CheckRequest::rules(), {"model"}), (std::vector<std::string>{"model", "format", "max_steps"}));
+  EXPECT_EQ(known_keys(CheckRequest::rules(), {"model"}),
+            (std::vector<std::string>{"model", "format", "at_limits", "cycles", "max_steps"}));
   EXPECT_EQ(unknown_key({"format", "model"}, CheckRequest::rules(), {"model"}), std::nullopt);
   EXPECT_EQ(unknown_key({"format", "modle", "stepz"}, CheckRequest::rules(), {"model"}), "modle");
   EXPECT_EQ(unknown_key({"model"}, CheckRequest::rules()), "model");
@@ -276,6 +278,47 @@ TEST_F(RequestsOnAModel, ThePoseDrawnIsTheSampleAskedForOrWhereTheDriverIsAt) {
   EXPECT_NEAR(by_step[static_cast<std::size_t>(a)].y(), 0.080, 1e-12);
   Options past = with("step", 13LL);
   EXPECT_EQ(message([&] { DrawRequest::read(past).pose(analysis); }), "step 13 is not a solved step (0 to 12)");
+}
+
+// On a rocking path (`at_limits: reverse`) the double-rocker turns at its toggle +L onto its other
+// branch, comes down to -L and turns back onto the drawn one. A step past the first turn draws that
+// sample's pose, on the other branch (B across the line A-O4 from where it was drawn); `at` a value
+// first met on the way down draws the same pose. The reference is the four-bar's closed form.
+TEST(RequestsOnARockingPath, TheStepDrawnPastATurnIsThatSamplesPose) {
+  const io::LoadedModel file =
+      io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-double-rocker-rocking.yaml");
+  const auto mechanism = std::make_shared<const Mechanism>(file.model);
+  const Model& m = file.model;
+  const auto at = [&](const char* name) { return m.points[static_cast<std::size_t>(m.find_point(name))].position; };
+  const Eigen::Vector2d o2 = at("O2"), o4 = at("O4");
+  const double input = (at("A") - o2).norm(), coupler = (at("B") - at("A")).norm(), output = (at("B") - o4).norm();
+  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const double drawn_side = cross(o4 - at("A"), at("B") - at("A")) > 0 ? 1.0 : -1.0;
+  const auto pin_b = [&](double theta, double side) {
+    const Eigen::Vector2d a = o2 + input * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+    const Eigen::Vector2d u = o4 - a;
+    const double d = u.norm(), along = (coupler * coupler - output * output + d * d) / (2 * d);
+    const double across = std::sqrt(coupler * coupler - along * along);
+    return Eigen::Vector2d(a + along * u / d + side * across * Eigen::Vector2d(-u.y(), u.x()) / d);
+  };
+  Options o;
+  o.set("step", 92LL);  // 201 samples over two cycles of 4 x 99.7151 deg: -87.5 deg on the way down
+  const DrawRequest by_step = DrawRequest::read(o);
+  const Analysis analysis = analyse(mechanism, by_step.analysis_options(m));
+  const Sample& sample = analysis.sweep.samples[92];
+  ASSERT_EQ(sample.reversals, 1);
+  const double theta = sample.driver_values[0];
+  ASSERT_LT(theta, -80 * std::numbers::pi / 180);
+  const auto b = static_cast<std::size_t>(m.find_point("B"));
+  const DrawRequest::Pose drawn = by_step.pose(analysis);
+  EXPECT_EQ(drawn.step, 92);
+  EXPECT_LT((drawn.points[b] - pin_b(theta, -drawn_side)).norm(), 1e-12);
+  EXPECT_GT((drawn.points[b] - pin_b(theta, drawn_side)).norm(), 0.01);  // not the drawn branch's pose
+  Options value;
+  value.set("at", theta * 180 / std::numbers::pi);
+  const DrawRequest::Pose by_value = DrawRequest::read(value).pose(analysis);
+  ASSERT_EQ(by_value.points.size(), drawn.points.size());
+  for (std::size_t i = 0; i < drawn.points.size(); ++i) EXPECT_LT((by_value.points[i] - drawn.points[i]).norm(), 1e-12);
 }
 
 TEST_F(RequestsOnAModel, ThePlatesLieAsDrawnOrWhereTheDriverIsAt) {

@@ -13,7 +13,9 @@ namespace nbar {
 // models driven by time laws; the other drivers move as the sweep moves them. The Sample holds
 // Taylor coefficients to `order`. Throws Error: BadInput for a model without drivers,
 // StoppedAtLimit when a limit (toggle) position lies between the start and `value`,
-// CannotAssemble when the start cannot be assembled.
+// CannotAssemble when the start cannot be assembled. A rocking driver (`at_limits: reverse`) takes
+// most values more than once: the pose is where its motion first has `value` (rocking_sample_at),
+// and a value outside the range it rocks over is StoppedAtLimit.
 Sample pose_at(const Mechanism& mechanism, double value, int order = 0, const RunControl& control = {});
 
 }  // namespace nbar

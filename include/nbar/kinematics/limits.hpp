@@ -106,4 +106,11 @@ struct RockingPlan {
 // the path cannot be followed; what assembling the start throws.
 RockingPlan plan_rocking(const Mechanism& mech, double work_budget = kDefaultLimitSearchWork);
 
+// The pose where the rocking motion of `plan` (one that reverses) first has the driver at `value`
+// (SI), reached from the start as its sweep reaches it (the turns passed on the way decide the
+// branch), with its Taylor coefficients to `order` in time (the input moving the way it moves
+// then; none but the pose on a turn) and the time it gets there. Throws Error(StoppedAtLimit) at
+// the driver when the motion never has that value (outside the range it rocks over).
+Sample rocking_sample_at(const Mechanism& mech, const RockingPlan& plan, double value, int order);
+
 }  // namespace nbar

@@ -78,9 +78,15 @@ void use_finite_elements(AnalysisOptions& analysis, const Model& model, std::opt
 struct CheckRequest {
   std::string format = "text";  // text or json
   int max_steps = kDefaultMaxSweepSamples;
+  // As solve's: the first driver's `at_limits` and `cycles` over the model's, so that check
+  // describes the sweep solve would run (a rocking driver's turns, no warning of a stop).
+  std::optional<AtLimits> at_limits;
+  std::optional<int> cycles;
 
   static const std::vector<OptionRule>& rules();
   static CheckRequest read(const Options& options);
+  // The mechanism with those overrides (the same one when there are none).
+  std::shared_ptr<const Mechanism> mechanism(std::shared_ptr<const Mechanism> loaded) const;
 };
 
 // nbar solve: the sweep's columns.
