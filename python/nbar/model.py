@@ -579,15 +579,19 @@ def solve_many(models: Iterable[Model], steps: Optional[int] = None, order: int 
     threads = _whole("threads", threads, minimum=0)
     if threads is not None and threads > 1024:
         raise BadInputError(f"threads must be a whole number from 0 to 1024, not {threads}")
-    plans = [m._plan(patterns, order, dynamics) for m in models]
-    orders = {p for p in plans}
-    # One batch per (order, dynamics) the columns need: usually one.
+    # Each model's (order, dynamics) and whether it estimates the Jacobian's condition (`cond`), as
+    # its own solve() would.
+    plans = []
+    for m in models:
+        o, d = m._plan(patterns, order, dynamics)
+        plans.append((o, d, bool(patterns) and m._c.needs(patterns, o, d)["condition"]))
+    # One batch per plan the columns need: usually one.
     analyses: List[Any] = [None] * len(models)
-    for plan in orders:
+    for plan in set(plans):
         picked = [i for i, p in enumerate(plans) if p == plan]
         done = _nbar.analyse_many([models[i]._c for i in picked], steps=_whole("steps", steps), order=plan[0],
                                   dynamics=plan[1], max_steps=_whole("max_steps", max_steps, minimum=1),
-                                  threads=threads or 0, timeout=_real("timeout", timeout))
+                                  threads=threads or 0, timeout=_real("timeout", timeout), condition=plan[2])
         for i, a in zip(picked, done):
             analyses[i] = a
     results = []

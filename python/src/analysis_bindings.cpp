@@ -89,11 +89,14 @@ std::shared_ptr<PyAnalysis> run_analysis(std::shared_ptr<PyModel> model, std::op
 // is the model's Analysis, or the nbar.errors instance its analysis raised (placed in its own
 // file), so that the caller can say which model failed. A timeout or Ctrl-C cancels them all.
 py::list run_many(const std::vector<std::shared_ptr<PyModel>>& models, std::optional<int> steps, int order,
-                  bool dynamics, std::optional<int> max_steps, unsigned threads, std::optional<double> timeout) {
+                  bool dynamics, std::optional<int> max_steps, unsigned threads, std::optional<double> timeout,
+                  bool condition) {
   std::vector<AnalysisOptions> options;
-  for (const auto& model : models)
+  for (const auto& model : models) {
     options.push_back(analysis_options(model->mechanism->model(), steps, order, dynamics, false, 200, max_steps, "beam",
                                        std::nullopt, std::nullopt, std::nullopt));
+    options.back().condition = condition;  // the `cond` column's estimates, as solve() asks them
+  }
   RunControl control;
   std::vector<std::shared_ptr<PyAnalysis>> done(models.size());
   std::vector<std::optional<Error>> failed(models.size());
@@ -482,7 +485,7 @@ void bind_analysis(py::module_& m) {
 
   m.def("analyse_many", &run_many, py::arg("models"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
         py::arg("dynamics") = false, py::arg("max_steps") = std::nullopt, py::arg("threads") = 0u,
-        py::arg("timeout") = std::nullopt);
+        py::arg("timeout") = std::nullopt, py::arg("condition") = false);
   m.def("analyse", &run_analysis, py::arg("model"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
         py::arg("dynamics") = false, py::arg("stress") = false, py::arg("sections") = 200,
         py::arg("timeout") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("method") = "beam",

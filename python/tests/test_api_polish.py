@@ -122,6 +122,33 @@ def test_solve_many_equals_solving_one_by_one(examples):
     assert picked[0].columns == models[0].solve(steps=19, columns="*.x", order=3).columns
 
 
+def test_solve_many_gives_cond_as_solve_does(examples):
+    # `cond` comes from each sample's factorisation: the batch asks for it as solve() does (it was
+    # nan there), and the numbers are the one-by-one solve's, bit for bit.
+    models = [nbar.load(examples / name) for name in
+              ["fourbar-crank-rocker.yaml", "watt-sixbar-limited.yaml", "slider-crank-inclined.yaml"]]
+    batch = nbar.solve_many(models, steps=37, columns="cond,A.x", threads=2)
+    for model, result in zip(models, batch):
+        alone = model.solve(steps=37, columns="cond,A.x")
+        assert result.columns == alone.columns and "cond" in result.columns
+        assert np.all(np.isfinite(result["cond"])) and np.all(result["cond"] >= 1.0)
+        assert np.array_equal(result["cond"], alone["cond"])
+    # The crank-rocker's Jacobian is worst conditioned where its transmission angle is farthest from
+    # 90 deg: not a constant column.
+    assert batch[0]["cond"].max() > 1.5 * batch[0]["cond"].min()
+
+
+def test_cond_from_an_analysis_run_without_it_is_the_same_number(examples):
+    # An analysis run for other columns, asked for `cond` afterwards: the estimate is made from each
+    # sample's pose (it was nan), and agrees with the sweep's own.
+    m = nbar.load(examples / "fourbar-double-rocker.yaml")
+    columns, _, arrays = m.analyse(steps=41).table(["cond"])
+    assert columns == ["cond"]
+    alone = m.solve(steps=41, columns="cond")
+    assert np.all(np.isfinite(arrays[0])) and np.all(arrays[0] >= 1.0)
+    assert np.allclose(arrays[0], alone["cond"], rtol=1e-12, atol=0)  # measured: equal to 4e-16
+
+
 def test_solve_many_says_which_model_failed(examples, toggle_stop):
     models = [nbar.load(examples / "fourbar-crank-rocker.yaml"), toggle_stop]
     with pytest.raises(nbar.LimitError) as caught:

@@ -4,10 +4,15 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 
+#include "constraints.hpp"
 #include "nbar/model/diagnostics.hpp"
+#include "rocking.hpp"
+#include "workspace.hpp"
 
 namespace nbar {
 
@@ -155,7 +160,23 @@ void KinematicRows::fill_on_request(const Sample& s, double* out, std::ptrdiff_t
       const double mu = transmission_angle(loop, positions_);
       put(std::min(mu, std::numbers::pi - mu) / mech_.model().units.angle_scale);
     }
-  if (extra_.condition) put(1.0 / s.reciprocal_condition);
+  if (extra_.condition) put(condition_of(s));
+}
+
+// The sweep's own estimate when it made one (SweepOptions::condition); else the same estimate from
+// the sample's pose, factorised here, so that rows built from a sweep run without it (an analysis
+// asked for other columns first) give the number and not a nan.
+double KinematicRows::condition_of(const Sample& s) {
+  if (!std::isnan(s.reciprocal_condition)) return 1.0 / s.reciprocal_condition;
+  if (!s.positions().allFinite()) return std::numeric_limits<double>::quiet_NaN();
+  if (!condition_state_) condition_state_ = std::make_shared<State>(mech_);
+  State& state = *condition_state_;
+  state.q = s.positions();
+  state.drivers.resize(s.driver_values.size());
+  for (std::size_t d = 0; d < s.driver_values.size(); ++d)
+    state.drivers[d] = make_driver_state(Series(1, s.driver_values[d]), mech_.model().drivers[d].is_angular());
+  if (!factorize_jacobian(mech_, state)) return HUGE_VAL;  // singular: a limit or a change point
+  return 1.0 / sample_condition(state);
 }
 
 ResultTable make_table(const Mechanism& mech, const SweepResult& sweep, const ColumnsOnRequest& extra) {

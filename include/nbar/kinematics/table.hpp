@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -70,6 +71,7 @@ class KinematicRows {
  private:
   std::size_t own_column_count() const;
   void fill_on_request(const Sample& sample, double* out, std::ptrdiff_t stride);
+  double condition_of(const Sample& sample);
 
   const Mechanism& mech_;
   int order_;
@@ -82,6 +84,7 @@ class KinematicRows {
   bool rocks_ = false;  // a rocking driver: a column counts the reversals
   std::vector<Eigen::Vector2d> positions_;
   Eigen::VectorXd q_;
+  std::shared_ptr<State> condition_state_;  // for `cond` of samples the sweep did not estimate
 };
 
 // The same columns stored column by column, every column contiguous (samples x columns,
