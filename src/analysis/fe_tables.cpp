@@ -9,7 +9,9 @@
 #include <optional>
 #include <sstream>
 
+#include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/kinematics/continuation.hpp"
+#include "nbar/kinematics/sweep.hpp"
 #include "nbar/model/units.hpp"
 #include "nbar/stress/field_query.hpp"
 #include "stress/t6_element.hpp"
@@ -124,6 +126,24 @@ std::string title(const FieldAtStep& f, const std::string& what, QueryFrame fram
          ", in " + frame_words(f.model, f.body, frame);
 }
 
+// The inverse of the drawing's placement of a plate (render/drawing.cpp): a point of the body seen
+// at `posed` when its frame's points are at `points`, back where the model draws it (m).
+Eigen::Vector2d drawn_from_posed(const Model& m, int body, const std::vector<Eigen::Vector2d>& points,
+                                 const Eigen::Vector2d& posed) {
+  const BodyFrame f = body_frame(m, body);
+  const Eigen::Vector2d from_origin = posed - points[f.origin];
+  const Eigen::Vector2d& origin_drawn = m.points[f.origin].position;
+  if (f.from < 0) return origin_drawn + from_origin;
+  const Eigen::Vector2d direction = points[f.to] - points[f.from];
+  const Eigen::Vector2d direction_drawn = m.points[f.to].position - m.points[f.from].position;
+  const double ll = direction.squaredNorm();
+  if (ll == 0.0) return origin_drawn + from_origin;
+  // Components along the posed direction and its left normal, laid on the drawn ones.
+  const double along = from_origin.dot(direction) / ll;
+  const double across = (direction.x() * from_origin.y() - direction.y() * from_origin.x()) / ll;
+  return origin_drawn + along * direction_drawn + across * Eigen::Vector2d(-direction_drawn.y(), direction_drawn.x());
+}
+
 }  // namespace
 
 std::string step_description(const Analysis& analysis, int step) {
@@ -183,6 +203,26 @@ ResultTable fe_points_table(const Analysis& analysis, int body, int step, const 
   zero_numerical_noise(t);
   t.title = title(f, "at " + std::to_string(points.size()) + (points.size() == 1 ? " point" : " points"), frame);
   return t;
+}
+
+std::optional<PlateUnder> plate_under(const Analysis& analysis, int step, const Eigen::Vector2d& posed) {
+  const Model& m = analysis.model();
+  if (!analysis.stress || !analysis.stress->fe)
+    throw Error(ErrorKind::BadInput, "the stresses anywhere in a link need the finite-element stress stage");
+  const int steps = static_cast<int>(analysis.sweep.samples.size());
+  if (step < 0 || step >= steps)
+    throw Error(ErrorKind::BadInput,
+                "step " + std::to_string(step) + " is not a solved step (0 to " + std::to_string(steps - 1) + ")");
+  const std::vector<Eigen::Vector2d> points =
+      point_positions(*analysis.mechanism, analysis.sweep.samples[step].positions());
+  const LinkFe& fe = *analysis.stress->fe;
+  for (int body = static_cast<int>(m.bodies.size()) - 1; body >= 0; --body) {
+    if (!fe.analysed(body)) continue;
+    const Eigen::Vector2d drawn = drawn_from_posed(m, body, points, posed);
+    if (fe::MeshLocator(fe.plate(body).mesh()).locate(drawn))
+      return PlateUnder{body, query_point(m, body, QueryFrame::model, drawn)};
+  }
+  return std::nullopt;
 }
 
 ResultTable fe_line_table(const Analysis& analysis, int body, int step, const Eigen::Vector2d& from,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "nbar/analysis/columns.hpp"
@@ -495,6 +496,54 @@ ResultTable StressRequest::field_query_table(const Analysis& analysis, int body,
     if (e.kind() != ErrorKind::BadInput) throw;
     throw OptionError(key, literal(e.message()));
   }
+}
+
+// ------------------------------------------------------------------------------ stress probe
+
+const std::vector<OptionRule>& StressProbeRequest::rules() {
+  static const std::vector<OptionRule> rules = joined({
+      SweepSize::rules(),
+      {integer_rule("step", "the step drawn (default 0)", 0, kIntMax),
+       number_rule("x", "the point in the drawing at {step}: x, in the model's coordinates and length unit",
+                   -std::numeric_limits<double>::max(), std::numeric_limits<double>::max()),
+       number_rule("y", "the point in the drawing at {step}: y, in the model's coordinates and length unit",
+                   -std::numeric_limits<double>::max(), std::numeric_limits<double>::max()),
+       positive_number("mesh_size",
+                       "element edge far from holes and corners, in the model's length unit (default: a "
+                       "twentieth of each plate's size; finer around holes), as the stress map's")},
+  });
+  return rules;
+}
+
+StressProbeRequest StressProbeRequest::read(const Options& options) {
+  StressProbeRequest r;
+  r.sweep = SweepSize::read(options);
+  r.mesh_size = read_number(options, rule_of(rules(), "mesh_size"));
+  r.step = optional_int(read_integer(options, rule_of(rules(), "step"))).value_or(0);
+  for (int k = 0; k < 2; ++k) {
+    const char* key = k == 0 ? "x" : "y";
+    const std::optional<double> v = read_number(options, rule_of(rules(), key));
+    if (!v) throw OptionError(key, "is needed: the point of the drawing to read the stress at, {x} and {y}");
+    r.at[k] = *v;
+  }
+  return r;
+}
+
+AnalysisOptions StressProbeRequest::analysis_options(const Model& model) const {
+  AnalysisOptions options;
+  sweep.apply(options);
+  options.stress = true;
+  use_finite_elements(options, model, mesh_size);
+  return options;
+}
+
+StressProbeRequest::Answer StressProbeRequest::probe(const Analysis& analysis) const {
+  const Model& model = analysis.model();
+  Answer answer;
+  answer.link = plate_under(analysis, solved_step(analysis.sweep, step), at * model.units.length_scale);
+  if (answer.link)
+    answer.stresses = fe_points_table(analysis, answer.link->body, step, {answer.link->at}, QueryFrame::model);
+  return answer;
 }
 
 // ------------------------------------------------------------------------------------ draw

@@ -5,9 +5,13 @@
 
 #include "nbar/render/animation.hpp"
 
+#include <Eigen/Core>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <regex>
 
 namespace nbar::web_test {
@@ -211,6 +215,95 @@ TEST(WebApi, FiniteElementFieldQueriesAnswerAsTheCommandLine) {
       post("/api/stress", with_model(plates, {{"steps", 1}, {"method", "fe"}, {"export_mesh", "/tmp"}}));
   EXPECT_EQ(files.status, 400);
   EXPECT_NE(files.body.find("\"option\": \"export_mesh\""), std::string::npos) << files.body;
+}
+
+// A table of the command line's JSON (`--format json`): the value of `column` in its one row.
+double cli_table_value(const std::string& json, const std::string& column) {
+  const Json t = Json::parse(json);
+  const auto& columns = t.at("columns");
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (columns[c] == column) return t.at("rows").at(0).at(c).get<double>();
+  ADD_FAILURE() << "no column " << column << " in " << json;
+  return std::nan("");
+}
+
+std::string number_17(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+TEST(WebApi, StressProbeIsTheCommandLinesPointQueryOnTheLinkDrawnThere) {
+  const std::string plates = "examples/fourbar-ansys-plates.yaml";
+  const int step = 2;  // of 3: the crank turned from 60 to 0 deg, every link moved from where it is drawn
+  const ApiResponse solve = post("/api/solve", with_model(plates, {{"steps", 3}}));
+  ASSERT_EQ(solve.status, 200) << solve.body;
+  const Json s = Json::parse(solve.body);
+  auto posed = [&](const std::string& point) {
+    const auto& columns = s.at("columns");
+    const auto at = [&](const std::string& c) {
+      const auto i = std::find(columns.begin(), columns.end(), c) - columns.begin();
+      return s.at("rows").at(step).at(i).get<double>();
+    };
+    return Eigen::Vector2d(at(point + ".x"), at(point + ".y"));
+  };
+  // Model coordinates where the model draws its points (the file's).
+  const std::map<std::string, Eigen::Vector2d> drawn = {
+      {"O4", {2, 0}}, {"A", {0.5, 0.8660254038}}, {"B", {1.8623724357, 1.4936742197}}};
+  struct Case {
+    std::string link, from, to;
+    double along, left;  // of the link's axis from `from` to `to` (length units), to its left
+  };
+  for (const Case& c : {Case{"coupler", "A", "B", 0.5, 0.0}, Case{"rocker", "O4", "B", 0.3, 0.1},
+                        Case{"coupler", "A", "B", 0.02, -0.2}}) {
+    SCOPED_TRACE(c.link + " at " + std::to_string(c.along));
+    auto place = [&](const Eigen::Vector2d& p0, const Eigen::Vector2d& p1) {
+      const Eigen::Vector2d u = (p1 - p0).normalized();
+      return Eigen::Vector2d(p0 + c.along * (p1 - p0) + c.left * Eigen::Vector2d(-u.y(), u.x()));
+    };
+    const Eigen::Vector2d seen = place(posed(c.from), posed(c.to));
+    const ApiResponse r =
+        post("/api/stress/probe", with_model(plates, {{"steps", 3}, {"step", step}, {"x", seen.x()}, {"y", seen.y()}}));
+    ASSERT_EQ(r.status, 200) << r.body;
+    const Json probe = Json::parse(r.body);
+    ASSERT_EQ(probe.at("link"), c.link) << r.body;
+    // The same place on the link as the file draws it: the rigid motion undone.
+    const Eigen::Vector2d model_point = place(drawn.at(c.from), drawn.at(c.to));
+    EXPECT_NEAR(probe.at("model_x").get<double>(), model_point.x(), 1e-8);
+    EXPECT_NEAR(probe.at("model_y").get<double>(), model_point.y(), 1e-8);
+    const std::string at =
+        number_17(probe.at("model_x").get<double>()) + "," + number_17(probe.at("model_y").get<double>());
+    const cli_test::CliRun run = cli("stress " + plates + " --steps 3 --method fe --format json --section-profile " +
+                                     c.link + " --step " + std::to_string(step) + " --coordinates model --at=" + at);
+    ASSERT_EQ(run.code, 0) << run.out;
+    const double expected = cli_table_value(run.out, "von_mises");
+    EXPECT_GT(expected, 0.0);
+    EXPECT_NEAR(probe.at("von_mises").get<double>(), expected, 1e-9 * expected);
+    EXPECT_NEAR(probe.at("sigma_xx").get<double>(), cli_table_value(run.out, "sigma_xx"), 1e-9 * expected);
+    EXPECT_EQ(probe.at("units").at("stress"), "MPa");
+    EXPECT_EQ(probe.at("units").at("length"), "m");
+  }
+  // Off every plate: far away, and in the crank's pin hole at O2 (which never moves).
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{40, -40}, {0, 0}}) {
+    const ApiResponse off =
+        post("/api/stress/probe", with_model(plates, {{"steps", 3}, {"step", step}, {"x", x}, {"y", y}}));
+    ASSERT_EQ(off.status, 200) << off.body;
+    const Json j = Json::parse(off.body);
+    EXPECT_TRUE(j.at("link").is_null()) << off.body;
+    EXPECT_FALSE(j.contains("von_mises")) << off.body;
+  }
+  // Errors at their option, as the other requests give them.
+  const ApiResponse past =
+      post("/api/stress/probe", with_model(plates, {{"steps", 3}, {"step", 7}, {"x", 1}, {"y", 1}}));
+  EXPECT_EQ(past.status, 400);
+  EXPECT_EQ(error_of(past)["option"], "step") << past.body;
+  const ApiResponse no_y = post("/api/stress/probe", with_model(plates, {{"steps", 3}, {"x", 1}}));
+  EXPECT_EQ(no_y.status, 400);
+  EXPECT_EQ(error_of(no_y)["option"], "y") << no_y.body;
+  const ApiResponse unplated =
+      post("/api/stress/probe", with_model("examples/fourbar-crank-rocker.yaml", {{"x", 1}, {"y", 1}}));
+  EXPECT_EQ(unplated.status, 422) << unplated.body;
+  EXPECT_EQ(error_of(unplated)["kind"], "invalid_model");
 }
 
 TEST(WebApi, SynthesisIsNbarSynthFormatJson) {

@@ -68,7 +68,7 @@ TEST(WebErrors, EveryComputingEndpointRefusesBadJsonBadYamlAndOversizedBodies) {
   config.limits.max_body_bytes = 4096;
   const std::string broken_yaml = "name: broken\npoints:\n  A: [0, 0\n  B: [1, 1]\n";
   for (const std::string path :
-       {"/api/check", "/api/solve", "/api/stress", "/api/synth/five-point", "/api/synth/burmester",
+       {"/api/check", "/api/solve", "/api/stress", "/api/stress/probe", "/api/synth/five-point", "/api/synth/burmester",
         "/api/synth/function", "/api/render", "/api/report", "/api/explain"}) {
     SCOPED_TRACE(path);
     expect_error(call("POST", path, "{\"model\": \"points: {}\",", config), 400, "bad_json");

@@ -40,6 +40,7 @@ const std::map<std::string, Endpoint, std::less<>>& post_endpoints() {
       {"/api/check", &api_check},
       {"/api/solve", &api_solve},
       {"/api/stress", &api_stress},
+      {"/api/stress/probe", &api_stress_probe},
       {"/api/synth/five-point", &synth_five_point},
       {"/api/synth/burmester", &synth_burmester},
       {"/api/synth/function", &synth_function},

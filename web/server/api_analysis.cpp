@@ -65,6 +65,44 @@ ApiResponse api_stress(Job& job, const std::string& text) {
                 text_type(stress.format));
 }
 
+namespace {
+
+// {"step", "x", "y", "link"} and, on a link, "model_x", "model_y" (the point where the model draws
+// the link) and the stresses there by their column names; "units" for both.
+std::string stress_probe_json(const Analysis& analysis, const request::StressProbeRequest& probe,
+                              const request::StressProbeRequest::Answer& answer) {
+  const Model& model = analysis.model();
+  nlohmann::ordered_json j;
+  j["step"] = probe.step;
+  j["x"] = probe.at.x();
+  j["y"] = probe.at.y();
+  j["link"] = answer.link ? nlohmann::ordered_json(model.bodies[answer.link->body].name) : nlohmann::ordered_json();
+  if (answer.link) {
+    const ResultTable& t = answer.stresses;
+    for (std::size_t c = 0; c < t.columns.size(); ++c) {
+      const std::string key = t.columns[c] == "x" ? "model_x" : t.columns[c] == "y" ? "model_y" : t.columns[c];
+      j[key] = t.rows.at(0).at(c);
+    }
+  }
+  j["units"] = {{"length", model.units.length}, {"stress", "MPa"}, {"angle", model.units.angle}};
+  return io::json_text(j, 2) + "\n";
+}
+
+}  // namespace
+
+ApiResponse api_stress_probe(Job& job, const std::string& text) {
+  const RequestBody body(text, request::StressProbeRequest::rules(), {"model"});
+  // The model first: a broken model is told at its line, as every endpoint tells it, before the
+  // point it was to be read at is asked for.
+  load_model(job, body.text("model", true));
+  const auto probe = read_request<request::StressProbeRequest>(body, {"model"});
+  check_sweep_size(job, probe.sweep.steps);
+  AnalysisOptions options = probe.analysis_options(job.mechanism->model());
+  options.fe.max_nodes = job.limits.max_fe_nodes;
+  const Analysis analysis = run_analysis(job, options);
+  return answer(stress_probe_json(analysis, probe, probe.probe(analysis)));
+}
+
 ApiResponse api_report(Job& job, const std::string& text) {
   const RequestBody body(text, request::ReportRequest::rules(), {"model"});
   const auto report_request = read_request<request::ReportRequest>(body, {"model"});

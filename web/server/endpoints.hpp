@@ -14,6 +14,7 @@ namespace nbar::web {
 ApiResponse api_check(Job& job, const std::string& body);
 ApiResponse api_solve(Job& job, const std::string& body);
 ApiResponse api_stress(Job& job, const std::string& body);
+ApiResponse api_stress_probe(Job& job, const std::string& body);
 ApiResponse api_report(Job& job, const std::string& body);
 ApiResponse api_explain(Job& job, const std::string& body);
 // api_render.cpp: draw, animate, plot or plates, by the body's `kind`

@@ -56,6 +56,19 @@ ResultTable fe_hole_table(const Analysis& analysis, int body, int step, int hole
 // from the field.
 ResultTable fe_section_table(const Analysis& analysis, int body, int step, int sections);
 
+// The link seen at a point of the drawing: the plate drawn at `posed` (model coordinates, m) with
+// the mechanism at sample `step`, and where that point is on the link as the model draws it (model
+// coordinates in the model's length unit, as `fe_points_table` with QueryFrame::model takes it).
+// Each plate moves rigidly with its body's frame (its origin point and direction, as the drawing
+// places it). Links later in the model are drawn over earlier ones, so the last whose plate holds
+// the point is the one seen; nullopt when none does. Needs the finite-element stage (Error
+// BadInput otherwise, or for a step that was not solved).
+struct PlateUnder {
+  int body = -1;
+  Eigen::Vector2d at{0, 0};
+};
+std::optional<PlateUnder> plate_under(const Analysis& analysis, int step, const Eigen::Vector2d& posed);
+
 // "at step 3 (crank = 30 deg, t = 0.5 s)": a step of the sweep and its driver values, for titles.
 std::string step_description(const Analysis& analysis, int step);
 

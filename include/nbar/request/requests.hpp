@@ -23,6 +23,7 @@
 
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/analysis/explain.hpp"
+#include "nbar/analysis/fe_tables.hpp"
 #include "nbar/analysis/summary.hpp"
 #include "nbar/analysis/table_stream.hpp"
 #include "nbar/dynamics/forward_dynamics.hpp"
@@ -166,6 +167,28 @@ struct StressRequest {
   void read_field_query(const Options& options);
   ResultTable field_query_table(const Analysis& analysis, int body, int step) const;
   static void read_fe_mesh_options(const Options& options, StressRequest& r);
+};
+
+// The web app's stress map under the cursor: the finite-element von Mises stress at a point of
+// the drawing at one step, on whichever link's plate is drawn there (nbar/analysis/fe_tables.hpp,
+// plate_under), with that point where the model draws the link: the same number as `nbar stress
+// --method fe --section-profile LINK --step K --at X,Y --coordinates model`.
+struct StressProbeRequest {
+  SweepSize sweep;
+  std::optional<double> mesh_size;  // the model's length unit
+  int step = 0;
+  Eigen::Vector2d at{0, 0};  // the drawing at `step`: model coordinates, the model's length unit
+
+  static const std::vector<OptionRule>& rules();
+  static StressProbeRequest read(const Options& options);
+  AnalysisOptions analysis_options(const Model& model) const;
+  // What is under the point: no link, or the link, the point on it (model coordinates) and its
+  // stresses there (fe_points_table's one row, model coordinates).
+  struct Answer {
+    std::optional<PlateUnder> link;
+    ResultTable stresses;
+  };
+  Answer probe(const Analysis& analysis) const;
 };
 
 // A solved step of the sweep, checked: OptionError at `step` ("step 999 is not a solved step
