@@ -20,6 +20,7 @@ import './i18n-motion.js';
 import './i18n-files.js';
 import { initSynthesis } from './synthesis.js';
 import { initOverlays } from './overlays.js';
+import { initStressMap } from './stress-map.js';
 import { initExplain } from './explain.js';
 import { initOffline } from './offline.js';
 import { startEngine, serverOnly } from './engine.js';
@@ -750,7 +751,7 @@ async function start() {
   $('#ycol').addEventListener('change', (e) => { state.ycol = e.target.value; buildPlot(); buildTable(); setFrame(state.frame); });
   $('#table').addEventListener('click', (e) => { const tr = e.target.closest('tr[data-i]'); if (tr) { play(false); setFrame(+tr.dataset.i); } });
   const app = { state, api, backendReady, setText, analyse, showTab, esc, fmt, status, play, setFrame, unitOf, col, model: () => editor.state.doc.toString() };
-  initSynthesis(app); initOverlays(app); initExplain(app); initOffline(app);
+  initSynthesis(app); initOverlays(app); initStressMap(app); initExplain(app); initOffline(app);
   $('#share').addEventListener('click', share);
   $('#share-box button').addEventListener('click', () => { $('#share-box').hidden = true; });
   for (const b of [$('#retry'), $('#stale button')]) b.addEventListener('click', () => { clearTimeout(timer); analyse(); });

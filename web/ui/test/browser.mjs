@@ -13,14 +13,17 @@ import * as motion from './motion.mjs';
 import * as files from './files.mjs';
 import * as draw from './draw.mjs';
 import * as review from './review.mjs';
+import * as femap from './femap.mjs';
 
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const out = arg('--out', 'build/web-screenshots');
 // `--only draw`: only the comparison of the drawing with nbar draw's, at both viewports;
-// `--only review`: only review.mjs's checks (status, share, stale results, retries), at both.
+// `--only review`: only review.mjs's checks (status, share, stale results, retries), at both;
+// `--only femap`: only femap.mjs's (the FE stress map's read-out against the CLI), at both.
 const only = arg('--only', '');
 const onlyDraw = only === 'draw';
 const onlyReview = only === 'review';
+const onlyFemap = only === 'femap';
 
 const browser = await launchChromium();
 mkdirSync(out, { recursive: true });
@@ -163,6 +166,13 @@ async function synthesis(page, mobile, tag) {
 async function reviewAt(tag, viewport, mobile) {
   const { context, page } = await open(tag, viewport, mobile, { serviceWorkers: 'block' });
   await review.run(page, { mobile, tag, shot, click, openExample, retype });
+  await context.close();
+}
+
+// The FE stress map's read-out (femap.mjs) at a laptop's and a phone's viewport.
+async function femapAt(tag, viewport, mobile) {
+  const { context, page } = await open(tag, viewport, mobile);
+  await femap.run(page, { mobile, tag, base, nbar, shot, click, openExample });
   await context.close();
 }
 
@@ -317,11 +327,16 @@ try {
   if (onlyReview) {
     await reviewAt('desktop', { width: 1280, height: 800 }, false);
     await reviewAt('phone', { width: 390, height: 844 }, true);
+  } else if (onlyFemap) {
+    await femapAt('laptop', { width: 1366, height: 768 }, false);
+    await femapAt('phone', { width: 390, height: 844 }, true);
   } else {
     await desktop();
     await reviewAt('desktop', { width: 1280, height: 800 }, false);
     await phone();
     await reviewAt('phone', { width: 390, height: 844 }, true);
+    await femapAt('laptop', { width: 1366, height: 768 }, false);
+    await femapAt('phone', { width: 390, height: 844 }, true);
   }
   assert.deepEqual(errors, [], 'no errors in the page');
   console.log(`OK: screenshots in ${out}`);
