@@ -15,6 +15,9 @@ const SHELL = ['@SHELL@'];
 const CACHE = `nbar-app-${VERSION}`;
 const KEPT_POSTS = ['/api/check', '/api/solve', '/api/stress', '/api/explain', '/api/synth/'];
 const MAX_POSTS = 60;
+// Asked afresh at every move of the pointer over the stress map: kept, they would push the
+// model's own answers out of the MAX_POSTS kept.
+const PASSING_POSTS = ['/api/stress/probe'];
 
 // Each file on its own: one that is missing (no engine in nbar serve's app) keeps none out.
 self.addEventListener('install', (event) => {
@@ -72,10 +75,14 @@ async function networkFirst(request) {
   }
 }
 
-// Of the pictures, only the drawing's scene is kept (not the downloads: GIF, MP4, reports).
+// Of the pictures, only the drawing's scene is kept (not the downloads: GIF, MP4, reports, nor
+// the stress map's scene at each pose shown).
 async function sceneOrPicture(request) {
   let scene = false;
-  try { scene = JSON.parse(await request.clone().text()).format === 'scene'; } catch { /* not JSON */ }
+  try {
+    const body = JSON.parse(await request.clone().text());
+    scene = body.format === 'scene' && !body.stress;
+  } catch { /* not JSON */ }
   return scene ? networkFirst(request) : fetch(request).catch(offlineAnswer);
 }
 
@@ -83,7 +90,8 @@ self.addEventListener('fetch', (event) => {
   const { request } = event;
   const url = new URL(request.url);
   if (url.origin !== self.location.origin) return;
-  if (request.method === 'GET' || (request.method === 'POST' && KEPT_POSTS.some((p) => url.pathname.startsWith(p)))) {
+  const passing = request.method === 'POST' && PASSING_POSTS.includes(url.pathname);
+  if (request.method === 'GET' || (!passing && request.method === 'POST' && KEPT_POSTS.some((p) => url.pathname.startsWith(p)))) {
     event.respondWith(networkFirst(request));
   } else if (request.method === 'POST' && url.pathname === '/api/render') {
     event.respondWith(sceneOrPicture(request));
