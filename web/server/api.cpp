@@ -124,6 +124,12 @@ ApiResponse body_too_large_response(const std::string& message, std::size_t max_
   return error_answer(ApiErrorKind::BodyTooLarge, message, Json{{"limit", "body_bytes"}, {"max", max_body_bytes}});
 }
 
+ApiResponse held_answers_response(const std::string& message, std::size_t max_bytes, int retry_after_seconds) {
+  ApiResponse r = error_answer(ApiErrorKind::TooManyJobs, message, Json{{"limit", "held_answers"}, {"max", max_bytes}});
+  r.headers.emplace_back("Retry-After", std::to_string(retry_after_seconds));
+  return r;
+}
+
 ApiResponse error_response(int status, const std::string& message) {
   const ApiErrorKind kind = status == 413   ? ApiErrorKind::BodyTooLarge
                             : status == 404 ? ApiErrorKind::NotFound

@@ -132,5 +132,8 @@ ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config);
 ApiResponse error_response(int status, const std::string& message);
 // The 413 of a body over `max_body_bytes` as handle_api answers it, with the limit's name and value.
 ApiResponse body_too_large_response(const std::string& message, std::size_t max_body_bytes);
+// The 503 of an answer refused because the server already holds `max_bytes` of answers that
+// their clients have not read (limit "held_answers"), with Retry-After.
+ApiResponse held_answers_response(const std::string& message, std::size_t max_bytes, int retry_after_seconds);
 
 }  // namespace nbar::web

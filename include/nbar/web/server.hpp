@@ -2,6 +2,7 @@
 // cpp-httplib. This layer only moves bytes: every answer comes from handle_api.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <string>
@@ -25,6 +26,12 @@ struct ServeOptions {
   double request_read_seconds = 10;
   int max_connections = 4096;  // at most the descriptors the process may open, less 64
   int max_connections_per_address = 256;
+  // Answers written to clients that do not read them: each is held in memory until it is sent
+  // or the write deadline (30 s) passes. Past these many bytes held in all, or from one client
+  // address, a further answer over 64 KiB is refused 503 (limit "held_answers") instead of held;
+  // a lone answer is never refused, whatever its size.
+  std::size_t max_held_answer_bytes = std::size_t{512} << 20;
+  std::size_t max_held_answer_bytes_per_address = std::size_t{192} << 20;
   Limits limits;
 };
 
