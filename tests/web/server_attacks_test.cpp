@@ -359,6 +359,9 @@ TEST_F(WebServerUnderAttack, AnswersHeldByClientsThatDoNotReadThemAreBounded) {
       const Json error = Json::parse(answer.substr(answer.find("\r\n\r\n") + 4))["error"];
       EXPECT_EQ(error["kind"], "too_many_jobs");
       EXPECT_EQ(error["limit"], "held_answers");
+      EXPECT_NE(error["message"].get<std::string>().find("at most 20 MiB in all, 10 MiB for one client address"),
+                std::string::npos)
+          << error["message"];
       EXPECT_NE(answer.find("Retry-After: 2"), std::string::npos);
     }
   }

@@ -362,7 +362,7 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
     if (!held->take(req.remote_addr, answer.body.size())) {
       answer = held_answers_response(
           fmt::format("the answer has {:.1f} MB and the server already holds answers not yet read by their clients "
-                      "(at most {} MB in all, {} MB for one client address); read them, or try again in a moment",
+                      "(at most {} MiB in all, {} MiB for one client address); read them, or try again in a moment",
                       answer.body.size() / 1e6, held->max_total() >> 20, held->max_per_address() >> 20),
           held->max_total(), config->retry_after_seconds);
     } else {
