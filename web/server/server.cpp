@@ -340,7 +340,8 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   });
   // The handlers answer every error themselves; what is left is httplib's own reading (memory
   // for a body, say): never a 500 with the exception's text in a header, as httplib would.
-  server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
+  server.set_exception_handler([](const httplib::Request& req, httplib::Response& res, std::exception_ptr error) {
+    without_brotli(req);
     bool out_of_memory = false;
     try {
       std::rethrow_exception(error);
@@ -380,7 +381,8 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   server.Options(everything, handler);
   // Statuses httplib sets itself (413 before reading, 400 for a malformed request line...):
   // the same JSON errors. Answers of handle_api already have their body.
-  server.set_error_handler([](const httplib::Request&, httplib::Response& res) {
+  server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+    without_brotli(req);  // a header line too long for httplib is answered before routing
     if (!res.body.empty()) return;
     answer_closes = true;  // what httplib could not read is not a request to go on from
     const std::string message = res.status == 413   ? "the body is too large for this server"
