@@ -2,8 +2,11 @@
 
 #include <Eigen/SVD>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -96,11 +99,16 @@ std::vector<Arrival> track_all(const CVector& from, const CVector& to, const CVe
   TrackSettings settings = given;
   settings.singular_condition = kSingularCondition;
   std::atomic<size_t> next{0};
-  std::atomic<bool> stopped{false};
+  std::atomic<bool> stopped{false}, out_of_time{false};
   auto worker = [&] {
     for (size_t i = next++; i < starts.size(); i = next++) {
       if (stopped || (options.stop && options.stop())) {
         stopped = true;
+        continue;
+      }
+      // Past the budget the paths not started are left untracked: what arrived is kept.
+      if (out_of_time || (options.out_of_time && options.out_of_time())) {
+        out_of_time = true;
         continue;
       }
       const TrackResult r = track_path(homotopy, f.from_affine(starts[i]), settings);
@@ -442,8 +450,16 @@ void add_linkages(const Reached& reached, const CVector& target, const std::arra
 
 }  // namespace
 
-NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, const NinePointOptions& options) {
+NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, const NinePointOptions& given) {
   check_points(points);
+  NinePointOptions options = given;
+  if (given.time_budget > 0 && !given.out_of_time) {
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                               std::chrono::duration<double>(std::min(given.time_budget, 1e9)));
+    options.out_of_time = [deadline] { return std::chrono::steady_clock::now() >= deadline; };
+  }
+  const auto spent = [&options] { return options.out_of_time && options.out_of_time(); };
   const CVector target = nine_point_parameters(points);
   const NinePointStart& start = nine_point_start();
   const CVector straight = CVector::Zero(target.size());
@@ -457,12 +473,12 @@ NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, c
   std::vector<Arrival> arrivals =
       track_all(start.parameters, target, straight, start.representatives, options, on_path);
   result.paths = total;
-  retrack_suspects(start, target, options, arrivals, result);
+  if (!spent()) retrack_suspects(start, target, options, arrivals, result);
   Reached reached;
   reached.merge(arrivals);
   result.method = "parameter homotopy from a stored generic instance (" + std::to_string(total) + " paths)";
 
-  if (reached.count() < total) {
+  if (reached.count() < total && !spent()) {
     const std::vector<CVector> members = other_members_of_failed(start, arrivals);
     reached.merge(track_all(start.parameters, target, straight, members, options));
     result.paths += static_cast<int>(members.size());
@@ -473,14 +489,14 @@ NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, c
   // reached. Some solutions of real tasks (moving pivots 1e5 to 1e9 spreads away) are reached
   // along some arcs only; an arc costs one path per orbit, a monodromy loop two.
   std::mt19937_64 rng(options.seed);
-  for (int arc = 0; arc < kBentArcs && reached.count() < total; ++arc) {
+  for (int arc = 0; arc < kBentArcs && reached.count() < total && !spent(); ++arc) {
     reached.merge(track_all(start.parameters, target, 0.5 * random_parameters(rng, parameter_scale(target)),
                             start.representatives, options));
     result.paths += total;
     result.method += arc == 0 ? ", again along a bent arc" : ", along another";
   }
   bool closed = false;
-  if (reached.count() < total) {
+  if (reached.count() < total && !spent()) {
     std::vector<CVector> representatives = reached.orbits.representatives;
     int paths = 0;
     closed = nine_point_monodromy(target, representatives, options, paths, result.monodromy_loops, total);
@@ -491,7 +507,11 @@ NinePointResult solve_nine_point(const std::array<Eigen::Vector2d, 9>& points, c
   }
   result.orbits = reached.count();
   result.complete = result.orbits == total && total == kNinePointOrbits;
-  if (result.complete)
+  result.budget_spent = !result.complete && spent();
+  if (result.budget_spent)
+    result.certificate = fmt::format("incomplete: {} of {} orbits when the run stopped at its time budget of {:g} s",
+                                     result.orbits, kNinePointOrbits, given.time_budget);
+  else if (result.complete)
     result.certificate = "complete: 1442 distinct orbits, as many as the stored instance has (closed under monodromy)";
   else if (result.orbits > kNinePointOrbits)
     result.certificate = "degenerate: " + std::to_string(result.orbits) + " orbits, more than the " +

@@ -124,6 +124,7 @@ Outcome nine_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
       run.control.token.cancel();
   };
   options.stop = [&run] { return run.control.token.cancelled(); };
+  options.time_budget = run.nine_point_budget;
   NinePointResult result;
   try {
     result = solve_nine_point(points, options);
@@ -151,6 +152,11 @@ Outcome nine_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
   if (result.failed_paths > 0)
     out.notes.push_back(fmt::format("{} of {} paths from the stored instance were tracked again", result.failed_paths,
                                     kNinePointOrbits));
+  if (result.budget_spent)
+    out.notes.push_back(
+        fmt::format("the solve stopped at its time budget of {:g} s (the paths not yet tracked were "
+                    "skipped): the designs listed are those found by then",
+                    options.time_budget));
   return out;
 }
 

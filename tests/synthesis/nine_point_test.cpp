@@ -89,6 +89,41 @@ TEST(NinePoint, AKnownFourBarAndItsCognatesComeBack) {
   EXPECT_EQ(matches, 1);
 }
 
+// A run past its time budget keeps what it found: the paths not yet tracked are skipped, no stage
+// after is run, and every linkage it lists still passes through the nine points. The budget is
+// counted in paths here (the callback that the time budget sets), so that the test is exact.
+TEST(NinePoint, ARunPastItsBudgetGivesWhatItFoundAndSaysSo) {
+  const CrankRocker linkage;
+  std::array<Vector2d, 9> points;
+  for (int k = 0; k < 9; ++k) points[k] = linkage.pose((10.0 + 40.0 * k) * M_PI / 180)[2];
+  NinePointOptions options;
+  options.threads = 1;
+  options.time_budget = 60;  // named in the certificate; the callback below decides
+  int asked = 0;
+  options.out_of_time = [&asked] { return ++asked > 400; };
+  const NinePointResult result = solve_nine_point(points, options);
+  EXPECT_TRUE(result.budget_spent);
+  EXPECT_FALSE(result.complete);
+  EXPECT_EQ(result.paths, kNinePointOrbits);  // the first stage only: nothing after it ran
+  EXPECT_GT(result.orbits, 300);              // 400 paths tracked, a few failing or repeating
+  EXPECT_LE(result.orbits, 400);
+  EXPECT_NE(result.certificate.find("incomplete: " + std::to_string(result.orbits) +
+                                    " of 1442 orbits when the run "
+                                    "stopped at its time budget of 60 s"),
+            std::string::npos)
+      << result.certificate;
+  std::vector<Target> targets;
+  for (const auto& p : points) targets.push_back({p, std::nullopt});
+  for (const NinePointLinkage& l : result.linkages) EXPECT_LT(l.residual, 1e-6);
+  // A budget already spent: nothing tracked, no error.
+  NinePointOptions none;
+  none.time_budget = 1e-12;
+  const NinePointResult empty = solve_nine_point(points, none);
+  EXPECT_TRUE(empty.budget_spent);
+  EXPECT_EQ(empty.orbits, 0);
+  EXPECT_TRUE(empty.linkages.empty());
+}
+
 // The stored instance was made by monodromy: 1442 orbits of six distinct solutions each
 // (8652 in all), every one a solution.
 TEST(NinePoint, StoredInstanceHas8652Solutions) {

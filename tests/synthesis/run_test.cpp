@@ -6,6 +6,9 @@
 
 #include <chrono>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "apps/cli_support.hpp"
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/io/synthesis_writer.hpp"
@@ -48,6 +51,21 @@ TEST(RunSynthesis, GivesTheDesignsTheCommandLinePrints) {
   io::SynthesisListing listing;
   listing.shown = shown;
   EXPECT_EQ(io::synthesis_json(task, outcome, listing), cli.out);
+}
+
+// A nine-point run stops at its own budget with the designs found by then and a note that says
+// so (the bundled task takes seconds; a budget of a microsecond leaves nothing to find).
+TEST(RunSynthesis, ANinePointRunPastItsBudgetSaysWhatItFound) {
+  const SynthesisTask task =
+      io::load_synthesis_task(std::string(NBAR_EXAMPLES_DIR) + "/synthesis/nine-point-crank-rocker.yaml");
+  SynthesisRunOptions options;
+  options.nine_point_budget = 1e-6;
+  const SynthesisOutcome outcome = run_synthesis(task, options);
+  EXPECT_TRUE(outcome.rows.empty());
+  const std::string notes = fmt::format("{}", fmt::join(outcome.notes, " | "));
+  EXPECT_NE(notes.find("0 of 1442 orbits"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("the solve stopped at its time budget of 1e-06 s"), std::string::npos) << notes;
+  EXPECT_EQ(SynthesisRunOptions{}.nine_point_budget, kDefaultNinePointBudget);
 }
 
 TEST(RunSynthesis, ShownRowsPutDefectFreeRealDesignsFirstAndObeyTop) {

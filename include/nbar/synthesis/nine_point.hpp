@@ -32,6 +32,9 @@ namespace nbar::synthesis {
 
 inline constexpr int kNinePointOrbits = 1442;     // generic number of cognate triples
 inline constexpr int kNinePointSolutions = 8652;  // of the isotropic system (6 per orbit)
+// What a nine-point run may take by default (s): a generic task takes 2 to 10 s here, a task whose
+// points lie nearly on a conic can take minutes and gives no finite answer anyway.
+inline constexpr double kDefaultNinePointBudget = 60.0;
 
 struct NinePointOptions {
   unsigned threads = 0;    // 0: every hardware thread
@@ -45,6 +48,12 @@ struct NinePointOptions {
   // When the parameter homotopy loses orbits for good, monodromy at the task recovers them: a
   // graph of three parameter nodes, run until closed or until max_loops rounds of its six edges.
   int max_loops = 40;
+  // Seconds the run may take (0: no limit). Past it no new path is started and the stages still
+  // to come are skipped: the result holds what was found so far, with budget_spent set (where a
+  // `stop` ends the run with Error(Cancelled) and nothing).
+  double time_budget = 0.0;
+  // Asked between paths, as `stop` is; solve_nine_point sets it from time_budget.
+  std::function<bool()> out_of_time;
 };
 
 // One real four-bar through the nine points and its two Roberts cognates (same coupler curve).
@@ -67,6 +76,7 @@ struct NinePointResult {
   // instance has (1442, closed under monodromy when it was made); the sentence says so or not.
   std::string certificate;
   bool complete = false;
+  bool budget_spent = false;  // stopped at options.time_budget: what was found by then
   std::string method;
   // Every orbit representative, affine solver coordinates in the solver's frame (for tests).
   std::vector<CVector> representatives;

@@ -11,6 +11,7 @@
 #include "nbar/model/run_control.hpp"
 #include "nbar/synthesis/burmester.hpp"
 #include "nbar/synthesis/fourbar_design.hpp"
+#include "nbar/synthesis/nine_point.hpp"
 #include "nbar/synthesis/task.hpp"
 
 namespace nbar::synthesis {
@@ -43,6 +44,9 @@ struct SynthesisRunOptions {
   // Cancellation, deadline and progress (stages "paths" and "checking"); on_progress may be
   // called from worker threads.
   RunControl control;
+  // What a nine-point solve may take (s; 0: no limit): past it, the designs found by then, with a
+  // note that says so (RunControl's deadline, by contrast, stops the run with nothing).
+  double nine_point_budget = kDefaultNinePointBudget;
 };
 
 // Throws Error: InvalidModel (at task.file and task.where) when the solver rejects the task's
