@@ -131,10 +131,14 @@ ApiResponse held_answers_response(const std::string& message, std::size_t max_by
 }
 
 ApiResponse error_response(int status, const std::string& message) {
+  // The front's refusals too: a client over its connections is told as a full server is (503
+  // too_many_jobs), a transfer coding it does not take as not implemented; only a defect is internal.
   const ApiErrorKind kind = status == 413   ? ApiErrorKind::BodyTooLarge
                             : status == 404 ? ApiErrorKind::NotFound
                             : status == 405 ? ApiErrorKind::MethodNotAllowed
                             : status < 500  ? ApiErrorKind::BadInput
+                            : status == 501 ? ApiErrorKind::NotImplemented
+                            : status == 503 ? ApiErrorKind::TooManyJobs
                                             : ApiErrorKind::Internal;
   ApiResponse r = error_answer(kind, message);
   r.status = status;
