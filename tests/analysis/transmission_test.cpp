@@ -20,6 +20,19 @@ double mu_closed_form(double frame, double crank, double coupler, double rocker,
   return std::acos((coupler * coupler + rocker * rocker - diagonal_squared) / (2 * coupler * rocker));
 }
 
+// A crank-rocker whose mu runs far past 90 deg: frame 100, crank 20, coupler 50, rocker 80 mm,
+// the crank swept once round in `steps` samples.
+std::string wide_crank_rocker(int steps) {
+  return "units: {length: mm, angle: deg}\n"
+         "points: {O2: [0, 0], O4: [100, 0], A: [20, 0], B: [35.625, 47.496]}\n"
+         "ground: [O2, O4]\n"
+         "bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n"
+         "lengths: {crank: 20, coupler: 50, rocker: 80}\n"
+         "drivers:\n  - {angle: crank, from: 0, to: 360}\n"
+         "sweep: {steps: " +
+         std::to_string(steps) + "}\n";
+}
+
 TEST(TransmissionExtremes, ACrankRockersExtremesAreWhereTheCrankLiesAlongTheFrame) {
   // examples/fourbar-crank-rocker.yaml: frame 200, crank 80, coupler 180, rocker 150 mm, the
   // crank swept 0 to 360 deg in 361 samples: the crank is along the frame at steps 0 and 180.
@@ -52,15 +65,7 @@ TEST(TransmissionExtremes, TheDesignValueCountsAnAngleBeyondNinetyDegreesFromThe
   // mu from 71.8 deg (crank at 0) to 133.4 deg (crank at 180 deg), which is 46.6 deg from a dead
   // point: nearer than the smallest mu.
   const double frame = 100, crank = 20, coupler = 50, rocker = 80;
-  const std::string text =
-      "units: {length: mm, angle: deg}\n"
-      "points: {O2: [0, 0], O4: [100, 0], A: [20, 0], B: [35.625, 47.496]}\n"
-      "ground: [O2, O4]\n"
-      "bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n"
-      "lengths: {crank: 20, coupler: 50, rocker: 80}\n"
-      "drivers:\n  - {angle: crank, from: 0, to: 360}\n"
-      "sweep: {steps: 361}\n";
-  const io::LoadedModel file = io::parse_model(text, "wide.yaml");
+  const io::LoadedModel file = io::parse_model(wide_crank_rocker(361), "wide.yaml");
   AnalysisOptions options;
   options.order = 0;
   const Analysis analysis = analyse(std::make_shared<const Mechanism>(file.model), options);
@@ -81,15 +86,7 @@ TEST(TransmissionExtremes, TheDesignValueCountsAnAngleBeyondNinetyDegreesFromThe
 // off it), and nothing else added by asking for it.
 TEST(TransmissionExtremes, TheDesignValueColumnIsTheAngleFromTheNearerDeadPoint) {
   const double frame = 100, crank = 20, coupler = 50, rocker = 80;
-  const std::string text =
-      "units: {length: mm, angle: deg}\n"
-      "points: {O2: [0, 0], O4: [100, 0], A: [20, 0], B: [35.625, 47.496]}\n"
-      "ground: [O2, O4]\n"
-      "bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}\n"
-      "lengths: {crank: 20, coupler: 50, rocker: 80}\n"
-      "drivers:\n  - {angle: crank, from: 0, to: 360}\n"
-      "sweep: {steps: 73}\n";
-  const auto mech = std::make_shared<const Mechanism>(io::parse_model(text, "wide.yaml").model);
+  const auto mech = std::make_shared<const Mechanism>(io::parse_model(wide_crank_rocker(73), "wide.yaml").model);
   AnalysisOptions options;
   options.order = 0;
   const Analysis analysis = analyse(mech, options);
