@@ -103,19 +103,16 @@ ColumnsOnRequest columns_on_request(const Mechanism& mech, const std::vector<std
   for (const std::string& p : patterns)
     if (!any_matches(ordinary, p)) open.push_back(p);
   if (open.empty()) return asked;
-  const ColumnsOnRequest every = every_column_on_request(mech);
-  for (const RidingPoint& point : every.points) {
-    const std::vector<std::string> names = names_on_request(mech, kMaxDerivativeOrder, {{point}, false, false});
-    if (std::any_of(open.begin(), open.end(), [&](const std::string& p) { return any_matches(names, p); }))
-      asked.points.push_back(point);
-  }
+  // Whether an open pattern names any of the columns `only` gives.
   const auto asks_for = [&](const ColumnsOnRequest& only) {
     const std::vector<std::string> names = names_on_request(mech, kMaxDerivativeOrder, only);
     return std::any_of(open.begin(), open.end(), [&](const std::string& p) { return any_matches(names, p); });
   };
+  const ColumnsOnRequest every = every_column_on_request(mech);
+  for (const RidingPoint& point : every.points)
+    if (asks_for({{point}, false, false})) asked.points.push_back(point);
   asked.design_transmission = every.design_transmission && asks_for({{}, true, false});
-  asked.condition =
-      std::any_of(open.begin(), open.end(), [](const std::string& p) { return column_matches(p, "cond"); });
+  asked.condition = asks_for({{}, false, true});
   return asked;
 }
 

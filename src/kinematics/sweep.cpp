@@ -469,7 +469,6 @@ SweepResult run_steady_sweep(const Mechanism& mech, const SweepOptions& options,
       else
         series_in_time(state.series, *rate, terms_out, s.taylor);
       s.residual = state.residual;
-
     } else {
       for (int d = 0; d < nd; ++d) now[d] = state.drivers[d].value.value();
       time_drivers(mech, now, plan.speed, plan.accel, terms_out, drivers_in_time);

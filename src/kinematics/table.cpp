@@ -45,6 +45,7 @@ KinematicRows::KinematicRows(const Mechanism& mech, int order, ColumnsOnRequest 
   previous_.assign(m.bodies.size(), 0.0);
   started_.assign(m.bodies.size(), false);
   positions_.resize(m.points.size());
+  mu_.resize(mech.four_bar_loops().size());
   rocks_ =
       std::any_of(m.drivers.begin(), m.drivers.end(), [](const Driver& d) { return d.at_limits == AtLimits::Reverse; });
 }
@@ -56,23 +57,21 @@ void KinematicRows::name_columns(std::vector<std::string>& columns, std::vector<
     columns.push_back(std::move(name));
     units.push_back(std::move(unit));
   };
+  auto add_point = [&](const std::string& name) {
+    for (int k = 0; k <= order_; ++k) {
+      add(name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
+      add(name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
+    }
+  };
   add("step", "");
   add("t", "s");
   for (const Driver& d : m.drivers) add(d.name, d.is_angular() ? u.angle : u.length);
   if (rocks_) add("reversals", "");
-  for (int p : shown_)
-    for (int k = 0; k <= order_; ++k) {
-      add(m.points[p].name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
-      add(m.points[p].name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
-    }
+  for (int p : shown_) add_point(m.points[p].name);
   for (int b : angled_)
     for (int k = 0; k <= order_; ++k) add(m.bodies[b].name + "." + kAngleName[k], per_time(u.angle, k));
   for (const FourBarLoop& loop : mech_.four_bar_loops()) add(loop.name + ".mu", u.angle);
-  for (const RidingPoint& p : extra_.points)
-    for (int k = 0; k <= order_; ++k) {
-      add(p.name + "." + kPointSuffix[k] + "x", per_time(u.length, k));
-      add(p.name + "." + kPointSuffix[k] + "y", per_time(u.length, k));
-    }
+  for (const RidingPoint& p : extra_.points) add_point(p.name);
   if (extra_.design_transmission)
     for (const FourBarLoop& loop : mech_.four_bar_loops()) add(loop.name + ".mu_design", u.angle);
   if (extra_.condition) add("cond", "");
@@ -134,7 +133,10 @@ void KinematicRows::fill(const Sample& s, double* out, std::ptrdiff_t stride) {
   if (!mech_.four_bar_loops().empty()) {
     q_ = s.taylor.col(0);
     for (std::size_t i = 0; i < positions_.size(); ++i) positions_[i] = mech_.point_position(static_cast<int>(i), q_);
-    for (const FourBarLoop& loop : mech_.four_bar_loops()) put(transmission_angle(loop, positions_) / u.angle_scale);
+    for (std::size_t l = 0; l < mu_.size(); ++l) {
+      mu_[l] = transmission_angle(mech_.four_bar_loops()[l], positions_);
+      put(mu_[l] / u.angle_scale);
+    }
   }
   fill_on_request(s, out + stride * j, stride);
 }
@@ -156,10 +158,7 @@ void KinematicRows::fill_on_request(const Sample& s, double* out, std::ptrdiff_t
     }
   }
   if (extra_.design_transmission)
-    for (const FourBarLoop& loop : mech_.four_bar_loops()) {
-      const double mu = transmission_angle(loop, positions_);
-      put(std::min(mu, std::numbers::pi - mu) / mech_.model().units.angle_scale);
-    }
+    for (const double mu : mu_) put(std::min(mu, std::numbers::pi - mu) / mech_.model().units.angle_scale);
   if (extra_.condition) put(condition_of(s));
 }
 

@@ -83,6 +83,7 @@ class KinematicRows {
   bool first_done_ = false;
   bool rocks_ = false;  // a rocking driver: a column counts the reversals
   std::vector<Eigen::Vector2d> positions_;
+  std::vector<double> mu_;  // each loop's transmission angle at the sample filled last, rad
   Eigen::VectorXd q_;
   std::shared_ptr<State> condition_state_;  // for `cond` of samples the sweep did not estimate
 };
