@@ -292,6 +292,29 @@ std::optional<double> travel_to_value(const RockingPlan& plan, double value) {
   return std::nullopt;
 }
 
+// The driver at `place`: its value, and its speed with the sign of the way the motion goes there.
+std::vector<DriverState> drivers_at(const Mechanism& mech, const RockingPlan& plan, const Schedule::Place& place,
+                                    int terms) {
+  Series series(terms, place.value);
+  if (terms > 1) series[1] = place.way * plan.speed;
+  return {make_driver_state(series, mech.model().drivers[0].is_angular())};
+}
+
+// The pose and motion at `place` into `sample`, with `state.drivers` set there: a turn's own, or the
+// walk's pose there solved. False when that pose does not solve (the caller says where).
+bool place_sample(const Mechanism& mech, const Schedule& schedule, Walk& walk, const Schedule::Place& place,
+                  State& state, int terms, Sample& sample) {
+  if (place.on_turn) {
+    take_turn_sample(mech, schedule.turn(place.leg - 1), state, terms, sample);
+    return true;
+  }
+  state.q = walk.pose(place).head(state.q.size());
+  if (!solve_position(mech, state).converged) return false;
+  compute_series(mech, state, state.drivers, terms, sample.taylor);
+  sample.residual = state.residual;
+  return true;
+}
+
 // The smallest and largest values the rocking input takes in one circuit.
 std::pair<double, double> rocking_range(const RockingPlan& plan) {
   double low = plan.start, high = plan.start;
@@ -316,22 +339,12 @@ Sample rocking_sample_at(const Mechanism& mech, const RockingPlan& plan, double 
   const Schedule schedule(plan);
   const Schedule::Place place = schedule.at(*travel);
   const int terms = order + 1;
-  Series series(terms, value);
-  if (terms > 1) series[1] = place.way * plan.speed;
-  const std::vector<DriverState> drivers{make_driver_state(series, mech.model().drivers[0].is_angular())};
   State state(mech);
-  state.drivers = drivers;
+  state.drivers = drivers_at(mech, plan, place, terms);
+  Walk walk(mech, plan);
   Sample sample;
-  if (place.on_turn) {
-    take_turn_sample(mech, schedule.turn(place.leg - 1), state, terms, sample);
-  } else {
-    Walk walk(mech, plan);
-    state.q = walk.pose(place).head(state.q.size());
-    if (!solve_position(mech, state).converged)
-      cannot_rock(mech, "no pose at " + value_text(mech, value) + " (too close to a limit)");
-    compute_series(mech, state, drivers, terms, sample.taylor);
-    sample.residual = state.residual;
-  }
+  if (!place_sample(mech, schedule, walk, place, state, terms, sample))
+    cannot_rock(mech, "no pose at " + value_text(mech, value) + " (too close to a limit)");
   sample.time = *travel / plan.speed;
   sample.driver_values.assign(1, value);
   sample.reversals = static_cast<int>(place.leg);
@@ -380,7 +393,6 @@ SweepResult run_rocking_sweep(const Mechanism& mech, const RockingPlan& plan, co
   const Schedule schedule(plan);
   Walk walk(mech, plan);
   State state(mech);
-  std::vector<DriverState> drivers(1);
   Sample streamed;
   long reversals = 0;
   std::vector<long> on_turns;  // the samples that lie on a turn
@@ -388,22 +400,15 @@ SweepResult run_rocking_sweep(const Mechanism& mech, const RockingPlan& plan, co
     if (i % 16 == 0) control.checkpoint("sweep", i, samples);
     const double s = samples > 1 ? travel * (static_cast<double>(i) / static_cast<double>(samples - 1)) : 0.0;
     const Schedule::Place place = schedule.at(s);
-    Series value(terms, place.value);
-    if (terms > 1) value[1] = place.way * plan.speed;
-    drivers[0] = make_driver_state(value, m.drivers[0].is_angular());
-    state.drivers = drivers;
+    state.drivers = drivers_at(mech, plan, place, terms);
     Sample& sample = sink ? streamed : result.samples.emplace_back();
+    if (!place_sample(mech, schedule, walk, place, state, terms, sample))
+      cannot_rock(mech, "no pose at " + value_text(mech, place.value) + " at step " + std::to_string(i) +
+                            " (a sample too close to a limit: ask for another number of steps)");
     if (place.on_turn) {
       on_turns.push_back(i);
-      take_turn_sample(mech, schedule.turn(place.leg - 1), state, terms, sample);
       if (options.condition) sample.reciprocal_condition = 0.0;  // a limit: Phi_q is singular there
     } else {
-      state.q = walk.pose(place).head(state.q.size());
-      if (!solve_position(mech, state).converged)
-        cannot_rock(mech, "no pose at " + value_text(mech, place.value) + " at step " + std::to_string(i) +
-                              " (a sample too close to a limit: ask for another number of steps)");
-      compute_series(mech, state, drivers, terms, sample.taylor);
-      sample.residual = state.residual;
       if (options.condition) sample.reciprocal_condition = sample_condition(state);
       if (!sample.taylor.allFinite())
         cannot_rock(mech, "its motion at step " + std::to_string(i) + " (" + value_text(mech, place.value) +
