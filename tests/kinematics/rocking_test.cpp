@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "../io/model_file_support.hpp"
+#include "four_bar_closed_form.hpp"
 #include "nbar/analysis/summary.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/kinematics/limits.hpp"
@@ -287,19 +288,9 @@ TEST(Rocking, APoseAtAValueIsWhereTheMotionFirstHasIt) {
   const Model& m = mech.model();
   const RockingPlan plan = plan_rocking(mech);
   const double toggle = double_rocker_toggle(m), speed = 30 * kDeg;
-  const auto at = [&](const char* name) { return m.points[m.find_point(name)].position; };
-  const Eigen::Vector2d o2 = at("O2"), o4 = at("O4");
-  const double input = (at("A") - o2).norm(), coupler = (at("B") - at("A")).norm(), output = (at("B") - o4).norm();
-  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
-  const double drawn_side = cross(o4 - at("A"), at("B") - at("A")) > 0 ? 1.0 : -1.0;
-  // B at distance `coupler` from A and `output` from O4, on `side` of A -> O4 (as drawn: drawn_side).
-  const auto pin_b = [&](double theta, double side) {
-    const Eigen::Vector2d a = o2 + input * Eigen::Vector2d(std::cos(theta), std::sin(theta));
-    const Eigen::Vector2d u = o4 - a;
-    const double d = u.norm(), along = (coupler * coupler - output * output + d * d) / (2 * d);
-    const double across = std::sqrt(coupler * coupler - along * along);
-    return Eigen::Vector2d(a + along * u / d + side * across * Eigen::Vector2d(-u.y(), u.x()) / d);
-  };
+  const test_support::FourBarClosedForm four_bar(m);
+  const double input = four_bar.input, drawn_side = four_bar.drawn_side;
+  const auto pin_b = [&](double theta, double side) { return four_bar.pin_b(theta, side); };
   const int b = m.find_point("B");
   const Sample up = rocking_sample_at(mech, plan, 0.0, 1);
   EXPECT_EQ(up.reversals, 0);

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "../kinematics/four_bar_closed_form.hpp"
 #include "nbar/io/dxf_writer.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/synthesis_task.hpp"
@@ -289,18 +290,9 @@ TEST(RequestsOnARockingPath, TheStepDrawnPastATurnIsThatSamplesPose) {
       io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-double-rocker-rocking.yaml");
   const auto mechanism = std::make_shared<const Mechanism>(file.model);
   const Model& m = file.model;
-  const auto at = [&](const char* name) { return m.points[static_cast<std::size_t>(m.find_point(name))].position; };
-  const Eigen::Vector2d o2 = at("O2"), o4 = at("O4");
-  const double input = (at("A") - o2).norm(), coupler = (at("B") - at("A")).norm(), output = (at("B") - o4).norm();
-  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
-  const double drawn_side = cross(o4 - at("A"), at("B") - at("A")) > 0 ? 1.0 : -1.0;
-  const auto pin_b = [&](double theta, double side) {
-    const Eigen::Vector2d a = o2 + input * Eigen::Vector2d(std::cos(theta), std::sin(theta));
-    const Eigen::Vector2d u = o4 - a;
-    const double d = u.norm(), along = (coupler * coupler - output * output + d * d) / (2 * d);
-    const double across = std::sqrt(coupler * coupler - along * along);
-    return Eigen::Vector2d(a + along * u / d + side * across * Eigen::Vector2d(-u.y(), u.x()) / d);
-  };
+  const test_support::FourBarClosedForm four_bar(m);
+  const double drawn_side = four_bar.drawn_side;
+  const auto pin_b = [&](double theta, double side) { return four_bar.pin_b(theta, side); };
   Options o;
   o.set("step", 92LL);  // 201 samples over two cycles of 4 x 99.7151 deg: -87.5 deg on the way down
   const DrawRequest by_step = DrawRequest::read(o);
