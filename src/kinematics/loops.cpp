@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "model/triangle.hpp"
 #include "nbar/model/units.hpp"
 
 namespace nbar {
@@ -212,12 +213,9 @@ InputLimits input_limits(double frame, double input, double coupler, double outp
   InputLimits r;
   r.from = r.to = at;
   const double a = input, d = frame;
-  // |alpha| (the input from the frame line) where the diagonal has length f: acos of the law
-  // of cosines, 0 when f is below the shortest diagonal and pi above the longest.
-  const auto alpha_at = [&](double f) {
-    const double k = (a * a + d * d - f * f) / (2.0 * a * d);
-    return k >= 1.0 ? 0.0 : k <= -1.0 ? kPi : std::acos(k);
-  };
+  // |alpha| (the input from the frame line) where the diagonal has length f: 0 when f is below
+  // the shortest diagonal and pi above the longest.
+  const auto alpha_at = [&](double f) { return angle_opposite(f, a, d); };
   const double lo = alpha_at(std::abs(coupler - output));  // below: the diagonal is too short
   const double hi = alpha_at(coupler + output);            // above: too long
   if (lo <= 0.0 && hi >= kPi) {
@@ -282,9 +280,7 @@ std::string loop_closure_failure(const Model& m, const std::vector<FourBarLoop>&
 }
 
 TransmissionOverTurn transmission_over_full_turn(double frame, double input, double coupler, double output) {
-  const auto mu_at = [&](double f) {
-    return std::acos(std::clamp((coupler * coupler + output * output - f * f) / (2.0 * coupler * output), -1.0, 1.0));
-  };
+  const auto mu_at = [&](double f) { return angle_opposite(f, coupler, output); };
   TransmissionOverTurn t;
   t.min = mu_at(std::abs(frame - input));
   t.max = mu_at(frame + input);
@@ -295,8 +291,9 @@ TransmissionOverTurn transmission_over_full_turn(double frame, double input, dou
 double transmission_angle(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p) {
   const Eigen::Vector2d coupler = p[loop.a] - p[loop.b];
   const Eigen::Vector2d output = p[loop.o4] - p[loop.b];
-  const double c = coupler.dot(output) / (coupler.norm() * output.norm());
-  return std::acos(std::clamp(c, -1.0, 1.0));
+  // atan2 rather than the acos of the cosine, which loses half the digits where the angle nears 0
+  // or pi (a toggle, a change point): there the cross product still holds them all.
+  return std::atan2(std::abs(cross(coupler, output)), coupler.dot(output));
 }
 
 int branch_sign(const FourBarLoop& loop, const std::vector<Eigen::Vector2d>& p) {

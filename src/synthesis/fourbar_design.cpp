@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "kinematics/workspace.hpp"
+#include "model/triangle.hpp"
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/sweep.hpp"
@@ -68,9 +69,9 @@ struct FourBar {
     size = std::max({a, b, c, d, (p0 - a0).norm()});
     // |A - O4|^2 = a^2 + d^2 - 2ad cos(theta - frame_angle) reaches (b + c)^2 or (b - c)^2.
     for (double fold : {b + c, std::abs(b - c)}) {
-      const double k = (a * a + d * d - fold * fold) / (2.0 * a * d);
-      if (!(std::abs(k) < 1.0)) continue;  // never reached, only touched (a change point), or degenerate
-      const double alpha = std::acos(k);
+      // never reached, only touched (a change point), or degenerate
+      if (!(fold > std::abs(a - d) && fold < a + d)) continue;
+      const double alpha = angle_opposite(fold, a, d);
       toggles.push_back(wrap_positive(frame_angle + alpha));
       toggles.push_back(wrap_positive(frame_angle - alpha));
     }
@@ -90,8 +91,7 @@ struct FourBar {
     const Vector2d diagonal = o4 - pose.a;
     const double f = diagonal.norm();
     if (f > b + c || f < std::abs(b - c) || f == 0.0) return std::nullopt;
-    const double cos_alpha = std::clamp((b * b + f * f - c * c) / (2.0 * b * f), -1.0, 1.0);
-    pose.b = pose.a + b * rotate(diagonal / f, sigma * std::acos(cos_alpha));
+    pose.b = pose.a + b * rotate(diagonal / f, sigma * angle_opposite(c, b, f));
     pose.rotation = angle_of(pose.b - pose.a) - coupler_angle0;
     pose.p = pose.a + rotate(p0 - a0, pose.rotation);
     return pose;
@@ -100,8 +100,8 @@ struct FourBar {
   // min(mu, pi - mu) at input angle theta, mu being the angle between coupler and output.
   double transmission(double theta) const {
     const double f2 = a * a + d * d - 2.0 * a * d * std::cos(theta - frame_angle);
-    const double cos_mu = (b * b + c * c - f2) / (2.0 * b * c);
-    return std::acos(std::min(1.0, std::abs(cos_mu)));
+    const double mu = angle_opposite(std::sqrt(std::max(0.0, f2)), b, c);
+    return std::min(mu, std::numbers::pi - mu);
   }
   // Its minimum over the input angles lo..hi (lo <= hi): |cos mu| grows with the distance of
   // |A - O4| from its middle value, so the extremes are at the ends or where the input lies
