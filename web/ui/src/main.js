@@ -22,7 +22,7 @@ import { initSynthesis } from './synthesis.js';
 import { initOverlays } from './overlays.js';
 import { initStressMap } from './stress-map.js';
 import { initExplain } from './explain.js';
-import { initOffline } from './offline.js';
+import { initOffline, serverFetch, whenServerBack } from './offline.js';
 import { startEngine, serverOnly } from './engine.js';
 import { initJobBar } from './job-bar.js';
 import { pngFromSvg, gifFromScene } from './pictures.js';
@@ -44,7 +44,7 @@ const backendReady = new Promise((resolve) => { backend = resolve; });
 // that a newer one cancels it (engine.js); options.label is shown while it runs.
 async function send(path, init, options) {
   const where = await backendReady;
-  if (where.mode === 'server') return fetch(path, init);
+  if (where.mode === 'server') return serverFetch(path, init);
   if (where.mode === 'none') {
     const e = new Error(where.reason);
     e.info = { kind: 'no_engine', message: where.reason };
@@ -88,6 +88,8 @@ function status(text, bad = false, working = false) {
 // trying again as it is. Anything else is the model's or the request's fault, and the same
 // request would fail the same way.
 function retryable(e) { return e.status === 429 || e.status === 499 || e.status === 503 || e.status === undefined; }
+// No answer from the server, or the service worker's word that there is none (offline.js).
+function unreached(e) { return e.info?.kind === 'offline'; }
 
 // After a failed analysis the drawing, plot and table still show the last model that worked:
 // they are dimmed and labelled "not updated" with the reason (and Retry when the server was
@@ -236,6 +238,8 @@ async function analyse() {
     const where = e.info?.line ? t('errorAt', e.info.line, e.info.column ?? 1) : '';
     status(`${t('failed')}: ${where}${e.message}`, true);
     showStale(e);
+    // For want of the server: analysed again by itself when it answers, unless edited since.
+    if (unreached(e)) whenServerBack(() => { if (seq === state.seq) analyse(); });
     document.dispatchEvent(new CustomEvent('nbar:analysed', { detail: { error: e.info ?? { message: e.message } } }));
   } finally {
     // The text on screen is analysed and drawn (tests wait for this rather than for a title,
@@ -522,7 +526,7 @@ async function loadGallery() {
     b.dataset.template = e.name;
     b.title = e.description || '';
     b.textContent = e.title || e.name;
-    b.addEventListener('click', () => { $('#new-menu').open = false; openExample(e.name).then(() => showTab('editor')); });
+    b.addEventListener('click', () => { $('#new-menu').open = false; openExample(e.name).then((ok) => ok && showTab('editor')); });
     return b;
   }));
   $('#gallery').replaceChildren(...models.map((e) => {
@@ -537,12 +541,22 @@ async function loadGallery() {
   return examples;
 }
 
+// True when it opened; otherwise the status says why (and, for want of the server, it opens by
+// itself when the server answers again), so no "Loading…" is left spinning.
 async function openExample(name) {
   status(t('loading'), false, true);
-  const text = await api(`/api/examples/${encodeURIComponent(name)}`, undefined, 'text');
+  let text;
+  try {
+    text = await api(`/api/examples/${encodeURIComponent(name)}`, undefined, 'text');
+  } catch (e) {
+    status(`${t('failed')}: ${e.message}`, true);
+    if (unreached(e)) whenServerBack(() => openExample(name));
+    return false;
+  }
   for (const b of document.querySelectorAll('[data-example]')) b.classList.toggle('current', b.dataset.example === name);
   state.current = name;
   await setText(text);
+  return true;
 }
 
 // ------------------------------------------------------------------------------ opening files
@@ -767,7 +781,11 @@ async function start() {
   showResultTab('plot');
   $('#drawing').innerHTML = `<div class="empty">${esc(t('nothing'))}</div>`;
 
-  await loadGallery().catch((e) => status(e.message, true));
+  const galleryFailed = (e) => {
+    status(e.message, true);
+    if (unreached(e)) whenServerBack(() => loadGallery().catch(galleryFailed));
+  };
+  await loadGallery().catch(galleryFailed);
   api('/api/examples/five-point-crank-rocker', undefined, 'text').then((txt) => { $('#task').value = txt; }).catch(() => {});
   const m = /^#m=(.+)$/.exec(location.hash);
   let opened = false;
@@ -775,7 +793,7 @@ async function start() {
     try { await setText(await decodeModel(m[1])); opened = true; showTab('editor'); } catch { /* a bad link: the default */ }
   }
   // With no engine and no server, the first model cannot open: the status says why.
-  if (!opened) await openExample('fourbar-crank-rocker').catch((e) => status(e.message, true));
+  if (!opened) await openExample('fourbar-crank-rocker');
   document.body.dataset.ready = '1';
 }
 

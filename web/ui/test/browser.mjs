@@ -42,9 +42,10 @@ async function open(name, viewport, mobile, options = {}) {
   });
   const page = await context.newPage();
   page.on('pageerror', (e) => errors.push(`${name}: ${e.message}`));
-  // The API's 4xx answers (the model errors the test makes) are logged by Chromium: not errors.
+  // The API's 4xx answers (the model errors the test makes) and the refused connections of a
+  // server made to vanish (review.mjs) are logged by Chromium: not errors.
   page.on('console', (m) => {
-    if (m.type() === 'error' && !/Failed to load resource: .* (422|503)/.test(m.text())) errors.push(`${name}: console: ${m.text()}`);
+    if (m.type() === 'error' && !/Failed to load resource: (.* (422|503)|net::ERR_CONNECTION_REFUSED)/.test(m.text())) errors.push(`${name}: console: ${m.text()}`);
   });
   page.setDefaultTimeout(20000);
   await page.goto(base);

@@ -180,6 +180,43 @@ async function landscape(page, ctx) {
 }
 
 // ctx: {mobile, tag, shot, click, openExample, retype}.
+// The server gone while the network is up (navigator.onLine stays true): the header says Offline
+// from the failed requests themselves; a gallery click says it failed at once rather than leave
+// "Loading…" spinning; and when the server answers again, the edit is analysed and the example
+// opened by themselves, without Retry.
+async function serverGone(page, ctx) {
+  const { mobile, click } = ctx;
+  await ctx.openExample(page, mobile, 'fourbar-crank-rocker');
+  await click(page, mobile, '[data-tab="editor"]');
+  await page.route('**/api/**', (route) => route.abort('connectionrefused'));
+  await ctx.retype(page, mobile, 'O4: [200, 0]', '200', '205');
+  await page.waitForSelector('#offline:not([hidden])', { timeout: 5000 });
+  assert.equal(await page.evaluate(() => navigator.onLine), true, 'the browser itself is online');
+  await page.waitForSelector('#stale:not([hidden])');
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await ctx.shot(page, `${ctx.tag}-r7-server-gone`);
+  await click(page, mobile, '[data-tab="gallery"]');
+  const started = Date.now();
+  await click(page, mobile, '[data-example="five-bar"]');
+  await page.waitForFunction(() => /^Failed: /.test(document.querySelector('#status').textContent) &&
+    !document.querySelector('#status').classList.contains('working'), null, { timeout: 5000 });
+  assert.ok(Date.now() - started < 5000, 'no spinner left running');
+  // Back: the example asked for opens by itself (the probe asks /api/health every 3 s).
+  await page.unroute('**/api/**');
+  await page.waitForSelector('#offline', { state: 'hidden', timeout: 10000 });
+  await page.waitForFunction(() => /^Five-bar/.test(document.querySelector('#model-name').textContent) &&
+    !document.body.dataset.busy && document.querySelector('#stale').hidden, null, { timeout: 10000 });
+  // Gone during an edit only: the edit is analysed by itself once the server is back.
+  await click(page, mobile, '[data-tab="editor"]');
+  await page.route('**/api/**', (route) => route.abort('connectionrefused'));
+  await ctx.retype(page, mobile, 'name: "Five-bar linkage', '(2 DOF)', '(two)');
+  await page.waitForSelector('#stale:not([hidden])');
+  await page.unroute('**/api/**');
+  await page.waitForSelector('#stale', { state: 'hidden', timeout: 10000 });
+  assert.ok(await page.locator('#offline').isHidden());
+  assert.match(await page.locator('#model-name').textContent(), /\(two\)/);
+}
+
 export async function run(page, ctx) {
   await staleAndRetry(page, ctx);
   await busyMark(page, ctx);
@@ -187,5 +224,6 @@ export async function run(page, ctx) {
   await overlayRetry(page, ctx);
   await legendLanguage(page, ctx);
   await modelTabError(page, ctx);
+  await serverGone(page, ctx);
   if (ctx.mobile) await landscape(page, ctx);
 }
