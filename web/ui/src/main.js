@@ -103,7 +103,9 @@ function showStale(e) {
     return;
   }
   const again = retryable(e);
-  box.querySelector('span').textContent = t('notUpdated', e.message);
+  const label = box.querySelector('span');
+  label.textContent = t('notUpdated', e.message);
+  label.title = label.textContent;
   box.querySelector('button').hidden = !again;
   $('#retry').hidden = !again;
   box.hidden = false;

@@ -25,8 +25,13 @@ async function staleAndRetry(page, ctx) {
   await ctx.openExample(page, mobile, 'fourbar-crank-rocker');
   await click(page, mobile, '[data-tab="editor"]');
   await page.route('**/api/check', (route) => route.fulfill(busy));
+  const drawingTop = () => page.evaluate(() => document.querySelector('#drawing').getBoundingClientRect().top + window.scrollY);
+  const before = { top: await drawingTop(), header: await headerBottom(page) };
   await ctx.retype(page, mobile, 'O4: [200, 0]', '200', '210');
   await page.waitForSelector('#stale:not([hidden])');
+  // The label and the longer status move nothing: the drawing stays under the finger.
+  assert.equal(await drawingTop(), before.top, 'the drawing has not moved');
+  assert.equal(await headerBottom(page), before.header, 'the header has not grown');
   assert.match(await page.locator('#stale').textContent(), /^Not updated: the server is busy: try again in a moment/);
   assert.ok(await page.locator('#stale button').isVisible(), 'Retry on the stage');
   assert.ok(await page.locator('#retry').isVisible(), 'Retry beside the status');
