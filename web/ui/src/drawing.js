@@ -115,7 +115,9 @@ export function handlesSvg(g, solve, row, moved = null) {
     if (moved?.name === p) ({ x, y } = moved);
     const cx = num(x); const cy = num(-y);
     const cls = moved?.name === p ? 'pt dragged' : 'pt';
-    out += `<circle class="hit" data-point="${esc(p)}" cx="${cx}" cy="${cy}" r="${num(3 * s)}" fill="transparent"/>`
+    // The hit area is the ring and a transparent stroke of a fixed screen width around it
+    // (style.css: wider on a phone), so a finger finds a point at any zoom.
+    out += `<circle class="hit" data-point="${esc(p)}" cx="${cx}" cy="${cy}" r="${num(1.1 * s)}" fill="transparent"/>`
       + `<circle class="${cls}" data-point="${esc(p)}" cx="${cx}" cy="${cy}" r="${num(1.1 * s)}" fill="transparent"/>`;
   }
   return out;

@@ -119,7 +119,7 @@ function pointsSection(m) {
     return `<tr data-row-point="${esc(p)}"><th><input class="cell pname" data-rename="${esc(p)}" value="${esc(p)}" spellcheck="false" autocomplete="off" aria-label="${esc(t('nameOf', p))}"></th>`
       + `<td>${pair ? field(['points', p, 0], xy[0], 'num', `${p} x`) : field(['points', p], xy, 'pair', p)}</td>`
       + `<td>${pair ? field(['points', p, 1], xy[1], 'num', `${p} y`) : ''}</td>`
-      + `<td><input type="checkbox" class="ground" data-point="${esc(p)}" aria-label="${esc(t('groundOf', p))}"${ground.has(p) ? ' checked' : ''}></td>`
+      + `<td><label class="tap"><input type="checkbox" class="ground" data-point="${esc(p)}" aria-label="${esc(t('groundOf', p))}"${ground.has(p) ? ' checked' : ''}></label></td>`
       + `<td class="acts"><button type="button" class="ghost" data-delete-point="${esc(p)}" aria-label="${esc(t('deletePoint', p))}" title="${esc(t('deletePoint', p))}">×</button></td></tr>`;
   });
   return section(t('points'), [t('name'), 'x', 'y', t('ground'), ''], rows, t('none'));

@@ -222,6 +222,50 @@ async function serverGone(page, ctx) {
   assert.match(await page.locator('#model-name').textContent(), /\(two\)/);
 }
 
+// Touch first: at a phone's width every control on every tab is at least 44 x 44 CSS px to the
+// finger (a check box counts with its label), and a point of the drawing is grabbed 20 px from
+// its centre in every direction (its look is smaller; its hit area is not).
+async function touchTargets(page, ctx) {
+  const { click } = ctx;
+  await ctx.openExample(page, true, 'fourbar-crank-rocker');
+  const small = [];
+  for (const tab of ['gallery', 'editor', 'model', 'synthesis', 'downloads', 'explain']) {
+    await click(page, true, `[data-tab="${tab}"]`);
+    small.push(...await page.evaluate((tabName) => {
+      const out = [];
+      const seen = new Set();
+      for (const el of document.querySelectorAll('button, [role=tab], input, select, summary, label')) {
+        const target = el.closest('label') ?? el;
+        if (seen.has(target) || target.closest('.cm-editor')) continue;
+        seen.add(target);
+        const r = target.getBoundingClientRect();
+        if (r.width === 0 || r.height === 0 || getComputedStyle(target).visibility === 'hidden') continue;
+        const name = (target.textContent || target.getAttribute('aria-label') || target.id || target.tagName).trim().slice(0, 24);
+        if (r.width < 44 || r.height < 44) out.push(`${tabName}: ${name} ${Math.round(r.width)}x${Math.round(r.height)}`);
+      }
+      return out;
+    }, tab));
+  }
+  assert.deepEqual([...new Set(small)], [], 'every control at least 44 x 44 px');
+  await page.evaluate(() => document.querySelector('#drawing').scrollIntoView({ block: 'center' }));
+  const missed = await page.evaluate(() => {
+    const out = [];
+    for (const c of document.querySelectorAll('#drawing circle.hit[data-point]')) {
+      const r = c.getBoundingClientRect();
+      const x = r.left + r.width / 2; const y = r.top + r.height / 2;
+      for (const [dx, dy] of [[20, 0], [-20, 0], [0, 20], [0, -20]]) {
+        const hit = document.elementFromPoint(x + dx, y + dy)?.closest('[data-point]');
+        if (hit?.dataset.point !== c.dataset.point) {
+          const other = document.elementFromPoint(x + dx, y + dy);
+          out.push(`${c.dataset.point} at (${dx}, ${dy}): ${other?.tagName ?? 'nothing'}.${other?.getAttribute('class') ?? ''}`);
+        }
+      }
+    }
+    return out;
+  });
+  assert.deepEqual(missed, [], 'every point grabbed 20 px from its centre');
+}
+
 export async function run(page, ctx) {
   await staleAndRetry(page, ctx);
   await busyMark(page, ctx);
@@ -231,4 +275,5 @@ export async function run(page, ctx) {
   await modelTabError(page, ctx);
   await serverGone(page, ctx);
   if (ctx.mobile) await landscape(page, ctx);
+  if (ctx.mobile) await touchTargets(page, ctx);
 }
