@@ -483,12 +483,27 @@ function buildPlot() {
     },
   };
   state.plot = new uPlot(opts, data, el);
-  // Clicking (or tapping) the plot poses the mechanism at that sample.
-  state.plot.over.addEventListener('pointerdown', (e) => {
-    const r = state.plot.over.getBoundingClientRect();
-    const i = state.plot.posToIdx(e.clientX - r.left);
-    if (i !== null && i !== undefined) { play(false); setFrame(i); }
+  followPointer(state.plot, data);
+}
+
+// Clicking the plot, or touching it and moving along it, poses the mechanism at that sample; a
+// finger also moves uPlot's cursor, which follows only a mouse by itself, so that the legend reads
+// the sample's values on a phone (it read "–"). Vertical swipes still scroll the page.
+function followPointer(plot, data) {
+  const over = plot.over;
+  over.style.touchAction = 'pan-y';
+  const follow = (e) => {
+    const i = plot.posToIdx(e.clientX - over.getBoundingClientRect().left);
+    if (i === null || i === undefined || data[0][i] === undefined) return;
+    play(false);
+    setFrame(i);
+    if (e.pointerType !== 'mouse') plot.setCursor({ left: plot.valToPos(data[0][i], 'x'), top: plot.valToPos(data[1][i], 'y') });
+  };
+  over.addEventListener('pointerdown', (e) => {
+    follow(e);
+    if (e.pointerType !== 'mouse') over.setPointerCapture?.(e.pointerId);
   });
+  over.addEventListener('pointermove', (e) => { if (e.pointerType !== 'mouse' && e.buttons) follow(e); });
 }
 function resizePlot() {
   const el = $('#plot');

@@ -266,6 +266,25 @@ async function touchTargets(page, ctx) {
   assert.deepEqual(missed, [], 'every point grabbed 20 px from its centre');
 }
 
+// A tap on the plot on a phone poses the mechanism at that sample and the legend reads its
+// values (uPlot's cursor follows only a mouse: it read "–").
+async function plotTouch(page, ctx) {
+  await ctx.openExample(page, true, 'fourbar-crank-rocker');
+  await ctx.click(page, true, '[data-rtab="plot"]');
+  const over = page.locator('#plot .u-over');
+  await over.scrollIntoViewIfNeeded();
+  const box = await over.boundingBox();
+  await over.tap({ position: { x: box.width * 0.25, y: box.height / 2 } });
+  const values = await page.locator('#plot .u-legend .u-value').allTextContents();
+  assert.equal(values.length, 2);
+  for (const v of values) assert.match(v, /^-?\d/, `the legend reads a number: ${values}`);
+  const step = +(await page.locator('#scrub').inputValue());
+  // 25 % along the crank's 0-360 deg axis: about sample 90 of 361.
+  assert.ok(Math.abs(step - 90) <= 12, `posed at sample ${step}`);
+  assert.equal(Number(values[0]), Number((await page.locator('#readout').textContent()).match(/= (-?[\d.]+)/)[1]));
+  await ctx.shot(page, `${ctx.tag}-r8-plot-touch`);
+}
+
 export async function run(page, ctx) {
   await staleAndRetry(page, ctx);
   await busyMark(page, ctx);
@@ -276,4 +295,5 @@ export async function run(page, ctx) {
   await serverGone(page, ctx);
   if (ctx.mobile) await landscape(page, ctx);
   if (ctx.mobile) await touchTargets(page, ctx);
+  if (ctx.mobile) await plotTouch(page, ctx);
 }
