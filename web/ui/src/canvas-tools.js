@@ -272,6 +272,9 @@ function tap(e, target) {
 
 function down(e) {
   if (!svgEl()) return;
+  // A stress peak's marker or label goes to its step when clicked (overlays.js): a pan begun on it
+  // would capture the pointer and the click would never reach it.
+  if (pointers.size === 0 && e.target.closest?.('[data-step]')) return;
   const onPoint = !!pointAt(e.target);
   pointers.set(e.pointerId, { x: e.clientX, y: e.clientY });
   // A point under the pointer in select mode is main.js's drag; two fingers always pinch.

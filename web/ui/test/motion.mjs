@@ -157,6 +157,11 @@ async function overlays(page, ctx) {
   const top = stress.links.reduce((p, l) => (l.von_mises > p.von_mises ? l : p));
   assert.equal(top.body, 'rocker');
   assert.match(await page.locator('#drawing .peak-label').textContent(), new RegExp(`^${fmt(top.von_mises).replace('.', '\\.')} MPa \\(step ${top.step}\\)`));
+  // The peak's label goes to its step (the drawing's pan took the click: nothing happened).
+  await page.locator('#scrub').fill('0');
+  await page.locator('#drawing').scrollIntoViewIfNeeded();
+  await click(page, mobile, '#drawing .peak-label');
+  await page.waitForFunction((s) => document.querySelector('#scrub').value === String(s), top.step);
   assert.equal(await page.locator('#drawing .frame .body[data-body="rocker"]').getAttribute('stroke'), 'rgb(217,45,32)');
   assert.match(await page.locator('[data-legend="stress"]').textContent(), /0 – 44\.\d+ MPa/);
   assert.match(await page.locator('#motion-info').textContent(), /crank-coupler-rocker: crank-rocker · μ = [\d.]+° \(min\. 41\.4\d*°\)/);
