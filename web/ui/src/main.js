@@ -19,7 +19,7 @@ import { setIn } from './yaml-text.js';
 import './i18n-motion.js';
 import './i18n-files.js';
 import { initSynthesis } from './synthesis.js';
-import { initOverlays } from './overlays.js';
+import { initOverlays, overlayView, setOverlayView } from './overlays.js';
 import { initStressMap } from './stress-map.js';
 import { initExplain } from './explain.js';
 import { initOffline, serverFetch, whenServerBack } from './offline.js';
@@ -734,8 +734,34 @@ async function share() {
 
 async function updateHash(text) {
   try {
-    history.replaceState(null, '', `#m=${await encodeModel(text)}`);
+    const view = viewParams().toString();
+    history.replaceState(null, '', `#m=${await encodeModel(text)}${view ? `&${view}` : ''}`);
   } catch { /* no CompressionStream: no link */ }
+}
+
+// What a link keeps besides the model: the overlays ticked (o) and the points traced (t), the
+// plotted column (y) and the sample shown (f); read back by applyView once the model is analysed.
+function viewParams() {
+  const view = overlayView();
+  const params = new URLSearchParams();
+  if (view.on.length) params.set('o', view.on.join(','));
+  if (view.on.includes('traces') && view.traced.length) params.set('t', view.traced.join(','));
+  if (state.ycol) params.set('y', state.ycol);
+  if (state.frame) params.set('f', String(Math.round(state.frame)));
+  return params;
+}
+function applyView(params) {
+  const list = (key) => (params.get(key) ? params.get(key).split(',') : []);
+  setOverlayView({ on: list('o'), traced: list('t') });
+  const y = params.get('y');
+  if (y && state.solve && col(y) >= 0 && y !== state.ycol) {
+    state.ycol = y;
+    $('#ycol').value = y;
+    buildPlot();
+    buildTable();
+  }
+  const f = Number(params.get('f'));
+  if (Number.isInteger(f) && f > 0 && state.solve) setFrame(Math.min(f, state.solve.rows.length - 1));
 }
 
 // ------------------------------------------------------------------------------ start
@@ -804,10 +830,11 @@ async function start() {
   };
   await loadGallery().catch(galleryFailed);
   api('/api/examples/five-point-crank-rocker', undefined, 'text').then((txt) => { $('#task').value = txt; }).catch(() => {});
-  const m = /^#m=(.+)$/.exec(location.hash);
+  const m = /^#m=([^&]+)(?:&(.*))?$/.exec(location.hash);
   let opened = false;
   if (m) {
     try { await setText(await decodeModel(m[1])); opened = true; showTab('editor'); } catch { /* a bad link: the default */ }
+    if (opened) applyView(new URLSearchParams(m[2] ?? ''));
   }
   // With no engine and no server, the first model cannot open: the status says why.
   if (!opened) await openExample('fourbar-crank-rocker');

@@ -53,6 +53,17 @@ function chips() {
   }
 }
 
+// What a share link keeps of the overlays (main.js): the boxes ticked and the points traced.
+export function overlayView() { return { on: [...ov.on], traced: [...ov.traced] }; }
+export function setOverlayView({ on = [], traced = [] }) {
+  if (traced.length) ov.traced = new Set(traced);
+  for (const c of document.querySelectorAll('[data-overlay]')) {
+    const wanted = on.includes(c.dataset.overlay);
+    if (c.checked !== wanted) { c.checked = wanted; c.dispatchEvent(new Event('change')); }
+  }
+  if (app.state.solve) { chips(); drawTraces(); }
+}
+
 // ------------------------------------------------------------------------------ data from the server
 
 // The dynamics solve (joint forces) and the stresses are asked for only when their box is on,

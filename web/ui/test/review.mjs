@@ -285,10 +285,38 @@ async function plotTouch(page, ctx) {
   await ctx.shot(page, `${ctx.tag}-r8-plot-touch`);
 }
 
+// A shared link opens what was on screen: the model, and the overlays ticked, the point traced,
+// the column plotted and the sample shown (the link kept only the model).
+async function shareView(page, ctx) {
+  const { mobile, click } = ctx;
+  await ctx.openExample(page, mobile, 'fourbar-crank-rocker');
+  await click(page, mobile, '[data-overlay="traces"]');
+  await click(page, mobile, '[data-overlay="velocity"]');
+  await page.selectOption('#ycol', 'coupler.angle');
+  await page.locator('#scrub').fill('100');
+  await page.evaluate(() => { document.execCommand = (c) => c === 'copy'; });
+  await click(page, mobile, '#share');
+  await page.waitForFunction(() => document.querySelector('#status').textContent === 'Link copied');
+  const link = page.url();
+  assert.match(link, /#m=[^&]+&o=traces%2Cvelocity&t=P&y=coupler.angle&f=100$/);
+  const other = await page.context().newPage();
+  await other.goto(link);
+  await other.waitForSelector('body[data-ready="1"]');
+  await other.waitForFunction(() => document.querySelector('#scrub').value === '100');
+  assert.equal(await other.locator('[data-overlay="traces"]').isChecked(), true);
+  assert.equal(await other.locator('[data-overlay="velocity"]').isChecked(), true);
+  assert.equal(await other.locator('[data-overlay="stress"]').isChecked(), false);
+  assert.equal(await other.locator('#ycol').inputValue(), 'coupler.angle');
+  await other.waitForSelector('#drawing polyline[data-traced="P"]', { state: 'attached' });
+  await other.close();
+  for (const k of ['traces', 'velocity']) await click(page, mobile, `[data-overlay="${k}"]`);
+}
+
 export async function run(page, ctx) {
   await staleAndRetry(page, ctx);
   await busyMark(page, ctx);
   await share(page, ctx);
+  await shareView(page, ctx);
   await overlayRetry(page, ctx);
   await legendLanguage(page, ctx);
   await modelTabError(page, ctx);
