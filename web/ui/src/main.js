@@ -176,6 +176,7 @@ function setText(text) {
   quiet = false;
   clearTimeout(timer);
   document.body.dataset.opened = String(++opens);
+  state.nameWhenOpened = undefined;  // the model's own name, once analysed (slug())
   document.dispatchEvent(new Event('nbar:opened'));
   return analyse();
 }
@@ -226,6 +227,7 @@ async function analyse() {
     state.sceneSize = size;
     state.solveText = solveText;
     state.lastOk = text;
+    if (state.nameWhenOpened === undefined) state.nameWhenOpened = solve.model ?? '';
     showProblem(null);
     showStale(null);
     setTitle(solve.model || check.name);
@@ -639,7 +641,14 @@ function initFiles() {
 // ------------------------------------------------------------------------------ downloads
 
 // A template's downloads are named after the model it started (four-bar.yaml, not template-...).
-function slug() { return (state.current || state.solve?.model || 'model').replace(/^template-/, '').toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-|-$/g, '') || 'model'; }
+// Downloads are named after the file or example opened, until the model is given a name of its
+// own in the editor: then after that (a template renamed "My press" downloads as my-press.csv).
+function slug() {
+  const own = state.solve?.model;
+  const renamed = own && state.nameWhenOpened !== undefined && own !== state.nameWhenOpened;
+  const name = (renamed ? own : state.current) || own || 'model';
+  return name.replace(/^template-/, '').toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-|-$/g, '') || 'model';
+}
 
 function save(blob, name) {
   const a = document.createElement('a');

@@ -312,11 +312,31 @@ async function shareView(page, ctx) {
   for (const k of ['traces', 'velocity']) await click(page, mobile, `[data-overlay="${k}"]`);
 }
 
+// Downloads are named after the example opened until the model is renamed in the editor, then
+// after the model on screen (they kept the first example's name).
+async function downloadNames(page, ctx) {
+  const { mobile, click } = ctx;
+  await ctx.openExample(page, mobile, 'fourbar-crank-rocker');
+  const fileName = async () => {
+    await click(page, mobile, '[data-tab="downloads"]');
+    const [file] = await Promise.all([page.waitForEvent('download'), click(page, mobile, '[data-download="json"]')]);
+    return file.suggestedFilename();
+  };
+  assert.equal(await fileName(), 'fourbar-crank-rocker.json');
+  await click(page, mobile, '[data-tab="editor"]');
+  const opened = await page.evaluate(() => +document.body.dataset.opened);
+  await ctx.retype(page, mobile, 'name: "Crank-rocker four-bar"', 'Crank-rocker four-bar', 'My press');
+  await page.waitForFunction(() => document.querySelector('#model-name').textContent === 'My press' && !document.body.dataset.busy);
+  assert.equal(await page.evaluate(() => +document.body.dataset.opened), opened);
+  assert.equal(await fileName(), 'my-press.json');
+}
+
 export async function run(page, ctx) {
   await staleAndRetry(page, ctx);
   await busyMark(page, ctx);
   await share(page, ctx);
   await shareView(page, ctx);
+  await downloadNames(page, ctx);
   await overlayRetry(page, ctx);
   await legendLanguage(page, ctx);
   await modelTabError(page, ctx);
