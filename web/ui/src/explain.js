@@ -25,6 +25,17 @@ function matrixTable(cls, rowHeads, colHeads, rows) {
   return `<div class="mwrap"><table class="matrix ${cls}">${head}<tbody>${body}</tbody></table></div>`;
 }
 
+// The instant centres as the CLI's explain lists them (its section 9): name, x, y, and what kind.
+function centresSection(centres, length) {
+  const kind = (c) => (c.indeterminate ? t('exIndeterminate') : c.at_infinity ? t('exAtInfinity') : c.primary ? t('exPrimary') : '');
+  const rows = centres.map((c) => `<tr data-centre="${app.esc(c.name)}"><th>${app.esc(c.name)}</th>`
+    + `<td>${c.indeterminate ? '–' : num(c.position[0])}</td><td>${c.indeterminate ? '–' : num(c.position[1])}</td><td>${kind(c)}</td></tr>`).join('');
+  const unit = (axis) => (length ? `${axis} (${length})` : axis);
+  return `<section><h4>8. ${t('exCentres')}</h4><p class="hint">${t('exCentresHint')}</p>`
+    + `<div class="mwrap"><table class="matrix centres"><thead><tr><th>${t('exCentre')}</th><th>${unit('x')}</th><th>${unit('y')}</th><th></th></tr></thead>`
+    + `<tbody>${rows}</tbody></table></div></section>`;
+}
+
 function render(ex) {
   const sym = ex.coordinates.map((c) => maths(c.symbol));
   const c = ex.count;
@@ -42,12 +53,16 @@ function render(ex) {
   parts.push(`<section><h4>5. Newton–Raphson</h4><p class="hint">${t('exNewton', app.esc(ex.newton?.start ?? ''))}</p>`
     + `<div class="mwrap"><table class="matrix newton"><thead><tr><th>k</th><th>‖Φ(q<sub>k</sub>)‖</th><th>‖Δq‖</th></tr></thead><tbody>${newton}</tbody></table></div>`
     + `<p class="hint">${ex.newton?.converged ? t('exConverged', iters.length) : t('exNotConverged')}</p></section>`);
+  const length = app.esc(units.length ?? ''); const time = app.esc(units.time ?? 's');
   if (ex.velocity) {
-    parts.push(`<section><h4>6. Φ<sub>q</sub> q̇ = −Φ<sub>t</sub></h4>${matrixTable('vel', ['q̇'], sym, [ex.velocity.solution])}</section>`);
+    parts.push(`<section><h4>6. Φ<sub>q</sub> q̇ = −Φ<sub>t</sub></h4>${matrixTable('vel', ['q̇'], sym, [ex.velocity.solution])}`
+      + `<p class="hint">${t('exVelocityUnits', length, time)}</p></section>`);
   }
   if (ex.acceleration) {
-    parts.push(`<section><h4>7. Φ<sub>q</sub> q̈ = γ</h4>${matrixTable('acc', ['q̈'], sym, [ex.acceleration.solution])}</section>`);
+    parts.push(`<section><h4>7. Φ<sub>q</sub> q̈ = γ</h4>${matrixTable('acc', ['q̈'], sym, [ex.acceleration.solution])}`
+      + `<p class="hint">${t('exAccelerationUnits', length, time)}</p></section>`);
   }
+  if (ex.centres?.length) parts.push(centresSection(ex.centres, length));
   if (ex.notes?.length) parts.push(`<p class="hint">${ex.notes.map(app.esc).join('<br>')}</p>`);
   return parts.join('');
 }

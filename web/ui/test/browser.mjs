@@ -225,7 +225,7 @@ async function desktop() {
 
   // The model in the link opens the same model elsewhere.
   const link = page.url();
-  assert.match(link, /#m=[A-Za-z0-9_-]+$/);
+  assert.match(link, /#m=[A-Za-z0-9_-]+(&[^#]*)?$/);  // the model, and what is on screen (review.mjs shareView)
   const other = await context.newPage();
   await other.goto(link);
   await other.waitForSelector('body[data-ready="1"]');

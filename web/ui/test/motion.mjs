@@ -223,6 +223,14 @@ async function explainPanel(page, ctx) {
   assert.equal(await page.locator('#explain-out table.newton tbody tr').count(), ex.newton.iterations.length);
   assert.match(await page.locator('#explain-out .eqs').textContent(), /xA2 \+ yA2 − 802 = 0|xA2 \+ yA2 - 802 = 0/);
   assert.ok(await page.locator('#explain-note').isHidden(), 'no note for a step within the sweep');
+  // Units on the velocities and accelerations, and the instant centres as the CLI lists them.
+  assert.match(await page.locator('#explain-out').textContent(), /velocities of the coordinates, in mm\/s\./);
+  assert.match(await page.locator('#explain-out').textContent(), /accelerations of the coordinates, in mm\/s²\./);
+  assert.equal(await page.locator('#explain-out table.centres tbody tr').count(), ex.centres.length);
+  const centre = ex.centres.find((c) => !c.primary && !c.at_infinity && !c.indeterminate);
+  const cells = await page.locator(`#explain-out table.centres tr[data-centre="${centre.name}"] td`).allTextContents();
+  assert.deepEqual(cells.slice(0, 2), [fmt(centre.position[0]), fmt(centre.position[1])]);
+  assert.equal(await page.locator('#explain-out table.centres tr[data-centre="I(ground,crank)"] td').nth(2).textContent(), 'primary (joint)');
   await ctx.shot(page, `${ctx.tag}-m6-explain`);
   // A step past the sweep's end is shown at the end, and the note says so (it was clamped
   // silently); one that is no whole number is refused at the field.
