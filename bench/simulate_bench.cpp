@@ -1,9 +1,15 @@
 // Forward dynamics benchmark (issue 38): chains of four-bar loops with every link a steel bar,
-// the crank released under gravity, simulated with rows every millisecond.
+// the crank released under gravity, simulated with rows every millisecond at rtol 1e-8. Every
+// rate below is per CPU second (Google Benchmark divides rates by the CPU time).
 //
-// BM_SimulateChain/L simulates the chain of L loops (2 L + 1 bodies) for 1 s at rtol 1e-8; its
-// counter realtime_ratio is simulated time / wall time (the issue asks for more than 1000 for the
-// four-bar over 10 s of machine time), per_step the wall time of one integration step.
+// BM_FourBarTenSeconds: the one-loop chain (a double-crank four-bar) for 10 s of machine time
+// with a row every 1 ms (10 001 rows); its counter simulated_per_cpu is simulated time / CPU time
+// (the issue asks for more than 1000).
+//
+// BM_SimulateChain/L/T simulates the chain of L loops (2 L + 1 bodies) for T ms; its counters:
+// simulated_per_cpu, steps (integration steps per run), per_step (CPU time of one step, its rows
+// included) and per_loop_second (CPU time per loop per simulated second) and per_loop_step (per
+// loop per integration step): constant when the cost is linear in the number of loops.
 //
 // BM_AndrewsSqueezer/K simulates Andrews' squeezing mechanism (tests/dynamics/andrews_squeezer.yaml)
 // to t = 0.03 s at rtol 10^-K, one row at the end; its counter digits is the number of significant
@@ -37,12 +43,9 @@ nbar::Model released_steel_chain(int loops) {
   return m;
 }
 
-void BM_SimulateChain(benchmark::State& st) {
-  const nbar::Mechanism mech(released_steel_chain(static_cast<int>(st.range(0))));
-  nbar::SimulationOptions options;
-  options.end_time = 1.0;
-  options.output_step = 1e-3;
-  options.relative_tolerance = 1e-8;
+// Simulates `mech` with `options` for as long as the benchmark asks, with the counters above.
+void simulate_chain(benchmark::State& st, const nbar::Mechanism& mech, const nbar::SimulationOptions& options,
+                    int loops) {
   long steps = 0;
   for (auto _ : st) {
     const nbar::Simulation sim = nbar::simulate(mech, options);
@@ -50,14 +53,44 @@ void BM_SimulateChain(benchmark::State& st) {
     steps += sim.statistics.accepted_steps + sim.statistics.rejected_steps;
     benchmark::DoNotOptimize(sim.samples.data());
   }
+  const double runs = static_cast<double>(st.iterations());
   st.counters["bodies"] = static_cast<double>(mech.model().bodies.size());
-  st.counters["realtime_ratio"] =
-      benchmark::Counter(static_cast<double>(st.iterations()) * options.end_time, benchmark::Counter::kIsRate);
-  st.counters["steps"] = static_cast<double>(steps) / static_cast<double>(st.iterations());
+  st.counters["simulated_per_cpu"] = benchmark::Counter(runs * options.end_time, benchmark::Counter::kIsRate);
+  st.counters["steps"] = static_cast<double>(steps) / runs;
   st.counters["per_step"] =
       benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  st.counters["per_loop_second"] =
+      benchmark::Counter(runs * options.end_time * loops, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  st.counters["per_loop_step"] =
+      benchmark::Counter(static_cast<double>(steps) * loops, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_SimulateChain)->Arg(1)->Arg(5)->Arg(20)->Unit(benchmark::kMillisecond);
+
+nbar::SimulationOptions millisecond_rows(double end_time) {
+  nbar::SimulationOptions options;
+  options.end_time = end_time;
+  options.output_step = 1e-3;
+  options.relative_tolerance = 1e-8;
+  return options;
+}
+
+void BM_FourBarTenSeconds(benchmark::State& st) {
+  const nbar::Mechanism mech(released_steel_chain(1));
+  simulate_chain(st, mech, millisecond_rows(10.0), 1);
+}
+BENCHMARK(BM_FourBarTenSeconds)->Unit(benchmark::kMillisecond);
+
+// Args: loops, simulated time in ms (the longest chain simulates less: its run takes seconds).
+void BM_SimulateChain(benchmark::State& st) {
+  const int loops = static_cast<int>(st.range(0));
+  const nbar::Mechanism mech(released_steel_chain(loops));
+  simulate_chain(st, mech, millisecond_rows(static_cast<double>(st.range(1)) * 1e-3), loops);
+}
+BENCHMARK(BM_SimulateChain)
+    ->Args({1, 1000})
+    ->Args({10, 1000})
+    ->Args({100, 1000})
+    ->Args({1000, 100})
+    ->Unit(benchmark::kMillisecond);
 
 // The seven angles of the test set (beta, theta, gamma, phi, delta, Omega, epsilon) from the
 // bodies' directions at the run's last row, beta's turns counted from the run's rows.

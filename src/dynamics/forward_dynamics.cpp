@@ -10,7 +10,9 @@
 #include <optional>
 #include <sstream>
 
+#include "dynamics/augmented_system.hpp"
 #include "kinematics/constraints.hpp"
+#include "kinematics/linear_solver.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/kinematics/position.hpp"
 
@@ -34,6 +36,50 @@ struct SimulationStop {
   EntityRef where;
 };
 
+std::vector<double> driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q,
+                                     const std::vector<double>& previous);
+
+// The toggle's signed measure (docs/dynamics.md, Events). The reference keeps, from the kept
+// rows' Jacobian at one state, the rows its rank-revealing QR chose as independent (S) and an
+// orthonormal basis U of their gradients' span; at another state det(U^T J_S^T) / prod |J_s|
+// changes sign where those rows become dependent: a toggle or change point. A rank deficiency the
+// mechanism has everywhere (redundant constraints) is left out with the rows not in S. Dense and
+// cubic in the size: evaluated only on the steps where the sparse gate (EquationsOfMotion::Gate)
+// says the rows may be near dependent.
+class ToggleMeasure {
+ public:
+  void reference(const Eigen::MatrixXd& jacobian) {
+    rows_.clear();
+    if (jacobian.rows() == 0) return;
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
+    qr.setThreshold(1e-10);
+    qr.compute(jacobian.transpose());
+    const int rank = static_cast<int>(qr.rank());
+    for (int i = 0; i < rank; ++i) rows_.push_back(qr.colsPermutation().indices()(i));
+    const Eigen::MatrixXd basis = qr.householderQ();
+    span_ = basis.leftCols(rank);
+  }
+  double measure(const Eigen::MatrixXd& jacobian) const {
+    const int r = static_cast<int>(rows_.size());
+    if (r == 0) return 1.0;
+    Eigen::MatrixXd projected(r, r);
+    double norms = 1.0;
+    for (int i = 0; i < r; ++i) {
+      projected.col(i) = span_.transpose() * jacobian.row(rows_[i]).transpose();
+      norms *= jacobian.row(rows_[i]).norm();
+    }
+    return projected.determinant() / norms;
+  }
+
+ private:
+  std::vector<int> rows_;
+  Eigen::MatrixXd span_;
+};
+
+// The gate opens (the dense measure is evaluated on the step) where the square Jacobian's pivot
+// ratio falls below this fraction of its value at the start, or its determinant changes sign.
+constexpr double kGateNear = 0.1;
+
 // A body's centre of mass as a fixed combination of its frame points, r_cg = r_o + a u + b u_perp
 // with u = r_to - r_from: linear in q, so the body's mass on the coordinates is constant.
 struct BodyMass {
@@ -45,7 +91,8 @@ struct BodyMass {
 };
 
 // The equations of motion of one mechanism: its constant mass matrix, the rows kept (constraints
-// and the drivers that stay kinematic), and the loads. Evaluates the accelerations at (t, q, q').
+// and the drivers that stay kinematic), and the loads. Evaluates the accelerations at (t, q, q')
+// and makes the projections, both through one sparse augmented system (augmented_system.hpp).
 class EquationsOfMotion {
  public:
   // What one evaluation gives besides q'': the powers the energy balance integrates.
@@ -55,7 +102,17 @@ class EquationsOfMotion {
     double work_in = 0.0;     // W, by applied loads and the kinematic drivers
   };
 
-  EquationsOfMotion(const Mechanism& mech, std::vector<double> start) : mech_(mech), start_(std::move(start)) {
+  // What says, cheaply, whether the kept rows may be near a toggle: the sign of the determinant of
+  // the square Jacobian of every row (the free drivers' rows at their present values) and the
+  // ratio of its smallest to largest LU pivot. Not available (`square` false) with redundant rows.
+  struct Gate {
+    bool square = false;
+    int sign = 0;
+    double pivot_ratio = 0.0;
+  };
+
+  EquationsOfMotion(const Mechanism& mech, std::vector<double> start)
+      : mech_(mech), start_(std::move(start)), full_solver_(mech) {
     const Model& m = mech.model();
     n_ = mech.coordinate_count();
     const auto& rows = mech.equations().rows;
@@ -63,12 +120,18 @@ class EquationsOfMotion {
       if (!rows[r].is_driver() || !m.drivers[rows[r].driver].free) kept_.push_back(static_cast<int>(r));
     selected_.assign(rows.size(), -1);
     for (std::size_t i = 0; i < kept_.size(); ++i) selected_[kept_[i]] = static_cast<int>(i);
-    build_masses();
+    std::vector<AugmentedSystem::Entry> entries;
+    const auto& pattern = mech.equations().pattern;
+    for (std::size_t i = 0; i < pattern.size(); ++i)
+      if (selected_[pattern[i].row] >= 0)
+        entries.push_back({static_cast<int>(i), selected_[pattern[i].row], pattern[i].col});
+    system_.emplace(n_, kept_rows(), build_masses(), std::move(entries));
+    zero_force_.setZero(n_);
+    lambda_.setZero(kept_rows());
   }
 
   int coordinates() const { return n_; }
   int kept_rows() const { return static_cast<int>(kept_.size()); }
-  const Eigen::MatrixXd& mass_matrix() const { return mass_; }
 
   // Every driver's state at t: the kinematic ones by their law or from their start at their
   // speed; the free ones (whose rows are dropped) at their start moving at their initial speed,
@@ -95,102 +158,90 @@ class EquationsOfMotion {
     }
   }
 
-  // The Jacobian of the kept rows (dense) and its rank-revealing factorisation.
+  // The drivers at t, the Jacobian at q, and the augmented matrix formed and factorised there.
+  // Throws SimulationStop where a motion the kept rows allow has no inertia.
   void factorise(double t, const Eigen::VectorXd& q) {
     drivers_at(t, drivers_);
     evaluate_jacobian(mech_, q, drivers_, jacobian_values_);
-    jacobian_.setZero(kept_rows(), n_);
-    const auto& pattern = mech_.equations().pattern;
-    for (std::size_t i = 0; i < pattern.size(); ++i) {
-      const int row = selected_[pattern[i].row];
-      if (row >= 0) jacobian_(row, pattern[i].col) += jacobian_values_[i];
-    }
-    rank_ = 0;
-    basis_.setIdentity(n_, n_);
-    if (kept_rows() == 0) return;
-    qr_.setThreshold(1e-10);
-    qr_.compute(jacobian_.transpose());
-    rank_ = static_cast<int>(qr_.rank());
-    basis_ = qr_.householderQ();
+    if (!system_->factorize(jacobian_values_))
+      throw SimulationStop{"a free motion has no inertia at " + time_text(t) +
+                               ": the bodies it moves have no mass or moment of inertia (give them `mass:` and "
+                               "`inertia:`, or a shape and a material)",
+                           first_free_driver()};
   }
-  int rank() const { return rank_; }
-  const Eigen::MatrixXd& jacobian() const { return jacobian_; }
+  // The Jacobian at q, at the time of the last factorisation, whose matrix stays: near q it
+  // preconditions the solves with the new Jacobian.
+  void update_jacobian(const Eigen::VectorXd& q) { evaluate_jacobian(mech_, q, drivers_, jacobian_values_); }
 
-  // The minimum-norm x with Phi_q x = rhs (rhs over the kept rows; consistent when the rows are
-  // redundant), from the last factorisation.
-  Eigen::VectorXd minimum_norm(const Eigen::VectorXd& rhs) const {
-    if (rank_ == 0) return Eigen::VectorXd::Zero(n_);
-    const Eigen::VectorXd permuted = qr_.colsPermutation().transpose() * rhs;
-    const Eigen::VectorXd y = qr_.matrixR()
-                                  .topLeftCorner(rank_, rank_)
-                                  .transpose()
-                                  .triangularView<Eigen::Lower>()
-                                  .solve(permuted.head(rank_));
-    return basis_.leftCols(rank_) * y;
-  }
-
-  // The kept rows' residuals at (t, q) (factorise first at the same t).
-  Eigen::VectorXd residuals(const Eigen::VectorXd& q) {
+  // The kept rows' residuals at q, at the last factorisation's time.
+  const Eigen::VectorXd& residuals(const Eigen::VectorXd& q) {
     evaluate_residuals(mech_, q, drivers_, all_rows_);
-    return select(all_rows_);
+    return select(all_rows_, residual_);
   }
-  // Phi_t of the kept rows at (t, q): the first Taylor coefficient of Phi with q' = 0.
-  Eigen::VectorXd time_derivative(const Eigen::VectorXd& q) {
-    coefficients_.setZero(n_, 2);
-    coefficients_.col(0) = q;
-    evaluate_series_remainder(mech_, coefficients_, 1, drivers_, all_rows_);
-    return select(all_rows_);
+  // Phi_t of the kept rows at q: the first Taylor coefficient of Phi with q' = 0.
+  const Eigen::VectorXd& time_derivative(const Eigen::VectorXd& q) {
+    first_order_.setZero(n_, 2);
+    first_order_.col(0) = q;
+    evaluate_series_remainder(mech_, first_order_, 1, drivers_, all_rows_);
+    return select(all_rows_, time_derivative_);
   }
   // gamma of the kept rows: Phi_q q'' = gamma on the acceleration level.
-  Eigen::VectorXd gamma(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
-    coefficients_.setZero(n_, 3);
-    coefficients_.col(0) = q;
-    coefficients_.col(1) = qd;
-    evaluate_series_remainder(mech_, coefficients_, 2, drivers_, all_rows_);
-    return -2.0 * select(all_rows_);
+  const Eigen::VectorXd& gamma(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+    second_order_.setZero(n_, 3);
+    second_order_.col(0) = q;
+    second_order_.col(1) = qd;
+    evaluate_series_remainder(mech_, second_order_, 2, drivers_, all_rows_);
+    select(all_rows_, gamma_);
+    gamma_ *= -2.0;
+    return gamma_;
+  }
+  // Phi_q x with the present Jacobian.
+  const Eigen::VectorXd& jacobian_times(const Eigen::VectorXd& x) {
+    system_->apply(jacobian_values_, x, product_);
+    return product_;
+  }
+
+  // The smallest change dx in the mass's metric with Phi_q dx = c (the present Jacobian): the
+  // correction of a projection. The metric is M's: the projections of Bayo and Ledesma, which
+  // reuse the factorisation of the accelerations' system.
+  const Eigen::VectorXd& correction(const Eigen::VectorXd& c) {
+    projection_lambda_.setZero(kept_rows());
+    system_->solve(jacobian_values_, zero_force_, c, correction_, projection_lambda_, false);
+    return correction_;
   }
 
   // q'' at (t, q, q') and the powers of the energy balance. Throws SimulationStop where the
-  // accelerations are not determined: a lost rank (a toggle), a free motion without inertia.
-  Rates evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  // accelerations are not determined: the kept rows dependent (a toggle), a free motion without
+  // inertia.
+  const Rates& evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
     factorise(t, q);
-    if (reference_rank_ >= 0 && rank_ < reference_rank_ && !singular_allowed_) {
-      throw SimulationStop{"the constraints became singular at " + time_text(t) + " (rank " + std::to_string(rank_) +
-                               " of " + std::to_string(reference_rank_) +
-                               "): the mechanism reached a toggle or dead-centre position, where its motion is "
+    return evaluate_factorised(t, q, qd);
+  }
+  // The same with the factorisation made at (or near) q, at t, the Jacobian at q.
+  const Rates& evaluate_factorised(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+    double dissipated = 0.0, applied = 0.0;
+    loads_ = generalised_forces(t, q, qd, dissipated, applied);
+    const double left = system_->solve(jacobian_values_, loads_, gamma(q, qd), rates_.acceleration, lambda_, true);
+    // Where the rows have become dependent the acceleration constraints ask the impossible and
+    // what is left of them stays of order 1; near (not at) a toggle the solve still converges.
+    if (!(left <= kDependentRows) && !singular_allowed_) {
+      lambda_.setZero(kept_rows());  // no warm start from there
+      throw SimulationStop{"the constraints became singular at " + time_text(t) +
+                               ": the mechanism reached a toggle or dead-centre position, where its motion is "
                                "not determined by the loads",
                            first_free_driver()};
     }
-    const Eigen::VectorXd particular = minimum_norm(gamma(q, qd));
-    double dissipated = 0.0, applied = 0.0;
-    const Eigen::VectorXd loads = generalised_forces(t, q, qd, dissipated, applied);
-    Rates out;
-    out.acceleration = particular;
-    const int free = n_ - rank_;
-    if (free > 0) {
-      const auto null = basis_.rightCols(free);
-      const Eigen::MatrixXd reduced = null.transpose() * mass_ * null;
-      reduced_.compute(reduced);
-      const double largest = std::max(reduced.diagonal().cwiseAbs().maxCoeff(), mass_scale_);
-      if (reduced_.info() != Eigen::Success || !(reduced_.vectorD().minCoeff() > 1e-12 * largest)) {
-        throw SimulationStop{"a free motion has no inertia at " + time_text(t) +
-                                 ": the bodies it moves have no mass or moment of inertia (give them `mass:` and "
-                                 "`inertia:`, or a shape and a material)",
-                             first_free_driver()};
-      }
-      const Eigen::VectorXd z = reduced_.solve(null.transpose() * (loads - mass_ * particular));
-      out.acceleration += null * z;
-    }
-    out.dissipated = dissipated;
+    if (!rates_.acceleration.allFinite()) lambda_.setZero(kept_rows());
+    rates_.dissipated = dissipated;
     // The constraint forces M q'' - Q do work only through the kinematic drivers' rows.
-    out.work_in = applied + (mass_ * out.acceleration - loads).dot(qd);
-    return out;
+    rates_.work_in = applied + (mass() * rates_.acceleration - loads_).dot(qd);
+    return rates_;
   }
 
   // Energies stored at (q, q'): kinetic, gravity, springs.
   void stored_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, SimulationEnergy& e) const {
     const Model& m = mech_.model();
-    e.kinetic = 0.5 * qd.dot(mass_ * qd);
+    e.kinetic = 0.5 * qd.dot(mass() * qd);
     e.gravity = 0.0;
     for (const BodyMass& b : bodies_) e.gravity -= b.mass * m.gravity.dot(centre_of_mass(b, q));
     e.spring = 0.0;
@@ -200,35 +251,38 @@ class EquationsOfMotion {
     }
   }
 
-  // Set once the start is known: a later rank below it is a singular position.
-  void keep_reference_rank() { reference_rank_ = rank_; }
   // At a located toggle the accelerations are still asked for (its row, the first step after a
-  // reversal): there they come from the larger null space, as if the lost constraint were free.
+  // reversal): there they satisfy the dependent rows' acceleration constraints in the least-squares
+  // sense, as if the lost constraint were free.
   void allow_singular(bool allowed) { singular_allowed_ = allowed; }
 
-  // The toggle's signed measure (docs/dynamics.md, Events). The reference keeps, from the last
-  // factorisation, the rows its pivoting chose as independent (S) and an orthonormal basis U of
-  // their gradients' span; the measure det(U^T J_S^T) / prod |J_s| of the last factorisation
-  // changes sign where those rows become dependent: a toggle or change point. A rank deficiency
-  // the mechanism has everywhere (redundant constraints) is left out with the rows not in S.
-  void keep_toggle_reference() {
-    toggle_rows_.clear();
-    if (kept_rows() == 0) return;
-    for (int i = 0; i < rank_; ++i) toggle_rows_.push_back(qr_.colsPermutation().indices()(i));
-    toggle_span_ = basis_.leftCols(rank_);
+  // The gate at q (the time of the last factorisation), from the kinematics' own sparse LU.
+  Gate gate_at(const Eigen::VectorXd& q) {
+    Gate gate;
+    if (full_solver_.method() != LinearSolver::Method::LU) return gate;
+    full_drivers_ = drivers_;
+    const std::vector<double> values = driver_values_at(mech_, q, start_);
+    for (std::size_t d = 0; d < full_drivers_.size(); ++d)
+      if (mech_.model().drivers[d].free)
+        set_driver_state(full_drivers_[d], Series(kTerms, values[d]), mech_.model().drivers[d].is_angular());
+    evaluate_jacobian(mech_, q, full_drivers_, full_values_);
+    gate.square = true;
+    if (!full_solver_.factorize(full_values_)) return gate;  // singular: sign 0
+    gate.sign = full_solver_.determinant_sign();
+    gate.pivot_ratio = full_solver_.reciprocal_condition();
+    return gate;
   }
-  double toggle_measure() const {
-    const int r = static_cast<int>(toggle_rows_.size());
-    if (r == 0) return 1.0;
-    Eigen::MatrixXd projected(r, r);
-    double norms = 1.0;
-    for (int i = 0; i < r; ++i) {
-      projected.col(i) = toggle_span_.transpose() * jacobian_.row(toggle_rows_[i]).transpose();
-      norms *= jacobian_.row(toggle_rows_[i]).norm();
+
+  // The kept rows' Jacobian at the present values, dense, for the toggle's measure.
+  Eigen::MatrixXd dense_jacobian() const {
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(kept_rows(), n_);
+    const auto& pattern = mech_.equations().pattern;
+    for (std::size_t i = 0; i < pattern.size(); ++i) {
+      const int row = selected_[pattern[i].row];
+      if (row >= 0) out(row, pattern[i].col) += jacobian_values_[i];
     }
-    return projected.determinant() / norms;
+    return out;
   }
-  const std::vector<DriverState>& drivers() const { return drivers_; }
 
   EntityRef first_free_driver() const {
     const auto& drivers = mech_.model().drivers;
@@ -239,9 +293,14 @@ class EquationsOfMotion {
 
  private:
   static constexpr int kTerms = 3;
+  // A relative residual of the acceleration constraints above this after the solve: the rows
+  // have become dependent.
+  static constexpr double kDependentRows = 1e-6;
 
-  Eigen::VectorXd select(const Eigen::VectorXd& rows) const {
-    Eigen::VectorXd out(kept_rows());
+  const Eigen::SparseMatrix<double>& mass() const { return system_->mass(); }
+
+  const Eigen::VectorXd& select(const Eigen::VectorXd& rows, Eigen::VectorXd& out) const {
+    out.resize(kept_rows());
     for (int i = 0; i < kept_rows(); ++i) out(i) = rows(kept_[i]);
     return out;
   }
@@ -263,10 +322,11 @@ class EquationsOfMotion {
     return origin + b.a * u + b.b * perp(u);
   }
 
-  // M = sum over bodies of m C^T C + (I / |u|^2) D^T D, where v_cg = C q' and u' = D q'.
-  void build_masses() {
+  // M = sum over bodies of m C^T C + (I / |u|^2) D^T D, where v_cg = C q' and u' = D q', as
+  // triplets: each body's C and D touch its frame's (at most three) points only.
+  std::vector<Eigen::Triplet<double>> build_masses() {
     const Model& m = mech_.model();
-    mass_.setZero(n_, n_);
+    std::vector<Eigen::Triplet<double>> mass;
     gravity_.setZero(n_);
     for (std::size_t i = 0; i < m.bodies.size(); ++i) {
       const MassProperties props = mass_properties(m.bodies[i]);
@@ -274,8 +334,8 @@ class EquationsOfMotion {
       b.body = static_cast<int>(i);
       b.mass = props.mass;
       b.frame = body_frame(m, b.body);
-      Eigen::MatrixXd to_cg = Eigen::MatrixXd::Zero(2, n_), to_direction = Eigen::MatrixXd::Zero(2, n_);
-      add_block(to_cg, b.frame.origin, Eigen::Matrix2d::Identity());
+      BodyMap to_cg, to_direction;
+      to_cg.add(mech_, b.frame.origin, Eigen::Matrix2d::Identity());
       if (b.frame.from >= 0) {
         const Eigen::Vector2d drawn = m.points[b.frame.to].position - m.points[b.frame.from].position;
         const Eigen::Vector2d offset = props.cg - m.points[b.frame.origin].position;
@@ -285,22 +345,45 @@ class EquationsOfMotion {
         b.rotary = props.inertia / length2;
         Eigen::Matrix2d along;
         along << b.a, -b.b, b.b, b.a;  // a I + b (rotation by 90 degrees)
-        add_block(to_cg, b.frame.to, along);
-        add_block(to_cg, b.frame.from, -along);
-        add_block(to_direction, b.frame.to, Eigen::Matrix2d::Identity());
-        add_block(to_direction, b.frame.from, -Eigen::Matrix2d::Identity());
+        to_cg.add(mech_, b.frame.to, along);
+        to_cg.add(mech_, b.frame.from, -along);
+        to_direction.add(mech_, b.frame.to, Eigen::Matrix2d::Identity());
+        to_direction.add(mech_, b.frame.from, -Eigen::Matrix2d::Identity());
       }
-      mass_ += b.mass * to_cg.transpose() * to_cg + b.rotary * to_direction.transpose() * to_direction;
-      gravity_ += b.mass * to_cg.transpose() * m.gravity;
-      mass_scale_ = std::max(mass_scale_, 1e-30 * b.mass);
+      to_cg.add_gram(b.mass, mass);
+      to_direction.add_gram(b.rotary, mass);
+      for (std::size_t k = 0; k < to_cg.columns.size(); ++k)
+        gravity_(to_cg.columns[k]) += b.mass * to_cg.map.col(static_cast<int>(k)).dot(m.gravity);
       bodies_.push_back(b);
     }
+    return mass;
   }
-  void add_block(Eigen::MatrixXd& map, int point, const Eigen::Matrix2d& block) const {
-    const int col = mech_.column_of(point);
-    if (col >= 0) map.block<2, 2>(0, col) += block;
-  }
-
+  // A 2 x k map from the coordinates of a body's frame points (columns) to a vector.
+  struct BodyMap {
+    std::vector<int> columns;
+    Eigen::Matrix<double, 2, Eigen::Dynamic> map;
+    void add(const Mechanism& mech, int point, const Eigen::Matrix2d& block) {
+      const int col = mech.column_of(point);
+      if (col < 0) return;
+      for (int axis = 0; axis < 2; ++axis) {
+        const auto found = std::find(columns.begin(), columns.end(), col + axis);
+        const int k = static_cast<int>(found - columns.begin());
+        if (found == columns.end()) {
+          columns.push_back(col + axis);
+          map.conservativeResize(2, k + 1);
+          map.col(k).setZero();
+        }
+        map.col(k) += block.col(axis);
+      }
+    }
+    // weight map^T map, as triplets on the columns.
+    void add_gram(double weight, std::vector<Eigen::Triplet<double>>& out) const {
+      for (std::size_t a = 0; a < columns.size(); ++a)
+        for (std::size_t b = 0; b < columns.size(); ++b)
+          out.emplace_back(columns[a], columns[b],
+                           weight * map.col(static_cast<int>(a)).dot(map.col(static_cast<int>(b))));
+    }
+  };
   // Q(t, q, q'): gravity, forces, torques (motors by their torque-speed line), springs and
   // dampers; with the dampers' dissipated power and the applied loads' power.
   Eigen::VectorXd generalised_forces(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double& dissipated,
@@ -351,28 +434,23 @@ class EquationsOfMotion {
     }
     return loads;
   }
-
   const Mechanism& mech_;
   std::vector<double> start_;
   int n_ = 0;
   std::vector<int> kept_;      // rows of Phi kept, in order
   std::vector<int> selected_;  // per row: its place among the kept, or -1
-  Eigen::MatrixXd mass_;
   Eigen::VectorXd gravity_;
-  double mass_scale_ = 0.0;
   std::vector<BodyMass> bodies_;
-  int reference_rank_ = -1;
+  std::optional<AugmentedSystem> system_;
   bool singular_allowed_ = false;
-  std::vector<int> toggle_rows_;
-  Eigen::MatrixXd toggle_span_;
 
-  std::vector<DriverState> drivers_;
-  std::vector<double> jacobian_values_;
-  Eigen::MatrixXd jacobian_, basis_, coefficients_;
-  Eigen::VectorXd all_rows_;
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
-  Eigen::LDLT<Eigen::MatrixXd> reduced_;
-  int rank_ = 0;
+  std::vector<DriverState> drivers_, full_drivers_;
+  std::vector<double> jacobian_values_, full_values_;
+  LinearSolver full_solver_;  // every row's square Jacobian, for the gate
+  Eigen::MatrixXd first_order_, second_order_;
+  Eigen::VectorXd all_rows_, residual_, time_derivative_, gamma_, product_, loads_, zero_force_;
+  Eigen::VectorXd lambda_, projection_lambda_, correction_;
+  Rates rates_;
 };
 
 // The Dormand-Prince 5(4) pair (Dormand & Prince 1980; Hairer, Norsett & Wanner, Solving ODEs I,
@@ -399,7 +477,7 @@ class Integrator {
 
   Eigen::VectorXd derivative(double t, const Eigen::VectorXd& y) {
     ++evaluations_;
-    const EquationsOfMotion::Rates r = eq_.evaluate(t, y.head(n_), y.segment(n_, n_));
+    const EquationsOfMotion::Rates& r = eq_.evaluate(t, y.head(n_), y.segment(n_, n_));
     Eigen::VectorXd f(y.size());
     f.head(n_) = y.segment(n_, n_);
     f.segment(n_, n_) = r.acceleration;
@@ -408,26 +486,31 @@ class Integrator {
     return f;
   }
 
-  // Moves q onto Phi = 0 and q' onto Phi_q q' = -Phi_t at t; false when Newton fails.
+  // Moves q onto Phi = 0 and q' onto Phi_q q' = -Phi_t at t by the smallest corrections in the
+  // mass's metric; false when Newton fails. The augmented matrix is factorised once, at the first
+  // q: the corrections are small, and each solve satisfies the Jacobian at the present q, which
+  // is left there for the accelerations (evaluate_factorised).
   bool project(double t, Eigen::VectorXd& y) {
-    Eigen::VectorXd q = y.head(n_);
+    q_ = y.head(n_);
     const double tolerance = mech_.tolerance();
     bool converged = false;
+    eq_.factorise(t, q_);
     for (int iteration = 0; iteration < 12; ++iteration) {
-      eq_.factorise(t, q);
-      const Eigen::VectorXd phi = eq_.residuals(q);
+      if (iteration > 0) eq_.update_jacobian(q_);
+      const Eigen::VectorXd& phi = eq_.residuals(q_);
       if (!phi.allFinite()) return false;
       if (phi.size() == 0 || phi.lpNorm<Eigen::Infinity>() <= tolerance) {
         converged = true;
         break;
       }
-      q -= eq_.minimum_norm(phi);
+      q_ -= eq_.correction(phi);
     }
     if (!converged) return false;
-    Eigen::VectorXd qd = y.segment(n_, n_);
-    qd -= eq_.minimum_norm(eq_.jacobian() * qd + eq_.time_derivative(q));
-    y.head(n_) = q;
-    y.segment(n_, n_) = qd;
+    qd_ = y.segment(n_, n_);
+    velocity_error_ = eq_.jacobian_times(qd_) + eq_.time_derivative(q_);
+    qd_ -= eq_.correction(velocity_error_);
+    y.head(n_) = q_;
+    y.segment(n_, n_) = qd_;
     return y.allFinite();
   }
 
@@ -499,6 +582,7 @@ class Integrator {
   const SimulationOptions& options_;
   int n_;
   long evaluations_ = 0;
+  Eigen::VectorXd q_, qd_, velocity_error_;  // the projection's
 };
 
 // Each driver's value at q (SI), angles unwrapped against `previous`.
@@ -708,14 +792,14 @@ class Run {
           if (!handle_event(*event, t, h, s)) break;
           t = reached;  // reversed at the toggle: on from there
           k1 = integrator_.derivative(t, y_);
-          keep_toggle_reference();
+          keep_toggle_reference(t);
           if (probe_) condition_ = condition_at(t, y_, true);
           continue;
         }
         y_ = y1;
         t = t1;
         k1 = integrator_.derivative(t, y_);
-        keep_toggle_reference();
+        keep_toggle_reference(t);
         if (probe_) condition_ = condition_at(t, y_, true);
         h *= std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(s.error, 1e-10), -0.2)));
       }
@@ -754,7 +838,7 @@ class Run {
   std::optional<Found> first_event(double t, double h, const Integrator::Step& s, const Eigen::VectorXd& y1) {
     const double tolerance = std::min(0.5, 1e-12 / h);
     std::optional<Found> found;
-    if (const std::optional<double> theta = toggle_on_step(t, h, s, tolerance))
+    if (const std::optional<double> theta = toggle_on_step(t, h, s, y1, tolerance))
       found = Found{SimulationEvent::Kind::toggle, *theta};
     if (probe_) {
       const double at_end = condition_at(t + h, y1, false);
@@ -772,13 +856,21 @@ class Run {
   // Where on the step the constraints lose rank, if they do: the toggle measure changes sign, or
   // (where the step passes a change point and goes on along the other branch, so that the
   // measure only touches zero) dips to nothing. The ends are enough while the measure is well
-  // away from zero; near zero, three inner points find a crossing or a dip within the step.
-  std::optional<double> toggle_on_step(double t, double h, const Integrator::Step& s, double tolerance) {
+  // away from zero; near zero, three inner points find a crossing or a dip within the step. The
+  // measure is dense; the sparse gate at the step's ends decides whether it is needed at all.
+  std::optional<double> toggle_on_step(double t, double h, const Integrator::Step& s, const Eigen::VectorXd& y1,
+                                       double tolerance) {
+    const EquationsOfMotion::Gate end = eq_.gate_at(y1.head(n_));
+    if (gate_scale_ == 0.0) gate_scale_ = end.pivot_ratio;
+    if (end.square && gate_start_.square && end.sign != 0 && end.sign == gate_start_.sign &&
+        std::min(end.pivot_ratio, gate_start_.pivot_ratio) >= kGateNear * gate_scale_)
+      return std::nullopt;
+    dense_toggle_reference();
     const auto measure_at = [&](double theta) {
       projected_at(t, h, s, theta);
-      return eq_.toggle_measure();
+      return toggle_.measure(eq_.dense_jacobian());
     };
-    std::vector<double> theta = {0.0, 1.0}, measure = {toggle_at_start_, eq_.toggle_measure()};
+    std::vector<double> theta = {0.0, 1.0}, measure = {toggle_at_start_, measure_at(1.0)};
     const bool near_zero = std::min(std::abs(measure[0]), std::abs(measure[1])) < 0.05 * toggle_scale_;
     if (near_zero) {
       theta = {0.0, 0.25, 0.5, 0.75, 1.0};
@@ -833,12 +925,32 @@ class Run {
     out_.events.push_back({kind, at, static_cast<int>(out_.samples.size()) - 1, std::move(message)});
   }
 
-  // The toggle measure's reference, from the factorisation at the state just kept (the last
-  // derivative's).
-  void keep_toggle_reference() {
-    eq_.keep_toggle_reference();
-    toggle_at_start_ = eq_.toggle_measure();
-    if (toggle_scale_ == 0.0) toggle_scale_ = std::abs(toggle_at_start_);
+  // The state just kept (the last derivative's factorisation is there) starts the next step: its
+  // gate, and the dense measure's reference, formed only if the step needs it.
+  void keep_toggle_reference(double t) {
+    step_start_time_ = t;
+    step_start_q_ = y_.head(n_);
+    gate_start_ = eq_.gate_at(step_start_q_);
+    if (gate_scale_ == 0.0) gate_scale_ = gate_start_.pivot_ratio;
+    toggle_reference_ready_ = false;
+  }
+
+  // The dense measure's reference at the step's start, and its scale at the run's start (where the
+  // mechanism is assembled), each formed the first time it is needed.
+  void dense_toggle_reference() {
+    if (toggle_scale_ == 0.0) {
+      eq_.factorise(0.0, run_start_q_);
+      const Eigen::MatrixXd jacobian = eq_.dense_jacobian();
+      ToggleMeasure at_start;
+      at_start.reference(jacobian);
+      toggle_scale_ = std::abs(at_start.measure(jacobian));
+    }
+    if (toggle_reference_ready_) return;
+    eq_.factorise(step_start_time_, step_start_q_);
+    const Eigen::MatrixXd jacobian = eq_.dense_jacobian();
+    toggle_.reference(jacobian);
+    toggle_at_start_ = toggle_.measure(jacobian);
+    toggle_reference_ready_ = true;
   }
 
   // Positions assembled at t = 0, velocities from every driver's speed (free ones: their initial
@@ -859,21 +971,11 @@ class Run {
     Eigen::VectorXd q = at_start.positions();
     std::vector<DriverState> drivers;
     eq_.drivers_at(0.0, drivers);
-    std::vector<double> values;
-    evaluate_jacobian(mech_, q, drivers, values);
-    Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(mech_.row_count(), n_);
-    const auto& pattern = mech_.equations().pattern;
-    for (std::size_t i = 0; i < pattern.size(); ++i) jacobian(pattern[i].row, pattern[i].col) += values[i];
-    Eigen::MatrixXd coefficients = Eigen::MatrixXd::Zero(n_, 2);
-    coefficients.col(0) = q;
-    Eigen::VectorXd phi_t;
-    evaluate_series_remainder(mech_, coefficients, 1, drivers, phi_t);
-    const Eigen::VectorXd qd = jacobian.completeOrthogonalDecomposition().solve(-phi_t);
+    const Eigen::VectorXd qd = start_velocities(q, drivers);
     y_.setZero(2 * n_ + 2);
     y_.head(n_) = q;
     y_.segment(n_, n_) = qd;
-    eq_.factorise(0.0, q);
-    eq_.keep_reference_rank();
+    run_start_q_ = q;
     eq_.evaluate(0.0, q, qd);
     previous_values_ = start_;
     record(0.0, y_);
@@ -882,8 +984,31 @@ class Run {
     first.balance = 0.0;
     out_.statistics.largest_energy_error = 0.0;
     eq_.factorise(0.0, q);
-    keep_toggle_reference();
+    keep_toggle_reference(0.0);
     if (probe_) condition_ = condition_at(0.0, y_, true);
+  }
+
+  // Every row, the free drivers' at their initial speeds, gives q' at the start: J q' = -Phi_t,
+  // solved with the kinematics' own sparse LU (a rank-revealing least-squares solve where the
+  // rows are redundant or the Jacobian singular there).
+  Eigen::VectorXd start_velocities(const Eigen::VectorXd& q, const std::vector<DriverState>& drivers) {
+    std::vector<double> values;
+    evaluate_jacobian(mech_, q, drivers, values);
+    Eigen::MatrixXd coefficients = Eigen::MatrixXd::Zero(n_, 2);
+    coefficients.col(0) = q;
+    Eigen::VectorXd phi_t;
+    evaluate_series_remainder(mech_, coefficients, 1, drivers, phi_t);
+    const Eigen::VectorXd rhs = -phi_t;
+    LinearSolver solver(mech_);
+    Eigen::VectorXd qd;
+    if (solver.factorize(values) || solver.method() == LinearSolver::Method::LeastSquares) {
+      solver.solve(rhs, qd);
+      return qd;
+    }
+    Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(mech_.row_count(), n_);
+    const auto& pattern = mech_.equations().pattern;
+    for (std::size_t i = 0; i < pattern.size(); ++i) jacobian(pattern[i].row, pattern[i].col) += values[i];
+    return jacobian.completeOrthogonalDecomposition().solve(rhs);
   }
 
   // A row at `at` and what it says about the run, not yet kept.
@@ -900,12 +1025,13 @@ class Run {
       throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(at),
                            eq_.first_free_driver()};
     const Eigen::VectorXd q = y.head(n_), qd = y.segment(n_, n_);
-    const EquationsOfMotion::Rates rates = eq_.evaluate(at, q, qd);
+    const EquationsOfMotion::Rates& rates = eq_.evaluate_factorised(at, q, qd);
     Row row;
-    row.drift.position = eq_.kept_rows() ? eq_.residuals(q).lpNorm<Eigen::Infinity>() : 0.0;
     if (eq_.kept_rows()) {
-      row.drift.velocity = (eq_.jacobian() * qd + eq_.time_derivative(q)).lpNorm<Eigen::Infinity>();
-      row.drift.acceleration = (eq_.jacobian() * rates.acceleration - eq_.gamma(q, qd)).lpNorm<Eigen::Infinity>();
+      // The accelerations' gamma first: jacobian_times and the others reuse their vectors.
+      row.drift.acceleration = (eq_.jacobian_times(rates.acceleration) - eq_.gamma(q, qd)).lpNorm<Eigen::Infinity>();
+      row.drift.position = eq_.residuals(q).lpNorm<Eigen::Infinity>();
+      row.drift.velocity = (eq_.jacobian_times(qd) + eq_.time_derivative(q)).lpNorm<Eigen::Infinity>();
     }
     Sample& sample = row.sample;
     sample.time = at;
@@ -956,10 +1082,16 @@ class Run {
   Eigen::VectorXd y_;
   std::vector<double> previous_values_;
   double energy_at_start_ = 0.0;
-  double toggle_at_start_ = 1.0;      // the toggle measure at the state kept last
-  double toggle_scale_ = 0.0;         // its size at the start, where the mechanism is assembled
-  std::optional<ColumnProbe> probe_;  // the stop condition's column
-  double condition_ = -1.0;           // its distance at the state kept last (> 0: it holds)
+  double toggle_at_start_ = 1.0;  // the toggle measure at the state kept last
+  double toggle_scale_ = 0.0;     // its size at the start, where the mechanism is assembled
+  ToggleMeasure toggle_;          // its reference, at the state kept last when toggle_reference_ready_
+  bool toggle_reference_ready_ = false;
+  double step_start_time_ = 0.0;
+  Eigen::VectorXd step_start_q_, run_start_q_;
+  EquationsOfMotion::Gate gate_start_;  // the gate at the state kept last
+  double gate_scale_ = 0.0;             // its pivot ratio at the start
+  std::optional<ColumnProbe> probe_;    // the stop condition's column
+  double condition_ = -1.0;             // its distance at the state kept last (> 0: it holds)
   Simulation out_;
 };
 

@@ -1,0 +1,288 @@
+#include "augmented_system.hpp"
+
+#include <Eigen/OrderingMethods>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace nbar {
+
+namespace {
+
+// alpha Phi_q^T Phi_q against M: large enough that the Schur complement's eigenvalues cluster
+// (conjugate gradients converge in two or three iterations), small enough that K's rounding
+// (about 1e-16 alpha of the answer) is taken out by one round of refinement. A free motion whose
+// inertia is below 1e-12 of K's largest diagonal has none.
+constexpr double kPenalty = 1e6;
+constexpr double kNoInertia = 1e-12;
+// Iterations of conjugate gradients (a few suffice away from a toggle) and rounds of refinement.
+constexpr int kMostIterations = 40;
+constexpr int kMostRounds = 4;
+// What the iterations aim at, relative to the size of the terms.
+constexpr double kConverged = 1e-15;
+// A correction of x below this (relative) ends the rounds: each round leaves about alpha eps
+// (1e-10) of the error before it, so after such a correction what is left is below 1e-18. A
+// constraint residual left above kFallBack (relative), or rounds that do not settle, send the
+// solve to the dense method.
+constexpr double kSettled = 1e-8;
+constexpr double kFallBack = 1e-10;
+
+double largest(const Eigen::VectorXd& v) { return v.size() == 0 ? 0.0 : v.lpNorm<Eigen::Infinity>(); }
+
+}  // namespace
+
+AugmentedSystem::AugmentedSystem(int n, int m, const std::vector<Eigen::Triplet<double>>& mass,
+                                 std::vector<Entry> entries)
+    : n_(n), m_(m), entries_(std::move(entries)) {
+  mass_.resize(n, n);
+  mass_.setFromTriplets(mass.begin(), mass.end());
+  mass_.makeCompressed();
+  std::stable_sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) { return a.row < b.row; });
+  analyse(mass);
+  for (Eigen::VectorXd* v : {&permuted_b_, &permuted_x_, &r1_, &g_, &dx_, &image_n_, &kx_}) v->setZero(n);
+  for (Eigen::VectorXd* v : {&best_dx_, &mass_x_}) v->setZero(n);
+  for (Eigen::VectorXd* v : {&r2_, &dlambda_, &best_dlambda_, &residual_, &direction_, &image_}) v->setZero(m);
+}
+
+// K's pattern (M's and Phi_q^T Phi_q's), its order (none when dense; else approximate minimum
+// degree), where each term goes, and the symbolic factorisation.
+void AugmentedSystem::analyse(const std::vector<Eigen::Triplet<double>>& mass) {
+  std::vector<std::pair<int, int>> pattern;
+  for (const auto& t : mass) pattern.emplace_back(t.row(), t.col());
+  std::vector<std::pair<int, int>> pairs;  // (a, b): entries a and b share a row
+  for (std::size_t first = 0; first < entries_.size();) {
+    std::size_t last = first;
+    while (last < entries_.size() && entries_[last].row == entries_[first].row) ++last;
+    for (std::size_t a = first; a < last; ++a)
+      for (std::size_t b = first; b < last; ++b) {
+        pairs.emplace_back(static_cast<int>(a), static_cast<int>(b));
+        pattern.emplace_back(entries_[a].col, entries_[b].col);
+      }
+    first = last;
+  }
+  for (int i = 0; i < n_; ++i) pattern.emplace_back(i, i);
+  dense_ = n_ <= kDenseLimit;
+  new_index_.resize(n_);
+  for (int i = 0; i < n_; ++i) new_index_[i] = i;
+  std::map<std::pair<int, int>, int> slot;  // (i, j), i <= j in K's order -> where its value is
+  if (dense_) {
+    dense_k_.setZero(n_, n_);
+    for (int j = 0; j < n_; ++j)
+      for (int i = 0; i <= j; ++i) slot[{i, j}] = j * n_ + i;
+    base_.assign(static_cast<std::size_t>(n_) * n_, 0.0);
+  } else {
+    std::vector<Eigen::Triplet<double>> ones;
+    for (const auto& [i, j] : pattern) ones.emplace_back(i, j, 1.0);
+    Eigen::SparseMatrix<double> symmetric(n_, n_);
+    symmetric.setFromTriplets(ones.begin(), ones.end());
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+    Eigen::AMDOrdering<int>()(symmetric, inverse);
+    const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order = inverse.inverse();
+    for (int i = 0; i < n_; ++i) new_index_[i] = order.indices()(i);
+    std::vector<Eigen::Triplet<double>> upper;
+    for (const auto& [i, j] : pattern) {
+      const int a = new_index_[i], b = new_index_[j];
+      upper.emplace_back(std::min(a, b), std::max(a, b), 0.0);
+    }
+    sparse_k_.resize(n_, n_);
+    sparse_k_.setFromTriplets(upper.begin(), upper.end());
+    sparse_k_.makeCompressed();
+    for (int j = 0; j < n_; ++j)
+      for (int p = sparse_k_.outerIndexPtr()[j]; p < sparse_k_.outerIndexPtr()[j + 1]; ++p)
+        slot[{sparse_k_.innerIndexPtr()[p], j}] = p;
+    base_.assign(static_cast<std::size_t>(sparse_k_.nonZeros()), 0.0);
+    sparse_factor_.analyzePattern(sparse_k_);
+  }
+  const auto slot_of = [&](int i, int j) {
+    const int a = new_index_[i], b = new_index_[j];
+    return slot.at({std::min(a, b), std::max(a, b)});
+  };
+  for (const auto& t : mass)
+    if (new_index_[t.row()] <= new_index_[t.col()]) base_[slot_of(t.row(), t.col())] += t.value();
+  for (const auto& [a, b] : pairs)
+    if (new_index_[entries_[a].col] <= new_index_[entries_[b].col])
+      products_.push_back({slot_of(entries_[a].col, entries_[b].col), entries_[a].value, entries_[b].value});
+}
+
+void AugmentedSystem::choose_penalty(const std::vector<double>& values) {
+  Eigen::VectorXd column_squares = Eigen::VectorXd::Zero(n_), row_sums = Eigen::VectorXd::Zero(m_);
+  for (const Entry& e : entries_) {
+    column_squares(e.col) += values[e.value] * values[e.value];
+    row_sums(e.row) += std::abs(values[e.value]);
+  }
+  const double most_mass = n_ ? mass_.diagonal().maxCoeff() : 0.0;
+  const double most_constraint = largest(column_squares);
+  alpha_ = kPenalty * std::max(most_mass, 1e-300) / std::max(most_constraint, 1e-300);
+  jacobian_scale_ = largest(row_sums);
+}
+
+bool AugmentedSystem::factorize(const std::vector<double>& values) {
+  if (alpha_ == 0.0) choose_penalty(values);
+  double* k = dense_ ? dense_k_.data() : sparse_k_.valuePtr();
+  std::copy(base_.begin(), base_.end(), k);
+  for (const Product& p : products_) k[p.slot] += alpha_ * values[p.a] * values[p.b];
+  if (dense_) {
+    largest_diagonal_ = dense_k_.diagonal().maxCoeff();
+    dense_factor_.compute(dense_k_);
+    if (dense_factor_.info() != Eigen::Success) return false;
+    const double smallest_pivot = dense_factor_.matrixLLT().diagonal().cwiseAbs2().minCoeff();
+    return smallest_pivot > kNoInertia * largest_diagonal_;
+  }
+  largest_diagonal_ = sparse_k_.diagonal().maxCoeff();
+  sparse_factor_.factorize(sparse_k_);
+  if (sparse_factor_.info() != Eigen::Success) return false;
+  const double smallest_pivot = sparse_factor_.vectorD().minCoeff();
+  return smallest_pivot > kNoInertia * largest_diagonal_;
+}
+
+void AugmentedSystem::solve_k(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (dense_) {
+    // K = U^T U with U upper triangular, column-major: two substitutions, written out (at this
+    // size Eigen's general triangular solves cost more in dispatch than in arithmetic).
+    const double* u = dense_factor_.matrixLLT().data();
+    const int n = n_;
+    x = b;
+    for (int j = 0; j < n; ++j) {
+      double sum = x(j);
+      for (int i = 0; i < j; ++i) sum -= u[j * n + i] * x(i);
+      x(j) = sum / u[j * n + j];
+    }
+    for (int j = n - 1; j >= 0; --j) {
+      const double value = x(j) / u[j * n + j];
+      x(j) = value;
+      for (int i = 0; i < j; ++i) x(i) -= u[j * n + i] * value;
+    }
+    return;
+  }
+  for (int i = 0; i < n_; ++i) permuted_b_(new_index_[i]) = b(i);
+  permuted_x_ = sparse_factor_.solve(permuted_b_);
+  for (int i = 0; i < n_; ++i) x(i) = permuted_x_(new_index_[i]);
+}
+
+void AugmentedSystem::apply(const std::vector<double>& values, const Eigen::VectorXd& x, Eigen::VectorXd& out) const {
+  out.setZero(m_);
+  for (const Entry& e : entries_) out(e.row) += values[e.value] * x(e.col);
+}
+
+void AugmentedSystem::apply_transposed(const std::vector<double>& values, const Eigen::VectorXd& y,
+                                       Eigen::VectorXd& out) const {
+  out.setZero(n_);
+  for (const Entry& e : entries_) out(e.col) += values[e.value] * y(e.row);
+}
+
+// The correction (dx_, dlambda_) with M dx + Phi^T dlambda = r1, Phi dx = r2: with
+// K dx + Phi^T dlambda = r1 + alpha Phi^T r2 =: g, dx = K^-1 (g - Phi^T dlambda) and
+// S dlambda = Phi K^-1 g - r2, solved by conjugate gradients from dlambda = 0. Their residual
+// is Phi dx - r2 for the current dx, updated as they go. They stop at `floor` (the rounding of the
+// whole system's terms) or where the residual, having reached the rounding, grows again (along a
+// dependent direction of the rows, S's null space); the best iterate is kept.
+void AugmentedSystem::schur_cg(const std::vector<double>& values, const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
+                               double floor) {
+  apply_transposed(values, r2, image_n_);
+  g_ = r1 + alpha_ * image_n_;
+  solve_k(g_, dx_);
+  dlambda_.setZero(m_);
+  if (m_ == 0) return;
+  apply(values, dx_, residual_);
+  residual_ -= r2;
+  const double target = std::max(floor, kConverged * (largest(r2) + jacobian_scale_ * largest(dx_)));
+  direction_ = residual_;
+  double squared = residual_.squaredNorm(), best = largest(residual_);
+  best_dx_ = dx_;
+  best_dlambda_ = dlambda_;
+  for (int iteration = 0; iteration < kMostIterations && largest(residual_) > target; ++iteration) {
+    // S p = Phi K^-1 Phi^T p; the residual falls by step S p when dlambda gains step p.
+    apply_transposed(values, direction_, image_n_);
+    solve_k(image_n_, kx_);
+    apply(values, kx_, image_);
+    const double curvature = direction_.dot(image_);
+    if (!(curvature > 0.0)) break;
+    const double step = squared / curvature;
+    dlambda_ += step * direction_;
+    dx_ -= step * kx_;
+    residual_ -= step * image_;
+    const double now = largest(residual_);
+    const bool stalled = now > 0.25 * best;  // at the rounding; or an outlier CG has yet to find
+    if (now < best) {
+      best = now;
+      best_dx_ = dx_;
+      best_dlambda_ = dlambda_;
+    }
+    if (stalled && iteration > 0) break;
+    const double next = residual_.squaredNorm();
+    direction_ = residual_ + (next / squared) * direction_;
+    squared = next;
+  }
+  dx_ = best_dx_;
+  dlambda_ = best_dlambda_;
+}
+
+double AugmentedSystem::solve(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
+                              Eigen::VectorXd& x, Eigen::VectorXd& lambda, bool refine) {
+  x.setZero(n_);
+  if (lambda.size() != m_) lambda.setZero(m_);
+  // Each round corrects (x, lambda) by the system's residuals, computed in working precision. The
+  // force residual is no measure of x's accuracy: alpha Phi^T (rounding of Phi x - c) stays in it,
+  // but lies in the range of Phi^T, which only moves lambda. The correction of x is: its size
+  // after the first round is K's rounding, which the second takes out.
+  bool converged = false;
+  double constraint_left = 0.0;
+  for (int round = 0; round < (refine ? kMostRounds : 1) && !converged; ++round) {
+    apply_transposed(values, lambda, image_n_);
+    mass_x_.noalias() = mass_ * x;
+    r1_ = f - mass_x_ - image_n_;
+    apply(values, x, r2_);
+    r2_ = c - r2_;
+    schur_cg(values, r1_, r2_, kConverged * (largest(c) + jacobian_scale_ * largest(x)));
+    x += dx_;
+    lambda += dlambda_;
+    converged = !refine || (round > 0 && largest(dx_) <= kSettled * largest(x));
+  }
+  apply(values, x, r2_);
+  r2_ = c - r2_;
+  const double scale = largest(c) + jacobian_scale_ * largest(x);
+  constraint_left = scale > 0 ? largest(r2_) / scale : 0.0;
+  if (converged && constraint_left <= kFallBack && x.allFinite()) return constraint_left;
+  lambda.setZero(m_);  // no warm start from here
+  return solve_dense(values, f, c, x);
+}
+
+// The first version's solve, for where the iterations above do not converge (the rows nearly or
+// exactly dependent: at or next to a toggle): a rank-revealing QR of Phi_q^T gives the
+// minimum-norm x_p with Phi_q x_p = c and an orthonormal basis N of the null space, and
+// x = x_p + N z with (N^T M N) z = N^T (f - M x_p). Dense and cubic in the size, but only met
+// near a toggle.
+double AugmentedSystem::solve_dense(const std::vector<double>& values, const Eigen::VectorXd& f,
+                                    const Eigen::VectorXd& c, Eigen::VectorXd& x) {
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(m_, n_);
+  for (const Entry& e : entries_) jacobian(e.row, e.col) += values[e.value];
+  const Eigen::MatrixXd mass = Eigen::MatrixXd(mass_);
+  Eigen::MatrixXd basis = Eigen::MatrixXd::Identity(n_, n_);
+  Eigen::VectorXd particular = Eigen::VectorXd::Zero(n_);
+  int rank = 0;
+  if (m_ > 0) {
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
+    qr.setThreshold(1e-10);
+    qr.compute(jacobian.transpose());
+    rank = static_cast<int>(qr.rank());
+    basis = qr.householderQ();
+    const Eigen::VectorXd permuted = qr.colsPermutation().transpose() * c;
+    const Eigen::VectorXd y =
+        qr.matrixR().topLeftCorner(rank, rank).transpose().triangularView<Eigen::Lower>().solve(permuted.head(rank));
+    particular = basis.leftCols(rank) * y;
+  }
+  x = particular;
+  if (rank < n_) {
+    const auto null = basis.rightCols(n_ - rank);
+    const Eigen::MatrixXd reduced = null.transpose() * mass * null;
+    const Eigen::VectorXd z = reduced.ldlt().solve(null.transpose() * (f - mass * particular));
+    x += null * z;
+  }
+  const double scale = largest(c) + jacobian_scale_ * largest(x);
+  const Eigen::VectorXd left = c - jacobian * x;
+  return scale > 0 ? largest(left) / scale : 0.0;
+}
+
+}  // namespace nbar

@@ -1,0 +1,109 @@
+// The linear systems of forward dynamics, sparse and without allocation after set-up:
+//
+//   M x + Phi_q^T lambda = f,   Phi_q x = c
+//
+// with M the constant mass matrix on the natural coordinates and Phi_q the Jacobian of the rows
+// kept (constraints and kinematic drivers). The same system gives the accelerations (f = Q, c =
+// gamma) and the mass-orthogonal projections of the positions and velocities (f = 0, c = the
+// residual). It is solved through the augmented matrix K = M + alpha Phi_q^T Phi_q, symmetric
+// positive definite wherever every free motion has inertia (even where Phi_q loses rank: redundant
+// constraints, a toggle), whose pattern is fixed and analysed once (a fill-reducing order, then an
+// LDL^T with its elimination tree; a dense Cholesky up to kDenseLimit coordinates, where the index
+// arithmetic costs more than the zeros). Eliminating x leaves S lambda = b with the Schur
+// complement S = Phi_q K^-1 Phi_q^T, whose eigenvalues are s / (1 + alpha s) for the eigenvalues s
+// of Phi_q M^-1 Phi_q^T: all near 1 / alpha but for the few directions where the constraints are
+// nearly dependent (near a toggle). Conjugate gradients on S therefore converge in a few
+// iterations, each one solve with K, and a round of iterative refinement on the whole system
+// takes out the rounding that the large alpha brings into K. The cost of everything is linear in
+// the nonzeros of K and its factor: for a chain of loops, linear in the number of loops.
+//
+// docs/dynamics.md (Formulation) says why this and not the null-space basis of the first version.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+namespace nbar {
+
+class AugmentedSystem {
+ public:
+  // Up to this many coordinates K is factorised dense.
+  static constexpr int kDenseLimit = 16;
+
+  // One nonzero of the kept Jacobian: its value is values[value] of the array the calls pass (the
+  // kinematics' Jacobian values, every row), at (row, col) of Phi_q (row among the kept rows).
+  struct Entry {
+    int value = 0, row = 0, col = 0;
+  };
+
+  // n coordinates, m kept rows, the mass matrix as (row, col, value) triplets (repeats add up; both
+  // triangles), the kept Jacobian's entries. Analyses K's pattern and orders it.
+  AugmentedSystem(int n, int m, const std::vector<Eigen::Triplet<double>>& mass, std::vector<Entry> entries);
+
+  int coordinates() const { return n_; }
+  int rows() const { return m_; }
+  const Eigen::SparseMatrix<double>& mass() const { return mass_; }
+
+  // Forms K from the Jacobian values and factorises it. The penalty alpha is fixed at the first
+  // call: 1e4 times the mass matrix's largest diagonal over the largest of Phi_q^T Phi_q. False
+  // when K is singular: a motion that the kept rows allow moves no mass.
+  bool factorize(const std::vector<double>& values);
+
+  // Solves the system with the Jacobian `values` (exact; K from the last factorize, which may be
+  // at a nearby point: it only preconditions). `lambda` starts the iteration (a warm start) and
+  // returns the multipliers. With `refine`, rounds of iterative refinement take x to rounding;
+  // without, one round leaves a relative error of about alpha eps (1e-10) in the part of x that
+  // the constraints leave free, which is nothing for a projection's small correction. Returns the
+  // largest |Phi_q x - c| left, relative to |c| + |Phi_q||x|: about 1e-15 where the system is
+  // consistent, of order 1 where the rows have become dependent and c asks the impossible
+  // (exactly at a toggle). Where the iterations do not settle (next to a toggle) it falls back to
+  // the dense null-space solve of the first version.
+  double solve(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
+               Eigen::VectorXd& x, Eigen::VectorXd& lambda, bool refine);
+
+  // out = Phi_q x, and out = Phi_q^T y.
+  void apply(const std::vector<double>& values, const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
+  void apply_transposed(const std::vector<double>& values, const Eigen::VectorXd& y, Eigen::VectorXd& out) const;
+
+ private:
+  // One product alpha J_a J_b added to K's stored value at `slot`.
+  struct Product {
+    int slot = 0, a = 0, b = 0;
+  };
+  double solve_dense(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
+                     Eigen::VectorXd& x);
+  void analyse(const std::vector<Eigen::Triplet<double>>& mass);
+  void choose_penalty(const std::vector<double>& values);
+  // x = K^-1 b (through the permutation).
+  void solve_k(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // Conjugate gradients on the Schur complement for the correction (dx_, dlambda_) of the
+  // residuals (r1, r2), until Phi_q dx - r2 is down to `floor` or to its rounding.
+  void schur_cg(const std::vector<double>& values, const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, double floor);
+
+  int n_ = 0, m_ = 0;
+  std::vector<Entry> entries_;
+  Eigen::SparseMatrix<double> mass_;  // both triangles
+  double alpha_ = 0.0;
+  double jacobian_scale_ = 0.0;  // the largest |row of Phi_q|_1, for the residual's scale
+
+  bool dense_ = true;
+  std::vector<int> new_index_;     // coordinate -> its place in K (the fill-reducing order)
+  std::vector<double> base_;       // K's stored values from M alone
+  std::vector<Product> products_;  // the alpha Phi_q^T Phi_q part
+  Eigen::MatrixXd dense_k_;        // upper triangle used (dense_)
+  Eigen::LLT<Eigen::MatrixXd, Eigen::Upper> dense_factor_;
+  Eigen::SparseMatrix<double> sparse_k_;  // upper triangle, in the fill-reducing order
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>> sparse_factor_;
+  double largest_diagonal_ = 0.0;
+
+  // Work vectors, sized once.
+  Eigen::VectorXd permuted_b_, permuted_x_;
+  Eigen::VectorXd r1_, r2_, g_, dx_, dlambda_, best_dx_, best_dlambda_, mass_x_, residual_, direction_, image_,
+      image_n_, kx_;
+};
+
+}  // namespace nbar
