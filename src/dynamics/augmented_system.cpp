@@ -18,8 +18,8 @@ namespace {
 constexpr double kPenalty = 1e6;
 constexpr double kNoInertia = 1e-12;
 // Iterations of conjugate gradients (a few suffice away from a toggle) and rounds of refinement.
-constexpr int kMostIterations = 40;
-constexpr int kMostRounds = 4;
+constexpr int kMostIterations = 200;
+constexpr int kMostRounds = 6;
 // What the iterations aim at, relative to the size of the terms.
 constexpr double kConverged = 1e-15;
 // A correction of x below this (relative) ends the rounds: each round leaves about alpha eps
@@ -190,6 +190,7 @@ void AugmentedSystem::schur_cg(const std::vector<double>& values, const Eigen::V
   const double target = std::max(floor, kConverged * (largest(r2) + jacobian_scale_ * largest(dx_)));
   direction_ = residual_;
   double squared = residual_.squaredNorm(), best = largest(residual_);
+  int since_best = 0;
   best_dx_ = dx_;
   best_dlambda_ = dlambda_;
   for (int iteration = 0; iteration < kMostIterations && largest(residual_) > target; ++iteration) {
@@ -203,14 +204,17 @@ void AugmentedSystem::schur_cg(const std::vector<double>& values, const Eigen::V
     dlambda_ += step * direction_;
     dx_ -= step * kx_;
     residual_ -= step * image_;
+    // At the rounding the residual stops falling (and along a dependent direction grows): three
+    // iterations without a new best end them (CG's residual need not fall at every iteration).
     const double now = largest(residual_);
-    const bool stalled = now > 0.25 * best;  // at the rounding; or an outlier CG has yet to find
     if (now < best) {
       best = now;
       best_dx_ = dx_;
       best_dlambda_ = dlambda_;
+      since_best = 0;
+    } else if (++since_best >= 3 || now > 1e3 * best) {
+      break;
     }
-    if (stalled && iteration > 0) break;
     const double next = residual_.squaredNorm();
     direction_ = residual_ + (next / squared) * direction_;
     squared = next;

@@ -13,6 +13,7 @@
 #include "dynamics/augmented_system.hpp"
 #include "kinematics/constraints.hpp"
 #include "kinematics/linear_solver.hpp"
+#include "kinematics/sparse_lu.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/kinematics/position.hpp"
 
@@ -111,8 +112,7 @@ class EquationsOfMotion {
     double pivot_ratio = 0.0;
   };
 
-  EquationsOfMotion(const Mechanism& mech, std::vector<double> start)
-      : mech_(mech), start_(std::move(start)), full_solver_(mech) {
+  EquationsOfMotion(const Mechanism& mech, std::vector<double> start) : mech_(mech), start_(std::move(start)) {
     const Model& m = mech.model();
     n_ = mech.coordinate_count();
     const auto& rows = mech.equations().rows;
@@ -126,6 +126,12 @@ class EquationsOfMotion {
       if (selected_[pattern[i].row] >= 0)
         entries.push_back({static_cast<int>(i), selected_[pattern[i].row], pattern[i].col});
     system_.emplace(n_, kept_rows(), build_masses(), std::move(entries));
+    square_ = mech.row_count() == n_;
+    if (square_) {
+      std::vector<SparseLU::Entry> full;
+      for (const JacobianEntry& e : pattern) full.push_back({e.row, e.col});
+      full_lu_.set_pattern(n_, full);
+    }
     zero_force_.setZero(n_);
     lambda_.setZero(kept_rows());
   }
@@ -256,10 +262,11 @@ class EquationsOfMotion {
   // sense, as if the lost constraint were free.
   void allow_singular(bool allowed) { singular_allowed_ = allowed; }
 
-  // The gate at q (the time of the last factorisation), from the kinematics' own sparse LU.
+  // The gate at q (the time of the last factorisation), from the kinematics' own sparse LU
+  // (its pivots chosen once and replayed).
   Gate gate_at(const Eigen::VectorXd& q) {
     Gate gate;
-    if (full_solver_.method() != LinearSolver::Method::LU) return gate;
+    if (!square_) return gate;
     full_drivers_ = drivers_;
     const std::vector<double> values = driver_values_at(mech_, q, start_);
     for (std::size_t d = 0; d < full_drivers_.size(); ++d)
@@ -267,9 +274,9 @@ class EquationsOfMotion {
         set_driver_state(full_drivers_[d], Series(kTerms, values[d]), mech_.model().drivers[d].is_angular());
     evaluate_jacobian(mech_, q, full_drivers_, full_values_);
     gate.square = true;
-    if (!full_solver_.factorize(full_values_)) return gate;  // singular: sign 0
-    gate.sign = full_solver_.determinant_sign();
-    gate.pivot_ratio = full_solver_.reciprocal_condition();
+    if (!full_lu_.factorize(full_values_.data())) return gate;  // singular: sign 0
+    gate.sign = full_lu_.determinant_sign();
+    gate.pivot_ratio = full_lu_.pivot_ratio();
     return gate;
   }
 
@@ -446,7 +453,8 @@ class EquationsOfMotion {
 
   std::vector<DriverState> drivers_, full_drivers_;
   std::vector<double> jacobian_values_, full_values_;
-  LinearSolver full_solver_;  // every row's square Jacobian, for the gate
+  bool square_ = false;  // as many rows as coordinates: the gate's LU exists
+  SparseLU full_lu_;     // every row's square Jacobian, for the gate
   Eigen::MatrixXd first_order_, second_order_;
   Eigen::VectorXd all_rows_, residual_, time_derivative_, gamma_, product_, loads_, zero_force_;
   Eigen::VectorXd lambda_, projection_lambda_, correction_;

@@ -4,13 +4,14 @@
 // Formulation (docs/dynamics.md): the equations of motion in the natural coordinates q of the
 // kinematics, M q'' + Phi_q^T lambda = Q(t, q, q'), with M constant (each body's mass and inertia
 // expressed on its two frame points), Phi the constraint rows and the rows of the drivers that stay
-// kinematic. Index 1: at every evaluation the accelerations solve Phi_q q'' = gamma and the
-// dynamics in the null space of Phi_q (an orthonormal basis from a rank-revealing QR of Phi_q^T),
-// so redundant constraints need no special treatment and a free motion without inertia is found
-// and refused. Integrated by the embedded Runge-Kutta pair of Dormand and Prince, 5(4), with its
-// continuous extension for the output times; after every accepted step q is projected back onto
-// Phi = 0 and q' onto Phi_q q' = -Phi_t (minimum-norm corrections), so the drift stays at the
-// solver's tolerance on all three levels.
+// kinematic. Index 1: at every evaluation the accelerations solve that system with Phi_q q'' =
+// gamma, through the sparse augmented matrix M + alpha Phi_q^T Phi_q (its pattern analysed once),
+// conjugate gradients on the Schur complement and a round of refinement, so redundant
+// constraints need no special treatment, a free motion without inertia is found and refused, and
+// the cost is linear in the size of a chain. Integrated by the embedded Runge-Kutta pair of
+// Dormand and Prince, 5(4), with its continuous extension for the output times; after every
+// accepted step q is projected back onto Phi = 0 and q' onto Phi_q q' = -Phi_t (corrections in the
+// mass's metric), so the drift stays at the solver's tolerance on all three levels.
 #pragma once
 
 #include <Eigen/Core>
