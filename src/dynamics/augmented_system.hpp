@@ -1,4 +1,4 @@
-// The linear systems of forward dynamics, sparse and without allocation after set-up:
+// The linear systems of forward dynamics, sparse, in storage sized once at set-up:
 //
 //   M x + Phi_q^T lambda = f,   Phi_q x = c
 //
