@@ -21,12 +21,22 @@ int run_simulate(const SimulateCommand& command) {
   if (!read_request(*command.flags, request)) return kBadUsage;
   Loaded loaded;
   if (int code = load(command.model, loaded)) return code;
-  Simulation simulation;
+  SimulationOptions options;
   try {
-    simulation = simulate(*loaded.mechanism, request.simulation_options());
+    options = request.simulation_options(*loaded.mechanism);
+  } catch (const request::OptionError& e) {  // no --to, and none in the model: as a flag's problem
+    std::cerr << e.spelled(spell_flag) << "\nRun with --help for more information.\n";
+    return kBadUsage;
   } catch (const Error& e) {
     return fail(command.model, io::located(loaded.file.source, e));
   }
+  Simulation simulation;
+  try {
+    simulation = simulate(*loaded.mechanism, options);
+  } catch (const Error& e) {
+    return fail(command.model, io::located(loaded.file.source, e));
+  }
+  print_warnings(simulation.warnings);
   ResultTable table;
   try {
     table = request.table(*loaded.mechanism, simulation);

@@ -448,14 +448,16 @@ class Model:
         kinetic and potential energy."""
         return self.solve(steps=steps, columns=columns, dynamics=True, **options)
 
-    def simulate(self, to: float, dt: Optional[float] = None, rtol: Optional[float] = None, columns: Columns = None,
-                 max_steps: Optional[int] = None, stop_when: Optional[str] = None, at_toggle: str = "stop",
-                 partial: bool = False, timeout: Optional[float] = None) -> Result:
+    def simulate(self, to: Optional[float] = None, dt: Optional[float] = None, rtol: Optional[float] = None,
+                 columns: Columns = None, max_steps: Optional[int] = None, stop_when: Optional[str] = None,
+                 at_toggle: Optional[str] = None, partial: bool = False, timeout: Optional[float] = None) -> Result:
         """Lets the mechanism move under its loads for ``to`` seconds (``nbar simulate``): the
         drivers marked ``free: true`` are released, the others stay kinematic. A row every ``dt``
         seconds (default ``to``/100) with the columns of ``solve`` and the energies
         (``energy.kinetic``, ``energy.balance``...); ``rtol`` is the integrator's relative
-        tolerance (default 1e-8).
+        tolerance (default 1e-8). Each of ``to``, ``dt``, ``rtol``, ``stop_when`` and
+        ``at_toggle`` not given is the model's own (its ``simulation:`` section), if it has one;
+        ``to`` must come from one or the other.
 
         ``stop_when="slider.x > 200"`` ends the run where a column crosses a value (in its unit),
         located to 1e-12 s; ``at_toggle="reverse"`` reverses every speed where the constraints
@@ -464,10 +466,11 @@ class Model:
         error. A run that cannot continue (a toggle, a step size too small) raises
         ``nbar.LimitError`` with the rows so far as ``.result``, unless ``partial=True``."""
         patterns = _patterns(columns)
-        run = _nbar.simulate(self._c, to=_number("to", to), dt=_real("dt", dt), rtol=_real("rtol", rtol),
+        run = _nbar.simulate(self._c, to=_real("to", to), dt=_real("dt", dt), rtol=_real("rtol", rtol),
                              max_steps=_whole("max_steps", max_steps, minimum=1),
                              stop_when=None if stop_when is None else _text("stop_when", stop_when),
-                             at_toggle=_text("at_toggle", at_toggle), timeout=_real("timeout", timeout))
+                             at_toggle=None if at_toggle is None else _text("at_toggle", at_toggle),
+                             timeout=_real("timeout", timeout))
         result = Result(run, *self._simulated_columns(run, patterns))
         result.default_x = "t"
         if not result.complete and not partial:
@@ -476,6 +479,18 @@ class Model:
                              f"simulate(..., partial=True) returns them)", kind="stopped_at_limit", file=self._c.file,
                              line=line, column=column, result=result)
         return result
+
+    def equilibrium(self, max_iterations: Optional[int] = None, timeout: Optional[float] = None) -> Dict[str, Any]:
+        """The static equilibrium of the drivers marked ``free: true`` under the model's loads
+        (``nbar equilibrium``), the other drivers held at their start: a dict with
+        ``free_drivers`` (name: value, model units), ``stability`` (``"stable"``, ``"unstable"``
+        or ``"neutral"``), ``eigenvalues`` and ``stiffness`` (the reduced stiffness, SI),
+        ``residual`` and ``forces`` (the generalised force left on each free driver, N m or N),
+        ``iterations``, and ``pose`` (every column of the pose: drivers, points' x and y,
+        bodies' angles) with their ``units``. No equilibrium, or none found, raises
+        ``nbar.ModelError`` at the first free driver."""
+        return dict(_nbar.equilibrium(self._c, max_iterations=_whole("max_iterations", max_iterations, minimum=1),
+                                      timeout=_real("timeout", timeout)))
 
     @staticmethod
     def _simulated_columns(run: Any, patterns: Optional[List[str]]) -> Tuple[Any, ...]:

@@ -295,12 +295,12 @@ struct PySimulation {
 
 // Python's arguments read by the command line's rules (request::SimulateRequest): the same
 // ranges, defaults and messages as `nbar simulate`'s flags.
-std::shared_ptr<PySimulation> run_simulation(std::shared_ptr<PyModel> model, double to, std::optional<double> dt,
-                                             std::optional<double> rtol, std::optional<long long> max_steps,
-                                             std::optional<std::string> stop_when, std::optional<std::string> at_toggle,
-                                             std::optional<double> timeout) {
+std::shared_ptr<PySimulation> run_simulation(std::shared_ptr<PyModel> model, std::optional<double> to,
+                                             std::optional<double> dt, std::optional<double> rtol,
+                                             std::optional<long long> max_steps, std::optional<std::string> stop_when,
+                                             std::optional<std::string> at_toggle, std::optional<double> timeout) {
   request::Options given;
-  given.set("to", to);
+  if (to) given.set("to", *to);
   if (dt) given.set("dt", *dt);
   if (rtol) given.set("rtol", *rtol);
   if (max_steps) given.set("max_steps", *max_steps);
@@ -309,10 +309,18 @@ std::shared_ptr<PySimulation> run_simulation(std::shared_ptr<PyModel> model, dou
   auto out = std::make_shared<PySimulation>();
   out->model = model;
   out->request = request::SimulateRequest::read(given);
+  SimulationOptions options;
+  try {
+    options = out->request.simulation_options(*model->mechanism);  // with the model's `simulation:`
+  } catch (const request::OptionError&) {
+    throw;
+  } catch (const Error& e) {
+    throw located(*model, e);
+  }
   RunControl control;
   run_interruptible(control, timeout, [&] {
     try {
-      out->simulation = simulate(*model->mechanism, out->request.simulation_options(), control);
+      out->simulation = simulate(*model->mechanism, options, control);
     } catch (const Error& e) {
       throw located(*model, e);
     }
@@ -341,7 +349,7 @@ void bind_simulation(py::module_& m) {
                              })
       .def_property_readonly("samples", [](const PySimulation& s) { return s.simulation.samples.size(); })
       // A Result's fields that a sweep has and a simulation has not: no branches, no change points.
-      .def_property_readonly("warnings", [](const PySimulation&) { return py::list(); })
+      .def_property_readonly("warnings", [](const PySimulation& s) { return warning_list(s.simulation.warnings); })
       .def_property_readonly("branches", [](const PySimulation&) { return py::list(); })
       .def_property_readonly("transmission_angles", [](const PySimulation&) { return py::dict(); })
       .def_property_readonly("forces_unique", [](const PySimulation&) { return py::none(); })
@@ -385,7 +393,7 @@ void bind_simulation(py::module_& m) {
             return out.str();
           },
           py::arg("columns") = std::nullopt);
-  m.def("simulate", &run_simulation, py::arg("model"), py::arg("to"), py::arg("dt") = std::nullopt,
+  m.def("simulate", &run_simulation, py::arg("model"), py::arg("to") = std::nullopt, py::arg("dt") = std::nullopt,
         py::arg("rtol") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("stop_when") = std::nullopt,
         py::arg("at_toggle") = std::nullopt, py::arg("timeout") = std::nullopt);
 }

@@ -54,5 +54,6 @@ void bind_model(py::module_& m);
 void bind_analysis(py::module_& m);
 void bind_explain(py::module_& m);
 void bind_synthesis(py::module_& m);
+void bind_equilibrium(py::module_& m);
 
 }  // namespace nbar::python

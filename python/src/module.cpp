@@ -10,4 +10,5 @@ PYBIND11_MODULE(_nbar, m) {
   nbar::python::bind_analysis(m);
   nbar::python::bind_explain(m);
   nbar::python::bind_synthesis(m);
+  nbar::python::bind_equilibrium(m);
 }

@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "dynamics/augmented_system.hpp"
+#include "dynamics/initial_velocity.hpp"
+#include "dynamics/joint_friction.hpp"
 #include "kinematics/constraints.hpp"
 #include "kinematics/linear_solver.hpp"
 #include "kinematics/sparse_lu.hpp"
@@ -439,6 +441,7 @@ class EquationsOfMotion {
       add_force(s.points[1], -tension * e, loads);
       dissipated += s.damping * rate * rate;
     }
+    dissipated += add_joint_friction(mech_, q, qd, loads);
     return loads;
   }
   const Mechanism& mech_;
@@ -999,6 +1002,11 @@ class Run {
   // Every row, the free drivers' at their initial speeds, gives q' at the start: J q' = -Phi_t,
   // solved with the kinematics' own sparse LU (a rank-revealing least-squares solve where the
   // rows are redundant or the Jacobian singular there).
+  // Velocities at the start. Up to kDenseStartCoordinates coordinates by an SVD that meets the
+  // kept rows exactly and the free drivers' initial speeds as nearly as it can, a correction said
+  // in the warnings (initial_velocity.hpp); above, where that SVD's cubic cost would outweigh the
+  // run (a chain of a hundred loops), by the sparse solve alone, exact at a regular start.
+  static constexpr int kDenseStartCoordinates = 400;
   Eigen::VectorXd start_velocities(const Eigen::VectorXd& q, const std::vector<DriverState>& drivers) {
     std::vector<double> values;
     evaluate_jacobian(mech_, q, drivers, values);
@@ -1006,6 +1014,12 @@ class Run {
     coefficients.col(0) = q;
     Eigen::VectorXd phi_t;
     evaluate_series_remainder(mech_, coefficients, 1, drivers, phi_t);
+    if (n_ <= kDenseStartCoordinates) {
+      Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(mech_.row_count(), n_);
+      const auto& pattern = mech_.equations().pattern;
+      for (std::size_t i = 0; i < pattern.size(); ++i) jacobian(pattern[i].row, pattern[i].col) += values[i];
+      return consistent_initial_velocity(mech_, jacobian, phi_t, out_.warnings);
+    }
     const Eigen::VectorXd rhs = -phi_t;
     LinearSolver solver(mech_);
     Eigen::VectorXd qd;

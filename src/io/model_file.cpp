@@ -46,6 +46,8 @@ SourceMark SourceMap::find(const EntityRef& ref) const {
     case EntityRef::Kind::PointLoad: return pick(point_loads);
     case EntityRef::Kind::Torque: return pick(torques);
     case EntityRef::Kind::Spring: return pick(springs);
+    case EntityRef::Kind::Friction: return pick(frictions);
+    case EntityRef::Kind::Simulation: return pick(simulation);
   }
   return model;
 }
@@ -99,6 +101,8 @@ LoadedModel Parser::parse() {
   if (const Entry* e = top.find("forces")) parse_forces(*e);
   if (const Entry* e = top.find("torques")) parse_torques(*e);
   if (const Entry* e = top.find("springs")) parse_springs(*e);
+  if (const Entry* e = top.find("friction")) parse_friction(*e);
+  if (const Entry* e = top.find("simulation")) parse_simulation(*e);
 
   try {
     validate(model_);

@@ -278,10 +278,18 @@ void Parser::parse_springs(const Entry& e) {
     if (stiffness) {
       s.stiffness = quantity(*stiffness, "the stiffness", kStiffnessUnits, "2 N/mm");
       if (s.stiffness < 0.0) fail(mark(*stiffness), "the stiffness must not be negative");
+      if (s.stiffness > kMaxLoadCoefficient)
+        fail(mark(*stiffness),
+             "the stiffness is out of range (at most 1e12 N/m): the motion it gives is faster "
+             "than any integration step");
     }
     if (damping) {
       s.damping = quantity(*damping, "the damping", kDampingUnits, "0.5 N s/mm");
       if (s.damping < 0.0) fail(mark(*damping), "the damping must not be negative");
+      if (s.damping > kMaxLoadCoefficient)
+        fail(mark(*damping),
+             "the damping is out of range (at most 1e12 N s/m): the motion it gives is faster "
+             "than any integration step");
     }
     if (const Entry* preload = f.find("preload")) s.preload = number(*preload, "the preload (N)");
     if (const Entry* free = f.find("free_length")) {

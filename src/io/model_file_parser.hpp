@@ -43,7 +43,7 @@ inline constexpr double kMaxDriverAngle = 1e6;
 inline const AllowedKeys kTopLevelKeys{
     "at the top level",
     {"name", "description", "units", "points", "ground", "bodies", "lengths", "sliders", "slots", "drivers", "sweep",
-     "gravity", "materials", "forces", "torques", "springs"}};
+     "gravity", "materials", "forces", "torques", "springs", "friction", "simulation"}};
 inline const AllowedKeys kUnitsKeys{"in `units`", {"length", "angle"}};
 inline const AllowedKeys kSliderKeys{"in a slider", {"body", "point", "along"}};
 inline const AllowedKeys kSlotKeys{"in a slot", {"point", "along"}};
@@ -64,6 +64,9 @@ inline const AllowedKeys kForceKeys{"in a force", {"point", "body", "force", "fx
 inline const AllowedKeys kTorqueKeys{"in a torque", {"body", "torque", "no_load_speed"}};
 inline const AllowedKeys kSpringKeys{"in a spring",
                                      {"between", "stiffness", "free_length", "damping", "preload", "name"}};
+inline const AllowedKeys kFrictionKeys{"in a joint's friction",
+                                       {"joint", "links", "slider", "slot", "viscous", "coulomb", "creep_speed"}};
+inline const AllowedKeys kSimulationKeys{"in `simulation`", {"to", "dt", "rtol", "stop_when", "at_toggle"}};
 
 // A unit a quantity may be written in, and its value in SI.
 struct UnitScale {
@@ -222,6 +225,15 @@ class Parser : yaml::Reader {
   void parse_forces(const Entry& e);
   void parse_torques(const Entry& e);
   void parse_springs(const Entry& e);
+
+  // ---- joint friction and the simulation's settings (model_file_simulation.cpp) ----
+
+  double load_coefficient(const Entry& e, const std::string& what, const std::string& unit) const;
+  std::vector<int> links_at(int point) const;
+  std::array<int, 2> friction_links(const Fields& f, const Entry& joint, int point) const;
+  double drawing_diagonal() const;
+  void parse_friction(const Entry& e);
+  void parse_simulation(const Entry& e);
 };
 
 }  // namespace nbar::io::model_file_detail

@@ -33,6 +33,8 @@ const char* to_string(EntityRef::Kind kind) {
     case EntityRef::Kind::PointLoad: return "force";
     case EntityRef::Kind::Torque: return "torque";
     case EntityRef::Kind::Spring: return "spring";
+    case EntityRef::Kind::Friction: return "friction";
+    case EntityRef::Kind::Simulation: return "simulation";
   }
   return "model";
 }

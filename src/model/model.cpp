@@ -72,6 +72,7 @@ class Validator {
     check_mass_properties();
     check_loads();
     check_springs();
+    check_frictions();
   }
 
  private:
@@ -681,6 +682,36 @@ class Validator {
       if (!non_negative(s.stiffness)) fail(where, "the stiffness of " + name + " must not be negative");
       if (!non_negative(s.damping)) fail(where, "the damping of " + name + " must not be negative");
       if (!non_negative(s.free_length)) fail(where, "the free length of " + name + " must not be negative");
+      if (s.stiffness > kMaxLoadCoefficient) fail(where, "the stiffness of " + name + " is out of range");
+      if (s.damping > kMaxLoadCoefficient) fail(where, "the damping of " + name + " is out of range");
+    }
+  }
+
+  // Friction in joints (`nbar simulate`): a pin between two links that meet there, an existing
+  // slider or slot, coefficients in [0, kMaxLoadCoefficient] and a positive creep speed.
+  void check_frictions() const {
+    for (std::size_t i = 0; i < m_.frictions.size(); ++i) {
+      const JointFriction& f = m_.frictions[i];
+      const auto where = ref(EntityRef::Kind::Friction, i);
+      const std::string name = "friction #" + std::to_string(i + 1);
+      using Joint = JointFriction::Joint;
+      if (f.joint == Joint::Revolute) {
+        if (!valid_point(f.index))
+          fail(where, name + " is at point #" + std::to_string(f.index) + ", which does not exist");
+        for (int link : f.links) {
+          const bool meets = link == -1 ? m_.points[f.index].ground : valid_body(link) && body_has_point(link, f.index);
+          if (!meets) fail(where, name + " names a link that does not meet at point " + point_name(f.index));
+        }
+        if (f.links[0] == f.links[1]) fail(where, name + " acts between a link and itself");
+      } else {
+        const int count = static_cast<int>(f.joint == Joint::Slider ? m_.sliders.size() : m_.slots.size());
+        if (f.index < 0 || f.index >= count) fail(where, name + " names a slider or slot that does not exist");
+      }
+      const auto in_range = [](double v) { return std::isfinite(v) && v >= 0.0 && v <= kMaxLoadCoefficient; };
+      if (!in_range(f.viscous)) fail(where, "the viscous coefficient of " + name + " is negative or out of range");
+      if (!in_range(f.coulomb)) fail(where, "the Coulomb friction of " + name + " is negative or out of range");
+      if (!(std::isfinite(f.creep_speed) && f.creep_speed > 0.0))
+        fail(where, "the creep speed of " + name + " must be positive");
     }
   }
 };

@@ -828,7 +828,7 @@ std::string ExportRequest::plates(const Mechanism& mechanism, const std::vector<
 
 const std::vector<OptionRule>& SimulateRequest::rules() {
   static const std::vector<OptionRule> rules = {
-      positive_number("to", "the simulated time, s (required)"),
+      positive_number("to", "the simulated time, s (required unless the model's `simulation:` gives it)"),
       positive_number("dt", "time between output rows, s (default: a hundredth of --to)"),
       number_rule("rtol", "relative tolerance of the integrator (default 1e-8), from 1e-14 to 0.01", 1e-14, 0.01),
       positive_integer("max_steps", "most integration steps before the run stops (default 10000000)"),
@@ -847,14 +847,12 @@ const std::vector<OptionRule>& SimulateRequest::rules() {
 
 SimulateRequest SimulateRequest::read(const Options& options) {
   SimulateRequest r;
-  const std::optional<double> to = read_number(options, rule_of(rules(), "to"));
-  if (!to) throw OptionError("to", "give the simulated time in seconds, e.g. {to} 2");
-  r.to = *to;
+  r.to = read_number(options, rule_of(rules(), "to")).value_or(0.0);
   r.dt = read_number(options, rule_of(rules(), "dt"));
-  if (r.to / r.dt.value_or(r.to / 100) + 1 > kMaxRows)
-    throw OptionError("dt", "gives more than " + number_text(kMaxRows) + " rows over " + number_text(r.to) +
-                                " s; give a larger {dt}");
-  r.rtol = read_number(options, rule_of(rules(), "rtol")).value_or(1e-8);
+  if (r.to > 0.0) check_rows(r.to, r.dt);
+  const std::optional<double> rtol = read_number(options, rule_of(rules(), "rtol"));
+  r.rtol = rtol.value_or(1e-8);
+  r.rtol_given = rtol.has_value();
   r.max_steps = static_cast<long>(read_integer(options, rule_of(rules(), "max_steps")).value_or(10'000'000));
   r.format = read_text(options, rule_of(rules(), "format")).value_or("csv");
   r.columns = read_names(options, rule_of(rules(), "columns"));
@@ -864,9 +862,53 @@ SimulateRequest SimulateRequest::read(const Options& options) {
       throw OptionError("stop_when", "must be a column, < or > and a number, e.g. 'slider.x > 200', not " +
                                          literal("'" + *stop + "'"));
   }
-  r.at_toggle = read_text(options, rule_of(rules(), "at_toggle")).value_or("stop") == "reverse" ? AtToggle::reverse
-                                                                                                : AtToggle::stop;
+  const std::optional<std::string> at_toggle = read_text(options, rule_of(rules(), "at_toggle"));
+  r.at_toggle = at_toggle.value_or("stop") == "reverse" ? AtToggle::reverse : AtToggle::stop;
+  r.at_toggle_given = at_toggle.has_value();
   return r;
+}
+
+void SimulateRequest::check_rows(double to, std::optional<double> dt) {
+  if (to / dt.value_or(to / 100) + 1 > kMaxRows)
+    throw OptionError(
+        "dt", "gives more than " + number_text(kMaxRows) + " rows over " + number_text(to) + " s; give a larger {dt}");
+}
+
+// The options with what the command leaves unset taken from the model's `simulation:` section.
+// A stop condition from the model names a column checked here, so that a typo is shown at its
+// line in the file.
+SimulationOptions SimulateRequest::simulation_options(const Mechanism& mechanism) const {
+  const SimulationSpec& spec = mechanism.model().simulation;
+  SimulationOptions options = simulation_options();
+  if (!(to > 0.0)) {
+    if (!spec.end_time) throw OptionError("to", "give the simulated time in seconds, e.g. {to} 2");
+    options.end_time = *spec.end_time;
+    if (!dt && spec.output_step) options.output_step = *spec.output_step;
+    check_rows(options.end_time, options.output_step > 0 ? std::optional<double>(options.output_step) : std::nullopt);
+  } else if (!dt && spec.output_step) {
+    options.output_step = *spec.output_step;
+    check_rows(options.end_time, options.output_step);
+  }
+  if (!rtol_given && spec.relative_tolerance) options.relative_tolerance = *spec.relative_tolerance;
+  if (!at_toggle_given && spec.reverse_at_toggle)
+    options.at_toggle = *spec.reverse_at_toggle ? AtToggle::reverse : AtToggle::stop;
+  if (!stop_when && spec.stop_when) {
+    options.stop_when = parse_stop_condition(*spec.stop_when);
+    const std::vector<std::string> names = simulation_table(mechanism, Simulation{}).columns;
+    if (std::find(names.begin(), names.end(), options.stop_when->column) == names.end()) {
+      const std::string& column = options.stop_when->column;
+      const std::string owner = column.substr(0, column.find('.'));
+      std::string listed;
+      for (const std::string& name : names)
+        if (name.substr(0, name.find('.')) == owner) listed += (listed.empty() ? "" : ", ") + name;
+      throw Error(ErrorKind::InvalidModel,
+                  "the stop condition '" + *spec.stop_when + "' names no column '" + column + "'" +
+                      (listed.empty() ? std::string(" (the columns are those of `nbar simulate`'s table)")
+                                      : "; the columns of " + owner + " are " + listed),
+                  {EntityRef::Kind::Simulation, 1, -1});
+    }
+  }
+  return options;
 }
 
 SimulationOptions SimulateRequest::simulation_options() const {

@@ -95,6 +95,9 @@ struct Simulation {
   std::vector<int> free_drivers;
   SimulationStatistics statistics;
   std::vector<SimulationEvent> events;  // in time order; a stop_when event ends the run (complete)
+  // Before the run: free drivers' initial speeds the constraints did not allow
+  // ("initial_speed_projected", with the size of the correction).
+  std::vector<Warning> warnings;
   bool complete = true;
   std::string stop_reason;  // when !complete: what stopped it, at which time
   EntityRef stop_where;     // the entity concerned, for the file position

@@ -21,6 +21,9 @@ struct SourceMap {
   std::vector<SourceMark> points, bodies, sliders, slots, drivers;
   SourceMark sweep;
   std::vector<SourceMark> point_loads, torques, springs;  // the items of `forces`, `torques`, `springs`
+  std::vector<SourceMark> frictions;                      // the items of `friction`
+  // The `simulation:` section: [0] the section, [1] its `stop_when` (an unknown column is shown there)
+  std::vector<SourceMark> simulation;
   // Where each entity's laws were written (EntityRef::law indexes the pair): a driver's `law`,
   // a torque's value, a force's fx and fy. An unmarked law is shown at its entity.
   std::vector<std::array<SourceMark, 2>> driver_laws, point_load_laws, torque_laws;

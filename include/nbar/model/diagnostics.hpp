@@ -33,7 +33,20 @@ struct SourceMark {
 // What a model error is about, so that front-ends can point at the right place (the parser
 // maps it to file:line:column).
 struct EntityRef {
-  enum class Kind { Model, Point, Body, Slider, Slot, Driver, Sweep, PointLoad, Torque, Spring } kind = Kind::Model;
+  enum class Kind {
+    Model,
+    Point,
+    Body,
+    Slider,
+    Slot,
+    Driver,
+    Sweep,
+    PointLoad,
+    Torque,
+    Spring,
+    Friction,
+    Simulation
+  } kind = Kind::Model;
   int index = -1;
   // Which law of the entity the error is about, so that it is shown at the law's text: 0 for a
   // driver's `law`, a torque or a force's fx, 1 for a force's fy; -1 for the entity as a whole.

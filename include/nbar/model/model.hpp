@@ -148,6 +148,35 @@ struct Spring {
   double preload = 0.0;      // N, the tension at the free length
 };
 
+// Friction in a joint, read by `nbar simulate` (and `nbar equilibrium`, which ignores it: at rest
+// a friction force is whatever holds). It resists the joint's relative motion: the relative
+// rotation of two links at a pin, or the slide of a slider's or a slot's point along its guide.
+// Viscous: -viscous x speed. Coulomb: a given constant torque or force, -coulomb x
+// tanh(speed / creep_speed), smooth so that an explicit integrator can cross zero speed; a joint
+// held by Coulomb friction creeps at a speed of the order of creep_speed.
+struct JointFriction {
+  enum class Joint { Revolute, Slider, Slot } joint = Joint::Revolute;
+  int index = -1;  // Revolute: the pin's point; Slider: index into Model::sliders; Slot: into Model::slots
+  std::array<int, 2> links{-1, -1};  // Revolute: the two links whose relative rotation it resists (-1: ground)
+  double viscous = 0.0;              // N m s/rad (revolute) or N s/m (sliding)
+  double coulomb = 0.0;              // N m (revolute) or N (sliding)
+  double creep_speed = 0.0;          // rad/s or m/s, > 0 (the reader sets the default)
+};
+
+// The largest coefficient (stiffness N/m, damping N s/m, friction in SI) a model may give: past it
+// the motion's time scale is below any step an integrator can take, so it is a typo.
+inline constexpr double kMaxLoadCoefficient = 1e12;
+
+// A simulation's settings given in the model file (`simulation:`); the command line's flags
+// override each of them.
+struct SimulationSpec {
+  std::optional<double> end_time;            // s
+  std::optional<double> output_step;         // s
+  std::optional<double> relative_tolerance;  // of the integrator
+  std::optional<std::string> stop_when;      // "slider.x > 200", checked by the reader's syntax
+  std::optional<bool> reverse_at_toggle;     // at_toggle: reverse (true) or stop (false)
+};
+
 struct Model {
   std::string name;
   Units units;
@@ -162,6 +191,8 @@ struct Model {
   std::vector<PointLoad> point_loads;
   std::vector<BodyTorque> torques;
   std::vector<Spring> springs;
+  std::vector<JointFriction> frictions;
+  SimulationSpec simulation;
 
   int find_point(const std::string& name) const;  // -1 when absent
   int find_body(const std::string& name) const;

@@ -294,7 +294,7 @@ struct ExportRequest {
 
 // nbar simulate: the motion under the loads, the free drivers released (forward dynamics).
 struct SimulateRequest {
-  double to = 0.0;                         // s, the simulated time
+  double to = 0.0;                         // s, the simulated time; 0: the model's (`simulation: {to}`)
   std::optional<double> dt;                // s between rows; unset: to / 100
   double rtol = 1e-8;                      // the integrator's relative tolerance
   long max_steps = 10'000'000;             // integration steps
@@ -302,14 +302,21 @@ struct SimulateRequest {
   std::string format = "csv";              // csv, json or table
   std::optional<StopCondition> stop_when;  // "slider.x > 0.2": the run ends where it comes to hold
   AtToggle at_toggle = AtToggle::stop;
+  bool rtol_given = false, at_toggle_given = false;  // else the model's `simulation:` may set them
 
   // At most this many rows (every row is kept until the run ends).
   static constexpr double kMaxRows = 1e6;
 
   static const std::vector<OptionRule>& rules();
-  // `to` is required; a `dt` that gives more than kMaxRows rows is an OptionError at `dt`.
+  // A `dt` that gives more than kMaxRows rows is an OptionError at `dt`.
   static SimulateRequest read(const Options& options);
+  static void check_rows(double to, std::optional<double> dt);
+  // The options as given (`to` must be).
   SimulationOptions simulation_options() const;
+  // The options, each one not given taken from the model's `simulation:` section: an
+  // OptionError at `to` when neither gives it, Error(InvalidModel) at the section's
+  // `stop_when` when it names no column.
+  SimulationOptions simulation_options(const Mechanism& mechanism) const;
   // The columns asked for, or an OptionError at `columns` naming the columns there are.
   ResultTable table(const Mechanism& mechanism, const Simulation& simulation) const;
 };

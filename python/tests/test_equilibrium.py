@@ -1,0 +1,106 @@
+"""Model.equilibrium (`nbar equilibrium`) against closed forms, and what the model file adds to
+Model.simulate: its `simulation:` settings, joint friction and projected initial speeds."""
+
+import math
+
+import numpy as np
+import pytest
+
+import nbar
+
+# A block of 2 kg hanging on a vertical guide from a spring of 400 N/m (free length 0.3 m,
+# preload 4 N): at rest where k (l - l0) + P = m g, stable with stiffness k.
+BLOCK = """units: {length: m, angle: deg}
+points: {Y1: [0, 1.5], Y2: [0, -1], S: [0, 1], C: [0, 0.5]}
+ground: [Y1, Y2, S]
+gravity: [0, -9.81]
+bodies:
+  block: {points: [C], mass: 2}
+sliders:
+  - {body: block, point: C, along: [Y1, Y2]}
+springs:
+  - {between: [S, C], stiffness: 400, free_length: 0.3, preload: 4, damping: 20}
+drivers:
+  - {slide: block, free: true}
+"""
+
+
+def test_equilibrium_of_a_block_on_a_spring():
+    e = nbar.loads(BLOCK, "block.yaml").equilibrium()
+    length = 0.3 + (2 * 9.81 - 4) / 400
+    assert e["stability"] == "stable"
+    assert e["free_drivers"]["block"] == pytest.approx(length + 0.5, abs=1e-12)
+    assert e["pose"]["C.y"] == pytest.approx(1 - length, abs=1e-12) and e["units"]["C.y"] == "m"
+    assert e["eigenvalues"] == [pytest.approx(400, rel=1e-6)]
+    assert e["residual"] < 1e-9 and e["iterations"] >= 1
+
+
+def test_a_damped_run_settles_at_the_equilibrium_and_the_model_sets_the_run():
+    model = nbar.loads(BLOCK + "simulation: {to: 5, dt: 0.5, rtol: 1e-10}\n", "block.yaml")
+    r = model.simulate()  # every setting from the model's `simulation:`
+    assert list(r["t"]) == [0.5 * i for i in range(11)]
+    assert r["block"][-1] == pytest.approx(model.equilibrium()["free_drivers"]["block"], abs=1e-6)
+    assert model.simulate(to=1)["t"][-1] == 1  # a keyword overrides the model
+    stopped = nbar.loads(BLOCK + "simulation: {to: 5, stop_when: 'C.y < 0.3'}\n").simulate()
+    assert stopped.events[0]["kind"] == "stop_when" and stopped["C.y"][-1] == pytest.approx(0.3, abs=1e-9)
+    with pytest.raises(nbar.BadInputError, match="to"):
+        nbar.loads(BLOCK).simulate()  # no time anywhere
+    with pytest.raises(nbar.ModelError) as caught:
+        nbar.loads(BLOCK + "simulation: {to: 1, stop_when: 'C.z < 0'}\n", "block.yaml").simulate()
+    assert caught.value.line == 13 and "names no column 'C.z'" in str(caught.value)
+
+
+def test_no_equilibrium_is_an_error_at_the_driver():
+    crank = nbar.loads("""points: {O: [0, 0], A: [10, 0]}
+ground: [O]
+bodies:
+  crank: {points: [O, A], mass: 1, inertia: 1e-4}
+torques:
+  - {body: crank, torque: 2}
+drivers:
+  - {angle: crank, free: true}
+""", "crank.yaml")
+    with pytest.raises(nbar.ModelError, match="there is no equilibrium") as caught:
+        crank.equilibrium()
+    assert caught.value.line == 8
+
+
+def test_initial_speeds_the_constraints_do_not_allow_are_projected_and_said():
+    """A slider-crank released at its dead centre with its piston free: the piston's speed must be
+    zero there (the crank and the rod are in line), so an initial speed of 0.5 m/s cannot hold; the
+    run starts at rest, with a warning giving the correction."""
+    model = nbar.loads("""units: {length: m, angle: deg}
+points: {O: [0, 0], X: [1, 0], A: [0.1, 0], C: [0.4, 0]}
+ground: [O, X]
+gravity: [0, -9.81]
+bodies:
+  crank: {points: [O, A], mass: 0.4, inertia: 2e-4, cg: [0.05, 0]}
+  rod: {points: [A, C], mass: 0.6, inertia: 5e-3, cg: [0.25, 0]}
+  piston: {points: [C], mass: 1}
+sliders:
+  - {body: piston, point: C, along: [O, X]}
+drivers:
+  - {slide: piston, free: true, initial_speed: 0.5}
+""")
+    r = model.simulate(to=0.01, dt=0.01, columns="t,C.vx,crank.omega")
+    assert r["C.vx"][0] == pytest.approx(0, abs=1e-12) and r["crank.omega"][0] == pytest.approx(0, abs=1e-9)
+    messages = [w[2] for w in r.warnings]
+    assert len(messages) == 1 and "a correction of 0.5 m/s" in messages[0], messages
+
+
+def test_viscous_friction_dissipates_what_the_balance_says():
+    model = nbar.loads("""units: {length: m, angle: rad}
+points: {O: [0, 0], A: [0.5, 0]}
+ground: [O]
+gravity: [0, -9.81]
+bodies:
+  bar: {points: [O, A], mass: 2, inertia: 0.04, cg: [0.25, 0]}
+friction:
+  - {joint: O, viscous: 0.3}
+drivers:
+  - {angle: bar, free: true}
+""")
+    r = model.simulate(to=3, dt=0.1, rtol=1e-10)
+    assert r["energy.dissipated"][-1] > 0.5
+    assert np.max(np.abs(r["energy.balance"])) < 1e-8 * r["energy.dissipated"][-1]
+    assert math.isclose(r["energy.dissipated"][0], 0.0, abs_tol=1e-15)
