@@ -445,7 +445,7 @@ TEST(ModelFileErrors, UnknownKeys) {
   EXPECT_TRUE(fails_at(kFourBar + "colour: red\n", "11:1",
                        "unknown key 'colour' at the top level (allowed: name, description, units, points, ground, "
                        "bodies, lengths, sliders, slots, drivers, sweep, gravity, materials, forces, torques, "
-                       "springs)"));
+                       "springs, friction, simulation)"));
   EXPECT_TRUE(fails_at(kFourBar + "Points: {}\n", "11:1", "did you mean 'points'?"));
   EXPECT_TRUE(
       fails_at(kFourBar + "units: {lenght: mm}\n", "11:9", "unknown key 'lenght' in `units`; did you mean 'length'?"));
