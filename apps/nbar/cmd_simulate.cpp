@@ -4,6 +4,7 @@
 #include "nbar/dynamics/forward_dynamics.hpp"
 #include "nbar/request/requests.hpp"
 #include "request_flags.hpp"
+#include "simulation_run.hpp"
 #include "validators.hpp"
 
 namespace nbar::cli {
@@ -21,22 +22,8 @@ int run_simulate(const SimulateCommand& command) {
   if (!read_request(*command.flags, request)) return kBadUsage;
   Loaded loaded;
   if (int code = load(command.model, loaded)) return code;
-  SimulationOptions options;
-  try {
-    options = request.simulation_options(*loaded.mechanism);
-  } catch (const request::OptionError& e) {  // no --to, and none in the model: as a flag's problem
-    std::cerr << e.spelled(spell_flag) << "\nRun with --help for more information.\n";
-    return kBadUsage;
-  } catch (const Error& e) {
-    return fail(command.model, io::located(loaded.file.source, e));
-  }
   Simulation simulation;
-  try {
-    simulation = simulate(*loaded.mechanism, options);
-  } catch (const Error& e) {
-    return fail(command.model, io::located(loaded.file.source, e));
-  }
-  print_warnings(simulation.warnings);
+  if (int code = simulate_model(command.model, loaded, request, simulation)) return code;
   ResultTable table;
   try {
     table = request.table(*loaded.mechanism, simulation);
@@ -46,26 +33,15 @@ int run_simulate(const SimulateCommand& command) {
   }
   Output output;
   if (!output.open(command.output)) return kBadUsage;
-  if (request.format == "json")
-    io::write_simulation_json(output.stream(), *loaded.mechanism, simulation, table);
-  else if (request.format == "table")
-    io::write_text_table(output.stream(), table, terminal_width());
-  else
-    io::write_csv(output.stream(), table);
+  request.write(output.stream(), *loaded.mechanism, simulation, table, terminal_width());
   // The events: in the JSON's "events"; after a table; on standard error beside a CSV, which stays
   // rows only.
-  if (request.format == "table")
-    for (const SimulationEvent& event : simulation.events) output.stream() << "Event: " << event.message << '\n';
-  else if (request.format == "csv")
+  if (request.format == "csv")
     for (const SimulationEvent& event : simulation.events)
       std::cerr << command.model << ": event: " << event.message << '\n';
   if (!output.finish()) return kBadUsage;
-  if (simulation.complete) return kOk;
   // The rows so far are written; the reason is said at the entity concerned.
-  const Error stop(ErrorKind::StoppedAtLimit, "the simulation stopped early: " + simulation.stop_reason,
-                   simulation.stop_where);
-  fail(command.model, io::located(loaded.file.source, stop));
-  return kStoppedEarly;
+  return finish_simulation(command.model, loaded, simulation);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "nbar/analysis/fe_tables.hpp"
 #include "nbar/analysis/pose.hpp"
 #include "nbar/io/dxf_writer.hpp"
+#include "nbar/io/results_writer.hpp"
 #include "nbar/render/report.hpp"
 #include "request/option_rules.hpp"
 
@@ -930,6 +931,66 @@ ResultTable SimulateRequest::table(const Mechanism& mechanism, const Simulation&
   } catch (const Error& e) {
     throw OptionError("columns", literal(e.message()));
   }
+}
+
+void SimulateRequest::write(std::ostream& out, const Mechanism& mechanism, const Simulation& simulation,
+                            const ResultTable& table, std::size_t table_width) const {
+  if (format == "json") {
+    io::write_simulation_json(out, mechanism, simulation, table);
+  } else if (format == "table") {
+    io::write_text_table(out, table, table_width);
+    for (const SimulationEvent& event : simulation.events) out << "Event: " << event.message << '\n';
+  } else {
+    io::write_csv(out, table);
+  }
+}
+
+SweepResult simulated_motion(const Simulation& simulation) {
+  SweepResult motion;
+  motion.order = 2;
+  motion.samples = simulation.samples;
+  motion.complete = simulation.complete;
+  motion.stop_reason = simulation.stop_reason;
+  motion.solved = motion.samples.size();
+  return motion;
+}
+
+Analysis simulated_analysis(std::shared_ptr<const Mechanism> mechanism, const Simulation& simulation) {
+  Analysis analysis;
+  analysis.mechanism = std::move(mechanism);
+  analysis.sweep = simulated_motion(simulation);
+  return analysis;
+}
+
+namespace {
+// The options of a run that a drawn motion takes from `nbar simulate` (not its table's).
+const std::vector<std::string> kRunKeys = {"to", "dt", "rtol", "stop_when", "at_toggle"};
+}  // namespace
+
+const std::vector<OptionRule>& SimulatedMotionRequest::rules() {
+  static const std::vector<OptionRule> rules = [] {
+    std::vector<OptionRule> out = {
+        flag("simulate",
+             "the motion under the loads with the free drivers released (as `nbar simulate`), not the "
+             "sweep; give {to}")};
+    for (const std::string& key : kRunKeys) out.push_back(rule_of(SimulateRequest::rules(), key));
+    return out;
+  }();
+  return rules;
+}
+
+SimulatedMotionRequest SimulatedMotionRequest::read(const Options& options) {
+  SimulatedMotionRequest r;
+  const bool simulate = read_flag(options, rule_of(rules(), "simulate"));
+  Options run(options.text_values());
+  for (const std::string& key : kRunKeys) {
+    const Value* value = options.find(key);
+    if (!value) continue;
+    if (!simulate) throw OptionError(key, "is an option of a simulation: give {simulate} too");
+    run.set(key, *value);
+  }
+  if (simulate) r.simulation = SimulateRequest::read(run);
+  return r;
 }
 
 }  // namespace nbar::request

@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include <optional>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -319,6 +320,32 @@ struct SimulateRequest {
   SimulationOptions simulation_options(const Mechanism& mechanism) const;
   // The columns asked for, or an OptionError at `columns` naming the columns there are.
   ResultTable table(const Mechanism& mechanism, const Simulation& simulation) const;
+  // The answer in `format`: the JSON (with the statistics, the drift and the events), the text
+  // table (`table_width` characters wide, 0: unbounded) followed by an "Event: ..." line per event,
+  // or the CSV, rows only (a front-end says the events beside it).
+  void write(std::ostream& out, const Mechanism& mechanism, const Simulation& simulation, const ResultTable& table,
+             std::size_t table_width) const;
+};
+
+// A simulation's rows as a sweep's samples (order 2: positions, velocities, accelerations at each
+// row's time), for what draws a sweep: the web app's scene, an animation, the report's pictures.
+// Every row is a sample, so a frame or a scene's step k is the simulation's row k.
+SweepResult simulated_motion(const Simulation& simulation);
+
+// The same as an analysis of the mechanism with no stage but its motion, for what renders an
+// Analysis (the report): its sweep is simulated_motion's.
+Analysis simulated_analysis(std::shared_ptr<const Mechanism> mechanism, const Simulation& simulation);
+
+// A simulation to draw instead of the sweep (`nbar animate --simulate --to 3`, `nbar report
+// --simulate ...`): `simulate` with `nbar simulate`'s options of the run (to, dt, rtol, stop_when,
+// at_toggle), read by SimulateRequest's own rules.
+struct SimulatedMotionRequest {
+  std::optional<SimulateRequest> simulation;  // unset: the sweep
+
+  static const std::vector<OptionRule>& rules();
+  // A run's option without `simulate` is an OptionError at that option; `simulate` without `to`
+  // is SimulateRequest's error at `to`.
+  static SimulatedMotionRequest read(const Options& options);
 };
 
 }  // namespace nbar::request
