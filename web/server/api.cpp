@@ -49,6 +49,7 @@ const std::map<std::string, Endpoint, std::less<>>& post_endpoints() {
       {"/api/render", &api_render},
       {"/api/report", &api_report},
       {"/api/explain", &api_explain},
+      {"/api/simulate", &api_simulate},
   };
   return endpoints;
 }

@@ -1,0 +1,150 @@
+// /api/simulate: the forward dynamics of `nbar simulate` through the web API, its answer byte for
+// byte the CLI's, its drawing (the `scene`) posed at every row of the simulation, its limits,
+// errors and cancellation.
+#include "web/web_support.hpp"
+
+namespace nbar::web_test {
+namespace {
+
+const char* const kReleased = "examples/crank-rocker-released.yaml";
+
+std::size_t column_of(const Json& table, const std::string& name) {
+  const auto& columns = table["columns"];
+  const auto at = std::find(columns.begin(), columns.end(), name);
+  EXPECT_NE(at, columns.end()) << name;
+  return static_cast<std::size_t>(at - columns.begin());
+}
+
+TEST(WebSimulate, IsByteForByteNbarSimulateFormatJson) {
+  const ApiResponse r = post("/api/simulate", with_model(kReleased, {{"to", 3}, {"dt", 0.01}, {"rtol", 1e-10}}));
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.content_type, "application/json");
+  const cli_test::CliRun run =
+      cli(std::string("simulate ") + kReleased + " --to 3 --dt 0.01 --rtol 1e-10 --format json");
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_EQ(r.body, run.out);
+  // The numbers: the crank at t = 3 s (docs/dynamics.md: 6.9145 deg), the drift and the balance.
+  const Json j = Json::parse(r.body);
+  ASSERT_EQ(j["rows"].size(), 301u);
+  EXPECT_NEAR(j["rows"][300][column_of(j, "t")].get<double>(), 3.0, 1e-12);
+  EXPECT_NEAR(j["rows"][300][column_of(j, "crank")].get<double>(), 6.9145, 5e-5);
+  EXPECT_TRUE(j["complete"].get<bool>());
+  EXPECT_LT(j["constraint_drift"]["position"].get<double>(), 1e-9);
+  EXPECT_GT(j["integrator"]["accepted_steps"].get<long>(), 10);
+  EXPECT_LT(std::abs(j["largest_energy_error"].get<double>()), 1e-6);
+}
+
+TEST(WebSimulate, CsvTableColumnsAndStopConditionAsTheCommandLine) {
+  const std::string flags = " --to 1 --dt 0.05 --columns 't,crank,energy.*'";
+  const Json options = {{"to", 1}, {"dt", 0.05}, {"columns", "t,crank,energy.*"}};
+  Json csv = options;
+  csv["format"] = "csv";
+  const ApiResponse c = post("/api/simulate", with_model(kReleased, csv));
+  ASSERT_EQ(c.status, 200) << c.body;
+  EXPECT_EQ(c.content_type, "text/csv; charset=utf-8");
+  EXPECT_EQ(c.body, cli(std::string("simulate ") + kReleased + flags).out);
+  Json table = options;
+  table["format"] = "table";
+  table["stop_when"] = "crank > 15";
+  const ApiResponse t = post("/api/simulate", with_model(kReleased, table));
+  ASSERT_EQ(t.status, 200) << t.body;
+  const cli_test::CliRun run =
+      cli(std::string("simulate ") + kReleased + flags + " --format table --stop-when 'crank > 15'");
+  EXPECT_EQ(t.body, run.out);
+  // The event is said after the table, as the CLI says it.
+  EXPECT_NE(t.body.find("Event: "), std::string::npos) << t.body;
+}
+
+// The scene's step k is the simulation's row k: each point label moves from the start by the
+// row's displacement of that point, in the scene's pixels (to_model's scale, y down).
+TEST(WebSimulate, TheSceneIsPosedAtEveryRowOfTheSimulation) {
+  const Json body = with_model(kReleased, {{"to", 2}, {"dt", 0.1}, {"scene", {{"width", 600}, {"height", 400}}}});
+  const ApiResponse r = post("/api/simulate", body);
+  ASSERT_EQ(r.status, 200) << r.body.substr(0, 400);
+  const Json j = Json::parse(r.body);
+  const Json& table = j["simulation"];
+  const Json& scene = j["scene"];
+  // The simulation is the answer without a scene, byte for byte.
+  Json plain = body;
+  plain.erase("scene");
+  EXPECT_EQ(Json::parse(post("/api/simulate", plain).body), table);
+  ASSERT_EQ(scene["steps"].size(), table["rows"].size());
+  EXPECT_EQ(scene["width"], 600);
+  const double k = scene["to_model"][0].get<double>();
+  // The labels are the points' in the model's order: O2, O4, A, B, P, S.
+  const std::vector<std::string> points = {"O2", "O4", "A", "B", "P", "S"};
+  const auto& rows = table["rows"];
+  for (std::size_t row : {std::size_t{7}, rows.size() - 1}) {
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      const double dx = rows[row][column_of(table, points[p] + ".x")].get<double>() -
+                        rows[0][column_of(table, points[p] + ".x")].get<double>();
+      const double dy = rows[row][column_of(table, points[p] + ".y")].get<double>() -
+                        rows[0][column_of(table, points[p] + ".y")].get<double>();
+      const Json& shift = scene["steps"][row]["labels"][p];
+      // The scene's shifts are written to 0.01 px.
+      EXPECT_NEAR(k * shift[0].get<double>(), dx, 6e-3 * k) << points[p] << " at row " << row;
+      EXPECT_NEAR(-k * shift[1].get<double>(), dy, 6e-3 * k) << points[p] << " at row " << row;
+    }
+  }
+  // The crank moves in 2 s: the scene is not a still picture.
+  EXPECT_GT(std::abs(scene["steps"][rows.size() - 1]["labels"][2][1].get<double>()), 5.0);
+}
+
+TEST(WebSimulate, OptionErrorsLimitsAndModelErrorsAreTheApisErrors) {
+  // An option out of its rule's range, named as JSON spells it.
+  const ApiResponse rtol = post("/api/simulate", with_model(kReleased, {{"to", 1}, {"rtol", 1}}));
+  EXPECT_EQ(rtol.status, 400);
+  EXPECT_EQ(error_of(rtol)["option"], "rtol");
+  const ApiResponse no_to = post("/api/simulate", with_model(kReleased));
+  EXPECT_EQ(no_to.status, 400);
+  EXPECT_EQ(error_of(no_to)["option"], "to");
+  const ApiResponse unknown = post("/api/simulate", with_model(kReleased, {{"to", 1}, {"steps", 3}}));
+  EXPECT_EQ(unknown.status, 400);
+  const ApiResponse scene = post("/api/simulate", with_model(kReleased, {{"to", 1}, {"scene", {{"stress", true}}}}));
+  EXPECT_EQ(scene.status, 400) << scene.body;
+  // More rows than the server keeps: 413 before the run.
+  ServerConfig small = test_config();
+  small.limits.max_steps = 1000;
+  const ApiResponse rows = post("/api/simulate", with_model(kReleased, {{"to", 10}, {"dt", 0.001}}), small);
+  EXPECT_EQ(rows.status, 413);
+  EXPECT_EQ(error_of(rows)["limit"], "steps");
+  // A model error at its line and column, as every endpoint places it.
+  std::string broken = repo_file(kReleased);
+  broken.replace(broken.find("[O2, A]"), 7, "[O2, nowhere]");
+  const ApiResponse model = post("/api/simulate", Json{{"model", broken}, {"to", 1}});
+  EXPECT_EQ(model.status, 422) << model.body;
+  EXPECT_GT(error_of(model)["line"].get<int>(), 0);
+  // A free motion without mass cannot be simulated: said at the free driver's line and column, with
+  // the CLI's words.
+  std::string massless = repo_file("examples/fourbar-crank-rocker.yaml");
+  massless.replace(massless.find("speed: 120 rpm}"), 15, "speed: 120 rpm, free: true}");
+  const ApiResponse free = post("/api/simulate", Json{{"model", massless}, {"to", 1}});
+  EXPECT_EQ(free.status, 422) << free.body;
+  const Json error = error_of(free);
+  EXPECT_EQ(error["line"], 21);
+  EXPECT_EQ(error["column"], 5);
+  EXPECT_NE(error["message"].get<std::string>().find("a free motion has no inertia"), std::string::npos) << free.body;
+}
+
+// The run checks the deadline between its output rows: a stop there answers 504, as a passed
+// deadline does, and the slot is given back.
+TEST(WebSimulate, ARunStopsWhenToldToAndReportsItsProgress) {
+  ServerConfig config = test_config();
+  long last_done = 0, total = 0;
+  config.on_progress = [&](const Progress& p) {
+    if (std::string(p.stage) == "simulate") last_done = p.done, total = p.total;
+    return true;
+  };
+  const Json body = with_model(kReleased, {{"to", 1}, {"dt", 0.01}});
+  ASSERT_EQ(post("/api/simulate", body, config).status, 200);
+  EXPECT_EQ(total, 100);
+  EXPECT_EQ(last_done, 100);
+  config.on_progress = [](const Progress& p) { return !(std::string(p.stage) == "simulate" && p.done > 50); };
+  const ApiResponse stopped = post("/api/simulate", body, config);
+  EXPECT_EQ(stopped.status, 504) << stopped.body;
+  EXPECT_EQ(error_of(stopped)["kind"], "time_budget_exceeded");
+  EXPECT_EQ(config.jobs->in_use() + config.light_jobs->in_use(), 0);
+}
+
+}  // namespace
+}  // namespace nbar::web_test

@@ -1,0 +1,76 @@
+// Forward dynamics: /api/simulate lets the model move under its loads as `nbar simulate` does,
+// its options read by the same request (request::SimulateRequest), and answers what `nbar
+// simulate --format json` prints (or csv, or the table). With a `scene` ({"width", "height",
+// "labels", "trace", "title"}: a drawing's options), the web app's drawing of the simulated motion
+// comes with it: {"simulation": <that JSON>, "scene": <the scene, one step per row>}.
+#include <algorithm>
+#include <cmath>
+
+#include "endpoints.hpp"
+#include "nbar/analysis/columns.hpp"
+#include "nbar/io/results_writer.hpp"
+#include "nbar/render/scene.hpp"
+#include "nbar/request/requests.hpp"
+
+namespace nbar::web {
+
+namespace {
+
+// The rows a run writes (one per output time and the start), before it runs.
+double simulated_rows(const request::SimulateRequest& simulate) {
+  return std::floor(simulate.to / simulate.dt.value_or(simulate.to / 100) + 1e-9) + 1;
+}
+
+// Every row is kept until the run ends and goes into the answer: the rows against the sweep's
+// sample limit, the rows times the columns against the table's (the kinematic columns of order 2
+// and the six energies).
+void check_simulation_size(const Job& job, const request::SimulateRequest& simulate) {
+  const double rows = simulated_rows(simulate);
+  check_limit("steps", rows, job.limits.max_steps, "the number of rows of the simulation (to / dt + 1)");
+  const double columns = static_cast<double>(column_catalogue(*job.mechanism, 2, false).size()) + 6;
+  check_limit("table_values", rows * columns, job.limits.max_table_values,
+              fmt::format("the table (rows x columns, {} columns)", columns));
+}
+
+// The drawing options of the `scene` object, read by the drawing's own rules (the picture's only:
+// size, labels, traced points, title).
+render::DrawOptions scene_options(const Job& job, const nlohmann::json& scene) {
+  if (!scene.is_object())
+    bad_input("'scene' must be an object of a drawing's options: {\"width\", \"height\", \"labels\"}");
+  std::vector<request::OptionRule> rules;
+  for (const request::OptionRule& rule : request::DrawRequest::rules())
+    if (rule.key == "width" || rule.key == "height" || rule.key == "labels" || rule.key == "trace" ||
+        rule.key == "title")
+      rules.push_back(rule);
+  const RequestBody body(scene.dump(), rules, {});
+  const auto draw = read_request<request::DrawRequest>(body, {});
+  check_limit("pixels", draw.picture.width, job.limits.max_pixels, "width");
+  check_limit("pixels", draw.picture.height, job.limits.max_pixels, "height");
+  return draw.picture.draw_options(job.mechanism->model());
+}
+
+}  // namespace
+
+ApiResponse api_simulate(Job& job, const std::string& text) {
+  const RequestBody body(text, request::SimulateRequest::rules(), {"model", "scene"});
+  const auto simulate = read_request<request::SimulateRequest>(body, {"model", "scene"}, true);
+  load_model(job, body.text("model", true));
+  check_simulation_size(job, simulate);
+  std::optional<render::DrawOptions> scene;
+  if (body.has("scene")) scene = scene_options(job, parse_request(text).at("scene"));
+  // How long an integration takes is known only once it has run (the tolerance, the stiffness of
+  // the springs): a heavy computation, whatever its rows.
+  job.start(Weight::Heavy);
+  const Simulation simulation = nbar::simulate(*job.mechanism, simulate.simulation_options(), job.control);
+  const ResultTable table = simulate.table(*job.mechanism, simulation);
+  const std::string answer_text =
+      write([&](std::ostream& out) { simulate.write(out, *job.mechanism, simulation, table, io::kTextTableWidth); });
+  if (!scene) return answer(answer_text, text_type(simulate.format));
+  job.checkpoint("render");
+  const std::string drawing =
+      render::drawing_scene_json(*job.mechanism, request::simulated_motion(simulation), *scene, 0);
+  // The two documents as their writers wrote them, so that each is byte for byte its own answer.
+  return answer("{\"simulation\":" + answer_text + ",\"scene\":" + drawing + "}\n");
+}
+
+}  // namespace nbar::web
