@@ -8,7 +8,7 @@ const $ = (s) => document.querySelector(s);
 const showAfterMs = 500;
 
 // Stages as the core names them (nbar::Progress::stage), in the reader's words.
-const stageWords = { sweep: 'sweep', dynamics: 'dynamics', stress: 'stress', paths: 'paths', checking: 'checking designs' };
+const stageWords = { sweep: 'sweep', dynamics: 'dynamics', stress: 'stress', paths: 'paths', checking: 'checking designs', simulate: 'simulation', render: 'drawing' };
 
 export function initJobBar(engine) {
   const bar = $('#job');

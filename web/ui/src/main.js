@@ -25,12 +25,14 @@ import { initExplain } from './explain.js';
 import { initOffline, serverFetch, whenServerBack } from './offline.js';
 import { startEngine, serverOnly } from './engine.js';
 import { initJobBar } from './job-bar.js';
+import { initSimulate, simulationBody, simulationRate, simulationStatus } from './simulate.js';
 import { pngFromSvg, gifFromScene } from './pictures.js';
 
 const $ = (s) => document.querySelector(s);
 const state = {
   seq: 0, text: '', check: null, solve: null, scene: null, sceneSize: null, frame: 0, playing: false,
   xcol: 't', ycol: null, geometry: null, plot: null, current: null, lastOk: null,
+  simulation: false,  // Simulate mode (simulate.js): the rows are a simulation's, not the sweep's
 };
 
 // ------------------------------------------------------------------------------ API
@@ -216,11 +218,9 @@ async function analyse() {
     const analysis = { key: 'analysis', label: t('analysing') };
     const check = await api('/api/check', { model: text }, 'json', analysis);
     if (seq !== state.seq) return;
-    // The answer's text is kept as the server wrote it: the JSON download is those bytes.
     const size = sceneSize();
-    const [solveText, scene] = await Promise.all([api('/api/solve', { model: text }, 'text', analysis), api('/api/render', sceneRequest(text, size), 'json', analysis)]);
+    const { solve, solveText, scene } = state.simulation ? await simulation(text, size) : await sweep(text, size, analysis);
     if (seq !== state.seq) return;
-    const solve = JSON.parse(solveText);
     state.check = check;
     state.solve = solve;
     state.scene = scene;
@@ -232,7 +232,8 @@ async function analyse() {
     showStale(null);
     setTitle(solve.model || check.name);
     const why = solve.complete ? '' : ` · ${t('incomplete', solve.stop_reason ?? '')}`;
-    status(`${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why}`, !solve.complete);
+    if (state.simulation) status(simulationStatus(solve), !solve.complete);
+    else status(`${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why}`, !solve.complete);
     onSolved();
     updateHash(text);
     document.dispatchEvent(new CustomEvent('nbar:analysed', { detail: { error: null } }));
@@ -250,6 +251,24 @@ async function analyse() {
     // which a model opened again over an edited copy of itself already shows).
     if (seq === state.seq) delete document.body.dataset.busy;
   }
+}
+
+// The sweep's table and its drawing. The answer's text is kept as the server wrote it: the JSON
+// download is those bytes.
+async function sweep(text, size, analysis) {
+  const [solveText, scene] = await Promise.all([api('/api/solve', { model: text }, 'text', analysis), api('/api/render', sceneRequest(text, size), 'json', analysis)]);
+  return { solve: JSON.parse(solveText), solveText, scene };
+}
+
+// A simulation's table and the drawing of its motion, in one request (one run).
+async function simulation(text, size) {
+  const answer = await api('/api/simulate', simulationBody(text, size), 'json', { key: 'analysis', label: t('simulating') });
+  return { solve: answer.simulation, solveText: null, scene: answer.scene };
+}
+
+// The drawing of the model at a size: the sweep's, or in Simulate mode the simulation's.
+async function sceneFor(text, size) {
+  return state.simulation ? (await simulation(text, size)).scene : api('/api/render', sceneRequest(text, size));
 }
 
 // The scene is drawn for the drawing's size in CSS pixels, as `nbar draw --width --height`
@@ -273,7 +292,7 @@ function onDrawingResized() {
   resizeTimer = setTimeout(async () => {
     const seq = state.seq;
     try {
-      const scene = await api('/api/render', sceneRequest(state.lastOk, [w, h]));
+      const scene = await sceneFor(state.lastOk, [w, h]);
       if (seq !== state.seq || drag) return;
       state.scene = scene;
       state.sceneSize = [w, h];
@@ -298,7 +317,7 @@ function onSolved() {
   const driver = (check.drivers?.[0] ?? '').split(':')[0];
   const xs = solve.rows.map((r) => r[col(driver)]);
   const ascending = col(driver) >= 0 && xs.every((v, i) => i === 0 || v >= xs[i - 1]);
-  state.xcol = ascending ? driver : (col('t') >= 0 && solve.rows.every((r, i, a) => i === 0 || r[col('t')] >= a[i - 1][col('t')]) ? 't' : 'step');
+  state.xcol = state.simulation && col('t') >= 0 ? 't' : ascending ? driver : (col('t') >= 0 && solve.rows.every((r, i, a) => i === 0 || r[col('t')] >= a[i - 1][col('t')]) ? 't' : 'step');
   const points = [...(check.points?.ground ?? []), ...(check.points?.moving ?? [])].filter((p) => col(`${p}.x`) >= 0);
   state.geometry = {
     points, ground: new Set(check.points?.ground ?? []),
@@ -437,7 +456,9 @@ let last = 0;
 function tick(now) {
   if (!state.playing) return;
   const n = state.solve?.rows.length ?? 0;
-  if (n > 1 && last) state.frame = (state.frame + ((now - last) / 4000) * n) % n;
+  // A sweep plays in 4 s; a simulation at its own time (simulate.js).
+  const rate = state.simulation && n > 1 ? simulationRate(state.solve) : n / 4000;
+  if (n > 1 && last) state.frame = (state.frame + (now - last) * rate) % n;
   last = now;
   if (n > 1) setFrame(Math.floor(state.frame));
   requestAnimationFrame(tick);
@@ -666,7 +687,10 @@ async function download(kind) {
   const inBrowser = (await backendReady).mode === 'engine';
   try {
     status(t('loading'), false, true);
-    if (kind === 'csv') {
+    if (state.simulation && (kind === 'csv' || kind === 'json')) {
+      // The simulation's table, as `nbar simulate --format csv|json` writes it.
+      save(await api('/api/simulate', simulationBody(model, null, { format: kind }), 'blob', { label: t('simulating') }), `${name}-simulation.${kind}`);
+    } else if (kind === 'csv') {
       // The core's CSV writer, as `nbar solve` writes it: the browser writes no numbers of its own.
       save(await api('/api/solve', { model, format: 'csv' }, 'blob'), `${name}.csv`);
     } else if (kind === 'json') {
@@ -817,6 +841,7 @@ async function start() {
   $('#ycol').addEventListener('change', (e) => { state.ycol = e.target.value; buildPlot(); buildTable(); setFrame(state.frame); });
   $('#table').addEventListener('click', (e) => { const tr = e.target.closest('tr[data-i]'); if (tr) { play(false); setFrame(+tr.dataset.i); } });
   const app = { state, api, backendReady, setText, analyse, showTab, esc, fmt, status, play, setFrame, unitOf, col, model: () => editor.state.doc.toString() };
+  initSimulate(app);
   initSynthesis(app); initOverlays(app); initStressMap(app); initExplain(app); initOffline(app);
   $('#share').addEventListener('click', share);
   $('#share-box button').addEventListener('click', () => { $('#share-box').hidden = true; });

@@ -73,7 +73,11 @@ export function setOverlayView({ on = [], traced = [] }) {
 const retryAfterMs = 3000;
 function fetchIfNeeded({ eager = true } = {}) {
   const model = app.state.lastOk;
-  if (ov.model !== model) { ov.model = model; ov.forces = null; ov.stress = null; }
+  // The joint forces and stresses are the sweep's (solve --dynamics, stress): none is drawn on a
+  // simulation's rows, which are other poses at other speeds.
+  const key = app.state.simulation ? `simulate\n${model}` : model;
+  if (ov.model !== key) { ov.model = key; ov.forces = null; ov.stress = null; }
+  if (app.state.simulation) return undefined;
   // In the browser's engine, an edit cancels these with the analysis they belong to.
   const stale = { key: 'analysis', label: t('analysing') };
   const jobs = [

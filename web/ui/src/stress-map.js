@@ -40,7 +40,7 @@ function mapSize() {
 }
 
 async function loadMap() {
-  if (!map.on || !app.state.solve) return;
+  if (!map.on || !app.state.solve || app.state.simulation) return;  // the sweep's stresses, not a simulation's
   const model = app.state.lastOk;
   const step = app.state.frame;
   const [width, height] = mapSize();

@@ -3,7 +3,7 @@
 // from the network first and kept, so that without a network the page, the editor and the last
 // results still open; in the static site they include the in-browser engine (the worker, the
 // module and the .wasm), so every analysis works offline too. POST answers of a server (check,
-// solve, stress, explain, synthesis, and the drawing's scene) are kept under a digest of the
+// solve, stress, explain, synthesis, simulate, and the drawing's scene) are kept under a digest of the
 // request's body: the same model asked again offline gets the answer it had. Anything else asked
 // a server offline is a 503 that says so.
 //
@@ -13,7 +13,7 @@
 const VERSION = '@VERSION@';
 const SHELL = ['@SHELL@'];
 const CACHE = `nbar-app-${VERSION}`;
-const KEPT_POSTS = ['/api/check', '/api/solve', '/api/stress', '/api/explain', '/api/synth/'];
+const KEPT_POSTS = ['/api/check', '/api/solve', '/api/stress', '/api/explain', '/api/synth/', '/api/simulate'];
 const MAX_POSTS = 60;
 // Asked afresh at every move of the pointer over the stress map: kept, they would push the
 // model's own answers out of the MAX_POSTS kept.

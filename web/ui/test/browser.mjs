@@ -14,16 +14,20 @@ import * as files from './files.mjs';
 import * as draw from './draw.mjs';
 import * as review from './review.mjs';
 import * as femap from './femap.mjs';
+import * as simulate from './simulate.mjs';
 
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const out = arg('--out', 'build/web-screenshots');
 // `--only draw`: only the comparison of the drawing with nbar draw's, at both viewports;
 // `--only review`: only review.mjs's checks (status, share, stale results, retries), at both;
-// `--only femap`: only femap.mjs's (the FE stress map's read-out against the CLI), at both.
+// `--only femap`: only femap.mjs's (the FE stress map's read-out against the CLI), at both;
+// `--only simulate`: only simulate.mjs's (Simulate mode against `nbar simulate`), at both.
 const only = arg('--only', '');
 const onlyDraw = only === 'draw';
 const onlyReview = only === 'review';
 const onlyFemap = only === 'femap';
+const onlySimulate = only === 'simulate';
+const examples = arg('--examples', '../../examples');
 
 const browser = await launchChromium();
 mkdirSync(out, { recursive: true });
@@ -42,10 +46,11 @@ async function open(name, viewport, mobile, options = {}) {
   });
   const page = await context.newPage();
   page.on('pageerror', (e) => errors.push(`${name}: ${e.message}`));
-  // The API's 4xx answers (the model errors the test makes) and the refused connections of a
-  // server made to vanish (review.mjs) are logged by Chromium: not errors.
+  // The API's 4xx answers (the model errors the test makes, and the tolerance simulate.mjs has
+  // refused) and the refused connections of a server made to vanish (review.mjs) are logged by
+  // Chromium: not errors.
   page.on('console', (m) => {
-    if (m.type() === 'error' && !/Failed to load resource: (.* (422|503)|net::ERR_CONNECTION_REFUSED)/.test(m.text())) errors.push(`${name}: console: ${m.text()}`);
+    if (m.type() === 'error' && !/Failed to load resource: (.* (400|422|503)|net::ERR_CONNECTION_REFUSED)/.test(m.text())) errors.push(`${name}: console: ${m.text()}`);
   });
   page.setDefaultTimeout(20000);
   await page.goto(base);
@@ -174,6 +179,15 @@ async function reviewAt(tag, viewport, mobile) {
 async function femapAt(tag, viewport, mobile) {
   const { context, page } = await open(tag, viewport, mobile);
   await femap.run(page, { mobile, tag, base, nbar, shot, click, openExample });
+  await context.close();
+}
+
+// Simulate mode (simulate.mjs) at a laptop's and a phone's viewport, against the command line.
+async function simulateAt(tag, viewport, mobile) {
+  const { context, page } = await open(tag, viewport, mobile);
+  const reference = simulate.cliSimulation(nbar, examples);
+  const seen = await simulate.run(page, { mobile, tag, shot, click, openExample, reference: () => reference });
+  console.log(`${tag}: simulated crank at t = 3 s ${seen.crank} deg (the CLI's), played to row ${seen.played}`);
   await context.close();
 }
 
@@ -328,6 +342,9 @@ try {
   if (onlyReview) {
     await reviewAt('desktop', { width: 1280, height: 800 }, false);
     await reviewAt('phone', { width: 390, height: 844 }, true);
+  } else if (onlySimulate) {
+    await simulateAt('laptop', { width: 1366, height: 768 }, false);
+    await simulateAt('phone', { width: 390, height: 844 }, true);
   } else if (onlyFemap) {
     await femapAt('laptop', { width: 1366, height: 768 }, false);
     await femapAt('phone', { width: 390, height: 844 }, true);
@@ -338,6 +355,8 @@ try {
     await reviewAt('phone', { width: 390, height: 844 }, true);
     await femapAt('laptop', { width: 1366, height: 768 }, false);
     await femapAt('phone', { width: 390, height: 844 }, true);
+    await simulateAt('laptop', { width: 1366, height: 768 }, false);
+    await simulateAt('phone', { width: 390, height: 844 }, true);
   }
   assert.deepEqual(errors, [], 'no errors in the page');
   console.log(`OK: screenshots in ${out}`);

@@ -4,17 +4,24 @@
 // in-browser engine must analyse an example, place a bad model's error at its line and column,
 // make the downloads (CSV, PNG and GIF drawn in the browser, the HTML report, DXF plates), say
 // that MP4 needs `nbar serve`, show a synthesis's progress and cancel it, and, once the page has
-// been opened, analyse an edit offline. Then 30 pages opened at once must all get their analysis.
+// been opened, analyse an edit offline, and simulate the released crank-rocker (simulate.mjs; its
+// numbers against `nbar simulate` when --native names the native program). Then 30 pages opened at
+// once must all get their analysis.
 //   node test/static-site.mjs --site build-wasm/site [--python python3] [--out DIR] [--pages 30]
+//        [--native build/apps/nbar/nbar --examples examples] [--only simulate]
 import assert from 'node:assert/strict';
 import { existsSync, mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { arg, launchChromium, serveStatic, watchdog } from './harness.mjs';
+import * as simulate from './simulate.mjs';
 
 const site = arg('--site');
 const python = arg('--python', 'python3');
 const out = arg('--out', 'site-screenshots');
 const pages = +arg('--pages', '30');
+const native = arg('--native', '');
+const examples = arg('--examples', '../../examples');
+const onlySimulate = arg('--only', '') === 'simulate';
 if (!site || !existsSync(join(site, 'nbar-engine.wasm'))) {
   console.error(`no static site with an engine at ${site} (scripts/build-wasm.sh --site)`);
   process.exit(1);
@@ -242,21 +249,43 @@ async function manyAtOnce(count) {
   return { ok: ok.length, slowestMs: Math.max(...ok), failures: results.filter((r) => r.status === 'rejected').map((r) => r.reason.message) };
 }
 
+// Simulate mode in the browser's engine, its numbers against the command line's (--native).
+async function simulated(page, mobile, tag) {
+  if (!native || !existsSync(native)) { console.log(`${tag}: Simulate mode not checked (no --native program)`); return; }
+  const openExample = async (p, m, name) => {
+    await click(p, m, '[data-tab="gallery"]');
+    const before = await p.evaluate(() => +(document.body.dataset.opened ?? 0));
+    await click(p, m, `[data-example="${name}"]`);
+    await p.waitForFunction((n) => +(document.body.dataset.opened ?? 0) > n && !document.body.dataset.busy, before);
+  };
+  const reference = simulate.cliSimulation(native, examples);
+  const seen = await simulate.run(page, { mobile, tag, shot: (p, name) => shot(p, name), click, openExample, reference: () => reference });
+  console.log(`${tag}: simulated in the browser, crank at t = 3 s ${seen.crank} deg (the CLI's)`);
+}
+
 let failed = false;
 try {
   for (const [tag, viewport, mobile] of [['phone', { width: 390, height: 844 }, true], ['desktop', { width: 1366, height: 768 }, false]]) {
     const { context, page, firstAnalysisMs } = await open(tag, viewport, mobile);
     await opened(page, tag);
+    if (onlySimulate) {
+      await simulated(page, mobile, tag);
+      await context.close();
+      continue;
+    }
     await badModel(page, mobile, tag);
     const sizes = await downloads(page, mobile, tag);
     const progress = await synthesisProgressAndCancel(page, mobile, tag);
     await offline(context, page, mobile, tag);
+    await simulated(page, mobile, tag);
     console.log(`${tag}: first analysis ${firstAnalysisMs} ms after opening; downloads (bytes) ${JSON.stringify(sizes)}; progress "${progress}"`);
     await context.close();
   }
-  console.log(`no engine: "${await engineMissing()}"`);
-  console.log(`no app.js: "${await appFileMissing()}"`);
-  if (pages > 0) {
+  if (!onlySimulate) {
+    console.log(`no engine: "${await engineMissing()}"`);
+    console.log(`no app.js: "${await appFileMissing()}"`);
+  }
+  if (pages > 0 && !onlySimulate) {
     const many = await manyAtOnce(pages);
     console.log(`${pages} pages at once: ${many.ok} analysed, the slowest after ${many.slowestMs} ms`);
     assert.equal(many.ok, pages, many.failures.join('\n'));
