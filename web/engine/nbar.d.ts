@@ -31,8 +31,10 @@ export interface ByteAnswer {
 export interface Nbar {
   /** The version of nbar the engine was built from (the C++ project's, and this package's). */
   readonly version: string;
-  /** One request: `path` is the endpoint without `/api/` ('solve', 'synth/five-point', 'examples');
-   *  `body` its JSON object or text; none makes it a GET. */
+  /** One request: `path` is the endpoint without `/api/` ('solve', 'simulate', 'synth/five-point', 'examples');
+   *  `body` its JSON object or text; none makes it a GET. A simulation ('simulate', `nbar simulate`)
+   *  answers {model, free_drivers, complete, events, integrator, constraint_drift, columns, rows, ...};
+   *  with `scene: {width, height}` in the body, {simulation, scene}: the web app's drawing of its motion. */
   request(path: string, body?: object | string): Answer;
   requestBytes(path: string, body?: object | string): ByteAnswer;
 }

@@ -4,6 +4,8 @@
 //   const nbar = await loadNbar();
 //   const answer = nbar.request('solve', { model: yamlText, steps: 37 });
 //   // answer.status 200, answer.body: the JSON the web API (`nbar serve`) would send
+//   const run = nbar.request('simulate', { model: yamlText, to: 3, dt: 0.01 });
+//   // forward dynamics (`nbar simulate --format json`): the free drivers released under the loads
 //
 // request(path, body) answers exactly as the server's JSON API does (docs/web-api.md): the same
 // endpoints, options, limits and time budget, the same errors with their line and column. It

@@ -5,7 +5,8 @@
 // (a model with a syntax error, an unknown point, an option out of range, a body that is not
 // JSON) must give the same error, at the same line and column. The solve is also checked against
 // the native CLI's `--format json`, and so is every bundled synthesis task (examples/synthesis:
-// five-point, nine-point, Burmester, function, path; a path fit by its best fit, below). It prints
+// five-point, nine-point, Burmester, function, path; a path fit by its best fit, below), and so is a
+// simulation (forward dynamics) of the released crank-rocker, to the server and the CLI. It prints
 // how many answers were bit for bit the native ones, and where the numbers beyond 1e-12 are.
 //
 //   node equality.mjs --engine build-wasm/web/engine/nbar.mjs --native build/apps/nbar/nbar --examples examples
@@ -75,6 +76,14 @@ function nativeAnswer(port, path, body) {
 // when both are at the level of round-off they are equal; otherwise they are compared as any other.
 const kRoundOffKeys = new Set(['max_residual', 'unbalance', 'reaction', 'error', 'solver_residual']);
 const kRoundOff = 1e-6;
+
+// A simulation's smallest and largest integration steps are the step-size controller's choices
+// from its error estimate, the difference of two solutions that agree to about rtol: that estimate
+// has about eps / rtol relative precision (1e-6 at rtol 1e-10), so a last bit of difference in sin
+// or cos moves a step by 1e-7 relative (measured on the released crank-rocker) while every row,
+// the step counts and the energy error agree within the tolerances above. They agree to 1e-6.
+const kStepSizeKeys = new Set(['smallest_step', 'largest_step']);
+const kStepSize = 1e-6;
 
 // A number is compared on the scale of what it belongs to: a table's column (the largest value in
 // it), a field of a list of records (the same key's largest value over the list: a list of
@@ -163,6 +172,11 @@ function compareJson(a, b, path, tally, differences, scale = 0, fieldScales = nu
       if (kRoundOffKeys.has(key) && typeof a[key] === 'number' && typeof b[key] === 'number' &&
           Math.abs(a[key]) <= kRoundOff && Math.abs(b[key]) <= kRoundOff) {
         tally.roundOff += 1;
+        continue;
+      }
+      if (kStepSizeKeys.has(key) && typeof a[key] === 'number' && typeof b[key] === 'number' &&
+          Math.abs(a[key] - b[key]) <= kStepSize * Math.max(Math.abs(a[key]), Math.abs(b[key]))) {
+        tally.stepSizes += 1;
         continue;
       }
       const tiedStep = key.endsWith('_step') && key.slice(0, -'_step'.length) in b;
@@ -301,6 +315,18 @@ function cliSynthesis(native, task) {
   return { status: 0, body: new Uint8Array(run.stdout) };
 }
 
+// Forward dynamics (issue 38): the released crank-rocker let go for 3 s, a row every 10 ms, with the
+// options the CLI spells as flags; and a tolerance out of range, refused the same way.
+const kSimulation = { to: 3, dt: 0.01, rtol: 1e-10 };
+const kSimulateFile = 'crank-rocker-released.yaml';
+
+function cliSimulate(native, file) {
+  const flags = Object.entries(kSimulation).flatMap(([key, value]) => [`--${key}`, String(value)]);
+  const run = spawnSync(native, ['simulate', file, ...flags, '--format', 'json'], { maxBuffer: 1 << 28 });
+  if (run.status !== 0) return { status: run.status, text: run.stderr.toString() };
+  return { status: 0, body: new Uint8Array(run.stdout) };
+}
+
 // The native CLI's `solve --order 3 --format json` for a model file, parsed.
 function cliSolve(native, file) {
   const run = spawnSync(native, ['solve', file, '--order', '3', '--format', 'json'], { maxBuffer: 1 << 28 });
@@ -317,7 +343,7 @@ async function main() {
   const { server, port } = await startNativeServer(resolve(args.native));
   const tally = {
     answers: 0, bitForBit: 0, errors: 0, numbers: 0, inexact: 0, maxRelative: 0, maxScaled: 0, overTarget: 0,
-    roundOff: 0, ties: 0, roundOffTexts: 0, errorsBitForBit: 0, pathFits: [], overTargetWhere: new Map(), bitForBitKinds: new Map(),
+    roundOff: 0, ties: 0, roundOffTexts: 0, stepSizes: 0, errorsBitForBit: 0, pathFits: [], overTargetWhere: new Map(), bitForBitKinds: new Map(),
   };
   let failures = 0;
   let passed = 0;
@@ -353,6 +379,15 @@ async function main() {
       else if (wasm.status === 200)
         check(`${file}: solve order 3 against the CLI`, [`the CLI failed (${cli.status}): ${cli.text}`]);
     }
+    const released = readFileSync(join(args.examples, kSimulateFile), 'utf8');
+    for (const [what, body] of [['simulate', { model: released, ...kSimulation }], ['simulate with rtol out of range', { model: released, to: 1, rtol: 1 }]]) {
+      const wasm = nbar.requestBytes('simulate', body);
+      check(sending(`${kSimulateFile}: ${what}`), compareAnswers(wasm, await nativeAnswer(port, 'simulate', body), tally));
+    }
+    const simulatedByCli = cliSimulate(resolve(args.native), join(args.examples, kSimulateFile));
+    if (simulatedByCli.status !== 0) check(`${kSimulateFile}: simulate against the CLI`, [`the CLI failed (${simulatedByCli.status}): ${simulatedByCli.text}`]);
+    else check(sending(`${kSimulateFile}: simulate against the CLI`), compareAnswers(nbar.requestBytes('simulate', { model: released, ...kSimulation }),
+      { status: 200, contentType: 'application/json', body: simulatedByCli.body }, tally));
     // Every bundled synthesis task, to the engine and to the CLI (the server answers as the CLI
     // does: tests/cross_frontend).
     for (const task of synthesisTasks(join(args.examples, 'synthesis'))) {
@@ -373,6 +408,7 @@ async function main() {
               `(${tally.overTarget} over ${kTarget}); ${tally.roundOff} round-off values ` +
               `(residuals, unbalances, reactions, columns that are zero but for round-off) both round-off; ${tally.ties} minima or maxima tied at ` +
               `other steps; ${tally.roundOffTexts} formulas differing only in round-off coefficients; ` +
+              `${tally.stepSizes} integration step sizes within ${kStepSize}; ` +
               `path fits: the same best fit, and ${tally.pathFits.join(' and ')} of the native designs in the engine's lists`);
   console.log(`answers (not errors) bit for bit: ${[...tally.bitForBitKinds].map(([kind, count]) => `${count} ${kind}`).join(', ')}`);
   const where = [...tally.overTargetWhere].sort((a, b) => b[1] - a[1]);
