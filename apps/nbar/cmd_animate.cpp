@@ -12,6 +12,7 @@
 #include "nbar/render/animation.hpp"
 #include "nbar/request/requests.hpp"
 #include "request_flags.hpp"
+#include "simulation_run.hpp"
 #include "validators.hpp"
 
 namespace nbar::cli {
@@ -22,6 +23,7 @@ struct AnimateCommand {
   std::string model;
   std::string output;
   std::unique_ptr<RequestFlags> flags;
+  std::unique_ptr<RequestFlags> motion_flags;  // --simulate and its run's options
 };
 
 // "gif", "svg", "html" or "mp4" from the file name; empty when it is none of them.
@@ -49,6 +51,25 @@ void write_animation(const render::Animation& animation, const std::string& form
     animation.write_mp4(path);
 }
 
+// --simulate: the frames are the simulation's rows, at their times (its stresses are not solved).
+int animate_simulation(const AnimateCommand& command, const request::AnimateRequest& request,
+                       const request::SimulateRequest& run, const Loaded& loaded, const render::DrawOptions& draw) {
+  if (request.stress) {
+    print_option_error(request::OptionError("stress", "colours the sweep's stresses: not with {simulate}"));
+    return kBadUsage;
+  }
+  Simulation simulation;
+  if (int code = simulate_model(command.model, loaded, run, simulation)) return code;
+  try {
+    render::Animation animation(loaded.mechanism, request::simulated_motion(simulation), draw,
+                                request.frames.value_or(0), request.fps);
+    write_animation(animation, request.format, command.output);
+  } catch (const Error& e) {
+    return fail(command.model, nbar::io::located(loaded.file.source, e));
+  }
+  return finish_simulation(command.model, loaded, simulation);
+}
+
 int run_animate(const AnimateCommand& command) {
   const std::string format = format_of(command.output);
   if (format.empty()) {
@@ -63,6 +84,8 @@ int run_animate(const AnimateCommand& command) {
   request::AnimateRequest request;
   if (!read_request(*command.flags, request)) return kBadUsage;
   request.format = format;
+  request::SimulatedMotionRequest motion;
+  if (!read_request(*command.motion_flags, motion)) return kBadUsage;
 
   Loaded loaded;
   if (int code = load(command.model, loaded)) return code;
@@ -73,6 +96,7 @@ int run_animate(const AnimateCommand& command) {
     print_option_error(e);
     return kBadUsage;
   }
+  if (motion.simulation) return animate_simulation(command, request, *motion.simulation, loaded, draw);
   Analysis analysis;
   if (int code = analyse_model(command.model, loaded, request.analysis_options(loaded.mechanism->model()), analysis))
     return code;
@@ -104,11 +128,14 @@ Command add_animate_command(CLI::App& app) {
   command->flags = std::make_unique<RequestFlags>(*sub, request::AnimateRequest::rules());
   command->flags->add({"fps", "frames", "steps", "max_steps", "at_limits", "cycles", "labels", "trace", "stress",
                        "mesh_size", "width", "height", "title"});
+  command->motion_flags = std::make_unique<RequestFlags>(*sub, request::SimulatedMotionRequest::rules());
+  command->motion_flags->add({"simulate", "to", "dt", "rtol", "stop_when", "at_toggle"});
   sub->footer(
       "Every format shows the same frames on one view that fits the whole sweep. A sweep that ends\n"
       "where it began loops without repeating its first pose. GIF frames are not antialiased (a\n"
       "256-colour palette); SVG animates with SMIL; the HTML page needs no network; MP4 pipes\n"
-      "frames to the ffmpeg program.");
+      "frames to the ffmpeg program. With --simulate the frames are the simulation's rows (nbar\n"
+      "simulate's motion, the drivers marked free released), evenly spaced in time.");
   return {sub, [command] { return run_animate(*command); }};
 }
 

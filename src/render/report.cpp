@@ -147,7 +147,7 @@ void write_head(Html& h, const Model& m, const ReportOptions& options) {
     << ", forces in N &middot; report by nbar " << kVersion << "</p>\n";
 }
 
-void write_model_table(Html& h, const Analysis& analysis, const ModelSummary& summary) {
+void write_model_table(Html& h, const Analysis& analysis, const ModelSummary& summary, bool simulated) {
   const Model& m = analysis.model();
   const SweepResult& sweep = analysis.sweep;
   h << "<section id=\"summary\"><h2>Model</h2><div class=\"scroll\"><table>\n";
@@ -161,7 +161,8 @@ void write_model_table(Html& h, const Analysis& analysis, const ModelSummary& su
   std::string drivers;
   for (const Driver& d : m.drivers) drivers += (drivers.empty() ? "" : "; ") + esc(d.name);
   h << "<tr><th>Drivers</th><td>" << (drivers.empty() ? "none" : drivers) << "</td></tr>\n";
-  h << "<tr><th>Sweep</th><td>" << std::to_string(sweep.samples.size()) << " samples"
+  h << "<tr><th>" << (simulated ? "Simulation" : "Sweep") << "</th><td>" << std::to_string(sweep.samples.size())
+    << (simulated ? " rows in time" : " samples")
     << (sweep.complete ? "" : "; <span class=\"warn\">stopped early: " + esc(sweep.stop_reason) + "</span>")
     << "</td></tr>\n";
   for (const Warning& w : analysis.warnings())
@@ -179,9 +180,12 @@ void write_loops_table(Html& h, const Analysis& analysis, const ModelSummary& su
     const LoopSummary& loop = summary.loops[l];
     const std::vector<double> mu = column(table, loop.loop.name + ".mu");
     const auto [lo, hi] = std::minmax_element(mu.begin(), mu.end());
+    // A simulation's motion has no branch of its own: it goes where the loads take it.
+    const std::vector<std::string>& branches = analysis.sweep.branches;
+    const std::string branch =
+        l < branches.size() ? "</td></tr>\n<tr><th>Branch</th><td>" + esc(branches[l]) : std::string();
     h << "<table class=\"facts\"><tr><th>Loop</th><td>" << esc(loop.loop.name) << "</td></tr>\n<tr><th>Grashof</th><td>"
-      << esc(loop.description) << "</td></tr>\n<tr><th>Branch</th><td>" << esc(analysis.sweep.branches[l])
-      << "</td></tr>\n<tr><th>Transmission angle</th><td>"
+      << esc(loop.description) << branch << "</td></tr>\n<tr><th>Transmission angle</th><td>"
       << (mu.empty() ? "" : num(*lo) + " to " + num(*hi) + " " + esc(m.units.angle)) << "</td></tr></table>\n";
   }
 }
@@ -342,6 +346,43 @@ void write_fe_stresses(Html& h, const Analysis& analysis, const DrawOptions& dra
   h << "</div></section>\n";
 }
 
+// A simulation's run: where it ended and why, its events, the integrator's report, and its
+// energies against time (the balance shows the integration error).
+void write_simulation(Html& h, const Analysis& analysis, const Simulation& simulation, const Axis& x) {
+  const Model& m = analysis.model();
+  const SimulationStatistics& stats = simulation.statistics;
+  h << "<section id=\"simulation\"><h2>Simulation</h2>\n<p>The motion under the loads, the drivers marked free "
+       "released "
+    << "(forward dynamics, as <code>nbar simulate</code>): Dormand-Prince 5(4), projected onto the constraints after "
+    << "every step; see docs/dynamics.md.</p>\n<div class=\"scroll\"><table class=\"facts\">\n";
+  std::string free;
+  for (int d : simulation.free_drivers)
+    free += (free.empty() ? "" : ", ") + esc(m.drivers[static_cast<std::size_t>(d)].name);
+  h << "<tr><th>Free drivers</th><td>" << (free.empty() ? "none" : free) << "</td></tr>\n";
+  const double end = simulation.samples.empty() ? 0.0 : simulation.samples.back().time;
+  h << "<tr><th>Simulated</th><td>" << num(end, 6) << " s, " << std::to_string(simulation.samples.size()) << " rows"
+    << (simulation.complete ? "" : "; <span class=\"warn\">stopped early: " + esc(simulation.stop_reason) + "</span>")
+    << "</td></tr>\n";
+  for (const SimulationEvent& e : simulation.events)
+    h << "<tr><th>Event at " << num(e.time, 8) << " s</th><td>" << esc(e.message) << "</td></tr>\n";
+  h << "<tr><th>Integration steps</th><td>" << std::to_string(stats.accepted_steps) << " accepted, "
+    << std::to_string(stats.rejected_steps) << " rejected; " << num(stats.smallest_step) << " to "
+    << num(stats.largest_step) << " s</td></tr>\n";
+  const double unit = m.units.length_scale;
+  h << "<tr><th>Constraint drift</th><td>" << num(stats.drift.position / unit, 3) << " " << esc(m.units.length) << ", "
+    << num(stats.drift.velocity / unit, 3) << " " << esc(m.units.length) << "/s, "
+    << num(stats.drift.acceleration / unit, 3) << " " << esc(m.units.length) << "/s&sup2;</td></tr>\n";
+  h << "<tr><th>Largest energy error</th><td>" << num(stats.largest_energy_error, 3)
+    << " J</td></tr>\n</table></div>\n";
+  const ResultTable table = simulation_table(*analysis.mechanism, simulation);
+  PlotSpec energy = plot_against(x, "Energies");
+  for (const std::string& name : table.columns)
+    if (name.starts_with("energy."))
+      energy.series.push_back({name.substr(7), unit_of(table, name), column(table, name)});
+  if (!energy.series.empty()) h << plot_svg(energy);
+  h << "</section>\n";
+}
+
 }  // namespace
 
 AnalysisOptions report_analysis_options(const ModelSummary& summary) {
@@ -359,13 +400,13 @@ std::string html_report(const Analysis& analysis, const ModelSummary& summary, c
   const Model& m = analysis.model();
   const ResultTable table = result_table(analysis);
   Axis x;
-  x.name = default_abscissa(m);  // t for a sweep in time
+  x.name = options.simulation ? "t" : default_abscissa(m);  // t for a sweep in time
   x.values = column(table, x.name);
   x.unit = unit_of(table, x.name);
 
   Html h;
   write_head(h, m, options);
-  write_model_table(h, analysis, summary);
+  write_model_table(h, analysis, summary, options.simulation != nullptr);
   write_loops_table(h, analysis, summary, table);
   write_bodies_table(h, m, summary);
   if (analysis.sweep.samples.empty()) {
@@ -378,6 +419,7 @@ std::string html_report(const Analysis& analysis, const ModelSummary& summary, c
   write_motion(h, analysis, draw, options);
   control.checkpoint("report", 1, 4);
   write_kinematics(h, analysis, table, x);
+  if (options.simulation) write_simulation(h, analysis, *options.simulation, x);
   control.checkpoint("report", 2, 4);
   if (analysis.dynamics) write_forces(h, analysis, table, x);
   control.checkpoint("report", 3, 4);

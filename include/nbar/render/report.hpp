@@ -10,6 +10,7 @@
 
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/analysis/summary.hpp"
+#include "nbar/dynamics/forward_dynamics.hpp"
 #include "nbar/model/run_control.hpp"
 
 namespace nbar::render {
@@ -25,6 +26,10 @@ struct ReportOptions {
   // Checked between the report's sections (stage "report") and its animation's frames
   // ("frames"): Error(ErrorKind::Cancelled) when it says stop.
   RunControl control;
+  // The report of a simulation (`nbar report --simulate`): the analysis is its motion
+  // (request::simulated_analysis), plotted against t, and a section tells the run (its end, its
+  // events, the integrator's steps and drift) and plots its energies. Not owned; null: a sweep.
+  const Simulation* simulation = nullptr;
 };
 
 // The analysis's sweep should have order 3 (jerk is plotted; lower orders plot less). Forces
