@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import html
 from collections.abc import Mapping
-from typing import Any, Dict, Iterator, List, NamedTuple, Optional, Tuple
+from typing import Any, Dict, Iterable, Iterator, List, NamedTuple, Optional, Tuple, Union
 
 import numpy as np
 
@@ -116,6 +116,21 @@ class Result(Table):
     def to_json(self) -> str:
         """The JSON that ``nbar solve --format json`` writes for these columns."""
         return self._analysis.json(self.columns)
+
+    def animate(self, frames: int = 0, fps: float = 24.0, labels: bool = False,
+                traces: Union[str, Iterable[str]] = (), width: int = 900, height: int = 640,
+                title: str = "") -> "Animation":
+        """A simulation's motion as an animation (``nbar animate --simulate``), its frames the rows
+        at their times, evenly spaced; as ``Model.animate`` for a sweep (which this is not for)."""
+        from ._args import flag, real, text, whole
+        from .errors import BadInputError
+        from .model import _names
+        from .pictures import Animation
+        if self.statistics is None:
+            raise BadInputError("Result.animate() animates a simulation (Model.simulate); a sweep's is Model.animate()")
+        return Animation(self._analysis, frames=whole("frames", frames), fps=real("fps", fps),
+                         labels=flag("labels", labels), traces=_names("traces", traces),
+                         width=whole("width", width), height=whole("height", height), title=text("title", title))
 
     def __reduce__(self) -> Tuple[Any, Tuple[Dict[str, Any]]]:
         # A Result crosses to another process (ProcessPoolExecutor, joblib) as its columns, what

@@ -1,7 +1,9 @@
 # Type stub of nbar.results.
-from typing import Any, Dict, Iterator, List, Mapping, NamedTuple, Optional, Tuple
+from typing import Any, Dict, Iterable, Iterator, List, Mapping, NamedTuple, Optional, Tuple, Union
 
 from numpy.typing import NDArray
+
+from .pictures import Animation
 
 class Warning(NamedTuple):
     code: str
@@ -34,4 +36,6 @@ class Result(Table):
     events: List[Dict[str, Any]]
     def __init__(self, analysis: Any, names: List[str], units: List[str], arrays: List[NDArray[Any]]) -> None: ...
     def to_json(self) -> str: ...
+    def animate(self, frames: int = ..., fps: float = ..., labels: bool = ..., traces: Union[str, Iterable[str]] = ...,
+                width: int = ..., height: int = ..., title: str = ...) -> Animation: ...
     def __reduce__(self) -> Tuple[Any, Tuple[Dict[str, Any]]]: ...

@@ -205,15 +205,16 @@ py::object draw(const PyAnalysis& a, const std::string& format, std::optional<in
   return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
 }
 
-py::object animate(const PyAnalysis& a, const std::string& format, int frames, double fps, bool labels,
-                   const std::vector<std::string>& traces, int width, int height, const std::string& title) {
+// The animation of a motion (a sweep, or a simulation's rows) by `nbar animate`'s request.
+py::object animate_motion(const PyModel& model, const SweepResult& motion, const std::string& format, int frames,
+                          double fps, bool labels, const std::vector<std::string>& traces, int width, int height,
+                          const std::string& title) {
   request::Options options = picture_options(format, labels, traces, width, height, title);
   options.set("fps", fps);
   if (frames != 0) options.set("frames", static_cast<long long>(frames));  // 0: every sample, at most 120
   const request::AnimateRequest request = request::AnimateRequest::read(options);
-  const render::DrawOptions draw = request.picture.draw_options(a.model->file.model);
-  const render::Animation animation(a.model->mechanism, a.analysis.sweep, draw, request.frames.value_or(0),
-                                    request.fps);
+  const render::DrawOptions draw = request.picture.draw_options(model.file.model);
+  const render::Animation animation(model.mechanism, motion, draw, request.frames.value_or(0), request.fps);
   const auto as_bytes = [](const std::vector<std::uint8_t>& b) {
     return py::bytes(reinterpret_cast<const char*>(b.data()), b.size());
   };
@@ -221,6 +222,11 @@ py::object animate(const PyAnalysis& a, const std::string& format, int frames, d
   if (request.format == "svg") return py::str(animation.svg_animation());
   if (request.format == "gif") return as_bytes(animation.gif_bytes());
   return as_bytes(animation.mp4_bytes());
+}
+
+py::object animate(const PyAnalysis& a, const std::string& format, int frames, double fps, bool labels,
+                   const std::vector<std::string>& traces, int width, int height, const std::string& title) {
+  return animate_motion(*a.model, a.analysis.sweep, format, frames, fps, labels, traces, width, height, title);
 }
 
 // The page, whether the sweep reached its end, and why not (the report of a stopped sweep is
@@ -392,7 +398,18 @@ void bind_simulation(py::module_& m) {
             io::write_simulation_json(out, *s.model->mechanism, s.simulation, simulation_columns(s, columns));
             return out.str();
           },
-          py::arg("columns") = std::nullopt);
+          py::arg("columns") = std::nullopt)
+      // `nbar animate --simulate`: every row a frame's pose at its time (request::simulated_motion).
+      .def(
+          "animate",
+          [](const PySimulation& s, const std::string& format, int frames, double fps, bool labels,
+             const std::vector<std::string>& traces, int width, int height, const std::string& title) {
+            return animate_motion(*s.model, request::simulated_motion(s.simulation), format, frames, fps, labels,
+                                  traces, width, height, title);
+          },
+          py::arg("format") = "html", py::arg("frames") = 0, py::arg("fps") = 24.0, py::arg("labels") = false,
+          py::arg("traces") = std::vector<std::string>{}, py::arg("width") = 900, py::arg("height") = 640,
+          py::arg("title") = "");
   m.def("simulate", &run_simulation, py::arg("model"), py::arg("to") = std::nullopt, py::arg("dt") = std::nullopt,
         py::arg("rtol") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("stop_when") = std::nullopt,
         py::arg("at_toggle") = std::nullopt, py::arg("timeout") = std::nullopt);

@@ -135,3 +135,19 @@ drivers:
         block.simulate(to=1, stop_when="C.y is low")
     with pytest.raises(nbar.BadInputError, match="at_toggle"):
         block.simulate(to=1, at_toggle="bounce")
+
+
+def test_a_simulation_animates_its_rows_at_their_times(parallelogram, examples):
+    """Result.animate is `nbar animate --simulate`: one frame per row (11 rows, 11 frames), each
+    read out at its row's time and crank angle."""
+    import re
+
+    sim = parallelogram.simulate(to=0.5, dt=0.05)
+    animation = sim.animate(frames=11)
+    assert isinstance(animation, nbar.Animation)
+    readouts = re.findall(r'"t = ([-0-9.e]+) s, crank1 = ([-0-9.e]+) deg"', animation.html)
+    assert [float(t) for t, _ in readouts] == pytest.approx(list(sim["t"]), abs=1e-9)
+    assert [float(a) for _, a in readouts] == pytest.approx(list(sim["crank1"]), abs=1e-3)
+    assert "<svg" in animation.data("svg")
+    with pytest.raises(nbar.BadInputError, match="Model.animate"):
+        nbar.load(examples / "crank-rocker-released.yaml").solve(steps=3).animate()
