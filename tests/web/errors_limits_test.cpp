@@ -213,7 +213,7 @@ TEST(WebErrors, SynthesisTasks) {
 }
 
 TEST(WebErrors, UnknownEndpointsAndMethods) {
-  expect_error(call("POST", "/api/simulate", "{}"), 404, "not_found");
+  expect_error(call("POST", "/api/simulation", "{}"), 404, "not_found");
   expect_error(call("GET", "/api/synth/six-point"), 404, "not_found");
   expect_error(call("GET", "/no-such-page.html"), 404, "not_found");
   const ApiResponse get_solve = call("GET", "/api/solve");
