@@ -16,16 +16,18 @@ namespace nbar::web {
 
 namespace {
 
-// The rows a run writes (one per output time and the start), before it runs.
-double simulated_rows(const request::SimulateRequest& simulate) {
-  return std::floor(simulate.to / simulate.dt.value_or(simulate.to / 100) + 1e-9) + 1;
+// The rows a run writes (one per output time and the start), before it runs: the options as the
+// run takes them, the model's `simulation:` section filling in what the request leaves out.
+double simulated_rows(const SimulationOptions& options) {
+  const double step = options.output_step > 0 ? options.output_step : options.end_time / 100;
+  return std::floor(options.end_time / step + 1e-9) + 1;
 }
 
 // Every row is kept until the run ends and goes into the answer: the rows against the sweep's
 // sample limit, the rows times the columns against the table's (the kinematic columns of order 2
 // and the six energies).
-void check_simulation_size(const Job& job, const request::SimulateRequest& simulate) {
-  const double rows = simulated_rows(simulate);
+void check_simulation_size(const Job& job, const SimulationOptions& options) {
+  const double rows = simulated_rows(options);
   check_limit("steps", rows, job.limits.max_steps, "the number of rows of the simulation (to / dt + 1)");
   const double columns = static_cast<double>(column_catalogue(*job.mechanism, 2, false).size()) + 6;
   check_limit("table_values", rows * columns, job.limits.max_table_values,
@@ -55,13 +57,14 @@ ApiResponse api_simulate(Job& job, const std::string& text) {
   const RequestBody body(text, request::SimulateRequest::rules(), {"model", "scene"});
   const auto simulate = read_request<request::SimulateRequest>(body, {"model", "scene"}, true);
   load_model(job, body.text("model", true));
-  check_simulation_size(job, simulate);
+  const SimulationOptions options = simulate.simulation_options(*job.mechanism);
+  check_simulation_size(job, options);
   std::optional<render::DrawOptions> scene;
   if (body.has("scene")) scene = scene_options(job, parse_request(text).at("scene"));
   // How long an integration takes is known only once it has run (the tolerance, the stiffness of
   // the springs): a heavy computation, whatever its rows.
   job.start(Weight::Heavy);
-  const Simulation simulation = nbar::simulate(*job.mechanism, simulate.simulation_options(), job.control);
+  const Simulation simulation = nbar::simulate(*job.mechanism, options, job.control);
   const ResultTable table = simulate.table(*job.mechanism, simulation);
   const std::string answer_text =
       write([&](std::ostream& out) { simulate.write(out, *job.mechanism, simulation, table, io::kTextTableWidth); });

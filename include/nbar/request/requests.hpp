@@ -344,7 +344,8 @@ struct SimulatedMotionRequest {
 
   static const std::vector<OptionRule>& rules();
   // A run's option without `simulate` is an OptionError at that option; `simulate` without `to`
-  // is SimulateRequest's error at `to`.
+  // takes the model's `simulation:` section, and without either is SimulateRequest's error at `to`
+  // when the run's options are resolved.
   static SimulatedMotionRequest read(const Options& options);
 };
 
