@@ -18,6 +18,7 @@
 #include "nbar/io/synthesis_task.hpp"
 #include "nbar/request/synthesis_request.hpp"
 #include "request_flags.hpp"
+#include "terminal_progress.hpp"
 #include "validators.hpp"
 
 namespace nbar::cli {
@@ -75,37 +76,6 @@ SynthesisKind kind_named(const std::string& name) {
     if (io::to_string(kind) == name) return kind;
   throw Error(ErrorKind::BadInput, "no synthesis method '" + name + "'");
 }
-
-// A bar on standard error, only when it is a terminal; callbacks may come from worker threads.
-class Progress {
- public:
-  Progress() : enabled_(::isatty(STDERR_FILENO) == 1) {}
-  ~Progress() { clear(); }
-  void update(int done, int total, const char* what) {
-    if (!enabled_ || total <= 0) return;
-    const std::lock_guard lock(mutex_);
-    constexpr int kWidth = 30;
-    const int filled = static_cast<int>(static_cast<long>(kWidth) * std::min(done, total) / total);
-    if (filled == last_filled_ && done != total) return;
-    last_filled_ = filled;
-    std::cerr << fmt::format("\r{:<10} [{}{}] {}/{}", what, std::string(filled, '#'), std::string(kWidth - filled, ' '),
-                             done, total)
-              << std::flush;
-    shown_ = true;
-  }
-  void clear() {
-    const std::lock_guard lock(mutex_);
-    if (shown_) std::cerr << '\r' << std::string(70, ' ') << '\r' << std::flush;
-    shown_ = false;
-    last_filled_ = -1;
-  }
-
- private:
-  bool enabled_;
-  bool shown_ = false;
-  int last_filled_ = -1;
-  std::mutex mutex_;
-};
 
 // The task options as a task file, one key a line, so that the file's checks and messages
 // serve them too: a message about line k is about the option of that line.
@@ -207,7 +177,7 @@ int run_synth(const SynthArgs& args) {
     std::cerr << "error: --curves applies to burmester tasks with 4 poses\n";
     return kBadUsage;
   }
-  Progress progress;
+  TerminalProgress progress;
   synthesis::SynthesisRunOptions run = request.run_options();
   if (args.timeout) run.control.token.set_time_budget(std::chrono::duration<double>(*args.timeout));
   run.control.on_progress = [&progress](const nbar::Progress& p) {

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "dynamics/simulation_support.hpp"
 #include "nbar/dynamics/equilibrium.hpp"
 #include "nbar/dynamics/forward_dynamics.hpp"
 #include "nbar/io/model_file.hpp"
@@ -16,28 +17,9 @@
 namespace nbar {
 namespace {
 
-Mechanism mechanism_of(const std::string& text) { return Mechanism(io::parse_model(text).model); }
-
-double angle_of(const Mechanism& mech, const Sample& s, const std::string& body) {
-  const Body& b = mech.model().bodies[mech.model().find_body(body)];
-  const Eigen::Vector2d u =
-      mech.point_position(b.points[1], s.positions()) - mech.point_position(b.points[0], s.positions());
-  return std::atan2(u.y(), u.x());
-}
-
-// y'' = f(y, y') by the classical Runge-Kutta method, `steps` steps to time t.
-std::pair<double, double> rk4(const std::function<double(double, double)>& f, double y, double v, double t, int steps) {
-  const double h = t / steps;
-  for (int i = 0; i < steps; ++i) {
-    const double k1y = v, k1v = f(y, v);
-    const double k2y = v + 0.5 * h * k1v, k2v = f(y + 0.5 * h * k1y, v + 0.5 * h * k1v);
-    const double k3y = v + 0.5 * h * k2v, k3v = f(y + 0.5 * h * k2y, v + 0.5 * h * k2v);
-    const double k4y = v + h * k3v, k4v = f(y + h * k3y, v + h * k3v);
-    y += h / 6 * (k1y + 2 * k2y + 2 * k3y + k4y);
-    v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
-  }
-  return {y, v};
-}
+using test_support::angle_of;
+using test_support::mechanism_of;
+using test_support::rk4;
 
 // A bar of 2 kg and 0.5 m (its centre of mass in the middle) on a pivot at O, under gravity and a
 // constant torque T: V = m g (L/2) sin(th) - T th, so the equilibria are cos(th) = T / (m g L/2),

@@ -11,6 +11,7 @@
 #include <functional>
 #include <string>
 
+#include "dynamics/simulation_support.hpp"
 #include "nbar/dynamics/forward_dynamics.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/kinematics/position.hpp"
@@ -18,28 +19,9 @@
 namespace nbar {
 namespace {
 
-Mechanism mechanism_of(const std::string& text) { return Mechanism(io::parse_model(text).model); }
-
-double angle_of(const Mechanism& mech, const Sample& s, const std::string& body) {
-  const Body& b = mech.model().bodies[mech.model().find_body(body)];
-  const Eigen::Vector2d u =
-      mech.point_position(b.points[1], s.positions()) - mech.point_position(b.points[0], s.positions());
-  return std::atan2(u.y(), u.x());
-}
-
-// y'' = f(y, y') by the classical Runge-Kutta method, `steps` steps to time t.
-std::pair<double, double> rk4(const std::function<double(double, double)>& f, double y, double v, double t, int steps) {
-  const double h = t / steps;
-  for (int i = 0; i < steps; ++i) {
-    const double k1y = v, k1v = f(y, v);
-    const double k2y = v + 0.5 * h * k1v, k2v = f(y + 0.5 * h * k1y, v + 0.5 * h * k1v);
-    const double k3y = v + 0.5 * h * k2v, k3v = f(y + 0.5 * h * k2y, v + 0.5 * h * k2v);
-    const double k4y = v + h * k3v, k4v = f(y + h * k3y, v + h * k3v);
-    y += h / 6 * (k1y + 2 * k2y + 2 * k3y + k4y);
-    v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
-  }
-  return {y, v};
-}
+using test_support::angle_of;
+using test_support::mechanism_of;
+using test_support::rk4;
 
 // Three equal cranks (0.1 m, 0.4 kg, 2e-4 kg m^2 about their middles) carry a coupler of 1.5 kg,
 // which translates: the whole is one pendulum in the crank angle th,
