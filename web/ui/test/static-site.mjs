@@ -208,7 +208,7 @@ async function engineMissing() {
   await page.goto(base);
   await page.waitForSelector('#engine-note:not([hidden])');
   await page.waitForSelector('body[data-ready="1"]');
-  assert.match(await page.locator('#status').textContent(), /^The in-browser engine could not load/);
+  assert.match(await page.locator('#status').textContent(), /^Failed: The in-browser engine could not load/);
   const note = await page.locator('#engine-note span').textContent();
   assert.match(note, /^The in-browser engine could not load \(.*nbar-engine\.wasm.*\)\. There is no nbar server here either: reload the page/);
   assert.ok(await page.locator('#engine-note button').isVisible(), 'Reload is offered');
