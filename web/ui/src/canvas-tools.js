@@ -71,6 +71,10 @@ function applyView() {
   if (!svg) return;
   const b = view ?? fittedBox(svg);
   if (b) svg.setAttribute('viewBox', `${b.x} ${b.y} ${b.w} ${b.h}`);
+  // How much the view is enlarged: labels are drawn that much smaller (style.css, --fs), so
+  // that zooming enlarges the mechanism and not its text.
+  const fitted = fittedBox(svg);
+  if (b && fitted) svg.style.setProperty('--zoom', String(fitted.w / b.w));
   redrawOverlay();
 }
 export function fit() { view = null; applyView(); }

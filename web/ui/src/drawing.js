@@ -16,7 +16,9 @@ function pairs(flat) {
   return s;
 }
 
-// As SvgCanvas's paint_attributes (src/render/canvas.cpp).
+// As SvgCanvas's paint_attributes (src/render/canvas.cpp). A stroke keeps its width on screen
+// (non-scaling): the scene is drawn at the drawing's size, so at the fitted view a scene pixel is
+// a screen pixel, and zooming in enlarges the mechanism, not its lines.
 function paint(it) {
   let s = it.fill ? ` fill="${it.fill}"` : ' fill="none"';
   if (it.fill && it.fill_opacity !== undefined) s += ` fill-opacity="${it.fill_opacity}"`;
@@ -24,7 +26,7 @@ function paint(it) {
     s += ` stroke="${it.stroke}" stroke-width="${it.stroke_width}"`;
     if (it.stroke_opacity !== undefined) s += ` stroke-opacity="${it.stroke_opacity}"`;
     if (it.dash) s += ` stroke-dasharray="${it.dash.join(',')}"`;
-    s += ' stroke-linejoin="round" stroke-linecap="round"';
+    s += ' stroke-linejoin="round" stroke-linecap="round" vector-effect="non-scaling-stroke"';
   }
   return s;
 }
@@ -57,7 +59,8 @@ function element(it, where) {
     }
     case 'text': {
       const label = where.labels ? ` data-label="${where.label++}"` : '';
-      return `<text${label} x="${it.x}" y="${it.y}" font-size="${it.size}" font-family="sans-serif" text-anchor="${it.anchor}" fill="${it.color}">${esc(it.text)}</text>`;
+      // --fs: the size style.css divides by the drawing's zoom, so that a label keeps its size on screen.
+      return `<text${label} x="${it.x}" y="${it.y}" font-size="${it.size}" style="--fs:${it.size}" font-family="sans-serif" text-anchor="${it.anchor}" fill="${it.color}">${esc(it.text)}</text>`;
     }
     default: return '';
   }

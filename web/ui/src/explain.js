@@ -3,6 +3,9 @@
 // Gruebler-Kutzbach count, q, the equations Φ, the Jacobian Φq as a table, Newton-Raphson's
 // iterations with their residual norms, and the velocity and acceleration solutions. The maths
 // is the core's plain-text form set with HTML sub- and superscripts: no maths library, no network.
+// After it, the forces and stresses at that pose (the core's inverse dynamics of the sweep at that
+// sample, and each shaped link's section profile there), and the instant centres are marked on
+// the drawing while it shows that pose.
 import { t } from './i18n.js';
 
 const $ = (s) => document.querySelector(s);
@@ -62,7 +65,8 @@ function render(ex) {
     parts.push(`<section><h4>7. Φ<sub>q</sub> q̈ = γ</h4>${matrixTable('acc', ['q̈'], sym, [ex.acceleration.solution])}`
       + `<p class="hint">${t('exAccelerationUnits', length, time)}</p></section>`);
   }
-  if (ex.centres?.length) parts.push(centresSection(ex.centres, length));
+  if (ex.centres?.length) parts.push(centresSection(ex.centres, length), `<p class="hint">${t('exCentresDrawn')}</p>`);
+  parts.push('<div id="explain-pose"></div>');
   if (ex.notes?.length) parts.push(`<p class="hint">${ex.notes.map(app.esc).join('<br>')}</p>`);
   return parts.join('');
 }
@@ -88,6 +92,61 @@ function stepAsked(last) {
   return step;
 }
 
+// ------------------------------------------------------------------------------ at the pose
+
+// The inverse dynamics' columns (main.js's addDynamics: what `solve --dynamics` adds to the
+// sweep's) at sample `step`: the joints' reactions, the drivers' efforts, the energies.
+function forcesSection(step) {
+  const { state } = app;
+  const names = state.dynamicsColumns ?? [];
+  const row = state.solve?.rows[step];
+  if (!names.length || !row) return `<section data-at-pose="forces"><h4>9. ${t('exForces')}</h4><p class="hint">${t('exForcesNone')}</p></section>`;
+  const rows = names.map((c) => `<tr data-column="${app.esc(c)}"><th>${app.esc(c)}</th><td>${num(row[app.col(c)])}</td><td>${app.esc(app.unitOf(c))}</td></tr>`).join('');
+  return `<section data-at-pose="forces"><h4>9. ${t('exForces')}</h4><p class="hint">${t('exForcesHint')}</p>`
+    + `<div class="mwrap"><table class="matrix forces"><thead><tr><th>${t('exForceCol')}</th><th>${t('exValue')}</th><th></th></tr></thead><tbody>${rows}</tbody></table></div></section>`;
+}
+
+// Each shaped link's section profile at `step` (`nbar stress --section-profile LINK --step K`),
+// the links being those `nbar stress` reports; its largest von Mises and where along the link.
+async function stressesSection(model, step) {
+  const head = `<section data-at-pose="stresses"><h4>10. ${t('exStresses')}</h4>`;
+  let peaks;
+  try { peaks = await app.api('/api/stress', { model }); } catch { return `${head}<p class="hint">${t('exStressesNone')}</p></section>`; }
+  const links = peaks.links ?? [];
+  if (!links.length) return `${head}<p class="hint">${t('exStressesNone')}</p></section>`;
+  const profiles = await Promise.all(links.map((l) => app.api('/api/stress', { model, section_profile: l.body, step }).catch(() => null)));
+  const rows = links.map((l, k) => {
+    const p = profiles[k];
+    const vm = p ? p.columns.indexOf('von_mises') : -1; const x = p ? p.columns.indexOf('x') : -1;
+    if (vm < 0) return `<tr data-body="${app.esc(l.body)}"><th>${app.esc(l.body)}</th><td>–</td><td></td></tr>`;
+    const top = p.rows.reduce((a, r) => (Math.abs(r[vm]) > Math.abs(a[vm]) ? r : a), p.rows[0]);
+    return `<tr data-body="${app.esc(l.body)}"><th>${app.esc(l.body)}</th><td>${num(top[vm])} ${app.esc(p.column_units[vm])}</td>`
+      + `<td>${t('exAt')} = ${num(top[x])} ${app.esc(p.column_units[x])}</td></tr>`;
+  }).join('');
+  return `${head}<p class="hint">${t('exStressesHint')}</p><div class="mwrap"><table class="matrix stresses"><tbody>${rows}</tbody></table></div></section>`;
+}
+
+// The instant centres of the explanation shown, on the drawing while it shows that pose.
+let centresShown = null;  // {step, centres}
+function drawCentres() {
+  const svg = document.querySelector('#drawing svg');
+  svg?.querySelector('.ov-centres')?.remove();
+  const onPanel = document.querySelector('#panel-explain.active');
+  if (!svg || !centresShown || !onPanel || app.state.frame !== centresShown.step) return;
+  const s = app.state.geometry?.scale ?? 1;
+  const marks = centresShown.centres.filter((c) => !c.indeterminate && !c.at_infinity && c.position.every(Number.isFinite)).map((c) => {
+    const [x, y] = c.position.map((v) => +v.toFixed(4));
+    const label = c.name.replace(/^I\(|\)$/g, '');
+    return `<g data-centre="${app.esc(c.name)}"><circle cx="${x}" cy="${-y}" r="${+(0.8 * s).toFixed(4)}" fill="#6941c6" stroke="#fff" stroke-width="1.5" vector-effect="non-scaling-stroke"/>`
+      + `<text x="${+(x + 1.2 * s).toFixed(4)}" y="${+(-y - 1.2 * s).toFixed(4)}" font-size="${+(2.6 * s).toFixed(4)}" style="--fs:${+(2.6 * s).toFixed(4)}">${app.esc(label)}</text></g>`;
+  }).join('');
+  const g = document.createElementNS('http://www.w3.org/2000/svg', 'g');
+  g.setAttribute('class', 'ov-centres');
+  g.innerHTML = marks;
+  const handles = svg.querySelector('.handles');
+  if (handles) handles.before(g); else svg.append(g);
+}
+
 async function explainNow() {
   const out = $('#explain-out');
   const { state } = app;
@@ -96,9 +155,17 @@ async function explainNow() {
   if (step === null) return;
   out.textContent = t('loading');
   try {
-    const ex = await app.api('/api/explain', { model: state.lastOk, step });
+    const model = state.lastOk;
+    const ex = await app.api('/api/explain', { model, step });
     out.innerHTML = render(ex);
     out.dataset.step = String(step);
+    centresShown = { step, centres: ex.centres ?? [] };
+    drawCentres();
+    const pose = out.querySelector('#explain-pose');
+    pose.innerHTML = forcesSection(step);
+    const stresses = await stressesSection(model, step);
+    if (out.dataset.step === String(step) && state.lastOk === model) pose.insertAdjacentHTML('beforeend', stresses);
+    out.dataset.pose = String(step);
   } catch (e) {
     out.innerHTML = `<p class="bad">${app.esc(e.message)}</p>`;
   }
@@ -109,6 +176,7 @@ export function initExplain(context) {
   $('#explain-run').addEventListener('click', explainNow);
   // The step follows the pose shown until the panel is asked.
   document.addEventListener('nbar:frame', () => {
+    drawCentres();
     $('#explain-step').value = String(app.state.frame);
     $('#explain-step').classList.remove('bad');
     $('#explain-note').hidden = true;
@@ -116,8 +184,18 @@ export function initExplain(context) {
   const tab = document.querySelector('[data-tab="explain"]');
   tab.addEventListener('click', () => { if (!$('#explain-out').dataset.step) explainNow(); });
   // A new model: the explanation shown is of the old one.
+  document.addEventListener('nbar:drawn', drawCentres);
+  for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', () => setTimeout(drawCentres));
+  // The dynamics come after the sweep: the forces at the pose are written when they do.
+  document.addEventListener('nbar:dynamics', () => {
+    const pose = $('#explain-pose section[data-at-pose="forces"]');
+    const step = Number($('#explain-out').dataset.step);
+    if (pose && Number.isInteger(step)) pose.outerHTML = forcesSection(step);
+  });
   document.addEventListener('nbar:solved', () => {
+    centresShown = null;
     delete $('#explain-out').dataset.step;
+    delete $('#explain-out').dataset.pose;
     if (tab.getAttribute('aria-selected') === 'true') explainNow();
   });
 }

@@ -18,6 +18,7 @@ import { initTables, showBody } from './tables.js';
 import { setIn } from './yaml-text.js';
 import './i18n-motion.js';
 import './i18n-files.js';
+import './i18n-forces.js';
 import { initSynthesis } from './synthesis.js';
 import { initOverlays, overlayView, setOverlayView } from './overlays.js';
 import { initStressMap } from './stress-map.js';
@@ -32,6 +33,8 @@ const $ = (s) => document.querySelector(s);
 const state = {
   seq: 0, text: '', check: null, solve: null, scene: null, sceneSize: null, frame: 0, playing: false,
   xcol: 't', ycol: null, geometry: null, plot: null, current: null, lastOk: null,
+  ycols: [],  // the plot's further curves (the Column picker's is the first)
+  dynamics: null,  // the sweep's inverse dynamics (/api/solve with dynamics), once it has come
   simulation: false,  // Simulate mode (simulate.js): the rows are a simulation's, not the sweep's
 };
 
@@ -234,9 +237,12 @@ async function analyse() {
     const why = solve.complete ? '' : ` · ${t('incomplete', solve.stop_reason ?? '')}`;
     if (state.simulation) status(simulationStatus(solve), !solve.complete);
     else status(`${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why}`, !solve.complete);
+    state.dynamics = null;
+    state.dynamicsColumns = [];
     onSolved();
     updateHash(text);
     document.dispatchEvent(new CustomEvent('nbar:analysed', { detail: { error: null } }));
+    if (!state.simulation) addDynamics(text, seq);
   } catch (e) {
     if (seq !== state.seq) return;
     showProblem(e.info ?? { message: e.message });
@@ -258,6 +264,34 @@ async function analyse() {
 async function sweep(text, size, analysis) {
   const [solveText, scene] = await Promise.all([api('/api/solve', { model: text }, 'text', analysis), api('/api/render', sceneRequest(text, size), 'json', analysis)]);
   return { solve: JSON.parse(solveText), solveText, scene };
+}
+
+// The same sweep's inverse dynamics (`nbar solve --dynamics`: every joint's force, each driver's
+// torque or force, the energies), asked once the sweep is shown: its columns join the sweep's in
+// the Plot's and Table's choices, row for row (the same samples), and Explain reads its row at the
+// pose. A model the core cannot analyse so (or a failed request) keeps the sweep's columns only.
+async function addDynamics(text, seq) {
+  let dynamics;
+  try {
+    dynamics = await api('/api/solve', { model: text, dynamics: true }, 'json', { key: 'analysis', label: t('analysing') });
+  } catch { return; }
+  const { solve } = state;
+  if (seq !== state.seq || state.simulation || state.lastOk !== text || dynamics.rows.length !== solve.rows.length) return;
+  const have = new Set(solve.columns);
+  const extra = dynamics.columns.map((c, i) => [c, i]).filter(([c]) => !have.has(c));
+  solve.columns.push(...extra.map(([c]) => c));
+  solve.column_units.push(...extra.map(([, i]) => dynamics.column_units[i]));
+  solve.rows.forEach((row, k) => row.push(...extra.map(([, i]) => dynamics.rows[k][i])));
+  state.dynamics = dynamics;
+  state.dynamicsColumns = extra.map(([c]) => c);
+  if (state.wantedY && col(state.wantedY) >= 0) state.ycol = state.wantedY;
+  state.wantedY = undefined;
+  fillColumnPicker();
+  buildPlot();
+  buildTable();
+  setFrame(state.frame);
+  document.body.dataset.dynamics = '1';
+  document.dispatchEvent(new CustomEvent('nbar:dynamics'));
 }
 
 // A simulation's table and the drawing of its motion, in one request (one run).
@@ -323,15 +357,8 @@ function onSolved() {
     points, ground: new Set(check.points?.ground ?? []),
     bodies: (check.bodies ?? []).map((b) => ({ name: b.name, points: b.points.filter((p) => points.includes(p)) })),
   };
-  // The column picker: every column but step; keep the choice across edits.
-  const pick = $('#ycol');
-  const names = solve.columns.filter((c) => c !== 'step');
-  pick.replaceChildren(...names.map((c) => new Option(c, c)));
-  if (!names.includes(state.ycol)) {
-    const angles = names.filter((c) => c.endsWith('.angle'));
-    state.ycol = angles.at(-1) ?? names.find((c) => c !== state.xcol) ?? names[0];
-  }
-  pick.value = state.ycol;
+  delete document.body.dataset.dynamics;
+  fillColumnPicker();
   const scrub = $('#scrub');
   scrub.max = String(Math.max(solve.rows.length - 1, 0));
   state.frame = Math.min(state.frame, solve.rows.length - 1);
@@ -340,6 +367,38 @@ function onSolved() {
   buildPlot();
   buildTable();
   document.dispatchEvent(new CustomEvent('nbar:solved'));
+  setFrame(state.frame);
+}
+
+// The column pickers: every column but step; keep the choices across edits (a column the new
+// model lacks is dropped, or waits in the share link's list until the dynamics bring it).
+function fillColumnPicker() {
+  const { solve } = state;
+  const names = solve.columns.filter((c) => c !== 'step');
+  const pick = $('#ycol');
+  pick.replaceChildren(...names.map((c) => new Option(c, c)));
+  if (!names.includes(state.ycol)) {
+    const angles = names.filter((c) => c.endsWith('.angle'));
+    state.ycol = angles.at(-1) ?? names.find((c) => c !== state.xcol) ?? names[0];
+  }
+  pick.value = state.ycol;
+  const add = $('#ycol-add');
+  add.replaceChildren(new Option(t('addCurve'), ''), ...names.map((c) => new Option(c, c)));
+  add.value = '';
+  showCurves();
+}
+
+// The further curves, each a chip with × to take it off the plot.
+function showCurves() {
+  const shown = state.ycols.filter((c) => col(c) >= 0);
+  $('#ycurves').hidden = !shown.length;
+  $('#ycurves').innerHTML = shown.map((c) => `<span class="chip curve" data-curve="${esc(c)}"><i style="background:${curveColour(1 + state.ycols.indexOf(c))}"></i>${esc(c)}`
+    + `<button type="button" class="ghost" data-uncurve="${esc(c)}" aria-label="${esc(t('removeCurve', c))}" title="${esc(t('removeCurve', c))}">×</button></span>`).join('');
+}
+function curvesChanged() {
+  showCurves();
+  buildPlot();
+  buildTable();
   setFrame(state.frame);
 }
 
@@ -377,9 +436,10 @@ function setFrame(i) {
 // ------------------------------------------------------------------------------ dragging
 
 // A point dragged in the drawing moves it in the model: its `NAME: [x, y]` line is rewritten and
-// the model analysed again. Points are written at the start pose, so dragging shows sample 0,
-// and the point moves from where it is there by as much as the finger moves: grabbed at a later
-// sample, the finger's own place would have written that sample's pose into the model.
+// the model analysed again. The model's points are its start pose (sample 0), so only that pose
+// is edited: a point grabbed at a later pose does not move; the drawing goes back to the start
+// pose at once and the status says to drag it there, where the point stays under the finger
+// (moved from there by the finger's way, it had ended far from the finger at the pose shown).
 // While the finger moves, the server draws the edited model's scene (one request at a time, the
 // latest position next), shown at sample 0 in the same view: it re-assembles live.
 let drag = null;
@@ -393,9 +453,13 @@ function startDrag(e) {
   if (!c || !state.solve) return;
   e.preventDefault();
   play(false);
+  if (state.frame !== 0) {
+    setFrame(0);
+    status(t('dragAtStart', c.dataset.point));
+    return;
+  }
   const press = svgPoint(e);
   const start = pointAt(state.solve, 0, c.dataset.point) ?? press;
-  if (state.frame !== 0) setFrame(0);
   drag = { name: c.dataset.point, id: e.pointerId, moved: false, dx: start.x - press.x, dy: start.y - press.y };
   $('#drawing svg').setPointerCapture(e.pointerId);
 }
@@ -474,23 +538,37 @@ function play(on) {
 
 // ------------------------------------------------------------------------------ plot and table
 
+const curveColours = ['#2563eb', '#dc6803', '#0e9384', '#c11574', '#7a5af8', '#475467'];
+function curveColour(k) { return curveColours[k % curveColours.length]; }
+function withUnit(name) { const u = unitOf(name); return `${name}${u ? ` (${u})` : ''}`; }
+
+// The curves plotted: the Column picker's, then the ones added. Curves of one unit share a y
+// scale; the first unit's axis is on the left, the second's on the right (others unlabelled).
+// uPlot's legend is the read-out: each curve's value at the sample under the cursor.
+function plotCurves() {
+  return [state.ycol, ...state.ycols].filter((c, k, all) => col(c) >= 0 && all.indexOf(c) === k);
+}
 function buildPlot() {
   const el = $('#plot');
   state.plot?.destroy();
   state.plot = null;
   const { solve } = state;
-  const xi = col(state.xcol); const yi = col(state.ycol);
-  if (xi < 0 || yi < 0) return;
-  const data = [solve.rows.map((r) => r[xi]), solve.rows.map((r) => r[yi])];
-  const xu = unitOf(state.xcol); const yu = unitOf(state.ycol);
+  const xi = col(state.xcol);
+  const curves = plotCurves();
+  if (xi < 0 || !curves.length) return;
+  const data = [solve.rows.map((r) => r[xi]), ...curves.map((c) => solve.rows.map((r) => r[col(c)]))];
+  const units = [...new Set(curves.map(unitOf))];
+  const scaleOf = (c) => `y${units.indexOf(unitOf(c))}`;
+  const axisLabel = (k) => curves.filter((c) => unitOf(c) === units[k]).map(withUnit).join(', ');
+  const yAxes = units.slice(0, 2).map((u, k) => ({ scale: `y${k}`, label: axisLabel(k), size: 60, side: k ? 1 : 3, grid: { show: k === 0 } }));
   const opts = {
     width: Math.max(el.clientWidth, 200), height: 240,
     scales: { x: { time: false } },
     series: [
-      { label: `${state.xcol}${xu ? ` (${xu})` : ''}`, value: (u, v) => fmt(v) },
-      { label: `${state.ycol}${yu ? ` (${yu})` : ''}`, stroke: '#2563eb', width: 2, value: (u, v) => fmt(v) },
+      { label: withUnit(state.xcol), value: (u, v) => fmt(v) },
+      ...curves.map((c, k) => ({ label: withUnit(c), scale: scaleOf(c), stroke: curveColour(k), width: 2, value: (u, v) => fmt(v) })),
     ],
-    axes: [{ label: `${state.xcol}${xu ? ` (${xu})` : ''}`, size: 40 }, { label: `${state.ycol}${yu ? ` (${yu})` : ''}`, size: 60 }],
+    axes: [{ label: withUnit(state.xcol), size: 40 }, ...yAxes],
     cursor: { drag: { x: false, y: false } },
     hooks: {
       draw: [(u) => {
@@ -536,7 +614,7 @@ function resizePlot() {
 function buildTable() {
   const { solve, geometry } = state;
   const traced = geometry.points.filter((p) => !geometry.ground.has(p)).slice(-1);
-  const names = [...new Set(['step', state.xcol, state.ycol, ...traced.flatMap((p) => [`${p}.x`, `${p}.y`])])].filter((c) => col(c) >= 0);
+  const names = [...new Set(['step', state.xcol, ...plotCurves(), ...traced.flatMap((p) => [`${p}.x`, `${p}.y`])])].filter((c) => col(c) >= 0);
   const idx = names.map(col);
   const n = solve.rows.length;
   state.tableStride = Math.max(1, Math.ceil(n / 400));
@@ -779,19 +857,21 @@ function viewParams() {
   const params = new URLSearchParams();
   if (view.on.length) params.set('o', view.on.join(','));
   if (view.on.includes('traces') && view.traced.length) params.set('t', view.traced.join(','));
-  if (state.ycol) params.set('y', state.ycol);
+  if (state.ycol) params.set('y', plotCurves().join(',') || state.ycol);
   if (state.frame) params.set('f', String(Math.round(state.frame)));
   return params;
 }
 function applyView(params) {
   const list = (key) => (params.get(key) ? params.get(key).split(',') : []);
   setOverlayView({ on: list('o'), traced: list('t') });
-  const y = params.get('y');
-  if (y && state.solve && col(y) >= 0 && y !== state.ycol) {
+  const [y, ...more] = list('y');
+  // A dynamics column comes with the dynamics, after the sweep: chosen then (addDynamics).
+  if (y && state.solve && col(y) < 0) state.wantedY = y;
+  if (y && state.solve && col(y) >= 0 && (y !== state.ycol || more.length)) {
     state.ycol = y;
+    state.ycols = more;
     $('#ycol').value = y;
-    buildPlot();
-    buildTable();
+    curvesChanged();
   }
   const f = Number(params.get('f'));
   if (Number.isInteger(f) && f > 0 && state.solve) setFrame(Math.min(f, state.solve.rows.length - 1));
@@ -829,6 +909,7 @@ async function start() {
   settleBackend();
   $('#engine-note button').addEventListener('click', () => location.reload());
   $('#lang').addEventListener('change', (e) => { setLang(e.target.value); });
+  document.addEventListener('nbar:lang', () => { if (state.solve) fillColumnPicker(); });
   for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', () => showTab(b.dataset.tab));
   for (const b of document.querySelectorAll('[data-rtab]')) b.addEventListener('click', () => showResultTab(b.dataset.rtab));
   for (const b of document.querySelectorAll('[data-download]')) b.addEventListener('click', () => download(b.dataset.download));
@@ -838,7 +919,16 @@ async function start() {
   $('#drawing').addEventListener('pointerup', endDrag);
   $('#drawing').addEventListener('pointercancel', endDrag);
   $('#scrub').addEventListener('input', (e) => { play(false); setFrame(+e.target.value); });
-  $('#ycol').addEventListener('change', (e) => { state.ycol = e.target.value; buildPlot(); buildTable(); setFrame(state.frame); });
+  $('#ycol').addEventListener('change', (e) => { state.ycol = e.target.value; curvesChanged(); });
+  $('#ycol-add').addEventListener('change', (e) => {
+    const c = e.target.value;
+    e.target.value = '';
+    if (c && c !== state.ycol && !state.ycols.includes(c)) { state.ycols.push(c); curvesChanged(); }
+  });
+  $('#ycurves').addEventListener('click', (e) => {
+    const b = e.target.closest('[data-uncurve]');
+    if (b) { state.ycols = state.ycols.filter((c) => c !== b.dataset.uncurve); curvesChanged(); }
+  });
   $('#table').addEventListener('click', (e) => { const tr = e.target.closest('tr[data-i]'); if (tr) { play(false); setFrame(+tr.dataset.i); } });
   const app = { state, api, backendReady, setText, analyse, showTab, esc, fmt, status, play, setFrame, unitOf, col, model: () => editor.state.doc.toString() };
   initSimulate(app);

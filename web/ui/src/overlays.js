@@ -27,7 +27,8 @@ function buildControls() {
     + '<div id="ov-legend" class="ov-legend"></div>'
     + '<div id="motion-info" class="motion-info"></div>'
     + '<div id="motion-facts" class="motion-info"></div>'
-    + '<ul id="warnings" class="warnings"></ul>';
+    + '<ul id="warnings" class="warnings"></ul>'
+    + '<div id="stress-table" class="stress-table" hidden></div>';
   $('.stage .controls').after(box);
   for (const c of box.querySelectorAll('[data-overlay]')) {
     c.addEventListener('change', () => {
@@ -221,7 +222,7 @@ function drawStress(row, s, svg) {
       const vb = svg.viewBox.baseVal;
       const right = x > vb.x + vb.width / 2;
       const lx = x + (right ? -2.5 : 2.5) * s;
-      out += `<text class="peak-label" data-step="${l.step}" x="${+lx.toFixed(4)}" y="${+(-y - 2.5 * s).toFixed(4)}" text-anchor="${right ? 'end' : 'start'}" font-size="${3.4 * s}" font-weight="700" fill="#b42318" stroke="#fff" stroke-width="4" paint-order="stroke" vector-effect="non-scaling-stroke" font-family="system-ui, sans-serif">${app.fmt(l.von_mises)} ${app.esc(ov.stress.ok.units?.stress ?? '')} (${t('atStep', l.step)})</text>`;
+      out += `<text class="peak-label" data-step="${l.step}" x="${+lx.toFixed(4)}" y="${+(-y - 2.5 * s).toFixed(4)}" text-anchor="${right ? 'end' : 'start'}" font-size="${3.4 * s}" style="--fs:${+(3.4 * s).toFixed(4)}" font-weight="700" fill="#b42318" stroke="#fff" stroke-width="4" paint-order="stroke" vector-effect="non-scaling-stroke" font-family="system-ui, sans-serif">${app.fmt(l.von_mises)} ${app.esc(ov.stress.ok.units?.stress ?? '')} (${t('atStep', l.step)})</text>`;
     }
   }
   return `<g class="ov-stress">${out}</g>`;
@@ -266,7 +267,9 @@ function drawFrame() {
   const g = document.createElementNS(SVGNS, 'g');
   g.setAttribute('class', 'ov');
   g.innerHTML = out;
-  svg.append(g);
+  // Under the point handles, so that a joint under an arrow or a peak's marker is still grabbed.
+  const handles = svg.querySelector('.handles');
+  if (handles) handles.before(g); else svg.append(g);
   info(row);
 }
 
@@ -287,6 +290,7 @@ function legend() {
     parts.push(`<span class="leg" data-legend="${k}"${note}><svg width="${w + 8}" height="10"><line x1="1" y1="5" x2="${w}" y2="5" stroke="${colours[k]}" stroke-width="2.5"/><path d="M${w + 6},5 L${w - 1},1 L${w - 1},9 z" fill="${colours[k]}"/></svg>`
       + ` = ${app.fmt(sc.legendValue)} ${app.esc(sc.unit ?? '')} <small>(${t('maxIs')} ${app.fmt(sc.max)})</small></span>`);
   }
+  stressTable();
   if (ov.on.has('stress')) {
     if (ov.stress?.error) parts.push(failed('stress', ov.stress));
     else if (!ov.stress) parts.push(`<span>${t('ov_stress')}: ${t('loading')}</span>`);
@@ -297,6 +301,26 @@ function legend() {
     }
   }
   $('#ov-legend').innerHTML = parts.join('');
+}
+
+// Each shaped link's peak over the sweep, as `nbar stress` gives it (the core's von Mises, step,
+// place in the link's frame and safety factor, yield over peak, from the model's material): one
+// row a link, each going to its step when tapped. Shown with the Stress overlay.
+function stressTable() {
+  const box = $('#stress-table');
+  const answer = ov.on.has('stress') ? ov.stress?.ok : null;
+  box.hidden = !answer?.links?.length;
+  if (box.hidden) { box.innerHTML = ''; return; }
+  const u = answer.units ?? {};
+  const esc = app.esc;
+  const head = [t('stLink'), `${t('stPeak')} (${u.stress ?? ''})`, t('stSafety'), t('stStep'), `${t('stWhere')} (${u.length ?? ''})`];
+  const rows = answer.links.map((l) => `<tr data-body="${esc(l.body)}" data-step="${l.step}">`
+    + `<th><button type="button" class="ghost" data-stress-step="${l.step}" title="${esc(t('stGo', l.body, l.step))}">${esc(l.body)}</button></th>`
+    + `<td data-col="von_mises">${app.fmt(l.von_mises)}</td>`
+    + `<td data-col="safety_factor">${Number.isFinite(l.safety_factor) ? app.fmt(l.safety_factor) : `– <small>${esc(t('stNoYield'))}</small>`}</td>`
+    + `<td data-col="step">${l.step}</td><td data-col="where">${app.fmt(l.x)}, ${app.fmt(l.y)}</td></tr>`).join('');
+  box.innerHTML = `<h4>${esc(t('stTitle'))}</h4><div class="tablewrap"><table><thead><tr>${head.map((h) => `<th>${esc(h)}</th>`).join('')}</tr></thead>`
+    + `<tbody>${rows}</tbody></table></div><p class="hint">${esc(t('stHint'))}</p>`;
 }
 
 // An overlay whose last request failed: the reason, and that it is being tried again.
@@ -410,6 +434,10 @@ export function initOverlays(context) {
   document.addEventListener('nbar:lang', () => { if (app.state.solve) { warnings(); drawFrame(); legend(); } });
   // The drawing drawn again for a new size: the traces go back on it.
   document.addEventListener('nbar:drawn', drawTraces);
+  $('#stress-table').addEventListener('click', (e) => {
+    const row = e.target.closest('tr[data-step]');
+    if (row) { app.play(false); app.setFrame(+row.dataset.step); }
+  });
   document.querySelector('#drawing').addEventListener('click', (e) => {
     const peak = e.target.closest('[data-step].peak, .peak-label');
     if (peak) { app.play(false); app.setFrame(+peak.dataset.step); }

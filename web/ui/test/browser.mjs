@@ -15,18 +15,22 @@ import * as draw from './draw.mjs';
 import * as review from './review.mjs';
 import * as femap from './femap.mjs';
 import * as simulate from './simulate.mjs';
+import * as forces from './forces.mjs';
 
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const out = arg('--out', 'build/web-screenshots');
 // `--only draw`: only the comparison of the drawing with nbar draw's, at both viewports;
 // `--only review`: only review.mjs's checks (status, share, stale results, retries), at both;
 // `--only femap`: only femap.mjs's (the FE stress map's read-out against the CLI), at both;
-// `--only simulate`: only simulate.mjs's (Simulate mode against `nbar simulate`), at both.
+// `--only simulate`: only simulate.mjs's (Simulate mode against `nbar simulate`), at both;
+// `--only forces`: only forces.mjs's (dynamics columns, stress table, Explain at the pose, handles
+// over arrows, a drag at a later pose, zoom, the phone's bottom edge), at both.
 const only = arg('--only', '');
 const onlyDraw = only === 'draw';
 const onlyReview = only === 'review';
 const onlyFemap = only === 'femap';
 const onlySimulate = only === 'simulate';
+const onlyForces = only === 'forces';
 const examples = arg('--examples', '../../examples');
 
 const browser = await launchChromium();
@@ -191,6 +195,13 @@ async function simulateAt(tag, viewport, mobile) {
   await context.close();
 }
 
+// Motion and forces (forces.mjs) at a laptop's and a phone's viewport, against the command line.
+async function forcesAt(tag, viewport, mobile) {
+  const { context, page } = await open(tag, viewport, mobile);
+  await forces.run(page, { mobile, tag, base, nbar, shot, click, openExample, retype });
+  await context.close();
+}
+
 async function desktop() {
   const { context, page } = await open('desktop', { width: 1280, height: 800 }, false);
   assert.ok(await page.locator('[data-example]').count() >= 10, 'the gallery lists the examples');
@@ -246,9 +257,13 @@ async function desktop() {
   assert.match(await other.locator('.cm-content').textContent(), /P: {2}\[77\.81169, 150\]/);
   await other.close();
 
-  // A point dragged in the drawing moves in the model and the numbers follow.
+  // A point dragged in the drawing moves in the model and the numbers follow. Grabbed at sample
+  // 180, P does not move: the drawing goes back to sample 0 (forces.mjs checks what is said), where
+  // it is dragged.
   await page.locator('#scrub').fill('180');
-  // P is grabbed where it is at sample 180; the drag goes back to sample 0.
+  const at180 = await page.locator('#drawing circle.pt[data-point="P"]').boundingBox();
+  await page.mouse.click(at180.x + at180.width / 2, at180.y + at180.height / 2);
+  assert.equal(await page.locator('#scrub').inputValue(), '0');
   const p = await page.locator('#drawing circle.pt[data-point="P"]').boundingBox();
   // Model units per pixel of the view the drag happens in (the new model's view may differ).
   const perPixel = await page.evaluate(() => 1 / document.querySelector('#drawing svg').getScreenCTM().a);
@@ -266,8 +281,7 @@ async function desktop() {
   const moved = await page.locator('.cm-line', { hasText: '# coupler point' }).textContent();
   assert.match(moved, /^ {2}P: {2}\[\d+\.?\d*, \d+\.?\d*\]/);
   assert.doesNotMatch(moved, /77\.81169/);
-  // Grabbed at sample 180, P moved from its place at sample 0 (77.81169, 150) by the finger's
-  // 40 px right and 20 px down: not to where the finger was at sample 180.
+  // P moved from its place at sample 0 (77.81169, 150) by the finger's 40 px right and 20 px down.
   const [px, py] = moved.match(/\[([-\d.]+), ([-\d.]+)\]/).slice(1).map(Number);
   assert.ok(Math.abs(px - (77.81169 + 40 * perPixel)) < 2 * perPixel, `P.x ${px}, ${perPixel} mm/px`);
   assert.ok(Math.abs(py - (150 - 20 * perPixel)) < 2 * perPixel, `P.y ${py}, ${perPixel} mm/px`);
@@ -345,6 +359,9 @@ try {
   } else if (onlySimulate) {
     await simulateAt('laptop', { width: 1366, height: 768 }, false);
     await simulateAt('phone', { width: 390, height: 844 }, true);
+  } else if (onlyForces) {
+    await forcesAt('laptop', { width: 1366, height: 768 }, false);
+    await forcesAt('phone', { width: 390, height: 844 }, true);
   } else if (onlyFemap) {
     await femapAt('laptop', { width: 1366, height: 768 }, false);
     await femapAt('phone', { width: 390, height: 844 }, true);
@@ -357,6 +374,8 @@ try {
     await femapAt('phone', { width: 390, height: 844 }, true);
     await simulateAt('laptop', { width: 1366, height: 768 }, false);
     await simulateAt('phone', { width: 390, height: 844 }, true);
+    await forcesAt('laptop', { width: 1366, height: 768 }, false);
+    await forcesAt('phone', { width: 390, height: 844 }, true);
   }
   assert.deepEqual(errors, [], 'no errors in the page');
   console.log(`OK: screenshots in ${out}`);
