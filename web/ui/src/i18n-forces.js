@@ -14,7 +14,7 @@ addStrings({
     exForces: 'Forces at this pose', exForcesHint: 'The joint reactions (the force one link exerts on the other at the joint, as A.crank>coupler: the crank on the coupler) and the drivers’ efforts, from the inverse dynamics of the sweep (nbar solve --dynamics) at this sample.',
     exForcesNone: 'No inverse dynamics for this model.', exForceCol: 'Column', exValue: 'Value',
     exStresses: 'Stresses at this pose', exStressesHint: 'Each shaped link’s largest von Mises stress over its cross-sections at this sample (nbar stress --section-profile LINK --step K), and where along the link.',
-    exStressesNone: 'No shaped links: no stresses.', exAt: 'at x', exCentresDrawn: 'The instant centres are marked on the drawing (IC); those at infinity are not.',
+    exStressesNone: 'No shaped links: no stresses.', exAt: 'at x', exCentresDrawn: 'Each instant centre is marked on the drawing with its pair of links (crank,coupler); those at infinity are not.',
   },
   es: {
     moreCurves: 'Más curvas', addCurve: '+ añadir una curva', removeCurve: (c) => `Quitar ${c} de la gráfica`,
@@ -26,6 +26,6 @@ addStrings({
     exForces: 'Fuerzas en esta posición', exForcesHint: 'Las reacciones en las juntas (la fuerza que un eslabón ejerce sobre el otro en la junta, como A.crank>coupler: la manivela sobre el acoplador) y los esfuerzos de los accionamientos, de la dinámica inversa del barrido (nbar solve --dynamics) en esta muestra.',
     exForcesNone: 'Este modelo no tiene dinámica inversa.', exForceCol: 'Columna', exValue: 'Valor',
     exStresses: 'Tensiones en esta posición', exStressesHint: 'La mayor tensión de von Mises de cada eslabón con forma entre sus secciones en esta muestra (nbar stress --section-profile ESLABÓN --step K), y dónde a lo largo del eslabón.',
-    exStressesNone: 'No hay eslabones con forma: no hay tensiones.', exAt: 'en x', exCentresDrawn: 'Los centros instantáneos están marcados en el dibujo (CI); los del infinito no.',
+    exStressesNone: 'No hay eslabones con forma: no hay tensiones.', exAt: 'en x', exCentresDrawn: 'Cada centro instantáneo está marcado en el dibujo con su par de eslabones (crank,coupler); los del infinito no.',
   },
 });

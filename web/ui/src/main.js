@@ -286,10 +286,11 @@ async function addDynamics(text, seq) {
   state.dynamicsColumns = extra.map(([c]) => c);
   if (state.wantedY && col(state.wantedY) >= 0) state.ycol = state.wantedY;
   state.wantedY = undefined;
+  // The plot and table only: the drawing and its handles stay as they are (a finger may be on one).
   fillColumnPicker();
   buildPlot();
   buildTable();
-  setFrame(state.frame);
+  markTableRow();
   document.body.dataset.dynamics = '1';
   document.dispatchEvent(new CustomEvent('nbar:dynamics'));
 }
@@ -425,12 +426,15 @@ function setFrame(i) {
   $('#readout').textContent = `${state.xcol} = ${fmt(row[col(state.xcol)])} ${unitOf(state.xcol)}`;
   state.plot?.redraw(false, false);
   document.dispatchEvent(new CustomEvent('nbar:frame'));
+  markTableRow();
+}
+// The Table's row of the sample shown (when the table lists it).
+function markTableRow() {
   const tr = $('#table tbody')?.children;
-  if (tr) {
-    $('#table tr.current')?.classList.remove('current');
-    const k = Math.round(state.frame / state.tableStride);
-    if (state.frame % state.tableStride === 0 && tr[k]) tr[k].classList.add('current');
-  }
+  if (!tr) return;
+  $('#table tr.current')?.classList.remove('current');
+  const k = Math.round(state.frame / state.tableStride);
+  if (state.frame % state.tableStride === 0 && tr[k]) tr[k].classList.add('current');
 }
 
 // ------------------------------------------------------------------------------ dragging

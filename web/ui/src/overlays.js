@@ -251,12 +251,19 @@ function drawFrame() {
   const { solve, geometry } = app.state;
   if (!svg || !solve || !geometry) return;
   svg.querySelector('.ov')?.remove();
+  svg.querySelector('.ov-peaks')?.remove();
   const row = solve.rows[app.state.frame];
   if (!row) return;
   const s = geometry.scale ?? 1;
   let out = '';
   scales = {};
-  if (ov.on.has('stress')) out += drawStress(row, s, svg);
+  // The stress peaks' markers and labels go to their step when clicked: above the handles.
+  if (ov.on.has('stress')) {
+    const peaks = document.createElementNS(SVGNS, 'g');
+    peaks.setAttribute('class', 'ov-peaks');
+    peaks.innerHTML = drawStress(row, s, svg);
+    svg.append(peaks);
+  }
   for (const k of ['velocity', 'acceleration', 'forces']) {
     if (!ov.on.has(k)) continue;
     const d = drawVectors(k, row, s);
@@ -267,7 +274,7 @@ function drawFrame() {
   const g = document.createElementNS(SVGNS, 'g');
   g.setAttribute('class', 'ov');
   g.innerHTML = out;
-  // Under the point handles, so that a joint under an arrow or a peak's marker is still grabbed.
+  // Under the point handles, so that a joint under an arrow is still grabbed.
   const handles = svg.querySelector('.handles');
   if (handles) handles.before(g); else svg.append(g);
   info(row);
