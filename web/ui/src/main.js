@@ -393,7 +393,7 @@ function fillColumnPicker() {
 function showCurves() {
   const shown = state.ycols.filter((c) => col(c) >= 0);
   $('#ycurves').hidden = !shown.length;
-  $('#ycurves').innerHTML = shown.map((c) => `<span class="chip curve" data-curve="${esc(c)}"><i style="background:${curveColour(1 + state.ycols.indexOf(c))}"></i>${esc(c)}`
+  $('#ycurves').innerHTML = shown.map((c) => `<span class="chip curve" data-curve="${esc(c)}"><i style="background:${curveColour(plotCurves().indexOf(c))}"></i>${esc(c)}`
     + `<button type="button" class="ghost" data-uncurve="${esc(c)}" aria-label="${esc(t('removeCurve', c))}" title="${esc(t('removeCurve', c))}">×</button></span>`).join('');
 }
 function curvesChanged() {
