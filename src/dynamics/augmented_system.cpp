@@ -1,5 +1,7 @@
 #include "augmented_system.hpp"
 
+#include "kinematics/sized.hpp"
+
 #include <Eigen/OrderingMethods>
 
 #include <algorithm>
@@ -28,6 +30,9 @@ constexpr double kConverged = 1e-15;
 // solve to the dense method.
 constexpr double kSettled = 1e-8;
 constexpr double kFallBack = 1e-10;
+// A pivot of the dense Schur complement below this fraction of its largest diagonal: the rows
+// nearly dependent (next to a toggle), where the iterations and their fallback take over.
+constexpr double kSingularSchur = 1e-8;
 
 double largest(const Eigen::VectorXd& v) { return v.size() == 0 ? 0.0 : v.lpNorm<Eigen::Infinity>(); }
 
@@ -69,6 +74,10 @@ void AugmentedSystem::analyse(const std::vector<Eigen::Triplet<double>>& mass) {
   std::map<std::pair<int, int>, int> slot;  // (i, j), i <= j in K's order -> where its value is
   if (dense_) {
     dense_k_.setZero(n_, n_);
+    dense_mass_ = Eigen::MatrixXd(mass_);
+    dense_jacobian_.setZero(n_, m_);
+    schur_basis_.setZero(n_, m_);
+    schur_factor_.setZero(m_, m_);
     for (int j = 0; j < n_; ++j)
       for (int i = 0; i <= j; ++i) slot[{i, j}] = j * n_ + i;
     base_.assign(static_cast<std::size_t>(n_) * n_, 0.0);
@@ -124,10 +133,10 @@ bool AugmentedSystem::factorize(const std::vector<double>& values) {
   std::copy(base_.begin(), base_.end(), k);
   for (const Product& p : products_) k[p.slot] += alpha_ * values[p.a] * values[p.b];
   if (dense_) {
+    schur_ready_ = false;
     largest_diagonal_ = dense_k_.diagonal().maxCoeff();
-    dense_factor_.compute(dense_k_);
-    if (dense_factor_.info() != Eigen::Success) return false;
-    const double smallest_pivot = dense_factor_.matrixLLT().diagonal().cwiseAbs2().minCoeff();
+    if (!with_coordinate_count(n_, [&](auto size) { return cholesky_in_place<decltype(size)::value>(); })) return false;
+    const double smallest_pivot = dense_k_.diagonal().cwiseAbs2().minCoeff();
     return smallest_pivot > kNoInertia * largest_diagonal_;
   }
   largest_diagonal_ = sparse_k_.diagonal().maxCoeff();
@@ -139,21 +148,9 @@ bool AugmentedSystem::factorize(const std::vector<double>& values) {
 
 void AugmentedSystem::solve_k(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (dense_) {
-    // K = U^T U with U upper triangular, column-major: two substitutions, written out (at this
-    // size Eigen's general triangular solves cost more in dispatch than in arithmetic).
-    const double* u = dense_factor_.matrixLLT().data();
-    const int n = n_;
     x = b;
-    for (int j = 0; j < n; ++j) {
-      double sum = x(j);
-      for (int i = 0; i < j; ++i) sum -= u[j * n + i] * x(i);
-      x(j) = sum / u[j * n + j];
-    }
-    for (int j = n - 1; j >= 0; --j) {
-      const double value = x(j) / u[j * n + j];
-      x(j) = value;
-      for (int i = 0; i < j; ++i) x(i) -= u[j * n + i] * value;
-    }
+    forward_k<0>(x.data());
+    backward_k<0>(x.data());
     return;
   }
   for (int i = 0; i < n_; ++i) permuted_b_(new_index_[i]) = b(i);
@@ -223,8 +220,9 @@ void AugmentedSystem::schur_cg(const std::vector<double>& values, const Eigen::V
   dlambda_ = best_dlambda_;
 }
 
-double AugmentedSystem::solve(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
-                              Eigen::VectorXd& x, Eigen::VectorXd& lambda, bool refine) {
+double AugmentedSystem::solve_iterative(const std::vector<double>& values, const Eigen::VectorXd& f,
+                                        const Eigen::VectorXd& c, Eigen::VectorXd& x, Eigen::VectorXd& lambda,
+                                        bool refine) {
   x.setZero(n_);
   if (lambda.size() != m_) lambda.setZero(m_);
   // Each round corrects (x, lambda) by the system's residuals, computed in working precision. The
@@ -251,6 +249,183 @@ double AugmentedSystem::solve(const std::vector<double>& values, const Eigen::Ve
   if (converged && constraint_left <= kFallBack && x.allFinite()) return constraint_left;
   lambda.setZero(m_);  // no warm start from here
   return solve_dense(values, f, c, x);
+}
+
+// Written out rather than Eigen's LLT: at up to 16 coordinates its dispatch and copies cost more
+// than the arithmetic, and the factor stays where K was formed.
+template <int N>
+bool AugmentedSystem::cholesky_in_place() {
+  const int n = N > 0 ? N : n_;
+  double* u = dense_k_.data();  // U(i, j) = u[j * n + i], i <= j
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < j; ++i) {
+      double sum = u[j * n + i];
+      for (int k = 0; k < i; ++k) sum -= u[i * n + k] * u[j * n + k];
+      u[j * n + i] = sum / u[i * n + i];
+    }
+    double diagonal = u[j * n + j];
+    for (int k = 0; k < j; ++k) diagonal -= u[j * n + k] * u[j * n + k];
+    if (!(diagonal > 0.0)) return false;
+    u[j * n + j] = std::sqrt(diagonal);
+  }
+  return true;
+}
+
+template <int N>
+void AugmentedSystem::forward_k(double* y) const {
+  const double* u = dense_k_.data();
+  const int n = N > 0 ? N : n_;
+  for (int j = 0; j < n; ++j) {
+    double sum = y[j];
+    for (int i = 0; i < j; ++i) sum -= u[j * n + i] * y[i];
+    y[j] = sum / u[j * n + j];
+  }
+}
+
+template <int N>
+void AugmentedSystem::backward_k(double* x) const {
+  const double* u = dense_k_.data();
+  const int n = N > 0 ? N : n_;
+  for (int j = n - 1; j >= 0; --j) {
+    const double value = x[j] / u[j * n + j];
+    x[j] = value;
+    for (int i = 0; i < j; ++i) x[i] -= u[j * n + i] * value;
+  }
+}
+
+template <int N, int M>
+void AugmentedSystem::prepare_schur(const std::vector<double>& values) {
+  schur_ready_ = true;
+  const int n = N > 0 ? N : n_, m = M > 0 ? M : m_;
+  double* j = dense_jacobian_.data();  // Phi_q(r, k) = j[r * n + k]
+  std::fill(j, j + static_cast<std::ptrdiff_t>(n) * m, 0.0);
+  for (const Entry& e : entries_) j[e.row * n + e.col] += values[e.value];
+  double* w = schur_basis_.data();  // W(k, r) = w[r * n + k]: row r of Phi_q, solved with U^T
+  std::copy(j, j + static_cast<std::ptrdiff_t>(n) * m, w);
+  for (int r = 0; r < m; ++r) forward_k<N>(w + r * n);
+  double* l = schur_factor_.data();  // L(a, b) = l[b * m + a], a >= b
+  double most = 0.0;
+  for (int b = 0; b < m; ++b)
+    for (int a = b; a < m; ++a) {
+      double sum = 0.0;
+      for (int k = 0; k < n; ++k) sum += w[a * n + k] * w[b * n + k];
+      l[b * m + a] = sum;
+      if (a == b) most = std::max(most, sum);
+    }
+  // A small pivot: the rows nearly dependent there (next to a toggle).
+  schur_usable_ = false;
+  for (int b = 0; b < m; ++b) {
+    double diagonal = l[b * m + b];
+    for (int k = 0; k < b; ++k) diagonal -= l[k * m + b] * l[k * m + b];
+    if (!(diagonal > kSingularSchur * most)) return;
+    const double pivot = std::sqrt(diagonal);
+    l[b * m + b] = pivot;
+    for (int a = b + 1; a < m; ++a) {
+      double sum = l[b * m + a];
+      for (int k = 0; k < b; ++k) sum -= l[k * m + a] * l[k * m + b];
+      l[b * m + a] = sum / pivot;
+    }
+  }
+  schur_usable_ = true;
+}
+
+// The rounds of solve_iterative, each correction (dx, dlambda) of the residuals (r1, r2) direct:
+// with g = r1 + alpha Phi^T r2 and h = U^-T g, S dlambda = Phi K^-1 g - r2 = W^T h - r2 and
+// dx = K^-1 (g - Phi^T dlambda) = U^-1 (h - W dlambda). N coordinates and M rows when compiled
+// (M = 0: m_ read at run time); the vectors of a round are local, where the compiler keeps them.
+template <int N, int M>
+double AugmentedSystem::solve_small(const std::vector<double>& values, const Eigen::VectorXd& f,
+                                    const Eigen::VectorXd& c, Eigen::VectorXd& x, Eigen::VectorXd& lambda,
+                                    bool refine) {
+  if (!schur_ready_) prepare_schur<N, M>(values);
+  if (!schur_usable_) return solve_iterative(values, f, c, x, lambda, refine);
+  constexpr int n = N;
+  const int m = M > 0 ? M : m_;
+  if (lambda.size() != m) lambda.setZero(m);
+  const double *mass = dense_mass_.data(), *j = dense_jacobian_.data(), *w = schur_basis_.data(),
+               *l = schur_factor_.data();
+  double xs[n] = {}, r1[n], h[n];
+  double *r2 = r2_.data(), *y = dlambda_.data(), *ls = lambda.data();
+  bool converged = false;
+  for (int round = 0; round < (refine ? kMostRounds : 1) && !converged; ++round) {
+    for (int i = 0; i < n; ++i) {
+      double sum = f(i);
+      for (int k = 0; k < n; ++k) sum -= mass[i * n + k] * xs[k];
+      r1[i] = sum;
+      h[i] = 0.0;
+    }
+    for (int r = 0; r < m; ++r) {
+      double sum = c(r);
+      const double multiplier = ls[r];
+      for (int k = 0; k < n; ++k) {
+        sum -= j[r * n + k] * xs[k];
+        r1[k] -= j[r * n + k] * multiplier;
+      }
+      r2[r] = sum;
+      for (int k = 0; k < n; ++k) h[k] += j[r * n + k] * sum;
+    }
+    for (int k = 0; k < n; ++k) h[k] = r1[k] + alpha_ * h[k];
+    forward_k<N>(h);
+    for (int r = 0; r < m; ++r) {
+      double sum = 0.0;
+      for (int k = 0; k < n; ++k) sum += w[r * n + k] * h[k];
+      y[r] = sum - r2[r];
+    }
+    for (int a = 0; a < m; ++a) {
+      double sum = y[a];
+      for (int k = 0; k < a; ++k) sum -= l[k * m + a] * y[k];
+      y[a] = sum / l[a * m + a];
+    }
+    for (int a = m - 1; a >= 0; --a) {
+      double sum = y[a];
+      for (int k = a + 1; k < m; ++k) sum -= l[a * m + k] * y[k];
+      y[a] = sum / l[a * m + a];
+    }
+    for (int r = 0; r < m; ++r)
+      for (int k = 0; k < n; ++k) h[k] -= w[r * n + k] * y[r];
+    backward_k<N>(h);
+    double most_x = 0.0, most_dx = 0.0;
+    for (int k = 0; k < n; ++k) {
+      xs[k] += h[k];
+      most_x = std::max(most_x, std::abs(xs[k]));
+      most_dx = std::max(most_dx, std::abs(h[k]));
+    }
+    for (int r = 0; r < m; ++r) ls[r] += y[r];
+    converged = !refine || (round > 0 && most_dx <= kSettled * most_x);
+  }
+  x.resize(n);
+  double left = 0.0, most_x = 0.0;
+  for (int k = 0; k < n; ++k) {
+    x(k) = xs[k];
+    most_x = std::max(most_x, std::abs(xs[k]));
+  }
+  for (int r = 0; r < m; ++r) {
+    double sum = c(r);
+    for (int k = 0; k < n; ++k) sum -= j[r * n + k] * xs[k];
+    left = std::max(left, std::abs(sum));
+  }
+  const double scale = largest(c) + jacobian_scale_ * most_x;
+  const double constraint_left = scale > 0 ? left / scale : 0.0;
+  if (converged && constraint_left <= kFallBack && x.allFinite()) return constraint_left;
+  lambda.setZero(m_);  // no warm start from here
+  return solve_dense(values, f, c, x);
+}
+
+double AugmentedSystem::solve(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
+                              Eigen::VectorXd& x, Eigen::VectorXd& lambda, bool refine) {
+  // The direct path for the sizes compiled for only: from 10 coordinates (Andrews' squeezer has 14)
+  // forming S costs more than the few iterations it saves. With redundant rows S is singular
+  // everywhere, its last pivot rounding that no threshold tells from a small one: iterations. One free degree of
+  // freedom (m = n - 1) has its row count compiled too.
+  return with_coordinate_count(dense_ && direct_ ? n_ : 0, [&](auto size) {
+    constexpr int n = decltype(size)::value;
+    if constexpr (n > 0) {
+      if (m_ == n - 1) return solve_small<n, n - 1>(values, f, c, x, lambda, refine);
+      return solve_small<n, 0>(values, f, c, x, lambda, refine);
+    } else {
+      return solve_iterative(values, f, c, x, lambda, refine);
+    }
+  });
 }
 
 // The first version's solve, for where the iterations above do not converge (the rows nearly or

@@ -17,6 +17,12 @@
 // takes out the rounding that the large alpha brings into K. The cost of everything is linear in
 // the nonzeros of K and its factor: for a chain of loops, linear in the number of loops.
 //
+// Up to kDenseLimit coordinates everything is dense and S itself is formed (m solves with K's
+// factor, once per Jacobian) and factorised, so that each round of a solve is two triangular
+// solves with K's factor and two with S's: no iterations, nothing allocated, and for 2 to 8
+// coordinates the loops compiled for their size (kinematics/sized.hpp). Where S is singular to
+// rounding (redundant rows) the iterations take over.
+//
 // docs/dynamics.md (Formulation) says why this and not the null-space basis of the first version.
 #pragma once
 
@@ -48,6 +54,14 @@ class AugmentedSystem {
   int rows() const { return m_; }
   const Eigen::SparseMatrix<double>& mass() const { return mass_; }
 
+  // Some kept rows depend on the others everywhere (redundant constraints): S is singular, and the
+  // solves keep to the iterations, which need no regular S.
+  void rows_redundant() { direct_ = false; }
+
+  // The Jacobian values have changed since the last factorize (K stays): the dense Schur
+  // complement is formed again at the next solve.
+  void jacobian_changed() { schur_ready_ = false; }
+
   // Forms K from the Jacobian values and factorises it. The penalty alpha is fixed at the first
   // call: 1e4 times the mass matrix's largest diagonal over the largest of Phi_q^T Phi_q. False
   // when K is singular: a motion that the kept rows allow moves no mass.
@@ -74,6 +88,26 @@ class AugmentedSystem {
   struct Product {
     int slot = 0, a = 0, b = 0;
   };
+  // solve() through conjugate gradients on S: the general path, for the sparse K and a singular S.
+  double solve_iterative(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
+                         Eigen::VectorXd& x, Eigen::VectorXd& lambda, bool refine);
+  // solve() through the dense S (dense K only), N coordinates and M rows (M = 0: m_, read at run
+  // time).
+  template <int N, int M>
+  double solve_small(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
+                     Eigen::VectorXd& x, Eigen::VectorXd& lambda, bool refine);
+  // Phi_q dense, W = U^-T Phi_q^T and S = W^T W = Phi_q K^-1 Phi_q^T, factorised (S = L L^T);
+  // schur_usable_ false where S is singular to rounding.
+  template <int N, int M>
+  void prepare_schur(const std::vector<double>& values);
+  // K = U^T U factorised in place in dense_k_'s upper triangle; false where a pivot is not positive.
+  template <int N>
+  bool cholesky_in_place();
+  // y = U^-T y and x = U^-1 x, in place (K = U^T U, dense).
+  template <int N>
+  void forward_k(double* y) const;
+  template <int N>
+  void backward_k(double* x) const;
   double solve_dense(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
                      Eigen::VectorXd& x);
   void analyse(const std::vector<Eigen::Triplet<double>>& mass);
@@ -94,8 +128,11 @@ class AugmentedSystem {
   std::vector<int> new_index_;     // coordinate -> its place in K (the fill-reducing order)
   std::vector<double> base_;       // K's stored values from M alone
   std::vector<Product> products_;  // the alpha Phi_q^T Phi_q part
-  Eigen::MatrixXd dense_k_;        // upper triangle used (dense_)
-  Eigen::LLT<Eigen::MatrixXd, Eigen::Upper> dense_factor_;
+  Eigen::MatrixXd dense_k_;        // upper triangle used (dense_): K, then its factor U
+  // The dense path's (dense_): M, Phi_q (row r at r * n), W (column r at r * n), L (S's factor,
+  // column-major lower), whether they are formed for the present Jacobian and S was regular there.
+  Eigen::MatrixXd dense_mass_, dense_jacobian_, schur_basis_, schur_factor_;
+  bool schur_ready_ = false, schur_usable_ = false, direct_ = true;
   Eigen::SparseMatrix<double> sparse_k_;  // upper triangle, in the fill-reducing order
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>> sparse_factor_;
   double largest_diagonal_ = 0.0;

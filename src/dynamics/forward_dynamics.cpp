@@ -128,6 +128,7 @@ class EquationsOfMotion {
       if (selected_[pattern[i].row] >= 0)
         entries.push_back({static_cast<int>(i), selected_[pattern[i].row], pattern[i].col});
     system_.emplace(n_, kept_rows(), build_masses(), std::move(entries));
+    if (!mech.mobility().redundant.empty()) system_->rows_redundant();
     square_ = mech.row_count() == n_;
     if (square_) {
       std::vector<SparseLU::Entry> full;
@@ -179,7 +180,10 @@ class EquationsOfMotion {
   }
   // The Jacobian at q, at the time of the last factorisation, whose matrix stays: near q it
   // preconditions the solves with the new Jacobian.
-  void update_jacobian(const Eigen::VectorXd& q) { evaluate_jacobian(mech_, q, drivers_, jacobian_values_); }
+  void update_jacobian(const Eigen::VectorXd& q) {
+    evaluate_jacobian(mech_, q, drivers_, jacobian_values_);
+    system_->jacobian_changed();
+  }
 
   // The kept rows' residuals at q, at the last factorisation's time.
   const Eigen::VectorXd& residuals(const Eigen::VectorXd& q) {
@@ -203,6 +207,10 @@ class EquationsOfMotion {
     gamma_ *= -2.0;
     return gamma_;
   }
+  // What residuals, time_derivative and gamma computed last.
+  const Eigen::VectorXd& last_residuals() const { return residual_; }
+  const Eigen::VectorXd& last_time_derivative() const { return time_derivative_; }
+  const Eigen::VectorXd& last_gamma() const { return gamma_; }
   // Phi_q x with the present Jacobian.
   const Eigen::VectorXd& jacobian_times(const Eigen::VectorXd& x) {
     system_->apply(jacobian_values_, x, product_);
@@ -228,7 +236,7 @@ class EquationsOfMotion {
   // The same with the factorisation made at (or near) q, at t, the Jacobian at q.
   const Rates& evaluate_factorised(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
     double dissipated = 0.0, applied = 0.0;
-    loads_ = generalised_forces(t, q, qd, dissipated, applied);
+    generalised_forces(t, q, qd, dissipated, applied, loads_);
     const double left = system_->solve(jacobian_values_, loads_, gamma(q, qd), rates_.acceleration, lambda_, true);
     // Where the rows have become dependent the acceleration constraints ask the impossible and
     // what is left of them stays of order 1; near (not at) a toggle the solve still converges.
@@ -242,7 +250,8 @@ class EquationsOfMotion {
     if (!rates_.acceleration.allFinite()) lambda_.setZero(kept_rows());
     rates_.dissipated = dissipated;
     // The constraint forces M q'' - Q do work only through the kinematic drivers' rows.
-    rates_.work_in = applied + (mass() * rates_.acceleration - loads_).dot(qd);
+    mass_times_.noalias() = mass() * rates_.acceleration;
+    rates_.work_in = applied + (mass_times_ - loads_).dot(qd);
     return rates_;
   }
 
@@ -395,11 +404,13 @@ class EquationsOfMotion {
   };
   // Q(t, q, q'): gravity, forces, torques (motors by their torque-speed line), springs and
   // dampers; with the dampers' dissipated power and the applied loads' power.
-  Eigen::VectorXd generalised_forces(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double& dissipated,
-                                     double& applied) const {
+  // Written into `loads`, with applied_loads_ as work space: nothing allocated.
+  void generalised_forces(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double& dissipated,
+                          double& applied, Eigen::VectorXd& loads) {
     const Model& m = mech_.model();
-    Eigen::VectorXd loads = gravity_;
-    Eigen::VectorXd applied_loads = Eigen::VectorXd::Zero(n_);
+    loads = gravity_;
+    Eigen::VectorXd& applied_loads = applied_loads_;
+    applied_loads.setZero(n_);
     const auto law_at = [t](const Law& law, EntityRef::Kind kind, std::size_t index, int which) {
       try {
         return law.value(t);
@@ -442,7 +453,6 @@ class EquationsOfMotion {
       dissipated += s.damping * rate * rate;
     }
     dissipated += add_joint_friction(mech_, q, qd, loads);
-    return loads;
   }
   const Mechanism& mech_;
   std::vector<double> start_;
@@ -459,7 +469,8 @@ class EquationsOfMotion {
   bool square_ = false;  // as many rows as coordinates: the gate's LU exists
   SparseLU full_lu_;     // every row's square Jacobian, for the gate
   Eigen::MatrixXd first_order_, second_order_;
-  Eigen::VectorXd all_rows_, residual_, time_derivative_, gamma_, product_, loads_, zero_force_;
+  Eigen::VectorXd all_rows_, residual_, time_derivative_, gamma_, product_, loads_, applied_loads_, mass_times_,
+      zero_force_;
   Eigen::VectorXd lambda_, projection_lambda_, correction_;
   Rates rates_;
 };
@@ -487,14 +498,21 @@ class Integrator {
       : mech_(mech), eq_(equations), options_(options), n_(equations.coordinates()) {}
 
   Eigen::VectorXd derivative(double t, const Eigen::VectorXd& y) {
+    Eigen::VectorXd f;
+    derivative(t, y, f);
+    return f;
+  }
+  // The same into f (sized once: nothing allocated on a step).
+  void derivative(double t, const Eigen::VectorXd& y, Eigen::VectorXd& f) {
     ++evaluations_;
-    const EquationsOfMotion::Rates& r = eq_.evaluate(t, y.head(n_), y.segment(n_, n_));
-    Eigen::VectorXd f(y.size());
-    f.head(n_) = y.segment(n_, n_);
+    evaluated_q_ = y.head(n_);
+    evaluated_qd_ = y.segment(n_, n_);
+    const EquationsOfMotion::Rates& r = eq_.evaluate(t, evaluated_q_, evaluated_qd_);
+    f.resize(y.size());
+    f.head(n_) = evaluated_qd_;
     f.segment(n_, n_) = r.acceleration;
     f(2 * n_) = r.dissipated;
     f(2 * n_ + 1) = r.work_in;
-    return f;
   }
 
   // Moves q onto Phi = 0 and q' onto Phi_q q' = -Phi_t at t by the smallest corrections in the
@@ -561,23 +579,28 @@ class Integrator {
     Eigen::VectorXd r2, r3, r4, r5;
   };
 
-  Step step(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h) {
+  // One step into s, its stages in vectors sized once (the arithmetic of each as written out).
+  void step(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s) {
     using namespace dopri;
-    const Eigen::VectorXd k2 = derivative(t + c2 * h, y + h * a21 * k1);
-    const Eigen::VectorXd k3 = derivative(t + c3 * h, y + h * (a31 * k1 + a32 * k2));
-    const Eigen::VectorXd k4 = derivative(t + c4 * h, y + h * (a41 * k1 + a42 * k2 + a43 * k3));
-    const Eigen::VectorXd k5 = derivative(t + c5 * h, y + h * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4));
-    const Eigen::VectorXd k6 = derivative(t + h, y + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5));
-    Step s;
+    Eigen::VectorXd &k2 = k2_, &k3 = k3_, &k4 = k4_, &k5 = k5_, &k6 = k6_;
+    stage_ = y + h * a21 * k1;
+    derivative(t + c2 * h, stage_, k2);
+    stage_ = y + h * (a31 * k1 + a32 * k2);
+    derivative(t + c3 * h, stage_, k3);
+    stage_ = y + h * (a41 * k1 + a42 * k2 + a43 * k3);
+    derivative(t + c4 * h, stage_, k4);
+    stage_ = y + h * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4);
+    derivative(t + c5 * h, stage_, k5);
+    stage_ = y + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5);
+    derivative(t + h, stage_, k6);
     s.y1 = y + h * (a71 * k1 + a73 * k3 + a74 * k4 + a75 * k5 + a76 * k6);
-    s.k7 = derivative(t + h, s.y1);
-    const Eigen::VectorXd error = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * s.k7);
-    s.error = error_norm(error, y, s.y1);
+    derivative(t + h, s.y1, s.k7);
+    error_ = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * s.k7);
+    s.error = error_norm(error_, y, s.y1);
     s.r2 = s.y1 - y;
     s.r3 = h * k1 - s.r2;
     s.r4 = s.r2 - h * s.k7 - s.r3;
     s.r5 = h * (d1 * k1 + d3 * k3 + d4 * k4 + d5 * k5 + d6 * k6 + d7 * s.k7);
-    return s;
   }
 
   static Eigen::VectorXd interpolate(const Eigen::VectorXd& y0, const Step& s, double theta) {
@@ -593,7 +616,8 @@ class Integrator {
   const SimulationOptions& options_;
   int n_;
   long evaluations_ = 0;
-  Eigen::VectorXd q_, qd_, velocity_error_;  // the projection's
+  Eigen::VectorXd q_, qd_, velocity_error_;                                              // the projection's
+  Eigen::VectorXd evaluated_q_, evaluated_qd_, stage_, k2_, k3_, k4_, k5_, k6_, error_;  // a step's
 };
 
 // Each driver's value at q (SI), angles unwrapped against `previous`.
@@ -777,7 +801,8 @@ class Run {
           throw SimulationStop{"the step size fell below " + std::to_string(h) + " s at " + time_text(t) +
                                    ": the motion is too fast or not smooth there for the tolerance asked",
                                eq_.first_free_driver()};
-        const Integrator::Step s = integrator_.step(t, y_, k1, h);
+        Integrator::Step& s = step_;
+        integrator_.step(t, y_, k1, h, s);
         if (!s.y1.allFinite() || !(s.error <= 1.0)) {
           ++out_.statistics.rejected_steps;
           h *= s.y1.allFinite() && std::isfinite(s.error) ? std::max(0.2, 0.9 * std::pow(s.error, -0.2)) : 0.2;
@@ -802,14 +827,14 @@ class Run {
         if (event) {
           if (!handle_event(*event, t, h, s)) break;
           t = reached;  // reversed at the toggle: on from there
-          k1 = integrator_.derivative(t, y_);
+          integrator_.derivative(t, y_, k1);
           keep_toggle_reference(t);
           if (probe_) condition_ = condition_at(t, y_, true);
           continue;
         }
         y_ = y1;
         t = t1;
-        k1 = integrator_.derivative(t, y_);
+        integrator_.derivative(t, y_, k1);
         keep_toggle_reference(t);
         if (probe_) condition_ = condition_at(t, y_, true);
         h *= std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(s.error, 1e-10), -0.2)));
@@ -1050,10 +1075,10 @@ class Run {
     const EquationsOfMotion::Rates& rates = eq_.evaluate_factorised(at, q, qd);
     Row row;
     if (eq_.kept_rows()) {
-      // The accelerations' gamma first: jacobian_times and the others reuse their vectors.
-      row.drift.acceleration = (eq_.jacobian_times(rates.acceleration) - eq_.gamma(q, qd)).lpNorm<Eigen::Infinity>();
-      row.drift.position = eq_.residuals(q).lpNorm<Eigen::Infinity>();
-      row.drift.velocity = (eq_.jacobian_times(qd) + eq_.time_derivative(q)).lpNorm<Eigen::Infinity>();
+      // Phi, Phi_t and gamma at this (t, q, q') as the projection and the accelerations left them.
+      row.drift.acceleration = (eq_.jacobian_times(rates.acceleration) - eq_.last_gamma()).lpNorm<Eigen::Infinity>();
+      row.drift.position = eq_.last_residuals().lpNorm<Eigen::Infinity>();
+      row.drift.velocity = (eq_.jacobian_times(qd) + eq_.last_time_derivative()).lpNorm<Eigen::Infinity>();
     }
     Sample& sample = row.sample;
     sample.time = at;
@@ -1102,6 +1127,7 @@ class Run {
   std::vector<double> output_times_;  // the rows' times: 0, dt, 2 dt, ... and the end
   long outputs_ = 0;
   Eigen::VectorXd y_;
+  Integrator::Step step_;  // the last step's, kept for its storage
   std::vector<double> previous_values_;
   double energy_at_start_ = 0.0;
   double toggle_at_start_ = 1.0;  // the toggle measure at the state kept last
