@@ -450,7 +450,8 @@ std::string fe_convergence(const PyAnalysis& a, double tolerance, std::optional<
 
 }  // namespace
 
-void bind_analysis(py::module_& m) {
+// The Analysis object: what each stage left, and the tables, pictures and reports made of it.
+static void bind_analysis_class(py::module_& m) {
   py::class_<PyAnalysis, std::shared_ptr<PyAnalysis>>(m, "Analysis", "The stages of one analysis, run once and kept")
       .def_property_readonly("complete", [](const PyAnalysis& a) { return a.analysis.complete(); })
       .def_property_readonly("stop_reason", [](const PyAnalysis& a) { return a.analysis.sweep.stop_reason; })
@@ -507,7 +508,10 @@ void bind_analysis(py::module_& m) {
       .def("animate", &animate, py::arg("format") = "html", py::arg("frames") = 0, py::arg("fps") = 24.0,
            py::arg("labels") = false, py::arg("traces") = std::vector<std::string>{}, py::arg("width") = 900,
            py::arg("height") = 640, py::arg("title") = "");
+}
 
+void bind_analysis(py::module_& m) {
+  bind_analysis_class(m);
   m.def("analyse_many", &run_many, py::arg("models"), py::arg("steps") = std::nullopt, py::arg("order") = 2,
         py::arg("dynamics") = false, py::arg("max_steps") = std::nullopt, py::arg("threads") = 0u,
         py::arg("timeout") = std::nullopt, py::arg("condition") = false);

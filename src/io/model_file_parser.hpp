@@ -143,6 +143,9 @@ class Parser : yaml::Reader {
   int guide_direction_point(const YAML::Node& at, int through, double angle, const std::string& name, int carrier);
   void parse_drivers(const Entry& e);
   void parse_driver(const YAML::Node& item);
+  Driver driver_of_kind(const YAML::Node& item, const Fields& f);
+  void parse_driver_motion(const Fields& f, Driver& d, std::array<SourceMark, 2>& law_marks);
+  void parse_driver_run(const Fields& f, Driver& d);
   double rate(const Entry& e, int order, const Driver& d, double scale, bool initial = false) const;
   double driver_value(const Entry& e, const Driver& d, double scale, const std::string& unit) const;
   Law parse_law(const Entry& e, double scale) const;

@@ -265,6 +265,17 @@ void Parser::parse_driver(const YAML::Node& item) {
     fail(item, "a driver is a mapping like {angle: crank, from: 0, to: 360}, not " + describe(item));
   }
   const Fields f = fields(item, kDriverKeys);
+  Driver d = driver_of_kind(item, f);
+  std::array<SourceMark, 2> law_marks{};
+  parse_driver_motion(f, d, law_marks);
+  parse_driver_run(f, d);
+  model_.drivers.push_back(std::move(d));
+  source_.drivers.push_back(mark(item));
+  source_.driver_laws.push_back(law_marks);
+}
+
+// What the driver moves (`angle`, `distance` or `slide`) and its name.
+Driver Parser::driver_of_kind(const YAML::Node& item, const Fields& f) {
   const Entry* kind_entry = nullptr;
   for (const Entry& field : f.entries) {
     if (field.key != "angle" && field.key != "distance" && field.key != "slide") continue;
@@ -309,7 +320,11 @@ void Parser::parse_driver(const YAML::Node& item) {
     d.name = text_value(*n, "a driver name");
     if (d.name.empty()) fail(mark(*n), "a driver name cannot be empty");
   }
+  return d;
+}
 
+// How it moves: `from`, `to`, `speed` and `accel`, or a `law` that replaces them all.
+void Parser::parse_driver_motion(const Fields& f, Driver& d, std::array<SourceMark, 2>& law_marks) {
   const double scale = d.is_angular() ? model_.units.angle_scale : model_.units.length_scale;
   const std::string unit = d.is_angular() ? model_.units.angle : model_.units.length;
   if (const Entry* from = f.find("from")) d.from = driver_value(*from, d, scale, unit);
@@ -318,7 +333,6 @@ void Parser::parse_driver(const YAML::Node& item) {
   d.speed = d.from && d.to && *d.to < *d.from ? -scale : scale;
   if (const Entry* speed = f.find("speed")) d.speed = rate(*speed, 1, d, scale);
   if (const Entry* accel = f.find("accel")) d.accel = rate(*accel, 2, d, scale);
-  std::array<SourceMark, 2> law_marks{};
   if (const Entry* law = f.find("law")) {
     law_marks[0] = mark(*law);
     for (std::string_view key : {"from", "to", "speed", "accel"}) {
@@ -329,6 +343,11 @@ void Parser::parse_driver(const YAML::Node& item) {
     }
     d.law = parse_law(*law, scale);
   }
+}
+
+// How a run treats it: left `free` to the loads (with its `initial_speed`), and what it does at a
+// limit of its motion (`at_limits`, `cycles`).
+void Parser::parse_driver_run(const Fields& f, Driver& d) {
   if (const Entry* free = f.find("free")) {
     const std::string text = free->value.IsScalar() ? free->value.Scalar() : std::string();
     if (text != "true" && text != "false") fail(mark(*free), "`free` is true or false, not " + describe(free->value));
@@ -336,7 +355,7 @@ void Parser::parse_driver(const YAML::Node& item) {
   }
   if (const Entry* initial = f.find("initial_speed")) {
     if (!d.free) fail(initial->key_node, "`initial_speed` applies only to a driver with `free: true`");
-    d.initial_speed = rate(*initial, 1, d, scale, true);
+    d.initial_speed = rate(*initial, 1, d, d.is_angular() ? model_.units.angle_scale : model_.units.length_scale, true);
   }
   if (const Entry* at_limits = f.find("at_limits")) {
     const std::string text = at_limits->value.IsScalar() ? at_limits->value.Scalar() : std::string();
@@ -356,9 +375,6 @@ void Parser::parse_driver(const YAML::Node& item) {
                               cycles->value.Scalar());
     d.cycles = static_cast<int>(n);
   }
-  model_.drivers.push_back(std::move(d));
-  source_.drivers.push_back(mark(item));
-  source_.driver_laws.push_back(law_marks);
 }
 
 // A driver's `from` or `to`. An angle is refused past a million radians: there the spacing of

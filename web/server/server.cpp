@@ -300,16 +300,11 @@ struct HttpServer::Impl {
   }
 };
 
-HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Impl>(options)) {
-  set_allocator_thresholds();
-  impl_->options = options;
-  impl_->config.limits = options.limits;
-  impl_->config.jobs = std::make_shared<JobSlots>(std::max(1, options.max_jobs));
-  const int cores = static_cast<int>(std::thread::hardware_concurrency());
-  impl_->config.light_jobs =
-      std::make_shared<JobSlots>(options.light_jobs > 0 ? options.light_jobs : std::max(2, cores));
-  impl_->config.queue_wait_seconds = options.queue_wait_seconds;
-  httplib::Server& server = impl_->server;
+namespace {
+
+// What every request meets before and after its handler: the limits checked before a body is
+// read, and httplib's own failures answered as the API's JSON errors.
+void guard_requests(httplib::Server& server, const ServeOptions& options) {
   // The front refuses a body over the limit before reading it; httplib's own check stays as a
   // second line.
   server.set_payload_max_length(options.limits.max_body_bytes);
@@ -354,8 +349,22 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
          res);
     res.set_header("Connection", "close");
   });
-  const ServerConfig* config = &impl_->config;
-  HeldAnswers* held = &impl_->held;
+  // Statuses httplib sets itself (413 before reading, 400 for a malformed request line...):
+  // the same JSON errors. Answers of handle_api already have their body.
+  server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+    without_brotli(req);  // a header line too long for httplib is answered before routing
+    if (!res.body.empty()) return;
+    answer_closes = true;  // what httplib could not read is not a request to go on from
+    const std::string message = res.status == 413   ? "the body is too large for this server"
+                                : res.status == 404 ? "not found"
+                                                    : "the request could not be read as HTTP";
+    send(error_response(res.status, message), res);
+  });
+}
+
+// Every method and path goes to the API (handle_api answers the static files too); an answer
+// waits in memory until its client reads it, within the held-answer budget.
+void route_requests(httplib::Server& server, const ServerConfig* config, HeldAnswers* held) {
   const auto handler = [config, held](const httplib::Request& req, httplib::Response& res) {
     without_brotli(req);
     ApiResponse answer = handle_api(ApiRequest{req.method, req.path, req.body}, *config);
@@ -379,17 +388,21 @@ HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Imp
   server.Patch(everything, handler);
   server.Delete(everything, handler);
   server.Options(everything, handler);
-  // Statuses httplib sets itself (413 before reading, 400 for a malformed request line...):
-  // the same JSON errors. Answers of handle_api already have their body.
-  server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
-    without_brotli(req);  // a header line too long for httplib is answered before routing
-    if (!res.body.empty()) return;
-    answer_closes = true;  // what httplib could not read is not a request to go on from
-    const std::string message = res.status == 413   ? "the body is too large for this server"
-                                : res.status == 404 ? "not found"
-                                                    : "the request could not be read as HTTP";
-    send(error_response(res.status, message), res);
-  });
+}
+
+}  // namespace
+
+HttpServer::HttpServer(const ServeOptions& options) : impl_(std::make_unique<Impl>(options)) {
+  set_allocator_thresholds();
+  impl_->options = options;
+  impl_->config.limits = options.limits;
+  impl_->config.jobs = std::make_shared<JobSlots>(std::max(1, options.max_jobs));
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  impl_->config.light_jobs =
+      std::make_shared<JobSlots>(options.light_jobs > 0 ? options.light_jobs : std::max(2, cores));
+  impl_->config.queue_wait_seconds = options.queue_wait_seconds;
+  guard_requests(impl_->server, options);
+  route_requests(impl_->server, &impl_->config, &impl_->held);
 }
 
 HttpServer::~HttpServer() { stop(); }
