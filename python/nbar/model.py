@@ -10,7 +10,7 @@ from typing import Any, Dict, Generic, Iterable, Iterator, List, Mapping, Option
 
 from . import _nbar
 from ._args import flag as _flag, json_value as _json_value, path as _path, real as _real, text as _text, whole as _whole
-from .errors import BadInputError, Error, LimitError
+from .errors import BadInputError, Cancelled, Error, LimitError
 from .pictures import Animation, Drawing, Report, _write
 from .results import Result, Table, _no_column
 
@@ -464,7 +464,10 @@ class Model:
         become singular instead of stopping there. ``result.events`` lists both with their times;
         ``result.statistics`` holds the integrator's steps, the largest constraint drift and energy
         error. A run that cannot continue (a toggle, a step size too small) raises
-        ``nbar.LimitError`` with the rows so far as ``.result``, unless ``partial=True``."""
+        ``nbar.LimitError`` with the rows so far as ``.result``, unless ``partial=True``; one
+        stopped by ``timeout`` (s) raises ``nbar.Cancelled`` the same way. Ctrl-C raises
+        ``KeyboardInterrupt`` (whatever ``partial`` says, so that a script stops) with the rows so
+        far as its ``.result``: ``complete`` False, ``stop_reason`` "cancelled at t = ... s"."""
         patterns = _patterns(columns)
         run = _nbar.simulate(self._c, to=_real("to", to), dt=_real("dt", dt), rtol=_real("rtol", rtol),
                              max_steps=_whole("max_steps", max_steps, minimum=1),
@@ -473,6 +476,14 @@ class Model:
                              timeout=_real("timeout", timeout))
         result = Result(run, *self._simulated_columns(run, patterns))
         result.default_x = "t"
+        if run.interrupted:
+            interrupt = KeyboardInterrupt(f"the simulation stopped early: {run.stop_reason} ({result.rows} rows kept "
+                                          f"as .result)")
+            interrupt.result = result  # type: ignore[attr-defined]
+            raise interrupt
+        if run.cancelled and not partial:
+            raise Cancelled(f"the simulation stopped early: {result.stop_reason} ({result.rows} rows; "
+                            f"simulate(..., partial=True) returns them)", result=result)
         if not result.complete and not partial:
             line, column = run.stop_place or (None, None)
             raise LimitError(f"the simulation stopped early: {result.stop_reason} ({result.rows} rows; "

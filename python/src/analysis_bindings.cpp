@@ -297,6 +297,7 @@ struct PySimulation {
   std::shared_ptr<PyModel> model;
   request::SimulateRequest request;
   Simulation simulation;
+  bool interrupted = false;  // by Ctrl-C (the rows so far are kept)
 };
 
 // Python's arguments read by the command line's rules (request::SimulateRequest): the same
@@ -324,13 +325,19 @@ std::shared_ptr<PySimulation> run_simulation(std::shared_ptr<PyModel> model, std
     throw located(*model, e);
   }
   RunControl control;
-  run_interruptible(control, timeout, [&] {
-    try {
-      out->simulation = simulate(*model->mechanism, options, control);
-    } catch (const Error& e) {
-      throw located(*model, e);
-    }
-  });
+  try {
+    run_interruptible(control, timeout, [&] {
+      try {
+        out->simulation = simulate(*model->mechanism, options, control);
+      } catch (const Error& e) {
+        throw located(*model, e);
+      }
+    });
+  } catch (py::error_already_set& e) {
+    // Ctrl-C: the run kept its rows; Model.simulate raises KeyboardInterrupt with them attached.
+    if (!e.matches(PyExc_KeyboardInterrupt) || out->simulation.samples.empty()) throw;
+    out->interrupted = true;
+  }
   return out;
 }
 
@@ -345,6 +352,9 @@ void bind_simulation(py::module_& m) {
   py::class_<PySimulation, std::shared_ptr<PySimulation>>(m, "Simulation", "One run of the forward dynamics")
       .def_property_readonly("complete", [](const PySimulation& s) { return s.simulation.complete; })
       .def_property_readonly("stop_reason", [](const PySimulation& s) { return s.simulation.stop_reason; })
+      .def_property_readonly("cancelled", [](const PySimulation& s) { return s.simulation.cancelled; })
+      .def_property_readonly("interrupted", [](const PySimulation& s) { return s.interrupted; })
+      .def_property_readonly("time_reached", [](const PySimulation& s) { return s.simulation.time_reached(); })
       // Where the command line places the stop: the line and column of the entity concerned.
       .def_property_readonly("stop_place",
                              [](const PySimulation& s) {

@@ -37,6 +37,7 @@ std::string time_text(double t) {
 struct SimulationStop {
   std::string reason;
   EntityRef where;
+  bool cancelled = false;  // by the run's control (a cancel, a deadline), not by the motion
 };
 
 std::vector<double> driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q,
@@ -789,7 +790,7 @@ class Run {
         next_output = outputs_ + 1;  // nothing more to do
       }
       while (next_output <= outputs_) {
-        control_.checkpoint("simulate", next_output, outputs_);
+        if (control_.should_stop("simulate", next_output, outputs_)) throw cancellation();
         const double remaining = options_.end_time - t;
         if (h >= remaining * (1 - 1e-12)) h = remaining;
         if (out_.statistics.accepted_steps + out_.statistics.rejected_steps >= options_.max_steps)
@@ -843,6 +844,7 @@ class Run {
       out_.complete = false;
       out_.stop_reason = stop.reason;
       out_.stop_where = stop.where;
+      out_.cancelled = stop.cancelled;
     }
     out_.statistics.evaluations = integrator_.evaluations();
     return std::move(out_);
@@ -856,6 +858,16 @@ class Run {
   };
 
   double output_time(long i) const { return output_times_[i]; }
+
+  // A cancel or a passed deadline ends the run as a stop does, so that the rows so far are kept
+  // (an interrupted `nbar simulate -o run.csv` still writes them).
+  SimulationStop cancellation() const {
+    const std::string reached = time_text(out_.samples.back().time);
+    return {control_.token.deadline_passed() ? "cancelled: the time budget ran out at " + reached
+                                             : "cancelled at " + reached,
+            {},
+            true};
+  }
 
   // The state on the step [t, t + h] at theta, projected onto the constraints there.
   Eigen::VectorXd projected_at(double t, double h, const Integrator::Step& s, double theta) {

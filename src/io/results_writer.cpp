@@ -376,6 +376,10 @@ void write_simulation_json(std::ostream& out, const Mechanism& mechanism, const 
   j["complete"] = simulation.complete;
   j["stop_reason"] =
       simulation.complete ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(simulation.stop_reason);
+  if (!simulation.complete) {  // only then, so that a complete run's answer keeps its keys
+    j["cancelled"] = simulation.cancelled;
+    j["time_reached"] = simulation.time_reached();
+  }
   j["integrator"] = {{"method", "Dormand-Prince 5(4), projected onto the constraints after every step"},
                      {"accepted_steps", stats.accepted_steps},
                      {"rejected_steps", stats.rejected_steps},

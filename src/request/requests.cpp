@@ -940,6 +940,9 @@ void SimulateRequest::write(std::ostream& out, const Mechanism& mechanism, const
   } else if (format == "table") {
     io::write_text_table(out, table, table_width);
     for (const SimulationEvent& event : simulation.events) out << "Event: " << event.message << '\n';
+    if (!simulation.complete)
+      out << "Stopped early: " << simulation.stop_reason << " (the last row is at "
+          << number_text(simulation.time_reached()) << " s)\n";
   } else {
     io::write_csv(out, table);
   }

@@ -65,6 +65,8 @@ ApiResponse api_simulate(Job& job, const std::string& text) {
   // the springs): a heavy computation, whatever its rows.
   job.start(Weight::Heavy);
   const Simulation simulation = nbar::simulate(*job.mechanism, options, job.control);
+  // The core keeps a cancelled run's rows; the server's deadline is its own limit, said as one.
+  if (simulation.cancelled) job.control.throw_stopped("simulate");
   const ResultTable table = simulate.table(*job.mechanism, simulation);
   const std::string answer_text =
       write([&](std::ostream& out) { simulate.write(out, *job.mechanism, simulation, table, io::kTextTableWidth); });

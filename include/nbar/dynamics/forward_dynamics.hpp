@@ -101,16 +101,22 @@ struct Simulation {
   bool complete = true;
   std::string stop_reason;  // when !complete: what stopped it, at which time
   EntityRef stop_where;     // the entity concerned, for the file position
+  bool cancelled = false;   // stopped by the RunControl (a cancel, a deadline), not by the motion
+
+  // The time of the last row, s: where a run that stopped early got to.
+  double time_reached() const { return samples.empty() ? 0.0 : samples.back().time; }
 };
 
 // Runs the simulation from the model's start: positions assembled at t = 0 with every driver at
 // its start, velocities from the kinematic drivers' speeds and the free drivers' `initial_speed`.
 // A run that cannot continue (a singular position, a step size too small, a failed projection)
 // returns the rows so far with complete = false. Throws Error before the run for a model that
-// cannot be simulated (no mass where a free motion needs inertia, nothing free) and
-// Error(Cancelled) from `control`. A toggle stops the run (complete = false) or, with
-// AtToggle::reverse, reverses every speed there; a stop condition met ends it (complete = true);
-// both are in `events`. A stop condition on a column the table does not have is Error(BadInput).
+// cannot be simulated (no mass where a free motion needs inertia, nothing free). A cancel from
+// `control` (its token, its deadline, its progress callback answering false, checked before every
+// integration step) ends the run the same way, with the rows so far, complete = false and
+// cancelled = true; stop_reason says "cancelled at t = ..." with the last row's time. A toggle stops the run (complete
+// = false) or, with AtToggle::reverse, reverses every speed there; a stop condition met ends it (complete = true); both
+// are in `events`. A stop condition on a column the table does not have is Error(BadInput).
 Simulation simulate(const Mechanism& mechanism, const SimulationOptions& options, const RunControl& control = {});
 
 }  // namespace nbar
