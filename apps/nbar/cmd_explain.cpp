@@ -10,6 +10,7 @@
 #include "nbar/render/pictures.hpp"
 #include "nbar/request/requests.hpp"
 #include "request_flags.hpp"
+#include "simulation_run.hpp"
 #include "validators.hpp"
 
 namespace nbar::cli {
@@ -43,6 +44,25 @@ int draw_centres(const std::string& path, const Explanation& ex) {
   return kOk;
 }
 
+// --simulate: the equations of motion at --at, from the simulation `nbar simulate` runs.
+int explain_motion(const ExplainCommand& command, const request::ExplainRequest& request, const Loaded& loaded) {
+  EquationsOfMotionAt equations;
+  try {
+    RunControl control;
+    const InterruptCancels interrupt(control.token);
+    equations = request.equations_of_motion(*loaded.mechanism, control);
+  } catch (const request::OptionError& e) {
+    print_option_error(e);
+    return kBadUsage;
+  } catch (const Error& e) {
+    return fail(command.model, nbar::io::located(loaded.file.source, e));
+  }
+  Output output;
+  if (!output.open(command.output)) return kBadUsage;
+  request.write(output.stream(), *loaded.mechanism, equations);
+  return output.finish() ? kOk : kBadUsage;
+}
+
 int run_explain(const ExplainCommand& command) {
   if (!command.draw.empty() && extension(command.draw) != "svg" && extension(command.draw) != "png") {
     std::cerr << "error: --draw " << command.draw << ": the picture's format comes from its extension: .svg or .png\n";
@@ -50,8 +70,13 @@ int run_explain(const ExplainCommand& command) {
   }
   request::ExplainRequest request;
   if (!read_request(*command.flags, request)) return kBadUsage;
+  if (request.simulate && !command.draw.empty()) {
+    std::cerr << "error: --draw draws the sweep's instant centres: it is not an option of --simulate\n";
+    return kBadUsage;
+  }
   Loaded loaded;
   if (int code = load(command.model, loaded)) return code;
+  if (request.simulate) return explain_motion(command, request, loaded);
   Explanation ex;
   try {
     ex = explain(loaded.mechanism, request.explain_options());
@@ -82,7 +107,7 @@ Command add_explain_command(CLI::App& app) {
                                      "velocity and acceleration systems, the instant centres");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::ExplainRequest::rules());
-  command->flags->add({"step", "steps", "max_steps", "format"});
+  command->flags->add({"step", "steps", "max_steps", "format", "simulate", "at", "dt", "rtol", "at_toggle"});
   sub->add_option("-o,--output", command->output, "write to FILE instead of standard output")
       ->check(nbar::cli::output_file());
   sub->add_option("--draw", command->draw, "also draw the pose with its instant centres marked: FILE.svg or FILE.png");

@@ -20,14 +20,14 @@ from . import examples, synth
 from ._nbar import __version__
 from .errors import (AssemblyError, BadInputError, Cancelled, ColumnError, Error, InternalError, LimitError,
                      ModelError, UndefinedLawError)
-from .explain import Explanation
+from .explain import EquationsOfMotion, Explanation
 from .model import FeConvergence, Model, ReadOnlyView, StressResult, Summary, load, loads, solve_many
 from .pictures import Animation, Drawing, Report
 from .plotting import plot
 from .results import Result, Table, Warning
 
 __all__ = [
-    "Model", "load", "loads", "solve_many", "ReadOnlyView", "Summary", "Result", "Table", "Warning", "StressResult", "FeConvergence", "Explanation",
+    "Model", "load", "loads", "solve_many", "ReadOnlyView", "Summary", "Result", "Table", "Warning", "StressResult", "FeConvergence", "Explanation", "EquationsOfMotion",
     "Drawing", "Animation", "Report", "plot", "synth", "examples",
     "Error", "ModelError", "UndefinedLawError", "BadInputError", "ColumnError", "AssemblyError", "LimitError", "Cancelled",
     "InternalError", "__version__",

@@ -63,3 +63,41 @@ class Explanation:
 
     def _repr_markdown_(self) -> str:
         return self.markdown
+
+
+class EquationsOfMotion:
+    """The equations of motion of a simulation at one time (``Model.explain(simulate=True,
+    at=T)``, ``nbar explain --simulate --at T``): [M Φqᵀ; Φq 0] [q̈; λ] = [Q; γ] at the state the
+    run reaches at T, in SI (q in m, M in kg, Q in N, γ in m/s², λ in N). ``forces`` is a dict of
+    Q by origin (``gravity``, ``given``, ``springs``, ``friction``, ``total``); ``acceleration``
+    and ``multipliers`` solve the system; ``simulated_acceleration`` is the run's own row.
+    ``print()`` gives the text; ``to_json()`` the JSON."""
+
+    FIELDS = ("time", "q", "velocity", "coordinates", "rows", "free_drivers", "mass", "jacobian", "forces", "gamma",
+              "acceleration", "multipliers", "residual", "simulated_acceleration")
+
+    def __init__(self, native: Any):
+        self._native = native
+
+    def __dir__(self) -> List[str]:
+        return sorted(set(super().__dir__()) | set(self.FIELDS))
+
+    def __getattr__(self, name: str) -> Any:
+        if name not in self.FIELDS:
+            raise AttributeError(f"'EquationsOfMotion' object has no attribute '{name}'")
+        return getattr(self._native, name)
+
+    @property
+    def text(self) -> str:
+        return self._native.render()
+
+    def to_json(self) -> str:
+        """The JSON ``nbar explain --simulate --format json`` writes."""
+        return self._native.json()
+
+    def __str__(self) -> str:
+        return self.text
+
+    def __repr__(self) -> str:
+        return f"<nbar.EquationsOfMotion at t = {self.time:g} s: {len(self.coordinates)} coordinates>"
+

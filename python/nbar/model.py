@@ -580,10 +580,29 @@ class Model:
             raise _stopped(self._c, stop_reason, "a report of the steps solved", report)
         return report
 
-    def explain(self, step: int = 0, steps: Optional[int] = None):
+    def explain(self, step: int = 0, steps: Optional[int] = None, simulate: bool = False, at: Optional[float] = None,
+                dt: Optional[float] = None, rtol: Optional[float] = None, at_toggle: Optional[str] = None,
+                timeout: Optional[float] = None):
         """The method step by step at one sample: Gruebler's count, q, Φ and Φq, every
         Newton–Raphson iteration, the velocity and acceleration systems and the instant centres.
-        Renders as Markdown with LaTeX in Jupyter; ``print()`` it for plain text."""
+        Renders as Markdown with LaTeX in Jupyter; ``print()`` it for plain text.
+
+        ``simulate=True, at=T``: instead, the equations of motion of ``simulate()``'s run at time
+        ``T`` (s): an ``EquationsOfMotion`` with ``mass``, ``jacobian``, ``forces`` (by origin),
+        ``gamma`` and the ``acceleration`` and ``multipliers`` they give, in SI (``nbar explain
+        --simulate --at T``); ``dt``, ``rtol`` and ``at_toggle`` are the run's, as in ``simulate``."""
+        if _flag("simulate", simulate):
+            from .explain import EquationsOfMotion
+            if step not in (0, None) or steps is not None:
+                raise BadInputError("step and steps are the sweep's; with simulate=True give at")
+            if at is None:
+                raise BadInputError("give the time of the simulation to explain, in s, e.g. simulate=True, at=0.5")
+            return EquationsOfMotion(_nbar.explain_motion(
+                self._c, at=_real("at", at), dt=_real("dt", dt), rtol=_real("rtol", rtol),
+                at_toggle=None if at_toggle is None else _text("at_toggle", at_toggle), timeout=_real("timeout", timeout)))
+        for name, value in (("at", at), ("dt", dt), ("rtol", rtol), ("at_toggle", at_toggle)):
+            if value is not None:
+                raise BadInputError(f"{name} is an option of a simulation: give simulate=True too")
         from .explain import Explanation
         return Explanation(_nbar.explain(self._c, step=_whole("step", 0 if step is None else step), steps=_whole("steps", steps)))
 

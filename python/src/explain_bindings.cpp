@@ -117,6 +117,67 @@ void bind_explain(py::module_& m) {
           [](const Explanation& e, const std::string& format) { return render_explanation(e, format_of(format)); },
           py::arg("format") = "text");
 
+  // `explain(simulate=True, at=T)`: the equations of motion, read by the command line's request.
+  struct PyEquationsOfMotion {
+    std::shared_ptr<PyModel> model;
+    request::ExplainRequest request;
+    EquationsOfMotionAt equations;
+  };
+  py::class_<PyEquationsOfMotion, std::shared_ptr<PyEquationsOfMotion>>(m, "NativeEquationsOfMotion")
+      .def_property_readonly("time", [](const PyEquationsOfMotion& e) { return e.equations.time; })
+      .def_property_readonly("q", [](const PyEquationsOfMotion& e) { return e.equations.q; })
+      .def_property_readonly("velocity", [](const PyEquationsOfMotion& e) { return e.equations.velocity; })
+      .def_property_readonly("coordinates", [](const PyEquationsOfMotion& e) { return e.equations.coordinates; })
+      .def_property_readonly("rows", [](const PyEquationsOfMotion& e) { return e.equations.row_labels; })
+      .def_property_readonly("free_drivers", [](const PyEquationsOfMotion& e) { return e.equations.free_drivers; })
+      .def_property_readonly("mass", [](const PyEquationsOfMotion& e) { return e.equations.mass; })
+      .def_property_readonly("jacobian", [](const PyEquationsOfMotion& e) { return e.equations.jacobian; })
+      .def_property_readonly("forces",
+                             [](const PyEquationsOfMotion& e) {
+                               const EquationsOfMotionAt& q = e.equations;
+                               return py::dict(py::arg("gravity") = q.gravity, py::arg("given") = q.applied,
+                                               py::arg("springs") = q.springs, py::arg("friction") = q.friction,
+                                               py::arg("total") = q.forces);
+                             })
+      .def_property_readonly("gamma", [](const PyEquationsOfMotion& e) { return e.equations.gamma; })
+      .def_property_readonly("acceleration", [](const PyEquationsOfMotion& e) { return e.equations.acceleration; })
+      .def_property_readonly("multipliers", [](const PyEquationsOfMotion& e) { return e.equations.multipliers; })
+      .def_property_readonly("residual", [](const PyEquationsOfMotion& e) { return e.equations.residual; })
+      .def_property_readonly("simulated_acceleration",
+                             [](const PyEquationsOfMotion& e) { return e.equations.simulated_acceleration; })
+      .def("render",
+           [](const PyEquationsOfMotion& e) { return render_equations_of_motion(*e.model->mechanism, e.equations); })
+      .def("json", [](const PyEquationsOfMotion& e) {
+        return io::equations_of_motion_json(*e.model->mechanism, e.equations).dump(2);
+      });
+  m.def(
+      "explain_motion",
+      [](std::shared_ptr<PyModel> model, double at, std::optional<double> dt, std::optional<double> rtol,
+         std::optional<std::string> at_toggle, std::optional<double> timeout) {
+        request::Options given;
+        given.set("simulate", true);
+        given.set("at", at);
+        if (dt) given.set("dt", *dt);
+        if (rtol) given.set("rtol", *rtol);
+        if (at_toggle) given.set("at_toggle", *at_toggle);
+        auto out = std::make_shared<PyEquationsOfMotion>();
+        out->model = model;
+        out->request = request::ExplainRequest::read(given);
+        RunControl control;
+        run_interruptible(control, timeout, [&] {
+          try {
+            out->equations = out->request.equations_of_motion(*model->mechanism, control);
+          } catch (const request::OptionError&) {
+            throw;
+          } catch (const Error& e) {
+            throw located(*model, e);
+          }
+        });
+        return out;
+      },
+      py::arg("model"), py::arg("at"), py::arg("dt") = std::nullopt, py::arg("rtol") = std::nullopt,
+      py::arg("at_toggle") = std::nullopt, py::arg("timeout") = std::nullopt);
+
   m.def(
       "explain",
       [](std::shared_ptr<PyModel> model, int step, std::optional<int> steps) {

@@ -16,6 +16,7 @@
 #include "kinematics/constraints.hpp"
 #include "kinematics/linear_solver.hpp"
 #include "kinematics/sparse_lu.hpp"
+#include "nbar/dynamics/equations_of_motion.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/kinematics/position.hpp"
 
@@ -408,10 +409,41 @@ class EquationsOfMotion {
   // Written into `loads`, with applied_loads_ as work space: nothing allocated.
   void generalised_forces(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double& dissipated,
                           double& applied, Eigen::VectorXd& loads) {
-    const Model& m = mech_.model();
     loads = gravity_;
     Eigen::VectorXd& applied_loads = applied_loads_;
     applied_loads.setZero(n_);
+    add_applied_loads(t, q, qd, applied_loads);
+    applied = applied_loads.dot(qd);
+    loads += applied_loads;
+    dissipated = add_springs(q, qd, loads);
+    dissipated += add_joint_friction(mech_, q, qd, loads);
+  }
+
+ public:
+  // Q's parts by origin at (t, q, q'), each on its own (their sum is Q up to rounding).
+  struct ForceParts {
+    Eigen::VectorXd gravity, applied, springs, friction;
+  };
+  ForceParts force_parts(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const {
+    ForceParts parts;
+    parts.gravity = gravity_;
+    parts.applied.setZero(n_);
+    add_applied_loads(t, q, qd, parts.applied);
+    parts.springs.setZero(n_);
+    add_springs(q, qd, parts.springs);
+    parts.friction.setZero(n_);
+    add_joint_friction(mech_, q, qd, parts.friction);
+    return parts;
+  }
+  // M, dense.
+  Eigen::MatrixXd dense_mass() const { return Eigen::MatrixXd(mass()); }
+  // The rows kept, as indices of the mechanism's rows.
+  const std::vector<int>& kept() const { return kept_; }
+
+ private:
+  // The given forces and torques (a motor's by its torque-speed line), added to `loads`.
+  void add_applied_loads(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& loads) const {
+    const Model& m = mech_.model();
     const auto law_at = [t](const Law& law, EntityRef::Kind kind, std::size_t index, int which) {
       try {
         return law.value(t);
@@ -423,7 +455,7 @@ class EquationsOfMotion {
       const PointLoad& load = m.point_loads[i];
       add_force(load.point,
                 {law_at(load.fx, EntityRef::Kind::PointLoad, i, 0), law_at(load.fy, EntityRef::Kind::PointLoad, i, 1)},
-                applied_loads);
+                loads);
     }
     for (std::size_t i = 0; i < m.torques.size(); ++i) {
       const BodyTorque& torque = m.torques[i];
@@ -437,13 +469,14 @@ class EquationsOfMotion {
       }
       // Virtual work T d(theta), with d(theta) = u x du / |u|^2.
       const Eigen::Vector2d on_to = value * perp(u) / u.squaredNorm();
-      add_force(f.to, on_to, applied_loads);
-      add_force(f.from, -on_to, applied_loads);
+      add_force(f.to, on_to, loads);
+      add_force(f.from, -on_to, loads);
     }
-    applied = applied_loads.dot(qd);
-    loads += applied_loads;
-    dissipated = 0.0;
-    for (const Spring& s : m.springs) {
+  }
+  // The springs' and dampers' forces, added to `loads`; returns the dampers' dissipated power.
+  double add_springs(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& loads) const {
+    double dissipated = 0.0;
+    for (const Spring& s : mech_.model().springs) {
       const Eigen::Vector2d d = position(s.points[1], q) - position(s.points[0], q);
       const double length = d.norm();
       const Eigen::Vector2d e = d / length;
@@ -453,7 +486,7 @@ class EquationsOfMotion {
       add_force(s.points[1], -tension * e, loads);
       dissipated += s.damping * rate * rate;
     }
-    dissipated += add_joint_friction(mech_, q, qd, loads);
+    return dissipated;
   }
   const Mechanism& mech_;
   std::vector<double> start_;
@@ -1166,6 +1199,95 @@ Simulation simulate(const Mechanism& mechanism, const SimulationOptions& options
     throw Error(ErrorKind::BadInput, "the relative tolerance must be between 0 and 1");
   Run run(mechanism, options, control);
   return run.run();
+}
+
+namespace {
+
+// The state the simulation reaches at `time`: the last row of the run to it, or the start.
+Sample simulated_state_at(const Mechanism& mechanism, double time, SimulationOptions options, const RunControl& control,
+                          long& accepted_steps) {
+  if (time == 0.0) {
+    // The start is the first row, kept before the first step: a run cancelled before it.
+    RunControl at_start;
+    at_start.token.cancel();
+    options.end_time = 1.0;
+    options.output_step = 0.0;
+    options.stop_when.reset();
+    return simulate(mechanism, options, at_start).samples.front();
+  }
+  options.end_time = time;
+  const Simulation run = simulate(mechanism, options, control);
+  accepted_steps = run.statistics.accepted_steps;
+  if (run.cancelled) control.throw_stopped("simulate");
+  const std::string before = "the simulation did not reach " + time_text(time) + ": ";
+  if (!run.complete) throw Error(ErrorKind::StoppedAtLimit, before + run.stop_reason, run.stop_where);
+  if (run.time_reached() < time * (1 - 1e-12))
+    throw Error(ErrorKind::StoppedAtLimit, before + (run.events.empty() ? "it ended at " + time_text(run.time_reached())
+                                                                        : run.events.back().message));
+  return run.samples.back();
+}
+
+// The system [M Phi_q^T; Phi_q 0] [q''; lambda] = [Q; gamma] solved densely, and its relative residual.
+void solve_written_system(EquationsOfMotionAt& out) {
+  const Eigen::Index n = out.mass.rows(), m = out.jacobian.rows();
+  Eigen::MatrixXd system = Eigen::MatrixXd::Zero(n + m, n + m);
+  system.topLeftCorner(n, n) = out.mass;
+  system.topRightCorner(n, m) = out.jacobian.transpose();
+  system.bottomLeftCorner(m, n) = out.jacobian;
+  Eigen::VectorXd rhs(n + m);
+  rhs << out.forces, out.gamma;
+  const Eigen::VectorXd solution = system.completeOrthogonalDecomposition().solve(rhs);
+  out.acceleration = solution.head(n);
+  out.multipliers = solution.tail(m);
+  const double scale = std::max(rhs.lpNorm<Eigen::Infinity>(), std::numeric_limits<double>::min());
+  out.residual = (system * solution - rhs).lpNorm<Eigen::Infinity>() / scale;
+}
+
+}  // namespace
+
+EquationsOfMotionAt equations_of_motion_at(const Mechanism& mechanism, double time, SimulationOptions options,
+                                           const RunControl& control) {
+  if (!std::isfinite(time) || time < 0.0)
+    throw Error(ErrorKind::BadInput,
+                "the time of the equations of motion must be a number of seconds from 0, not " + std::to_string(time));
+  const Model& m = mechanism.model();
+  EquationsOfMotionAt out;
+  for (const Driver& d : m.drivers)
+    if (d.free) out.free_drivers.push_back(d.name);
+  if (out.free_drivers.empty())
+    throw Error(ErrorKind::InvalidModel,
+                "nothing is free to move under the loads: the equations of motion need a driver marked `free: true`",
+                {EntityRef::Kind::Driver, 0, -1});
+  const Sample state = simulated_state_at(mechanism, time, options, control, out.accepted_steps);
+  out.time = time;
+  out.q = state.taylor.col(0);
+  out.velocity = state.taylor.col(1);
+  out.simulated_acceleration = 2.0 * state.taylor.col(2);
+  out.coordinates.resize(out.q.size());
+  for (std::size_t p = 0; p < m.points.size(); ++p)
+    if (const int col = mechanism.column_of(static_cast<int>(p)); col >= 0) {
+      out.coordinates[col] = m.points[p].name + ".x";
+      out.coordinates[col + 1] = m.points[p].name + ".y";
+    }
+  EquationsOfMotion eq(mechanism, sweep_path(mechanism, 2).from);
+  try {
+    eq.factorise(time, out.q);
+    out.gamma = eq.gamma(out.q, out.velocity);
+    const EquationsOfMotion::ForceParts parts = eq.force_parts(time, out.q, out.velocity);
+    out.gravity = parts.gravity;
+    out.applied = parts.applied;
+    out.springs = parts.springs;
+    out.friction = parts.friction;
+  } catch (const SimulationStop& stop) {
+    throw Error(ErrorKind::InvalidModel, stop.reason, stop.where);
+  }
+  out.forces = out.gravity + out.applied + out.springs + out.friction;
+  out.mass = eq.dense_mass();
+  out.jacobian = eq.dense_jacobian();
+  out.rows = eq.kept();
+  for (int row : out.rows) out.row_labels.push_back(mechanism.row_label(row));
+  solve_written_system(out);
+  return out;
 }
 
 }  // namespace nbar

@@ -97,4 +97,32 @@ json explanation_json(const Explanation& ex) {
   return j;
 }
 
+json equations_of_motion_json(const Mechanism& mechanism, const EquationsOfMotionAt& e) {
+  json j;
+  j["model"] = mechanism.model().name;
+  j["time"] = finite(e.time);
+  j["units"] = {{"q", "m"},         {"velocity", "m/s"},       {"mass", "kg"},      {"forces", "N"},
+                {"gamma", "m/s^2"}, {"acceleration", "m/s^2"}, {"multipliers", "N"}};
+  j["system"] = "[M Phi_q^T; Phi_q 0] [acceleration; multipliers] = [forces; gamma]";
+  j["free_drivers"] = e.free_drivers;
+  j["coordinates"] = e.coordinates;
+  j["rows"] = e.row_labels;
+  j["q"] = vector_json(e.q);
+  j["velocity"] = vector_json(e.velocity);
+  j["mass"] = matrix_json(e.mass);
+  j["jacobian"] = matrix_json(e.jacobian);
+  j["forces"] = {{"gravity", vector_json(e.gravity)},
+                 {"given", vector_json(e.applied)},
+                 {"springs", vector_json(e.springs)},
+                 {"friction", vector_json(e.friction)},
+                 {"total", vector_json(e.forces)}};
+  j["gamma"] = vector_json(e.gamma);
+  j["acceleration"] = vector_json(e.acceleration);
+  j["multipliers"] = vector_json(e.multipliers);
+  j["residual"] = finite(e.residual);
+  j["simulated_acceleration"] = vector_json(e.simulated_acceleration);
+  j["accepted_steps"] = e.accepted_steps;
+  return j;
+}
+
 }  // namespace nbar::io

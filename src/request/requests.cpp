@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "io/explain_writer.hpp"
+#include "io/json_text.hpp"
 #include "nbar/analysis/columns.hpp"
 #include "nbar/analysis/fe_tables.hpp"
 #include "nbar/analysis/pose.hpp"
@@ -765,13 +767,28 @@ AnalysisOptions ReportRequest::analysis_options(const ModelSummary& summary, con
 
 // --------------------------------------------------------------------------------- explain
 
+namespace {
+// The options of the run whose equations of motion `explain --simulate` shows.
+const std::vector<std::string> kExplainRunKeys = {"dt", "rtol", "at_toggle"};
+}  // namespace
+
 const std::vector<OptionRule>& ExplainRequest::rules() {
-  static const std::vector<OptionRule> rules = joined({
-      {integer_rule("step", "the sample of the sweep to explain (default 0, the start)", 0, kIntMax)},
-      SweepSize::rules(),
-      {choice("format", "text (default), markdown (with LaTeX maths, for Jupyter), latex or json",
-              {"text", "markdown", "latex", "json"})},
-  });
+  static const std::vector<OptionRule> rules = [] {
+    std::vector<OptionRule> out = joined({
+        {integer_rule("step", "the sample of the sweep to explain (default 0, the start)", 0, kIntMax)},
+        SweepSize::rules(),
+        {choice("format",
+                "text (default), markdown (with LaTeX maths, for Jupyter), latex or json (with {simulate}: text or "
+                "json)",
+                {"text", "markdown", "latex", "json"}),
+         flag("simulate",
+              "the equations of motion of the simulation (as `nbar simulate`: M, Phi_q, Q by origin, gamma and the "
+              "accelerations and multipliers they give) at the time {at}, instead of the sweep's method"),
+         number_rule("at", "with {simulate}: the time, s, from 0 (the start) to 1e6", 0.0, kMaxTime)},
+    });
+    for (const std::string& key : kExplainRunKeys) out.push_back(rule_of(SimulateRequest::rules(), key));
+    return out;
+  }();
   return rules;
 }
 
@@ -780,6 +797,24 @@ ExplainRequest ExplainRequest::read(const Options& options) {
   r.step = static_cast<int>(read_integer(options, rule_of(rules(), "step")).value_or(0));
   r.sweep = SweepSize::read(options);
   r.format = read_text(options, rule_of(rules(), "format")).value_or("text");
+  r.simulate = read_flag(options, rule_of(rules(), "simulate"));
+  const std::optional<double> at = read_number(options, rule_of(rules(), "at"));
+  Options run(options.text_values());
+  for (const std::string& key : kExplainRunKeys)
+    if (const Value* value = options.find(key)) {
+      if (!r.simulate) throw OptionError(key, "is an option of a simulation: give {simulate} too");
+      run.set(key, *value);
+    }
+  if (!r.simulate) {
+    if (at) throw OptionError("at", "is the time of a simulation's equations of motion: give {simulate} too");
+    return r;
+  }
+  if (!at) throw OptionError("at", "give the time of the simulation to explain, in s, e.g. {simulate} {at} 0.5");
+  if (options.find("step")) throw OptionError("step", "is a sample of the sweep; with {simulate} give {at}");
+  if (r.format != "text" && r.format != "json")
+    throw OptionError("format", "with {simulate} must be text or json, not '" + literal(r.format) + "'");
+  r.at = *at;
+  r.run = SimulateRequest::read(run);
   return r;
 }
 
@@ -789,6 +824,22 @@ ExplainOptions ExplainRequest::explain_options() const {
   options.steps = sweep.steps;
   options.max_steps = sweep.max_steps;
   return options;
+}
+
+// The run to `at` is `nbar simulate --to at` with the same options (the model's `simulation:`
+// filling in what is not given); at 0 it does not integrate, and only its other options count.
+EquationsOfMotionAt ExplainRequest::equations_of_motion(const Mechanism& mechanism, const RunControl& control) const {
+  SimulateRequest to_at = run;
+  to_at.to = at > 0.0 ? at : 1.0;
+  if (at > 0.0) SimulateRequest::check_rows(to_at.to, to_at.dt);
+  return equations_of_motion_at(mechanism, at, to_at.simulation_options(mechanism), control);
+}
+
+void ExplainRequest::write(std::ostream& out, const Mechanism& mechanism, const EquationsOfMotionAt& equations) const {
+  if (format == "json")
+    out << io::json_text(io::equations_of_motion_json(mechanism, equations), 2) << '\n';
+  else
+    out << render_equations_of_motion(mechanism, equations);
 }
 
 // ---------------------------------------------------------------------------------- export

@@ -1,4 +1,7 @@
 // The analysis endpoints: check, solve, stress, report and explain.
+#include <cmath>
+
+#include "api_internal.hpp"
 #include "endpoints.hpp"
 #include "io/explain_writer.hpp"
 #include "io/json_text.hpp"
@@ -123,6 +126,22 @@ ApiResponse api_report(Job& job, const std::string& text) {
   return answer_html(render::html_report(analysis, summary, report));
 }
 
+namespace {
+
+// `simulate` and `at`: the equations of motion at that time of the simulation `nbar simulate`
+// runs, its rows (at / dt + 1) within the server's sample limit as /api/simulate's are.
+ApiResponse explain_motion(Job& job, const request::ExplainRequest& r) {
+  const double step = r.run.dt.value_or(job.mechanism->model().simulation.output_step.value_or(r.at / 100));
+  check_limit("steps", r.at > 0 ? std::floor(r.at / step + 1e-9) + 1 : 1, job.limits.max_steps,
+              "the number of rows of the simulation (at / dt + 1)");
+  job.start(Weight::Heavy);
+  const EquationsOfMotionAt equations = r.equations_of_motion(*job.mechanism, job.control);
+  return answer(write([&](std::ostream& out) { r.write(out, *job.mechanism, equations); }),
+                r.format == "json" ? "application/json" : "text/plain; charset=utf-8");
+}
+
+}  // namespace
+
 ApiResponse api_explain(Job& job, const std::string& text) {
   const RequestBody body(text, request::ExplainRequest::rules(), {"model"});
   const auto explain_request = read_request<request::ExplainRequest>(body, {"model"}, true);
@@ -133,6 +152,7 @@ ApiResponse api_explain(Job& job, const std::string& text) {
               "the number of points of a model to explain");
   check_limit("explain_bodies", static_cast<double>(m.bodies.size()), job.limits.max_explain_bodies,
               "the number of bodies of a model to explain");
+  if (explain_request.simulate) return explain_motion(job, explain_request);
   check_sweep_size(job, explain_request.sweep.steps);
   ExplainOptions options = explain_request.explain_options();
   options.control = job.control;

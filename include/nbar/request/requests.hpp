@@ -27,6 +27,7 @@
 #include "nbar/analysis/fe_tables.hpp"
 #include "nbar/analysis/summary.hpp"
 #include "nbar/analysis/table_stream.hpp"
+#include "nbar/dynamics/equations_of_motion.hpp"
 #include "nbar/dynamics/forward_dynamics.hpp"
 #include "nbar/kinematics/table.hpp"
 #include "nbar/model/run_control.hpp"
@@ -269,17 +270,6 @@ struct ReportRequest {
   AnalysisOptions analysis_options(const ModelSummary& summary, const Model& model) const;
 };
 
-// nbar explain: the method step by step at one sample.
-struct ExplainRequest {
-  SweepSize sweep;
-  int step = 0;
-  std::string format = "text";  // text, markdown, latex or json
-
-  static const std::vector<OptionRule>& rules();
-  static ExplainRequest read(const Options& options);
-  ExplainOptions explain_options() const;
-};
-
 // nbar export: the links' plates for cutting, as drawn in the model file or in one pose.
 struct ExportRequest {
   std::optional<double> at;    // where the first driver has this value (model units); unset: as drawn
@@ -325,6 +315,30 @@ struct SimulateRequest {
   // or the CSV, rows only (a front-end says the events beside it).
   void write(std::ostream& out, const Mechanism& mechanism, const Simulation& simulation, const ResultTable& table,
              std::size_t table_width) const;
+};
+
+// nbar explain: the method step by step at one sample; with `simulate`, the equations of motion
+// at the time `at` of the simulation `nbar simulate` runs (its options dt, rtol and
+// at_toggle, each not given taken from the model's `simulation:` as simulate does).
+struct ExplainRequest {
+  SweepSize sweep;
+  int step = 0;
+  std::string format = "text";  // text, markdown, latex or json; with simulate: text or json
+  bool simulate = false;
+  double at = 0.0;      // s, with simulate: from 0 to kMaxTime
+  SimulateRequest run;  // with simulate: the run's options (its `to` is `at`)
+
+  static constexpr double kMaxTime = 1e6;  // s: the latest time `at` may ask for
+
+  static const std::vector<OptionRule>& rules();
+  // OptionError: `at` or a run's option without `simulate`, `simulate` without `at`, `step` or
+  // a format other than text and json with `simulate`.
+  static ExplainRequest read(const Options& options);
+  ExplainOptions explain_options() const;
+  // With simulate: the equations of motion at `at` (equations_of_motion_at's errors).
+  EquationsOfMotionAt equations_of_motion(const Mechanism& mechanism, const RunControl& control = {}) const;
+  // The equations of motion as the answer in `format`: the text, or the JSON.
+  void write(std::ostream& out, const Mechanism& mechanism, const EquationsOfMotionAt& equations) const;
 };
 
 // A simulation's rows as a sweep's samples (order 2: positions, velocities, accelerations at each
