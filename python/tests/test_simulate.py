@@ -151,3 +151,57 @@ def test_a_simulation_animates_its_rows_at_their_times(parallelogram, examples):
     assert "<svg" in animation.data("svg")
     with pytest.raises(nbar.BadInputError, match="Model.animate"):
         nbar.load(examples / "crank-rocker-released.yaml").solve(steps=3).animate()
+
+
+def test_ctrl_c_raises_keyboard_interrupt_with_the_rows_so_far(parallelogram):
+    """SIGINT half a second into a long run: KeyboardInterrupt, as Python code expects, with the
+    rows up to there as .result, a row every dt from the start."""
+    import os
+    import signal
+    import threading
+
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt) as caught:
+            parallelogram.simulate(to=5000, dt=0.01)
+    finally:
+        timer.cancel()
+    partial = caught.value.result
+    assert not partial.complete and partial.stop_reason.startswith("cancelled at t = ")
+    assert 1 < partial.rows < 500001
+    assert np.allclose(np.diff(partial["t"]), 0.01, rtol=0, atol=1e-9)
+    assert f"at t = {partial['t'][-1]:.9g} s" in partial.stop_reason
+
+
+def test_a_timeout_keeps_the_rows_so_far(parallelogram):
+    with pytest.raises(nbar.Cancelled) as caught:
+        parallelogram.simulate(to=5000, dt=0.01, timeout=0.3)
+    partial = caught.value.result
+    assert not partial.complete and partial.stop_reason.startswith("cancelled: the time budget ran out at t = ")
+    assert partial.rows > 1
+    kept = parallelogram.simulate(to=5000, dt=0.01, timeout=0.3, partial=True)
+    assert not kept.complete and kept.rows > 1
+
+
+def test_explain_at_a_time_gives_the_simulated_accelerations(parallelogram):
+    """The printed system [M Phi_q^T; Phi_q 0] [q''; lambda] = [Q; gamma], solved here (least
+    squares: the third crank makes Phi_q rank-deficient), gives the accelerations of the row
+    simulate() reports at that time."""
+    e = parallelogram.explain(simulate=True, at=0.4, rtol=1e-10)
+    assert isinstance(e, nbar.EquationsOfMotion) and e.time == 0.4
+    n, m = e.mass.shape[0], e.jacobian.shape[0]
+    assert n == 6 and m == 6
+    system = np.block([[e.mass, e.jacobian.T], [e.jacobian, np.zeros((m, m))]])
+    forces = e.forces
+    q_forces = forces["gravity"] + forces["given"] + forces["springs"] + forces["friction"]
+    solution = np.linalg.lstsq(system, np.concatenate([q_forces, e.gamma]), rcond=1e-12)[0]
+    run = parallelogram.simulate(to=0.4, dt=0.04, rtol=1e-10)
+    simulated = np.array([run[c[:-1] + "a" + c[-1]][-1] for c in e.coordinates])
+    assert np.max(np.abs(solution[:n] - simulated)) < 1e-9 * np.max(np.abs(simulated))
+    assert "[ Phi_q  0       ] [ lambda ] = [ gamma ]" in str(e)
+    assert '"multipliers"' in e.to_json()
+    with pytest.raises(nbar.BadInputError, match="at"):
+        parallelogram.explain(simulate=True, at=-1)
+    with pytest.raises(nbar.BadInputError, match="simulate=True"):
+        parallelogram.explain(at=0.4)

@@ -55,6 +55,25 @@ TEST(WebSimulate, CsvTableColumnsAndStopConditionAsTheCommandLine) {
   EXPECT_NE(t.body.find("Event: "), std::string::npos) << t.body;
 }
 
+// POST /api/explain with `simulate` and `at`: the equations of motion, byte for byte `nbar
+// explain --simulate`'s, in JSON and text; a bad time is refused by name.
+TEST(WebSimulate, ExplainAtATimeIsTheCommandLines) {
+  const ApiResponse j = post("/api/explain", with_model(kReleased, {{"simulate", true}, {"at", 0.5}}));
+  ASSERT_EQ(j.status, 200) << j.body;
+  EXPECT_EQ(j.content_type, "application/json");
+  const cli_test::CliRun json = cli(std::string("explain ") + kReleased + " --simulate --at 0.5 --format json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  EXPECT_EQ(j.body, json.out);
+  EXPECT_EQ(Json::parse(j.body)["coordinates"].size(), 6u);
+  const ApiResponse t =
+      post("/api/explain", with_model(kReleased, {{"simulate", true}, {"at", 0.5}, {"format", "text"}}));
+  ASSERT_EQ(t.status, 200) << t.body;
+  EXPECT_EQ(t.body, cli(std::string("explain ") + kReleased + " --simulate --at 0.5").out);
+  const ApiResponse bad = post("/api/explain", with_model(kReleased, {{"simulate", true}, {"at", -1}}));
+  EXPECT_EQ(bad.status, 400) << bad.body;
+  EXPECT_EQ(error_of(bad)["option"], "at");
+}
+
 // The scene's step k is the simulation's row k: each point label moves from the start by the
 // row's displacement of that point, in the scene's pixels (to_model's scale, y down).
 TEST(WebSimulate, TheSceneIsPosedAtEveryRowOfTheSimulation) {
