@@ -4,7 +4,7 @@ from . import examples as examples, synth as synth
 from .errors import AssemblyError as AssemblyError, BadInputError as BadInputError, Cancelled as Cancelled
 from .errors import ColumnError as ColumnError, Error as Error, InternalError as InternalError
 from .errors import LimitError as LimitError, ModelError as ModelError, UndefinedLawError as UndefinedLawError
-from .explain import Explanation as Explanation
+from .explain import EquationsOfMotion as EquationsOfMotion, Explanation as Explanation
 from .model import FeConvergence as FeConvergence, Model as Model, ReadOnlyView as ReadOnlyView
 from .model import StressResult as StressResult, Summary as Summary
 from .model import load as load, loads as loads, solve_many as solve_many
@@ -26,6 +26,7 @@ __all__ = [
     "StressResult",
     "FeConvergence",
     "Explanation",
+    "EquationsOfMotion",
     "Drawing",
     "Animation",
     "Report",

@@ -36,3 +36,25 @@ class Explanation:
     def latex(self) -> str: ...
     def to_json(self) -> str: ...
     def draw(self) -> Drawing: ...
+
+class EquationsOfMotion:
+    FIELDS: ClassVar[Tuple[str, ...]]
+    time: float
+    q: NDArray[Any]
+    velocity: NDArray[Any]
+    coordinates: List[str]
+    rows: List[str]
+    free_drivers: List[str]
+    mass: NDArray[Any]
+    jacobian: NDArray[Any]
+    forces: Dict[str, NDArray[Any]]
+    gamma: NDArray[Any]
+    acceleration: NDArray[Any]
+    multipliers: NDArray[Any]
+    residual: float
+    simulated_acceleration: NDArray[Any]
+    def __init__(self, native: Any) -> None: ...
+    def __getattr__(self, name: str) -> Any: ...
+    @property
+    def text(self) -> str: ...
+    def to_json(self) -> str: ...

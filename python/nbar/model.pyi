@@ -1,8 +1,9 @@
 # Type stub of nbar.model.
 import os
-from typing import Any, Dict, Generic, Iterable, Iterator, List, Mapping, Optional, Sequence, Tuple, TypeVar, Union
+from typing import (Any, Dict, Generic, Iterable, Iterator, List, Literal, Mapping, Optional, Sequence, Tuple, TypeVar, Union,
+                    overload)
 
-from .explain import Explanation
+from .explain import EquationsOfMotion, Explanation
 from .pictures import Animation, Drawing, Report
 from .results import Result, Table, Warning
 
@@ -113,7 +114,14 @@ class Model:
                 partial: bool = ...) -> Animation: ...
     def report(self, path: Optional[_PathLike] = ..., frames: int = ..., timeout: Optional[float] = ...,
                partial: bool = ...) -> Report: ...
-    def explain(self, step: int = ..., steps: Optional[int] = ...) -> Explanation: ...
+    @overload
+    def explain(self, step: int = ..., steps: Optional[int] = ..., simulate: Literal[False] = ...,
+                at: None = ..., dt: None = ..., rtol: None = ..., at_toggle: None = ...,
+                timeout: Optional[float] = ...) -> Explanation: ...
+    @overload
+    def explain(self, step: int = ..., steps: Optional[int] = ..., *, simulate: Literal[True], at: Optional[float] = ...,
+                dt: Optional[float] = ..., rtol: Optional[float] = ..., at_toggle: Optional[str] = ...,
+                timeout: Optional[float] = ...) -> EquationsOfMotion: ...
 
 def solve_many(models: Iterable[Model], steps: Optional[int] = ..., order: int = ..., columns: _Columns = ...,
                dynamics: bool = ..., threads: int = ..., partial: bool = ..., timeout: Optional[float] = ...,
