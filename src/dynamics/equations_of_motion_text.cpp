@@ -1,8 +1,7 @@
 // The equations of motion at one time of a simulation as text (`nbar explain --simulate`): the
 // system, its blocks with the names of q and of Phi's rows, Q by origin, gamma and the solution.
-#include <fmt/format.h>
-
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -15,9 +14,14 @@ namespace {
 
 using Table = std::vector<std::vector<std::string>>;
 
-std::string number(double v) { return fmt::format("{:.6g}", v + 0.0); }
+// printf's %g with `digits` significant digits (the core does not link fmt).
+std::string number(double v, int digits = 6) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*g", digits, v + 0.0);
+  return text;
+}
 // Rounding left by a solve (below 1e-12 of the largest entry of its vector or matrix) shown as 0.
-std::string number(double v, double largest) { return number(std::abs(v) < 1e-12 * largest ? 0.0 : v); }
+std::string cleaned(double v, double largest) { return number(std::abs(v) < 1e-12 * largest ? 0.0 : v); }
 double largest(const Eigen::MatrixXd& a) { return a.size() ? a.lpNorm<Eigen::Infinity>() : 0.0; }
 
 // Columns right-aligned but the first (and the last, a row's label, when `label_last`), two
@@ -31,9 +35,11 @@ std::string aligned(const Table& rows, bool label_last = false) {
   std::string out;
   for (const auto& row : rows) {
     std::string line = " ";
-    for (std::size_t c = 0; c < row.size(); ++c)
-      line += c == 0 || (label_last && c + 1 == row.size()) ? fmt::format("{}{:<{}}", c ? "  " : " ", row[c], width[c])
-                                                            : fmt::format("  {:>{}}", row[c], width[c]);
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      const std::string padding(width[c] - row[c].size(), ' ');
+      const bool left = c == 0 || (label_last && c + 1 == row.size());
+      line += (c ? "  " : " ") + (left ? row[c] + padding : padding + row[c]);
+    }
     line.erase(line.find_last_not_of(' ') + 1);
     out += line + '\n';
   }
@@ -52,7 +58,7 @@ std::string matrix(const Eigen::MatrixXd& a, const std::vector<std::string>& row
   for (Eigen::Index r = 0; r < a.rows(); ++r) {
     table.push_back({rows[r]});
     for (Eigen::Index c = 0; c < a.cols(); ++c)
-      table.back().push_back(a(r, c) == 0.0 ? "." : number(a(r, c), largest(a)));
+      table.back().push_back(a(r, c) == 0.0 ? "." : cleaned(a(r, c), largest(a)));
   }
   return aligned(table);
 }
@@ -77,9 +83,9 @@ void forces_section(std::ostringstream& out, const EquationsOfMotionAt& e) {
          "between their points, and joint friction (f grad s).\n";
   Table t{{"", "gravity", "given", "springs", "friction", "Q"}};
   for (Eigen::Index i = 0; i < e.q.size(); ++i)
-    t.push_back({e.coordinates[i], number(e.gravity(i), largest(e.gravity)), number(e.applied(i), largest(e.applied)),
-                 number(e.springs(i), largest(e.springs)), number(e.friction(i), largest(e.friction)),
-                 number(e.forces(i), largest(e.forces))});
+    t.push_back({e.coordinates[i], cleaned(e.gravity(i), largest(e.gravity)), cleaned(e.applied(i), largest(e.applied)),
+                 cleaned(e.springs(i), largest(e.springs)), cleaned(e.friction(i), largest(e.friction)),
+                 cleaned(e.forces(i), largest(e.forces))});
   out << aligned(t);
 }
 
@@ -87,16 +93,16 @@ void solution_section(std::ostringstream& out, const EquationsOfMotionAt& e) {
   heading(out, "6. The solution: accelerations and multipliers");
   Table t{{"", "q'' (m/s^2)"}};
   for (Eigen::Index i = 0; i < e.q.size(); ++i)
-    t.push_back({e.coordinates[i], number(e.acceleration(i), largest(e.acceleration))});
+    t.push_back({e.coordinates[i], cleaned(e.acceleration(i), largest(e.acceleration))});
   out << aligned(t);
   Table l{{"", "lambda (N)", ""}};
   for (Eigen::Index r = 0; r < e.multipliers.size(); ++r)
-    l.push_back({std::to_string(r + 1), number(e.multipliers(r), largest(e.multipliers)), e.row_labels[r]});
+    l.push_back({std::to_string(r + 1), cleaned(e.multipliers(r), largest(e.multipliers)), e.row_labels[r]});
   out << '\n' << aligned(l, true);
   const double difference = (e.acceleration - e.simulated_acceleration).lpNorm<Eigen::Infinity>();
-  out << "\nSolved densely, with a relative residual of " << fmt::format("{:.2g}", e.residual)
+  out << "\nSolved densely, with a relative residual of " << number(e.residual, 2)
       << "; the simulation's own row at this\ntime (its sparse augmented solve) has the same q'' to "
-      << fmt::format("{:.2g}", difference) << " m/s^2.\n";
+      << number(difference, 2) << " m/s^2.\n";
   out << "-Phi_q^T lambda is the force the joints and the kinematic drivers put on q.\n";
 }
 
@@ -133,7 +139,7 @@ std::string render_equations_of_motion(const Mechanism& mechanism, const Equatio
   out << "gamma = -(Phi_q q')_q q' - 2 Phi_qt q' - Phi_tt, from the constraints' Taylor recursion.\n";
   Table g;
   for (Eigen::Index r = 0; r < e.gamma.size(); ++r)
-    g.push_back({std::to_string(r + 1), number(e.gamma(r), largest(e.gamma)), e.row_labels[r]});
+    g.push_back({std::to_string(r + 1), cleaned(e.gamma(r), largest(e.gamma)), e.row_labels[r]});
   out << aligned(g, true);
   solution_section(out, e);
   return out.str();
