@@ -1075,8 +1075,8 @@ class Run {
   // Velocities at the start. Up to kDenseStartCoordinates coordinates by an SVD that meets the
   // kept rows exactly and the free drivers' initial speeds as nearly as it can, a correction said
   // in the warnings (initial_velocity.hpp); above, where that SVD's cubic cost would outweigh the
-  // run (a chain of a hundred loops), by the sparse solve alone, exact at a regular start.
-  static constexpr int kDenseStartCoordinates = 400;
+  // run (a chain of a hundred loops, 400 coordinates, spent 69 % of its run in it), by the sparse solve alone, exact at a regular start.
+  static constexpr int kDenseStartCoordinates = 100;
   Eigen::VectorXd start_velocities(const Eigen::VectorXd& q, const std::vector<DriverState>& drivers) {
     std::vector<double> values;
     evaluate_jacobian(mech_, q, drivers, values);
