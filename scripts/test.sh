@@ -14,11 +14,12 @@ if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCH
 # Each stage's heading carries the time, so a CI log shows where its minutes went.
 stage() { echo "== $* [$(date -u +%H:%M:%S)]"; }
 
-stage "Release build and tests"
+stage "Release build"
 # Tests and benchmarks named on: a build directory left by scripts/quickstart.sh has them off.
 cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DNBAR_BUILD_TESTS=ON -DNBAR_BUILD_BENCH=ON \
   "${launcher[@]}" >/dev/null
 cmake --build "$root/build" -j"$jobs"
+stage "Release tests"
 ctest --test-dir "$root/build" --output-on-failure -j"$jobs"
 
 stage "Packages: the wheel and the .deb made from that build, installed into a scratch folder and used"
@@ -28,7 +29,7 @@ stage "Packages: the wheel and the .deb made from that build, installed into a s
 stage "The engine in WebAssembly, its answers against the Release build's (docs/javascript.md), and the static site in Chromium (docs/web.md)"
 "$root/scripts/build-wasm.sh" "$root/build-wasm" --site --test
 
-stage "AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+stage "AddressSanitizer + UndefinedBehaviorSanitizer build"
 # The sanitizer stage is focused where its time buys most (it was 44 of 70 minutes on 2 cores):
 # - -O1 with line tables only (-g1), as OSS-Fuzz builds: reports still give file:line, and the
 #   build took 21 minutes where -O2 -g took 34;
@@ -40,6 +41,7 @@ stage "AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNBAR_SANITIZE=ON \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DNBAR_BUILD_BENCH=OFF "${launcher[@]}" >/dev/null
 cmake --build "$root/build-asan" -j"$jobs" --target nbar nbar_tests
+stage "AddressSanitizer + UndefinedBehaviorSanitizer tests"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions="$root/scripts/lsan-suppressions.txt" \
   ctest --test-dir "$root/build-asan" --output-on-failure -j"$jobs" \
