@@ -86,20 +86,22 @@ export function sketchSvg(outline, previous, aspect) {
   }
   const bar = scaleLength(box.w);
   const bx = box.x + box.w * 0.04; const by = box.y + box.h * 0.1;
-  const scale = `<g class="scale-bar"><line x1="${num(bx)}" y1="${num(by)}" x2="${num(bx + bar)}" y2="${num(by)}" stroke="#0f172a" stroke-width="${num(s * 0.5)}"/>`
-    + `<text x="${num(bx)}" y="${num(by - 1.5 * s)}" font-size="${num(3 * s)}" font-family="sans-serif" fill="#0f172a">${num(bar)} ${esc(outline.units.length)}</text></g>`;
+  const scale = `<g class="scale-bar" pointer-events="none"><line x1="${num(bx)}" y1="${num(by)}" x2="${num(bx + bar)}" y2="${num(by)}" stroke="#475569" stroke-width="${num(s * 0.35)}"/>`
+    + `<text x="${num(bx)}" y="${num(by - 1.2 * s)}" font-size="${num(2.2 * s)}" font-family="sans-serif" fill="#475569">${num(bar)} ${esc(outline.units.length)}</text></g>`;
   const fit = JSON.stringify(box);
   return { scale: s, svg: `<svg xmlns="http://www.w3.org/2000/svg" viewBox="${num(box.x)} ${num(box.y)} ${num(box.w)} ${num(box.h)}" preserveAspectRatio="xMidYMid meet" role="img" data-sketch="1" data-unit="${esc(outline.units.length)}" data-fit='${esc(fit)}'>`
     + `<g class="frame"><g class="scene sketch">${links}${marks}${scale}</g><g class="handles">${handles}</g></g></svg>` };
 }
 
 // What the drawing's note and the status say of a model being built: its mobility (the rank's
-// once the model is valid, else the Gruebler-Kutzbach count) and what keeps it from solving.
+// once the model is valid, else the Gruebler-Kutzbach count) and what keeps it from solving (or
+// from moving at all: a structure).
 export function buildingText(outline) {
   const m = outline.mobility;
   const dof = m.dof ?? m.gruebler;
   const count = m.dof === null ? t('buildGruebler', dof) : t('buildDof', dof);
-  return `${t('building')} · ${count}${outline.problem ? ` · ${outline.problem.message}` : ''}`;
+  const why = outline.problem?.message ?? outline.immobile;
+  return `${t('building')} · ${count}${why ? ` · ${why}` : ''}`;
 }
 
 // ------------------------------------------------------------------------------ the slider tool

@@ -301,7 +301,7 @@ function showSketch(outline, text) {
   box.hidden = false;
   document.body.classList.toggle('results-stale', !!state.solve);
   $('#retry').hidden = true;
-  status(note, !!outline.problem);
+  status(note, !!(outline.problem || outline.immobile));
 }
 
 // The sweep's table and its drawing. The answer's text is kept as the server wrote it: the JSON

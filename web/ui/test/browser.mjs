@@ -27,7 +27,8 @@ const out = arg('--out', 'build/web-screenshots');
 // `--only forces`: only forces.mjs's (dynamics columns, stress table, Explain at the pose, handles
 // over arrows, a drag at a later pose, zoom, the phone's bottom edge), at both: ctest's
 // Web.Forces, apart from the full run so that Web.Browser stays inside its watchdog;
-// `--only build`: only build.mjs's (a slider-crank built from an empty model by taps), at both.
+// `--only build`: build.mjs's (a slider-crank built from an empty model by taps), at both: ctest's
+// Web.BrowserBuild, apart from the full run as Web.Forces is.
 const only = arg('--only', '');
 const onlyDraw = only === 'draw';
 const onlyReview = only === 'review';
@@ -389,8 +390,6 @@ try {
     await femapAt('phone', { width: 390, height: 844 }, true);
     await simulateAt('laptop', { width: 1366, height: 768 }, false);
     await simulateAt('phone', { width: 390, height: 844 }, true);
-    await buildAt('laptop', { width: 1366, height: 768 }, false);
-    await buildAt('phone', { width: 390, height: 844 }, true);
   }
   assert.deepEqual(errors, [], 'no errors in the page');
   console.log(`OK: screenshots in ${out}`);
