@@ -315,6 +315,8 @@ void summarize_start(const Mechanism& mech, int max_steps, double work_budget, M
 
 }  // namespace
 
+std::vector<std::string> joint_descriptions(const Model& model) { return describe_joints(model); }
+
 std::vector<Warning> check_before_sweep(const Mechanism& mech) {
   ModelSummary s;
   warn_about_many_turns(mech.model(), s);

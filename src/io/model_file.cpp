@@ -107,7 +107,9 @@ LoadedModel Parser::parse() {
   try {
     validate(model_);
   } catch (const ModelError& error) {
-    throw ModelFileError(source_.file, source_.find(error.where()), error.what());
+    ModelFileError located(source_.file, source_.find(error.where()), error.what());
+    if (!draft_) throw located;
+    draft_problem = located;
   }
   return LoadedModel{std::move(model_), std::move(source_), {}};
 }
@@ -232,6 +234,14 @@ LoadedModel parse_model(const std::string& text, const std::string& file_name, c
   LoadedModel loaded = parser.parse();
   loaded.text = text;
   return loaded;
+}
+
+DraftModel parse_draft_model(const std::string& text, const std::string& file_name) {
+  Parser parser(text, file_name);
+  parser.allow_drafts();
+  DraftModel draft{parser.parse(), parser.draft_problem};
+  draft.loaded.text = text;
+  return draft;
 }
 
 LoadedModel load_model_file(const std::string& path) {

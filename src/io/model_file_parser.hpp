@@ -82,10 +82,16 @@ class Parser : yaml::Reader {
   // model parsed from text (the web server's) may not open files.
   void allow_imports(std::filesystem::path dir) { import_dir_ = std::move(dir); }
 
+  // A model being built (parse_draft_model): no points yet is no error, and validate()'s
+  // complaint is kept in `draft_problem` rather than thrown.
+  void allow_drafts() { draft_ = true; }
+  std::optional<ModelFileError> draft_problem;
+
   LoadedModel parse();
 
  private:
   Model model_;
+  bool draft_ = false;
   std::optional<std::filesystem::path> import_dir_;
   SourceMap source_;
   std::vector<Material> user_materials_;  // from `materials:`

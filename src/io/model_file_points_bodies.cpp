@@ -16,6 +16,8 @@
 namespace nbar::io::model_file_detail {
 
 void Parser::parse_points(const Entry* e) {
+  // A model being built may have no point yet: `points: {}`, or no section at all.
+  if (draft_ && (!e || e->value.IsNull() || (e->value.IsMap() && e->value.size() == 0))) return;
   if (!e) fail(source_.model, "the model has no `points:` section");
   if (e->value.IsNull() || (e->value.IsMap() && e->value.size() == 0)) {
     fail(mark(e->key_node), "`points` is empty: a model needs at least one point");

@@ -248,7 +248,11 @@ Constraint driver_row(const Model& model, int di, double length_scale, double& d
 
 }  // namespace
 
-Mechanism::Mechanism(Model model) : model_(std::move(model)) {
+Mechanism::Mechanism(Model model) : Mechanism(std::move(model), true) {}
+
+MobilityReport Mechanism::joint_mobility(Model model) { return Mechanism(std::move(model), false).mobility_; }
+
+Mechanism::Mechanism(Model model, bool check_drivers) : model_(std::move(model)), check_drivers_(check_drivers) {
   // Before the validation, whose checks also grow with the size.
   const auto moving =
       std::count_if(model_.points.begin(), model_.points.end(), [](const Point& p) { return !p.ground; });
@@ -562,7 +566,7 @@ void Mechanism::analyse_mobility_sparse(const std::vector<double>& values) {
   const int drivers = static_cast<int>(model_.drivers.size());
   // The rank is at most the number of constraint rows: too few drivers shows in the counts,
   // before any factorisation.
-  if (n_ - constraint_rows_ > drivers) {
+  if (check_drivers_ && n_ - constraint_rows_ > drivers) {
     r.dof = n_ - constraint_rows_;
     throw ModelError({EntityRef::Kind::Model, -1}, mobility_counts(true) + "; add one driver per free input");
   }
@@ -586,6 +590,7 @@ void Mechanism::analyse_mobility_sparse(const std::vector<double>& values) {
   const auto& perm = qr.colsPermutation().indices();
   for (int c = r.rank; c < constraint_rows_; ++c) r.redundant.push_back(perm[c]);
   std::sort(r.redundant.begin(), r.redundant.end());
+  if (!check_drivers_) return;
   if (r.dof != drivers) {
     throw ModelError({EntityRef::Kind::Model, -1},
                      mobility_counts(false) + (drivers < r.dof ? "; add one driver per free input"
@@ -644,6 +649,7 @@ void Mechanism::analyse_mobility() {
     std::sort(r.redundant.begin(), r.redundant.end());
   }
 
+  if (!check_drivers_) return;
   if (r.dof != drivers_count) refuse_driver_count(*this, column_, J, r, drivers_count);
   check_drivers_independent(model_, J, constraint_rows_, r.rank);
   r.reciprocal_condition = reciprocal_condition(J);

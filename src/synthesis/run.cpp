@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <exception>
@@ -12,6 +13,7 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/synthesis/five_point.hpp"
@@ -76,6 +78,23 @@ void check_rows(Outcome& out, const std::function<DesignCheck(const FourBarDesig
   control.checkpoint("checking", done, total);
 }
 
+// A fixed pivot on a target point: a coupler point that passes through a fixed pivot belongs only
+// to a degenerate linkage (a crank of no length, or a coupler point on the pivot's joint), so
+// the designs found are not what was asked for. Said, not refused: the solver still runs. Lengths
+// within a millionth of the pivots' distance count as the same place (the task is in its unit).
+void note_pivots_on_targets(const SynthesisTask& task, Outcome& out) {
+  const double near = 1e-6 * (task.pivot_a - task.pivot_b).norm();
+  const std::array<std::pair<const char*, Eigen::Vector2d>, 2> pivots{{{"a", task.pivot_a}, {"b", task.pivot_b}}};
+  for (const auto& [name, pivot] : pivots)
+    for (std::size_t i = 0; i < task.points.size(); ++i)
+      if ((task.points[i] - pivot).norm() <= near)
+        out.notes.push_back(
+            fmt::format("pivot {} is at target point {} ({:.6g}, {:.6g} {}): the coupler point would "
+                        "pass through a fixed pivot, which only a degenerate linkage does; move "
+                        "the pivot or the point",
+                        name, i + 1, pivot.x(), pivot.y(), task.units.length));
+}
+
 Outcome five_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
   FivePointTask problem;
   problem.pivot_a = task.pivot_a;
@@ -107,6 +126,7 @@ Outcome five_point(const SynthesisTask& task, const SynthesisRunOptions& run) {
       out, [&](const FourBarDesign& d) { return check_design(d, targets); }, run.control, run.threads);
   if (result.failed_paths > 0)
     out.notes.push_back(fmt::format("{} of {} paths failed", result.failed_paths, result.paths));
+  note_pivots_on_targets(task, out);
   return out;
 }
 

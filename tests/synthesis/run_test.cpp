@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 
 #include <fmt/format.h>
@@ -51,6 +52,27 @@ TEST(RunSynthesis, GivesTheDesignsTheCommandLinePrints) {
   io::SynthesisListing listing;
   listing.shown = shown;
   EXPECT_EQ(io::synthesis_json(task, outcome, listing), cli.out);
+}
+
+// A fixed pivot on one of the five target points (the task's pivot a at the origin, a point tapped
+// on the drawn crank pivot there) is said in a note; the bundled task, whose points are clear of
+// its pivots, has no such note.
+TEST(RunSynthesis, APivotOnATargetPointIsNoted) {
+  const SynthesisTask task = io::parse_synthesis_task(R"(task: five-point
+units: {length: mm, angle: deg}
+pivots: {a: [0, 0], b: [200, 0]}
+points: [[-74.772, 20.544], [-3.664, 70.026], [44.303, 194.508], [0, 0], [-90.203, 97.034]]
+)");
+  const auto is_pivot_note = [](const std::string& n) { return n.starts_with("pivot "); };
+  const SynthesisOutcome outcome = run_synthesis(task);
+  ASSERT_EQ(std::count_if(outcome.notes.begin(), outcome.notes.end(), is_pivot_note), 1)
+      << fmt::format("{}", outcome.notes);
+  EXPECT_NE(std::find(outcome.notes.begin(), outcome.notes.end(),
+                      "pivot a is at target point 4 (0, 0 mm): the coupler point would pass through a fixed pivot, "
+                      "which only a degenerate linkage does; move the pivot or the point"),
+            outcome.notes.end());
+  const SynthesisOutcome clear = run_synthesis(io::load_synthesis_task(kFivePoint));
+  EXPECT_EQ(std::count_if(clear.notes.begin(), clear.notes.end(), is_pivot_note), 0);
 }
 
 // A nine-point run stops at its own budget with the designs found by then and a note that says

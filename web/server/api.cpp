@@ -38,6 +38,7 @@ ApiResponse synth_path(Job& job, const std::string& body) {
 const std::map<std::string, Endpoint, std::less<>>& post_endpoints() {
   static const std::map<std::string, Endpoint, std::less<>> endpoints = {
       {"/api/check", &api_check},
+      {"/api/outline", &api_outline},
       {"/api/solve", &api_solve},
       {"/api/stress", &api_stress},
       {"/api/stress/probe", &api_stress_probe},

@@ -10,6 +10,7 @@
 #include "nbar/io/results_writer.hpp"
 #include "nbar/io/summary_writer.hpp"
 #include "nbar/render/report.hpp"
+#include "nbar/request/outline_request.hpp"
 #include "nbar/request/requests.hpp"
 
 namespace nbar::web {
@@ -167,6 +168,56 @@ ApiResponse api_explain(Job& job, const std::string& text) {
   return answer(render_explanation(ex, f), format == "markdown" ? "text/markdown; charset=utf-8"
                                            : format == "latex"  ? "application/x-latex; charset=utf-8"
                                                                 : "text/plain; charset=utf-8");
+}
+
+}  // namespace nbar::web
+
+namespace nbar::web {
+
+namespace {
+
+Json outline_json(const request::Outline& o) {
+  Json points = Json::array(), bodies = Json::array(), guides = Json::array();
+  for (const auto& p : o.points) points.push_back({{"name", p.name}, {"x", p.x}, {"y", p.y}, {"ground", p.ground}});
+  for (const auto& b : o.bodies) bodies.push_back({{"name", b.name}, {"points", b.points}});
+  for (const auto& g : o.guides)
+    guides.push_back({{"kind", g.kind}, {"body", g.body}, {"point", g.point}, {"line", g.line}});
+  Json mobility = {{"gruebler", o.count.dof},
+                   {"links", o.count.links},
+                   {"lower_pairs", o.count.lower_pairs},
+                   {"higher_pairs", o.count.higher_pairs},
+                   {"dof", o.mobility ? Json(o.mobility->dof) : Json(nullptr)},
+                   {"drivers", o.drivers}};
+  Json problem = nullptr;
+  if (!o.problem.empty()) {
+    problem = {{"message", o.problem}};
+    if (o.problem_at.line > 0) {
+      problem["line"] = o.problem_at.line;
+      problem["column"] = o.problem_at.column;
+    }
+  }
+  return {{"model", o.name},
+          {"units", {{"length", o.units.length}, {"angle", o.units.angle}}},
+          {"points", points},
+          {"bodies", bodies},
+          {"guides", guides},
+          {"joints", o.joints},
+          {"mobility", mobility},
+          {"problem", problem},
+          {"immobile", o.immobile.empty() ? Json(nullptr) : Json(o.immobile)}};
+}
+
+}  // namespace
+
+// A model being built, drawn by the app's tools as it grows (request/outline_request.hpp).
+ApiResponse api_outline(Job& job, const std::string& text) {
+  const RequestBody body(text, {"model"});
+  const std::string model = body.text("model", true);
+  const request::Outline outline = request::outline_model(model, kModelFile);
+  check_limit("points", static_cast<double>(outline.points.size()), job.limits.max_points, "the number of points");
+  check_limit("bodies", static_cast<double>(outline.bodies.size()), job.limits.max_bodies, "the number of bodies");
+  job.checkpoint("outline");
+  return answer(outline_json(outline).dump(2) + '\n');
 }
 
 }  // namespace nbar::web

@@ -12,6 +12,7 @@ namespace nbar::web {
 
 // api_analysis.cpp
 ApiResponse api_check(Job& job, const std::string& body);
+ApiResponse api_outline(Job& job, const std::string& body);
 ApiResponse api_solve(Job& job, const std::string& body);
 ApiResponse api_stress(Job& job, const std::string& body);
 ApiResponse api_stress_probe(Job& job, const std::string& body);

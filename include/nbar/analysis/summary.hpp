@@ -134,6 +134,10 @@ struct ModelSummary {
 // has no value at a time the sweep reaches (UndefinedLaw, at the law's driver, force or torque).
 std::vector<Warning> check_before_sweep(const Mechanism& mechanism);
 
+// The joints as `nbar check` lists them (ModelSummary::joints) for any model the reader has read,
+// valid or not: "revolute A (crank/rod)", "slider piston at C along Y1-Y2", "slot ...".
+std::vector<std::string> joint_descriptions(const Model& model);
+
 // Never throws for a compiled mechanism: an assembly failure is kept in assembly_error (also a
 // model sweep of more than `max_steps` samples, as every command that sweeps refuses it).
 // `limit_search_work` bounds the search for the mechanism's limits and a rocking driver's turns

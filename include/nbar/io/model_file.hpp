@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -56,6 +57,17 @@ LoadedModel parse_model(const std::string& text, const std::string& file_name = 
 // read from that folder does (load_model_file).
 LoadedModel parse_model(const std::string& text, const std::string& file_name, const std::string& import_dir);
 LoadedModel load_model_file(const std::string& path);
+
+// A model being built, read as it is written: parsed as parse_model parses (a syntax error, an
+// unknown name or a bad number still throws ModelFileError), but a model with no points yet, or
+// one that validate() refuses (a point on no body, a single-point body with no slider), is
+// returned with validate()'s complaint, located, in `problem`. The web app draws it while the
+// user builds it; nothing may be solved from it.
+struct DraftModel {
+  LoadedModel loaded;
+  std::optional<ModelFileError> problem;
+};
+DraftModel parse_draft_model(const std::string& text, const std::string& file_name = "<model>");
 
 // "file:line:column: message" for an error the core reports about an entity.
 std::string locate(const SourceMap& source, const ModelError& error);

@@ -47,6 +47,11 @@ class Mechanism {
   // model is invalid, including drivers that do not match the degrees of freedom.
   explicit Mechanism(Model model);
 
+  // The mobility of a model's joints alone, whatever its drivers: for a model being built, whose
+  // drivers do not match its degrees of freedom yet (the web app's drawing tools show it). Throws
+  // ModelError for an invalid model, as the constructor does.
+  static MobilityReport joint_mobility(Model model);
+
   const Model& model() const { return model_; }
   int coordinate_count() const { return n_; }
   int row_count() const { return row_count_; }
@@ -85,6 +90,7 @@ class Mechanism {
   bool overdetermined() const { return row_count() > n_; }
 
  private:
+  Mechanism(Model model, bool check_drivers);
   void build_rows(Equations& equations);
   void build_pattern(Equations& equations) const;
   void analyse_mobility();
@@ -93,6 +99,7 @@ class Mechanism {
   std::string mobility_counts(bool at_least) const;
 
   Model model_;
+  bool check_drivers_ = true;  // false: joint_mobility's, which counts without the drivers' verdict
   int n_ = 0;
   int constraint_rows_ = 0;
   double length_scale_ = 1.0;

@@ -6,6 +6,7 @@
 import { t } from './i18n.js';
 import { setIn, deleteIn, roundTo } from './yaml-text.js';
 import { applyEdit, modelData, undoEdit, redoEdit, freshName, editContext } from './model-edit.js';
+import { addSliderBlock } from './build-model.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
 const tool = { name: 'select', snap: false, first: null, selected: null };
@@ -24,6 +25,7 @@ const tools = [
   { id: 'point', icon: '•', key: 'toolPoint' },
   { id: 'link', icon: '╱', key: 'toolLink' },
   { id: 'ground', icon: '⊥', key: 'toolGround' },
+  { id: 'slider', icon: '▭', key: 'toolSlider' },
 ];
 
 function button(id, icon, key, onClick) {
@@ -256,6 +258,19 @@ function linkTap(end) {
   });
 }
 
+// The slider tool: the first tap picks the sliding point, the second gives the guide's direction
+// from it; build-model.js makes the block body and its ground guide in one edit, or says why not.
+function sliderTap(pt, at) {
+  if (!tool.first) {
+    if (pt) { tool.first = pt; redrawOverlay(); } else editContext().status(t('sliderTapPoint'), true);
+    return;
+  }
+  const point = tool.first;
+  tool.first = null;
+  redrawOverlay();
+  addSliderBlock(point, at);
+}
+
 // `target`: what was under the pointer when it went down (the pointer is captured since).
 function tap(e, target) {
   const pt = pointAt(target);
@@ -269,6 +284,8 @@ function tap(e, target) {
     if (pt) toggleGround(pt); else addPoint(modelPoint(e.clientX, e.clientY), true);
   } else if (tool.name === 'link') {
     linkTap(pt ?? modelPoint(e.clientX, e.clientY));
+  } else if (tool.name === 'slider') {
+    sliderTap(pt, modelPoint(e.clientX, e.clientY));
   }
 }
 

@@ -19,6 +19,7 @@ import { setIn } from './yaml-text.js';
 import './i18n-motion.js';
 import './i18n-files.js';
 import './i18n-forces.js';
+import './i18n-build.js';
 import { initSynthesis } from './synthesis.js';
 import { initOverlays, overlayView, setOverlayView } from './overlays.js';
 import { initStressMap } from './stress-map.js';
@@ -28,6 +29,7 @@ import { startEngine, serverOnly } from './engine.js';
 import { initJobBar } from './job-bar.js';
 import { initSimulate, simulationBody, simulationRate, simulationStatus } from './simulate.js';
 import { pngFromSvg, gifFromScene } from './pictures.js';
+import { initBuild, outlineOf, sketchSvg, buildingText } from './build-model.js';
 
 const $ = (s) => document.querySelector(s);
 const state = {
@@ -101,6 +103,7 @@ function unreached(e) { return e.info?.kind === 'offline'; }
 // busy), on the stage and in the status line, so no one takes them for the text's.
 function showStale(e) {
   const box = $('#stale');
+  box.classList.remove('building');
   if (!e || !state.solve) {
     box.hidden = true;
     document.body.classList.remove('results-stale');
@@ -181,6 +184,7 @@ function setText(text) {
   quiet = false;
   clearTimeout(timer);
   document.body.dataset.opened = String(++opens);
+  state.justOpened = true;
   state.nameWhenOpened = undefined;  // the model's own name, once analysed (slug())
   document.dispatchEvent(new Event('nbar:opened'));
   return analyse();
@@ -230,6 +234,10 @@ async function analyse() {
     state.sceneSize = size;
     state.solveText = solveText;
     state.lastOk = text;
+    state.sketch = null;
+    state.joints = check.joints ?? [];
+    state.drawnUnit = check.units?.length;
+    document.body.classList.remove('sketching');
     if (state.nameWhenOpened === undefined) state.nameWhenOpened = solve.model ?? '';
     showProblem(null);
     showStale(null);
@@ -245,18 +253,55 @@ async function analyse() {
     if (!state.simulation) addDynamics(text, seq);
   } catch (e) {
     if (seq !== state.seq) return;
+    // A model the core can read but not solve yet (one being built) is drawn as it is written,
+    // with its mobility: never the last model that solved, dimmed, under the new one.
+    const outline = retryable(e) ? null : await outlineOf(text);
+    if (seq !== state.seq) return;
+    state.joints = outline?.joints ?? [];
     showProblem(e.info ?? { message: e.message });
     const where = e.info?.line ? t('errorAt', e.info.line, e.info.column ?? 1) : '';
     status(`${t('failed')}: ${where}${e.message}`, true);
-    showStale(e);
+    if (outline) showSketch(outline, text);
+    else showStale(e);
     // For want of the server: analysed again by itself when it answers, unless edited since.
     if (unreached(e)) whenServerBack(() => { if (seq === state.seq) analyse(); });
     document.dispatchEvent(new CustomEvent('nbar:analysed', { detail: { error: e.info ?? { message: e.message } } }));
   } finally {
     // The text on screen is analysed and drawn (tests wait for this rather than for a title,
     // which a model opened again over an edited copy of itself already shows).
-    if (seq === state.seq) delete document.body.dataset.busy;
+    if (seq === state.seq) { delete document.body.dataset.busy; state.justOpened = false; }
   }
+}
+
+// A model being built, drawn from the core's outline in the view the drawing had (so that a point
+// about to be tapped stays under the finger), its mobility on the drawing and in the status.
+function showSketch(outline, text) {
+  const svg = $('#drawing svg');
+  const b = svg?.viewBox.baseVal;
+  const r = $('#drawing').getBoundingClientRect();
+  const aspect = r.width > 50 && r.height > 50 ? r.height / r.width : 0.7;
+  const sameUnit = svg && (svg.dataset.unit ?? state.drawnUnit) === outline.units.length;
+  // A model just opened (New → Empty model) starts from its own view, not the last model's.
+  const previous = b && sameUnit && !state.justOpened ? { x: b.x, y: b.y, w: b.width, h: b.height } : null;
+  const sketch = sketchSvg(outline, previous, aspect);
+  state.sketch = { ...outline, text };
+  state.drawnUnit = outline.units.length;
+  const points = outline.points.map((p) => p.name);
+  state.geometry = { points, ground: new Set(outline.points.filter((p) => p.ground).map((p) => p.name)), bodies: outline.bodies, scale: sketch.scale };
+  $('#drawing').innerHTML = sketch.svg;
+  document.body.classList.add('sketching');
+  setTitle(outline.model);
+  const note = buildingText(outline);
+  const box = $('#stale');
+  const label = box.querySelector('span');
+  label.textContent = note;
+  label.title = note;
+  box.querySelector('button').hidden = true;
+  box.classList.add('building');
+  box.hidden = false;
+  document.body.classList.toggle('results-stale', !!state.solve);
+  $('#retry').hidden = true;
+  status(note, !!(outline.problem || outline.immobile));
 }
 
 // The sweep's table and its drawing. The answer's text is kept as the server wrote it: the JSON
@@ -322,7 +367,7 @@ let resizeTimer = 0;
 function onDrawingResized() {
   const [w, h] = sceneSize();
   const old = state.sceneSize;
-  if (!old || !state.scene || (Math.abs(w - old[0]) < 0.25 * old[0] && Math.abs(h - old[1]) < 0.25 * old[1])) return;
+  if (!old || !state.scene || state.sketch || (Math.abs(w - old[0]) < 0.25 * old[0] && Math.abs(h - old[1]) < 0.25 * old[1])) return;
   clearTimeout(resizeTimer);
   resizeTimer = setTimeout(async () => {
     const seq = state.seq;
@@ -418,7 +463,7 @@ function setFrame(i) {
   state.frame = ((Math.round(i) % n) + n) % n;
   const row = solve.rows[state.frame];
   const svg = document.querySelector('#drawing svg');
-  if (svg && state.scene?.steps.length === n) {
+  if (svg && !svg.dataset.sketch && state.scene?.steps.length === n) {
     poseDrawing(svg, state.scene, state.frame);
     svg.querySelector('.handles').innerHTML = handlesSvg(state.geometry, solve, row);
   }
@@ -454,7 +499,7 @@ function svgPoint(e) {
 }
 function startDrag(e) {
   const c = e.target.closest('circle[data-point]');
-  if (!c || !state.solve) return;
+  if (!c || !state.solve || state.sketch) return;
   e.preventDefault();
   play(false);
   if (state.frame !== 0) {
@@ -679,6 +724,14 @@ async function openExample(name) {
   state.current = name;
   await setText(text);
   return true;
+}
+
+// A new model from its text (New → empty): named "new-model" for downloads until it has a name.
+async function newModel(text) {
+  for (const b of document.querySelectorAll('[data-example]')) b.classList.remove('current');
+  state.current = 'new-model';
+  showTab('editor');
+  await setText(text);
 }
 
 // ------------------------------------------------------------------------------ opening files
@@ -945,7 +998,8 @@ async function start() {
   new ResizeObserver(resizePlot).observe($('#plot'));
   new ResizeObserver(onDrawingResized).observe($('#drawing'));
   initFiles();
-  initModelEdit({ editor, state, status, showTab, setFrame, analyse: () => { clearTimeout(timer); return analyse(); } });
+  initModelEdit({ editor, state, status, showTab, setFrame, api, newModel, analyse: () => { clearTimeout(timer); return analyse(); } });
+  initBuild();
   initCanvasTools(showBody);
   initTables();
   showTab('gallery');

@@ -4,7 +4,7 @@
 // history, so typed and structured edits undo in the order they were made.
 import { undo, redo, isolateHistory } from '@codemirror/commands';
 import { t } from './i18n.js';
-import { readModel } from './yaml-text.js';
+import { readModel, setIn } from './yaml-text.js';
 
 let ctx = null;
 
@@ -36,6 +36,7 @@ export function applyEdit(change) {
     return false;
   }
   if (after === before) return false;
+  after = withUnits(after);
   let a = 0;
   while (a < before.length && a < after.length && before[a] === after[a]) a++;
   let b = 0;
@@ -47,6 +48,19 @@ export function applyEdit(change) {
   });
   ctx.analyse();
   return true;
+}
+
+// Every model the tools write says its units: a text without `units:` gets the unit of the
+// drawing on screen (what its scale bar says; mm when nothing is drawn), so that points tapped on
+// a drawing in mm are never read as metres, the reader's default.
+function withUnits(text) {
+  const m = readModel(text);
+  if (!m || typeof m !== 'object' || Array.isArray(m) || m.units !== undefined) return text;
+  try {
+    return setIn(text, ['units'], { length: ctx.state.drawnUnit ?? 'mm', angle: 'deg' });
+  } catch {
+    return text;
+  }
 }
 
 export function undoEdit() { if (undo(ctx.editor)) ctx.analyse(); }

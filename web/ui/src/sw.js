@@ -13,7 +13,7 @@
 const VERSION = '@VERSION@';
 const SHELL = ['@SHELL@'];
 const CACHE = `nbar-app-${VERSION}`;
-const KEPT_POSTS = ['/api/check', '/api/solve', '/api/stress', '/api/explain', '/api/synth/', '/api/simulate'];
+const KEPT_POSTS = ['/api/check', '/api/outline', '/api/solve', '/api/stress', '/api/explain', '/api/synth/', '/api/simulate'];
 const MAX_POSTS = 60;
 // Asked afresh at every move of the pointer over the stress map: kept, they would push the
 // model's own answers out of the MAX_POSTS kept.

@@ -6,6 +6,7 @@ import { t } from './i18n.js';
 import { setIn, deleteIn, parseModel, renamePoint, deletePoint } from './yaml-text.js';
 import { applyEdit, modelText, editContext } from './model-edit.js';
 import { selectBody } from './canvas-tools.js';
+import { addSliderOn } from './build-model.js';
 
 const $ = (s) => document.querySelector(s);
 const builtInMaterials = ['steel', 'stainless-steel', 'aluminium', 'brass', 'cast-iron', 'titanium', 'abs', 'acrylic', 'nylon'];
@@ -104,7 +105,7 @@ function removeButton(path, label) {
 }
 // A <select> of names for an adder form.
 function picker(role, names, label, chosen = names[0]) {
-  return `<label class="add-field"><small>${esc(label)}</small><select data-add="${role}" aria-label="${esc(label)}">${names.map((n) => `<option value="${esc(n)}"${n === chosen ? ' selected' : ''}>${esc(n)}</option>`).join('')}</select></label>`;
+  return `<label class="add-field"><small>${esc(label)}</small><select data-add="${role}" aria-label="${esc(label)}">${names.map((n) => `<option value="${esc(n)}"${n === chosen ? ' selected' : ''}>${esc(n || t('newBlock'))}</option>`).join('')}</select></label>`;
 }
 function adder(kind, parts, label) {
   return `<div class="adder" data-adder="${kind}">${parts.join('')}<button type="button" data-add-go="${kind}">${esc(label)}</button></div>`;
@@ -142,8 +143,9 @@ function bodiesSection(m) {
 // Revolute joints are implicit (bodies sharing a point), listed from the server's check; sliders
 // and slots are written in the model and edited here.
 function jointsSection(m) {
-  const check = editContext().state.check;
-  const rows = (check?.joints ?? []).filter((j) => j.startsWith('revolute')).map((j) => `<tr><td colspan="4" class="note">${esc(j)}</td></tr>`);
+  // The joints of the text on screen (the check's, or while it cannot be solved the outline's):
+  // never the last model that solved.
+  const rows = (editContext().state.joints ?? []).filter((j) => j.startsWith('revolute')).map((j) => `<tr><td colspan="4" class="note">${esc(j)}</td></tr>`);
   for (const kind of ['sliders', 'slots']) {
     (Array.isArray(m[kind]) ? m[kind] : []).forEach((s, i) => {
       if (!isObj(s)) return;
@@ -154,8 +156,8 @@ function jointsSection(m) {
   }
   // A new slider: a body, its sliding point, and the two points of its guide.
   const pts = pointNames(m); const bs = bodyNames(m);
-  const add = pts.length >= 3 && bs.length ? adder('slider', [
-    picker('body', bs, t('body'), bs.at(-1)), picker('point', pts, t('point'), pts.at(-1)),
+  const add = pts.length >= 3 ? adder('slider', [
+    picker('body', ['', ...bs], t('body'), ''), picker('point', pts, t('point'), pts.at(-1)),
     picker('along0', pts, `${t('along')} 1`, pts[0]), picker('along1', pts, `${t('along')} 2`, pts[1]),
   ], t('addSlider')) : '';
   return section(t('joints'), [t('joint'), t('point'), t('along'), ''], rows, t('none'), add);
@@ -352,8 +354,17 @@ function addEntry(form) {
     driver: () => ['drivers', { angle: pick('body'), from: 0, to: 360, speed: '60 rpm' }],
     force: () => ['forces', { point: pick('point'), force: [0, -10] }],
     torque: () => ['torques', { body: pick('body'), torque: 1 }],
-    slider: () => ['sliders', { body: pick('body'), point: pick('point'), along: [pick('along0'), pick('along1')] }],
   }[kind];
+  if (kind === 'slider') {
+    // A refusal (the core's reason) is said beside the form too: on a phone the status is far.
+    addSliderOn(pick('body') || null, pick('point'), [pick('along0'), pick('along1')]).then((result) => {
+      if (typeof result !== 'string') return;
+      lastRefusal = result;
+      lastRefusalAt = '[data-add-go="slider"]';
+      renderTables();
+    });
+    return;
+  }
   if (!entry) return;
   const [key, value] = entry();
   applyEdit((text) => setIn(text, [key, count(key)], value));

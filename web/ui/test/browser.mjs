@@ -13,6 +13,7 @@ import * as motion from './motion.mjs';
 import * as files from './files.mjs';
 import * as draw from './draw.mjs';
 import * as review from './review.mjs';
+import * as build from './build.mjs';
 import * as femap from './femap.mjs';
 import * as simulate from './simulate.mjs';
 import * as forces from './forces.mjs';
@@ -25,13 +26,16 @@ const out = arg('--out', 'build/web-screenshots');
 // `--only simulate`: only simulate.mjs's (Simulate mode against `nbar simulate`), at both;
 // `--only forces`: only forces.mjs's (dynamics columns, stress table, Explain at the pose, handles
 // over arrows, a drag at a later pose, zoom, the phone's bottom edge), at both: ctest's
-// Web.Forces, apart from the full run so that Web.Browser stays inside its watchdog.
+// Web.Forces, apart from the full run so that Web.Browser stays inside its watchdog;
+// `--only build`: build.mjs's (a slider-crank built from an empty model by taps), at both: ctest's
+// Web.BrowserBuild, apart from the full run as Web.Forces is.
 const only = arg('--only', '');
 const onlyDraw = only === 'draw';
 const onlyReview = only === 'review';
 const onlyFemap = only === 'femap';
 const onlySimulate = only === 'simulate';
 const onlyForces = only === 'forces';
+const onlyBuild = only === 'build';
 const examples = arg('--examples', '../../examples');
 
 const browser = await launchChromium();
@@ -184,6 +188,14 @@ async function reviewAt(tag, viewport, mobile) {
 async function femapAt(tag, viewport, mobile) {
   const { context, page } = await open(tag, viewport, mobile);
   await femap.run(page, { mobile, tag, base, nbar, shot, click, openExample });
+  await context.close();
+}
+
+// A slider-crank built from an empty model by taps alone (build.mjs) at a laptop's and a phone's
+// viewport.
+async function buildAt(tag, viewport, mobile) {
+  const { context, page } = await open(tag, viewport, mobile);
+  await build.run(page, { mobile, tag, shot, click, openExample });
   await context.close();
 }
 
@@ -357,6 +369,9 @@ try {
   if (onlyReview) {
     await reviewAt('desktop', { width: 1280, height: 800 }, false);
     await reviewAt('phone', { width: 390, height: 844 }, true);
+  } else if (onlyBuild) {
+    await buildAt('laptop', { width: 1366, height: 768 }, false);
+    await buildAt('phone', { width: 390, height: 844 }, true);
   } else if (onlySimulate) {
     await simulateAt('laptop', { width: 1366, height: 768 }, false);
     await simulateAt('phone', { width: 390, height: 844 }, true);

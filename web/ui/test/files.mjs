@@ -163,15 +163,18 @@ export async function run(page, ctx) {
   // Deleting the slider's point is refused too: the slider uses it.
   await press('#model-tables [data-delete-point="Pin"]');
   await page.waitForFunction(() => /Pin is used by sliders\.point/.test(document.querySelector('#model-problem')?.textContent ?? ''));
-  // A slider added in the joints table: the rod's end A sliding on the guide (then undone).
+  // A slider added in the joints table on the crank (its end A on the guide) would leave the
+  // slider-crank nothing free to move: refused with the core's reason, the text untouched.
   await ctx.shot(page, `${tag}-files-4-renamed`);
   await page.selectOption('[data-adder="slider"] [data-add="body"]', 'crank');
   await page.selectOption('[data-adder="slider"] [data-add="point"]', 'A');
   await page.selectOption('[data-adder="slider"] [data-add="along0"]', 'G1');
   await page.selectOption('[data-adder="slider"] [data-add="along1"]', 'Y2');
+  const beforeSlider = await yamlText(page);
   await press('[data-add-go="slider"]');
-  await page.waitForFunction(() => /- \{body: crank, point: A, along: \[G1, Y2\]\}/.test(document.querySelector('#editor .cm-content').innerText));
-  await settled(page);
+  await page.waitForSelector('[data-adder="slider"] .cell-error');
+  assert.match(await page.locator('[data-adder="slider"] .cell-error').textContent(), /^Cannot add this slider: the joints leave no freedom/);
+  assert.equal(await yamlText(page), beforeSlider);
 
   // The new strings in Spanish too.
   await page.selectOption('#lang', 'es');
