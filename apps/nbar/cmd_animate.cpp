@@ -115,9 +115,9 @@ int run_animate(const AnimateCommand& command) {
 
 }  // namespace
 
-Command add_animate_command(CLI::App& app) {
+Command add_animate_command(CommandLine& app) {
   auto command = std::make_shared<AnimateCommand>();
-  CLI::App* sub =
+  Subcommand* sub =
       app.add_subcommand("animate",
                          "Animate the sweep: an animated GIF, an animated SVG, a web page with play, pause and a "
                          "slider, or an MP4 video (with ffmpeg); the format is the output file's extension");

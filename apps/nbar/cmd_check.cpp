@@ -36,12 +36,12 @@ int run_check(const CheckCommand& command) {
 
 }  // namespace
 
-Command add_check_command(CLI::App& app) {
+Command add_check_command(CommandLine& app) {
   auto command = std::make_shared<CheckCommand>();
-  CLI::App* sub = app.add_subcommand("check",
-                                     "Summarise a model: bodies, joints, degrees of freedom, redundant "
-                                     "constraints, drivers, assembly at the start, Grashof class of "
-                                     "every four-bar loop");
+  Subcommand* sub = app.add_subcommand("check",
+                                       "Summarise a model: bodies, joints, degrees of freedom, redundant "
+                                       "constraints, drivers, assembly at the start, Grashof class of "
+                                       "every four-bar loop");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   // check runs no sweep of the model's size (its law and cylinder checks sample a bounded
   // number of poses), but it says whether the sweep would be refused, at max_steps.

@@ -60,11 +60,11 @@ int run_draw(const DrawCommand& command) {
 
 }  // namespace
 
-Command add_draw_command(CLI::App& app) {
+Command add_draw_command(CommandLine& app) {
   auto command = std::make_shared<DrawCommand>();
-  CLI::App* sub = app.add_subcommand("draw",
-                                     "Draw the mechanism in one pose (SVG or PNG): bodies, joints, ground "
-                                     "pivots, sliders, slots, labels, paths of chosen points, scale bar");
+  Subcommand* sub = app.add_subcommand("draw",
+                                       "Draw the mechanism in one pose (SVG or PNG): bodies, joints, ground "
+                                       "pivots, sliders, slots, labels, paths of chosen points, scale bar");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   sub->add_option("-o,--output", command->output, "FILE.svg or FILE.png")->check(nbar::cli::output_file())->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::DrawRequest::rules());

@@ -49,11 +49,11 @@ int run_equilibrium(const EquilibriumCommand& command) {
 
 }  // namespace
 
-Command add_equilibrium_command(CLI::App& app) {
+Command add_equilibrium_command(CommandLine& app) {
   auto command = std::make_shared<EquilibriumCommand>();
-  CLI::App* sub = app.add_subcommand("equilibrium",
-                                     "Where the drivers marked free come to rest under the loads (statics): their "
-                                     "values, every point and body, the residual force and the stability");
+  Subcommand* sub = app.add_subcommand("equilibrium",
+                                       "Where the drivers marked free come to rest under the loads (statics): their "
+                                       "values, every point and body, the residual force and the stability");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::EquilibriumRequest::rules());
   command->flags->add({"format", "columns", "max_iterations"});

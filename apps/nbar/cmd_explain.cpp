@@ -99,12 +99,12 @@ int run_explain(const ExplainCommand& command) {
 
 }  // namespace
 
-Command add_explain_command(CLI::App& app) {
+Command add_explain_command(CommandLine& app) {
   auto command = std::make_shared<ExplainCommand>();
-  CLI::App* sub = app.add_subcommand("explain",
-                                     "The method step by step at one sample: Gruebler count, q, the "
-                                     "constraint equations and their Jacobian, Newton's iterations, the "
-                                     "velocity and acceleration systems, the instant centres");
+  Subcommand* sub = app.add_subcommand("explain",
+                                       "The method step by step at one sample: Gruebler count, q, the "
+                                       "constraint equations and their Jacobian, Newton's iterations, the "
+                                       "velocity and acceleration systems, the instant centres");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::ExplainRequest::rules());
   command->flags->add({"step", "steps", "max_steps", "format", "simulate", "at", "dt", "rtol", "at_toggle"});

@@ -39,11 +39,11 @@ int run_export(const ExportCommand& command) {
 
 }  // namespace
 
-Command add_export_command(CLI::App& app) {
+Command add_export_command(CommandLine& app) {
   auto command = std::make_shared<ExportCommand>();
-  CLI::App* sub = app.add_subcommand("export",
-                                     "Write the links' plates (outlines, arcs, holes) as a DXF drawing for "
-                                     "cutting, one layer per link, or as SVG");
+  Subcommand* sub = app.add_subcommand("export",
+                                       "Write the links' plates (outlines, arcs, holes) as a DXF drawing for "
+                                       "cutting, one layer per link, or as SVG");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   sub->add_option("--dxf", command->dxf, "FILE.dxf: AutoCAD R12 ASCII DXF, in the model's length unit");
   sub->add_option("--svg", command->svg, "FILE.svg: the same plates as SVG, one group per link, true size in mm");

@@ -83,11 +83,11 @@ int run_import(const ImportArgs& args) {
 
 }  // namespace
 
-Command add_import_command(CLI::App& app) {
+Command add_import_command(CommandLine& app) {
   auto args = std::make_shared<ImportArgs>();
-  CLI::App* sub = app.add_subcommand("import",
-                                     "A model skeleton from a sketch of several links (DXF, SVG or sketch "
-                                     "CSV): outlines become bodies, coinciding pin holes joints");
+  Subcommand* sub = app.add_subcommand("import",
+                                       "A model skeleton from a sketch of several links (DXF, SVG or sketch "
+                                       "CSV): outlines become bodies, coinciding pin holes joints");
   sub->add_option("SKETCH", args->sketch, "FILE.dxf, FILE.svg or FILE.csv")->required();
   sub->add_option("-o,--output", args->output, "the model file to write (default: standard output)")
       ->check(nbar::cli::output_file());

@@ -107,9 +107,9 @@ int run_plot(const PlotCommand& command) {
 
 }  // namespace
 
-Command add_plot_command(CLI::App& app) {
+Command add_plot_command(CommandLine& app) {
   auto command = std::make_shared<PlotCommand>();
-  CLI::App* sub =
+  Subcommand* sub =
       app.add_subcommand("plot",
                          "Plot result columns (angles, velocities, forces...) against a driver or any other column, "
                          "as SVG or PNG");

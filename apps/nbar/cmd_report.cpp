@@ -82,12 +82,12 @@ int run_report(const ReportCommand& command) {
 
 }  // namespace
 
-Command add_report_command(CLI::App& app) {
+Command add_report_command(CommandLine& app) {
   auto command = std::make_shared<ReportCommand>();
-  CLI::App* sub = app.add_subcommand("report",
-                                     "One self-contained HTML report: summary, animation, coupler paths, "
-                                     "angle/velocity/acceleration/jerk plots, and forces and stresses when "
-                                     "the model has masses, loads and shapes");
+  Subcommand* sub = app.add_subcommand("report",
+                                       "One self-contained HTML report: summary, animation, coupler paths, "
+                                       "angle/velocity/acceleration/jerk plots, and forces and stresses when "
+                                       "the model has masses, loads and shapes");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   sub->add_option("-o,--output", command->output, "FILE.html")->check(nbar::cli::output_file())->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::ReportRequest::rules());

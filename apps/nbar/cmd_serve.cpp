@@ -128,9 +128,9 @@ int run_serve(const ServeArgs& args) {
 
 }  // namespace
 
-Command add_serve_command(CLI::App& app) {
+Command add_serve_command(CommandLine& app) {
   auto args = std::make_shared<ServeArgs>();
-  CLI::App* sub = app.add_subcommand("serve", "Serve the web app and its JSON API (docs/web-api.md) on this machine");
+  Subcommand* sub = app.add_subcommand("serve", "Serve the web app and its JSON API (docs/web-api.md) on this machine");
   sub->add_option("--port", args->port, "TCP port (default 8080; 0 for any free port)")
       ->check(nbar::cli::in_range(0, 65535));
   sub->add_option("--host", args->host,

@@ -46,11 +46,12 @@ int run_simulate(const SimulateCommand& command) {
 
 }  // namespace
 
-Command add_simulate_command(CLI::App& app) {
+Command add_simulate_command(CommandLine& app) {
   auto command = std::make_shared<SimulateCommand>();
-  CLI::App* sub = app.add_subcommand("simulate",
-                                     "Let the mechanism move under its loads (forward dynamics), the drivers "
-                                     "marked free released: positions, velocities, accelerations and energies in time");
+  Subcommand* sub =
+      app.add_subcommand("simulate",
+                         "Let the mechanism move under its loads (forward dynamics), the drivers "
+                         "marked free released: positions, velocities, accelerations and energies in time");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::SimulateRequest::rules());
   command->flags->add({"to", "dt", "rtol", "max_steps", "format", "columns", "stop_when", "at_toggle"});

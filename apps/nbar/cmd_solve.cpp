@@ -76,11 +76,11 @@ int run_solve(const SolveCommand& command) {
 
 }  // namespace
 
-Command add_solve_command(CLI::App& app) {
+Command add_solve_command(CommandLine& app) {
   auto command = std::make_shared<SolveCommand>();
-  CLI::App* sub = app.add_subcommand("solve",
-                                     "Sweep the drivers and write positions, velocities, accelerations "
-                                     "and higher derivatives of every point and body");
+  Subcommand* sub = app.add_subcommand("solve",
+                                       "Sweep the drivers and write positions, velocities, accelerations "
+                                       "and higher derivatives of every point and body");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::SolveRequest::rules());
   command->flags->add({"steps", "max_steps", "at_limits", "cycles", "order", "format", "columns"});

@@ -92,11 +92,11 @@ int run_stress(const StressCommand& command) {
 
 }  // namespace
 
-Command add_stress_command(CLI::App& app) {
+Command add_stress_command(CommandLine& app) {
   auto command = std::make_shared<StressCommand>();
-  CLI::App* sub = app.add_subcommand("stress",
-                                     "Stresses in every link that has a shape: the largest von Mises "
-                                     "stress over the sweep, where and when, and the safety factor");
+  Subcommand* sub = app.add_subcommand("stress",
+                                       "Stresses in every link that has a shape: the largest von Mises "
+                                       "stress over the sweep, where and when, and the safety factor");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::StressRequest::rules());
   command->flags->add({"steps", "max_steps", "method", "sections", "mesh_size", "format"});

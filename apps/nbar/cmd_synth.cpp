@@ -210,16 +210,16 @@ int run_synth(const SynthArgs& args) {
 
 }  // namespace
 
-Command add_synth_command(CLI::App& app) {
+Command add_synth_command(CommandLine& app) {
   static SynthArgs args;
-  CLI::App* synth = app.add_subcommand(
+  Subcommand* synth = app.add_subcommand(
       "synth",
       "Synthesise four-bars from a task file: five-point and nine-point path generation, Burmester motion "
       "generation, function generation or a best fit through many path points; every real solution is checked for "
       "defects and ranked");
   synth->add_option("TASK", args.kind, "five-point, nine-point, burmester, function or path")
       ->required()
-      ->check(CLI::IsMember({"five-point", "nine-point", "burmester", "function", "path"}));
+      ->check(one_of({"five-point", "nine-point", "burmester", "function", "path"}));
   synth->add_option("FILE", args.file, "task file (YAML; see docs/synthesis.md), or the task options below");
   // Every method's options; one a method does not take is refused by its request.
   args.flags = std::make_unique<RequestFlags>(*synth, request::SynthesisRequest::rules(SynthesisKind::FivePoint));

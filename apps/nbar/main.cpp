@@ -2,12 +2,12 @@
 //
 // Exit codes: 0 success; 1 invalid model; 2 bad usage; 3 cannot assemble at the start;
 // 4 sweep stopped early (the rows solved so far are written).
-#include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "common.hpp"
@@ -16,7 +16,7 @@
 
 int main(int argc, char** argv) {
   using namespace nbar::cli;
-  CLI::App app{"nbar: analysis of planar linkages (n-bar mechanisms)"};
+  CommandLine app{"nbar: analysis of planar linkages (n-bar mechanisms)"};
   app.set_version_flag("--version", std::string("nbar ") + nbar::kVersion);
   app.require_subcommand(1);
   app.footer(
@@ -31,21 +31,17 @@ int main(int argc, char** argv) {
 
   // A first argument that is neither an option nor a command: say so, with the nearest command
   // (CLI11 alone says only that a subcommand is required).
-  std::vector<std::string> names;
-  for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+  const std::vector<std::string> names = app.subcommand_names();
   if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end()) {
     const auto close = nbar::io::yaml::suggestion(argv[1], names);
     std::cerr << "error: '" << argv[1] << "' is not an nbar command (the commands are: " << join(names) << ")"
               << (close ? "; did you mean '" + *close + "'?" : std::string()) << "\n";
     return kBadUsage;
   }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
+  if (const std::optional<int> code = app.parse(argc, argv)) {
     // --help and --version write to standard output: a full disk or a closed pipe is a failure
     // to report, as every command reports it.
-    if (code == 0) return Output().finish() ? kOk : kBadUsage;
+    if (*code == 0) return Output().finish() ? kOk : kBadUsage;
     return kBadUsage;
   }
   // Each command reports what it expects; anything else still ends in a message and an exit

@@ -50,7 +50,7 @@ RequestFlags& RequestFlags::add(std::initializer_list<std::string_view> keys) {
   return *this;
 }
 
-CLI::Option* RequestFlags::option(std::string_view key) const {
+Option* RequestFlags::option(std::string_view key) const {
   const auto it = given_.find(key);
   return it == given_.end() ? nullptr : it->second->option;
 }

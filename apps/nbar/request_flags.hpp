@@ -4,7 +4,7 @@
 // the spelling and the format of its messages.
 #pragma once
 
-#include <CLI/CLI.hpp>
+#include "command_line.hpp"
 
 #include <initializer_list>
 #include <iostream>
@@ -23,24 +23,24 @@ inline std::string spell_flag(std::string_view key) { return request::flag_name(
 
 class RequestFlags {
  public:
-  RequestFlags(CLI::App& command, const std::vector<request::OptionRule>& rules) : command_(command), rules_(rules) {}
+  RequestFlags(Subcommand& command, const std::vector<request::OptionRule>& rules) : command_(command), rules_(rules) {}
 
   // Adds the options of these keys, in this order (the order of --help).
   RequestFlags& add(std::initializer_list<std::string_view> keys);
-  CLI::Option* option(std::string_view key) const;
+  Option* option(std::string_view key) const;
 
   // What was given on the command line, for the request to read.
   request::Options options() const;
 
  private:
   struct Given {
-    CLI::Option* option = nullptr;
+    Option* option = nullptr;
     request::OptionKind kind = request::OptionKind::Text;
     std::string text;
     std::vector<std::string> list;
     bool on = false;
   };
-  CLI::App& command_;
+  Subcommand& command_;
   const std::vector<request::OptionRule>& rules_;
   std::map<std::string, std::unique_ptr<Given>, std::less<>> given_;
 };
