@@ -16,11 +16,6 @@ struct DrawCommand {
   std::unique_ptr<RequestFlags> flags;
 };
 
-std::string extension(const std::string& path) {
-  const auto dot = path.rfind('.');
-  return dot == std::string::npos ? "" : path.substr(dot + 1);
-}
-
 int run_draw(const DrawCommand& command) {
   const std::string format = extension(command.output);
   if (format != "svg" && format != "png") {

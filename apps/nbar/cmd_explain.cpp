@@ -22,11 +22,6 @@ struct ExplainCommand {
   std::unique_ptr<RequestFlags> flags;
 };
 
-std::string extension(const std::string& path) {
-  const auto dot = path.rfind('.');
-  return dot == std::string::npos ? "" : path.substr(dot + 1);
-}
-
 // The pose with its finite instant centres marked.
 int draw_centres(const std::string& path, const Explanation& ex) {
   int off_picture = 0;

@@ -47,6 +47,12 @@ inline int fail(const std::string& model_path, const Error& e) {
   return exit_code(e.kind());
 }
 
+// The text after a path's last dot ("svg" for "gear.svg"), which picks a picture's format.
+inline std::string extension(const std::string& path) {
+  const auto dot = path.rfind('.');
+  return dot == std::string::npos ? "" : path.substr(dot + 1);
+}
+
 // A model file, compiled; errors are reported at their place in the file.
 struct Loaded {
   nbar::io::LoadedModel file;

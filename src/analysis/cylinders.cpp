@@ -27,7 +27,7 @@ double along_fraction(const std::vector<Eigen::Vector2d>& p, const std::array<in
   return axis.dot(p[point] - p[along[0]]) / axis.squaredNorm();
 }
 
-std::string length_text(const Model& m, double metres) {
+std::string short_length_text(const Model& m, double metres) {
   return fmt::format("{:.4g} {}", metres / m.units.length_scale, m.units.length);
 }
 
@@ -87,8 +87,8 @@ std::vector<Warning> cylinder_warnings(const Mechanism& mech, const SweepResult&
            fmt::format("cylinder {}/{}: the piston end {} leaves the barrel {}-{} ({} long) at step {}{} and gets "
                        "{} out of it: make the barrel or the rod longer, or the stroke shorter",
                        m.bodies[barrel].name, rod.name, m.points[p].name, m.points[s.along[0]].name,
-                       m.points[s.along[1]].name, length_text(m, barrel_length), first_out, where,
-                       length_text(m, farthest * barrel_length))});
+                       m.points[s.along[1]].name, short_length_text(m, barrel_length), first_out, where,
+                       short_length_text(m, farthest * barrel_length))});
     }
   }
   return out;

@@ -12,6 +12,7 @@
 #include "explain_expr.hpp"
 #include "kinematics/constraints.hpp"
 #include "kinematics/rocking.hpp"
+#include "model/plane_vectors.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/kinematics/position.hpp"
 #include "nbar/kinematics/sweep.hpp"
@@ -218,7 +219,6 @@ class RowWriter {
   std::map<int, std::vector<E>> derivatives_;  // of the row being written, by column
 };
 
-Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // A point's position and velocity in model units, from q and qdot (ground points: drawn, at rest).

@@ -20,7 +20,7 @@ using explain_detail::tex_escape;
 
 constexpr int kWideMatrix = 8;  // columns beyond which Markdown and LaTeX list non-zeros instead
 
-double max_abs(const Eigen::MatrixXd& m) { return m.size() ? m.cwiseAbs().maxCoeff() : 0.0; }
+double max_abs_entry(const Eigen::MatrixXd& m) { return m.size() ? m.cwiseAbs().maxCoeff() : 0.0; }
 
 // Rows of cells in aligned columns: the first left-aligned, the others right-aligned.
 std::string aligned(const std::vector<std::vector<std::string>>& rows, const std::string& indent = "  ") {
@@ -376,7 +376,7 @@ class Renderer {
 
   // A matrix: aligned in text; a bmatrix, or its non-zero entries when wide, in Markdown and LaTeX.
   void matrix(const Eigen::MatrixXd& a, const std::string& name_plain, const std::string& name_latex) {
-    const double tol = 1e-12 * std::max(1.0, max_abs(a));
+    const double tol = 1e-12 * std::max(1.0, max_abs_entry(a));
     if (text()) {
       std::vector<std::vector<std::string>> rows(1, std::vector<std::string>{""});
       for (std::size_t c = 0; c < sym_.size(); ++c) rows[0].push_back(sym_[c]);
@@ -436,7 +436,7 @@ class Renderer {
               "\\Phi_{\\mathbf{q}}\\,\\ddot{\\mathbf{q}} = -(\\Phi_{\\mathbf{q}}\\dot{\\mathbf{q}})_{\\mathbf{q}}\\,"
               "\\dot{\\mathbf{q}} - 2\\,\\Phi_{\\mathbf{q}t}\\,\\dot{\\mathbf{q}} - \\Phi_{tt}");
     }
-    const double scale = std::max(max_abs(s.solution), max_abs(s.rhs));
+    const double scale = std::max(max_abs_entry(s.solution), max_abs_entry(s.rhs));
     const double tol = 1e-10 * scale;
     const std::string rhs_name = acceleration ? "right-hand side" : "-Phi_t";
     std::vector<std::vector<std::string>> rhs_rows;

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/plane_vectors.hpp"
 #include "nbar/kinematics/continuation.hpp"
 #include "nbar/kinematics/loop_closure.hpp"
 #include "nbar/kinematics/loops.hpp"
@@ -21,8 +22,7 @@ namespace {
 
 constexpr double kTurn = 2 * std::numbers::pi;
 
-double angle_of(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double polar_angle(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
 
 bool has_point(const Body& b, int p) { return std::find(b.points.begin(), b.points.end(), p) != b.points.end(); }
 
@@ -39,7 +39,8 @@ CrankMeasure crank_measure(const Model& m, int crank, int pivot, int pin) {
   const Body& body = m.bodies[crank];
   const auto position = [&](int p) { return m.points[p].position; };
   c.offset = std::remainder(
-      angle_of(position(body.points[1]) - position(body.points[0])) - angle_of(position(pin) - position(pivot)), kTurn);
+      polar_angle(position(body.points[1]) - position(body.points[0])) - polar_angle(position(pin) - position(pivot)),
+      kTurn);
   for (std::size_t d = 0; d < m.drivers.size(); ++d) {
     const Driver& drv = m.drivers[d];
     if (drv.kind != DriverKind::Angle || drv.body != crank || drv.relative_to >= 0) continue;
@@ -119,8 +120,8 @@ void add_slider_crank(const Model& m, const Slider& s, std::vector<SliderCrankSu
       }
       const double far = std::sqrt((l + cr) * (l + cr) - e * e), near = std::sqrt((l - cr) * (l - cr) - e * e);
       f.stroke = far - near;
-      f.outer_dead_centre = input_angle(measure, angle_of(foot + side * far * u - o));
-      f.inner_dead_centre = input_angle(measure, angle_of(o - (foot + side * near * u)));
+      f.outer_dead_centre = input_angle(measure, polar_angle(foot + side * far * u - o));
+      f.inner_dead_centre = input_angle(measure, polar_angle(o - (foot + side * near * u)));
       f.outstroke_turn = turn_between(measure, f.inner_dead_centre, f.outer_dead_centre);
       f.return_turn = kTurn - f.outstroke_turn;
       f.time_ratio = std::max(f.outstroke_turn, f.return_turn) / std::min(f.outstroke_turn, f.return_turn);
@@ -169,7 +170,7 @@ void add_quick_return(const Model& m, int pin, std::array<int, 2> along, int blo
       continue;
     }
     // Limits: the crank perpendicular to the arm, its pin at acos(r / d) either side of o2 -> o4.
-    const double half = std::acos(r / d), towards = angle_of(o4 - o2);
+    const double half = std::acos(r / d), towards = polar_angle(o4 - o2);
     f.swing = 2 * std::asin(r / d);
     f.limit_from = input_angle(measure, towards - half);
     f.limit_to = input_angle(measure, towards + half);
@@ -228,14 +229,14 @@ void add_rocker_swing(const Mechanism& mech, const std::vector<Eigen::Vector2d>&
   // would not be the motion's. Only a crank turned by its own driver has them.
   if (crank.driver < 0) return;
   // The rocker's angle as its column has it, on the start's side of the turn.
-  const double rocker_now = angle_of(p[output.points[1]] - p[output.points[0]]);
-  const double offset = rocker_now - angle_of(p[loop.b] - p[loop.o4]);
+  const double rocker_now = polar_angle(p[output.points[1]] - p[output.points[0]]);
+  const double offset = rocker_now - polar_angle(p[loop.b] - p[loop.o4]);
   const auto rocker_angle = [&](const Eigen::Vector2d& pin) {
-    return rocker_now + std::remainder(angle_of(pin - p[loop.o4]) + offset - rocker_now, kTurn);
+    return rocker_now + std::remainder(polar_angle(pin - p[loop.o4]) + offset - rocker_now, kTurn);
   };
   RockerSwing r;
-  r.crank_stretched = input_angle(crank, angle_of(stretched->first - p[loop.o2]));
-  r.crank_folded = input_angle(crank, angle_of(folded->first - p[loop.o2]));
+  r.crank_stretched = input_angle(crank, polar_angle(stretched->first - p[loop.o2]));
+  r.crank_folded = input_angle(crank, polar_angle(folded->first - p[loop.o2]));
   r.rocker_stretched = rocker_angle(stretched->second);
   r.rocker_folded = rocker_angle(folded->second);
   r.swing = std::abs(r.rocker_stretched - r.rocker_folded);

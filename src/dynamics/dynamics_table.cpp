@@ -8,7 +8,9 @@ namespace nbar {
 
 namespace {
 
-std::string link_name(const Model& m, int link) { return link < 0 ? std::string("ground") : m.bodies[link].name; }
+std::string link_or_ground_name(const Model& m, int link) {
+  return link < 0 ? std::string("ground") : m.bodies[link].name;
+}
 
 }  // namespace
 
@@ -25,9 +27,10 @@ std::vector<JointForceColumn> joint_force_columns(const InverseDynamics& dynamic
       forces.push_back({name, k, receiver});
     };
     if (end - i == 2) {
-      add_force(i + 1, point + "." + link_name(m, links[i].link) + ">" + link_name(m, links[i + 1].link));
+      add_force(i + 1,
+                point + "." + link_or_ground_name(m, links[i].link) + ">" + link_or_ground_name(m, links[i + 1].link));
     } else {
-      for (std::size_t k = i; k < end; ++k) add_force(k, point + ".pin>" + link_name(m, links[k].link));
+      for (std::size_t k = i; k < end; ++k) add_force(k, point + ".pin>" + link_or_ground_name(m, links[k].link));
     }
     i = end;
   }

@@ -11,14 +11,12 @@
 #include <stdexcept>
 
 #include "model/linear_algebra.hpp"
+#include "model/plane_vectors.hpp"
 #include "nbar/model/diagnostics.hpp"
 
 namespace nbar {
 
 namespace {
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 
 // The body (other than `except`) that owns both points, or -1 for the ground.
 int owner_of_pair(const Model& m, int p, int q, int except) {

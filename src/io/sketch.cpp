@@ -316,14 +316,14 @@ Sketch finish_sketch(StrokeSet set, const std::string& file, int last_line, cons
 
 namespace {
 
-std::string_view trimmed(std::string_view s) {
+std::string_view trim_whitespace(std::string_view s) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
   return s;
 }
 
 bool to_number(std::string_view text, double& value) {
-  text = trimmed(text);
+  text = trim_whitespace(text);
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
   const auto [end, ec] = parse_double(text.data(), text.data() + text.size(), value);
   return ec == std::errc() && end == text.data() + text.size() && std::isfinite(value);
@@ -371,12 +371,12 @@ StrokeSet read_csv_strokes(const std::string& text, const std::string& file, int
   while (start < text.size()) {
     std::size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
-    const std::string_view row = trimmed(std::string_view(text).substr(start, end - start));
+    const std::string_view row = trim_whitespace(std::string_view(text).substr(start, end - start));
     start = end + 1;
     ++line;
     if (line == 1 || row.empty()) continue;  // the first line is a header, ignored
     if (row.find("New") != std::string_view::npos) {
-      entities.push_back({std::string(trimmed(row.substr(row.find("New") + 3))), line, {}});
+      entities.push_back({std::string(trim_whitespace(row.substr(row.find("New") + 3))), line, {}});
       continue;
     }
     if (row.find("Point") != std::string_view::npos) {

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "model/plane_vectors.hpp"
 #include "model/triangle.hpp"
 #include "nbar/model/units.hpp"
 
@@ -30,8 +31,6 @@ bool has_angle_driver(const Model& m, int body, int frame_body) {
     if (d.kind == DriverKind::Angle && d.body == body && d.relative_to == frame_body) return true;
   return false;
 }
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 }  // namespace
 

@@ -17,10 +17,10 @@ namespace {
 
 using Eigen::Vector2d;
 
-[[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
+[[noreturn]] void refuse_curve(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
 
 // Distance from p to the segment a-b (not the line: a curve that doubles back is caught).
-double distance_to_segment(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
+double distance_to_chord(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
   const Vector2d ab = b - a;
   const double length2 = ab.squaredNorm();
   const double t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
@@ -42,7 +42,7 @@ class AdaptiveSampler {
     const Vector2d pm = f_(sm);
     const Vector2d q1 = f_(s0 + h / 4), q3 = f_(s0 + 3 * h / 4);
     const double deviation =
-        std::max({distance_to_segment(pm, p0, p1), distance_to_segment(q1, p0, p1), distance_to_segment(q3, p0, p1)});
+        std::max({distance_to_chord(pm, p0, p1), distance_to_chord(q1, p0, p1), distance_to_chord(q3, p0, p1)});
     if (deviation > tolerance_ && depth < kMaxDepth && sm != s0 && sm != s1) {  // s1 < s0 runs backwards
       refine(s0, p0, sm, pm, depth + 1);
       refine(sm, pm, s1, p1, depth + 1);
@@ -52,10 +52,10 @@ class AdaptiveSampler {
   }
 
   void push(const Vector2d& p) {
-    if (!p.allFinite()) fail("the curve has no finite point there");
+    if (!p.allFinite()) refuse_curve("the curve has no finite point there");
     if (static_cast<int>(vertices.size()) >= max_vertices_) {
-      fail("the curve needs more than " + std::to_string(max_vertices_) +
-           " vertices to stay within the tolerance (does it oscillate without end?)");
+      refuse_curve("the curve needs more than " + std::to_string(max_vertices_) +
+                   " vertices to stay within the tolerance (does it oscillate without end?)");
     }
     vertices.push_back(p);
   }
@@ -71,8 +71,8 @@ class AdaptiveSampler {
 }  // namespace
 
 std::vector<Vector2d> sample_curve(const CurveFunction& f, double a, double b, double tolerance, int max_vertices) {
-  if (!(tolerance > 0) || !std::isfinite(tolerance)) fail("the curve tolerance must be positive");
-  if (!std::isfinite(b - a)) fail("the curve's parameter range must be finite");
+  if (!(tolerance > 0) || !std::isfinite(tolerance)) refuse_curve("the curve tolerance must be positive");
+  if (!std::isfinite(b - a)) refuse_curve("the curve's parameter range must be finite");
   AdaptiveSampler sampler(f, tolerance, max_vertices);
   Vector2d previous = f(a);
   sampler.push(previous);
@@ -88,13 +88,13 @@ std::vector<Vector2d> sample_curve(const CurveFunction& f, double a, double b, d
 }
 
 std::vector<Vector2d> sample_curve_uniform(const CurveFunction& f, double a, double b, int steps) {
-  if (steps < 1) fail("a curve needs at least 1 step");
-  if (!std::isfinite(b - a)) fail("the curve's parameter range must be finite");
+  if (steps < 1) refuse_curve("a curve needs at least 1 step");
+  if (!std::isfinite(b - a)) refuse_curve("the curve's parameter range must be finite");
   std::vector<Vector2d> out;
   out.reserve(static_cast<std::size_t>(steps) + 1);
   for (int k = 0; k <= steps; ++k) {
     const Vector2d p = f(k == steps ? b : a + (b - a) * k / steps);
-    if (!p.allFinite()) fail("the curve has no finite point there");
+    if (!p.allFinite()) refuse_curve("the curve has no finite point there");
     out.push_back(p);
   }
   return out;
@@ -103,15 +103,15 @@ std::vector<Vector2d> sample_curve_uniform(const CurveFunction& f, double a, dou
 CubicSpline::CubicSpline(std::vector<Vector2d> points, bool closed) : points_(std::move(points)) {
   const std::size_t given = points_.size();
   if (given < (closed ? 3u : 2u)) {
-    fail(std::string("a spline needs at least ") + (closed ? "3 points when closed" : "2 points"));
+    refuse_curve(std::string("a spline needs at least ") + (closed ? "3 points when closed" : "2 points"));
   }
   for (const Vector2d& p : points_)
-    if (!p.allFinite()) fail("a spline's points must be finite");
+    if (!p.allFinite()) refuse_curve("a spline's points must be finite");
   if (closed) points_.push_back(points_.front());
   knots_.push_back(0.0);
   for (std::size_t i = 1; i < points_.size(); ++i) {
     const double h = (points_[i] - points_[i - 1]).norm();
-    if (!(h > 0)) fail("a spline passes through point " + std::to_string(i % given + 1) + " twice in a row");
+    if (!(h > 0)) refuse_curve("a spline passes through point " + std::to_string(i % given + 1) + " twice in a row");
     knots_.push_back(knots_.back() + h);
   }
   const std::size_t n = points_.size();  // knots; intervals n - 1
@@ -143,7 +143,7 @@ CubicSpline::CubicSpline(std::vector<Vector2d> points, bool closed) : points_(st
   }
   a.setFromTriplets(entries.begin(), entries.end());  // duplicates (m = 2, closed) add up
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(a);
-  if (lu.info() != Eigen::Success) fail("the spline's equations could not be solved");
+  if (lu.info() != Eigen::Success) refuse_curve("the spline's equations could not be solved");
   const Eigen::MatrixX2d solved = lu.solve(rhs);
   for (std::size_t row = 0; row < m; ++row) {
     second_[closed ? row : row + 1] = solved.row(static_cast<Eigen::Index>(row)).transpose();
@@ -179,25 +179,27 @@ Vector2d cubic_bezier(const Vector2d& p0, const Vector2d& p1, const Vector2d& p2
 
 BSpline::BSpline(int degree, std::vector<Vector2d> control, std::vector<double> knots, std::vector<double> weights)
     : degree_(degree), control_(std::move(control)), knots_(std::move(knots)), weights_(std::move(weights)) {
-  if (degree_ < 1 || degree_ > 30) fail("a B-spline's degree must be 1 to 30, not " + std::to_string(degree_));
+  if (degree_ < 1 || degree_ > 30) refuse_curve("a B-spline's degree must be 1 to 30, not " + std::to_string(degree_));
   if (control_.size() < static_cast<std::size_t>(degree_) + 1) {
-    fail("a B-spline of degree " + std::to_string(degree_) + " needs at least " + std::to_string(degree_ + 1) +
-         " control points, not " + std::to_string(control_.size()));
+    refuse_curve("a B-spline of degree " + std::to_string(degree_) + " needs at least " + std::to_string(degree_ + 1) +
+                 " control points, not " + std::to_string(control_.size()));
   }
   if (knots_.size() != control_.size() + static_cast<std::size_t>(degree_) + 1) {
-    fail("a B-spline with " + std::to_string(control_.size()) + " control points of degree " + std::to_string(degree_) +
-         " needs " + std::to_string(control_.size() + degree_ + 1) + " knots, not " + std::to_string(knots_.size()));
+    refuse_curve("a B-spline with " + std::to_string(control_.size()) + " control points of degree " +
+                 std::to_string(degree_) + " needs " + std::to_string(control_.size() + degree_ + 1) + " knots, not " +
+                 std::to_string(knots_.size()));
   }
   if (weights_.empty()) weights_.assign(control_.size(), 1.0);
-  if (weights_.size() != control_.size()) fail("a B-spline needs one weight per control point");
+  if (weights_.size() != control_.size()) refuse_curve("a B-spline needs one weight per control point");
   for (std::size_t i = 0; i < knots_.size(); ++i) {
-    if (!std::isfinite(knots_[i]) || (i > 0 && knots_[i] < knots_[i - 1])) fail("a B-spline's knots must not decrease");
+    if (!std::isfinite(knots_[i]) || (i > 0 && knots_[i] < knots_[i - 1]))
+      refuse_curve("a B-spline's knots must not decrease");
   }
   for (double w : weights_)
-    if (!(w > 0) || !std::isfinite(w)) fail("a B-spline's weights must be positive");
+    if (!(w > 0) || !std::isfinite(w)) refuse_curve("a B-spline's weights must be positive");
   for (const Vector2d& p : control_)
-    if (!p.allFinite()) fail("a B-spline's control points must be finite");
-  if (!(end() > start())) fail("a B-spline's knots span nothing");
+    if (!p.allFinite()) refuse_curve("a B-spline's control points must be finite");
+  if (!(end() > start())) refuse_curve("a B-spline's knots span nothing");
 }
 
 Vector2d BSpline::operator()(double u) const {

@@ -118,7 +118,7 @@ auto apply_binary(Op op, const A& a, const B& b) {
   return a + b;
 }
 
-std::string quoted(std::string_view s) {
+std::string quoted_text(std::string_view s) {
   // Appending rather than "'" + std::string(s) sidesteps a GCC 12 -Wrestrict false positive.
   std::string q;
   q.reserve(s.size() + 2);
@@ -279,7 +279,7 @@ class Parser {
         ++end;
       }
     }
-    return quoted(text_.substr(pos_, end - pos_));
+    return quoted_text(text_.substr(pos_, end - pos_));
   }
 
   int parse_expr() {
@@ -389,14 +389,14 @@ class Parser {
     if (name == "e") return expr_.add_leaf(Op::kNumber, std::numbers::e);
     for (const FunctionName& f : kFunctions) {
       if (f.name != name) continue;
-      if (!accept('(')) fail("expected '(' after " + quoted(name));
+      if (!accept('(')) fail("expected '(' after " + quoted_text(name));
       const int argument = parse_expr();
       expect_close();
       return expr_.add(f.op, argument);
     }
     skip_space();
-    if (!at_end() && text_[pos_] == '(') fail_at(start, "unknown function " + quoted(name));
-    fail_at(start, "unknown name " + quoted(name) + " (the variable is " + std::string(variable_) + ")");
+    if (!at_end() && text_[pos_] == '(') fail_at(start, "unknown function " + quoted_text(name));
+    fail_at(start, "unknown name " + quoted_text(name) + " (the variable is " + std::string(variable_) + ")");
   }
 
   std::string_view text_;
@@ -422,7 +422,7 @@ double Law::value(double t) const {
   const double v = root_->evaluate(t) * scale_;
   if (!std::isfinite(v)) {
     throw Error(ErrorKind::UndefinedLaw,
-                "law " + quoted(text_) + " is undefined at " + variable_ + " = " + format_time(t));
+                "law " + quoted_text(text_) + " is undefined at " + variable_ + " = " + format_time(t));
   }
   return v;
 }
@@ -438,16 +438,16 @@ Series Law::series(double t0, int terms) const {
     s = root_->evaluate(Series::variable(terms, t0));
   } catch (const Error& e) {  // from an operation that has no derivative there (abs at 0)
     throw Error(ErrorKind::UndefinedLaw,
-                "law " + quoted(text_) + " at " + variable_ + " = " + format_time(t0) + ": " + e.message());
+                "law " + quoted_text(text_) + " at " + variable_ + " = " + format_time(t0) + ": " + e.message());
   }
   s *= scale_;
   if (!std::isfinite(s[0])) {
     throw Error(ErrorKind::UndefinedLaw,
-                "law " + quoted(text_) + " is undefined at " + variable_ + " = " + format_time(t0));
+                "law " + quoted_text(text_) + " is undefined at " + variable_ + " = " + format_time(t0));
   }
   for (int k = 1; k < s.terms(); ++k) {
     if (!std::isfinite(s[k])) {
-      throw Error(ErrorKind::UndefinedLaw, "law " + quoted(text_) + " has no finite " + ordinal(k) + " derivative at " +
+      throw Error(ErrorKind::UndefinedLaw, "law " + quoted_text(text_) + " has no finite " + ordinal(k) + " derivative at " +
                                                variable_ + " = " + format_time(t0));
     }
   }

@@ -38,7 +38,7 @@ bool Model::has_time_law() const {
 namespace {
 
 // Built by appending: GCC 12 at -O3 gives a false -Wrestrict warning for "'" + name + "'".
-std::string quoted(const std::string& name) {
+std::string quoted_name(const std::string& name) {
   std::string out;
   out.reserve(name.size() + 2);
   out.append(1, '\'').append(name).append(1, '\'');
@@ -93,11 +93,11 @@ class Validator {
 
   std::string point_name(int i) const {
     if (!valid_point(i)) return index_name(i);
-    return quoted(m_.points[i].name);
+    return quoted_name(m_.points[i].name);
   }
   std::string body_name(int i) const {
     if (!valid_body(i)) return index_name(i);
-    return quoted(m_.bodies[i].name);
+    return quoted_name(m_.bodies[i].name);
   }
   std::string slider_name(std::size_t i) const {
     const int body = m_.sliders[i].body;
@@ -570,7 +570,7 @@ class Validator {
     for (std::size_t i = 0; i < m_.bodies.size(); ++i) {
       const Body& b = m_.bodies[i];
       const auto where = ref(EntityRef::Kind::Body, i);
-      const std::string name = "body " + quoted(b.name);
+      const std::string name = "body " + quoted_name(b.name);
       if (b.shape) {
         try {
           check_region(*b.shape);
@@ -587,7 +587,7 @@ class Validator {
       }
       if (b.material) {
         const Material& mat = *b.material;
-        const std::string what = mat.name.empty() ? "the material of " + name : "material " + quoted(mat.name);
+        const std::string what = mat.name.empty() ? "the material of " + name : "material " + quoted_name(mat.name);
         if (!std::isfinite(mat.density) || mat.density <= 0.0) {
           fail(where, what + " needs a positive density");
         }
@@ -672,8 +672,8 @@ class Validator {
       const Spring& s = m_.springs[i];
       const auto where = ref(EntityRef::Kind::Spring, i);
       if (s.name.empty()) fail(where, "spring #" + std::to_string(i + 1) + " has no name");
-      if (!seen.insert(s.name).second) fail(where, "two springs are named " + quoted(s.name));
-      const std::string name = "spring " + quoted(s.name);
+      if (!seen.insert(s.name).second) fail(where, "two springs are named " + quoted_name(s.name));
+      const std::string name = "spring " + quoted_name(s.name);
       for (int p : s.points) {
         if (!valid_point(p)) fail(where, name + " refers to point #" + std::to_string(p) + ", which does not exist");
       }

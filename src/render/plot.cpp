@@ -23,7 +23,7 @@ constexpr double kLargest = 1e300;  // larger magnitudes are treated like infini
 constexpr std::array<std::uint32_t, 7> kPalette = {0x0072B2, 0xD55E00, 0x009E73, 0xCC79A7,
                                                    0xE69F00, 0x56B4E9, 0x000000};
 
-const Colour kInk = Colour::rgb(0x222222);
+const Colour kPlotInk = Colour::rgb(0x222222);
 const Colour kFrame = Colour::rgb(0x444444);
 const Colour kGrid = Colour::rgb(0xe4e4e4);
 const Colour kZeroLine = Colour::rgb(0xb0b0b0);
@@ -547,29 +547,29 @@ void draw_axes(Canvas& canvas, const PlotSpec& spec, const Labels& labels, const
     const double px = f.to_pixels(f.x_ticks[i], 0).x();
     canvas.polyline({{px, f.bottom}, {px, f.bottom + kTickLength}}, Stroke{kFrame, 1.0, {}});
     canvas.text({px, f.bottom + kTickLength + 3 + kTickFont * 0.8}, layout.x_tick_labels[i], kTickFont, Anchor::Middle,
-                kInk);
+                kPlotInk);
   }
   for (std::size_t i = 0; i < f.y_ticks.size(); ++i) {
     const double py = f.to_pixels(0, f.y_ticks[i]).y();
     canvas.polyline({{f.left - kTickLength, py}, {f.left, py}}, Stroke{kFrame, 1.0, {}});
     canvas.text({f.left - kTickLength - 4, py + 0.35 * kTickFont}, layout.y_tick_labels[i], kTickFont, Anchor::End,
-                kInk);
+                kPlotInk);
   }
   for (std::size_t i = 0; f.right_axis && i < f.y2_ticks.size(); ++i) {
     const double py = f.to_pixels_right(0, f.y2_ticks[i]).y();
     canvas.polyline({{f.right, py}, {f.right + kTickLength, py}}, Stroke{kFrame, 1.0, {}});
     canvas.text({f.right + kTickLength + 4, py + 0.35 * kTickFont}, layout.y2_tick_labels[i], kTickFont, Anchor::Start,
-                kInk);
+                kPlotInk);
   }
-  if (!labels.y2.empty()) canvas.text({f.right, f.top - 14}, labels.y2, kLabelFont, Anchor::End, kInk);
+  if (!labels.y2.empty()) canvas.text({f.right, f.top - 14}, labels.y2, kLabelFont, Anchor::End, kPlotInk);
   if (!labels.x.empty())
     canvas.text({0.5 * (f.left + f.right), f.bottom + kTickLength + kTickFont + 10 + kLabelFont}, labels.x, kLabelFont,
-                Anchor::Middle, kInk);
+                Anchor::Middle, kPlotInk);
   if (!labels.y.empty())
     canvas.text({std::max(kPad, f.left - widest(layout.y_tick_labels, kTickFont) - kTickLength - 4), f.top - 14},
-                labels.y, kLabelFont, Anchor::Start, kInk);
+                labels.y, kLabelFont, Anchor::Start, kPlotInk);
   if (!spec.title.empty())
-    canvas.text({0.5 * canvas.width(), kPad + kTitleFont}, spec.title, kTitleFont, Anchor::Middle, kInk);
+    canvas.text({0.5 * canvas.width(), kPad + kTitleFont}, spec.title, kTitleFont, Anchor::Middle, kPlotInk);
   canvas.end_group();
 }
 
@@ -601,7 +601,7 @@ void draw_legend(Canvas& canvas, const Labels& labels, Layout layout) {
     Stroke stroke = series_stroke(i);
     stroke.width = 2.5;
     canvas.polyline({row, row + Vec2(kSwatch, 0)}, stroke);
-    canvas.text(row + Vec2(kSwatch + 6, 0.35 * kLegendFont), entries[i], kLegendFont, Anchor::Start, kInk);
+    canvas.text(row + Vec2(kSwatch + 6, 0.35 * kLegendFont), entries[i], kLegendFont, Anchor::Start, kPlotInk);
   }
   canvas.end_group();
 }

@@ -71,7 +71,7 @@ constexpr int kNarrowWidth = 440;
 
 std::string esc(const std::string& s) { return xml_escape(s); }
 
-std::string num(double v, int digits = 4) { return fmt::format("{:.{}g}", v + 0.0, digits); }
+std::string short_number(double v, int digits = 4) { return fmt::format("{:.{}g}", v + 0.0, digits); }
 
 std::vector<double> column(const ResultTable& t, const std::string& name) {
   const auto it = std::find(t.columns.begin(), t.columns.end(), name);
@@ -185,8 +185,11 @@ void write_loops_table(Html& h, const Analysis& analysis, const ModelSummary& su
     const std::string branch =
         l < branches.size() ? "</td></tr>\n<tr><th>Branch</th><td>" + esc(branches[l]) : std::string();
     h << "<table class=\"facts\"><tr><th>Loop</th><td>" << esc(loop.loop.name) << "</td></tr>\n<tr><th>Grashof</th><td>"
-      << esc(loop.description) << branch << "</td></tr>\n<tr><th>Transmission angle</th><td>"
-      << (mu.empty() ? "" : num(*lo) + " to " + num(*hi) + " " + esc(m.units.angle)) << "</td></tr></table>\n";
+      << esc(loop.description) << branch << "</td></tr>
+        < tr > <th> Transmission angle</ th><td> "
+                   << (mu.empty() ? "" : short_number(*lo) + " to " + short_number(*hi) + " " + esc(m.units.angle))
+                   << "</td></tr></table>
+                      ";
   }
 }
 
@@ -198,9 +201,9 @@ void write_bodies_table(Html& h, const Model& m, const ModelSummary& summary) {
     for (const std::string& p : b.points) points += (points.empty() ? "" : ", ") + esc(p);
     const MassProperties& mp = b.mass;
     h << "<tr><td>" << esc(b.name) << "</td><td>" << points << "</td><td class=\"num\">"
-      << (b.length ? num(*b.length / m.units.length_scale, 6) : "") << "</td><td class=\"num\">"
-      << (mp.mass > 0 ? num(mp.mass) : "") << "</td><td class=\"num\">" << (mp.mass > 0 ? num(mp.inertia) : "")
-      << "</td></tr>\n";
+      << (b.length ? short_number(*b.length / m.units.length_scale, 6) : "") << "</td><td class=\"num\">"
+      << (mp.mass > 0 ? short_number(mp.mass) : "") << "</td><td class=\"num\">"
+      << (mp.mass > 0 ? short_number(mp.inertia) : "") << "</td></tr>\n";
   }
   h << "</table></div></section>\n";
 }
@@ -272,8 +275,8 @@ void write_forces(Html& h, const Analysis& analysis, const ResultTable& table, c
     }
     const auto peak = std::max_element(magnitude.begin(), magnitude.end());
     if (peak == magnitude.end()) continue;
-    h << "<tr><td>" << esc(force.name) << "</td><td class=\"num\">" << num(*peak) << "</td><td class=\"num\">"
-      << num(x.values[static_cast<std::size_t>(peak - magnitude.begin())]) << "</td></tr>\n";
+    h << "<tr><td>" << esc(force.name) << "</td><td class=\"num\">" << short_number(*peak) << "</td><td class=\"num\">"
+      << short_number(x.values[static_cast<std::size_t>(peak - magnitude.begin())]) << "</td></tr>\n";
     joints.series.push_back({force.name, "N", magnitude});
   }
   h << "</table></div>\n";
@@ -289,11 +292,12 @@ void write_stresses(Html& h, const Analysis& analysis, const DrawOptions& draw, 
   std::vector<std::pair<const StressPeak*, double>> drawn;
   for (const StressPeak& p : analysis.stress->peaks) {
     const double at = p.step >= 0 ? x.values[static_cast<std::size_t>(p.step)] : 0.0;
-    h << "<tr><td>" << esc(m.bodies[p.body].name) << "</td><td class=\"num\">" << num(to_megapascal(p.at.von_mises))
-      << "</td><td class=\"num\">" << num(at) << "</td><td class=\"num\">" << num(p.at.where.x() / m.units.length_scale)
-      << ", " << num(p.at.where.y() / m.units.length_scale) << "</td><td class=\"num\">"
-      << num(to_megapascal(p.at.sigma)) << ", " << num(to_megapascal(p.at.tau)) << "</td><td class=\"num\">"
-      << (p.safety_factor ? num(*p.safety_factor, 3) : "") << "</td></tr>\n";
+    h << "<tr><td>" << esc(m.bodies[p.body].name) << "</td><td class=\"num\">"
+      << short_number(to_megapascal(p.at.von_mises)) << "</td><td class=\"num\">" << short_number(at)
+      << "</td><td class=\"num\">" << short_number(p.at.where.x() / m.units.length_scale) << ", "
+      << short_number(p.at.where.y() / m.units.length_scale) << "</td><td class=\"num\">"
+      << short_number(to_megapascal(p.at.sigma)) << ", " << short_number(to_megapascal(p.at.tau))
+      << "</td><td class=\"num\">" << (p.safety_factor ? short_number(*p.safety_factor, 3) : "") << "</td></tr>\n";
     drawn.emplace_back(&p, at);
   }
   h << "</table></div><p>Each link's largest stress is marked in the pose where it occurs. Beam theory on the net "
@@ -301,10 +305,10 @@ void write_stresses(Html& h, const Analysis& analysis, const DrawOptions& draw, 
   for (const auto& [peak, at] : drawn) {
     DrawOptions marked = draw;
     marked.traces.clear();
-    marked.markers.push_back({peak->body, peak->at.where, num(to_megapascal(peak->at.von_mises), 3) + " MPa"});
+    marked.markers.push_back({peak->body, peak->at.where, short_number(to_megapascal(peak->at.von_mises), 3) + " MPa"});
     h << "<figure>" << drawing_html(analysis, std::max(peak->step, 0), marked, true) << "<figcaption>"
-      << esc(m.bodies[peak->body].name) << ": " << num(to_megapascal(peak->at.von_mises), 3) << " MPa at "
-      << esc(x.name) << " = " << num(at) << " " << esc(x.unit) << "</figcaption></figure>\n";
+      << esc(m.bodies[peak->body].name) << ": " << short_number(to_megapascal(peak->at.von_mises), 3) << " MPa at "
+      << esc(x.name) << " = " << short_number(at) << " " << esc(x.unit) << "</figcaption></figure>\n";
   }
   h << "</div></section>\n";
 }
@@ -320,11 +324,13 @@ void write_fe_stresses(Html& h, const Analysis& analysis, const DrawOptions& dra
   for (const FePeak& p : analysis.stress->fe_peaks) {
     const double at = p.step >= 0 ? x.values[static_cast<std::size_t>(p.step)] : 0.0;
     const Eigen::Vector2d where = body_frame_point(m, p.body, p.at);
-    h << "<tr><td>" << esc(m.bodies[p.body].name) << "</td><td class=\"num\">" << num(to_megapascal(p.von_mises))
-      << "</td><td class=\"num\">" << num(at) << "</td><td class=\"num\">" << num(where.x() / length) << ", "
-      << num(where.y() / length) << "</td><td class=\"num\">" << (p.safety_factor ? num(*p.safety_factor, 3) : "")
+    h << "<tr><td>" << esc(m.bodies[p.body].name) << "</td><td class=\"num\">"
+      << short_number(to_megapascal(p.von_mises)) << "</td><td class=\"num\">" << short_number(at)
+      << "</td><td class=\"num\">" << short_number(where.x() / length) << ", " << short_number(where.y() / length)
+      << "</td><td class=\"num\">" << (p.safety_factor ? short_number(*p.safety_factor, 3) : "")
       << "</td><td class=\"num\">" << std::to_string(p.nodes) << ", " << std::to_string(p.elements)
-      << "</td><td class=\"num\">" << num(p.load_unbalance, 2) << ", " << num(p.support_reaction, 2) << "</td></tr>\n";
+      << "</td><td class=\"num\">" << short_number(p.load_unbalance, 2) << ", " << short_number(p.support_reaction, 2)
+      << "</td></tr>\n";
   }
   h << "</table></div><p>Plane-stress 6-node triangles on each link's plate; pin forces as bearing pressures on "
     << "their holes, torques as shear around theirs, d'Alembert forces as body forces. Each link is coloured by von "
@@ -340,8 +346,8 @@ void write_fe_stresses(Html& h, const Analysis& analysis, const DrawOptions& dra
     std::erase_if(mapped.markers, [&](const Marker& mk) { return mk.body != p.body; });
     const double at = x.values[static_cast<std::size_t>(step)];
     h << "<figure>" << drawing_html(analysis, step, mapped, true) << "<figcaption>" << esc(m.bodies[p.body].name)
-      << ": " << esc(stress_text(p.von_mises)) << " at " << esc(x.name) << " = " << num(at) << " " << esc(x.unit)
-      << "</figcaption></figure>\n";
+      << ": " << esc(stress_text(p.von_mises)) << " at " << esc(x.name) << " = " << short_number(at) << " "
+      << esc(x.unit) << "</figcaption></figure>\n";
   }
   h << "</div></section>\n";
 }

@@ -23,7 +23,7 @@ std::string cat(std::initializer_list<std::string_view> parts) {
 }
 
 // 0.01 px, as the SVG canvas writes them.
-std::string num(double v) {
+std::string coordinate_text(double v) {
   if (!std::isfinite(v)) return "0";
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2f", v + 0.0);
@@ -62,7 +62,7 @@ std::string flat_points(const std::vector<Eigen::Vector2d>& points) {
   std::string s = "[";
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (i) s += ',';
-    s += cat({num(points[i].x()), ",", num(points[i].y())});
+    s += cat({coordinate_text(points[i].x()), ",", coordinate_text(points[i].y())});
   }
   s += "]";
   return s;
@@ -72,14 +72,16 @@ std::string paint_fields(const Paint& p) {
   std::string s;
   if (p.fill) {
     s += cat({",\"fill\":", json_string(p.fill->hex())});
-    if (p.fill->a != 255) s += cat({",\"fill_opacity\":", num(p.fill->opacity())});
+    if (p.fill->a != 255) s += cat({",\"fill_opacity\":", coordinate_text(p.fill->opacity())});
   }
   if (p.stroke) {
-    s += cat({",\"stroke\":", json_string(p.stroke->colour.hex()), ",\"stroke_width\":", num(p.stroke->width)});
-    if (p.stroke->colour.a != 255) s += cat({",\"stroke_opacity\":", num(p.stroke->colour.opacity())});
+    s += cat(
+        {",\"stroke\":", json_string(p.stroke->colour.hex()), ",\"stroke_width\":", coordinate_text(p.stroke->width)});
+    if (p.stroke->colour.a != 255) s += cat({",\"stroke_opacity\":", coordinate_text(p.stroke->colour.opacity())});
     if (!p.stroke->dash.empty()) {
       s += ",\"dash\":[";
-      for (std::size_t i = 0; i < p.stroke->dash.size(); ++i) s += cat({i ? "," : "", num(p.stroke->dash[i])});
+      for (std::size_t i = 0; i < p.stroke->dash.size(); ++i)
+        s += cat({i ? "," : "", coordinate_text(p.stroke->dash[i])});
       s += "]";
     }
   }
@@ -107,8 +109,8 @@ class SceneCanvas : public Canvas {
         {"{\"type\":\"polyline\",\"points\":", flat_points(points), paint_fields(Paint{std::nullopt, stroke}), "}"}));
   }
   void circle(const Eigen::Vector2d& centre, double radius, const Paint& paint) override {
-    item(cat({"{\"type\":\"circle\",\"cx\":", num(centre.x()), ",\"cy\":", num(centre.y()), ",\"r\":", num(radius),
-              paint_fields(paint), "}"}));
+    item(cat({"{\"type\":\"circle\",\"cx\":", coordinate_text(centre.x()), ",\"cy\":", coordinate_text(centre.y()),
+              ",\"r\":", coordinate_text(radius), paint_fields(paint), "}"}));
   }
   void outline(const Outline& shape, const Paint& paint) override {
     std::string rings = cat({"[", flat_points(shape.outer)});
@@ -116,15 +118,17 @@ class SceneCanvas : public Canvas {
     std::string circles = "[";
     for (std::size_t i = 0; i < shape.circle_holes.size(); ++i) {
       const auto& [c, r] = shape.circle_holes[i];
-      circles += cat({i ? ",[" : "[", num(c.x()), ",", num(c.y()), ",", num(r), "]"});
+      circles +=
+          cat({i ? ",[" : "[", coordinate_text(c.x()), ",", coordinate_text(c.y()), ",", coordinate_text(r), "]"});
     }
     item(cat({"{\"type\":\"outline\",\"rings\":", rings, "],\"circles\":", circles, "]", paint_fields(paint), "}"}));
   }
   void text(const Eigen::Vector2d& at, const std::string& text, double size, Anchor anchor,
             const Colour& colour) override {
     const char* a = anchor == Anchor::Start ? "start" : anchor == Anchor::Middle ? "middle" : "end";
-    item(cat({"{\"type\":\"text\",\"x\":", num(at.x()), ",\"y\":", num(at.y()), ",\"text\":", json_string(text),
-              ",\"size\":", num(size), ",\"anchor\":\"", a, "\",\"color\":", json_string(colour.hex()), "}"}));
+    item(cat({"{\"type\":\"text\",\"x\":", coordinate_text(at.x()), ",\"y\":", coordinate_text(at.y()),
+              ",\"text\":", json_string(text), ",\"size\":", coordinate_text(size), ",\"anchor\":\"", a,
+              "\",\"color\":", json_string(colour.hex()), "}"}));
   }
 
   std::string items() const { return cat({"[", out_, "]"}); }
@@ -144,12 +148,12 @@ std::string step_motion(const Mechanism& mech, const View& view, const std::vect
   std::string s = "{\"bodies\":[";
   const std::vector<PixelTransform> moves = body_transforms(mech, view, reference, points);
   for (std::size_t b = 0; b < moves.size(); ++b)
-    s += cat(
-        {b ? ",[" : "[", precise(moves[b].angle_deg), ",", num(moves[b].shift.x()), ",", num(moves[b].shift.y()), "]"});
+    s += cat({b ? ",[" : "[", precise(moves[b].angle_deg), ",", coordinate_text(moves[b].shift.x()), ",",
+              coordinate_text(moves[b].shift.y()), "]"});
   s += "],\"labels\":[";
   for (std::size_t p = 0; p < points.size(); ++p) {
     const Eigen::Vector2d d = view.to_pixels(points[p]) - view.to_pixels(reference[p]);
-    s += cat({p ? ",[" : "[", num(d.x()), ",", num(d.y()), "]"});
+    s += cat({p ? ",[" : "[", coordinate_text(d.x()), ",", coordinate_text(d.y()), "]"});
   }
   s += "]}";
   return s;
@@ -187,8 +191,8 @@ std::string drawing_scene_json(const Mechanism& mech, const SweepResult& sweep, 
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Eigen::Vector2d pivot = still[b].pivot;
     s += cat({b ? "," : "", "{\"name\":", json_string(m.bodies[b].name),
-              ",\"group\":", json_string(cat({"body-", m.bodies[b].name})), ",\"pivot\":[", num(pivot.x()), ",",
-              num(pivot.y()), "]}"});
+              ",\"group\":", json_string(cat({"body-", m.bodies[b].name})), ",\"pivot\":[", coordinate_text(pivot.x()),
+              ",", coordinate_text(pivot.y()), "]}"});
   }
   s += "],\"steps\":[";
   for (std::size_t k = 0; k < sweep.samples.size(); ++k)

@@ -9,14 +9,12 @@
 #include <string>
 #include <thread>
 
+#include "model/plane_vectors.hpp"
 #include "nbar/model/diagnostics.hpp"
 
 namespace nbar {
 
 namespace {
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 
 // The rotation of a body since its starting pose, as (cos, sin).
 Eigen::Vector2d body_rotation(const BodyMotion& bm) {

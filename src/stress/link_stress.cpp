@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/plane_vectors.hpp"
+
 namespace nbar {
 
 namespace {
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 
 // Where to cut: evenly along the body, and more closely around every joint and hole, where
 // the internal forces jump and the section is smallest. Never through a joint's centre, where

@@ -17,6 +17,7 @@
 #include <unordered_map>
 
 #include "delaunay_refinement.hpp"
+#include "model/plane_vectors.hpp"
 
 namespace nbar::fe {
 namespace {
@@ -33,8 +34,6 @@ constexpr double kCornerRefinement = 5.0;
 constexpr double kMinAngleDeg = 28.0;
 
 [[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::BadInput, "mesh: " + message); }
-
-double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 struct Curve {
   bool arc = false;

@@ -14,6 +14,7 @@
 
 #include "nbar/model/diagnostics.hpp"
 
+#include "model/plane_vectors.hpp"
 #include "t6_element.hpp"
 
 namespace nbar::fe {
@@ -22,8 +23,6 @@ namespace {
 
 using SparseColumns = Eigen::SparseMatrix<double>;
 using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 std::string at_point(const Eigen::Vector2d& p) {
   std::string out(1, '(');  // appended piece by piece: GCC 12 warns (wrongly) on "(" + std::string

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/plane_vectors.hpp"
 #include "nbar/model/diagnostics.hpp"
 
 namespace nbar {
@@ -14,8 +15,6 @@ namespace {
 using Eigen::Vector2d;
 using Interval = std::pair<double, double>;
 using Intervals = std::vector<Interval>;
-
-double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // The chords of a simple polygon along the line. Vertices exactly on the line count as lying to
 // its left: the crossings are then those of a line shifted infinitesimally to the right, which
@@ -81,13 +80,13 @@ Intervals minus(const Intervals& material, const Intervals& holes) {
   return out;
 }
 
-[[noreturn]] void fail(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
+[[noreturn]] void refuse_section(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
 
 }  // namespace
 
 std::vector<std::pair<double, double>> section_intervals(const Region& r, const Vector2d& p, const Vector2d& d) {
-  if (!p.allFinite() || !d.allFinite()) fail("section_intervals: the section line is not finite");
-  if (!(d.squaredNorm() > 0)) fail("section_intervals: the direction of the section line is zero");
+  if (!p.allFinite() || !d.allFinite()) refuse_section("section_intervals: the section line is not finite");
+  if (!(d.squaredNorm() > 0)) refuse_section("section_intervals: the direction of the section line is zero");
   if (has_arcs(r)) return section_intervals(straight_edged(r), p, d);
   Intervals holes;
   for (const auto& hole : r.polygon_holes) {
@@ -99,14 +98,15 @@ std::vector<std::pair<double, double>> section_intervals(const Region& r, const 
 }
 
 SectionProperties section_properties(const std::vector<std::pair<double, double>>& intervals, double thickness) {
-  if (!std::isfinite(thickness) || !(thickness > 0)) fail("section_properties: the thickness must be positive");
+  if (!std::isfinite(thickness) || !(thickness > 0))
+    refuse_section("section_properties: the thickness must be positive");
   for (std::size_t i = 0; i < intervals.size(); ++i) {
     const auto [s0, s1] = intervals[i];
     if (!std::isfinite(s0) || !std::isfinite(s1) || !(s0 <= s1) || (i > 0 && s0 < intervals[i - 1].second)) {
       std::ostringstream os;
       os << "section_properties: interval " << i << " [" << s0 << ", " << s1
          << "] is not finite, reversed, or out of order with the one before";
-      fail(os.str());
+      refuse_section(os.str());
     }
   }
   SectionProperties out;
