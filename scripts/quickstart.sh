@@ -10,13 +10,15 @@ if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCH
 # No tests or benchmarks: their libraries are scripts/test.sh's to install.
 cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DNBAR_BUILD_TESTS=OFF -DNBAR_BUILD_BENCH=OFF \
   "${launcher[@]}" >/dev/null
-cmake --build "$root/build" -j"$(nproc)" --target nbar
-# The Python module, when pybind11 was found (scripts/install-deps.sh installs it).
+# The program and, when pybind11 was found (scripts/install-deps.sh installs it), the Python
+# module, in one build so that the module's files compile beside the program's.
+targets=(nbar)
 python_module=0
 if grep -q '^NBAR_BUILD_PYTHON:BOOL=ON' "$root/build/CMakeCache.txt"; then
-  cmake --build "$root/build" -j"$(nproc)" --target nbar_python
+  targets+=(nbar_python)
   python_module=1
 fi
+cmake --build "$root/build" -j"$(nproc)" --target "${targets[@]}"
 nbar="$root/build/apps/nbar/nbar"
 model="$root/examples/fourbar-crank-rocker.yaml"
 echo
