@@ -366,19 +366,20 @@ void write_simulation(Html& h, const Analysis& analysis, const Simulation& simul
     free += (free.empty() ? "" : ", ") + esc(m.drivers[static_cast<std::size_t>(d)].name);
   h << "<tr><th>Free drivers</th><td>" << (free.empty() ? "none" : free) << "</td></tr>\n";
   const double end = simulation.samples.empty() ? 0.0 : simulation.samples.back().time;
-  h << "<tr><th>Simulated</th><td>" << num(end, 6) << " s, " << std::to_string(simulation.samples.size()) << " rows"
+  h << "<tr><th>Simulated</th><td>" << short_number(end, 6) << " s, " << std::to_string(simulation.samples.size())
+    << " rows"
     << (simulation.complete ? "" : "; <span class=\"warn\">stopped early: " + esc(simulation.stop_reason) + "</span>")
     << "</td></tr>\n";
   for (const SimulationEvent& e : simulation.events)
-    h << "<tr><th>Event at " << num(e.time, 8) << " s</th><td>" << esc(e.message) << "</td></tr>\n";
+    h << "<tr><th>Event at " << short_number(e.time, 8) << " s</th><td>" << esc(e.message) << "</td></tr>\n";
   h << "<tr><th>Integration steps</th><td>" << std::to_string(stats.accepted_steps) << " accepted, "
-    << std::to_string(stats.rejected_steps) << " rejected; " << num(stats.smallest_step) << " to "
-    << num(stats.largest_step) << " s</td></tr>\n";
+    << std::to_string(stats.rejected_steps) << " rejected; " << short_number(stats.smallest_step) << " to "
+    << short_number(stats.largest_step) << " s</td></tr>\n";
   const double unit = m.units.length_scale;
-  h << "<tr><th>Constraint drift</th><td>" << num(stats.drift.position / unit, 3) << " " << esc(m.units.length) << ", "
-    << num(stats.drift.velocity / unit, 3) << " " << esc(m.units.length) << "/s, "
-    << num(stats.drift.acceleration / unit, 3) << " " << esc(m.units.length) << "/s&sup2;</td></tr>\n";
-  h << "<tr><th>Largest energy error</th><td>" << num(stats.largest_energy_error, 3)
+  h << "<tr><th>Constraint drift</th><td>" << short_number(stats.drift.position / unit, 3) << " " << esc(m.units.length)
+    << ", " << short_number(stats.drift.velocity / unit, 3) << " " << esc(m.units.length) << "/s, "
+    << short_number(stats.drift.acceleration / unit, 3) << " " << esc(m.units.length) << "/s&sup2;</td></tr>\n";
+  h << "<tr><th>Largest energy error</th><td>" << short_number(stats.largest_energy_error, 3)
     << " J</td></tr>\n</table></div>\n";
   const ResultTable table = simulation_table(*analysis.mechanism, simulation);
   PlotSpec energy = plot_against(x, "Energies");
