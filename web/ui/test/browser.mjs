@@ -16,6 +16,7 @@ import * as review from './review.mjs';
 import * as femap from './femap.mjs';
 import * as simulate from './simulate.mjs';
 import * as forces from './forces.mjs';
+import * as spanish from './spanish.mjs';
 
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const out = arg('--out', 'build/web-screenshots');
@@ -26,12 +27,15 @@ const out = arg('--out', 'build/web-screenshots');
 // `--only forces`: only forces.mjs's (dynamics columns, stress table, Explain at the pose, handles
 // over arrows, a drag at a later pose, zoom, the phone's bottom edge), at both: ctest's
 // Web.Forces, apart from the full run so that Web.Browser stays inside its watchdog.
+// `--only spanish`: only spanish.mjs's (the core's messages in the catalogue, no English in Español), at both: ctest's
+// Web.Spanish, apart from the full run as Web.Forces is.
 const only = arg('--only', '');
 const onlyDraw = only === 'draw';
 const onlyReview = only === 'review';
 const onlyFemap = only === 'femap';
 const onlySimulate = only === 'simulate';
 const onlyForces = only === 'forces';
+const onlySpanish = only === 'spanish';
 const examples = arg('--examples', '../../examples');
 
 const browser = await launchChromium();
@@ -203,6 +207,14 @@ async function forcesAt(tag, viewport, mobile) {
   await context.close();
 }
 
+// The app in Spanish (spanish.mjs): the catalogue against the core's messages, then no English
+// on screen at a laptop's and a phone's viewport.
+async function spanishAt(tag, viewport, mobile) {
+  const { context, page } = await open(tag, viewport, mobile);
+  await spanish.run(page, { mobile, tag, base, shot, click, retype });
+  await context.close();
+}
+
 async function desktop() {
   const { context, page } = await open('desktop', { width: 1280, height: 800 }, false);
   assert.ok(await page.locator('[data-example]').count() >= 10, 'the gallery lists the examples');
@@ -363,6 +375,10 @@ try {
   } else if (onlyForces) {
     await forcesAt('laptop', { width: 1366, height: 768 }, false);
     await forcesAt('phone', { width: 390, height: 844 }, true);
+  } else if (onlySpanish) {
+    console.log(`the catalogue holds the Spanish of ${await spanish.checkCatalogue(base, examples)} core messages a student meets`);
+    await spanishAt('laptop', { width: 1366, height: 768 }, false);
+    await spanishAt('phone', { width: 390, height: 844 }, true);
   } else if (onlyFemap) {
     await femapAt('laptop', { width: 1366, height: 768 }, false);
     await femapAt('phone', { width: 390, height: 844 }, true);
