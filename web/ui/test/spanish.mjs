@@ -111,8 +111,9 @@ async function englishOnScreen(page, names) {
   });
   const found = [];
   for (const text of texts) {
-    // Quoted and backquoted parts are the model's names and keys, written as in the YAML.
-    const plain = text.replace(/`[^`]*`|'[^']*'|«[^»]*»|“[^”]*”/g, ' ');
+    // Quoted and backquoted parts are the model's names and keys, written as in the YAML; a
+    // dotted name (crank.torque, A.crank>coupler.Fx) is a column's, as the CSV and API name it.
+    const plain = text.replace(/`[^`]*`|'[^']*'|«[^»]*»|“[^”]*”/g, ' ').replace(/[\w-]+(?:\.[\w>-]+)+/g, ' ');
     for (const word of plain.match(/[A-Za-zÀ-ÿ]+(?:-[A-Za-zÀ-ÿ]+)*/g) ?? []) {
       const w = word.toLowerCase();
       if (english.has(w) && !names.has(w)) found.push(`"${word}" in "${text.slice(0, 120)}"`);
