@@ -20,6 +20,8 @@ import './i18n-motion.js';
 import './i18n-files.js';
 import './i18n-forces.js';
 import './i18n-build.js';
+import { coreText } from './i18n-core.js';
+import { galleryEs } from './i18n-gallery.js';
 import { initSynthesis } from './synthesis.js';
 import { initOverlays, overlayView, setOverlayView } from './overlays.js';
 import { initStressMap } from './stress-map.js';
@@ -83,12 +85,20 @@ async function api(path, body, as = 'json', options = {}) {
 // The status line: in the header on a desktop, a row of its own under the header on a phone
 // (styles.css), so that what happens is said wherever the page is scrolled. `working` shows the
 // busy mark until the next status; the whole text is in the title when it is cut short.
+// `text` may be a function of the language, so that a change of language says it again.
+let statusShown = () => '';
 function status(text, bad = false, working = false) {
   const el = $('#status');
-  el.textContent = text;
-  el.title = text;
+  statusShown = typeof text === 'function' ? text : () => text;
+  el.textContent = statusShown();
+  el.title = el.textContent;
   el.classList.toggle('bad', bad);
   el.classList.toggle('working', working);
+}
+function sayStatusAgain() {
+  const el = $('#status');
+  el.textContent = statusShown();
+  el.title = el.textContent;
 }
 
 // A busy server (429, 503), an analysis cancelled (499, engine.js) or no answer at all: worth
@@ -101,7 +111,9 @@ function unreached(e) { return e.info?.kind === 'offline'; }
 // After a failed analysis the drawing, plot and table still show the last model that worked:
 // they are dimmed and labelled "not updated" with the reason (and Retry when the server was
 // busy), on the stage and in the status line, so no one takes them for the text's.
+let staleShown = null;
 function showStale(e) {
+  staleShown = e;
   const box = $('#stale');
   box.classList.remove('building');
   if (!e || !state.solve) {
@@ -112,7 +124,7 @@ function showStale(e) {
   }
   const again = retryable(e);
   const label = box.querySelector('span');
-  label.textContent = t('notUpdated', e.message);
+  label.textContent = t('notUpdated', coreText(e.message));
   label.title = label.textContent;
   box.querySelector('button').hidden = !again;
   $('#retry').hidden = !again;
@@ -190,7 +202,9 @@ function setText(text) {
   return analyse();
 }
 
+let problemShown = null;
 function showProblem(info) {
+  problemShown = info;
   const el = $('#problems');
   if (!info) {
     editor.dispatch(setDiagnostics(editor.state, []));
@@ -200,14 +214,15 @@ function showProblem(info) {
   }
   const doc = editor.state.doc;
   const where = info.line ? t('errorAt', info.line, info.column ?? 1) : '';
-  el.textContent = where + info.message;
+  const message = coreText(info.message);
+  el.textContent = where + message;
   el.classList.add('bad');
   if (!info.line || info.file === 'request') { editor.dispatch(setDiagnostics(editor.state, [])); return; }
   const line = doc.line(Math.min(Math.max(info.line, 1), doc.lines));
   const from = Math.min(line.from + Math.max((info.column ?? 1) - 1, 0), line.to);
   const word = /^[\w.+-]+/.exec(doc.sliceString(from, line.to));
   const to = word ? from + word[0].length : Math.min(from + 1, line.to);
-  editor.dispatch(setDiagnostics(editor.state, [{ from, to: Math.max(to, from), severity: 'error', message: info.message }]));
+  editor.dispatch(setDiagnostics(editor.state, [{ from, to: Math.max(to, from), severity: 'error', message }]));
 }
 
 async function analyse() {
@@ -242,9 +257,9 @@ async function analyse() {
     showProblem(null);
     showStale(null);
     setTitle(solve.model || check.name);
-    const why = solve.complete ? '' : ` · ${t('incomplete', solve.stop_reason ?? '')}`;
-    if (state.simulation) status(simulationStatus(solve), !solve.complete);
-    else status(`${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why}`, !solve.complete);
+    const why = () => (solve.complete ? '' : ` · ${t('incomplete', coreText(solve.stop_reason ?? ''))}`);
+    if (state.simulation) status(() => simulationStatus(solve), !solve.complete);
+    else status(() => `${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why()}`, !solve.complete);
     state.dynamics = null;
     state.dynamicsColumns = [];
     onSolved();
@@ -260,7 +275,7 @@ async function analyse() {
     state.joints = outline?.joints ?? [];
     showProblem(e.info ?? { message: e.message });
     const where = e.info?.line ? t('errorAt', e.info.line, e.info.column ?? 1) : '';
-    status(`${t('failed')}: ${where}${e.message}`, true);
+    status(() => `${t('failed')}: ${where}${coreText(e.message)}`, true);
     if (outline) showSketch(outline, text);
     else showStale(e);
     // For want of the server: analysed again by itself when it answers, unless edited since.
@@ -301,7 +316,7 @@ function showSketch(outline, text) {
   box.hidden = false;
   document.body.classList.toggle('results-stale', !!state.solve);
   $('#retry').hidden = true;
-  status(note, !!(outline.problem || outline.immobile));
+  status(() => buildingText(outline), !!(outline.problem || outline.immobile));
 }
 
 // The sweep's table and its drawing. The answer's text is kept as the server wrote it: the JSON
@@ -679,8 +694,20 @@ function esc(s) { return String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<
 
 // ------------------------------------------------------------------------------ gallery
 
+// An example's title and description in the language chosen (i18n-gallery.js), else its own.
+function exampleText(e) {
+  const [title, description] = (getLang() === 'es' && galleryEs[e.name]) || [];
+  return { title: title || e.title || e.name, description: description ?? e.description ?? '' };
+}
+
+let galleryShown = [];
 async function loadGallery() {
   const { examples } = await api('/api/examples');
+  galleryShown = examples;
+  writeGallery(examples);
+  return examples;
+}
+function writeGallery(examples) {
   const models = examples.filter((e) => e.kind === 'model');
   // The "New" menu: the templates (examples/templates/), small models to start from.
   // Simplest first; a template the list does not know goes last.
@@ -691,8 +718,8 @@ async function loadGallery() {
     const b = document.createElement('button');
     b.type = 'button';
     b.dataset.template = e.name;
-    b.title = e.description || '';
-    b.textContent = e.title || e.name;
+    b.title = exampleText(e).description;
+    b.textContent = exampleText(e).title;
     b.addEventListener('click', () => { $('#new-menu').open = false; openExample(e.name).then((ok) => ok && showTab('editor')); });
     return b;
   }));
@@ -700,12 +727,11 @@ async function loadGallery() {
     const li = document.createElement('li');
     const b = document.createElement('button');
     b.dataset.example = e.name;
-    b.innerHTML = `<b>${esc(e.title || e.name)}</b><small>${esc(e.description || '')}</small>`;
+    b.innerHTML = `<b>${esc(exampleText(e).title)}</b><small>${esc(exampleText(e).description)}</small>`;
     b.addEventListener('click', () => openExample(e.name));
     li.append(b);
     return li;
   }));
-  return examples;
 }
 
 // True when it opened; otherwise the status says why (and, for want of the server, it opens by
@@ -967,6 +993,13 @@ async function start() {
   $('#engine-note button').addEventListener('click', () => location.reload());
   $('#lang').addEventListener('change', (e) => { setLang(e.target.value); });
   document.addEventListener('nbar:lang', () => { if (state.solve) fillColumnPicker(); });
+  // What was written from the core's answers is said again in the language chosen.
+  document.addEventListener('nbar:lang', () => {
+    sayStatusAgain();
+    if (problemShown) showProblem(problemShown); else if (state.lastOk) $('#problems').textContent = t('noErrors');
+    showStale(staleShown);
+    writeGallery(galleryShown);
+  });
   for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', () => showTab(b.dataset.tab));
   for (const b of document.querySelectorAll('[data-rtab]')) b.addEventListener('click', () => showResultTab(b.dataset.rtab));
   for (const b of document.querySelectorAll('[data-download]')) b.addEventListener('click', () => download(b.dataset.download));

@@ -17,6 +17,7 @@ import * as build from './build.mjs';
 import * as femap from './femap.mjs';
 import * as simulate from './simulate.mjs';
 import * as forces from './forces.mjs';
+import * as spanish from './spanish.mjs';
 
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const out = arg('--out', 'build/web-screenshots');
@@ -28,7 +29,9 @@ const out = arg('--out', 'build/web-screenshots');
 // over arrows, a drag at a later pose, zoom, the phone's bottom edge), at both: ctest's
 // Web.Forces, apart from the full run so that Web.Browser stays inside its watchdog;
 // `--only build`: build.mjs's (a slider-crank built from an empty model by taps), at both: ctest's
-// Web.BrowserBuild, apart from the full run as Web.Forces is.
+// Web.BrowserBuild, apart from the full run as Web.Forces is;
+// `--only spanish`: only spanish.mjs's (the core's messages in the catalogue, no English in Español), at both: ctest's
+// Web.Spanish, apart from the full run as Web.Forces is.
 const only = arg('--only', '');
 const onlyDraw = only === 'draw';
 const onlyReview = only === 'review';
@@ -36,6 +39,7 @@ const onlyFemap = only === 'femap';
 const onlySimulate = only === 'simulate';
 const onlyForces = only === 'forces';
 const onlyBuild = only === 'build';
+const onlySpanish = only === 'spanish';
 const examples = arg('--examples', '../../examples');
 
 const browser = await launchChromium();
@@ -215,6 +219,14 @@ async function forcesAt(tag, viewport, mobile) {
   await context.close();
 }
 
+// The app in Spanish (spanish.mjs): the catalogue against the core's messages, then no English
+// on screen at a laptop's and a phone's viewport.
+async function spanishAt(tag, viewport, mobile) {
+  const { context, page } = await open(tag, viewport, mobile);
+  await spanish.run(page, { mobile, tag, base, shot, click, retype });
+  await context.close();
+}
+
 async function desktop() {
   const { context, page } = await open('desktop', { width: 1280, height: 800 }, false);
   assert.ok(await page.locator('[data-example]').count() >= 10, 'the gallery lists the examples');
@@ -378,6 +390,10 @@ try {
   } else if (onlyForces) {
     await forcesAt('laptop', { width: 1366, height: 768 }, false);
     await forcesAt('phone', { width: 390, height: 844 }, true);
+  } else if (onlySpanish) {
+    console.log(`the catalogue holds the Spanish of ${await spanish.checkCatalogue(base, examples)} core messages a student meets`);
+    await spanishAt('laptop', { width: 1366, height: 768 }, false);
+    await spanishAt('phone', { width: 390, height: 844 }, true);
   } else if (onlyFemap) {
     await femapAt('laptop', { width: 1366, height: 768 }, false);
     await femapAt('phone', { width: 390, height: 844 }, true);
