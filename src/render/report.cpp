@@ -185,11 +185,9 @@ void write_loops_table(Html& h, const Analysis& analysis, const ModelSummary& su
     const std::string branch =
         l < branches.size() ? "</td></tr>\n<tr><th>Branch</th><td>" + esc(branches[l]) : std::string();
     h << "<table class=\"facts\"><tr><th>Loop</th><td>" << esc(loop.loop.name) << "</td></tr>\n<tr><th>Grashof</th><td>"
-      << esc(loop.description) << branch << "</td></tr>
-        < tr > <th> Transmission angle</ th><td> "
-                   << (mu.empty() ? "" : short_number(*lo) + " to " + short_number(*hi) + " " + esc(m.units.angle))
-                   << "</td></tr></table>
-                      ";
+      << esc(loop.description) << branch << "</td></tr>\n<tr><th>Transmission angle</th><td>"
+      << (mu.empty() ? "" : short_number(*lo) + " to " + short_number(*hi) + " " + esc(m.units.angle))
+      << "</td></tr></table>\n";
   }
 }
 
