@@ -5,16 +5,11 @@ from __future__ import annotations
 from typing import Any, List
 
 
-class Explanation:
-    """Gruebler's count, q, Φ and Φq (symbolic and numeric), every Newton–Raphson iteration,
-    the velocity and acceleration systems and the instant centres, at one sample. Jupyter shows
-    it as Markdown with LaTeX; ``print()`` gives plain text; ``.latex`` a LaTeX fragment."""
+class _NativeFields:
+    """A view of a native result whose FIELDS read through to it: listed by dir() (so that
+    Jupyter completes them) and documented in docs/python.md."""
 
-    # The native explanation's fields, which __getattr__ reaches: listed by dir() (so that
-    # Jupyter completes them) and documented in docs/python.md.
-    FIELDS = ("step", "time", "driver_values", "count", "coordinates", "equations", "newton", "converged", "start",
-              "jacobian", "q", "velocity", "acceleration", "centres", "residual", "matches_sweep",
-              "sweep_difference", "notes")
+    FIELDS: tuple = ()
 
     def __init__(self, native: Any):
         self._native = native
@@ -26,8 +21,18 @@ class Explanation:
         # Only the fields: copy and pickle look for special names on an instance whose _native is
         # not set yet, which would otherwise look for _native forever.
         if name not in self.FIELDS:
-            raise AttributeError(f"'Explanation' object has no attribute '{name}'")
+            raise AttributeError(f"'{type(self).__name__}' object has no attribute '{name}'")
         return getattr(self._native, name)
+
+
+class Explanation(_NativeFields):
+    """Gruebler's count, q, Φ and Φq (symbolic and numeric), every Newton–Raphson iteration,
+    the velocity and acceleration systems and the instant centres, at one sample. Jupyter shows
+    it as Markdown with LaTeX; ``print()`` gives plain text; ``.latex`` a LaTeX fragment."""
+
+    FIELDS = ("step", "time", "driver_values", "count", "coordinates", "equations", "newton", "converged", "start",
+              "jacobian", "q", "velocity", "acceleration", "centres", "residual", "matches_sweep",
+              "sweep_difference", "notes")
 
     def __deepcopy__(self, memo) -> "Explanation":
         # The native explanation never changes once made: a copy may share it.
@@ -65,7 +70,7 @@ class Explanation:
         return self.markdown
 
 
-class EquationsOfMotion:
+class EquationsOfMotion(_NativeFields):
     """The equations of motion of a simulation at one time (``Model.explain(simulate=True,
     at=T)``, ``nbar explain --simulate --at T``): [M Φqᵀ; Φq 0] [q̈; λ] = [Q; γ] at the state the
     run reaches at T, in SI (q in m, M in kg, Q in N, γ in m/s², λ in N). ``forces`` is a dict of
@@ -75,17 +80,6 @@ class EquationsOfMotion:
 
     FIELDS = ("time", "q", "velocity", "coordinates", "rows", "free_drivers", "mass", "jacobian", "forces", "gamma",
               "acceleration", "multipliers", "residual", "simulated_acceleration")
-
-    def __init__(self, native: Any):
-        self._native = native
-
-    def __dir__(self) -> List[str]:
-        return sorted(set(super().__dir__()) | set(self.FIELDS))
-
-    def __getattr__(self, name: str) -> Any:
-        if name not in self.FIELDS:
-            raise AttributeError(f"'EquationsOfMotion' object has no attribute '{name}'")
-        return getattr(self._native, name)
 
     @property
     def text(self) -> str:
