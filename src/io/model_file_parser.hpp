@@ -152,6 +152,10 @@ class Parser : yaml::Reader {
   Driver driver_of_kind(const YAML::Node& item, const Fields& f);
   void parse_driver_motion(const Fields& f, Driver& d, std::array<SourceMark, 2>& law_marks);
   void parse_driver_run(const Fields& f, Driver& d);
+  // SI per model unit of the driver's value: the angle's or the length's.
+  double driver_scale(const Driver& d) const {
+    return d.is_angular() ? model_.units.angle_scale : model_.units.length_scale;
+  }
   double rate(const Entry& e, int order, const Driver& d, double scale, bool initial = false) const;
   double driver_value(const Entry& e, const Driver& d, double scale, const std::string& unit) const;
   Law parse_law(const Entry& e, double scale) const;

@@ -327,7 +327,7 @@ Driver Parser::driver_of_kind(const YAML::Node& item, const Fields& f) {
 
 // How it moves: `from`, `to`, `speed` and `accel`, or a `law` that replaces them all.
 void Parser::parse_driver_motion(const Fields& f, Driver& d, std::array<SourceMark, 2>& law_marks) {
-  const double scale = d.is_angular() ? model_.units.angle_scale : model_.units.length_scale;
+  const double scale = driver_scale(d);
   const std::string unit = d.is_angular() ? model_.units.angle : model_.units.length;
   if (const Entry* from = f.find("from")) d.from = driver_value(*from, d, scale, unit);
   if (const Entry* to = f.find("to")) d.to = driver_value(*to, d, scale, unit);
@@ -357,7 +357,7 @@ void Parser::parse_driver_run(const Fields& f, Driver& d) {
   }
   if (const Entry* initial = f.find("initial_speed")) {
     if (!d.free) fail(initial->key_node, "`initial_speed` applies only to a driver with `free: true`");
-    d.initial_speed = rate(*initial, 1, d, d.is_angular() ? model_.units.angle_scale : model_.units.length_scale, true);
+    d.initial_speed = rate(*initial, 1, d, driver_scale(d), true);
   }
   if (const Entry* at_limits = f.find("at_limits")) {
     const std::string text = at_limits->value.IsScalar() ? at_limits->value.Scalar() : std::string();
