@@ -67,9 +67,14 @@ py::list newton_list(const Explanation& e) {
   return iterations;
 }
 
-}  // namespace
+// The equations of motion at a time, with the model and the request that made them.
+struct PyEquationsOfMotion {
+  std::shared_ptr<PyModel> model;
+  request::ExplainRequest request;
+  EquationsOfMotionAt equations;
+};
 
-void bind_explain(py::module_& m) {
+void bind_explanation(py::module_& m) {
   py::class_<Explanation, std::shared_ptr<Explanation>>(m, "NativeExplanation")
       .def_readonly("step", &Explanation::step)
       .def_readonly("time", &Explanation::time)
@@ -117,12 +122,10 @@ void bind_explain(py::module_& m) {
           [](const Explanation& e, const std::string& format) { return render_explanation(e, format_of(format)); },
           py::arg("format") = "text");
 
-  // `explain(simulate=True, at=T)`: the equations of motion, read by the command line's request.
-  struct PyEquationsOfMotion {
-    std::shared_ptr<PyModel> model;
-    request::ExplainRequest request;
-    EquationsOfMotionAt equations;
-  };
+}
+
+// `explain(simulate=True, at=T)`: the equations of motion, read by the command line's request.
+void bind_equations_of_motion(py::module_& m) {
   py::class_<PyEquationsOfMotion, std::shared_ptr<PyEquationsOfMotion>>(m, "NativeEquationsOfMotion")
       .def_property_readonly("time", [](const PyEquationsOfMotion& e) { return e.equations.time; })
       .def_property_readonly("q", [](const PyEquationsOfMotion& e) { return e.equations.q; })
@@ -177,7 +180,9 @@ void bind_explain(py::module_& m) {
       },
       py::arg("model"), py::arg("at"), py::arg("dt") = std::nullopt, py::arg("rtol") = std::nullopt,
       py::arg("at_toggle") = std::nullopt, py::arg("timeout") = std::nullopt);
+}
 
+void bind_explain_step(py::module_& m) {
   m.def(
       "explain",
       [](std::shared_ptr<PyModel> model, int step, std::optional<int> steps) {
@@ -197,6 +202,14 @@ void bind_explain(py::module_& m) {
         return out;
       },
       py::arg("model"), py::arg("step") = 0, py::arg("steps") = std::nullopt);
+}
+
+}  // namespace
+
+void bind_explain(py::module_& m) {
+  bind_explanation(m);
+  bind_equations_of_motion(m);
+  bind_explain_step(m);
 }
 
 }  // namespace nbar::python
