@@ -1,0 +1,2 @@
+// Compiled only so that the target nbar_test_headers makes the precompiled headers the test
+// programs share (tests/CMakeLists.txt).
