@@ -17,13 +17,13 @@ harnesses=("$@")
 if [ ${#harnesses[@]} -eq 0 ]; then harnesses=(fuzz_model_reader fuzz_task_reader fuzz_law fuzz_check fuzz_sketch); fi
 build="${NBAR_FUZZ_BUILD:-$root/build-fuzz}"
 jobs="$(nproc)"
-launcher=()
-if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+. "$root/scripts/cmake-options.sh"
+configure_options "$build"
 
 # -O1 with line tables only, as OSS-Fuzz builds: reports give file:line, and clang compiles the
 # instrumented library in 3.6 minutes on 2 cores, where -O2 -g took over 15.
 cmake -S "$root" -B "$build" -DNBAR_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -DNDEBUG" "${launcher[@]}" >/dev/null
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -DNDEBUG" "${options[@]}" >/dev/null
 cmake --build "$build" -j"$jobs" --target "${harnesses[@]}"
 
 # The seeds of each harness: its own folder, and the project's example files of its kind.

@@ -9,6 +9,7 @@
 set -euo pipefail
 build_packages=(
   build-essential cmake pkg-config
+  ninja-build  # builds faster than make (scripts/cmake-options.sh); make still works
   libeigen3-dev libyaml-cpp-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libcairo2-dev libcgif-dev
   libcpp-httplib-dev  # nbar serve: the web server

@@ -16,10 +16,10 @@ dist="$root/dist"
 python=/usr/bin/python3  # Debian's: the wheel and the .deb are for its Python 3.11
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
-  launcher=()
-  if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+  . "$root/scripts/cmake-options.sh"
+  configure_options "$build"
   cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DNBAR_BUILD_TESTS=OFF -DNBAR_BUILD_BENCH=OFF \
-    "${launcher[@]}" >/dev/null
+    "${options[@]}" >/dev/null
 fi
 if ! grep -q '^NBAR_BUILD_PYTHON:BOOL=ON' "$build/CMakeCache.txt"; then
   echo "package.sh: $build does not build the Python module (apt-get install pybind11-dev python3-dev)" >&2

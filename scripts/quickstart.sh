@@ -4,12 +4,11 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/install-deps.sh"
-# ccache, when it is installed, makes rebuilds fast; nothing needs it.
-launcher=()
-if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+. "$root/scripts/cmake-options.sh"
+configure_options "$root/build"
 # No tests or benchmarks: their libraries are scripts/test.sh's to install.
 cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DNBAR_BUILD_TESTS=OFF -DNBAR_BUILD_BENCH=OFF \
-  "${launcher[@]}" >/dev/null
+  "${options[@]}" >/dev/null
 # The program and, when pybind11 was found (scripts/install-deps.sh installs it), the Python
 # module, in one build so that the module's files compile beside the program's.
 targets=(nbar)

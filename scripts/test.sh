@@ -7,17 +7,16 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 jobs="$(nproc)"
 "$root/scripts/install-deps.sh" --tests
-# ccache, when it is installed, makes rebuilds fast; nothing needs it.
-launcher=()
-if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+. "$root/scripts/cmake-options.sh"
 
 # Each stage's heading carries the time, so a CI log shows where its minutes went.
 stage() { echo "== $* [$(date -u +%H:%M:%S)]"; }
 
 stage "Release build"
 # Tests and benchmarks named on: a build directory left by scripts/quickstart.sh has them off.
+configure_options "$root/build"
 cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DNBAR_BUILD_TESTS=ON -DNBAR_BUILD_BENCH=ON \
-  "${launcher[@]}" >/dev/null
+  "${options[@]}" >/dev/null
 cmake --build "$root/build" -j"$jobs"
 stage "Release tests"
 ctest --test-dir "$root/build" --output-on-failure -j"$jobs"
@@ -38,8 +37,9 @@ stage "AddressSanitizer + UndefinedBehaviorSanitizer build"
 #   server and the report writer, is under the sanitizers in the WebApi, WebServer and Report
 #   tests; the Release stage runs them) nor the 20 random nine-point instances of bench/ (the
 #   same solver as the NinePoint tests, 95 s each here).
+configure_options "$root/build-asan"
 cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNBAR_SANITIZE=ON \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DNBAR_BUILD_BENCH=OFF "${launcher[@]}" >/dev/null
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DNBAR_BUILD_BENCH=OFF "${options[@]}" >/dev/null
 cmake --build "$root/build-asan" -j"$jobs" --target nbar nbar_tests
 stage "AddressSanitizer + UndefinedBehaviorSanitizer tests"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
