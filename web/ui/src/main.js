@@ -241,13 +241,12 @@ async function analyse() {
     const check = await api('/api/check', { model: text }, 'json', analysis);
     if (seq !== state.seq) return;
     const size = sceneSize();
-    const { solve, solveText, scene } = state.simulation ? await simulation(text, size) : await sweep(text, size, analysis);
+    const { solve, scene } = state.simulation ? await simulation(text, size) : await sweep(text, size, analysis);
     if (seq !== state.seq) return;
     state.check = check;
     state.solve = solve;
     state.scene = scene;
     state.sceneSize = size;
-    state.solveText = solveText;
     state.lastOk = text;
     state.sketch = null;
     state.joints = check.joints ?? [];
@@ -328,10 +327,10 @@ function showSketch(outline, text) {
 // its dynamics were two, the second solving the sweep again). A model whose dynamics the core
 // refuses is solved without them.
 async function sweep(text, size, analysis) {
-  const solved = api('/api/solve', { model: text, dynamics: true }, 'text', analysis)
-    .catch((e) => (retryable(e) ? Promise.reject(e) : api('/api/solve', { model: text }, 'text', analysis)));
-  const [solveText, scene] = await Promise.all([solved, api('/api/render', sceneRequest(text, size), 'json', analysis)]);
-  return { solve: JSON.parse(solveText), solveText, scene };
+  const solved = api('/api/solve', { model: text, dynamics: true }, 'json', analysis)
+    .catch((e) => (retryable(e) ? Promise.reject(e) : api('/api/solve', { model: text }, 'json', analysis)));
+  const [solve, scene] = await Promise.all([solved, api('/api/render', sceneRequest(text, size), 'json', analysis)]);
+  return { solve, scene };
 }
 
 // The dynamics' columns of the sweep just solved join the Plot's and Table's choices and Explain
@@ -350,7 +349,7 @@ function takeDynamics(solve) {
 // A simulation's table and the drawing of its motion, in one request (one run).
 async function simulation(text, size) {
   const answer = await api('/api/simulate', simulationBody(text, size), 'json', { key: 'analysis', label: t('simulating') });
-  return { solve: answer.simulation, solveText: null, scene: answer.scene };
+  return { solve: answer.simulation, scene: answer.scene };
 }
 
 // The drawing of the model at a size: the sweep's, or in Simulate mode the simulation's.
