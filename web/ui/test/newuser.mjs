@@ -120,12 +120,10 @@ async function smallTargets(page) {
     .map((x) => `${x.what} ${x.w.toFixed(0)}×${x.h.toFixed(0)}`));
 }
 
-// The slider-crank of examples/slider-crank-centred.yaml, built by taps. Returns the seconds the
-// building took and the solve requests each edit made.
+// The slider-crank of examples/slider-crank-centred.yaml, built by taps: {seconds, text}.
 async function buildSliderCrank(page, ctx, stepShot) {
   const { mobile, click } = ctx;
   const started = Date.now();
-  const tool = (name) => click(page, mobile, `#edit-tools [data-tool="${name}"]`);
   await click(page, mobile, '[data-tab="gallery"]');
   await click(page, mobile, '#new-menu summary');
   const opened = await page.evaluate(() => +(document.body.dataset.opened ?? 0));
@@ -139,7 +137,23 @@ async function buildSliderCrank(page, ctx, stepShot) {
     assert.ok(b && b.x >= 0 && b.x + b.width <= width, `${z} on screen: ${JSON.stringify(b)}`);
   }
   await stepShot('1-empty');
+  await drawLinks(page, ctx, stepShot);
+  await finishInModelTab(page, ctx, stepShot);
+  const seconds = (Date.now() - started) / 1000;
+  const text = await yamlText(page);
+  // The lab's dimensions: crank 50, rod 180, centred guide.
+  assert.match(text, /P1: \[0, 0\]/);
+  assert.match(text, /P2: \[50, 0\]/);
+  assert.match(text, /P3: \[230, 0\]/);
+  assert.match(text, /G1: \[[-\d.]+, 0\]/);
+  assert.match(text, /units: \{length: mm, angle: deg\}/);
+  return { seconds, text };
+}
 
+// The crank and the rod drawn with the link tool, the crank pin dragged in the building drawing.
+async function drawLinks(page, ctx, stepShot) {
+  const { mobile, click } = ctx;
+  const tool = (name) => click(page, mobile, `#edit-tools [data-tool="${name}"]`);
   // Crank: a ground pivot at the origin, a link to the crank pin; snap on (the grid's taps exact).
   await tool('snap');
   await tool('ground');
@@ -167,6 +181,13 @@ async function buildSliderCrank(page, ctx, stepShot) {
   await edited(page, text);
   const dragged = (await yamlText(page)).match(/P2: \[([-\d.]+), ([-\d.]+)\]/);
   assert.ok(dragged && +dragged[2] > 5, `P2 dragged up in the building drawing: ${dragged?.[0]}`);
+}
+
+// The lab's dimensions typed, the slider tool's block and guide, the driver, the steel bars.
+async function finishInModelTab(page, ctx, stepShot) {
+  const { mobile, click } = ctx;
+  const tool = (name) => click(page, mobile, `#edit-tools [data-tool="${name}"]`);
+  let text;
 
   // The lab's dimensions typed into the Points table: crank pin (50, 0), wrist pin (230, 0).
   await click(page, mobile, '[data-tab="model"]');
@@ -206,15 +227,6 @@ async function buildSliderCrank(page, ctx, stepShot) {
   }
   await page.locator('#model-tables').scrollIntoViewIfNeeded();
   await stepShot('4-model-tab');
-  const seconds = (Date.now() - started) / 1000;
-  text = await yamlText(page);
-  // The lab's dimensions: crank 50, rod 180, centred guide.
-  assert.match(text, /P1: \[0, 0\]/);
-  assert.match(text, /P2: \[50, 0\]/);
-  assert.match(text, /P3: \[230, 0\]/);
-  assert.match(text, /G1: \[[-\d.]+, 0\]/);
-  assert.match(text, /units: \{length: mm, angle: deg\}/);
-  return { seconds, text };
 }
 
 // The peak slider speed: P3.vx on the plot, a touch held at its peak; the value shown there and
