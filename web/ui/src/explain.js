@@ -95,7 +95,7 @@ function stepAsked(last) {
 
 // ------------------------------------------------------------------------------ at the pose
 
-// The inverse dynamics' columns (main.js's addDynamics: what `solve --dynamics` adds to the
+// The inverse dynamics' columns (main.js's takeDynamics: what `solve --dynamics` adds to the
 // sweep's) at sample `step`: the joints' reactions, the drivers' efforts, the energies.
 function forcesSection(step) {
   const { state } = app;

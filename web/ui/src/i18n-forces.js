@@ -22,10 +22,10 @@ addStrings({
     stTitle: 'Tensión máxima de cada eslabón en el barrido', stLink: 'Eslabón', stPeak: 'Von Mises máxima', stStep: 'Paso',
     stWhere: 'Dónde: x, y', stSafety: 'Coef. de seguridad', stNoYield: 'sin límite elástico',
     stGo: (b, k) => `Mostrar el máximo de ${b}: paso ${k}`,
-    stHint: 'Tensiones de viga (nbar stress). Coeficiente de seguridad: el límite elástico del material entre la máxima. Dónde: x desde el primer punto del eslabón hacia el segundo, y hacia su izquierda. Toque una fila para ir a su paso.',
+    stHint: 'Tensiones de viga («nbar stress»). Coeficiente de seguridad: el límite elástico del material entre la máxima. Dónde: x desde el primer punto del eslabón hacia el segundo, y hacia su izquierda. Toque una fila para ir a su paso.',
     exForces: 'Fuerzas en esta posición', exForcesHint: 'Las reacciones en las juntas (la fuerza que un eslabón ejerce sobre el otro en la junta, como A.crank>coupler: la manivela sobre el acoplador) y los esfuerzos de los accionamientos, de la dinámica inversa del barrido (nbar solve --dynamics) en esta muestra.',
     exForcesNone: 'Este modelo no tiene dinámica inversa.', exForceCol: 'Columna', exValue: 'Valor',
-    exStresses: 'Tensiones en esta posición', exStressesHint: 'La mayor tensión de von Mises de cada eslabón con forma entre sus secciones en esta muestra (nbar stress --section-profile ESLABÓN --step K), y dónde a lo largo del eslabón.',
+    exStresses: 'Tensiones en esta posición', exStressesHint: 'La mayor tensión de von Mises de cada eslabón con forma entre sus secciones en esta muestra («nbar stress --section-profile ESLABÓN --step K»), y dónde a lo largo del eslabón.',
     exStressesNone: 'No hay eslabones con forma: no hay tensiones.', exAt: 'en x', exCentresDrawn: 'Cada centro instantáneo está marcado en el dibujo con su par de eslabones (crank,coupler); los del infinito no.',
   },
 });

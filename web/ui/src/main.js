@@ -241,13 +241,12 @@ async function analyse() {
     const check = await api('/api/check', { model: text }, 'json', analysis);
     if (seq !== state.seq) return;
     const size = sceneSize();
-    const { solve, solveText, scene } = state.simulation ? await simulation(text, size) : await sweep(text, size, analysis);
+    const { solve, scene } = state.simulation ? await simulation(text, size) : await sweep(text, size, analysis);
     if (seq !== state.seq) return;
     state.check = check;
     state.solve = solve;
     state.scene = scene;
     state.sceneSize = size;
-    state.solveText = solveText;
     state.lastOk = text;
     state.sketch = null;
     state.joints = check.joints ?? [];
@@ -262,10 +261,14 @@ async function analyse() {
     else status(() => `${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why()}`, !solve.complete);
     state.dynamics = null;
     state.dynamicsColumns = [];
+    if (!state.simulation) takeDynamics(solve);
     onSolved();
+    if (state.dynamics) {
+      document.body.dataset.dynamics = '1';
+      document.dispatchEvent(new CustomEvent('nbar:dynamics'));
+    }
     updateHash(text);
     document.dispatchEvent(new CustomEvent('nbar:analysed', { detail: { error: null } }));
-    if (!state.simulation) addDynamics(text, seq);
   } catch (e) {
     if (seq !== state.seq) return;
     // A model the core can read but not solve yet (one being built) is drawn as it is written,
@@ -319,46 +322,34 @@ function showSketch(outline, text) {
   status(() => buildingText(outline), !!(outline.problem || outline.immobile));
 }
 
-// The sweep's table and its drawing. The answer's text is kept as the server wrote it: the JSON
-// download is those bytes.
+// The sweep's table, with its inverse dynamics (`nbar solve --dynamics`: every joint's force,
+// each driver's torque or force, the energies), and its drawing: one solve an edit (a sweep then
+// its dynamics were two, the second solving the sweep again). A model whose dynamics the core
+// refuses is solved without them.
 async function sweep(text, size, analysis) {
-  const [solveText, scene] = await Promise.all([api('/api/solve', { model: text }, 'text', analysis), api('/api/render', sceneRequest(text, size), 'json', analysis)]);
-  return { solve: JSON.parse(solveText), solveText, scene };
+  const solved = api('/api/solve', { model: text, dynamics: true }, 'json', analysis)
+    .catch((e) => (retryable(e) ? Promise.reject(e) : api('/api/solve', { model: text }, 'json', analysis)));
+  const [solve, scene] = await Promise.all([solved, api('/api/render', sceneRequest(text, size), 'json', analysis)]);
+  return { solve, scene };
 }
 
-// The same sweep's inverse dynamics (`nbar solve --dynamics`: every joint's force, each driver's
-// torque or force, the energies), asked once the sweep is shown: its columns join the sweep's in
-// the Plot's and Table's choices, row for row (the same samples), and Explain reads its row at the
-// pose. A model the core cannot analyse so (or a failed request) keeps the sweep's columns only.
-async function addDynamics(text, seq) {
-  let dynamics;
-  try {
-    dynamics = await api('/api/solve', { model: text, dynamics: true }, 'json', { key: 'analysis', label: t('analysing') });
-  } catch { return; }
-  const { solve } = state;
-  if (seq !== state.seq || state.simulation || state.lastOk !== text || dynamics.rows.length !== solve.rows.length) return;
-  const have = new Set(solve.columns);
-  const extra = dynamics.columns.map((c, i) => [c, i]).filter(([c]) => !have.has(c));
-  solve.columns.push(...extra.map(([c]) => c));
-  solve.column_units.push(...extra.map(([, i]) => dynamics.column_units[i]));
-  solve.rows.forEach((row, k) => row.push(...extra.map(([, i]) => dynamics.rows[k][i])));
-  state.dynamics = dynamics;
-  state.dynamicsColumns = extra.map(([c]) => c);
+// The dynamics' columns of the sweep just solved join the Plot's and Table's choices and Explain
+// reads their row at the pose. The core appends them after the sweep's own columns, and theirs
+// are the only units in newtons and joules (dynamics_table.cpp), which tells where they start.
+function takeDynamics(solve) {
+  if (!solve.dynamics) return;
+  const first = solve.column_units.findIndex((u) => u === 'N' || u === 'N m' || u === 'J');
+  if (first < 0) return;
+  state.dynamics = solve.dynamics;
+  state.dynamicsColumns = solve.columns.slice(first);
   if (state.wantedY && col(state.wantedY) >= 0) state.ycol = state.wantedY;
   state.wantedY = undefined;
-  // The plot and table only: the drawing and its handles stay as they are (a finger may be on one).
-  fillColumnPicker();
-  buildPlot();
-  buildTable();
-  markTableRow();
-  document.body.dataset.dynamics = '1';
-  document.dispatchEvent(new CustomEvent('nbar:dynamics'));
 }
 
 // A simulation's table and the drawing of its motion, in one request (one run).
 async function simulation(text, size) {
   const answer = await api('/api/simulate', simulationBody(text, size), 'json', { key: 'analysis', label: t('simulating') });
-  return { solve: answer.simulation, solveText: null, scene: answer.scene };
+  return { solve: answer.simulation, scene: answer.scene };
 }
 
 // The drawing of the model at a size: the sweep's, or in Simulate mode the simulation's.
@@ -514,7 +505,8 @@ function svgPoint(e) {
 }
 function startDrag(e) {
   const c = e.target.closest('circle[data-point]');
-  if (!c || !state.solve || state.sketch) return;
+  if (c && state.sketch) { startSketchDrag(e, c); return; }
+  if (!c || !state.solve) return;
   e.preventDefault();
   play(false);
   if (state.frame !== 0) {
@@ -527,6 +519,26 @@ function startDrag(e) {
   drag = { name: c.dataset.point, id: e.pointerId, moved: false, dx: start.x - press.x, dy: start.y - press.y };
   $('#drawing svg').setPointerCapture(e.pointerId);
 }
+// A point of a model being built (drawn from the core's outline: it cannot be solved yet) is
+// dragged on the sketch as drawn, its links following with no request, and written where it is
+// let go.
+function startSketchDrag(e, c) {
+  const p = state.sketch.points.find((q) => q.name === c.dataset.point);
+  if (!p) return;
+  e.preventDefault();
+  const press = svgPoint(e);
+  drag = { name: p.name, id: e.pointerId, moved: false, dx: p.x - press.x, dy: p.y - press.y, sketch: true };
+  $('#drawing svg').setPointerCapture(e.pointerId);
+}
+function redrawSketch(d) {
+  const svg = $('#drawing svg');
+  const b = svg.viewBox.baseVal;
+  const outline = { ...state.sketch, points: state.sketch.points.map((q) => (q.name === d.name ? { ...q, x: d.x, y: d.y } : q)) };
+  const fresh = document.createElement('div');
+  fresh.innerHTML = sketchSvg(outline, { x: b.x, y: b.y, w: b.width, h: b.height }, b.height / b.width).svg;
+  // The svg element stays (it holds the pointer capture and the view): only its content is new.
+  svg.replaceChildren(...fresh.firstElementChild.childNodes);
+}
 function moveDrag(e) {
   if (!drag || e.pointerId !== drag.id) return;
   // With snap on, the preview sits on the grid where the point will be written.
@@ -536,6 +548,7 @@ function moveDrag(e) {
   const p = snapped ? { x: snapped[0], y: snapped[1] } : raw;
   drag.moved = true;
   drag.x = p.x; drag.y = p.y;
+  if (drag.sketch) { redrawSketch(drag); return; }
   $('#drawing svg .handles').innerHTML = handlesSvg(state.geometry, state.solve, state.solve.rows[0], { name: drag.name, ...p });
   redrawDragged(drag);
 }
@@ -546,7 +559,8 @@ function endDrag(e) {
   if (!d.moved) return;
   // The point's value in the YAML is replaced where it is, the rest of the text kept as written.
   if (!applyEdit((text) => setIn(text, ['points', d.name], draggedValue(d)))) {
-    if (d.scene) showDrawing();
+    if (d.sketch) analyse();
+    else if (d.scene) showDrawing();
     else setFrame(0);
   }
 }
@@ -668,7 +682,8 @@ function followPointer(plot, data) {
     follow(e);
     if (e.pointerType !== 'mouse') over.setPointerCapture?.(e.pointerId);
   });
-  over.addEventListener('pointermove', (e) => { if (e.pointerType !== 'mouse' && e.buttons) follow(e); });
+  // Held down and moved (a finger, or the mouse with its button down), the pose follows.
+  over.addEventListener('pointermove', (e) => { if (e.buttons) follow(e); });
 }
 function resizePlot() {
   const el = $('#plot');
@@ -855,8 +870,8 @@ async function download(kind) {
       // The core's CSV writer, as `nbar solve` writes it: the browser writes no numbers of its own.
       save(await api('/api/solve', { model, format: 'csv' }, 'blob'), `${name}.csv`);
     } else if (kind === 'json') {
-      if (!state.solveText) return;
-      save(new Blob([state.solveText], { type: 'application/json' }), `${name}.json`);
+      // `nbar solve`'s answer as it writes it (the sweep on screen also holds its dynamics).
+      save(await api('/api/solve', { model }, 'blob'), `${name}.json`);
     } else if (kind === 'model') {
       save(new Blob([model], { type: 'application/yaml' }), `${name}.yaml`);
     } else if (kind === 'svg' || (kind === 'png' && !inBrowser)) {
@@ -948,7 +963,7 @@ function applyView(params) {
   const list = (key) => (params.get(key) ? params.get(key).split(',') : []);
   setOverlayView({ on: list('o'), traced: list('t') });
   const [y, ...more] = list('y');
-  // A dynamics column comes with the dynamics, after the sweep: chosen then (addDynamics).
+  // A column the model on screen lacks may come with the next analysis: chosen then (takeDynamics).
   if (y && state.solve && col(y) < 0) state.wantedY = y;
   if (y && state.solve && col(y) >= 0 && (y !== state.ycol || more.length)) {
     state.ycol = y;

@@ -73,7 +73,7 @@ function refuseField(input, message) {
   if (!cell) return;
   cell.value = typed;
   cell.classList.add('bad');
-  cell.title = message;
+  cell.title = coreText(message);
 }
 
 // A field edited to a value that changes nothing takes back a refusal shown for it.
@@ -310,9 +310,9 @@ function markError() {
   const cell = best ?? edited;
   if (cell) {
     cell.classList.add('bad');
-    cell.title = lastError.message;
+    cell.title = coreText(lastError.message);
     // The message beside the field too: on a phone the panel's top may be scrolled away.
-    cell.insertAdjacentHTML('afterend', `<small class="cell-error" role="alert">${esc(lastError.message)}</small>`);
+    cell.insertAdjacentHTML('afterend', `<small class="cell-error" role="alert">${esc(coreText(lastError.message))}</small>`);
   }
   // Once, after an edit from the tables: the field (or the note) scrolled into view under the
   // header (scroll-margin-top in style.css), not while the student types in the editor.

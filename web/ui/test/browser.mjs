@@ -18,6 +18,7 @@ import * as femap from './femap.mjs';
 import * as simulate from './simulate.mjs';
 import * as forces from './forces.mjs';
 import * as spanish from './spanish.mjs';
+import * as newuser from './newuser.mjs';
 
 const nbar = arg('--nbar', 'build/apps/nbar/nbar');
 const out = arg('--out', 'build/web-screenshots');
@@ -31,7 +32,10 @@ const out = arg('--out', 'build/web-screenshots');
 // `--only build`: build.mjs's (a slider-crank built from an empty model by taps), at both: ctest's
 // Web.BrowserBuild, apart from the full run as Web.Forces is;
 // `--only spanish`: only spanish.mjs's (the core's messages in the catalogue, no English in Español), at both: ctest's
-// Web.Spanish, apart from the full run as Web.Forces is.
+// Web.Spanish, apart from the full run as Web.Forces is;
+// `--only newuser`: newuser.mjs's (issue 39's whole new-user run: the lab slider-crank built by
+// taps, its peak slider speed and stress peak read by touch, then all again in Spanish), at both:
+// ctest's Web.NewUser.
 const only = arg('--only', '');
 const onlyDraw = only === 'draw';
 const onlyReview = only === 'review';
@@ -40,6 +44,7 @@ const onlySimulate = only === 'simulate';
 const onlyForces = only === 'forces';
 const onlyBuild = only === 'build';
 const onlySpanish = only === 'spanish';
+const onlyNewUser = only === 'newuser';
 const examples = arg('--examples', '../../examples');
 
 const browser = await launchChromium();
@@ -227,6 +232,13 @@ async function spanishAt(tag, viewport, mobile) {
   await context.close();
 }
 
+// Issue 39's new-user run (newuser.mjs) at a laptop's and a phone's viewport, against the CLI.
+async function newUserAt(tag, viewport, mobile) {
+  const { context, page } = await open(tag, viewport, mobile);
+  await newuser.run(page, { mobile, tag, nbar, examples, shot, click });
+  await context.close();
+}
+
 async function desktop() {
   const { context, page } = await open('desktop', { width: 1280, height: 800 }, false);
   assert.ok(await page.locator('[data-example]').count() >= 10, 'the gallery lists the examples');
@@ -394,6 +406,9 @@ try {
     console.log(`the catalogue holds the Spanish of ${await spanish.checkCatalogue(base, examples)} core messages a student meets`);
     await spanishAt('laptop', { width: 1366, height: 768 }, false);
     await spanishAt('phone', { width: 390, height: 844 }, true);
+  } else if (onlyNewUser) {
+    await newUserAt('phone', { width: 390, height: 844 }, true);
+    await newUserAt('laptop', { width: 1366, height: 768 }, false);
   } else if (onlyFemap) {
     await femapAt('laptop', { width: 1366, height: 768 }, false);
     await femapAt('phone', { width: 390, height: 844 }, true);

@@ -93,9 +93,10 @@ export async function checkCatalogue(base, examples) {
   return checked;
 }
 
-// The words of visible text not in Spanish. `names` are the model's own (exempt).
-async function englishOnScreen(page, names) {
-  const texts = await page.evaluate(() => {
+// The words of visible text not in Spanish (or of `given` texts, a tooltip's say). `names` are
+// the model's own (exempt).
+export async function englishOnScreen(page, names, given = null) {
+  const texts = given ?? await page.evaluate(() => {
     const out = [];
     const skip = (el) => el.closest('.cm-editor, #model-name, select, script, style, title, [hidden]');
     const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
@@ -122,7 +123,7 @@ async function englishOnScreen(page, names) {
   return found;
 }
 
-function namesOf(yamlText) {
+export function namesOf(yamlText) {
   const names = new Set();
   // Every identifier before a colon or inside a flow list of the model's text is one of its names.
   for (const m of yamlText.matchAll(/^\s*-?\s*\{?\s*([\w-]+)\s*:/gm)) names.add(m[1].toLowerCase());
