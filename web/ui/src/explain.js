@@ -7,7 +7,6 @@
 // sample, and each shaped link's section profile there), and the instant centres are marked on
 // the drawing while it shows that pose.
 import { t } from './i18n.js';
-import { coreText } from './i18n-core.js';
 
 const $ = (s) => document.querySelector(s);
 let app = null;
@@ -51,10 +50,10 @@ function render(ex) {
   parts.push(`<section><h4>1. ${t('exDof')}</h4><p class="eq">G = 3(n − 1) − 2P<sub>I</sub> − P<sub>II</sub> = 3(${c.links} − 1) − 2·${c.lower_pairs} − ${c.higher_pairs} = <b>${c.dof}</b></p>`
     + `<p class="hint">${t('exMobility', c.mobility)}</p></section>`);
   parts.push(`<section><h4>2. q</h4>${matrixTable('q', ['q'], sym, [ex.q])}<p class="hint">${t('exUnits', app.esc(units.length ?? ''))}</p></section>`);
-  parts.push(`<section><h4>3. Φ(q, t) = 0</h4><ol class="eqs">${ex.equations.map((e) => `<li><span class="lbl">${app.esc(coreText(e.label))}</span><span class="eq">${maths(e.text)}</span></li>`).join('')}</ol></section>`);
+  parts.push(`<section><h4>3. Φ(q, t) = 0</h4><ol class="eqs">${ex.equations.map((e) => `<li><span class="lbl">${app.esc(e.label)}</span><span class="eq">${maths(e.text)}</span></li>`).join('')}</ol></section>`);
   parts.push(`<section><h4>4. Φ<sub>q</sub></h4>${matrixTable('jac', rowsHead, sym, ex.jacobian)}<p class="hint">${t('exJacobian')}</p></section>`);
   const newton = iters.map((it) => `<tr><td>${it.iteration}</td><td>${num(it.residual)}</td><td>${it.dq ? num(Math.hypot(...it.dq)) : '–'}</td></tr>`).join('');
-  parts.push(`<section><h4>5. Newton–Raphson</h4><p class="hint">${t('exNewton', app.esc(coreText(ex.newton?.start ?? '')))}</p>`
+  parts.push(`<section><h4>5. Newton–Raphson</h4><p class="hint">${t('exNewton', app.esc(ex.newton?.start ?? ''))}</p>`
     + `<div class="mwrap"><table class="matrix newton"><thead><tr><th>k</th><th>‖Φ(q<sub>k</sub>)‖</th><th>‖Δq‖</th></tr></thead><tbody>${newton}</tbody></table></div>`
     + `<p class="hint">${ex.newton?.converged ? t('exConverged', iters.length) : t('exNotConverged')}</p></section>`);
   const length = app.esc(units.length ?? ''); const time = app.esc(units.time ?? 's');

@@ -6,7 +6,6 @@
 // its stop are listed with their step and flagged on the drawing when the pose shown is there.
 // Every number comes from the server; this module only scales and draws them.
 import { t, translatePage } from './i18n.js';
-import { coreText, grashofName } from './i18n-core.js';
 
 const $ = (s) => document.querySelector(s);
 const SVGNS = 'http://www.w3.org/2000/svg';
@@ -355,7 +354,7 @@ function info(row) {
       const design = app.state.solve.branches?.find((b) => b.loop === l.name)?.transmission_angle?.design;
       mu = ` · μ = ${app.fmt(row[i])}°` + (Number.isFinite(design) ? ` <small>(${t('minIs')} ${app.fmt(design)}°)</small>` : '');
     }
-    return `<span class="loop" title="${app.esc(l.description ?? '')}"><b>${app.esc(l.name)}</b>: ${app.esc(grashofName(l.grashof ?? ''))}${mu}</span>`;
+    return `<span class="loop" title="${app.esc(l.description ?? '')}"><b>${app.esc(l.name)}</b>: ${app.esc(l.grashof ?? '')}${mu}</span>`;
   });
   $('#motion-info').innerHTML = parts.join('');
   // The model's facts change with the model, not the frame: a line of their own, rewritten only
@@ -381,9 +380,9 @@ function sweepWarnings() {
   // The solve's JSON gives its warnings as plain messages; a structured one (from the core's
   // Warning) may carry the step it happened at. A warning with no step gets no step button.
   const list = (solve.warnings ?? []).map((w) => (typeof w === 'string'
-    ? { step: null, text: coreText(w), code: '' }
-    : { step: Number.isInteger(w.step) && w.step >= 0 ? w.step : null, text: coreText(w.message ?? ''), code: w.code }));
-  if (!solve.complete) list.push({ step: solve.rows.length - 1, text: coreText(solve.stop_reason) ?? t('stopped'), code: 'stop' });
+    ? { step: null, text: w, code: '' }
+    : { step: Number.isInteger(w.step) && w.step >= 0 ? w.step : null, text: w.message ?? '', code: w.code }));
+  if (!solve.complete) list.push({ step: solve.rows.length - 1, text: solve.stop_reason ?? t('stopped'), code: 'stop' });
   return list;
 }
 

@@ -3,7 +3,6 @@
 // from the editor's text and every change is written back into it (model-edit.js); a value the
 // server rejects is marked in its field with the server's message.
 import { t } from './i18n.js';
-import { coreText } from './i18n-core.js';
 import { setIn, deleteIn, parseModel, renamePoint, deletePoint } from './yaml-text.js';
 import { applyEdit, modelText, editContext } from './model-edit.js';
 import { selectBody } from './canvas-tools.js';
@@ -146,7 +145,11 @@ function bodiesSection(m) {
 function jointsSection(m) {
   // The joints of the text on screen (the check's, or while it cannot be solved the outline's):
   // never the last model that solved.
-  const rows = (editContext().state.joints ?? []).filter((j) => j.startsWith('revolute')).map((j) => `<tr><td colspan="4" class="note">${esc(coreText(j))}</td></tr>`);
+  // The core lists the revolutes first, then one line per slider and per slot; the lines come in
+  // the language asked, so the revolutes are told by their place, not by their words.
+  const joints = editContext().state.joints ?? [];
+  const written = ['sliders', 'slots'].reduce((n, kind) => n + (Array.isArray(m[kind]) ? m[kind].length : 0), 0);
+  const rows = joints.slice(0, Math.max(joints.length - written, 0)).map((j) => `<tr><td colspan="4" class="note">${esc(j)}</td></tr>`);
   for (const kind of ['sliders', 'slots']) {
     (Array.isArray(m[kind]) ? m[kind] : []).forEach((s, i) => {
       if (!isObj(s)) return;
