@@ -4,7 +4,7 @@
 // iterations with their residual norms, and the velocity and acceleration solutions. The maths
 // is the core's plain-text form set with HTML sub- and superscripts: no maths library, no network.
 // After it, the forces and stresses at that pose (the core's inverse dynamics of the sweep at that
-// sample, and each shaped link's section profile there), and the instant centres are marked on
+// sample, and each shaped link's largest stress there, from the explanation), and the instant centres are marked on
 // the drawing while it shows that pose.
 import { t } from './i18n.js';
 
@@ -106,23 +106,15 @@ function forcesSection(step) {
     + `<div class="mwrap"><table class="matrix forces"><thead><tr><th>${t('exForceCol')}</th><th>${t('exValue')}</th><th></th></tr></thead><tbody>${rows}</tbody></table></div></section>`;
 }
 
-// Each shaped link's section profile at `step` (`nbar stress --section-profile LINK --step K`),
-// the links being those `nbar stress` reports; its largest von Mises and where along the link.
-async function stressesSection(model, step) {
+// Each shaped link's largest von Mises stress at this pose, where along the link and its safety
+// factor: the core's explanation (`stresses`, as `nbar explain` prints them), only drawn here.
+function stressesSection(ex) {
   const head = `<section data-at-pose="stresses"><h4>10. ${t('exStresses')}</h4>`;
-  let peaks;
-  try { peaks = await app.api('/api/stress', { model }); } catch { return `${head}<p class="hint">${t('exStressesNone')}</p></section>`; }
-  const links = peaks.links ?? [];
+  const links = ex.stresses ?? [];
   if (!links.length) return `${head}<p class="hint">${t('exStressesNone')}</p></section>`;
-  const profiles = await Promise.all(links.map((l) => app.api('/api/stress', { model, section_profile: l.body, step }).catch(() => null)));
-  const rows = links.map((l, k) => {
-    const p = profiles[k];
-    const vm = p ? p.columns.indexOf('von_mises') : -1; const x = p ? p.columns.indexOf('x') : -1;
-    if (vm < 0) return `<tr data-body="${app.esc(l.body)}"><th>${app.esc(l.body)}</th><td>–</td><td></td></tr>`;
-    const top = p.rows.reduce((a, r) => (Math.abs(r[vm]) > Math.abs(a[vm]) ? r : a), p.rows[0]);
-    return `<tr data-body="${app.esc(l.body)}"><th>${app.esc(l.body)}</th><td>${num(top[vm])} ${app.esc(p.column_units[vm])}</td>`
-      + `<td>${t('exAt')} = ${num(top[x])} ${app.esc(p.column_units[x])}</td></tr>`;
-  }).join('');
+  const length = app.esc(ex.units?.length ?? '');
+  const rows = links.map((l) => `<tr data-body="${app.esc(l.body)}"><th>${app.esc(l.body)}</th><td>${num(l.von_mises)} ${app.esc(l.unit)}</td>`
+    + `<td>${t('exAt')} = ${num(l.at)} ${length}</td><td>${l.safety_factor === null ? t('stNoYield') : `${t('stSafety')} ${num(l.safety_factor)}`}</td></tr>`).join('');
   return `${head}<p class="hint">${t('exStressesHint')}</p><div class="mwrap"><table class="matrix stresses"><tbody>${rows}</tbody></table></div></section>`;
 }
 
@@ -162,9 +154,7 @@ async function explainNow() {
     centresShown = { step, centres: ex.centres ?? [] };
     drawCentres();
     const pose = out.querySelector('#explain-pose');
-    pose.innerHTML = forcesSection(step);
-    const stresses = await stressesSection(model, step);
-    if (out.dataset.step === String(step) && state.lastOk === model) pose.insertAdjacentHTML('beforeend', stresses);
+    pose.innerHTML = forcesSection(step) + stressesSection(ex);
     out.dataset.pose = String(step);
   } catch (e) {
     out.innerHTML = `<p class="bad">${app.esc(e.message)}</p>`;
