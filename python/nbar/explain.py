@@ -31,7 +31,7 @@ class Explanation(_NativeFields):
     it as Markdown with LaTeX; ``print()`` gives plain text; ``.latex`` a LaTeX fragment."""
 
     FIELDS = ("step", "time", "driver_values", "count", "coordinates", "equations", "newton", "converged", "start",
-              "jacobian", "q", "velocity", "acceleration", "centres", "residual", "matches_sweep",
+              "jacobian", "q", "velocity", "acceleration", "centres", "stresses", "residual", "matches_sweep",
               "sweep_difference", "notes")
 
     def __deepcopy__(self, memo) -> "Explanation":

@@ -21,6 +21,7 @@ class Explanation:
     velocity: Dict[str, Any]
     acceleration: Dict[str, Any]
     centres: List[Dict[str, Any]]
+    stresses: List[Dict[str, Any]]
     residual: float
     matches_sweep: bool
     sweep_difference: float

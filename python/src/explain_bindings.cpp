@@ -59,6 +59,23 @@ py::list centre_list(const Explanation& e) {
   return centres;
 }
 
+// Each shaped link's largest von Mises stress at the pose, as explain's JSON gives it: MPa, the
+// place along the link in the model's length unit.
+py::list stress_list(const Explanation& e) {
+  const Model& m = e.mechanism->model();
+  py::list stresses;
+  for (const StressPeak& p : e.stresses) {
+    py::dict d;
+    d["body"] = m.bodies[p.body].name;
+    d["von_mises"] = to_megapascal(p.at.von_mises);
+    d["unit"] = "MPa";
+    d["at"] = p.at.position / m.units.length_scale;
+    d["safety_factor"] = p.safety_factor ? py::object(py::float_(*p.safety_factor)) : py::object(py::none());
+    stresses.append(d);
+  }
+  return stresses;
+}
+
 py::list newton_list(const Explanation& e) {
   py::list iterations;
   for (const NewtonIteration& it : e.newton)
@@ -101,6 +118,7 @@ void bind_explanation(py::module_& m) {
       .def_property_readonly("velocity", [](const Explanation& e) { return system_dict(e.velocity); })
       .def_property_readonly("acceleration", [](const Explanation& e) { return system_dict(e.acceleration); })
       .def_property_readonly("centres", &centre_list)
+      .def_property_readonly("stresses", &stress_list)
       .def_readonly("residual", &Explanation::residual)
       .def_readonly("matches_sweep", &Explanation::matches_sweep)
       .def_readonly("sweep_difference", &Explanation::sweep_difference)

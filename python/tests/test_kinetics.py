@@ -130,3 +130,21 @@ def test_stresses_of_a_sweep_stopped_at_a_toggle_raise_as_solve_does(examples):
     peaks = e.value.result
     assert isinstance(peaks, nbar.StressResult) and all(link["step"] < 180 for link in peaks.links)
     assert m.stress(partial=True).links == peaks.links
+
+
+def test_explain_gives_each_links_largest_stress_at_its_pose(examples):
+    # Explain's stresses at step 90 of the steel four-bar are each link's largest von Mises over
+    # the section profile of the stress analysis at that step.
+    m = nbar.load(examples / "fourbar-steel-bars.yaml")
+    e = m.explain(step=90)
+    s = m.stress()
+    assert [link["body"] for link in e.stresses] == ["crank", "coupler", "rocker"]
+    for link in e.stresses:
+        profile = s.profile(link["body"], step=90)
+        top = int(np.argmax(np.abs(profile["von_mises"])))
+        assert link["unit"] == "MPa" and profile.units["von_mises"] == "MPa"
+        assert link["von_mises"] == pytest.approx(abs(profile["von_mises"][top]), rel=1e-9)
+        assert link["at"] == pytest.approx(profile["x"][top], rel=1e-9)
+        assert link["safety_factor"] == pytest.approx(250.0 / link["von_mises"], rel=1e-9)  # steel, 250 MPa
+    assert "10. Stresses at this pose" in e.text
+    assert nbar.load(examples / "fourbar-crank-rocker.yaml").explain(step=0).stresses == []

@@ -470,6 +470,21 @@ void explain_rates(const Mechanism& mech, State& state, const std::vector<Driver
   }
 }
 
+// Each shaped link's largest von Mises stress at one sample, from that sample's inverse dynamics,
+// as the stress stage finds its peaks over a sweep (stress_peaks), here over this one sample.
+std::vector<StressPeak> stresses_at(const std::shared_ptr<const Mechanism>& mechanism, const Sample& sample,
+                                    const ExplainOptions& options) {
+  const Model& m = mechanism->model();
+  const bool shaped = std::any_of(m.bodies.begin(), m.bodies.end(),
+                                  [](const Body& b) { return b.shape && b.thickness > 0.0 && b.points.size() >= 2; });
+  if (!shaped) return {};
+  const auto dynamics = std::make_shared<const InverseDynamics>(mechanism);
+  const LinkStress links(dynamics, options.sections);
+  SweepResult one;
+  one.samples.push_back(sample);
+  return stress_peaks(links, one, {dynamics->solve(sample)}, options.control);
+}
+
 }  // namespace
 
 Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOptions& options) {
@@ -518,6 +533,7 @@ Explanation explain(std::shared_ptr<const Mechanism> mechanism, const ExplainOpt
 
   options.control.checkpoint("explain", 2, 3);
   ex.centres = instant_centres(mech, ex.q, ex.velocity.solution, ex.notes);
+  ex.stresses = stresses_at(mechanism, sample, options);
   return ex;
 }
 

@@ -116,6 +116,7 @@ class Renderer {
     motion(false);
     motion(true);
     centres();
+    stresses();
     notes();
     return out_.str();
   }
@@ -487,6 +488,30 @@ class Renderer {
       out_ << aligned(rows);
     } else {
       out_ << (md() ? md_table({"centre", x, y, "kind"}, rows) + "\n" : tex_table({"centre", x, y, "kind"}, rows));
+    }
+  }
+
+  // Each shaped link's largest von Mises stress at this pose (Explanation::stresses), as `nbar
+  // stress --section-profile LINK --step K` would find it among its sections.
+  void stresses() {
+    if (ex_.stresses.empty()) return;
+    heading("10. Stresses at this pose");
+    para(
+        "For each link with a shape, the largest von Mises stress over its cross-sections under this pose's "
+        "joint forces, driver efforts and inertia (the beam model of nbar stress), where along the link from its "
+        "first point, and the safety factor when its material has a yield strength.");
+    const double unit = m_.units.length_scale;
+    const std::string x = "x (" + m_.units.length + ")";
+    std::vector<std::vector<std::string>> rows;
+    for (const StressPeak& p : ex_.stresses)
+      rows.push_back({words(m_.bodies[p.body].name), cell(to_megapascal(p.at.von_mises)), cell(p.at.position / unit),
+                      p.safety_factor ? cell3(*p.safety_factor) : "-"});
+    const std::vector<std::string> head = {"link", "von Mises (MPa)", x, "safety factor"};
+    if (text()) {
+      rows.insert(rows.begin(), head);
+      out_ << aligned(rows);
+    } else {
+      out_ << (md() ? md_table(head, rows) + "\n" : tex_table(head, rows));
     }
   }
 

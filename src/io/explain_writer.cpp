@@ -93,6 +93,15 @@ json explanation_json(const Explanation& ex) {
     centres.push_back(k);
   }
   j["centres"] = centres;
+  // The stresses at the pose: von Mises in MPa (`unit`), `at` along the link in the model's length.
+  json stresses = json::array();
+  for (const StressPeak& p : ex.stresses)
+    stresses.push_back({{"body", m.bodies[p.body].name},
+                        {"von_mises", finite(to_megapascal(p.at.von_mises))},
+                        {"unit", "MPa"},
+                        {"at", finite(p.at.position / m.units.length_scale)},
+                        {"safety_factor", p.safety_factor ? json(finite(*p.safety_factor)) : json(nullptr)}});
+  j["stresses"] = stresses;
   j["notes"] = ex.notes;
   return j;
 }

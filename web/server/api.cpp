@@ -10,6 +10,8 @@
 #include <new>
 
 #include "endpoints.hpp"
+#include "nbar/request/language.hpp"
+#include "request/answer_language.hpp"
 
 namespace nbar::web {
 
@@ -113,10 +115,39 @@ ApiResponse answer_or_error(const ApiRequest& request, const ServerConfig& confi
   }
 }
 
+// The language of the answer's messages: the body's "lang" when it gives one (every endpoint
+// takes it beside its options), else the Accept-Language header's. The body is only looked into
+// when it names the key, so that a large model is not parsed once more for nothing.
+request::Language answer_language(const ApiRequest& request) {
+  if (request.body.find("\"lang\"") != std::string::npos) {
+    const Json body = Json::parse(request.body, nullptr, false);
+    if (body.is_object() && body.contains("lang") && !body["lang"].is_null()) {
+      if (!body["lang"].is_string()) throw request::OptionError("lang", "give the language as a text: en or es");
+      return request::read_language(body["lang"].get<std::string>());
+    }
+  }
+  return request::accept_language(request.accept_language);
+}
+
+// The indentation of a JSON answer (the writers indent by 2, or write one line).
+int json_indent(const std::string& body) {
+  if (body.size() < 2 || body[1] != '\n') return -1;
+  const std::size_t first = body.find_first_not_of(' ', 2);
+  return first == std::string::npos ? -1 : static_cast<int>(first - 2);
+}
+
 }  // namespace
 
 ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config) {
+  request::Language language = request::Language::English;
+  try {
+    language = answer_language(request);
+  } catch (const Error& e) {
+    return error_answer(e);
+  }
   ApiResponse r = answer_or_error(request, config);
+  if (language != request::Language::English && r.content_type.starts_with("application/json"))
+    r.body = request::translate_json_answer(r.body, language, json_indent(r.body));
   if (r.status == http_status(ApiErrorKind::TooManyJobs))
     r.headers.emplace_back("Retry-After", std::to_string(config.retry_after_seconds));
   return r;

@@ -106,7 +106,9 @@ RequestBody::RequestBody(const std::string& text, const std::vector<request::Opt
   if (!json_.is_object())
     throw ApiError(ApiErrorKind::BadJson, "the body must be a JSON object, e.g. {\"model\": \"...\"}");
   std::vector<std::string> given;
-  for (const auto& [key, value] : json_.items()) given.push_back(key);
+  // "lang", the language of the answer's messages, is every endpoint's and read by handle_api.
+  for (const auto& [key, value] : json_.items())
+    if (key != "lang") given.push_back(key);
   if (const std::optional<std::string> key = request::unknown_key(given, rules, documents)) {
     std::string list;
     for (const std::string& k : request::known_keys(rules, documents)) list += (list.empty() ? "" : ", ") + k;
@@ -117,7 +119,8 @@ RequestBody::RequestBody(const std::string& text, const std::vector<request::Opt
 request::Options RequestBody::options(const std::vector<std::string>& documents) const {
   request::Options options;
   for (const auto& [key, value] : json_.items()) {
-    if (value.is_null() || std::find(documents.begin(), documents.end(), key) != documents.end()) continue;
+    if (value.is_null() || key == "lang" || std::find(documents.begin(), documents.end(), key) != documents.end())
+      continue;
     if (value.is_boolean()) {
       options.set(key, value.get<bool>());
     } else if (value.is_number_integer() && !value.is_number_unsigned()) {

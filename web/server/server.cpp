@@ -367,7 +367,8 @@ void guard_requests(httplib::Server& server, const ServeOptions& options) {
 void route_requests(httplib::Server& server, const ServerConfig* config, HeldAnswers* held) {
   const auto handler = [config, held](const httplib::Request& req, httplib::Response& res) {
     without_brotli(req);
-    ApiResponse answer = handle_api(ApiRequest{req.method, req.path, req.body}, *config);
+    ApiResponse answer =
+        handle_api(ApiRequest{req.method, req.path, req.body, req.get_header_value("Accept-Language")}, *config);
     if (answer.body.size() > kLargeAnswer) return_free_memory();  // what computing it took
     if (!held->take(req.remote_addr, answer.body.size())) {
       answer = held_answers_response(

@@ -17,6 +17,7 @@
 #include "nbar/kinematics/sweep.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/run_control.hpp"
+#include "nbar/stress/link_stress.hpp"
 
 namespace nbar {
 
@@ -28,6 +29,7 @@ struct ExplainOptions {
   // (stage "explain"): Error(ErrorKind::Cancelled) when it says stop.
   RunControl control;
   int max_steps = kDefaultMaxSweepSamples;  // a larger sweep (the model's or `steps`) is an error
+  int sections = 200;  // cross-sections per shaped link for the stresses at the pose (as `nbar stress`)
 };
 
 // G = 3 (n - 1) - 2 PI - PII, with n the links including the ground.
@@ -117,6 +119,12 @@ struct Explanation {
   // acceleration systems and the centres are the sweep's sample, and `notes` says so.
   bool matches_sweep = true;
   double sweep_difference = 0.0;
+  // The stresses at this pose: for each link with a shape (`shape:` or `bar:` with a thickness),
+  // in body order, the largest von Mises stress over its cross-sections under this sample's
+  // inverse dynamics (`at`: the section, Pa, position along the link in m, as `nbar stress`'s
+  // beam model cuts it, ExplainOptions::sections of them), `step` this explanation's, and the
+  // safety factor when its material has a yield strength. Empty when no link has a shape.
+  std::vector<StressPeak> stresses;
   // Everything the reader should know that the numbers do not say: a start on another branch, a
   // least-squares (redundant) system, links without an angle that have no centres.
   std::vector<std::string> notes;

@@ -114,6 +114,9 @@ struct ApiRequest {
   std::string method;  // "GET", "POST", ...
   std::string path;    // decoded, without the query: "/api/solve"
   std::string body;
+  // The HTTP Accept-Language header, if any: the answer's messages are in its first language
+  // that nbar speaks, unless the body's "lang" says another (docs/web-api.md).
+  std::string accept_language = {};
 };
 
 struct ApiResponse {

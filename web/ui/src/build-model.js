@@ -7,7 +7,6 @@
 import { t } from './i18n.js';
 import { setIn, roundTo } from './yaml-text.js';
 import { applyEdit, modelData, modelText, editContext, freshName } from './model-edit.js';
-import { coreText } from './i18n-core.js';
 
 const $ = (s) => document.querySelector(s);
 const num = (v) => (Number.isFinite(v) ? +v.toFixed(4) : 0);
@@ -101,7 +100,7 @@ export function buildingText(outline) {
   const m = outline.mobility;
   const dof = m.dof ?? m.gruebler;
   const count = m.dof === null ? t('buildGruebler', dof) : t('buildDof', dof);
-  const why = coreText(outline.problem?.message ?? outline.immobile ?? '');
+  const why = outline.problem?.message ?? outline.immobile ?? '';
   return `${t('building')} · ${count}${why ? ` · ${why}` : ''}`;
 }
 

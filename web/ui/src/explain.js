@@ -4,10 +4,9 @@
 // iterations with their residual norms, and the velocity and acceleration solutions. The maths
 // is the core's plain-text form set with HTML sub- and superscripts: no maths library, no network.
 // After it, the forces and stresses at that pose (the core's inverse dynamics of the sweep at that
-// sample, and each shaped link's section profile there), and the instant centres are marked on
+// sample, and each shaped link's largest stress there, from the explanation), and the instant centres are marked on
 // the drawing while it shows that pose.
 import { t } from './i18n.js';
-import { coreText } from './i18n-core.js';
 
 const $ = (s) => document.querySelector(s);
 let app = null;
@@ -51,10 +50,10 @@ function render(ex) {
   parts.push(`<section><h4>1. ${t('exDof')}</h4><p class="eq">G = 3(n − 1) − 2P<sub>I</sub> − P<sub>II</sub> = 3(${c.links} − 1) − 2·${c.lower_pairs} − ${c.higher_pairs} = <b>${c.dof}</b></p>`
     + `<p class="hint">${t('exMobility', c.mobility)}</p></section>`);
   parts.push(`<section><h4>2. q</h4>${matrixTable('q', ['q'], sym, [ex.q])}<p class="hint">${t('exUnits', app.esc(units.length ?? ''))}</p></section>`);
-  parts.push(`<section><h4>3. Φ(q, t) = 0</h4><ol class="eqs">${ex.equations.map((e) => `<li><span class="lbl">${app.esc(coreText(e.label))}</span><span class="eq">${maths(e.text)}</span></li>`).join('')}</ol></section>`);
+  parts.push(`<section><h4>3. Φ(q, t) = 0</h4><ol class="eqs">${ex.equations.map((e) => `<li><span class="lbl">${app.esc(e.label)}</span><span class="eq">${maths(e.text)}</span></li>`).join('')}</ol></section>`);
   parts.push(`<section><h4>4. Φ<sub>q</sub></h4>${matrixTable('jac', rowsHead, sym, ex.jacobian)}<p class="hint">${t('exJacobian')}</p></section>`);
   const newton = iters.map((it) => `<tr><td>${it.iteration}</td><td>${num(it.residual)}</td><td>${it.dq ? num(Math.hypot(...it.dq)) : '–'}</td></tr>`).join('');
-  parts.push(`<section><h4>5. Newton–Raphson</h4><p class="hint">${t('exNewton', app.esc(coreText(ex.newton?.start ?? '')))}</p>`
+  parts.push(`<section><h4>5. Newton–Raphson</h4><p class="hint">${t('exNewton', app.esc(ex.newton?.start ?? ''))}</p>`
     + `<div class="mwrap"><table class="matrix newton"><thead><tr><th>k</th><th>‖Φ(q<sub>k</sub>)‖</th><th>‖Δq‖</th></tr></thead><tbody>${newton}</tbody></table></div>`
     + `<p class="hint">${ex.newton?.converged ? t('exConverged', iters.length) : t('exNotConverged')}</p></section>`);
   const length = app.esc(units.length ?? ''); const time = app.esc(units.time ?? 's');
@@ -107,23 +106,15 @@ function forcesSection(step) {
     + `<div class="mwrap"><table class="matrix forces"><thead><tr><th>${t('exForceCol')}</th><th>${t('exValue')}</th><th></th></tr></thead><tbody>${rows}</tbody></table></div></section>`;
 }
 
-// Each shaped link's section profile at `step` (`nbar stress --section-profile LINK --step K`),
-// the links being those `nbar stress` reports; its largest von Mises and where along the link.
-async function stressesSection(model, step) {
+// Each shaped link's largest von Mises stress at this pose, where along the link and its safety
+// factor: the core's explanation (`stresses`, as `nbar explain` prints them), only drawn here.
+function stressesSection(ex) {
   const head = `<section data-at-pose="stresses"><h4>10. ${t('exStresses')}</h4>`;
-  let peaks;
-  try { peaks = await app.api('/api/stress', { model }); } catch { return `${head}<p class="hint">${t('exStressesNone')}</p></section>`; }
-  const links = peaks.links ?? [];
+  const links = ex.stresses ?? [];
   if (!links.length) return `${head}<p class="hint">${t('exStressesNone')}</p></section>`;
-  const profiles = await Promise.all(links.map((l) => app.api('/api/stress', { model, section_profile: l.body, step }).catch(() => null)));
-  const rows = links.map((l, k) => {
-    const p = profiles[k];
-    const vm = p ? p.columns.indexOf('von_mises') : -1; const x = p ? p.columns.indexOf('x') : -1;
-    if (vm < 0) return `<tr data-body="${app.esc(l.body)}"><th>${app.esc(l.body)}</th><td>–</td><td></td></tr>`;
-    const top = p.rows.reduce((a, r) => (Math.abs(r[vm]) > Math.abs(a[vm]) ? r : a), p.rows[0]);
-    return `<tr data-body="${app.esc(l.body)}"><th>${app.esc(l.body)}</th><td>${num(top[vm])} ${app.esc(p.column_units[vm])}</td>`
-      + `<td>${t('exAt')} = ${num(top[x])} ${app.esc(p.column_units[x])}</td></tr>`;
-  }).join('');
+  const length = app.esc(ex.units?.length ?? '');
+  const rows = links.map((l) => `<tr data-body="${app.esc(l.body)}"><th>${app.esc(l.body)}</th><td>${num(l.von_mises)} ${app.esc(l.unit)}</td>`
+    + `<td>${t('exAt')} = ${num(l.at)} ${length}</td><td>${l.safety_factor === null ? t('stNoYield') : `${t('stSafety')} ${num(l.safety_factor)}`}</td></tr>`).join('');
   return `${head}<p class="hint">${t('exStressesHint')}</p><div class="mwrap"><table class="matrix stresses"><tbody>${rows}</tbody></table></div></section>`;
 }
 
@@ -163,9 +154,7 @@ async function explainNow() {
     centresShown = { step, centres: ex.centres ?? [] };
     drawCentres();
     const pose = out.querySelector('#explain-pose');
-    pose.innerHTML = forcesSection(step);
-    const stresses = await stressesSection(model, step);
-    if (out.dataset.step === String(step) && state.lastOk === model) pose.insertAdjacentHTML('beforeend', stresses);
+    pose.innerHTML = forcesSection(step) + stressesSection(ex);
     out.dataset.pose = String(step);
   } catch (e) {
     out.innerHTML = `<p class="bad">${app.esc(e.message)}</p>`;

@@ -20,7 +20,6 @@ import './i18n-motion.js';
 import './i18n-files.js';
 import './i18n-forces.js';
 import './i18n-build.js';
-import { coreText } from './i18n-core.js';
 import { galleryEs } from './i18n-gallery.js';
 import { initSynthesis } from './synthesis.js';
 import { initOverlays, overlayView, setOverlayView } from './overlays.js';
@@ -65,8 +64,9 @@ async function send(path, init, options) {
 }
 
 async function api(path, body, as = 'json', options = {}) {
+  // Every answer's messages come from the core in the app's language (`lang`, docs/web-api.md).
   const init = body === undefined ? {} : {
-    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body),
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ ...body, lang: getLang() }),
   };
   const r = await send(path, init, options);
   if (!r.ok) {
@@ -124,7 +124,7 @@ function showStale(e) {
   }
   const again = retryable(e);
   const label = box.querySelector('span');
-  label.textContent = t('notUpdated', coreText(e.message));
+  label.textContent = t('notUpdated', e.message);
   label.title = label.textContent;
   box.querySelector('button').hidden = !again;
   $('#retry').hidden = !again;
@@ -214,7 +214,7 @@ function showProblem(info) {
   }
   const doc = editor.state.doc;
   const where = info.line ? t('errorAt', info.line, info.column ?? 1) : '';
-  const message = coreText(info.message);
+  const message = info.message;
   el.textContent = where + message;
   el.classList.add('bad');
   if (!info.line || info.file === 'request') { editor.dispatch(setDiagnostics(editor.state, [])); return; }
@@ -256,7 +256,7 @@ async function analyse() {
     showProblem(null);
     showStale(null);
     setTitle(solve.model || check.name);
-    const why = () => (solve.complete ? '' : ` · ${t('incomplete', coreText(solve.stop_reason ?? ''))}`);
+    const why = () => (solve.complete ? '' : ` · ${t('incomplete', solve.stop_reason ?? '')}`);
     if (state.simulation) status(() => simulationStatus(solve), !solve.complete);
     else status(() => `${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why()}`, !solve.complete);
     state.dynamics = null;
@@ -278,7 +278,7 @@ async function analyse() {
     state.joints = outline?.joints ?? [];
     showProblem(e.info ?? { message: e.message });
     const where = e.info?.line ? t('errorAt', e.info.line, e.info.column ?? 1) : '';
-    status(() => `${t('failed')}: ${where}${coreText(e.message)}`, true);
+    status(() => `${t('failed')}: ${where}${e.message}`, true);
     if (outline) showSketch(outline, text);
     else showStale(e);
     // For want of the server: analysed again by itself when it answers, unless edited since.
@@ -1010,6 +1010,8 @@ async function start() {
   document.addEventListener('nbar:lang', () => { if (state.solve) fillColumnPicker(); });
   // What was written from the core's answers is said again in the language chosen.
   document.addEventListener('nbar:lang', () => {
+    // The core's messages on screen are in the language they were asked in: asked again.
+    if (state.text !== undefined) analyse();
     sayStatusAgain();
     if (problemShown) showProblem(problemShown); else if (state.lastOk) $('#problems').textContent = t('noErrors');
     showStale(staleShown);

@@ -5,8 +5,7 @@
 // its transmission angle at the pose shown (the solve's LOOP.mu column). The sweep's warnings and
 // its stop are listed with their step and flagged on the drawing when the pose shown is there.
 // Every number comes from the server; this module only scales and draws them.
-import { t, translatePage, getLang } from './i18n.js';
-import { coreText, grashofName, hasTranslation } from './i18n-core.js';
+import { t, translatePage } from './i18n.js';
 
 const $ = (s) => document.querySelector(s);
 const SVGNS = 'http://www.w3.org/2000/svg';
@@ -355,7 +354,7 @@ function info(row) {
       const design = app.state.solve.branches?.find((b) => b.loop === l.name)?.transmission_angle?.design;
       mu = ` · μ = ${app.fmt(row[i])}°` + (Number.isFinite(design) ? ` <small>(${t('minIs')} ${app.fmt(design)}°)</small>` : '');
     }
-    return `<span class="loop" title="${app.esc(coreTip(l.description))}"><b>${app.esc(l.name)}</b>: ${app.esc(grashofName(l.grashof ?? ''))}${mu}</span>`;
+    return `<span class="loop" title="${app.esc(l.description ?? '')}"><b>${app.esc(l.name)}</b>: ${app.esc(l.grashof ?? '')}${mu}</span>`;
   });
   $('#motion-info').innerHTML = parts.join('');
   // The model's facts change with the model, not the frame: a line of their own, rewritten only
@@ -365,20 +364,13 @@ function info(row) {
 }
 let shownFacts = '';
 
-// A core's description as a tooltip in the app's language: none rather than English in Spanish
-// when the catalogue has no translation of it (the line itself says the numbers).
-function coreTip(text) {
-  if (!text) return '';
-  return getLang() === 'en' || hasTranslation(text, getLang()) ? coreText(text) : '';
-}
-
 // A crank-rocker's swing and time ratio, and a slider-crank's stroke and time ratio, as
 // `nbar check` gives them (the core's numbers; the full description in the tooltip).
 function motionFacts(check) {
   const angle = app.esc(check?.units?.angle ?? ''), length = app.esc(check?.units?.length ?? '');
-  const rockers = (check?.loops ?? []).filter((l) => l.rocker).map((l) => `<span class="loop" title="${app.esc(coreTip(l.rocker.description))}">`
+  const rockers = (check?.loops ?? []).filter((l) => l.rocker).map((l) => `<span class="loop" title="${app.esc(l.rocker.description ?? '')}">`
     + `<b>${app.esc(l.name)}</b>: ${t('swingIs', app.fmt(l.rocker.swing), angle)} · ${t('timeRatioIs', app.fmt(l.rocker.time_ratio))}</span>`);
-  const sliders = (check?.slider_cranks ?? []).map((f) => `<span class="loop" title="${app.esc(coreTip(f.description))}">`
+  const sliders = (check?.slider_cranks ?? []).map((f) => `<span class="loop" title="${app.esc(f.description ?? '')}">`
     + `<b>${app.esc(f.slider)}</b>: ${t('strokeIs', app.fmt(f.stroke), length)} · ${t('timeRatioIs', app.fmt(f.time_ratio))}</span>`);
   return [...rockers, ...sliders].join('');
 }
@@ -388,9 +380,9 @@ function sweepWarnings() {
   // The solve's JSON gives its warnings as plain messages; a structured one (from the core's
   // Warning) may carry the step it happened at. A warning with no step gets no step button.
   const list = (solve.warnings ?? []).map((w) => (typeof w === 'string'
-    ? { step: null, text: coreText(w), code: '' }
-    : { step: Number.isInteger(w.step) && w.step >= 0 ? w.step : null, text: coreText(w.message ?? ''), code: w.code }));
-  if (!solve.complete) list.push({ step: solve.rows.length - 1, text: coreText(solve.stop_reason) ?? t('stopped'), code: 'stop' });
+    ? { step: null, text: w, code: '' }
+    : { step: Number.isInteger(w.step) && w.step >= 0 ? w.step : null, text: w.message ?? '', code: w.code }));
+  if (!solve.complete) list.push({ step: solve.rows.length - 1, text: solve.stop_reason ?? t('stopped'), code: 'stop' });
   return list;
 }
 

@@ -6,7 +6,6 @@
 // writes task text from the form, never a model. A design can be previewed animating through the
 // targets, and opened in the editor.
 import { t, translatePage } from './i18n.js';
-import { grashofName } from './i18n-core.js';
 import { drawingSvg, poseDrawing, markScale } from './drawing.js';
 
 const $ = (s) => document.querySelector(s);
@@ -363,7 +362,7 @@ function targetMark(x, y, s, label, angle = undefined) {
 function tags(d) {
   const out = [];
   if (!d.real) out.push(`<span class="tag warn">${t('complex')}</span>`);
-  if (d.grashof) out.push(`<span class="tag">${app.esc(grashofName(d.grashof))}</span>`);
+  if (d.grashof) out.push(`<span class="tag">${app.esc(d.grashof)}</span>`);
   if (d.real && d.valid === false) out.push(`<span class="tag warn">${t('invalidDesign')}</span>`);
   if (d.defect_free) out.push(`<span class="tag">${t('defectFree')}</span>`);
   else if (d.defects) {

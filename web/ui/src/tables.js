@@ -3,7 +3,6 @@
 // from the editor's text and every change is written back into it (model-edit.js); a value the
 // server rejects is marked in its field with the server's message.
 import { t } from './i18n.js';
-import { coreText } from './i18n-core.js';
 import { setIn, deleteIn, parseModel, renamePoint, deletePoint } from './yaml-text.js';
 import { applyEdit, modelText, editContext } from './model-edit.js';
 import { selectBody } from './canvas-tools.js';
@@ -73,7 +72,7 @@ function refuseField(input, message) {
   if (!cell) return;
   cell.value = typed;
   cell.classList.add('bad');
-  cell.title = coreText(message);
+  cell.title = message;
 }
 
 // A field edited to a value that changes nothing takes back a refusal shown for it.
@@ -146,7 +145,11 @@ function bodiesSection(m) {
 function jointsSection(m) {
   // The joints of the text on screen (the check's, or while it cannot be solved the outline's):
   // never the last model that solved.
-  const rows = (editContext().state.joints ?? []).filter((j) => j.startsWith('revolute')).map((j) => `<tr><td colspan="4" class="note">${esc(coreText(j))}</td></tr>`);
+  // The core lists the revolutes first, then one line per slider and per slot; the lines come in
+  // the language asked, so the revolutes are told by their place, not by their words.
+  const joints = editContext().state.joints ?? [];
+  const written = ['sliders', 'slots'].reduce((n, kind) => n + (Array.isArray(m[kind]) ? m[kind].length : 0), 0);
+  const rows = joints.slice(0, Math.max(joints.length - written, 0)).map((j) => `<tr><td colspan="4" class="note">${esc(j)}</td></tr>`);
   for (const kind of ['sliders', 'slots']) {
     (Array.isArray(m[kind]) ? m[kind] : []).forEach((s, i) => {
       if (!isObj(s)) return;
@@ -310,9 +313,9 @@ function markError() {
   const cell = best ?? edited;
   if (cell) {
     cell.classList.add('bad');
-    cell.title = coreText(lastError.message);
+    cell.title = lastError.message;
     // The message beside the field too: on a phone the panel's top may be scrolled away.
-    cell.insertAdjacentHTML('afterend', `<small class="cell-error" role="alert">${esc(coreText(lastError.message))}</small>`);
+    cell.insertAdjacentHTML('afterend', `<small class="cell-error" role="alert">${esc(lastError.message)}</small>`);
   }
   // Once, after an edit from the tables: the field (or the note) scrolled into view under the
   // header (scroll-margin-top in style.css), not while the student types in the editor.

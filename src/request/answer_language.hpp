@@ -1,0 +1,21 @@
+// An answer's messages in a language (nbar/request/language.hpp), for the front-ends that answer
+// in JSON (the web API, the WebAssembly engine). Only the fields that hold the core's prose are
+// said again; names, numbers and an error's place (line, column, entity, option) stay as they are.
+#pragma once
+
+#include <string>
+
+#include "nbar/request/language.hpp"
+
+namespace nbar::request {
+
+// The fields whose strings are the core's messages: an error's or a warning's "message", a
+// sweep's "stop_reason", explain's "label" and Newton "start", the check's "joints" and
+// "grashof", an outline's "immobile", and a list of "warnings" given as plain strings.
+bool is_message_field(const std::string& key);
+
+// A JSON answer's text with those fields in `language`, laid out as it was (indented by
+// `indent` spaces, or on one line when -1). The text as it is for English, or when it is not JSON.
+std::string translate_json_answer(const std::string& json, Language language, int indent);
+
+}  // namespace nbar::request
