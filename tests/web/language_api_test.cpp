@@ -106,6 +106,9 @@ drivers:
       {"/api/solve", with_model("examples/parallelogram-redundant.yaml", {{"steps", 5}, {"dynamics", true}})},
       {"/api/explain", Json{{"model", kCrankRocker}, {"step", 0}}},
       {"/api/explain", Json{{"model", kCrankRocker}, {"step", 5}}},
+      // A new user's empty model: refused by the reader, outlined as a draft with no points.
+      {"/api/check", Json{{"model", "units: {length: mm}\npoints: {}\n"}}},
+      {"/api/outline", Json{{"model", "units: {length: mm}\npoints: {}\n"}}},
   };
   // Every bundled example's check (its joints, loops' Grashof classes and warnings) and solve.
   for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(NBAR_SOURCE_DIR) / "examples")) {
