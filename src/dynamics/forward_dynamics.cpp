@@ -552,8 +552,12 @@ class Integrator {
   // Moves q onto Phi = 0 and q' onto Phi_q q' = -Phi_t at t by the smallest corrections in the
   // mass's metric; false when Newton fails. The augmented matrix is factorised once, at the first
   // q: the corrections are small, and each solve satisfies the Jacobian at the present q, which
-  // is left there for the accelerations (evaluate_factorised).
-  bool project(double t, Eigen::VectorXd& y) {
+  // is left there for the accelerations (evaluate_factorised). With `exact` (an output row) one
+  // more Newton step follows the one that reached the tolerance: Newton converges quadratically,
+  // so from |Phi| within 1e-12 of the size it lands at rounding, and a row's residual no longer
+  // depends on where the iteration happened to stop (which rounding of another platform moves).
+  // The residuals are then evaluated again at the final q, the ones a row reports.
+  bool project(double t, Eigen::VectorXd& y, bool exact = false) {
     q_ = y.head(n_);
     const double tolerance = mech_.tolerance();
     bool converged = false;
@@ -569,6 +573,11 @@ class Integrator {
       q_ -= eq_.correction(phi);
     }
     if (!converged) return false;
+    if (exact && eq_.kept_rows() > 0) {
+      q_ -= eq_.correction(eq_.last_residuals());
+      eq_.update_jacobian(q_);
+      if (!eq_.residuals(q_).allFinite()) return false;
+    }
     qd_ = y.segment(n_, n_);
     velocity_error_ = eq_.jacobian_times(qd_) + eq_.time_derivative(q_);
     qd_ -= eq_.correction(velocity_error_);
@@ -1113,7 +1122,7 @@ class Run {
   // The row at `at`: y projected, q'' evaluated there, the energies and the drift; driver angles
   // unwrapped against `previous`.
   Row make_row(double at, Eigen::VectorXd y, const std::vector<double>& previous) {
-    if (!integrator_.project(at, y))
+    if (!integrator_.project(at, y, true))
       throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(at),
                            eq_.first_free_driver()};
     const Eigen::VectorXd q = y.head(n_), qd = y.segment(n_, n_);
