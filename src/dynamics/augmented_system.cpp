@@ -394,10 +394,11 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
     converged = !refine || (round > 0 && most_dx <= kSettled * most_x);
   }
   x.resize(n);
-  double left = 0.0, most_x = 0.0;
+  double left = 0.0, most_x = 0.0, nan_if_not_finite = 0.0;  // x - x is NaN for an infinite or NaN x
   for (int k = 0; k < n; ++k) {
     x(k) = xs[k];
     most_x = std::max(most_x, std::abs(xs[k]));
+    nan_if_not_finite += xs[k] - xs[k];
   }
   for (int r = 0; r < m; ++r) {
     double sum = c(r);
@@ -406,7 +407,7 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
   }
   const double scale = largest(c) + jacobian_scale_ * most_x;
   const double constraint_left = scale > 0 ? left / scale : 0.0;
-  if (converged && constraint_left <= kFallBack && x.allFinite()) return constraint_left;
+  if (converged && constraint_left <= kFallBack && nan_if_not_finite == 0.0) return constraint_left;
   lambda.setZero(m_);  // no warm start from here
   return solve_dense(values, f, c, x);
 }

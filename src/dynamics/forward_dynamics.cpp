@@ -139,6 +139,11 @@ class EquationsOfMotion {
     }
     zero_force_.setZero(n_);
     lambda_.setZero(kept_rows());
+    free_states_.resize(m.drivers.size());
+    for (std::size_t d = 0; d < m.drivers.size(); ++d)
+      if (m.drivers[d].free)
+        set_driver_state(free_states_[d], start_[d] + m.drivers[d].initial_speed * Series::variable(kTerms, 0.0),
+                         m.drivers[d].is_angular());
   }
 
   int coordinates() const { return n_; }
@@ -154,8 +159,10 @@ class EquationsOfMotion {
       const Driver& drv = m.drivers[d];
       Series value;
       if (drv.free) {
-        value = start_[d] + drv.initial_speed * Series::variable(kTerms, 0.0);
-      } else if (drv.law) {
+        out[d] = free_states_[d];  // the same at every t (free_states_)
+        continue;
+      }
+      if (drv.law) {
         try {
           value = drv.law->series(t, kTerms);
         } catch (const Error& e) {
@@ -499,6 +506,9 @@ class EquationsOfMotion {
   bool singular_allowed_ = false;
 
   std::vector<DriverState> drivers_, full_drivers_;
+  // The free drivers' states for drivers_at, formed once: they do not depend on t, and their sines
+  // and cosines, formed at every evaluation, were 4 % of a four-bar's run.
+  std::vector<DriverState> free_states_;
   std::vector<double> jacobian_values_, full_values_;
   bool square_ = false;  // as many rows as coordinates: the gate's LU exists
   SparseLU full_lu_;     // every row's square Jacobian, for the gate
@@ -552,8 +562,12 @@ class Integrator {
   // Moves q onto Phi = 0 and q' onto Phi_q q' = -Phi_t at t by the smallest corrections in the
   // mass's metric; false when Newton fails. The augmented matrix is factorised once, at the first
   // q: the corrections are small, and each solve satisfies the Jacobian at the present q, which
-  // is left there for the accelerations (evaluate_factorised).
-  bool project(double t, Eigen::VectorXd& y) {
+  // is left there for the accelerations (evaluate_factorised). With `exact` (an output row) one
+  // more Newton step follows the one that reached the tolerance: Newton converges quadratically,
+  // so from |Phi| within 1e-12 of the size it lands at rounding, and a row's residual no longer
+  // depends on where the iteration happened to stop (which rounding of another platform moves).
+  // The residuals are then evaluated again at the final q, the ones a row reports.
+  bool project(double t, Eigen::VectorXd& y, bool exact = false) {
     q_ = y.head(n_);
     const double tolerance = mech_.tolerance();
     bool converged = false;
@@ -569,6 +583,11 @@ class Integrator {
       q_ -= eq_.correction(phi);
     }
     if (!converged) return false;
+    if (exact && eq_.kept_rows() > 0) {
+      q_ -= eq_.correction(eq_.last_residuals());
+      eq_.update_jacobian(q_);
+      if (!eq_.residuals(q_).allFinite()) return false;
+    }
     qd_ = y.segment(n_, n_);
     velocity_error_ = eq_.jacobian_times(qd_) + eq_.time_derivative(q_);
     qd_ -= eq_.correction(velocity_error_);
@@ -1113,7 +1132,7 @@ class Run {
   // The row at `at`: y projected, q'' evaluated there, the energies and the drift; driver angles
   // unwrapped against `previous`.
   Row make_row(double at, Eigen::VectorXd y, const std::vector<double>& previous) {
-    if (!integrator_.project(at, y))
+    if (!integrator_.project(at, y, true))
       throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(at),
                            eq_.first_free_driver()};
     const Eigen::VectorXd q = y.head(n_), qd = y.segment(n_, n_);

@@ -1,6 +1,9 @@
 // /api/simulate: the forward dynamics of `nbar simulate` through the web API, its answer byte for
 // byte the CLI's, its drawing (the `scene`) posed at every row of the simulation, its limits,
 // errors and cancellation.
+#include <chrono>
+#include <thread>
+
 #include "web/web_support.hpp"
 
 namespace nbar::web_test {
@@ -158,11 +161,69 @@ TEST(WebSimulate, ARunStopsWhenToldToAndReportsItsProgress) {
   ASSERT_EQ(post("/api/simulate", body, config).status, 200);
   EXPECT_EQ(total, 100);
   EXPECT_EQ(last_done, 100);
+  // A progress callback that answers false (the in-browser engine's Cancel) stops the run, which
+  // answers with its rows so far, as Ctrl-C leaves `nbar simulate`'s.
   config.on_progress = [](const Progress& p) { return !(std::string(p.stage) == "simulate" && p.done > 50); };
   const ApiResponse stopped = post("/api/simulate", body, config);
-  EXPECT_EQ(stopped.status, 504) << stopped.body;
-  EXPECT_EQ(error_of(stopped)["kind"], "time_budget_exceeded");
+  ASSERT_EQ(stopped.status, 200) << stopped.body;
+  const Json j = Json::parse(stopped.body);
+  EXPECT_FALSE(j["complete"].get<bool>());
+  EXPECT_TRUE(j["cancelled"].get<bool>());
+  ASSERT_EQ(j["rows"].size(), 51u);  // the rows up to the 51st output time's checkpoint: t = 0 to 0.5 s
+  EXPECT_NEAR(j["time_reached"].get<double>(), 0.5, 1e-12);
+  EXPECT_EQ(j["stop_reason"], "cancelled at t = 0.5 s");
   EXPECT_EQ(config.jobs->in_use() + config.light_jobs->in_use(), 0);
+  // The server's time budget stays a limit: 504, no rows.
+  config.on_progress = nullptr;
+  config.limits.time_budget_seconds = 1e-9;
+  const ApiResponse late = post("/api/simulate", body, config);
+  EXPECT_EQ(late.status, 504) << late.body;
+  EXPECT_EQ(error_of(late)["kind"], "time_budget_exceeded");
+}
+
+// A run named by `run` is stopped by /api/simulate/cancel from another request and answers with
+// its rows so far, a row every dt up to where it stopped; the name is taken while it runs, and a
+// cancel of a name not running says so.
+TEST(WebSimulate, ANamedRunCancelledKeepsItsRowsSoFar) {
+  const ServerConfig config = test_config();
+  // With a scene, as the web app asks: the rows so far are drawn too.
+  const Json body = with_model(kReleased, {{"to", 1000},
+                                           {"dt", 0.05},
+                                           {"rtol", 1e-13},
+                                           {"run", "long-run_1"},
+                                           {"scene", {{"width", 400}, {"height", 300}}}});
+  ApiResponse answer;
+  std::thread running([&] { answer = post("/api/simulate", body, config); });
+  Json said;
+  for (int attempt = 0; attempt < 2000; ++attempt) {
+    said = Json::parse(post("/api/simulate/cancel", {{"run", "long-run_1"}}, config).body);
+    if (said["cancelled"].get<bool>()) break;
+    if (attempt == 10) {  // most likely running by now: its name is taken (a short run of it otherwise)
+      const ApiResponse twice =
+          post("/api/simulate", with_model(kReleased, {{"to", 0.1}, {"run", "long-run_1"}}), config);
+      if (twice.status != 200) {
+        EXPECT_EQ(error_of(twice)["message"], "a run named 'long-run_1' is running already");
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  running.join();
+  EXPECT_TRUE(said["cancelled"].get<bool>());
+  ASSERT_EQ(answer.status, 200) << answer.body;
+  const Json both = Json::parse(answer.body);
+  const Json& j = both["simulation"];
+  EXPECT_EQ(both["scene"]["steps"].size(), j["rows"].size());
+  EXPECT_FALSE(j["complete"].get<bool>());
+  EXPECT_TRUE(j["cancelled"].get<bool>());
+  const double reached = j["time_reached"].get<double>();
+  EXPECT_LT(reached, 1000.0);
+  EXPECT_EQ(j["rows"].size(), static_cast<std::size_t>(std::llround(reached / 0.05)) + 1);
+  EXPECT_NEAR(j["rows"].back()[column_of(j, "t")].get<double>(), reached, 1e-12);
+  EXPECT_EQ(j["stop_reason"].get<std::string>().rfind("cancelled at t = ", 0), 0u) << j["stop_reason"];
+  // Ended: the name is free, and a cancel of it finds nothing.
+  EXPECT_EQ(post("/api/simulate/cancel", {{"run", "long-run_1"}}, config).body, "{\"cancelled\":false}\n");
+  const ApiResponse bad = post("/api/simulate/cancel", {{"run", "no spaces"}}, config);
+  EXPECT_EQ(bad.status, 400) << bad.body;
 }
 
 }  // namespace

@@ -53,14 +53,17 @@ val request(const std::string& method, const std::string& path, const std::strin
 }
 
 // The same request, calling on_progress(stage, done, total) at every checkpoint of its
-// computation (sweep samples, FE links, synthesis paths...), for a page's progress bar. The page
-// cancels by ending the worker the engine runs in: on one thread nothing else could ask to stop.
+// computation (sweep samples, FE links, synthesis paths...), for a page's progress bar. An answer
+// of false from on_progress stops the computation as a cancel does (a simulation then answers
+// with its rows so far); anything else lets it go on. A page may also cancel by ending the worker
+// the engine runs in.
 val request_with_progress(const std::string& method, const std::string& path, const std::string& body,
                           val on_progress) {
   nbar::web::ServerConfig config = engine_config();
   config.on_progress = [&on_progress](const nbar::Progress& progress) {
-    on_progress(std::string(progress.stage), static_cast<double>(progress.done), static_cast<double>(progress.total));
-    return true;
+    const val go_on = on_progress(std::string(progress.stage), static_cast<double>(progress.done),
+                                  static_cast<double>(progress.total));
+    return !go_on.strictlyEquals(val(false));
   };
   return answer_of({method, path, body}, config);
 }

@@ -53,6 +53,7 @@ const std::map<std::string, Endpoint, std::less<>>& post_endpoints() {
       {"/api/report", &api_report},
       {"/api/explain", &api_explain},
       {"/api/simulate", &api_simulate},
+      {"/api/simulate/cancel", &api_simulate_cancel},
   };
   return endpoints;
 }

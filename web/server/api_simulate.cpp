@@ -3,8 +3,18 @@
 // simulate --format json` prints (or csv, or the table). With a `scene` ({"width", "height",
 // "labels", "trace", "title"}: a drawing's options), the web app's drawing of the simulated motion
 // comes with it: {"simulation": <that JSON>, "scene": <the scene, one step per row>}.
+//
+// A run named by the body's `run` (a string the page chooses) can be stopped from outside by
+// POST /api/simulate/cancel {"run": that string}: it then ends as Ctrl-C ends `nbar simulate`,
+// answered 200 with the rows so far (`complete` false, `cancelled` true, `stop_reason` "cancelled
+// at t = ... s"). The server's own time budget stays a limit, answered 504.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
 
 #include "endpoints.hpp"
 #include "nbar/analysis/columns.hpp"
@@ -51,11 +61,77 @@ render::DrawOptions scene_options(const Job& job, const nlohmann::json& scene) {
   return draw.picture.draw_options(job.mechanism->model());
 }
 
+// The runs that a page may cancel, by their name, while they run.
+class NamedRuns {
+ public:
+  // Takes a name added (add) out when it ends. A name already running is refused (two pages that
+  // chose the same name would stop each other's runs).
+  class Entry {
+   public:
+    Entry(NamedRuns& runs, std::string name) : runs_(&runs), name_(std::move(name)) {}
+    Entry(const Entry&) = delete;
+    Entry& operator=(const Entry&) = delete;
+    ~Entry() {
+      if (!runs_) return;
+      const std::lock_guard lock(runs_->mutex_);
+      runs_->tokens_.erase(name_);
+    }
+
+   private:
+    NamedRuns* runs_ = nullptr;
+    std::string name_;
+  };
+
+  // False where the name is running already. An Entry made after a true takes it out again.
+  bool add(const std::string& name, const CancelToken& token) {
+    const std::lock_guard lock(mutex_);
+    return tokens_.emplace(name, token).second;
+  }
+  bool cancel(const std::string& name) {
+    const std::lock_guard lock(mutex_);
+    const auto found = tokens_.find(name);
+    if (found == tokens_.end()) return false;
+    found->second.cancel();
+    return true;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, CancelToken> tokens_;
+};
+
+NamedRuns& named_runs() {
+  static NamedRuns runs;
+  return runs;
+}
+
+// A run's name: a short string of letters, digits, '-' and '_', so that it is never a secret or
+// a document.
+std::string run_name(const RequestBody& body) {
+  const std::string name = body.text("run");
+  const bool plain = !name.empty() && name.size() <= 64 &&
+                     std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; });
+  if (!plain) bad_input("'run' must be a name of 1 to 64 letters, digits, '-' or '_'");
+  return name;
+}
+
 }  // namespace
 
+ApiResponse api_simulate_cancel(Job&, const std::string& text) {
+  const RequestBody body(text, {"run"});
+  const bool found = named_runs().cancel(run_name(body));
+  return answer(found ? "{\"cancelled\":true}\n" : "{\"cancelled\":false}\n");
+}
+
 ApiResponse api_simulate(Job& job, const std::string& text) {
-  const RequestBody body(text, request::SimulateRequest::rules(), {"model", "scene"});
-  const auto simulate = read_request<request::SimulateRequest>(body, {"model", "scene"}, true);
+  const RequestBody body(text, request::SimulateRequest::rules(), {"model", "scene", "run"});
+  const auto simulate = read_request<request::SimulateRequest>(body, {"model", "scene", "run"}, true);
+  std::optional<NamedRuns::Entry> named;
+  if (body.has("run")) {
+    const std::string name = run_name(body);
+    if (!named_runs().add(name, job.control.token)) bad_input("a run named '" + name + "' is running already");
+    named.emplace(named_runs(), name);
+  }
   load_model(job, body.text("model", true));
   const SimulationOptions options = simulate.simulation_options(*job.mechanism);
   check_simulation_size(job, options);
@@ -65,13 +141,14 @@ ApiResponse api_simulate(Job& job, const std::string& text) {
   // the springs): a heavy computation, whatever its rows.
   job.start(Weight::Heavy);
   const Simulation simulation = nbar::simulate(*job.mechanism, options, job.control);
-  // The core keeps a cancelled run's rows; the server's deadline is its own limit, said as one.
-  if (simulation.cancelled) job.control.throw_stopped("simulate");
+  // The core keeps a cancelled run's rows, and so does the answer to a page that cancelled it; the
+  // server's deadline is its own limit, said as one.
+  if (simulation.cancelled && job.control.token.deadline_passed()) job.control.throw_stopped("simulate");
   const ResultTable table = simulate.table(*job.mechanism, simulation);
   const std::string answer_text =
       write([&](std::ostream& out) { simulate.write(out, *job.mechanism, simulation, table, io::kTextTableWidth); });
   if (!scene) return answer(answer_text, text_type(simulate.format));
-  job.checkpoint("render");
+  if (!simulation.cancelled) job.checkpoint("render");  // a run cancelled is drawn as far as it went
   const std::string drawing =
       render::drawing_scene_json(*job.mechanism, request::simulated_motion(simulation), *scene, 0);
   // The two documents as their writers wrote them, so that each is byte for byte its own answer.

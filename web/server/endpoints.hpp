@@ -20,6 +20,7 @@ ApiResponse api_report(Job& job, const std::string& body);
 ApiResponse api_explain(Job& job, const std::string& body);
 // api_simulate.cpp: forward dynamics, and with a `scene` the web app's drawing of its motion
 ApiResponse api_simulate(Job& job, const std::string& body);
+ApiResponse api_simulate_cancel(Job& job, const std::string& body);
 // api_render.cpp: draw, animate, plot or plates, by the body's `kind`
 ApiResponse api_render(Job& job, const std::string& body);
 // api_synth.cpp

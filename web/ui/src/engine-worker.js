@@ -4,11 +4,26 @@
 // it is copied beside nbar-engine.js into the static site (web/ui/build.mjs --engine).
 //
 // Messages in:  {type: 'load', wasm: ArrayBuffer, moduleUrl}
-//               {type: 'request', id, method, path, body}
+//               {type: 'request', id, method, path, body, alive}
 // Messages out: {type: 'ready', version} or {type: 'failed', message}
 //               {type: 'progress', id, stage, done, total} (at most every 100 ms)
 //               {type: 'answer', id, status, contentType, headers, body: ArrayBuffer}
 let engine = null;
+
+// Whether the page still wants the request: `alive` is a blob: URL the page made for it and
+// revokes to stop it (engine.js, stop()). The engine's run is synchronous, so no message could
+// reach this worker before it ends; a synchronous read of the URL can, and the core then ends
+// the run as a cancel does, with what it has (a simulation's rows so far).
+function stillWanted(alive) {
+  try {
+    const xhr = new XMLHttpRequest();
+    xhr.open('GET', alive, false);
+    xhr.send();
+    return xhr.status === 200;
+  } catch {
+    return false;
+  }
+}
 
 async function load({ wasm, moduleUrl }) {
   try {
@@ -21,13 +36,18 @@ async function load({ wasm, moduleUrl }) {
   }
 }
 
-function answer({ id, method, path, body }) {
+function answer({ id, method, path, body, alive }) {
   let last = performance.now();
+  // A browser that cannot read a blob: URL from a worker leaves the request to the worker's end.
+  let watched = alive && stillWanted(alive) ? alive : null;
+  let wanted = true;
   const progress = (stage, done, total) => {
     const now = performance.now();
-    if (now - last < 100) return;
+    if (now - last < 100) return wanted;
     last = now;
     postMessage({ type: 'progress', id, stage, done, total });
+    if (watched && !stillWanted(watched)) { wanted = false; watched = null; }
+    return wanted;
   };
   let reply;
   try {

@@ -34,6 +34,9 @@ addStrings({
   },
 });
 
+// How long a request asked to stop (cancelRunning) may take to answer with what it has.
+const stopWaitMs = 3000;
+
 const engineMeta = () => document.querySelector('meta[name="nbar-engine"]')?.content;
 
 function jsonResponse(status, error) {
@@ -81,6 +84,8 @@ class WorkerEngine {
       this.emit({ running: job, ...data });
     } else if (data.type === 'answer') {
       this.running = null;
+      clearTimeout(job.stopTimer);
+      if (job.alive) URL.revokeObjectURL(job.alive);
       const headers = new Headers(data.headers);
       headers.set('Content-Type', data.contentType);
       job.resolve(new Response(data.body, { status: data.status, headers }));
@@ -89,12 +94,16 @@ class WorkerEngine {
     }
   }
 
-  // options.key names what the request is for ('analysis'); options.label what to show while it runs.
+  // options.key names what the request is for ('analysis'); options.label what to show while it
+  // runs; options.keepOnCancel that the job bar's Cancel should stop it and take what it has (a
+  // simulation's rows so far) rather than end the worker: the worker watches a blob: URL made for
+  // the request (engine-worker.js, stillWanted), which Cancel revokes.
   request(method, path, body, options = {}) {
     return new Promise((resolve) => {
       const id = this.nextId++;
-      this.queue.push({ id, resolve, key: options.key, label: options.label, onProgress: options.onProgress,
-        message: { type: 'request', id, method, path, body } });
+      const alive = options.keepOnCancel ? URL.createObjectURL(new Blob(['go on'])) : undefined;
+      this.queue.push({ id, resolve, key: options.key, label: options.label, onProgress: options.onProgress, alive,
+        message: { type: 'request', id, method, path, body, alive } });
       this.next();
     });
   }
@@ -111,19 +120,30 @@ class WorkerEngine {
   // "cancelled" at once, and a running one by ending the worker.
   cancel(key) {
     const matches = (job) => key === undefined || job.key === key;
-    for (const job of this.queue.filter(matches)) job.resolve(jsonResponse(499, { kind: 'cancelled', message: t('cancelled') }));
+    for (const job of this.queue.filter(matches)) {
+      if (job.alive) URL.revokeObjectURL(job.alive);
+      job.resolve(jsonResponse(499, { kind: 'cancelled', message: t('cancelled') }));
+    }
     this.queue = this.queue.filter((job) => !matches(job));
     if (this.running && matches(this.running)) this.restart();
   }
 
-  // Cancel for the job bar: the request running now, whatever it is for.
+  // Cancel for the job bar: the request running now, whatever it is for. One that keeps what it
+  // has is asked to stop, and answers with it; if it has not answered within stopWaitMs (it does
+  // not reach a checkpoint), the worker is ended as for any other.
   cancelRunning() {
-    if (this.running) this.restart();
+    const job = this.running;
+    if (!job) return;
+    if (!job.alive || job.stopTimer) { this.restart(); return; }
+    URL.revokeObjectURL(job.alive);
+    job.stopTimer = setTimeout(() => { if (this.running === job) this.restart(); }, stopWaitMs);
   }
 
   async restart() {
     const job = this.running;
     this.running = null;
+    clearTimeout(job.stopTimer);
+    if (job.alive) URL.revokeObjectURL(job.alive);
     this.worker.terminate();
     job.resolve(jsonResponse(499, { kind: 'cancelled', message: t('cancelled') }));
     this.emit({ running: null });

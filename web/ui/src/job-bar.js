@@ -10,6 +10,29 @@ const showAfterMs = 500;
 // Stages as the core names them (nbar::Progress::stage), in the reader's words.
 const stageWords = { sweep: 'sweep', dynamics: 'dynamics', stress: 'stress', paths: 'paths', checking: 'checking designs', simulate: 'simulation', render: 'drawing' };
 
+// The bar for a request to this page's server that can be stopped (a simulation named by its
+// `run`): shown after half a second with `label`, its Cancel calling `stop`. Returns the function
+// that hides it again (the answer has come); a newer job's bar is left as it is.
+let serverJob = 0;
+export function showServerJob(label, stop) {
+  const job = ++serverJob;
+  const bar = $('#job');
+  const button = bar.querySelector('button');
+  bar.querySelector('span').textContent = label;
+  bar.querySelector('progress').removeAttribute('value');
+  const onClick = () => { button.disabled = true; stop(); };
+  button.addEventListener('click', onClick);
+  const timer = setTimeout(() => { bar.hidden = false; document.body.dataset.job = label; }, showAfterMs);
+  return () => {
+    clearTimeout(timer);
+    button.removeEventListener('click', onClick);
+    if (job !== serverJob) return;
+    button.disabled = false;
+    bar.hidden = true;
+    document.body.removeAttribute('data-job');
+  };
+}
+
 export function initJobBar(engine) {
   const bar = $('#job');
   const text = bar.querySelector('span');

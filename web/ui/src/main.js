@@ -27,7 +27,7 @@ import { initStressMap } from './stress-map.js';
 import { initExplain } from './explain.js';
 import { initOffline, serverFetch, whenServerBack } from './offline.js';
 import { startEngine, serverOnly } from './engine.js';
-import { initJobBar } from './job-bar.js';
+import { initJobBar, showServerJob } from './job-bar.js';
 import { initSimulate, simulationBody, simulationRate, simulationStatus } from './simulate.js';
 import { pngFromSvg, gifFromScene } from './pictures.js';
 import { initBuild, outlineOf, sketchSvg, buildingText } from './build-model.js';
@@ -257,7 +257,7 @@ async function analyse() {
     showStale(null);
     setTitle(solve.model || check.name);
     const why = () => (solve.complete ? '' : ` · ${t('incomplete', solve.stop_reason ?? '')}`);
-    if (state.simulation) status(() => simulationStatus(solve), !solve.complete);
+    if (state.simulation) status(() => simulationStatus(solve), !solve.complete && !solve.cancelled);
     else status(() => `${t('dof', solve.dof?.mobility ?? '?')} · ${t('samples', solve.rows.length)}${why()}`, !solve.complete);
     state.dynamics = null;
     state.dynamicsColumns = [];
@@ -346,11 +346,34 @@ function takeDynamics(solve) {
   state.wantedY = undefined;
 }
 
-// A simulation's table and the drawing of its motion, in one request (one run).
+// A simulation's table and the drawing of its motion, in one request (one run). The job bar's
+// Cancel stops the run and keeps its rows so far, which come as the answer (complete false,
+// cancelled true): in the browser's engine by asking its worker to stop (engine.js, keepOnCancel),
+// on a server by naming the run and asking /api/simulate/cancel to stop it.
 async function simulation(text, size) {
-  const answer = await api('/api/simulate', simulationBody(text, size), 'json', { key: 'analysis', label: t('simulating') });
-  return { solve: answer.simulation, scene: answer.scene };
+  const where = await backendReady;
+  const options = { key: 'analysis', label: t('simulating'), keepOnCancel: true };
+  if (where.mode !== 'server') {
+    const answer = await api('/api/simulate', simulationBody(text, size), 'json', options);
+    return { solve: answer.simulation, scene: answer.scene };
+  }
+  const run = `run-${Date.now().toString(36)}-${Math.random().toString(36).slice(2, 10)}`;
+  const stop = () => serverFetch('/api/simulate/cancel', {
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ run }),
+  }).catch(() => {});
+  // A run of a text edited since is stopped: its rows would not be shown.
+  stopServerRun();
+  stopServerRun = stop;
+  const hide = showServerJob(t('simulating'), stop);
+  try {
+    const answer = await api('/api/simulate', simulationBody(text, size, { run }), 'json', options);
+    return { solve: answer.simulation, scene: answer.scene };
+  } finally {
+    if (stopServerRun === stop) stopServerRun = () => {};
+    hide();
+  }
 }
+let stopServerRun = () => {};
 
 // The drawing of the model at a size: the sweep's, or in Simulate mode the simulation's.
 async function sceneFor(text, size) {

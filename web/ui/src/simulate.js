@@ -13,12 +13,14 @@ addStrings({
     simulate: 'Simulate', simTo: 'to (s)', simDt: 'dt (s)', simRtol: 'tolerance',
     simulating: 'Simulating…',
     simulated: (time, rows) => `simulated ${time} s · ${rows} rows`,
+    simCancelled: (time) => `cancelled at t = ${time} s: the rows up to there are shown`,
     simHint: 'Forward dynamics: the drivers marked free: true move under the loads (nbar simulate)',
   },
   es: {
     simulate: 'Simular', simTo: 'hasta (s)', simDt: 'dt (s)', simRtol: 'tolerancia',
     simulating: 'Simulando…',
     simulated: (time, rows) => `simulado ${time} s · ${rows} filas`,
+    simCancelled: (time) => `cancelado en t = ${time} s: se muestran las filas hasta ahí`,
     simHint: 'Dinámica directa: los accionamientos marcados free: true se mueven con las cargas (nbar simulate)',
   },
 });
@@ -53,13 +55,14 @@ export function simulationRate(solve) {
   return (solve.rows.length - 1) / loop;
 }
 
-// The status line's words for a simulation: its time and rows, its events, why it stopped early.
+// The status line's words for a simulation: its time and rows, its events, why it stopped early
+// (a Cancel: where, with the rows up to there kept).
 export function simulationStatus(solve) {
   const ti = solve.columns.indexOf('t');
   const end = ti >= 0 ? +solve.rows.at(-1)[ti].toPrecision(6) : 0;
   const events = (solve.events ?? []).map((e) => e.message);
-  const why = solve.complete ? [] : [t('incomplete', solve.stop_reason ?? '')];
-  return [t('simulated', end, solve.rows.length), ...events, ...why].join(' · ');
+  const stopped = solve.cancelled ? t('simCancelled', end) : t('incomplete', solve.stop_reason ?? '');
+  return [t('simulated', end, solve.rows.length), ...events, ...(solve.complete ? [] : [stopped])].join(' · ');
 }
 
 export function initSimulate(app) {

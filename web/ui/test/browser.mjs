@@ -213,7 +213,7 @@ async function simulateAt(tag, viewport, mobile) {
   const { context, page } = await open(tag, viewport, mobile);
   const reference = simulate.cliSimulation(nbar, examples);
   const seen = await simulate.run(page, { mobile, tag, shot, click, openExample, reference: () => reference });
-  console.log(`${tag}: simulated crank at t = 3 s ${seen.crank} deg (the CLI's), played to row ${seen.played}`);
+  console.log(`${tag}: simulated crank at t = 3 s ${seen.crank} deg (the CLI's), played to row ${seen.played}, cancelled at t = ${seen.cancelledAt} s with its rows kept`);
   await context.close();
 }
 

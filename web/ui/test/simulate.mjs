@@ -3,7 +3,8 @@
 // crank-rocker simulated for 3 s with a row every 10 ms, played, and the crank's angle and the
 // drawn pin A at t = 3 s checked against the command line's `nbar simulate --format json` (or,
 // without a native nbar, against the engine's own /api/simulate answer taken by the page); back to
-// the sweep; a tolerance the core refuses is said by name.
+// the sweep; a tolerance the core refuses is said by name; a long run cancelled from the job bar
+// keeps its rows so far (cancelKeepsRows).
 // run(page, ctx) with ctx = {mobile, tag, shot, click, openExample, reference}: reference() gives
 // the simulation's JSON to compare with.
 import assert from 'node:assert/strict';
@@ -95,9 +96,66 @@ export async function run(page, ctx) {
   await page.locator('#sim-rtol').fill('1e-10');
   await page.waitForFunction(() => /^simulated 3 s · 301 rows/.test(document.querySelector('#status').textContent), null, { timeout: 60000 });
 
+  const cancelledAt = await cancelKeepsRows(page, ctx);
+
   // Back to the sweep.
   await click(page, mobile, '#simulate');
   await page.waitForFunction(() => /^1 DOF · 361 samples/.test(document.querySelector('#status').textContent));
   assert.equal(await page.locator('#scrub').getAttribute('max'), sweepRows);
-  return { crank: last[at('crank')], played };
+  return { crank: last[at('crank')], played, cancelledAt };
+}
+
+// A long run (1000 s at a tight tolerance: longer than the test waits) cancelled from the job
+// bar keeps its rows so far: the status says where it stopped, and the scrubber, the readout, the
+// table and the plot have the rows up to there, every 50 ms of simulated time; it plays.
+async function cancelKeepsRows(page, ctx) {
+  const { mobile, tag, shot, click } = ctx;
+  await page.locator('#sim-dt').fill('0.05');
+  await page.locator('#sim-rtol').fill('1e-13');
+  await page.locator('#sim-to').fill('1000');
+  await page.waitForFunction(() => document.body.dataset.job && !document.querySelector('#job').hidden, null, { timeout: 30000 });
+  await page.waitForTimeout(1500);
+  await shot(page, `${tag}-sim-4-running`);
+  await click(page, mobile, '#job button');
+  await page.waitForFunction(() => /cancelled at t = /.test(document.querySelector('#status').textContent), null, { timeout: 30000 });
+  await waitAnalysed(page);
+  const said = await status(page);
+  const m = /^simulated ([\d.e+-]+) s · (\d+) rows · .*cancelled at t = ([\d.e+-]+) s/.exec(said);
+  assert.ok(m, `the status says where the run was cancelled: ${said}`);
+  const [end, rows, at] = [+m[1], +m[2], +m[3]];
+  assert.equal(at, end, 'cancelled where the last row is');
+  assert.ok(end > 0 && end < 1000, `stopped before its end (t = ${end} s)`);
+  assert.equal(rows, Math.round(end / 0.05) + 1, 'a row every 50 ms up to there');
+  assert.ok(await page.locator('#job').isHidden(), 'the job bar is gone');
+  assert.equal(await page.locator('#scrub').getAttribute('max'), String(rows - 1));
+  // The last row kept: its time in the readout and the table.
+  await page.locator('#scrub').fill(String(rows - 1));
+  assert.equal(await page.locator('#readout').textContent(), `t = ${fmt(end)} s`);
+  await click(page, mobile, '[data-rtab="table"]');
+  const header = await page.locator('#table thead th').allTextContents();
+  const tCell = header.findIndex((h) => /^t\b/.test(h));
+  // The table shows every rows/400-th row: its last is within one stride of the last row kept.
+  const lastRow = page.locator('#table tbody tr').last();
+  const shown = +(await lastRow.getAttribute('data-i'));
+  assert.ok(shown <= rows - 1 && shown > rows - 1 - Math.ceil(rows / 400), `the table's last row ${shown} of ${rows}`);
+  assert.equal(await lastRow.locator('td').nth(tCell).textContent(), fmt(shown * 0.05), 'the table has the rows kept');
+  await lastRow.scrollIntoViewIfNeeded();
+  await shot(page, `${tag}-sim-5-cancelled-table`);
+  await click(page, mobile, '[data-rtab="plot"]');
+  await page.locator('#plot').scrollIntoViewIfNeeded();
+  assert.ok(await page.locator('#plot canvas').count() > 0, 'the rows are plotted');
+  // Played from the start: the drawing moves.
+  await page.locator('#scrub').fill('0');
+  const before = await frame(page);
+  await click(page, mobile, '#play');
+  await page.waitForTimeout(500);
+  await click(page, mobile, '#play');
+  assert.notEqual(await frame(page), before, 'the rows kept play');
+  await shot(page, `${tag}-sim-6-cancelled-plot`);
+  // The options of the first run again.
+  await page.locator('#sim-to').fill('3');
+  await page.locator('#sim-dt').fill('0.01');
+  await page.locator('#sim-rtol').fill('1e-10');
+  await page.waitForFunction(() => /^simulated 3 s · 301 rows/.test(document.querySelector('#status').textContent), null, { timeout: 60000 });
+  return end;
 }
