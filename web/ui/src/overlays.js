@@ -5,7 +5,7 @@
 // its transmission angle at the pose shown (the solve's LOOP.mu column). The sweep's warnings and
 // its stop are listed with their step and flagged on the drawing when the pose shown is there.
 // Every number comes from the server; this module only scales and draws them.
-import { t, translatePage } from './i18n.js';
+import { t, translatePage, getLang } from './i18n.js';
 
 const $ = (s) => document.querySelector(s);
 const SVGNS = 'http://www.w3.org/2000/svg';
@@ -354,7 +354,7 @@ function info(row) {
       const design = app.state.solve.branches?.find((b) => b.loop === l.name)?.transmission_angle?.design;
       mu = ` · μ = ${app.fmt(row[i])}°` + (Number.isFinite(design) ? ` <small>(${t('minIs')} ${app.fmt(design)}°)</small>` : '');
     }
-    return `<span class="loop" title="${app.esc(l.description ?? '')}"><b>${app.esc(l.name)}</b>: ${app.esc(l.grashof ?? '')}${mu}</span>`;
+    return `<span class="loop" title="${app.esc(coreDescription(l.description))}"><b>${app.esc(l.name)}</b>: ${app.esc(l.grashof ?? '')}${mu}</span>`;
   });
   $('#motion-info').innerHTML = parts.join('');
   // The model's facts change with the model, not the frame: a line of their own, rewritten only
@@ -364,13 +364,20 @@ function info(row) {
 }
 let shownFacts = '';
 
+// A loop's, rocker's or slider-crank's description from the core, as a tooltip: in English only,
+// as the core's catalogue (src/request/language.cpp) does not translate descriptions yet; in
+// another language none rather than English (the line itself gives the numbers, translated).
+function coreDescription(text) {
+  return getLang() === 'en' ? text ?? '' : '';
+}
+
 // A crank-rocker's swing and time ratio, and a slider-crank's stroke and time ratio, as
 // `nbar check` gives them (the core's numbers; the full description in the tooltip).
 function motionFacts(check) {
   const angle = app.esc(check?.units?.angle ?? ''), length = app.esc(check?.units?.length ?? '');
-  const rockers = (check?.loops ?? []).filter((l) => l.rocker).map((l) => `<span class="loop" title="${app.esc(l.rocker.description ?? '')}">`
+  const rockers = (check?.loops ?? []).filter((l) => l.rocker).map((l) => `<span class="loop" title="${app.esc(coreDescription(l.rocker.description))}">`
     + `<b>${app.esc(l.name)}</b>: ${t('swingIs', app.fmt(l.rocker.swing), angle)} · ${t('timeRatioIs', app.fmt(l.rocker.time_ratio))}</span>`);
-  const sliders = (check?.slider_cranks ?? []).map((f) => `<span class="loop" title="${app.esc(f.description ?? '')}">`
+  const sliders = (check?.slider_cranks ?? []).map((f) => `<span class="loop" title="${app.esc(coreDescription(f.description))}">`
     + `<b>${app.esc(f.slider)}</b>: ${t('strokeIs', app.fmt(f.stroke), length)} · ${t('timeRatioIs', app.fmt(f.time_ratio))}</span>`);
   return [...rockers, ...sliders].join('');
 }
