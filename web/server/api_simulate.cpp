@@ -126,12 +126,7 @@ ApiResponse api_simulate_cancel(Job&, const std::string& text) {
 ApiResponse api_simulate(Job& job, const std::string& text) {
   const RequestBody body(text, request::SimulateRequest::rules(), {"model", "scene", "run"});
   const auto simulate = read_request<request::SimulateRequest>(body, {"model", "scene", "run"}, true);
-  std::optional<NamedRuns::Entry> named;
-  if (body.has("run")) {
-    const std::string name = run_name(body);
-    if (!named_runs().add(name, job.control.token)) bad_input("a run named '" + name + "' is running already");
-    named.emplace(named_runs(), name);
-  }
+  const std::optional<std::string> name = body.has("run") ? std::optional(run_name(body)) : std::nullopt;
   load_model(job, body.text("model", true));
   const SimulationOptions options = simulate.simulation_options(*job.mechanism);
   check_simulation_size(job, options);
@@ -140,6 +135,14 @@ ApiResponse api_simulate(Job& job, const std::string& text) {
   // How long an integration takes is known only once it has run (the tolerance, the stiffness of
   // the springs): a heavy computation, whatever its rows.
   job.start(Weight::Heavy);
+  // Named only now, as the integration starts: a cancel that came while the model was read would
+  // stop the job at one of those steps' checkpoints, which answer as the time budget does (504),
+  // where a cancelled run answers with its rows; that cancel finds no run and says so.
+  std::optional<NamedRuns::Entry> named;
+  if (name) {
+    if (!named_runs().add(*name, job.control.token)) bad_input("a run named '" + *name + "' is running already");
+    named.emplace(named_runs(), *name);
+  }
   const Simulation simulation = nbar::simulate(*job.mechanism, options, job.control);
   // The core keeps a cancelled run's rows, and so does the answer to a page that cancelled it; the
   // server's deadline is its own limit, said as one.
