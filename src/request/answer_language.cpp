@@ -37,8 +37,8 @@ void translate_tree(Json& node, Language language) {
 }  // namespace
 
 bool is_message_field(const std::string& key) {
-  static const std::array<std::string_view, 8> kFields = {"message", "stop_reason", "label",    "start",
-                                                          "joints",  "grashof",     "immobile", "warnings"};
+  static const std::array<std::string_view, 9> kFields = {"message", "stop_reason", "label",    "start",      "joints",
+                                                          "grashof", "immobile",    "warnings", "description"};
   return std::find(kFields.begin(), kFields.end(), key) != kFields.end();
 }
 

@@ -11,7 +11,9 @@ namespace nbar::request {
 
 // The fields whose strings are the core's messages: an error's or a warning's "message", a
 // sweep's "stop_reason", explain's "label" and Newton "start", the check's "joints" and
-// "grashof", an outline's "immobile", and a list of "warnings" given as plain strings.
+// "grashof", the check's "description" of a loop, a rocker, a slider-crank or a quick-return,
+// an outline's "immobile", and a list of "warnings" given as plain strings. A "description" the
+// core did not write (a model's own) matches no template and stays as it is.
 bool is_message_field(const std::string& key);
 
 // A JSON answer's text with those fields in `language`, laid out as it was (indented by

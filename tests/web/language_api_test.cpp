@@ -35,6 +35,29 @@ drivers:
   - {angle: crank, from: 90, to: 450, speed: 10 rpm}
 )";
 
+// A slider-crank whose rod is too short for its offset, and a quick-return whose crank is longer
+// than the distance between the pivots (the arm turns fully: Whitworth).
+const char* kLockedSliderCrank = R"(
+units: {length: mm, angle: deg}
+points: {O2: [0, 0], Y1: [-100, 150], Y2: [400, 150], A: [50, 0], C: [149.498744, 150]}
+ground: [O2, Y1, Y2]
+bodies: {crank: [O2, A], rod: [A, C], slider: [C]}
+sliders:
+  - {body: slider, point: C, along: [Y1, Y2]}
+drivers:
+  - {angle: crank, from: 0, to: 10, speed: 1 rpm}
+)";
+const char* kWhitworth = R"(
+units: {length: mm, angle: deg}
+points: {O4: [0, 0], O2: [0, 50], A: [100, 50], T: [178.885438, 89.442719]}
+ground: [O4, O2]
+bodies: {crank: [O2, A], block: [A], arm: [O4, T]}
+sliders:
+  - {body: block, point: A, along: [O4, T]}
+drivers:
+  - {angle: crank, from: 0, to: 360, speed: 30 rpm}
+)";
+
 // A request (endpoint and body) whose answer holds core messages.
 struct Asked {
   std::string path;
@@ -96,6 +119,29 @@ bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
 drivers:
   - {angle: crank, from: 90, to: 100, speed: 1 rpm}
 )"}}},
+      // The check's descriptions the bundled examples do not write: change points with one crank
+      // and with none (the coupler shortest), a slider-crank whose crank cannot turn fully (rod -
+      // crank = 130 mm < offset 150 mm), a Whitworth quick-return (crank 100 mm >= pivots 50 mm apart).
+      {"/api/check", Json{{"model", R"(
+units: {length: mm, angle: deg}
+points: {O2: [0, 0], O4: [200, 0], A: [0, 50], B: [179.210386, 66.841544]}
+ground: [O2, O4]
+bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
+lengths: {crank: 50, coupler: 180, rocker: 70}
+drivers:
+  - {angle: crank, from: 90, to: 100, speed: 1 rpm}
+)"}}},
+      {"/api/check", Json{{"model", R"(
+units: {length: mm, angle: deg}
+points: {O2: [0, 0], O4: [200, 0], A: [155.884573, 90], B: [201.7013, 69.979323]}
+ground: [O2, O4]
+bodies: {input: [O2, A], coupler: [A, B], output: [O4, B]}
+lengths: {input: 180, coupler: 50, output: 70}
+drivers:
+  - {angle: input, from: 30, to: 31, speed: 1 rpm}
+)"}}},
+      {"/api/check", Json{{"model", kLockedSliderCrank}}},
+      {"/api/check", Json{{"model", kWhitworth}}},
       // A cylinder asked to start beyond its reach.
       {"/api/solve", Json{{"model", replaced(repo_file("examples/dump-truck-tipper.yaml"), "from: 900, to: 1700",
                                              "from: 5000, to: 5100")},
@@ -132,7 +178,7 @@ void messages_of(const Json& j, const std::string& at, bool message_field,
     for (const auto& [key, value] : j.items())
       messages_of(value, at + "." + key,
                   key == "message" || key == "stop_reason" || key == "label" || key == "start" || key == "joints" ||
-                      key == "grashof" || key == "immobile" || key == "warnings",
+                      key == "grashof" || key == "immobile" || key == "warnings" || key == "description",
                   out);
 }
 
@@ -228,6 +274,40 @@ TEST(AnswerLanguage, GrashofClassesAndNestedMessages) {
   EXPECT_EQ(request::translate("unknown length unit 'mn' (use mm, cm, m or in)", request::Language::Spanish),
             "unidad de longitud desconocida 'mn' (use mm, cm, m o in)");
   EXPECT_EQ(request::translate("no template says this", request::Language::Spanish), "no template says this");
+}
+
+// The check's descriptions, word for word: the tooltips the web app shows on a loop, a rocker and
+// a slider-crank. The numbers are the CLI's English ones (examples' comments give them).
+TEST(AnswerLanguage, CheckDescriptionsInSpanish) {
+  const Json rocker = Json::parse(post("/api/check", Json{{"model", kCrankRocker}, {"lang", "es"}}).body);
+  EXPECT_EQ(rocker["loops"][0]["description"],
+            "manivela-balancín: bastidor ground 200, entrada crank 80, biela coupler 180, salida rocker 150 mm; "
+            "(p + q) - (s + l) = 50; gira completamente respecto a ground: crank");
+  EXPECT_EQ(rocker["loops"][0]["rocker"]["description"],
+            "el balancín rocker oscila 65.921 deg, entre 85.124 deg (manivela y biela extendidas en línea, crank en "
+            "35.0881 deg) y 151.045 deg (plegadas, en 226.567 deg); la manivela gira 168.521 deg de plegada a "
+            "extendida y 191.479 deg de vuelta: relación de tiempos 1.136");
+  const Json offset = Json::parse(
+      post("/api/check", Json{{"model", repo_file("examples/slider-crank-offset.yaml")}, {"lang", "es"}}).body);
+  EXPECT_EQ(offset["slider_cranks"][0]["description"],
+            "biela-manivela crank-rod-slider: manivela 50 mm, biela 180 mm, descentramiento 25 mm; carrera "
+            "101.064 mm; puntos muertos con crank en 6.24013 deg (exterior) y 191.087 deg (interior); la carrera de "
+            "ida ocupa 175.153 deg de giro de la manivela, la de retorno 184.847 deg: relación de tiempos 1.055");
+  const Json shaper = Json::parse(
+      post("/api/check", Json{{"model", repo_file("examples/inverted-slider-crank-shaper.yaml")}, {"lang", "es"}})
+          .body);
+  EXPECT_EQ(shaper["quick_returns"][0]["description"],
+            "retorno rápido crank-arm: manivela 100 mm, pivotes a 250 mm de distancia; el brazo oscila 47.1564 deg; "
+            "sus posiciones extremas con crank en 203.578 deg y 336.422 deg; una carrera ocupa 227.156 deg de giro de "
+            "la manivela, la otra 132.844 deg: relación de tiempos 1.71");
+  const Json locked = Json::parse(post("/api/check", Json{{"model", kLockedSliderCrank}, {"lang", "es"}}).body);
+  EXPECT_EQ(locked["slider_cranks"][0]["description"],
+            "biela-manivela crank-rod-slider: manivela 50 mm, biela 180 mm, descentramiento 150 mm: la manivela no "
+            "puede dar la vuelta completa (biela - manivela no es mayor que el descentramiento)");
+  const Json whitworth = Json::parse(post("/api/check", Json{{"model", kWhitworth}, {"lang", "es"}}).body);
+  EXPECT_EQ(whitworth["quick_returns"][0]["description"],
+            "retorno rápido crank-arm: manivela 100 mm >= distancia entre pivotes 50 mm: el brazo da la vuelta "
+            "completa (Whitworth)");
 }
 
 }  // namespace

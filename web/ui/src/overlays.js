@@ -5,7 +5,7 @@
 // its transmission angle at the pose shown (the solve's LOOP.mu column). The sweep's warnings and
 // its stop are listed with their step and flagged on the drawing when the pose shown is there.
 // Every number comes from the server; this module only scales and draws them.
-import { t, translatePage, getLang } from './i18n.js';
+import { t, translatePage } from './i18n.js';
 
 const $ = (s) => document.querySelector(s);
 const SVGNS = 'http://www.w3.org/2000/svg';
@@ -364,11 +364,12 @@ function info(row) {
 }
 let shownFacts = '';
 
-// A loop's, rocker's or slider-crank's description from the core, as a tooltip: in English only,
-// as the core's catalogue (src/request/language.cpp) does not translate descriptions yet; in
-// another language none rather than English (the line itself gives the numbers, translated).
+// A loop's, rocker's or slider-crank's description from the core, as a tooltip, as it comes: the
+// check is asked in the app's language and the server says its descriptions in it from the core's
+// catalogue (src/request/language.cpp), so nothing is translated or held back here. A change of
+// language asks the check again, and the tooltips follow.
 function coreDescription(text) {
-  return getLang() === 'en' ? text ?? '' : '';
+  return text ?? '';
 }
 
 // A crank-rocker's swing and time ratio, and a slider-crank's stroke and time ratio, as

@@ -39,6 +39,14 @@ async function both(base, path, body) {
 // A name with digits or underscores (link5, theta_left) is one word, never English.
 const englishWords = (text) => (text.replace(/`[^`]*`|'[^']*'|«[^»]*»/g, ' ').match(/[\wÀ-ÿ]+(?:-[\wÀ-ÿ]+)*/g) ?? [])
   .filter((w) => english.has(w.toLowerCase()));
+// A check's descriptions of its loops, rockers, slider-cranks and quick-returns, in order.
+const descriptionsOf = (check) => [
+  ...(check.loops ?? []).flatMap((l) => [l.description, l.rocker?.description]),
+  ...(check.slider_cranks ?? []).map((f) => f.description),
+  ...(check.quick_returns ?? []).map((f) => f.description),
+].filter(Boolean);
+// The tooltips of the motion line and of the facts line under the drawing.
+const motionTips = (page) => page.locator('#motion-info .loop, #motion-facts .loop').evaluateAll((els) => els.map((el) => el.getAttribute('title')));
 // A bundled example's text.
 const exampleText = (examples, name) => readFileSync(`${examples}/${name}.yaml`, 'utf8');
 
@@ -97,6 +105,8 @@ export async function checkCatalogue(base, examples) {
     (en.loops ?? []).forEach((l, k) => { need(l.grashof, es.loops[k].grashof, `${e.name}: Grashof class`, [l.grashof]); checked++; });
     (en.joints ?? []).forEach((j, k) => { if (j.startsWith('revolute')) { need(j, es.joints[k], e.name, [...namesOf(text)]); checked++; } });
     (en.warnings ?? []).forEach((w, k) => { need(w.message ?? w, es.warnings[k].message ?? es.warnings[k], e.name, [...namesOf(text)]); checked++; });
+    // The descriptions the app shows as tooltips (a loop's, a rocker's, a slider-crank's).
+    descriptionsOf(en).forEach((d, k) => { need(d, descriptionsOf(es)[k], `${e.name}: description`, [...namesOf(text)]); checked++; });
   }
   for (const step of [0, 5]) {
     const [en, es] = await both(base, 'api/explain', { model: crankRocker, step });
@@ -184,6 +194,11 @@ export async function run(page, ctx) {
   assert.match(await page.locator('#status').textContent(), /^1 GDL · 361 muestras$/);
   assert.match(await page.locator('#motion-info').textContent(), /manivela-balancín/);
   await assertSpanish(page, 'crank-rocker', shot, tag, '2-crank-rocker');
+  // The core's descriptions as tooltips, said by the server in Spanish (none held back as English).
+  const tips = await motionTips(page);
+  assert.ok(tips.some((tip) => tip.startsWith('manivela-balancín: bastidor ground 200, entrada crank 80')), `the loop's tooltip: ${tips}`);
+  assert.ok(tips.some((tip) => tip.startsWith('el balancín rocker oscila 65.921 deg')), `the rocker's tooltip: ${tips}`);
+  assert.deepEqual(await englishOnScreen(page, namesOf(await editorText(page)), tips), [], `${tag}: English left in the tooltips`);
   await click(page, mobile, '[data-tab="model"]');
   assert.match(await page.locator('#panel-model').textContent(), /par de rotación O2 \(ground\/crank\)/);
   await assertSpanish(page, 'Model tab', shot, tag, '3-model');
@@ -195,6 +210,7 @@ export async function run(page, ctx) {
   for (const [name, grashof] of [['fourbar-double-crank', 'doble manivela'], ['fourbar-double-rocker', 'triple balancín'], ['slider-crank-offset', null]]) {
     await openFromGallery(page, mobile, click, name);
     if (grashof) assert.match(await page.locator('#motion-info').textContent(), new RegExp(grashof));
+    if (!grashof) assert.ok((await motionTips(page)).some((tip) => tip.startsWith('biela-manivela crank-rod-slider: manivela 50 mm')), `${name}: the slider-crank's tooltip`);
     await assertSpanish(page, name, shot, tag, `5-${name}`);
   }
 
