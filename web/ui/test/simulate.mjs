@@ -144,7 +144,10 @@ async function cancelKeepsRows(page, ctx) {
   await click(page, mobile, '[data-rtab="plot"]');
   await page.locator('#plot').scrollIntoViewIfNeeded();
   assert.ok(await page.locator('#plot canvas').count() > 0, 'the rows are plotted');
-  // Played from the start: the drawing moves.
+  // Played from the start: the drawing moves, at the simulation's own time (rows - 1 in `end` s,
+  // at least 2 s and at most 20 s a loop: simulate.js), 20 rows a second for a run cancelled
+  // between 2 and 20 s: a third of a row a 60 Hz frame (a play head that lost its fraction at
+  // every frame stayed on its row).
   await page.locator('#scrub').fill('0');
   const before = await frame(page);
   await click(page, mobile, '#play');
@@ -154,8 +157,18 @@ async function cancelKeepsRows(page, ctx) {
     await page.waitForTimeout(250);
     moved = (await frame(page)) !== before;
   }
-  await click(page, mobile, '#play');
   assert.ok(moved, 'the rows kept play');
+  // Then a second of play moves it by about the rows of a second (half of them on a loaded machine).
+  const rowsPerMs = (rows - 1) / Math.min(Math.max(end * 1000, 2000), 20000);
+  const rowAt = async () => [+(await page.locator('#scrub').inputValue()), Date.now()];
+  const [row0, t0] = await rowAt();
+  await page.waitForTimeout(1000);
+  const [row1, t1] = await rowAt();
+  await click(page, mobile, '#play');
+  const advanced = (row1 - row0 + rows) % rows;
+  const expected = (t1 - t0) * rowsPerMs;
+  assert.ok(advanced >= 0.5 * expected && advanced <= 1.5 * expected + 2,
+    `the rows kept play at their own time: ${advanced} rows in ${t1 - t0} ms, ${expected.toFixed(1)} expected`);
   await shot(page, `${tag}-sim-6-cancelled-plot`);
   // The options of the first run again.
   await page.locator('#sim-to').fill('3');
