@@ -617,15 +617,21 @@ async function redrawDragged(d) {
 
 // ------------------------------------------------------------------------------ animation
 
+// The play head is kept in fractions of a row apart from the row shown (setFrame rounds
+// state.frame to a row): a slow play (a simulation of 400 rows in 20 s moves a third of a row in a
+// 60 Hz frame) would otherwise lose its fraction at every frame and never leave its row.
 let last = 0;
+let head = 0;
 function tick(now) {
   if (!state.playing) return;
   const n = state.solve?.rows.length ?? 0;
   // A sweep plays in 4 s; a simulation at its own time (simulate.js).
   const rate = state.simulation && n > 1 ? simulationRate(state.solve) : n / 4000;
-  if (n > 1 && last) state.frame = (state.frame + (now - last) * rate) % n;
+  // The row moved from elsewhere (new rows, a shorter table): play on from there.
+  if (Math.floor(head) !== state.frame) head = state.frame;
+  if (n > 1 && last) head = (head + (now - last) * rate) % n;
   last = now;
-  if (n > 1) setFrame(Math.floor(state.frame));
+  if (n > 1) setFrame(Math.floor(head));
   requestAnimationFrame(tick);
 }
 function play(on) {
@@ -634,6 +640,7 @@ function play(on) {
   b.textContent = on ? '❚❚' : '▶';
   b.setAttribute('aria-label', on ? 'Pause' : 'Play');
   last = 0;
+  head = state.frame;
   if (on) requestAnimationFrame(tick);
 }
 

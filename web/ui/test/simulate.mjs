@@ -107,7 +107,8 @@ export async function run(page, ctx) {
 
 // A long run (1000 s at a tight tolerance: longer than the test waits) cancelled from the job
 // bar keeps its rows so far: the status says where it stopped, and the scrubber, the readout, the
-// table and the plot have the rows up to there, every 50 ms of simulated time; it plays.
+// table and the plot have the rows up to there, every 50 ms of simulated time; they play, and
+// so does the run to 3 s at that dt, at 20 rows a second (under a row a 60 Hz frame).
 async function cancelKeepsRows(page, ctx) {
   const { mobile, tag, shot, click } = ctx;
   await page.locator('#sim-dt').fill('0.05');
@@ -144,7 +145,26 @@ async function cancelKeepsRows(page, ctx) {
   await click(page, mobile, '[data-rtab="plot"]');
   await page.locator('#plot').scrollIntoViewIfNeeded();
   assert.ok(await page.locator('#plot canvas').count() > 0, 'the rows are plotted');
-  // Played from the start: the drawing moves.
+  await playsAtOwnTime(page, ctx, rows, end, 'the rows kept');
+  await shot(page, `${tag}-sim-6-cancelled-plot`);
+  // A play slower than a row a frame whatever the machine's speed (the run above may stop past
+  // 60 s, played faster): 3 s at a row every 50 ms, 20 rows a second.
+  await page.locator('#sim-to').fill('3');
+  await page.waitForFunction(() => /^simulated 3 s · 61 rows/.test(document.querySelector('#status').textContent), null, { timeout: 60000 });
+  await waitAnalysed(page);
+  await playsAtOwnTime(page, ctx, 61, 3, 'a row every 50 ms');
+  // The options of the first run again.
+  await page.locator('#sim-dt').fill('0.01');
+  await page.locator('#sim-rtol').fill('1e-10');
+  await page.waitForFunction(() => /^simulated 3 s · 301 rows/.test(document.querySelector('#status').textContent), null, { timeout: 60000 });
+  return end;
+}
+
+// Played from row 0, a simulation of `rows` rows to `end` s moves the drawing at its own time:
+// rows - 1 in `end` s, at least 2 s and at most 20 s a loop (simulate.js). 20 rows a second is a
+// third of a row a 60 Hz frame, where a play head that lost its fraction every frame stayed on its
+// row (it only moved when a slow frame gave it a whole row).
+async function playsAtOwnTime(page, { mobile, click }, rows, end, what) {
   await page.locator('#scrub').fill('0');
   const before = await frame(page);
   await click(page, mobile, '#play');
@@ -154,13 +174,18 @@ async function cancelKeepsRows(page, ctx) {
     await page.waitForTimeout(250);
     moved = (await frame(page)) !== before;
   }
+  if (!moved) await click(page, mobile, '#play');
+  assert.ok(moved, `${what} play`);
+  // Then a second of play moves it by about the rows of a second (half of them on a loaded
+  // machine); a second is under the shortest loop, so the rows it wrapped past are counted.
+  const rowsPerMs = (rows - 1) / Math.min(Math.max(end * 1000, 2000), 20000);
+  const rowAt = async () => [+(await page.locator('#scrub').inputValue()), Date.now()];
+  const [row0, t0] = await rowAt();
+  await page.waitForTimeout(1000);
+  const [row1, t1] = await rowAt();
   await click(page, mobile, '#play');
-  assert.ok(moved, 'the rows kept play');
-  await shot(page, `${tag}-sim-6-cancelled-plot`);
-  // The options of the first run again.
-  await page.locator('#sim-to').fill('3');
-  await page.locator('#sim-dt').fill('0.01');
-  await page.locator('#sim-rtol').fill('1e-10');
-  await page.waitForFunction(() => /^simulated 3 s · 301 rows/.test(document.querySelector('#status').textContent), null, { timeout: 60000 });
-  return end;
+  const advanced = (row1 - row0 + rows) % rows;
+  const expected = (t1 - t0) * rowsPerMs;
+  assert.ok(advanced >= 0.5 * expected && advanced <= 1.5 * expected + 2,
+    `${what} play at their own time: ${advanced} rows in ${t1 - t0} ms, ${expected.toFixed(1)} expected`);
 }
