@@ -62,7 +62,10 @@ EOF
   cmake --install "$deps/yaml-cpp-build-$exceptions" >/dev/null
 fi
 
-emcmake cmake -S "$root" -B "$build" -DNBAR_WASM=ON -DCMAKE_BUILD_TYPE=Release -DNBAR_WASM_YAML_CPP="$yaml_prefix" -DNBAR_WASM_EXCEPTIONS="$exceptions" \
+# Ninja when installed (scripts/cmake-options.sh); not ccache, which does not know emscripten.
+. "$root/scripts/cmake-options.sh"
+generator_options "$build"
+emcmake cmake "${generator[@]}" -S "$root" -B "$build" -DNBAR_WASM=ON -DCMAKE_BUILD_TYPE=Release -DNBAR_WASM_YAML_CPP="$yaml_prefix" -DNBAR_WASM_EXCEPTIONS="$exceptions" \
   -DNBAR_NATIVE="$root/build/apps/nbar/nbar" >/dev/null
 cmake --build "$build" -j"$jobs" --target nbar_engine
 ls -l "$build/web/engine/nbar-engine.wasm"

@@ -6,9 +6,14 @@
 #   build took 3 min 45 s with Ninja against 4 min 28 s with make, on 2 cores). A directory
 #   configured before keeps its generator, as CMake refuses to change it.
 # Usage: configure_options DIR; then cmake ... "${options[@]}"
-configure_options() {
+#        generator_options DIR; then cmake ... "${generator[@]}" (Ninja alone: scripts/build-wasm.sh)
+generator_options() {
   local dir="$1"
-  options=()
+  generator=()
+  if [ ! -f "$dir/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+}
+configure_options() {
+  generator_options "$1"
+  options=("${generator[@]}")
   if command -v ccache >/dev/null 2>&1; then options+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-  if [ ! -f "$dir/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then options+=(-G Ninja); fi
 }
