@@ -74,6 +74,12 @@ async function typeField(page, ctx, label, value) {
   await settled(page);
   const before = await yamlText(page);
   const field = page.getByLabel(label, { exact: true });
+  // On a slow build (the sanitizers') the tap on the Model tab can land while the page is drawn
+  // again after an analysis, and the tab stays closed (its fields hidden): it is asked for again.
+  for (let attempt = 0; attempt < 20 && !(await field.isVisible()); ++attempt) {
+    await page.waitForTimeout(500);
+    if (attempt % 4 === 3 && !(await field.isVisible())) await ctx.click(page, ctx.mobile, '[data-tab="model"]');
+  }
   await field.scrollIntoViewIfNeeded();
   if (ctx.mobile) await field.tap(); else await field.click();
   await field.fill(String(value));
