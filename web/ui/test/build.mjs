@@ -14,8 +14,9 @@ const yamlText = (page) => page.evaluate(() => [...document.querySelectorAll('#e
 const settled = (page) => page.waitForFunction(() => !document.body.dataset.busy);
 const note = (page) => page.locator('#stale span').textContent();
 
-// Where model point (x, y) is on the screen, from the drawing's own transform.
-function screenOf(page, x, y) {
+// Where model point (x, y) is on the screen, from the drawing's own transform (newuser.mjs taps
+// through it too).
+export function screenOf(page, x, y) {
   return page.evaluate(([mx, my]) => {
     const svg = document.querySelector('#drawing svg');
     const p = new DOMPoint(mx, -my).matrixTransform(svg.getScreenCTM());

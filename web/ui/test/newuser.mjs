@@ -18,6 +18,7 @@ import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { englishOnScreen, namesOf } from './spanish.mjs';
+import { screenOf } from './build.mjs';
 
 // The app's number format (main.js fmt), to compare at the precision shown.
 const fmt = (v) => {
@@ -39,12 +40,6 @@ function cli(nbar, text, args) {
   return JSON.parse(r.stdout);
 }
 
-function screenOf(page, x, y) {
-  return page.evaluate(([mx, my]) => {
-    const p = new DOMPoint(mx, -my).matrixTransform(document.querySelector('#drawing svg').getScreenCTM());
-    return [p.x, p.y];
-  }, [x, y]);
-}
 async function tapModel(page, mobile, x, y) {
   const [cx, cy] = await screenOf(page, x, y);
   if (mobile) await page.touchscreen.tap(cx, cy); else await page.mouse.click(cx, cy);
