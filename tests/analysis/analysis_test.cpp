@@ -1,5 +1,7 @@
 // The analysis pipeline: each stage runs once, in order, and what it keeps agrees with the
 // stages run one by one; the column catalogue agrees with the tables; errors have kinds.
+#include "example_models.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,9 +20,7 @@
 namespace nbar {
 namespace {
 
-std::shared_ptr<const Mechanism> example(const std::string& name) {
-  return std::make_shared<const Mechanism>(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name).model);
-}
+using test_support::example_mechanism;
 
 AnalysisOptions with_stress(int steps) {
   AnalysisOptions o;
@@ -31,7 +31,7 @@ AnalysisOptions with_stress(int steps) {
 }
 
 TEST(Analysis, ReportSolvesTheDynamicsOfEverySampleOnce) {
-  const auto mech = example("fourbar-steel-bars.yaml");
+  const auto mech = example_mechanism("fourbar-steel-bars.yaml");
   const ModelSummary summary = summarize(*mech);
   AnalysisOptions options = render::report_analysis_options(summary);
   ASSERT_TRUE(options.dynamics);
@@ -47,7 +47,7 @@ TEST(Analysis, ReportSolvesTheDynamicsOfEverySampleOnce) {
 }
 
 TEST(Analysis, TableAgreesWithTheStagesRunOneByOne) {
-  const auto mech = example("compressor-myszka-kinetics.yaml");
+  const auto mech = example_mechanism("compressor-myszka-kinetics.yaml");
   AnalysisOptions options;
   options.steps = 25;
   options.order = 3;
@@ -72,7 +72,7 @@ TEST(Analysis, TableAgreesWithTheStagesRunOneByOne) {
 }
 
 TEST(Analysis, StressPeakIsTheLargestOfEveryProfile) {
-  const auto mech = example("fourbar-steel-bars.yaml");
+  const auto mech = example_mechanism("fourbar-steel-bars.yaml");
   const Analysis analysis = analyse(mech, with_stress(13));
   ASSERT_TRUE(analysis.stress);
   ASSERT_FALSE(analysis.stress->peaks.empty());
@@ -95,7 +95,7 @@ TEST(Analysis, StressPeakIsTheLargestOfEveryProfile) {
 }
 
 TEST(Analysis, OutlivesTheCallersMechanism) {
-  auto mech = example("fourbar-steel-bars.yaml");
+  auto mech = example_mechanism("fourbar-steel-bars.yaml");
   const std::weak_ptr<const Mechanism> watch = mech;
   Analysis analysis = analyse(std::move(mech), with_stress(7));
   EXPECT_FALSE(watch.expired());  // the analysis keeps it alive
@@ -104,7 +104,7 @@ TEST(Analysis, OutlivesTheCallersMechanism) {
 }
 
 TEST(Columns, CatalogueNamesTheTableColumnsWithTheirUnits) {
-  const auto mech = example("compressor-myszka-kinetics.yaml");
+  const auto mech = example_mechanism("compressor-myszka-kinetics.yaml");
   AnalysisOptions options;
   options.steps = 3;
   options.order = 4;
@@ -124,7 +124,7 @@ TEST(Columns, CatalogueNamesTheTableColumnsWithTheirUnits) {
 }
 
 TEST(Columns, NeedsSayWhichStagesAndOrder) {
-  const auto mech = example("compressor-myszka-kinetics.yaml");
+  const auto mech = example_mechanism("compressor-myszka-kinetics.yaml");
   ColumnNeeds n = column_needs(*mech, {"crank.torque", "crank"});
   EXPECT_TRUE(n.dynamics);
   EXPECT_EQ(n.order, 2);
@@ -160,13 +160,13 @@ ErrorKind kind_of(const std::function<void()>& run) {
 }
 
 TEST(Analysis, ErrorsHaveKinds) {
-  const auto kinematic = example("fourbar-crank-rocker.yaml");
+  const auto kinematic = example_mechanism("fourbar-crank-rocker.yaml");
   EXPECT_EQ(kind_of([&] { analyse(kinematic, with_stress(5)); }), ErrorKind::InvalidModel);
   AnalysisOptions order9;
   order9.order = 9;
   EXPECT_EQ(kind_of([&] { analyse(kinematic, order9); }), ErrorKind::BadInput);
 
-  const auto steel = example("fourbar-steel-bars.yaml");
+  const auto steel = example_mechanism("fourbar-steel-bars.yaml");
   const Analysis analysis = analyse(steel, with_stress(5));
   EXPECT_EQ(kind_of([&] { section_profile_table(analysis, analysis.stress->peaks[0].body, 5); }), ErrorKind::BadInput);
 }
@@ -174,13 +174,13 @@ TEST(Analysis, ErrorsHaveKinds) {
 // Every entry point that takes a derivative order refuses one past 5: the column catalogue built
 // its tables from it and crashed at 6 (Python's Model.columns(order=6)).
 TEST(Analysis, OrdersAndSectionsOutOfRangeAreBadInput) {
-  const auto mech = example("fourbar-crank-rocker.yaml");
+  const auto mech = example_mechanism("fourbar-crank-rocker.yaml");
   EXPECT_EQ(kind_of([&] { column_catalogue(*mech, 6); }), ErrorKind::BadInput);
   EXPECT_EQ(kind_of([&] { column_catalogue(*mech, -1); }), ErrorKind::BadInput);
   EXPECT_EQ(kind_of([&] { column_needs(*mech, {"P.x"}, 6, false); }), ErrorKind::BadInput);
   EXPECT_GT(column_catalogue(*mech, kMaxDerivativeOrder).size(), column_catalogue(*mech, 2).size());
 
-  const auto steel = example("fourbar-steel-bars.yaml");
+  const auto steel = example_mechanism("fourbar-steel-bars.yaml");
   AnalysisOptions too_fine = with_stress(5);
   too_fine.sections = kMaxSectionsPerLink + 1;
   EXPECT_EQ(kind_of([&] { analyse(steel, too_fine); }), ErrorKind::BadInput);
@@ -202,11 +202,11 @@ TEST(Analysis, AnEndlessTimeBudgetNeverCancels) {
   EXPECT_TRUE(spent.cancelled());
   AnalysisOptions options;
   options.control.token.set_time_budget(std::chrono::duration<double>(HUGE_VAL));
-  EXPECT_TRUE(analyse(example("fourbar-crank-rocker.yaml"), options).complete());
+  EXPECT_TRUE(analyse(example_mechanism("fourbar-crank-rocker.yaml"), options).complete());
 }
 
 TEST(Analysis, CancelledByTokenOrProgress) {
-  const auto mech = example("fourbar-steel-bars.yaml");
+  const auto mech = example_mechanism("fourbar-steel-bars.yaml");
   AnalysisOptions options = with_stress(200);
   options.control.token.cancel();
   EXPECT_EQ(kind_of([&] { analyse(mech, options); }), ErrorKind::Cancelled);
@@ -222,7 +222,7 @@ TEST(Analysis, CancelledByTokenOrProgress) {
 }
 
 TEST(Summary, CountsClassifiesAndDecidesKineticsOnce) {
-  const ModelSummary four_bar = summarize(*example("fourbar-crank-rocker.yaml"));
+  const ModelSummary four_bar = summarize(*example_mechanism("fourbar-crank-rocker.yaml"));
   EXPECT_EQ(four_bar.mobility.dof, 1);
   EXPECT_EQ(four_bar.mobility.grubler, 1);
   ASSERT_EQ(four_bar.loops.size(), 1u);
@@ -231,12 +231,12 @@ TEST(Summary, CountsClassifiesAndDecidesKineticsOnce) {
   EXPECT_FALSE(four_bar.has_kinetics());
   EXPECT_EQ(render::report_analysis_options(four_bar).dynamics, false);
 
-  const ModelSummary steel = summarize(*example("fourbar-steel-bars.yaml"));
+  const ModelSummary steel = summarize(*example_mechanism("fourbar-steel-bars.yaml"));
   EXPECT_TRUE(steel.has_kinetics());
   EXPECT_TRUE(steel.has_stress_links);
   for (const BodySummary& b : steel.bodies) EXPECT_GT(b.mass.mass, 0.0) << b.name;
 
-  const ModelSummary redundant = summarize(*example("parallelogram-redundant.yaml"));
+  const ModelSummary redundant = summarize(*example_mechanism("parallelogram-redundant.yaml"));
   EXPECT_EQ(redundant.redundant.size(), 1u);
   EXPECT_EQ(redundant.mobility.grubler, 0);
   EXPECT_EQ(redundant.mobility.dof, 1);
@@ -272,7 +272,7 @@ TEST(Summary, WarnsOfASweepPastTheInputsToggles) {
   // Within the range: no warning.
   EXPECT_TRUE(summarize(*long_crank("deg", "170")).warnings.empty());
   // A crank that turns fully: none either.
-  EXPECT_TRUE(summarize(*example("fourbar-crank-rocker.yaml")).warnings.empty());
+  EXPECT_TRUE(summarize(*example_mechanism("fourbar-crank-rocker.yaml")).warnings.empty());
 }
 
 TEST(Summary, WarnsOfManyTurnsAndNamesTheUnit) {
@@ -327,7 +327,7 @@ TEST(Summary, WarnsOfABodysPointOffItsPlate) {
 // (Norton): stroke = sqrt((l+r)^2 - e^2) - sqrt((l-r)^2 - e^2); the crank lies along the rod at
 // asin(e/(l+r)) (outer) and pi + asin(e/(l-r)) (inner), measured from the guide's direction.
 TEST(Summary, SliderCrankStrokeDeadCentresAndTimeRatio) {
-  const auto mech = example("slider-crank-offset.yaml");
+  const auto mech = example_mechanism("slider-crank-offset.yaml");
   const ModelSummary s = summarize(*mech);
   ASSERT_EQ(s.slider_cranks.size(), 1u);
   const SliderCrankSummary& f = s.slider_cranks[0];
@@ -347,7 +347,7 @@ TEST(Summary, SliderCrankStrokeDeadCentresAndTimeRatio) {
   EXPECT_NE(f.description.find("stroke 101.0"), std::string::npos) << f.description;
 
   // In line: the stroke is twice the crank and both strokes take 180 deg.
-  const ModelSummary centred = summarize(*example("slider-crank-centred.yaml"));
+  const ModelSummary centred = summarize(*example_mechanism("slider-crank-centred.yaml"));
   ASSERT_EQ(centred.slider_cranks.size(), 1u);
   EXPECT_NEAR(centred.slider_cranks[0].stroke, 2 * centred.slider_cranks[0].crank_length, 1e-12);
   EXPECT_NEAR(centred.slider_cranks[0].time_ratio, 1.0, 1e-12);
@@ -358,7 +358,7 @@ TEST(Summary, SliderCrankStrokeDeadCentresAndTimeRatio) {
 // 180 deg folded) and B lies at r along it; the time ratio is the longer crank turn between the
 // two over the shorter. The example: frame 200 along +x, crank 80, coupler 180, rocker 150 mm.
 TEST(Summary, CrankRockerSwingAndTimeRatio) {
-  const ModelSummary s = summarize(*example("fourbar-crank-rocker.yaml"));
+  const ModelSummary s = summarize(*example_mechanism("fourbar-crank-rocker.yaml"));
   ASSERT_EQ(s.loops.size(), 1u);
   ASSERT_TRUE(s.loops[0].rocker);
   const RockerSwing& r = *s.loops[0].rocker;
@@ -385,7 +385,7 @@ TEST(Summary, CrankRockerSwingAndTimeRatio) {
 // turn, measured by the analysis, finds the same to its step (mu is flat at its extremes).
 TEST(Summary, TransmissionOverTheCranksFullTurnIsTheSweepsExtremes) {
   for (const char* name : {"fourbar-crank-rocker.yaml", "fourbar-double-crank.yaml"}) {
-    const auto mech = example(name);
+    const auto mech = example_mechanism(name);
     const ModelSummary s = summarize(*mech);
     ASSERT_EQ(s.loops.size(), 1u) << name;
     ASSERT_TRUE(s.loops[0].transmission_over_turn) << name;
@@ -406,13 +406,13 @@ TEST(Summary, TransmissionOverTheCranksFullTurnIsTheSweepsExtremes) {
     EXPECT_LE(t.design, std::min(t.min, std::numbers::pi - t.max) + 1e-15);
   }
   // A rocker input has no full turn: its design value would be the toggles' 0.
-  EXPECT_FALSE(summarize(*example("fourbar-double-rocker.yaml")).loops[0].transmission_over_turn);
+  EXPECT_FALSE(summarize(*example_mechanism("fourbar-double-rocker.yaml")).loops[0].transmission_over_turn);
 }
 
 // The limits are the extremes of the rocker's angle over a fine sweep of the machine's crank;
 // a loop whose input is moved by the rest of the machine (it may only swing) has none.
 TEST(Summary, CrankRockerLimitsAreTheSweepsExtremes) {
-  const auto mech = example("machine-18.yaml");
+  const auto mech = example_mechanism("machine-18.yaml");
   const ModelSummary s = summarize(*mech);
   const SweepResult sweep = run_sweep(*mech, {.steps = 36001, .order = 0});
   ASSERT_TRUE(sweep.complete) << sweep.stop_reason;
@@ -437,7 +437,7 @@ TEST(Summary, CrankRockerLimitsAreTheSweepsExtremes) {
 // The crank-shaper's own description: forward 227.2 deg, return 132.8 deg of crank turn. Closed
 // form: limits where the crank is perpendicular to the arm, 2 acos(r/d) apart; swing 2 asin(r/d).
 TEST(Summary, QuickReturnSwingAndTimeRatio) {
-  const ModelSummary s = summarize(*example("inverted-slider-crank-shaper.yaml"));
+  const ModelSummary s = summarize(*example_mechanism("inverted-slider-crank-shaper.yaml"));
   ASSERT_EQ(s.quick_returns.size(), 1u);
   const QuickReturnSummary& q = s.quick_returns[0];
   EXPECT_EQ(q.crank, "crank");
@@ -468,7 +468,7 @@ TEST(Summary, FourBarToggleInputAngles) {
   EXPECT_NEAR(*s.loops[0].toggle_from, std::acos(2275.0 / 2400.0), 1e-9);
   EXPECT_NEAR(*s.loops[0].toggle_to, std::acos(-525.0 / 2400.0), 1e-9);
   // A crank-rocker's crank turns fully: no toggles.
-  const ModelSummary crank_rocker = summarize(*example("fourbar-crank-rocker.yaml"));
+  const ModelSummary crank_rocker = summarize(*example_mechanism("fourbar-crank-rocker.yaml"));
   ASSERT_FALSE(crank_rocker.loops.empty());
   EXPECT_FALSE(crank_rocker.loops[0].toggle_from);
 }
@@ -496,7 +496,7 @@ TEST(Summary, ALoopThatCannotCloseSaysSo) {
 TEST(Analysis, TablesWriteExactZerosForNumericalNoise) {
   AnalysisOptions options;
   options.steps = 13;  // every 30 deg
-  const Analysis a = analyse(example("compressor-myszka.yaml"), options);
+  const Analysis a = analyse(example_mechanism("compressor-myszka.yaml"), options);
   const ResultTable table = result_table(a);
   const ColumnTable columns = result_columns(a);
   const auto column = [&](const std::string& name) {
@@ -550,19 +550,19 @@ TEST(Analysis, OneStepIsOnePose) {
 
   AnalysisOptions one;
   one.steps = 1;
-  EXPECT_EQ(analyse(example("fourbar-crank-rocker.yaml"), one).sweep.samples.size(), 1u);
+  EXPECT_EQ(analyse(example_mechanism("fourbar-crank-rocker.yaml"), one).sweep.samples.size(), 1u);
   one.steps = 0;
-  EXPECT_THROW(analyse(example("fourbar-crank-rocker.yaml"), one), Error);
+  EXPECT_THROW(analyse(example_mechanism("fourbar-crank-rocker.yaml"), one), Error);
 }
 
 TEST(Analysis, DynamicsOfAModelWithoutMassesOrLoadsSaysSo) {
   AnalysisOptions o;
   o.steps = 3;
   o.dynamics = true;
-  const Analysis bare = analyse(example("fourbar-crank-rocker.yaml"), o);
+  const Analysis bare = analyse(example_mechanism("fourbar-crank-rocker.yaml"), o);
   ASSERT_EQ(bare.warnings().size(), 1u);
   EXPECT_EQ(bare.warnings()[0].code, "no_kinetics");
-  EXPECT_TRUE(analyse(example("fourbar-steel-bars.yaml"), o).warnings().empty());
+  EXPECT_TRUE(analyse(example_mechanism("fourbar-steel-bars.yaml"), o).warnings().empty());
 }
 
 }  // namespace

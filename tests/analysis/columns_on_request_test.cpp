@@ -3,6 +3,8 @@
 // pose in closed form and its derivatives against central differences of the positions; cond
 // against a four-bar's closed-form toggle; and the ordinary columns bit for bit the same whether
 // or not the extra ones are asked for.
+#include "test_constants.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,7 +23,7 @@
 namespace nbar {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 
 // A crank-rocker (crank 80, coupler 180, rocker 150, frame 200 mm) at 60 rpm: the crank a steel
 // bar (its centre of mass the middle of O2-A by symmetry), the coupler with a given mass whose

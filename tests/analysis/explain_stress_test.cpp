@@ -1,5 +1,7 @@
 // The stresses at an explained pose (Explanation::stresses): a cantilever's against beam theory,
 // and a steel four-bar's against the stress stage's section profile at that step of its sweep.
+#include "example_models.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,10 +18,7 @@
 namespace nbar {
 namespace {
 
-std::shared_ptr<const Mechanism> example(const char* name) {
-  return std::make_shared<const Mechanism>(
-      io::load_model_file((std::filesystem::path(NBAR_EXAMPLES_DIR) / name).string()).model);
-}
+using test_support::example_mechanism;
 
 // A straight steel bar O-A, 300 x 20 x 5 mm, held at O by its driver and loaded across at A by
 // 250 N; turned so slowly (0.001 rpm) that its inertia is 1e-12 of the load.
@@ -65,7 +64,7 @@ TEST(ExplainStresses, CantileverRootMatchesBeamTheory) {
 // At a step of a loaded, moving four-bar, each link's stress is the largest von Mises of the stress
 // stage's section profile at that step (what `nbar stress --section-profile LINK --step K` lists).
 TEST(ExplainStresses, FourBarMatchesSectionProfileAtTheStep) {
-  const auto mech = example("fourbar-steel-bars.yaml");
+  const auto mech = example_mechanism("fourbar-steel-bars.yaml");
   AnalysisOptions options;
   options.stress = true;
   const Analysis analysis = analyse(mech, options);
@@ -87,7 +86,7 @@ TEST(ExplainStresses, FourBarMatchesSectionProfileAtTheStep) {
 
 // A model with no shaped link has no stresses at its poses, and no section for them.
 TEST(ExplainStresses, NoneWithoutShapes) {
-  const auto mech = example("fourbar-crank-rocker.yaml");
+  const auto mech = example_mechanism("fourbar-crank-rocker.yaml");
   const Explanation ex = explain(mech, {});
   EXPECT_TRUE(ex.stresses.empty());
   EXPECT_EQ(render_explanation(ex, ExplainFormat::Text).find("Stresses at this pose"), std::string::npos);

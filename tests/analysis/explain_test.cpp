@@ -2,6 +2,8 @@
 // an expression evaluator of this test's own, give the solver's residuals and Jacobian; its
 // Newton iterations end on the sweep's sample; its velocities and accelerations are the
 // sweep's; its instant centres match the four-bar's closed form and Kennedy's theorem.
+#include "example_models.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -28,9 +30,7 @@
 namespace nbar {
 namespace {
 
-std::shared_ptr<const Mechanism> example(const std::string& name) {
-  return std::make_shared<const Mechanism>(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name).model);
-}
+using test_support::example_mechanism;
 
 std::vector<std::string> all_examples() {
   std::vector<std::string> names;
@@ -182,7 +182,7 @@ TEST(Explain, PrintedEquationsGiveTheSolversResidualsAndJacobianOnEveryExample) 
   std::map<std::string, int> kinds;
   for (const std::string& name : all_examples()) {
     SCOPED_TRACE(name);
-    const auto mech = example(name);
+    const auto mech = example_mechanism(name);
     ExplainOptions options;
     options.steps = 13;
     options.step = 3;
@@ -247,7 +247,7 @@ TEST(Explain, DriverRowsOfEveryKindAreWritten) {
   // Angle, relative angle, distance and slide drivers all appear among the examples.
   std::map<ConstraintType, int> seen;
   for (const std::string& name : all_examples()) {
-    const auto mech = example(name);
+    const auto mech = example_mechanism(name);
     for (const Constraint& c : mech->equations().rows)
       if (c.is_driver()) ++seen[c.type];
   }
@@ -257,7 +257,7 @@ TEST(Explain, DriverRowsOfEveryKindAreWritten) {
 }
 
 TEST(Explain, NewtonEndsOnTheSweepsSampleAndConvergesQuadratically) {
-  const auto mech = example("fourbar-crank-rocker.yaml");
+  const auto mech = example_mechanism("fourbar-crank-rocker.yaml");
   const double ls = mech->model().units.length_scale;
   const double lc = mech->characteristic_length() / ls;
   SweepOptions sweep_options;
@@ -304,7 +304,7 @@ TEST(Explain, NewtonEndsOnTheSweepsSampleAndConvergesQuadratically) {
 
 TEST(Explain, AFarStartOnAnotherBranchIsSaidNotHidden) {
   // Three samples: Newton from step 0's pose jumps half a turn and lands on the crossed branch.
-  const auto mech = example("fourbar-crank-rocker.yaml");
+  const auto mech = example_mechanism("fourbar-crank-rocker.yaml");
   ExplainOptions options;
   options.steps = 3;
   options.step = 1;
@@ -323,7 +323,7 @@ TEST(Explain, AFarStartOnAnotherBranchIsSaidNotHidden) {
 TEST(Explain, VelocitiesAndAccelerationsAreTheSweepsAndTheSystemsAreConsistent) {
   for (const std::string& name : all_examples()) {
     SCOPED_TRACE(name);
-    const auto mech = example(name);
+    const auto mech = example_mechanism(name);
     const double ls = mech->model().units.length_scale;
     const SweepResult sweep = run_sweep(*mech, SweepOptions{13, 2});
     for (int step : {0, 5}) {
@@ -352,7 +352,7 @@ TEST(Explain, VelocitiesAndAccelerationsAreTheSweepsAndTheSystemsAreConsistent) 
 }
 
 TEST(Explain, RedundantSystemsAreSolvedByLeastSquaresAndSaySo) {
-  const auto mech = example("parallelogram-redundant.yaml");
+  const auto mech = example_mechanism("parallelogram-redundant.yaml");
   const Explanation ex = explain(mech);
   EXPECT_GT(ex.jacobian.rows(), ex.jacobian.cols());
   bool said = false;
@@ -371,14 +371,14 @@ TEST(Explain, GrueblerCountsOfTheExamples) {
                         Case{"inverted-slider-crank-shaper.yaml", 6, 7, 0, 1}, Case{"scissor-lift.yaml", 7, 8, 1, 1},
                         Case{"watt-sixbar.yaml", 6, 7, 0, 1}, Case{"five-bar.yaml", 5, 5, 0, 2}}) {
     SCOPED_TRACE(c.file);
-    const Explanation ex = explain(example(c.file));
+    const Explanation ex = explain(example_mechanism(c.file));
     EXPECT_EQ(ex.count.links, c.n);
     EXPECT_EQ(ex.count.lower_pairs, c.p1);
     EXPECT_EQ(ex.count.higher_pairs, c.p2);
     EXPECT_EQ(ex.count.dof, c.g);
     EXPECT_EQ(ex.count.dof, 3 * (c.n - 1) - 2 * c.p1 - c.p2);
     EXPECT_EQ(ex.count.mobility, c.g);
-    EXPECT_EQ(ex.count.dof, example(c.file)->mobility().grubler);
+    EXPECT_EQ(ex.count.dof, example_mechanism(c.file)->mobility().grubler);
   }
 }
 
@@ -399,7 +399,7 @@ const InstantCentre& centre(const Explanation& ex, int a, int b) {
 }
 
 TEST(Explain, InstantCentresOfTheCrankRockerMatchTheClosedForm) {
-  const auto mech = example("fourbar-crank-rocker.yaml");
+  const auto mech = example_mechanism("fourbar-crank-rocker.yaml");
   const Model& m = mech->model();
   const int crank = m.find_body("crank"), coupler = m.find_body("coupler"), rocker = m.find_body("rocker");
   for (int step : {10, 30, 100, 250}) {
@@ -476,7 +476,7 @@ TEST(Explain, InstantCentresObeyKennedysTheorem) {
         "inverted-slider-crank-shaper.yaml", "scissor-lift.yaml", "five-bar.yaml", "machine-18.yaml",
         "compressor-myszka.yaml", "fourbar-drives-fourbar.yaml"}) {
     SCOPED_TRACE(name);
-    const auto mech = example(name);
+    const auto mech = example_mechanism(name);
     for (int step : {2, 7}) {
       ExplainOptions options;
       options.steps = 13;
@@ -493,7 +493,7 @@ TEST(Explain, InstantCentresObeyKennedysTheorem) {
 }
 
 TEST(Explain, SlidersOnFixedGuidesHaveTheirCentreAtInfinityNormalToTheGuide) {
-  const auto mech = example("slider-crank-offset.yaml");
+  const auto mech = example_mechanism("slider-crank-offset.yaml");
   const Model& m = mech->model();
   ASSERT_FALSE(m.sliders.empty());
   const Slider& s = m.sliders.front();
@@ -512,7 +512,7 @@ TEST(Explain, DocumentsHaveNoNegativeZerosOrNoise) {
   const std::regex negative_zero(R"((^|[^0-9.eE])-0([^.0-9]|$))");
   const std::regex noise(R"([0-9]e-(1[6-9]|[2-9][0-9]|3[0-9][0-9]))");
   for (const char* name : {"fourbar-crank-rocker.yaml", "scissor-lift.yaml", "inverted-slider-crank-shaper.yaml"}) {
-    const Explanation ex = explain(example(name));
+    const Explanation ex = explain(example_mechanism(name));
     for (ExplainFormat f : {ExplainFormat::Text, ExplainFormat::Markdown, ExplainFormat::Latex}) {
       const std::string doc = render_explanation(ex, f);
       EXPECT_FALSE(std::regex_search(doc, negative_zero)) << name;
@@ -530,8 +530,8 @@ TEST(Explain, DocumentsHaveNoNegativeZerosOrNoise) {
 }
 
 TEST(Explain, TextSaysWhatTheCourseNotebooksWouldAsk) {
-  const Explanation ex =
-      explain(example("fourbar-crank-rocker.yaml"), ExplainOptions{30, std::nullopt, 50, {}, kDefaultMaxSweepSamples});
+  const Explanation ex = explain(example_mechanism("fourbar-crank-rocker.yaml"),
+                                 ExplainOptions{30, std::nullopt, 50, {}, kDefaultMaxSweepSamples});
   const std::string text = render_explanation(ex, ExplainFormat::Text);
   for (const char* expected : {"n = 4, PI = 4, PII = 0", "G = 3 (n - 1) - 2 PI - PII = 3 (4 - 1) - 2*4 - 0 = 1",
                                "q = [x_A, y_A, x_B, y_B, x_P, y_P]^T", "x_A^2 + y_A^2 - 80^2 = 0",
@@ -593,7 +593,7 @@ TEST(Explain, JsonCarriesEverySectionAndNeverNull) {
     ExplainOptions options;
     options.steps = 13;
     options.step = 2;
-    const Explanation ex = explain(example(name), options);
+    const Explanation ex = explain(example_mechanism(name), options);
     const nlohmann::json j = io::explanation_json(ex);
     expect_no_null(j, name);
     EXPECT_EQ(j["count"]["dof"], ex.count.dof);
@@ -607,7 +607,7 @@ TEST(Explain, JsonCarriesEverySectionAndNeverNull) {
 }
 
 TEST(Explain, ErrorsHaveKinds) {
-  const auto mech = example("fourbar-crank-rocker.yaml");
+  const auto mech = example_mechanism("fourbar-crank-rocker.yaml");
   ExplainOptions options;
   options.step = 361;
   try {
@@ -623,7 +623,7 @@ TEST(Explain, ErrorsHaveKinds) {
 }
 
 TEST(Explain, NewtonTraceRecordsNothingWithoutATraceAndTheSameSolveWithOne) {
-  const auto mech = example("fourbar-crank-rocker.yaml");
+  const auto mech = example_mechanism("fourbar-crank-rocker.yaml");
   State a(*mech), b(*mech);
   std::vector<Series> values{Series(1, 0.7)};
   set_drivers(*mech, a, values);

@@ -2,6 +2,8 @@
 // columns and, bit for bit, the same numbers (noise made 0 included), with or without the
 // dynamics columns, whole or selected, from rows kept by its first pass or from a second pass;
 // and its CSV is write_csv's, byte for byte.
+#include "example_models.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cctype>
@@ -20,9 +22,7 @@
 namespace nbar {
 namespace {
 
-std::shared_ptr<const Mechanism> example(const std::string& name) {
-  return std::make_shared<const Mechanism>(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name).model);
-}
+using test_support::example_mechanism;
 
 std::vector<std::vector<double>> streamed_rows(TableStream& stream) {
   std::vector<std::vector<double>> rows;
@@ -62,7 +62,7 @@ class TableStreamTest : public ::testing::TestWithParam<Case> {};
 
 TEST_P(TableStreamTest, RowsAreResultTableBitForBit) {
   const Case c = GetParam();
-  const auto mech = example(c.model);
+  const auto mech = example_mechanism(c.model);
   AnalysisOptions options;
   options.steps = 541;
   options.order = c.order;
@@ -98,7 +98,7 @@ TEST_P(TableStreamTest, RowsAreResultTableBitForBit) {
 
 TEST_P(TableStreamTest, SelectedColumnsAreSelectColumnsOfTheWholeTable) {
   const Case c = GetParam();
-  const auto mech = example(c.model);
+  const auto mech = example_mechanism(c.model);
   AnalysisOptions options;
   options.steps = 97;
   options.order = c.order;
@@ -123,7 +123,7 @@ INSTANTIATE_TEST_SUITE_P(Examples, TableStreamTest,
 TEST(TableStream, RefusesStresses) {
   AnalysisOptions options;
   options.stress = true;
-  EXPECT_THROW(TableStream(example("fourbar-steel-bars.yaml"), options), Error);
+  EXPECT_THROW(TableStream(example_mechanism("fourbar-steel-bars.yaml"), options), Error);
 }
 
 }  // namespace

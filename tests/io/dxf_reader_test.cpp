@@ -6,6 +6,7 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/sketch.hpp"
 #include "nbar/model/diagnostics.hpp"
+#include "test_constants.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -24,7 +25,7 @@
 namespace nbar::io {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 using ::testing::HasSubstr;
 
 // Group codes and values from a list of "code value" items, one pair per two lines.

@@ -1,5 +1,7 @@
 // Writing models as model files: every kinematic example reads back to the same model, and a
 // synthesised four-bar's file, solved, passes through its targets.
+#include "test_constants.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using Eigen::Vector2d;
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 
 bool has_kinetics(const nbar::Model& m) {
   for (const nbar::Body& b : m.bodies)

@@ -3,6 +3,7 @@
 #include "io/model_file_support.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/model/geometry.hpp"
+#include "test_constants.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -14,7 +15,7 @@
 namespace nbar::io {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 using test_support::fails_at;
 
 // A crank in mm whose plate is given on line 8 onwards.

@@ -5,6 +5,7 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/model/curves.hpp"
 #include "nbar/model/geometry.hpp"
+#include "test_constants.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -16,7 +17,7 @@
 namespace nbar::io {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 using test_support::fails_at;
 
 // A link in metres (as the thesis tool works) whose plate is given from line 8 onwards.

@@ -2,6 +2,8 @@
 // slider-crank of examples/ against its closed form, the same motion as the guide drawn with two
 // points, no columns for the point the reader makes, the model written back as it was given, and
 // bad input placed at its line and column.
+#include "test_constants.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,7 +25,7 @@ namespace {
 
 using io::test_support::fails_at;
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 
 Analysis analysed(const Model& model, int steps) {
   AnalysisOptions options;

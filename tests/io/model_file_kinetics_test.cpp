@@ -6,6 +6,7 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/model/geometry.hpp"
 #include "nbar/model/materials.hpp"
+#include "test_constants.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -20,7 +21,7 @@
 namespace nbar::io {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 constexpr double kMm = 1e-3;
 constexpr double kMm2 = 1e-6;
 

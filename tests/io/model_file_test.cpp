@@ -3,6 +3,7 @@
 #include "nbar/io/model_file.hpp"
 #include "io/model_file_support.hpp"
 #include "nbar/io/file_text.hpp"
+#include "test_constants.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -20,8 +21,8 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using nbar::test_constants::kDeg;
+using nbar::test_constants::kPi;
 
 // The example of docs/model-format.md.
 const std::string kExample = R"(name: Crank-rocker four-bar

@@ -8,6 +8,7 @@
 #include "nbar/model/curves.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
+#include "test_constants.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -26,7 +27,7 @@
 namespace nbar::io {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 using ::testing::HasSubstr;
 
 std::string fixture(const std::string& name) {

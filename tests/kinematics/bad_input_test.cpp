@@ -3,6 +3,7 @@
 // drivers reaching zero, laws leaving their domain, and change points. Every failure must say
 // why, and a sweep that stops keeps what it computed.
 #include "helpers/kinematics_support.hpp"
+#include "test_constants.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -17,7 +18,7 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-constexpr double kDeg = kPi / 180;
+using nbar::test_constants::kDeg;
 
 struct FourBar {
   Model m;

@@ -5,6 +5,7 @@
 // just beside it, or a long step jumps over it. The reference is exact: the rocker turns with
 // the crank, angle for angle, and the coupler stays parallel to the frame.
 #include "helpers/kinematics_support.hpp"
+#include "test_constants.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +16,7 @@
 namespace nbar::ktest {
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
+using nbar::test_constants::kDeg;
 
 struct Parallelogram {
   Model model;

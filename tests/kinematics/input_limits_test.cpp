@@ -1,6 +1,8 @@
 // input_limits (loops.hpp): the closed-form range of a four-bar's input against an
 // independent search: the loop closed by intersecting circles in coordinates, marched from the
 // given angle in small steps until it no longer closes, then bisected.
+#include "test_constants.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -13,7 +15,7 @@
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 
 struct Linkage {
   double d, a, b, c, frame_angle;

@@ -2,6 +2,9 @@
 // against independent references (a dyad stretched straight, found by intersecting circles and
 // bisecting; the four-bar's toggle from the law of cosines) and against the sweep itself: every
 // limit it reports is where the sweep stops, to 1e-9 of the input.
+#include "example_models.hpp"
+#include "test_constants.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -21,11 +24,9 @@
 namespace nbar {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using test_support::example_model;
 
-Model example(const std::string& name) {
-  return io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name).model;
-}
+using nbar::test_constants::kPi;
 
 Eigen::Vector2d at(const Model& m, const std::string& name) {
   for (const Point& p : m.points)
@@ -99,7 +100,7 @@ void expect_met_by_the_sweep(const Model& m, const PathSingularity& limit) {
 
 // The example driven from 0 to `to` degrees.
 Model driven_to(const std::string& name, double to) {
-  Model m = example(name);
+  Model m = example_model(name);
   m.drivers[0].to = to * kPi / 180;
   m.drivers[0].speed = std::copysign(m.drivers[0].speed, to);
   return m;
@@ -138,7 +139,7 @@ TEST(MechanismLimits, WattSixBarStopsWhereItsDyadStretchesNotAtItsFourBarsToggle
 // bed turning about the hinge H, lines up with its base C0: |C0 H| - |H E|. The path's limit behind
 // is that length, and the sweep toward it stops there.
 TEST(MechanismLimits, ADumpTrucksCylinderIsShortestWhereItsEyeLinesUpWithTheHinge) {
-  const Model m = example("dump-truck-tipper.yaml");
+  const Model m = example_model("dump-truck-tipper.yaml");
   const double reference = (at(m, "C0") - at(m, "H")).norm() - (at(m, "E") - at(m, "H")).norm();
   const PathLimits limits = find_path_limits(Mechanism(m));
   EXPECT_FALSE(limits.stop.has_value());  // the sweep lengthens the cylinder, away from it
@@ -179,7 +180,7 @@ TEST(MechanismLimits, StephensonSixBarIsLimitedOneWayByItsDyadAndTheOtherByItsFo
 }
 
 TEST(MechanismLimits, DoubleRockersLimitsAreItsToggles) {
-  const Model m = example("fourbar-double-rocker.yaml");
+  const Model m = example_model("fourbar-double-rocker.yaml");
   const FourBar four(m);
   const double d = (four.o4 - four.o2).norm();
   const double toggle = std::acos((four.a * four.a + d * d - (four.b + four.c) * (four.b + four.c)) / (2 * four.a * d));
@@ -196,7 +197,7 @@ TEST(MechanismLimits, DoubleRockersLimitsAreItsToggles) {
 TEST(MechanismLimits, CranksThatTurnFullyHaveNone) {
   for (const char* name :
        {"fourbar-crank-rocker.yaml", "watt-sixbar.yaml", "stephenson-sixbar.yaml", "machine-18.yaml"}) {
-    const PathLimits limits = find_path_limits(Mechanism(example(name)));
+    const PathLimits limits = find_path_limits(Mechanism(example_model(name)));
     EXPECT_TRUE(limits.ahead.turns_fully && limits.behind.turns_fully) << name;
     EXPECT_EQ(limits.ahead.limit(), nullptr) << name;
     EXPECT_EQ(limits.behind.limit(), nullptr) << name;
@@ -205,7 +206,7 @@ TEST(MechanismLimits, CranksThatTurnFullyHaveNone) {
 
 TEST(MechanismLimits, TheLimitedExamplesSweepInsideTheirLimitsWithoutWarning) {
   for (const char* name : {"watt-sixbar-limited.yaml", "stephenson-sixbar-limited.yaml"}) {
-    const Mechanism mech(example(name));
+    const Mechanism mech(example_model(name));
     const ModelSummary summary = summarize(mech);
     EXPECT_TRUE(summary.warnings.empty()) << name;
     ASSERT_TRUE(summary.limits.has_value()) << name;
@@ -215,7 +216,7 @@ TEST(MechanismLimits, TheLimitedExamplesSweepInsideTheirLimitsWithoutWarning) {
 }
 
 TEST(MechanismLimits, AParallelogramsFlatPositionsAreChangePointsNotLimits) {
-  const PathLimits limits = find_path_limits(Mechanism(example("parallelogram-redundant.yaml")));
+  const PathLimits limits = find_path_limits(Mechanism(example_model("parallelogram-redundant.yaml")));
   ASSERT_FALSE(limits.ahead.singularities.empty());
   for (const PathSingularity& s : limits.ahead.singularities) {
     EXPECT_EQ(s.kind, PathSingularityKind::ChangePoint);
@@ -258,12 +259,12 @@ TEST(MechanismLimits, EveryLimitOfTheBundledExamplesIsWhereTheSweepStops) {
 // and arm2 fold in line: 600 mm arms, cross pins at mid-length) is the reference.
 TEST(MechanismLimits, TheExamplesSearchWellInsideTheDefaultBudget) {
   for (const char* name : {"scissor-lift.yaml", "machine-18.yaml", "watt-sixbar.yaml", "fourbar-oscillating.yaml"}) {
-    const PathLimits limits = find_path_limits(Mechanism(example(name)));
+    const PathLimits limits = find_path_limits(Mechanism(example_model(name)));
     EXPECT_GT(limits.work, 0.0) << name;
     EXPECT_LT(limits.work, kDefaultLimitSearchWork / 20) << name;
     EXPECT_TRUE(limits.ahead.undecided.empty() && limits.behind.undecided.empty()) << name;
   }
-  const PathLimits scissor = find_path_limits(Mechanism(example("scissor-lift.yaml")));
+  const PathLimits scissor = find_path_limits(Mechanism(example_model("scissor-lift.yaml")));
   ASSERT_NE(scissor.behind.limit(), nullptr);
   EXPECT_NEAR(scissor.behind.limit()->driver_values[0], 0.8, 1e-9);
 }
@@ -271,7 +272,7 @@ TEST(MechanismLimits, TheExamplesSearchWellInsideTheDefaultBudget) {
 // A search past its budget stops within a step of it and says so, with where it stopped; the
 // summary carries the same words, and what the search found before it is kept.
 TEST(MechanismLimits, ASearchPastItsBudgetStopsThereAndSaysWhere) {
-  const Mechanism mech(example("scissor-lift.yaml"));
+  const Mechanism mech(example_model("scissor-lift.yaml"));
   const PathLimits full = find_path_limits(mech);
   for (double budget : {2e5, 3e6, 0.5 * full.work}) {
     LimitSearchOptions options;

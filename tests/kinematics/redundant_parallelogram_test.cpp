@@ -8,8 +8,8 @@
 namespace nbar::ktest {
 namespace {
 
-constexpr int kTerms = 6;
-using J = Jet<kTerms>;
+constexpr int kJetTerms = 6;
+using J = Jet<kJetTerms>;
 
 struct Parallelogram {
   Model m;
@@ -68,7 +68,7 @@ void check_translation(double omega, double alpha) {
     EXPECT_LE(s.residual, 1e-12 * mech.characteristic_length());
     const std::vector<double> coupler = body_angle_motion(mech, s, p.coupler);
     EXPECT_NEAR(coupler[0], 0.0, 1e-12) << "the coupler turned";
-    for (int k = 1; k < kTerms; ++k) EXPECT_NEAR(coupler[k], 0.0, 1e-9 * std::pow(std::abs(omega) + 1, k));
+    for (int k = 1; k < kJetTerms; ++k) EXPECT_NEAR(coupler[k], 0.0, 1e-9 * std::pow(std::abs(omega) + 1, k));
 
     // Every coupler point is its drawn position plus the crank tip's displacement.
     J c, sn;
@@ -78,7 +78,7 @@ void check_translation(double omega, double alpha) {
       const Eigen::Vector2d drawn = p.m.points[point].position;
       const J x = p.crank * c + (drawn.x() - p.crank * std::cos(p.drawn));
       const J y = p.crank * sn + (drawn.y() - p.crank * std::sin(p.drawn));
-      for (int k = 0; k < kTerms; ++k) {
+      for (int k = 0; k < kJetTerms; ++k) {
         const double scale = p.crank * std::pow(std::sqrt(omega * omega + std::abs(alpha)), k);
         const double err = std::max(std::abs(m.x[k] - x.derivative(k)), std::abs(m.y[k] - y.derivative(k))) / scale;
         EXPECT_LE(err, 1e-9) << p.m.points[point].name << " derivative " << k;

@@ -3,6 +3,9 @@
 // triangle wave known in closed form), against find_path_limits' values, and against the motion
 // itself: a cycle closes on its start, the second cycle repeats the first, and the input's speed
 // changes sign with its size kept at each turn.
+#include "example_models.hpp"
+#include "test_constants.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -21,12 +24,10 @@
 namespace nbar {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using test_support::example_model;
 
-Model example(const std::string& name) {
-  return io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name).model;
-}
+using nbar::test_constants::kDeg;
+using nbar::test_constants::kPi;
 
 Model rocking(Model m, std::optional<int> cycles) {
   m.drivers[0].at_limits = AtLimits::Reverse;
@@ -54,7 +55,7 @@ double double_rocker_toggle(const Model& m) {
 }
 
 TEST(Rocking, DoubleRockerTurnsAtItsTogglesOnATriangleWave) {
-  const Mechanism mech(rocking(example("fourbar-double-rocker.yaml"), 2));
+  const Mechanism mech(rocking(example_model("fourbar-double-rocker.yaml"), 2));
   SweepOptions options;
   options.steps = 401;
   const SweepResult sweep = run_sweep(mech, options);
@@ -82,7 +83,7 @@ TEST(Rocking, DoubleRockerTurnsAtItsTogglesOnATriangleWave) {
 TEST(Rocking, ReversesWhereFindPathLimitsPutsTheLimits) {
   for (const char* name :
        {"fourbar-double-rocker.yaml", "watt-sixbar-limited.yaml", "stephenson-sixbar-limited.yaml"}) {
-    const Model plain = example(name);
+    const Model plain = example_model(name);
     const PathLimits limits = find_path_limits(Mechanism(plain));
     ASSERT_TRUE(limits.ahead.limit()) << name;
     const Mechanism mech(rocking(plain, 1));
@@ -105,7 +106,7 @@ TEST(Rocking, ReversesWhereFindPathLimitsPutsTheLimits) {
 TEST(Rocking, TheSecondCycleRepeatsTheFirst) {
   for (const char* name :
        {"fourbar-double-rocker.yaml", "watt-sixbar-limited.yaml", "stephenson-sixbar-limited.yaml"}) {
-    const Mechanism mech(rocking(example(name), 2));
+    const Mechanism mech(rocking(example_model(name), 2));
     SweepOptions options;
     options.steps = 2 * 150 + 1;
     const SweepResult sweep = run_sweep(mech, options);
@@ -124,7 +125,7 @@ TEST(Rocking, TheSecondCycleRepeatsTheFirst) {
 }
 
 TEST(Rocking, TheInputsSpeedChangesSignWithItsSizeKept) {
-  const Mechanism mech(rocking(example("watt-sixbar-limited.yaml"), 1));
+  const Mechanism mech(rocking(example_model("watt-sixbar-limited.yaml"), 1));
   SweepOptions options;
   options.steps = 100;  // 101 would put samples 25 and 75 on the turns (the cycle is symmetric)
   const SweepResult sweep = run_sweep(mech, options);
@@ -150,7 +151,7 @@ TEST(Rocking, TheInputsSpeedChangesSignWithItsSizeKept) {
 TEST(Rocking, ASampleOnATurnHasTheLimitsPoseAndNoDerivatives) {
   // The Watt six-bar's cycle is symmetric (0, up to L, down to -L, back to 0): 201 samples put
   // steps 50 and 150 on its turns, where the dyad C-E-D lies straight.
-  const Mechanism mech(rocking(example("watt-sixbar-limited.yaml"), 1));
+  const Mechanism mech(rocking(example_model("watt-sixbar-limited.yaml"), 1));
   SweepOptions options;
   options.steps = 201;
   const SweepResult sweep = run_sweep(mech, options);
@@ -184,7 +185,7 @@ TEST(Rocking, ASampleOnATurnHasTheLimitsPoseAndNoDerivatives) {
 
 TEST(Rocking, TravelFromToTurnsBackAndGoesOn) {
   // Without cycles the input travels |to - from| in all: 0 to 15 deg and then 40 deg more.
-  Model m = rocking(example("watt-sixbar-limited.yaml"), std::nullopt);
+  Model m = rocking(example_model("watt-sixbar-limited.yaml"), std::nullopt);
   m.drivers[0].to = 55 * kDeg;
   const Mechanism mech(m);
   const SweepResult sweep = run_sweep(mech);
@@ -196,7 +197,7 @@ TEST(Rocking, TravelFromToTurnsBackAndGoesOn) {
 }
 
 TEST(Rocking, AnInputThatTurnsFullyNeverReverses) {
-  const Model plain = example("fourbar-crank-rocker.yaml");
+  const Model plain = example_model("fourbar-crank-rocker.yaml");
   const Mechanism mech(rocking(plain, std::nullopt));
   const SweepResult sweep = run_sweep(mech), ordinary = run_sweep(Mechanism(plain));
   ASSERT_FALSE(sweep.warnings.empty());
@@ -214,7 +215,7 @@ TEST(Rocking, AnInputThatTurnsFullyNeverReverses) {
 }
 
 TEST(Rocking, CheckSaysWhereItTurnsAndWarnsNotOfAStop) {
-  Model m = rocking(example("watt-sixbar-limited.yaml"), 1);
+  Model m = rocking(example_model("watt-sixbar-limited.yaml"), 1);
   m.drivers[0].to = 20 * kDeg;  // past the limit: an ordinary sweep would stop there
   const ModelSummary summary = summarize(Mechanism(m));
   ASSERT_TRUE(summary.rocking);
@@ -274,7 +275,7 @@ TEST(Rocking, ATurnAtAChangePointIsRefusedAndSaysWhichAndWhere) {
 
 // A double-rocker's limit is not a change point: its branches do not cross there.
 TEST(Rocking, ASimpleLimitIsNotTakenForAChangePoint) {
-  const PathLimits limits = find_path_limits(Mechanism(example("fourbar-double-rocker.yaml")));
+  const PathLimits limits = find_path_limits(Mechanism(example_model("fourbar-double-rocker.yaml")));
   for (const PathReach* reach : {&limits.ahead, &limits.behind})
     for (const PathSingularity& s : reach->singularities) EXPECT_EQ(s.kind, PathSingularityKind::Limit);
 }
@@ -284,7 +285,7 @@ TEST(Rocking, ASimpleLimitIsNotTakenForAChangePoint) {
 // O4-A from where it was drawn), comes down to -L and back onto the drawn branch. So 0 deg is first
 // met on the drawn branch, -90 deg on the way down, on the other one; 120 deg never.
 TEST(Rocking, APoseAtAValueIsWhereTheMotionFirstHasIt) {
-  const Mechanism mech(rocking(example("fourbar-double-rocker.yaml"), 1));
+  const Mechanism mech(rocking(example_model("fourbar-double-rocker.yaml"), 1));
   const Model& m = mech.model();
   const RockingPlan plan = plan_rocking(mech);
   const double toggle = double_rocker_toggle(m), speed = 30 * kDeg;

@@ -4,6 +4,7 @@
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
 #include "nbar/stress/section.hpp"
+#include "test_constants.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -19,8 +20,8 @@ namespace nbar {
 namespace {
 
 using Eigen::Vector2d;
+using nbar::test_constants::kPi;
 using ::testing::HasSubstr;
-constexpr double kPi = std::numbers::pi;
 
 void expect_props(const AreaProperties& a, double area, const Vector2d& centroid, double ixx, double iyy, double ixy,
                   double size, double rel) {

@@ -4,6 +4,7 @@
 #include "nbar/model/curves.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/geometry.hpp"
+#include "test_constants.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,8 +15,8 @@
 namespace nbar {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 using Eigen::Vector2d;
+using nbar::test_constants::kPi;
 
 double polygon_area(const std::vector<Vector2d>& v) {
   Region r;

@@ -4,6 +4,7 @@
 #include "nbar/model/geometry.hpp"
 #include "model/region_support.hpp"
 #include "nbar/model/diagnostics.hpp"
+#include "test_constants.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -24,8 +25,8 @@ namespace {
 
 using Eigen::Vector2d;
 using Polygon = std::vector<Vector2d>;
+using nbar::test_constants::kPi;
 using ::testing::HasSubstr;
-constexpr double kPi = std::numbers::pi;
 
 Polygon rectangle(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
 

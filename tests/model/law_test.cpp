@@ -1,5 +1,6 @@
 #include "nbar/model/law.hpp"
 #include "nbar/model/diagnostics.hpp"
+#include "test_constants.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -13,7 +14,7 @@
 namespace nbar {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 
 double eval(const std::string& text, double t = 0.0) { return Law::parse(text).value(t); }
 

@@ -1,4 +1,5 @@
 #include "nbar/model/series.hpp"
+#include "test_constants.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -16,7 +17,7 @@ namespace nbar {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 constexpr int kMax = Series::kCapacity;
 
 double factorial(int k) {

@@ -1,6 +1,7 @@
 // A triangle's angle from its sides (src/model/triangle.hpp) against closed forms, and where the
 // law of cosines' acos fails: a needle-like triangle, whose angle is known from its construction.
 #include "model/triangle.hpp"
+#include "test_constants.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +11,7 @@
 namespace nbar {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 
 TEST(AngleOpposite, ClosedFormTriangles) {
   EXPECT_NEAR(angle_opposite(1.0, 1.0, 1.0), kPi / 3, 1e-15);

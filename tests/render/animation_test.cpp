@@ -32,7 +32,7 @@ using nbar::render::Animation;
 using nbar::render::DrawOptions;
 using nbar::render::ImageCanvas;
 
-fs::path temp_dir() {
+fs::path animation_temp_dir() {
   static const nbar::render::test_support::TempDir dir("nbar-animation-test-");
   return dir.path;
 }
@@ -248,7 +248,7 @@ TEST(Animation, GifHasEveryFrameLoopsForeverAndShowsTheDrawing) {
   options.traces = {ex.mech.model().find_point("P")};
   options.labels = true;
   const Animation a(ex.shared, ex.sweep, options, 9, 12.5);
-  const fs::path path = temp_dir() / "fourbar.gif";
+  const fs::path path = animation_temp_dir() / "fourbar.gif";
   a.write_gif(path.string());
   const std::string bytes = read_file(path);
   ASSERT_GE(bytes.size(), 6u);
@@ -289,7 +289,7 @@ TEST(Animation, GifWithMoreColoursThanAPaletteMapsToTheNearest) {
   options.labels = true;
   for (std::size_t p = 0; p < ex.mech.model().points.size(); ++p) options.traces.push_back(static_cast<int>(p));
   const Animation a(ex.shared, ex.sweep, options, 5);
-  const fs::path path = temp_dir() / "sixbar.gif";
+  const fs::path path = animation_temp_dir() / "sixbar.gif";
   a.write_gif(path.string());
   const Gif g = read_gif(read_file(path));
   ASSERT_EQ(g.error, "");
@@ -342,7 +342,7 @@ TEST(Animation, SvgIsWellFormedAndMovesEveryBody) {
   options.labels = true;
   options.traces = {ex.mech.model().find_point("P")};
   const Animation a(ex.shared, ex.sweep, options, 24, 12);
-  const fs::path path = temp_dir() / "fourbar.svg";
+  const fs::path path = animation_temp_dir() / "fourbar.svg";
   a.write_svg_animation(path.string());
   const std::string text = read_file(path);
 
@@ -424,7 +424,7 @@ TEST(Animation, HtmlPlaysInHeadlessChromium) {
   options.labels = true;
   options.traces = {ex.mech.model().find_point("P")};
   const Animation a(ex.shared, ex.sweep, options);  // 120 frames at 24 a second: 5 s per loop
-  const fs::path dir = temp_dir();
+  const fs::path dir = animation_temp_dir();
   const fs::path page = dir / "fourbar.html", dom = dir / "dom.html", shot = dir / "shot.png";
   a.write_html_animation(page.string());
 
@@ -460,7 +460,7 @@ TEST(Animation, HeadlessChromiumReportsScriptErrors) {
   const Animation a(ex.shared, ex.sweep, small(), 12);
   std::string html = a.html_animation();
   html.insert(html.rfind("</body>"), "<script>no_such_function_in_nbar();</script>\n");
-  const fs::path dir = temp_dir();
+  const fs::path dir = animation_temp_dir();
   const fs::path page = dir / "broken.html", dom = dir / "broken-dom.html";
   std::ofstream(page) << html;
   ASSERT_EQ(run(browser_command(browser, dir / "profile2") + " --virtual-time-budget=500 --dump-dom " +
@@ -474,7 +474,7 @@ TEST(Animation, HeadlessChromiumReportsScriptErrors) {
 TEST(Animation, Mp4ByFfmpeg) {
   const Example ex("fourbar-crank-rocker.yaml", 25);
   const Animation a(ex.shared, ex.sweep, small(201, 151), 12);  // odd sizes are padded
-  const fs::path path = temp_dir() / "fourbar.mp4";
+  const fs::path path = animation_temp_dir() / "fourbar.mp4";
   if (!Animation::program_available("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
   a.write_mp4(path.string());
   const std::string bytes = read_file(path);
@@ -485,25 +485,25 @@ TEST(Animation, Mp4ByFfmpeg) {
 TEST(Animation, Mp4WithoutFfmpegSaysSo) {
   const Example ex("fourbar-crank-rocker.yaml", 13);
   const Animation a(ex.shared, ex.sweep, small(), 3);
-  const fs::path empty = temp_dir() / "empty-path";
+  const fs::path empty = animation_temp_dir() / "empty-path";
   fs::create_directories(empty);
   const char* old = std::getenv("PATH");
   const std::string saved = old ? old : "";
   ::setenv("PATH", empty.c_str(), 1);
   try {
-    a.write_mp4((temp_dir() / "never.mp4").string());
+    a.write_mp4((animation_temp_dir() / "never.mp4").string());
     ADD_FAILURE() << "no exception";
   } catch (const nbar::Error& e) {
     EXPECT_NE(std::string(e.what()).find("ffmpeg"), std::string::npos);
   }
   ::setenv("PATH", saved.c_str(), 1);
-  EXPECT_FALSE(fs::exists(temp_dir() / "never.mp4"));
+  EXPECT_FALSE(fs::exists(animation_temp_dir() / "never.mp4"));
 }
 
 // -------------------------------------------------------------------------------- examples
 
 TEST(Animation, EveryExampleAnimatesInEveryFormat) {
-  const fs::path dir = temp_dir() / "examples";
+  const fs::path dir = animation_temp_dir() / "examples";
   fs::create_directories(dir);
   int count = 0;
   for (const auto& entry : fs::directory_iterator(NBAR_EXAMPLES_DIR)) {
@@ -534,7 +534,7 @@ TEST(Animation, EveryExampleAnimatesInEveryFormat) {
 // ------------------------------------------------------------------------------ nbar animate
 
 TEST(AnimateCommand, WritesEachFormatAndRejectsOthers) {
-  const fs::path dir = temp_dir() / "cli";
+  const fs::path dir = animation_temp_dir() / "cli";
   fs::create_directories(dir);
   const std::string cli = quote(NBAR_CLI_PATH);
   const std::string model = quote(std::string(NBAR_EXAMPLES_DIR) + "/fourbar-crank-rocker.yaml");
@@ -590,7 +590,7 @@ TEST(Animation, OutlivesTheSweepAndTheCallersMechanism) {
 TEST(Animation, GifBytesAreTheFilesBytes) {
   const Example ex("fourbar-crank-rocker.yaml", 13);
   const Animation a(ex.shared, ex.sweep, small(), 4);
-  const fs::path path = temp_dir() / "bytes.gif";
+  const fs::path path = animation_temp_dir() / "bytes.gif";
   a.write_gif(path.string());
   std::ifstream file(path, std::ios::binary);
   const std::vector<std::uint8_t> written((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());

@@ -47,11 +47,11 @@ int count(const std::string& text, const std::string& what) {
   return n;
 }
 
-struct Drawn {
+struct DrawnExample {
   io::LoadedModel file;
   Mechanism mech;
   SweepResult sweep;
-  explicit Drawn(const std::string& name)
+  explicit DrawnExample(const std::string& name)
       : file(io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name)),
         mech(file.model),
         sweep(run_sweep(mech, [] {
@@ -63,7 +63,7 @@ struct Drawn {
 };
 
 TEST(Drawing, FourBarHasAGroupPerBodyACirclePerJointAndAPathPerTrace) {
-  const Drawn d("fourbar-crank-rocker.yaml");
+  const DrawnExample d("fourbar-crank-rocker.yaml");
   DrawOptions options;
   options.labels = true;
   options.traces = {d.mech.model().find_point("P"), d.mech.model().find_point("B")};
@@ -88,7 +88,7 @@ TEST(Drawing, FourBarHasAGroupPerBodyACirclePerJointAndAPathPerTrace) {
 }
 
 TEST(Drawing, GroundPivotsAndJointsLandWhereTheViewMapsThem) {
-  const Drawn d("fourbar-crank-rocker.yaml");
+  const DrawnExample d("fourbar-crank-rocker.yaml");
   DrawOptions options;
   const View view = fit_view(d.mech, d.sweep, options);
   SvgCanvas canvas(options.width, options.height);
@@ -111,7 +111,7 @@ TEST(Drawing, GroundPivotsAndJointsLandWhereTheViewMapsThem) {
 }
 
 TEST(Drawing, EveryPoseOfTheSweepFitsTheView) {
-  const Drawn d("slider-crank-offset.yaml");
+  const DrawnExample d("slider-crank-offset.yaml");
   DrawOptions options;
   const View view = fit_view(d.mech, d.sweep, options);
   // Every point of a body; the guide's far end (a ground point of no body) may lie outside.
@@ -128,7 +128,7 @@ TEST(Drawing, EveryPoseOfTheSweepFitsTheView) {
 }
 
 TEST(Drawing, BodyTransformsCarryTheStartingPoseOntoAnyOther) {
-  const Drawn d("fourbar-steel-bars.yaml");
+  const DrawnExample d("fourbar-steel-bars.yaml");
   DrawOptions options;
   const View view = fit_view(d.mech, d.sweep, options);
   const auto start = sample_points(d.mech, d.sweep.samples[0]);
@@ -151,7 +151,7 @@ TEST(Drawing, EveryExampleDrawsAsWellFormedSvg) {
   for (const auto& e : fs::directory_iterator(NBAR_EXAMPLES_DIR)) {
     if (e.path().extension() != ".yaml") continue;
     SCOPED_TRACE(e.path().filename().string());
-    const Drawn d(e.path().filename().string());
+    const DrawnExample d(e.path().filename().string());
     DrawOptions options;
     options.labels = true;
     SvgCanvas canvas(options.width, options.height);

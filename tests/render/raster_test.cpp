@@ -36,7 +36,7 @@ const Colour kWhite = Colour::rgb(0xffffff);
 bool same(const Colour& a, const Colour& b) { return a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a; }
 bool background(const ImageCanvas& c, int x, int y) { return same(c.pixel(x, y), kWhite); }
 
-std::filesystem::path temp_dir() {
+std::filesystem::path raster_temp_dir() {
   static const nbar::render::test_support::TempDir dir("nbar-raster-test-");
   return dir.path;
 }
@@ -270,7 +270,7 @@ TEST(ImageCanvas, PngRoundTrip) {
   options.labels = true;
   ImageCanvas c(options.width, options.height);
   nbar::render::draw_sample(c, fb.mech, fb.sweep, 10, options);
-  const std::string path = (temp_dir() / "fourbar.png").string();
+  const std::string path = (raster_temp_dir() / "fourbar.png").string();
   c.write_png(path);
   const ImageCanvas back = ImageCanvas::read_png(path);
   ASSERT_EQ(back.width(), c.width());

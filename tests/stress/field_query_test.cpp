@@ -1,5 +1,7 @@
 // Reading the finite-element field anywhere (field_query.hpp): exact at nodes and for fields the
 // elements represent, and against Kirsch's closed form around a hole and away from it.
+#include "test_constants.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,8 +16,8 @@
 namespace nbar::fe {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-const ElasticMaterial kSteel{200e9, 0.3, 0.01, 7850};
+using nbar::test_constants::kPi;
+const ElasticMaterial kSteelSheet{200e9, 0.3, 0.01, 7850};
 
 TEST(FieldQuery, StressStateGivesVonMisesAndPrincipals) {
   // σ = (100, 20, 30): centre 60, radius hypot(40, 30) = 50.
@@ -105,7 +107,7 @@ Kirsch kirsch_plate() {
   const double half_width = 15 * k.radius, half_length = 45 * k.radius;
   k.mesh =
       structured::plate_with_hole(-half_length, -half_width, half_length, half_width, {0, 0}, k.radius, 96, 36, 4.5);
-  const PlateModel model(k.mesh, kSteel);
+  const PlateModel model(k.mesh, kSteelSheet);
   LoadCase loads;
   const auto on = [](double x) {
     return [x](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -113,11 +115,11 @@ Kirsch kirsch_plate() {
     };
   };
   structured::add_edge_traction(
-      k.mesh, kSteel.thickness, on(half_length), [&](const Eigen::Vector2d&) { return Eigen::Vector2d(k.stress, 0); },
-      loads.nodal);
+      k.mesh, kSteelSheet.thickness, on(half_length),
+      [&](const Eigen::Vector2d&) { return Eigen::Vector2d(k.stress, 0); }, loads.nodal);
   structured::add_edge_traction(
-      k.mesh, kSteel.thickness, on(-half_length), [&](const Eigen::Vector2d&) { return Eigen::Vector2d(-k.stress, 0); },
-      loads.nodal);
+      k.mesh, kSteelSheet.thickness, on(-half_length),
+      [&](const Eigen::Vector2d&) { return Eigen::Vector2d(-k.stress, 0); }, loads.nodal);
   k.field = model.solve(loads);
   return k;
 }
@@ -128,7 +130,7 @@ Kirsch kirsch_plate() {
 // brackets the closed form, holds the peak, and its length is r times its angle.
 TEST(FieldQuery, AFlatPeaksArcOnKirschsHoleBracketsTheClosedForm) {
   const Kirsch k = kirsch_plate();
-  const PlateModel model(k.mesh, kSteel);
+  const PlateModel model(k.mesh, kSteelSheet);
   const std::vector<HoleSample> around = stress_around_hole(model, k.field, 0);
   const auto peak = std::max_element(around.begin(), around.end(), [](const HoleSample& a, const HoleSample& b) {
     return a.stress.von_mises < b.stress.von_mises;
@@ -156,7 +158,7 @@ TEST(FieldQuery, AFlatPeaksArcOnKirschsHoleBracketsTheClosedForm) {
 
 TEST(FieldQuery, KirschHoleProfileAndFarField) {
   const Kirsch k = kirsch_plate();
-  const PlateModel model(k.mesh, kSteel);
+  const PlateModel model(k.mesh, kSteelSheet);
   // Around the hole: σθθ = σ (1 − 2 cos 2θ) in an infinite plate (3σ at θ = 90°, −σ at 0°);
   // at d/W = 1/15 Heywood's finite-width factor is 3.014 at 90°. The free edge carries no σrr.
   const std::vector<HoleSample> around = stress_around_hole(model, k.field, 0);

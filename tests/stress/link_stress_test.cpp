@@ -9,7 +9,7 @@
 namespace nbar::ktest {
 namespace {
 
-constexpr double kL = 0.3, kWidth = 0.02, kThickness = 0.005, kMargin = 0.015;
+constexpr double kL = 0.3, kBarWidth = 0.02, kBarThickness = 0.005, kBarMargin = 0.015;
 
 // A straight massless bar O-A held by a motor at O (a cantilever), at rest.
 Model cantilever() {
@@ -17,8 +17,8 @@ Model cantilever() {
   const int o = add_point(m, "O", {0, 0}, true);
   const int a = add_point(m, "A", {kL, 0});
   const int bar = add_body(m, "bar", {o, a});
-  m.bodies[bar].shape = make_bar({0, 0}, {kL, 0}, kWidth, kMargin, 0.0, 0.0);
-  m.bodies[bar].thickness = kThickness;
+  m.bodies[bar].shape = make_bar({0, 0}, {kL, 0}, kBarWidth, kBarMargin, 0.0, 0.0);
+  m.bodies[bar].thickness = kBarThickness;
   m.bodies[bar].inertia = GivenInertia{0.0, {kL / 2, 0}, 0.0};
   m.bodies[bar].material = Material{"steel", 7850, 250e6, 200e9, 0.3};
   m.drivers.push_back(angle_driver("bar", bar, 0.0, 0.0, 1.0));
@@ -26,14 +26,14 @@ Model cantilever() {
   return m;
 }
 
-struct Solved {
+struct SolvedSweep {
   std::shared_ptr<const InverseDynamics> dynamics;
   const Mechanism& mech;
   const InverseDynamics& dyn;
   SweepResult sweep;
   LinkStress stress;
   DynamicsResult forces;
-  explicit Solved(Model m, int sections = 200)
+  explicit SolvedSweep(Model m, int sections = 200)
       : dynamics(std::make_shared<const InverseDynamics>(std::make_shared<const Mechanism>(std::move(m)))),
         mech(dynamics->mechanism()),
         dyn(*dynamics),
@@ -49,9 +49,9 @@ TEST(LinkStress, AxialLoadGivesUniformTension) {
   const double F = 1200.0;
   Model m = cantilever();
   m.point_loads.push_back(PointLoad{1, 0, Law::parse(std::to_string(F)), Law::parse("0")});
-  const Solved s(m);
+  const SolvedSweep s(m);
   ASSERT_GE(s.stress.section_count(0), 100);
-  const double area = kWidth * kThickness;
+  const double area = kBarWidth * kBarThickness;
   int checked = 0;
   for (const SectionStress& sec : s.profile()) {
     EXPECT_NEAR(sec.area, area, 1e-15);
@@ -78,9 +78,9 @@ TEST(LinkStress, EndMomentGivesPureBending) {
   m.bodies[0].points.push_back(b);
   m.point_loads.push_back(PointLoad{1, 0, Law::parse("0"), Law::parse(std::to_string(P))});
   m.point_loads.push_back(PointLoad{b, 0, Law::parse("0"), Law::parse(std::to_string(-P))});
-  const Solved s(m);
-  const double I = kThickness * std::pow(kWidth, 3) / 12.0;
-  const double sigma = P * d * (kWidth / 2) / I;
+  const SolvedSweep s(m);
+  const double I = kBarThickness * std::pow(kBarWidth, 3) / 12.0;
+  const double sigma = P * d * (kBarWidth / 2) / I;
   for (const SectionStress& sec : s.profile()) {
     if (sec.position <= 1e-9 || sec.position >= kL - d - 1e-9) continue;
     EXPECT_NEAR(sec.inertia, I, 1e-12 * I);
@@ -98,19 +98,19 @@ TEST(LinkStress, CantileverMatchesBeamTheory) {
   const double P = 250.0;
   Model m = cantilever();
   m.point_loads.push_back(PointLoad{1, 0, Law::parse("0"), Law::parse(std::to_string(P))});
-  const Solved s(m);
-  const double I = kThickness * std::pow(kWidth, 3) / 12.0;
-  const double tau = 1.5 * P / (kWidth * kThickness);
+  const SolvedSweep s(m);
+  const double I = kBarThickness * std::pow(kBarWidth, 3) / 12.0;
+  const double tau = 1.5 * P / (kBarWidth * kBarThickness);
   double peak = 0.0;
   for (const SectionStress& sec : s.profile()) {
     if (!between_joints(sec.position)) continue;
     const double M = P * (kL - sec.position);
-    const double sigma = M * (kWidth / 2) / I;
+    const double sigma = M * (kBarWidth / 2) / I;
     EXPECT_NEAR(sec.shear, P, 1e-9 * P);
     EXPECT_NEAR(sec.moment, M, 1e-9 * P * kL);
     EXPECT_NEAR(sec.tau_max, tau, 1e-9 * tau);
-    EXPECT_NEAR(sec.sigma_high, -sigma, 1e-9 * P * kL * kWidth / I);
-    EXPECT_NEAR(sec.von_mises, std::max(sigma, std::sqrt(3.0) * tau), 1e-9 * P * kL * kWidth / I);
+    EXPECT_NEAR(sec.sigma_high, -sigma, 1e-9 * P * kL * kBarWidth / I);
+    EXPECT_NEAR(sec.von_mises, std::max(sigma, std::sqrt(3.0) * tau), 1e-9 * P * kL * kBarWidth / I);
     peak = std::max(peak, sec.von_mises);
   }
   // The peak over the sweep is at the root, on a fibre, with its safety factor.
@@ -120,7 +120,7 @@ TEST(LinkStress, CantileverMatchesBeamTheory) {
   ASSERT_EQ(peaks.size(), 1u);
   EXPECT_DOUBLE_EQ(peaks[0].at.von_mises, peak);
   EXPECT_LT(peaks[0].at.position, 0.02 * kL);
-  EXPECT_NEAR(std::abs(peaks[0].at.where.y()), kWidth / 2, 1e-12);
+  EXPECT_NEAR(std::abs(peaks[0].at.where.y()), kBarWidth / 2, 1e-12);
   ASSERT_TRUE(peaks[0].safety_factor.has_value());
   EXPECT_NEAR(*peaks[0].safety_factor, 250e6 / peak, 1e-9);
 }

@@ -7,6 +7,7 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/model/diagnostics.hpp"
 #include "nbar/model/model.hpp"
+#include "test_constants.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -30,8 +31,8 @@ namespace {
 
 using Eigen::Vector2d;
 using Polygon = std::vector<Vector2d>;
+using nbar::test_constants::kPi;
 using ::testing::HasSubstr;
-constexpr double kPi = std::numbers::pi;
 // What the mesher promises for plates whose corners are all at least 60° (docs/fe.md).
 constexpr double kGuaranteedMinAngleDeg = 28.0;
 

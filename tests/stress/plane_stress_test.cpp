@@ -1,5 +1,7 @@
 // The plane-stress finite elements against closed-form elasticity, published stress
 // concentration factors, beam theory and CalculiX. The figures are recorded in docs/fe.md.
+#include "test_constants.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,7 +21,7 @@
 namespace nbar::fe {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 const ElasticMaterial kSteel{200e9, 0.3, 0.01, 7850};
 
 double max_principal(const Eigen::Vector3d& s) { return 0.5 * (s[0] + s[1]) + std::hypot(0.5 * (s[0] - s[1]), s[2]); }

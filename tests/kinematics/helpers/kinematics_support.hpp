@@ -10,6 +10,7 @@
 #include "nbar/kinematics/position.hpp"
 #include "nbar/kinematics/sweep.hpp"
 #include "nbar/model/model.hpp"
+#include "test_constants.hpp"
 
 #include <Eigen/Core>
 
@@ -23,7 +24,7 @@
 
 namespace nbar::ktest {
 
-inline constexpr double kPi = std::numbers::pi;
+using nbar::test_constants::kPi;
 
 inline int add_point(Model& m, const std::string& name, Eigen::Vector2d p, bool ground = false) {
   m.points.push_back(Point{name, p, ground});
