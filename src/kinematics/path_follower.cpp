@@ -17,7 +17,7 @@ constexpr double kMaxTurn = 0.3;
 // The first step and the longest, as fractions of the model's size (the sweep's span maps to it).
 constexpr double kFirstStep = 0.01, kLongestStep = 0.05;
 constexpr double kShortestStep = 1e-11;
-constexpr int kMaxCorrections = 15;
+constexpr int kMaxPathCorrections = 15;
 constexpr int kMaxSteps = 200000;
 constexpr int kLocateIterations = 200;
 // Near a change point, or where the linkage is almost one (two limits a hair apart, a loop a
@@ -110,7 +110,7 @@ bool PathFollower::tangent(const Eigen::VectorXd& y, const Eigen::VectorXd& bord
 // Newton on [Phi(y); border . (y - anchor)] = 0.
 bool PathFollower::correct(Eigen::VectorXd& y, const Eigen::VectorXd& border, const Eigen::VectorXd& anchor) {
   double previous = HUGE_VAL;
-  for (int it = 0; it < kMaxCorrections; ++it) {
+  for (int it = 0; it < kMaxPathCorrections; ++it) {
     evaluate(y);
     const double residual = phi_.lpNorm<Eigen::Infinity>();
     if (!std::isfinite(residual)) return false;
