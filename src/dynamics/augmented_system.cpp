@@ -69,6 +69,8 @@ void AugmentedSystem::analyse(const std::vector<Eigen::Triplet<double>>& mass) {
   }
   for (int i = 0; i < n_; ++i) pattern.emplace_back(i, i);
   dense_ = n_ <= kDenseLimit;
+  if (dense_)
+    for (const Entry& e : entries_) dense_places_.push_back({e.value, e.row * n_ + e.col});
   new_index_.resize(n_);
   for (int i = 0; i < n_; ++i) new_index_[i] = i;
   std::map<std::pair<int, int>, int> slot;  // (i, j), i <= j in K's order -> where its value is
@@ -131,7 +133,9 @@ bool AugmentedSystem::factorize(const std::vector<double>& values) {
   if (alpha_ == 0.0) choose_penalty(values);
   double* k = dense_ ? dense_k_.data() : sparse_k_.valuePtr();
   std::copy(base_.begin(), base_.end(), k);
-  for (const Product& p : products_) k[p.slot] += alpha_ * values[p.a] * values[p.b];
+  // alpha and the values read once into locals: through k the compiler must assume they change.
+  const double alpha = alpha_, *value = values.data();
+  for (const Product& p : products_) k[p.slot] += alpha * value[p.a] * value[p.b];
   if (dense_) {
     schur_ready_ = false;
     largest_diagonal_ = dense_k_.diagonal().maxCoeff();
@@ -299,7 +303,8 @@ void AugmentedSystem::prepare_schur(const std::vector<double>& values) {
   const int n = N > 0 ? N : n_, m = M > 0 ? M : m_;
   double* j = dense_jacobian_.data();  // Phi_q(r, k) = j[r * n + k]
   std::fill(j, j + static_cast<std::ptrdiff_t>(n) * m, 0.0);
-  for (const Entry& e : entries_) j[e.row * n + e.col] += values[e.value];
+  const double* value = values.data();
+  for (const DensePlace& e : dense_places_) j[e.place] += value[e.value];
   double* w = schur_basis_.data();  // W(k, r) = w[r * n + k]: row r of Phi_q, solved with U^T
   std::copy(j, j + static_cast<std::ptrdiff_t>(n) * m, w);
   for (int r = 0; r < m; ++r) forward_k<N>(w + r * n);

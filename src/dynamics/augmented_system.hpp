@@ -120,6 +120,12 @@ class AugmentedSystem {
 
   int n_ = 0, m_ = 0;
   std::vector<Entry> entries_;
+  // The dense path's: each entry's value and its place in the dense Phi_q (row * n + col), the
+  // index arithmetic done once.
+  struct DensePlace {
+    int value = 0, place = 0;
+  };
+  std::vector<DensePlace> dense_places_;
   Eigen::SparseMatrix<double> mass_;  // both triangles
   double alpha_ = 0.0;
   double jacobian_scale_ = 0.0;  // the largest |row of Phi_q|_1, for the residual's scale
