@@ -195,6 +195,16 @@ class EquationsOfMotion {
   void factorise(double t, const Eigen::VectorXd& q) {
     own_drivers_at(t);
     evaluate_jacobian(mech_, q, drivers_, jacobian_values_);
+    factorise_jacobian(t);
+  }
+  // The same, and the kept rows' residuals at q, in one pass over the rows (a projection's start).
+  const Eigen::VectorXd& factorise_with_residuals(double t, const Eigen::VectorXd& q) {
+    own_drivers_at(t);
+    evaluate_residuals_and_jacobian(mech_, q, drivers_, all_rows_, jacobian_values_);
+    factorise_jacobian(t);
+    return select(all_rows_, residual_);
+  }
+  void factorise_jacobian(double t) {
     if (!system_->factorize(jacobian_values_))
       throw SimulationStop{"a free motion has no inertia at " + time_text(t) +
                                ": the bodies it moves have no mass or moment of inertia (give them `mass:` and "
@@ -607,9 +617,9 @@ class Integrator {
     q_ = y.head(n_);
     const double tolerance = mech_.tolerance();
     bool converged = false;
-    eq_.factorise(t, q_);
     for (int iteration = 0; iteration < 12; ++iteration) {
-      const Eigen::VectorXd& phi = iteration > 0 ? eq_.update_jacobian_and_residuals(q_) : eq_.residuals(q_);
+      const Eigen::VectorXd& phi =
+          iteration > 0 ? eq_.update_jacobian_and_residuals(q_) : eq_.factorise_with_residuals(t, q_);
       if (!phi.allFinite()) return false;
       if (phi.size() == 0 || phi.lpNorm<Eigen::Infinity>() <= tolerance) {
         converged = true;
