@@ -164,8 +164,8 @@ bool AugmentedSystem::form_k(const std::vector<double>& values) {
   for (const Product& p : products_) k[p.slot] += alpha * value[p.a] * value[p.b];
   if (dense_) {
     largest_diagonal_ = dense_k_.diagonal().maxCoeff();
-    if (!with_coordinate_count(n_, [&](auto size) { return cholesky_in_place<decltype(size)::value>(dense_k_.data()); }))
-      return false;
+    const auto factorise_k = [&](auto size) { return cholesky_in_place<decltype(size)::value>(dense_k_.data()); };
+    if (!with_coordinate_count(n_, factorise_k)) return false;
     const double smallest_pivot = dense_k_.diagonal().cwiseAbs2().minCoeff();
     return smallest_pivot > kNoInertia * largest_diagonal_;
   }

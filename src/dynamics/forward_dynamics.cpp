@@ -1254,7 +1254,8 @@ class Run {
   std::vector<double> output_times_;  // the rows' times: 0, dt, 2 dt, ... and the end
   long outputs_ = 0;
   Eigen::VectorXd y_;
-  Eigen::VectorXd y1_, interpolated_, row_y_, row_q_, row_qd_;  // work vectors, sized once
+  // Work vectors, sized once: the step's projected end, a row's interpolated and projected state.
+  Eigen::VectorXd y1_, interpolated_, row_y_, row_q_, row_qd_;
   Integrator::Step step_;  // the last step's, kept for its storage
   std::vector<double> previous_values_;
   double energy_at_start_ = 0.0;
