@@ -69,12 +69,15 @@ void AugmentedSystem::analyse(const std::vector<Eigen::Triplet<double>>& mass) {
   }
   for (int i = 0; i < n_; ++i) pattern.emplace_back(i, i);
   dense_ = n_ <= kDenseLimit;
+  if (dense_)
+    for (const Entry& e : entries_) dense_places_.push_back({e.value, e.row * n_ + e.col});
   new_index_.resize(n_);
   for (int i = 0; i < n_; ++i) new_index_[i] = i;
   std::map<std::pair<int, int>, int> slot;  // (i, j), i <= j in K's order -> where its value is
   if (dense_) {
     dense_k_.setZero(n_, n_);
     dense_mass_ = Eigen::MatrixXd(mass_);
+    factor_mass();
     dense_jacobian_.setZero(n_, m_);
     schur_basis_.setZero(n_, m_);
     schur_factor_.setZero(m_, m_);
@@ -115,6 +118,18 @@ void AugmentedSystem::analyse(const std::vector<Eigen::Triplet<double>>& mass) {
       products_.push_back({slot_of(entries_[a].col, entries_[b].col), entries_[a].value, entries_[b].value});
 }
 
+// M = U^T U, where every coordinate has inertia (M's pivots above kNoInertia of its largest
+// diagonal): then the small direct path solves with M's factor, formed here once, instead of K's,
+// formed and factorised at every position (docs/dynamics.md, Formulation). A coordinate without
+// inertia of its own (a riding point's, which only the constraints move) leaves M singular and
+// the path with K.
+void AugmentedSystem::factor_mass() {
+  mass_factor_ = dense_mass_;
+  const double most = n_ ? dense_mass_.diagonal().maxCoeff() : 0.0;
+  mass_regular_ = n_ > 0 && cholesky_in_place<0>(mass_factor_.data()) &&
+                  mass_factor_.diagonal().cwiseAbs2().minCoeff() > kNoInertia * most;
+}
+
 void AugmentedSystem::choose_penalty(const std::vector<double>& values) {
   Eigen::VectorXd column_squares = Eigen::VectorXd::Zero(n_), row_sums = Eigen::VectorXd::Zero(m_);
   for (const Entry& e : entries_) {
@@ -129,13 +144,28 @@ void AugmentedSystem::choose_penalty(const std::vector<double>& values) {
 
 bool AugmentedSystem::factorize(const std::vector<double>& values) {
   if (alpha_ == 0.0) choose_penalty(values);
+  schur_ready_ = false;
+  range_space_ = mass_regular_ && direct_ && with_coordinate_count(n_, [](auto size) { return size() > 0; });
+  if (range_space_) {
+    // M's factor serves every Jacobian and M is regular: no K to form, and no free motion without
+    // inertia. K is formed only if the iterations are needed (next to a toggle).
+    k_formed_ = false;
+    return true;
+  }
+  return form_k(values);
+}
+
+bool AugmentedSystem::form_k(const std::vector<double>& values) {
+  k_formed_ = true;
   double* k = dense_ ? dense_k_.data() : sparse_k_.valuePtr();
   std::copy(base_.begin(), base_.end(), k);
-  for (const Product& p : products_) k[p.slot] += alpha_ * values[p.a] * values[p.b];
+  // alpha and the values read once into locals: through k the compiler must assume they change.
+  const double alpha = alpha_, *value = values.data();
+  for (const Product& p : products_) k[p.slot] += alpha * value[p.a] * value[p.b];
   if (dense_) {
-    schur_ready_ = false;
     largest_diagonal_ = dense_k_.diagonal().maxCoeff();
-    if (!with_coordinate_count(n_, [&](auto size) { return cholesky_in_place<decltype(size)::value>(); })) return false;
+    const auto factorise_k = [&](auto size) { return cholesky_in_place<decltype(size)::value>(dense_k_.data()); };
+    if (!with_coordinate_count(n_, factorise_k)) return false;
     const double smallest_pivot = dense_k_.diagonal().cwiseAbs2().minCoeff();
     return smallest_pivot > kNoInertia * largest_diagonal_;
   }
@@ -149,8 +179,8 @@ bool AugmentedSystem::factorize(const std::vector<double>& values) {
 void AugmentedSystem::solve_k(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (dense_) {
     x = b;
-    forward_k<0>(x.data());
-    backward_k<0>(x.data());
+    forward_k<0>(dense_k_.data(), x.data());
+    backward_k<0>(dense_k_.data(), x.data());
     return;
   }
   for (int i = 0; i < n_; ++i) permuted_b_(new_index_[i]) = b(i);
@@ -223,6 +253,10 @@ void AugmentedSystem::schur_cg(const std::vector<double>& values, const Eigen::V
 double AugmentedSystem::solve_iterative(const std::vector<double>& values, const Eigen::VectorXd& f,
                                         const Eigen::VectorXd& c, Eigen::VectorXd& x, Eigen::VectorXd& lambda,
                                         bool refine) {
+  if (!k_formed_ && !form_k(values)) {  // with M regular K is too: not met
+    lambda.setZero(m_);
+    return solve_dense(values, f, c, x);
+  }
   x.setZero(n_);
   if (lambda.size() != m_) lambda.setZero(m_);
   // Each round corrects (x, lambda) by the system's residuals, computed in working precision. The
@@ -254,9 +288,8 @@ double AugmentedSystem::solve_iterative(const std::vector<double>& values, const
 // Written out rather than Eigen's LLT: at up to 16 coordinates its dispatch and copies cost more
 // than the arithmetic, and the factor stays where K was formed.
 template <int N>
-bool AugmentedSystem::cholesky_in_place() {
-  const int n = N > 0 ? N : n_;
-  double* u = dense_k_.data();  // U(i, j) = u[j * n + i], i <= j
+bool AugmentedSystem::cholesky_in_place(double* u) const {
+  const int n = N > 0 ? N : n_;  // U(i, j) = u[j * n + i], i <= j
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < j; ++i) {
       double sum = u[j * n + i];
@@ -272,8 +305,7 @@ bool AugmentedSystem::cholesky_in_place() {
 }
 
 template <int N>
-void AugmentedSystem::forward_k(double* y) const {
-  const double* u = dense_k_.data();
+void AugmentedSystem::forward_k(const double* u, double* y) const {
   const int n = N > 0 ? N : n_;
   for (int j = 0; j < n; ++j) {
     double sum = y[j];
@@ -283,8 +315,7 @@ void AugmentedSystem::forward_k(double* y) const {
 }
 
 template <int N>
-void AugmentedSystem::backward_k(double* x) const {
-  const double* u = dense_k_.data();
+void AugmentedSystem::backward_k(const double* u, double* x) const {
   const int n = N > 0 ? N : n_;
   for (int j = n - 1; j >= 0; --j) {
     const double value = x[j] / u[j * n + j];
@@ -299,10 +330,12 @@ void AugmentedSystem::prepare_schur(const std::vector<double>& values) {
   const int n = N > 0 ? N : n_, m = M > 0 ? M : m_;
   double* j = dense_jacobian_.data();  // Phi_q(r, k) = j[r * n + k]
   std::fill(j, j + static_cast<std::ptrdiff_t>(n) * m, 0.0);
-  for (const Entry& e : entries_) j[e.row * n + e.col] += values[e.value];
+  const double* value = values.data();
+  for (const DensePlace& e : dense_places_) j[e.place] += value[e.value];
   double* w = schur_basis_.data();  // W(k, r) = w[r * n + k]: row r of Phi_q, solved with U^T
   std::copy(j, j + static_cast<std::ptrdiff_t>(n) * m, w);
-  for (int r = 0; r < m; ++r) forward_k<N>(w + r * n);
+  const double* factor = small_factor();
+  for (int r = 0; r < m; ++r) forward_k<N>(factor, w + r * n);
   double* l = schur_factor_.data();  // L(a, b) = l[b * m + a], a >= b
   double most = 0.0;
   for (int b = 0; b < m; ++b)
@@ -343,7 +376,8 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
   const int m = M > 0 ? M : m_;
   if (lambda.size() != m) lambda.setZero(m);
   const double *mass = dense_mass_.data(), *j = dense_jacobian_.data(), *w = schur_basis_.data(),
-               *l = schur_factor_.data();
+               *l = schur_factor_.data(), *factor = small_factor();
+  const bool range_space = range_space_;
   double xs[n] = {}, r1[n], h[n];
   double *r2 = r2_.data(), *y = dlambda_.data(), *ls = lambda.data();
   bool converged = false;
@@ -362,10 +396,12 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
         r1[k] -= j[r * n + k] * multiplier;
       }
       r2[r] = sum;
-      for (int k = 0; k < n; ++k) h[k] += j[r * n + k] * sum;
+      if (!range_space)
+        for (int k = 0; k < n; ++k) h[k] += j[r * n + k] * sum;
     }
-    for (int k = 0; k < n; ++k) h[k] = r1[k] + alpha_ * h[k];
-    forward_k<N>(h);
+    // With M's factor (range_space_) g is r1 itself: the penalty term is K's.
+    for (int k = 0; k < n; ++k) h[k] = range_space ? r1[k] : r1[k] + alpha_ * h[k];
+    forward_k<N>(factor, h);
     for (int r = 0; r < m; ++r) {
       double sum = 0.0;
       for (int k = 0; k < n; ++k) sum += w[r * n + k] * h[k];
@@ -383,7 +419,7 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
     }
     for (int r = 0; r < m; ++r)
       for (int k = 0; k < n; ++k) h[k] -= w[r * n + k] * y[r];
-    backward_k<N>(h);
+    backward_k<N>(factor, h);
     double most_x = 0.0, most_dx = 0.0;
     for (int k = 0; k < n; ++k) {
       xs[k] += h[k];

@@ -100,14 +100,20 @@ class AugmentedSystem {
   // schur_usable_ false where S is singular to rounding.
   template <int N, int M>
   void prepare_schur(const std::vector<double>& values);
-  // K = U^T U factorised in place in dense_k_'s upper triangle; false where a pivot is not positive.
+  // A = U^T U factorised in place in u's upper triangle (n x n, column-major); false where a pivot
+  // is not positive.
   template <int N>
-  bool cholesky_in_place();
-  // y = U^-T y and x = U^-1 x, in place (K = U^T U, dense).
+  bool cholesky_in_place(double* u) const;
+  // y = U^-T y and x = U^-1 x, in place (A = U^T U, dense, U in u's upper triangle).
   template <int N>
-  void forward_k(double* y) const;
+  void forward_k(const double* u, double* y) const;
   template <int N>
-  void backward_k(double* x) const;
+  void backward_k(const double* u, double* x) const;
+  // K formed from the Jacobian values and factorised (factorize without the shortcut of M's factor).
+  bool form_k(const std::vector<double>& values);
+  void factor_mass();
+  // The small direct path's factor: M's where range_space_, else K's.
+  const double* small_factor() const { return range_space_ ? mass_factor_.data() : dense_k_.data(); }
   double solve_dense(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
                      Eigen::VectorXd& x);
   void analyse(const std::vector<Eigen::Triplet<double>>& mass);
@@ -120,6 +126,12 @@ class AugmentedSystem {
 
   int n_ = 0, m_ = 0;
   std::vector<Entry> entries_;
+  // The dense path's: each entry's value and its place in the dense Phi_q (row * n + col), the
+  // index arithmetic done once.
+  struct DensePlace {
+    int value = 0, place = 0;
+  };
+  std::vector<DensePlace> dense_places_;
   Eigen::SparseMatrix<double> mass_;  // both triangles
   double alpha_ = 0.0;
   double jacobian_scale_ = 0.0;  // the largest |row of Phi_q|_1, for the residual's scale
@@ -133,6 +145,11 @@ class AugmentedSystem {
   // column-major lower), whether they are formed for the present Jacobian and S was regular there.
   Eigen::MatrixXd dense_mass_, dense_jacobian_, schur_basis_, schur_factor_;
   bool schur_ready_ = false, schur_usable_ = false, direct_ = true;
+  // M's factor (mass_factor_, upper) where M is regular (mass_regular_); range_space_ while the
+  // small direct path solves with it (S = Phi_q M^-1 Phi_q^T, no penalty), K then formed only for
+  // the iterations (k_formed_ says whether dense_k_ holds K's factor for the present Jacobian).
+  Eigen::MatrixXd mass_factor_;
+  bool mass_regular_ = false, range_space_ = false, k_formed_ = false;
   Eigen::SparseMatrix<double> sparse_k_;  // upper triangle, in the fill-reducing order
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>> sparse_factor_;
   double largest_diagonal_ = 0.0;

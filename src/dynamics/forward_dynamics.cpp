@@ -43,6 +43,8 @@ struct SimulationStop {
 
 std::vector<double> driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q,
                                      const std::vector<double>& previous);
+void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& previous,
+                      std::vector<double>& out);
 
 // The toggle's signed measure (docs/dynamics.md, Events). The reference keeps, from the kept
 // rows' Jacobian at one state, the rows its rank-revealing QR chose as independent (S) and an
@@ -156,31 +158,53 @@ class EquationsOfMotion {
     const Model& m = mech_.model();
     out.resize(m.drivers.size());
     for (std::size_t d = 0; d < m.drivers.size(); ++d) {
-      const Driver& drv = m.drivers[d];
-      Series value;
-      if (drv.free) {
+      if (m.drivers[d].free)
         out[d] = free_states_[d];  // the same at every t (free_states_)
-        continue;
-      }
-      if (drv.law) {
-        try {
-          value = drv.law->series(t, kTerms);
-        } catch (const Error& e) {
-          throw SimulationStop{e.message() + " at " + time_text(t), {EntityRef::Kind::Driver, static_cast<int>(d), 0}};
-        }
-      } else {
-        const Series s = Series::variable(kTerms, t);
-        value = start_[d] + drv.speed * s + 0.5 * drv.accel * (s * s);
-      }
-      set_driver_state(out[d], value, drv.is_angular());
+      else
+        kinematic_driver_at(t, d, out[d]);
     }
+  }
+  // The same into drivers_, where the free drivers' states, written at the first call, stay: their
+  // copies at every factorisation were 1.4 % of a four-bar's run.
+  void own_drivers_at(double t) {
+    drivers_time_ = t;
+    const Model& m = mech_.model();
+    if (drivers_.size() != m.drivers.size()) return drivers_at(t, drivers_);
+    for (std::size_t d = 0; d < m.drivers.size(); ++d)
+      if (!m.drivers[d].free) kinematic_driver_at(t, d, drivers_[d]);
+  }
+  // A kinematic driver's state at t: by its law, or from its start at its speed.
+  void kinematic_driver_at(double t, std::size_t d, DriverState& out) const {
+    const Driver& drv = mech_.model().drivers[d];
+    Series value;
+    if (drv.law) {
+      try {
+        value = drv.law->series(t, kTerms);
+      } catch (const Error& e) {
+        throw SimulationStop{e.message() + " at " + time_text(t), {EntityRef::Kind::Driver, static_cast<int>(d), 0}};
+      }
+    } else {
+      const Series s = Series::variable(kTerms, t);
+      value = start_[d] + drv.speed * s + 0.5 * drv.accel * (s * s);
+    }
+    set_driver_state(out, value, drv.is_angular());
   }
 
   // The drivers at t, the Jacobian at q, and the augmented matrix formed and factorised there.
   // Throws SimulationStop where a motion the kept rows allow has no inertia.
   void factorise(double t, const Eigen::VectorXd& q) {
-    drivers_at(t, drivers_);
+    own_drivers_at(t);
     evaluate_jacobian(mech_, q, drivers_, jacobian_values_);
+    factorise_jacobian(t);
+  }
+  // The same, and the kept rows' residuals at q, in one pass over the rows (a projection's start).
+  const Eigen::VectorXd& factorise_with_residuals(double t, const Eigen::VectorXd& q) {
+    own_drivers_at(t);
+    evaluate_residuals_and_jacobian(mech_, q, drivers_, all_rows_, jacobian_values_);
+    factorise_jacobian(t);
+    return select(all_rows_, residual_);
+  }
+  void factorise_jacobian(double t) {
     if (!system_->factorize(jacobian_values_))
       throw SimulationStop{"a free motion has no inertia at " + time_text(t) +
                                ": the bodies it moves have no mass or moment of inertia (give them `mass:` and "
@@ -199,16 +223,22 @@ class EquationsOfMotion {
     evaluate_residuals(mech_, q, drivers_, all_rows_);
     return select(all_rows_, residual_);
   }
+  // update_jacobian and residuals at q in one pass over the rows (the same numbers).
+  const Eigen::VectorXd& update_jacobian_and_residuals(const Eigen::VectorXd& q) {
+    evaluate_residuals_and_jacobian(mech_, q, drivers_, all_rows_, jacobian_values_);
+    system_->jacobian_changed();
+    return select(all_rows_, residual_);
+  }
   // Phi_t of the kept rows at q: the first Taylor coefficient of Phi with q' = 0.
   const Eigen::VectorXd& time_derivative(const Eigen::VectorXd& q) {
-    first_order_.setZero(n_, 2);
+    if (first_order_.rows() != n_) first_order_.setZero(n_, 2);  // q' stays zero
     first_order_.col(0) = q;
     evaluate_series_remainder(mech_, first_order_, 1, drivers_, all_rows_);
     return select(all_rows_, time_derivative_);
   }
   // gamma of the kept rows: Phi_q q'' = gamma on the acceleration level.
   const Eigen::VectorXd& gamma(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
-    second_order_.setZero(n_, 3);
+    if (second_order_.rows() != n_) second_order_.setZero(n_, 3);  // q''/2, the unknown, stays zero
     second_order_.col(0) = q;
     second_order_.col(1) = qd;
     evaluate_series_remainder(mech_, second_order_, 2, drivers_, all_rows_);
@@ -265,9 +295,10 @@ class EquationsOfMotion {
   }
 
   // Energies stored at (q, q'): kinetic, gravity, springs.
-  void stored_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, SimulationEnergy& e) const {
+  void stored_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, SimulationEnergy& e) {
     const Model& m = mech_.model();
-    e.kinetic = 0.5 * qd.dot(mass() * qd);
+    energy_product_.noalias() = mass() * qd;  // in storage kept: a temporary was allocated per row
+    e.kinetic = 0.5 * qd.dot(energy_product_);
     e.gravity = 0.0;
     for (const BodyMass& b : bodies_) e.gravity -= b.mass * m.gravity.dot(centre_of_mass(b, q));
     e.spring = 0.0;
@@ -285,13 +316,22 @@ class EquationsOfMotion {
   // The gate at q (the time of the last factorisation), from the kinematics' own sparse LU
   // (its pivots chosen once and replayed).
   Gate gate_at(const Eigen::VectorXd& q) {
+    // A step's end and the next step's start ask at the same q and time: the answer is kept.
+    if (gate_known_ && gate_time_ == drivers_time_ && gate_q_.size() == q.size() && gate_q_ == q) return gate_;
+    gate_ = gate_at_anew(q);
+    gate_known_ = true;
+    gate_time_ = drivers_time_;
+    gate_q_ = q;
+    return gate_;
+  }
+  Gate gate_at_anew(const Eigen::VectorXd& q) {
     Gate gate;
     if (!square_) return gate;
     full_drivers_ = drivers_;
-    const std::vector<double> values = driver_values_at(mech_, q, start_);
+    driver_values_at(mech_, q, start_, gate_values_);
     for (std::size_t d = 0; d < full_drivers_.size(); ++d)
       if (mech_.model().drivers[d].free)
-        set_driver_state(full_drivers_[d], Series(kTerms, values[d]), mech_.model().drivers[d].is_angular());
+        set_driver_state(full_drivers_[d], Series(kTerms, gate_values_[d]), mech_.model().drivers[d].is_angular());
     evaluate_jacobian(mech_, q, full_drivers_, full_values_);
     gate.square = true;
     if (!full_lu_.factorize(full_values_.data())) return gate;  // singular: sign 0
@@ -514,7 +554,13 @@ class EquationsOfMotion {
   SparseLU full_lu_;     // every row's square Jacobian, for the gate
   Eigen::MatrixXd first_order_, second_order_;
   Eigen::VectorXd all_rows_, residual_, time_derivative_, gamma_, product_, loads_, applied_loads_, mass_times_,
-      zero_force_;
+      zero_force_, energy_product_;
+  std::vector<double> gate_values_;  // the drivers' values at the gate's q
+  // The last gate, at gate_q_ with the drivers at gate_time_; drivers_ are at drivers_time_.
+  bool gate_known_ = false;
+  Gate gate_;
+  Eigen::VectorXd gate_q_;
+  double gate_time_ = 0.0, drivers_time_ = 0.0;
   Eigen::VectorXd lambda_, projection_lambda_, correction_;
   Rates rates_;
 };
@@ -571,10 +617,9 @@ class Integrator {
     q_ = y.head(n_);
     const double tolerance = mech_.tolerance();
     bool converged = false;
-    eq_.factorise(t, q_);
     for (int iteration = 0; iteration < 12; ++iteration) {
-      if (iteration > 0) eq_.update_jacobian(q_);
-      const Eigen::VectorXd& phi = eq_.residuals(q_);
+      const Eigen::VectorXd& phi =
+          iteration > 0 ? eq_.update_jacobian_and_residuals(q_) : eq_.factorise_with_residuals(t, q_);
       if (!phi.allFinite()) return false;
       if (phi.size() == 0 || phi.lpNorm<Eigen::Infinity>() <= tolerance) {
         converged = true;
@@ -585,8 +630,7 @@ class Integrator {
     if (!converged) return false;
     if (exact && eq_.kept_rows() > 0) {
       q_ -= eq_.correction(eq_.last_residuals());
-      eq_.update_jacobian(q_);
-      if (!eq_.residuals(q_).allFinite()) return false;
+      if (!eq_.update_jacobian_and_residuals(q_).allFinite()) return false;
     }
     qd_ = y.segment(n_, n_);
     velocity_error_ = eq_.jacobian_times(qd_) + eq_.time_derivative(q_);
@@ -657,8 +701,14 @@ class Integrator {
   }
 
   static Eigen::VectorXd interpolate(const Eigen::VectorXd& y0, const Step& s, double theta) {
+    Eigen::VectorXd out;
+    interpolate(y0, s, theta, out);
+    return out;
+  }
+  // The same into `out`: a row's state in storage kept.
+  static void interpolate(const Eigen::VectorXd& y0, const Step& s, double theta, Eigen::VectorXd& out) {
     const double rest = 1.0 - theta;
-    return y0 + theta * (s.r2 + rest * (s.r3 + theta * (s.r4 + rest * s.r5)));
+    out = y0 + theta * (s.r2 + rest * (s.r3 + theta * (s.r4 + rest * s.r5)));
   }
 
   long evaluations() const { return evaluations_; }
@@ -676,13 +726,21 @@ class Integrator {
 // Each driver's value at q (SI), angles unwrapped against `previous`.
 std::vector<double> driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q,
                                      const std::vector<double>& previous) {
+  std::vector<double> out;
+  driver_values_at(mech, q, previous, out);
+  return out;
+}
+
+// The same into `out`, in storage kept (the gate asks at every step).
+void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& previous,
+                      std::vector<double>& out) {
   const Model& m = mech.model();
   const auto at = [&](int p) { return mech.point_position(p, q); };
   const auto angle_of = [&](int body) {
     const Eigen::Vector2d u = at(m.bodies[body].points[1]) - at(m.bodies[body].points[0]);
     return std::atan2(u.y(), u.x());
   };
-  std::vector<double> out(m.drivers.size());
+  out.resize(m.drivers.size());
   for (std::size_t d = 0; d < m.drivers.size(); ++d) {
     const Driver& drv = m.drivers[d];
     switch (drv.kind) {
@@ -701,7 +759,6 @@ std::vector<double> driver_values_at(const Mechanism& mech, const Eigen::VectorX
       }
     }
   }
-  return out;
 }
 
 // The bracket [a, b] where f changes sign (f(a) = fa and f(b) = fb have opposite signs),
@@ -863,7 +920,8 @@ class Run {
         }
         eq_.allow_singular(false);
         const double t1 = t + h;
-        Eigen::VectorXd y1 = s.y1;
+        Eigen::VectorXd& y1 = y1_;
+        y1 = s.y1;
         if (!integrator_.project(t1, y1))
           throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(t1) +
                                    " (the mechanism may have reached a limit of its motion)",
@@ -873,7 +931,8 @@ class Run {
         while (next_output <= outputs_ && output_time(next_output) <= reached * (1 + 1e-13)) {
           const double at = output_time(next_output);
           if (event && at >= reached) break;  // the event's own row stands for it
-          record(at, Integrator::interpolate(y_, s, std::clamp((at - t) / h, 0.0, 1.0)));
+          Integrator::interpolate(y_, s, std::clamp((at - t) / h, 0.0, 1.0), interpolated_);
+          record(at, interpolated_);
           ++next_output;
         }
         accept(h);
@@ -1131,11 +1190,15 @@ class Run {
 
   // The row at `at`: y projected, q'' evaluated there, the energies and the drift; driver angles
   // unwrapped against `previous`.
-  Row make_row(double at, Eigen::VectorXd y, const std::vector<double>& previous) {
+  Row make_row(double at, const Eigen::VectorXd& y_given, const std::vector<double>& previous) {
+    Eigen::VectorXd& y = row_y_;  // the row's vectors in storage kept: nothing allocated but the row
+    y = y_given;
     if (!integrator_.project(at, y, true))
       throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(at),
                            eq_.first_free_driver()};
-    const Eigen::VectorXd q = y.head(n_), qd = y.segment(n_, n_);
+    Eigen::VectorXd &q = row_q_, &qd = row_qd_;
+    q = y.head(n_);
+    qd = y.segment(n_, n_);
     const EquationsOfMotion::Rates& rates = eq_.evaluate_factorised(at, q, qd);
     Row row;
     if (eq_.kept_rows()) {
@@ -1191,6 +1254,8 @@ class Run {
   std::vector<double> output_times_;  // the rows' times: 0, dt, 2 dt, ... and the end
   long outputs_ = 0;
   Eigen::VectorXd y_;
+  // Work vectors, sized once: the step's projected end, a row's interpolated and projected state.
+  Eigen::VectorXd y1_, interpolated_, row_y_, row_q_, row_qd_;
   Integrator::Step step_;  // the last step's, kept for its storage
   std::vector<double> previous_values_;
   double energy_at_start_ = 0.0;
