@@ -1,4 +1,6 @@
 // A cylinder's rod leaving its barrel over the sweep, found by nbar check.
+#include "example_models.hpp"
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -60,8 +62,7 @@ TEST(Cylinders, ARodThatStaysInItsBarrelGetsNoWarning) {
 
 TEST(Cylinders, ASliderOnAGroundGuideOrWithABlockIsNoCylinder) {
   for (const char* name : {"machine-18.yaml", "inverted-slider-crank-shaper.yaml", "slider-crank-offset.yaml"}) {
-    const io::LoadedModel file = io::load_model_file(std::string(NBAR_EXAMPLES_DIR) + "/" + name);
-    EXPECT_FALSE(has_cylinder(file.model)) << name;
+    EXPECT_FALSE(has_cylinder(test_support::example_model(name))) << name;
   }
 }
 
