@@ -416,8 +416,21 @@ export function renderTables() {
   if (keep) {
     const sel = focused.dataset.path ? `[data-path="${CSS.escape(focused.dataset.path)}"]`
       : focused.dataset.bodyProp ? `[data-body-prop="${focused.dataset.bodyProp}"]` : `[data-bar-prop="${focused.dataset.barProp}"]`;
-    host.querySelector(sel)?.focus();
+    const field = host.querySelector(sel);
+    if (field) carryTyping(focused, field);
   }
+}
+
+// The tables are drawn again when an analysis ends, which may be while the next field is being
+// typed in (the last one's edit was being solved): what is typed there, not yet committed, and
+// the caret go over to the field drawn in its place, with the focus. The focus first: a value set
+// after it counts as typed, so that leaving the field or Enter still commits it.
+function carryTyping(from, to) {
+  const typing = from instanceof HTMLInputElement && to instanceof HTMLInputElement && from.value !== from.defaultValue;
+  to.focus();
+  if (!typing) return;
+  to.value = from.value;
+  if (from.selectionStart !== null) to.setSelectionRange(from.selectionStart, from.selectionEnd);
 }
 
 export function showBody(name) {

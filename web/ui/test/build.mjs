@@ -174,6 +174,27 @@ export async function run(page, ctx) {
   assert.equal(got.units, 'mm');
   assert.ok(Math.abs(got.stroke - 2 * r) < 1e-9, `check's stroke ${got.stroke} = 2r = ${2 * r}`);
   assert.ok(Math.abs(got.swept - 2 * r) < 1e-6, `the sweep's stroke ${got.swept} = 2r = ${2 * r}`);
+
+  // 7b. A field being typed in when an analysis ends (the last field's edit solved while the next
+  // is typed) keeps what was typed, the caret and the focus as the tables are drawn again; Enter
+  // then commits it.
+  const field = page.getByLabel('P2 x', { exact: true });
+  await field.scrollIntoViewIfNeeded();
+  if (mobile) await field.tap(); else await field.click();
+  await field.press('Control+a');
+  await page.keyboard.type('61');
+  const replaced = await field.elementHandle();
+  await page.evaluate(() => document.dispatchEvent(new CustomEvent('nbar:analysed', { detail: { error: null } })));
+  assert.ok(await page.evaluate((old) => !old.isConnected, replaced), 'the tables were drawn again');
+  const typedAfter = await page.evaluate(() => {
+    const f = document.activeElement;
+    return { label: f?.getAttribute('aria-label'), value: f?.value, caret: f?.selectionStart };
+  });
+  assert.deepEqual(typedAfter, { label: 'P2 x', value: '61', caret: 2 }, 'the typing survives the tables drawn again');
+  await page.keyboard.press('Enter');
+  await edited(page, text);
+  text = await yamlText(page);
+  assert.match(text, /P2: \[61, 80\]/, 'and Enter commits it');
   await click(page, mobile, '[data-tab="editor"]');
   await shot(page, `${tag}-b6-solved`);
   const took = (Date.now() - started) / 1000;
