@@ -211,19 +211,9 @@ class EquationsOfMotion {
                                "`inertia:`, or a shape and a material)",
                            first_free_driver()};
   }
-  // The Jacobian at q, at the time of the last factorisation, whose matrix stays: near q it
-  // preconditions the solves with the new Jacobian.
-  void update_jacobian(const Eigen::VectorXd& q) {
-    evaluate_jacobian(mech_, q, drivers_, jacobian_values_);
-    system_->jacobian_changed();
-  }
-
-  // The kept rows' residuals at q, at the last factorisation's time.
-  const Eigen::VectorXd& residuals(const Eigen::VectorXd& q) {
-    evaluate_residuals(mech_, q, drivers_, all_rows_);
-    return select(all_rows_, residual_);
-  }
-  // update_jacobian and residuals at q in one pass over the rows (the same numbers).
+  // The Jacobian at q, at the time of the last factorisation, whose matrix stays (near q it
+  // preconditions the solves with the new Jacobian), and the kept rows' residuals at q: one pass
+  // over the rows.
   const Eigen::VectorXd& update_jacobian_and_residuals(const Eigen::VectorXd& q) {
     evaluate_residuals_and_jacobian(mech_, q, drivers_, all_rows_, jacobian_values_);
     system_->jacobian_changed();
