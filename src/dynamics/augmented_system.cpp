@@ -362,6 +362,22 @@ void AugmentedSystem::prepare_schur(const std::vector<double>& values) {
   schur_usable_ = true;
 }
 
+template <int M>
+void AugmentedSystem::solve_schur(double* y) const {
+  const int m = M > 0 ? M : m_;
+  const double* l = schur_factor_.data();  // L(a, b) = l[b * m + a], a >= b
+  for (int a = 0; a < m; ++a) {
+    double sum = y[a];
+    for (int k = 0; k < a; ++k) sum -= l[k * m + a] * y[k];
+    y[a] = sum / l[a * m + a];
+  }
+  for (int a = m - 1; a >= 0; --a) {
+    double sum = y[a];
+    for (int k = a + 1; k < m; ++k) sum -= l[a * m + k] * y[k];
+    y[a] = sum / l[a * m + a];
+  }
+}
+
 // The rounds of solve_iterative, each correction (dx, dlambda) of the residuals (r1, r2) direct:
 // with g = r1 + alpha Phi^T r2 and h = U^-T g, S dlambda = Phi K^-1 g - r2 = W^T h - r2 and
 // dx = K^-1 (g - Phi^T dlambda) = U^-1 (h - W dlambda). N coordinates and M rows when compiled
@@ -376,7 +392,7 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
   const int m = M > 0 ? M : m_;
   if (lambda.size() != m) lambda.setZero(m);
   const double *mass = dense_mass_.data(), *j = dense_jacobian_.data(), *w = schur_basis_.data(),
-               *l = schur_factor_.data(), *factor = small_factor();
+               *factor = small_factor();
   const bool range_space = range_space_;
   double xs[n] = {}, r1[n], h[n];
   double *r2 = r2_.data(), *y = dlambda_.data(), *ls = lambda.data();
@@ -407,16 +423,7 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
       for (int k = 0; k < n; ++k) sum += w[r * n + k] * h[k];
       y[r] = sum - r2[r];
     }
-    for (int a = 0; a < m; ++a) {
-      double sum = y[a];
-      for (int k = 0; k < a; ++k) sum -= l[k * m + a] * y[k];
-      y[a] = sum / l[a * m + a];
-    }
-    for (int a = m - 1; a >= 0; --a) {
-      double sum = y[a];
-      for (int k = a + 1; k < m; ++k) sum -= l[a * m + k] * y[k];
-      y[a] = sum / l[a * m + a];
-    }
+    solve_schur<M>(y);
     for (int r = 0; r < m; ++r)
       for (int k = 0; k < n; ++k) h[k] -= w[r * n + k] * y[r];
     backward_k<N>(factor, h);

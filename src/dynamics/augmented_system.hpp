@@ -109,6 +109,10 @@ class AugmentedSystem {
   void forward_k(const double* u, double* y) const;
   template <int N>
   void backward_k(const double* u, double* x) const;
+  // y = S^-1 y, in place, with S = L L^T as prepare_schur left it (M rows when compiled, M = 0:
+  // m_ read at run time).
+  template <int M>
+  void solve_schur(double* y) const;
   // K formed from the Jacobian values and factorised (factorize without the shortcut of M's factor).
   bool form_k(const std::vector<double>& values);
   void factor_mass();
