@@ -30,9 +30,16 @@ constexpr double kConverged = 1e-15;
 // solve to the dense method.
 constexpr double kSettled = 1e-8;
 constexpr double kFallBack = 1e-10;
+// A single round (a projection's correction) with S formed at other values leaves about their
+// relative change (jacobian_moved_slightly: 1e-6 and below) of the residual: what the next
+// Newton iteration takes out. An order-1 residual still tells the dependent rows.
+constexpr double kStaleFallBack = 1e-5;
 // A pivot of the dense Schur complement below this fraction of its largest diagonal: the rows
 // nearly dependent (next to a toggle), where the iterations and their fallback take over.
 constexpr double kSingularSchur = 1e-8;
+// Above this ratio of its smallest to its largest squared pivot the Schur complement's condition
+// number is below 1e4 and one direct round with M's factor is within about 1e-12 of x's size.
+constexpr double kWellConditioned = 1e-4;
 
 double largest(const Eigen::VectorXd& v) { return v.size() == 0 ? 0.0 : v.lpNorm<Eigen::Infinity>(); }
 
@@ -81,6 +88,7 @@ void AugmentedSystem::analyse(const std::vector<Eigen::Triplet<double>>& mass) {
     dense_jacobian_.setZero(n_, m_);
     schur_basis_.setZero(n_, m_);
     schur_factor_.setZero(m_, m_);
+    schur_reciprocal_.setZero(m_);
     for (int j = 0; j < n_; ++j)
       for (int i = 0; i <= j; ++i) slot[{i, j}] = j * n_ + i;
     base_.assign(static_cast<std::size_t>(n_) * n_, 0.0);
@@ -128,6 +136,7 @@ void AugmentedSystem::factor_mass() {
   const double most = n_ ? dense_mass_.diagonal().maxCoeff() : 0.0;
   mass_regular_ = n_ > 0 && cholesky_in_place<0>(mass_factor_.data()) &&
                   mass_factor_.diagonal().cwiseAbs2().minCoeff() > kNoInertia * most;
+  mass_reciprocal_ = mass_factor_.diagonal().cwiseInverse();
 }
 
 void AugmentedSystem::choose_penalty(const std::vector<double>& values) {
@@ -166,6 +175,7 @@ bool AugmentedSystem::form_k(const std::vector<double>& values) {
     largest_diagonal_ = dense_k_.diagonal().maxCoeff();
     const auto factorise_k = [&](auto size) { return cholesky_in_place<decltype(size)::value>(dense_k_.data()); };
     if (!with_coordinate_count(n_, factorise_k)) return false;
+    k_reciprocal_ = dense_k_.diagonal().cwiseInverse();
     const double smallest_pivot = dense_k_.diagonal().cwiseAbs2().minCoeff();
     return smallest_pivot > kNoInertia * largest_diagonal_;
   }
@@ -179,8 +189,8 @@ bool AugmentedSystem::form_k(const std::vector<double>& values) {
 void AugmentedSystem::solve_k(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (dense_) {
     x = b;
-    forward_k<0>(dense_k_.data(), x.data());
-    backward_k<0>(dense_k_.data(), x.data());
+    forward_k<0>(dense_k_.data(), k_reciprocal_.data(), x.data());
+    backward_k<0>(dense_k_.data(), k_reciprocal_.data(), x.data());
     return;
   }
   for (int i = 0; i < n_; ++i) permuted_b_(new_index_[i]) = b(i);
@@ -305,37 +315,44 @@ bool AugmentedSystem::cholesky_in_place(double* u) const {
 }
 
 template <int N>
-void AugmentedSystem::forward_k(const double* u, double* y) const {
+void AugmentedSystem::forward_k(const double* u, const double* reciprocal, double* y) const {
   const int n = N > 0 ? N : n_;
   for (int j = 0; j < n; ++j) {
     double sum = y[j];
     for (int i = 0; i < j; ++i) sum -= u[j * n + i] * y[i];
-    y[j] = sum / u[j * n + j];
+    y[j] = sum * reciprocal[j];
   }
 }
 
 template <int N>
-void AugmentedSystem::backward_k(const double* u, double* x) const {
+void AugmentedSystem::backward_k(const double* u, const double* reciprocal, double* x) const {
   const int n = N > 0 ? N : n_;
   for (int j = n - 1; j >= 0; --j) {
-    const double value = x[j] / u[j * n + j];
+    const double value = x[j] * reciprocal[j];
     x[j] = value;
     for (int i = 0; i < j; ++i) x[i] -= u[j * n + i] * value;
   }
 }
 
+void AugmentedSystem::fill_dense_jacobian(const std::vector<double>& values) {
+  jacobian_stale_ = false;
+  double* j = dense_jacobian_.data();  // Phi_q(r, k) = j[r * n + k]
+  std::fill(j, j + static_cast<std::ptrdiff_t>(n_) * m_, 0.0);
+  const double* value = values.data();
+  for (const DensePlace& e : dense_places_) j[e.place] += value[e.value];
+}
+
 template <int N, int M>
 void AugmentedSystem::prepare_schur(const std::vector<double>& values) {
   schur_ready_ = true;
+  schur_stale_ = false;
   const int n = N > 0 ? N : n_, m = M > 0 ? M : m_;
-  double* j = dense_jacobian_.data();  // Phi_q(r, k) = j[r * n + k]
-  std::fill(j, j + static_cast<std::ptrdiff_t>(n) * m, 0.0);
-  const double* value = values.data();
-  for (const DensePlace& e : dense_places_) j[e.place] += value[e.value];
+  fill_dense_jacobian(values);
+  const double* j = dense_jacobian_.data();
   double* w = schur_basis_.data();  // W(k, r) = w[r * n + k]: row r of Phi_q, solved with U^T
   std::copy(j, j + static_cast<std::ptrdiff_t>(n) * m, w);
-  const double* factor = small_factor();
-  for (int r = 0; r < m; ++r) forward_k<N>(factor, w + r * n);
+  const double *factor = small_factor(), *reciprocal = small_reciprocal();
+  for (int r = 0; r < m; ++r) forward_k<N>(factor, reciprocal, w + r * n);
   double* l = schur_factor_.data();  // L(a, b) = l[b * m + a], a >= b
   double most = 0.0;
   for (int b = 0; b < m; ++b)
@@ -347,16 +364,19 @@ void AugmentedSystem::prepare_schur(const std::vector<double>& values) {
     }
   // A small pivot: the rows nearly dependent there (next to a toggle).
   schur_usable_ = false;
+  schur_conditioned_ = true;
   for (int b = 0; b < m; ++b) {
     double diagonal = l[b * m + b];
     for (int k = 0; k < b; ++k) diagonal -= l[k * m + b] * l[k * m + b];
     if (!(diagonal > kSingularSchur * most)) return;
-    const double pivot = std::sqrt(diagonal);
+    if (!(diagonal > kWellConditioned * most)) schur_conditioned_ = false;
+    const double pivot = std::sqrt(diagonal), over_pivot = 1.0 / pivot;
     l[b * m + b] = pivot;
+    schur_reciprocal_[b] = over_pivot;
     for (int a = b + 1; a < m; ++a) {
       double sum = l[b * m + a];
       for (int k = 0; k < b; ++k) sum -= l[k * m + a] * l[k * m + b];
-      l[b * m + a] = sum / pivot;
+      l[b * m + a] = sum * over_pivot;
     }
   }
   schur_usable_ = true;
@@ -365,16 +385,16 @@ void AugmentedSystem::prepare_schur(const std::vector<double>& values) {
 template <int M>
 void AugmentedSystem::solve_schur(double* y) const {
   const int m = M > 0 ? M : m_;
-  const double* l = schur_factor_.data();  // L(a, b) = l[b * m + a], a >= b
+  const double *l = schur_factor_.data(), *reciprocal = schur_reciprocal_.data();  // L(a, b) = l[b * m + a], a >= b
   for (int a = 0; a < m; ++a) {
     double sum = y[a];
     for (int k = 0; k < a; ++k) sum -= l[k * m + a] * y[k];
-    y[a] = sum / l[a * m + a];
+    y[a] = sum * reciprocal[a];
   }
   for (int a = m - 1; a >= 0; --a) {
     double sum = y[a];
     for (int k = a + 1; k < m; ++k) sum -= l[a * m + k] * y[k];
-    y[a] = sum / l[a * m + a];
+    y[a] = sum * reciprocal[a];
   }
 }
 
@@ -385,14 +405,19 @@ void AugmentedSystem::solve_schur(double* y) const {
 template <int N, int M>
 double AugmentedSystem::solve_small(const std::vector<double>& values, const Eigen::VectorXd& f,
                                     const Eigen::VectorXd& c, Eigen::VectorXd& x, Eigen::VectorXd& lambda,
-                                    bool refine) {
-  if (!schur_ready_) prepare_schur<N, M>(values);
+                                    Rounds rounds) {
+  if (!schur_ready_)
+    prepare_schur<N, M>(values);
+  else if (jacobian_stale_)
+    fill_dense_jacobian(values);
+  const bool one_round_suffices = range_space_ && !schur_stale_ && schur_conditioned_;
+  const bool refine = rounds == Rounds::to_rounding || (rounds == Rounds::as_needed && !one_round_suffices);
   if (!schur_usable_) return solve_iterative(values, f, c, x, lambda, refine);
   constexpr int n = N;
   const int m = M > 0 ? M : m_;
   if (lambda.size() != m) lambda.setZero(m);
   const double *mass = dense_mass_.data(), *j = dense_jacobian_.data(), *w = schur_basis_.data(),
-               *factor = small_factor();
+               *factor = small_factor(), *reciprocal = small_reciprocal();
   const bool range_space = range_space_;
   double xs[n] = {}, r1[n], h[n];
   double *r2 = r2_.data(), *y = dlambda_.data(), *ls = lambda.data();
@@ -417,7 +442,7 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
     }
     // With M's factor (range_space_) g is r1 itself: the penalty term is K's.
     for (int k = 0; k < n; ++k) h[k] = range_space ? r1[k] : r1[k] + alpha_ * h[k];
-    forward_k<N>(factor, h);
+    forward_k<N>(factor, reciprocal, h);
     for (int r = 0; r < m; ++r) {
       double sum = 0.0;
       for (int k = 0; k < n; ++k) sum += w[r * n + k] * h[k];
@@ -426,7 +451,7 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
     solve_schur<M>(y);
     for (int r = 0; r < m; ++r)
       for (int k = 0; k < n; ++k) h[k] -= w[r * n + k] * y[r];
-    backward_k<N>(factor, h);
+    backward_k<N>(factor, reciprocal, h);
     double most_x = 0.0, most_dx = 0.0;
     for (int k = 0; k < n; ++k) {
       xs[k] += h[k];
@@ -450,13 +475,14 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
   }
   const double scale = largest(c) + jacobian_scale_ * most_x;
   const double constraint_left = scale > 0 ? left / scale : 0.0;
-  if (converged && constraint_left <= kFallBack && nan_if_not_finite == 0.0) return constraint_left;
+  const double allowed = schur_stale_ && !refine ? kStaleFallBack : kFallBack;
+  if (converged && constraint_left <= allowed && nan_if_not_finite == 0.0) return constraint_left;
   lambda.setZero(m_);  // no warm start from here
   return solve_dense(values, f, c, x);
 }
 
 double AugmentedSystem::solve(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
-                              Eigen::VectorXd& x, Eigen::VectorXd& lambda, bool refine) {
+                              Eigen::VectorXd& x, Eigen::VectorXd& lambda, Rounds rounds) {
   // The direct path for the sizes compiled for only: from 10 coordinates (Andrews' squeezer has 14)
   // forming S costs more than the few iterations it saves. With redundant rows S is singular
   // everywhere, its last pivot rounding that no threshold tells from a small one: iterations. One free degree of
@@ -464,10 +490,10 @@ double AugmentedSystem::solve(const std::vector<double>& values, const Eigen::Ve
   return with_coordinate_count(dense_ && direct_ ? n_ : 0, [&](auto size) {
     constexpr int n = decltype(size)::value;
     if constexpr (n > 0) {
-      if (m_ == n - 1) return solve_small<n, n - 1>(values, f, c, x, lambda, refine);
-      return solve_small<n, 0>(values, f, c, x, lambda, refine);
+      if (m_ == n - 1) return solve_small<n, n - 1>(values, f, c, x, lambda, rounds);
+      return solve_small<n, 0>(values, f, c, x, lambda, rounds);
     } else {
-      return solve_iterative(values, f, c, x, lambda, refine);
+      return solve_iterative(values, f, c, x, lambda, rounds != Rounds::one);
     }
   });
 }

@@ -61,23 +61,42 @@ class AugmentedSystem {
   // The Jacobian values have changed since the last factorize (K stays): the dense Schur
   // complement is formed again at the next solve.
   void jacobian_changed() { schur_ready_ = false; }
+  // The Jacobian values have moved by a small projection's correction (relative to the drawing,
+  // 1e-6 and below): with M's factor, S from before stays, as the preconditioner of the
+  // refinement, whose residuals take the present values (the dense Phi_q is refreshed at the next
+  // solve); each round then takes out all but about that relative change of the error. Without
+  // M's factor, as jacobian_changed. Forming S costs more than the rounds it saves.
+  void jacobian_moved_slightly() {
+    if (range_space_ && schur_ready_)
+      jacobian_stale_ = schur_stale_ = true;
+    else
+      schur_ready_ = false;
+  }
 
   // Forms K from the Jacobian values and factorises it. The penalty alpha is fixed at the first
   // call: 1e4 times the mass matrix's largest diagonal over the largest of Phi_q^T Phi_q. False
   // when K is singular: a motion that the kept rows allow moves no mass.
   bool factorize(const std::vector<double>& values);
 
+  // How far a solve goes: one round (a projection's correction); rounds of iterative refinement
+  // until x is at rounding (an output row's accelerations); or, as_needed, one round where M's
+  // factor and a Schur complement formed at these values and well conditioned (its pivots' ratio
+  // above kWellConditioned) leave an error within about eps / kWellConditioned (1e-12) of x's
+  // size, and rounds to rounding elsewhere (the integrator's stages, whose own error is the
+  // tolerance's, 1e-8 by default).
+  enum class Rounds { one, to_rounding, as_needed };
+
   // Solves the system with the Jacobian `values` (exact; K from the last factorize, which may be
   // at a nearby point: it only preconditions). `lambda` starts the iteration (a warm start) and
-  // returns the multipliers. With `refine`, rounds of iterative refinement take x to rounding;
-  // without, one round leaves a relative error of about alpha eps (1e-10) in the part of x that
+  // returns the multipliers. Rounds of iterative refinement take x to rounding (`rounds`);
+  // one round leaves a relative error of about alpha eps (1e-10) in the part of x that
   // the constraints leave free, which is nothing for a projection's small correction. Returns the
   // largest |Phi_q x - c| left, relative to |c| + |Phi_q||x|: about 1e-15 where the system is
   // consistent, of order 1 where the rows have become dependent and c asks the impossible
   // (exactly at a toggle). Where the iterations do not settle (next to a toggle) it falls back to
   // the dense null-space solve of the first version.
   double solve(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
-               Eigen::VectorXd& x, Eigen::VectorXd& lambda, bool refine);
+               Eigen::VectorXd& x, Eigen::VectorXd& lambda, Rounds rounds);
 
   // out = Phi_q x, and out = Phi_q^T y.
   void apply(const std::vector<double>& values, const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
@@ -95,20 +114,25 @@ class AugmentedSystem {
   // time).
   template <int N, int M>
   double solve_small(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
-                     Eigen::VectorXd& x, Eigen::VectorXd& lambda, bool refine);
+                     Eigen::VectorXd& x, Eigen::VectorXd& lambda, Rounds rounds);
   // Phi_q dense, W = U^-T Phi_q^T and S = W^T W = Phi_q K^-1 Phi_q^T, factorised (S = L L^T);
-  // schur_usable_ false where S is singular to rounding.
+  // schur_usable_ false where S is singular to rounding, schur_conditioned_ where its pivots'
+  // ratio is above kWellConditioned.
   template <int N, int M>
   void prepare_schur(const std::vector<double>& values);
+  // The dense Phi_q from the present values (prepare_schur's first part).
+  void fill_dense_jacobian(const std::vector<double>& values);
   // A = U^T U factorised in place in u's upper triangle (n x n, column-major); false where a pivot
   // is not positive.
   template <int N>
   bool cholesky_in_place(double* u) const;
-  // y = U^-T y and x = U^-1 x, in place (A = U^T U, dense, U in u's upper triangle).
+  // y = U^-T y and x = U^-1 x, in place (A = U^T U, dense, U in u's upper triangle, the
+  // reciprocals of its diagonal in `reciprocal`: a multiplication where a division's latency
+  // chained the sweeps).
   template <int N>
-  void forward_k(const double* u, double* y) const;
+  void forward_k(const double* u, const double* reciprocal, double* y) const;
   template <int N>
-  void backward_k(const double* u, double* x) const;
+  void backward_k(const double* u, const double* reciprocal, double* x) const;
   // y = S^-1 y, in place, with S = L L^T as prepare_schur left it (M rows when compiled, M = 0:
   // m_ read at run time).
   template <int M>
@@ -118,6 +142,7 @@ class AugmentedSystem {
   void factor_mass();
   // The small direct path's factor: M's where range_space_, else K's.
   const double* small_factor() const { return range_space_ ? mass_factor_.data() : dense_k_.data(); }
+  const double* small_reciprocal() const { return range_space_ ? mass_reciprocal_.data() : k_reciprocal_.data(); }
   double solve_dense(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
                      Eigen::VectorXd& x);
   void analyse(const std::vector<Eigen::Triplet<double>>& mass);
@@ -148,7 +173,12 @@ class AugmentedSystem {
   // The dense path's (dense_): M, Phi_q (row r at r * n), W (column r at r * n), L (S's factor,
   // column-major lower), whether they are formed for the present Jacobian and S was regular there.
   Eigen::MatrixXd dense_mass_, dense_jacobian_, schur_basis_, schur_factor_;
-  bool schur_ready_ = false, schur_usable_ = false, direct_ = true;
+  // The reciprocals of the diagonals of M's, K's and S's factors.
+  Eigen::VectorXd mass_reciprocal_, k_reciprocal_, schur_reciprocal_;
+  // After jacobian_moved_slightly: the dense Phi_q not yet refreshed (jacobian_stale_), S formed
+  // at other values than the present (schur_stale_, until S is formed again).
+  bool schur_ready_ = false, schur_usable_ = false, direct_ = true, jacobian_stale_ = false, schur_stale_ = false,
+       schur_conditioned_ = false;
   // M's factor (mass_factor_, upper) where M is regular (mass_regular_); range_space_ while the
   // small direct path solves with it (S = Phi_q M^-1 Phi_q^T, no penalty), K then formed only for
   // the iterations (k_formed_ says whether dense_k_ holds K's factor for the present Jacobian).

@@ -126,6 +126,7 @@ class EquationsOfMotion {
       if (!rows[r].is_driver() || !m.drivers[rows[r].driver].free) kept_.push_back(static_cast<int>(r));
     selected_.assign(rows.size(), -1);
     for (std::size_t i = 0; i < kept_.size(); ++i) selected_[kept_[i]] = static_cast<int>(i);
+    for (const int r : kept_) time_dependent_ = time_dependent_ || rows[r].is_driver();
     std::vector<AugmentedSystem::Entry> entries;
     const auto& pattern = mech.equations().pattern;
     for (std::size_t i = 0; i < pattern.size(); ++i)
@@ -214,13 +215,23 @@ class EquationsOfMotion {
   // The Jacobian at q, at the time of the last factorisation, whose matrix stays (near q it
   // preconditions the solves with the new Jacobian), and the kept rows' residuals at q: one pass
   // over the rows.
-  const Eigen::VectorXd& update_jacobian_and_residuals(const Eigen::VectorXd& q) {
+  // `moved`: how far q is from where the Jacobian was evaluated last (the largest change of a
+  // coordinate, m); within kSlightMove of the drawing's size the Schur complement formed there
+  // stays (AugmentedSystem::jacobian_moved_slightly).
+  const Eigen::VectorXd& update_jacobian_and_residuals(const Eigen::VectorXd& q, double moved) {
     evaluate_residuals_and_jacobian(mech_, q, drivers_, all_rows_, jacobian_values_);
-    system_->jacobian_changed();
+    if (moved <= kSlightMove * mech_.drawing_size())
+      system_->jacobian_moved_slightly();
+    else
+      system_->jacobian_changed();
     return select(all_rows_, residual_);
   }
   // Phi_t of the kept rows at q: the first Taylor coefficient of Phi with q' = 0.
   const Eigen::VectorXd& time_derivative(const Eigen::VectorXd& q) {
+    if (!time_dependent_) {  // only the kinematic drivers' rows depend on t
+      time_derivative_.setZero(kept_rows());
+      return time_derivative_;
+    }
     if (first_order_.rows() != n_) first_order_.setZero(n_, 2);  // q' stays zero
     first_order_.col(0) = q;
     evaluate_series_remainder(mech_, first_order_, 1, drivers_, all_rows_);
@@ -251,22 +262,25 @@ class EquationsOfMotion {
   // reuse the factorisation of the accelerations' system.
   const Eigen::VectorXd& correction(const Eigen::VectorXd& c) {
     projection_lambda_.setZero(kept_rows());
-    system_->solve(jacobian_values_, zero_force_, c, correction_, projection_lambda_, false);
+    system_->solve(jacobian_values_, zero_force_, c, correction_, projection_lambda_, AugmentedSystem::Rounds::one);
     return correction_;
   }
 
   // q'' at (t, q, q') and the powers of the energy balance. Throws SimulationStop where the
   // accelerations are not determined: the kept rows dependent (a toggle), a free motion without
   // inertia.
-  const Rates& evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  // `rounds`: the accelerations to rounding (a row's), or as the integrator's stages need them.
+  const Rates& evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                        AugmentedSystem::Rounds rounds = AugmentedSystem::Rounds::to_rounding) {
     factorise(t, q);
-    return evaluate_factorised(t, q, qd);
+    return evaluate_factorised(t, q, qd, rounds);
   }
   // The same with the factorisation made at (or near) q, at t, the Jacobian at q.
-  const Rates& evaluate_factorised(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  const Rates& evaluate_factorised(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                   AugmentedSystem::Rounds rounds = AugmentedSystem::Rounds::to_rounding) {
     double dissipated = 0.0, applied = 0.0;
     generalised_forces(t, q, qd, dissipated, applied, loads_);
-    const double left = system_->solve(jacobian_values_, loads_, gamma(q, qd), rates_.acceleration, lambda_, true);
+    const double left = system_->solve(jacobian_values_, loads_, gamma(q, qd), rates_.acceleration, lambda_, rounds);
     // Where the rows have become dependent the acceleration constraints ask the impossible and
     // what is left of them stays of order 1; near (not at) a toggle the solve still converges.
     if (!(left <= kDependentRows) && !singular_allowed_) {
@@ -303,14 +317,15 @@ class EquationsOfMotion {
   // sense, as if the lost constraint were free.
   void allow_singular(bool allowed) { singular_allowed_ = allowed; }
 
-  // The gate at q (the time of the last factorisation), from the kinematics' own sparse LU
-  // (its pivots chosen once and replayed).
-  Gate gate_at(const Eigen::VectorXd& q) {
+  // The gate at (t, q), from the kinematics' own sparse LU (its pivots chosen once and replayed).
+  Gate gate_at(double t, const Eigen::VectorXd& q) {
     // A step's end and the next step's start ask at the same q and time: the answer is kept.
-    if (gate_known_ && gate_time_ == drivers_time_ && gate_q_.size() == q.size() && gate_q_ == q) return gate_;
+    if (gate_known_ && gate_time_ == t && gate_q_.size() == q.size() && gate_q_ == q) return gate_;
+    // The kinematic drivers at t: the rows recorded since the step's end left them at theirs.
+    if (drivers_time_ != t) own_drivers_at(t);
     gate_ = gate_at_anew(q);
     gate_known_ = true;
-    gate_time_ = drivers_time_;
+    gate_time_ = t;
     gate_q_ = q;
     return gate_;
   }
@@ -353,6 +368,10 @@ class EquationsOfMotion {
   // A relative residual of the acceleration constraints above this after the solve: the rows
   // have become dependent.
   static constexpr double kDependentRows = 1e-6;
+  // A projection's correction below this fraction of the drawing keeps the Schur complement: it
+  // changes the Jacobian by about as much, relative, and each round of the solves' refinement then
+  // gains six digits or more (two rounds to rounding, as with S formed anew).
+  static constexpr double kSlightMove = 1e-6;
 
   const Eigen::SparseMatrix<double>& mass() const { return system_->mass(); }
 
@@ -530,6 +549,7 @@ class EquationsOfMotion {
   int n_ = 0;
   std::vector<int> kept_;      // rows of Phi kept, in order
   std::vector<int> selected_;  // per row: its place among the kept, or -1
+  bool time_dependent_ = false;  // a kept row is a kinematic driver's: Phi_t may be nonzero
   Eigen::VectorXd gravity_;
   std::vector<BodyMass> bodies_;
   std::optional<AugmentedSystem> system_;
@@ -587,7 +607,7 @@ class Integrator {
     ++evaluations_;
     evaluated_q_ = y.head(n_);
     evaluated_qd_ = y.segment(n_, n_);
-    const EquationsOfMotion::Rates& r = eq_.evaluate(t, evaluated_q_, evaluated_qd_);
+    const EquationsOfMotion::Rates& r = eq_.evaluate(t, evaluated_q_, evaluated_qd_, kStage);
     f.resize(y.size());
     f.head(n_) = evaluated_qd_;
     f.segment(n_, n_) = r.acceleration;
@@ -598,29 +618,34 @@ class Integrator {
   // Moves q onto Phi = 0 and q' onto Phi_q q' = -Phi_t at t by the smallest corrections in the
   // mass's metric; false when Newton fails. The augmented matrix is factorised once, at the first
   // q: the corrections are small, and each solve satisfies the Jacobian at the present q, which
-  // is left there for the accelerations (evaluate_factorised). With `exact` (an output row) one
-  // more Newton step follows the one that reached the tolerance: Newton converges quadratically,
-  // so from |Phi| within 1e-12 of the size it lands at rounding, and a row's residual no longer
-  // depends on where the iteration happened to stop (which rounding of another platform moves).
-  // The residuals are then evaluated again at the final q, the ones a row reports.
+  // is left there for the accelerations (evaluate_factorised). With `exact` (an output row) the
+  // positions end at rounding, so that a row's residual does not depend on where the iteration
+  // happened to stop (which rounding of another platform moves): Newton converges quadratically,
+  // and the residual after a correction d is of the order of d^2 / length. After a correction
+  // below kRoundingMove of the drawing (an output row's, from a step's interpolant, is typically
+  // 1e-9 of it) it is at rounding; otherwise one more Newton step follows the one that reached
+  // the tolerance (from |Phi| within 1e-12 of the size it lands at rounding). The residuals a row
+  // reports are those at the final q.
   bool project(double t, Eigen::VectorXd& y, bool exact = false) {
     q_ = y.head(n_);
     const double tolerance = mech_.tolerance();
     bool converged = false;
+    double moved = 0.0;  // the last correction's largest change of a coordinate
     for (int iteration = 0; iteration < 12; ++iteration) {
       const Eigen::VectorXd& phi =
-          iteration > 0 ? eq_.update_jacobian_and_residuals(q_) : eq_.factorise_with_residuals(t, q_);
+          iteration > 0 ? eq_.update_jacobian_and_residuals(q_, moved) : eq_.factorise_with_residuals(t, q_);
       if (!phi.allFinite()) return false;
       if (phi.size() == 0 || phi.lpNorm<Eigen::Infinity>() <= tolerance) {
         converged = true;
         break;
       }
-      q_ -= eq_.correction(phi);
+      moved = correct_positions(phi);
     }
     if (!converged) return false;
-    if (exact && eq_.kept_rows() > 0) {
-      q_ -= eq_.correction(eq_.last_residuals());
-      if (!eq_.update_jacobian_and_residuals(q_).allFinite()) return false;
+    const bool at_rounding = moved > 0.0 && moved <= kRoundingMove * mech_.drawing_size();
+    if (exact && eq_.kept_rows() > 0 && !at_rounding) {
+      moved = correct_positions(eq_.last_residuals());
+      if (!eq_.update_jacobian_and_residuals(q_, moved).allFinite()) return false;
     }
     qd_ = y.segment(n_, n_);
     velocity_error_ = eq_.jacobian_times(qd_) + eq_.time_derivative(q_);
@@ -628,6 +653,25 @@ class Integrator {
     y.head(n_) = q_;
     y.segment(n_, n_) = qd_;
     return y.allFinite();
+  }
+
+  // The derivative at the state project() returned last, at its time: the Jacobian and the
+  // factorisation it left are used as they are (one evaluation of the Jacobian and one forming of
+  // the Schur complement fewer than derivative()). False, with f untouched, where the accelerations
+  // are not determined there (a toggle): derivative() then says so when it is asked.
+  bool derivative_after_projection(double t, const Eigen::VectorXd& y, Eigen::VectorXd& f) {
+    try {
+      const EquationsOfMotion::Rates& r = eq_.evaluate_factorised(t, q_, qd_, kStage);
+      ++evaluations_;
+      f.resize(y.size());
+      f.head(n_) = qd_;
+      f.segment(n_, n_) = r.acceleration;
+      f(2 * n_) = r.dissipated;
+      f(2 * n_ + 1) = r.work_in;
+      return true;
+    } catch (const SimulationStop&) {
+      return false;
+    }
   }
 
   // Weighted RMS norm of the q and q' parts (the work integrals are quadratures of the same steps
@@ -704,6 +748,17 @@ class Integrator {
   long evaluations() const { return evaluations_; }
 
  private:
+  static constexpr double kRoundingMove = 1e-8;
+  // The stages' accelerations: their error need only be well below the tolerance's.
+  static constexpr AugmentedSystem::Rounds kStage = AugmentedSystem::Rounds::as_needed;
+
+  // q_ -= the correction of the residuals phi; returns its largest change of a coordinate.
+  double correct_positions(const Eigen::VectorXd& phi) {
+    const Eigen::VectorXd& dq = eq_.correction(phi);
+    q_ -= dq;
+    return dq.lpNorm<Eigen::Infinity>();
+  }
+
   const Mechanism& mech_;
   EquationsOfMotion& eq_;
   const SimulationOptions& options_;
@@ -874,6 +929,9 @@ class Run {
     if (output_times_.back() < options.end_time * (1 - 1e-12))
       output_times_.push_back(options.end_time);  // the end too
     outputs_ = static_cast<long>(output_times_.size()) - 1;
+    // Every row is kept (events add a few): growing the vectors moved the rows already made.
+    out_.samples.reserve(output_times_.size() + 4);
+    out_.energies.reserve(output_times_.size() + 4);
   }
 
   Simulation run() {
@@ -916,6 +974,9 @@ class Run {
           throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(t1) +
                                    " (the mechanism may have reached a limit of its motion)",
                                eq_.first_free_driver()};
+        // The next step's first stage now, while the projection's factorisation is at y1 (the
+        // rows and the events' search move it); an event's step computes it again where it ends.
+        const bool next_k1_ready = integrator_.derivative_after_projection(t1, y1, next_k1_);
         const std::optional<Found> event = first_event(t, h, s, y1);
         const double reached = event ? t + event->theta * h : t1;
         while (next_output <= outputs_ && output_time(next_output) <= reached * (1 + 1e-13)) {
@@ -936,7 +997,10 @@ class Run {
         }
         y_ = y1;
         t = t1;
-        integrator_.derivative(t, y_, k1);
+        if (next_k1_ready)
+          k1.swap(next_k1_);
+        else
+          integrator_.derivative(t, y_, k1);
         keep_toggle_reference(t);
         if (probe_) condition_ = condition_at(t, y_, true);
         h *= std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(s.error, 1e-10), -0.2)));
@@ -1009,7 +1073,7 @@ class Run {
   // measure is dense; the sparse gate at the step's ends decides whether it is needed at all.
   std::optional<double> toggle_on_step(double t, double h, const Integrator::Step& s, const Eigen::VectorXd& y1,
                                        double tolerance) {
-    const EquationsOfMotion::Gate end = eq_.gate_at(y1.head(n_));
+    const EquationsOfMotion::Gate end = eq_.gate_at(t + h, y1.head(n_));
     if (gate_scale_ == 0.0) gate_scale_ = end.pivot_ratio;
     if (end.square && gate_start_.square && end.sign != 0 && end.sign == gate_start_.sign &&
         std::min(end.pivot_ratio, gate_start_.pivot_ratio) >= kGateNear * gate_scale_)
@@ -1079,7 +1143,7 @@ class Run {
   void keep_toggle_reference(double t) {
     step_start_time_ = t;
     step_start_q_ = y_.head(n_);
-    gate_start_ = eq_.gate_at(step_start_q_);
+    gate_start_ = eq_.gate_at(t, step_start_q_);
     if (gate_scale_ == 0.0) gate_scale_ = gate_start_.pivot_ratio;
     toggle_reference_ready_ = false;
   }
@@ -1245,7 +1309,7 @@ class Run {
   long outputs_ = 0;
   Eigen::VectorXd y_;
   // Work vectors, sized once: the step's projected end, a row's interpolated and projected state.
-  Eigen::VectorXd y1_, interpolated_, row_y_, row_q_, row_qd_;
+  Eigen::VectorXd y1_, next_k1_, interpolated_, row_y_, row_q_, row_qd_;
   Integrator::Step step_;  // the last step's, kept for its storage
   std::vector<double> previous_values_;
   double energy_at_start_ = 0.0;
