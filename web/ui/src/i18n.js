@@ -1,6 +1,10 @@
 // The app's strings, English and Spanish. t(key, ...args) picks the current language.
 const strings = {
   en: {
+    // Names that screen readers say (aria-label): data-i18n-aria in the page.
+    ariaLanguage: 'Language', ariaLink: 'Link', ariaDrawing: 'Drawing', ariaSample: 'Sample',
+    ariaStressMap: 'Stress map', play: 'Play', pause: 'Pause',
+    law: 'Law', stiffness: 'Stiffness', freeLength: 'Free length',
     noModel: 'No model', share: 'Share', shareTitle: 'Copy a link holding this model',
     gallery: 'Gallery', editor: 'Editor', synthesis: 'Synthesis', downloads: 'Downloads',
     plot: 'Plot', table: 'Table', column: 'Column', run: 'Run',
@@ -37,6 +41,9 @@ const strings = {
     copyLink: 'Copy this link:', copyByHand: 'The link could not be copied here: copy it from the box under the header.',
   },
   es: {
+    ariaLanguage: 'Idioma', ariaLink: 'Enlace', ariaDrawing: 'Dibujo', ariaSample: 'Muestra',
+    ariaStressMap: 'Mapa de tensiones', play: 'Reproducir', pause: 'Pausa',
+    law: 'Ley', stiffness: 'Rigidez', freeLength: 'Longitud libre',
     noModel: 'Sin modelo', share: 'Compartir', shareTitle: 'Copiar un enlace con este modelo',
     gallery: 'Galería', editor: 'Editor', synthesis: 'Síntesis', downloads: 'Descargas',
     plot: 'Gráfica', table: 'Tabla', column: 'Columna', run: 'Calcular',
@@ -102,4 +109,5 @@ export function translatePage() {
     el.textContent = t(el.dataset.i18n);
   }
   for (const el of document.querySelectorAll('[data-i18n-title]')) el.title = t(el.dataset.i18nTitle);
+  for (const el of document.querySelectorAll('[data-i18n-aria]')) el.setAttribute('aria-label', t(el.dataset.i18nAria));
 }

@@ -638,7 +638,8 @@ function play(on) {
   state.playing = on;
   const b = $('#play');
   b.textContent = on ? '❚❚' : '▶';
-  b.setAttribute('aria-label', on ? 'Pause' : 'Play');
+  b.dataset.i18nAria = on ? 'pause' : 'play';  // said in the language chosen, now and after a change
+  b.setAttribute('aria-label', t(b.dataset.i18nAria));
   last = 0;
   head = state.frame;
   if (on) requestAnimationFrame(tick);

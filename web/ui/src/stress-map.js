@@ -162,7 +162,7 @@ function build() {
   box.id = 'femap';
   box.className = 'femap';
   box.hidden = true;
-  box.innerHTML = '<div id="femap-drawing" class="femap-drawing" aria-label="Stress map"></div>'
+  box.innerHTML = `<div id="femap-drawing" class="femap-drawing" aria-label="${t('ariaStressMap')}" data-i18n-aria="ariaStressMap"></div>`
     + '<p id="probe" class="probe" aria-live="polite"></p><div id="femap-peaks" class="femap-peaks"></div>';
   $('.overlays').append(box);
   label.querySelector('input').addEventListener('change', (e) => {

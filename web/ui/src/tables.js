@@ -154,8 +154,8 @@ function jointsSection(m) {
     (Array.isArray(m[kind]) ? m[kind] : []).forEach((s, i) => {
       if (!isObj(s)) return;
       rows.push(`<tr><th>${kind === 'sliders' ? t('slider') : t('slot')}${s.body ? ` ${esc(s.body)}` : ''}</th>`
-        + `<td>${field([kind, i, 'point'], s.point, 'text', `${kind} ${i + 1} point`)}</td>`
-        + `<td>${field([kind, i, 'along'], s.along, 'list', `${kind} ${i + 1} along`)}</td>${removeButton([kind, i], t('deleteRow'))}</tr>`);
+        + `<td>${field([kind, i, 'point'], s.point, 'text', `${t(kind === 'sliders' ? 'slider' : 'slot')} ${i + 1}: ${t('point')}`)}</td>`
+        + `<td>${field([kind, i, 'along'], s.along, 'list', `${t(kind === 'sliders' ? 'slider' : 'slot')} ${i + 1}: ${t('along')}`)}</td>${removeButton([kind, i], t('deleteRow'))}</tr>`);
     });
   }
   // A new slider: a body, its sliding point, and the two points of its guide.
@@ -173,9 +173,9 @@ function driversSection(m) {
     const what = ['angle', 'distance', 'slide'].find((k) => k in d);
     const label = what ? `${what}: ${showValue(d[what])}${d.relative_to ? ` / ${d.relative_to}` : ''}` : '?';
     const cells = d.law !== undefined
-      ? `<td colspan="4">${field(['drivers', i, 'law'], d.law, 'text', `driver ${i + 1} law`)}</td>`
-      : ['from', 'to', 'speed'].map((k) => `<td>${field(['drivers', i, k], d[k], 'num', `driver ${i + 1} ${k}`)}</td>`).join('')
-        + `<td>${field(['drivers', i, 'at_limits'], d.at_limits, 'text', `driver ${i + 1} at_limits`)}</td>`;
+      ? `<td colspan="4">${field(['drivers', i, 'law'], d.law, 'text', `${t('driver')} ${i + 1}: ${t('law')}`)}</td>`
+      : ['from', 'to', 'speed'].map((k) => `<td>${field(['drivers', i, k], d[k], 'num', `${t('driver')} ${i + 1}: ${t(k)}`)}</td>`).join('')
+        + `<td>${field(['drivers', i, 'at_limits'], d.at_limits, 'text', `${t('driver')} ${i + 1}: ${t('atLimits')}`)}</td>`;
     return `<tr><th>${esc(label)}</th>${cells}${removeButton(['drivers', i], t('deleteRow'))}</tr>`;
   });
   // A new driver: the angle of a body, a full turn at 60 rpm (edit the numbers after).
@@ -190,18 +190,18 @@ function loadsSection(m) {
   (Array.isArray(m.forces) ? m.forces : []).forEach((f, i) => {
     if (!isObj(f)) return;
     const comps = Array.isArray(f.force)
-      ? `<td>${field(['forces', i, 'force', 0], f.force[0], 'num', `force ${i + 1} fx`)}</td><td>${field(['forces', i, 'force', 1], f.force[1], 'num', `force ${i + 1} fy`)}</td>`
-      : `<td>${field(['forces', i, 'fx'], f.fx, 'num', `force ${i + 1} fx`)}</td><td>${field(['forces', i, 'fy'], f.fy, 'num', `force ${i + 1} fy`)}</td>`;
+      ? `<td>${field(['forces', i, 'force', 0], f.force[0], 'num', `${t('load')} ${i + 1}: Fx`)}</td><td>${field(['forces', i, 'force', 1], f.force[1], 'num', `${t('load')} ${i + 1}: Fy`)}</td>`
+      : `<td>${field(['forces', i, 'fx'], f.fx, 'num', `${t('load')} ${i + 1}: Fx`)}</td><td>${field(['forces', i, 'fy'], f.fy, 'num', `${t('load')} ${i + 1}: Fy`)}</td>`;
     rows.push(`<tr><th>${t('force')} ${esc(f.point)}</th>${comps}${removeButton(['forces', i], t('deleteRow'))}</tr>`);
   });
   (Array.isArray(m.torques) ? m.torques : []).forEach((q, i) => {
     if (!isObj(q)) return;
-    rows.push(`<tr><th>${t('torque')} ${esc(q.body)}</th><td colspan="2">${field(['torques', i, 'torque'], q.torque, 'num', `torque ${i + 1}`)}</td>${removeButton(['torques', i], t('deleteRow'))}</tr>`);
+    rows.push(`<tr><th>${t('torque')} ${esc(q.body)}</th><td colspan="2">${field(['torques', i, 'torque'], q.torque, 'num', `${t('torque')} ${esc(q.body)}`)}</td>${removeButton(['torques', i], t('deleteRow'))}</tr>`);
   });
   (Array.isArray(m.springs) ? m.springs : []).forEach((s, i) => {
     if (!isObj(s)) return;
-    rows.push(`<tr><th>${t('spring')} ${esc(showValue(s.between))}</th><td>${field(['springs', i, 'stiffness'], s.stiffness, 'num', `spring ${i + 1} stiffness`)}</td>`
-      + `<td>${field(['springs', i, 'free_length'], s.free_length, 'num', `spring ${i + 1} free length`)}</td>${removeButton(['springs', i], t('deleteRow'))}</tr>`);
+    rows.push(`<tr><th>${t('spring')} ${esc(showValue(s.between))}</th><td>${field(['springs', i, 'stiffness'], s.stiffness, 'num', `${t('spring')} ${i + 1}: ${t('stiffness')}`)}</td>`
+      + `<td>${field(['springs', i, 'free_length'], s.free_length, 'num', `${t('spring')} ${i + 1}: ${t('freeLength')}`)}</td>${removeButton(['springs', i], t('deleteRow'))}</tr>`);
   });
   // A new force at a point (N, pointing down) or torque on a body (N m): edit the values after.
   const pts = pointNames(m); const bs = bodyNames(m);

@@ -82,7 +82,7 @@ async function typeField(page, ctx, label, value) {
   await edited(page, before);
 }
 
-// The words of English on screen, and in the visible controls' tooltips and labels.
+// The words of English on screen, and in the visible controls' tooltips and aria-labels.
 async function englishLeft(page) {
   const names = namesOf(await yamlText(page));
   // A name the tools made (link1, block1, G2) is the model's, its letters too.
@@ -92,9 +92,10 @@ async function englishLeft(page) {
   const title = await page.locator('#model-name').textContent();
   for (const w of title.toLowerCase().match(/[a-zà-ÿ]+(?:-[a-zà-ÿ]+)*/g) ?? []) names.add(w);
   const found = await englishOnScreen(page, names);
-  const tips = await page.evaluate(() => [...document.querySelectorAll('[title]')]
+  // What a screen reader says of a control (aria-label) counts as much as its tooltip.
+  const tips = await page.evaluate(() => [...document.querySelectorAll('[title], [aria-label]')]
     .filter((el) => !el.closest('.cm-editor, [hidden]') && el.checkVisibility({ checkVisibilityCSS: true }) && el.getBoundingClientRect().width > 0)
-    .map((el) => el.getAttribute('title')).filter(Boolean));
+    .flatMap((el) => [el.getAttribute('title'), el.getAttribute('aria-label')]).filter(Boolean));
   return found.concat(await englishOnScreen(page, names, tips));
 }
 
@@ -205,7 +206,8 @@ async function finishInModelTab(page, ctx, stepShot) {
   await page.selectOption('[data-adder="driver"] [data-add="body"]', 'link1');
   await click(page, mobile, '[data-add-go="driver"]');
   await edited(page, text);
-  await typeField(page, ctx, 'driver 1 speed', '3000 rpm');
+  // Found by its label as a screen reader says it, in the language on screen.
+  await typeField(page, ctx, await page.locator('[data-path=\'["drivers",0,"speed"]\']').getAttribute('aria-label'), '3000 rpm');
   await page.waitForFunction(() => /^1 (DOF|GDL) · \d+ (samples|muestras)$/.test(document.querySelector('#status').textContent));
   assert.equal(await page.locator('#drawing svg[data-sketch]').count(), 0, 'solved: the drawing is the solved one');
 

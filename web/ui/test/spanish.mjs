@@ -23,7 +23,7 @@ const english = new Set(`the and of from with is are not has have this that by o
   new undo redo plot table forces force torque stress change tab here your whole should
   crank-rocker rocker-crank double-crank double-rocker triple-rocker four-bar slider-crank
   converged evaluation evaluations residual below until tolerance mobility coordinates every
-  downloads synthesis explain retry updated offline open`.split(/\s+/).filter(Boolean));
+  downloads synthesis explain retry updated offline open play pause drawing language`.split(/\s+/).filter(Boolean));
 
 async function post(base, path, body) {
   const r = await fetch(new URL(path, base), { method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify(body) });
