@@ -362,21 +362,22 @@ void AugmentedSystem::prepare_schur(const std::vector<double>& values) {
       l[b * m + a] = sum;
       if (a == b) most = std::max(most, sum);
     }
-  // A small pivot: the rows nearly dependent there (next to a toggle).
+  // S = L D L^T with L unit lower (no square roots, whose latency chained the columns), the
+  // reciprocals of D kept. A small pivot: the rows nearly dependent there (next to a toggle).
   schur_usable_ = false;
   schur_conditioned_ = true;
+  double* over_d = schur_reciprocal_.data();
   for (int b = 0; b < m; ++b) {
-    double diagonal = l[b * m + b];
-    for (int k = 0; k < b; ++k) diagonal -= l[k * m + b] * l[k * m + b];
-    if (!(diagonal > kSingularSchur * most)) return;
-    if (!(diagonal > kWellConditioned * most)) schur_conditioned_ = false;
-    const double pivot = std::sqrt(diagonal), over_pivot = 1.0 / pivot;
+    double pivot = l[b * m + b];
+    for (int k = 0; k < b; ++k) pivot -= l[k * m + b] * l[k * m + b] * l[k * m + k];
+    if (!(pivot > kSingularSchur * most)) return;
+    if (!(pivot > kWellConditioned * most)) schur_conditioned_ = false;
     l[b * m + b] = pivot;
-    schur_reciprocal_[b] = over_pivot;
+    over_d[b] = 1.0 / pivot;
     for (int a = b + 1; a < m; ++a) {
       double sum = l[b * m + a];
-      for (int k = 0; k < b; ++k) sum -= l[k * m + a] * l[k * m + b];
-      l[b * m + a] = sum * over_pivot;
+      for (int k = 0; k < b; ++k) sum -= l[k * m + a] * l[k * m + b] * l[k * m + k];
+      l[b * m + a] = sum * over_d[b];
     }
   }
   schur_usable_ = true;
@@ -385,16 +386,18 @@ void AugmentedSystem::prepare_schur(const std::vector<double>& values) {
 template <int M>
 void AugmentedSystem::solve_schur(double* y) const {
   const int m = M > 0 ? M : m_;
-  const double *l = schur_factor_.data(), *reciprocal = schur_reciprocal_.data();  // L(a, b) = l[b * m + a], a >= b
+  // L(a, b) = l[b * m + a], a > b, unit diagonal; D(b) = l[b * m + b].
+  const double *l = schur_factor_.data(), *over_d = schur_reciprocal_.data();
   for (int a = 0; a < m; ++a) {
     double sum = y[a];
     for (int k = 0; k < a; ++k) sum -= l[k * m + a] * y[k];
-    y[a] = sum * reciprocal[a];
+    y[a] = sum;
   }
+  for (int a = 0; a < m; ++a) y[a] *= over_d[a];
   for (int a = m - 1; a >= 0; --a) {
     double sum = y[a];
     for (int k = a + 1; k < m; ++k) sum -= l[a * m + k] * y[k];
-    y[a] = sum * reciprocal[a];
+    y[a] = sum;
   }
 }
 

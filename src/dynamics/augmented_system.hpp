@@ -115,7 +115,7 @@ class AugmentedSystem {
   template <int N, int M>
   double solve_small(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
                      Eigen::VectorXd& x, Eigen::VectorXd& lambda, Rounds rounds);
-  // Phi_q dense, W = U^-T Phi_q^T and S = W^T W = Phi_q K^-1 Phi_q^T, factorised (S = L L^T);
+  // Phi_q dense, W = U^-T Phi_q^T and S = W^T W = Phi_q K^-1 Phi_q^T, factorised (S = L D L^T);
   // schur_usable_ false where S is singular to rounding, schur_conditioned_ where its pivots'
   // ratio is above kWellConditioned.
   template <int N, int M>
@@ -133,7 +133,7 @@ class AugmentedSystem {
   void forward_k(const double* u, const double* reciprocal, double* y) const;
   template <int N>
   void backward_k(const double* u, const double* reciprocal, double* x) const;
-  // y = S^-1 y, in place, with S = L L^T as prepare_schur left it (M rows when compiled, M = 0:
+  // y = S^-1 y, in place, with S = L D L^T as prepare_schur left it (M rows when compiled, M = 0:
   // m_ read at run time).
   template <int M>
   void solve_schur(double* y) const;
@@ -170,10 +170,10 @@ class AugmentedSystem {
   std::vector<double> base_;       // K's stored values from M alone
   std::vector<Product> products_;  // the alpha Phi_q^T Phi_q part
   Eigen::MatrixXd dense_k_;        // upper triangle used (dense_): K, then its factor U
-  // The dense path's (dense_): M, Phi_q (row r at r * n), W (column r at r * n), L (S's factor,
-  // column-major lower), whether they are formed for the present Jacobian and S was regular there.
+  // The dense path's (dense_): M, Phi_q (row r at r * n), W (column r at r * n), L and D (S's
+  // factor L D L^T, column-major lower, D on the diagonal), whether they are formed for the present Jacobian and S was regular there.
   Eigen::MatrixXd dense_mass_, dense_jacobian_, schur_basis_, schur_factor_;
-  // The reciprocals of the diagonals of M's, K's and S's factors.
+  // The reciprocals of the diagonals of M's and K's factors, and of S's D.
   Eigen::VectorXd mass_reciprocal_, k_reciprocal_, schur_reciprocal_;
   // After jacobian_moved_slightly: the dense Phi_q not yet refreshed (jacobian_stale_), S formed
   // at other values than the present (schur_stale_, until S is formed again).
