@@ -312,5 +312,25 @@ TEST(AnswerLanguage, CheckDescriptionsInSpanish) {
             "completa (Whitworth)");
 }
 
+// A simulation's JSON carried as a text in the answer (/api/simulate's `downloads`, which the web
+// app shows and saves) is in the answer's language as the JSON answer of its own is, byte for
+// byte; the CSV has no messages.
+TEST(AnswerLanguage, ASimulationsDownloadsAreInTheAnswersLanguage) {
+  const Json options = {{"to", 1}, {"dt", 0.1}, {"stop_when", "crank > 15"}, {"lang", "es"}};
+  Json asked = options;
+  asked["downloads"] = {"json", "csv"};
+  const Json j = Json::parse(post("/api/simulate", with_model("examples/crank-rocker-released.yaml", asked)).body);
+  const std::string alone = post("/api/simulate", with_model("examples/crank-rocker-released.yaml", options)).body;
+  EXPECT_EQ(j["downloads"]["json"], alone);
+  const Json events = Json::parse(j["downloads"]["json"].get<std::string>())["events"];
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0]["message"], "la condición de parada 'crank > 15' se cumplió en t = 0.0317652045 s");
+  Json english = asked;
+  english["lang"] = "en";
+  const Json en = Json::parse(post("/api/simulate", with_model("examples/crank-rocker-released.yaml", english)).body);
+  EXPECT_EQ(j["downloads"]["csv"], en["downloads"]["csv"]);
+  EXPECT_NE(j["downloads"]["json"], en["downloads"]["json"]);
+}
+
 }  // namespace
 }  // namespace nbar::web_test
