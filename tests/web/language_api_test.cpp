@@ -156,7 +156,8 @@ drivers:
       {"/api/check", Json{{"model", "units: {length: mm}\npoints: {}\n"}}},
       {"/api/outline", Json{{"model", "units: {length: mm}\npoints: {}\n"}}},
       // A simulation's event: its stop condition met.
-      {"/api/simulate", with_model("examples/crank-rocker-released.yaml", {{"to", 1}, {"dt", 0.1}, {"stop_when", "crank > 15"}})},
+      {"/api/simulate",
+       with_model("examples/crank-rocker-released.yaml", {{"to", 1}, {"dt", 0.1}, {"stop_when", "crank > 15"}})},
   };
   // Every bundled example's check (its joints, loops' Grashof classes and warnings) and solve.
   for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(NBAR_SOURCE_DIR) / "examples")) {

@@ -143,7 +143,8 @@ TEST(WebSimulate, DownloadsAreTheRunInEachFormatInTheSameAnswer) {
   Json asked = options;
   asked["downloads"] = "table,csv";
   const Json both = Json::parse(post("/api/simulate", with_model(kReleased, asked)).body);
-  const std::string same = std::string("simulate ") + kReleased + " --to 1 --dt 0.05 --columns 't,crank,energy.*' --stop-when 'crank > 15'";
+  const std::string same =
+      std::string("simulate ") + kReleased + " --to 1 --dt 0.05 --columns 't,crank,energy.*' --stop-when 'crank > 15'";
   EXPECT_EQ(both["downloads"]["table"], cli(same + " --format table").out);
   EXPECT_EQ(both["downloads"]["csv"], cli(same).out);
   EXPECT_EQ(both["simulation"], Json::parse(post("/api/simulate", with_model(kReleased, options)).body));

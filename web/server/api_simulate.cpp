@@ -121,8 +121,9 @@ NamedRuns& named_runs() {
 // a document.
 std::string run_name(const RequestBody& body) {
   const std::string name = body.text("run");
-  const bool plain = !name.empty() && name.size() <= 64 &&
-                     std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; });
+  const bool plain = !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_';
+  });
   if (!plain) bad_input("'run' must be a name of 1 to 64 letters, digits, '-' or '_'");
   return name;
 }
@@ -175,7 +176,8 @@ SimulateExtras simulate_extras(const Job& job, const RequestBody& body, const st
   // A csv or a table cannot stand inside a JSON object as a document (it went in as raw bytes):
   // those are asked as downloads, which carry them as texts.
   if (extras.composite() && simulate.format != "json")
-    throw request::OptionError("format", "must be json with {scene} or {downloads}: ask for csv or table in {downloads}");
+    throw request::OptionError("format",
+                               "must be json with {scene} or {downloads}: ask for csv or table in {downloads}");
   return extras;
 }
 
@@ -192,16 +194,19 @@ std::string written_as(const Job& job, request::SimulateRequest simulate, const 
 // {"simulation"?, "scene"?, "downloads"?}: each document as its writer wrote it, so that each is
 // byte for byte its own answer; the simulation left out when its JSON comes as a download.
 std::string composite_answer(const Job& job, const request::SimulateRequest& simulate, const SimulateExtras& extras,
-                             const Simulation& simulation, const ResultTable& table, const std::string& simulation_json) {
+                             const Simulation& simulation, const ResultTable& table,
+                             const std::string& simulation_json) {
   std::string out = "{";
   const auto member = [&](const char* key, const std::string& value) {
     out += (out.size() > 1 ? ",\"" : "\"") + std::string(key) + "\":" + value;
   };
-  const bool json_download = std::find(extras.downloads.begin(), extras.downloads.end(), "json") != extras.downloads.end();
+  const bool json_download =
+      std::find(extras.downloads.begin(), extras.downloads.end(), "json") != extras.downloads.end();
   if (!json_download) member("simulation", simulation_json);
   if (extras.scene) {
     if (!simulation.cancelled) job.checkpoint("render");  // a run cancelled is drawn as far as it went
-    member("scene", render::drawing_scene_json(*job.mechanism, request::simulated_motion(simulation), *extras.scene, 0));
+    member("scene",
+           render::drawing_scene_json(*job.mechanism, request::simulated_motion(simulation), *extras.scene, 0));
   }
   if (!extras.downloads.empty()) {
     Json texts = Json::object();
