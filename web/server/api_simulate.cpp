@@ -181,14 +181,11 @@ SimulateExtras simulate_extras(const Job& job, const RequestBody& body, const st
   return extras;
 }
 
-// The run as `nbar simulate --format F` writes it; a JSON text with its messages in the job's
-// language, as a JSON answer of its own would be (handle_api does not look inside a text).
+// The run as `nbar simulate --format F` writes it (a csv or a table: the json is the answer's own).
 std::string written_as(const Job& job, request::SimulateRequest simulate, const std::string& format,
                        const Simulation& simulation, const ResultTable& table) {
   simulate.format = format;
-  const std::string out =
-      write([&](std::ostream& o) { simulate.write(o, *job.mechanism, simulation, table, io::kTextTableWidth); });
-  return format == "json" ? request::translate_json_answer(out, job.language) : out;
+  return write([&](std::ostream& o) { simulate.write(o, *job.mechanism, simulation, table, io::kTextTableWidth); });
 }
 
 // {"simulation"?, "scene"?, "downloads"?}: each document as its writer wrote it, so that each is
@@ -209,10 +206,12 @@ std::string composite_answer(const Job& job, const request::SimulateRequest& sim
            render::drawing_scene_json(*job.mechanism, request::simulated_motion(simulation), *extras.scene, 0));
   }
   if (!extras.downloads.empty()) {
+    // The JSON text's messages in the job's language, as the JSON answer of its own has them
+    // (handle_api translates an answer's fields, and does not look inside a text).
     Json texts = Json::object();
     for (const std::string& format : extras.downloads)
-      texts[format] = format == simulate.format ? request::translate_json_answer(simulation_json, job.language)
-                                                : written_as(job, simulate, format, simulation, table);
+      texts[format] = format == "json" ? request::translate_json_answer(simulation_json, job.language)
+                                       : written_as(job, simulate, format, simulation, table);
     member("downloads", io::json_text(texts, -1));
   }
   return out + "}\n";
