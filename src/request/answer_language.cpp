@@ -34,6 +34,13 @@ void translate_tree(Json& node, Language language) {
   }
 }
 
+// The indentation of a JSON answer: the writers indent by a few spaces, or write one line (-1).
+int json_indent(const std::string& text) {
+  if (text.size() < 2 || text[1] != '\n') return -1;
+  const std::size_t first = text.find_first_not_of(' ', 2);
+  return first == std::string::npos ? -1 : static_cast<int>(first - 2);
+}
+
 }  // namespace
 
 bool is_message_field(const std::string& key) {
@@ -42,12 +49,12 @@ bool is_message_field(const std::string& key) {
   return std::find(kFields.begin(), kFields.end(), key) != kFields.end();
 }
 
-std::string translate_json_answer(const std::string& json, Language language, int indent) {
+std::string translate_json_answer(const std::string& json, Language language) {
   if (language == Language::English) return json;
   Json answer = Json::parse(json, nullptr, false);
   if (answer.is_discarded()) return json;
   translate_tree(answer, language);
-  std::string out = io::json_text(answer, indent);
+  std::string out = io::json_text(answer, json_indent(json));
   if (!json.empty() && json.back() == '\n') out += '\n';
   return out;
 }

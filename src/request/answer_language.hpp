@@ -16,8 +16,10 @@ namespace nbar::request {
 // core did not write (a model's own) matches no template and stays as it is.
 bool is_message_field(const std::string& key);
 
-// A JSON answer's text with those fields in `language`, laid out as it was (indented by
-// `indent` spaces, or on one line when -1). The text as it is for English, or when it is not JSON.
-std::string translate_json_answer(const std::string& json, Language language, int indent);
+// A JSON answer's text with those fields in `language`, laid out as it was (indented as its
+// writer indented it, or on one line). The text as it is for English, or when it is not JSON.
+// The web API translates every JSON answer so; an endpoint that carries a JSON document inside
+// its answer as a text (/api/simulate's `downloads`) translates that text itself.
+std::string translate_json_answer(const std::string& json, Language language);
 
 }  // namespace nbar::request

@@ -171,6 +171,11 @@ const std::vector<MessageTemplate> kCatalogue = {
     {"start_step",
      "step {step}'s pose",
      "la posición del paso {step}"},
+    // A simulation's event where its stop condition is met (forward_dynamics.cpp): /api/simulate's
+    // `events`, which the web app's status says in Simulate mode.
+    {"simulation_stop_condition",
+     "the stop condition '{condition}' was met at t = {time} s",
+     "la condición de parada '{condition}' se cumplió en t = {time} s"},
     // The Grashof classes of the check's loops and of synthesis designs (the core's names).
     {"grashof_crank_rocker", "crank-rocker", "manivela-balancín"},
     {"grashof_rocker_crank", "rocker-crank", "balancín-manivela"},

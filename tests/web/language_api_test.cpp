@@ -155,6 +155,9 @@ drivers:
       // A new user's empty model: refused by the reader, outlined as a draft with no points.
       {"/api/check", Json{{"model", "units: {length: mm}\npoints: {}\n"}}},
       {"/api/outline", Json{{"model", "units: {length: mm}\npoints: {}\n"}}},
+      // A simulation's event: its stop condition met.
+      {"/api/simulate",
+       with_model("examples/crank-rocker-released.yaml", {{"to", 1}, {"dt", 0.1}, {"stop_when", "crank > 15"}})},
   };
   // Every bundled example's check (its joints, loops' Grashof classes and warnings) and solve.
   for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(NBAR_SOURCE_DIR) / "examples")) {
@@ -308,6 +311,26 @@ TEST(AnswerLanguage, CheckDescriptionsInSpanish) {
   EXPECT_EQ(whitworth["quick_returns"][0]["description"],
             "retorno rápido crank-arm: manivela 100 mm >= distancia entre pivotes 50 mm: el brazo da la vuelta "
             "completa (Whitworth)");
+}
+
+// A simulation's JSON carried as a text in the answer (/api/simulate's `downloads`, which the web
+// app shows and saves) is in the answer's language as the JSON answer of its own is, byte for
+// byte; the CSV has no messages.
+TEST(AnswerLanguage, ASimulationsDownloadsAreInTheAnswersLanguage) {
+  const Json options = {{"to", 1}, {"dt", 0.1}, {"stop_when", "crank > 15"}, {"lang", "es"}};
+  Json asked = options;
+  asked["downloads"] = {"json", "csv"};
+  const Json j = Json::parse(post("/api/simulate", with_model("examples/crank-rocker-released.yaml", asked)).body);
+  const std::string alone = post("/api/simulate", with_model("examples/crank-rocker-released.yaml", options)).body;
+  EXPECT_EQ(j["downloads"]["json"], alone);
+  const Json events = Json::parse(j["downloads"]["json"].get<std::string>())["events"];
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0]["message"], "la condición de parada 'crank > 15' se cumplió en t = 0.0317652045 s");
+  Json english = asked;
+  english["lang"] = "en";
+  const Json en = Json::parse(post("/api/simulate", with_model("examples/crank-rocker-released.yaml", english)).body);
+  EXPECT_EQ(j["downloads"]["csv"], en["downloads"]["csv"]);
+  EXPECT_NE(j["downloads"]["json"], en["downloads"]["json"]);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // /api/simulate: the forward dynamics of `nbar simulate` through the web API, its answer byte for
-// byte the CLI's, its drawing (the `scene`) posed at every row of the simulation, its limits,
-// errors and cancellation.
+// byte the CLI's, its drawing (the `scene`) posed at every row of the simulation, the run in other
+// formats in the same answer (`downloads`), its limits, errors and cancellation.
 #include <chrono>
 #include <thread>
 
@@ -110,6 +110,88 @@ TEST(WebSimulate, TheSceneIsPosedAtEveryRowOfTheSimulation) {
   }
   // The crank moves in 2 s: the scene is not a still picture.
   EXPECT_GT(std::abs(scene["steps"][rows.size() - 1]["labels"][2][1].get<double>()), 5.0);
+}
+
+// `downloads`: the run also written as `nbar simulate --format F` writes it, byte for byte, in
+// the same answer (the web app's CSV and JSON downloads, with no second run); with `json` among
+// them the simulation is not sent twice.
+TEST(WebSimulate, DownloadsAreTheRunInEachFormatInTheSameAnswer) {
+  const ApiResponse r = post("/api/simulate", with_model(kReleased, {{"to", 3},
+                                                                     {"dt", 0.01},
+                                                                     {"rtol", 1e-10},
+                                                                     {"scene", {{"width", 600}, {"height", 400}}},
+                                                                     {"downloads", {"csv", "json"}}}));
+  ASSERT_EQ(r.status, 200) << r.body.substr(0, 400);
+  EXPECT_EQ(r.content_type, "application/json");
+  const Json j = Json::parse(r.body);
+  EXPECT_FALSE(j.contains("simulation"));
+  const std::string flags = std::string("simulate ") + kReleased + " --to 3 --dt 0.01 --rtol 1e-10";
+  EXPECT_EQ(j["downloads"]["csv"], cli(flags).out);
+  EXPECT_EQ(j["downloads"]["json"], cli(flags + " --format json").out);
+  const Json table = Json::parse(j["downloads"]["json"].get<std::string>());
+  ASSERT_EQ(table["rows"].size(), 301u);
+  EXPECT_EQ(j["scene"]["steps"].size(), 301u);
+  // The CSV's last row is the JSON's, to the CSV's 12 significant digits: t = 3 s, the crank at
+  // 6.9145 deg (docs/dynamics.md).
+  const std::string& csv = j["downloads"]["csv"].get_ref<const std::string&>();
+  const std::string last = csv.substr(csv.rfind('\n', csv.size() - 2) + 1);
+  EXPECT_EQ(last.substr(0, last.find(',')), "300");
+  EXPECT_NEAR(table["rows"][300][column_of(table, "crank")].get<double>(), 6.9145, 5e-5);
+  // A comma-separated list, a table among them and no json: the simulation stays in the answer,
+  // and each download is the command line's for the same options (columns and stop condition).
+  const Json options = {{"to", 1}, {"dt", 0.05}, {"columns", "t,crank,energy.*"}, {"stop_when", "crank > 15"}};
+  Json asked = options;
+  asked["downloads"] = "table,csv";
+  const Json both = Json::parse(post("/api/simulate", with_model(kReleased, asked)).body);
+  const std::string same =
+      std::string("simulate ") + kReleased + " --to 1 --dt 0.05 --columns 't,crank,energy.*' --stop-when 'crank > 15'";
+  EXPECT_EQ(both["downloads"]["table"], cli(same + " --format table").out);
+  EXPECT_EQ(both["downloads"]["csv"], cli(same).out);
+  EXPECT_EQ(both["simulation"], Json::parse(post("/api/simulate", with_model(kReleased, options)).body));
+  EXPECT_EQ(both["downloads"].size(), 2u);
+}
+
+// A run stopped part way (the engine's Cancel: its progress callback answers false) carries its
+// rows so far in every download, with `cancelled` and the stop reason its JSON answer has.
+TEST(WebSimulate, ACancelledRunsDownloadsHoldItsRowsSoFar) {
+  ServerConfig config = test_config();
+  config.on_progress = [](const Progress& p) { return !(std::string(p.stage) == "simulate" && p.done > 50); };
+  const Json options = {{"to", 1}, {"dt", 0.01}};
+  Json asked = options;
+  asked["downloads"] = {"json", "csv"};
+  asked["scene"] = {{"width", 400}, {"height", 300}};
+  const ApiResponse r = post("/api/simulate", with_model(kReleased, asked), config);
+  ASSERT_EQ(r.status, 200) << r.body.substr(0, 400);
+  const Json j = Json::parse(r.body);
+  // Byte for byte the answers of the same run stopped the same way, in JSON and in CSV.
+  EXPECT_EQ(j["downloads"]["json"], post("/api/simulate", with_model(kReleased, options), config).body);
+  Json csv = options;
+  csv["format"] = "csv";
+  EXPECT_EQ(j["downloads"]["csv"], post("/api/simulate", with_model(kReleased, csv), config).body);
+  const Json table = Json::parse(j["downloads"]["json"].get<std::string>());
+  EXPECT_TRUE(table["cancelled"].get<bool>());
+  EXPECT_FALSE(table["complete"].get<bool>());
+  EXPECT_EQ(table["stop_reason"], "cancelled at t = 0.5 s");
+  ASSERT_EQ(table["rows"].size(), 51u);
+  const std::string& text = j["downloads"]["csv"].get_ref<const std::string&>();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 52);  // the header and the 51 rows
+  EXPECT_EQ(j["scene"]["steps"].size(), 51u);
+}
+
+TEST(WebSimulate, DownloadsAndFormatRefusedByName) {
+  for (const Json& downloads : {Json{"csv", "pdf"}, Json(3), Json("csv,svg")}) {
+    const ApiResponse r = post("/api/simulate", with_model(kReleased, {{"to", 1}, {"downloads", downloads}}));
+    EXPECT_EQ(r.status, 400) << r.body;
+    EXPECT_EQ(error_of(r)["option"], "downloads") << r.body;
+  }
+  // A CSV cannot stand inside the JSON of a scene's answer: asked as a download instead.
+  for (const Json& extra : {Json{{"scene", {{"width", 400}, {"height", 300}}}}, Json{{"downloads", "table"}}}) {
+    Json asked = {{"to", 1}, {"format", "csv"}};
+    asked.update(extra);
+    const ApiResponse r = post("/api/simulate", with_model(kReleased, asked));
+    EXPECT_EQ(r.status, 400) << r.body;
+    EXPECT_EQ(error_of(r)["option"], "format") << r.body;
+  }
 }
 
 TEST(WebSimulate, OptionErrorsLimitsAndModelErrorsAreTheApisErrors) {

@@ -64,7 +64,9 @@ ApiResponse method_not_allowed(const std::string& method, const std::string& pat
   return r;
 }
 
-ApiResponse route(const ApiRequest& request, const ServerConfig& config) {
+// `language`: the answer's, which handle_api applies to a JSON answer; the job carries it for an
+// endpoint that writes a JSON document inside its answer as a text.
+ApiResponse route(const ApiRequest& request, const ServerConfig& config, request::Language language) {
   const std::string& path = request.path;
   const std::string& method = request.method;
   const bool get = method == "GET" || method == "HEAD";
@@ -76,6 +78,7 @@ ApiResponse route(const ApiRequest& request, const ServerConfig& config) {
                                  config.limits.max_body_bytes),
                      Json{{"limit", "body_bytes"}, {"max", config.limits.max_body_bytes}});
     Job job(config);
+    job.language = language;
     try {
       job.start(Weight::Light);
       return it->second(job, request.body);
@@ -94,9 +97,9 @@ ApiResponse route(const ApiRequest& request, const ServerConfig& config) {
   return static_file(path);
 }
 
-ApiResponse answer_or_error(const ApiRequest& request, const ServerConfig& config) {
+ApiResponse answer_or_error(const ApiRequest& request, const ServerConfig& config, request::Language language) {
   try {
-    return route(request, config);
+    return route(request, config, language);
   } catch (const ApiError& e) {
     return error_answer(e.kind(), e.what(), e.details());
   } catch (const Error& e) {
@@ -130,13 +133,6 @@ request::Language answer_language(const ApiRequest& request) {
   return request::accept_language(request.accept_language);
 }
 
-// The indentation of a JSON answer (the writers indent by 2, or write one line).
-int json_indent(const std::string& body) {
-  if (body.size() < 2 || body[1] != '\n') return -1;
-  const std::size_t first = body.find_first_not_of(' ', 2);
-  return first == std::string::npos ? -1 : static_cast<int>(first - 2);
-}
-
 }  // namespace
 
 ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config) {
@@ -146,9 +142,9 @@ ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config) {
   } catch (const Error& e) {
     return error_answer(e);
   }
-  ApiResponse r = answer_or_error(request, config);
+  ApiResponse r = answer_or_error(request, config, language);
   if (language != request::Language::English && r.content_type.starts_with("application/json"))
-    r.body = request::translate_json_answer(r.body, language, json_indent(r.body));
+    r.body = request::translate_json_answer(r.body, language);
   if (r.status == http_status(ApiErrorKind::TooManyJobs))
     r.headers.emplace_back("Retry-After", std::to_string(config.retry_after_seconds));
   return r;

@@ -4,6 +4,16 @@
 // "labels", "trace", "title"}: a drawing's options), the web app's drawing of the simulated motion
 // comes with it: {"simulation": <that JSON>, "scene": <the scene, one step per row>}.
 //
+// With `downloads` (a list of formats: csv, json, table) the answer also carries the run written
+// in each, as `nbar simulate --format F` writes it: {"downloads": {"csv": "<text>", ...}}. The web
+// app's CSV and JSON downloads are these texts, so that a download holds the rows on screen (a
+// cancelled run's rows so far) and never runs the simulation again. Why in the answer and not
+// elsewhere: the server keeps nothing between requests (several instances may share a class
+// behind a proxy, docs/deploy.md), so it cannot hand a run out later by its name; and the page
+// cannot send the rows back to be written (a 10 s run at 1 ms is 9.8 MB of JSON, over the 1 MiB
+// body limit). The CSV costs about 0.6 of the JSON's bytes; the JSON is not sent twice: with
+// `json` among the downloads, `simulation` is left out and the client parses downloads.json.
+//
 // A run named by the body's `run` (a string the page chooses) can be stopped from outside by
 // POST /api/simulate/cancel {"run": that string}: it then ends as Ctrl-C ends `nbar simulate`,
 // answered 200 with the rows so far (`complete` false, `cancelled` true, `stop_reason` "cancelled
@@ -17,10 +27,12 @@
 #include <string>
 
 #include "endpoints.hpp"
+#include "io/json_text.hpp"
 #include "nbar/analysis/columns.hpp"
 #include "nbar/io/results_writer.hpp"
 #include "nbar/render/scene.hpp"
 #include "nbar/request/requests.hpp"
+#include "request/answer_language.hpp"
 
 namespace nbar::web {
 
@@ -109,10 +121,100 @@ NamedRuns& named_runs() {
 // a document.
 std::string run_name(const RequestBody& body) {
   const std::string name = body.text("run");
-  const bool plain = !name.empty() && name.size() <= 64 &&
-                     std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; });
+  const bool plain = !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_';
+  });
   if (!plain) bad_input("'run' must be a name of 1 to 64 letters, digits, '-' or '_'");
   return name;
+}
+
+// The web API's own option of a simulation: the formats to carry the run in besides the answer.
+const request::OptionRule& downloads_rule() {
+  static const request::OptionRule rule = [] {
+    request::OptionRule r;
+    r.key = "downloads";
+    r.kind = request::OptionKind::Names;
+    r.help = "the run also written in these formats (csv, json, table), as texts in the answer's `downloads`";
+    return r;
+  }();
+  return rule;
+}
+
+std::vector<request::OptionRule> simulate_rules() {
+  std::vector<request::OptionRule> rules = request::SimulateRequest::rules();
+  rules.push_back(downloads_rule());
+  return rules;
+}
+
+// The formats asked for in `downloads`, each once, each one of `format`'s choices.
+std::vector<std::string> download_formats(const RequestBody& body) {
+  const std::vector<std::string>& formats = request::rule_of(request::SimulateRequest::rules(), "format").choices;
+  std::vector<std::string> asked;
+  for (const std::string& name : request::read_names(body.options({"model", "scene", "run"}), downloads_rule())) {
+    if (std::find(formats.begin(), formats.end(), name) == formats.end())
+      throw request::OptionError("downloads", "must list formats among csv, json and table, not '" + name + "'");
+    if (std::find(asked.begin(), asked.end(), name) == asked.end()) asked.push_back(name);
+  }
+  return asked;
+}
+
+// What one request of a simulation asks besides the run's options.
+struct SimulateExtras {
+  std::optional<std::string> run;
+  std::optional<render::DrawOptions> scene;
+  std::vector<std::string> downloads;
+  // The answer is then an object of its parts, in which the simulation is JSON.
+  bool composite() const { return scene || !downloads.empty(); }
+};
+
+SimulateExtras simulate_extras(const Job& job, const RequestBody& body, const std::string& text,
+                               const request::SimulateRequest& simulate) {
+  SimulateExtras extras;
+  if (body.has("run")) extras.run = run_name(body);
+  if (body.has("scene")) extras.scene = scene_options(job, parse_request(text).at("scene"));
+  extras.downloads = download_formats(body);
+  // A csv or a table cannot stand inside a JSON object as a document (it went in as raw bytes):
+  // those are asked as downloads, which carry them as texts.
+  if (extras.composite() && simulate.format != "json")
+    throw request::OptionError("format",
+                               "must be json with {scene} or {downloads}: ask for csv or table in {downloads}");
+  return extras;
+}
+
+// The run as `nbar simulate --format F` writes it (a csv or a table: the json is the answer's own).
+std::string written_as(const Job& job, request::SimulateRequest simulate, const std::string& format,
+                       const Simulation& simulation, const ResultTable& table) {
+  simulate.format = format;
+  return write([&](std::ostream& o) { simulate.write(o, *job.mechanism, simulation, table, io::kTextTableWidth); });
+}
+
+// {"simulation"?, "scene"?, "downloads"?}: each document as its writer wrote it, so that each is
+// byte for byte its own answer; the simulation left out when its JSON comes as a download.
+std::string composite_answer(const Job& job, const request::SimulateRequest& simulate, const SimulateExtras& extras,
+                             const Simulation& simulation, const ResultTable& table,
+                             const std::string& simulation_json) {
+  std::string out = "{";
+  const auto member = [&](const char* key, const std::string& value) {
+    out += (out.size() > 1 ? ",\"" : "\"") + std::string(key) + "\":" + value;
+  };
+  const bool json_download =
+      std::find(extras.downloads.begin(), extras.downloads.end(), "json") != extras.downloads.end();
+  if (!json_download) member("simulation", simulation_json);
+  if (extras.scene) {
+    if (!simulation.cancelled) job.checkpoint("render");  // a run cancelled is drawn as far as it went
+    member("scene",
+           render::drawing_scene_json(*job.mechanism, request::simulated_motion(simulation), *extras.scene, 0));
+  }
+  if (!extras.downloads.empty()) {
+    // The JSON text's messages in the job's language, as the JSON answer of its own has them
+    // (handle_api translates an answer's fields, and does not look inside a text).
+    Json texts = Json::object();
+    for (const std::string& format : extras.downloads)
+      texts[format] = format == "json" ? request::translate_json_answer(simulation_json, job.language)
+                                       : written_as(job, simulate, format, simulation, table);
+    member("downloads", io::json_text(texts, -1));
+  }
+  return out + "}\n";
 }
 
 }  // namespace
@@ -124,14 +226,12 @@ ApiResponse api_simulate_cancel(Job&, const std::string& text) {
 }
 
 ApiResponse api_simulate(Job& job, const std::string& text) {
-  const RequestBody body(text, request::SimulateRequest::rules(), {"model", "scene", "run"});
-  const auto simulate = read_request<request::SimulateRequest>(body, {"model", "scene", "run"}, true);
-  const std::optional<std::string> name = body.has("run") ? std::optional(run_name(body)) : std::nullopt;
+  const RequestBody body(text, simulate_rules(), {"model", "scene", "run"});
+  const auto simulate = read_request<request::SimulateRequest>(body, {"model", "scene", "run", "downloads"}, true);
   load_model(job, body.text("model", true));
   const SimulationOptions options = simulate.simulation_options(*job.mechanism);
   check_simulation_size(job, options);
-  std::optional<render::DrawOptions> scene;
-  if (body.has("scene")) scene = scene_options(job, parse_request(text).at("scene"));
+  const SimulateExtras extras = simulate_extras(job, body, text, simulate);
   // How long an integration takes is known only once it has run (the tolerance, the stiffness of
   // the springs): a heavy computation, whatever its rows.
   job.start(Weight::Heavy);
@@ -139,9 +239,10 @@ ApiResponse api_simulate(Job& job, const std::string& text) {
   // stop the job at one of those steps' checkpoints, which answer as the time budget does (504),
   // where a cancelled run answers with its rows; that cancel finds no run and says so.
   std::optional<NamedRuns::Entry> named;
-  if (name) {
-    if (!named_runs().add(*name, job.control.token)) bad_input("a run named '" + *name + "' is running already");
-    named.emplace(named_runs(), *name);
+  if (extras.run) {
+    if (!named_runs().add(*extras.run, job.control.token))
+      bad_input("a run named '" + *extras.run + "' is running already");
+    named.emplace(named_runs(), *extras.run);
   }
   const Simulation simulation = nbar::simulate(*job.mechanism, options, job.control);
   // The core keeps a cancelled run's rows, and so does the answer to a page that cancelled it; the
@@ -150,12 +251,8 @@ ApiResponse api_simulate(Job& job, const std::string& text) {
   const ResultTable table = simulate.table(*job.mechanism, simulation);
   const std::string answer_text =
       write([&](std::ostream& out) { simulate.write(out, *job.mechanism, simulation, table, io::kTextTableWidth); });
-  if (!scene) return answer(answer_text, text_type(simulate.format));
-  if (!simulation.cancelled) job.checkpoint("render");  // a run cancelled is drawn as far as it went
-  const std::string drawing =
-      render::drawing_scene_json(*job.mechanism, request::simulated_motion(simulation), *scene, 0);
-  // The two documents as their writers wrote them, so that each is byte for byte its own answer.
-  return answer("{\"simulation\":" + answer_text + ",\"scene\":" + drawing + "}\n");
+  if (!extras.composite()) return answer(answer_text, text_type(simulate.format));
+  return answer(composite_answer(job, simulate, extras, simulation, table, answer_text));
 }
 
 }  // namespace nbar::web

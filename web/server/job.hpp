@@ -15,6 +15,7 @@
 #include "api_internal.hpp"
 #include "nbar/analysis/analysis.hpp"
 #include "nbar/io/model_file.hpp"
+#include "nbar/request/language.hpp"
 #include "request_body.hpp"
 
 namespace nbar::web {
@@ -32,6 +33,10 @@ struct Job {
   std::string text;  // the model's text, as parsed
   std::shared_ptr<const Mechanism> mechanism;
   JobSlots::Slot slot;
+  // The language of the answer's messages (the body's `lang` or Accept-Language): handle_api says
+  // a JSON answer's messages in it; an endpoint that carries a JSON document inside its answer as
+  // a text says that text's (request/answer_language.hpp).
+  request::Language language = request::Language::English;
 
   explicit Job(const ServerConfig& c) : config(c), limits(c.limits) { control.on_progress = c.on_progress; }
   const Model* model() const { return file ? &file->model : nullptr; }

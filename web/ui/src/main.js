@@ -28,7 +28,7 @@ import { initExplain } from './explain.js';
 import { initOffline, serverFetch, whenServerBack } from './offline.js';
 import { startEngine, serverOnly } from './engine.js';
 import { initJobBar, showServerJob } from './job-bar.js';
-import { initSimulate, simulationBody, simulationRate, simulationStatus } from './simulate.js';
+import { initSimulate, simulationAnswer, simulationBody, simulationFile, simulationRate, simulationStatus } from './simulate.js';
 import { pngFromSvg, gifFromScene } from './pictures.js';
 import { initBuild, outlineOf, sketchSvg, buildingText } from './build-model.js';
 
@@ -39,6 +39,7 @@ const state = {
   ycols: [],  // the plot's further curves (the Column picker's is the first)
   dynamics: null,  // the sweep's inverse dynamics (/api/solve with dynamics), once it has come
   simulation: false,  // Simulate mode (simulate.js): the rows are a simulation's, not the sweep's
+  simulationTexts: null,  // the CSV and JSON texts of the simulation shown (simulate.js); null for a sweep
 };
 
 // ------------------------------------------------------------------------------ API
@@ -241,11 +242,12 @@ async function analyse() {
     const check = await api('/api/check', { model: text }, 'json', analysis);
     if (seq !== state.seq) return;
     const size = sceneSize();
-    const { solve, scene } = state.simulation ? await simulation(text, size) : await sweep(text, size, analysis);
+    const { solve, scene, downloads } = state.simulation ? await simulation(text, size) : await sweep(text, size, analysis);
     if (seq !== state.seq) return;
     state.check = check;
     state.solve = solve;
     state.scene = scene;
+    state.simulationTexts = downloads ?? null;
     state.sceneSize = size;
     state.lastOk = text;
     state.sketch = null;
@@ -346,17 +348,15 @@ function takeDynamics(solve) {
   state.wantedY = undefined;
 }
 
-// A simulation's table and the drawing of its motion, in one request (one run). The job bar's
+// A simulation's table, the drawing of its motion and its downloads' texts, in one request (one
+// run). The job bar's
 // Cancel stops the run and keeps its rows so far, which come as the answer (complete false,
 // cancelled true): in the browser's engine by asking its worker to stop (engine.js, keepOnCancel),
 // on a server by naming the run and asking /api/simulate/cancel to stop it.
 async function simulation(text, size) {
   const where = await backendReady;
   const options = { key: 'analysis', label: t('simulating'), keepOnCancel: true };
-  if (where.mode !== 'server') {
-    const answer = await api('/api/simulate', simulationBody(text, size), 'json', options);
-    return { solve: answer.simulation, scene: answer.scene };
-  }
+  if (where.mode !== 'server') return simulationAnswer(await api('/api/simulate', simulationBody(text, size), 'json', options));
   const run = `run-${Date.now().toString(36)}-${Math.random().toString(36).slice(2, 10)}`;
   const stop = () => serverFetch('/api/simulate/cancel', {
     method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ run }),
@@ -366,19 +366,13 @@ async function simulation(text, size) {
   stopServerRun = stop;
   const hide = showServerJob(t('simulating'), stop);
   try {
-    const answer = await api('/api/simulate', simulationBody(text, size, { run }), 'json', options);
-    return { solve: answer.simulation, scene: answer.scene };
+    return simulationAnswer(await api('/api/simulate', simulationBody(text, size, { run }), 'json', options));
   } finally {
     if (stopServerRun === stop) stopServerRun = () => {};
     hide();
   }
 }
 let stopServerRun = () => {};
-
-// The drawing of the model at a size: the sweep's, or in Simulate mode the simulation's.
-async function sceneFor(text, size) {
-  return state.simulation ? (await simulation(text, size)).scene : api('/api/render', sceneRequest(text, size));
-}
 
 // The scene is drawn for the drawing's size in CSS pixels, as `nbar draw --width --height`
 // would draw it there.
@@ -391,17 +385,21 @@ function sceneRequest(model, [width, height]) {
   return { model, kind: 'draw', format: 'scene', labels: true, width, height };
 }
 
-// A drawing resized by much (a phone turned, a window resized) is drawn again for its new size.
+// A drawing resized by much (a phone turned, a window resized) is drawn again for its new size. A
+// simulation's is not: its scene comes with the run, so a new one would be the whole run again
+// (for a drawing already right but for its scale); the SVG's viewBox scales the scene held
+// (uniformly, "meet"), and the next run draws at the new size.
 let resizeTimer = 0;
 function onDrawingResized() {
   const [w, h] = sceneSize();
   const old = state.sceneSize;
-  if (!old || !state.scene || state.sketch || (Math.abs(w - old[0]) < 0.25 * old[0] && Math.abs(h - old[1]) < 0.25 * old[1])) return;
+  if (!old || !state.scene || state.sketch || state.simulationTexts) return;
+  if (Math.abs(w - old[0]) < 0.25 * old[0] && Math.abs(h - old[1]) < 0.25 * old[1]) return;
   clearTimeout(resizeTimer);
   resizeTimer = setTimeout(async () => {
     const seq = state.seq;
     try {
-      const scene = await sceneFor(state.lastOk, [w, h]);
+      const scene = await api('/api/render', sceneRequest(state.lastOk, [w, h]));
       if (seq !== state.seq || drag) return;
       state.scene = scene;
       state.sceneSize = [w, h];
@@ -891,13 +889,17 @@ function save(blob, name) {
 async function download(kind) {
   const model = editor.state.doc.toString();
   const name = slug();
+  if (state.simulationTexts && (kind === 'csv' || kind === 'json')) {
+    // The simulation shown, as `nbar simulate --format csv|json` wrote it for that run (its
+    // answer's `downloads`): the rows on screen, a cancelled run's so far, with no second run.
+    // Nothing to wait for, so the status keeps saying what the run was.
+    save(simulationFile(state.simulationTexts, kind), `${name}-simulation.${kind}`);
+    return;
+  }
   const inBrowser = (await backendReady).mode === 'engine';
   try {
     status(t('loading'), false, true);
-    if (state.simulation && (kind === 'csv' || kind === 'json')) {
-      // The simulation's table, as `nbar simulate --format csv|json` writes it.
-      save(await api('/api/simulate', simulationBody(model, null, { format: kind }), 'blob', { label: t('simulating') }), `${name}-simulation.${kind}`);
-    } else if (kind === 'csv') {
+    if (kind === 'csv') {
       // The core's CSV writer, as `nbar solve` writes it: the browser writes no numbers of its own.
       save(await api('/api/solve', { model, format: 'csv' }, 'blob'), `${name}.csv`);
     } else if (kind === 'json') {

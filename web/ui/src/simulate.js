@@ -1,7 +1,11 @@
 // Simulate mode: instead of the sweep, the drawing, the plot and the table show how the model
 // moves under its loads with its free drivers (`free: true`) released: `nbar simulate` through
 // /api/simulate (the server's or the in-browser engine's), whose answer brings the drawing of the
-// motion (a scene with one step per row). The rows have the sweep's columns (and the energies),
+// motion (a scene with one step per row) and the run as the CSV and JSON downloads write it
+// (`downloads`), so that a download is the rows on screen, a cancelled run's rows so far, without
+// running it again (why there and not kept by the server: web/server/api_simulate.cpp). The
+// drawing is not asked again for a new size either: that too would be a whole run; the SVG's
+// viewBox scales the scene held. The rows have the sweep's columns (and the energies),
 // so the drawing is posed, played, plotted and tabled as a sweep is; playing goes at the
 // simulation's own time (slowed down to 2 s a loop at least, sped up to 20 s at most). The core
 // reads and checks the options ("to", "dt", the tolerance): a value it refuses is said as any
@@ -40,11 +44,24 @@ function options() {
   return out;
 }
 
-// The body of a simulation request for `model`: its options, and with `size` the scene at that size.
+// The body of a simulation request for `model`: its options, the scene at `size`, and the run's
+// CSV and JSON texts for the downloads. The JSON comes once, as a text (the answer then leaves its
+// `simulation` out): the page saves that text and shows it parsed.
 export function simulationBody(model, size, extra = {}) {
-  const body = { model, ...options(), ...extra };
-  if (size) body.scene = { width: size[0], height: size[1], labels: true };
-  return body;
+  return { model, ...options(), scene: { width: size[0], height: size[1], labels: true }, downloads: ['csv', 'json'], ...extra };
+}
+
+// What the page keeps of a simulation's answer: the rows it shows, their drawing, and the texts
+// the downloads save.
+export function simulationAnswer(answer) {
+  return { solve: JSON.parse(answer.downloads.json), scene: answer.scene, downloads: answer.downloads };
+}
+
+// A download of the simulation shown (`downloads`, from simulationAnswer): its CSV or JSON as
+// `nbar simulate --format csv|json` wrote it for that run, so no second run and no number
+// written here.
+export function simulationFile(downloads, kind) {
+  return new Blob([downloads[kind]], { type: kind === 'csv' ? 'text/csv' : 'application/json' });
 }
 
 // Frames per millisecond of play: the simulation's time, at least 2 s and at most 20 s a loop.

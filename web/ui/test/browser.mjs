@@ -212,7 +212,9 @@ async function buildAt(tag, viewport, mobile) {
 async function simulateAt(tag, viewport, mobile) {
   const { context, page } = await open(tag, viewport, mobile);
   const reference = simulate.cliSimulation(nbar, examples);
-  const seen = await simulate.run(page, { mobile, tag, shot, click, openExample, reference: () => reference });
+  const referenceText = (format) => simulate.cliSimulationText(nbar, examples, format);
+  // The server is the same build as the command line: its downloads are byte for byte the CLI's.
+  const seen = await simulate.run(page, { mobile, tag, shot, click, openExample, reference: () => reference, referenceText, exact: true });
   console.log(`${tag}: simulated crank at t = 3 s ${seen.crank} deg (the CLI's), played to row ${seen.played}, cancelled at t = ${seen.cancelledAt} s with its rows kept`);
   await context.close();
 }
