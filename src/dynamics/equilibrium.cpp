@@ -48,7 +48,7 @@ class HoldingEfforts {
                   "nothing is free to find an equilibrium for: mark the drivers the loads should move with "
                   "`free: true`",
                   {EntityRef::Kind::Driver, 0, -1});
-    start_ = solve_at_time(mech, state_, 0.0, 0).driver_values;
+    start_ = assemble_at_time(mech, state_, 0.0, 0).driver_values;
     // Steps of the finite differences and the largest Newton step, per free driver.
     const double size = mech.drawing_size();
     for (int d : free_) {

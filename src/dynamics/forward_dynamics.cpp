@@ -991,7 +991,7 @@ class Run {
           if (!handle_event(*event, t, h, s)) break;
           t = reached;  // reversed at the toggle: on from there
           integrator_.derivative(t, y_, k1);
-          keep_toggle_reference(t);
+          keep_step_start(t);
           if (probe_) condition_ = condition_at(t, y_, true);
           continue;
         }
@@ -1001,7 +1001,7 @@ class Run {
           k1.swap(next_k1_);
         else
           integrator_.derivative(t, y_, k1);
-        keep_toggle_reference(t);
+        keep_step_start(t);
         if (probe_) condition_ = condition_at(t, y_, true);
         h *= std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(s.error, 1e-10), -0.2)));
       }
@@ -1105,7 +1105,7 @@ class Run {
 
   // The stop condition's distance (> 0: it holds) at a state, kept as the last state when `keep`.
   double condition_at(double at, const Eigen::VectorXd& y, bool keep) {
-    const Row row = make_row(at, y, previous_values_);
+    const Row row = make_row(at, y);
     return probe_->distance(row.sample, row.energy, keep);
   }
 
@@ -1138,11 +1138,42 @@ class Run {
     out_.events.push_back({kind, at, static_cast<int>(out_.samples.size()) - 1, std::move(message)});
   }
 
+  // Each body's angle at q (rad), unwrapped against `reference` (bodies of fewer than two points:
+  // 0). `out` may be `reference`.
+  void body_angles_at(const Eigen::VectorXd& q, const std::vector<double>& reference, std::vector<double>& out) const {
+    const Model& m = mech_.model();
+    out.resize(m.bodies.size());
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+      const std::vector<int>& points = m.bodies[b].points;
+      if (points.size() < 2) {
+        out[b] = 0.0;
+        continue;
+      }
+      const Eigen::Vector2d u = mech_.point_position(points[1], q) - mech_.point_position(points[0], q);
+      const double angle = std::atan2(u.y(), u.x());
+      out[b] = angle + 2 * M_PI * std::round((reference[b] - angle) / (2 * M_PI));
+    }
+  }
+  // The start's: as a sweep's table starts them, at their driver's value for the bodies an
+  // absolute angle drives, in atan2's range for the others.
+  void first_body_angles(const Eigen::VectorXd& q) {
+    const Model& m = mech_.model();
+    std::vector<double> reference(m.bodies.size(), 0.0);
+    body_angles_at(q, reference, reference);  // atan2's range
+    for (std::size_t d = 0; d < m.drivers.size(); ++d) {
+      const Driver& drv = m.drivers[d];
+      if (drv.kind == DriverKind::Angle && drv.relative_to < 0) reference[drv.body] = driver_reference_[d];
+    }
+    body_angles_at(q, reference, body_reference_);
+  }
+
   // The state just kept (the last derivative's factorisation is there) starts the next step: its
-  // gate, and the dense measure's reference, formed only if the step needs it.
-  void keep_toggle_reference(double t) {
+  // gate, the dense measure's reference (formed only if the step needs it), and the angles' turns.
+  void keep_step_start(double t) {
     step_start_time_ = t;
     step_start_q_ = y_.head(n_);
+    driver_values_at(mech_, step_start_q_, driver_reference_, driver_reference_);
+    body_angles_at(step_start_q_, body_reference_, body_reference_);
     gate_start_ = eq_.gate_at(t, step_start_q_);
     if (gate_scale_ == 0.0) gate_scale_ = gate_start_.pivot_ratio;
     toggle_reference_ready_ = false;
@@ -1180,7 +1211,7 @@ class Run {
 
   void start_at_rest_or_speed() {
     State state(mech_);
-    const Sample at_start = solve_at_time(mech_, state, 0.0, 0);
+    const Sample at_start = assemble_at_time(mech_, state, 0.0, 0);
     Eigen::VectorXd q = at_start.positions();
     std::vector<DriverState> drivers;
     eq_.drivers_at(0.0, drivers);
@@ -1190,14 +1221,15 @@ class Run {
     y_.segment(n_, n_) = qd;
     run_start_q_ = q;
     eq_.evaluate(0.0, q, qd);
-    previous_values_ = start_;
+    driver_reference_ = start_;
+    first_body_angles(q);
     record(0.0, y_);
     SimulationEnergy& first = out_.energies.front();
     energy_at_start_ = first.kinetic + first.gravity + first.spring;
     first.balance = 0.0;
     out_.statistics.largest_energy_error = 0.0;
     eq_.factorise(0.0, q);
-    keep_toggle_reference(0.0);
+    keep_step_start(0.0);
     if (probe_) condition_ = condition_at(0.0, y_, true);
   }
 
@@ -1244,7 +1276,7 @@ class Run {
 
   // The row at `at`: y projected, q'' evaluated there, the energies and the drift; driver angles
   // unwrapped against `previous`.
-  Row make_row(double at, const Eigen::VectorXd& y_given, const std::vector<double>& previous) {
+  Row make_row(double at, const Eigen::VectorXd& y_given) {
     Eigen::VectorXd& y = row_y_;  // the row's vectors in storage kept: nothing allocated but the row
     y = y_given;
     if (!integrator_.project(at, y, true))
@@ -1263,7 +1295,8 @@ class Run {
     }
     Sample& sample = row.sample;
     sample.time = at;
-    sample.driver_values = driver_values_at(mech_, q, previous);
+    sample.driver_values = driver_values_at(mech_, q, driver_reference_);
+    body_angles_at(q, body_reference_, sample.body_angles);
     sample.taylor.resize(n_, 3);
     sample.taylor.col(0) = q;
     sample.taylor.col(1) = qd;
@@ -1279,13 +1312,12 @@ class Run {
 
   // Keeps the row at `at` in the answer.
   void record(double at, const Eigen::VectorXd& y) {
-    Row row = make_row(at, y, previous_values_);
+    Row row = make_row(at, y);
     ConstraintDrift& worst = out_.statistics.drift;
     worst.position = std::max(worst.position, row.drift.position);
     worst.velocity = std::max(worst.velocity, row.drift.velocity);
     worst.acceleration = std::max(worst.acceleration, row.drift.acceleration);
     row.sample.step = static_cast<int>(out_.samples.size());
-    previous_values_ = row.sample.driver_values;
     out_.samples.push_back(std::move(row.sample));
     out_.statistics.largest_energy_error = std::max(out_.statistics.largest_energy_error, std::abs(row.energy.balance));
     out_.energies.push_back(row.energy);
@@ -1311,7 +1343,11 @@ class Run {
   // Work vectors, sized once: the step's projected end, a row's interpolated and projected state.
   Eigen::VectorXd y1_, next_k1_, interpolated_, row_y_, row_q_, row_qd_;
   Integrator::Step step_;  // the last step's, kept for its storage
-  std::vector<double> previous_values_;
+  // Each driver's value and each body's angle at the state kept last (the start, a step's end, an
+  // event), unwrapped along the run: a row's angles are unwrapped against them, not against the
+  // row before, so that rows far apart (a fast wheel, a large --dt) lose no whole turn. A step
+  // turns a body far less than half a turn: its error control follows the positions' sines.
+  std::vector<double> driver_reference_, body_reference_;
   double energy_at_start_ = 0.0;
   double toggle_at_start_ = 1.0;  // the toggle measure at the state kept last
   double toggle_scale_ = 0.0;     // its size at the start, where the mechanism is assembled

@@ -5,6 +5,7 @@
 #include "workspace.hpp"
 
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -586,6 +587,28 @@ Sample solve_at_time(const Mechanism& mech, State& state, double t, int order) {
   at << "no pose at t = " << t << " s near the given one";
   converge(mech, state, at.str());
   return make_sample(mech, state, 0, t, state.drivers, terms);
+}
+
+Sample assemble_at_time(const Mechanism& mech, State& state, double t, int order) {
+  const SweepPath plan = sweep_path(mech, 2);
+  std::vector<Series> values;
+  motion_in_time(mech.model(), plan.from)(t, 1, values);
+  std::vector<double> at;
+  for (const Series& v : values) at.push_back(v.value());
+  try {
+    assemble(mech, state, at);
+  } catch (const AssemblyError&) {
+    // The continuation stops at a limit of the drivers' travel, the pose left there. A start on
+    // that limit (a dead centre, its value the limit's to rounding) is reached by Newton from
+    // there; a start beyond it keeps the continuation's message, which says where it stops.
+    const std::exception_ptr unreached = std::current_exception();
+    try {
+      return solve_at_time(mech, state, t, order);
+    } catch (const AssemblyError&) {
+      std::rethrow_exception(unreached);
+    }
+  }
+  return solve_at_time(mech, state, t, order);
 }
 
 Eigen::VectorXd Sample::derivative(int k) const { return factorial(k) * taylor.col(k); }

@@ -125,7 +125,10 @@ void KinematicRows::fill(const Sample& s, double* out, std::ptrdiff_t stride) {
   }
   for (int b : angled_) {
     body_angle_derivatives(mech_, s, b, x.data());
-    x[0] = started_[b] ? unwrap(x[0], previous_[b]) : x[0];
+    if (s.body_angles.size() > static_cast<std::size_t>(b))
+      x[0] = unwrap(x[0], s.body_angles[b]);  // the turns its maker followed
+    else if (started_[b])
+      x[0] = unwrap(x[0], previous_[b]);
     previous_[b] = x[0];
     started_[b] = true;
     for (int k = 0; k <= order_; ++k) put(x[k] / u.angle_scale);

@@ -5,6 +5,7 @@
 // Lagrange's equations are tests/dynamics/simulate_reference.py (through the CLI).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -219,6 +220,81 @@ drivers:
   EXPECT_NEAR(sim.samples.back().positions()(1), -0.2, 1e-9);
   EXPECT_LT(sim.samples[sim.samples.size() - 2].time, event.time);  // no row after the event
   EXPECT_NE(event.message.find("C.y < -0.2"), std::string::npos) << event.message;
+}
+
+// A flywheel on a motor's torque-speed line, T = T0 (1 - w / w0): I w' = T, so
+// w = w0 (1 - exp(-t / tau)) with tau = I w0 / T0, and theta = w0 (t - tau (1 - exp(-t / tau))).
+// Rows half a second apart are many turns apart: the angles keep their whole turns (they were
+// unwrapped from row to row, and lost them), and a stop condition on the angle fires.
+TEST(ForwardDynamics, AnglesKeepTheirWholeTurnsBetweenRowsFarApart) {
+  const Mechanism mech = mechanism_of(R"(
+units: {length: m, angle: deg}
+points: {O: [0, 0], A: [0.1, 0]}
+ground: [O]
+bodies:
+  wheel: {points: [O, A], mass: 1, cg: O, inertia: 0.01}
+torques:
+  - {body: wheel, torque: 2, no_load_speed: 100 rad/s}
+drivers:
+  - {angle: wheel, free: true}
+)");
+  const double w0 = 100, tau = 0.01 * w0 / 2;
+  const auto theta = [&](double t) { return w0 * (t - tau * (1 - std::exp(-t / tau))); };
+  SimulationOptions options;
+  options.end_time = 2.0;
+  options.output_step = 0.5;
+  options.relative_tolerance = 1e-10;
+  const Simulation sim = simulate(mech, options);
+  ASSERT_TRUE(sim.complete) << sim.stop_reason;
+  const ResultTable table = simulation_table(mech, sim);
+  const auto column = [&](const std::string& name) {
+    const auto at = std::find(table.columns.begin(), table.columns.end(), name);
+    EXPECT_NE(at, table.columns.end()) << name;
+    return static_cast<std::size_t>(at - table.columns.begin());
+  };
+  const std::size_t driver = column("wheel"), body = column("wheel.angle");
+  ASSERT_EQ(table.rows.size(), 5u);
+  // Within 1e-8 of the angle (rtol 1e-10 over 2 s): a lost turn is 360 deg.
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    const double expected = theta(0.5 * static_cast<double>(i)) * 180 / M_PI;  // 8646.84 deg at 2 s
+    EXPECT_NEAR(table.rows[i][driver], expected, 1e-8 * expected) << "row " << i;
+    EXPECT_NEAR(table.rows[i][body], expected, 1e-8 * expected) << "row " << i;
+  }
+  // theta = 5000 deg between the rows at 1 and 1.5 s, found by bisection on the closed form.
+  double low = 1.0, high = 1.5;
+  while (high - low > 1e-13) (theta(0.5 * (low + high)) * 180 / M_PI < 5000 ? low : high) = 0.5 * (low + high);
+  options.stop_when = parse_stop_condition("wheel > 5000");
+  const Simulation stopped = simulate(mech, options);
+  ASSERT_EQ(stopped.events.size(), 1u);
+  EXPECT_NEAR(stopped.events.front().time, low, 1e-9);
+}
+
+// A pendulum whose driver starts half a turn and more from its drawn angle (drawn at 0, started
+// at 100 deg) starts there, as a sweep does: Newton straight from the drawing found the other
+// solution of the driver's row, the bar at -80 deg.
+TEST(ForwardDynamics, AStartFarFromTheDrawingIsReachedOnTheDrawnBranch) {
+  const Mechanism mech = mechanism_of(R"(
+units: {length: m, angle: deg}
+points: {O: [0, 0], A: [1, 0]}
+ground: [O]
+gravity: [0, -9.81]
+bodies:
+  bar: {points: [O, A], mass: 1, cg: [0.5, 0], inertia: 0.0833333333333333333}
+drivers:
+  - {angle: bar, from: 100, free: true}
+)");
+  SimulationOptions options;
+  options.end_time = 0.01;
+  options.output_step = 0.01;
+  const Simulation sim = simulate(mech, options);
+  ASSERT_TRUE(sim.complete) << sim.stop_reason;
+  const Sample& first = sim.samples.front();
+  EXPECT_NEAR(first.driver_values[0], 100 * M_PI / 180, 1e-12);
+  const Eigen::Vector2d a = mech.point_position(mech.model().find_point("A"), first.positions());
+  EXPECT_NEAR(a.x(), std::cos(100 * M_PI / 180), 1e-12);
+  EXPECT_NEAR(a.y(), std::sin(100 * M_PI / 180), 1e-12);
+  // Released from rest past the top, it falls on: theta'' = -(m g d / I_O) cos(theta) > 0 there.
+  EXPECT_GT(sim.samples.back().driver_values[0], first.driver_values[0]);
 }
 
 TEST(ForwardDynamics, AStopConditionIsReadAndItsColumnChecked) {

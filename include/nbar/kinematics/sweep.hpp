@@ -48,6 +48,10 @@ struct Sample {
   // A rocking sweep (`at_limits: reverse`): how many times the input has turned back at a limit
   // since the start (SweepResult::reversals says where and when).
   int reversals = 0;
+  // Each body's angle (rad) with its whole turns, where the sample's maker followed them through
+  // its motion (a simulation, whose rows may be far apart); empty for a sweep, whose table
+  // unwraps the angles from row to row.
+  std::vector<double> body_angles;
 
   int order() const { return static_cast<int>(taylor.cols()) - 1; }
   // The k-th time derivative of q (k! times column k), and of one coordinate.
@@ -146,6 +150,12 @@ Sample solve_at(const Mechanism& mech, State& state, const std::vector<double>& 
 // The same for models driven by laws in time (and any model: drivers without a law move from
 // their start at their speed), at time t.
 Sample solve_at_time(const Mechanism& mech, State& state, double t, int order);
+// The pose at time t reached from the drawing as a sweep reaches its start: Newton at the drawn
+// driver values, then continuation of the drivers to their values at t on the drawn branch
+// (assemble), then solve_at_time there. For a fresh State: Newton straight from the drawing would
+// find the pose nearest it, which for a driver far from its drawn angle can be the other branch
+// of the driver's own row (the body turned half a turn).
+Sample assemble_at_time(const Mechanism& mech, State& state, double t, int order);
 
 // Derived motion of a sample: positions and derivatives 0..order of a point, and of a body's
 // angle (the angle of the line from its first to its second point).
