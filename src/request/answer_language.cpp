@@ -52,4 +52,10 @@ std::string translate_json_answer(const std::string& json, Language language, in
   return out;
 }
 
+int json_answer_indent(const std::string& json) {
+  if (json.size() < 2 || json[1] != '\n') return -1;
+  const std::size_t first = json.find_first_not_of(' ', 2);
+  return first == std::string::npos ? -1 : static_cast<int>(first - 2);
+}
+
 }  // namespace nbar::request

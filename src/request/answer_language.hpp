@@ -20,4 +20,8 @@ bool is_message_field(const std::string& key);
 // `indent` spaces, or on one line when -1). The text as it is for English, or when it is not JSON.
 std::string translate_json_answer(const std::string& json, Language language, int indent);
 
+// The indentation of a JSON answer as the writers lay it out: the spaces before its first key
+// when it starts "{\n", else -1 (one line). Every front-end keeps an answer's layout with it.
+int json_answer_indent(const std::string& json);
+
 }  // namespace nbar::request

@@ -130,13 +130,6 @@ request::Language answer_language(const ApiRequest& request) {
   return request::accept_language(request.accept_language);
 }
 
-// The indentation of a JSON answer (the writers indent by 2, or write one line).
-int json_indent(const std::string& body) {
-  if (body.size() < 2 || body[1] != '\n') return -1;
-  const std::size_t first = body.find_first_not_of(' ', 2);
-  return first == std::string::npos ? -1 : static_cast<int>(first - 2);
-}
-
 }  // namespace
 
 ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config) {
@@ -148,7 +141,7 @@ ApiResponse handle_api(const ApiRequest& request, const ServerConfig& config) {
   }
   ApiResponse r = answer_or_error(request, config);
   if (language != request::Language::English && r.content_type.starts_with("application/json"))
-    r.body = request::translate_json_answer(r.body, language, json_indent(r.body));
+    r.body = request::translate_json_answer(r.body, language, request::json_answer_indent(r.body));
   if (r.status == http_status(ApiErrorKind::TooManyJobs))
     r.headers.emplace_back("Retry-After", std::to_string(config.retry_after_seconds));
   return r;
