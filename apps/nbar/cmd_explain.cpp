@@ -59,11 +59,11 @@ int explain_motion(const ExplainCommand& command, const request::ExplainRequest&
   return output.finish() ? kOk : kBadUsage;
 }
 
-// The explanation with its rows' labels and Newton's start in the language asked, as the web API
-// says them in explain's JSON.
+// The explanation with its rows' labels in the language asked, as the web API says them in
+// explain's JSON. Newton's start stays English here: the text says it inside an English sentence
+// of its own ("from step 4's pose with the drivers at..."), which the catalogue does not hold.
 Explanation said(Explanation ex) {
   for (EquationRow& row : ex.equations) row.label = say(row.label);
-  ex.start = say(ex.start);
   return ex;
 }
 
