@@ -8,6 +8,7 @@
 #include "nbar/analysis/summary.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/request/language.hpp"
+#include "apps/cli_support.hpp"
 #include "web_support.hpp"
 
 namespace nbar::web_test {
@@ -233,7 +234,7 @@ TEST(AnswerLanguage, EveryTemplateIsACoreMessageAndNoneIsLeftInSpanish) {
   // (sweep.cpp), a rocking path through a change point (rocking.cpp). A template reached or added
   // changes this list, so that none is kept that the core does not write.
   // The command line's own line around a simulation's stop (apps/nbar/simulation_run.hpp), which no
-  // API answer writes: tests/golden/ holds it in Spanish (simulate_max_steps_es).
+  // API answer writes: tests/golden/ holds it in Spanish (lang_es_simulate_max_steps).
   const std::vector<std::string> rare = {"other_branch", "simulation_stopped_early", "branch_changed",
                                          "change_point_rocking"};
   std::vector<std::string> unreached;
@@ -313,6 +314,37 @@ TEST(AnswerLanguage, CheckDescriptionsInSpanish) {
   EXPECT_EQ(whitworth["quick_returns"][0]["description"],
             "retorno rápido crank-arm: manivela 100 mm >= distancia entre pivotes 50 mm: el brazo da la vuelta "
             "completa (Whitworth)");
+}
+
+// The command line asked for Spanish (--lang es) says every message of its JSON as the web API says
+// it for the same request with lang es: the same strings at the same places, and in Spanish.
+TEST(AnswerLanguage, TheCommandLineSaysWhatTheApiSays) {
+  struct Same {
+    std::string path, args;
+    Json body;
+  };
+  const std::string released = repo_file("examples/crank-rocker-released.yaml");
+  const std::vector<Same> asked = {
+      {"/api/check", "check examples/fourbar-crank-rocker.yaml --format json", Json{{"model", kCrankRocker}}},
+      {"/api/check", "check tests/golden/inputs/cannot-assemble.yaml --format json",
+       Json{{"model", repo_file("tests/golden/inputs/cannot-assemble.yaml")}}},
+      {"/api/explain", "explain examples/fourbar-crank-rocker.yaml --step 5 --format json",
+       Json{{"model", kCrankRocker}, {"step", 5}}},
+      {"/api/simulate", "simulate examples/crank-rocker-released.yaml --to 1 --max-steps 20 --format json",
+       Json{{"model", released}, {"to", 1}, {"max_steps", 20}}},
+  };
+  for (const Same& same : asked) {
+    Json body = same.body;
+    body["lang"] = "es";
+    std::vector<std::pair<std::string, std::string>> api, cli;
+    messages_of(Json::parse(post(same.path, body).body), "$", false, api);
+    const cli_test::CliRun run =
+        cli_test::run_shell("cd " NBAR_SOURCE_DIR " && " NBAR_CLI_PATH " " + same.args + " --lang es");
+    messages_of(Json::parse(run.out), "$", false, cli);
+    EXPECT_FALSE(api.empty()) << same.args;
+    EXPECT_EQ(cli, api) << same.args;  // the same places, the same Spanish
+    for (const auto& [at, message] : cli) EXPECT_TRUE(request::message_codes(message).empty()) << at << ": " << message;
+  }
 }
 
 }  // namespace
