@@ -111,8 +111,8 @@ inline int finish(const Loaded& loaded, const SweepResult& sweep) {
   print_reversals(loaded.file.model, sweep);
   if (!sweep.complete) {
     const nbar::io::SourceMap& source = loaded.file.source;
-    std::cerr << "error: " << compose_location(source.file, source.sweep_stop(), say(sweep.stop_reason)) << " ("
-              << sweep.solved << " rows written)\n";
+    std::cerr << "error: " << compose_location(source.file, source.sweep_stop(), say(sweep.stop_reason)) << ' '
+              << say("(" + std::to_string(sweep.solved) + " rows written)") << '\n';
     return kStoppedEarly;
   }
   return kOk;
