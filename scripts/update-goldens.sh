@@ -14,11 +14,13 @@
 #
 # How a case runs (tests/apps/golden_test.cpp does exactly the same):
 #   - every `$OUT` in the arguments is replaced by the path of a fresh empty temporary directory;
-#   - the command `cd REPO && NBAR_BINARY ARGS </dev/null` runs under /bin/sh, with COLUMNS=80;
+#   - the command `cd REPO && NBAR_BINARY ARGS </dev/null` runs under /bin/sh, with COLUMNS=80
+#     and without NBAR_LANG;
 #   - in stdout, stderr and every file written under $OUT, that directory's path is replaced by
 #     `$OUT` and the binary's path by `nbar`.
 set -euo pipefail
 export COLUMNS=80  # text tables wrap to the terminal's width: pin it, as golden_test.cpp does
+unset NBAR_LANG   # English unless a case asks with --lang, as golden_test.cpp does
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 binary=${1:-$root/build/apps/nbar/nbar}

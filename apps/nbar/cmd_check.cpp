@@ -15,6 +15,21 @@ struct CheckCommand {
   std::unique_ptr<RequestFlags> flags;
 };
 
+// The summary with the prose the web API translates in the check's JSON (its joints, the loops',
+// rockers', slider-cranks' and quick-returns' descriptions, its warnings) in the language asked;
+// names, numbers and the text's own headings stay as they are.
+ModelSummary said(ModelSummary s) {
+  for (std::string& joint : s.joints) joint = say(joint);
+  for (LoopSummary& loop : s.loops) {
+    loop.description = say(loop.description);
+    if (loop.rocker) loop.rocker->description = say(loop.rocker->description);
+  }
+  for (SliderCrankSummary& f : s.slider_cranks) f.description = say(f.description);
+  for (QuickReturnSummary& f : s.quick_returns) f.description = say(f.description);
+  for (Warning& w : s.warnings) w.message = say(w.message);
+  return s;
+}
+
 int run_check(const CheckCommand& command) {
   request::CheckRequest request;
   if (!read_request(*command.flags, request)) return kBadUsage;
@@ -24,10 +39,11 @@ int run_check(const CheckCommand& command) {
   const ModelSummary summary = summarize(*mechanism, request.max_steps);
   Output output;
   output.open("");
+  if (request.format == "json") output.json_answer();
   if (request.format == "json")
     output.stream() << io::summary_json(*mechanism, summary, loaded.file.source);
   else
-    io::write_summary_text(output.stream(), *mechanism, summary, command.model);
+    io::write_summary_text(output.stream(), *mechanism, said(summary), command.model);
   if (!output.finish()) return kBadUsage;
   if (summary.assembly_error) return fail(command.model, io::located(loaded.file.source, *summary.assembly_error));
   if (summary.law_error) return fail(command.model, io::located(loaded.file.source, *summary.law_error));

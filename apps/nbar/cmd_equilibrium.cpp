@@ -36,6 +36,7 @@ int run_equilibrium(const EquilibriumCommand& command) {
   }
   Output output;
   if (!output.open(command.output)) return kBadUsage;
+  if (request.format == "json") output.json_answer();
   if (request.format == "json") {
     io::write_equilibrium_json(output.stream(), *loaded.mechanism, equilibrium, table);
   } else if (request.format == "csv") {

@@ -30,7 +30,7 @@ int draw_centres(const std::string& path, const Explanation& ex) {
                                                   : write_file(path, render::instant_centres_png(ex, &off_picture));
     if (!written) return kBadUsage;
   } catch (const Error& e) {
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << said(e) << '\n';
     return exit_code(e.kind());
   }
   if (off_picture > 0)
@@ -54,8 +54,17 @@ int explain_motion(const ExplainCommand& command, const request::ExplainRequest&
   }
   Output output;
   if (!output.open(command.output)) return kBadUsage;
+  if (request.format == "json") output.json_answer();
   request.write(output.stream(), *loaded.mechanism, equations);
   return output.finish() ? kOk : kBadUsage;
+}
+
+// The explanation with its rows' labels in the language asked, as the web API says them in
+// explain's JSON. Newton's start stays English here: the text says it inside an English sentence
+// of its own ("from step 4's pose with the drivers at..."), which the catalogue does not hold.
+Explanation said(Explanation ex) {
+  for (EquationRow& row : ex.equations) row.label = say(row.label);
+  return ex;
 }
 
 int run_explain(const ExplainCommand& command) {
@@ -80,11 +89,12 @@ int run_explain(const ExplainCommand& command) {
   }
   Output output;
   if (!output.open(command.output)) return kBadUsage;
+  if (request.format == "json") output.json_answer();
   std::ostream& out = output.stream();
   if (request.format == "json")
     out << io::json_text(io::explanation_json(ex), 2) << '\n';
   else
-    out << render_explanation(ex, request.format == "markdown" ? ExplainFormat::Markdown
+    out << render_explanation(said(ex), request.format == "markdown" ? ExplainFormat::Markdown
                                   : request.format == "latex"  ? ExplainFormat::Latex
                                                                : ExplainFormat::Text);
   if (!output.finish()) return kBadUsage;

@@ -66,7 +66,7 @@ int write_plot(const render::PlotSpec& spec, const std::string& format, const st
   try {
     canvas.write_png(path);
   } catch (const Error& e) {
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << said(e) << '\n';
     return exit_code(e.kind());
   }
   return kOk;

@@ -33,12 +33,18 @@ int run_simulate(const SimulateCommand& command) {
   }
   Output output;
   if (!output.open(command.output)) return kBadUsage;
+  if (request.format == "json") output.json_answer();
+  // A table says the events and the stop after its rows: in the language asked, as the JSON's are.
+  if (request.format == "table") {
+    for (SimulationEvent& event : simulation.events) event.message = say(event.message);
+    simulation.stop_reason = say(simulation.stop_reason);
+  }
   request.write(output.stream(), *loaded.mechanism, simulation, table, terminal_width());
   // The events: in the JSON's "events"; after a table; on standard error beside a CSV, which stays
   // rows only.
   if (request.format == "csv")
     for (const SimulationEvent& event : simulation.events)
-      std::cerr << command.model << ": event: " << event.message << '\n';
+      std::cerr << command.model << ": event: " << say(event.message) << '\n';
   if (!output.finish()) return kBadUsage;
   // The rows so far are written; the reason is said at the entity concerned.
   return finish_simulation(command.model, loaded, simulation);

@@ -67,6 +67,7 @@ int run_solve(const SolveCommand& command) {
   }
   Output output;
   if (!output.open(command.output)) return kBadUsage;
+  if (request.format == "json") output.json_answer();
   io::write_table(output.stream(), request.format, analysis, table, analysis.dynamics ? &*analysis.dynamics : nullptr,
                   terminal_width());
   if (!output.finish()) return kBadUsage;

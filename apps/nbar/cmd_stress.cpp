@@ -80,6 +80,7 @@ int run_stress(const StressCommand& command) {
   }
   Output output;
   if (!output.open(command.output)) return kBadUsage;
+  if (request.format == "json") output.json_answer();
   if (request.converge)
     io::write_fe_convergence(output.stream(), request.format, analysis, convergence);
   else if (request.profile_asked())

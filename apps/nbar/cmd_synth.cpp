@@ -193,6 +193,7 @@ int run_synth(const SynthArgs& args) {
     listing = request.listing(outcome, args.export_dir);
     Output output;
     if (!output.open(args.output)) return kBadUsage;
+    if (request.format == "json") output.json_answer();
     if (!args.export_dir.empty()) io::export_designs(task, outcome, listing);
     output.stream() << request.answer(task, outcome, listing);
     if (!output.finish()) return kBadUsage;
@@ -202,7 +203,7 @@ int run_synth(const SynthArgs& args) {
       std::cerr << "error: " << options.explain(e) << '\n';
       return bad_task;
     }
-    std::cerr << "error: " << e.message() << '\n';
+    std::cerr << "error: " << say(e.message()) << '\n';
     return exit_code(e.kind());
   }
   return kOk;

@@ -75,12 +75,29 @@ std::string Subcommand::name() const { return app_->get_name(); }
 
 bool Subcommand::parsed() const { return app_->parsed(); }
 
-CommandLine::CommandLine(const std::string& description) : Subcommand(new CLI::App(description)), owner_(app()) {}
+CommandLine::CommandLine(const std::string& description) : Subcommand(new CLI::App(description)), owner_(app()) {
+  add_language_option(*this);
+}
+
+// Checked after the parse by request::read_language, which refuses a language as the web API does.
+void CommandLine::add_language_option(Subcommand& command) {
+  language_options_.push_back(
+      command.add_option("--lang", language_, "the language of the messages: en or es (default: $NBAR_LANG, else en)")
+          ->type_name("TEXT:{en,es}"));
+}
+
+std::optional<std::string> CommandLine::language_given() const {
+  for (const Option* option : language_options_)
+    if (option->count() > 0) return language_;
+  return std::nullopt;
+}
 
 CommandLine::~CommandLine() = default;
 
 Subcommand* CommandLine::add_subcommand(const std::string& name, const std::string& description) {
-  return &subcommands_.emplace_back(app()->add_subcommand(name, description));
+  Subcommand& command = subcommands_.emplace_back(app()->add_subcommand(name, description));
+  add_language_option(command);
+  return &command;
 }
 
 void CommandLine::set_version_flag(const std::string& flag, const std::string& version) {

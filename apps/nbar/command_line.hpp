@@ -84,13 +84,21 @@ class CommandLine : public Subcommand {
   void require_subcommand(int count);
   std::vector<std::string> subcommand_names() const;
 
+  // --lang, an option of the program and of every command (`nbar --lang es check` and
+  // `nbar check --lang es` alike): its text when it was given, else nothing.
+  std::optional<std::string> language_given() const;
+
   // Parses the arguments. When parsing ended the run (--help, --version or a usage error), CLI11
   // has printed what it prints and its exit code is returned; otherwise nothing.
   std::optional<int> parse(int argc, char** argv);
 
  private:
+  void add_language_option(Subcommand& command);
+
   std::unique_ptr<CLI::App> owner_;
   std::deque<Subcommand> subcommands_;
+  std::string language_;
+  std::vector<Option*> language_options_;
 };
 
 }  // namespace nbar::cli

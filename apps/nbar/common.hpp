@@ -10,6 +10,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "nbar/io/model_file.hpp"
 #include "nbar/io/results_writer.hpp"
 #include "nbar/model/file_errors.hpp"
+#include "language.hpp"
 
 namespace nbar::cli {
 
@@ -36,14 +38,24 @@ inline int exit_code(ErrorKind kind) {
   return kBadUsage;
 }
 
+// The error's whole text with its message in the language asked: its place ("file:line:column: ",
+// an option's name) is kept as it is, only the message after it is said again.
+inline std::string said(const Error& e) {
+  std::string text = e.what();
+  const std::string& message = e.message();
+  if (!message.empty() && text.size() >= message.size() && text.ends_with(message))
+    return text.substr(0, text.size() - message.size()) + say(message);
+  return say(text);
+}
+
 // Prints the error, prefixed by the model file's name when the error does not carry a place
 // of its own, and returns its exit code. Bad input is about the options, an internal error
 // about nbar or the system, neither about the file.
 inline int fail(const std::string& model_path, const Error& e) {
   if (!e.file().empty() || e.kind() == ErrorKind::BadInput || e.kind() == ErrorKind::Internal || model_path.empty())
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << said(e) << '\n';
   else
-    std::cerr << "error: " << model_path << ": " << e.message() << '\n';
+    std::cerr << "error: " << model_path << ": " << say(e.message()) << '\n';
   return exit_code(e.kind());
 }
 
@@ -80,7 +92,7 @@ inline std::string join(const std::vector<std::string>& items, const std::string
 }
 
 inline void print_warnings(const std::vector<Warning>& warnings) {
-  for (const Warning& w : warnings) std::cerr << "warning: " << w.message << '\n';
+  for (const Warning& w : warnings) std::cerr << "warning: " << say(w.message) << '\n';
 }
 
 // A rocking sweep's turns, one line each, where warnings go.
@@ -99,8 +111,8 @@ inline int finish(const Loaded& loaded, const SweepResult& sweep) {
   print_reversals(loaded.file.model, sweep);
   if (!sweep.complete) {
     const nbar::io::SourceMap& source = loaded.file.source;
-    std::cerr << "error: " << compose_location(source.file, source.sweep_stop(), sweep.stop_reason) << " ("
-              << sweep.solved << " rows written)\n";
+    std::cerr << "error: " << compose_location(source.file, source.sweep_stop(), say(sweep.stop_reason)) << ' '
+              << say("(" + std::to_string(sweep.solved) + " rows written)") << '\n';
     return kStoppedEarly;
   }
   return kOk;
@@ -152,11 +164,22 @@ class Output {
     if (!file_) std::cerr << "error: " << cannot_write_message(path) << '\n';
     return static_cast<bool>(file_);
   }
-  std::ostream& stream() { return file_.is_open() ? file_ : std::cout; }
+  std::ostream& stream() {
+    if (json_) return json_answer_;
+    return file_.is_open() ? file_ : std::cout;
+  }
+
+  // What is written is a JSON answer: its message fields are said in the language asked (as the
+  // web API says them) when it is finished. In English it is written as it comes.
+  void json_answer() { json_ = spoken_language() != request::Language::English; }
 
   // Flushes (and closes the file): false, with a message, when what was written did not all get
   // there (a full disk, a closed pipe), which the writes themselves need not show.
   bool finish() {
+    if (json_) {
+      json_ = false;
+      stream() << say_json(json_answer_.str());
+    }
     stream().flush();
     if (file_.is_open()) file_.close();  // a failed close sets the file's failbit
     if (path_.empty() ? static_cast<bool>(std::cout) : static_cast<bool>(file_)) return true;
@@ -170,6 +193,8 @@ class Output {
 
   std::string path_;
   std::ofstream file_;
+  bool json_ = false;
+  std::ostringstream json_answer_;
 };
 
 }  // namespace nbar::cli

@@ -4,14 +4,20 @@
 _nbar() {
   local current="${COMP_WORDS[COMP_CWORD]}"
   local program="${COMP_WORDS[0]}"
-  local command="" word
+  local command="" word previous=""
+  # The command is the first word that is neither an option nor --lang's value (nbar --lang es check).
   for word in "${COMP_WORDS[@]:1:COMP_CWORD-1}"; do
-    case "$word" in -*) ;; *) command="$word"; break ;; esac
+    case "$word" in -*) ;; *) [ "$previous" != "--lang" ] && { command="$word"; break; } ;; esac
+    previous="$word"
   done
+  if [ "${COMP_WORDS[COMP_CWORD-1]}" = "--lang" ]; then
+    COMPREPLY=($(compgen -W "en es" -- "$current"))
+    return
+  fi
   if [ -z "$command" ]; then
     local commands
     commands="$("$program" --help 2>/dev/null | awk '/^Subcommands:/{listing = 1; next} listing && /^  [a-z]/{print $1} listing && /^$/{exit}')"
-    COMPREPLY=($(compgen -W "$commands --help --version" -- "$current"))
+    COMPREPLY=($(compgen -W "$commands --help --version --lang" -- "$current"))
     return
   fi
   if [[ "$current" == -* ]]; then

@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "io/yaml_support.hpp"
+#include "language.hpp"
 #include "nbar/version.hpp"
 
 int main(int argc, char** argv) {
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
     if (*code == 0) return Output().finish() ? kOk : kBadUsage;
     return kBadUsage;
   }
+  if (!choose_language(app.language_given())) return kBadUsage;
   // Each command reports what it expects; anything else still ends in a message and an exit
   // code, never an abort.
   try {

@@ -135,6 +135,18 @@ const std::vector<MessageTemplate> kCatalogue = {
     {"sweep_stopped",
      "sweep stopped between steps {a} and {b} at {at}: {why:msg}",
      "barrido detenido entre los pasos {a} y {b} en {at}: {why}"},
+    // The simulation's stop at --max-steps (forward_dynamics.cpp), and the command line's line
+    // that says a simulation stopped early (apps/nbar/simulation_run.hpp) around any stop.
+    {"simulation_max_steps",
+     "the simulation took more than {steps} steps before {end} (stopped at {at})",
+     "la simulación dio más de {steps} pasos antes de {end} (se detuvo en {at})"},
+    {"simulation_stopped_early",
+     "the simulation stopped early: {reason:msg}",
+     "la simulación se detuvo antes de tiempo: {reason}"},
+    // What the command line adds after a sweep's stop reason (apps/nbar/common.hpp, finish).
+    {"sweep_rows_written",
+     "({rows} rows written)",
+     "({rows} filas escritas)"},
     {"singular_position",
      "the constraints cannot be followed past this point: a singular position, either a limit (toggle) that the input cannot pass or a change point where two branches cross (reciprocal condition of the Jacobian {rcond})",
      "las restricciones no se pueden seguir más allá de este punto: una posición singular, o bien un límite (agarrotamiento) que la entrada no puede pasar, o bien un punto de cambio donde se cruzan dos ramas (condición recíproca del jacobiano {rcond})"},

@@ -147,6 +147,7 @@ class Golden : public ::testing::TestWithParam<GoldenCase> {};
 TEST_P(Golden, Output) {
   const GoldenCase& c = GetParam();
   ::setenv("COLUMNS", "80", 1);  // text tables wrap to the terminal's width: pin it, as update-goldens.sh does
+  ::unsetenv("NBAR_LANG");  // English unless a case asks with --lang, as update-goldens.sh does
   std::string dir_template = (fs::temp_directory_path() / "nbar-golden.XXXXXX").string();
   ASSERT_NE(::mkdtemp(dir_template.data()), nullptr) << "cannot make a temporary directory";
   const fs::path out_dir = dir_template;

@@ -8,6 +8,7 @@
 #include "nbar/analysis/summary.hpp"
 #include "nbar/io/model_file.hpp"
 #include "nbar/request/language.hpp"
+#include "apps/cli_support.hpp"
 #include "web_support.hpp"
 
 namespace nbar::web_test {
@@ -150,6 +151,8 @@ drivers:
       {"/api/solve", Json{{"model", kParallelogram}, {"steps", 70}}},
       {"/api/solve", with_model("examples/fourbar-crank-rocker.yaml", {{"steps", 5}, {"dynamics", true}})},
       {"/api/solve", with_model("examples/parallelogram-redundant.yaml", {{"steps", 5}, {"dynamics", true}})},
+      // A simulation stopped by its limit of steps: its stop_reason.
+      {"/api/simulate", with_model("examples/crank-rocker-released.yaml", {{"to", 1}, {"max_steps", 20}})},
       {"/api/explain", Json{{"model", kCrankRocker}, {"step", 0}}},
       {"/api/explain", Json{{"model", kCrankRocker}, {"step", 5}}},
       // A new user's empty model: refused by the reader, outlined as a draft with no points.
@@ -233,7 +236,10 @@ TEST(AnswerLanguage, EveryTemplateIsACoreMessageAndNoneIsLeftInSpanish) {
   // refuse_unreached_start), a four-bar loop found on the other branch after a step
   // (sweep.cpp), a rocking path through a change point (rocking.cpp). A template reached or added
   // changes this list, so that none is kept that the core does not write.
-  const std::vector<std::string> rare = {"other_branch", "branch_changed", "change_point_rocking"};
+  // The command line's own lines around a simulation's and a sweep's stop (apps/nbar/), which no API
+  // answer writes: tests/golden/ holds them in Spanish (lang_es_simulate_max_steps, lang_es_toggle_stop_solve).
+  const std::vector<std::string> rare = {"other_branch", "simulation_stopped_early", "sweep_rows_written",
+                                         "branch_changed", "change_point_rocking"};
   std::vector<std::string> unreached;
   for (const request::MessageTemplate& t : request::message_catalogue())
     if (!reached.count(std::string(t.code))) unreached.push_back(std::string(t.code));
@@ -331,6 +337,37 @@ TEST(AnswerLanguage, ASimulationsDownloadsAreInTheAnswersLanguage) {
   const Json en = Json::parse(post("/api/simulate", with_model("examples/crank-rocker-released.yaml", english)).body);
   EXPECT_EQ(j["downloads"]["csv"], en["downloads"]["csv"]);
   EXPECT_NE(j["downloads"]["json"], en["downloads"]["json"]);
+}
+
+// The command line asked for Spanish (--lang es) says every message of its JSON as the web API says
+// it for the same request with lang es: the same strings at the same places, and in Spanish.
+TEST(AnswerLanguage, TheCommandLineSaysWhatTheApiSays) {
+  struct Same {
+    std::string path, args;
+    Json body;
+  };
+  const std::string released = repo_file("examples/crank-rocker-released.yaml");
+  const std::vector<Same> asked = {
+      {"/api/check", "check examples/fourbar-crank-rocker.yaml --format json", Json{{"model", kCrankRocker}}},
+      {"/api/check", "check tests/golden/inputs/cannot-assemble.yaml --format json",
+       Json{{"model", repo_file("tests/golden/inputs/cannot-assemble.yaml")}}},
+      {"/api/explain", "explain examples/fourbar-crank-rocker.yaml --step 5 --format json",
+       Json{{"model", kCrankRocker}, {"step", 5}}},
+      {"/api/simulate", "simulate examples/crank-rocker-released.yaml --to 1 --max-steps 20 --format json",
+       Json{{"model", released}, {"to", 1}, {"max_steps", 20}}},
+  };
+  for (const Same& same : asked) {
+    Json body = same.body;
+    body["lang"] = "es";
+    std::vector<std::pair<std::string, std::string>> api, cli;
+    messages_of(Json::parse(post(same.path, body).body), "$", false, api);
+    const cli_test::CliRun run =
+        cli_test::run_shell("cd " NBAR_SOURCE_DIR " && " NBAR_CLI_PATH " " + same.args + " --lang es");
+    messages_of(Json::parse(run.out), "$", false, cli);
+    EXPECT_FALSE(api.empty()) << same.args;
+    EXPECT_EQ(cli, api) << same.args;  // the same places, the same Spanish
+    for (const auto& [at, message] : cli) EXPECT_TRUE(request::message_codes(message).empty()) << at << ": " << message;
+  }
 }
 
 }  // namespace
