@@ -27,6 +27,14 @@ namespace {
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 
+// A duration: "3.2e-17 s".
+std::string seconds_text(double seconds) {
+  std::ostringstream s;
+  s.precision(3);
+  s << seconds << " s";
+  return s.str();
+}
+
 std::string time_text(double t) {
   std::ostringstream s;
   s.precision(9);
@@ -182,7 +190,7 @@ class EquationsOfMotion {
       try {
         value = drv.law->series(t, kTerms);
       } catch (const Error& e) {
-        throw SimulationStop{e.message() + " at " + time_text(t), {EntityRef::Kind::Driver, static_cast<int>(d), 0}};
+        throw SimulationStop{e.message(), {EntityRef::Kind::Driver, static_cast<int>(d), 0}};  // it says where in t
       }
     } else {
       const Series s = Series::variable(kTerms, t);
@@ -206,11 +214,18 @@ class EquationsOfMotion {
     return select(all_rows_, residual_);
   }
   void factorise_jacobian(double t) {
-    if (!system_->factorize(jacobian_values_))
-      throw SimulationStop{"a free motion has no inertia at " + time_text(t) +
+    if (system_->factorize(jacobian_values_)) return;
+    // Fully driven, a motion the rows allow is one they have lost: the drivers and constraints
+    // became dependent (a limit, a toggle), not a body without mass.
+    if (!has_free_driver())
+      throw SimulationStop{"the drivers cannot move the mechanism on at " + time_text(t) +
+                               ": it reached a limit of its motion (a toggle or dead centre), where its drivers and "
+                               "constraints became dependent",
+                           driver_to_blame()};
+    throw SimulationStop{"a free motion has no inertia at " + time_text(t) +
                                ": the bodies it moves have no mass or moment of inertia (give them `mass:` and "
                                "`inertia:`, or a shape and a material)",
-                           first_free_driver()};
+                           driver_to_blame()};
   }
   // The Jacobian at q, at the time of the last factorisation, whose matrix stays (near q it
   // preconditions the solves with the new Jacobian), and the kept rows' residuals at q: one pass
@@ -288,7 +303,7 @@ class EquationsOfMotion {
       throw SimulationStop{"the constraints became singular at " + time_text(t) +
                                ": the mechanism reached a toggle or dead-centre position, where its motion is "
                                "not determined by the loads",
-                           first_free_driver()};
+                           driver_to_blame()};
     }
     if (!rates_.acceleration.allFinite()) lambda_.setZero(kept_rows());
     rates_.dissipated = dissipated;
@@ -356,11 +371,18 @@ class EquationsOfMotion {
     return out;
   }
 
-  EntityRef first_free_driver() const {
+  // Where a run's stop is said: at the first free driver, whose motion the loads decide; in a
+  // fully driven run, at the first driver (said at the model's `sweep:` before, which it is not about).
+  EntityRef driver_to_blame() const {
     const auto& drivers = mech_.model().drivers;
     for (std::size_t d = 0; d < drivers.size(); ++d)
       if (drivers[d].free) return {EntityRef::Kind::Driver, static_cast<int>(d), -1};
+    if (!drivers.empty()) return {EntityRef::Kind::Driver, 0, -1};
     return {EntityRef::Kind::Model, -1, -1};
+  }
+  bool has_free_driver() const {
+    const auto& drivers = mech_.model().drivers;
+    return std::any_of(drivers.begin(), drivers.end(), [](const Driver& d) { return d.free; });
   }
 
  private:
@@ -504,7 +526,7 @@ class EquationsOfMotion {
       try {
         return law.value(t);
       } catch (const Error& e) {
-        throw SimulationStop{e.message() + " at " + time_text(t), EntityRef{kind, static_cast<int>(index), which}};
+        throw SimulationStop{e.message(), EntityRef{kind, static_cast<int>(index), which}};  // it says where in t
       }
     };
     for (std::size_t i = 0; i < m.point_loads.size(); ++i) {
@@ -879,6 +901,11 @@ class ColumnProbe {
       names.push_back(std::string("energy.") + name);
     const auto found = std::find(names.begin(), names.end(), condition.column);
     if (found == names.end()) throw Error(ErrorKind::BadInput, unknown_column(condition, names));
+    // A row's number is no quantity of the motion: between rows it has no value to cross.
+    if (condition.column == "step")
+      throw Error(ErrorKind::BadInput, "the stop condition '" + condition.text +
+                                           "' watches `step`, the row's number, which does not change between rows "
+                                           "as the motion does: watch the time instead ('t > ...')");
     index_ = static_cast<std::size_t>(found - names.begin());
     row_.resize(names.size());
   }
@@ -955,10 +982,14 @@ class Run {
                                    " steps before " + time_text(options_.end_time) + " (stopped at " + time_text(t) +
                                    ")",
                                {}};
-        if (!(h > 1e-14 * std::max(1.0, std::abs(t))))
-          throw SimulationStop{"the step size fell below " + std::to_string(h) + " s at " + time_text(t) +
-                                   ": the motion is too fast or not smooth there for the tolerance asked",
-                               eq_.first_free_driver()};
+        // A step to the end may be as short as the time left (a run of 1e-14 s); any other must
+        // still move the time by more than its rounding.
+        const bool to_the_end = h == remaining && h > 0.0;
+        if (!(h > 1e-14 * std::max(1.0, std::abs(t))) && !to_the_end)
+          throw SimulationStop{"the step size fell to " + seconds_text(h) + " at " + time_text(t) +
+                                   ", below the time's rounding: the motion is too fast or not smooth there for "
+                                   "the tolerance asked",
+                               eq_.driver_to_blame()};
         Integrator::Step& s = step_;
         integrator_.step(t, y_, k1, h, s);
         if (!s.y1.allFinite() || !(s.error <= 1.0)) {
@@ -973,7 +1004,7 @@ class Run {
         if (!integrator_.project(t1, y1))
           throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(t1) +
                                    " (the mechanism may have reached a limit of its motion)",
-                               eq_.first_free_driver()};
+                               eq_.driver_to_blame()};
         // The next step's first stage now, while the projection's factorisation is at y1 (the
         // rows and the events' search move it); an event's step computes it again where it ends.
         const bool next_k1_ready = integrator_.derivative_after_projection(t1, y1, next_k1_);
@@ -1040,7 +1071,7 @@ class Run {
     if (!integrator_.project(t + theta * h, y))
       throw SimulationStop{
           "the positions could not be brought back onto the constraints at " + time_text(t + theta * h),
-          eq_.first_free_driver()};
+          eq_.driver_to_blame()};
     return y;
   }
 
@@ -1126,7 +1157,7 @@ class Run {
                               "no longer determine its motion";
     if (options_.at_toggle == AtToggle::stop) {
       add_event(event.kind, at, where);
-      throw SimulationStop{where, eq_.first_free_driver()};
+      throw SimulationStop{where, eq_.driver_to_blame()};
     }
     add_event(event.kind, at, where + "; every speed reversed there");
     y.segment(n_, n_) = -y.segment(n_, n_);
@@ -1281,7 +1312,7 @@ class Run {
     y = y_given;
     if (!integrator_.project(at, y, true))
       throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(at),
-                           eq_.first_free_driver()};
+                           eq_.driver_to_blame()};
     Eigen::VectorXd &q = row_q_, &qd = row_qd_;
     q = y.head(n_);
     qd = y.segment(n_, n_);

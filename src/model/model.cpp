@@ -466,6 +466,13 @@ class Validator {
       fail(where, name +
                       ": the speed is too large to compute with (its size must be at most 1e30 rad/s or m/s, "
                       "beyond which its powers in the accelerations and higher derivatives overflow)");
+    // A free driver's initial speed sets the kinetic energy and the velocity products of every
+    // acceleration: as large, it overflows them (1e300 gave rows of NaN and a step of -nan s).
+    if (!std::isfinite(d.initial_speed)) fail(where, name + ": the initial speed is not a finite number");
+    if (std::abs(d.initial_speed) > kMaxDriverSpeed)
+      fail(where, name +
+                      ": the initial speed is too large to compute with (its size must be at most 1e30 rad/s "
+                      "or m/s, beyond which the kinetic energy and the accelerations overflow)");
     if (d.from && d.to && !std::isfinite((*d.to - *d.from) / d.speed))
       fail(where, name + ": its travel over its speed is not a finite time");
     // The time a sample is at is its travel over the speed: against each other they gave t < 0,

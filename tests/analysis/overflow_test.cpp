@@ -109,6 +109,12 @@ TEST(Overflow, ASpeedWhosePowersOverflowIsRejectedAtTheDriver) {
   });
   EXPECT_EQ(speed.mark().line, 4);
   EXPECT_THAT(speed.message(), HasSubstr("the speed is too large to compute with (its size must be at most 1e30"));
+  // A free driver's initial speed as well: at 1e300 rad/s a simulation's rows were NaN.
+  const Error initial = error_of([&] {
+    compile(kBase + "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, free: true, initial_speed: 1e300}]\n");
+  });
+  EXPECT_EQ(initial.mark().line, 4);
+  EXPECT_THAT(initial.message(), HasSubstr("the initial speed is too large to compute with"));
   // The largest speed still solves to the fifth derivative: the crank tip's is omega^5 on 1 m.
   const auto fast = compile(kBase +
                             "bodies: {crank: [O, A]}\ndrivers: [{angle: crank, from: 0, to: 90, speed: 1e30 rad/s}]\n"

@@ -336,6 +336,50 @@ drivers:
   } catch (const Error& e) {
     EXPECT_NE(e.message().find("the simulation's table has step, t, bar, O.x"), std::string::npos) << e.message();
   }
+  // The row's number has no value between rows: it never crossed (a run to the end), now refused.
+  options.stop_when = parse_stop_condition("step > 3");
+  try {
+    simulate(mech, options);
+    FAIL() << "stopped on the row's number";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+    EXPECT_NE(e.message().find("watches `step`, the row's number"), std::string::npos) << e.message();
+  }
+}
+
+// A run that only kinematic drivers move, to a limit of its motion (a parallelogram's crank
+// driven down to the ground line, its change point, 1 s from 60 deg): said at the driver, where
+// it was said at the model's `sweep:`; and without masses, as that limit, where it was "a free
+// motion has no inertia".
+TEST(ForwardDynamics, AFullyDrivenRunStopsAtItsLimitAtTheDriver) {
+  const std::string linkage = R"(
+units: {length: m, angle: deg}
+points: {O2: [0, 0], O4: [0.2, 0], A: [0.05, 0.0866], B: [0.25, 0.0866]}
+ground: [O2, O4]
+drivers:
+  - {angle: crank, from: 60, speed: -60 deg/s}
+)";
+  SimulationOptions options;
+  options.end_time = 2.0;
+  options.output_step = 0.01;
+  for (const bool massive : {true, false}) {
+    const Mechanism mech = mechanism_of(linkage + (massive ? R"(
+bodies:
+  crank: {points: [O2, A], mass: 0.1, cg: [0.025, 0.0433], inertia: 1e-4}
+  coupler: {points: [A, B], mass: 0.2, cg: [0.15, 0.0866], inertia: 1e-3}
+  rocker: {points: [O4, B], mass: 0.1, cg: [0.225, 0.0433], inertia: 1e-4}
+)" : R"(
+bodies: {crank: [O2, A], coupler: [A, B], rocker: [O4, B]}
+)"));
+    const Simulation sim = simulate(mech, options);
+    ASSERT_FALSE(sim.complete) << massive;
+    const std::string expected = massive ? "the mechanism reached a toggle" : "it reached a limit of its motion";
+    EXPECT_NE(sim.stop_reason.find(expected), std::string::npos) << sim.stop_reason;
+    EXPECT_EQ(sim.stop_reason.find("no inertia"), std::string::npos) << sim.stop_reason;
+    EXPECT_EQ(sim.stop_where.kind, EntityRef::Kind::Driver);
+    EXPECT_EQ(sim.stop_where.index, 0);
+    EXPECT_NEAR(sim.samples.back().time, 1.0, 0.05) << massive;  // the rows kept up to there
+  }
 }
 
 // A parallelogram (cranks 0.1 m, 0.4 kg, 2e-4 kg m^2; a translating coupler of 1.5 kg) released
