@@ -981,7 +981,7 @@ class Run {
           throw SimulationStop{"the simulation took more than " + std::to_string(options_.max_steps) +
                                    " steps before " + time_text(options_.end_time) + " (stopped at " + time_text(t) +
                                    ")",
-                               {}};
+                               eq_.driver_to_blame()};
         // A step to the end may be as short as the time left (a run of 1e-14 s); any other must
         // still move the time by more than its rounding.
         const bool to_the_end = h == remaining && h > 0.0;
