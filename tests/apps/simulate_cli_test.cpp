@@ -146,5 +146,14 @@ TEST(SimulateCli, RunOptionsNeedSimulateAndTheSweepsStressesAreRefused) {
   EXPECT_EQ(animate.err, simulate.err);
 }
 
+// A column asked for that the table does not have is said before the run: a run of 1e6 s of the
+// released crank-rocker (minutes) is refused at once, with no row written.
+TEST(SimulateCli, AnUnknownColumnIsRefusedBeforeTheRun) {
+  const CliRun run = nbar("simulate " + kReleased + " --to 1000000 --dt 1000 --columns t,nosuch");
+  EXPECT_EQ(run.code, 2);
+  EXPECT_THAT(run.err, HasSubstr("--columns: no column matches 'nosuch'"));
+  EXPECT_EQ(run.out, "");
+}
+
 }  // namespace
 }  // namespace nbar::cli_test

@@ -306,7 +306,8 @@ struct SimulateRequest {
   SimulationOptions simulation_options() const;
   // The options, each one not given taken from the model's `simulation:` section: an
   // OptionError at `to` when neither gives it, Error(InvalidModel) at the section's
-  // `stop_when` when it names no column.
+  // `stop_when` when it names no column, an OptionError at `columns` when one of them is none
+  // of the table's (all before the run).
   SimulationOptions simulation_options(const Mechanism& mechanism) const;
   // The columns asked for, or an OptionError at `columns` naming the columns there are.
   ResultTable table(const Mechanism& mechanism, const Simulation& simulation) const;
