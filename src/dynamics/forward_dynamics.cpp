@@ -975,21 +975,7 @@ class Run {
       }
       while (next_output <= outputs_) {
         if (control_.should_stop("simulate", next_output, outputs_)) throw cancellation();
-        const double remaining = options_.end_time - t;
-        if (h >= remaining * (1 - 1e-12)) h = remaining;
-        if (out_.statistics.accepted_steps + out_.statistics.rejected_steps >= options_.max_steps)
-          throw SimulationStop{"the simulation took more than " + std::to_string(options_.max_steps) +
-                                   " steps before " + time_text(options_.end_time) + " (stopped at " + time_text(t) +
-                                   ")",
-                               eq_.driver_to_blame()};
-        // A step to the end may be as short as the time left (a run of 1e-14 s); any other must
-        // still move the time by more than its rounding.
-        const bool to_the_end = h == remaining && h > 0.0;
-        if (!(h > 1e-14 * std::max(1.0, std::abs(t))) && !to_the_end)
-          throw SimulationStop{"the step size fell to " + seconds_text(h) + " at " + time_text(t) +
-                                   ", below the time's rounding: the motion is too fast or not smooth there for "
-                                   "the tolerance asked",
-                               eq_.driver_to_blame()};
+        h = next_step_size(t, h);
         Integrator::Step& s = step_;
         integrator_.step(t, y_, k1, h, s);
         if (!s.y1.allFinite() || !(s.error <= 1.0)) {
@@ -1047,6 +1033,26 @@ class Run {
   }
 
  private:
+  // The step to take from t, h cut to the time left; a stop where the steps are too many or too
+  // short.
+  double next_step_size(double t, double h) const {
+    const double remaining = options_.end_time - t;
+    if (h >= remaining * (1 - 1e-12)) h = remaining;
+    if (out_.statistics.accepted_steps + out_.statistics.rejected_steps >= options_.max_steps)
+      throw SimulationStop{"the simulation took more than " + std::to_string(options_.max_steps) + " steps before " +
+                               time_text(options_.end_time) + " (stopped at " + time_text(t) + ")",
+                           eq_.driver_to_blame()};
+    // A step to the end may be as short as the time left (a run of 1e-14 s); any other must
+    // still move the time by more than its rounding.
+    const bool to_the_end = h == remaining && h > 0.0;
+    if (!(h > 1e-14 * std::max(1.0, std::abs(t))) && !to_the_end)
+      throw SimulationStop{"the step size fell to " + seconds_text(h) + " at " + time_text(t) +
+                               ", below the time's rounding: the motion is too fast or not smooth there for "
+                               "the tolerance asked",
+                           eq_.driver_to_blame()};
+    return h;
+  }
+
   // An event on a step: its kind and where on the step, theta in [0, 1].
   struct Found {
     SimulationEvent::Kind kind;

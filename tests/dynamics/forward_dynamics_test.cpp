@@ -317,34 +317,29 @@ bodies:
 drivers:
   - {angle: bar, free: true}
 )");
-  SimulationOptions options;
-  options.stop_when = parse_stop_condition("A.z > 1");
-  try {
-    simulate(mech, options);
-    FAIL() << "stopped on a column that does not exist";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::BadInput);
-    EXPECT_NE(e.message().find("no column 'A.z'"), std::string::npos) << e.message();
-    // A's own columns are offered, and only they.
-    EXPECT_NE(e.message().find("the columns of A are A.x, A.y"), std::string::npos) << e.message();
-    EXPECT_EQ(e.message().find("bar."), std::string::npos) << e.message();
-  }
-  options.stop_when = parse_stop_condition("Q.x > 1");
-  try {
-    simulate(mech, options);
-    FAIL() << "stopped on a column that does not exist";
-  } catch (const Error& e) {
-    EXPECT_NE(e.message().find("the simulation's table has step, t, bar, O.x"), std::string::npos) << e.message();
-  }
+  // The error a run with the stop condition `text` gives (BadInput), before any step.
+  const auto refused = [&](const std::string& text) {
+    SimulationOptions options;
+    options.stop_when = parse_stop_condition(text);
+    try {
+      simulate(mech, options);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::BadInput) << text;
+      return e.message();
+    }
+    ADD_FAILURE() << "ran with the stop condition " << text;
+    return std::string();
+  };
+  const std::string no_column = refused("A.z > 1");
+  EXPECT_NE(no_column.find("no column 'A.z'"), std::string::npos) << no_column;
+  // A's own columns are offered, and only they.
+  EXPECT_NE(no_column.find("the columns of A are A.x, A.y"), std::string::npos) << no_column;
+  EXPECT_EQ(no_column.find("bar."), std::string::npos) << no_column;
+  const std::string no_point = refused("Q.x > 1");
+  EXPECT_NE(no_point.find("the simulation's table has step, t, bar, O.x"), std::string::npos) << no_point;
   // The row's number has no value between rows: it never crossed (a run to the end), now refused.
-  options.stop_when = parse_stop_condition("step > 3");
-  try {
-    simulate(mech, options);
-    FAIL() << "stopped on the row's number";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::BadInput);
-    EXPECT_NE(e.message().find("watches `step`, the row's number"), std::string::npos) << e.message();
-  }
+  const std::string step = refused("step > 3");
+  EXPECT_NE(step.find("watches `step`, the row's number"), std::string::npos) << step;
 }
 
 // A run that only kinematic drivers move, to a limit of its motion (a parallelogram's crank
