@@ -77,8 +77,15 @@ class EndPoints {
   }
 
  private:
-  std::pair<long long, long long> key(const Vector2d& p) const {
-    return {static_cast<long long>(std::floor(p.x() / cell_)), static_cast<long long>(std::floor(p.y() / cell_))};
+  std::pair<long long, long long> key(const Vector2d& p) const { return {cell_of(p.x()), cell_of(p.y())}; }
+  // A coordinate's cell. Beyond what a cell's index can count (a drawing of 1e3 with a tolerance
+  // of 1e-20: the cast overflowed) the cells clamp to the last one, which only makes the search
+  // there slower; a coordinate that is not a number shares cell 0.
+  long long cell_of(double coordinate) const {
+    constexpr double kLastCell = 4e18;  // within long long, with room for the neighbours' +-1
+    const double cell = std::floor(coordinate / cell_);
+    if (!(cell == cell)) return 0;
+    return static_cast<long long>(std::clamp(cell, -kLastCell, kLastCell));
   }
   double cell_;
   std::map<std::pair<long long, long long>, std::vector<std::size_t>> cells_;
