@@ -629,12 +629,7 @@ class Integrator {
     ++evaluations_;
     evaluated_q_ = y.head(n_);
     evaluated_qd_ = y.segment(n_, n_);
-    const EquationsOfMotion::Rates& r = eq_.evaluate(t, evaluated_q_, evaluated_qd_, kStage);
-    f.resize(y.size());
-    f.head(n_) = evaluated_qd_;
-    f.segment(n_, n_) = r.acceleration;
-    f(2 * n_) = r.dissipated;
-    f(2 * n_ + 1) = r.work_in;
+    store_rates(eq_.evaluate(t, evaluated_q_, evaluated_qd_, kStage), evaluated_qd_, f);
   }
 
   // Moves q onto Phi = 0 and q' onto Phi_q q' = -Phi_t at t by the smallest corrections in the
@@ -681,15 +676,10 @@ class Integrator {
   // factorisation it left are used as they are (one evaluation of the Jacobian and one forming of
   // the Schur complement fewer than derivative()). False, with f untouched, where the accelerations
   // are not determined there (a toggle): derivative() then says so when it is asked.
-  bool derivative_after_projection(double t, const Eigen::VectorXd& y, Eigen::VectorXd& f) {
+  bool derivative_after_projection(double t, Eigen::VectorXd& f) {
     try {
-      const EquationsOfMotion::Rates& r = eq_.evaluate_factorised(t, q_, qd_, kStage);
+      store_rates(eq_.evaluate_factorised(t, q_, qd_, kStage), qd_, f);
       ++evaluations_;
-      f.resize(y.size());
-      f.head(n_) = qd_;
-      f.segment(n_, n_) = r.acceleration;
-      f(2 * n_) = r.dissipated;
-      f(2 * n_ + 1) = r.work_in;
       return true;
     } catch (const SimulationStop&) {
       return false;
@@ -773,6 +763,15 @@ class Integrator {
   static constexpr double kRoundingMove = 1e-8;
   // The stages' accelerations: their error need only be well below the tolerance's.
   static constexpr AugmentedSystem::Rounds kStage = AugmentedSystem::Rounds::as_needed;
+
+  // f = (q', q'', the dissipated and the input power): the state's derivative.
+  void store_rates(const EquationsOfMotion::Rates& r, const Eigen::VectorXd& qd, Eigen::VectorXd& f) const {
+    f.resize(2 * n_ + 2);
+    f.head(n_) = qd;
+    f.segment(n_, n_) = r.acceleration;
+    f(2 * n_) = r.dissipated;
+    f(2 * n_ + 1) = r.work_in;
+  }
 
   // q_ -= the correction of the residuals phi; returns its largest change of a coordinate.
   double correct_positions(const Eigen::VectorXd& phi) {
@@ -993,7 +992,7 @@ class Run {
                                eq_.driver_to_blame()};
         // The next step's first stage now, while the projection's factorisation is at y1 (the
         // rows and the events' search move it); an event's step computes it again where it ends.
-        const bool next_k1_ready = integrator_.derivative_after_projection(t1, y1, next_k1_);
+        const bool next_k1_ready = integrator_.derivative_after_projection(t1, next_k1_);
         const std::optional<Found> event = first_event(t, h, s, y1);
         const double reached = event ? t + event->theta * h : t1;
         while (next_output <= outputs_ && output_time(next_output) <= reached * (1 + 1e-13)) {
