@@ -95,6 +95,12 @@ class ToggleMeasure {
 // ratio falls below this fraction of its value at the start, or its determinant changes sign.
 constexpr double kGateNear = 0.1;
 
+// A toggle's row, and the state a reversal there mirrors, are where the positions are this
+// fraction of the drawing from the toggle's: some ten times the blur that the constraint drift
+// gives the positions next to it (docs/dynamics.md, Events), so that the Jacobian is regular
+// there and the state clearly on the side it came from.
+constexpr double kRegularDistance = 1e-4;
+
 // A body's centre of mass as a fixed combination of its frame points, r_cg = r_o + a u + b u_perp
 // with u = r_to - r_from: linear in q, so the body's mass on the coordinates is constant.
 struct BodyMass {
@@ -298,7 +304,7 @@ class EquationsOfMotion {
     const double left = system_->solve(jacobian_values_, loads_, gamma(q, qd), rates_.acceleration, lambda_, rounds);
     // Where the rows have become dependent the acceleration constraints ask the impossible and
     // what is left of them stays of order 1; near (not at) a toggle the solve still converges.
-    if (!(left <= kDependentRows) && !singular_allowed_) {
+    if (!(left <= kDependentRows)) {
       lambda_.setZero(kept_rows());  // no warm start from there
       throw SimulationStop{"the constraints became singular at " + time_text(t) +
                                ": the mechanism reached a toggle or dead-centre position, where its motion is "
@@ -326,11 +332,6 @@ class EquationsOfMotion {
       e.spring += 0.5 * s.stiffness * stretch * stretch + s.preload * stretch;
     }
   }
-
-  // At a located toggle the accelerations are still asked for (its row, the first step after a
-  // reversal): there they satisfy the dependent rows' acceleration constraints in the least-squares
-  // sense, as if the lost constraint were free.
-  void allow_singular(bool allowed) { singular_allowed_ = allowed; }
 
   // The gate at (t, q), from the kinematics' own sparse LU (its pivots chosen once and replayed).
   Gate gate_at(double t, const Eigen::VectorXd& q) {
@@ -575,7 +576,6 @@ class EquationsOfMotion {
   Eigen::VectorXd gravity_;
   std::vector<BodyMass> bodies_;
   std::optional<AugmentedSystem> system_;
-  bool singular_allowed_ = false;
 
   std::vector<DriverState> drivers_, full_drivers_;
   // The free drivers' states for drivers_at, formed once: they do not depend on t, and their sines
@@ -789,6 +789,55 @@ class Integrator {
   Eigen::VectorXd evaluated_q_, evaluated_qd_, stage_, k2_, k3_, k4_, k5_, k6_, error_;  // a step's
 };
 
+// The last accepted steps with their continuous extensions: the state at a time some steps back.
+// A toggle's row and the rows mirrored past it need it, because the steps shrink towards a
+// toggle (to nanoseconds at rtol 1e-12) while its regular state lies some 1e-4 of the drawing back.
+class RecentSteps {
+ public:
+  // Keeps a copy of the step [t, t + h] from y0, forgetting the oldest when kKept are kept.
+  void keep(double t, double h, const Eigen::VectorXd& y0, const Integrator::Step& s) {
+    if (capacity_ == 0) {
+      capacity_ = std::clamp<std::size_t>(kDoublesKept / (5 * static_cast<std::size_t>(y0.size())), 64, 4096);
+      newest_ = capacity_ - 1;
+    }
+    if (kept_.size() < capacity_) kept_.emplace_back();
+    Kept& k = kept_[newest_ = (newest_ + 1) % capacity_];
+    k.t = t;
+    k.h = h;
+    k.y0 = y0;
+    k.step.r2 = s.r2;
+    k.step.r3 = s.r3;
+    k.step.r4 = s.r4;
+    k.step.r5 = s.r5;
+  }
+  // The state at `time`, on the newest step that starts at or before it (the oldest kept
+  // step's start for an earlier time).
+  Eigen::VectorXd state_at(double time) const {
+    const std::size_t count = kept_.size();
+    for (std::size_t i = 0; i < count; ++i) {
+      const Kept& k = kept_[(newest_ + capacity_ - i) % capacity_];
+      if (k.t <= time || i + 1 == count)
+        return Integrator::interpolate(k.y0, k.step, std::clamp((time - k.t) / k.h, 0.0, 1.0));
+    }
+    return {};
+  }
+  // The start of the oldest step kept.
+  double earliest() const { return kept_[kept_.size() < capacity_ ? 0 : (newest_ + 1) % capacity_].t; }
+
+ private:
+  // As many steps as fit in about 8 MB, from 64 to 4096: a toggle's approach takes hundreds of
+  // steps at tight tolerances.
+  static constexpr std::size_t kDoublesKept = 1 << 20;
+  std::size_t capacity_ = 0;
+  struct Kept {
+    double t = 0.0, h = 0.0;
+    Eigen::VectorXd y0;
+    Integrator::Step step;
+  };
+  std::vector<Kept> kept_;
+  std::size_t newest_ = 0;
+};
+
 // Each driver's value at q (SI), angles unwrapped against `previous`.
 std::vector<double> driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q,
                                      const std::vector<double>& previous) {
@@ -982,7 +1031,6 @@ class Run {
           h *= s.y1.allFinite() && std::isfinite(s.error) ? std::max(0.2, 0.9 * std::pow(s.error, -0.2)) : 0.2;
           continue;
         }
-        eq_.allow_singular(false);
         const double t1 = t + h;
         Eigen::VectorXd& y1 = y1_;
         y1 = s.y1;
@@ -994,6 +1042,7 @@ class Run {
         // rows and the events' search move it); an event's step computes it again where it ends.
         const bool next_k1_ready = integrator_.derivative_after_projection(t1, next_k1_);
         const std::optional<Found> event = first_event(t, h, s, y1);
+        recent_.keep(t, h, y_, s);
         const double reached = event ? t + event->theta * h : t1;
         while (next_output <= outputs_ && output_time(next_output) <= reached * (1 + 1e-13)) {
           const double at = output_time(next_output);
@@ -1004,8 +1053,12 @@ class Run {
         }
         accept(h);
         if (event) {
-          if (!handle_event(*event, t, h, s)) break;
-          t = reached;  // reversed at the toggle: on from there
+          const std::optional<Reversal> reversal = handle_event(event->kind, reached, t);
+          if (!reversal) break;
+          while (next_output <= outputs_ && output_time(next_output) <= reversal->time * (1 + 1e-13))
+            record_mirrored(reached, output_time(next_output++));
+          t = reversal->time;
+          y_ = reversal->y;
           integrator_.derivative(t, y_, k1);
           keep_step_start(t);
           if (probe_) condition_ = condition_at(t, y_, true);
@@ -1072,11 +1125,13 @@ class Run {
 
   // The state on the step [t, t + h] at theta, projected onto the constraints there.
   Eigen::VectorXd projected_at(double t, double h, const Integrator::Step& s, double theta) {
-    Eigen::VectorXd y = Integrator::interpolate(y_, s, theta);
-    if (!integrator_.project(t + theta * h, y))
-      throw SimulationStop{
-          "the positions could not be brought back onto the constraints at " + time_text(t + theta * h),
-          eq_.driver_to_blame()};
+    return projected(t + theta * h, Integrator::interpolate(y_, s, theta));
+  }
+  // y projected onto the constraints at `at`.
+  Eigen::VectorXd projected(double at, Eigen::VectorXd y) {
+    if (!integrator_.project(at, y))
+      throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(at),
+                           eq_.driver_to_blame()};
     return y;
   }
 
@@ -1145,33 +1200,81 @@ class Run {
     return probe_->distance(row.sample, row.energy, keep);
   }
 
-  // The event's row and report; false when the run ends there. At a toggle with
-  // AtToggle::reverse the state there is kept with every speed reversed.
-  bool handle_event(const Found& event, double t, double h, const Integrator::Step& s) {
-    const double at = t + event.theta * h;
-    Eigen::VectorXd y = projected_at(t, h, s, event.theta);
-    const bool toggle = event.kind == SimulationEvent::Kind::toggle;
-    if (toggle) eq_.allow_singular(true);
-    record(at, y);
-    if (!toggle) {
-      add_event(event.kind, at, "the stop condition '" + options_.stop_when->text + "' was met at " + time_text(at));
-      return false;
+  // Where a reversal at a toggle goes on from.
+  struct Reversal {
+    double time;
+    Eigen::VectorXd y;
+  };
+
+  // The row and report of an event at `at` on the step from `step_start` (kept in recent_); the
+  // reversal to go on from at a toggle with AtToggle::reverse, nothing where the run ends there.
+  std::optional<Reversal> handle_event(SimulationEvent::Kind kind, double at, double step_start) {
+    if (kind == SimulationEvent::Kind::stop_when) {
+      record(at, projected(at, recent_.state_at(at)));
+      add_event(kind, at, "the stop condition '" + options_.stop_when->text + "' was met at " + time_text(at));
+      return std::nullopt;
     }
+    // At the toggle itself neither the speeds' projection onto the constraints nor the
+    // accelerations are determined (a row there said a crank turned backwards at half its speed),
+    // so the toggle's row is the last regular state before it, in its place among the rows.
+    const double regular = regular_time(at, step_start);
+    const Eigen::VectorXd y = projected(regular, recent_.state_at(regular));
+    const std::size_t row = record_in_place(regular, y);
     const std::string where = "the mechanism reached a toggle at " + time_text(at) +
                               ": its constraints became singular (a dead centre or change point), where the loads "
                               "no longer determine its motion";
     if (options_.at_toggle == AtToggle::stop) {
-      add_event(event.kind, at, where);
+      // Rows nearer the toggle than its row are not kept: their speeds' projection is not reliable.
+      out_.samples.resize(row + 1);
+      out_.energies.resize(row + 1);
+      add_event(kind, at, where);
       throw SimulationStop{where, eq_.driver_to_blame()};
     }
-    add_event(event.kind, at, where + "; every speed reversed there");
-    y.segment(n_, n_) = -y.segment(n_, n_);
-    y_ = y;
-    return true;
+    add_event(kind, at, where + "; every speed reversed there", row);
+    // A state reversed at the toggle went on along either branch, or met the toggle again at
+    // once. So the motion is mirrored about the toggle at t*: the regular state at t* - delta with
+    // every speed reversed is the state at t* + delta. That is exact where the motion is
+    // reversible in time (gravity, springs, loads of the positions); damping, friction and loads
+    // of the time make it off by delta's share of them, which the energy balance shows: the work
+    // integrals stay those at the toggle.
+    return Reversal{2 * at - regular, mirrored(y, at)};
   }
 
-  void add_event(SimulationEvent::Kind kind, double at, std::string message) {
-    out_.events.push_back({kind, at, static_cast<int>(out_.samples.size()) - 1, std::move(message)});
+  // A state before the toggle at `toggle`, mirrored about it: every speed reversed, the work
+  // integrals those at the toggle.
+  Eigen::VectorXd mirrored(Eigen::VectorXd y, double toggle) const {
+    const Eigen::VectorXd at_toggle = recent_.state_at(toggle);
+    y.segment(n_, n_) = -y.segment(n_, n_);
+    y.tail(y.size() - 2 * n_) = at_toggle.tail(y.size() - 2 * n_);
+    return y;
+  }
+
+  // When before the toggle at `toggle` (on the step from `step_start`) the positions are
+  // kRegularDistance of the drawing from the toggle's: searched backwards from a linear guess,
+  // doubling; the oldest step kept if they are nearer all the way.
+  double regular_time(double toggle, double step_start) const {
+    const Eigen::VectorXd at_toggle = recent_.state_at(toggle).head(n_);
+    const double wanted = kRegularDistance * mech_.drawing_size();
+    const double travelled = (at_toggle - recent_.state_at(step_start).head(n_)).lpNorm<Eigen::Infinity>();
+    double back = toggle - step_start;
+    if (travelled > wanted) back *= wanted / travelled;
+    back = std::max(back, 1e-15 * std::max(1.0, std::abs(toggle)));
+    for (;;) {
+      const double at = toggle - back;
+      if (at <= recent_.earliest()) return recent_.earliest();
+      if ((recent_.state_at(at).head(n_) - at_toggle).lpNorm<Eigen::Infinity>() >= wanted) return at;
+      back *= 2;
+    }
+  }
+
+  // The row at `at`, past the toggle at `toggle` but before the reversed motion's first step: the
+  // mirror image of the state as far before the toggle.
+  void record_mirrored(double toggle, double at) { record(at, mirrored(recent_.state_at(2 * toggle - at), toggle)); }
+
+  // An event at `at` whose row is `row` (the last row kept if none is given).
+  void add_event(SimulationEvent::Kind kind, double at, std::string message,
+                 std::optional<std::size_t> row = std::nullopt) {
+    out_.events.push_back({kind, at, static_cast<int>(row.value_or(out_.samples.size() - 1)), std::move(message)});
   }
 
   // Each body's angle at q (rad), unwrapped against `reference` (bodies of fewer than two points:
@@ -1346,17 +1449,30 @@ class Run {
     return row;
   }
 
-  // Keeps the row at `at` in the answer.
-  void record(double at, const Eigen::VectorXd& y) {
-    Row row = make_row(at, y);
+  // Keeps the row at `at` in the answer, after the rows so far.
+  void record(double at, const Eigen::VectorXd& y) { keep_row(make_row(at, y), out_.samples.size()); }
+
+  // Keeps the row at `at` in its place by time among the rows so far; its index.
+  std::size_t record_in_place(double at, const Eigen::VectorXd& y) {
+    const auto later = std::upper_bound(out_.samples.begin(), out_.samples.end(), at,
+                                        [](double time, const Sample& row) { return time < row.time; });
+    const std::size_t place = static_cast<std::size_t>(later - out_.samples.begin());
+    keep_row(make_row(at, y), place);
+    for (std::size_t i = place; i < out_.samples.size(); ++i) out_.samples[i].step = static_cast<int>(i);
+    for (SimulationEvent& e : out_.events)
+      if (e.row >= static_cast<int>(place)) ++e.row;
+    return place;
+  }
+
+  void keep_row(Row row, std::size_t place) {
     ConstraintDrift& worst = out_.statistics.drift;
     worst.position = std::max(worst.position, row.drift.position);
     worst.velocity = std::max(worst.velocity, row.drift.velocity);
     worst.acceleration = std::max(worst.acceleration, row.drift.acceleration);
-    row.sample.step = static_cast<int>(out_.samples.size());
-    out_.samples.push_back(std::move(row.sample));
+    row.sample.step = static_cast<int>(place);
     out_.statistics.largest_energy_error = std::max(out_.statistics.largest_energy_error, std::abs(row.energy.balance));
-    out_.energies.push_back(row.energy);
+    out_.samples.insert(out_.samples.begin() + static_cast<std::ptrdiff_t>(place), std::move(row.sample));
+    out_.energies.insert(out_.energies.begin() + static_cast<std::ptrdiff_t>(place), row.energy);
   }
 
   void accept(double h) {
@@ -1379,6 +1495,7 @@ class Run {
   // Work vectors, sized once: the step's projected end, a row's interpolated and projected state.
   Eigen::VectorXd y1_, next_k1_, interpolated_, row_y_, row_q_, row_qd_;
   Integrator::Step step_;  // the last step's, kept for its storage
+  RecentSteps recent_;     // the last steps accepted
   // Each driver's value and each body's angle at the state kept last (the start, a step's end, an
   // event), unwrapped along the run: a row's angles are unwrapped against them, not against the
   // row before, so that rows far apart (a fast wheel, a large --dt) lose no whole turn. A step

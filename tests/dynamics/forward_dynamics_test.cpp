@@ -433,6 +433,18 @@ double parallelogram_crossing_time() {
   return t + b;
 }
 
+// The parallelogram's kinetic energy at crank angle th from its energy, and the norm of its
+// coordinates' accelerations (A1 and A2 move alike, each r sqrt(th''^2 + th'^4)).
+void expect_parallelogram_pendulum(const Sample& row, const SimulationEnergy& energy, double th) {
+  const double r = 0.1, m = 0.4, I = 2e-4, M = 1.5, g = 9.81;
+  const double inertia = 2 * (I + m * r * r / 4) + M * r * r;
+  const double kinetic = (m + M) * r * g * (std::sin(M_PI / 3) - std::sin(th));
+  const double rate_squared = 2 * kinetic / inertia, rate2 = -(m + M) * r * g * std::cos(th) / inertia;
+  EXPECT_NEAR(energy.kinetic, kinetic, 1e-6 * kinetic) << "t = " << row.time;
+  const double accelerations = std::sqrt(2.0) * r * std::hypot(rate2, rate_squared);
+  EXPECT_NEAR(row.derivative(2).norm(), accelerations, 1e-5 * accelerations) << "t = " << row.time;
+}
+
 TEST(ForwardDynamics, AToggleStopsTheRunAtItsTime) {
   const Mechanism mech = mechanism_of(kParallelogramReleased);
   SimulationOptions options;
@@ -449,7 +461,16 @@ TEST(ForwardDynamics, AToggleStopsTheRunAtItsTime) {
   EXPECT_NEAR(sim.events[0].time, expected, 2e-7);
   EXPECT_NE(sim.stop_reason.find("toggle"), std::string::npos) << sim.stop_reason;
   EXPECT_EQ(sim.stop_where.kind, EntityRef::Kind::Driver);
-  EXPECT_NEAR(angle_of(mech, sim.samples.back(), "crank1"), 0.0, 3e-6);
+  // The toggle's row is the last regular state before it, 1e-4 of the drawing (0.36 m) back or
+  // up to twice that: there the speeds and accelerations are the pendulum's.
+  EXPECT_EQ(sim.events[0].row, static_cast<int>(sim.samples.size()) - 1);
+  const Sample& last = sim.samples.back();
+  EXPECT_GT(last.time, sim.events[0].time - 1e-4);
+  EXPECT_LT(last.time, sim.events[0].time);
+  const double th = angle_of(mech, last, "crank1");
+  EXPECT_GT(th, 0.36e-4 / 0.1);
+  EXPECT_LT(th, 2 * 0.36e-4 / 0.1);
+  expect_parallelogram_pendulum(last, sim.energies.back(), th);
 }
 
 TEST(ForwardDynamics, AToggleCanReverseTheMotion) {
@@ -469,6 +490,33 @@ TEST(ForwardDynamics, AToggleCanReverseTheMotion) {
   EXPECT_NEAR(angle_of(mech, end, "crank1"), M_PI / 3, 1e-8);
   EXPECT_LT(end.derivative(1).norm(), 3e-6);  // at rest again (m/s), but for the toggle's time
   EXPECT_LT(std::abs(sim.energies.back().balance), 1e-9);
+}
+
+// The reversal at the change point mirrors the motion from a regular state before it: at rtol
+// 1e-8 and output steps of 0.01 and 0.002 s, where a state reversed at the toggle itself met it
+// again at once and went through onto the crossed branch (0.17 J of 0.26 lost), the run reverses
+// at the crossing times 1, 3, 5 (the swing's period is twice the crossing time), keeps its
+// energy, and every row around the reversals is the pendulum's.
+TEST(ForwardDynamics, AReversalAtAChangePointSwingsBackEveryTime) {
+  const Mechanism mech = mechanism_of(kParallelogramReleased);
+  const double crossing = parallelogram_crossing_time();
+  for (const double dt : {0.01, 0.002}) {
+    SimulationOptions options;
+    options.end_time = 1.0;
+    options.output_step = dt;
+    options.relative_tolerance = 1e-8;
+    options.at_toggle = AtToggle::reverse;
+    const Simulation sim = simulate(mech, options);
+    ASSERT_TRUE(sim.complete) << sim.stop_reason;
+    ASSERT_EQ(sim.events.size(), 3u) << "dt " << dt;
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(sim.events[k].time, (2 * k + 1) * crossing, 1e-6) << "dt " << dt;
+    EXPECT_LT(sim.statistics.largest_energy_error, 1e-6);
+    for (std::size_t i = 1; i < sim.samples.size(); ++i) {
+      ASSERT_GT(sim.samples[i].time, sim.samples[i - 1].time);
+      const double th = angle_of(mech, sim.samples[i], "crank1");
+      if (th < 0.02) expect_parallelogram_pendulum(sim.samples[i], sim.energies[i], th);
+    }
+  }
 }
 
 // Andrews' squeezing mechanism (tests/dynamics/andrews_squeezer.yaml: the seven bodies, spring
