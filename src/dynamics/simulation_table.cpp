@@ -21,6 +21,9 @@ ResultTable simulation_table(const Mechanism& mechanism, const Simulation& simul
     table.rows.push_back(std::move(row));
   }
   zero_numerical_noise(table);  // as solve's tables: 1e-27 deg/s^2 of a crank at constant speed is 0
+  // The balance is the run's energy error, told as it is however small: 1e-12 J is not 0.
+  const std::size_t balance = table.columns.size() - 1;
+  for (std::size_t i = 0; i < table.rows.size(); ++i) table.rows[i][balance] = simulation.energies[i].balance;
   return table;
 }
 

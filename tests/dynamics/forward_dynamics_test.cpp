@@ -492,6 +492,25 @@ TEST(ForwardDynamics, AToggleCanReverseTheMotion) {
   EXPECT_LT(std::abs(sim.energies.back().balance), 1e-9);
 }
 
+// The table's energy balance is the run's, however small: the tables' noise rule (a value below
+// 1e-12 of its unit's largest is 0) printed a balance of 1e-12 J as 0.
+TEST(ForwardDynamics, TheTablesEnergyBalanceIsNeverRoundedToZero) {
+  const Mechanism mech = mechanism_of(kParallelogramReleased);
+  SimulationOptions options;
+  options.end_time = 0.1;
+  options.output_step = 0.01;
+  options.relative_tolerance = 1e-12;
+  const Simulation sim = simulate(mech, options);
+  const ResultTable table = simulation_table(mech, sim);
+  ASSERT_EQ(table.columns.back(), "energy.balance");
+  int tiny = 0;
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    EXPECT_EQ(table.rows[i].back(), sim.energies[i].balance) << "row " << i;
+    if (sim.energies[i].balance != 0.0 && std::abs(sim.energies[i].balance) < 1e-12 * 1.8) ++tiny;
+  }
+  EXPECT_GT(tiny, 0);  // the rows the rule would have zeroed
+}
+
 // The reversal at the change point mirrors the motion from a regular state before it: at rtol
 // 1e-8 and output steps of 0.01 and 0.002 s, where a state reversed at the toggle itself met it
 // again at once and went through onto the crossed branch (0.17 J of 0.26 lost), the run reverses
