@@ -786,7 +786,13 @@ const std::vector<OptionRule>& ExplainRequest::rules() {
               "accelerations and multipliers they give) at the time {at}, instead of the sweep's method"),
          number_rule("at", "with {simulate}: the time, s, from 0 (the start) to 1e6", 0.0, kMaxTime)},
     });
-    for (const std::string& key : kExplainRunKeys) out.push_back(rule_of(SimulateRequest::rules(), key));
+    // The run's options, said as options of the run to {at}.
+    for (const std::string& key : kExplainRunKeys) {
+      OptionRule rule = rule_of(SimulateRequest::rules(), key);
+      if (key == "dt") rule.help = "time between the rows of the run to {at}, s (default: a hundredth of {at})";
+      rule.help = "with {simulate}: " + rule.help;
+      out.push_back(rule);
+    }
     return out;
   }();
   return rules;
