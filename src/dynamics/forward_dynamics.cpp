@@ -794,48 +794,43 @@ class Integrator {
 // toggle (to nanoseconds at rtol 1e-12) while its regular state lies some 1e-4 of the drawing back.
 class RecentSteps {
  public:
-  // Keeps a copy of the step [t, t + h] from y0, forgetting the oldest when kKept are kept.
+  // Keeps a copy of the step [t, t + h] from y0, forgetting the oldest when capacity_ are kept.
   void keep(double t, double h, const Eigen::VectorXd& y0, const Integrator::Step& s) {
-    if (capacity_ == 0) {
-      capacity_ = std::clamp<std::size_t>(kDoublesKept / (5 * static_cast<std::size_t>(y0.size())), 64, 4096);
+    if (stride_ == 0) {
+      size_ = static_cast<std::size_t>(y0.size());
+      stride_ = 2 + 5 * size_;
+      capacity_ = std::clamp<std::size_t>(kDoublesKept / stride_, 64, 4096);
       newest_ = capacity_ - 1;
     }
-    if (kept_.size() < capacity_) kept_.emplace_back();
-    Kept& k = kept_[newest_ = (newest_ + 1) % capacity_];
-    k.t = t;
-    k.h = h;
-    k.y0 = y0;
-    k.step.r2 = s.r2;
-    k.step.r3 = s.r3;
-    k.step.r4 = s.r4;
-    k.step.r5 = s.r5;
+    newest_ = (newest_ + 1) % capacity_;
+    if (count_ < capacity_) data_.resize(++count_ * stride_);  // grows geometrically
+    double* kept = data_.data() + newest_ * stride_;
+    kept[0] = t;
+    kept[1] = h;
+    double* at = kept + 2;
+    for (const Eigen::VectorXd* v : {&y0, &s.r2, &s.r3, &s.r4, &s.r5}) at = std::copy(v->data(), v->data() + size_, at);
   }
   // The state at `time`, on the newest step that starts at or before it (the oldest kept
   // step's start for an earlier time).
   Eigen::VectorXd state_at(double time) const {
-    const std::size_t count = kept_.size();
-    for (std::size_t i = 0; i < count; ++i) {
-      const Kept& k = kept_[(newest_ + capacity_ - i) % capacity_];
-      if (k.t <= time || i + 1 == count)
-        return Integrator::interpolate(k.y0, k.step, std::clamp((time - k.t) / k.h, 0.0, 1.0));
+    for (std::size_t i = 0; i < count_; ++i) {
+      const double* kept = data_.data() + ((newest_ + capacity_ - i) % capacity_) * stride_;
+      if (kept[0] > time && i + 1 < count_) continue;
+      const double theta = std::clamp((time - kept[0]) / kept[1], 0.0, 1.0), rest = 1.0 - theta;
+      const auto part = [&](int k) { return Eigen::Map<const Eigen::VectorXd>(kept + 2 + k * size_, size_); };
+      return part(0) + theta * (part(1) + rest * (part(2) + theta * (part(3) + rest * part(4))));
     }
     return {};
   }
   // The start of the oldest step kept.
-  double earliest() const { return kept_[kept_.size() < capacity_ ? 0 : (newest_ + 1) % capacity_].t; }
+  double earliest() const { return data_[(count_ < capacity_ ? 0 : (newest_ + 1) % capacity_) * stride_]; }
 
  private:
   // As many steps as fit in about 8 MB, from 64 to 4096: a toggle's approach takes hundreds of
   // steps at tight tolerances.
   static constexpr std::size_t kDoublesKept = 1 << 20;
-  std::size_t capacity_ = 0;
-  struct Kept {
-    double t = 0.0, h = 0.0;
-    Eigen::VectorXd y0;
-    Integrator::Step step;
-  };
-  std::vector<Kept> kept_;
-  std::size_t newest_ = 0;
+  std::size_t size_ = 0, stride_ = 0, capacity_ = 0, count_ = 0, newest_ = 0;
+  std::vector<double> data_;  // per step: t, h, y0, r2, r3, r4, r5
 };
 
 // Each driver's value at q (SI), angles unwrapped against `previous`.
