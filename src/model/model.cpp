@@ -52,6 +52,10 @@ constexpr double kMinDriverSpeed = 1e-12;
 // acceleration is blamed at its driver when the derivatives overflow.)
 constexpr double kMaxDriverSpeed = 1e30;
 
+// A point's or a centre of mass's coordinates, in the model's length unit: past this, distances
+// overflow or every other point looks coincident.
+constexpr double kMaxCoordinate = 1e100;
+
 // Checks run in the order a reader would fix them: names first, then the references
 // between entities, then geometry, so that the first error reported is the root cause.
 class Validator {
@@ -154,8 +158,6 @@ class Validator {
       if (p.name.empty()) fail(where, "point #" + std::to_string(i + 1) + " has no name");
       if (!seen.insert(p.name).second) fail(where, "two points are named '" + p.name + "'");
       if (!p.position.allFinite()) fail(where, "point '" + p.name + "' has a coordinate that is not a finite number");
-      // Past this, distances overflow or every other point looks coincident.
-      constexpr double kMaxCoordinate = 1e100;
       if (!(p.position.cwiseAbs().maxCoeff() / m_.units.length_scale <= kMaxCoordinate))
         fail(where, "point '" + p.name + "' has a coordinate beyond 1e100 " + m_.units.length +
                         ": check the number and the length unit");
@@ -614,6 +616,14 @@ class Validator {
         if (m_.gravity.allFinite() && !std::isfinite(g.mass * m_.gravity.norm()))
           fail(where, "the weight of " + name + " (its mass times gravity) is too large to compute with");
         if (!g.cg.allFinite()) fail(where, "the centre of mass of " + name + " is not a finite point");
+        // 1e300 m away it was taken for a body without inertia: its moment about the frame overflowed.
+        if (!(g.cg.cwiseAbs().maxCoeff() / m_.units.length_scale <= kMaxCoordinate))
+          fail(where, "the centre of mass of " + name + " has a coordinate beyond 1e100 " + m_.units.length +
+                          ": check the number and the length unit");
+        if (!b.points.empty() &&
+            !std::isfinite(g.mass * (g.cg - m_.points[b.points.front()].position).squaredNorm()))
+          fail(where, "the centre of mass of " + name + " is too far from its points for its mass (" +
+                          "the moment of its mass about them is too large to compute with)");
         if (!std::isfinite(g.inertia) || g.inertia < 0.0) {
           fail(where, "the moment of inertia of " + name + " must not be negative");
         }

@@ -426,6 +426,21 @@ TEST(ModelFileErrors, SizesTheDrawingCannotResolve) {
   EXPECT_NO_THROW(parse_model(model("[0, 80]", "lengths: {crank: 1e3}\n"), "m.yaml"));
 }
 
+// A centre of mass 1e300 m away was taken by the simulation for a body without inertia (its
+// moment about the frame overflowed); it is refused at the body, as a point that far is.
+TEST(ModelFileErrors, ACentreOfMassTheDynamicsCannotResolve) {
+  const auto model = [](const std::string& body) {
+    return "units: {length: m, angle: deg}\npoints: {O: [0, 0], A: [0.5, 0]}\nground: [O]\n"
+           "bodies:\n  bar: " +
+           body + "\ndrivers: [{angle: bar, free: true}]\n";
+  };
+  EXPECT_TRUE(fails_at(model("{points: [O, A], mass: 1, inertia: 0.02, cg: [1e300, 0]}"), "5:3",
+                       "the centre of mass of body 'bar' has a coordinate beyond 1e100 m"));
+  EXPECT_TRUE(fails_at(model("{points: [O, A], mass: 1e200, inertia: 0.02, cg: [1e90, 0]}"), "5:3",
+                       "the centre of mass of body 'bar' is too far from its points for its mass"));
+  EXPECT_NO_THROW(parse_model(model("{points: [O, A], mass: 1, inertia: 0.02, cg: [1e90, 0]}"), "m.yaml"));
+}
+
 // A NUL made yaml-cpp take the file for UTF-16 and quote it back as garbled text, or say
 // "unknown escape character" a line too late; UTF-16 without a byte-order mark was read as a model.
 TEST(ModelFileErrors, ControlCharactersAreNotText) {
