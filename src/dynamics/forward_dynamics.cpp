@@ -381,6 +381,34 @@ class EquationsOfMotion {
     if (!drivers.empty()) return {EntityRef::Kind::Driver, 0, -1};
     return {EntityRef::Kind::Model, -1, -1};
   }
+  // Where a run whose steps collapse at t is stopped: at a time law of the loads that has grown
+  // a million times past its size at the start (a torque 1/(t - 0.5), 1e14 N m near 0.5 s: its
+  // pole, not the free driver, is what the steps cannot pass), with what it says; else nothing.
+  std::optional<SimulationStop> law_to_blame(double t) const {
+    const Model& m = mech_.model();
+    std::optional<SimulationStop> blamed;
+    double worst = kLawGrowth;
+    const auto weigh = [&](const Law& law, EntityRef where) {
+      try {
+        const double now = std::abs(law.value(t)), start = std::abs(law.value(0.0));
+        if (!(now > worst * std::max(start, 1e-300))) return;
+        worst = now / std::max(start, 1e-300);
+        std::ostringstream said;
+        said.precision(3);
+        said << "law '" << law.text() << "' is " << now << " there, against " << start
+             << " at the start";
+        blamed = SimulationStop{said.str(), where};
+      } catch (const Error&) {  // undefined at 0 or t: the run said so where it happened
+      }
+    };
+    for (std::size_t i = 0; i < m.point_loads.size(); ++i) {
+      weigh(m.point_loads[i].fx, {EntityRef::Kind::PointLoad, static_cast<int>(i), 0});
+      weigh(m.point_loads[i].fy, {EntityRef::Kind::PointLoad, static_cast<int>(i), 1});
+    }
+    for (std::size_t i = 0; i < m.torques.size(); ++i)
+      weigh(m.torques[i].torque, {EntityRef::Kind::Torque, static_cast<int>(i), 0});
+    return blamed;
+  }
   bool has_free_driver() const {
     const auto& drivers = mech_.model().drivers;
     return std::any_of(drivers.begin(), drivers.end(), [](const Driver& d) { return d.free; });
@@ -388,6 +416,7 @@ class EquationsOfMotion {
 
  private:
   static constexpr int kTerms = 3;
+  static constexpr double kLawGrowth = 1e6;
   // A relative residual of the acceleration constraints above this after the solve: the rows
   // have become dependent.
   static constexpr double kDependentRows = 1e-6;
@@ -1092,11 +1121,14 @@ class Run {
     // A step to the end may be as short as the time left (a run of 1e-14 s); any other must
     // still move the time by more than its rounding.
     const bool to_the_end = h == remaining && h > 0.0;
-    if (!(h > 1e-14 * std::max(1.0, std::abs(t))) && !to_the_end)
-      throw SimulationStop{"the step size fell to " + seconds_text(h) + " at " + time_text(t) +
-                               ", below the time's rounding: the motion is too fast or not smooth there for "
-                               "the tolerance asked",
+    if (!(h > 1e-14 * std::max(1.0, std::abs(t))) && !to_the_end) {
+      const std::string collapsed = "the step size fell to " + seconds_text(h) + " at " + time_text(t) +
+                                    ", below the time's rounding: ";
+      if (const std::optional<SimulationStop> law = eq_.law_to_blame(t))
+        throw SimulationStop{collapsed + law->reason + " (a pole or a jump the motion cannot follow)", law->where};
+      throw SimulationStop{collapsed + "the motion is too fast or not smooth there for the tolerance asked",
                            eq_.driver_to_blame()};
+    }
     return h;
   }
 

@@ -492,6 +492,37 @@ TEST(ForwardDynamics, AToggleCanReverseTheMotion) {
   EXPECT_LT(std::abs(sim.energies.back().balance), 1e-9);
 }
 
+// A torque law with a pole (1/(t - 0.5) N m on a free bar) makes the steps collapse at 0.5 s: the
+// run stops there at the law, which it names with its size, not at the free driver (which the
+// message blamed for a motion "too fast or not smooth"). A torque without a pole runs.
+TEST(ForwardDynamics, StepsCollapsingAtALawsPoleStopAtTheLaw) {
+  const auto bar = [](const std::string& torque) {
+    return mechanism_of(R"(
+units: {length: m, angle: deg}
+points: {O: [0, 0], A: [0.5, 0]}
+ground: [O]
+bodies:
+  bar: {points: [O, A], mass: 1, inertia: 0.02}
+torques:
+  - {body: bar, torque: ")" + torque + R"("}
+drivers:
+  - {angle: bar, free: true}
+)");
+  };
+  SimulationOptions options;
+  options.end_time = 1.0;
+  options.output_step = 0.01;
+  const Simulation pole = simulate(bar("1/(t - 0.5)"), options);
+  ASSERT_FALSE(pole.complete);
+  EXPECT_EQ(pole.stop_where.kind, EntityRef::Kind::Torque);
+  EXPECT_EQ(pole.stop_where.index, 0);
+  EXPECT_EQ(pole.stop_where.law, 0);  // shown at the law's text
+  EXPECT_NE(pole.stop_reason.find("law '1/(t - 0.5)' is "), std::string::npos) << pole.stop_reason;
+  EXPECT_NE(pole.stop_reason.find("against 2 at the start"), std::string::npos) << pole.stop_reason;
+  EXPECT_NEAR(pole.samples.back().time, 0.49, 1e-12);  // the rows before it
+  EXPECT_TRUE(simulate(bar("1/(t + 0.5)"), options).complete);
+}
+
 // The table's energy balance is the run's, however small: the tables' noise rule (a value below
 // 1e-12 of its unit's largest is 0) printed a balance of 1e-12 J as 0.
 TEST(ForwardDynamics, TheTablesEnergyBalanceIsNeverRoundedToZero) {
