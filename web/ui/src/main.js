@@ -887,7 +887,12 @@ function save(blob, name) {
 }
 
 async function download(kind) {
-  const model = editor.state.doc.toString();
+  // The results' downloads are of the model the results on screen came from, as Explain, the
+  // overlays and the stress map are: the editor may hold an edit not analysed yet, or one that
+  // does not solve (its CSV was an error, or rows the screen did not show). The model file is the
+  // editor's text.
+  const text = editor.state.doc.toString();
+  const model = state.lastOk ?? text;
   const name = slug();
   if (state.simulationTexts && (kind === 'csv' || kind === 'json')) {
     // The simulation shown, as `nbar simulate --format csv|json` wrote it for that run (its
@@ -906,7 +911,7 @@ async function download(kind) {
       // `nbar solve`'s answer as it writes it (the sweep on screen also holds its dynamics).
       save(await api('/api/solve', { model }, 'blob'), `${name}.json`);
     } else if (kind === 'model') {
-      save(new Blob([model], { type: 'application/yaml' }), `${name}.yaml`);
+      save(new Blob([text], { type: 'application/yaml' }), `${name}.yaml`);
     } else if (kind === 'svg' || (kind === 'png' && !inBrowser)) {
       save(await api('/api/render', { model, kind: 'draw', format: kind, labels: true }, 'blob'), `${name}.${kind}`);
     } else if (kind === 'png') {

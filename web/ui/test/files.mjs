@@ -111,6 +111,24 @@ export async function run(page, ctx) {
   assert.ok(k > 0);
   assert.ok(Math.abs(+csv[91][k] - solved.rows[90][k]) <= 1e-12 * Math.abs(solved.rows[90][k]));
   assert.ok(Math.abs(solved.rows[0][k] - 121.227931) < 1e-6, `P.y at the start: ${solved.rows[0][k]}`);
+  // With an editor that holds no model, the results on screen stay (marked stale) and so do their
+  // downloads: the CSV is theirs (it was an error, from the editor's text), the model file the
+  // editor's text.
+  await press('[data-tab="editor"]');
+  await page.locator('#editor .cm-content').click();
+  await page.keyboard.press('Control+a');
+  await page.keyboard.press('Delete');
+  await page.waitForFunction(() => /holds no model/.test(document.querySelector('#problems').textContent));
+  await press('[data-tab="downloads"]');
+  const [staleCsv] = await Promise.all([page.waitForEvent('download'), press('[data-download="csv"]')]);
+  assert.equal(readFileSync(await staleCsv.path(), 'utf8'), directCsv, 'the CSV of the results on screen');
+  const [emptied] = await Promise.all([page.waitForEvent('download'), press('[data-download="model"]')]);
+  assert.equal(readFileSync(await emptied.path(), 'utf8'), '', 'the model file is the editor\'s text');
+  await press('[data-tab="editor"]');
+  await page.locator('#editor .cm-content').click();
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction(() => !document.body.classList.contains('results-stale'));
+  await settled(page);
 
   // 4. A driver added in the drivers table (after the template's is deleted): in the YAML, solved.
   await press('[data-tab="model"]');
