@@ -556,6 +556,27 @@ PathFitOptions with_budget(const PathFitOptions& options, std::chrono::steady_cl
   return bounded;
 }
 
+// The distinct optima, best first, at most `most` of them: many starts fall into the same basin.
+std::vector<PathFit> distinct_best(std::vector<PathFit> fits, double scale, int most) {
+  std::stable_sort(fits.begin(), fits.end(),
+                   [](const PathFit& x, const PathFit& y) { return x.rms_deviation < y.rms_deviation; });
+  // Within a hundredth of the targets' size: starts that stop along one flat valley differ
+  // by less and are the same design for a designer.
+  const auto same = [tolerance = 1e-2 * scale](const PathFit& x, const PathFit& y) {
+    return (x.design.ground_a - y.design.ground_a).norm() < tolerance &&
+           (x.design.ground_b - y.design.ground_b).norm() < tolerance &&
+           (x.design.moving_a - y.design.moving_a).norm() < tolerance &&
+           (x.design.moving_b - y.design.moving_b).norm() < tolerance &&
+           (x.design.coupler_point - y.design.coupler_point).norm() < tolerance;
+  };
+  std::vector<PathFit> out;
+  for (const PathFit& f : fits) {
+    if (static_cast<int>(out.size()) >= most) break;
+    if (std::none_of(out.begin(), out.end(), [&](const PathFit& kept) { return same(kept, f); })) out.push_back(f);
+  }
+  return out;
+}
+
 }  // namespace
 
 PathFitResult fit_path(const PathFitTask& task, const PathFitOptions& given) {
@@ -619,24 +640,7 @@ PathFitResult fit_path(const PathFitTask& task, const PathFitOptions& given) {
   }
   if (options.progress) options.progress(result.starts, static_cast<int>(starts.size()));
 
-  // Distinct optima, best first: many starts fall into the same basin.
-  std::stable_sort(fits.begin(), fits.end(),
-                   [](const PathFit& x, const PathFit& y) { return x.rms_deviation < y.rms_deviation; });
-  // Within a hundredth of the targets' size: starts that stop along one flat valley differ
-  // by less and are the same design for a designer.
-  const auto same = [&](const PathFit& x, const PathFit& y) {
-    const double tolerance = 1e-2 * frame.scale;
-    return (x.design.ground_a - y.design.ground_a).norm() < tolerance &&
-           (x.design.ground_b - y.design.ground_b).norm() < tolerance &&
-           (x.design.moving_a - y.design.moving_a).norm() < tolerance &&
-           (x.design.moving_b - y.design.moving_b).norm() < tolerance &&
-           (x.design.coupler_point - y.design.coupler_point).norm() < tolerance;
-  };
-  for (const PathFit& f : fits) {
-    if (static_cast<int>(result.fits.size()) >= options.max_fits) break;
-    if (std::none_of(result.fits.begin(), result.fits.end(), [&](const PathFit& kept) { return same(kept, f); }))
-      result.fits.push_back(f);
-  }
+  result.fits = distinct_best(std::move(fits), frame.scale, options.max_fits);
   result.evaluations = coupler_point_evaluations() - evaluations_before;
   result.budget_spent = spent->load();
   return result;
