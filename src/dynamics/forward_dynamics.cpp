@@ -1137,15 +1137,18 @@ class Run {
   }
 
  private:
-  // The step to take from t, h cut to the time left; a stop where the steps are too many or too
-  // short.
-  double next_step_size(double t, double h) const {
+  // The step to take from t, h cut to the time left; a stop where the steps are too many (with a
+  // row at t) or too short.
+  double next_step_size(double t, double h) {
     const double remaining = options_.end_time - t;
     if (h >= remaining * (1 - 1e-12)) h = remaining;
-    if (out_.statistics.accepted_steps + out_.statistics.rejected_steps >= options_.max_steps)
+    if (out_.statistics.accepted_steps + out_.statistics.rejected_steps >= options_.max_steps) {
+      // A row where the run got to, which the message names (the last output row is before it).
+      if (t > out_.samples.back().time) record(t, y_);
       throw SimulationStop{"the simulation took more than " + std::to_string(options_.max_steps) + " steps before " +
                                time_text(options_.end_time) + " (stopped at " + time_text(t) + ")",
                            eq_.driver_to_blame()};
+    }
     // A step to the end may be as short as the time left (a run of 1e-14 s); any other must
     // still move the time by more than its rounding.
     const bool to_the_end = h == remaining && h > 0.0;
