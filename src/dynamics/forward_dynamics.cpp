@@ -1105,8 +1105,7 @@ class Run {
         if (event) {
           const std::optional<Reversal> reversal = handle_event(event->kind, reached, t);
           if (!reversal) break;
-          while (next_output <= outputs_ && output_time(next_output) <= reversal->time * (1 + 1e-13))
-            record_mirrored(reached, output_time(next_output++));
+          record_window(reversal->regular_row, reached, reversal->time, next_output);
           t = reversal->time;
           y_ = reversal->y;
           recent_.clear();
@@ -1262,6 +1261,7 @@ class Run {
   struct Reversal {
     double time;
     Eigen::VectorXd y;
+    std::size_t regular_row;  // the toggle's row, the last regular state before it
   };
 
   // The row and report of an event at `at` on the step from `step_start` (kept in recent_); the
@@ -1304,7 +1304,7 @@ class Run {
     // reversible in time (gravity, springs, loads of the positions); damping and friction lose on
     // the way back what they lost on the way in (mirrored, below), and loads of the time or the
     // speed are off by delta's share of their work, which the energy balance shows.
-    return Reversal{2 * at - regular.time, mirrored(y, at)};
+    return Reversal{2 * at - regular.time, mirrored(y, at), row};
   }
 
   // Back at the toggle with every step since the reversal there within kRestDistance of it: the
@@ -1362,9 +1362,23 @@ class Run {
     }
   }
 
-  // The row at `at`, past the toggle at `toggle` but before the reversed motion's first step: the
-  // mirror image of the state as far before the toggle.
-  void record_mirrored(double toggle, double at) { record(at, mirrored(recent_.state_at(2 * toggle - at), toggle)); }
+  // The rows between the toggle's regular row (`row`) and the toggle at `toggle` (the output rows
+  // there, kept already) and past it until the reversed motion goes on at `until` (the output rows
+  // from `next` on, as their mirror images): each from the window's own motion (window_row).
+  void record_window(std::size_t row, double toggle, double until, long& next) {
+    const Sample regular = out_.samples[row];
+    for (std::size_t i = row + 1; i < out_.samples.size(); ++i) {
+      const double at = out_.samples[i].time;
+      Row replaced = window_row(at, regular, toggle);
+      replaced.sample.step = static_cast<int>(i);
+      out_.samples[i] = std::move(replaced.sample);
+      out_.energies[i] = replaced.energy;
+    }
+    for (; next <= outputs_ && output_time(next) <= until * (1 + 1e-13); ++next) {
+      const double at = output_time(next);
+      keep_row(window_row(at, regular, toggle), out_.samples.size());
+    }
+  }
 
   // An event at `at` whose row is `row` (the last row kept if none is given).
   void add_event(SimulationEvent::Kind kind, double at, std::string message,
@@ -1530,13 +1544,21 @@ class Run {
     q = y.head(n_);
     qd = y.segment(n_, n_);
     const EquationsOfMotion::Rates& rates = eq_.evaluate_factorised(at, q, qd);
-    Row row;
+    ConstraintDrift drift;
     if (eq_.kept_rows()) {
       // Phi, Phi_t and gamma at this (t, q, q') as the projection and the accelerations left them.
-      row.drift.acceleration = (eq_.jacobian_times(rates.acceleration) - eq_.last_gamma()).lpNorm<Eigen::Infinity>();
-      row.drift.position = eq_.last_residuals().lpNorm<Eigen::Infinity>();
-      row.drift.velocity = (eq_.jacobian_times(qd) + eq_.last_time_derivative()).lpNorm<Eigen::Infinity>();
+      drift.acceleration = (eq_.jacobian_times(rates.acceleration) - eq_.last_gamma()).lpNorm<Eigen::Infinity>();
+      drift.position = eq_.last_residuals().lpNorm<Eigen::Infinity>();
+      drift.velocity = (eq_.jacobian_times(qd) + eq_.last_time_derivative()).lpNorm<Eigen::Infinity>();
     }
+    return filled_row(at, y, rates.acceleration, drift);
+  }
+
+  // The row at `at` of the state y (q, q' and the work integrals) with its accelerations.
+  Row filled_row(double at, const Eigen::VectorXd& y, const Eigen::VectorXd& acceleration, const ConstraintDrift& drift) {
+    Row row;
+    row.drift = drift;
+    const auto q = y.head(n_), qd = y.segment(n_, n_);
     Sample& sample = row.sample;
     sample.time = at;
     sample.driver_values = driver_values_at(mech_, q, driver_reference_);
@@ -1544,14 +1566,44 @@ class Run {
     sample.taylor.resize(n_, 3);
     sample.taylor.col(0) = q;
     sample.taylor.col(1) = qd;
-    sample.taylor.col(2) = 0.5 * rates.acceleration;
-    sample.residual = row.drift.position;
+    sample.taylor.col(2) = 0.5 * acceleration;
+    sample.residual = drift.position;
     SimulationEnergy& e = row.energy;
     eq_.stored_energy(q, qd, e);
     e.dissipated = y(2 * n_);
     e.work_in = y(2 * n_ + 1);
     e.balance = e.kinetic + e.gravity + e.spring + e.dissipated - e.work_in - energy_at_start_;
     return row;
+  }
+
+  // A row next to a toggle (within its regular distance), where positions projected there and
+  // the accelerations solved there are not reliable (a crank's acceleration -3475 deg/s^2 for
+  // -6138 at 7e-7 s from the parallelogram's toggle). The motion there is the cubic Hermite
+  // between the regular row and the integrator's own state at the toggle at `toggle`, exact to the
+  // fourth order in the window's length (its accelerations to the second), at the time as far
+  // before the toggle as `at` is from it; mirrored when `at` is past it. Its drift says how near
+  // the constraints that is.
+  Row window_row(double at, const Sample& regular, double toggle) {
+    const double span = toggle - regular.time, before = toggle - std::abs(at - toggle);
+    const double x = std::clamp((before - regular.time) / span, 0.0, 1.0);
+    const Eigen::VectorXd at_toggle = recent_.state_at(toggle);
+    const auto q0 = regular.taylor.col(0), v0 = regular.taylor.col(1);
+    const auto q1 = at_toggle.head(n_), v1 = at_toggle.segment(n_, n_);
+    Eigen::VectorXd y = recent_.state_at(before);  // for its work integrals
+    y.head(n_) = (2 * x * x * x - 3 * x * x + 1) * q0 + (x * x * x - 2 * x * x + x) * span * v0 +
+                 (-2 * x * x * x + 3 * x * x) * q1 + (x * x * x - x * x) * span * v1;
+    y.segment(n_, n_) = ((6 * x * x - 6 * x) * (q0 - q1)) / span + (3 * x * x - 4 * x + 1) * v0 + (3 * x * x - 2 * x) * v1;
+    const Eigen::VectorXd acceleration =
+        ((12 * x - 6) * (q0 - q1) / span + (6 * x - 4) * v0 + (6 * x - 2) * v1) / span;
+    if (at > toggle) y = mirrored(std::move(y), toggle);
+    ConstraintDrift drift;
+    if (eq_.kept_rows()) {
+      const Eigen::VectorXd q = y.head(n_), qd = y.segment(n_, n_);
+      drift.position = eq_.factorise_with_residuals(at, q).lpNorm<Eigen::Infinity>();
+      drift.velocity = (eq_.jacobian_times(qd) + eq_.time_derivative(q)).lpNorm<Eigen::Infinity>();
+      drift.acceleration = (eq_.jacobian_times(acceleration) - eq_.gamma(q, qd)).lpNorm<Eigen::Infinity>();
+    }
+    return filled_row(at, y, acceleration, drift);
   }
 
   // Keeps the row at `at` in the answer, after the rows so far.
