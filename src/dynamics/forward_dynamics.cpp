@@ -106,6 +106,15 @@ constexpr double kRegularDistance = 1e-4;
 // likely coming to rest against it: the run stops there.
 constexpr double kRestDistance = 3e-4;
 
+// kStalledSteps steps shorter than kStalledStep of the run while next to a square Jacobian (its
+// pivot ratio below kStalledPivots of its size at the start, where the gate opens) stop the run:
+// it approaches a toggle it does not reach (a prescribed motion into a stretched pose: pivot
+// ratios from 2e-2 down to 2e-5, steps from 1e-6 to 1e-10 s, for millions of steps). A toggle
+// reached takes some hundreds of such steps.
+constexpr double kStalledStep = 1e-7;
+constexpr double kStalledPivots = kGateNear;
+constexpr long kStalledSteps = 20'000;
+
 // A start whose square Jacobian's smallest-to-largest pivot ratio is below this is a toggle.
 constexpr double kSingularStart = 1e-10;
 
@@ -1141,6 +1150,11 @@ class Run {
   double next_step_size(double t, double h) {
     const double remaining = options_.end_time - t;
     if (h >= remaining * (1 - 1e-12)) h = remaining;
+    const bool near_toggle =
+        gate_start_.square && gate_scale_ > 0.0 && gate_start_.pivot_ratio < kStalledPivots * gate_scale_;
+    if (!near_toggle) stalled_steps_ = 0;
+    if (near_toggle && h < kStalledStep * options_.end_time && ++stalled_steps_ >= kStalledSteps)
+      throw stalled_next_to_a_toggle(t, h);
     if (out_.statistics.accepted_steps + out_.statistics.rejected_steps >= options_.max_steps) {
       // A row where the run got to, which the message names (the last output row is before it).
       if (t > out_.samples.back().time) record(t, y_);
@@ -1160,6 +1174,23 @@ class Run {
                            eq_.driver_to_blame()};
     }
     return h;
+  }
+
+  // Steps shrunk next to a nearly singular Jacobian: the motion approaches a toggle it does not
+  // reach, where the accelerations grow without bound. A prescribed motion that pushes the
+  // mechanism there (a five-bar's driven link into the stretched pose) ground on for 10 million
+  // steps, 3.5 minutes, then stopped at the free driver.
+  SimulationStop stalled_next_to_a_toggle(double t, double h) const {
+    const std::string stalled = "the steps shrank to " + seconds_text(h) + " at " + time_text(t) +
+                                " next to a singular position (a toggle the motion approaches but does not reach, "
+                                "where its accelerations grow without bound)";
+    const auto& drivers = mech_.model().drivers;
+    for (std::size_t d = 0; d < drivers.size(); ++d)
+      if (!drivers[d].free)
+        return {stalled + ": the prescribed motion of driver '" + drivers[d].name +
+                    "' pushes the mechanism into it, which no finite force can follow",
+                {EntityRef::Kind::Driver, static_cast<int>(d), -1}};
+    return {stalled, eq_.driver_to_blame()};
   }
 
   // An event on a step: its kind and where on the step, theta in [0, 1].
@@ -1669,6 +1700,7 @@ class Run {
   double scale_time_ = 0.0;
   Eigen::VectorXd scale_q_;
   double reversal_restart_ = -1.0;  // where the motion went on after the last reversal
+  long stalled_steps_ = 0;          // tiny steps since the motion came next to a toggle (next_step_size)
   EquationsOfMotion::Gate gate_start_;  // the gate at the state kept last
   double gate_scale_ = 0.0;             // its pivot ratio at the start
   std::optional<ColumnProbe> probe_;    // the stop condition's column

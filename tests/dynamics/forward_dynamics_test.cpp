@@ -523,6 +523,39 @@ drivers:
   EXPECT_TRUE(simulate(bar("1/(t + 0.5)"), options).complete);
 }
 
+// A five-bar whose driven link is pushed into the stretched pose at t = 1 s (the law brings it to
+// 93.8 deg, where the other side lines up) while the other link is free: the steps shrink without
+// end next to the singular Jacobian. The run stops there promptly, at the prescribed driver (it
+// ground on for 10 million steps, 3.5 minutes, and stopped at the free one).
+TEST(ForwardDynamics, APrescribedMotionIntoAToggleStopsAtItsDriver) {
+  const Mechanism mech = mechanism_of(R"(
+units: {length: mm, angle: deg}
+points: {O1: [0, 0], O5: [100, 0], A: [60, 0], B: [100, 40], P: [60.0, 40.0]}
+ground: [O1, O5]
+gravity: [0, -9.81]
+bodies:
+  left: {points: [O1, A], mass: 0.2, inertia: 1e-5}
+  right: {points: [O5, B], mass: 0.2, inertia: 1e-5}
+  distal_left: {points: [A, P], mass: 0.2, inertia: 1e-5}
+  distal_right: {points: [B, P], mass: 0.2, inertia: 1e-5}
+drivers:
+  - {name: theta_left, angle: left, law: "93.82255372927435*(1-cos(pi*t))/2"}
+  - {name: theta_right, angle: right, free: true}
+)");
+  SimulationOptions options;
+  options.end_time = 1.5;
+  options.output_step = 0.01;
+  options.max_steps = 1'000'000;
+  const Simulation sim = simulate(mech, options);
+  ASSERT_FALSE(sim.complete);
+  EXPECT_NE(sim.stop_reason.find("next to a singular position"), std::string::npos) << sim.stop_reason;
+  EXPECT_NE(sim.stop_reason.find("driver 'theta_left'"), std::string::npos) << sim.stop_reason;
+  EXPECT_EQ(sim.stop_where.kind, EntityRef::Kind::Driver);
+  EXPECT_EQ(sim.stop_where.index, 0);
+  EXPECT_LT(sim.statistics.accepted_steps + sim.statistics.rejected_steps, 200'000);
+  EXPECT_NEAR(sim.samples.back().time, 0.99, 1e-12);
+}
+
 // The table's energy balance is the run's, however small: the tables' noise rule (a value below
 // 1e-12 of its unit's largest is 0) printed a balance of 1e-12 J as 0.
 TEST(ForwardDynamics, TheTablesEnergyBalanceIsNeverRoundedToZero) {
