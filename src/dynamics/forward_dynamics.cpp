@@ -1589,7 +1589,9 @@ class Run {
   Row filled_row(double at, const Eigen::VectorXd& y, const Eigen::VectorXd& acceleration, const ConstraintDrift& drift) {
     Row row;
     row.drift = drift;
-    const auto q = y.head(n_), qd = y.segment(n_, n_);
+    Eigen::VectorXd &q = row_q_, &qd = row_qd_;  // in storage kept: blocks passed on became vectors allocated
+    q = y.head(n_);
+    qd = y.segment(n_, n_);
     Sample& sample = row.sample;
     sample.time = at;
     sample.driver_values = driver_values_at(mech_, q, driver_reference_);
