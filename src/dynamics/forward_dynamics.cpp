@@ -1299,14 +1299,13 @@ class Run {
   // reversal to go on from at a toggle with AtToggle::reverse, nothing where the run ends there.
   std::optional<Reversal> handle_event(SimulationEvent::Kind kind, double at, double step_start) {
     if (kind == SimulationEvent::Kind::stop_when) {
-      record(at, projected(at, recent_.state_at(at)));
+      record(at, recent_.state_at(at));  // projected there by the row, to rounding
       add_event(kind, at, "the stop condition '" + options_.stop_when->text + "' was met at " + time_text(at));
       return std::nullopt;
     }
     // At the toggle itself neither the speeds' projection onto the constraints nor the
     // accelerations are determined (a row there said a crank turned backwards at half its speed),
     // so the toggle's row is the last regular state before it, in its place among the rows.
-    const Regular regular = regular_time(at, step_start);
     if (coming_to_rest(at)) {
       const std::string rest = "the mechanism came back to the toggle at " + time_text(at) +
                                " without getting 3e-4 of the drawing away from it since it reversed there (going on "
@@ -1316,8 +1315,9 @@ class Run {
       add_event(kind, at, rest);
       throw SimulationStop{rest, eq_.driver_to_blame()};
     }
-    const Eigen::VectorXd y = projected(regular.time, recent_.state_at(regular.time));
-    const std::size_t row = row_at(regular.time, y);
+    const double regular = regular_time(at, step_start);
+    const Eigen::VectorXd y = projected(regular, recent_.state_at(regular));
+    const std::size_t row = row_at(regular, y);
     const std::string where = "the mechanism reached a toggle at " + time_text(at) +
                               ": its constraints became singular (a dead centre or change point), where the loads "
                               "no longer determine its motion";
@@ -1335,7 +1335,7 @@ class Run {
     // reversible in time (gravity, springs, loads of the positions); damping and friction lose on
     // the way back what they lost on the way in (mirrored, below), and loads of the time or the
     // speed are off by delta's share of their work, which the energy balance shows.
-    return Reversal{2 * at - regular.time, mirrored(y, at), row};
+    return Reversal{2 * at - regular, mirrored(y, at), row};
   }
 
   // Back at the toggle with every step since the reversal there within kRestDistance of it: the
@@ -1372,11 +1372,7 @@ class Run {
   // When before the toggle at `toggle` (on the step from `step_start`) the positions are
   // kRegularDistance of the drawing from the toggle's: searched backwards from a linear guess,
   // doubling; else the oldest state kept (the run's start, the last reversal's), nearer.
-  struct Regular {
-    double time;
-    bool far_enough;
-  };
-  Regular regular_time(double toggle, double step_start) const {
+  double regular_time(double toggle, double step_start) const {
     const Eigen::VectorXd at_toggle = recent_.state_at(toggle).head(n_);
     const double wanted = kRegularDistance * mech_.drawing_size();
     const double travelled = (at_toggle - recent_.state_at(step_start).head(n_)).lpNorm<Eigen::Infinity>();
@@ -1385,10 +1381,8 @@ class Run {
     back = std::max(back, 1e-15 * std::max(1.0, std::abs(toggle)));
     for (;;) {
       const double at = toggle - back;
-      const bool oldest = at <= recent_.earliest();
-      const double time = oldest ? recent_.earliest() : at;
-      const bool far_enough = (recent_.state_at(time).head(n_) - at_toggle).lpNorm<Eigen::Infinity>() >= wanted;
-      if (far_enough || oldest) return {time, far_enough};
+      if (at <= recent_.earliest()) return recent_.earliest();
+      if ((recent_.state_at(at).head(n_) - at_toggle).lpNorm<Eigen::Infinity>() >= wanted) return at;
       back *= 2;
     }
   }
