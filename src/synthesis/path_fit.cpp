@@ -610,8 +610,8 @@ PathFitResult fit_path(const PathFitTask& task, const PathFitOptions& given) {
   for (const PathStart& start : starts) {
     // The budget lets the first start be fitted whatever it is: a few milliseconds, and an
     // answer that lists a design however slow the machine. A caller's own stop is obeyed at once.
-    if (given.stop && given.stop()) break;
-    if (result.starts > 0 && options.stop && options.stop()) break;
+    const auto& stop = result.starts == 0 ? given.stop : options.stop;
+    if (stop && stop()) break;
     if (options.progress) options.progress(result.starts, static_cast<int>(starts.size()));
     ++result.starts;
     const FourBarShape shape = shape_of(frame.to_unit(start.design));
