@@ -158,10 +158,14 @@ class Validator {
       if (p.name.empty()) fail(where, "point #" + std::to_string(i + 1) + " has no name");
       if (!seen.insert(p.name).second) fail(where, "two points are named '" + p.name + "'");
       if (!p.position.allFinite()) fail(where, "point '" + p.name + "' has a coordinate that is not a finite number");
-      if (!(p.position.cwiseAbs().maxCoeff() / m_.units.length_scale <= kMaxCoordinate))
-        fail(where, "point '" + p.name + "' has a coordinate beyond 1e100 " + m_.units.length +
-                        ": check the number and the length unit");
+      check_coordinates(p.position, where, "point '" + p.name + "'");
     }
+  }
+
+  // `what` (a point, a centre of mass) within kMaxCoordinate of the origin in the length unit.
+  void check_coordinates(const Eigen::Vector2d& position, EntityRef where, const std::string& what) const {
+    if (!(position.cwiseAbs().maxCoeff() / m_.units.length_scale <= kMaxCoordinate))
+      fail(where, what + " has a coordinate beyond 1e100 " + m_.units.length + ": check the number and the length unit");
   }
 
   void check_bodies() {
@@ -617,9 +621,7 @@ class Validator {
           fail(where, "the weight of " + name + " (its mass times gravity) is too large to compute with");
         if (!g.cg.allFinite()) fail(where, "the centre of mass of " + name + " is not a finite point");
         // 1e300 m away it was taken for a body without inertia: its moment about the frame overflowed.
-        if (!(g.cg.cwiseAbs().maxCoeff() / m_.units.length_scale <= kMaxCoordinate))
-          fail(where, "the centre of mass of " + name + " has a coordinate beyond 1e100 " + m_.units.length +
-                          ": check the number and the length unit");
+        check_coordinates(g.cg, where, "the centre of mass of " + name);
         if (!b.points.empty() &&
             !std::isfinite(g.mass * (g.cg - m_.points[b.points.front()].position).squaredNorm()))
           fail(where, "the centre of mass of " + name + " is too far from its points for its mass (" +
