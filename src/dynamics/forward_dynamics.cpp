@@ -115,6 +115,14 @@ constexpr double kStalledStep = 1e-7;
 constexpr double kStalledPivots = kGateNear;
 constexpr long kStalledSteps = 20'000;
 
+// The positions' drift (|Phi| about 1e-12 of the size) blurs the toggle measure next to a change
+// point to about sqrt(1e-12) = 1e-6 of its size (docs/dynamics.md, Events): a measure falling
+// within that is at the toggle. A motion that passes a change point onto the other branch makes
+// the measure dip without changing sign: a dip below ten times the blur is taken for the change
+// point (a kite four-bar's dips to 2.3e-6).
+constexpr double kToggleBlur = 1e-6;
+constexpr double kChangePointDip = 10 * kToggleBlur;
+
 // A start whose square Jacobian's smallest-to-largest pivot ratio is below this is a toggle.
 constexpr double kSingularStart = 1e-10;
 
@@ -1272,13 +1280,29 @@ class Run {
       if ((measure[i] > 0) != (measure[i - 1] > 0) || measure[i] == 0.0)
         return bracket_sign_change(measure_at, theta[i - 1], theta[i], measure[i - 1], measure[i], tolerance).first;
     if (!near_zero) return std::nullopt;
+    return dip_on_step(theta, measure, measure_at, tolerance);
+  }
+
+  // Where |measure| falls within its blur of zero on the step (kToggleBlur of its size: the
+  // toggle, which the steps may not get nearer: at rtol 1e-12 they collapse at 3e-8 of it next to
+  // the parallelogram's), or has a minimum below kChangePointDip of its size, if it does: the
+  // motion passed a change point onto the other branch. The minimum may lie at the step's start:
+  // over the tiny steps next to a change point each step sees the measure only falling or only
+  // rising (a kite four-bar at rtol 1e-8: forty steps of 1e-7 s falling to 2.3e-6 of its size and
+  // rising again), so a step still falling at its end leaves the minimum to the next, which
+  // starts there.
+  template <class Measure>
+  std::optional<double> dip_on_step(const std::vector<double>& theta, const std::vector<double>& measure,
+                                    const Measure& measure_at, double tolerance) {
+    const std::size_t last = theta.size() - 1;
     std::size_t lowest = 0;
-    for (std::size_t i = 1; i < theta.size(); ++i)
+    for (std::size_t i = 1; i <= last; ++i)
       if (std::abs(measure[i]) < std::abs(measure[lowest])) lowest = i;
-    if (lowest == 0) return std::nullopt;
-    const double at = golden_minimum([&](double x) { return std::abs(measure_at(x)); }, theta[lowest - 1],
-                                     theta[std::min(lowest + 1, theta.size() - 1)], tolerance);
-    if (!(std::abs(measure_at(at)) <= 1e-6 * toggle_scale_)) return std::nullopt;
+    const double at = golden_minimum([&](double x) { return std::abs(measure_at(x)); },
+                                     theta[lowest > 0 ? lowest - 1 : 0], theta[std::min(lowest + 1, last)], tolerance);
+    const double least = std::abs(measure_at(at));
+    const bool still_falling = lowest == last && !(least < std::abs(measure[last]));
+    if (!(least <= (still_falling ? kToggleBlur : kChangePointDip) * toggle_scale_)) return std::nullopt;
     return at;
   }
 

@@ -716,6 +716,92 @@ TEST(ForwardDynamics, AStartAtAToggleIsSaidAndLaterTogglesAreStillSeen) {
   EXPECT_EQ(simulate(parallelogram_with(", from: 1"), options).warnings.size(), 0u);
 }
 
+// A kite four-bar (crank as long as the frame, coupler as long as the rocker), no gravity, its
+// crank turning at -200 deg/s from 60 deg into the change point at 0, where the crank's pin meets
+// the rocker's pivot. On the kite's branch B stays on the perpendicular bisector of A and O4, so
+// the motion is one coordinate's, th' = sqrt(2 T / I(th)), and the time to the change point is
+// the quadrature of sqrt(I(th) / 2 T) from 0 to 60 deg. Each body's centre of mass is its first
+// point (the default): T = (I_crank th'^2 + m_coupler |A'|^2 + I_coupler w_coupler^2 +
+// I_rocker w_rocker^2) / 2, the derivatives by central differences (which at 0 itself would
+// straddle the bisector's normal turning over).
+constexpr const char* kKiteTurningIn = R"(
+units: {length: mm, angle: deg}
+points:
+  O2: [0, 0]
+  O4: [100, 0]
+  A: [50.000000000000014, 86.60254037844386]
+  B: [287.13203435596427, 165.77575732838082]
+ground: [O2, O4]
+bodies:
+  crank: {points: [O2, A], mass: 0.3, inertia: 3e-4}
+  coupler: {points: [A, B], mass: 0.5, inertia: 3e-3}
+  rocker: {points: [O4, B], mass: 0.5, inertia: 3e-3}
+drivers:
+  - {angle: crank, free: true, initial_speed: -200 deg/s}
+)";
+
+double kite_time_to_change_point() {
+  using V = Eigen::Vector2d;
+  const V o4(0.1, 0.0);
+  const auto pins = [&](double th) {
+    const V a = 0.1 * V(std::cos(th), std::sin(th));
+    const V along = (o4 - a).normalized(), normal(-along.y(), along.x());
+    const double half = 0.5 * (o4 - a).norm();
+    return std::array<V, 2>{a, 0.5 * (a + o4) + std::sqrt(0.25 * 0.25 - half * half) * normal};
+  };
+  const auto inertia = [&](double th) {  // 2 T at th' = 1
+    const double d = 1e-6;
+    const auto p = pins(th + d), m = pins(th - d);
+    const V va = (p[0] - m[0]) / (2 * d);
+    const auto angle = [](const V& u) { return std::atan2(u.y(), u.x()); };
+    const double coupler = (angle(p[1] - p[0]) - angle(m[1] - m[0])) / (2 * d);
+    const double rocker = (angle(p[1] - o4) - angle(m[1] - o4)) / (2 * d);
+    return 3e-4 + 0.5 * va.squaredNorm() + 3e-3 * coupler * coupler + 3e-3 * rocker * rocker;
+  };
+  const double speed = 200 * M_PI / 180, energy2 = inertia(M_PI / 3) * speed * speed;
+  const int n = 2000;  // Simpson's rule on [0, 60 deg]
+  double sum = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    const double weight = i == 0 || i == n ? 1 : (i % 2 ? 4 : 2);
+    const double th = std::max(i * (M_PI / 3) / n, 1e-5);  // the bisector's normal turns over at 0
+    sum += weight * std::sqrt(inertia(th) / energy2);
+  }
+  return sum * (M_PI / 3) / n / 3;
+}
+
+// Over the tiny steps next to the kite's change point the toggle measure only dips (to 2.3e-6 of
+// its size at rtol 1e-8), each step seeing it only falling or only rising: the run once went on
+// unreported along the other branch, the crank stopped at 0 and the coupler and rocker turning
+// together about O4. It stops at the change point at every tolerance, and with `reverse` the
+// crank comes back to 60 deg at twice that time.
+TEST(ForwardDynamics, AKitesChangePointIsSeenWhereTheMeasureOnlyDips) {
+  const Mechanism mech = mechanism_of(kKiteTurningIn);
+  const double reference = kite_time_to_change_point();
+  EXPECT_NEAR(reference, 0.30074, 1e-4);  // about 60 deg at 200 deg/s
+  for (const double rtol : {1e-6, 1e-8, 1e-10, 1e-12}) {
+    SimulationOptions options;
+    options.end_time = 1.0;
+    options.output_step = 0.05;
+    options.relative_tolerance = rtol;
+    const Simulation sim = simulate(mech, options);
+    EXPECT_FALSE(sim.complete) << "rtol " << rtol;
+    ASSERT_EQ(sim.events.size(), 1u) << "rtol " << rtol;
+    EXPECT_EQ(sim.events[0].kind, SimulationEvent::Kind::toggle);
+    EXPECT_NEAR(sim.events[0].time, reference, 5e-7) << "rtol " << rtol;
+    const double crank = angle_of(mech, sim.samples.back(), "crank");
+    EXPECT_GT(crank, 0.0) << "rtol " << rtol;
+    EXPECT_LT(crank, 1e-3) << "rtol " << rtol;
+    if (rtol != 1e-12) continue;
+    options.at_toggle = AtToggle::reverse;
+    options.end_time = 2 * reference;
+    const Simulation back = simulate(mech, options);
+    ASSERT_TRUE(back.complete) << back.stop_reason;
+    ASSERT_EQ(back.events.size(), 1u);
+    EXPECT_NEAR(angle_of(mech, back.samples.back(), "crank"), M_PI / 3, 1e-5);
+    EXPECT_LT(std::abs(back.energies.back().balance), 1e-9);
+  }
+}
+
 // Andrews' squeezing mechanism (tests/dynamics/andrews_squeezer.yaml: the seven bodies, spring
 // and driving torque of the DAE test sets) against the reference solution of the Test Set for IVP
 // Solvers (Mazzia and Magherini, University of Bari, problem "andrews": PSIDE at tolerances of
