@@ -34,6 +34,7 @@ int run_equilibrium(const EquilibriumCommand& command) {
     print_option_error(e);
     return kBadUsage;
   }
+  print_warnings(equilibrium.warnings);
   Output output;
   if (!output.open(command.output)) return kBadUsage;
   if (request.format == "json") output.json_answer();

@@ -163,11 +163,15 @@ py::tuple as_arrays(const ResultTable& rows) {
   return as_arrays(std::move(table));
 }
 
+}  // namespace
+
 py::list warning_list(const std::vector<Warning>& warnings) {
   py::list out;
   for (const Warning& w : warnings) out.append(py::make_tuple(w.code, w.step, w.message));
   return out;
 }
+
+namespace {
 
 // A picture's options as the request layer reads them (the same as `nbar draw`'s and
 // `nbar animate`'s flags).

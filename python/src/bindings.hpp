@@ -46,6 +46,9 @@ Error internal_error(const std::exception& e);
 // The same error with the model file's place of its entity, when it has none of its own.
 Error located(const PyModel& model, const Error& error);
 
+// A result's warnings as (code, step, message) tuples.
+py::list warning_list(const std::vector<Warning>& warnings);
+
 // Runs `work` with the GIL released. Ctrl-C (a Jupyter interrupt) cancels `control`'s token,
 // and the call then raises KeyboardInterrupt; `timeout` (s) sets a deadline.
 void run_interruptible(RunControl& control, std::optional<double> timeout, const std::function<void()>& work);

@@ -51,6 +51,7 @@ py::dict equilibrium(std::shared_ptr<PyModel> model, std::optional<long long> ma
   out["iterations"] = found.iterations;
   out["pose"] = pose;
   out["units"] = units;
+  out["warnings"] = warning_list(found.warnings);
   return out;
 }
 

@@ -33,6 +33,29 @@ def test_equilibrium_of_a_block_on_a_spring():
     assert e["pose"]["C.y"] == pytest.approx(1 - length, abs=1e-12) and e["units"]["C.y"] == "m"
     assert e["eigenvalues"] == [pytest.approx(400, rel=1e-6)]
     assert e["residual"] < 1e-9 and e["iterations"] >= 1
+    assert e["warnings"] == []
+
+
+# A parallelogram whose crank pin a spring pulls onto the frame's line: at rest at the change point.
+PARALLELOGRAM_PULLED_FLAT = """units: {length: m, angle: deg}
+points: {O1: [0, 0], O2: [0.3, 0], A1: [0.05, 0.0866025403784], A2: [0.35, 0.0866025403784], S: [0.1, 0]}
+ground: [O1, O2, S]
+bodies:
+  crank1: {points: [O1, A1], mass: 0.4, inertia: 2e-4}
+  crank2: {points: [O2, A2], mass: 0.4, inertia: 2e-4}
+  coupler: {points: [A1, A2], mass: 1.5, inertia: 0.01}
+springs:
+  - {between: [S, A1], stiffness: 100, free_length: 0}
+drivers:
+  - {angle: crank1, free: true}
+"""
+
+
+def test_an_equilibrium_at_a_change_point_is_said():
+    e = nbar.loads(PARALLELOGRAM_PULLED_FLAT, "flat.yaml").equilibrium()
+    assert e["free_drivers"]["crank1"] == pytest.approx(0, abs=1e-8)
+    [(code, step, message)] = e["warnings"]
+    assert code == "equilibrium_at_toggle" and "change point" in message
 
 
 def test_a_damped_run_settles_at_the_equilibrium_and_the_model_sets_the_run():

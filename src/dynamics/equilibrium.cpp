@@ -7,6 +7,8 @@
 #include <memory>
 #include <sstream>
 
+#include "kinematics/rocking.hpp"
+#include "kinematics/workspace.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
 #include "nbar/kinematics/position.hpp"
 
@@ -80,6 +82,14 @@ class HoldingEfforts {
     values_ = start_;
     for (std::size_t i = 0; i < free_.size(); ++i) values_[free_[i]] = x(static_cast<Eigen::Index>(i));
     return true;
+  }
+
+  // The reciprocal condition and the determinant's sign (0 where not square or singular) of the
+  // Jacobian of every row at the pose assembled last, the free drivers' rows at their values.
+  std::pair<double, int> jacobian_at_pose() {
+    if (!factorize_jacobian(mech_, state_)) return {0.0, 0};
+    const bool square = mech_.row_count() == mech_.coordinate_count();
+    return {sample_condition(state_), square ? state_.workspace().solver().determinant_sign() : 0};
   }
 
   // The free drivers' holding efforts at the pose assembled last.
@@ -177,6 +187,31 @@ double weighted_norm(const Eigen::VectorXd& force, const HoldingEfforts& h) {
   return worst;
 }
 
+// A pose whose Jacobian's reciprocal condition is below this is at a toggle: the positions'
+// tolerance (1e-12 of the size) blurs a change point's to about sqrt(1e-12) = 1e-6 (a
+// parallelogram's equilibrium at its change point: 6e-7), and next to a dead centre it is about
+// the angle from it.
+constexpr double kToggleCondition = 1e-5;
+
+// The equilibrium's warnings: at a toggle, or past one (the start's Jacobian given as at_start).
+std::vector<Warning> toggle_warnings(const std::pair<double, int>& at_start, const std::pair<double, int>& at_pose,
+                                     const std::string& where) {
+  std::vector<Warning> out;
+  if (at_pose.first < kToggleCondition)
+    out.push_back({"equilibrium_at_toggle", 0,
+                   "the equilibrium at " + where + " is at a toggle or change point (the constraint Jacobian is " +
+                       (at_pose.first > 0 ? "near singular there, its condition number " + number_text(1 / at_pose.first)
+                                          : "singular there") +
+                       "): the loads do not determine the motion there, and the stability is that of the start's "
+                       "branch only"});
+  else if (at_start.second != 0 && at_pose.second != 0 && at_start.second != at_pose.second)
+    out.push_back({"equilibrium_past_toggle", 0,
+                   "between the start and the equilibrium at " + where +
+                       " the mechanism passed a toggle or change point (the constraint Jacobian's determinant changed "
+                       "sign): the equilibrium may be on another branch than the drawn one"});
+  return out;
+}
+
 }  // namespace
 
 // Newton on the holding efforts, each step limited (half a radian, half the drawing's size) and
@@ -191,6 +226,7 @@ Equilibrium find_equilibrium(const Mechanism& mechanism, const EquilibriumOption
     throw Error(ErrorKind::CannotAssemble, "the start cannot be assembled at " + h.values_text(x), h.where());
   Eigen::VectorXd force = h.efforts();
   const double start_scale = weighted_norm(force, h);
+  const std::pair<double, int> jacobian_at_start = h.jacobian_at_pose();
   Equilibrium out;
   out.free_drivers = h.free_drivers();
   bool converged = false;
@@ -247,6 +283,7 @@ Equilibrium find_equilibrium(const Mechanism& mechanism, const EquilibriumOption
                   h.where());
   }
   classify(out, 1e-12 * start_scale);
+  out.warnings = toggle_warnings(jacobian_at_start, h.jacobian_at_pose(), h.values_text(x));
   return out;
 }
 

@@ -118,6 +118,7 @@ drivers:
   const Equilibrium e = find_equilibrium(mech);
   EXPECT_EQ(e.stability, Stability::stable);
   EXPECT_LT(e.residual, 1e-10);
+  EXPECT_TRUE(e.warnings.empty());
   SimulationOptions options;
   options.end_time = 60.0;
   options.output_step = 20.0;
@@ -157,6 +158,50 @@ drivers:
   const Equilibrium e = find_equilibrium(mechanism_of(unloaded));
   EXPECT_EQ(e.stability, Stability::neutral);
   EXPECT_EQ(e.residual, 0.0);
+}
+
+// A parallelogram (0.1 m cranks, 0.3 m frame) whose first crank's pin a spring of zero free length
+// pulls towards S. With S on the frame's line at (0.1, 0) the potential is least where the crank
+// lies along the frame (th = 0 by symmetry): the change point, where the parallelogram and
+// crossed branches meet and the loads do not determine the motion. With S below the line at
+// (0.0866, -0.05) the equilibrium is at th = -30 deg (the pin on the spring's anchor), which Newton
+// reaches from the drawing at +5 deg through the change point, the Jacobian's determinant
+// changing sign. The crank-rocker of the damped test, far from its toggles, says nothing.
+std::string parallelogram_with_spring_to(const std::string& anchor, double drawn_deg) {
+  const double th = drawn_deg * M_PI / 180;
+  return R"(units: {length: m, angle: deg}
+points:
+  O1: [0, 0]
+  O2: [0.3, 0]
+  A1: [)" + exact(0.1 * std::cos(th)) + ", " + exact(0.1 * std::sin(th)) + R"(]
+  A2: [)" + exact(0.3 + 0.1 * std::cos(th)) + ", " + exact(0.1 * std::sin(th)) + R"(]
+  S: )" + anchor + R"(
+ground: [O1, O2, S]
+bodies:
+  crank1: {points: [O1, A1], mass: 0.4, inertia: 2e-4}
+  crank2: {points: [O2, A2], mass: 0.4, inertia: 2e-4}
+  coupler: {points: [A1, A2], mass: 1.5, inertia: 0.01}
+springs:
+  - {between: [S, A1], stiffness: 100, free_length: 0}
+drivers:
+  - {angle: crank1, free: true}
+)";
+}
+
+TEST(Equilibrium, AnEquilibriumAtOrPastAToggleIsSaid) {
+  const Equilibrium at = find_equilibrium(mechanism_of(parallelogram_with_spring_to("[0.1, 0]", 60)));
+  EXPECT_NEAR(at.pose.driver_values[0], 0.0, 1e-10);
+  ASSERT_EQ(at.warnings.size(), 1u);
+  EXPECT_EQ(at.warnings[0].code, "equilibrium_at_toggle");
+  EXPECT_NE(at.warnings[0].message.find("crank1 = "), std::string::npos) << at.warnings[0].message;
+
+  const Equilibrium past = find_equilibrium(mechanism_of(parallelogram_with_spring_to("[0.0866025403784, -0.05]", 5)));
+  EXPECT_NEAR(past.pose.driver_values[0], -M_PI / 6, 1e-9);
+  ASSERT_EQ(past.warnings.size(), 1u);
+  EXPECT_EQ(past.warnings[0].code, "equilibrium_past_toggle");
+  // Drawn on the same side as the equilibrium, nothing is passed.
+  EXPECT_TRUE(find_equilibrium(mechanism_of(parallelogram_with_spring_to("[0.0866025403784, -0.05]", -5)))
+                  .warnings.empty());
 }
 
 // A bar pendulum (m = 2 kg, L = 0.5 m, I_cg = 0.04 kg m^2) with viscous friction c at its pivot:

@@ -20,6 +20,7 @@
 #include "nbar/kinematics/mechanism.hpp"
 #include "nbar/kinematics/sweep.hpp"
 #include "nbar/kinematics/table.hpp"
+#include "nbar/model/diagnostics.hpp"
 #include "nbar/model/run_control.hpp"
 
 namespace nbar {
@@ -43,6 +44,12 @@ struct Equilibrium {
   std::vector<double> eigenvalues;
   Stability stability = Stability::stable;
   int iterations = 0;
+  // What the pose should be read with: `equilibrium_at_toggle` where the constraint Jacobian of
+  // every row (the free drivers' at their values) is singular there to 1e-8 (a dead centre or
+  // change point: the loads do not determine the motion there, and the stability is that of the
+  // start's branch only); `equilibrium_past_toggle` where its determinant's sign differs from the
+  // start's (the iteration passed a toggle: the pose may be on another branch than the drawn one).
+  std::vector<Warning> warnings;
 };
 
 // Throws Error(InvalidModel) at the first free driver when there is nothing free, when there is
