@@ -85,6 +85,16 @@ class ToggleMeasure {
     }
     return projected.determinant() / norms;
   }
+  // The smallest singular value of those rows, each of unit length: how near they are to
+  // dependent, whatever the measure's size elsewhere (a run started next to a change point has a
+  // measure of nearly nothing at its start).
+  double least_singular_value(const Eigen::MatrixXd& jacobian) const {
+    const int r = static_cast<int>(rows_.size());
+    if (r == 0) return 1.0;
+    Eigen::MatrixXd unit(r, jacobian.cols());
+    for (int i = 0; i < r; ++i) unit.row(i) = jacobian.row(rows_[i]).normalized();
+    return Eigen::JacobiSVD<Eigen::MatrixXd>(unit).singularValues().minCoeff();
+  }
 
  private:
   std::vector<int> rows_;
@@ -115,13 +125,15 @@ constexpr double kStalledStep = 1e-7;
 constexpr double kStalledPivots = kGateNear;
 constexpr long kStalledSteps = 20'000;
 
-// The positions' drift (|Phi| about 1e-12 of the size) blurs the toggle measure next to a change
-// point to about sqrt(1e-12) = 1e-6 of its size (docs/dynamics.md, Events): a measure falling
-// within that is at the toggle. A motion that passes a change point onto the other branch makes
-// the measure dip without changing sign: a dip below ten times the blur is taken for the change
-// point (a kite four-bar's dips to 2.3e-6).
+// How near the kept rows are to dependent is the smallest singular value of their unit rows
+// (ToggleMeasure::least_singular_value). The positions' drift (|Phi| about 1e-12 of the size)
+// blurs it next to a change point to about sqrt(1e-12) = 1e-6 (docs/dynamics.md, Events): rows
+// that come within that are at the toggle. A motion that passes a change point onto the other
+// branch makes the measure dip without changing sign: a dip within three times the blur is taken
+// for the change point (exact kites dip to 0.9e-6 to 1.25e-6; a near miss dips to about
+// sqrt(e r / L) for lengths off by e of the size, r the short link and L the long one).
 constexpr double kToggleBlur = 1e-6;
-constexpr double kChangePointDip = 10 * kToggleBlur;
+constexpr double kChangePointDip = 3 * kToggleBlur;
 
 // A start whose square Jacobian's smallest-to-largest pivot ratio is below this is a toggle.
 constexpr double kSingularStart = 1e-10;
@@ -1271,7 +1283,10 @@ class Run {
       return toggle_.measure(eq_.dense_jacobian());
     };
     std::vector<double> theta = {0.0, 1.0}, measure = {toggle_at_start_, measure_at(1.0)};
-    const bool near_zero = std::min(std::abs(measure[0]), std::abs(measure[1])) < 0.05 * toggle_scale_;
+    // Near zero against the measure's size at the start, or, for a run started next to a toggle
+    // (a size of nearly nothing), by the rows' dependence at the step's end (the last projected).
+    const bool near_zero = std::min(std::abs(measure[0]), std::abs(measure[1])) < 0.05 * toggle_scale_ ||
+                           toggle_.least_singular_value(eq_.dense_jacobian()) < 0.05;
     if (near_zero) {
       theta = {0.0, 0.25, 0.5, 0.75, 1.0};
       measure = {measure[0], measure_at(0.25), measure_at(0.5), measure_at(0.75), measure[1]};
@@ -1283,10 +1298,12 @@ class Run {
     return dip_on_step(theta, measure, measure_at, tolerance);
   }
 
-  // Where |measure| falls within its blur of zero on the step (kToggleBlur of its size: the
-  // toggle, which the steps may not get nearer: at rtol 1e-12 they collapse at 3e-8 of it next to
-  // the parallelogram's), or has a minimum below kChangePointDip of its size, if it does: the
-  // motion passed a change point onto the other branch. The minimum may lie at the step's start:
+  // Where |measure| falls until the rows are within the blur of dependent on the step
+  // (kToggleBlur: the toggle, which the steps may not get nearer: at rtol 1e-12 they collapse
+  // there next to the parallelogram's), or has a minimum where they are within kChangePointDip of
+  // it, if it does: the motion passed a change point onto the other branch. Judged by the rows'
+  // dependence itself, not by the measure against its size at the start, which a run started next
+  // to a change point has nearly nothing of. The minimum may lie at the step's start:
   // over the tiny steps next to a change point each step sees the measure only falling or only
   // rising (a kite four-bar at rtol 1e-8: forty steps of 1e-7 s falling to 2.3e-6 of its size and
   // rising again), so a step still falling at its end leaves the minimum to the next, which
@@ -1302,7 +1319,8 @@ class Run {
                                      theta[lowest > 0 ? lowest - 1 : 0], theta[std::min(lowest + 1, last)], tolerance);
     const double least = std::abs(measure_at(at));
     const bool still_falling = lowest == last && !(least < std::abs(measure[last]));
-    if (!(least <= (still_falling ? kToggleBlur : kChangePointDip) * toggle_scale_)) return std::nullopt;
+    const double dependence = toggle_.least_singular_value(eq_.dense_jacobian());  // at `at`, projected last
+    if (!(dependence <= (still_falling ? kToggleBlur : kChangePointDip))) return std::nullopt;
     return at;
   }
 
