@@ -1234,10 +1234,6 @@ class Run {
             true};
   }
 
-  // The state on the step [t, t + h] at theta, projected onto the constraints there.
-  Eigen::VectorXd projected_at(double t, double h, const Integrator::Step& s, double theta) {
-    return projected(t + theta * h, Integrator::interpolate(y_, s, theta));
-  }
   // y projected onto the constraints at `at`.
   Eigen::VectorXd projected(double at, Eigen::VectorXd y) {
     if (!integrator_.project(at, y))
@@ -1281,8 +1277,11 @@ class Run {
         std::min(end.pivot_ratio, gate_start_.pivot_ratio) >= kGateNear * gate_scale_)
       return std::nullopt;
     dense_toggle_reference();
+    // A point of the step that cannot be brought onto the constraints is next to the toggle (a
+    // near kite at rtol 1e-6: Newton fails where the branches nearly meet), taken as at it.
     const auto measure_at = [&](double theta) {
-      projected_at(t, h, s, theta);
+      Eigen::VectorXd y = Integrator::interpolate(y_, s, theta);
+      if (!integrator_.project(t + theta * h, y)) return 0.0;
       return toggle_.measure(eq_.dense_jacobian());
     };
     std::vector<double> theta = {0.0, 1.0}, measure = {toggle_at_start_, measure_at(1.0)};

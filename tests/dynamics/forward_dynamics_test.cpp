@@ -804,6 +804,39 @@ TEST(ForwardDynamics, AKitesChangePointIsSeenWhereTheMeasureOnlyDips) {
   }
 }
 
+// A near kite (rocker 1e-10 of its length short) at rtol 1e-6 with rows every 0.01 s: a point of
+// the step the toggle's search looked at next to where the branches nearly meet could not be
+// brought onto the constraints, and the run stopped with "the positions could not be brought back"
+// instead of the toggle it reaches with rows every 0.05 s.
+TEST(ForwardDynamics, APointThatCannotBeProjectedNextToAToggleIsTheToggle) {
+  const Mechanism mech = mechanism_of(R"(
+units: {length: m, angle: deg}
+points:
+  O2: [0, 0]
+  O4: [0.1, 0]
+  A: [0.05000000000000002, 0.08660254037844387]
+  B: [0.28713203437616575, 0.16577575726787536]
+ground: [O2, O4]
+bodies:
+  crank: {points: [O2, A], mass: 0.3, inertia: 0.00025}
+  coupler: {points: [A, B], mass: 0.5, inertia: 0.0026041666666666665}
+  rocker: {points: [O4, B], mass: 0.5, inertia: 0.002604166666145833}
+lengths: {crank: 0.1, coupler: 0.25, rocker: 0.249999999975}
+drivers:
+  - {angle: crank, free: true, initial_speed: -200 deg/s}
+)");
+  for (const double dt : {0.05, 0.01}) {
+    SimulationOptions options;
+    options.end_time = 1.2;
+    options.output_step = dt;
+    options.relative_tolerance = 1e-6;
+    const Simulation sim = simulate(mech, options);
+    ASSERT_EQ(sim.events.size(), 1u) << "dt " << dt << ": " << sim.stop_reason;
+    EXPECT_NE(sim.stop_reason.find("toggle"), std::string::npos) << sim.stop_reason;
+    EXPECT_NEAR(sim.events[0].time, 0.3006702, 1e-6) << "dt " << dt;
+  }
+}
+
 // Released from rest 0.01 to 0.3 deg above its change point, the parallelogram's measure of the
 // rows' dependence is nearly nothing at the start: judged against that size, the change point went
 // by unreported (from 0.01 deg at rtol 1e-10 the run flipped between the parallel and crossed
