@@ -133,6 +133,11 @@ constexpr long kStalledSteps = 20'000;
 // for the change point (exact kites dip to 0.9e-6 to 1.25e-6; a near miss dips to about
 // sqrt(e r / L) for lengths off by e of the size, r the short link and L the long one).
 constexpr double kToggleBlur = 1e-6;
+// Rows still nearing dependence are at the toggle only well within the blur: the steps may not
+// get nearer (at rtol 1e-12 they collapse at a tenth of it next to a parallelogram's change
+// point), and taken at the blur itself every toggle came 1.3e-6 rad early, which reversals added
+// up (150 us over 78 reversals of a parallelogram released 0.5 deg above its change point).
+constexpr double kToggleReached = 0.1 * kToggleBlur;
 // A toggle measure this small at the start (rows of unit length a few degrees from dependent)
 // says the run starts next to a toggle.
 constexpr double kSmallMeasure = 0.05;
@@ -1108,7 +1113,13 @@ class Run {
       }
       while (next_output <= outputs_) {
         if (control_.should_stop("simulate", next_output, outputs_)) throw cancellation();
-        h = next_step_size(t, h);
+        const std::optional<double> step = next_step_size(t, h);
+        if (!step) {  // the steps collapsed at a toggle they cannot get nearer: it is reached at t
+          if (!go_on_after_event(SimulationEvent::Kind::toggle, t, last_step_start_, next_output, t, k1)) break;
+          h = integrator_.initial_step(t, y_, k1, options_.end_time - t);
+          continue;
+        }
+        h = *step;
         Integrator::Step& s = step_;
         integrator_.step(t, y_, k1, h, s);
         if (!s.y1.allFinite() || !(s.error <= 1.0)) {
@@ -1138,18 +1149,10 @@ class Run {
         }
         accept(h);
         if (event) {
-          const std::optional<Reversal> reversal = handle_event(event->kind, reached, t);
-          if (!reversal) break;
-          record_window(reversal->regular_row, reached, reversal->time, next_output);
-          t = reversal->time;
-          y_ = reversal->y;
-          recent_.clear();
-          reversal_restart_ = t;
-          integrator_.derivative(t, y_, k1);
-          keep_step_start(t);
-          if (probe_) condition_ = condition_at(t, y_, true);
+          if (!go_on_after_event(event->kind, reached, t, next_output, t, k1)) break;
           continue;
         }
+        last_step_start_ = t;
         y_ = y1;
         t = t1;
         if (next_k1_ready)
@@ -1171,9 +1174,37 @@ class Run {
   }
 
  private:
+  // The event at `at` on the step from `step_start` handled (handle_event); where the motion goes
+  // on (a reversal), its rows next to the toggle recorded and the integration restarted there
+  // (t, k1 and the state kept). False where the run ends there.
+  bool go_on_after_event(SimulationEvent::Kind kind, double at, double step_start, long& next_output, double& t,
+                         Eigen::VectorXd& k1) {
+    const std::optional<Reversal> reversal = handle_event(kind, at, step_start);
+    if (!reversal) return false;
+    record_window(reversal->regular_row, at, reversal->time, next_output);
+    t = reversal->time;
+    y_ = reversal->y;
+    recent_.clear();
+    reversal_restart_ = t;
+    integrator_.derivative(t, y_, k1);
+    keep_step_start(t);
+    if (probe_) condition_ = condition_at(t, y_, true);
+    return true;
+  }
+
+  // Whether the kept rows are within kChangePointDip of dependent at the state kept last: steps
+  // that collapse there have reached a toggle they cannot get nearer (a near kite of a 1 mm crank
+  // on 1 m links at rtol 1e-12 stopped with "the step size fell" 3e-15 s from it).
+  bool rows_at_toggle() {
+    if (gate_scale_ == 0.0) return false;  // still leaving a toggle at the start
+    dense_toggle_reference();
+    eq_.factorise(step_start_time_, step_start_q_);
+    return toggle_.least_singular_value(eq_.dense_jacobian()) <= kChangePointDip;
+  }
+
   // The step to take from t, h cut to the time left; a stop where the steps are too many (with a
-  // row at t) or too short.
-  double next_step_size(double t, double h) {
+  // row at t) or too short; nothing where they collapsed at a toggle (rows_at_toggle).
+  std::optional<double> next_step_size(double t, double h) {
     const double remaining = options_.end_time - t;
     if (h >= remaining * (1 - 1e-12)) h = remaining;
     const bool near_toggle =
@@ -1196,6 +1227,7 @@ class Run {
                                     ", below the time's rounding: ";
       if (const std::optional<SimulationStop> law = eq_.law_to_blame(t))
         throw SimulationStop{collapsed + law->reason + " (a pole or a jump the motion cannot follow)", law->where};
+      if (rows_at_toggle()) return std::nullopt;
       throw SimulationStop{collapsed + "the motion is too fast or not smooth there for the tolerance asked",
                            eq_.driver_to_blame()};
     }
@@ -1304,9 +1336,9 @@ class Run {
     return dip_on_step(theta, measure, measure_at, tolerance);
   }
 
-  // Where |measure| falls until the rows are within the blur of dependent on the step
-  // (kToggleBlur: the toggle, which the steps may not get nearer: at rtol 1e-12 they collapse
-  // there next to the parallelogram's), or has a minimum where they are within kChangePointDip of
+  // Where |measure| falls until the rows are well within the blur of dependent on the step
+  // (kToggleReached: the toggle, which the steps may not get nearer), or has a minimum where they
+  // are within kChangePointDip of
   // it, if it does: the motion passed a change point onto the other branch. Judged by the rows'
   // dependence itself, not by the measure against its size at the start, which a run started next
   // to a change point has nearly nothing of. The minimum may lie at the step's start:
@@ -1326,7 +1358,7 @@ class Run {
     const double least = std::abs(measure_at(at));
     const bool still_falling = lowest == last && !(least < std::abs(measure[last]));
     const double dependence = toggle_.least_singular_value(eq_.dense_jacobian());  // at `at`, projected last
-    if (!(dependence <= (still_falling ? kToggleBlur : kChangePointDip))) return std::nullopt;
+    if (!(dependence <= (still_falling ? kToggleReached : kChangePointDip))) return std::nullopt;
     return at;
   }
 
@@ -1440,17 +1472,28 @@ class Run {
   // from `next` on, as their mirror images): each from the window's own motion (window_row).
   void record_window(std::size_t row, double toggle, double until, long& next) {
     const Sample regular = out_.samples[row];
+    const Eigen::VectorXd third = third_taylor_coefficient(regular, toggle);
     for (std::size_t i = row + 1; i < out_.samples.size(); ++i) {
       const double at = out_.samples[i].time;
-      Row replaced = window_row(at, regular, toggle);
+      Row replaced = window_row(at, regular, third, toggle);
       replaced.sample.step = static_cast<int>(i);
       out_.samples[i] = std::move(replaced.sample);
       out_.energies[i] = replaced.energy;
     }
     for (; next <= outputs_ && output_time(next) <= until * (1 + 1e-13); ++next) {
       const double at = output_time(next);
-      keep_row(window_row(at, regular, toggle), out_.samples.size());
+      keep_row(window_row(at, regular, third, toggle), out_.samples.size());
     }
+  }
+
+  // The third Taylor coefficient of q in time (the jerk over 6) at the regular row: from its
+  // accelerations and those of a row as far before it as the toggle is after it (regular, well
+  // away from the toggle); zero where the steps kept do not reach back there (the start).
+  Eigen::VectorXd third_taylor_coefficient(const Sample& regular, double toggle) {
+    const double span = toggle - regular.time, back = regular.time - span;
+    if (!(span > 0.0) || back < recent_.earliest()) return Eigen::VectorXd::Zero(n_);
+    const Row earlier = make_row(back, recent_.state_at(back));
+    return (regular.taylor.col(2) - earlier.sample.taylor.col(2)) / (3 * span);
   }
 
   // An event at `at` whose row is `row` (the last row kept if none is given).
@@ -1653,23 +1696,20 @@ class Run {
 
   // A row next to a toggle (within its regular distance), where positions projected there and
   // the accelerations solved there are not reliable (a crank's acceleration -3475 deg/s^2 for
-  // -6138 at 7e-7 s from the parallelogram's toggle). The motion there is the cubic Hermite
-  // between the regular row and the integrator's own state at the toggle at `toggle`, exact to the
-  // fourth order in the window's length (its accelerations to the second), at the time as far
-  // before the toggle as `at` is from it; mirrored when `at` is past it. Its drift says how near
-  // the constraints that is.
-  Row window_row(double at, const Sample& regular, double toggle) {
-    const double span = toggle - regular.time, before = toggle - std::abs(at - toggle);
-    const double x = std::clamp((before - regular.time) / span, 0.0, 1.0);
-    const Eigen::VectorXd at_toggle = recent_.state_at(toggle);
-    const auto q0 = regular.taylor.col(0), v0 = regular.taylor.col(1);
-    const auto q1 = at_toggle.head(n_), v1 = at_toggle.segment(n_, n_);
+  // -6138 at 7e-7 s from the parallelogram's toggle). The motion there is the regular row's own
+  // Taylor expansion to the third order (`third`, third_taylor_coefficient), at the time as far
+  // before the toggle as `at` is from it; mirrored when `at` is past it. Over the window's 1e-4
+  // of the drawing it is exact to the fourth order in its length (its accelerations to the
+  // second), and it asks nothing of the state at the toggle, whose speeds the integrator keeps
+  // poorly there (a cubic Hermite to them left a parallelogram's rows 21 % off its energy at rtol
+  // 1e-12). Its drift says how near the constraints that is.
+  Row window_row(double at, const Sample& regular, const Eigen::VectorXd& third, double toggle) {
+    const double before = toggle - std::abs(at - toggle), tau = std::max(before - regular.time, 0.0);
+    const auto q0 = regular.taylor.col(0), v0 = regular.taylor.col(1), c2 = regular.taylor.col(2);
     Eigen::VectorXd y = recent_.state_at(before);  // for its work integrals
-    y.head(n_) = (2 * x * x * x - 3 * x * x + 1) * q0 + (x * x * x - 2 * x * x + x) * span * v0 +
-                 (-2 * x * x * x + 3 * x * x) * q1 + (x * x * x - x * x) * span * v1;
-    y.segment(n_, n_) = ((6 * x * x - 6 * x) * (q0 - q1)) / span + (3 * x * x - 4 * x + 1) * v0 + (3 * x * x - 2 * x) * v1;
-    const Eigen::VectorXd acceleration =
-        ((12 * x - 6) * (q0 - q1) / span + (6 * x - 4) * v0 + (6 * x - 2) * v1) / span;
+    y.head(n_) = q0 + tau * (v0 + tau * (c2 + tau * third));
+    y.segment(n_, n_) = v0 + tau * (2 * c2 + 3 * tau * third);
+    const Eigen::VectorXd acceleration = 2 * c2 + 6 * tau * third;
     if (at > toggle) y = mirrored(std::move(y), toggle);
     ConstraintDrift drift;
     if (eq_.kept_rows()) {
@@ -1744,6 +1784,7 @@ class Run {
   double scale_time_ = 0.0;
   Eigen::VectorXd scale_q_;
   double reversal_restart_ = -1.0;  // where the motion went on after the last reversal
+  double last_step_start_ = 0.0;    // where the last step accepted started
   long stalled_steps_ = 0;          // tiny steps since the motion came next to a toggle (next_step_size)
   EquationsOfMotion::Gate gate_start_;  // the gate at the state kept last
   double gate_scale_ = 0.0;             // its pivot ratio at the start

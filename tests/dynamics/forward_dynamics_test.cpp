@@ -854,6 +854,42 @@ drivers:
   }
 }
 
+// A near kite of a 1 mm crank on 1 m links (its frame 1e-8 of the crank long) turning into its
+// change point at rtol 1e-12: the steps collapse next to it, 1e-7 to 1e-6 from the rows'
+// dependence, and the run stopped with "the step size fell ... the motion is too fast or not
+// smooth". It is the toggle, reached where the steps cannot get nearer: stopped or reversed there.
+TEST(ForwardDynamics, StepsCollapsingAtAToggleReachIt) {
+  const Mechanism mech = mechanism_of(R"(
+units: {length: m, angle: deg}
+points:
+  O2: [0, 0]
+  O4: [0.00100000001, 0]
+  A: [-0.001, 1.2246467991473531e-19]
+  B: [5.000061212330021e-12, 0.99999949999987]
+ground: [O2, O4]
+bodies:
+  crank: {points: [O2, A], mass: 0.3, inertia: 2.5e-08}
+  coupler: {points: [A, B], mass: 0.5, inertia: 0.041666666666666664}
+  rocker: {points: [O4, B], mass: 0.5, inertia: 0.041666666666666664}
+lengths: {crank: 0.001, coupler: 1.0, rocker: 1.0}
+drivers:
+  - {angle: crank, free: true, initial_speed: -200 deg/s}
+)");
+  SimulationOptions options;
+  options.end_time = 1.2;
+  options.output_step = 0.01;
+  options.relative_tolerance = 1e-12;
+  const Simulation stopped = simulate(mech, options);
+  ASSERT_EQ(stopped.events.size(), 1u) << stopped.stop_reason;
+  EXPECT_NE(stopped.stop_reason.find("reached a toggle"), std::string::npos) << stopped.stop_reason;
+  EXPECT_NEAR(stopped.events[0].time, 0.8999193, 1e-6);  // 180 deg at 200 deg/s, nearly
+  options.at_toggle = AtToggle::reverse;
+  const Simulation reversed = simulate(mech, options);
+  ASSERT_TRUE(reversed.complete) << reversed.stop_reason;
+  ASSERT_EQ(reversed.events.size(), 1u);
+  EXPECT_LT(reversed.statistics.largest_energy_error, 1e-10);
+}
+
 // Released from rest 0.01 to 0.3 deg above its change point, the parallelogram's measure of the
 // rows' dependence is nearly nothing at the start: judged against that size, the change point went
 // by unreported (from 0.01 deg at rtol 1e-10 the run flipped between the parallel and crossed
@@ -883,9 +919,9 @@ TEST(ForwardDynamics, AChangePointNextToTheStartIsSeen) {
 }
 
 // Released 0.5 deg above its change point and reversed there at rtol 1e-12, the parallelogram's
-// rows next to each reversal kept 0.003 J off its energy balance (of 0.016 J): the toggle was
-// looked for where the steps had collapsed next to it. Found where the rows come within the blur
-// of dependent, every row's balance holds.
+// rows next to each reversal kept 0.003 J off its energy balance (of 0.016 J): they were a cubic
+// Hermite to the integrator's own state at the toggle, whose speeds it keeps poorly there. From
+// the regular row's Taylor expansion, every row's balance holds.
 TEST(ForwardDynamics, ReversalsNextToTheStartKeepTheEnergy) {
   SimulationOptions options;
   options.end_time = 2.0;
@@ -896,6 +932,11 @@ TEST(ForwardDynamics, ReversalsNextToTheStartKeepTheEnergy) {
   ASSERT_TRUE(sim.complete) << sim.stop_reason;
   EXPECT_GT(sim.events.size(), 50u);
   EXPECT_LT(sim.statistics.largest_energy_error, 1e-9);
+  // Reversal k at (2 k + 1) times the crossing: toggles taken where the rows came within the blur
+  // (1.3e-6 rad early each) had the 78th 153 us early.
+  const double crossing = parallelogram_crossing_time(0.5 * M_PI / 180);
+  const std::size_t last = sim.events.size() - 1;
+  EXPECT_NEAR(sim.events[last].time, (2 * static_cast<double>(last) + 1) * crossing, 3e-5);
 }
 
 // Andrews' squeezing mechanism (tests/dynamics/andrews_squeezer.yaml: the seven bodies, spring
