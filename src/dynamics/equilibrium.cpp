@@ -41,7 +41,8 @@ class HoldingEfforts {
         control_(control),
         // The solver only borrows the mechanism for the call: no ownership to share.
         dynamics_(std::shared_ptr<const Mechanism>(&mech, [](const Mechanism*) {})),
-        state_(mech) {
+        state_(mech),
+        start_state_(mech) {
     const Model& m = mech.model();
     for (std::size_t d = 0; d < m.drivers.size(); ++d)
       if (m.drivers[d].free) free_.push_back(static_cast<int>(d));
@@ -51,6 +52,7 @@ class HoldingEfforts {
                   "`free: true`",
                   {EntityRef::Kind::Driver, 0, -1});
     start_ = assemble_at_time(mech, state_, 0.0, 0).driver_values;
+    start_state_ = state_;
     // Steps of the finite differences and the largest Newton step, per free driver.
     const double size = mech.drawing_size();
     for (int d : free_) {
@@ -90,6 +92,47 @@ class HoldingEfforts {
     if (!factorize_jacobian(mech_, state_)) return {0.0, 0};
     const bool square = mech_.row_count() == mech_.coordinate_count();
     return {sample_condition(state_), square ? state_.workspace().solver().determinant_sign() : 0};
+  }
+
+  // The least reciprocal condition of the Jacobian along the straight path of the free drivers'
+  // values from the start to x, each pose assembled from the one before (the drawn branch
+  // followed), its minima refined by golden section (next to a change point it falls as the
+  // square root of the distance: the samples alone pass it at 0.07); 0 where the path cannot be
+  // assembled. The pose assembled last is left as it was.
+  double least_condition_on_the_way_to(const Eigen::VectorXd& x) {
+    const State kept = state_;
+    const std::vector<double> kept_values = values_;
+    state_ = start_state_;
+    const Eigen::VectorXd from = this->start();
+    const auto condition_at = [&](double s) {
+      return assemble(from + s * (x - from)) ? jacobian_at_pose().first : 0.0;
+    };
+    constexpr int kSamples = 64;
+    std::vector<double> condition(kSamples + 1);
+    std::vector<State> poses;
+    for (int i = 0; i <= kSamples; ++i) {
+      condition[i] = condition_at(static_cast<double>(i) / kSamples);
+      poses.push_back(state_);
+    }
+    double least = *std::min_element(condition.begin(), condition.end());
+    for (int i = 0; i <= kSamples && least > 0.0; ++i) {  // the ends too: a change point just past x
+      const int before = std::max(i - 1, 0), after = std::min(i + 1, kSamples);
+      if (!(condition[i] <= condition[before] && condition[i] <= condition[after])) continue;
+      const double a = static_cast<double>(before) / kSamples, b = static_cast<double>(after) / kSamples;
+      for (double lo = a, hi = b; hi - lo > 1e-12;) {  // golden section, each pose from the sample before
+        const double c = hi - 0.618 * (hi - lo), d = lo + 0.618 * (hi - lo);
+        state_ = poses[before];
+        const double fc = condition_at(c);
+        state_ = poses[before];
+        const double fd = condition_at(d);
+        least = std::min({least, fc, fd});
+        (fc < fd ? hi : lo) = fc < fd ? d : c;
+        state_ = poses[before];
+      }
+    }
+    state_ = kept;
+    values_ = kept_values;
+    return least;
   }
 
   // The free drivers' holding efforts at the pose assembled last.
@@ -158,6 +201,7 @@ class HoldingEfforts {
   const RunControl& control_;
   InverseDynamics dynamics_;
   State state_;
+  State start_state_;  // the start's pose, where the path to the equilibrium is followed from
   std::vector<int> free_;
   std::vector<double> start_, values_, scale_;
 };
@@ -193,22 +237,26 @@ double weighted_norm(const Eigen::VectorXd& force, const HoldingEfforts& h) {
 // the angle from it.
 constexpr double kToggleCondition = 1e-5;
 
-// The equilibrium's warnings: at a toggle, or past one (the start's Jacobian given as at_start).
+// The equilibrium's warnings: at a toggle, or past one (the start's Jacobian given as at_start,
+// the least condition on the straight way from the start as on_the_way).
 std::vector<Warning> toggle_warnings(const std::pair<double, int>& at_start, const std::pair<double, int>& at_pose,
-                                     const std::string& where) {
+                                     double on_the_way, const std::string& where) {
   std::vector<Warning> out;
   if (at_pose.first < kToggleCondition)
-    out.push_back({"equilibrium_at_toggle", 0,
-                   "the equilibrium at " + where + " is at a toggle or change point (the constraint Jacobian is " +
-                       (at_pose.first > 0 ? "near singular there, its condition number " + number_text(1 / at_pose.first)
-                                          : "singular there") +
-                       "): the loads do not determine the motion there, and the stability is that of the start's "
-                       "branch only"});
-  else if (at_start.second != 0 && at_pose.second != 0 && at_start.second != at_pose.second)
+    out.push_back(
+        {"equilibrium_at_toggle", 0,
+         "the equilibrium at " + where + " is at a toggle or change point (the constraint Jacobian is " +
+             (at_pose.first > 0 ? "near singular there, its condition number " + number_text(1 / at_pose.first)
+                                : "singular there") +
+             "): the loads do not determine the motion there, and the stability is that of the start's "
+             "branch only"});
+  else if ((at_start.second != 0 && at_pose.second != 0 && at_start.second != at_pose.second) ||
+           on_the_way < kToggleCondition)
     out.push_back({"equilibrium_past_toggle", 0,
                    "between the start and the equilibrium at " + where +
                        " the mechanism passed a toggle or change point (the constraint Jacobian's determinant changed "
-                       "sign): the equilibrium may be on another branch than the drawn one"});
+                       "sign, or it became singular on the way): the equilibrium may be on another branch than the "
+                       "drawn one"});
   return out;
 }
 
@@ -283,7 +331,8 @@ Equilibrium find_equilibrium(const Mechanism& mechanism, const EquilibriumOption
                   h.where());
   }
   classify(out, 1e-12 * start_scale);
-  out.warnings = toggle_warnings(jacobian_at_start, h.jacobian_at_pose(), h.values_text(x));
+  out.warnings =
+      toggle_warnings(jacobian_at_start, h.jacobian_at_pose(), h.least_condition_on_the_way_to(x), h.values_text(x));
   return out;
 }
 

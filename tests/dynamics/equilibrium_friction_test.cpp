@@ -204,6 +204,32 @@ TEST(Equilibrium, AnEquilibriumAtOrPastAToggleIsSaid) {
                   .warnings.empty());
 }
 
+// A slider-crank whose rod is as long as its crank (0.1 m), drawn at 60 deg, a spring of free
+// length 0.5 m pulling the piston towards x = 0: Newton goes through the change point at 90 deg
+// (the piston at the crank's pivot) to rest on the other branch, the rod folded back onto the
+// crank (crank 90.066 deg, the piston at x = 0). The determinant's sign does not change there;
+// the Jacobian is singular on the way, which the path from the start, followed and its least
+// condition refined, finds.
+TEST(Equilibrium, AChangePointPassedWithoutASignChangeIsSaid) {
+  const Equilibrium e = find_equilibrium(mechanism_of(R"(units: {length: m, angle: deg}
+points: {O2: [0, 0], G1: [-1, 0], G2: [1, 0], S: [0.5, 0], A: [0.05, 0.0866025403784439], C: [0.1, 0]}
+ground: [O2, G1, G2, S]
+bodies:
+  crank: {points: [O2, A], mass: 0.5, inertia: 1e-3}
+  rod: {points: [A, C], mass: 0.3, inertia: 5e-4}
+  piston: {points: [C], mass: 0.4}
+sliders:
+  - {body: piston, point: C, along: [G1, G2]}
+springs:
+  - {between: [S, C], stiffness: 1000, free_length: 0.5}
+drivers:
+  - {angle: crank, free: true}
+)"));
+  EXPECT_GT(e.pose.driver_values[0], M_PI / 2);
+  ASSERT_EQ(e.warnings.size(), 1u);
+  EXPECT_EQ(e.warnings[0].code, "equilibrium_past_toggle");
+}
+
 // A bar pendulum (m = 2 kg, L = 0.5 m, I_cg = 0.04 kg m^2) with viscous friction c at its pivot:
 // (I_cg + m L^2/4) th'' = -m g (L/2) cos(th) - c th', integrated here by RK4.
 TEST(JointFriction, AViscousPivotSlowsAPendulumAsItsEquationSays) {
