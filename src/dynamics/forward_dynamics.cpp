@@ -128,7 +128,7 @@ constexpr long kStalledSteps = 20'000;
 // How near the kept rows are to dependent is the smallest singular value of their unit rows
 // (ToggleMeasure::least_singular_value). The positions' drift (|Phi| about 1e-12 of the size)
 // blurs it next to a change point to about sqrt(1e-12) = 1e-6 (docs/dynamics.md, Events): rows
-// that come within that are at the toggle. A motion that passes a change point onto the other
+// within that cannot be told from dependent. A motion that passes a change point onto the other
 // branch makes the measure dip without changing sign: a dip within three times the blur is taken
 // for the change point (exact kites dip to 0.9e-6 to 1.25e-6; a near miss dips to about
 // sqrt(e r / L) for lengths off by e of the size, r the short link and L the long one).
@@ -1338,14 +1338,13 @@ class Run {
 
   // Where |measure| falls until the rows are well within the blur of dependent on the step
   // (kToggleReached: the toggle, which the steps may not get nearer), or has a minimum where they
-  // are within kChangePointDip of
-  // it, if it does: the motion passed a change point onto the other branch. Judged by the rows'
-  // dependence itself, not by the measure against its size at the start, which a run started next
-  // to a change point has nearly nothing of. The minimum may lie at the step's start:
-  // over the tiny steps next to a change point each step sees the measure only falling or only
-  // rising (a kite four-bar at rtol 1e-8: forty steps of 1e-7 s falling to 2.3e-6 of its size and
-  // rising again), so a step still falling at its end leaves the minimum to the next, which
-  // starts there.
+  // are within kChangePointDip of it, if it does: the motion passed a change point onto the other
+  // branch. Judged by the rows' dependence itself, not by the measure against its size at the
+  // start, which a run started next to a change point has nearly nothing of. The minimum may lie
+  // at the step's start: over the tiny steps next to a change point each step sees the measure
+  // only falling or only rising (a kite four-bar at rtol 1e-8: forty steps of 1e-7 s falling to
+  // 2.3e-6 of its size and rising again), so a step still falling at its end leaves the minimum
+  // to the next, which starts there.
   template <class Measure>
   std::optional<double> dip_on_step(const std::vector<double>& theta, const std::vector<double>& measure,
                                     const Measure& measure_at, double tolerance) {
@@ -1356,6 +1355,7 @@ class Run {
     const double at = golden_minimum([&](double x) { return std::abs(measure_at(x)); },
                                      theta[lowest > 0 ? lowest - 1 : 0], theta[std::min(lowest + 1, last)], tolerance);
     const double least = std::abs(measure_at(at));
+    if (least == 0.0) return at;  // not brought onto the constraints there: at the toggle (measure_at)
     const bool still_falling = lowest == last && !(least < std::abs(measure[last]));
     const double dependence = toggle_.least_singular_value(eq_.dense_jacobian());  // at `at`, projected last
     if (!(dependence <= (still_falling ? kToggleReached : kChangePointDip))) return std::nullopt;
