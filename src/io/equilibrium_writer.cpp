@@ -77,11 +77,7 @@ void write_equilibrium_json(std::ostream& out, const Mechanism& mechanism, const
   j["columns"] = table.columns;
   j["column_units"] = table.units;
   j["row"] = table.rows.front();
-  if (!equilibrium.warnings.empty()) {  // only then, as a simulation's
-    nlohmann::ordered_json warnings = nlohmann::json::array();
-    for (const Warning& w : equilibrium.warnings) warnings.push_back({{"code", w.code}, {"message", w.message}});
-    j["warnings"] = warnings;
-  }
+  put_warnings(j, equilibrium.warnings);
   out << json_text(j, 1) << '\n';
 }
 

@@ -397,11 +397,7 @@ void write_simulation_json(std::ostream& out, const Mechanism& mechanism, const 
                       {"row", event.row},
                       {"message", event.message}});
   j["events"] = events;
-  if (!simulation.warnings.empty()) {  // only then, so that the answer of a run without any keeps its keys
-    nlohmann::ordered_json warnings = nlohmann::json::array();
-    for (const Warning& w : simulation.warnings) warnings.push_back({{"code", w.code}, {"message", w.message}});
-    j["warnings"] = warnings;
-  }
+  put_warnings(j, simulation.warnings);
   j["columns"] = table.columns;
   j["column_units"] = table.units;
   j["rows"] = table.rows;
