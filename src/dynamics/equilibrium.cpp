@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 
+#include "dynamics/golden_section.hpp"
 #include "kinematics/rocking.hpp"
 #include "kinematics/workspace.hpp"
 #include "nbar/dynamics/inverse_dynamics.hpp"
@@ -118,17 +119,13 @@ class HoldingEfforts {
     for (int i = 0; i <= kSamples && least > 0.0; ++i) {  // the ends too: a change point just past x
       const int before = std::max(i - 1, 0), after = std::min(i + 1, kSamples);
       if (!(condition[i] <= condition[before] && condition[i] <= condition[after])) continue;
-      const double a = static_cast<double>(before) / kSamples, b = static_cast<double>(after) / kSamples;
-      for (double lo = a, hi = b; hi - lo > 1e-12;) {  // golden section, each pose from the sample before
-        const double c = hi - 0.618 * (hi - lo), d = lo + 0.618 * (hi - lo);
+      const auto from_sample_before = [&](double s) {  // each pose assembled from the sample before
         state_ = poses[before];
-        const double fc = condition_at(c);
-        state_ = poses[before];
-        const double fd = condition_at(d);
-        least = std::min({least, fc, fd});
-        (fc < fd ? hi : lo) = fc < fd ? d : c;
-        state_ = poses[before];
-      }
+        return condition_at(s);
+      };
+      const double nearest = golden_minimum(from_sample_before, static_cast<double>(before) / kSamples,
+                                            static_cast<double>(after) / kSamples, 1e-12);
+      least = std::min(least, from_sample_before(nearest));
     }
     state_ = kept;
     values_ = kept_values;

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "dynamics/augmented_system.hpp"
+#include "dynamics/golden_section.hpp"
 #include "dynamics/initial_velocity.hpp"
 #include "dynamics/joint_friction.hpp"
 #include "kinematics/constraints.hpp"
@@ -992,22 +993,6 @@ std::pair<double, double> bracket_sign_change(const std::function<double(double)
     bisect = b - a > 0.5 * width;
   }
   return {a, b};
-}
-
-// Where f is smallest on [a, b] (f unimodal there), by golden-section search to `tolerance`.
-double golden_minimum(const std::function<double(double)>& f, double a, double b, double tolerance) {
-  const double ratio = (std::sqrt(5.0) - 1) / 2;
-  double c = b - ratio * (b - a), d = a + ratio * (b - a), fc = f(c), fd = f(d);
-  while (b - a > tolerance) {
-    if (fc < fd) {
-      b = d, d = c, fd = fc;
-      c = b - ratio * (b - a), fc = f(c);
-    } else {
-      a = c, c = d, fc = fd;
-      d = a + ratio * (b - a), fd = f(d);
-    }
-  }
-  return fc < fd ? c : d;
 }
 
 // The stop condition's column is not in the table: say which columns are, the nearest first (one
