@@ -912,6 +912,9 @@ class RecentSteps {
     count_ = 0;
     newest_ = capacity_ - 1;
   }
+  bool empty() const { return count_ == 0; }
+  // The start of the newest step kept.
+  double newest_start() const { return data_[newest_ * stride_]; }
   // The start of the oldest step kept.
   double earliest() const { return data_[(count_ < capacity_ ? 0 : (newest_ + 1) % capacity_) * stride_]; }
 
@@ -1100,7 +1103,7 @@ class Run {
         if (control_.should_stop("simulate", next_output, outputs_)) throw cancellation();
         const std::optional<double> step = next_step_size(t, h);
         if (!step) {  // the steps collapsed at a toggle they cannot get nearer: it is reached at t
-          if (!go_on_after_event(SimulationEvent::Kind::toggle, t, last_step_start_, next_output, t, k1)) break;
+          if (!go_on_after_event(SimulationEvent::Kind::toggle, t, recent_.newest_start(), next_output, t, k1)) break;
           h = integrator_.initial_step(t, y_, k1, options_.end_time - t);
           continue;
         }
@@ -1137,7 +1140,6 @@ class Run {
           if (!go_on_after_event(event->kind, reached, t, next_output, t, k1)) break;
           continue;
         }
-        last_step_start_ = t;
         y_ = y1;
         t = t1;
         if (next_k1_ready)
@@ -1179,9 +1181,11 @@ class Run {
 
   // Whether the kept rows are within kChangePointDip of dependent at the state kept last: steps
   // that collapse there have reached a toggle they cannot get nearer (a near kite of a 1 mm crank
-  // on 1 m links at rtol 1e-12 stopped with "the step size fell" 3e-15 s from it).
+  // on 1 m links at rtol 1e-12 stopped with "the step size fell" 3e-15 s from it). Not while the
+  // run still leaves a toggle at its start (no scale yet), nor before a step is kept since the
+  // start or a reversal (the toggle's regular state is looked for on the steps kept).
   bool rows_at_toggle() {
-    if (gate_scale_ == 0.0) return false;  // still leaving a toggle at the start
+    if (gate_scale_ == 0.0 || recent_.empty()) return false;
     dense_toggle_reference();
     eq_.factorise(step_start_time_, step_start_q_);
     return toggle_.least_singular_value(eq_.dense_jacobian()) <= kChangePointDip;
@@ -1769,7 +1773,6 @@ class Run {
   double scale_time_ = 0.0;
   Eigen::VectorXd scale_q_;
   double reversal_restart_ = -1.0;  // where the motion went on after the last reversal
-  double last_step_start_ = 0.0;    // where the last step accepted started
   long stalled_steps_ = 0;          // tiny steps since the motion came next to a toggle (next_step_size)
   EquationsOfMotion::Gate gate_start_;  // the gate at the state kept last
   double gate_scale_ = 0.0;             // its pivot ratio at the start
