@@ -60,7 +60,7 @@ Command add_simulate_command(CommandLine& app) {
                          "marked free released: positions, velocities, accelerations and energies in time");
   sub->add_option("MODEL", command->model, "model file (YAML or JSON)")->required();
   command->flags = std::make_unique<RequestFlags>(*sub, request::SimulateRequest::rules());
-  command->flags->add({"to", "dt", "rtol", "max_steps", "format", "columns", "stop_when", "at_toggle"});
+  command->flags->add({"to", "dt", "rtol", "max_steps", "format", "columns", "stop_when", "at_toggle", "threads"});
   sub->add_option("-o,--output", command->output, "write to FILE instead of standard output")
       ->check(nbar::cli::output_file());
   return {sub, [command] { return run_simulate(*command); }};

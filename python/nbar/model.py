@@ -450,7 +450,8 @@ class Model:
 
     def simulate(self, to: Optional[float] = None, dt: Optional[float] = None, rtol: Optional[float] = None,
                  columns: Columns = None, max_steps: Optional[int] = None, stop_when: Optional[str] = None,
-                 at_toggle: Optional[str] = None, partial: bool = False, timeout: Optional[float] = None) -> Result:
+                 at_toggle: Optional[str] = None, partial: bool = False, timeout: Optional[float] = None,
+                 threads: Optional[int] = None) -> Result:
         """Lets the mechanism move under its loads for ``to`` seconds (``nbar simulate``): the
         drivers marked ``free: true`` are released, the others stay kinematic. A row every ``dt``
         seconds (default ``to``/100) with the columns of ``solve`` and the energies
@@ -461,7 +462,9 @@ class Model:
 
         ``stop_when="slider.x > 200"`` ends the run where a column crosses a value (in its unit),
         located to 1e-12 s; ``at_toggle="reverse"`` reverses every speed where the constraints
-        become singular instead of stopping there. ``result.events`` lists both with their times;
+        become singular instead of stopping there. ``threads=1`` keeps the whole run on the calling
+        thread; by default the output rows are made on a second one where the machine has two
+        cores (the answer is the same to the last bit). ``result.events`` lists both with their times;
         ``result.statistics`` holds the integrator's steps, the largest constraint drift and energy
         error. A run that cannot continue (a toggle, a step size too small) raises
         ``nbar.LimitError`` with the rows so far as ``.result``, unless ``partial=True``; one
@@ -473,6 +476,7 @@ class Model:
                              max_steps=_whole("max_steps", max_steps, minimum=1),
                              stop_when=None if stop_when is None else _text("stop_when", stop_when),
                              at_toggle=None if at_toggle is None else _text("at_toggle", at_toggle),
+                             threads=_whole("threads", threads, minimum=1),
                              timeout=_real("timeout", timeout))
         result = Result(run, *self._simulated_columns(run, patterns))
         result.default_x = "t"

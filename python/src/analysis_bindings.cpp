@@ -309,7 +309,8 @@ struct PySimulation {
 std::shared_ptr<PySimulation> run_simulation(std::shared_ptr<PyModel> model, std::optional<double> to,
                                              std::optional<double> dt, std::optional<double> rtol,
                                              std::optional<long long> max_steps, std::optional<std::string> stop_when,
-                                             std::optional<std::string> at_toggle, std::optional<double> timeout) {
+                                             std::optional<std::string> at_toggle, std::optional<long long> threads,
+                                             std::optional<double> timeout) {
   request::Options given;
   if (to) given.set("to", *to);
   if (dt) given.set("dt", *dt);
@@ -317,6 +318,7 @@ std::shared_ptr<PySimulation> run_simulation(std::shared_ptr<PyModel> model, std
   if (max_steps) given.set("max_steps", *max_steps);
   if (stop_when) given.set("stop_when", *stop_when);
   if (at_toggle) given.set("at_toggle", *at_toggle);
+  if (threads) given.set("threads", *threads);
   auto out = std::make_shared<PySimulation>();
   out->model = model;
   out->request = request::SimulateRequest::read(given);
@@ -426,7 +428,7 @@ void bind_simulation(py::module_& m) {
           py::arg("title") = "");
   m.def("simulate", &run_simulation, py::arg("model"), py::arg("to") = std::nullopt, py::arg("dt") = std::nullopt,
         py::arg("rtol") = std::nullopt, py::arg("max_steps") = std::nullopt, py::arg("stop_when") = std::nullopt,
-        py::arg("at_toggle") = std::nullopt, py::arg("timeout") = std::nullopt);
+        py::arg("at_toggle") = std::nullopt, py::arg("threads") = std::nullopt, py::arg("timeout") = std::nullopt);
 }
 
 // One link's mesh and field at one step as a .vtu document (`nbar stress --export-mesh`).

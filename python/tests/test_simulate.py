@@ -108,6 +108,18 @@ def test_simulate_options_are_the_command_lines(parallelogram):
         parallelogram.simulate(to=10, dt=1e-6)  # more than a million rows
     with pytest.raises(nbar.ColumnError, match="did you mean 'crank1'"):
         parallelogram.simulate(to=0.1, columns="crank")
+    with pytest.raises(nbar.BadInputError, match="threads"):
+        parallelogram.simulate(to=0.1, threads=3)
+
+
+def test_the_rows_thread_changes_nothing_but_the_time(parallelogram):
+    """The output rows made on a second thread (the default where there are two cores) are the
+    rows of a run on one thread, to the last bit."""
+    two = parallelogram.simulate(to=0.5, dt=0.001, at_toggle="reverse")
+    one = parallelogram.simulate(to=0.5, dt=0.001, at_toggle="reverse", threads=1)
+    assert two.rows == one.rows == 501 and two.events == one.events
+    assert (two.to_numpy() == one.to_numpy()).all()
+    assert two.statistics == one.statistics
 
 
 def test_a_stop_condition_ends_the_run_at_its_time():

@@ -7,13 +7,16 @@
 #include <cstdlib>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 #include "dynamics/augmented_system.hpp"
 #include "dynamics/golden_section.hpp"
 #include "dynamics/initial_velocity.hpp"
 #include "dynamics/joint_friction.hpp"
+#include "dynamics/ordered_worker.hpp"
 #include "kinematics/constraints.hpp"
 #include "kinematics/linear_solver.hpp"
 #include "kinematics/sparse_lu.hpp"
@@ -50,8 +53,6 @@ struct SimulationStop {
   bool cancelled = false;  // by the run's control (a cancel, a deadline), not by the motion
 };
 
-std::vector<double> driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q,
-                                     const std::vector<double>& previous);
 void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& previous,
                       std::vector<double>& out);
 
@@ -932,15 +933,7 @@ class RecentSteps {
   std::vector<double> data_;  // per step: t, h, y0, r2, r3, r4, r5
 };
 
-// Each driver's value at q (SI), angles unwrapped against `previous`.
-std::vector<double> driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q,
-                                     const std::vector<double>& previous) {
-  std::vector<double> out;
-  driver_values_at(mech, q, previous, out);
-  return out;
-}
-
-// The same into `out`, in storage kept (the gate asks at every step).
+// Each driver's value at q (SI) into `out`, angles unwrapped against `previous`.
 void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& previous,
                       std::vector<double>& out) {
   const Model& m = mech.model();
@@ -969,6 +962,119 @@ void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std
     }
   }
 }
+
+// Each body's angle at q (rad), unwrapped against `reference` (bodies of fewer than two points:
+// 0). `out` may be `reference`.
+void body_angles_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& reference,
+                    std::vector<double>& out) {
+  const Model& m = mech.model();
+  out.resize(m.bodies.size());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const std::vector<int>& points = m.bodies[b].points;
+    if (points.size() < 2) {
+      out[b] = 0.0;
+      continue;
+    }
+    const Eigen::Vector2d u = mech.point_position(points[1], q) - mech.point_position(points[0], q);
+    const double angle = std::atan2(u.y(), u.x());
+    out[b] = angle + 2 * M_PI * std::round((reference[b] - angle) / (2 * M_PI));
+  }
+}
+
+// A row at an output time and what it says about the run, not yet kept.
+struct Row {
+  Sample sample;
+  SimulationEnergy energy;
+  ConstraintDrift drift;
+};
+
+// What a row is made against: each driver's value and each body's angle at the state kept last
+// (the start, a step's end, an event), which its angles are unwrapped against, not against the
+// row before, so that rows far apart (a fast wheel, a large --dt) lose no whole turn (a step
+// turns a body far less than half a turn: its error control follows the positions' sines); and
+// the energy stored at the start, which its balance is measured from.
+struct RowReference {
+  std::vector<double> drivers, bodies;
+  double energy = 0.0;
+};
+
+// Makes rows with its own equations of motion and projection: each thread that makes rows has
+// one (the projection leaves its factorisation, the solves their warm starts).
+class RowMaker {
+ public:
+  RowMaker(const Mechanism& mech, EquationsOfMotion& eq, Integrator& integrator)
+      : mech_(mech), eq_(eq), integrator_(integrator), n_(mech.coordinate_count()) {}
+
+  // The row at `at`: y projected, q'' evaluated there, the energies and the drift.
+  Row make(double at, const Eigen::VectorXd& y_given, const RowReference& reference) {
+    Eigen::VectorXd& y = y_;  // the row's vectors in storage kept: nothing allocated but the row
+    y = y_given;
+    if (!integrator_.project(at, y, true))
+      throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(at),
+                           eq_.driver_to_blame()};
+    Eigen::VectorXd &q = q_, &qd = qd_;
+    q = y.head(n_);
+    qd = y.segment(n_, n_);
+    const EquationsOfMotion::Rates& rates = eq_.evaluate_factorised(at, q, qd);
+    ConstraintDrift drift;
+    if (eq_.kept_rows()) {
+      // Phi, Phi_t and gamma at this (t, q, q') as the projection and the accelerations left them.
+      drift.acceleration = (eq_.jacobian_times(rates.acceleration) - eq_.last_gamma()).lpNorm<Eigen::Infinity>();
+      drift.position = eq_.last_residuals().lpNorm<Eigen::Infinity>();
+      drift.velocity = (eq_.jacobian_times(qd) + eq_.last_time_derivative()).lpNorm<Eigen::Infinity>();
+    }
+    return filled(at, y, rates.acceleration, drift, reference);
+  }
+
+  // The row at `at` of the state y (q, q' and the work integrals) with its accelerations.
+  Row filled(double at, const Eigen::VectorXd& y, const Eigen::VectorXd& acceleration, const ConstraintDrift& drift,
+             const RowReference& reference) {
+    Row row;
+    row.drift = drift;
+    Eigen::VectorXd &q = q_, &qd = qd_;  // in storage kept: blocks passed on became vectors allocated
+    q = y.head(n_);
+    qd = y.segment(n_, n_);
+    Sample& sample = row.sample;
+    sample.time = at;
+    driver_values_at(mech_, q, reference.drivers, sample.driver_values);
+    body_angles_at(mech_, q, reference.bodies, sample.body_angles);
+    sample.taylor.resize(n_, 3);
+    sample.taylor.col(0) = q;
+    sample.taylor.col(1) = qd;
+    sample.taylor.col(2) = 0.5 * acceleration;
+    sample.residual = drift.position;
+    SimulationEnergy& e = row.energy;
+    eq_.stored_energy(q, qd, e);
+    e.dissipated = y(2 * n_);
+    e.work_in = y(2 * n_ + 1);
+    e.balance = e.kinetic + e.gravity + e.spring + e.dissipated - e.work_in - reference.energy;
+    return row;
+  }
+
+ private:
+  const Mechanism& mech_;
+  EquationsOfMotion& eq_;
+  Integrator& integrator_;
+  int n_ = 0;
+  Eigen::VectorXd y_, q_, qd_;
+};
+
+// What the output rows are made with (equations of motion and a projection of their own), and
+// what they said. Allocated by the thread that makes them, at its first job, so that nothing it
+// writes shares a cache line with what the steps write: made with the run, its small vectors lay
+// between the steps' and the two threads ran each other half again as slow.
+struct OutputRows {
+  OutputRows(const Mechanism& mech, const std::vector<double>& start, const SimulationOptions& options)
+      : eq(mech, start), integrator(mech, eq, options), maker(mech, eq, integrator) {}
+  EquationsOfMotion eq;
+  Integrator integrator;
+  RowMaker maker;
+  Eigen::VectorXd state;  // the interpolated state of a row
+  ConstraintDrift drift;  // the worst of the rows made
+  double energy_error = 0.0;
+  std::optional<SimulationStatistics> statistics_at_stop;  // the steps' when a row stopped the run
+  std::vector<double> times;                               // the output times
+};
 
 // The bracket [a, b] where f changes sign (f(a) = fa and f(b) = fb have opposite signs),
 // narrowed until b - a <= tolerance: regula falsi with the Illinois halving, and a
@@ -1065,6 +1171,16 @@ class ColumnProbe {
 
 // One run: the start, the steps, a row at every output time, and the events on the way.
 class Run {
+  // The output rows of one step, as the row thread makes them.
+  struct RowJob {
+    double t = 0.0, h = 0.0;
+    Eigen::VectorXd y0;
+    Integrator::Step step;  // its continuous extension: r2 to r5
+    long first = 0, end = 0;
+    RowReference reference;
+    SimulationStatistics statistics;
+  };
+
  public:
   Run(const Mechanism& mech, const SimulationOptions& options, const RunControl& control)
       : mech_(mech),
@@ -1072,7 +1188,9 @@ class Run {
         control_(control),
         start_(sweep_path(mech, 2).from),
         eq_(mech, start_),
-        integrator_(mech, eq_, options_) {
+        integrator_(mech, eq_, options_),
+        rows_(mech, eq_, integrator_),
+        output_worker_([this](RowJob& job) { make_output_rows(job); }, second_thread_wanted(options)) {
     n_ = mech.coordinate_count();
     if (options.stop_when) probe_.emplace(mech, *options.stop_when);
     const double step = options.output_step > 0 ? options.output_step : options.end_time / 100;
@@ -1100,7 +1218,10 @@ class Run {
         next_output = outputs_ + 1;  // nothing more to do
       }
       while (next_output <= outputs_) {
-        if (control_.should_stop("simulate", next_output, outputs_)) throw cancellation();
+        if (control_.should_stop("simulate", next_output, outputs_)) {
+          drain_output_rows();
+          throw cancellation();
+        }
         const std::optional<double> step = next_step_size(t, h);
         if (!step) {  // the steps collapsed at a toggle they cannot get nearer: it is reached at t
           if (!go_on_after_event(SimulationEvent::Kind::toggle, t, recent_.newest_start(), next_output, t, k1)) break;
@@ -1128,13 +1249,12 @@ class Run {
         const std::optional<Found> event = first_event(t, h, s, y1);
         recent_.keep(t, h, y_, s);
         const double reached = event ? t + event->theta * h : t1;
-        while (next_output <= outputs_ && output_time(next_output) <= reached * (1 + 1e-13)) {
-          const double at = output_time(next_output);
-          if (event && at >= reached) break;  // the event's own row stands for it
-          Integrator::interpolate(y_, s, std::clamp((at - t) / h, 0.0, 1.0), interpolated_);
-          record(at, interpolated_);
-          ++next_output;
-        }
+        long rows_end = next_output;
+        while (rows_end <= outputs_ && output_time(rows_end) <= reached * (1 + 1e-13) &&
+               !(event && output_time(rows_end) >= reached))  // the event's own row stands for it
+          ++rows_end;
+        if (rows_end > next_output) hand_over_rows(t, h, s, next_output, rows_end);
+        next_output = rows_end;
         accept(h);
         if (event) {
           if (!go_on_after_event(event->kind, reached, t, next_output, t, k1)) break;
@@ -1150,13 +1270,26 @@ class Run {
         if (probe_) condition_ = condition_at(t, y_, true);
         h *= std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(s.error, 1e-10), -0.2)));
       }
+      drain_output_rows();
     } catch (const SimulationStop& stop) {
+      // An output row handed over before the stop that stopped the run itself came first.
+      const SimulationStop first = earlier_output_row_stop().value_or(stop);
       out_.complete = false;
-      out_.stop_reason = stop.reason;
-      out_.stop_where = stop.where;
-      out_.cancelled = stop.cancelled;
+      out_.stop_reason = first.reason;
+      out_.stop_where = first.where;
+      out_.cancelled = first.cancelled;
     }
     out_.statistics.evaluations = integrator_.evaluations();
+    if (output_ && output_->statistics_at_stop) {
+      // The steps' statistics as they were when the row's step was taken: as on one thread.
+      const SimulationStatistics& then = *output_->statistics_at_stop;
+      SimulationStatistics& now = out_.statistics;
+      now.accepted_steps = then.accepted_steps;
+      now.rejected_steps = then.rejected_steps;
+      now.evaluations = then.evaluations;
+      now.smallest_step = then.smallest_step;
+      now.largest_step = then.largest_step;
+    }
     return std::move(out_);
   }
 
@@ -1166,6 +1299,7 @@ class Run {
   // (t, k1 and the state kept). False where the run ends there.
   bool go_on_after_event(SimulationEvent::Kind kind, double at, double step_start, long& next_output, double& t,
                          Eigen::VectorXd& k1) {
+    drain_output_rows();  // an event's rows take their places among them
     const std::optional<Reversal> reversal = handle_event(kind, at, step_start);
     if (!reversal) return false;
     record_window(reversal->regular_row, at, reversal->time, next_output);
@@ -1203,6 +1337,7 @@ class Run {
       throw stalled_next_to_a_toggle(t, h);
     if (out_.statistics.accepted_steps + out_.statistics.rejected_steps >= options_.max_steps) {
       // A row where the run got to, which the message names (the last output row is before it).
+      drain_output_rows();
       if (t > out_.samples.back().time) record(t, y_);
       throw SimulationStop{"the simulation took more than " + std::to_string(options_.max_steps) + " steps before " +
                                time_text(options_.end_time) + " (stopped at " + time_text(t) + ")",
@@ -1353,7 +1488,7 @@ class Run {
 
   // The stop condition's distance (> 0: it holds) at a state, kept as the last state when `keep`.
   double condition_at(double at, const Eigen::VectorXd& y, bool keep) {
-    const Row row = make_row(at, y);
+    const Row row = rows_.make(at, y, reference_);
     return probe_->distance(row.sample, row.energy, keep);
   }
 
@@ -1481,7 +1616,7 @@ class Run {
   Eigen::VectorXd third_taylor_coefficient(const Sample& regular, double toggle) {
     const double span = toggle - regular.time, back = regular.time - span;
     if (!(span > 0.0) || back < recent_.earliest()) return Eigen::VectorXd::Zero(n_);
-    const Row earlier = make_row(back, recent_.state_at(back));
+    const Row earlier = rows_.make(back, recent_.state_at(back), reference_);
     return (regular.taylor.col(2) - earlier.sample.taylor.col(2)) / (3 * span);
   }
 
@@ -1491,33 +1626,17 @@ class Run {
     out_.events.push_back({kind, at, static_cast<int>(row.value_or(out_.samples.size() - 1)), std::move(message)});
   }
 
-  // Each body's angle at q (rad), unwrapped against `reference` (bodies of fewer than two points:
-  // 0). `out` may be `reference`.
-  void body_angles_at(const Eigen::VectorXd& q, const std::vector<double>& reference, std::vector<double>& out) const {
-    const Model& m = mech_.model();
-    out.resize(m.bodies.size());
-    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-      const std::vector<int>& points = m.bodies[b].points;
-      if (points.size() < 2) {
-        out[b] = 0.0;
-        continue;
-      }
-      const Eigen::Vector2d u = mech_.point_position(points[1], q) - mech_.point_position(points[0], q);
-      const double angle = std::atan2(u.y(), u.x());
-      out[b] = angle + 2 * M_PI * std::round((reference[b] - angle) / (2 * M_PI));
-    }
-  }
   // The start's: as a sweep's table starts them, at their driver's value for the bodies an
   // absolute angle drives, in atan2's range for the others.
   void first_body_angles(const Eigen::VectorXd& q) {
     const Model& m = mech_.model();
     std::vector<double> reference(m.bodies.size(), 0.0);
-    body_angles_at(q, reference, reference);  // atan2's range
+    body_angles_at(mech_, q, reference, reference);  // atan2's range
     for (std::size_t d = 0; d < m.drivers.size(); ++d) {
       const Driver& drv = m.drivers[d];
-      if (drv.kind == DriverKind::Angle && drv.relative_to < 0) reference[drv.body] = driver_reference_[d];
+      if (drv.kind == DriverKind::Angle && drv.relative_to < 0) reference[drv.body] = reference_.drivers[d];
     }
-    body_angles_at(q, reference, body_reference_);
+    body_angles_at(mech_, q, reference, reference_.bodies);
   }
 
   // The state just kept (the last derivative's factorisation is there) starts the next step: its
@@ -1525,8 +1644,8 @@ class Run {
   void keep_step_start(double t) {
     step_start_time_ = t;
     step_start_q_ = y_.head(n_);
-    driver_values_at(mech_, step_start_q_, driver_reference_, driver_reference_);
-    body_angles_at(step_start_q_, body_reference_, body_reference_);
+    driver_values_at(mech_, step_start_q_, reference_.drivers, reference_.drivers);
+    body_angles_at(mech_, step_start_q_, reference_.bodies, reference_.bodies);
     gate_start_ = eq_.gate_at(t, step_start_q_);
     // The gate's and the measure's scales are their values at the first regular state: the start,
     // unless it is a toggle itself (then scales of nearly nothing kept every later toggle unseen).
@@ -1579,11 +1698,11 @@ class Run {
     y_.head(n_) = q;
     y_.segment(n_, n_) = qd;
     eq_.evaluate(0.0, q, qd);
-    driver_reference_ = start_;
+    reference_.drivers = start_;
     first_body_angles(q);
     record(0.0, y_);
     SimulationEnergy& first = out_.energies.front();
-    energy_at_start_ = first.kinetic + first.gravity + first.spring;
+    reference_.energy = first.kinetic + first.gravity + first.spring;
     first.balance = 0.0;
     out_.statistics.largest_energy_error = 0.0;
     eq_.factorise(0.0, q);
@@ -1630,59 +1749,6 @@ class Run {
     return jacobian.completeOrthogonalDecomposition().solve(rhs);
   }
 
-  // A row at `at` and what it says about the run, not yet kept.
-  struct Row {
-    Sample sample;
-    SimulationEnergy energy;
-    ConstraintDrift drift;
-  };
-
-  // The row at `at`: y projected, q'' evaluated there, the energies and the drift; driver angles
-  // unwrapped against `previous`.
-  Row make_row(double at, const Eigen::VectorXd& y_given) {
-    Eigen::VectorXd& y = row_y_;  // the row's vectors in storage kept: nothing allocated but the row
-    y = y_given;
-    if (!integrator_.project(at, y, true))
-      throw SimulationStop{"the positions could not be brought back onto the constraints at " + time_text(at),
-                           eq_.driver_to_blame()};
-    Eigen::VectorXd &q = row_q_, &qd = row_qd_;
-    q = y.head(n_);
-    qd = y.segment(n_, n_);
-    const EquationsOfMotion::Rates& rates = eq_.evaluate_factorised(at, q, qd);
-    ConstraintDrift drift;
-    if (eq_.kept_rows()) {
-      // Phi, Phi_t and gamma at this (t, q, q') as the projection and the accelerations left them.
-      drift.acceleration = (eq_.jacobian_times(rates.acceleration) - eq_.last_gamma()).lpNorm<Eigen::Infinity>();
-      drift.position = eq_.last_residuals().lpNorm<Eigen::Infinity>();
-      drift.velocity = (eq_.jacobian_times(qd) + eq_.last_time_derivative()).lpNorm<Eigen::Infinity>();
-    }
-    return filled_row(at, y, rates.acceleration, drift);
-  }
-
-  // The row at `at` of the state y (q, q' and the work integrals) with its accelerations.
-  Row filled_row(double at, const Eigen::VectorXd& y, const Eigen::VectorXd& acceleration, const ConstraintDrift& drift) {
-    Row row;
-    row.drift = drift;
-    Eigen::VectorXd &q = row_q_, &qd = row_qd_;  // in storage kept: blocks passed on became vectors allocated
-    q = y.head(n_);
-    qd = y.segment(n_, n_);
-    Sample& sample = row.sample;
-    sample.time = at;
-    sample.driver_values = driver_values_at(mech_, q, driver_reference_);
-    body_angles_at(q, body_reference_, sample.body_angles);
-    sample.taylor.resize(n_, 3);
-    sample.taylor.col(0) = q;
-    sample.taylor.col(1) = qd;
-    sample.taylor.col(2) = 0.5 * acceleration;
-    sample.residual = drift.position;
-    SimulationEnergy& e = row.energy;
-    eq_.stored_energy(q, qd, e);
-    e.dissipated = y(2 * n_);
-    e.work_in = y(2 * n_ + 1);
-    e.balance = e.kinetic + e.gravity + e.spring + e.dissipated - e.work_in - energy_at_start_;
-    return row;
-  }
-
   // A row next to a toggle (within its regular distance), where positions projected there and
   // the accelerations solved there are not reliable (a crank's acceleration -3475 deg/s^2 for
   // -6138 at 7e-7 s from the parallelogram's toggle). The motion there is the regular row's own
@@ -1707,18 +1773,18 @@ class Run {
       drift.velocity = (eq_.jacobian_times(qd) + eq_.time_derivative(q)).lpNorm<Eigen::Infinity>();
       drift.acceleration = (eq_.jacobian_times(acceleration) - eq_.gamma(q, qd)).lpNorm<Eigen::Infinity>();
     }
-    return filled_row(at, y, acceleration, drift);
+    return rows_.filled(at, y, acceleration, drift, reference_);
   }
 
   // Keeps the row at `at` in the answer, after the rows so far.
-  void record(double at, const Eigen::VectorXd& y) { keep_row(make_row(at, y), out_.samples.size()); }
+  void record(double at, const Eigen::VectorXd& y) { keep_row(rows_.make(at, y, reference_), out_.samples.size()); }
 
   // Keeps the row at `at` in its place by time among the rows so far; its index.
   std::size_t record_in_place(double at, const Eigen::VectorXd& y) {
     const auto later = std::upper_bound(out_.samples.begin(), out_.samples.end(), at,
                                         [](double time, const Sample& row) { return time < row.time; });
     const std::size_t place = static_cast<std::size_t>(later - out_.samples.begin());
-    keep_row(make_row(at, y), place);
+    keep_row(rows_.make(at, y, reference_), place);
     for (std::size_t i = place; i < out_.samples.size(); ++i) out_.samples[i].step = static_cast<int>(i);
     for (SimulationEvent& e : out_.events)
       if (e.row >= static_cast<int>(place)) ++e.row;
@@ -1726,14 +1792,95 @@ class Run {
   }
 
   void keep_row(Row row, std::size_t place) {
-    ConstraintDrift& worst = out_.statistics.drift;
-    worst.position = std::max(worst.position, row.drift.position);
-    worst.velocity = std::max(worst.velocity, row.drift.velocity);
-    worst.acceleration = std::max(worst.acceleration, row.drift.acceleration);
+    add_quality(row.drift, row.energy.balance, out_.statistics.drift, out_.statistics.largest_energy_error);
     row.sample.step = static_cast<int>(place);
-    out_.statistics.largest_energy_error = std::max(out_.statistics.largest_energy_error, std::abs(row.energy.balance));
     out_.samples.insert(out_.samples.begin() + static_cast<std::ptrdiff_t>(place), std::move(row.sample));
     out_.energies.insert(out_.energies.begin() + static_cast<std::ptrdiff_t>(place), row.energy);
+  }
+
+  // The worst drift and energy error so far, with a row's.
+  static void add_quality(const ConstraintDrift& drift, double balance, ConstraintDrift& worst, double& energy_error) {
+    worst.position = std::max(worst.position, drift.position);
+    worst.velocity = std::max(worst.velocity, drift.velocity);
+    worst.acceleration = std::max(worst.acceleration, drift.acceleration);
+    energy_error = std::max(energy_error, std::abs(balance));
+  }
+
+  // The output rows on the step [t, t + h] from y_ (output times first to end - 1), handed over to
+  // the row thread with the references they are made against and the statistics so far.
+  void hand_over_rows(double t, double h, const Integrator::Step& s, long first, long end) {
+    RowJob& job = output_worker_.next_slot();
+    job.t = t;
+    job.h = h;
+    job.y0 = y_;
+    job.step.r2 = s.r2;
+    job.step.r3 = s.r3;
+    job.step.r4 = s.r4;
+    job.step.r5 = s.r5;
+    job.first = first;
+    job.end = end;
+    job.reference.drivers = reference_.drivers;
+    job.reference.bodies = reference_.bodies;
+    job.reference.energy = reference_.energy;
+    job.statistics = out_.statistics;
+    job.statistics.evaluations = integrator_.evaluations();
+    output_worker_.submit();
+  }
+
+  // On the row thread: a job's rows, kept after the rows so far (this thread keeps no row while
+  // jobs are out: it drains them first).
+  void make_output_rows(RowJob& job) {
+    if (!output_) {
+      output_ = std::make_unique<OutputRows>(mech_, start_, options_);
+      output_->times = output_times_;
+    }
+    OutputRows& o = *output_;
+    for (long i = job.first; i < job.end; ++i) {
+      const double at = o.times[i];
+      Integrator::interpolate(job.y0, job.step, std::clamp((at - job.t) / job.h, 0.0, 1.0), o.state);
+      Row row;
+      try {
+        row = o.maker.make(at, o.state, job.reference);
+      } catch (const SimulationStop&) {
+        o.statistics_at_stop = job.statistics;
+        throw;
+      }
+      add_quality(row.drift, row.energy.balance, o.drift, o.energy_error);
+      row.sample.step = static_cast<int>(out_.samples.size());
+      out_.samples.push_back(std::move(row.sample));
+      out_.energies.push_back(row.energy);
+    }
+  }
+
+  // Waits for the output rows handed over; throws the stop one of them met (the rows before it
+  // kept). Their drift and energy error join the statistics either way.
+  void drain_output_rows() {
+    struct AddQuality {
+      Run& run;
+      ~AddQuality() {
+        if (run.output_)
+          add_quality(run.output_->drift, run.output_->energy_error, run.out_.statistics.drift,
+                      run.out_.statistics.largest_energy_error);
+      }
+    } add{*this};
+    output_worker_.drain();
+  }
+
+  // The stop an output row handed over met, if one did.
+  std::optional<SimulationStop> earlier_output_row_stop() {
+    try {
+      drain_output_rows();
+    } catch (const SimulationStop& stop) {
+      return stop;
+    }
+    return std::nullopt;
+  }
+
+  // A second thread for the output rows, unless one is asked for or the machine has one core:
+  // where there are rows enough to be worth it.
+  static bool second_thread_wanted(const SimulationOptions& options) {
+    const double step = options.output_step > 0 ? options.output_step : options.end_time / 100;
+    return options.threads != 1 && std::thread::hardware_concurrency() > 1 && options.end_time / step >= 64;
   }
 
   void accept(double h) {
@@ -1754,15 +1901,11 @@ class Run {
   long outputs_ = 0;
   Eigen::VectorXd y_;
   // Work vectors, sized once: the step's projected end, a row's interpolated and projected state.
-  Eigen::VectorXd y1_, next_k1_, interpolated_, row_y_, row_q_, row_qd_;
+  Eigen::VectorXd y1_, next_k1_;
   Integrator::Step step_;  // the last step's, kept for its storage
   RecentSteps recent_;     // the last steps accepted
-  // Each driver's value and each body's angle at the state kept last (the start, a step's end, an
-  // event), unwrapped along the run: a row's angles are unwrapped against them, not against the
-  // row before, so that rows far apart (a fast wheel, a large --dt) lose no whole turn. A step
-  // turns a body far less than half a turn: its error control follows the positions' sines.
-  std::vector<double> driver_reference_, body_reference_;
-  double energy_at_start_ = 0.0;
+  RowReference reference_;  // at the state kept last
+  RowMaker rows_;           // the rows this thread makes: at events, for the stop condition
   double toggle_at_start_ = 1.0;  // the toggle measure at the state kept last
   double toggle_scale_ = 0.0;     // its size at the start, where the mechanism is assembled
   ToggleMeasure toggle_;          // its reference, at the state kept last when toggle_reference_ready_
@@ -1778,7 +1921,15 @@ class Run {
   double gate_scale_ = 0.0;             // its pivot ratio at the start
   std::optional<ColumnProbe> probe_;    // the stop condition's column
   double condition_ = -1.0;             // its distance at the state kept last (> 0: it holds)
-  Simulation out_;
+  // The answer. While output rows are out on the row thread (OrderedWorker), that thread appends
+  // them to samples and energies, which this one then leaves alone (it drains them first); the
+  // steps' statistics it writes meanwhile lie on another cache line (alignas).
+  alignas(64) Simulation out_;
+  // The output rows, made on a second thread while the steps go on (OrderedWorker), each from its
+  // step as handed over; what they say of the drift and the energy is added to the statistics
+  // when the rows are drained.
+  alignas(64) std::unique_ptr<OutputRows> output_;  // made by the row thread, at its first job
+  OrderedWorker<RowJob> output_worker_;  // last: its thread stops before what it uses goes
 };
 
 }  // namespace

@@ -899,6 +899,10 @@ const std::vector<OptionRule>& SimulateRequest::rules() {
       choice("at_toggle",
              "where the constraints become singular (a toggle): stop (default), or reverse every speed and go on",
              {"stop", "reverse"}),
+      integer_rule("threads",
+                   "1: the whole run on one thread; 2 (default where the machine has two cores): the output rows "
+                   "made on a second while the integration goes on (the answer is the same, to the last bit)",
+                   1, 2),
   };
   return rules;
 }
@@ -923,6 +927,7 @@ SimulateRequest SimulateRequest::read(const Options& options) {
   const std::optional<std::string> at_toggle = read_text(options, rule_of(rules(), "at_toggle"));
   r.at_toggle = at_toggle.value_or("stop") == "reverse" ? AtToggle::reverse : AtToggle::stop;
   r.at_toggle_given = at_toggle.has_value();
+  r.threads = static_cast<unsigned>(read_integer(options, rule_of(rules(), "threads")).value_or(0));
   return r;
 }
 
@@ -980,6 +985,7 @@ SimulationOptions SimulateRequest::simulation_options() const {
   options.max_steps = max_steps;
   options.stop_when = stop_when;
   options.at_toggle = at_toggle;
+  options.threads = threads;
   return options;
 }
 

@@ -450,6 +450,88 @@ void expect_parallelogram_pendulum(const Sample& row, const SimulationEnergy& en
   EXPECT_NEAR(row.derivative(2).norm(), accelerations, 1e-5 * accelerations) << "t = " << row.time;
 }
 
+// The answer of a run whose output rows a second thread made, against the same run on one
+// thread: equal to the last bit, rows, events, statistics and stop alike.
+void expect_same_run(const Simulation& threaded, const Simulation& alone) {
+  EXPECT_EQ(threaded.complete, alone.complete);
+  EXPECT_EQ(threaded.stop_reason, alone.stop_reason);
+  EXPECT_EQ(threaded.stop_where.kind, alone.stop_where.kind);
+  ASSERT_EQ(threaded.samples.size(), alone.samples.size());
+  ASSERT_EQ(threaded.energies.size(), alone.energies.size());
+  for (std::size_t i = 0; i < alone.samples.size(); ++i) {
+    const Sample &a = threaded.samples[i], &b = alone.samples[i];
+    ASSERT_EQ(a.time, b.time) << "row " << i;
+    EXPECT_EQ(a.step, b.step) << "row " << i;
+    EXPECT_TRUE(a.taylor == b.taylor) << "row " << i << " at t = " << b.time;
+    EXPECT_EQ(a.driver_values, b.driver_values) << "row " << i;
+    EXPECT_EQ(a.body_angles, b.body_angles) << "row " << i;
+    EXPECT_EQ(a.residual, b.residual) << "row " << i;
+    EXPECT_EQ(threaded.energies[i].balance, alone.energies[i].balance) << "row " << i;
+    EXPECT_EQ(threaded.energies[i].kinetic, alone.energies[i].kinetic) << "row " << i;
+  }
+  ASSERT_EQ(threaded.events.size(), alone.events.size());
+  for (std::size_t i = 0; i < alone.events.size(); ++i) {
+    EXPECT_EQ(threaded.events[i].time, alone.events[i].time);
+    EXPECT_EQ(threaded.events[i].row, alone.events[i].row);
+  }
+  const SimulationStatistics &a = threaded.statistics, &b = alone.statistics;
+  EXPECT_EQ(a.accepted_steps, b.accepted_steps);
+  EXPECT_EQ(a.rejected_steps, b.rejected_steps);
+  EXPECT_EQ(a.evaluations, b.evaluations);
+  EXPECT_EQ(a.largest_step, b.largest_step);
+  EXPECT_EQ(a.largest_energy_error, b.largest_energy_error);
+  EXPECT_EQ(a.drift.position, b.drift.position);
+  EXPECT_EQ(a.drift.velocity, b.drift.velocity);
+  EXPECT_EQ(a.drift.acceleration, b.drift.acceleration);
+}
+
+Simulation simulate_on(unsigned threads, const Mechanism& mech, SimulationOptions options) {
+  options.threads = threads;
+  return simulate(mech, options);
+}
+
+// Rows made on a second thread (the default where the machine has two cores) are those of one
+// thread: a parallelogram reversing at its change points, a stop condition, and a row that
+// stops the run (a torque law undefined at exactly t = 0.25 s, a row's time, and nowhere else:
+// the steps pass it, the row cannot be made, and the run stops there with the rows before it).
+TEST(ForwardDynamics, RowsMadeOnASecondThreadAreThoseOfOne) {
+  SimulationOptions options;
+  options.end_time = 1.0;
+  options.output_step = 1e-3;
+  options.relative_tolerance = 1e-10;
+  options.at_toggle = AtToggle::reverse;
+  const Mechanism parallelogram = mechanism_of(kParallelogramReleased);
+  const Simulation reversing = simulate_on(0, parallelogram, options);
+  EXPECT_GE(reversing.events.size(), 3u);
+  expect_same_run(reversing, simulate_on(1, parallelogram, options));
+
+  options.at_toggle = AtToggle::stop;
+  options.stop_when = parse_stop_condition("crank1 < 20");
+  const Simulation stopped = simulate_on(0, parallelogram, options);
+  ASSERT_EQ(stopped.events.size(), 1u);
+  EXPECT_EQ(stopped.events[0].kind, SimulationEvent::Kind::stop_when);
+  expect_same_run(stopped, simulate_on(1, parallelogram, options));
+
+  const Mechanism bar = mechanism_of(R"yaml(
+units: {length: m, angle: deg}
+points: {O: [0, 0], A: [0.5, 0]}
+ground: [O]
+gravity: [0, -9.81]
+bodies:
+  bar: {points: [O, A], mass: 1, inertia: 0.02}
+torques:
+  - {body: bar, torque: "1/(t - 0.25) - 1/(t - 0.25)"}
+drivers:
+  - {angle: bar, free: true}
+)yaml");
+  options.stop_when.reset();
+  const Simulation undefined = simulate_on(0, bar, options);
+  ASSERT_FALSE(undefined.complete);
+  EXPECT_EQ(undefined.stop_where.kind, EntityRef::Kind::Torque);
+  EXPECT_NEAR(undefined.samples.back().time, 0.249, 1e-12);
+  expect_same_run(undefined, simulate_on(1, bar, options));
+}
+
 TEST(ForwardDynamics, AToggleStopsTheRunAtItsTime) {
   const Mechanism mech = mechanism_of(kParallelogramReleased);
   SimulationOptions options;

@@ -294,6 +294,7 @@ struct SimulateRequest {
   std::optional<StopCondition> stop_when;  // "slider.x > 0.2": the run ends where it comes to hold
   AtToggle at_toggle = AtToggle::stop;
   bool rtol_given = false, at_toggle_given = false;  // else the model's `simulation:` may set them
+  unsigned threads = 0;                              // 1 or 2; 0: SimulationOptions' default
 
   // At most this many rows (every row is kept until the run ends).
   static constexpr double kMaxRows = 1e6;
