@@ -53,8 +53,9 @@ struct SimulationStop {
   bool cancelled = false;  // by the run's control (a cancel, a deadline), not by the motion
 };
 
-void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& previous,
-                      std::vector<double>& out);
+void raw_body_angles(const Mechanism& mech, const Eigen::VectorXd& q, std::vector<double>& out);
+void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& bodies,
+                      const std::vector<double>& previous, std::vector<double>& out);
 
 // The toggle's signed measure (docs/dynamics.md, Events). The reference keeps, from the kept
 // rows' Jacobian at one state, the rows its rank-revealing QR chose as independent (S) and an
@@ -399,7 +400,8 @@ class EquationsOfMotion {
     Gate gate;
     if (!square_) return gate;
     full_drivers_ = drivers_;
-    driver_values_at(mech_, q, start_, gate_values_);
+    raw_body_angles(mech_, q, gate_bodies_);
+    driver_values_at(mech_, q, gate_bodies_, start_, gate_values_);
     for (std::size_t d = 0; d < full_drivers_.size(); ++d)
       if (mech_.model().drivers[d].free)
         set_driver_state(full_drivers_[d], Series(kTerms, gate_values_[d]), mech_.model().drivers[d].is_angular());
@@ -666,7 +668,7 @@ class EquationsOfMotion {
   Eigen::MatrixXd first_order_, second_order_;
   Eigen::VectorXd all_rows_, residual_, time_derivative_, gamma_, product_, loads_, applied_loads_,
       zero_force_, energy_product_;
-  std::vector<double> gate_values_;  // the drivers' values at the gate's q
+  std::vector<double> gate_values_, gate_bodies_;  // the drivers' values and bodies' angles at the gate's q
   // The last gate, at gate_q_ with the drivers at gate_time_; drivers_ are at drivers_time_.
   bool gate_known_ = false;
   Gate gate_;
@@ -933,25 +935,38 @@ class RecentSteps {
   std::vector<double> data_;  // per step: t, h, y0, r2, r3, r4, r5
 };
 
-// Each driver's value at q (SI) into `out`, angles unwrapped against `previous`.
-void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& previous,
-                      std::vector<double>& out) {
+// Each body's direction at q, atan2's angle of its first two points (rad; bodies of fewer than
+// two points: 0), into `out`.
+void raw_body_angles(const Mechanism& mech, const Eigen::VectorXd& q, std::vector<double>& out) {
+  const Model& m = mech.model();
+  out.resize(m.bodies.size());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const std::vector<int>& points = m.bodies[b].points;
+    if (points.size() < 2) {
+      out[b] = 0.0;
+      continue;
+    }
+    const Eigen::Vector2d u = mech.point_position(points[1], q) - mech.point_position(points[0], q);
+    out[b] = std::atan2(u.y(), u.x());
+  }
+}
+
+// An angle moved by whole turns to the one nearest `reference`.
+double unwrapped(double angle, double reference) { return angle + 2 * M_PI * std::round((reference - angle) / (2 * M_PI)); }
+
+// Each driver's value at q (SI) into `out`, angles unwrapped against `previous`; `bodies`: the
+// bodies' raw_body_angles at q, which the angle drivers' are made of (an atan2 fewer for each).
+void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& bodies,
+                      const std::vector<double>& previous, std::vector<double>& out) {
   const Model& m = mech.model();
   const auto at = [&](int p) { return mech.point_position(p, q); };
-  const auto angle_of = [&](int body) {
-    const Eigen::Vector2d u = at(m.bodies[body].points[1]) - at(m.bodies[body].points[0]);
-    return std::atan2(u.y(), u.x());
-  };
   out.resize(m.drivers.size());
   for (std::size_t d = 0; d < m.drivers.size(); ++d) {
     const Driver& drv = m.drivers[d];
     switch (drv.kind) {
-      case DriverKind::Angle: {
-        double angle = angle_of(drv.body) - (drv.relative_to >= 0 ? angle_of(drv.relative_to) : 0.0);
-        angle += 2 * M_PI * std::round((previous[d] - angle) / (2 * M_PI));
-        out[d] = angle;
+      case DriverKind::Angle:
+        out[d] = unwrapped(bodies[drv.body] - (drv.relative_to >= 0 ? bodies[drv.relative_to] : 0.0), previous[d]);
         break;
-      }
       case DriverKind::Distance: out[d] = (at(drv.points[1]) - at(drv.points[0])).norm(); break;
       case DriverKind::Slide: {
         const Slider& s = m.sliders[drv.slider];
@@ -963,22 +978,21 @@ void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std
   }
 }
 
-// Each body's angle at q (rad), unwrapped against `reference` (bodies of fewer than two points:
-// 0). `out` may be `reference`.
-void body_angles_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& reference,
-                    std::vector<double>& out) {
-  const Model& m = mech.model();
-  out.resize(m.bodies.size());
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    const std::vector<int>& points = m.bodies[b].points;
-    if (points.size() < 2) {
-      out[b] = 0.0;
-      continue;
-    }
-    const Eigen::Vector2d u = mech.point_position(points[1], q) - mech.point_position(points[0], q);
-    const double angle = std::atan2(u.y(), u.x());
-    out[b] = angle + 2 * M_PI * std::round((reference[b] - angle) / (2 * M_PI));
-  }
+// Each body's angle (raw_body_angles) unwrapped against `reference`, into `out` (which may be
+// `reference`).
+void unwrapped(const std::vector<double>& raw, const std::vector<double>& reference, std::vector<double>& out) {
+  out.resize(raw.size());
+  for (std::size_t b = 0; b < raw.size(); ++b) out[b] = unwrapped(raw[b], reference[b]);
+}
+
+// Each driver's value and each body's angle at q, unwrapped against `reference`'s (which they may
+// be), with `raw` as work space.
+void angles_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& driver_reference,
+               const std::vector<double>& body_reference, std::vector<double>& raw, std::vector<double>& drivers,
+               std::vector<double>& bodies) {
+  raw_body_angles(mech, q, raw);
+  driver_values_at(mech, q, raw, driver_reference, drivers);
+  unwrapped(raw, body_reference, bodies);
 }
 
 // A row at an output time and what it says about the run, not yet kept.
@@ -1036,8 +1050,7 @@ class RowMaker {
     qd = y.segment(n_, n_);
     Sample& sample = row.sample;
     sample.time = at;
-    driver_values_at(mech_, q, reference.drivers, sample.driver_values);
-    body_angles_at(mech_, q, reference.bodies, sample.body_angles);
+    angles_at(mech_, q, reference.drivers, reference.bodies, raw_angles_, sample.driver_values, sample.body_angles);
     sample.taylor.resize(n_, 3);
     sample.taylor.col(0) = q;
     sample.taylor.col(1) = qd;
@@ -1057,6 +1070,7 @@ class RowMaker {
   Integrator& integrator_;
   int n_ = 0;
   Eigen::VectorXd y_, q_, qd_;
+  std::vector<double> raw_angles_;
 };
 
 // What the output rows are made with (equations of motion and a projection of their own), and
@@ -1630,13 +1644,14 @@ class Run {
   // absolute angle drives, in atan2's range for the others.
   void first_body_angles(const Eigen::VectorXd& q) {
     const Model& m = mech_.model();
-    std::vector<double> reference(m.bodies.size(), 0.0);
-    body_angles_at(mech_, q, reference, reference);  // atan2's range
+    std::vector<double> raw, reference;
+    raw_body_angles(mech_, q, raw);
+    unwrapped(raw, std::vector<double>(raw.size(), 0.0), reference);  // atan2's range
     for (std::size_t d = 0; d < m.drivers.size(); ++d) {
       const Driver& drv = m.drivers[d];
       if (drv.kind == DriverKind::Angle && drv.relative_to < 0) reference[drv.body] = reference_.drivers[d];
     }
-    body_angles_at(mech_, q, reference, reference_.bodies);
+    unwrapped(raw, reference, reference_.bodies);
   }
 
   // The state just kept (the last derivative's factorisation is there) starts the next step: its
@@ -1644,8 +1659,8 @@ class Run {
   void keep_step_start(double t) {
     step_start_time_ = t;
     step_start_q_ = y_.head(n_);
-    driver_values_at(mech_, step_start_q_, reference_.drivers, reference_.drivers);
-    body_angles_at(mech_, step_start_q_, reference_.bodies, reference_.bodies);
+    angles_at(mech_, step_start_q_, reference_.drivers, reference_.bodies, raw_angles_, reference_.drivers,
+              reference_.bodies);
     gate_start_ = eq_.gate_at(t, step_start_q_);
     // The gate's and the measure's scales are their values at the first regular state: the start,
     // unless it is a toggle itself (then scales of nearly nothing kept every later toggle unseen).
@@ -1905,6 +1920,7 @@ class Run {
   Integrator::Step step_;  // the last step's, kept for its storage
   RecentSteps recent_;     // the last steps accepted
   RowReference reference_;  // at the state kept last
+  std::vector<double> raw_angles_;  // work space of angles_at
   RowMaker rows_;           // the rows this thread makes: at events, for the stop condition
   double toggle_at_start_ = 1.0;  // the toggle measure at the state kept last
   double toggle_scale_ = 0.0;     // its size at the start, where the mechanism is assembled

@@ -19,6 +19,7 @@
 #include <exception>
 #include <functional>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -42,11 +43,13 @@ class OrderedWorker {
   // threads), else in submit(). `capacity`: jobs published and not yet done at most.
   OrderedWorker(std::function<void(Job&)> work, bool threaded, std::size_t capacity = 64)
       : work_(std::move(work)), ring_(capacity) {
-    if (threaded && kSecondThreadPossible) {
-      try {
-        thread_ = std::thread([this] { serve(); });
-      } catch (const std::system_error&) {
-        // no thread to be had: the jobs are done on the caller's
+    if constexpr (kSecondThreadPossible) {
+      if (threaded) {
+        try {
+          thread_ = std::thread([this] { serve(); });
+        } catch (const std::system_error&) {
+          // no thread to be had: the jobs are done on the caller's
+        }
       }
     }
   }
