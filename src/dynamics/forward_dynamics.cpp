@@ -1204,7 +1204,7 @@ class Run {
         eq_(mech, start_),
         integrator_(mech, eq_, options_),
         rows_(mech, eq_, integrator_),
-        output_worker_([this](RowJob& job) { make_output_rows(job); }, second_thread_wanted(options)) {
+        output_worker_([this](RowJob& job) { make_output_rows(job); }, rows_on_second_thread(options)) {
     n_ = mech.coordinate_count();
     if (options.stop_when) probe_.emplace(mech, *options.stop_when);
     const double step = options.output_step > 0 ? options.output_step : options.end_time / 100;
@@ -1891,13 +1891,6 @@ class Run {
     return std::nullopt;
   }
 
-  // A second thread for the output rows, unless one is asked for or the machine has one core:
-  // where there are rows enough to be worth it.
-  static bool second_thread_wanted(const SimulationOptions& options) {
-    const double step = options.output_step > 0 ? options.output_step : options.end_time / 100;
-    return options.threads != 1 && std::thread::hardware_concurrency() > 1 && options.end_time / step >= 64;
-  }
-
   void accept(double h) {
     SimulationStatistics& s = out_.statistics;
     s.smallest_step = s.accepted_steps == 0 ? h : std::min(s.smallest_step, h);
@@ -1949,6 +1942,11 @@ class Run {
 };
 
 }  // namespace
+
+bool rows_on_second_thread(const SimulationOptions& options) {
+  const double step = options.output_step > 0 ? options.output_step : options.end_time / 100;
+  return kSecondThreadPossible && options.threads != 1 && usable_cores() > 1 && options.end_time / step >= 64;
+}
 
 Simulation simulate(const Mechanism& mechanism, const SimulationOptions& options, const RunControl& control) {
   if (!(options.end_time > 0.0) || !std::isfinite(options.end_time))

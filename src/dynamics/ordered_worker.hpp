@@ -4,9 +4,10 @@
 // on the caller's, by the same code, so the answers are the same either way.
 //
 // The caller fills the slot next_slot() gives and publishes it with submit(); drain() waits until
-// every job published is done. A job that throws stops the jobs after it (they are skipped) and
-// its exception is thrown again to the caller by the next next_slot() or drain(): the caller sees
-// it where a run on one thread would have, before anything it does after the job's rows.
+// every job published is done. The thread starts at the first job (a run that ends before it
+// starts none). A job that throws stops the jobs after it (they are skipped) and its exception
+// is thrown again to the caller by every later next_slot() or drain(): the caller sees it where a
+// run on one thread would have, before anything it does after the job's rows.
 //
 // Waiting spins for a few tens of microseconds before it sleeps: jobs come every few microseconds
 // (a four-bar's steps), and a sleep and wake-up for each cost as much as the job.
@@ -27,6 +28,9 @@
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
+#if defined(__linux__)
+#include <sched.h>
+#endif
 
 namespace nbar {
 
@@ -36,27 +40,28 @@ inline constexpr bool kSecondThreadPossible = false;
 inline constexpr bool kSecondThreadPossible = true;
 #endif
 
+// The cores this process may run on: those of its CPU affinity where the system says (taskset, a
+// container's cpuset), which std::thread::hardware_concurrency() does not count.
+inline unsigned usable_cores() {
+#if defined(__linux__)
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof(set), &set) == 0) return static_cast<unsigned>(CPU_COUNT(&set));
+#endif
+  return std::thread::hardware_concurrency();
+}
+
 template <class Job>
 class OrderedWorker {
  public:
   // `work` is called with each job, on the second thread when `threaded` (and the platform has
   // threads), else in submit(). `capacity`: jobs published and not yet done at most.
   OrderedWorker(std::function<void(Job&)> work, bool threaded, std::size_t capacity = 64)
-      : work_(std::move(work)), ring_(capacity) {
-    if constexpr (kSecondThreadPossible) {
-      if (threaded) {
-        try {
-          thread_ = std::thread([this] { serve(); });
-        } catch (const std::system_error&) {
-          // no thread to be had: the jobs are done on the caller's
-        }
-      }
-    }
-  }
+      : work_(std::move(work)), ring_(capacity), start_wanted_(threaded && kSecondThreadPossible) {}
   OrderedWorker(const OrderedWorker&) = delete;
   OrderedWorker& operator=(const OrderedWorker&) = delete;
   ~OrderedWorker() {
     if (!thread_.joinable()) return;
+    failed_ = true;  // the jobs still out are skipped: their answer is being thrown away
     stopping_ = true;
     wake();
     thread_.join();
@@ -66,6 +71,7 @@ class OrderedWorker {
 
   // The slot for the next job, once there is room; throws a job's exception (see above).
   Job& next_slot() {
+    if (start_wanted_) start();
     if (!threaded()) return ring_[0].job;
     if (failed_) drain();
     const std::size_t next = submitted_.load();
@@ -92,13 +98,24 @@ class OrderedWorker {
       std::exception_ptr error;
       {
         std::lock_guard<std::mutex> lock(mutex_);
-        error = std::exchange(error_, nullptr);
+        error = error_;
       }
       if (error) std::rethrow_exception(error);
     }
   }
 
  private:
+  void start() {
+    start_wanted_ = false;
+    if constexpr (kSecondThreadPossible) {
+      try {
+        thread_ = std::thread([this] { serve(); });
+      } catch (const std::system_error&) {
+        // no thread to be had: the jobs are done on the caller's
+      }
+    }
+  }
+
   void serve() {
     for (;;) {
       wait_until([&] { return done_.load() < submitted_.load() || stopping_.load(); });
@@ -162,7 +179,8 @@ class OrderedWorker {
   std::mutex mutex_;
   std::condition_variable woken_;
   std::exception_ptr error_;  // under mutex_
-  std::thread thread_;        // last: started once the members it reads are
+  bool start_wanted_ = false;
+  std::thread thread_;
 };
 
 }  // namespace nbar

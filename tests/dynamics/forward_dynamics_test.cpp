@@ -454,8 +454,10 @@ void expect_parallelogram_pendulum(const Sample& row, const SimulationEnergy& en
 // thread: equal to the last bit, rows, events, statistics and stop alike.
 void expect_same_run(const Simulation& threaded, const Simulation& alone) {
   EXPECT_EQ(threaded.complete, alone.complete);
+  EXPECT_EQ(threaded.cancelled, alone.cancelled);
   EXPECT_EQ(threaded.stop_reason, alone.stop_reason);
   EXPECT_EQ(threaded.stop_where.kind, alone.stop_where.kind);
+  EXPECT_EQ(threaded.stop_where.index, alone.stop_where.index);
   ASSERT_EQ(threaded.samples.size(), alone.samples.size());
   ASSERT_EQ(threaded.energies.size(), alone.energies.size());
   for (std::size_t i = 0; i < alone.samples.size(); ++i) {
@@ -466,18 +468,23 @@ void expect_same_run(const Simulation& threaded, const Simulation& alone) {
     EXPECT_EQ(a.driver_values, b.driver_values) << "row " << i;
     EXPECT_EQ(a.body_angles, b.body_angles) << "row " << i;
     EXPECT_EQ(a.residual, b.residual) << "row " << i;
-    EXPECT_EQ(threaded.energies[i].balance, alone.energies[i].balance) << "row " << i;
-    EXPECT_EQ(threaded.energies[i].kinetic, alone.energies[i].kinetic) << "row " << i;
+    const SimulationEnergy &e = threaded.energies[i], &f = alone.energies[i];
+    EXPECT_TRUE(e.kinetic == f.kinetic && e.gravity == f.gravity && e.spring == f.spring &&
+                e.dissipated == f.dissipated && e.work_in == f.work_in && e.balance == f.balance)
+        << "row " << i;
   }
   ASSERT_EQ(threaded.events.size(), alone.events.size());
   for (std::size_t i = 0; i < alone.events.size(); ++i) {
+    EXPECT_EQ(threaded.events[i].kind, alone.events[i].kind);
     EXPECT_EQ(threaded.events[i].time, alone.events[i].time);
     EXPECT_EQ(threaded.events[i].row, alone.events[i].row);
+    EXPECT_EQ(threaded.events[i].message, alone.events[i].message);
   }
   const SimulationStatistics &a = threaded.statistics, &b = alone.statistics;
   EXPECT_EQ(a.accepted_steps, b.accepted_steps);
   EXPECT_EQ(a.rejected_steps, b.rejected_steps);
   EXPECT_EQ(a.evaluations, b.evaluations);
+  EXPECT_EQ(a.smallest_step, b.smallest_step);
   EXPECT_EQ(a.largest_step, b.largest_step);
   EXPECT_EQ(a.largest_energy_error, b.largest_energy_error);
   EXPECT_EQ(a.drift.position, b.drift.position);
@@ -491,15 +498,17 @@ Simulation simulate_on(unsigned threads, const Mechanism& mech, SimulationOption
 }
 
 // Rows made on a second thread (the default where the machine has two cores) are those of one
-// thread: a parallelogram reversing at its change points, a stop condition, and a row that
-// stops the run (a torque law undefined at exactly t = 0.25 s, a row's time, and nowhere else:
-// the steps pass it, the row cannot be made, and the run stops there with the rows before it).
+// thread: a parallelogram reversing at its change points, a stop condition, a run stopped by its
+// step count (a row where it got to, after the rows handed over), and a row that stops the run (a
+// torque law undefined at exactly t = 0.25 s, a row's time, and nowhere else: the steps pass it,
+// the row cannot be made, and the run stops there with the rows before it).
 TEST(ForwardDynamics, RowsMadeOnASecondThreadAreThoseOfOne) {
   SimulationOptions options;
   options.end_time = 1.0;
   options.output_step = 1e-3;
   options.relative_tolerance = 1e-10;
   options.at_toggle = AtToggle::reverse;
+  if (!rows_on_second_thread(options)) GTEST_SKIP() << "one core here: no second thread to compare";
   const Mechanism parallelogram = mechanism_of(kParallelogramReleased);
   const Simulation reversing = simulate_on(0, parallelogram, options);
   EXPECT_GE(reversing.events.size(), 3u);
@@ -511,6 +520,14 @@ TEST(ForwardDynamics, RowsMadeOnASecondThreadAreThoseOfOne) {
   ASSERT_EQ(stopped.events.size(), 1u);
   EXPECT_EQ(stopped.events[0].kind, SimulationEvent::Kind::stop_when);
   expect_same_run(stopped, simulate_on(1, parallelogram, options));
+
+  options.stop_when.reset();
+  options.max_steps = 40;
+  const Simulation too_many = simulate_on(0, parallelogram, options);
+  ASSERT_FALSE(too_many.complete);
+  EXPECT_NE(too_many.stop_reason.find("more than 40 steps"), std::string::npos) << too_many.stop_reason;
+  expect_same_run(too_many, simulate_on(1, parallelogram, options));
+  options.max_steps = SimulationOptions{}.max_steps;
 
   const Mechanism bar = mechanism_of(R"yaml(
 units: {length: m, angle: deg}

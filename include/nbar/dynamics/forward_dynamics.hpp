@@ -55,6 +55,11 @@ struct SimulationOptions {
   unsigned threads = 0;
 };
 
+// Whether a run with these options makes its output rows on a second thread here: threads is
+// not 1, this process may use two cores or more (its CPU affinity), there are threads (not in
+// WebAssembly) and 64 rows or more. Where a thread cannot be had after all, the run goes on one.
+bool rows_on_second_thread(const SimulationOptions& options);
+
 // An event the run met, located by root-finding on the integrator's continuous output to 1e-12 s.
 // It adds a row at its time (`row`).
 struct SimulationEvent {
