@@ -1204,7 +1204,8 @@ class Run {
         eq_(mech, start_),
         integrator_(mech, eq_, options_),
         rows_(mech, eq_, integrator_),
-        output_worker_([this](RowJob& job) { make_output_rows(job); }, rows_on_second_thread(options)) {
+        output_worker_([this](RowJob& job) { make_output_rows(job); }, rows_on_second_thread(options),
+                       row_jobs_ahead(mech)) {
     n_ = mech.coordinate_count();
     if (options.stop_when) probe_.emplace(mech, *options.stop_when);
     const double step = options.output_step > 0 ? options.output_step : options.end_time / 100;
@@ -1811,6 +1812,15 @@ class Run {
     row.sample.step = static_cast<int>(place);
     out_.samples.insert(out_.samples.begin() + static_cast<std::ptrdiff_t>(place), std::move(row.sample));
     out_.energies.insert(out_.energies.begin() + static_cast<std::ptrdiff_t>(place), row.energy);
+  }
+
+  // How many steps' rows may wait for the row thread: some 4 MB of them, from 8 to 1024 (a four-bar's
+  // are 0.5 kB each, a chain of a thousand loops' 0.3 MB). Deep, so that where the two threads
+  // share the cores with other processes this one can run ahead for a whole time slice.
+  static std::size_t row_jobs_ahead(const Mechanism& mech) {
+    const std::size_t doubles = 5 * (2 * static_cast<std::size_t>(mech.coordinate_count()) + 2) +
+                                mech.model().bodies.size() + mech.model().drivers.size();
+    return std::clamp<std::size_t>((std::size_t{4} << 20) / (doubles * sizeof(double) + sizeof(RowJob)), 8, 1024);
   }
 
   // The worst drift and energy error so far, with a row's.
