@@ -33,7 +33,7 @@
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
-#if defined(__linux__)
+#if defined(__linux__) && !defined(__EMSCRIPTEN__)
 #include <sched.h>
 #endif
 
@@ -48,7 +48,7 @@ inline constexpr bool kSecondThreadPossible = true;
 // The cores this process may run on: those of its CPU affinity where the system says (taskset, a
 // container's cpuset), which std::thread::hardware_concurrency() does not count.
 inline unsigned usable_cores() {
-#if defined(__linux__)
+#if defined(__linux__) && !defined(__EMSCRIPTEN__)
   cpu_set_t set;
   if (sched_getaffinity(0, sizeof(set), &set) == 0) return static_cast<unsigned>(CPU_COUNT(&set));
 #endif
