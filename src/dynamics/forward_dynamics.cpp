@@ -1287,28 +1287,35 @@ class Run {
       }
       drain_output_rows();
     } catch (const SimulationStop& stop) {
-      // An output row handed over before the stop that stopped the run itself came first.
-      const SimulationStop first = earlier_output_row_stop().value_or(stop);
-      out_.complete = false;
-      out_.stop_reason = first.reason;
-      out_.stop_where = first.where;
-      out_.cancelled = first.cancelled;
+      stopped(stop);
     }
     out_.statistics.evaluations = integrator_.evaluations();
-    if (output_ && output_->statistics_at_stop) {
-      // The steps' statistics as they were when the row's step was taken: as on one thread.
-      const SimulationStatistics& then = *output_->statistics_at_stop;
-      SimulationStatistics& now = out_.statistics;
-      now.accepted_steps = then.accepted_steps;
-      now.rejected_steps = then.rejected_steps;
-      now.evaluations = then.evaluations;
-      now.smallest_step = then.smallest_step;
-      now.largest_step = then.largest_step;
-    }
+    if (output_ && output_->statistics_at_stop) steps_as_at_row_stop(*output_->statistics_at_stop);
     return std::move(out_);
   }
 
  private:
+  // The run ended early by `stop`, or by an output row's stop handed over before it, which came
+  // first.
+  void stopped(const SimulationStop& stop) {
+    const SimulationStop first = earlier_output_row_stop().value_or(stop);
+    out_.complete = false;
+    out_.stop_reason = first.reason;
+    out_.stop_where = first.where;
+    out_.cancelled = first.cancelled;
+  }
+
+  // The steps' statistics as they were when the step of the output row that stopped the run was
+  // taken: as on one thread, which stopped there.
+  void steps_as_at_row_stop(const SimulationStatistics& then) {
+    SimulationStatistics& now = out_.statistics;
+    now.accepted_steps = then.accepted_steps;
+    now.rejected_steps = then.rejected_steps;
+    now.evaluations = then.evaluations;
+    now.smallest_step = then.smallest_step;
+    now.largest_step = then.largest_step;
+  }
+
   // The event at `at` on the step from `step_start` handled (handle_event); where the motion goes
   // on (a reversal), its rows next to the toggle recorded and the integration restarted there
   // (t, k1 and the state kept). False where the run ends there.
