@@ -952,7 +952,9 @@ void raw_body_angles(const Mechanism& mech, const Eigen::VectorXd& q, std::vecto
 }
 
 // An angle moved by whole turns to the one nearest `reference`.
-double unwrapped(double angle, double reference) { return angle + 2 * M_PI * std::round((reference - angle) / (2 * M_PI)); }
+double unwrapped(double angle, double reference) {
+  return angle + 2 * M_PI * std::round((reference - angle) / (2 * M_PI));
+}
 
 // Each driver's value at q (SI) into `out`, angles unwrapped against `previous`; `bodies`: the
 // bodies' raw_body_angles at q, which the angle drivers' are made of (an atan2 fewer for each).
