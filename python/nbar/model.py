@@ -462,11 +462,11 @@ class Model:
 
         ``stop_when="slider.x > 200"`` ends the run where a column crosses a value (in its unit),
         located to 1e-12 s; ``at_toggle="reverse"`` reverses every speed where the constraints
-        become singular instead of stopping there. ``threads=1`` keeps the whole run on the calling
-        thread; by default the output rows are made on a second one where the machine has two
-        cores (the answer is the same to the last bit). ``result.events`` lists both with their times;
+        become singular instead of stopping there. ``result.events`` lists both with their times;
         ``result.statistics`` holds the integrator's steps, the largest constraint drift and energy
-        error. A run that cannot continue (a toggle, a step size too small) raises
+        error. ``threads=1`` keeps the whole run on the calling thread; by default the output rows
+        are made on a second one where the machine has two cores (the answer is the same to the
+        last bit). A run that cannot continue (a toggle, a step size too small) raises
         ``nbar.LimitError`` with the rows so far as ``.result``, unless ``partial=True``; one
         stopped by ``timeout`` (s) raises ``nbar.Cancelled`` the same way. Ctrl-C raises
         ``KeyboardInterrupt`` (whatever ``partial`` says, so that a script stops) with the rows so

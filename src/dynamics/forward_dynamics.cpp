@@ -10,7 +10,6 @@
 #include <memory>
 #include <optional>
 #include <sstream>
-#include <thread>
 
 #include "dynamics/augmented_system.hpp"
 #include "dynamics/golden_section.hpp"
@@ -53,8 +52,7 @@ struct SimulationStop {
   bool cancelled = false;  // by the run's control (a cancel, a deadline), not by the motion
 };
 
-void raw_body_angles(const Mechanism& mech, const Eigen::VectorXd& q, std::vector<double>& out);
-void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& bodies,
+void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>* bodies,
                       const std::vector<double>& previous, std::vector<double>& out);
 
 // The toggle's signed measure (docs/dynamics.md, Events). The reference keeps, from the kept
@@ -400,8 +398,7 @@ class EquationsOfMotion {
     Gate gate;
     if (!square_) return gate;
     full_drivers_ = drivers_;
-    raw_body_angles(mech_, q, gate_bodies_);
-    driver_values_at(mech_, q, gate_bodies_, start_, gate_values_);
+    driver_values_at(mech_, q, nullptr, start_, gate_values_);
     for (std::size_t d = 0; d < full_drivers_.size(); ++d)
       if (mech_.model().drivers[d].free)
         set_driver_state(full_drivers_[d], Series(kTerms, gate_values_[d]), mech_.model().drivers[d].is_angular());
@@ -668,7 +665,7 @@ class EquationsOfMotion {
   Eigen::MatrixXd first_order_, second_order_;
   Eigen::VectorXd all_rows_, residual_, time_derivative_, gamma_, product_, loads_, applied_loads_,
       zero_force_, energy_product_;
-  std::vector<double> gate_values_, gate_bodies_;  // the drivers' values and bodies' angles at the gate's q
+  std::vector<double> gate_values_;  // the drivers' values at the gate's q
   // The last gate, at gate_q_ with the drivers at gate_time_; drivers_ are at drivers_time_.
   bool gate_known_ = false;
   Gate gate_;
@@ -935,20 +932,19 @@ class RecentSteps {
   std::vector<double> data_;  // per step: t, h, y0, r2, r3, r4, r5
 };
 
-// Each body's direction at q, atan2's angle of its first two points (rad; bodies of fewer than
-// two points: 0), into `out`.
+// A body's direction at q: atan2's angle (rad) of its first two points.
+double body_angle(const Mechanism& mech, const Eigen::VectorXd& q, int body) {
+  const std::vector<int>& points = mech.model().bodies[body].points;
+  const Eigen::Vector2d u = mech.point_position(points[1], q) - mech.point_position(points[0], q);
+  return std::atan2(u.y(), u.x());
+}
+
+// Each body's body_angle at q (bodies of fewer than two points: 0), into `out`.
 void raw_body_angles(const Mechanism& mech, const Eigen::VectorXd& q, std::vector<double>& out) {
   const Model& m = mech.model();
   out.resize(m.bodies.size());
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    const std::vector<int>& points = m.bodies[b].points;
-    if (points.size() < 2) {
-      out[b] = 0.0;
-      continue;
-    }
-    const Eigen::Vector2d u = mech.point_position(points[1], q) - mech.point_position(points[0], q);
-    out[b] = std::atan2(u.y(), u.x());
-  }
+  for (std::size_t b = 0; b < m.bodies.size(); ++b)
+    out[b] = m.bodies[b].points.size() < 2 ? 0.0 : body_angle(mech, q, static_cast<int>(b));
 }
 
 // An angle moved by whole turns to the one nearest `reference`.
@@ -956,18 +952,20 @@ double unwrapped(double angle, double reference) {
   return angle + 2 * M_PI * std::round((reference - angle) / (2 * M_PI));
 }
 
-// Each driver's value at q (SI) into `out`, angles unwrapped against `previous`; `bodies`: the
-// bodies' raw_body_angles at q, which the angle drivers' are made of (an atan2 fewer for each).
-void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>& bodies,
+// Each driver's value at q (SI) into `out`, angles unwrapped against `previous`; `bodies`, where
+// given: the bodies' raw_body_angles at q, which the angle drivers' are then made of (an atan2
+// fewer for each), else those drivers' bodies' angles are formed here.
+void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>* bodies,
                       const std::vector<double>& previous, std::vector<double>& out) {
   const Model& m = mech.model();
   const auto at = [&](int p) { return mech.point_position(p, q); };
+  const auto angle_of = [&](int body) { return bodies ? (*bodies)[body] : body_angle(mech, q, body); };
   out.resize(m.drivers.size());
   for (std::size_t d = 0; d < m.drivers.size(); ++d) {
     const Driver& drv = m.drivers[d];
     switch (drv.kind) {
       case DriverKind::Angle:
-        out[d] = unwrapped(bodies[drv.body] - (drv.relative_to >= 0 ? bodies[drv.relative_to] : 0.0), previous[d]);
+        out[d] = unwrapped(angle_of(drv.body) - (drv.relative_to >= 0 ? angle_of(drv.relative_to) : 0.0), previous[d]);
         break;
       case DriverKind::Distance: out[d] = (at(drv.points[1]) - at(drv.points[0])).norm(); break;
       case DriverKind::Slide: {
@@ -993,7 +991,7 @@ void angles_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vecto
                const std::vector<double>& body_reference, std::vector<double>& raw, std::vector<double>& drivers,
                std::vector<double>& bodies) {
   raw_body_angles(mech, q, raw);
-  driver_values_at(mech, q, raw, driver_reference, drivers);
+  driver_values_at(mech, q, &raw, driver_reference, drivers);
   unwrapped(raw, body_reference, bodies);
 }
 
@@ -1089,7 +1087,6 @@ struct OutputRows {
   ConstraintDrift drift;  // the worst of the rows made
   double energy_error = 0.0;
   std::optional<SimulationStatistics> statistics_at_stop;  // the steps' when a row stopped the run
-  std::vector<double> times;                               // the output times
 };
 
 // The bracket [a, b] where f changes sign (f(a) = fa and f(b) = fb have opposite signs),
@@ -1853,9 +1850,7 @@ class Run {
     job.step.r5 = s.r5;
     job.first = first;
     job.end = end;
-    job.reference.drivers = reference_.drivers;
-    job.reference.bodies = reference_.bodies;
-    job.reference.energy = reference_.energy;
+    job.reference = reference_;  // the vectors' storage kept from the slot's last job
     job.statistics = out_.statistics;
     job.statistics.evaluations = integrator_.evaluations();
     output_worker_.submit();
@@ -1866,11 +1861,10 @@ class Run {
   void make_output_rows(RowJob& job) {
     if (!output_) {
       output_ = std::make_unique<OutputRows>(mech_, start_, options_);
-      output_->times = output_times_;
     }
     OutputRows& o = *output_;
     for (long i = job.first; i < job.end; ++i) {
-      const double at = o.times[i];
+      const double at = output_time(i);
       Integrator::interpolate(job.y0, job.step, std::clamp((at - job.t) / job.h, 0.0, 1.0), o.state);
       Row row;
       try {
@@ -1956,7 +1950,7 @@ class Run {
   // The output rows, made on a second thread while the steps go on (OrderedWorker), each from its
   // step as handed over; what they say of the drift and the energy is added to the statistics
   // when the rows are drained.
-  alignas(64) std::unique_ptr<OutputRows> output_;  // made by the row thread, at its first job
+  std::unique_ptr<OutputRows> output_;  // made by the row thread, at its first job
   OrderedWorker<RowJob> output_worker_;  // last: its thread stops before what it uses goes
 };
 

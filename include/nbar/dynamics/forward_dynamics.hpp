@@ -49,9 +49,9 @@ struct SimulationOptions {
   long max_steps = 10'000'000;       // accepted and rejected steps together
   std::optional<StopCondition> stop_when;
   AtToggle at_toggle = AtToggle::stop;  // reverse: every speed reversed there (a rigid stop), the run goes on
-  // 1: everything on the caller's thread; otherwise (0) the output rows are made on a second
-  // thread while the integration goes on, where the machine has two cores and the run 64 rows or
-  // more. The answer is the same either way, to the last bit.
+  // 1: everything on the caller's thread; otherwise (0, the default, or 2) the output rows are
+  // made on a second thread while the integration goes on, where rows_on_second_thread (below)
+  // says. The answer is the same either way, to the last bit.
   unsigned threads = 0;
 };
 
