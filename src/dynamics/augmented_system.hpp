@@ -78,6 +78,18 @@ class AugmentedSystem {
   // when K is singular: a motion that the kept rows allow moves no mass.
   bool factorize(const std::vector<double>& values);
 
+  // The penalty alpha and the Jacobian's scale that the first factorize chose. A system given
+  // another's (before its first factorize) solves as that one does, whatever Jacobian it meets
+  // first: the output rows made by either of two systems are the same.
+  struct Scales {
+    double penalty = 0.0, jacobian = 0.0;
+  };
+  Scales scales() const { return {alpha_, jacobian_scale_}; }
+  void take_scales(const Scales& scales) {
+    alpha_ = scales.penalty;
+    jacobian_scale_ = scales.jacobian;
+  }
+
   // How far a solve goes: one round (a projection's correction); rounds of iterative refinement
   // until x is at rounding (an output row's accelerations); or, as_needed, one round where M's
   // factor and a Schur complement formed at these values and well conditioned (its pivots' ratio

@@ -3,8 +3,11 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -12,6 +15,8 @@
 #include <sstream>
 
 #include "dynamics/augmented_system.hpp"
+#include "dynamics/dop853_tableau.hpp"
+#include "dynamics/forward_dynamics_testing.hpp"
 #include "dynamics/golden_section.hpp"
 #include "dynamics/initial_velocity.hpp"
 #include "dynamics/joint_friction.hpp"
@@ -125,6 +130,14 @@ constexpr double kRestDistance = 3e-4;
 constexpr double kStalledStep = 1e-7;
 constexpr double kStalledPivots = kGateNear;
 constexpr long kStalledSteps = 20'000;
+
+// The steps' thread makes a job's rows itself when the row thread has this many jobs or more
+// still to do: the two threads then share the rows as their speeds allow (a four-bar's steps
+// take about as long as its rows; alone, the row thread set the pace).
+constexpr std::size_t kRowJobsBehind = 16;
+
+// Set by tests (forward_dynamics_testing.hpp): the steps' thread makes every other job's rows.
+std::atomic<bool> g_rows_on_both_threads{false};
 
 // How near the kept rows are to dependent is the smallest singular value of their unit rows
 // (ToggleMeasure::least_singular_value). The positions' drift (|Phi| about 1e-12 of the size)
@@ -323,6 +336,16 @@ class EquationsOfMotion {
     system_->apply(jacobian_values_, x, product_);
     return product_;
   }
+
+  // The solves' scales (AugmentedSystem::Scales), and taking another's: the output rows' equations
+  // take the run's, so that each row's solves do not depend on which rows the equations made first.
+  AugmentedSystem::Scales scales() const { return system_ ? system_->scales() : AugmentedSystem::Scales{}; }
+  void take_scales(const AugmentedSystem::Scales& scales) {
+    if (system_) system_->take_scales(scales);
+  }
+  // The accelerations' solve starts from no multipliers: a row's answer is then the same whatever
+  // row these equations made before.
+  void forget_warm_start() { lambda_.setZero(kept_rows()); }
 
   // The smallest change dx in the mass's metric with Phi_q dx = c (the present Jacobian): the
   // correction of a projection. The metric is M's: the projections of Bayo and Ledesma, which
@@ -779,6 +802,29 @@ class Integrator {
     return n_ > 0 ? std::sqrt(sum / (2 * n_)) : 0.0;
   }
 
+  // The step's error by Hairer's norm for DOP853: the fifth-order estimate e5 damped where the
+  // third-order one e3 is much larger (err = |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2), each weighted as
+  // in error_norm), so that the error is of the eighth-order result's order.
+  template <class Stage>
+  double step_error(double h, const Stage& stage, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1) const {
+    using namespace dop853;
+    const double rtol = options_.relative_tolerance, length = mech_.drawing_size();
+    double fifth = 0.0, third = 0.0;
+    for (int i = 0; i < 2 * n_; ++i) {
+      double e5 = 0.0, e3 = 0.0;
+      for (int j = 0; j < kStagesWithEnd; ++j) {
+        const double k = stage(j)(i);
+        e5 += e5_weights[j] * k;
+        e3 += e3_weights[j] * k;
+      }
+      const double scale = rtol * length + rtol * std::max(std::abs(y0(i)), std::abs(y1(i)));
+      fifth += (h * e5 / scale) * (h * e5 / scale);
+      third += (h * e3 / scale) * (h * e3 / scale);
+    }
+    if (fifth == 0.0 && third == 0.0) return 0.0;
+    return fifth / std::sqrt((fifth + 0.01 * third) * (2 * n_));
+  }
+
   // Hairer's starting step: from the sizes of y, f and an estimate of f's change.
   double initial_step(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f, double span) {
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(y.size());
@@ -793,17 +839,40 @@ class Integrator {
     return std::min({100 * h0, h1, span});
   }
 
+  // The two Runge-Kutta pairs: Dormand and Prince's 8(5,3) (DOP853) where the motion is away from
+  // toggles, their 5(4) next to one (where the accelerations carry the near-singular solve's
+  // rounding, which DOP853's error estimate, of large weights, magnifies into rejected and
+  // ever shorter steps: a parallelogram bouncing on its change point took 480 steps at rtol 1e-8
+  // and lost 2e-6 s a bounce, where the 5(4) pair takes 56 and loses 3e-9).
+  enum class Pair { dopri5, dop853 };
+  // A pair's step-size controller: the exponent 1 / (the error estimate's order + 1) and the
+  // bounds on a step's shrinking and growth (Hairer's).
+  struct Controller {
+    double exponent, least, largest;
+  };
+  static constexpr Controller kDopri5{1.0 / 5, 0.2, 5.0}, kDop853{1.0 / 8, 0.333, 6.0};
+
   struct Step {
-    Eigen::VectorXd y1, k7;
+    Eigen::VectorXd y1;
     double error = 0.0;
-    // The continuous extension on [t, t + h].
-    Eigen::VectorXd r2, r3, r4, r5;
+    Controller controller = kDop853;  // the pair's that made it
+    // The continuous extension on [t, t + h]: y(t + theta h) = y0 + theta (r[0] + (1 - theta)
+    // (r[1] + theta (r[2] + ...))), the factors alternating (the 5(4) pair's last three are zero).
+    std::array<Eigen::VectorXd, dop853::kExtension> r;
   };
 
-  // One step into s, its stages in vectors sized once (the arithmetic of each as written out).
-  void step(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s) {
+  void step(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Pair pair, Step& s) {
+    if (pair == Pair::dop853)
+      step_dop853(t, y, k1, h, s);
+    else
+      step_dopri5(t, y, k1, h, s);
+  }
+
+  // One step of the 5(4) pair into s, its stages in vectors sized once (the arithmetic of each as
+  // written out).
+  void step_dopri5(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s) {
     using namespace dopri;
-    Eigen::VectorXd &k2 = k2_, &k3 = k3_, &k4 = k4_, &k5 = k5_, &k6 = k6_;
+    Eigen::VectorXd &k2 = k_[1], &k3 = k_[2], &k4 = k_[3], &k5 = k_[4], &k6 = k_[5], &k7 = k_[6];
     stage_ = y + h * a21 * k1;
     derivative(t + c2 * h, stage_, k2);
     stage_ = y + h * (a31 * k1 + a32 * k2);
@@ -815,13 +884,49 @@ class Integrator {
     stage_ = y + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5);
     derivative(t + h, stage_, k6);
     s.y1 = y + h * (a71 * k1 + a73 * k3 + a74 * k4 + a75 * k5 + a76 * k6);
-    derivative(t + h, s.y1, s.k7);
-    error_ = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * s.k7);
-    s.error = error_norm(error_, y, s.y1);
-    s.r2 = s.y1 - y;
-    s.r3 = h * k1 - s.r2;
-    s.r4 = s.r2 - h * s.k7 - s.r3;
-    s.r5 = h * (d1 * k1 + d3 * k3 + d4 * k4 + d5 * k5 + d6 * k6 + d7 * s.k7);
+    derivative(t + h, s.y1, k7);
+    stage_ = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7);
+    s.error = error_norm(stage_, y, s.y1);
+    s.controller = kDopri5;
+    s.r[0] = s.y1 - y;
+    s.r[1] = h * k1 - s.r[0];
+    s.r[2] = s.r[0] - h * k7 - s.r[1];
+    s.r[3] = h * (d1 * k1 + d3 * k3 + d4 * k4 + d5 * k5 + d6 * k6 + d7 * k7);
+    for (std::size_t i = 4; i < s.r.size(); ++i) s.r[i].setZero(y.size());
+  }
+
+  // One step of DOP853 into s: the twelve stages, the error of the step, and the three further
+  // stages of the continuous extension, in vectors sized once.
+  void step_dop853(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s) {
+    using namespace dop853;
+    const auto stage = [&](int j) -> const Eigen::VectorXd& { return j == 0 ? k1 : k_[j]; };
+    // y + h (a[i][0] k_0 + ... + a[i][i-1] k_{i-1}), the zero weights skipped.
+    const auto stage_state = [&](int i, Eigen::VectorXd& out) {
+      out = y;
+      for (int j = 0; j < i; ++j)
+        if (a[i][j] != 0.0) out += (h * a[i][j]) * stage(j);
+    };
+    for (int i = 1; i < kStages; ++i) {
+      stage_state(i, stage_);
+      derivative(t + c[i] * h, stage_, k_[i]);
+    }
+    stage_state(kStages, s.y1);  // a[12] holds the eighth-order weights
+    derivative(t + h, s.y1, k_[kStages]);
+    s.error = step_error(h, stage, y, s.y1);
+    s.controller = kDop853;
+    for (int i = kStagesWithEnd; i < kStagesExtended; ++i) {
+      stage_state(i, stage_);
+      derivative(t + c[i] * h, stage_, k_[i]);
+    }
+    s.r[0] = s.y1 - y;
+    s.r[1] = h * k1 - s.r[0];
+    s.r[2] = 2 * s.r[0] - h * (k_[kStages] + k1);
+    for (int i = 0; i < kExtension - 3; ++i) {
+      Eigen::VectorXd& r = s.r[3 + i];
+      r.setZero(y.size());
+      for (int j = 0; j < kStagesExtended; ++j)
+        if (d[i][j] != 0.0) r += (h * d[i][j]) * stage(j);
+    }
   }
 
   static Eigen::VectorXd interpolate(const Eigen::VectorXd& y0, const Step& s, double theta) {
@@ -831,8 +936,20 @@ class Integrator {
   }
   // The same into `out`: a row's state in storage kept.
   static void interpolate(const Eigen::VectorXd& y0, const Step& s, double theta, Eigen::VectorXd& out) {
+    const Eigen::Index size = y0.size();
+    out.resize(size);
+    interpolate(y0.data(), [&](int k) { return s.r[k].data(); }, size, theta, out.data());
+  }
+  // The continuous extension at theta from y0 and the coefficient vectors part(k), of `size`
+  // numbers each, into `out`.
+  template <class Part>
+  static void interpolate(const double* y0, const Part& part, Eigen::Index size, double theta, double* out) {
     const double rest = 1.0 - theta;
-    out = y0 + theta * (s.r2 + rest * (s.r3 + theta * (s.r4 + rest * s.r5)));
+    for (Eigen::Index i = 0; i < size; ++i) {
+      double sum = 0.0;
+      for (int k = dop853::kExtension - 1; k >= 0; --k) sum = (k % 2 == 0 ? theta : rest) * (part(k)[i] + sum);
+      out[i] = y0[i] + sum;
+    }
   }
 
   long evaluations() const { return evaluations_; }
@@ -864,7 +981,8 @@ class Integrator {
   int n_;
   long evaluations_ = 0;
   Eigen::VectorXd q_, qd_, velocity_error_;                                              // the projection's
-  Eigen::VectorXd evaluated_q_, evaluated_qd_, stage_, k2_, k3_, k4_, k5_, k6_, error_;  // a step's
+  Eigen::VectorXd evaluated_q_, evaluated_qd_, stage_;  // a step's
+  std::array<Eigen::VectorXd, dop853::kStagesExtended> k_;  // a step's stages (the first is given)
 };
 
 // The last accepted steps with their continuous extensions: the state at a time some steps back.
@@ -876,7 +994,7 @@ class RecentSteps {
   void keep(double t, double h, const Eigen::VectorXd& y0, const Integrator::Step& s) {
     if (stride_ == 0) {
       size_ = static_cast<std::size_t>(y0.size());
-      stride_ = 2 + 5 * size_;
+      stride_ = 2 + (1 + dop853::kExtension) * size_;
       capacity_ = std::clamp<std::size_t>(kDoublesKept / stride_, 64, 4096);
       newest_ = capacity_ - 1;
     }
@@ -886,7 +1004,8 @@ class RecentSteps {
     kept[0] = t;
     kept[1] = h;
     double* at = kept + 2;
-    for (const Eigen::VectorXd* v : {&y0, &s.r2, &s.r3, &s.r4, &s.r5}) at = std::copy(v->data(), v->data() + size_, at);
+    at = std::copy(y0.data(), y0.data() + size_, at);
+    for (const Eigen::VectorXd& r : s.r) at = std::copy(r.data(), r.data() + size_, at);
   }
   // The state at `time`, on the newest step that starts at or before it (the oldest kept
   // step's start for an earlier time).
@@ -924,12 +1043,14 @@ class RecentSteps {
   static constexpr std::size_t kDoublesKept = 1 << 20;
   // The continuous extension of the step kept at `kept` at theta in [0, 1].
   Eigen::VectorXd interpolated(const double* kept, double theta) const {
-    const double rest = 1.0 - theta;
-    const auto part = [&](int k) { return Eigen::Map<const Eigen::VectorXd>(kept + 2 + k * size_, size_); };
-    return part(0) + theta * (part(1) + rest * (part(2) + theta * (part(3) + rest * part(4))));
+    Eigen::VectorXd out(static_cast<Eigen::Index>(size_));
+    const double* y0 = kept + 2;
+    Integrator::interpolate(
+        y0, [&](int k) { return y0 + (k + 1) * size_; }, static_cast<Eigen::Index>(size_), theta, out.data());
+    return out;
   }
   std::size_t size_ = 0, stride_ = 0, capacity_ = 0, count_ = 0, newest_ = 0;
-  std::vector<double> data_;  // per step: t, h, y0, r2, r3, r4, r5
+  std::vector<double> data_;  // per step: t, h, y0 and the continuous extension's vectors
 };
 
 // A body's direction at q: atan2's angle (rad) of its first two points.
@@ -1076,10 +1197,15 @@ class RowMaker {
 // What the output rows are made with (equations of motion and a projection of their own), and
 // what they said. Allocated by the thread that makes them, at its first job, so that nothing it
 // writes shares a cache line with what the steps write: made with the run, its small vectors lay
-// between the steps' and the two threads ran each other half again as slow.
+// between the steps' and the two threads ran each other half again as slow. A row made here does
+// not depend on the rows made before it (the run's scales, no warm start), so the row thread and
+// the steps' thread, each with its own, make the same rows.
 struct OutputRows {
-  OutputRows(const Mechanism& mech, const std::vector<double>& start, const SimulationOptions& options)
-      : eq(mech, start), integrator(mech, eq, options), maker(mech, eq, integrator) {}
+  OutputRows(const Mechanism& mech, const std::vector<double>& start, const SimulationOptions& options,
+             const AugmentedSystem::Scales& scales)
+      : eq(mech, start), integrator(mech, eq, options), maker(mech, eq, integrator) {
+    eq.take_scales(scales);
+  }
   EquationsOfMotion eq;
   Integrator integrator;
   RowMaker maker;
@@ -1188,10 +1314,15 @@ class Run {
   struct RowJob {
     double t = 0.0, h = 0.0;
     Eigen::VectorXd y0;
-    Integrator::Step step;  // its continuous extension: r2 to r5
+    Integrator::Step step;  // its continuous extension (r)
     long first = 0, end = 0;
     RowReference reference;
     SimulationStatistics statistics;
+    AugmentedSystem::Scales scales;  // the run's, for the equations that make the rows
+    // The rows made on the steps' thread, when it did (made_here), and what one of them threw.
+    bool made_here = false;
+    std::vector<Row> made;
+    std::exception_ptr failure;
   };
 
  public:
@@ -1244,10 +1375,12 @@ class Run {
         }
         h = *step;
         Integrator::Step& s = step_;
-        integrator_.step(t, y_, k1, h, s);
+        integrator_.step(t, y_, k1, h, away_from_toggles() ? Integrator::Pair::dop853 : Integrator::Pair::dopri5, s);
         if (!s.y1.allFinite() || !(s.error <= 1.0)) {
           ++out_.statistics.rejected_steps;
-          h *= s.y1.allFinite() && std::isfinite(s.error) ? std::max(0.2, 0.9 * std::pow(s.error, -0.2)) : 0.2;
+          const Integrator::Controller& c = s.controller;
+          h *= s.y1.allFinite() && std::isfinite(s.error) ? std::max(c.least, 0.9 * std::pow(s.error, -c.exponent))
+                                                          : c.least;
           continue;
         }
         const double t1 = t + h;
@@ -1260,15 +1393,18 @@ class Run {
         // The next step's first stage now, while the projection's factorisation is at y1 (the
         // rows and the events' search move it); an event's step computes it again where it ends.
         const bool next_k1_ready = integrator_.derivative_after_projection(t1, next_k1_);
-        const std::optional<Found> event = first_event(t, h, s, y1);
+        std::optional<Found> event;
+        try {
+          event = first_event(t, h, s, y1);
+        } catch (const SimulationStop&) {
+          // The events' search met a stop inside the step (a fully driven linkage at its dead
+          // centre): the rows before where it did are kept.
+          hand_over_rows_to(t, h, s, next_output, t + search_stopped_at_ * h, true);
+          throw;
+        }
         recent_.keep(t, h, y_, s);
         const double reached = event ? t + event->theta * h : t1;
-        long rows_end = next_output;
-        while (rows_end <= outputs_ && output_time(rows_end) <= reached * (1 + 1e-13) &&
-               !(event && output_time(rows_end) >= reached))  // the event's own row stands for it
-          ++rows_end;
-        if (rows_end > next_output) hand_over_rows(t, h, s, next_output, rows_end);
-        next_output = rows_end;
+        next_output = hand_over_rows_to(t, h, s, next_output, reached, event.has_value());  // the event's own row stands for it
         accept(h);
         if (event) {
           if (!go_on_after_event(event->kind, reached, t, next_output, t, k1)) break;
@@ -1282,7 +1418,8 @@ class Run {
           integrator_.derivative(t, y_, k1);
         keep_step_start(t);
         if (probe_) condition_ = condition_at(t, y_, true);
-        h *= std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(s.error, 1e-10), -0.2)));
+        const Integrator::Controller& c = s.controller;
+        h *= std::clamp(0.9 * std::pow(std::max(s.error, 1e-10), -c.exponent), c.least, c.largest);
       }
       drain_output_rows();
     } catch (const SimulationStop& stop) {
@@ -1348,6 +1485,13 @@ class Run {
 
   // The step to take from t, h cut to the time left; a stop where the steps are too many (with a
   // row at t) or too short; nothing where they collapsed at a toggle (rows_at_toggle).
+  // The gate at the step's start is closed (its Jacobian square and its pivot ratio at least
+  // kGateNear of the start's): the higher-order pair may take the step.
+  bool away_from_toggles() const {
+    return gate_start_.square && gate_scale_ > 0.0 && gate_start_.sign != 0 &&
+           gate_start_.pivot_ratio >= kGateNear * gate_scale_;
+  }
+
   std::optional<double> next_step_size(double t, double h) {
     const double remaining = options_.end_time - t;
     if (h >= remaining * (1 - 1e-12)) h = remaining;
@@ -1427,6 +1571,7 @@ class Run {
   // toggle measure changes sign (theta on the side the step started), or where the stop
   // condition comes to hold (theta on the side where it holds).
   std::optional<Found> first_event(double t, double h, const Integrator::Step& s, const Eigen::VectorXd& y1) {
+    search_stopped_at_ = 1.0;
     const double tolerance = std::min(0.5, 1e-12 / h);
     std::optional<Found> found;
     if (const std::optional<double> theta = toggle_on_step(t, h, s, y1, tolerance))
@@ -1435,13 +1580,25 @@ class Run {
       const double at_end = condition_at(t + h, y1, false);
       if (at_end > 0) {
         const auto distance_at = [&](double theta) {
-          return condition_at(t + theta * h, Integrator::interpolate(y_, s, theta), false);
+          return searched(theta, [&] { return condition_at(t + theta * h, Integrator::interpolate(y_, s, theta), false); });
         };
         const double held = bracket_sign_change(distance_at, 0.0, 1.0, condition_, at_end, tolerance).second;
         if (!found || held < found->theta) found = Found{SimulationEvent::Kind::stop_when, held};
       }
     }
     return found;
+  }
+
+  // `look()`, a look at the point theta of the step an event's search makes; where it throws a stop,
+  // the earliest such point is kept in search_stopped_at_ (the rows before it stand).
+  template <class Look>
+  auto searched(double theta, const Look& look) -> decltype(look()) {
+    try {
+      return look();
+    } catch (const SimulationStop&) {
+      search_stopped_at_ = std::min(search_stopped_at_, theta);
+      throw;
+    }
   }
 
   // Where on the step the constraints lose rank, if they do: the toggle measure changes sign, or
@@ -1461,7 +1618,7 @@ class Run {
     // near kite at rtol 1e-6: Newton fails where the branches nearly meet), taken as at it.
     const auto measure_at = [&](double theta) {
       Eigen::VectorXd y = Integrator::interpolate(y_, s, theta);
-      if (!integrator_.project(t + theta * h, y)) return 0.0;
+      if (!searched(theta, [&] { return integrator_.project(t + theta * h, y); })) return 0.0;
       return toggle_.measure(eq_.dense_jacobian());
     };
     std::vector<double> theta = {0.0, 1.0}, measure = {toggle_at_start_, measure_at(1.0)};
@@ -1824,7 +1981,7 @@ class Run {
   // are 0.5 kB each, a chain of a thousand loops' 0.3 MB). Deep, so that where the two threads
   // share the cores with other processes this one can run ahead for a whole time slice.
   static std::size_t row_jobs_ahead(const Mechanism& mech) {
-    const std::size_t doubles = 5 * (2 * static_cast<std::size_t>(mech.coordinate_count()) + 2) +
+    const std::size_t doubles = (1 + dop853::kExtension) * (2 * static_cast<std::size_t>(mech.coordinate_count()) + 2) +
                                 mech.model().bodies.size() + mech.model().drivers.size();
     return std::clamp<std::size_t>((std::size_t{4} << 20) / (doubles * sizeof(double) + sizeof(RowJob)), 8, 1024);
   }
@@ -1839,44 +1996,84 @@ class Run {
 
   // The output rows on the step [t, t + h] from y_ (output times first to end - 1), handed over to
   // the row thread with the references they are made against and the statistics so far.
+  // Hands the rows of the step [t, t + h] from `first` up to the time `reached` over (before it only
+  // when `before`); returns the next row.
+  long hand_over_rows_to(double t, double h, const Integrator::Step& s, long first, double reached, bool before) {
+    long end = first;
+    while (end <= outputs_ && output_time(end) <= reached * (1 + 1e-13) && !(before && output_time(end) >= reached))
+      ++end;
+    if (end > first) hand_over_rows(t, h, s, first, end);
+    return end;
+  }
   void hand_over_rows(double t, double h, const Integrator::Step& s, long first, long end) {
     RowJob& job = output_worker_.next_slot();
     job.t = t;
     job.h = h;
     job.y0 = y_;
-    job.step.r2 = s.r2;
-    job.step.r3 = s.r3;
-    job.step.r4 = s.r4;
-    job.step.r5 = s.r5;
+    job.step.r = s.r;
     job.first = first;
     job.end = end;
     job.reference = reference_;  // the vectors' storage kept from the slot's last job
     job.statistics = out_.statistics;
     job.statistics.evaluations = integrator_.evaluations();
+    job.scales = eq_.scales();
+    job.made_here = false;
+    const bool alternate = g_rows_on_both_threads && ++jobs_handed_over_ % 2 == 0;
+    if (output_worker_.threaded() && (output_worker_.waiting() >= kRowJobsBehind || alternate)) make_rows_here(job);
     output_worker_.submit();
+  }
+
+  // On the steps' thread, while the row thread is kRowJobsBehind jobs or more behind: the job's
+  // rows, which the row thread then only keeps in their place. The rows are the same whichever
+  // thread makes them (OutputRows), so the share each makes may follow the threads' speeds.
+  void make_rows_here(RowJob& job) {
+    job.made_here = true;
+    job.made.clear();
+    job.failure = nullptr;
+    try {
+      make_job_rows(job, rows_made_with(rows_here_, job), [&](Row&& row) { job.made.push_back(std::move(row)); });
+    } catch (...) {
+      job.failure = std::current_exception();  // thrown by the row thread, in its place
+    }
   }
 
   // On the row thread: a job's rows, kept after the rows so far (this thread keeps no row while
   // jobs are out: it drains them first).
   void make_output_rows(RowJob& job) {
-    if (!output_) {
-      output_ = std::make_unique<OutputRows>(mech_, start_, options_);
-    }
-    OutputRows& o = *output_;
-    for (long i = job.first; i < job.end; ++i) {
-      const double at = output_time(i);
-      Integrator::interpolate(job.y0, job.step, std::clamp((at - job.t) / job.h, 0.0, 1.0), o.state);
-      Row row;
-      try {
-        row = o.maker.make(at, o.state, job.reference);
-      } catch (const SimulationStop&) {
-        o.statistics_at_stop = job.statistics;
-        throw;
-      }
+    OutputRows& o = rows_made_with(output_, job);
+    const auto keep = [&](Row&& row) {
       add_quality(row.drift, row.energy.balance, o.drift, o.energy_error);
       row.sample.step = static_cast<int>(out_.samples.size());
       out_.samples.push_back(std::move(row.sample));
       out_.energies.push_back(row.energy);
+    };
+    try {
+      if (!job.made_here) {
+        make_job_rows(job, o, keep);
+        return;
+      }
+      for (Row& row : job.made) keep(std::move(row));
+      if (job.failure) std::rethrow_exception(job.failure);
+    } catch (const SimulationStop&) {
+      o.statistics_at_stop = job.statistics;
+      throw;
+    }
+  }
+
+  // The equations `rows` makes rows with, made at the first job (by the thread that makes them).
+  OutputRows& rows_made_with(std::unique_ptr<OutputRows>& rows, const RowJob& job) {
+    if (!rows) rows = std::make_unique<OutputRows>(mech_, start_, options_, job.scales);
+    return *rows;
+  }
+
+  // The job's rows, each given to `keep` in order; a row's stop is thrown after the rows before it.
+  template <class Keep>
+  void make_job_rows(const RowJob& job, OutputRows& o, const Keep& keep) {
+    for (long i = job.first; i < job.end; ++i) {
+      const double at = output_time(i);
+      Integrator::interpolate(job.y0, job.step, std::clamp((at - job.t) / job.h, 0.0, 1.0), o.state);
+      o.eq.forget_warm_start();
+      keep(o.maker.make(at, o.state, job.reference));
     }
   }
 
@@ -1938,6 +2135,7 @@ class Run {
   double scale_time_ = 0.0;
   Eigen::VectorXd scale_q_;
   double reversal_restart_ = -1.0;  // where the motion went on after the last reversal
+  double search_stopped_at_ = 1.0;  // the earliest point of a step (theta) where an event's search met a stop
   long stalled_steps_ = 0;          // tiny steps since the motion came next to a toggle (next_step_size)
   EquationsOfMotion::Gate gate_start_;  // the gate at the state kept last
   double gate_scale_ = 0.0;             // its pivot ratio at the start
@@ -1950,7 +2148,9 @@ class Run {
   // The output rows, made on a second thread while the steps go on (OrderedWorker), each from its
   // step as handed over; what they say of the drift and the energy is added to the statistics
   // when the rows are drained.
-  std::unique_ptr<OutputRows> output_;  // made by the row thread, at its first job
+  std::unique_ptr<OutputRows> output_;     // made by the row thread, at its first job
+  std::unique_ptr<OutputRows> rows_here_;  // the steps' thread's, made at the first job it takes
+  long jobs_handed_over_ = 0;
   OrderedWorker<RowJob> output_worker_;  // last: its thread stops before what it uses goes
 };
 
@@ -1960,6 +2160,10 @@ bool rows_on_second_thread(const SimulationOptions& options) {
   const double step = options.output_step > 0 ? options.output_step : options.end_time / 100;
   return kSecondThreadPossible && options.threads != 1 && usable_cores() > 1 && options.end_time / step >= 64;
 }
+
+namespace testing {
+void make_every_other_job_on_the_steps_thread(bool every) { g_rows_on_both_threads = every; }
+}  // namespace testing
 
 Simulation simulate(const Mechanism& mechanism, const SimulationOptions& options, const RunControl& control) {
   if (!(options.end_time > 0.0) || !std::isfinite(options.end_time))

@@ -73,6 +73,8 @@ class OrderedWorker {
   }
 
   bool threaded() const { return thread_.joinable(); }
+  // Jobs published and not yet done (always 0 without the thread).
+  std::size_t waiting() const { return threaded() ? submitted_.load() - done_.load() : 0; }
 
   // The slot for the next job, once there is room; throws a job's exception (see above).
   Job& next_slot() {

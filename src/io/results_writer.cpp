@@ -380,7 +380,7 @@ void write_simulation_json(std::ostream& out, const Mechanism& mechanism, const 
     j["cancelled"] = simulation.cancelled;
     j["time_reached"] = simulation.time_reached();
   }
-  j["integrator"] = {{"method", "Dormand-Prince 5(4), projected onto the constraints after every step"},
+  j["integrator"] = {{"method", kSimulationMethod},
                      {"accepted_steps", stats.accepted_steps},
                      {"rejected_steps", stats.rejected_steps},
                      {"evaluations", stats.evaluations},

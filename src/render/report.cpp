@@ -357,8 +357,8 @@ void write_simulation(Html& h, const Analysis& analysis, const Simulation& simul
   const SimulationStatistics& stats = simulation.statistics;
   h << "<section id=\"simulation\"><h2>Simulation</h2>\n<p>The motion under the loads, the drivers marked free "
        "released "
-    << "(forward dynamics, as <code>nbar simulate</code>): Dormand-Prince 5(4), projected onto the constraints after "
-    << "every step; see docs/dynamics.md.</p>\n<div class=\"scroll\"><table class=\"facts\">\n";
+    << "(forward dynamics, as <code>nbar simulate</code>): " << kSimulationMethod
+    << "; see docs/dynamics.md.</p>\n<div class=\"scroll\"><table class=\"facts\">\n";
   std::string free;
   for (int d : simulation.free_drivers)
     free += (free.empty() ? "" : ", ") + esc(m.drivers[static_cast<std::size_t>(d)].name);

@@ -331,7 +331,7 @@ TEST(AnswerLanguage, ASimulationsDownloadsAreInTheAnswersLanguage) {
   EXPECT_EQ(j["downloads"]["json"], alone);
   const Json events = Json::parse(j["downloads"]["json"].get<std::string>())["events"];
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0]["message"], "la condición de parada 'crank > 15' se cumplió en t = 0.0317652045 s");
+  EXPECT_EQ(events[0]["message"], "la condición de parada 'crank > 15' se cumplió en t = 0.0317652044 s");
   Json english = asked;
   english["lang"] = "en";
   const Json en = Json::parse(post("/api/simulate", with_model("examples/crank-rocker-released.yaml", english)).body);

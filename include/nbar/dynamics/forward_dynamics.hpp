@@ -8,10 +8,11 @@
 // gamma, through the sparse augmented matrix M + alpha Phi_q^T Phi_q (its pattern analysed once),
 // conjugate gradients on the Schur complement and a round of refinement, so redundant
 // constraints need no special treatment, a free motion without inertia is found and refused, and
-// the cost is linear in the size of a chain. Integrated by the embedded Runge-Kutta pair of
-// Dormand and Prince, 5(4), with its continuous extension for the output times; after every
-// accepted step q is projected back onto Phi = 0 and q' onto Phi_q q' = -Phi_t (corrections in the
-// mass's metric), so the drift stays at the solver's tolerance on all three levels.
+// the cost is linear in the size of a chain. Integrated by the embedded Runge-Kutta pairs of
+// Dormand and Prince, 8(5,3) (DOP853) and, next to a toggle, 5(4), with their continuous
+// extensions for the output times; after every accepted step q is projected back onto Phi = 0
+// and q' onto Phi_q q' = -Phi_t (corrections in the mass's metric), so the drift stays at the
+// solver's tolerance on all three levels.
 #pragma once
 
 #include <Eigen/Core>
@@ -28,6 +29,10 @@
 #include "nbar/model/run_control.hpp"
 
 namespace nbar {
+
+// The integration method, in words, as the outputs name it.
+inline constexpr const char* kSimulationMethod =
+    "Dormand-Prince 8(5,3) (DOP853), 5(4) next to toggles, projected onto the constraints after every step";
 
 // Stop when a column of the simulation's table (`simulation_table`) crosses a value, in the
 // column's unit (the model's units; J for the energies): "slider.x > 0.2".
