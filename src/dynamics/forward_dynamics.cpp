@@ -343,8 +343,8 @@ class EquationsOfMotion {
   void take_scales(const AugmentedSystem::Scales& scales) {
     if (system_) system_->take_scales(scales);
   }
-  // The accelerations' solve starts from no multipliers: a row's answer is then the same whatever
-  // row these equations made before.
+  // The accelerations' next solve starts from no multipliers: its answer is then the same whatever
+  // these equations solved before.
   void forget_warm_start() { lambda_.setZero(kept_rows()); }
 
   // The smallest change dx in the mass's metric with Phi_q dx = c (the present Jacobian): the
@@ -1197,9 +1197,9 @@ class RowMaker {
 // What the output rows are made with (equations of motion and a projection of their own), and
 // what they said. Allocated by the thread that makes them, at its first job, so that nothing it
 // writes shares a cache line with what the steps write: made with the run, its small vectors lay
-// between the steps' and the two threads ran each other half again as slow. A row made here does
-// not depend on the rows made before it (the run's scales, no warm start), so the row thread and
-// the steps' thread, each with its own, make the same rows.
+// between the steps' and the two threads ran each other half again as slow. A job's rows do not
+// depend on the jobs made before it (the run's scales, no warm start from them), so the row
+// thread and the steps' thread, each with its own, make the same rows.
 struct OutputRows {
   OutputRows(const Mechanism& mech, const std::vector<double>& start, const SimulationOptions& options,
              const AugmentedSystem::Scales& scales)
@@ -2067,12 +2067,14 @@ class Run {
   }
 
   // The job's rows, each given to `keep` in order; a row's stop is thrown after the rows before it.
+  // The first row's solves start without a warm start, the others' from the row before: a job's
+  // rows are made by one thread, so they depend on the job alone.
   template <class Keep>
   void make_job_rows(const RowJob& job, OutputRows& o, const Keep& keep) {
+    o.eq.forget_warm_start();
     for (long i = job.first; i < job.end; ++i) {
       const double at = output_time(i);
       Integrator::interpolate(job.y0, job.step, std::clamp((at - job.t) / job.h, 0.0, 1.0), o.state);
-      o.eq.forget_warm_start();
       keep(o.maker.make(at, o.state, job.reference));
     }
   }
