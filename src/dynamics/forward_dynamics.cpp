@@ -1404,7 +1404,8 @@ class Run {
         }
         recent_.keep(t, h, y_, s);
         const double reached = event ? t + event->theta * h : t1;
-        next_output = hand_over_rows_to(t, h, s, next_output, reached, event.has_value());  // the event's own row stands for it
+        // The event's own row stands for it: the rows before it only.
+        next_output = hand_over_rows_to(t, h, s, next_output, reached, event.has_value());
         accept(h);
         if (event) {
           if (!go_on_after_event(event->kind, reached, t, next_output, t, k1)) break;
@@ -1483,8 +1484,6 @@ class Run {
     return toggle_.least_singular_value(eq_.dense_jacobian()) <= kChangePointDip;
   }
 
-  // The step to take from t, h cut to the time left; a stop where the steps are too many (with a
-  // row at t) or too short; nothing where they collapsed at a toggle (rows_at_toggle).
   // The gate at the step's start is closed (its Jacobian square and its pivot ratio at least
   // kGateNear of the start's): the higher-order pair may take the step.
   bool away_from_toggles() const {
@@ -1492,6 +1491,8 @@ class Run {
            gate_start_.pivot_ratio >= kGateNear * gate_scale_;
   }
 
+  // The step to take from t, h cut to the time left; a stop where the steps are too many (with a
+  // row at t) or too short; nothing where they collapsed at a toggle (rows_at_toggle).
   std::optional<double> next_step_size(double t, double h) {
     const double remaining = options_.end_time - t;
     if (h >= remaining * (1 - 1e-12)) h = remaining;
@@ -1580,7 +1581,8 @@ class Run {
       const double at_end = condition_at(t + h, y1, false);
       if (at_end > 0) {
         const auto distance_at = [&](double theta) {
-          return searched(theta, [&] { return condition_at(t + theta * h, Integrator::interpolate(y_, s, theta), false); });
+          const double at = t + theta * h;
+          return searched(theta, [&] { return condition_at(at, Integrator::interpolate(y_, s, theta), false); });
         };
         const double held = bracket_sign_change(distance_at, 0.0, 1.0, condition_, at_end, tolerance).second;
         if (!found || held < found->theta) found = Found{SimulationEvent::Kind::stop_when, held};
@@ -1994,8 +1996,6 @@ class Run {
     energy_error = std::max(energy_error, std::abs(balance));
   }
 
-  // The output rows on the step [t, t + h] from y_ (output times first to end - 1), handed over to
-  // the row thread with the references they are made against and the statistics so far.
   // Hands the rows of the step [t, t + h] from `first` up to the time `reached` over (before it only
   // when `before`); returns the next row.
   long hand_over_rows_to(double t, double h, const Integrator::Step& s, long first, double reached, bool before) {
@@ -2005,6 +2005,9 @@ class Run {
     if (end > first) hand_over_rows(t, h, s, first, end);
     return end;
   }
+
+  // The output rows on the step [t, t + h] from y_ (output times first to end - 1), handed over to
+  // the row thread with the references they are made against and the statistics so far.
   void hand_over_rows(double t, double h, const Integrator::Step& s, long first, long end) {
     RowJob& job = output_worker_.next_slot();
     job.t = t;
