@@ -790,25 +790,28 @@ class Integrator {
   // Weighted RMS norm of the q and q' parts (the work integrals are quadratures of the same steps
   // and do not steer the step size).
   double error_norm(const Eigen::VectorXd& error, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1) const {
-    const double rtol = options_.relative_tolerance;
-    // The whole drawing's size, riding points included: every coordinate is integrated, and the
-    // steps were chosen so before the linkage's own size set the position tolerance.
-    const double length = mech_.drawing_size();
     double sum = 0.0;
     for (int i = 0; i < 2 * n_; ++i) {
-      const double scale = rtol * length + rtol * std::max(std::abs(y0(i)), std::abs(y1(i)));
+      const double scale = error_scale(i, y0, y1);
       sum += (error(i) / scale) * (error(i) / scale);
     }
     return n_ > 0 ? std::sqrt(sum / (2 * n_)) : 0.0;
   }
 
+  // What an error in coordinate i of a step from y0 to y1 is measured against: rtol times the
+  // whole drawing's size (riding points included: every coordinate is integrated, and the steps
+  // were chosen so before the linkage's own size set the position tolerance) and its value's.
+  double error_scale(int i, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1) const {
+    const double rtol = options_.relative_tolerance;
+    return rtol * mech_.drawing_size() + rtol * std::max(std::abs(y0(i)), std::abs(y1(i)));
+  }
+
   // The step's error by Hairer's norm for DOP853: the fifth-order estimate e5 damped where the
-  // third-order one e3 is much larger (err = |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2), each weighted as
-  // in error_norm), so that the error is of the eighth-order result's order.
+  // third-order one e3 is much larger (err = |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2), each weighted by
+  // error_scale), so that the error is of the eighth-order result's order.
   template <class Stage>
   double step_error(double h, const Stage& stage, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1) const {
     using namespace dop853;
-    const double rtol = options_.relative_tolerance, length = mech_.drawing_size();
     double fifth = 0.0, third = 0.0;
     for (int i = 0; i < 2 * n_; ++i) {
       double e5 = 0.0, e3 = 0.0;
@@ -817,7 +820,7 @@ class Integrator {
         e5 += e5_weights[j] * k;
         e3 += e3_weights[j] * k;
       }
-      const double scale = rtol * length + rtol * std::max(std::abs(y0(i)), std::abs(y1(i)));
+      const double scale = error_scale(i, y0, y1);
       fifth += (h * e5 / scale) * (h * e5 / scale);
       third += (h * e3 / scale) * (h * e3 / scale);
     }
