@@ -107,8 +107,9 @@ class ToggleMeasure {
   Eigen::MatrixXd span_;
 };
 
-// The gate opens (the dense measure is evaluated on the step) where the square Jacobian's pivot
-// ratio falls below this fraction of its value at the start, or its determinant changes sign.
+// The gate opens (the dense measure is evaluated on the step) where the square Jacobian's
+// conditioning (EquationsOfMotion::Gate) falls below this fraction of its value at the start, or
+// its determinant changes sign.
 constexpr double kGateNear = 0.1;
 
 // A toggle's row, and the state a reversal there mirrors, are where the positions are this
@@ -123,12 +124,12 @@ constexpr double kRegularDistance = 1e-4;
 constexpr double kRestDistance = 3e-4;
 
 // kStalledSteps steps shorter than kStalledStep of the run while next to a square Jacobian (its
-// pivot ratio below kStalledPivots of its size at the start, where the gate opens) stop the run:
-// it approaches a toggle it does not reach (a prescribed motion into a stretched pose: pivot
-// ratios from 2e-2 down to 2e-5, steps from 1e-6 to 1e-10 s, for millions of steps). A toggle
-// reached takes some hundreds of such steps.
+// conditioning below kStalledConditioning of its size at the start, where the gate opens) stop
+// the run: it approaches a toggle it does not reach (a prescribed motion into a stretched pose:
+// steps from 1e-6 to 1e-10 s, for millions of steps). A toggle reached takes some hundreds of
+// such steps.
 constexpr double kStalledStep = 1e-7;
-constexpr double kStalledPivots = kGateNear;
+constexpr double kStalledConditioning = kGateNear;
 constexpr long kStalledSteps = 20'000;
 
 // The steps' thread makes a job's rows itself when the row thread has this many jobs or more
@@ -157,7 +158,7 @@ constexpr double kToggleReached = 0.1 * kToggleBlur;
 constexpr double kSmallMeasure = 0.05;
 constexpr double kChangePointDip = 3 * kToggleBlur;
 
-// A start whose square Jacobian's smallest-to-largest pivot ratio is below this is a toggle.
+// A start whose square Jacobian's conditioning (EquationsOfMotion::Gate) is below this is a toggle.
 constexpr double kSingularStart = 1e-10;
 
 // A body's centre of mass as a fixed combination of its frame points, r_cg = r_o + a u + b u_perp
@@ -183,12 +184,18 @@ class EquationsOfMotion {
   };
 
   // What says, cheaply, whether the kept rows may be near a toggle: the sign of the determinant of
-  // the square Jacobian of every row (the free drivers' rows at their present values) and the
-  // ratio of its smallest to largest LU pivot. Not available (`square` false) with redundant rows.
+  // the square Jacobian of every row (the free drivers' rows at their present values), and how
+  // well conditioned it is with each row scaled to unit length (Hager's estimate of
+  // 1 / cond_1 from its sparse LU, SparseLU::reciprocal_condition_estimate). Not the LU's
+  // smallest-to-largest pivot ratio, which follows the links' directions as much as the rows'
+  // dependence: its pivots, kept while they pass a threshold, shrink tenfold before another row
+  // leads, and on a double crank far from any toggle it swung from 0.88 to 0.0098 (below a tenth
+  // of its start's on 16 % of the steps, each of which then paid the dense measure), where the
+  // conditioning stayed within 0.10 to 0.32. Not available (`square` false) with redundant rows.
   struct Gate {
     bool square = false;
     int sign = 0;
-    double pivot_ratio = 0.0;
+    double conditioning = 0.0;
   };
 
   EquationsOfMotion(const Mechanism& mech, std::vector<double> start) : mech_(mech), start_(std::move(start)) {
@@ -212,6 +219,7 @@ class EquationsOfMotion {
       std::vector<SparseLU::Entry> full;
       for (const JacobianEntry& e : pattern) full.push_back({e.row, e.col});
       full_lu_.set_pattern(n_, full);
+      row_lengths_.resize(n_);
     }
     zero_force_.setZero(n_);
     lambda_.setZero(kept_rows());
@@ -426,11 +434,22 @@ class EquationsOfMotion {
       if (mech_.model().drivers[d].free)
         set_driver_state(full_drivers_[d], Series(kTerms, gate_values_[d]), mech_.model().drivers[d].is_angular());
     evaluate_jacobian(mech_, q, full_drivers_, full_values_);
+    scale_rows_to_unit_length(full_values_);
     gate.square = true;
     if (!full_lu_.factorize(full_values_.data())) return gate;  // singular: sign 0
     gate.sign = full_lu_.determinant_sign();
-    gate.pivot_ratio = full_lu_.pivot_ratio();
+    gate.conditioning = full_lu_.reciprocal_condition_estimate(full_values_.data());
     return gate;
+  }
+  // Each row of the Jacobian `values` (every row's, in the pattern's order) divided by its length,
+  // so that the conditioning does not depend on the rows' units (a length constraint's gradient
+  // is twice the link's length, an angle driver's a length). A row of zeros stays.
+  void scale_rows_to_unit_length(std::vector<double>& values) {
+    const auto& pattern = mech_.equations().pattern;
+    std::fill(row_lengths_.begin(), row_lengths_.end(), 0.0);
+    for (std::size_t i = 0; i < pattern.size(); ++i) row_lengths_[pattern[i].row] += values[i] * values[i];
+    for (double& length : row_lengths_) length = length > 0.0 ? 1.0 / std::sqrt(length) : 1.0;
+    for (std::size_t i = 0; i < pattern.size(); ++i) values[i] *= row_lengths_[pattern[i].row];
   }
 
   // The kept rows' Jacobian at the present values, dense, for the toggle's measure.
@@ -689,6 +708,7 @@ class EquationsOfMotion {
   Eigen::VectorXd all_rows_, residual_, time_derivative_, gamma_, product_, loads_, applied_loads_,
       zero_force_, energy_product_;
   std::vector<double> gate_values_;  // the drivers' values at the gate's q
+  std::vector<double> row_lengths_;  // the gate's rows' lengths, then their reciprocals
   // The last gate, at gate_q_ with the drivers at gate_time_; drivers_ are at drivers_time_.
   bool gate_known_ = false;
   Gate gate_;
@@ -1487,11 +1507,11 @@ class Run {
     return toggle_.least_singular_value(eq_.dense_jacobian()) <= kChangePointDip;
   }
 
-  // The gate at the step's start is closed (its Jacobian square and its pivot ratio at least
+  // The gate at the step's start is closed (its Jacobian square and its conditioning at least
   // kGateNear of the start's): the higher-order pair may take the step.
   bool away_from_toggles() const {
     return gate_start_.square && gate_scale_ > 0.0 && gate_start_.sign != 0 &&
-           gate_start_.pivot_ratio >= kGateNear * gate_scale_;
+           gate_start_.conditioning >= kGateNear * gate_scale_;
   }
 
   // The step to take from t, h cut to the time left; a stop where the steps are too many (with a
@@ -1500,7 +1520,7 @@ class Run {
     const double remaining = options_.end_time - t;
     if (h >= remaining * (1 - 1e-12)) h = remaining;
     const bool near_toggle =
-        gate_start_.square && gate_scale_ > 0.0 && gate_start_.pivot_ratio < kStalledPivots * gate_scale_;
+        gate_start_.square && gate_scale_ > 0.0 && gate_start_.conditioning < kStalledConditioning * gate_scale_;
     if (!near_toggle) stalled_steps_ = 0;
     if (near_toggle && h < kStalledStep * options_.end_time && ++stalled_steps_ >= kStalledSteps)
       throw stalled_next_to_a_toggle(t, h);
@@ -1616,7 +1636,7 @@ class Run {
     if (gate_scale_ == 0.0) return std::nullopt;  // still leaving a toggle at the start: no scale yet
     const EquationsOfMotion::Gate end = eq_.gate_at(t + h, y1.head(n_));
     if (end.square && gate_start_.square && end.sign != 0 && end.sign == gate_start_.sign &&
-        std::min(end.pivot_ratio, gate_start_.pivot_ratio) >= kGateNear * gate_scale_)
+        std::min(end.conditioning, gate_start_.conditioning) >= kGateNear * gate_scale_)
       return std::nullopt;
     dense_toggle_reference();
     // A point of the step that cannot be brought onto the constraints is next to the toggle (a
@@ -1833,8 +1853,8 @@ class Run {
     gate_start_ = eq_.gate_at(t, step_start_q_);
     // The gate's and the measure's scales are their values at the first regular state: the start,
     // unless it is a toggle itself (then scales of nearly nothing kept every later toggle unseen).
-    if (gate_scale_ == 0.0 && !(gate_start_.square && gate_start_.pivot_ratio < kSingularStart)) {
-      gate_scale_ = gate_start_.pivot_ratio;
+    if (gate_scale_ == 0.0 && !(gate_start_.square && gate_start_.conditioning < kSingularStart)) {
+      gate_scale_ = gate_start_.conditioning;
       scale_time_ = t;
       scale_q_ = step_start_q_;
     }
@@ -2146,7 +2166,7 @@ class Run {
   double search_stopped_at_ = 1.0;  // the earliest point of a step (theta) where an event's search met a stop
   long stalled_steps_ = 0;          // tiny steps since the motion came next to a toggle (next_step_size)
   EquationsOfMotion::Gate gate_start_;  // the gate at the state kept last
-  double gate_scale_ = 0.0;             // its pivot ratio at the start
+  double gate_scale_ = 0.0;             // its conditioning at the start
   std::optional<ColumnProbe> probe_;    // the stop condition's column
   double condition_ = -1.0;             // its distance at the state kept last (> 0: it holds)
   // The answer. While output rows are out on the row thread (OrderedWorker), that thread appends

@@ -520,10 +520,16 @@ double SparseLU::reciprocal_condition_estimate(const double* values) const {
   if (det_sign_ == 0 || current_ < 0) return 0.0;
   const Elimination& e = current();
   const auto n = static_cast<std::size_t>(n_);
+  // In storage kept: the gate of a simulation asks at every step.
+  std::vector<double>& element = condition_work_.element;
+  std::vector<double>& column_sum = condition_work_.column_sum;
+  std::vector<double>& x = condition_work_.x;
+  std::vector<double>& y = condition_work_.y;
+  std::vector<double>& z = condition_work_.z;
   // |A|_1 from the entries, repeated ones summed first.
-  std::vector<double> element(value_.size(), 0.0);
+  element.assign(value_.size(), 0.0);
   for (std::size_t i = 0; i < e.entry_slot.size(); ++i) element[static_cast<std::size_t>(e.entry_slot[i])] += values[i];
-  std::vector<double> column_sum(n, 0.0);
+  column_sum.assign(n, 0.0);
   for (std::size_t k = 0; k < n; ++k) {
     column_sum[k] = std::abs(element[static_cast<std::size_t>(e.diagonal[k])]);
     for (int i = e.u_start[k]; i < e.u_start[k + 1]; ++i)
@@ -534,7 +540,9 @@ double SparseLU::reciprocal_condition_estimate(const double* values) const {
   const double norm = *std::max_element(column_sum.begin(), column_sum.end());
   if (!(norm > 0.0)) return 0.0;
 
-  std::vector<double> x(n, 1.0 / static_cast<double>(n)), y(n), z(n);
+  x.assign(n, 1.0 / static_cast<double>(n));
+  y.resize(n);
+  z.resize(n);
   double estimate = 0.0;
   std::size_t last = n;
   for (int iteration = 0; iteration < 5; ++iteration) {

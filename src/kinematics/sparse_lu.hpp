@@ -105,6 +105,11 @@ class SparseLU {
   std::vector<double> value_;
   std::vector<double> inverse_pivot_;
   mutable std::vector<double> work_;
+  // reciprocal_condition_estimate's vectors, sized once.
+  struct ConditionWork {
+    std::vector<double> element, column_sum, x, y, z;
+  };
+  mutable ConditionWork condition_work_;
   int det_sign_ = 0;
   double pivot_ratio_ = 0.0;
   long analyses_ = 0;
