@@ -58,34 +58,32 @@ inline constexpr double a[kStagesExtended][kStagesExtended] = {
     {-0.42889630158379194, 0.0, 0.0, 0.0, 0.0, -4.697621415361164, 7.683421196062599, 4.06898981839711,
      0.3567271874552811, 0.0, 0.0, 0.0, -0.0013990241651590145, 2.9475147891527724, -9.15095847217987, 0.0},
 };
-// The fifth- and third-order error estimates' weights of stages 0 to 12 (Hairer's combination
-// of the two in the error norm).
-inline constexpr double e5_weights[kStagesWithEnd] = {0.01312004499419488,
-                                              0.0,
-                                              0.0,
-                                              0.0,
-                                              0.0,
-                                              -1.2251564463762044,
-                                              -0.4957589496572502,
-                                              1.6643771824549864,
-                                              -0.35032884874997366,
-                                              0.3341791187130175,
-                                              0.08192320648511571,
-                                              -0.022355307863886294,
-                                              0.0};
-inline constexpr double e3_weights[kStagesWithEnd] = {-0.18980075407240762,
-                                              0.0,
-                                              0.0,
-                                              0.0,
-                                              0.0,
-                                              4.450312892752409,
-                                              1.8915178993145003,
-                                              -5.801203960010585,
-                                              -0.4226823213237919,
-                                              -0.1521609496625161,
-                                              0.20136540080403034,
-                                              0.02265179219836082,
-                                              0.0};
+// The fifth- and third-order error estimates' weights of stages 0 to 11 (Hairer's combination
+// of the two in the error norm); the stage at the step's end (12) has none in either.
+inline constexpr double e5_weights[kStages] = {0.01312004499419488,
+                                               0.0,
+                                               0.0,
+                                               0.0,
+                                               0.0,
+                                               -1.2251564463762044,
+                                               -0.4957589496572502,
+                                               1.6643771824549864,
+                                               -0.35032884874997366,
+                                               0.3341791187130175,
+                                               0.08192320648511571,
+                                               -0.022355307863886294};
+inline constexpr double e3_weights[kStages] = {-0.18980075407240762,
+                                               0.0,
+                                               0.0,
+                                               0.0,
+                                               0.0,
+                                               4.450312892752409,
+                                               1.8915178993145003,
+                                               -5.801203960010585,
+                                               -0.4226823213237919,
+                                               -0.1521609496625161,
+                                               0.20136540080403034,
+                                               0.02265179219836082};
 // The continuous extension's last four coefficient vectors: h times these weights of the 16 stages.
 inline constexpr double d[kExtension - 3][kStagesExtended] = {
     {-8.428938276109013, 0.0, 0.0, 0.0, 0.0, 0.5667149535193777, -3.0689499459498917, 2.38466765651207,

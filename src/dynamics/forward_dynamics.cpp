@@ -296,9 +296,9 @@ class EquationsOfMotion {
                                "constraints became dependent",
                            driver_to_blame()};
     throw SimulationStop{"a free motion has no inertia at " + time_text(t) +
-                               ": the bodies it moves have no mass or moment of inertia (give them `mass:` and "
-                               "`inertia:`, or a shape and a material)",
-                           driver_to_blame()};
+                             ": the bodies it moves have no mass or moment of inertia (give them `mass:` and "
+                             "`inertia:`, or a shape and a material)",
+                         driver_to_blame()};
   }
   // The Jacobian at q, at the time of the last factorisation, whose matrix stays (near q it
   // preconditions the solves with the new Jacobian), and the kept rows' residuals at q: one pass
@@ -486,8 +486,7 @@ class EquationsOfMotion {
         worst = now / std::max(start, 1e-300);
         std::ostringstream said;
         said.precision(3);
-        said << "law '" << law.text() << "' is " << now << " there, against " << start
-             << " at the start";
+        said << "law '" << law.text() << "' is " << now << " there, against " << start << " at the start";
         blamed = SimulationStop{said.str(), where};
       } catch (const Error&) {  // undefined at 0 or t: the run said so where it happened
       }
@@ -690,8 +689,8 @@ class EquationsOfMotion {
   const Mechanism& mech_;
   std::vector<double> start_;
   int n_ = 0;
-  std::vector<int> kept_;      // rows of Phi kept, in order
-  std::vector<int> selected_;  // per row: its place among the kept, or -1
+  std::vector<int> kept_;        // rows of Phi kept, in order
+  std::vector<int> selected_;    // per row: its place among the kept, or -1
   bool time_dependent_ = false;  // a kept row is a kinematic driver's: Phi_t may be nonzero
   Eigen::VectorXd gravity_;
   std::vector<BodyMass> bodies_;
@@ -705,8 +704,8 @@ class EquationsOfMotion {
   bool square_ = false;  // as many rows as coordinates: the gate's LU exists
   SparseLU full_lu_;     // every row's square Jacobian, for the gate
   Eigen::MatrixXd first_order_, second_order_;
-  Eigen::VectorXd all_rows_, residual_, time_derivative_, gamma_, product_, loads_, applied_loads_,
-      zero_force_, energy_product_;
+  Eigen::VectorXd all_rows_, residual_, time_derivative_, gamma_, product_, loads_, applied_loads_, zero_force_,
+      energy_product_;
   std::vector<double> gate_values_;  // the drivers' values at the gate's q
   std::vector<double> row_lengths_;  // the gate's rows' lengths, then their reciprocals
   // The last gate, at gate_q_ with the drivers at gate_time_; drivers_ are at drivers_time_.
@@ -835,7 +834,7 @@ class Integrator {
     double fifth = 0.0, third = 0.0;
     for (int i = 0; i < 2 * n_; ++i) {
       double e5 = 0.0, e3 = 0.0;
-      for (int j = 0; j < kStagesWithEnd; ++j) {
+      for (int j = 0; j < kStages; ++j) {
         const double k = stage(j)(i);
         e5 += e5_weights[j] * k;
         e3 += e3_weights[j] * k;
@@ -878,17 +877,37 @@ class Integrator {
   struct Step {
     Eigen::VectorXd y1;
     double error = 0.0;
+    Pair pair = Pair::dop853;
     Controller controller = kDop853;  // the pair's that made it
-    // The continuous extension on [t, t + h]: y(t + theta h) = y0 + theta (r[0] + (1 - theta)
-    // (r[1] + theta (r[2] + ...))), the factors alternating (the 5(4) pair's last three are zero).
+    // The continuous extension on [t, t + h] (extend): y(t + theta h) = y0 + theta (r[0] +
+    // (1 - theta) (r[1] + theta (r[2] + ...))), the factors alternating (the 5(4) pair's last
+    // three are zero).
     std::array<Eigen::VectorXd, dop853::kExtension> r;
   };
 
+  // The step [t, t + h] from y, whose derivative is k1: its end and its error into s, the stages
+  // kept for extend().
   void step(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Pair pair, Step& s) {
+    s.pair = pair;
     if (pair == Pair::dop853)
       step_dop853(t, y, k1, h, s);
     else
       step_dopri5(t, y, k1, h, s);
+  }
+
+  // The continuous extension of the step step() took last, once it is accepted (a rejected step
+  // needs none: DOP853's four further stages were a twentieth of a four-bar's evaluations).
+  // `end`: the derivative at the step's end projected onto the constraints, where the caller has
+  // it, which DOP853's extension then takes for its stage at the end (Hairer's at the end
+  // unprojected): they differ by the projection's correction, of the order of the step's error,
+  // whose effect on the extension the step's length makes smaller still, and the rows are
+  // projected anyway. An evaluation fewer on every accepted step.
+  void extend(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s,
+              const Eigen::VectorXd* end) {
+    if (s.pair == Pair::dop853)
+      extend_dop853(t, y, k1, h, s, end);
+    else
+      extend_dopri5(y, k1, h, s);
   }
 
   // One step of the 5(4) pair into s, its stages in vectors sized once (the arithmetic of each as
@@ -911,6 +930,10 @@ class Integrator {
     stage_ = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7);
     s.error = error_norm(stage_, y, s.y1);
     s.controller = kDopri5;
+  }
+  void extend_dopri5(const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s) {
+    using namespace dopri;
+    const Eigen::VectorXd &k3 = k_[2], &k4 = k_[3], &k5 = k_[4], &k6 = k_[5], &k7 = k_[6];
     s.r[0] = s.y1 - y;
     s.r[1] = h * k1 - s.r[0];
     s.r[2] = s.r[0] - h * k7 - s.r[1];
@@ -918,27 +941,31 @@ class Integrator {
     for (std::size_t i = 4; i < s.r.size(); ++i) s.r[i].setZero(y.size());
   }
 
-  // One step of DOP853 into s: the twelve stages, the error of the step, and the three further
-  // stages of the continuous extension, in vectors sized once.
+  // One step of DOP853 into s: the twelve stages and the error of the step, in vectors sized once
+  // (the stage at the end has no weight in the error estimates: extend_dop853 takes it).
   void step_dop853(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s) {
     using namespace dop853;
     const auto stage = [&](int j) -> const Eigen::VectorXd& { return j == 0 ? k1 : k_[j]; };
-    // y + h (a[i][0] k_0 + ... + a[i][i-1] k_{i-1}), the zero weights skipped.
-    const auto stage_state = [&](int i, Eigen::VectorXd& out) {
-      out = y;
-      for (int j = 0; j < i; ++j)
-        if (a[i][j] != 0.0) out += (h * a[i][j]) * stage(j);
-    };
     for (int i = 1; i < kStages; ++i) {
-      stage_state(i, stage_);
+      dop853_stage_state(i, y, k1, h, stage_);
       derivative(t + c[i] * h, stage_, k_[i]);
     }
-    stage_state(kStages, s.y1);  // a[12] holds the eighth-order weights
-    derivative(t + h, s.y1, k_[kStages]);
+    dop853_stage_state(kStages, y, k1, h, s.y1);  // a[12] holds the eighth-order weights
     s.error = step_error(h, stage, y, s.y1);
     s.controller = kDop853;
+  }
+  // The stage at the end (`end`, or evaluated at the end unprojected), the three further stages
+  // and the continuous extension's coefficient vectors.
+  void extend_dop853(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s,
+                     const Eigen::VectorXd* end) {
+    using namespace dop853;
+    const auto stage = [&](int j) -> const Eigen::VectorXd& { return j == 0 ? k1 : k_[j]; };
+    if (end)
+      k_[kStages] = *end;
+    else
+      derivative(t + h, s.y1, k_[kStages]);
     for (int i = kStagesWithEnd; i < kStagesExtended; ++i) {
-      stage_state(i, stage_);
+      dop853_stage_state(i, y, k1, h, stage_);
       derivative(t + c[i] * h, stage_, k_[i]);
     }
     s.r[0] = s.y1 - y;
@@ -952,6 +979,16 @@ class Integrator {
     }
   }
 
+  // DOP853's state of stage i: y + h (a[i][0] k_0 + ... + a[i][i-1] k_{i-1}), the zero weights
+  // skipped, into out.
+  void dop853_stage_state(int i, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h,
+                          Eigen::VectorXd& out) const {
+    using namespace dop853;
+    out = y;
+    for (int j = 0; j < i; ++j)
+      if (a[i][j] != 0.0) out += (h * a[i][j]) * (j == 0 ? k1 : k_[j]);
+  }
+
   static Eigen::VectorXd interpolate(const Eigen::VectorXd& y0, const Step& s, double theta) {
     Eigen::VectorXd out;
     interpolate(y0, s, theta, out);
@@ -961,7 +998,8 @@ class Integrator {
   static void interpolate(const Eigen::VectorXd& y0, const Step& s, double theta, Eigen::VectorXd& out) {
     const Eigen::Index size = y0.size();
     out.resize(size);
-    interpolate(y0.data(), [&](int k) { return s.r[k].data(); }, size, theta, out.data());
+    interpolate(
+        y0.data(), [&](int k) { return s.r[k].data(); }, size, theta, out.data());
   }
   // The continuous extension at theta from y0 and the coefficient vectors part(k), of `size`
   // numbers each, into `out`.
@@ -1003,8 +1041,8 @@ class Integrator {
   const SimulationOptions& options_;
   int n_;
   long evaluations_ = 0;
-  Eigen::VectorXd q_, qd_, velocity_error_;                                              // the projection's
-  Eigen::VectorXd evaluated_q_, evaluated_qd_, stage_;  // a step's
+  Eigen::VectorXd q_, qd_, velocity_error_;                 // the projection's
+  Eigen::VectorXd evaluated_q_, evaluated_qd_, stage_;      // a step's
   std::array<Eigen::VectorXd, dop853::kStagesExtended> k_;  // a step's stages (the first is given)
 };
 
@@ -1046,7 +1084,8 @@ class RecentSteps {
     double most = 0.0;
     for (std::size_t i = 0; i < count_; ++i)
       for (const double theta : {0.0, 0.5, 1.0})
-        most = std::max(most, (interpolated(data_.data() + i * stride_, theta).head(q.size()) - q).lpNorm<Eigen::Infinity>());
+        most = std::max(most,
+                        (interpolated(data_.data() + i * stride_, theta).head(q.size()) - q).lpNorm<Eigen::Infinity>());
     return most;
   }
   // Forgets every step: the motion after a reversal has a history of its own.
@@ -1416,6 +1455,7 @@ class Run {
         // The next step's first stage now, while the projection's factorisation is at y1 (the
         // rows and the events' search move it); an event's step computes it again where it ends.
         const bool next_k1_ready = integrator_.derivative_after_projection(t1, next_k1_);
+        integrator_.extend(t, y_, k1, h, s, next_k1_ready ? &next_k1_ : nullptr);
         std::optional<Found> event;
         try {
           event = first_event(t, h, s, y1);
@@ -1536,8 +1576,8 @@ class Run {
     // still move the time by more than its rounding.
     const bool to_the_end = h == remaining && h > 0.0;
     if (!(h > 1e-14 * std::max(1.0, std::abs(t))) && !to_the_end) {
-      const std::string collapsed = "the step size fell to " + seconds_text(h) + " at " + time_text(t) +
-                                    ", below the time's rounding: ";
+      const std::string collapsed =
+          "the step size fell to " + seconds_text(h) + " at " + time_text(t) + ", below the time's rounding: ";
       if (const std::optional<SimulationStop> law = eq_.law_to_blame(t))
         throw SimulationStop{collapsed + law->reason + " (a pole or a jump the motion cannot follow)", law->where};
       if (rows_at_toggle()) return std::nullopt;
@@ -1716,7 +1756,8 @@ class Run {
     if (coming_to_rest(at)) {
       const std::string rest = "the mechanism came back to the toggle at " + time_text(at) +
                                " without getting 3e-4 of the drawing away from it since it reversed there (going on "
-                               "at " + time_text(reversal_restart_) +
+                               "at " +
+                               time_text(reversal_restart_) +
                                "): bounces this small are below what a reversal can follow (the motion may be coming "
                                "to rest against the toggle)";
       add_event(kind, at, rest);
@@ -1925,7 +1966,8 @@ class Run {
   // Velocities at the start. Up to kDenseStartCoordinates coordinates by an SVD that meets the
   // kept rows exactly and the free drivers' initial speeds as nearly as it can, a correction said
   // in the warnings (initial_velocity.hpp); above, where that SVD's cubic cost would outweigh the
-  // run (a chain of a hundred loops, 400 coordinates, spent 69 % of its run in it), by the sparse solve alone, exact at a regular start.
+  // run (a chain of a hundred loops, 400 coordinates, spent 69 % of its run in it), by the sparse solve alone, exact at
+  // a regular start.
   static constexpr int kDenseStartCoordinates = 100;
   Eigen::VectorXd start_velocities(const Eigen::VectorXd& q, const std::vector<DriverState>& drivers) {
     std::vector<double> values;
@@ -2148,23 +2190,23 @@ class Run {
   Eigen::VectorXd y_;
   // Work vectors, sized once: the step's projected end, a row's interpolated and projected state.
   Eigen::VectorXd y1_, next_k1_;
-  Integrator::Step step_;  // the last step's, kept for its storage
-  RecentSteps recent_;     // the last steps accepted
-  RowReference reference_;  // at the state kept last
+  Integrator::Step step_;           // the last step's, kept for its storage
+  RecentSteps recent_;              // the last steps accepted
+  RowReference reference_;          // at the state kept last
   std::vector<double> raw_angles_;  // work space of angles_at
-  RowMaker rows_;           // the rows this thread makes: at events, for the stop condition
-  double toggle_at_start_ = 1.0;  // the toggle measure at the state kept last
-  double toggle_scale_ = 0.0;     // its size at the start, where the mechanism is assembled
-  ToggleMeasure toggle_;          // its reference, at the state kept last when toggle_reference_ready_
+  RowMaker rows_;                   // the rows this thread makes: at events, for the stop condition
+  double toggle_at_start_ = 1.0;    // the toggle measure at the state kept last
+  double toggle_scale_ = 0.0;       // its size at the start, where the mechanism is assembled
+  ToggleMeasure toggle_;            // its reference, at the state kept last when toggle_reference_ready_
   bool toggle_reference_ready_ = false;
   double step_start_time_ = 0.0;
   Eigen::VectorXd step_start_q_;
   // The first regular state (the start, unless it is a toggle): the toggle measures' scales are there.
   double scale_time_ = 0.0;
   Eigen::VectorXd scale_q_;
-  double reversal_restart_ = -1.0;  // where the motion went on after the last reversal
-  double search_stopped_at_ = 1.0;  // the earliest point of a step (theta) where an event's search met a stop
-  long stalled_steps_ = 0;          // tiny steps since the motion came next to a toggle (next_step_size)
+  double reversal_restart_ = -1.0;      // where the motion went on after the last reversal
+  double search_stopped_at_ = 1.0;      // the earliest point of a step (theta) where an event's search met a stop
+  long stalled_steps_ = 0;              // tiny steps since the motion came next to a toggle (next_step_size)
   EquationsOfMotion::Gate gate_start_;  // the gate at the state kept last
   double gate_scale_ = 0.0;             // its conditioning at the start
   std::optional<ColumnProbe> probe_;    // the stop condition's column

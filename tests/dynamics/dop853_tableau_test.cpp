@@ -64,7 +64,7 @@ TEST(Dop853Tableau, TheWeightsIntegratePolynomialsUpToDegreeSeven) {
 TEST(Dop853Tableau, TheErrorEstimatesVanishOnLowDegrees) {
   for (int degree = 0; degree <= 5; ++degree) {
     double fifth = 0.0, third = 0.0;
-    for (int j = 0; j < kStagesWithEnd; ++j) {
+    for (int j = 0; j < kStages; ++j) {
       fifth += e5_weights[j] * std::pow(c[j], degree);
       third += e3_weights[j] * std::pow(c[j], degree);
     }
