@@ -35,6 +35,13 @@ namespace {
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 
+// A point's position at q: Mechanism::point_position, inline (a row asks for every body's two
+// points, its energies for every centre of mass).
+Eigen::Vector2d position_at(const Mechanism& mech, int point, const Eigen::VectorXd& q) {
+  const int col = mech.column_of(point);
+  return col < 0 ? mech.model().points[point].position : Eigen::Vector2d(q(col), q(col + 1));
+}
+
 // A duration: "3.2e-17 s".
 std::string seconds_text(double seconds) {
   std::ostringstream s;
@@ -523,7 +530,7 @@ class EquationsOfMotion {
     return out;
   }
 
-  Eigen::Vector2d position(int point, const Eigen::VectorXd& q) const { return mech_.point_position(point, q); }
+  Eigen::Vector2d position(int point, const Eigen::VectorXd& q) const { return position_at(mech_, point, q); }
   Eigen::Vector2d velocity(int point, const Eigen::VectorXd& qd) const {
     const int col = mech_.column_of(point);
     return col < 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(qd.segment<2>(col));
@@ -1118,7 +1125,7 @@ class RecentSteps {
 // A body's direction at q: atan2's angle (rad) of its first two points.
 double body_angle(const Mechanism& mech, const Eigen::VectorXd& q, int body) {
   const std::vector<int>& points = mech.model().bodies[body].points;
-  const Eigen::Vector2d u = mech.point_position(points[1], q) - mech.point_position(points[0], q);
+  const Eigen::Vector2d u = position_at(mech, points[1], q) - position_at(mech, points[0], q);
   return std::atan2(u.y(), u.x());
 }
 
@@ -1130,9 +1137,12 @@ void raw_body_angles(const Mechanism& mech, const Eigen::VectorXd& q, std::vecto
     out[b] = m.bodies[b].points.size() < 2 ? 0.0 : body_angle(mech, q, static_cast<int>(b));
 }
 
-// An angle moved by whole turns to the one nearest `reference`.
+// An angle moved by whole turns to the one nearest `reference`. Within half a turn of it (every
+// row but the rare fast wheel) round() would give zero: its call is spared.
 double unwrapped(double angle, double reference) {
-  return angle + 2 * M_PI * std::round((reference - angle) / (2 * M_PI));
+  const double gap = reference - angle;
+  if (std::abs(gap) < M_PI) return angle;
+  return angle + 2 * M_PI * std::round(gap / (2 * M_PI));
 }
 
 // Each driver's value at q (SI) into `out`, angles unwrapped against `previous`; `bodies`, where
@@ -1141,7 +1151,7 @@ double unwrapped(double angle, double reference) {
 void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>* bodies,
                       const std::vector<double>& previous, std::vector<double>& out) {
   const Model& m = mech.model();
-  const auto at = [&](int p) { return mech.point_position(p, q); };
+  const auto at = [&](int p) { return position_at(mech, p, q); };
   const auto angle_of = [&](int body) { return bodies ? (*bodies)[body] : body_angle(mech, q, body); };
   out.resize(m.drivers.size());
   for (std::size_t d = 0; d < m.drivers.size(); ++d) {
