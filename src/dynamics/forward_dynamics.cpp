@@ -1450,6 +1450,7 @@ class Run {
         integrator_.step(t, y_, k1, h, away_from_toggles() ? Integrator::Pair::dop853 : Integrator::Pair::dopri5, s);
         if (!s.y1.allFinite() || !(s.error <= 1.0)) {
           ++out_.statistics.rejected_steps;
+          just_rejected_ = true;
           const Integrator::Controller& c = s.controller;
           h *= s.y1.allFinite() && std::isfinite(s.error) ? std::max(c.least, 0.9 * std::pow(s.error, -c.exponent))
                                                           : c.least;
@@ -1493,7 +1494,11 @@ class Run {
         keep_step_start(t);
         if (probe_) condition_ = condition_at(t, y_, true);
         const Integrator::Controller& c = s.controller;
-        h *= std::clamp(0.9 * std::pow(std::max(s.error, 1e-10), -c.exponent), c.least, c.largest);
+        // As Hairer's codes: the step after a rejected one does not grow (the double crank of the
+        // benchmark: 137 steps rejected where 171 were, 3 % fewer evaluations).
+        h *= std::clamp(0.9 * std::pow(std::max(s.error, 1e-10), -c.exponent), c.least,
+                        just_rejected_ ? 1.0 : c.largest);
+        just_rejected_ = false;
       }
       drain_output_rows();
     } catch (const SimulationStop& stop) {
@@ -2216,7 +2221,8 @@ class Run {
   Eigen::VectorXd scale_q_;
   double reversal_restart_ = -1.0;      // where the motion went on after the last reversal
   double search_stopped_at_ = 1.0;      // the earliest point of a step (theta) where an event's search met a stop
-  long stalled_steps_ = 0;              // tiny steps since the motion came next to a toggle (next_step_size)
+  long stalled_steps_ = 0;
+  bool just_rejected_ = false;     // the last step tried was rejected              // tiny steps since the motion came next to a toggle (next_step_size)
   EquationsOfMotion::Gate gate_start_;  // the gate at the state kept last
   double gate_scale_ = 0.0;             // its conditioning at the start
   std::optional<ColumnProbe> probe_;    // the stop condition's column
