@@ -426,19 +426,21 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
   double *r2 = r2_.data(), *y = dlambda_.data(), *ls = lambda.data();
   bool converged = false;
   for (int round = 0; round < (refine ? kMostRounds : 1) && !converged; ++round) {
+    // The residuals (r1, r2) = (f - M x - Phi^T lambda, c - Phi x); x is zero in the first round,
+    // the one round of most solves, whose products with it are spared.
     for (int i = 0; i < n; ++i) {
       double sum = f(i);
-      for (int k = 0; k < n; ++k) sum -= mass[i * n + k] * xs[k];
+      if (round > 0)
+        for (int k = 0; k < n; ++k) sum -= mass[i * n + k] * xs[k];
       r1[i] = sum;
       h[i] = 0.0;
     }
     for (int r = 0; r < m; ++r) {
       double sum = c(r);
       const double multiplier = ls[r];
-      for (int k = 0; k < n; ++k) {
-        sum -= j[r * n + k] * xs[k];
-        r1[k] -= j[r * n + k] * multiplier;
-      }
+      if (round > 0)
+        for (int k = 0; k < n; ++k) sum -= j[r * n + k] * xs[k];
+      for (int k = 0; k < n; ++k) r1[k] -= j[r * n + k] * multiplier;
       r2[r] = sum;
       if (!range_space)
         for (int k = 0; k < n; ++k) h[k] += j[r * n + k] * sum;
