@@ -289,7 +289,8 @@ double AugmentedSystem::solve_iterative(const std::vector<double>& values, const
   apply(values, x, r2_);
   r2_ = c - r2_;
   const double scale = largest(c) + jacobian_scale_ * largest(x);
-  constraint_left = scale > 0 ? largest(r2_) / scale : 0.0;
+  last_residual_ = largest(r2_);
+  constraint_left = scale > 0 ? last_residual_ / scale : 0.0;
   if (converged && constraint_left <= kFallBack && x.allFinite()) return constraint_left;
   lambda.setZero(m_);  // no warm start from here
   return solve_dense(values, f, c, x);
@@ -479,6 +480,7 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
     left = std::max(left, std::abs(sum));
   }
   const double scale = largest(c) + jacobian_scale_ * most_x;
+  last_residual_ = left;
   const double constraint_left = scale > 0 ? left / scale : 0.0;
   const double allowed = schur_stale_ && !refine ? kStaleFallBack : kFallBack;
   if (converged && constraint_left <= allowed && nan_if_not_finite == 0.0) return constraint_left;
@@ -535,8 +537,8 @@ double AugmentedSystem::solve_dense(const std::vector<double>& values, const Eig
     x += null * z;
   }
   const double scale = largest(c) + jacobian_scale_ * largest(x);
-  const Eigen::VectorXd left = c - jacobian * x;
-  return scale > 0 ? largest(left) / scale : 0.0;
+  last_residual_ = largest(Eigen::VectorXd(c - jacobian * x));
+  return scale > 0 ? last_residual_ / scale : 0.0;
 }
 
 }  // namespace nbar

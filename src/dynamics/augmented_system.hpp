@@ -110,6 +110,10 @@ class AugmentedSystem {
   double solve(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
                Eigen::VectorXd& x, Eigen::VectorXd& lambda, Rounds rounds);
 
+  // The largest |Phi_q x - c| the last solve left, absolute (solve returns it relative): a row's
+  // drift on the velocity and acceleration levels, without another product with Phi_q.
+  double last_residual() const { return last_residual_; }
+
   // out = Phi_q x, and out = Phi_q^T y.
   void apply(const std::vector<double>& values, const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
   void apply_transposed(const std::vector<double>& values, const Eigen::VectorXd& y, Eigen::VectorXd& out) const;
@@ -199,6 +203,7 @@ class AugmentedSystem {
   Eigen::SparseMatrix<double> sparse_k_;  // upper triangle, in the fill-reducing order
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>> sparse_factor_;
   double largest_diagonal_ = 0.0;
+  double last_residual_ = 0.0;  // last_residual()
 
   // Work vectors, sized once.
   Eigen::VectorXd permuted_b_, permuted_x_;

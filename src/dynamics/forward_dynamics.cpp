@@ -342,10 +342,11 @@ class EquationsOfMotion {
     gamma_ *= -2.0;
     return gamma_;
   }
-  // What residuals, time_derivative and gamma computed last.
+  // What residuals and time_derivative computed last.
   const Eigen::VectorXd& last_residuals() const { return residual_; }
   const Eigen::VectorXd& last_time_derivative() const { return time_derivative_; }
-  const Eigen::VectorXd& last_gamma() const { return gamma_; }
+  // The largest |Phi_q x - c| the last solve left (the accelerations', a correction's).
+  double last_solve_residual() const { return system_ ? system_->last_residual() : 0.0; }
   // Phi_q x with the present Jacobian.
   const Eigen::VectorXd& jacobian_times(const Eigen::VectorXd& x) {
     system_->apply(jacobian_values_, x, product_);
@@ -1048,7 +1049,7 @@ class Integrator {
   const SimulationOptions& options_;
   int n_;
   long evaluations_ = 0;
-  Eigen::VectorXd q_, qd_, velocity_error_;                 // the projection's
+  Eigen::VectorXd q_, qd_, velocity_error_;  // the projection's
   Eigen::VectorXd evaluated_q_, evaluated_qd_, stage_;      // a step's
   std::array<Eigen::VectorXd, dop853::kStagesExtended> k_;  // a step's stages (the first is given)
 };
@@ -1225,8 +1226,11 @@ class RowMaker {
     const EquationsOfMotion::Rates& rates = eq_.evaluate_factorised(at, q, qd);
     ConstraintDrift drift;
     if (eq_.kept_rows()) {
-      // Phi, Phi_t and gamma at this (t, q, q') as the projection and the accelerations left them.
-      drift.acceleration = (eq_.jacobian_times(rates.acceleration) - eq_.last_gamma()).lpNorm<Eigen::Infinity>();
+      // |Phi| at q as the projection left it, |Phi_q q'' - gamma| as the accelerations' solve left
+      // it (computed there with the q'' it returns), and |Phi_q q' + Phi_t| of the q' corrected
+      // (not the correction's own residual, which leaves out the rounding of q' - dq': 1e-21
+      // where the speeds hold 1e-13).
+      drift.acceleration = eq_.last_solve_residual();
       drift.position = eq_.last_residuals().lpNorm<Eigen::Infinity>();
       drift.velocity = (eq_.jacobian_times(qd) + eq_.last_time_derivative()).lpNorm<Eigen::Infinity>();
     }
