@@ -1438,6 +1438,9 @@ class Run {
                   "the stop condition '" + options_.stop_when->text + "' holds at the start, " + time_text(0.0));
         next_output = outputs_ + 1;  // nothing more to do
       }
+      // The row thread starts while the first steps are taken, not at their first rows (where
+      // the steps would wait for its creation); a run that ends at its start has none.
+      if (next_output <= outputs_) output_worker_.start_early();
       while (next_output <= outputs_) {
         if (control_.should_stop("simulate", next_output, outputs_)) {
           drain_output_rows();

@@ -4,8 +4,9 @@
 // on the caller's, by the same code, so the answers are the same either way.
 //
 // The caller fills the slot next_slot() gives and publishes it with submit(); drain() waits until
-// every job published is done. The thread starts at the first job (a run that ends before it
-// starts none). A job that throws stops the jobs after it (they are skipped) and its exception
+// every job published is done. The thread starts at the first job, or at start_early() (which a
+// simulation calls before its start, so that the thread's creation overlaps with it). A job that
+// throws stops the jobs after it (they are skipped) and its exception
 // is thrown again to the caller by every later next_slot() or drain(): the caller sees it where a
 // run on one thread would have, before anything it does after the job's rows.
 //
@@ -70,6 +71,12 @@ class OrderedWorker {
     stopping_ = true;
     wake();
     thread_.join();
+  }
+
+  // Starts the thread now rather than at the first job (where the caller would wait for its
+  // creation), if it is to have one.
+  void start_early() {
+    if (start_wanted_) start();
   }
 
   bool threaded() const { return thread_.joinable(); }
