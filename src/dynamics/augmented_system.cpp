@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -467,6 +468,18 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
     for (int r = 0; r < m; ++r) ls[r] += y[r];
     converged = !refine || (round > 0 && most_dx <= kSettled * most_x);
   }
+  const double left = small_solution<N, M>(xs, c, x);
+  const double allowed = schur_stale_ && !refine ? kStaleFallBack : kFallBack;
+  if (converged && left <= allowed) return left;
+  lambda.setZero(m_);  // no warm start from here
+  return solve_dense(values, f, c, x);
+}
+
+template <int N, int M>
+double AugmentedSystem::small_solution(const double* xs, const Eigen::VectorXd& c, Eigen::VectorXd& x) {
+  constexpr int n = N;
+  const int m = M > 0 ? M : m_;
+  const double* j = dense_jacobian_.data();
   x.resize(n);
   double left = 0.0, most_x = 0.0, nan_if_not_finite = 0.0;  // x - x is NaN for an infinite or NaN x
   for (int k = 0; k < n; ++k) {
@@ -479,13 +492,10 @@ double AugmentedSystem::solve_small(const std::vector<double>& values, const Eig
     for (int k = 0; k < n; ++k) sum -= j[r * n + k] * xs[k];
     left = std::max(left, std::abs(sum));
   }
-  const double scale = largest(c) + jacobian_scale_ * most_x;
   last_residual_ = left;
-  const double constraint_left = scale > 0 ? left / scale : 0.0;
-  const double allowed = schur_stale_ && !refine ? kStaleFallBack : kFallBack;
-  if (converged && constraint_left <= allowed && nan_if_not_finite == 0.0) return constraint_left;
-  lambda.setZero(m_);  // no warm start from here
-  return solve_dense(values, f, c, x);
+  if (nan_if_not_finite != 0.0) return std::numeric_limits<double>::infinity();
+  const double scale = largest(c) + jacobian_scale_ * most_x;
+  return scale > 0 ? left / scale : 0.0;
 }
 
 double AugmentedSystem::solve(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,

@@ -131,6 +131,10 @@ class AugmentedSystem {
   template <int N, int M>
   double solve_small(const std::vector<double>& values, const Eigen::VectorXd& f, const Eigen::VectorXd& c,
                      Eigen::VectorXd& x, Eigen::VectorXd& lambda, Rounds rounds);
+  // x from the round's solution xs, and what is left of the constraints, relative (infinite where x
+  // is not finite): |c - Phi_q x| / (|c| + |Phi_q| |x|), the absolute kept in last_residual_.
+  template <int N, int M>
+  double small_solution(const double* xs, const Eigen::VectorXd& c, Eigen::VectorXd& x);
   // Phi_q dense, W = U^-T Phi_q^T and S = W^T W = Phi_q K^-1 Phi_q^T, factorised (S = L D L^T);
   // schur_usable_ false where S is singular to rounding, schur_conditioned_ where its pivots'
   // ratio is above kWellConditioned.
@@ -187,7 +191,8 @@ class AugmentedSystem {
   std::vector<Product> products_;  // the alpha Phi_q^T Phi_q part
   Eigen::MatrixXd dense_k_;        // upper triangle used (dense_): K, then its factor U
   // The dense path's (dense_): M, Phi_q (row r at r * n), W (column r at r * n), L and D (S's
-  // factor L D L^T, column-major lower, D on the diagonal), whether they are formed for the present Jacobian and S was regular there.
+  // factor L D L^T, column-major lower, D on the diagonal), whether they are formed for the present Jacobian and S was
+  // regular there.
   Eigen::MatrixXd dense_mass_, dense_jacobian_, schur_basis_, schur_factor_;
   // The reciprocals of the diagonals of M's and K's factors, and of S's D.
   Eigen::VectorXd mass_reciprocal_, k_reciprocal_, schur_reciprocal_;
