@@ -111,7 +111,7 @@ class AugmentedSystem {
                Eigen::VectorXd& x, Eigen::VectorXd& lambda, Rounds rounds);
 
   // The largest |Phi_q x - c| the last solve left, absolute (solve returns it relative): a row's
-  // drift on the velocity and acceleration levels, without another product with Phi_q.
+  // drift on the acceleration level, without another product with Phi_q.
   double last_residual() const { return last_residual_; }
 
   // out = Phi_q x, and out = Phi_q^T y.

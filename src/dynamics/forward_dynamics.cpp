@@ -35,13 +35,6 @@ namespace {
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 
-// A point's position at q: Mechanism::point_position, inline (a row asks for every body's two
-// points, its energies for every centre of mass).
-Eigen::Vector2d position_at(const Mechanism& mech, int point, const Eigen::VectorXd& q) {
-  const int col = mech.column_of(point);
-  return col < 0 ? mech.model().points[point].position : Eigen::Vector2d(q(col), q(col + 1));
-}
-
 // A duration: "3.2e-17 s".
 std::string seconds_text(double seconds) {
   std::ostringstream s;
@@ -531,7 +524,7 @@ class EquationsOfMotion {
     return out;
   }
 
-  Eigen::Vector2d position(int point, const Eigen::VectorXd& q) const { return position_at(mech_, point, q); }
+  Eigen::Vector2d position(int point, const Eigen::VectorXd& q) const { return mech_.point_position(point, q); }
   Eigen::Vector2d velocity(int point, const Eigen::VectorXd& qd) const {
     const int col = mech_.column_of(point);
     return col < 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(qd.segment<2>(col));
@@ -885,8 +878,8 @@ class Integrator {
   struct Step {
     Eigen::VectorXd y1;
     double error = 0.0;
-    Pair pair = Pair::dop853;
-    Controller controller = kDop853;  // the pair's that made it
+    Pair pair = Pair::dop853;  // the pair that made it
+    const Controller& controller() const { return pair == Pair::dop853 ? kDop853 : kDopri5; }
     // The continuous extension on [t, t + h] (extend): y(t + theta h) = y0 + theta (r[0] +
     // (1 - theta) (r[1] + theta (r[2] + ...))), the factors alternating (the 5(4) pair's last
     // three are zero).
@@ -937,7 +930,6 @@ class Integrator {
     derivative(t + h, s.y1, k7);
     stage_ = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7);
     s.error = error_norm(stage_, y, s.y1);
-    s.controller = kDopri5;
   }
   void extend_dopri5(const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s) {
     using namespace dopri;
@@ -953,21 +945,19 @@ class Integrator {
   // (the stage at the end has no weight in the error estimates: extend_dop853 takes it).
   void step_dop853(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s) {
     using namespace dop853;
-    const auto stage = [&](int j) -> const Eigen::VectorXd& { return j == 0 ? k1 : k_[j]; };
+    const auto stage = [&](int j) -> const Eigen::VectorXd& { return dop853_stage(j, k1); };
     for (int i = 1; i < kStages; ++i) {
       dop853_stage_state(i, y, k1, h, stage_);
       derivative(t + c[i] * h, stage_, k_[i]);
     }
     dop853_stage_state(kStages, y, k1, h, s.y1);  // a[12] holds the eighth-order weights
     s.error = step_error(h, stage, y, s.y1);
-    s.controller = kDop853;
   }
   // The stage at the end (`end`, or evaluated at the end unprojected), the three further stages
   // and the continuous extension's coefficient vectors.
   void extend_dop853(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& k1, double h, Step& s,
                      const Eigen::VectorXd* end) {
     using namespace dop853;
-    const auto stage = [&](int j) -> const Eigen::VectorXd& { return j == 0 ? k1 : k_[j]; };
     if (end)
       k_[kStages] = *end;
     else
@@ -983,7 +973,7 @@ class Integrator {
       Eigen::VectorXd& r = s.r[3 + i];
       r.setZero(y.size());
       for (int j = 0; j < kStagesExtended; ++j)
-        if (d[i][j] != 0.0) r += (h * d[i][j]) * stage(j);
+        if (d[i][j] != 0.0) r += (h * d[i][j]) * dop853_stage(j, k1);
     }
   }
 
@@ -994,8 +984,10 @@ class Integrator {
     using namespace dop853;
     out = y;
     for (int j = 0; j < i; ++j)
-      if (a[i][j] != 0.0) out += (h * a[i][j]) * (j == 0 ? k1 : k_[j]);
+      if (a[i][j] != 0.0) out += (h * a[i][j]) * dop853_stage(j, k1);
   }
+  // DOP853's stage j of the present step (the first is given).
+  const Eigen::VectorXd& dop853_stage(int j, const Eigen::VectorXd& k1) const { return j == 0 ? k1 : k_[j]; }
 
   static Eigen::VectorXd interpolate(const Eigen::VectorXd& y0, const Step& s, double theta) {
     Eigen::VectorXd out;
@@ -1126,7 +1118,7 @@ class RecentSteps {
 // A body's direction at q: atan2's angle (rad) of its first two points.
 double body_angle(const Mechanism& mech, const Eigen::VectorXd& q, int body) {
   const std::vector<int>& points = mech.model().bodies[body].points;
-  const Eigen::Vector2d u = position_at(mech, points[1], q) - position_at(mech, points[0], q);
+  const Eigen::Vector2d u = mech.point_position(points[1], q) - mech.point_position(points[0], q);
   return std::atan2(u.y(), u.x());
 }
 
@@ -1152,7 +1144,7 @@ double unwrapped(double angle, double reference) {
 void driver_values_at(const Mechanism& mech, const Eigen::VectorXd& q, const std::vector<double>* bodies,
                       const std::vector<double>& previous, std::vector<double>& out) {
   const Model& m = mech.model();
-  const auto at = [&](int p) { return position_at(mech, p, q); };
+  const auto at = [&](int p) { return mech.point_position(p, q); };
   const auto angle_of = [&](int body) { return bodies ? (*bodies)[body] : body_angle(mech, q, body); };
   out.resize(m.drivers.size());
   for (std::size_t d = 0; d < m.drivers.size(); ++d) {
@@ -1564,7 +1556,7 @@ class Run {
   double after_rejected(const Integrator::Step& s, double h) {
     ++out_.statistics.rejected_steps;
     just_rejected_ = true;
-    const Integrator::Controller& c = s.controller;
+    const Integrator::Controller& c = s.controller();
     return h * (s.y1.allFinite() && std::isfinite(s.error) ? std::max(c.least, 0.9 * std::pow(s.error, -c.exponent))
                                                            : c.least);
   }
@@ -1573,7 +1565,7 @@ class Run {
   // rejected one does not grow (the double crank of the benchmark: 137 steps rejected where 171
   // were, 3 % fewer evaluations).
   double after_accepted(const Integrator::Step& s, double h) {
-    const Integrator::Controller& c = s.controller;
+    const Integrator::Controller& c = s.controller();
     const double factor =
         std::clamp(0.9 * std::pow(std::max(s.error, 1e-10), -c.exponent), c.least, just_rejected_ ? 1.0 : c.largest);
     just_rejected_ = false;

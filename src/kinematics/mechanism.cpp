@@ -299,12 +299,6 @@ Mechanism::Mechanism(Model model, bool check_drivers) : model_(std::move(model))
   loops_ = find_four_bar_loops(model_);
 }
 
-Eigen::Vector2d Mechanism::point_position(int point, const Eigen::VectorXd& q) const {
-  const int col = column_[point];
-  if (col < 0) return model_.points[point].position;
-  return q.segment<2>(col);
-}
-
 const std::string& Mechanism::row_label(int row) const { return equations_->rows[row].label; }
 
 void Mechanism::build_rows(Equations& equations) {

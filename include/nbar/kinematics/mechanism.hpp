@@ -76,8 +76,11 @@ class Mechanism {
   const Eigen::VectorXd& drawn_coordinates() const { return q_drawn_; }
   // Each driver's value (SI) in the drawn pose.
   const std::vector<double>& drawn_driver_values() const { return driver_drawn_; }
-  // Position of a point given q.
-  Eigen::Vector2d point_position(int point, const Eigen::VectorXd& q) const;
+  // Position of a point given q. Inline: a simulation's rows ask for every body's points and every centre of mass.
+  Eigen::Vector2d point_position(int point, const Eigen::VectorXd& q) const {
+    const int col = column_[point];
+    return col < 0 ? model_.points[point].position : Eigen::Vector2d(q(col), q(col + 1));
+  }
 
   // The constraint rows themselves, compiled for the solver (each row's equation, the Jacobian's
   // sparsity pattern, the rows grouped for the evaluation loops): the kinematics engine's own,
